@@ -1,0 +1,208 @@
+"""The :class:`Contact`: composition root of profile, materials and interface."""
+from __future__ import annotations
+
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from .errors import NotSupportedError, OutsideTheoryError, ParameterError
+from .materials import Material, effective_moduli
+from .materials.pair import EffectiveModuli
+from .numeric.quadrature import DEFAULT_RTOL
+from .numeric.roots import bracketed_root
+from .params import Param, as_float_array
+from .profiles import Profile
+from .states import NormalState
+
+__all__ = ["Contact"]
+
+
+class Contact:
+    """An axisymmetric contact of a profile between two bodies.
+
+    Parameters
+    ----------
+    profile : Profile
+        Gap between the undeformed surfaces, ``f(r)``.
+    materials : (Material, Material)
+        The two bodies (one may be :class:`~contactlab.Rigid`).
+    friction : float, optional
+        Coulomb friction coefficient μ (> 0); ``None`` means no slip (μ → ∞).
+    work_of_adhesion : float, optional
+        Dupré work of adhesion Δγ, J/m² (>= 0; JKR through the MDR).
+    rtol : float, optional
+        Relative tolerance of every numeric route (quadratures, root finds); default 1e-10.
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> steel = cl.Elastic(E=210e9, nu=0.3)
+    >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(steel, steel))
+    >>> s = c.normal(force=100.0)
+    >>> round(s.radius * 1e6, 3)  # µm
+    186.626
+    """
+
+    def __init__(self, profile: Profile, materials: tuple[Material, Material], *,
+                 friction: float | None = None, work_of_adhesion: float | None = None,
+                 rtol: float | None = None) -> None:
+        if not isinstance(profile, Profile):
+            raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab "
+                                 "Profile (e.g. contactlab.profiles.Paraboloid(R=0.01)).")
+        try:
+            m1, m2 = materials
+        except (TypeError, ValueError) as err:
+            raise ParameterError(f"materials={materials!r} is invalid: give two bodies, "
+                                 "e.g. (Elastic(E=..., nu=...), Rigid()).") from err
+        self.profile = profile
+        self.materials = (m1, m2)
+        self.friction = None if friction is None else Param(
+            "friction", "mu", "1", "positive", "friction coefficient").check(friction)
+        self.work_of_adhesion = None if work_of_adhesion is None else Param(
+            "work_of_adhesion", "Delta_gamma", "J/m^2", "nonnegative",
+            "work of adhesion").check(work_of_adhesion)
+        self.rtol = DEFAULT_RTOL if rtol is None else Param(
+            "rtol", "rtol", "1", "positive", "relative tolerance").check(rtol)
+        if self.rtol >= 1:
+            raise ParameterError(f"rtol={rtol!r} is invalid: it must satisfy 0 < rtol < 1.")
+        self.moduli  # validate the pair now
+
+    def __repr__(self) -> str:
+        extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),
+                        ("work_of_adhesion", self.work_of_adhesion)) if v is not None)
+        return f"Contact({self.profile!r}, materials={self.materials!r}{extra})"
+
+    @cached_property
+    def moduli(self) -> EffectiveModuli:
+        """Effective normal (E*), tangential (G*) and torsional (G_t) moduli, Pa."""
+        return effective_moduli(*self.materials)
+
+    @property
+    def is_adhesive(self) -> bool:
+        return bool(self.work_of_adhesion)
+
+    # ------------------------------------------------------------------ normal contact
+    def normal(self, *, depth: Any = None, force: Any = None, radius: Any = None) -> NormalState:
+        """Frictionless (non-adhesive) normal contact for given depth, force or contact radius.
+
+        Exactly one of the keywords; scalars or arrays (the state has their shape).
+
+        Parameters
+        ----------
+        depth : float or array_like, optional
+            Indentation depth ``d``, m. ``d <= 0`` gives zero force and zero radius.
+        force : float or array_like, optional
+            Normal force ``F_N``, N (``<= 0`` gives the unloaded state).
+        radius : float or array_like, optional
+            Contact radius ``a``, m (not for a flat punch, whose radius is fixed).
+
+        Returns
+        -------
+        NormalState
+
+        Raises
+        ------
+        OutsideTheoryError
+            Contact radius beyond the profile's domain, or a ring contact (g decreasing).
+        ConvergenceError
+            A bracketed solve failed (never silently).
+        """
+        given = {k: v for k, v in (("depth", depth), ("force", force), ("radius", radius))
+                 if v is not None}
+        if len(given) != 1:
+            raise ParameterError(f"normal() needs exactly one of depth=, force=, radius=; got "
+                                 f"{sorted(given) or 'none'}.")
+        if self.is_adhesive:
+            from .physics.adhesion import adhesive_normal  # noqa: F401  (adhesion module)
+            return adhesive_normal(self, **given)
+        key, value = next(iter(given.items()))
+        arr = as_float_array(key, value)
+        prof = self.profile
+        E = self.moduli.normal
+        if key == "depth":
+            d = arr
+            a = prof._radius_of_depth(d)
+        elif key == "radius":
+            if np.any(arr < 0):
+                raise ParameterError(f"radius contains {arr[arr < 0].ravel()[0]!r}: contact "
+                                     "radii must be >= 0 m.")
+            if np.isfinite(prof.wall_radius):
+                raise NotSupportedError(
+                    f"radius= does not determine the state of {prof!r}: its contact radius is "
+                    "fixed by the punch wall. Give depth= or force=.")
+            if np.any(arr >= prof.max_radius):
+                raise OutsideTheoryError(f"radius={np.max(arr)!r} m is invalid: it must stay below "
+                                         f"max_radius={prof.max_radius!r} m of {prof!r}.")
+            a = arr.copy()
+            a[a < prof.flat_radius] = np.where(a[a < prof.flat_radius] > 0, prof.flat_radius, 0.0)
+            d = np.where(a > 0, prof._g(a), 0.0)
+            prof._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
+        else:
+            a, d = self._radius_depth_of_force(arr)
+        g_int = np.where(a > 0, prof._g_integral(a), 0.0)
+        F = np.where(a > 0, 2.0 * E * (a * d - g_int), 0.0)
+        meta = {"routes": {"g": prof.g_route}, "rtol": self.rtol, "control": key}
+        return NormalState(self, np.asarray(d, float), np.asarray(a, float), F, meta)
+
+    def _force_of_radius(self, a: np.ndarray) -> np.ndarray:
+        """Non-adhesive force at contact radius a: ``2E*(a g(a) - ∫_0^a g)``."""
+        prof = self.profile
+        return 2.0 * self.moduli.normal * (a * prof._g(a) - prof._g_integral(a))
+
+    def _radius_depth_of_force(self, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        prof = self.profile
+        E = self.moduli.normal
+        a = np.zeros(F.shape)
+        d = np.zeros(F.shape)
+        pos = F > 0
+        if not np.any(pos):
+            return a, d
+        Fp = F[pos]
+        ap = np.zeros(Fp.shape)
+        solve = np.ones(Fp.shape, dtype=bool)
+        if np.isfinite(prof.wall_radius):
+            b = prof.wall_radius
+            F_wall = float(self._force_of_radius(np.array(b))) if prof.flat_radius < b else 0.0
+            at_wall = Fp >= F_wall
+            ap[at_wall] = b
+            solve = ~at_wall
+            limit = b
+        else:
+            limit = prof.max_radius
+        if np.any(solve):
+            Fs = Fp[solve]
+            terms = prof.power_terms()
+            if terms is not None and len(terms) == 1 and not np.isfinite(prof.wall_radius):
+                from .symbolic.transform import kappa
+                c, n = terms[0]
+                ap[solve] = (Fs * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+            else:
+                lo = np.full(Fs.shape, prof.flat_radius)
+                hi = np.full(Fs.shape, prof._initial_bracket())
+                for _ in range(400):
+                    hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
+                    short = self._force_of_radius(hi_c) < Fs
+                    if not np.any(short):
+                        hi = hi_c
+                        break
+                    at_limit = short & (hi_c >= limit * (1 - 1e-15))
+                    if np.any(at_limit) and not np.isfinite(prof.wall_radius):
+                        i = int(np.argmax(at_limit))
+                        raise OutsideTheoryError(
+                            f"force={Fs[i]!r} N needs a contact radius >= max_radius={limit!r} m "
+                            f"of {prof!r}; reduce the force.")
+                    lo = np.where(short, hi_c, lo)
+                    hi = np.where(short, hi * 4.0, hi)
+                ap[solve] = bracketed_root(lambda x, idx: self._force_of_radius(x), Fs, lo, hi,
+                                           rtol=1e-15, what="contact radius")
+        if np.isfinite(prof.wall_radius):
+            # at the wall the depth follows from F = 2E*(b d - ∫_0^b g)
+            dp = np.where(ap >= prof.wall_radius, (Fp / (2 * E) + prof._g_integral(ap)) / ap,
+                          prof._g(ap))
+        else:
+            dp = prof._g(ap)
+        a[pos] = ap
+        d[pos] = dp
+        prof._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))
+        return a, d

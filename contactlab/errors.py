@@ -1,0 +1,97 @@
+"""Every exception and warning contactlab raises.
+
+Messages follow one form: the parameter, the value, what is allowed and, where it helps, the fix,
+e.g. ``nu=0.7 is invalid: Poisson's ratio must satisfy -1 < nu <= 0.5.``
+"""
+from __future__ import annotations
+
+__all__ = [
+    "ContactlabError",
+    "ParameterError",
+    "TabulatedDataError",
+    "OutsideTheoryError",
+    "UnknownNameError",
+    "PluginError",
+    "SceneError",
+    "UnitError",
+    "StrategyUnavailableError",
+    "MissingParameterError",
+    "ConvergenceError",
+    "NotSupportedError",
+    "EffectNotPlannedError",
+    "ContactlabWarning",
+    "ValidityWarning",
+    "PluginWarning",
+]
+
+
+class ContactlabError(Exception):
+    """Base class of every contactlab exception."""
+
+
+class ParameterError(ContactlabError, ValueError):
+    """A parameter value is outside its allowed domain."""
+
+
+class TabulatedDataError(ParameterError):
+    """Tabulated (measured) data are unusable: unsorted, duplicate, non-finite, too short."""
+
+
+class OutsideTheoryError(ContactlabError, ValueError):
+    """The requested state lies outside the theory the model implements.
+
+    Examples: a transformed profile g(x) that decreases inside the contact (ring contact), a
+    sphere contact radius reaching the sphere radius, a contact leaving a tabulated profile.
+    """
+
+
+class UnknownNameError(ContactlabError, ValueError):
+    """A name (profile type, material type, method, strategy) is not known."""
+
+
+class PluginError(ContactlabError, TypeError):
+    """A plugin class breaks the contract of the kind it registers for."""
+
+
+class SceneError(ContactlabError, ValueError):
+    """A scene failed validation. ``issues`` holds (key path, value, allowed) triples."""
+
+    def __init__(self, message: str, issues: list[tuple[str, object, str]] | None = None):
+        super().__init__(message)
+        self.issues = list(issues or [])
+
+
+class UnitError(SceneError):
+    """A quantity carries a unit that is unknown or of the wrong dimension."""
+
+
+class StrategyUnavailableError(ContactlabError, ValueError):
+    """A numerical route (``strategy=``) was forced that this object does not offer."""
+
+
+class MissingParameterError(ContactlabError, ValueError):
+    """A symbolic expression still has unbound symbols where numbers are needed."""
+
+
+class ConvergenceError(ContactlabError, RuntimeError):
+    """An iterative solve or an adaptive quadrature did not reach its tolerance."""
+
+
+class NotSupportedError(ContactlabError, NotImplementedError):
+    """The combination asked for is valid physics but not implemented (or not in the theory)."""
+
+
+class EffectNotPlannedError(ContactlabError, AttributeError):
+    """An output was asked for that the scene's plan did not include."""
+
+
+class ContactlabWarning(UserWarning):
+    """Base class of contactlab warnings."""
+
+
+class ValidityWarning(ContactlabWarning):
+    """A result leaves the validity range of the model that produced it."""
+
+
+class PluginWarning(ContactlabWarning):
+    """A plugin could not be loaded, or clashes with another one; it was skipped."""

@@ -1,0 +1,60 @@
+"""The abstract :class:`Material`.
+
+To implement a subclass
+-----------------------
+1. Declare ``name: ClassVar[str]`` and ``params: ClassVar[tuple[Param, ...]]``; store each
+   parameter as an attribute of that name; validate in ``__init__``.
+2. Elastic materials implement ``_compliances()`` returning ``(normal, tangential, torsional)``
+   compliances: ``(1-ν²)/E``, ``(2-ν)/(4G)`` and ``1/G`` (all 0 for a rigid body).
+3. Viscoelastic materials set ``is_viscoelastic = True`` and implement ``relaxation(t)``.
+
+Comes free: ``pair(other)`` (effective moduli), ``repr``, ``==``, ``hash``.
+"""
+from __future__ import annotations
+
+from abc import ABC
+from typing import Any, ClassVar
+
+from ..errors import NotSupportedError, PluginError
+from ..params import Param
+
+__all__ = ["Material"]
+
+
+class Material(ABC):
+    """A homogeneous isotropic body material (half-space model)."""
+
+    name: ClassVar[str] = ""
+    params: ClassVar[tuple[Param, ...]] = ()
+    is_viscoelastic: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.is_viscoelastic:
+            if not hasattr(cls, "relaxation"):
+                raise PluginError(f"viscoelastic material {cls.__qualname__} must implement "
+                                  "relaxation(t) (rule: Material contract, item 3).")
+        elif cls._compliances is Material._compliances and not getattr(cls, "__abstract__", False):
+            raise PluginError(f"material class {cls.__qualname__} must implement _compliances() "
+                              "(rule: Material contract, item 2).")
+
+    def _compliances(self) -> tuple[float, float, float]:
+        raise NotSupportedError(f"{type(self).__name__} has no elastic compliances.")
+
+    def _param_values(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, p.name) for p in self.params)
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{p.name}={getattr(self, p.name)!r}" for p in self.params)
+        return f"{type(self).__name__}({args})"
+
+    def __eq__(self, other: object) -> bool:
+        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return hash((type(self), self._param_values()))
+
+    def pair(self, other: "Material"):
+        """Effective moduli of this body against ``other``; see :func:`effective_moduli`."""
+        from .pair import effective_moduli
+        return effective_moduli(self, other)

@@ -1,0 +1,157 @@
+"""Vectorised adaptive tanh-sinh (double-exponential) quadrature.
+
+Every numeric integral in contactlab goes through :func:`tanh_sinh`. It integrates a batch of
+integrals at once (one per element of ``lo``/``hi``), refines only those that have not converged,
+and returns an error estimate for each. The double-exponential substitution makes integrable
+endpoint singularities (``1/sqrt`` edges, ``r**(n-1)`` for ``n < 1``, logarithms, slope jumps placed
+at an endpoint) converge as fast as smooth integrands, which is why it was chosen over
+Gauss-Legendre.
+
+References
+----------
+H. Takahasi, M. Mori, "Double exponential formulas for numerical integration",
+Publ. RIMS 9 (1974) 721-741.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable
+
+import numpy as np
+
+from ..errors import ConvergenceError
+
+__all__ = ["QuadratureResult", "tanh_sinh", "DEFAULT_RTOL", "MAX_LEVEL"]
+
+DEFAULT_RTOL = 1e-10
+MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
+_T_MAX = 3.15          # pi/2*sinh(3.15) ~ 18.3: weights below 1e-15 relative beyond
+_H0 = 0.5
+
+
+@dataclass(frozen=True)
+class QuadratureResult:
+    """Values of a batch of integrals with absolute error estimates.
+
+    Attributes
+    ----------
+    value : ndarray
+        The integrals, shape of the broadcast ``lo``/``hi``.
+    error : ndarray
+        Absolute error estimate per integral: the change between the last two refinement levels
+        (conservative for the double-exponential rule, whose error roughly squares per level).
+    level : int
+        Highest refinement level used.
+    evaluations : int
+        Total integrand evaluations (nodes x integrals), a cost measure.
+    """
+
+    value: np.ndarray
+    error: np.ndarray
+    level: int
+    evaluations: int
+
+
+@lru_cache(maxsize=None)
+def _level_nodes(level: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Nodes new at ``level``: (lower-end fraction, upper-end fraction, weight without h).
+
+    A node sits at ``lo + (hi-lo)*low_frac`` computed as ``hi - (hi-lo)*high_frac`` on the upper
+    half, so points near either end keep full relative precision of their distance to that end.
+    """
+    h = _H0 / 2**level
+    k_max = int(np.ceil(_T_MAX / h))
+    k = np.arange(-k_max, k_max + 1)
+    if level > 0:
+        k = k[k % 2 != 0]
+    t = k * h
+    s = np.pi * np.sinh(t)
+    low = 1.0 / (np.exp(-s) + 1.0)         # (1+u)/2
+    high = 1.0 / (np.exp(s) + 1.0)         # (1-u)/2
+    w = 0.5 * np.pi * np.cosh(t) / np.cosh(0.5 * s) ** 2   # du/dt
+    return low, high, w
+
+
+def tanh_sinh(
+    integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    lo: np.ndarray | float,
+    hi: np.ndarray | float,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    atol: np.ndarray | float = 0.0,
+    min_level: int = 2,
+    max_level: int = MAX_LEVEL,
+    raise_on_failure: bool = True,
+) -> QuadratureResult:
+    """Integrate a batch of integrals ``∫_lo^hi integrand dx`` to ``rtol``.
+
+    Parameters
+    ----------
+    integrand : callable ``(x, index) -> values``
+        ``x`` has shape ``(m, k)``: ``k`` nodes for each of the ``m`` integrals still being
+        refined; ``index`` (shape ``(m,)``) gives their flat positions in the broadcast
+        ``lo``/``hi`` so that the integrand can pick its per-integral parameters. Must return an
+        array of shape ``(m, k)``. Nodes never coincide with ``lo`` or ``hi``.
+    lo, hi : float or array_like
+        Limits; broadcast together. ``hi == lo`` gives 0.
+    rtol, atol : float (atol may be an array broadcast with ``lo``)
+        Stop refining an integral once its error estimate is ``<= atol + rtol*|value|``.
+    min_level, max_level : int
+        Refinement levels (step ``0.5 * 2**-level``); each level doubles the node count.
+    raise_on_failure : bool
+        Raise :class:`~contactlab.errors.ConvergenceError` if some integral misses the tolerance at
+        ``max_level`` (default); otherwise return with the honest error estimate.
+
+    Returns
+    -------
+    QuadratureResult
+    """
+    lo_b, hi_b = np.broadcast_arrays(np.asarray(lo, dtype=float), np.asarray(hi, dtype=float))
+    shape = lo_b.shape
+    lo_f = lo_b.ravel()
+    hi_f = hi_b.ravel()
+    n = lo_f.size
+    atol_f = np.broadcast_to(np.asarray(atol, dtype=float), shape).ravel()
+    half = 0.5 * (hi_f - lo_f)
+    sums = np.zeros(n)
+    value = np.zeros(n)
+    prev = np.full(n, np.nan)
+    error = np.full(n, np.inf)
+    active = np.flatnonzero(hi_f != lo_f)
+    error[hi_f == lo_f] = 0.0
+    evaluations = 0
+    level = 0
+    for level in range(max_level + 1):
+        if active.size == 0:
+            break
+        low, high, w = _level_nodes(level)
+        d = (hi_f - lo_f)[active, None]
+        x = np.where(low[None, :] <= 0.5, lo_f[active, None] + d * low, hi_f[active, None] - d * high)
+        # Nodes that collapsed onto an endpoint in floating point carry no information; their
+        # weights are below the rounding level of the sum, so they are dropped.
+        valid = (x > np.minimum(lo_f[active, None], hi_f[active, None])) & (
+            x < np.maximum(lo_f[active, None], hi_f[active, None]))
+        x = np.where(valid, x, 0.5 * (lo_f[active, None] + hi_f[active, None]))
+        fx = np.asarray(integrand(x, active), dtype=float)
+        fx = np.where(valid, fx, 0.0)
+        evaluations += fx.size
+        sums[active] += fx @ w
+        h = _H0 / 2**level
+        value[active] = half[active] * h * sums[active]
+        if level >= 1:
+            error[active] = np.abs(value[active] - prev[active])
+        prev[active] = value[active]
+        if level >= min_level:
+            done = error[active] <= atol_f[active] + rtol * np.abs(value[active])
+            active = active[~done]
+    if not np.all(np.isfinite(value)):
+        raise ConvergenceError("quadrature produced a non-finite value: the integrand is not "
+                               "integrable on the interval or returned NaN/inf inside it.")
+    if active.size and raise_on_failure:
+        worst = active[np.argmax(error[active] / np.maximum(np.abs(value[active]), 1e-300))]
+        raise ConvergenceError(
+            f"quadrature did not reach rtol={rtol:g} on {active.size} of {n} integrals after "
+            f"{max_level} levels (worst: value {value[worst]:.6g}, error estimate "
+            f"{error[worst]:.3g}). Loosen rtol or split the interval at the singularity.")
+    return QuadratureResult(value.reshape(shape), error.reshape(shape), level, evaluations)

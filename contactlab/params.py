@@ -1,0 +1,104 @@
+"""Parameter specifications and the checks every public constructor runs.
+
+A :class:`Param` says what a parameter is (name, symbol, unit, domain, a typical range); the
+``check_*`` helpers turn a user value into a float or array and raise
+:class:`~contactlab.errors.ParameterError` naming the parameter, the value and the allowed set.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import ParameterError
+
+__all__ = ["Param", "check_positive", "check_finite", "check_in_range", "as_float_array"]
+
+_DOMAINS = {
+    "positive": ("> 0", lambda v: v > 0),
+    "nonnegative": (">= 0", lambda v: v >= 0),
+    "real": ("finite", lambda v: True),
+}
+
+
+@dataclass(frozen=True)
+class Param:
+    """Specification of one model parameter.
+
+    Parameters
+    ----------
+    name : str
+        Keyword used in the API and in scene files (``R``, ``slope``).
+    symbol : str
+        sympy/LaTeX symbol name used in formula export.
+    unit : str
+        SI unit (``"m"``, ``"Pa"``, ``"1"`` for dimensionless).
+    domain : str
+        One of ``"positive"``, ``"nonnegative"``, ``"real"``.
+    description : str
+        One line for docs and error messages.
+    typical : tuple of float
+        A typical (low, high) range, used by property tests and docs.
+    """
+
+    name: str
+    symbol: str
+    unit: str
+    domain: str = "positive"
+    description: str = ""
+    typical: tuple[float, float] = (1e-3, 1.0)
+
+    def check(self, value: object) -> float:
+        """Return ``value`` as a float after checking it lies in the domain."""
+        allowed, ok = _DOMAINS[self.domain]
+        try:
+            v = float(value)  # type: ignore[arg-type]
+        except (TypeError, ValueError) as err:
+            raise ParameterError(
+                f"{self.name}={value!r} is invalid: {self.description or self.name} must be a real "
+                f"number {allowed} (unit {self.unit})."
+            ) from err
+        if not math.isfinite(v) or not ok(v):
+            raise ParameterError(
+                f"{self.name}={value!r} is invalid: {self.description or self.name} must be finite "
+                f"and {allowed} (unit {self.unit})."
+            )
+        return v
+
+
+def check_positive(name: str, value: object, what: str = "", unit: str = "") -> float:
+    """Check that ``value`` is a finite real number > 0 and return it as float."""
+    return Param(name, name, unit or "-", "positive", what).check(value)
+
+
+def check_finite(name: str, value: object, what: str = "", unit: str = "") -> float:
+    """Check that ``value`` is a finite real number and return it as float."""
+    return Param(name, name, unit or "-", "real", what).check(value)
+
+
+def check_in_range(name: str, value: object, low: float, high: float, *, low_open: bool,
+                   high_open: bool, what: str) -> float:
+    """Check ``low <(=) value <(=) high`` and return the value as float."""
+    v = check_finite(name, value, what)
+    lo_ok = v > low if low_open else v >= low
+    hi_ok = v < high if high_open else v <= high
+    if not (lo_ok and hi_ok):
+        lo_s = "<" if low_open else "<="
+        hi_s = "<" if high_open else "<="
+        raise ParameterError(
+            f"{name}={value!r} is invalid: {what} must satisfy {low:g} {lo_s} {name} {hi_s} {high:g}."
+        )
+    return v
+
+
+def as_float_array(name: str, value: object, *, allow_nan: bool = False) -> np.ndarray:
+    """Convert ``value`` to a float ndarray; reject non-numeric and (by default) non-finite input."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers.") from err
+    if not allow_nan and not np.all(np.isfinite(arr)):
+        bad = arr[~np.isfinite(arr)].ravel()[0]
+        raise ParameterError(f"{name} contains {bad!r}: every value must be finite.")
+    return arr

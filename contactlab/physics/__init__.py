@@ -1,0 +1,1 @@
+"""Pure, vectorised physics kernels (no object state beyond the profile passed in)."""

@@ -1,0 +1,219 @@
+"""Normal contact through the MDR [S eqs. 1-20; H1; Sn65] (physics.md §3).
+
+With the 1D foundation ``Δk = E* Δx`` and spring compression ``d - g(x)`` for ``|x| <= a``:
+
+* ``F = 2E* (a d - ∫_0^a g dx)``, stiffness ``dF/dd = 2E* a``;
+* ``p(r) = (E*/π) [S(r, a) + (d - g(a))/sqrt(a²-r²)]`` with the pressure shape
+  ``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx``;
+* ``u_z(r) = (2d/π) asin(min(1, a/r)) - A(r, a)`` with ``A = (2/π) ∫_0^{min(r,a)} g/sqrt(r²-x²) dx``
+  (``A = f(r)`` inside the contact, so ``u_z = d - f`` there).
+
+Numeric routes: with a closed-form ``g'`` (hook ``_g_prime_closed_form``) ``S = ∫_0^U g'(r cosh u) du``;
+otherwise S is evaluated by parts so only g is needed:
+``S = (g(a)-g(r))/sqrt(a²-r²) + ∫_0^{U} (g(r cosh u) - g(r)) cosh u /(r sinh² u) du``,
+``U = arccosh(a/r)``, with splits at the profile's breakpoints.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..numeric.quadrature import tanh_sinh
+
+__all__ = ["force", "pressure_shape", "abel_g", "pressure", "displacement", "elastic_energy",
+           "g_squared_integral"]
+
+
+_U_MIN = 1e-4
+
+
+def force(E_star: float, a: np.ndarray, d: np.ndarray, g_integral: np.ndarray) -> np.ndarray:
+    """``F = 2E* (a d - ∫_0^a g)`` [S eq. 8], N."""
+    return 2.0 * E_star * (a * d - g_integral)
+
+
+def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+    """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` (0 for ``r >= a``); returns (value, error estimate)."""
+    r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+    if profile._has("_pressure_shape_closed_form"):
+        return profile._pressure_shape_closed_form(r, a), np.zeros(r.shape)
+    if hasattr(profile, "terms"):       # Sum: the MDR is linear, each term takes its own route
+        parts = [pressure_shape(t, r, a, rtol) for t in profile.terms]
+        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+    out = np.zeros(r.shape)
+    err = np.zeros(r.shape)
+    inside = r < a
+    if not np.any(inside):
+        return out, err
+    rr, aa = r[inside], a[inside]
+    g_a = profile._g(aa)
+    g_r = profile._g(rr)
+    val = np.zeros(rr.shape)
+    er = np.zeros(rr.shape)
+    axis = rr == 0
+    # r > 0: by-parts form in u = arccosh(x/r), split at the breakpoints
+    pos = ~axis
+    if np.any(pos):
+        rp, ap, grp = rr[pos], aa[pos], g_r[pos]
+        cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
+        U = np.arccosh(ap / rp)
+        us = [np.clip(np.arccosh(np.maximum(b / rp, 1.0)), 0.0, U) for b in cuts]
+        edges = np.stack([np.zeros_like(rp)] + us + [U])
+        # exact x-limits of each segment: x is clipped into them, so rounding of arccosh/cosh
+        # never moves a node across a breakpoint (where g' may be singular or jump)
+        x_edges = np.stack([rp] + [np.clip(np.full_like(rp, b), rp, ap) for b in cuts] + [ap])
+        lo, hi = edges[:-1], edges[1:]
+        x_lo = x_edges[:-1].ravel()
+        x_hi = x_edges[1:].ravel()
+        rr_b = np.broadcast_to(rp, lo.shape).ravel()
+        gr_b = np.broadcast_to(grp, lo.shape).ravel()
+
+        def node_x(u: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            x = np.clip(rr_b[idx][:, None] * np.cosh(u), x_lo[idx][:, None], x_hi[idx][:, None])
+            interior = (x > x_lo[idx][:, None]) & (x < x_hi[idx][:, None])
+            return x, interior
+
+        def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            rv = rr_b[idx][:, None]
+            # Below u = 1e-4 the integrand is g'(r)/2 + O(u²); evaluating it there would divide
+            # rounding noise of g(x) - g(r) by u², so the value at 1e-4 is used instead (the
+            # neglected variation is ~1e-8 relative over an interval of length 1e-4).
+            u = np.maximum(u, _U_MIN)
+            x, interior = node_x(u, idx)
+            sh = np.sinh(u)
+            val = (profile._g(x) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)
+            return np.where(interior | np.isfinite(val), val, 0.0)
+
+        tail = (g_a[pos] - grp) / np.sqrt((ap - rp) * (ap + rp))
+        # Each segment is judged against the magnitude of the whole S (~ g(a)/a), not its own
+        # value: a segment that is exactly 0 (flat part) must not demand relative accuracy.
+        # The g(x) - g(r) difference carries rounding noise ~ eps g(a)/r: tolerate it absolutely.
+        scale = g_a[pos] / ap
+        noise = 64 * np.finfo(float).eps * g_a[pos] / rp
+        if profile._has("_g_prime_closed_form") and not cuts:
+            # (with breakpoints the by-parts form is kept: g is bounded at a slope jump where g'
+            # is singular, so node rounding near the breakpoint does not matter)
+            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:  # noqa: F811
+                x, interior = node_x(u, idx)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    val = profile._g_prime_closed_form(x)
+                # a node rounded onto a singular breakpoint carries no information: drop it
+                return np.where(interior | np.isfinite(val), val, 0.0)
+            tail = np.zeros_like(tail)
+            noise = 0.0
+        atol = np.broadcast_to(rtol * (np.abs(tail) + scale) + noise, lo.shape)
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=atol.ravel())
+        val[pos] = tail + res.value.reshape(lo.shape).sum(axis=0)
+        er[pos] = res.error.reshape(lo.shape).sum(axis=0)
+    if np.any(axis):
+        # S(0, a) = g(a)/a + ∫_0^a g(x)/x² dx  (g(0) = 0), split at the breakpoints
+        a0 = aa[axis]
+        cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
+        edges = np.stack([np.zeros_like(a0)] + [np.clip(np.full_like(a0, b), 0, a0) for b in cuts]
+                         + [a0])
+        lo0, hi0 = edges[:-1], edges[1:]
+
+        def integrand0(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return profile._g(x) / (x * x)
+
+        scale0 = np.broadcast_to(rtol * g_a[axis] / a0, lo0.shape).ravel()
+        res0 = tanh_sinh(integrand0, lo0.ravel(), hi0.ravel(), rtol=rtol, atol=scale0,
+                         raise_on_failure=False)
+        v0 = g_a[axis] / a0 + res0.value.reshape(lo0.shape).sum(axis=0)
+        e0 = res0.error.reshape(lo0.shape).sum(axis=0)
+        unconverged = e0 > 10 * rtol * np.abs(v0)
+        if np.any(unconverged):
+            # g(x)/x not vanishing at the axis (cone-like tip, n <= 1): p(0) is infinite
+            tiny = a0[unconverged]
+            h1 = profile._g(1e-12 * tiny) / (1e-12 * tiny)
+            h2 = profile._g(1e-6 * tiny) / (1e-6 * tiny)
+            divergent = (h1 > 0) & (h1 >= 0.5 * h2)
+            if not np.all(divergent):
+                from ..errors import ConvergenceError
+                raise ConvergenceError(
+                    f"pressure at r=0 did not converge (estimate {v0[unconverged][0]:.6g}, error "
+                    f"{e0[unconverged][0]:.3g}); loosen rtol.")
+            v0[unconverged] = np.inf
+            e0[unconverged] = 0.0
+        val[axis] = v0
+        er[axis] = e0
+    out[inside] = val
+    err[inside] = er
+    return out, err
+
+
+def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+    """``A(r, a) = (2/π) ∫_0^{asin(min(1,a/r))} g(r sinθ) dθ``; returns (value, error estimate)."""
+    r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+    if profile._has("_abel_g_closed_form"):
+        return profile._abel_g_closed_form(r, a), np.zeros(r.shape)
+    out = np.zeros(r.shape)
+    err = np.zeros(r.shape)
+    inside = (r <= a) & (r > 0)
+    if np.any(inside) and profile._has("_height"):
+        out[inside] = profile._height(r[inside])
+    elif np.any(inside):
+        out[inside] = profile.inverse_transform(r[inside])
+    outside = r > a
+    if np.any(outside):
+        ro, ao = r[outside], a[outside]
+        theta_max = np.arcsin(ao / ro)
+        cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
+        ts = [np.clip(np.arcsin(np.minimum(b / ro, 1.0)), 0.0, theta_max) for b in cuts]
+        edges = np.stack([np.zeros_like(ro)] + ts + [theta_max])
+        lo, hi = edges[:-1], edges[1:]
+        r_b = np.broadcast_to(ro, lo.shape).ravel()
+
+        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return profile._g(r_b[idx][:, None] * np.sin(th))
+
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol)
+        out[outside] = 2 / np.pi * res.value.reshape(lo.shape).sum(axis=0)
+        err[outside] = 2 / np.pi * res.error.reshape(lo.shape).sum(axis=0)
+    return out, err
+
+
+def pressure(profile, E_star: float, r: np.ndarray, a: np.ndarray, d: np.ndarray,
+             g_a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Contact pressure ``p(r)``, Pa (0 outside the contact), with the edge term for ``d != g(a)``."""
+    r, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, a, d, g_a)))
+    shape, err = pressure_shape(profile, r, a, rtol)
+    out = np.zeros(r.shape)
+    inside = r < a
+    edge = d - g_a
+    with np.errstate(divide="ignore"):
+        edge_term = np.where(edge[inside] != 0,
+                             edge[inside] / np.sqrt((a[inside] - r[inside]) * (a[inside] + r[inside])), 0.0)
+    out[inside] = E_star / np.pi * (shape[inside] + edge_term)
+    return out, E_star / np.pi * err
+
+
+def displacement(profile, r: np.ndarray, a: np.ndarray, d: np.ndarray,
+                 rtol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Normal surface displacement ``u_z(r)``, m, inside (``d - f``) and outside the contact."""
+    r, a, d = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, a, d)))
+    A, err = abel_g(profile, r, a, rtol)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ang = np.where(r > a, np.arcsin(np.where(r > 0, a / np.where(r > 0, r, 1.0), 0.0)), 0.5 * np.pi)
+    out = 2.0 / np.pi * d * ang - A
+    out = np.where(a > 0, out, 0.0)
+    return out, err
+
+
+def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
+    """``∫_0^a g(x)² dx``, m³ (closed form where the profile has one)."""
+    if profile._has("_g_squared_integral_closed_form"):
+        return profile._g_squared_integral_closed_form(a)
+    a = np.asarray(a, float)
+
+    def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return profile._g(x) ** 2
+
+    lo = np.broadcast_to(profile.flat_radius, a.shape).astype(float)
+    lo = np.minimum(lo, a)
+    return tanh_sinh(integrand, lo.ravel(), a.ravel(), rtol=rtol).value.reshape(a.shape)
+
+
+def elastic_energy(E_star: float, a: np.ndarray, d: np.ndarray, g_int: np.ndarray,
+                   g2_int: np.ndarray) -> np.ndarray:
+    """Stored elastic energy ``E* ∫_{-a}^{a} (d-g)²/2 dx = E* (a d² - 2 d ∫g + ∫g²)``, J."""
+    return E_star * (a * d * d - 2.0 * d * g_int + g2_int)

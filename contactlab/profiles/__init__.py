@@ -1,0 +1,17 @@
+"""Axisymmetric indenter profiles and their MDR transforms.
+
+Built-ins: :class:`PowerLaw`, :class:`Paraboloid`, :class:`Cone`, :class:`Polynomial`,
+:class:`Sphere`, :class:`FlatPunch`, :class:`TruncatedParaboloid`, :class:`TruncatedCone`,
+:class:`Tabulated`, and the composites :class:`Sum` and :class:`Scaled` (``p1 + p2``, ``2 * p``).
+"""
+from .base import G_STRATEGIES, Profile
+from .compound import Scaled, Sum
+from .flat_punch import FlatPunch, TruncatedCone, TruncatedParaboloid
+from .power_law import Cone, Paraboloid, Polynomial, PowerLaw
+from .sphere import Sphere
+from .tabulated import Tabulated
+
+__all__ = [
+    "Profile", "G_STRATEGIES", "PowerLaw", "Paraboloid", "Cone", "Polynomial", "Sphere",
+    "FlatPunch", "TruncatedParaboloid", "TruncatedCone", "Tabulated", "Sum", "Scaled",
+]

@@ -1,0 +1,402 @@
+"""The abstract :class:`Profile`: an axisymmetric gap f(r) and its MDR transform g(x).
+
+To implement a subclass
+-----------------------
+1. Declare ``name: ClassVar[str]`` (registry key, lowercase snake) and
+   ``params: ClassVar[tuple[Param, ...]]``; store each parameter as an attribute of that name.
+2. Implement at least one of ``_height(r)``, ``_g_closed_form(x)`` or ``power_terms()``.
+   ``_height`` alone is enough: slope (by finite differences unless ``_slope`` is given),
+   the transform, its integral, pressure, displacement and torsion then come by quadrature.
+3. Optional, for speed and exactness: ``_slope(r)``, ``_g_closed_form(x)``,
+   ``_g_integral_closed_form(a)`` (∫_0^a g dx), ``_g_inverse_closed_form(d)``,
+   ``_pressure_shape_closed_form(r, a)`` (∫_r^a g'(x)/sqrt(x²-r²) dx),
+   ``_abel_g_closed_form(r, a)`` ((2/π)∫_0^min(r,a) g(x)/sqrt(r²-x²) dx).
+4. Declare domain features when present: ``max_radius`` (largest admissible contact radius),
+   ``flat_radius`` (g = 0 for |x| < it), ``wall_radius`` (the contact radius cannot exceed it, as
+   for a flat punch), ``breakpoints`` (radii where f' jumps; quadratures split there).
+
+Comes free: ``height``, ``slope``, ``g`` (with ``strategy=``), ``g_integral``,
+``radius_of_depth``, ``inverse_transform``, ``available_strategies``, ``formulas``, ``to_latex``,
+``+`` and scalar ``*`` (giving :class:`~contactlab.profiles.compound.Sum`), ``repr``/``==``/``hash``.
+"""
+from __future__ import annotations
+
+import logging
+from abc import ABC
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..errors import (OutsideTheoryError, ParameterError, PluginError,
+                      StrategyUnavailableError)
+from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
+from ..numeric.roots import bracketed_root
+from ..params import Param, as_float_array
+
+__all__ = ["Profile", "G_STRATEGIES"]
+
+log = logging.getLogger("contactlab")
+
+#: Numerical routes to g(x), in order of preference.
+G_STRATEGIES = ("closed_form", "symbolic", "quadrature")
+
+_HOOKS = ("_height", "_g_closed_form", "power_terms")
+
+
+class Profile(ABC):
+    """Axisymmetric gap ``f(r)`` between two undeformed surfaces and its MDR transform.
+
+    ``f(0) = 0``; ``f`` may be non-monotone (measured data) as long as its transform
+    ``g(x) = |x| ∫_0^{|x|} f'(r)/sqrt(x²-r²) dr`` is non-decreasing over the contact: otherwise the
+    contact is an annulus, outside the MDR, and :class:`~contactlab.errors.OutsideTheoryError` is
+    raised at the depth where that happens.
+
+    See the module docstring for how to implement a subclass.
+    """
+
+    name: ClassVar[str] = ""
+    params: ClassVar[tuple[Param, ...]] = ()
+    #: default relative tolerance of the numeric routes
+    rtol: float = DEFAULT_RTOL
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if getattr(cls, "__abstractmethods__", None):
+            return
+        if not any(getattr(cls, h) is not getattr(Profile, h, None) for h in _HOOKS
+                   if hasattr(cls, h)):
+            raise PluginError(
+                f"profile class {cls.__qualname__} must implement one of _height(r), "
+                f"_g_closed_form(x) or power_terms() (rule: Profile contract, item 2).")
+
+    # ------------------------------------------------------------------ domain features
+    @property
+    def max_radius(self) -> float:
+        """Largest admissible contact radius, m (``inf`` if unbounded)."""
+        return np.inf
+
+    @property
+    def flat_radius(self) -> float:
+        """Radius of a flat central part (g = 0 for |x| below it), m."""
+        return 0.0
+
+    @property
+    def wall_radius(self) -> float:
+        """Radius of a vertical wall limiting the contact radius (flat punch), m."""
+        return np.inf
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        """Radii, m, where the slope f' jumps (quadratures split there)."""
+        return ()
+
+    def power_terms(self) -> list[tuple[float, float]] | None:
+        """``[(c, n), ...]`` when ``f = Σ c r**n`` exactly (enables the symbolic route)."""
+        return None
+
+    # ------------------------------------------------------------------ identity
+    def _param_values(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, p.name) for p in self.params)
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{p.name}={getattr(self, p.name)!r}" for p in self.params)
+        return f"{type(self).__name__}({args})"
+
+    def __eq__(self, other: object) -> bool:
+        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return hash((type(self), self._param_values()))
+
+    def __add__(self, other: "Profile") -> "Profile":
+        from .compound import Sum
+        if not isinstance(other, Profile):
+            return NotImplemented
+        return Sum(self, other)
+
+    def __mul__(self, factor: float) -> "Profile":
+        from .compound import Scaled
+        return Scaled(self, factor)
+
+    __rmul__ = __mul__
+
+    # ------------------------------------------------------------------ geometry
+    def height(self, r: Any) -> np.ndarray:
+        """Gap ``f(r)``, m, for radii ``r >= 0`` (m)."""
+        r = self._check_radii("r", r)
+        if self._has("_height"):
+            return self._height(r)
+        raise StrategyUnavailableError(
+            f"{type(self).__name__} defines no f(r); only its transform g(x) is known.")
+
+    def slope(self, r: Any) -> np.ndarray:
+        """Slope ``f'(r)`` (dimensionless) for radii ``r >= 0`` (m)."""
+        r = self._check_radii("r", r)
+        return self._slope_any(r)
+
+    def _slope_any(self, r: np.ndarray) -> np.ndarray:
+        if self._has("_slope"):
+            return self._slope(r)
+        if self._has("_height"):
+            return self._slope_finite_difference(r)
+        raise StrategyUnavailableError(f"{type(self).__name__} defines no f(r).")
+
+    def _slope_finite_difference(self, r: np.ndarray) -> np.ndarray:
+        """Fourth-order central differences of ``_height`` (one-sided fallback near r = 0)."""
+        scale = np.maximum(np.abs(r), self._length_scale())
+        h = 1e-3 * scale
+        h = np.minimum(h, np.where(r > 0, 0.5 * r, h))
+        central = (8 * (self._height(r + h) - self._height(np.maximum(r - h, 0.0)))
+                   - (self._height(r + 2 * h) - self._height(np.maximum(r - 2 * h, 0.0)))) / (12 * h)
+        # Richardson with a halved step
+        h2 = 0.5 * h
+        central2 = (8 * (self._height(r + h2) - self._height(np.maximum(r - h2, 0.0)))
+                    - (self._height(r + 2 * h2) - self._height(np.maximum(r - 2 * h2, 0.0)))) / (12 * h2)
+        est = (16 * central2 - central) / 15
+        near0 = r <= 0
+        if np.any(near0):
+            hh = 1e-6 * self._length_scale()
+            est = np.where(near0, (self._height(np.full_like(r, hh)) - self._height(np.zeros_like(r))) / hh, est)
+        return est
+
+    def _length_scale(self) -> float:
+        """A length typical of the profile (for finite-difference steps); override if known."""
+        finite = [v for v in (self.max_radius, self.wall_radius) if np.isfinite(v)]
+        finite += [b for b in self.breakpoints if b > 0]
+        return min(finite) * 1e-3 if finite else 1e-6
+
+    # ------------------------------------------------------------------ the MDR transform
+    def available_strategies(self) -> tuple[str, ...]:
+        """Numerical routes to ``g`` this profile offers, best first."""
+        out = []
+        if self._has("_g_closed_form"):
+            out.append("closed_form")
+        if self.power_terms() is not None:
+            out.append("symbolic")
+        if self._has("_height") or self._has("_slope"):
+            out.append("quadrature")
+        return tuple(out)
+
+    @property
+    def g_route(self) -> str:
+        """The route ``g`` takes when no strategy is forced (cached choice)."""
+        route = self.__dict__.get("_g_route_cache")
+        if route is None:
+            route = self.available_strategies()[0]
+            self.__dict__["_g_route_cache"] = route
+            log.debug("%r: g(x) route %s", self, route)
+        return route
+
+    def g(self, x: Any, strategy: str | None = None, rtol: float | None = None) -> np.ndarray:
+        """MDR-transformed profile ``g(x) = |x| ∫_0^{|x|} f'(r)/sqrt(x²-r²) dr``, m.
+
+        Parameters
+        ----------
+        x : array_like
+            1D coordinate, m (``|x|`` is used).
+        strategy : {"closed_form", "symbolic", "quadrature"}, optional
+            Force a route; default: the best available (:attr:`g_route`).
+        rtol : float, optional
+            Relative tolerance of the quadrature route (default :attr:`rtol`).
+
+        Raises
+        ------
+        StrategyUnavailableError
+            If ``strategy`` is not offered by this profile.
+        """
+        xa = np.abs(as_float_array("x", x))
+        return self._g_route_eval(xa, strategy, rtol)
+
+    def _g_route_eval(self, xa: np.ndarray, strategy: str | None = None,
+                      rtol: float | None = None) -> np.ndarray:
+        route = strategy or self.g_route
+        if route not in self.available_strategies():
+            raise StrategyUnavailableError(
+                f"strategy={route!r} is not available for {type(self).__name__}; available: "
+                f"{', '.join(self.available_strategies())}.")
+        if route == "closed_form":
+            return self._g_closed_form(xa)
+        if route == "symbolic":
+            return self._g_symbolic(xa)
+        return self._g_quadrature(xa, rtol)[0]
+
+    def _g(self, xa: np.ndarray) -> np.ndarray:
+        """g for ``xa >= 0`` by the default route (hot path, no validation)."""
+        return self._g_route_eval(xa)
+
+    def _g_symbolic(self, xa: np.ndarray) -> np.ndarray:
+        from ..symbolic.transform import g_callable
+        return g_callable(tuple(self.power_terms()))(xa)
+
+    def _g_quadrature(self, xa: np.ndarray, rtol: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        """g by tanh-sinh quadrature of ``x ∫_0^{π/2} f'(x sinθ) dθ``; returns (value, error)."""
+        rtol = self.rtol if rtol is None else rtol
+        xa = np.asarray(xa, dtype=float)
+        flat = xa.ravel()
+        val, err = self._theta_quadrature(
+            flat, lambda x, th: self._slope_any(x * np.sin(th)), rtol)
+        return (val * flat).reshape(xa.shape), (err * flat).reshape(xa.shape)
+
+    def _theta_segments(self, flat: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Split ``θ ∈ [0, π/2]`` at ``asin(b/x)`` for each breakpoint ``b < x``.
+
+        Returns ``(lo, hi, x)``, each of shape ``(n_segments * len(flat),)`` when raveled, so one
+        batched quadrature covers all segments of all points.
+        """
+        cuts = [b for b in sorted(set(self.breakpoints) | {self.flat_radius}) if b > 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            thetas = [np.where(flat > b, np.arcsin(np.minimum(b / flat, 1.0)), 0.5 * np.pi)
+                      for b in cuts]
+        edges = np.stack([np.zeros_like(flat)] + thetas + [np.full_like(flat, 0.5 * np.pi)])
+        lo, hi = edges[:-1], edges[1:]
+        return lo, hi, np.broadcast_to(flat, lo.shape)
+
+    def _theta_quadrature(self, flat: np.ndarray, weight, rtol: float
+                          ) -> tuple[np.ndarray, np.ndarray]:
+        """``Σ_segments ∫ weight(x, θ) dθ`` over the split θ range for each ``x`` in ``flat``."""
+        val = np.zeros(flat.shape)
+        err = np.zeros(flat.shape)
+        nz = flat > 0          # x = 0 contributes nothing (every caller multiplies by a power of x)
+        if not np.any(nz):
+            return val, err
+        lo, hi, xs = self._theta_segments(flat[nz])
+        xr = xs.ravel()
+
+        def integrand(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return weight(xr[idx][:, None], theta)
+
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol)
+        val[nz] = res.value.reshape(lo.shape).sum(axis=0)
+        err[nz] = res.error.reshape(lo.shape).sum(axis=0)
+        return val, err
+
+    def g_integral(self, a: Any) -> np.ndarray:
+        """``∫_0^a g(x) dx = ∫_0^a f'(r) sqrt(a²-r²) dr``, m², for contact radii ``a`` (m)."""
+        a = self._check_radii("a", a)
+        return self._g_integral(a)
+
+    def _g_integral(self, a: np.ndarray) -> np.ndarray:
+        if self._has("_g_integral_closed_form"):
+            return self._g_integral_closed_form(a)
+        if self.power_terms() is not None:
+            return sum(self._power_kappa(n) * c * a ** (n + 1) / (n + 1)
+                       for c, n in self.power_terms())
+        return self._g_integral_quadrature(a)[0]
+
+    def _g_integral_quadrature(self, a: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        """``a² ∫_0^{π/2} f'(a sinθ) cos²θ dθ`` with breakpoint splits; returns (value, error)."""
+        rtol = self.rtol if rtol is None else rtol
+        a = np.asarray(a, dtype=float)
+        flat = a.ravel()
+        val, err = self._theta_quadrature(
+            flat, lambda x, th: self._slope_any(x * np.sin(th)) * np.cos(th) ** 2, rtol)
+        return (val * flat**2).reshape(a.shape), (err * flat**2).reshape(a.shape)
+
+    @staticmethod
+    def _power_kappa(n: float) -> float:
+        from ..symbolic.transform import kappa
+        return kappa(n)
+
+    # ------------------------------------------------------------------ inverse problems
+    def radius_of_depth(self, depth: Any) -> np.ndarray:
+        """Non-adhesive contact radius ``a`` with ``g(a) = depth`` (m); 0 for ``depth <= 0``.
+
+        Raises
+        ------
+        OutsideTheoryError
+            If ``a`` would exceed :attr:`max_radius`, or g decreases below ``a`` (ring contact).
+        """
+        d = as_float_array("depth", depth)
+        return self._radius_of_depth(d)
+
+    def _radius_of_depth(self, d: np.ndarray) -> np.ndarray:
+        out = np.zeros(d.shape)
+        pos = d > 0
+        if not np.any(pos):
+            return out
+        dp = d[pos]
+        if np.isfinite(self.wall_radius):
+            a = np.full(dp.shape, self.wall_radius)
+            if self.flat_radius < self.wall_radius:
+                # profile rises before the wall: the contact may be smaller than the wall
+                g_wall = self._g(np.array(self.wall_radius))
+                inner = dp < g_wall
+                if np.any(inner):
+                    a[inner] = self._solve_radius(dp[inner], self.wall_radius)
+        elif self._has("_g_inverse_closed_form"):
+            a = self._g_inverse_closed_form(dp)
+        else:
+            a = self._solve_radius(dp, self.max_radius)
+        if np.any(a >= self.max_radius):
+            i = int(np.argmax(a >= self.max_radius))
+            raise OutsideTheoryError(
+                f"depth={dp.ravel()[i]!r} m needs a contact radius >= max_radius="
+                f"{self.max_radius!r} m of {self!r}; reduce the depth/force.")
+        out[pos] = a
+        self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
+        return out
+
+    def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
+        """Hook: raise OutsideTheoryError if g decreases on [0, a_max] (default: f' >= 0 assumed)."""
+
+    def _solve_radius(self, d: np.ndarray, limit: float) -> np.ndarray:
+        """Bracketed solve of g(a) = d (g non-decreasing) with an expanding upper bracket."""
+        lo = np.full(d.shape, self.flat_radius)
+        hi = np.full(d.shape, self._initial_bracket())
+        for _ in range(400):
+            hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
+            g_hi = self._g(hi_c)
+            short = g_hi < d
+            if not np.any(short):
+                hi = hi_c
+                break
+            if np.isfinite(limit) and np.any(short & (hi >= limit * (1 - 1e-15))):
+                i = int(np.argmax(short & (hi >= limit * (1 - 1e-15))))
+                raise OutsideTheoryError(
+                    f"depth={d.ravel()[i]!r} m needs a contact radius >= max_radius={limit!r} m "
+                    f"of {self!r}; reduce the depth/force.")
+            lo = np.where(short, hi_c, lo)
+            hi = np.where(short, hi * 4.0, hi)
+        d_flat = d.ravel()
+
+        def func(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return self._g(x)
+
+        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=1e-15,
+                              what="contact radius").reshape(d.shape)
+
+    def _initial_bracket(self) -> float:
+        finite = [v for v in (self.max_radius, self.wall_radius) if np.isfinite(v)]
+        return 0.5 * min(finite) if finite else max(self.flat_radius * 2, 1e-6)
+
+    def inverse_transform(self, r: Any, rtol: float | None = None) -> np.ndarray:
+        """Recover ``f(r) = (2/π) ∫_0^{π/2} g(r sinθ) dθ`` from g (a check of the forward route)."""
+        r = self._check_radii("r", r)
+        rtol = self.rtol if rtol is None else rtol
+        val, _ = self._theta_quadrature(r.ravel(), lambda x, th: self._g(x * np.sin(th)), rtol)
+        return (2 / np.pi * val).reshape(r.shape)
+
+    # ------------------------------------------------------------------ symbolic
+    def formulas(self) -> dict[str, Any]:
+        """Named sympy expressions for this profile (``height``, ``g``, …); see ``symbolic``."""
+        from ..symbolic.formulas import profile_formulas
+        return profile_formulas(self)
+
+    def to_latex(self) -> str:
+        """LaTeX of ``g(x)`` (and ``f(r)``) for this profile."""
+        import sympy as sp
+        f = self.formulas()
+        return "\n".join(f"{k} = {sp.latex(v)}" for k, v in f.items())
+
+    # ------------------------------------------------------------------ helpers
+    def _has(self, hook: str) -> bool:
+        own = getattr(type(self), hook, None)
+        return own is not None and own is not getattr(Profile, hook, None)
+
+    def _check_radii(self, name: str, r: Any) -> np.ndarray:
+        arr = as_float_array(name, r)
+        if np.any(arr < 0):
+            raise ParameterError(f"{name} contains {arr[arr < 0].ravel()[0]!r}: radii must be >= 0 m.")
+        return arr

@@ -1,0 +1,132 @@
+"""Composite profiles: sums of profiles and scaled profiles (the MDR transform is linear)."""
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import Param
+from .base import Profile
+
+__all__ = ["Sum", "Scaled"]
+
+
+class Sum(Profile):
+    """Sum of profiles, ``f = Σ f_i``; every term keeps its own route (``g = Σ g_i``).
+
+    Parameters
+    ----------
+    *terms : Profile
+        At least two profiles. Terms stay objects: ``s.terms[1].R``.
+    """
+
+    name: ClassVar[str] = "sum"
+    params: ClassVar[tuple[Param, ...]] = ()
+
+    def __init__(self, *terms: Profile) -> None:
+        flat: list[Profile] = []
+        for t in terms:
+            if not isinstance(t, Profile):
+                raise ParameterError(f"terms contains {t!r}: every term must be a Profile.")
+            flat.extend(t.terms if isinstance(t, Sum) else (t,))
+        if len(flat) < 2:
+            raise ParameterError("a Sum needs at least two profiles.")
+        self.terms = tuple(flat)
+
+    def _param_values(self) -> tuple[Any, ...]:
+        return self.terms
+
+    def __repr__(self) -> str:
+        return " + ".join(repr(t) for t in self.terms)
+
+    @property
+    def max_radius(self) -> float:
+        return min(t.max_radius for t in self.terms)
+
+    @property
+    def wall_radius(self) -> float:
+        return min(t.wall_radius for t in self.terms)
+
+    @property
+    def flat_radius(self) -> float:
+        return min(t.flat_radius for t in self.terms)
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return tuple(sorted({b for t in self.terms for b in (*t.breakpoints, t.flat_radius) if b > 0}))
+
+    def power_terms(self) -> list[tuple[float, float]] | None:
+        parts = [t.power_terms() for t in self.terms]
+        return None if any(p is None for p in parts) else [ct for p in parts for ct in p]
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        return sum(t._height(r) for t in self.terms)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        return sum(t._slope_any(r) for t in self.terms)
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return sum(t._g(x) for t in self.terms)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        return sum(t._g_integral(a) for t in self.terms)
+
+    def _length_scale(self) -> float:
+        return min(t._length_scale() for t in self.terms)
+
+
+class Scaled(Profile):
+    """A profile scaled by a positive factor, ``f = factor * base``."""
+
+    name: ClassVar[str] = "scaled"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("factor", "k", "1", "positive", "scale factor"),
+    )
+
+    def __init__(self, base: Profile, factor: float) -> None:
+        if not isinstance(base, Profile):
+            raise ParameterError(f"base={base!r} is invalid: expected a Profile.")
+        self.base = base
+        self.factor = self.params[0].check(factor)
+
+    def _param_values(self) -> tuple[Any, ...]:
+        return (self.base, self.factor)
+
+    def __repr__(self) -> str:
+        return f"{self.factor!r} * {self.base!r}"
+
+    @property
+    def max_radius(self) -> float:
+        return self.base.max_radius
+
+    @property
+    def wall_radius(self) -> float:
+        return self.base.wall_radius
+
+    @property
+    def flat_radius(self) -> float:
+        return self.base.flat_radius
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return self.base.breakpoints
+
+    def power_terms(self) -> list[tuple[float, float]] | None:
+        p = self.base.power_terms()
+        return None if p is None else [(self.factor * c, n) for c, n in p]
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        return self.factor * self.base._height(r)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        return self.factor * self.base._slope_any(r)
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return self.factor * self.base._g(x)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        return self.factor * self.base._g_integral(a)
+
+    def _length_scale(self) -> float:
+        return self.base._length_scale()

@@ -1,0 +1,189 @@
+"""Flat punch and flat punches with a rounded (truncated paraboloid) or conical (truncated cone) edge.
+
+Closed forms (physics.md §2-3):
+
+* flat punch radius b: ``g = 0`` for ``|x| <= b``, the wall fixes ``a = b``; the whole pressure is
+  the edge term ``E* d/(π sqrt(b²-r²))`` (Boussinesq).
+* truncated paraboloid: ``g = |x| sqrt(x²-b²)/R``, ``∫_0^a g = (a²-b²)^{3/2}/(3R)``,
+  ``a² = [b² + sqrt(b⁴ + 4R²d²)]/2``.
+* truncated cone: ``g = s|x| arccos(b/|x|)``,
+  ``∫_0^a g = s[a²/2·arccos(b/a) - (b/2) sqrt(a²-b²)]``.
+
+The slope jump at ``r = b`` of the truncated profiles gives a logarithmically singular pressure
+there; ``breakpoints`` makes every quadrature split at ``b``.
+"""
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from ..params import Param
+from .base import Profile
+
+__all__ = ["FlatPunch", "TruncatedParaboloid", "TruncatedCone"]
+
+
+class FlatPunch(Profile):
+    """Cylindrical flat punch of radius ``radius`` (f = 0 inside, a vertical wall at the edge).
+
+    Parameters
+    ----------
+    radius : float
+        Punch radius ``b``, m (> 0). The contact radius equals it for every positive depth.
+
+    Notes
+    -----
+    ``g(x) = 0`` for ``|x| <= b``; beyond the wall ``g`` (and ``f``) are ``+inf``.
+    """
+
+    name: ClassVar[str] = "flat_punch"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("radius", "b", "m", "positive", "punch radius", (1e-6, 1e-1)),
+    )
+
+    def __init__(self, radius: float) -> None:
+        self.radius = self.params[0].check(radius)
+
+    @property
+    def wall_radius(self) -> float:
+        return self.radius
+
+    @property
+    def flat_radius(self) -> float:
+        return self.radius
+
+    def _length_scale(self) -> float:
+        return self.radius
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        return np.where(r <= self.radius, 0.0, np.inf)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        return np.where(r <= self.radius, 0.0, np.inf)
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return np.where(x <= self.radius, 0.0, np.inf)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        return np.where(a <= self.radius, 0.0, np.inf)
+
+    def _g_squared_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        return self._g_integral_closed_form(a)
+
+    def _pressure_shape_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+        return np.zeros(np.broadcast(r, a).shape)
+
+    def _abel_g_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+        return np.zeros(np.broadcast(r, a).shape)
+
+    def available_strategies(self) -> tuple[str, ...]:
+        return ("closed_form",)
+
+
+class TruncatedParaboloid(Profile):
+    """Flat punch of radius ``radius`` with a parabolic rounded edge of radius ``R``.
+
+    ``f = 0`` for ``r < b`` and ``(r² - b²)/(2R)`` beyond.
+
+    Parameters
+    ----------
+    radius : float
+        Radius ``b`` of the flat part, m (> 0).
+    R : float
+        Radius of curvature of the rounded edge, m (> 0).
+    """
+
+    name: ClassVar[str] = "truncated_paraboloid"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1)),
+        Param("R", "R", "m", "positive", "edge rounding radius R", (1e-6, 1.0)),
+    )
+
+    def __init__(self, radius: float, R: float) -> None:
+        self.radius = self.params[0].check(radius)
+        self.R = self.params[1].check(R)
+
+    @property
+    def flat_radius(self) -> float:
+        return self.radius
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return (self.radius,)
+
+    def _length_scale(self) -> float:
+        return self.radius
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        b = self.radius
+        return np.where(r > b, (r - b) * (r + b) / (2 * self.R), 0.0)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        return np.where(r > self.radius, r / self.R, 0.0)
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        b = self.radius
+        return np.where(x > b, x * np.sqrt(np.maximum((x - b) * (x + b), 0.0)) / self.R, 0.0)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        b = self.radius
+        return np.where(a > b, np.maximum((a - b) * (a + b), 0.0) ** 1.5 / (3 * self.R), 0.0)
+
+
+    def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
+        b = self.radius
+        return np.sqrt(0.5 * (b**2 + np.sqrt(b**4 + 4 * self.R**2 * d**2)))
+
+
+class TruncatedCone(Profile):
+    """Flat punch of radius ``radius`` with a conical edge of slope ``slope``.
+
+    ``f = 0`` for ``r < b`` and ``slope (r - b)`` beyond.
+
+    Parameters
+    ----------
+    radius : float
+        Radius ``b`` of the flat part, m (> 0).
+    slope : float
+        Slope of the conical edge (dimensionless, > 0).
+    """
+
+    name: ClassVar[str] = "truncated_cone"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1)),
+        Param("slope", "s", "1", "positive", "edge slope", (1e-4, 1e2)),
+    )
+
+    def __init__(self, radius: float, slope: float) -> None:
+        self.radius = self.params[0].check(radius)
+        self.slope = self.params[1].check(slope)
+
+    @property
+    def flat_radius(self) -> float:
+        return self.radius
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return (self.radius,)
+
+    def _length_scale(self) -> float:
+        return self.radius
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        return np.where(r > self.radius, self.slope * (r - self.radius), 0.0)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        return np.where(r > self.radius, self.slope, 0.0)
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        b = self.radius
+        root = np.sqrt(np.maximum((x - b) * (x + b), 0.0))
+        return np.where(x > b, self.slope * x * np.arctan2(root, b), 0.0)  # arccos(b/x), accurate near b
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        b = self.radius
+        root = np.sqrt(np.maximum((a - b) * (a + b), 0.0))
+        val = self.slope * (0.5 * a**2 * np.arctan2(root, b) - 0.5 * b * root)
+        return np.where(a > b, val, 0.0)
+

@@ -1,0 +1,246 @@
+"""Power-law profiles ``f = c r**n`` and their sums: paraboloid, cone, general power law, polynomial.
+
+Every quantity has a closed form [H1; PH]: ``g = κ_n c x**n``, ``∫_0^a g = κ_n c a**(n+1)/(n+1)``,
+the pressure shape ``∫_r^a g'/sqrt(x²-r²) dx = n κ_n c a**(n-1) sqrt(1-ρ²) ₂F₁(1-n/2, 1; 3/2; 1-ρ²)``
+and the Abel integral of g outside the contact
+``(2κ_n c/π) a**(n+1)/(r(n+1)) ₂F₁(1/2, (n+1)/2; (n+3)/2; a²/r²)``.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from typing import Any, ClassVar
+
+import numpy as np
+from scipy.special import hyp2f1
+
+from ..errors import ParameterError
+from ..params import Param
+from ..symbolic.transform import kappa
+from .base import Profile
+
+__all__ = ["PowerLaw", "Paraboloid", "Cone", "Polynomial"]
+
+
+def _power_pressure_shape(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """``∫_r^a g'(x)/sqrt(x²-r²) dx`` for ``g = κ_n c x**n``, ``0 <= r < a`` (0 for r >= a)."""
+    r, a = np.broadcast_arrays(r, a)
+    out = np.zeros(r.shape)
+    inside = r < a
+    if not np.any(inside):
+        return out
+    rr, aa = r[inside], a[inside]
+    rho2 = (rr / aa) ** 2
+    z = 1.0 - rho2
+    k = kappa(n)
+    if n == 2.0:
+        val = 2 * k * c * np.sqrt(aa**2 - rr**2)
+    elif n == 1.0:
+        with np.errstate(divide="ignore"):
+            val = k * c * np.arccosh(aa / rr)
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            val = n * k * c * aa ** (n - 1) * np.sqrt(z) * hyp2f1(1 - 0.5 * n, 1.0, 1.5, z)
+        if n < 1:
+            val = np.where(rr == 0, np.inf, val)
+    out[inside] = val
+    return out
+
+
+def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """``(2/π) ∫_0^{min(r,a)} g(x)/sqrt(r²-x²) dx`` for ``g = κ_n c x**n`` (= f(r) for r <= a)."""
+    r, a = np.broadcast_arrays(r, a)
+    out = c * np.minimum(r, a) ** n
+    outside = r > a
+    if np.any(outside):
+        rr, aa = r[outside], a[outside]
+        q = (aa / rr) ** 2
+        out[outside] = (2 * kappa(n) * c / np.pi) * aa ** (n + 1) / (rr * (n + 1)) * hyp2f1(
+            0.5, 0.5 * (n + 1), 0.5 * (n + 3), q)
+    return out
+
+
+class _PowerSum(Profile):
+    """Shared closed forms for ``f = Σ_i c_i r**n_i`` (all ``c_i > 0``, ``n_i > 0``)."""
+
+    def power_terms(self) -> list[tuple[float, float]]:  # pragma: no cover - abstract-ish
+        raise NotImplementedError
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        return sum(c * r**n for c, n in self.power_terms()) * np.ones_like(r)
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        out = np.zeros_like(r)
+        for c, n in self.power_terms():
+            with np.errstate(divide="ignore"):
+                out = out + np.where(r > 0, c * n * r ** (n - 1), c if n == 1 else (np.inf if n < 1 else 0.0))
+        return out
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return sum(kappa(n) * c * x**n for c, n in self.power_terms()) * np.ones_like(x)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        return sum(kappa(n) * c * a ** (n + 1) / (n + 1) for c, n in self.power_terms()) * np.ones_like(a)
+
+    def _g_squared_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        terms = [(kappa(n) * c, n) for c, n in self.power_terms()]
+        return sum(k1 * k2 * a ** (n1 + n2 + 1) / (n1 + n2 + 1)
+                   for k1, n1 in terms for k2, n2 in terms) * np.ones_like(a)
+
+    def _pressure_shape_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+        return sum(_power_pressure_shape(c, n, r, a) for c, n in self.power_terms())
+
+    def _abel_g_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
+        return sum(_power_abel(c, n, r, a) for c, n in self.power_terms())
+
+
+class PowerLaw(_PowerSum):
+    """Power-law indenter ``f(r) = c r**n``.
+
+    Parameters
+    ----------
+    c : float
+        Coefficient, m**(1-n) (> 0).
+    n : float
+        Exponent (> 0, any real). ``n = 2`` is a paraboloid, ``n = 1`` a cone.
+
+    Notes
+    -----
+    ``g(x) = κ_n c |x|**n`` with ``κ_n = √π Γ(n/2+1)/Γ(n/2+1/2)`` [H1]. For ``n < 1`` the
+    pressure is singular at the centre (``p ∝ r**(n-1)``), for ``n = 1`` logarithmic.
+
+    Examples
+    --------
+    >>> from contactlab.profiles import PowerLaw
+    >>> float(PowerLaw(c=1.0, n=2).g(0.5))
+    0.5
+    """
+
+    name: ClassVar[str] = "power_law"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("c", "c", "m^(1-n)", "positive", "power-law coefficient c", (1e-3, 1e3)),
+        Param("n", "n", "1", "positive", "power-law exponent n", (0.3, 50.0)),
+    )
+
+    def __init__(self, c: float, n: float) -> None:
+        self.c = self.params[0].check(c)
+        self.n = self.params[1].check(n)
+
+    def power_terms(self) -> list[tuple[float, float]]:
+        return [(self.c, self.n)]
+
+    def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
+        return (d / (kappa(self.n) * self.c)) ** (1.0 / self.n)
+
+
+class Paraboloid(PowerLaw):
+    """Paraboloid ``f(r) = r²/(2R)`` (Hertz).
+
+    Parameters
+    ----------
+    R : float
+        Radius of curvature at the apex, m (> 0).
+
+    Examples
+    --------
+    >>> from contactlab.profiles import Paraboloid
+    >>> float(Paraboloid(R=0.01).g(1e-4))  # x²/R
+    1e-06
+    """
+
+    name: ClassVar[str] = "paraboloid"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("R", "R", "m", "positive", "radius of curvature R", (1e-6, 1.0)),
+    )
+
+    def __init__(self, R: float) -> None:
+        self.R = self.params[0].check(R)
+        self.c = 1.0 / (2.0 * self.R)
+        self.n = 2.0
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return x**2 / self.R
+
+    def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
+        return np.sqrt(self.R * d)
+
+    def _length_scale(self) -> float:
+        return self.R
+
+
+class Cone(PowerLaw):
+    """Cone ``f(r) = slope * r``.
+
+    Parameters
+    ----------
+    slope : float
+        ``tan β`` with β the surface inclination (= ``cot α`` for the half angle α at the apex),
+        dimensionless, > 0.
+
+    See Also
+    --------
+    Cone.from_half_angle
+    """
+
+    name: ClassVar[str] = "cone"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("slope", "s", "1", "positive", "cone slope tan(beta)", (1e-4, 1e2)),
+    )
+
+    def __init__(self, slope: float) -> None:
+        self.slope = self.params[0].check(slope)
+        self.c = self.slope
+        self.n = 1.0
+
+    @classmethod
+    def from_half_angle(cls, half_angle: float) -> "Cone":
+        """Cone with apex half angle ``half_angle`` (rad, 0 < α < π/2): slope = cot α."""
+        from ..params import check_in_range
+        alpha = check_in_range("half_angle", half_angle, 0.0, np.pi / 2, low_open=True,
+                               high_open=True, what="the cone's half angle at the apex (rad)")
+        return cls(slope=1.0 / np.tan(alpha))
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        return 0.5 * np.pi * self.slope * x
+
+    def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
+        return 2.0 * d / (np.pi * self.slope)
+
+
+class Polynomial(_PowerSum):
+    """Sum of power terms ``f(r) = Σ c_i r**n_i`` with positive coefficients and exponents.
+
+    Parameters
+    ----------
+    terms : mapping {n: c} or iterable of (c, n) pairs
+        Exponents ``n_i > 0`` (any real) and coefficients ``c_i > 0``, m**(1-n_i).
+
+    Examples
+    --------
+    >>> from contactlab.profiles import Polynomial
+    >>> p = Polynomial({2: 50.0, 4: 1e3})
+    >>> p.terms
+    ((50.0, 2.0), (1000.0, 4.0))
+    """
+
+    name: ClassVar[str] = "polynomial"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("terms", "c_i, n_i", "m^(1-n_i)", "positive", "polynomial terms (c, n)"),
+    )
+
+    def __init__(self, terms: Mapping[float, float] | Iterable[tuple[float, float]]) -> None:
+        pairs = ([(c, n) for n, c in terms.items()] if isinstance(terms, Mapping)
+                 else list(terms))
+        if not pairs:
+            raise ParameterError("terms=[] is invalid: a Polynomial needs at least one (c, n) term.")
+        checked = []
+        for i, pair in enumerate(pairs):
+            try:
+                c, n = pair
+            except (TypeError, ValueError) as err:
+                raise ParameterError(f"terms[{i}]={pair!r} is invalid: expected a (c, n) pair.") from err
+            checked.append((Param(f"terms[{i}].c", "c", "m^(1-n)", "positive", "coefficient c").check(c),
+                            Param(f"terms[{i}].n", "n", "1", "positive", "exponent n").check(n)))
+        self.terms = tuple(sorted(checked, key=lambda t: t[1]))
+
+    def power_terms(self) -> list[tuple[float, float]]:
+        return list(self.terms)

@@ -1,0 +1,88 @@
+"""Exact spherical cap ``f(r) = R - sqrt(R² - r²)``.
+
+``g(x) = x artanh(x/R)`` and ``∫_0^a g = (a²-R²)/2 artanh(a/R) + R a/2`` (physics.md §2). The
+contact radius must stay below R (``g → ∞`` as ``a → R``); half-space theory needs ``a ≪ R``.
+"""
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from ..errors import OutsideTheoryError
+from ..params import Param
+from .base import Profile
+
+__all__ = ["Sphere"]
+
+
+class Sphere(Profile):
+    """Exact sphere of radius ``R`` (not the parabolic approximation).
+
+    Parameters
+    ----------
+    R : float
+        Sphere radius, m (> 0). Contact radii must satisfy ``a < R``.
+
+    Raises
+    ------
+    OutsideTheoryError
+        When a radius ``>= R`` is evaluated or a depth needs ``a >= R``.
+    """
+
+    name: ClassVar[str] = "sphere"
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("R", "R", "m", "positive", "sphere radius R", (1e-6, 1.0)),
+    )
+
+    def __init__(self, R: float) -> None:
+        self.R = self.params[0].check(R)
+
+    @property
+    def max_radius(self) -> float:
+        return self.R
+
+    def _length_scale(self) -> float:
+        return self.R
+
+    def _guard(self, r: np.ndarray, name: str) -> None:
+        if np.any(r >= self.R):
+            raise OutsideTheoryError(
+                f"{name}={np.max(r)!r} m is invalid for Sphere(R={self.R!r}): radii must stay "
+                "below the sphere radius R.")
+
+    def _height(self, r: np.ndarray) -> np.ndarray:
+        self._guard(r, "r")
+        # R - sqrt(R²-r²) without cancellation
+        return r**2 / (self.R + np.sqrt((self.R - r) * (self.R + r)))
+
+    def _slope(self, r: np.ndarray) -> np.ndarray:
+        self._guard(r, "r")
+        return r / np.sqrt((self.R - r) * (self.R + r))
+
+    def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
+        self._guard(x, "x")
+        return x * np.arctanh(x / self.R)
+
+    def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        self._guard(a, "a")
+        R = self.R
+        # (a²-R²)/2·artanh(a/R) + R a/2 cancels for a ≪ R: use its series below a/R = 0.1
+        q = a / R
+        small = q < 0.1
+        out = np.empty_like(a)
+        big = ~small
+        out[big] = 0.5 * (a[big] ** 2 - R**2) * np.arctanh(q[big]) + 0.5 * R * a[big]
+        qs = q[small]
+        # series: R² Σ_{k>=1} q^(2k+1) / ((2k-1)(2k+1))
+        ser = np.zeros_like(qs)
+        term = qs.copy()
+        for k in range(1, 18):
+            term = term * qs * qs if k > 1 else qs**3
+            ser += term / ((2 * k - 1) * (2 * k + 1))
+        out[small] = R**2 * ser
+        return out
+
+    def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray:
+        self._guard(x, "x")
+        return np.arctanh(x / self.R) + x * self.R / ((self.R - x) * (self.R + x))
