@@ -8,3 +8,13 @@ QUADRATURE = 1e-9
 #: Tabulated profile with 1000 linear-interpolation points sampled from an analytic profile:
 #: interpolation error ~ (Δr)² f''/8 relative to f, i.e. ~1e-7 for smooth profiles
 TABULATED_1000 = 1e-6
+#: JKR pull-off radii: bracketed solve of φ(a) = 3/2 or 1/2 to rtol 1e-14 on closed-form g'; the
+#: radius enters through a root of a smooth function, so only rounding (~1e-13) remains
+JKR_ROOT = 1e-10
+#: JKR pull-off with g' from 4th-order finite differences (profiles without closed-form g'):
+#: the force is stationary at the minimum, the radius carries the ~1e-9 derivative error
+JKR_FINITE_DIFFERENCE = 1e-7
+#: Δγ → 0: JKR differs from Hertz by O(sqrt(Δγ)); at Δγ = 1e-20 J/m² the relative gap is ~1e-9
+JKR_SMALL_ADHESION = 1e-7
+#: Gauss-Legendre (96 nodes in θ, r = a sinθ) integral of the JKR pressure against F
+PRESSURE_INTEGRAL = 1e-9

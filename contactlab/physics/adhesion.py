@@ -88,21 +88,30 @@ def g_prime(profile, x: np.ndarray) -> np.ndarray:
         return sum(kappa(n) * c * n * x ** (n - 1.0) for c, n in terms) * np.ones_like(x)
     if hasattr(profile, "terms") and isinstance(profile.terms, tuple):
         return sum(g_prime(t, x) for t in profile.terms)
-    # central differences (error ~ h⁴ g⁽⁵⁾ + eps g/h ≈ 1e-12 relative for smooth g); one-sided
-    # near x = 0. Across a slope jump of f the value is rough, but its sign (all that the branch
-    # scan needs) is right.
+    # central differences (error ~ h⁴ g⁽⁵⁾ + eps g/h ≈ 1e-12 relative for smooth g), with the
+    # step shrunk so that the stencil never crosses a slope jump, flat rim or wall of the profile
+    # (there g' jumps; the one-sided value on x's own side is the one wanted).
     h = 1e-4 * x
-    lo = np.maximum(x - 2 * h, 0.0)
-    wall = profile.wall_radius
-    near_wall = x + 2 * h > wall
+    cuts = [c for c in (*profile.breakpoints, profile.flat_radius, profile.wall_radius)
+            if 0 < c < np.inf]
+    for c in cuts:
+        dist = np.abs(x - c)
+        h = np.where(dist > 0, np.minimum(h, 0.45 * dist), h)
+    h = np.maximum(h, 1e-9 * x)
+    at_cut = np.zeros(x.shape, bool)
+    for c in cuts:
+        at_cut |= np.abs(x - c) <= 2 * h
     with np.errstate(invalid="ignore"):
-        xc = np.where(near_wall, lo, x)     # keep the central stencil finite below a wall
-        val = (-profile._g(xc + 2 * h) + 8 * profile._g(xc + h)
-               - 8 * profile._g(np.maximum(xc - h, 0.0)) + profile._g(np.maximum(xc - 2 * h, 0.0))
+        val = (-profile._g(x + 2 * h) + 8 * profile._g(x + h)
+               - 8 * profile._g(np.maximum(x - h, 0.0)) + profile._g(np.maximum(x - 2 * h, 0.0))
                ) / (12 * h)
-        if np.any(near_wall):
-            back = (3 * profile._g(x) - 4 * profile._g(np.maximum(x - h, 0.0)) + profile._g(lo)) / (2 * h)
-            val = np.where(near_wall, back, val)
+        if np.any(at_cut):
+            # exactly at a cut: one-sided, away from a wall, else towards larger x
+            toward_wall = np.isfinite(profile.wall_radius) & (x >= profile.wall_radius - 2 * h)
+            back = (3 * profile._g(x) - 4 * profile._g(np.maximum(x - h, 0.0))
+                    + profile._g(np.maximum(x - 2 * h, 0.0))) / (2 * h)
+            fwd = (-3 * profile._g(x) + 4 * profile._g(x + h) - profile._g(x + 2 * h)) / (2 * h)
+            val = np.where(at_cut, np.where(toward_wall, back, fwd), val)
     return val
 
 
@@ -189,6 +198,10 @@ def branches(contact) -> Branches:
             f"(work_of_adhesion={w!r} J/m² is too large for this profile).")
     # 2. log grid below s
     grid = s * np.logspace(-_DECADES, 0.0, _DECADES * _PER_DECADE + 1)
+    # resolve narrow features next to slope jumps and flat rims (φ jumps there)
+    cuts = [c for c in (*prof.breakpoints, prof.flat_radius) if 0 < c < s]
+    extra = [c * (1 + e) for c in cuts for e in (-1e-9, 1e-9, 1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 3e-2)]
+    grid = np.unique(np.concatenate([grid, [x for x in extra if grid[0] < x < s]]))
     vals = f_phi(grid)
 
     def crossing(level: float) -> tuple[float, float, bool]:
@@ -441,6 +454,13 @@ def pull_off(contact, control: str = "force"):
     ------
     OutsideTheoryError
         No interior minimum (power laws with ``n <= 1/2``, physics.md §4).
+
+    Warns
+    -----
+    ValidityWarning
+        When ``φ`` crosses the critical value more than once (e.g. a flat punch with a gently
+        rounded edge): the returned state ends the stable branch connected to large contacts, but
+        the contact may then jump onto a lower stable branch rather than separate.
     """
     controls = ("force", "displacement")
     if control not in controls:
@@ -452,6 +472,16 @@ def pull_off(contact, control: str = "force"):
         raise OutsideTheoryError(
             f"{control}-controlled pull-off of {prof!r}: the stable branch reaches a -> 0 without "
             "an interior minimum, so the contact carries no tensile force at detachment.")
+    low = br.a_force_low if control == "force" else br.a_disp_low
+    if low > 0:
+        import warnings
+        from ..errors import ValidityWarning
+        warnings.warn(
+            f"{control}-controlled pull-off of {prof!r}: the stability function crosses its "
+            f"critical value more than once, so another stable branch exists below "
+            f"a = {low:.6g} m. The state returned ends the stable branch connected to large "
+            "contacts; the contact may jump onto the lower branch instead of separating.",
+            ValidityWarning, stacklevel=3)
     a = np.array(a_c)
     d = depth_of_radius(prof, E, w, a)
     pinned = np.array(br.pinned_force if control == "force" else br.pinned_disp)
