@@ -66,7 +66,11 @@ class Contact:
             "rtol", "rtol", "1", "positive", "relative tolerance").check(rtol)
         if self.rtol >= 1:
             raise ParameterError(f"rtol={rtol!r} is invalid: it must satisfy 0 < rtol < 1.")
-        self.moduli  # validate the pair now
+        if any(getattr(m, "is_viscoelastic", False) for m in self.materials):
+            from .physics.viscoelastic import check_pair
+            check_pair(m1, m2)  # only (viscoelastic, rigid) is covered (physics.md §7)
+        else:
+            self.moduli  # validate the pair now
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),
@@ -244,3 +248,14 @@ class Contact:
         if not self.is_adhesive:
             raise ParameterError(f"{what}() needs work_of_adhesion > 0; got "
                                  f"work_of_adhesion={self.work_of_adhesion!r}.")
+
+    # ---- viscoelastic materials (issue 6)
+    def viscoelastic_history(self, *, time: Any, depth: Any = None, force: Any = None,
+                             n_springs: int | None = None, max_radius: float | None = None):
+        """Normal contact history of a rigid indenter on a viscoelastic half-space (MDR, [H3]).
+
+        See :func:`contactlab.viscoelastic.viscoelastic_history`.
+        """
+        from .viscoelastic import viscoelastic_history
+        return viscoelastic_history(self, time=time, depth=depth, force=force,
+                                    n_springs=n_springs, max_radius=max_radius)
