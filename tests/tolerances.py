@@ -18,3 +18,9 @@ JKR_FINITE_DIFFERENCE = 1e-7
 JKR_SMALL_ADHESION = 1e-7
 #: Gauss-Legendre (96 nodes in θ, r = a sinθ) integral of the JKR pressure against F
 PRESSURE_INTEGRAL = 1e-9
+#: MDR viscoelastic foundation, closed forms that are exact in time (Maxwell relaxation, elastic
+#: limits): only the midpoint sum over 2000 elements remains, O((Δx/a)²) ≈ 1e-6
+VISCO_SPATIAL = 1e-5
+#: SLS creep / Ting unloading with 400-800 steps: second-order time integration, measured
+#: 1.5e-5 (creep, 400 steps) and ~1e-4 of the peak force (Ting, 800 steps); bound with margin
+VISCO_TIME = 5e-4
