@@ -9,7 +9,7 @@ from scipy.special import gamma
 import contactlab as cl
 from contactlab.errors import OutsideTheoryError, ParameterError, ValidityWarning
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, PowerLaw, Sphere,
-                                 TruncatedParaboloid)
+                                 TruncatedCone, TruncatedParaboloid)
 
 from .tolerances import (CLOSED_FORM, JKR_FINITE_DIFFERENCE, JKR_ROOT, JKR_SMALL_ADHESION,
                          PRESSURE_INTEGRAL)
@@ -187,10 +187,11 @@ def test_kendall_flat_punch():
 def test_truncated_paraboloid_detaches_at_its_rim_like_kendall():
     """g' is infinite at the rim of the flat part, so both pull-offs sit there (F = Kendall)."""
     b = 1e-4
-    s = contact(TruncatedParaboloid(b, 1e-3)).pull_off()    # steep edge: φ > 3/2 for all a > b
-    assert s.radius == pytest.approx(b, rel=1e-12)
-    # g ~ sqrt(a - b) just beyond the rim: a radius 1e-12 relative off the rim costs ~1e-9 in F
-    assert s.force == pytest.approx(-np.sqrt(8 * np.pi * E_STAR * DGAMMA * b**3), rel=1e-8)
+    for prof in (TruncatedParaboloid(b, 1e-3), TruncatedCone(b, 0.1)):
+        s = contact(prof).pull_off()               # steep edge: φ > 3/2 for all a > b
+        assert s.radius == b                       # the crossing is snapped onto the rim
+        assert s.force == pytest.approx(-np.sqrt(8 * np.pi * E_STAR * DGAMMA * b**3),
+                                        rel=CLOSED_FORM)
 
 
 def test_gently_rounded_punch_warns_about_a_second_branch():

@@ -92,26 +92,38 @@ def g_prime(profile, x: np.ndarray) -> np.ndarray:
     # step shrunk so that the stencil never crosses a slope jump, flat rim or wall of the profile
     # (there g' jumps; the one-sided value on x's own side is the one wanted).
     h = 1e-4 * x
-    cuts = [c for c in (*profile.breakpoints, profile.flat_radius, profile.wall_radius)
-            if 0 < c < np.inf]
+    ends = [c for c in (profile.wall_radius, profile.max_radius) if 0 < c < np.inf]
+    cuts = [c for c in (*profile.breakpoints, profile.flat_radius) if 0 < c < np.inf] + ends
     for c in cuts:
         dist = np.abs(x - c)
         h = np.where(dist > 0, np.minimum(h, 0.45 * dist), h)
     h = np.maximum(h, 1e-9 * x)
-    at_cut = np.zeros(x.shape, bool)
+    backward = np.zeros(x.shape, bool)
+    forward = np.zeros(x.shape, bool)
     for c in cuts:
-        at_cut |= np.abs(x - c) <= 2 * h
+        near = np.abs(x - c) <= 2 * h
+        below = (x < c) | (c in ends)          # never evaluate beyond a wall / the domain
+        backward |= near & below
+        forward |= near & ~below
+    forward &= ~backward
     with np.errstate(invalid="ignore"):
         val = (-profile._g(x + 2 * h) + 8 * profile._g(x + h)
                - 8 * profile._g(np.maximum(x - h, 0.0)) + profile._g(np.maximum(x - 2 * h, 0.0))
-               ) / (12 * h)
-        if np.any(at_cut):
-            # exactly at a cut: one-sided, away from a wall, else towards larger x
-            toward_wall = np.isfinite(profile.wall_radius) & (x >= profile.wall_radius - 2 * h)
-            back = (3 * profile._g(x) - 4 * profile._g(np.maximum(x - h, 0.0))
-                    + profile._g(np.maximum(x - 2 * h, 0.0))) / (2 * h)
-            fwd = (-3 * profile._g(x) + 4 * profile._g(x + h) - profile._g(x + 2 * h)) / (2 * h)
-            val = np.where(at_cut, np.where(toward_wall, back, fwd), val)
+               ) / (12 * h) if not np.any(backward | forward) else np.zeros(x.shape)
+        mid = ~(backward | forward)
+        if np.any(backward | forward):
+            xm, hm = x[mid], h[mid]
+            val[mid] = (-profile._g(xm + 2 * hm) + 8 * profile._g(xm + hm)
+                        - 8 * profile._g(np.maximum(xm - hm, 0.0))
+                        + profile._g(np.maximum(xm - 2 * hm, 0.0))) / (12 * hm)
+        if np.any(backward):
+            xb, hb = x[backward], h[backward]
+            val[backward] = (3 * profile._g(xb) - 4 * profile._g(np.maximum(xb - hb, 0.0))
+                             + profile._g(np.maximum(xb - 2 * hb, 0.0))) / (2 * hb)
+        if np.any(forward):
+            xf, hf = x[forward], h[forward]
+            val[forward] = (-3 * profile._g(xf) + 4 * profile._g(xf + hf)
+                            - profile._g(xf + 2 * hf)) / (2 * hf)
     return val
 
 
@@ -217,6 +229,10 @@ def branches(contact) -> Branches:
         lo, hi = grid[i], grid[i + 1]
         root = float(bracketed_root(lambda x, idx: f_phi(x), level, lo, hi, rtol=1e-14,
                                     what="pull-off contact radius")[()])
+        # a crossing at a slope jump / flat rim is a jump of φ: the answer is the rim itself
+        for c in cuts:
+            if abs(root - c) <= 1e-9 * c:
+                root = c
         above = np.flatnonzero(vals[: i + 1] > level)
         low = float(grid[above[-1]]) if above.size else 0.0
         if above.size:
@@ -346,6 +362,8 @@ def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: s
     if F is None:
         F = force_of_radius(prof, E, w, a, d)
     F = np.where(a > 0, F, 0.0)
+    if np.any(a > 0):
+        prof._check_monotone_upto(float(np.max(a)), float(np.max(np.where(a > 0, d, -np.inf))))
     # stiffness dF/dd along the equilibrium curve; 2E*b when pinned at a wall, 0 when detached
     with np.errstate(invalid="ignore", divide="ignore"):
         ph = np.where(a > 0, phi(prof, E, w, np.where(a > 0, a, 1.0)), 0.0)

@@ -76,6 +76,7 @@ class _Trial:
     u: np.ndarray
     s: np.ndarray
     contact: np.ndarray
+    stiffness: float = 0.0   # dq_sum/dd of the elements in contact (for Newton predictions)
 
 
 class Foundation:
@@ -180,7 +181,9 @@ class Foundation:
                 u_f = ((Gb_sum + visc) * uf - esf) / (self.G_inf + Gb_sum + visc)
             u_new[free] = u_f
             s_new[free] = es[free] + Gb * (u_f - uf)[:, None]
-        return _Trial(m, 4.0 * q, u_new, s_new, in_a | in_b)
+        n_in = int(np.count_nonzero(in_a | in_b))
+        k = 4.0 * n_in * (self.G_inf + Gb_sum + (visc if np.isfinite(visc) else 0.0))
+        return _Trial(m, 4.0 * q, u_new, s_new, in_a | in_b, k)
 
     def commit(self, t: _Trial) -> None:
         m = t.m
@@ -308,6 +311,26 @@ def _solve_force(fd: Foundation, target: float, d_old: float, dt: float, scale: 
 
     def F(d: float) -> float:
         return fd.force(fd.trial(d, d_old, dt))
+
+    # Newton predictions with the tangent stiffness (F is piecewise linear in d between contact
+    # changes), keeping the evaluated points as a bracket; bracketed solve if they stall
+    tol = 1e-13 * abs(target)
+    d = d_old + guess_step
+    lo_pts, hi_pts = [], []
+    for _ in range(6):
+        tr = fd.trial(d, d_old, dt)
+        Fd = fd.force(tr)
+        if abs(Fd - target) <= tol:
+            return float(d)
+        (lo_pts if Fd < target else hi_pts).append(d)
+        k = 2.0 * fd.dx * tr.stiffness
+        if k <= 0:
+            break
+        d = d + (target - Fd) / k
+    if lo_pts and hi_pts:
+        lo, hi = max(lo_pts), min(hi_pts)
+        return float(bracketed_root(lambda x, idx: np.array([F(float(v)) for v in x]), target,
+                                    lo, hi, rtol=1e-13, ftol=1e-13, what=f"depth at step {step}"))
     # bracket around the previous depth, widening geometrically (F is non-decreasing in d)
     base = d_old if d_old > fd.touching_depth() or np.any(fd.contact) else fd.touching_depth()
     step0 = max(abs(guess_step), scale)
