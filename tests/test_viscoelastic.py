@@ -292,3 +292,30 @@ def test_csv_round_trip(tmp_path):
     h.to_csv(str(p))
     data = np.loadtxt(p, delimiter=",", skiprows=1)
     np.testing.assert_array_equal(data[:, 2], h.force)
+
+
+def test_generalized_maxwell_constant_rate_lee_radok():
+    m = GeneralizedMaxwell(2e5, moduli=[1e6, 5e5, 2e5], relaxation_times=[1e-3, 1e-2, 1e-1])
+    v = 1e-4
+    t = np.linspace(0.0, 0.03, 61)
+    h = contact(m).viscoelastic_history(time=t, depth=v * t)
+    k = 1.5 * (R * v) ** 1.5
+    for i in (20, 60):
+        ref = 16 / (3 * R) * quad(lambda s: m.relaxation(t[i] - s) * k * np.sqrt(s), 0, t[i],
+                                  epsrel=1e-12)[0]
+        assert h.force[i] == pytest.approx(ref, rel=VISCO_TIME)
+
+
+def test_force_and_depth_control_are_inverse():
+    """Force-controlled load/unload/hold; replaying its depth history reproduces the forces."""
+    m = StandardLinearSolid(1e6, 2e6, 1e4)
+    t = np.linspace(0.0, 0.06, 121)
+    F = np.clip(0.1 * np.sin(np.pi * t / 0.04), 0.0, None) * (t <= 0.04)
+    c = contact(m)
+    hf = c.viscoelastic_history(time=t, force=F)
+    np.testing.assert_allclose(hf.force, F, rtol=1e-10, atol=1e-14)
+    hd = c.viscoelastic_history(time=t, depth=hf.depth, max_radius=hf.meta["foundation_radius"])
+    np.testing.assert_allclose(hd.force, F, rtol=1e-8, atol=1e-10 * F.max())
+    # after release the free surface recovers (SLS): the touching depth decreases towards 0
+    after = t > 0.045
+    assert np.all(np.diff(hf.depth[after]) < 0) and np.all(hf.depth[after] > 0)
