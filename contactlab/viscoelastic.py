@@ -35,7 +35,8 @@ class ViscoelasticHistory:
     force : ndarray
         Normal force, N (never tensile: no adhesion).
     radius : ndarray
-        Contact radius, m: outer edge of the outermost element in contact (resolution ``Δx``).
+        Contact radius, m, interpolated inside the outermost element's cell (growth front:
+        ``d = g(a)``; shrinking contact: zero element force).
     meta : dict
         ``control``, ``n_springs``, ``spacing`` (m), ``material``, ``foundation_radius`` (m).
     """

@@ -182,6 +182,11 @@ def test_kendall_flat_punch():
     np.testing.assert_allclose(sf.depth, np.array([0.5 * F_k, 1.0]) / (2 * E_STAR * b),
                                rtol=CLOSED_FORM)
     assert sf.peak_pressure[1] == np.inf and np.isfinite(sf.peak_pressure[0])
+    # a partially detached face (a < b) is an (unstable) equilibrium: F = -sqrt(8πE*Δγa³)
+    su = c.normal(radius=0.5 * b)
+    assert su.force == pytest.approx(-np.sqrt(8 * np.pi * E_STAR * DGAMMA * (0.5 * b) ** 3),
+                                     rel=CLOSED_FORM)
+    assert not su.meta["stable_under_force"] and not su.meta["stable_under_displacement"]
 
 
 def test_truncated_paraboloid_detaches_at_its_rim_like_kendall():

@@ -21,6 +21,10 @@ PRESSURE_INTEGRAL = 1e-9
 #: MDR viscoelastic foundation, closed forms that are exact in time (Maxwell relaxation, elastic
 #: limits): only the midpoint sum over 2000 elements remains, O((Δx/a)²) ≈ 1e-6
 VISCO_SPATIAL = 1e-5
-#: SLS creep / Ting unloading with 400-800 steps: second-order time integration, measured
-#: 1.5e-5 (creep, 400 steps) and ~1e-4 of the peak force (Ting, 800 steps); bound with margin
+#: SLS creep with 400 steps: second-order time integration, measured 1.5e-5; bound with margin
 VISCO_TIME = 5e-4
+#: Ting unloading (800 steps, 2000 elements): measured 4e-6 of the peak force
+VISCO_TING = 2e-5
+#: contact edge interpolated inside one element cell (linear interpolation of a smooth
+#: function over Δx): measured ≤ 6e-4 Δx; bound in units of the element spacing
+VISCO_EDGE = 1e-2

@@ -7,7 +7,8 @@ copy of the material's element with every parameter scaled by ``4Δx``. For the 
 
     q_i = 4 [G_∞ u_i + Σ_k s_ik + η du_i/dt],    ds_ik/dt + s_ik/τ_k = G_k du_i/dt,
 
-with ``u_i`` its surface displacement (``d - g(x_i)`` while in contact). ``F = 2 Σ_i q_i Δx``.
+with ``u_i`` its surface displacement (``d - g(x_i)`` while in contact). ``F = 2∫_0^a q dx``, with
+the edge ``a`` interpolated inside the outermost element's cell (see :meth:`Foundation.trial`).
 
 Time integration (exact for displacements linear within a step): the arm stresses advance by
 the exponential integrator
@@ -77,6 +78,8 @@ class _Trial:
     s: np.ndarray
     contact: np.ndarray
     stiffness: float = 0.0   # dq_sum/dd of the elements in contact (for Newton predictions)
+    radius: float = 0.0      # contact edge, m (sub-element, see Foundation.trial)
+    total: float = 0.0       # normal force, N
 
 
 class Foundation:
@@ -110,6 +113,7 @@ class Foundation:
         self.s = np.zeros((n, self.Gk.size))
         self.contact = np.zeros(n, bool)
         self.touched = 0           # elements [0, touched) may differ from the virgin state
+        self.ever = np.zeros(n, bool)   # element has been in contact at some step
         self._dt_cache: tuple = (None, None)
 
     def _coefficients(self, dt: float) -> tuple:
@@ -181,19 +185,55 @@ class Foundation:
                 u_f = ((Gb_sum + visc) * uf - esf) / (self.G_inf + Gb_sum + visc)
             u_new[free] = u_f
             s_new[free] = es[free] + Gb * (u_f - uf)[:, None]
-        n_in = int(np.count_nonzero(in_a | in_b))
+        contact = in_a | in_b
+        n_in = int(np.count_nonzero(contact))
         k = 4.0 * n_in * (self.G_inf + Gb_sum + (visc if np.isfinite(visc) else 0.0))
-        return _Trial(m, 4.0 * q, u_new, s_new, in_a | in_b, k)
+        q = 4.0 * q
+        a, F = self._edge_and_force(d_new, q, 4.0 * q_a, contact)
+        return _Trial(m, q, u_new, s_new, contact, k, a, F)
+
+    def _edge_and_force(self, d: float, q: np.ndarray, q_trial: np.ndarray,
+                        contact: np.ndarray) -> tuple[float, float]:
+        """Contact edge inside the outermost element's cell, and ``F = 2∫_0^a q dx``.
+
+        Growth front (the next element never touched): the edge is where the indenter meets the
+        undisturbed surface, ``d = g(a)``, interpolated between the two element centres.
+        Elsewhere (shrinking contact, Ting): where the element force vanishes, interpolated
+        between the outermost element's force and the neighbour's trial contact force.
+        The outermost element i then carries the length ``a - iΔx`` (interior ones ``Δx``), so
+        the force is continuous as elements enter or leave.
+        """
+        idx = np.flatnonzero(contact)
+        if idx.size == 0:
+            return 0.0, 0.0
+        dx = self.dx
+        i = int(idx[-1])
+        x_i = (i + 0.5) * dx
+        j = i + 1
+        a = x_i + 0.5 * dx
+        if j < self.g.size:
+            if not self.ever[j]:
+                p_i, p_j = d - self.g[i], d - self.g[j]
+                if p_i > 0 >= p_j:
+                    a = x_i + dx * p_i / (p_i - p_j)
+            else:
+                q_i, q_j = q[i], q_trial[j]
+                if q_i > 0 > q_j:
+                    a = x_i + dx * q_i / (q_i - q_j)
+        a = min(max(a, x_i), x_i + dx)
+        F = 2.0 * (dx * float(q[idx].sum()) + (a - (i + 1) * dx) * float(q[i]))
+        return a, F
 
     def commit(self, t: _Trial) -> None:
         m = t.m
         self.u[:m], self.s[:m], self.contact[:m] = t.u, t.s, t.contact
         if np.any(t.contact):
             self.touched = max(self.touched, int(np.flatnonzero(t.contact)[-1]) + 1)
+            self.ever[:m] |= t.contact
 
     def force(self, t: _Trial) -> float:
-        """``F = 2 Σ q_i Δx`` (both halves of the 1D foundation), N."""
-        return float(2.0 * self.dx * t.q.sum())
+        """``F = 2∫_0^a q dx`` (both halves of the 1D foundation), N."""
+        return t.total
 
     def touching_depth(self) -> float:
         """Smallest depth at which the indenter touches the (free) surface, m."""
@@ -225,7 +265,8 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
     Returns
     -------
     dict
-        ``depth``, ``force``, ``radius`` (outermost contact element + Δx/2), ``n_contact`` and
+        ``depth``, ``force``, ``radius`` (edge interpolated inside the outermost element's cell),
+        ``n_contact`` and
         ``edge_reached`` (contact touched the last element) arrays per step.
     """
     G_inf, Gk, tk, eta = prony
@@ -238,7 +279,6 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
     edge = np.zeros(n, bool)
     t_prev, d_prev = float(time[0]), 0.0
     last_step = 0.0
-    x_edge = (np.arange(g_x.size) + 1.0) * dx
     for i in range(n):
         dt = float(time[i]) - t_prev
         if depth is not None:
@@ -267,7 +307,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
         idx = np.flatnonzero(fd.contact)
         out_d[i] = d_new
         out_F[i] = fd.force(trial)
-        out_a[i] = x_edge[idx[-1]] if idx.size else 0.0
+        out_a[i] = trial.radius
         out_n[i] = idx.size
         edge[i] = bool(idx.size) and idx[-1] == g_x.size - 1
         last_step = d_new - d_prev
