@@ -13,3 +13,10 @@ __version__ = "0.1.0"
 
 __all__ = ["Contact", "Elastic", "Rigid", "effective_moduli", "NormalState", "profiles",
            "materials", "errors", "__version__"]
+
+from . import foundation, loadpath  # noqa: E402  (issue 4)
+from .loadpath import LoadPath  # noqa: E402
+from .simulation import PathResult  # noqa: E402
+from .tangential import ShiftHistory, TangentialState  # noqa: E402
+
+__all__ += ["LoadPath", "PathResult", "TangentialState", "ShiftHistory", "foundation", "loadpath"]

@@ -8,3 +8,19 @@ QUADRATURE = 1e-9
 #: Tabulated profile with 1000 linear-interpolation points sampled from an analytic profile:
 #: interpolation error ~ (Δr)² f''/8 relative to f, i.e. ~1e-7 for smooth profiles
 TABULATED_1000 = 1e-6
+
+# ---- load paths and the MDR foundation (issue 4)
+#: foundation (edge spacing, default N = 1000) against the Cattaneo–Mindlin / Mindlin–Deresiewicz
+#: closed forms, relative to the loop amplitude: only the one cell holding the stick–slip boundary
+#: is lumped, error ~ 1/(4N²) of the local force; measured 3.6e-7 (Hertz), see
+#: benchmarks/foundation_accuracy.py
+FOUNDATION_CM = 1e-6
+#: foundation torsion against the MDR torsion closed form (physics.md §6.4) at the default N: the
+#: lumped stick–slip cell weighs the slip condition 8G_t x φ vs μ*E*(d-g) over the cell; measured
+#: 1.6e-6 (Hertz)
+FOUNDATION_TORSION = 4e-6
+#: normal force through the foundation: the cells integrate (d - g)_+ exactly, so only rounding
+FOUNDATION_NORMAL = 1e-12
+#: energy per cycle of a periodic twist after the first cycle: Jenkins states repeat; only the
+#: rounding of the elastic increments differs between cycles
+ENERGY_DRIFT = 1e-10

@@ -1,0 +1,225 @@
+"""The Winkler (independent-spring) MDR foundation with Jenkins stick/slip elements.
+
+Each cell ``[b_i, b_{i+1}]`` lumps the springs of ``±x`` in it [H1, PH; physics.md §3, §5, §6.4]:
+
+* normal: compression ``d - g(x)``; cell force ``2E* S_i`` with ``S_i = ∫_cell (d - g)_+ dx``
+  integrated exactly (so the normal force is exact at any N);
+* tangential (springs ``G*Δx``): element force ``f_i``, stiffness ``2G* w_i``, slip limit
+  ``μ · 2E* S_i``;
+* torsional (springs ``8G_tΔx``, ``μ* = 2μ``): element torque ``m_i``, stiffness
+  ``16 G_t ∫_cell x² dx``, slip limit ``4μE* ∫_cell x (d - g)_+ dx`` (the cell's share of
+  ``M = (16/3) G_t a³ φ`` without slip and of ``4μE*∫x(d-g)`` at full slip).
+
+Elements are incremental Jenkins elements: ``f ← clip(f + k_eff Δu, -L, L)``. The stiffness of a
+cell is weighted by the part of it in contact during the step (``ΔS/(w Δd)``, exact when the
+displacement varies linearly with the depth within the step), so springs entering contact carry
+only the displacement accumulated after they touched, and springs leaving contact release theirs
+(``L → 0``). The dissipated energy is ``Σ slip × limit``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..numeric.quadrature import tanh_sinh
+from .base import Foundation
+
+__all__ = ["Winkler", "SpringState", "xg_integral"]
+
+
+def _gint(profile, x: np.ndarray) -> np.ndarray:
+    x = np.asarray(x, float)
+    return np.where(x > 0, profile._g_integral(np.maximum(x, 1e-300)), 0.0)
+
+
+def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
+    """``H(x) = ∫_0^x s g(s) ds``, m⁴ (closed form for power terms, else tanh-sinh)."""
+    x = np.asarray(x, float)
+    terms = profile.power_terms()
+    if terms is not None:
+        out = np.zeros(x.shape)
+        for c, n in terms:
+            out = out + profile._power_kappa(n) * c * x ** (n + 2) / (n + 2)
+        return out
+
+    def integrand(s: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return s * profile._g(np.maximum(s, 1e-300))
+
+    lo = np.minimum(np.broadcast_to(profile.flat_radius, x.shape).astype(float), x)
+    flat = x.ravel()
+    out = np.zeros(flat.shape)
+    pos = flat > lo.ravel()
+    if np.any(pos):
+        out[pos] = tanh_sinh(integrand, lo.ravel()[pos], flat[pos], rtol=rtol).value
+    return out.reshape(x.shape)
+
+
+@dataclass
+class SpringState:
+    """Spring state of one solver run (mutable, owned by the run).
+
+    Attributes
+    ----------
+    S : ndarray
+        ``∫_cell (d - g)_+ dx`` per cell, m² (normal spring state).
+    frac : ndarray
+        Fraction of each cell in contact.
+    tangential, torsion : ndarray or None
+        Element force (N) / torque (N·m) per cell, or None when the family is not built.
+    L_tan, L_tor : ndarray or None
+        Current slip limits.
+    depth, radius : float
+    """
+
+    S: np.ndarray
+    frac: np.ndarray
+    tangential: np.ndarray | None
+    torsion: np.ndarray | None
+    L_tan: np.ndarray | None
+    L_tor: np.ndarray | None
+    depth: float = 0.0
+    radius: float = 0.0
+
+
+class Winkler(Foundation):
+    """Independent springs with stick/slip memory (see the module docstring)."""
+
+    def _build(self) -> None:
+        b = self.boundaries
+        prof = self.profile
+        self.bl = b[:-1].copy()
+        self.w = np.diff(b)
+        Gb = _gint(prof, b)
+        self.dG = np.diff(Gb)
+        self.G_left = Gb[:-1].copy()
+        E = self.moduli.normal
+        mu = self.friction
+        self._c_tan = 2.0 * mu * E if mu is not None else np.inf
+        self._c_tor = 4.0 * mu * E if mu is not None else np.inf
+        if "tangential" in self.needs:
+            self.K_tan = 2.0 * self.moduli.tangential * self.w
+            self.invK_tan = 1.0 / self.K_tan
+        if "torsion" in self.needs:
+            self.X1 = np.diff(b ** 2) / 2.0
+            self.K_tor = 16.0 * self.moduli.torsional * np.diff(b ** 3) / 3.0
+            self.invK_tor = 1.0 / self.K_tor
+            Hb = xg_integral(prof, b, self.rtol)
+            self.dH = np.diff(Hb)
+            self.H_left = Hb[:-1].copy()
+
+    # ------------------------------------------------------------------ per-step precomputation
+    def edge_data(self, d: np.ndarray, a: np.ndarray) -> dict[str, np.ndarray]:
+        """Vectorised over steps: index of the cell holding the contact edge and its exact
+        partial integrals (``S`` and, with torsion, ``∫ x (d-g)``)."""
+        d = np.asarray(d, float)
+        a = np.minimum(np.asarray(a, float), self.radius)
+        k = np.clip(np.searchsorted(self.boundaries, a, side="left") - 1, 0, self.n_springs - 1)
+        bl = self.bl[k]
+        out = {"k": k, "S": np.where(a > bl, d * (a - bl) - (_gint(self.profile, a)
+                                                            - self.G_left[k]), 0.0)}
+        out["S"] = np.maximum(out["S"], 0.0)
+        if "torsion" in self.needs:
+            Ha = xg_integral(self.profile, a, self.rtol)
+            out["T"] = np.maximum(np.where(a > bl, d * (a * a - bl * bl) / 2.0
+                                           - (Ha - self.H_left[k]), 0.0), 0.0)
+        return out
+
+    def new_state(self) -> SpringState:
+        n = self.n_springs
+        tan = np.zeros(n) if "tangential" in self.needs else None
+        tor = np.zeros(n) if "torsion" in self.needs else None
+        return SpringState(np.zeros(n), np.zeros(n), tan, tor,
+                           np.zeros(n) if tan is not None else None,
+                           np.zeros(n) if tor is not None else None)
+
+    def set_normal(self, st: SpringState, d: float, a: float, k: int, S_edge: float,
+                   T_edge: float | None) -> np.ndarray:
+        """Move the normal springs to depth ``d`` (radius ``a``); update the slip limits.
+
+        Returns the contact weight of each cell over the step (``ΔS/(w Δd)``), by which the
+        stiffness of the tangential/torsional elements is scaled for this step.
+        """
+        S_old = st.S
+        S = d * self.w - self.dG
+        np.maximum(S, 0.0, out=S)
+        S[k + 1:] = 0.0
+        S[k] = S_edge
+        frac = np.clip((a - self.bl) / self.w, 0.0, 1.0)
+        dd = d - st.depth
+        if dd != 0.0:
+            weight = (S - S_old) / (self.w * dd)
+            np.clip(weight, 0.0, 1.0, out=weight)
+        else:
+            weight = frac
+        st.S, st.frac, st.depth, st.radius = S, frac, d, a
+        inf_mu = self.friction is None
+        if st.L_tan is not None:
+            st.L_tan = np.where(S > 0, np.inf, 0.0) if inf_mu else self._c_tan * S
+        if st.L_tor is not None:
+            T = d * self.X1 - self.dH
+            np.maximum(T, 0.0, out=T)
+            T[k + 1:] = 0.0
+            T[k] = T_edge
+            st.L_tor = np.where(T > 0, np.inf, 0.0) if inf_mu else self._c_tor * T
+        return weight
+
+    # ------------------------------------------------------------------ Jenkins elements
+    @staticmethod
+    def jenkins(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.ndarray, inc: float,
+                tmp: np.ndarray) -> float:
+        """Advance elements in place by displacement ``inc``; return the dissipated energy, J.
+
+        ``m ← clip(m + K inc, -L, L)``; dissipation ``Σ |slip| L = Σ (trial - m) m / K``.
+        """
+        np.multiply(K, inc, out=tmp)
+        tmp += m
+        np.minimum(tmp, L, out=m)
+        np.maximum(m, -L, out=m)
+        tmp -= m
+        tmp *= m
+        return float(np.dot(tmp, invK))
+
+    @staticmethod
+    def solve(m: np.ndarray, K: np.ndarray, L: np.ndarray, target: float) -> tuple[float, bool]:
+        """Increment ``s`` with ``Σ clip(m + K s, -L, L) = target`` (exact, piecewise linear).
+
+        The sum is monotone non-decreasing in ``s``. A target at or beyond the full-sliding value
+        ``±ΣL`` returns the smallest increment that reaches full sliding and ``gross=True``.
+        """
+        m0 = np.clip(m, -L, L)
+        F0 = float(m0.sum())
+        if target == F0:
+            return 0.0, False
+        sgn = 1.0 if target > F0 else -1.0
+        act = K > 0
+        Ka = K[act]
+        room = (L[act] - sgn * m0[act]) / Ka  # >= 0; inf without friction
+        need = sgn * (target - F0)
+        fin = np.isfinite(room)
+        k_inf = float(Ka[~fin].sum())
+        r = room[fin]
+        kf = Ka[fin]
+        order = np.argsort(r)
+        r = r[order]
+        kf = kf[order]
+        # gain at breakpoint j: sum_{i<j} k_i r_i + r_j (sum_{i>=j} k_i + k_inf)
+        kr = np.concatenate(([0.0], np.cumsum(kf * r)))
+        k_rest = (kf[::-1].cumsum()[::-1]) + k_inf
+        gain = kr[:-1] + r * k_rest
+        j = int(np.searchsorted(gain, need, side="left"))
+        if j < r.size:
+            slope = k_rest[j]
+            s = (need - kr[j]) / slope
+            return sgn * float(s), False
+        if k_inf > 0:
+            return sgn * float((need - kr[-1]) / k_inf), False
+        return sgn * float(r[-1] if r.size else 0.0), True
+
+    @staticmethod
+    def stick_radius(m: np.ndarray, L: np.ndarray, bl: np.ndarray, radius: float) -> float:
+        """Outer radius of the central stick zone: the left edge of the first element at its
+        slip limit (cells out of contact count as slipping), or ``radius``."""
+        slip = np.abs(m) >= L
+        i = int(np.argmax(slip))
+        return float(bl[i]) if slip[i] else radius
