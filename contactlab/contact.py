@@ -243,7 +243,7 @@ class Contact:
 
     def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
                  spacing: str = "edge", snapshots: Any = None, progress: bool = False,
-                 approximate: bool = False):
+                 approximate: bool = False, strategy: str | None = None):
         """Run a :class:`~contactlab.LoadPath` through the MDR foundation with frictional memory.
 
         See :func:`contactlab.simulation.simulate` for the parameters.
@@ -254,4 +254,5 @@ class Contact:
         """
         from .simulation import simulate
         return simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
-                        snapshots=snapshots, progress=progress, approximate=approximate)
+                        snapshots=snapshots, progress=progress, approximate=approximate,
+                        strategy=strategy)

@@ -31,6 +31,8 @@ _SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
                      gross_sliding="1")
 #: paths with at least this many steps show a progress bar when ``progress=True``
 PROGRESS_THRESHOLD = 1000
+#: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
+_MIN_BLOCK = 8
 
 
 def _contact_for(profile, moduli, friction, rtol):
@@ -188,7 +190,7 @@ def _progress(total: int, progress: bool):
 
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
              spacing: str = "edge", snapshots: Any = None, progress: bool = False,
-             approximate: bool = False) -> PathResult:
+             approximate: bool = False, strategy: str | None = None) -> PathResult:
     """Run ``path`` through the MDR foundation of ``contact``.
 
     Parameters
@@ -210,6 +212,11 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
         (library use is quiet by default).
     approximate : bool
         Allow combined shift and twist, run as independent spring families (warns).
+    strategy : {"segments", "steps"}, optional
+        Numerical route of the time loop, same results up to rounding. ``"segments"`` (default)
+        advances runs of steps with a held normal load and a monotone control in closed form
+        (sorted slip thresholds, ``O(log N)`` per step); ``"steps"`` updates every spring at
+        every step.
 
     Returns
     -------
@@ -227,6 +234,10 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     if contact.is_adhesive:
         raise NotSupportedError("simulate() supports non-adhesive contacts only "
                                 "(work_of_adhesion=None).")
+    strategy = "segments" if strategy is None else strategy
+    if strategy not in ("segments", "steps"):
+        raise UnknownNameError(f"strategy={strategy!r} is invalid: allowed are "
+                               "('segments', 'steps').")
     needs = families_needed(path, approximate=approximate)
     if len(needs) == 2:
         warnings.warn("combined shift and twist is run as two independent spring families "
@@ -280,7 +291,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
                   spacing=spacing, needs=needs, rtol=contact.rtol)
     meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
     _run(contact, fnd, path, normal, res, snaps, snapshot_data, "stick_radius" in outputs,
-         progress)
+         progress, strategy)
     return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
 
 
@@ -308,101 +319,179 @@ def _snapshot(contact, fnd, st, res, i) -> dict:
     return snap
 
 
-def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress):
+def _turns(v0: float, v: np.ndarray) -> np.ndarray:
+    """Indices j where the increment v[j] - v[j-1] reverses the direction of the last non-zero
+    increment (v[-1] := v0): the starts of new monotone runs."""
+    inc = np.diff(np.concatenate(([v0], v)))
+    sg = np.sign(inc)
+    nz = np.flatnonzero(sg)
+    if nz.size < 2:
+        return np.zeros(0, int)
+    return nz[1:][sg[nz[1:]] != sg[nz[:-1]]]
+
+
+def _next(sorted_idx: np.ndarray, j: int, default: int) -> int:
+    k = int(np.searchsorted(sorted_idx, j, side="right"))
+    return int(sorted_idx[k]) if k < sorted_idx.size else default
+
+
+def _set_keff(ch: dict, weight: np.ndarray) -> None:
+    """Stiffness of the elements for this step: full stiffness times the contact weight."""
+    np.multiply(ch["K"], weight, out=ch["Keff"])
+    # 1/K_eff where in contact; elsewhere the slip is 0 and any finite value will do
+    np.divide(ch["invK"], weight, out=ch["iKeff"], where=weight > 0)
+
+
+def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
+         strategy="segments"):
+    """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
+    control are advanced in closed form (:func:`~contactlab.foundation.winkler.monotone_block`),
+    other steps one by one; ``"steps"``: every step one by one (same results up to rounding)."""
+    from .foundation.winkler import monotone_block
     st = fnd.new_state()
-    has_tan = st.tangential is not None
-    has_tor = st.torsion is not None
     n = fnd.n_springs
+    chans = []
+    if st.tangential is not None:
+        chans.append({"m": st.tangential, "K": fnd.K_tan, "invK": fnd.invK_tan, "L": "L_tan",
+                      "pos": "displacement", "frc": "tangential_force"})
+    if st.torsion is not None:
+        chans.append({"m": st.torsion, "K": fnd.K_tor, "invK": fnd.invK_tor, "L": "L_tor",
+                      "pos": "twist", "frc": "torque"})
+    for ch in chans:
+        ch.update(Keff=np.zeros(n), iKeff=np.zeros(n), ctrl=ch["pos"], x=0.0, dir=1.0)
+        ch["out_pos"], ch["out_frc"] = res[ch["pos"]], res[ch["frc"]]
+    stick_ch = chans[0] if chans else None
     tmp = np.empty(n)
     cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
                          "torque"), 0.0)
-    ctrl_tan, ctrl_tor = "displacement", "twist"
-    u = phi = 0.0
-    W = 0.0
-    Keff_tan = np.zeros(n) if has_tan else None
-    Keff_tor = np.zeros(n) if has_tor else None
+    out_W, out_stick, out_gross = res["dissipated_energy"], res["stick_radius"], res["gross_sliding"]
     bar = _progress(res["time"].size, progress)
-    i = 0
-    first = True
-    keff_is_frac = False
+    snap_idx = np.array(sorted(snaps), int)
+    state = {"W": 0.0, "first": True, "keff_is_frac": False}
+
+    def step(i, d, a, k_edge, S_edge, T_edge, targets):
+        W = state["W"]
+        if state["first"] or d != st.depth or a != st.radius:
+            state["first"] = False
+            release = d < st.depth  # slip limits only shrink when the depth decreases
+            weight = fnd.set_normal(st, d, a, k_edge, S_edge, T_edge)
+            state["keff_is_frac"] = weight is None
+            if weight is None:
+                weight = fnd.fraction(a)
+            for ch in chans:
+                _set_keff(ch, weight)
+                if release:
+                    W += fnd.jenkins(ch["m"], ch["Keff"], ch["iKeff"], getattr(st, ch["L"]),
+                                     getattr(st, "n" + ch["L"]), 0.0, tmp)
+        elif not state["keff_is_frac"]:
+            frac = fnd.fraction(a)
+            for ch in chans:
+                _set_keff(ch, frac)
+            state["keff_is_frac"] = True
+        for ch, target in zip(chans, targets):
+            m = ch["m"]
+            L = getattr(st, ch["L"])
+            if ch["ctrl"] == ch["pos"]:
+                inc = target - ch["x"]
+            else:
+                inc, gross = fnd.solve(m, ch["Keff"], L, target)
+                out_gross[i] |= gross
+            if inc != 0.0:
+                ch["dir"] = 1.0 if inc > 0 else -1.0
+                W += fnd.jenkins(m, ch["Keff"], ch["iKeff"], L, getattr(st, "n" + ch["L"]), inc,
+                                 tmp)
+                ch["x"] += inc
+            if ch["ctrl"] == ch["pos"]:
+                ch["x"] = float(target)  # no round-off drift of a prescribed position
+            ch["out_pos"][i] = ch["x"]
+            ch["out_frc"][i] = m.sum()
+        out_W[i] = W
+        state["W"] = W
+        if want_stick:
+            out_stick[i] = (fnd.stick_radius(stick_ch["m"], getattr(st, stick_ch["L"]), fnd.bl, a)
+                            if stick_ch is not None else a)
+
+    def block(i0, i1, values):
+        if not state["keff_is_frac"]:
+            frac = fnd.fraction(st.radius)
+            for ch in chans:
+                _set_keff(ch, frac)
+            state["keff_is_frac"] = True
+        sl = slice(i0, i1)
+        Wblock = np.zeros(i1 - i0)
+        for ch, v in zip(chans, values):
+            m = ch["m"]
+            L = getattr(st, ch["L"])
+            ref = ch["x"] if ch["ctrl"] == ch["pos"] else float(m.sum())
+            nzv = v[v != ref]
+            sgn = ch["dir"] if nzv.size == 0 else (1.0 if nzv[0] > ref else -1.0)
+            ch["dir"] = sgn
+            want = want_stick and ch is stick_ch
+            if ch["ctrl"] == ch["pos"]:
+                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, du=sgn * (v - ref),
+                                     want_stick=want)
+                ch["out_pos"][sl] = v
+                ch["x"] = float(v[-1])
+            else:
+                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, target=v,
+                                     want_stick=want)
+                ch["out_pos"][sl] = ch["x"] + sgn * out["x"]
+                ch["x"] = float(ch["out_pos"][i1 - 1])
+                out_gross[sl] |= out["gross"]
+            ch["out_frc"][sl] = out["force"]
+            Wblock += out["dissipation"]
+            if want:
+                out_stick[sl] = out["stick"]
+        out_W[sl] = state["W"] + Wblock
+        state["W"] += float(Wblock[-1])
+        if want_stick and stick_ch is None:
+            out_stick[sl] = st.radius
+
+    base = 0
     for leaf, nrm in zip(path.leaves(), normal):
-        cur["depth"], cur["force"] = (float(res["depth"][i - 1]), float(res["force"][i - 1])) \
-            if i else (0.0, 0.0)
+        if base:
+            cur["depth"], cur["force"] = float(res["depth"][base - 1]), float(res["force"][base - 1])
         _, vals = leaf.values(cur)
-        m = leaf.n_steps
-        if "displacement" in vals or "tangential_force" in vals:
-            ctrl_tan = "displacement" if "displacement" in vals else "tangential_force"
-            tv = vals[ctrl_tan]
-        else:
-            tv = np.full(m, cur[ctrl_tan])
-        if "twist" in vals or "torque" in vals:
-            ctrl_tor = "twist" if "twist" in vals else "torque"
-            rv = vals[ctrl_tor]
-        else:
-            rv = np.full(m, cur[ctrl_tor])
+        nsteps = leaf.n_steps
         d_arr, a_arr = nrm["depth"], nrm["radius"]
         ed = fnd.edge_data(d_arr, a_arr)
-        ek, eS = ed["k"], ed["S"]
-        eT = ed.get("T")
-        for j in range(m):
-            d = d_arr[j]
-            a = a_arr[j]
-            changed = first or d != st.depth or a != st.radius
-            if changed:
-                first = False
-                weight = fnd.set_normal(st, d, a, int(ek[j]), eS[j], None if eT is None else eT[j])
-                if has_tan:
-                    np.multiply(fnd.K_tan, weight, out=Keff_tan)
-                    W += fnd.jenkins(st.tangential, Keff_tan, fnd.invK_tan, st.L_tan, 0.0, tmp)
-                if has_tor:
-                    np.multiply(fnd.K_tor, weight, out=Keff_tor)
-                    W += fnd.jenkins(st.torsion, Keff_tor, fnd.invK_tor, st.L_tor, 0.0, tmp)
-                keff_is_frac = weight is st.frac
-            elif not keff_is_frac:  # normal held: cells weigh by their contact fraction
-                if has_tan:
-                    np.multiply(fnd.K_tan, st.frac, out=Keff_tan)
-                if has_tor:
-                    np.multiply(fnd.K_tor, st.frac, out=Keff_tor)
-                keff_is_frac = True
-            if has_tan:
-                if ctrl_tan == "displacement":
-                    inc = tv[j] - u
-                else:
-                    inc, gross = fnd.solve(st.tangential, Keff_tan, st.L_tan, tv[j])
-                    res["gross_sliding"][i] |= gross
-                if inc != 0.0:
-                    W += fnd.jenkins(st.tangential, Keff_tan, fnd.invK_tan, st.L_tan, inc, tmp)
-                    u += inc
-                if ctrl_tan == "displacement":
-                    u = tv[j]  # no round-off drift of the prescribed displacement
-                res["displacement"][i] = u
-                res["tangential_force"][i] = st.tangential.sum()
-            if has_tor:
-                if ctrl_tor == "twist":
-                    inc = rv[j] - phi
-                else:
-                    inc, gross = fnd.solve(st.torsion, Keff_tor, st.L_tor, rv[j])
-                    res["gross_sliding"][i] |= gross
-                if inc != 0.0:
-                    W += fnd.jenkins(st.torsion, Keff_tor, fnd.invK_tor, st.L_tor, inc, tmp)
-                    phi += inc
-                if ctrl_tor == "twist":
-                    phi = rv[j]
-                res["twist"][i] = phi
-                res["torque"][i] = st.torsion.sum()
-            res["dissipated_energy"][i] = W
-            if want_stick:
-                if has_tan:
-                    res["stick_radius"][i] = fnd.stick_radius(st.tangential, st.L_tan, fnd.bl, a)
-                else:
-                    res["stick_radius"][i] = fnd.stick_radius(st.torsion, st.L_tor, fnd.bl, a)
-            if i in snaps:
-                snapshot_data[i] = _snapshot(contact, fnd, st, res, i)
-            i += 1
-        cur["displacement"], cur["tangential_force"] = (res["displacement"][i - 1],
-                                                        res["tangential_force"][i - 1])
-        cur["twist"], cur["torque"] = res["twist"][i - 1], res["torque"][i - 1]
+        ek, eS = ed["k"].tolist(), ed["S"].tolist()
+        eT = ed["T"].tolist() if "T" in ed else [None] * nsteps
+        prev_d = np.concatenate(([st.depth], d_arr[:-1]))
+        prev_a = np.concatenate(([st.radius], a_arr[:-1]))
+        changed = (d_arr != prev_d) | (a_arr != prev_a)
+        if state["first"]:
+            changed[0] = True
+        breaks = [np.array([0, nsteps])]
+        vs = []
+        for ch in chans:
+            pos, frc = ch["pos"], ch["frc"]
+            if pos in vals or frc in vals:
+                ch["ctrl"] = pos if pos in vals else frc
+                v = vals[ch["ctrl"]]
+            else:
+                v = np.full(nsteps, cur[ch["ctrl"]])
+            vs.append(v)
+            breaks.append(_turns(cur[ch["ctrl"]], v))
+        vlists = [v.tolist() for v in vs]
+        ci = np.flatnonzero(changed)
+        breaks += [ci, ci + 1, snap_idx - base + 1]
+        brk = np.unique(np.concatenate(breaks))
+        brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
+        dl, al = d_arr.tolist(), a_arr.tolist()
+        chl = changed.tolist()
+        for j0, j1 in zip(brk[:-1], brk[1:]):
+            if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not chl[j0]:
+                block(base + j0, base + j1, [v[j0:j1] for v in vs])
+            else:
+                for j in range(j0, j1):
+                    step(base + j, dl[j], al[j], ek[j], eS[j], eT[j], [v[j] for v in vlists])
+            if base + j1 - 1 in snaps:
+                snapshot_data[base + j1 - 1] = _snapshot(contact, fnd, st, res, base + j1 - 1)
+        base += nsteps
+        for ch in chans:
+            cur[ch["pos"]], cur[ch["frc"]] = ch["out_pos"][base - 1], ch["out_frc"][base - 1]
         if bar is not None:
-            bar.update(m)
+            bar.update(nsteps)
     if bar is not None:
         bar.close()

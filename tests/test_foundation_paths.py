@@ -313,3 +313,32 @@ def test_outputs_selection_and_unplanned_output():
         r.torque
     with pytest.raises(cl.errors.UnknownNameError, match="outputs"):
         c.simulate(cl.LoadPath().ramp(force=F, steps=3), outputs=["forse"])
+
+
+def test_segment_and_step_strategies_agree():
+    """The closed-form run advance equals step-by-step spring updates (varying normal force,
+    reversals, force and torque control, holds)."""
+    c = hertz()
+    k = np.arange(1, 301)
+    path = (cl.LoadPath().ramp(force=F, steps=5)
+            .sinusoid(twist=2e-4, cycles=2, steps_per_cycle=40)
+            .then(cl.loadpath.Table.create(None, {"force": F * (0.8 + 0.2 * np.cos(k / 20)),
+                                                  "twist": 1e-4 * np.sin(k / 15)}))
+            .hold(steps=20).ramp(torque=0.5 * 0.75 * MU * F * c.normal(force=F).radius, steps=30)
+            .ramp(torque=-0.3 * 0.75 * MU * F * c.normal(force=F).radius, steps=30))
+    a = c.simulate(path, n_springs=300, strategy="segments")
+    b = c.simulate(path, n_springs=300, strategy="steps")
+    for q in ("torque", "twist", "dissipated_energy", "stick_radius"):
+        scale = np.max(np.abs(getattr(b, q)))
+        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
+    ns = c.normal(force=F)
+    us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
+    path = (cl.LoadPath().ramp(force=F, steps=5).sinusoid(displacement=0.7 * us, cycles=2,
+                                                           steps_per_cycle=60)
+            .ramp(tangential_force=0.5 * MU * F, steps=25).ramp(force=0.5 * F, steps=20)
+            .ramp(tangential_force=-0.4 * MU * F, steps=25))
+    a = c.simulate(path, n_springs=300, strategy="segments")
+    b = c.simulate(path, n_springs=300, strategy="steps")
+    for q in ("tangential_force", "displacement", "dissipated_energy", "stick_radius"):
+        scale = np.max(np.abs(getattr(b, q)))
+        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
