@@ -23,10 +23,14 @@ from ..errors import ParameterError, UnknownNameError
 
 __all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries"]
 
-#: default number of springs (cells) over the path's maximum contact radius. With the
-#: edge-refined spacing, 1000 cells reproduce the Cattaneo–Mindlin and Mindlin–Deresiewicz loops
-#: of Hertz and cone contacts to < 1e-6 of the loop amplitude (benchmarks/foundation_accuracy.py)
-DEFAULT_N_SPRINGS = 1000
+#: default number of springs (cells) over the path's maximum contact radius. The error is second
+#: order in 1/N (only the cell holding a stick–slip boundary is lumped); with the edge-refined
+#: spacing 2000 cells reproduce the Cattaneo–Mindlin/Mindlin–Deresiewicz loops of Hertz and cone
+#: contacts to 2e-7 and 3.4e-7 of the loop amplitude and the MDR torsion loop to 6e-7, a factor
+#: 3 below the 1e-6 target (1000 cells: 4e-7, 9.7e-7, 2.8e-6); see
+#: benchmarks/foundation_accuracy.py. The time loop costs O(log N) per step while the normal load
+#: is held and O(N) per step while it changes.
+DEFAULT_N_SPRINGS = 2000
 #: available spacings: "uniform" (equal cells) and "edge" (cells shrinking quadratically towards
 #: the maximum contact radius, where the stick–slip boundary starts)
 SPACINGS = ("uniform", "edge")
