@@ -109,14 +109,30 @@ class Foundation(ABC):
         The cells cover the largest contact radius the path reaches (a normal-only pass over the
         path, exact because non-adhesive normal contact is path independent); only the spring
         families the path controls are built (no torsional springs without twist/torque).
+        ``moduli`` (E*, G*, G_t) is needed besides the profile because a force-controlled path
+        reaches its radius through E*. Called on :class:`Foundation` it builds a
+        :class:`~contactlab.foundation.Winkler`.
+
+        Examples
+        --------
+        >>> import contactlab as cl
+        >>> from contactlab.foundation import Foundation
+        >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=210e9, nu=0.3),
+        ...                cl.Rigid()), friction=0.3)
+        >>> f = Foundation.for_path(c.profile, cl.LoadPath().ramp(force=10.0, steps=5),
+        ...                         moduli=c.moduli, friction=0.3, n_springs=100)
+        >>> f.built
+        ['normal']
         """
         from ..simulation import _contact_for, compile_normal, families_needed
+        from .winkler import Winkler
+        impl = Winkler if cls is Foundation else cls
         contact = _contact_for(profile, moduli, friction, rtol)
         needs = families_needed(path, approximate=approximate)
         normal = compile_normal(contact, path)
         radius = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
-        return cls(profile, moduli, friction, radius, n_springs=n_springs, spacing=spacing,
-                   needs=needs, rtol=rtol)
+        return impl(profile, moduli, friction, radius, n_springs=n_springs, spacing=spacing,
+                    needs=needs, rtol=rtol)
 
     @property
     def built(self) -> list[str]:
