@@ -112,8 +112,10 @@ class PathResult:
     gross_sliding : ndarray of bool
         Steps where a force/torque target reached full sliding.
     snapshots : dict
-        ``{step: {"x", "depth", "radius", "normal", "tangential", "torsion", "pressure"}}``
-        spring states (per cell) and the pressure at the cell midpoints, at requested steps.
+        ``{step: {"x", "depth", "radius", "normal", "tangential", "torsion", "pressure",
+        "shear_tangential", "shear_torsion"}}``: spring states per cell (N, N·m) and the 3D
+        pressure and tractions (Pa) at the cell midpoints ``x``, at the requested steps. The
+        tractions are the MDR inverse of the spring line loads (piecewise-linear between cells).
     meta : dict
         ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``, ``approximate``.
     """
@@ -310,9 +312,11 @@ def _snapshot(contact, fnd, st, res, i) -> dict:
         S = np.maximum(d * fnd.w - fnd.dG, 0.0)
         S[fnd.bl >= a] = 0.0
         if st is not None:
+            from .foundation.winkler import snapshot_shear
             S = st.S.copy()
             snap["tangential"] = None if st.tangential is None else st.tangential.copy()
             snap["torsion"] = None if st.torsion is None else st.torsion.copy()
+            snap.update(snapshot_shear(fnd, st, x))
         snap["normal"] = 2.0 * contact.moduli.normal * S
         snap["pressure"] = (np.asarray(contact.normal(depth=d).pressure(x), float) if a > 0
                             else np.zeros(x.size))

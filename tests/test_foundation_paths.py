@@ -342,3 +342,32 @@ def test_segment_and_step_strategies_agree():
     for q in ("tangential_force", "displacement", "dissipated_energy", "stick_radius"):
         scale = np.max(np.abs(getattr(b, q)))
         np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
+
+
+def test_snapshot_tractions_match_closed_forms():
+    """Tractions reconstructed from the springs: Cattaneo–Mindlin τ = μ(p_a - p_c) (Hertz, §5),
+    and the no-slip torsion traction τ = (4G_tφ/π) r/sqrt(a²-r²) (§6.1)."""
+    c = hertz()
+    ns = c.normal(force=F)
+    a = ns.radius
+    us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
+    u = 0.5 * us
+    r = c.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(displacement=u, steps=20),
+                   snapshots=[-1])
+    snap = r.snapshots[22]
+    x = snap["x"]
+    cc = a * np.sqrt(1 - u / us)
+    p0 = 3 * F / (2 * np.pi * a ** 2)
+    sel = (x < 0.95 * a) & (np.abs(x - cc) > 0.02 * a)
+    ref = MU * p0 * (np.sqrt(1 - (x / a) ** 2) - np.where(x < cc, cc / a * np.sqrt(
+        np.clip(1 - (x / cc) ** 2, 0, None)), 0))
+    assert np.max(np.abs(snap["shear_tangential"][sel] - ref[sel])) < 1e-3 * MU * p0
+    np.testing.assert_allclose(snap["pressure"], 2 * c.moduli.normal / (np.pi * R) * np.sqrt(
+        np.clip(a * a - x * x, 0, None)), rtol=1e-9)
+    c0 = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL))
+    phi = 1e-5
+    t = c0.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(twist=phi, steps=2), snapshots=[4])
+    x = t.snapshots[4]["x"]
+    sel = x < 0.9 * a
+    ref = 4 * c0.moduli.torsional * phi / np.pi * x / np.sqrt(a * a - x * x)
+    np.testing.assert_allclose(t.snapshots[4]["shear_torsion"][sel], ref[sel], rtol=1e-3)

@@ -323,3 +323,55 @@ def monotone_block(m: np.ndarray, K: np.ndarray, L: np.ndarray, bl: np.ndarray, 
     np.minimum(sm + K * xe, L, out=sm)
     np.multiply(sm, s, out=m)
     return out
+
+
+def abel_traction(x: np.ndarray, q: np.ndarray, a: float, q_edge: float,
+                  r: np.ndarray) -> np.ndarray:
+    """``-(1/π) ∫_r^a q'(x)/sqrt(x² - r²) dx + q_edge/(π sqrt(a² - r²))`` for ``r < a``.
+
+    ``q`` is the piecewise-linear interpolant through ``(x_i, q_i)``, constant on ``[0, x_0]`` and
+    linear from the last node to ``(a, q_edge)``; ``q_edge`` is the value at ``a⁻`` (a jump to 0
+    at ``a`` gives the edge term). MDR inverse of a line load [H1; physics.md §3]. Returns 0 for
+    ``r >= a``.
+    """
+    r = np.asarray(r, float)
+    xn = np.concatenate((x, [a]))
+    qn = np.concatenate((q, [q_edge]))
+    x0, x1 = xn[:-1], xn[1:]
+    slope = np.diff(qn) / np.diff(xn)
+    rr = np.maximum(r, 1e-300)[..., None]
+    lo = np.maximum(x0, rr)
+    hi = np.maximum(x1, rr)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        seg = np.arccosh(hi / rr) - np.arccosh(lo / rr)
+        tau = -(slope * seg).sum(axis=-1) / np.pi
+        tau = tau + np.where(r < a, q_edge / (np.pi * np.sqrt(np.maximum(a * a - r * r, 0))), 0.0)
+    return np.where(r < a, tau, 0.0)
+
+
+def snapshot_shear(fnd: "Winkler", st: SpringState, r: np.ndarray) -> dict[str, np.ndarray]:
+    """3D tractions from the spring states at radii ``r`` (MDR inverse of the line loads).
+
+    Tangential: line load ``q_x = f_i/(2 w_i)`` (both sides lumped in ``f_i``),
+    ``τ_x = -(1/π)∫ q_x'/sqrt(x²-r²)``. Torsion: cell rotation ``ψ_i = m_i/K_i`` (``u_y = xψ``),
+    ``τ = (4G_t r/π)[-∫ ψ'/sqrt(x²-r²) + ψ(a)/sqrt(a²-r²)]`` (physics.md §8, item 1).
+    A cell at its slip limit next to the edge means ``u(a) = 0``; otherwise the edge cell's value
+    holds up to ``a`` (no slip).
+    """
+    a = st.radius
+    inside = fnd.bl < a
+    x = fnd.positions[inside]
+    out = {}
+    if x.size == 0:
+        return out
+    last = int(np.flatnonzero(inside)[-1])
+    if st.tangential is not None:
+        q = st.tangential[inside] / (2.0 * fnd.w[inside])
+        slipping = np.abs(st.tangential[last]) >= st.L_tan[last]
+        out["shear_tangential"] = abel_traction(x, q, a, 0.0 if slipping else q[-1], r)
+    if st.torsion is not None:
+        psi = st.torsion[inside] / fnd.K_tor[inside]
+        slipping = np.abs(st.torsion[last]) >= st.L_tor[last]
+        out["shear_torsion"] = 4.0 * fnd.moduli.torsional * np.asarray(r, float) * abel_traction(
+            x, psi, a, 0.0 if slipping else psi[-1], r)
+    return out
