@@ -362,7 +362,8 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         chans.append({"m": st.torsion, "K": fnd.K_tor, "invK": fnd.invK_tor, "L": "L_tor",
                       "pos": "twist", "frc": "torque"})
     for ch in chans:
-        ch.update(Keff=np.zeros(n), iKeff=np.zeros(n), ctrl=ch["pos"], x=0.0, dir=1.0)
+        ch.update(Keff=np.zeros(n), iKeff=np.zeros(n), ctrl=ch["pos"], x=0.0, dir=1.0,
+                  release=False)
         ch["out_pos"], ch["out_frc"] = res[ch["pos"]], res[ch["frc"]]
     stick_ch = chans[0] if chans else None
     tmp = np.empty(n)
@@ -384,9 +385,13 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
                 weight = fnd.fraction(a)
             for ch in chans:
                 _set_keff(ch, weight)
-                if release:
+                # springs beyond their new limit slide back to it (a prescribed displacement
+                # step does this in the same clip as its increment)
+                if release and ch["ctrl"] != ch["pos"]:
                     W += fnd.jenkins(ch["m"], ch["Keff"], ch["iKeff"], getattr(st, ch["L"]),
                                      getattr(st, "n" + ch["L"]), 0.0, tmp)
+                elif release:
+                    ch["release"] = True
         elif not state["keff_is_frac"]:
             frac = fnd.fraction(a)
             for ch in chans:
@@ -400,11 +405,13 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
             else:
                 inc, gross = fnd.solve(m, ch["Keff"], L, target)
                 out_gross[i] |= gross
-            if inc != 0.0:
-                ch["dir"] = 1.0 if inc > 0 else -1.0
+            if inc != 0.0 or ch["release"]:
+                if inc != 0.0:
+                    ch["dir"] = 1.0 if inc > 0 else -1.0
                 W += fnd.jenkins(m, ch["Keff"], ch["iKeff"], L, getattr(st, "n" + ch["L"]), inc,
                                  tmp)
                 ch["x"] += inc
+                ch["release"] = False
             if ch["ctrl"] == ch["pos"]:
                 ch["x"] = float(target)  # no round-off drift of a prescribed position
             ch["out_pos"][i] = ch["x"]

@@ -82,6 +82,7 @@ class SpringState:
     radius: float = 0.0
     nL_tan: np.ndarray | None = None
     nL_tor: np.ndarray | None = None
+    k: int = 0
 
 
 class Winkler(Foundation):
@@ -93,6 +94,7 @@ class Winkler(Foundation):
         self.bl = b[:-1].copy()
         self.w = np.diff(b)
         self.inv_w = 1.0 / self.w
+        self._wbuf = np.zeros(self.n_springs)
         Gb = _gint(prof, b)
         self.dG = np.diff(Gb)
         self.G_left = Gb[:-1].copy()
@@ -140,26 +142,31 @@ class Winkler(Foundation):
 
     def set_normal(self, st: SpringState, d: float, a: float, k: int, S_edge: float,
                    T_edge: float | None) -> np.ndarray | None:
-        """Move the normal springs to depth ``d`` (radius ``a``); update the slip limits.
+        """Move the normal springs to depth ``d`` (radius ``a``, edge cell ``k``); update the slip
+        limits of the built families.
 
-        Returns the contact weight of each cell over the step (``ΔS/(w Δd)``), by which the
-        stiffness of the tangential/torsional elements is scaled for this step, or ``None`` when
-        the depth did not change (then the weight is the contact fraction, :meth:`fraction`).
+        Returns the contact weight of each cell over the step (``ΔS/(w Δd)``: 1 for cells in
+        contact before and after, 0 for cells out of contact throughout, the exact average for
+        the cells the edge crossed), by which the stiffness of the tangential/torsional elements is
+        scaled for this step; ``None`` when the depth did not change (then the weight is the
+        contact fraction, :meth:`fraction`).
         """
+        dd = d - st.depth
+        k_old = st.k
         S_old = st.S
         S = d * self.w
-        S -= self.dG
-        np.maximum(S, 0.0, out=S)
+        S -= self.dG  # cells left of k are fully in contact, so S > 0 there (d >= g(a))
         S[k + 1:] = 0.0
         S[k] = S_edge
-        dd = d - st.depth
         weight = None
         if dd != 0.0:
-            weight = S - S_old
-            weight *= 1.0 / dd
-            weight *= self.inv_w
-            np.clip(weight, 0.0, 1.0, out=weight)
-        st.S, st.depth, st.radius = S, d, a
+            lo, hi = min(k, k_old), max(k, k_old) + 1
+            weight = self._wbuf
+            weight[:lo] = 1.0
+            weight[hi:] = 0.0
+            ws = (S[lo:hi] - S_old[lo:hi]) / (dd * self.w[lo:hi])
+            np.clip(ws, 0.0, 1.0, out=weight[lo:hi])
+        st.S, st.depth, st.radius, st.k = S, d, a, k
         inf_mu = self.friction is None
         if st.L_tan is not None:
             st.L_tan = np.where(S > 0, np.inf, 0.0) if inf_mu else self._c_tan * S
@@ -167,7 +174,6 @@ class Winkler(Foundation):
         if st.L_tor is not None:
             T = d * self.X1
             T -= self.dH
-            np.maximum(T, 0.0, out=T)
             T[k + 1:] = 0.0
             T[k] = T_edge
             st.L_tor = np.where(T > 0, np.inf, 0.0) if inf_mu else self._c_tor * T
