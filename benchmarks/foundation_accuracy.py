@@ -81,8 +81,8 @@ def exact_twist(c_over_a, a, Gt):
 
 
 def exact_torque(c_over_a, a):
-    I = quad(lambda s: s * s * ellipe(1 - s * s), 0, c_over_a, epsabs=0, epsrel=1e-12)[0]
-    return MU * F * a * (3 * np.pi / 16 - 4 / np.pi * I)
+    integral = quad(lambda s: s * s * ellipe(1 - s * s), 0, c_over_a, epsabs=0, epsrel=1e-12)[0]
+    return MU * F * a * (3 * np.pi / 16 - 4 / np.pi * integral)
 
 
 def exact_cycle_energy(phi0, a, Gt):

@@ -70,11 +70,11 @@ def main() -> None:
     tw = phi0 * np.sin(2 * np.pi * k / spc)
     cases = [
         ("oscillating twist, constant normal force",
-         cl.LoadPath().ramp(force=100.0, steps=1).sinusoid(twist=phi0, cycles=cyc,
-                                                            steps_per_cycle=spc)),
+         cl.LoadPath().ramp(force=100.0, steps=1)
+         .sinusoid(twist=phi0, cycles=cyc, steps_per_cycle=spc)),
         ("oscillating shift, constant normal force",
-         cl.LoadPath().ramp(force=100.0, steps=1).sinusoid(displacement=u0, cycles=cyc,
-                                                            steps_per_cycle=spc)),
+         cl.LoadPath().ramp(force=100.0, steps=1)
+         .sinusoid(displacement=u0, cycles=cyc, steps_per_cycle=spc)),
         ("oscillating torque (force control)",
          cl.LoadPath().ramp(force=100.0, steps=1).sinusoid(
              torque=0.5 * 0.75 * 0.2 * 100.0 * a, cycles=cyc, steps_per_cycle=spc)),

@@ -269,7 +269,10 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     if pieces:
         st, br, d0, d1 = (np.array(v) for v in zip(*pieces))
         vir = br < 0
-        D = lambda x: _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
+
+        def D(x: np.ndarray) -> np.ndarray:
+            return _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
+
         inc = np.where(vir, D(d1) - D(d0), 2.0 * (D(d1 / 2) - D(d0 / 2)))
         np.add.at(W, st, inc)
     return ShiftHistory(ns, u.copy(), F, c_out, np.cumsum(W),

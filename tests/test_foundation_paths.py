@@ -1,8 +1,6 @@
 """The MDR foundation under load paths (contact.simulate) against independent closed forms:
 normal contact (§3), Cattaneo–Mindlin and Mindlin–Deresiewicz (§5), oblique loading, and the MDR
 torsion model (§6.4). Closed forms are re-implemented here, independently of the package."""
-import warnings
-
 import numpy as np
 import pytest
 
@@ -173,8 +171,8 @@ def test_tangential_force_control_matches_closed_form():
     s = c.tangential(force=F, tangential_force=T)
     np.testing.assert_allclose(r.displacement[2:], s.displacement, rtol=2e-6)
     # beyond μF_N: gross sliding, flagged
-    r2 = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(tangential_force=2 * MU * F,
-                                                               steps=1), n_springs=100)
+    over = cl.LoadPath().ramp(force=F, steps=2).ramp(tangential_force=2 * MU * F, steps=1)
+    r2 = c.simulate(over, n_springs=100)
     assert r2.gross_sliding[-1] and not r2.gross_sliding[:-1].any()
     assert r2.tangential_force[-1] == pytest.approx(MU * F, rel=1e-12)
 
@@ -259,8 +257,8 @@ def test_oscillating_twist_no_drift_over_1e4_cycles():
     phi0 = 3 * MU * F * (1 - 0.49) / (16 * c.moduli.torsional * a ** 2 * 0.7)
     spc = 8
     cycles = 10_000
-    path = cl.LoadPath().ramp(force=F, steps=2).sinusoid(twist=phi0, cycles=cycles,
-                                                          steps_per_cycle=spc)
+    path = (cl.LoadPath().ramp(force=F, steps=2)
+            .sinusoid(twist=phi0, cycles=cycles, steps_per_cycle=spc))
     r = c.simulate(path, n_springs=100, outputs=["torque", "dissipated_energy", "twist"])
     W = r.dissipated_energy[2 + spc - 1::spc]  # end of each cycle
     per = np.diff(W)[1:]
@@ -333,8 +331,8 @@ def test_segment_and_step_strategies_agree():
         np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
     ns = c.normal(force=F)
     us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
-    path = (cl.LoadPath().ramp(force=F, steps=5).sinusoid(displacement=0.7 * us, cycles=2,
-                                                           steps_per_cycle=60)
+    path = (cl.LoadPath().ramp(force=F, steps=5)
+            .sinusoid(displacement=0.7 * us, cycles=2, steps_per_cycle=60)
             .ramp(tangential_force=0.5 * MU * F, steps=25).ramp(force=0.5 * F, steps=20)
             .ramp(tangential_force=-0.4 * MU * F, steps=25))
     a = c.simulate(path, n_springs=300, strategy="segments")

@@ -171,8 +171,8 @@ def test_plot_with_matplotlib():
 
 
 def test_progress_bar_optional_and_quiet_by_default(monkeypatch, capsys):
-    p = cl.LoadPath().ramp(force=10.0, steps=2).sinusoid(twist=1e-5, cycles=200,
-                                                          steps_per_cycle=10)
+    p = (cl.LoadPath().ramp(force=10.0, steps=2)
+         .sinusoid(twist=1e-5, cycles=200, steps_per_cycle=10))
     contact().simulate(p, n_springs=10)
     assert capsys.readouterr().err == ""
     monkeypatch.setitem(sys.modules, "tqdm", None)

@@ -156,7 +156,10 @@ def test_virgin_dissipation_quadrature():
     E, Gs = c.moduli.normal, c.moduli.tangential
     a, d = ns.radius, ns.depth
     u = 0.4 * MU * E * d / Gs
-    h = lambda x: MU * E * (d - np.pi / 2 * 0.2 * x)
+
+    def h(x):
+        return MU * E * (d - np.pi / 2 * 0.2 * x)
+
     cc = a * (1 - 0.4)
     ref = 2 * quad(lambda x: h(x) * (u - h(x) / Gs), cc, a, epsabs=0, epsrel=1e-13)[0]
     got = virgin_dissipation(c.profile, E, Gs, MU, a, d, u, 1e-12)

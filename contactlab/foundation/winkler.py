@@ -121,9 +121,8 @@ class Winkler(Foundation):
         a = np.minimum(np.asarray(a, float), self.radius)
         k = np.clip(np.searchsorted(self.boundaries, a, side="left") - 1, 0, self.n_springs - 1)
         bl = self.bl[k]
-        out = {"k": k, "S": np.where(a > bl, d * (a - bl) - (_gint(self.profile, a)
-                                                            - self.G_left[k]), 0.0)}
-        out["S"] = np.maximum(out["S"], 0.0)
+        S = np.where(a > bl, d * (a - bl) - (_gint(self.profile, a) - self.G_left[k]), 0.0)
+        out = {"k": k, "S": np.maximum(S, 0.0)}
         if "torsion" in self.needs:
             Ha = xg_integral(self.profile, a, self.rtol)
             out["T"] = np.maximum(np.where(a > bl, d * (a * a - bl * bl) / 2.0

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import as_float_array
-from .base import GROUPS, Segment, check_duration, check_quantities, check_steps, check_value
+from .base import Segment, check_duration, check_quantities, check_steps, check_value
 
 __all__ = ["Ramp", "Hold", "Sinusoid", "Repeat", "Table"]
 

@@ -91,8 +91,11 @@ def virgin_dissipation(profile, E_star: float, G_star: float, mu: float, a: np.n
     c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
     L = a - c
     dG = _gint0(profile, a) - _gint0(profile, c)
-    g2 = lambda x: np.where(x > 0, _normal.g_squared_integral(profile, np.maximum(x, 1e-300), rtol),
-                            0.0)
+
+    def g2(x: np.ndarray) -> np.ndarray:
+        return np.where(x > 0, _normal.g_squared_integral(profile, np.maximum(x, 1e-300), rtol),
+                        0.0)
+
     dG2 = g2(a) - g2(c)
     h1 = mu * E_star * (d * L - dG)                       # ∫_c^a h
     h2 = (mu * E_star) ** 2 * (d * d * L - 2 * d * dG + dG2)  # ∫_c^a h²
