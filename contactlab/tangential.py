@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from .errors import NotSupportedError, ParameterError
+from .numeric.roots import bracketed_root
 from .params import as_float_array
 from .physics import tangential as _tan
 
@@ -152,16 +153,23 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
     else:
         T = np.abs(t)
         sliding = T >= mu * FN
-        c = np.zeros(a.shape)
+        ustar = _tan.full_slip_displacement(E, Gs, mu, d)
+        u = np.where(sliding, ustar, 0.0)
         inner = ~sliding & (T > 0)
-        c[T == 0] = a[T == 0]
         if np.any(inner):
-            c[inner], _ = _tan.stick_radius_of_force(contact._radius_depth_of_force, mu,
-                                                     FN[inner], T[inner])
-        u = sign * _tan.displacement_of_stick_radius(prof, E, Gs, mu, d, c)
-        u = np.where(T == 0, 0.0, u)
-    F = sign * _tan.force_of_stick_radius(prof, E, mu, a, d, c)
+            ai, di = a[inner], d[inner]
+            u[inner] = bracketed_root(
+                lambda x, idx: _tan.force_of_displacement(prof, E, Gs, mu, ai[idx], di[idx], x)[0],
+                T[inner], 0.0, ustar[inner], rtol=1e-14, what="tangential displacement")
+        u = sign * u
+    if tkey == "stick_radius":
+        F = sign * _tan.force_of_stick_radius(prof, E, mu, a, d, c)
+    else:
+        Fm, c = _tan.force_of_displacement(prof, E, Gs, mu, a, d, u)
+        F = np.sign(u) * Fm
     F = np.where(a > 0, F, 0.0)
+    if tkey == "tangential_force":
+        F = np.where(sliding, sign * mu * FN, F)
     return TangentialState(contact, ns, u, F, c, sliding,
                            {"control": tkey, "method": "cattaneo-mindlin", "rtol": contact.rtol})
 
@@ -245,9 +253,7 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     branch, branches, pieces = _masing_program(u)
 
     def F_load(delta):
-        delta = np.asarray(delta, float)
-        c = _tan.stick_radius_of_displacement(prof, E, Gs, mu, a, d, delta)
-        return _tan.force_of_stick_radius(prof, E, mu, a, d, c), c
+        return _tan.force_of_displacement(prof, E, Gs, mu, a, d, np.asarray(delta, float))
 
     n = u.size
     origin = np.array([b[0] for b in branches] + [0.0])[branch]

@@ -164,3 +164,18 @@ def test_virgin_dissipation_quadrature():
     ref = 2 * quad(lambda x: h(x) * (u - h(x) / Gs), cc, a, epsabs=0, epsrel=1e-13)[0]
     got = virgin_dissipation(c.profile, E, Gs, MU, a, d, u, 1e-12)
     assert float(got) == pytest.approx(ref, rel=1e-9)
+
+
+def test_flat_punch_sticks_fully_until_full_slip():
+    """Flat punch: all springs carry d, so F_x = 2G*b u until u* = μE*d/G*, then μF_N."""
+    b = 1e-3
+    c = cl.Contact(cl.profiles.FlatPunch(radius=b), materials=(STEEL, STEEL), friction=MU)
+    ns = c.normal(force=100.0)
+    Gs = c.moduli.tangential
+    us = MU * c.moduli.normal * ns.depth / Gs
+    u = np.array([0.1, 0.5, 0.99]) * us
+    s = c.tangential(force=100.0, displacement=u)
+    np.testing.assert_allclose(s.tangential_force, 2 * Gs * b * u, rtol=CLOSED_FORM)
+    np.testing.assert_allclose(s.stick_radius, b, rtol=CLOSED_FORM)
+    s2 = c.tangential(force=100.0, tangential_force=2 * Gs * b * u)
+    np.testing.assert_allclose(s2.displacement, u, rtol=1e-12)

@@ -20,6 +20,7 @@ import numpy as np
 from . import normal as _normal
 
 __all__ = ["stick_radius_of_displacement", "displacement_of_stick_radius", "force_of_stick_radius",
+           "force_of_displacement",
            "stick_radius_of_force", "virgin_dissipation", "shear", "full_slip_displacement"]
 
 
@@ -63,11 +64,29 @@ def displacement_of_stick_radius(profile, E_star: float, G_star: float, mu: floa
 
 def force_of_stick_radius(profile, E_star: float, mu: float, a: np.ndarray, d: np.ndarray,
                           c: np.ndarray) -> np.ndarray:
-    """Virgin-curve tangential force ``μ[F_N(a) - F_N(c)]``, N [physics.md §5]."""
+    """Virgin-curve tangential force ``μ[F_N(a) - F_N(c)]``, N [physics.md §5].
+
+    Valid where the stick boundary satisfies ``G*u = μE*(d - g(c))`` (smooth profiles); for a
+    stick zone held at a punch wall use :func:`force_of_displacement`.
+    """
     a, d, c = (np.asarray(v, float) for v in (a, d, c))
     F_a = _normal.force(E_star, a, d, _gint0(profile, a))
     F_c = _normal.force(E_star, c, _g0(profile, c), _gint0(profile, c))
     return mu * (F_a - F_c)
+
+
+def force_of_displacement(profile, E_star: float, G_star: float, mu: float, a: np.ndarray,
+                          d: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Virgin-curve force magnitude and stick radius at displacement ``|u|`` (any profile).
+
+    ``F_x = 2G*c|u| + 2μE* ∫_c^a (d - g) dx`` — the MDR spring sum; it equals
+    ``μ[F_N(a) - F_N(c)]`` for smooth profiles and ``2G*b|u|`` for a flat punch before full slip.
+    """
+    a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
+    u = np.abs(u)
+    c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
+    slip = d * (a - c) - (_gint0(profile, a) - _gint0(profile, c))
+    return 2.0 * G_star * c * u + 2.0 * mu * E_star * np.maximum(slip, 0.0), c
 
 
 def stick_radius_of_force(normal_force_inverse, mu: float, F_normal: np.ndarray,
