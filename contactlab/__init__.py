@@ -1,18 +1,24 @@
 """contactlab: exact axisymmetric contact mechanics with the Method of Dimensionality Reduction.
 
-Public entry points: :class:`Contact`, :class:`Elastic`, :class:`Rigid`, the
+Public entry points: :class:`Contact`, :class:`Elastic`, :class:`Rigid`, :class:`LoadPath`, the
 :mod:`contactlab.profiles` and :mod:`contactlab.materials` subpackages and :mod:`contactlab.errors`.
 Importing contactlab does no sympy work and scans no plugins.
 """
-from . import errors, materials, profiles
-from .contact import Contact
-from .materials import Elastic, Rigid, effective_moduli
-from .states import NormalState
+from . import errors, foundation, loadpath, materials, profiles
 from .adhesion import AdhesionCycle, AdhesiveNormalState
+from .contact import Contact
+from .loadpath import LoadPath
+from .materials import Elastic, Rigid, effective_moduli
+from .simulation import PathResult
+from .states import NormalState
+from .tangential import ShiftHistory, TangentialState
 from .viscoelastic import ViscoelasticHistory
 
 __version__ = "0.1.0"
 
-__all__ = ["Contact", "Elastic", "Rigid", "effective_moduli", "NormalState", "profiles",
-           "materials", "errors", "__version__",
-           "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory"]
+__all__ = [
+    "Contact", "Elastic", "Rigid", "effective_moduli", "LoadPath",
+    "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
+    "TangentialState", "ShiftHistory", "PathResult",
+    "profiles", "materials", "errors", "foundation", "loadpath", "__version__",
+]

@@ -259,3 +259,52 @@ class Contact:
         from .viscoelastic import viscoelastic_history
         return viscoelastic_history(self, time=time, depth=depth, force=force,
                                     n_springs=n_springs, max_radius=max_radius)
+    # ---- tangential contact, load paths, simulation (issue 4)
+    def tangential(self, *, depth: Any = None, force: Any = None, radius: Any = None,
+                   displacement: Any = None, tangential_force: Any = None,
+                   stick_radius: Any = None):
+        """Cattaneo–Mindlin tangential contact through the MDR (exact, any profile).
+
+        One normal keyword (``depth=``, ``force=``, ``radius=``) and one tangential keyword
+        (``displacement=`` m, ``tangential_force=`` N, ``stick_radius=`` m); scalars or arrays.
+        Monotonic shift at constant normal load [physics.md §5]. A tangential force at or above
+        ``μF_N`` is gross sliding (``state.gross_sliding``), not an error.
+
+        Returns
+        -------
+        TangentialState
+            ``.tangential_force .displacement .stick_radius .stiffness .shear(r)``.
+        """
+        from .tangential import tangential
+        return tangential(self, depth=depth, force=force, radius=radius, displacement=displacement,
+                          tangential_force=tangential_force, stick_radius=stick_radius)
+
+    def shift_history(self, *, displacement: Any, depth: Any = None, force: Any = None):
+        """Tangential force for an arbitrary displacement history at constant normal load.
+
+        Exact Masing hysteresis with turning-point memory (closed loops are erased), from the
+        Cattaneo–Mindlin virgin curve [physics.md §5].
+
+        Returns
+        -------
+        ShiftHistory
+            ``.displacement .tangential_force .stick_radius .dissipated_energy`` per step.
+        """
+        from .tangential import shift_history
+        return shift_history(self, displacement=displacement, depth=depth, force=force)
+
+    def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
+                 spacing: str = "edge", snapshots: Any = None, progress: bool = False,
+                 approximate: bool = False, strategy: str | None = None):
+        """Run a :class:`~contactlab.LoadPath` through the MDR foundation with frictional memory.
+
+        See :func:`contactlab.simulation.simulate` for the parameters.
+
+        Returns
+        -------
+        PathResult
+        """
+        from .simulation import simulate
+        return simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
+                        snapshots=snapshots, progress=progress, approximate=approximate,
+                        strategy=strategy)

@@ -1,0 +1,163 @@
+"""Abstract :class:`Foundation`: the 1D MDR foundation discretised into cells (springs).
+
+To implement a subclass
+-----------------------
+1. Required: ``_build(self)`` (precompute per-cell constants from ``self.boundaries``),
+   ``new_state(self)`` (fresh spring state arrays for one solver run), ``set_normal(...)``,
+   ``step(...)`` and ``solve(...)`` (see :class:`~contactlab.foundation.Winkler`).
+2. Optional: nothing else.
+3. Free: :meth:`for_path` (spacing from the path's maximum contact radius), :attr:`positions`,
+   :attr:`widths`, :attr:`built` (which spring families exist).
+
+A foundation object is immutable geometry plus material constants; spring *state* arrays belong
+to a solver run (``new_state()``), so one foundation can serve several runs.
+"""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError, UnknownNameError
+
+__all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries"]
+
+#: default number of springs (cells) over the path's maximum contact radius. The error is second
+#: order in 1/N (only the cell holding a stick–slip boundary is lumped); with the edge-refined
+#: spacing 2000 cells reproduce the Cattaneo–Mindlin/Mindlin–Deresiewicz loops of Hertz and cone
+#: contacts to 2e-7 and 3.4e-7 of the loop amplitude and the MDR torsion loop to 6e-7, a factor
+#: 3 below the 1e-6 target (1000 cells: 4e-7, 9.7e-7, 2.8e-6); see
+#: benchmarks/foundation_accuracy.py. The time loop costs O(log N) per step while the normal load
+#: is held and O(N) per step while it changes.
+DEFAULT_N_SPRINGS = 2000
+#: available spacings: "uniform" (equal cells) and "edge" (cells shrinking quadratically towards
+#: the maximum contact radius, where the stick–slip boundary starts)
+SPACINGS = ("uniform", "edge")
+FAMILIES = ("normal", "tangential", "torsion")
+
+
+def cell_boundaries(radius: float, n_springs: int, spacing: str) -> np.ndarray:
+    """Cell boundaries ``0 = b_0 < ... < b_N = radius``, m.
+
+    ``"uniform"``: ``b_j = radius j/N``. ``"edge"``: ``b_j = radius (1 - (1 - j/N)²)``; the cell at
+    distance ``s`` from the edge has width ``~2 sqrt(s radius)/N``, so the error of the one cell
+    that holds a stick–slip boundary is a fixed fraction ``~1/(4N²)`` of the local force.
+    """
+    s = np.linspace(0.0, 1.0, n_springs + 1)
+    if spacing == "uniform":
+        b = radius * s
+    else:
+        b = radius * (1.0 - (1.0 - s) ** 2)
+    b[-1] = radius
+    return b
+
+
+class Foundation(ABC):
+    """A 1D MDR foundation over ``0 <= x <= radius`` (both sides ±x are lumped in each cell).
+
+    Parameters
+    ----------
+    profile : Profile
+    moduli : EffectiveModuli
+        ``.normal`` E*, ``.tangential`` G*, ``.torsional`` G_t (Pa).
+    friction : float or None
+        Coulomb μ; ``None`` means no slip.
+    radius : float
+        Largest contact radius the foundation must cover, m.
+    n_springs : int, optional
+        Number of cells (default :data:`DEFAULT_N_SPRINGS`).
+    spacing : {"edge", "uniform"}
+    needs : iterable of {"tangential", "torsion"}
+        Spring families to build besides the normal springs.
+    rtol : float
+        Tolerance of profile quadratures.
+    """
+
+    def __init__(self, profile: Any, moduli: Any, friction: float | None, radius: float, *,
+                 n_springs: int | None = None, spacing: str = "edge", needs: Any = (),
+                 rtol: float = 1e-10) -> None:
+        n = DEFAULT_N_SPRINGS if n_springs is None else n_springs
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ParameterError(f"n_springs={n_springs!r} is invalid: it must be an integer >= 1.")
+        if spacing not in SPACINGS:
+            raise UnknownNameError(f"spacing={spacing!r} is invalid: allowed are {SPACINGS}.")
+        if not (np.isfinite(radius) and radius > 0):
+            raise ParameterError(f"radius={radius!r} m is invalid: the foundation needs a finite "
+                                 "maximum contact radius > 0 (does the path load the contact?).")
+        needs = tuple(sorted(set(needs)))
+        for fam in needs:
+            if fam not in FAMILIES[1:]:
+                raise UnknownNameError(f"needs contains {fam!r}: allowed are {FAMILIES[1:]}.")
+        self.profile = profile
+        self.moduli = moduli
+        self.friction = friction
+        self.radius = float(radius)
+        self.n_springs = int(n)
+        self.spacing = spacing
+        self.needs = needs
+        self.rtol = rtol
+        self.boundaries = cell_boundaries(self.radius, self.n_springs, spacing)
+        self._build()
+
+    @classmethod
+    def for_path(cls, profile: Any, path: Any, *, moduli: Any, friction: float | None = None,
+                 n_springs: int | None = None, spacing: str = "edge", rtol: float = 1e-10,
+                 approximate: bool = False) -> "Foundation":
+        """Build the foundation a load path needs.
+
+        The cells cover the largest contact radius the path reaches (a normal-only pass over the
+        path, exact because non-adhesive normal contact is path independent); only the spring
+        families the path controls are built (no torsional springs without twist/torque).
+        ``moduli`` (E*, G*, G_t) is needed besides the profile because a force-controlled path
+        reaches its radius through E*. Called on :class:`Foundation` it builds a
+        :class:`~contactlab.foundation.Winkler`.
+
+        Examples
+        --------
+        >>> import contactlab as cl
+        >>> from contactlab.foundation import Foundation
+        >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=210e9, nu=0.3),
+        ...                cl.Rigid()), friction=0.3)
+        >>> f = Foundation.for_path(c.profile, cl.LoadPath().ramp(force=10.0, steps=5),
+        ...                         moduli=c.moduli, friction=0.3, n_springs=100)
+        >>> f.built
+        ['normal']
+        """
+        from ..simulation import _contact_for, compile_normal, families_needed
+        from .winkler import Winkler
+        impl = Winkler if cls is Foundation else cls
+        contact = _contact_for(profile, moduli, friction, rtol)
+        needs = families_needed(path, approximate=approximate)
+        normal = compile_normal(contact, path)
+        radius = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
+        return impl(profile, moduli, friction, radius, n_springs=n_springs, spacing=spacing,
+                    needs=needs, rtol=rtol)
+
+    @property
+    def built(self) -> list[str]:
+        """Spring families that exist: always ``"normal"``, plus the path's needs."""
+        return ["normal", *self.needs]
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Cell midpoints, m."""
+        b = self.boundaries
+        return 0.5 * (b[1:] + b[:-1])
+
+    @property
+    def widths(self) -> np.ndarray:
+        """Cell widths Δx, m."""
+        return np.diff(self.boundaries)
+
+    @abstractmethod
+    def _build(self) -> None:
+        """Precompute per-cell constants."""
+
+    @abstractmethod
+    def new_state(self) -> Any:
+        """Fresh spring state for one run."""
+
+    def __repr__(self) -> str:
+        return (f"{type(self).__name__}(radius={self.radius!r}, n_springs={self.n_springs}, "
+                f"spacing={self.spacing!r}, built={self.built})")

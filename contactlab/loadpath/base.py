@@ -1,0 +1,211 @@
+"""Load paths: time-ordered sequences of controlled quantities, built from segments.
+
+Quantities and their groups (one control per group at a time):
+
+========== ==================== =====
+group      quantity             unit
+========== ==================== =====
+normal     ``depth``, ``force`` m, N
+tangential ``displacement``,    m, N
+           ``tangential_force``
+torsion    ``twist``, ``torque`` rad, N·m
+========== ==================== =====
+
+A group a segment does not control keeps its current control quantity at its current value.
+Segments start from the state reached so far, so ``ramp(force=100)`` after a depth-controlled
+segment ramps the force from its current value to 100 N.
+"""
+from __future__ import annotations
+
+import difflib
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from typing import Any, Iterator
+
+import numpy as np
+
+from ..errors import ParameterError, UnknownNameError
+
+__all__ = ["LoadPath", "Segment", "QUANTITIES", "GROUPS", "UNITS"]
+
+QUANTITIES = ("depth", "force", "displacement", "tangential_force", "twist", "torque")
+GROUPS = {"depth": "normal", "force": "normal", "displacement": "tangential",
+          "tangential_force": "tangential", "twist": "torsion", "torque": "torsion"}
+UNITS = {"time": "s", "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N",
+         "twist": "rad", "torque": "N*m"}
+
+
+def check_quantities(names: Any, where: str) -> None:
+    """Known quantity names, at most one per group."""
+    seen: dict[str, str] = {}
+    for q in names:
+        if q not in QUANTITIES:
+            close = difflib.get_close_matches(str(q), QUANTITIES, n=1)
+            hint = f" Did you mean {close[0]!r}?" if close else ""
+            raise UnknownNameError(f"{where}: quantity {q!r} is unknown; allowed are "
+                                   f"{QUANTITIES}.{hint}")
+        g = GROUPS[q]
+        if g in seen:
+            raise ParameterError(f"{where}: {seen[g]!r} and {q!r} both control the {g} group; "
+                                 "give at most one of them per segment.")
+        seen[g] = q
+
+
+def check_steps(name: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ParameterError(f"{name}={value!r} is invalid: it must be an integer >= 1.")
+    return int(value)
+
+
+def check_value(name: str, value: Any) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: expected a real number.") from err
+    if not np.isfinite(v):
+        raise ParameterError(f"{name}={value!r} is invalid: it must be finite.")
+    return v
+
+
+def check_duration(duration: Any, steps: int) -> float:
+    if duration is None:
+        return float(steps)
+    v = check_value("duration", duration)
+    if v <= 0:
+        raise ParameterError(f"duration={duration!r} s is invalid: it must be > 0.")
+    return v
+
+
+class Segment(ABC):
+    """One piece of a load path.
+
+    To implement a subclass
+    -----------------------
+    1. Required: a frozen dataclass with ``controls`` (frozenset of quantities it prescribes),
+       ``n_steps`` (int), ``duration`` (s), and ``values(start)`` returning
+       ``(dt, {quantity: array})`` (time increments from the segment start, and the
+       prescribed values per step; ``start`` holds the current value of every quantity).
+    2. Optional: ``leaves()`` for composite segments (default: itself).
+    """
+
+    controls: frozenset
+
+    @property
+    @abstractmethod
+    def n_steps(self) -> int: ...
+
+    @abstractmethod
+    def values(self, start: dict[str, float]) -> tuple[np.ndarray, dict[str, np.ndarray]]: ...
+
+    def leaves(self) -> Iterator["Segment"]:
+        yield self
+
+
+@dataclass(frozen=True)
+class LoadPath:
+    """A time-ordered sequence of :class:`Segment` s (immutable; builder calls return new paths).
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> path = (cl.LoadPath().ramp(force=100.0, steps=50).hold(steps=10)
+    ...         .sinusoid(twist=8e-4, cycles=10, steps_per_cycle=200))
+    >>> path.n_steps, sorted(path.controls)
+    (2060, ['force', 'twist'])
+    """
+
+    segments: tuple = field(default=())
+
+    def __post_init__(self) -> None:
+        for s in self.segments:
+            if not isinstance(s, Segment):
+                raise ParameterError(f"segments contains {s!r}: expected Segment objects.")
+
+    # ------------------------------------------------------------------ builder
+    def then(self, segment: Segment) -> "LoadPath":
+        """Return a new path with ``segment`` appended."""
+        return LoadPath(self.segments + (segment,))
+
+    def __add__(self, other: "LoadPath") -> "LoadPath":
+        if not isinstance(other, LoadPath):
+            return NotImplemented
+        return LoadPath(self.segments + other.segments)
+
+    def ramp(self, *, steps: int = 1, duration: float | None = None, **targets: float) -> "LoadPath":
+        """Linear ramp of the given quantities from their current values to ``targets``.
+
+        Example: ``path.ramp(force=100.0, steps=50)``.
+        """
+        from .segments import Ramp
+        return self.then(Ramp(tuple(targets.items()), steps, duration))
+
+    def hold(self, *, steps: int = 1, duration: float | None = None) -> "LoadPath":
+        """Keep every controlled quantity at its current value for ``steps`` steps."""
+        from .segments import Hold
+        return self.then(Hold(steps, duration))
+
+    def sinusoid(self, *, cycles: int = 1, steps_per_cycle: int = 100,
+                 period: float | None = None, mean: dict[str, float] | None = None,
+                 **amplitudes: float) -> "LoadPath":
+        """``value = mean + amplitude sin(2π t/period)`` for ``cycles`` full cycles.
+
+        ``mean`` defaults to the current value of each quantity. Example:
+        ``path.sinusoid(twist=8e-4, cycles=10, steps_per_cycle=200)``.
+        """
+        from .segments import Sinusoid
+        return self.then(Sinusoid(tuple(amplitudes.items()), cycles, steps_per_cycle, period,
+                                  None if mean is None else tuple(mean.items())))
+
+    def repeat(self, times: int, *, last: int | None = None) -> "LoadPath":
+        """Run the last ``last`` segments (default: all so far) ``times`` times in total."""
+        from .segments import Repeat
+        times = check_steps("times", times)
+        k = len(self.segments) if last is None else check_steps("last", last)
+        if k > len(self.segments) or k == 0:
+            raise ParameterError(f"last={last!r} is invalid: the path has {len(self.segments)} "
+                                 "segment(s); give 1 <= last <= that.")
+        return LoadPath(self.segments[:-k] + (Repeat(self.segments[-k:], times),))
+
+    @classmethod
+    def from_arrays(cls, *, time: Any = None, **values: Any) -> "LoadPath":
+        """A path from measured arrays, one step per row.
+
+        Parameters
+        ----------
+        time : array_like, optional
+            Non-decreasing times, s (default 1, 2, ..., n).
+        **values : array_like
+            At most one quantity per group (``depth=`` or ``force=``; ``displacement=`` or
+            ``tangential_force=``; ``twist=`` or ``torque=``), each of the same length.
+        """
+        from .segments import Table
+        return cls((Table.create(time, values),))
+
+    @classmethod
+    def from_csv(cls, path: Any, **kwargs: Any) -> "LoadPath":
+        """Read a path from CSV (see :func:`contactlab.loadpath.io.read_csv`)."""
+        from .io import read_csv
+        return read_csv(path, **kwargs)
+
+    # ------------------------------------------------------------------ introspection
+    def leaves(self) -> Iterator[Segment]:
+        """Leaf segments in execution order (repeats expanded)."""
+        for s in self.segments:
+            yield from s.leaves()
+
+    @property
+    def n_steps(self) -> int:
+        return int(sum(s.n_steps for s in self.segments))
+
+    @property
+    def controls(self) -> frozenset:
+        """Every quantity some segment prescribes."""
+        out: set[str] = set()
+        for s in self.segments:
+            out |= set(s.controls)
+        return frozenset(out)
+
+    @property
+    def groups(self) -> frozenset:
+        """Load groups the path drives (``normal``, ``tangential``, ``torsion``)."""
+        return frozenset(GROUPS[q] for q in self.controls)

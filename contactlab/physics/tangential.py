@@ -1,0 +1,136 @@
+"""Cattaneo–Mindlin tangential contact through the MDR: pure, vectorised kernels.
+
+[Cat38, Min49, H1, PH]; physics.md §5. The normal load is constant and non-adhesive
+(``d = g(a)``, or ``d >= g(b)`` for a flat punch). MDR springs ``Δk_x = G*Δx`` stick while
+``G*|u_x1D| < μE*(d - g(x))``. With ``h(x) = μE*(d - g(x))``:
+
+* stick radius at displacement ``u``: ``g(c) = d - G*|u|/(μE*)`` (``c = 0`` at and beyond
+  full slip ``u* = μE* (d - g(0))/G*``);
+* force ``F_x = μ [F_N(a) - F_N(c)]`` with ``F_N(c) = 2E*(c g(c) - ∫_0^c g)``;
+* traction ``τ = μ [p_a(r) - p_c(r)]`` for ``r < c`` and ``μ p_a(r)`` for ``c < r < a``;
+* dissipation on the virgin curve ``D(u) = 2∫_c^a h (|u| - h/G*) dx``; Masing branches dissipate
+  ``2 D(δ/2)`` over an excursion ``δ`` from their turning point.
+
+No function here validates its input (hot path); callers do.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import normal as _normal
+
+__all__ = ["stick_radius_of_displacement", "displacement_of_stick_radius", "force_of_stick_radius",
+           "force_of_displacement",
+           "stick_radius_of_force", "virgin_dissipation", "shear", "full_slip_displacement"]
+
+
+def _g0(profile, x: np.ndarray) -> np.ndarray:
+    """``g`` with ``g(0) = 0`` guarded (profiles are called with x > 0 only where it matters)."""
+    x = np.asarray(x, float)
+    return np.where(x > 0, profile._g(np.maximum(x, 1e-300)), 0.0)
+
+
+def _gint0(profile, x: np.ndarray) -> np.ndarray:
+    x = np.asarray(x, float)
+    return np.where(x > 0, profile._g_integral(np.maximum(x, 1e-300)), 0.0)
+
+
+def full_slip_displacement(E_star: float, G_star: float, mu: float, d: np.ndarray) -> np.ndarray:
+    """``u* = μE* d / G*``, m: the displacement at which the whole contact slides (g(0) = 0)."""
+    return mu * E_star * np.asarray(d, float) / G_star
+
+
+def stick_radius_of_displacement(profile, E_star: float, G_star: float, mu: float, a: np.ndarray,
+                                 d: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Stick radius ``c``, m, of the virgin curve at displacement magnitude ``|u|``.
+
+    Solves ``g(c) = d - G*|u|/(μE*)`` [physics.md §5]; ``c = a`` at ``u = 0`` and ``c = 0`` at and
+    beyond full slip. For a flat punch, ``c`` stays at the punch radius until full slip.
+    """
+    a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
+    target = d - G_star * np.abs(u) / (mu * E_star)
+    c = np.zeros(a.shape)
+    pos = target > 0
+    if np.any(pos):
+        c[pos] = profile._radius_of_depth(target[pos])
+    return np.minimum(np.where(np.abs(u) == 0, a, c), a)
+
+
+def displacement_of_stick_radius(profile, E_star: float, G_star: float, mu: float, d: np.ndarray,
+                                 c: np.ndarray) -> np.ndarray:
+    """Virgin-curve displacement ``u = μE*(d - g(c))/G*``, m, for stick radius ``c``."""
+    return mu * E_star * (np.asarray(d, float) - _g0(profile, c)) / G_star
+
+
+def force_of_stick_radius(profile, E_star: float, mu: float, a: np.ndarray, d: np.ndarray,
+                          c: np.ndarray) -> np.ndarray:
+    """Virgin-curve tangential force ``μ[F_N(a) - F_N(c)]``, N [physics.md §5].
+
+    Valid where the stick boundary satisfies ``G*u = μE*(d - g(c))`` (smooth profiles); for a
+    stick zone held at a punch wall use :func:`force_of_displacement`.
+    """
+    a, d, c = (np.asarray(v, float) for v in (a, d, c))
+    F_a = _normal.force(E_star, a, d, _gint0(profile, a))
+    F_c = _normal.force(E_star, c, _g0(profile, c), _gint0(profile, c))
+    return mu * (F_a - F_c)
+
+
+def force_of_displacement(profile, E_star: float, G_star: float, mu: float, a: np.ndarray,
+                          d: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Virgin-curve force magnitude and stick radius at displacement ``|u|`` (any profile).
+
+    ``F_x = 2G*c|u| + 2μE* ∫_c^a (d - g) dx`` — the MDR spring sum; it equals
+    ``μ[F_N(a) - F_N(c)]`` for smooth profiles and ``2G*b|u|`` for a flat punch before full slip.
+    """
+    a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
+    u = np.abs(u)
+    c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
+    slip = d * (a - c) - (_gint0(profile, a) - _gint0(profile, c))
+    return 2.0 * G_star * c * u + 2.0 * mu * E_star * np.maximum(slip, 0.0), c
+
+
+def stick_radius_of_force(normal_force_inverse, mu: float, F_normal: np.ndarray,
+                          T: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Stick radius and ``g(c)`` for a virgin-curve tangential force magnitude ``T < μF_N``.
+
+    ``normal_force_inverse(F) -> (radius, depth)`` is the non-adhesive normal solve of the same
+    profile; ``F_N(c) = F_N(a) - T/μ``.
+    """
+    return normal_force_inverse(np.asarray(F_normal, float) - np.abs(np.asarray(T, float)) / mu)
+
+
+def virgin_dissipation(profile, E_star: float, G_star: float, mu: float, a: np.ndarray,
+                       d: np.ndarray, u: np.ndarray, rtol: float) -> np.ndarray:
+    """Energy dissipated on the virgin curve from 0 to ``|u|``, J.
+
+    ``D = 2∫_c^a h(|u| - h/G*) dx`` with ``h = μE*(d - g)``; uses ``∫g`` and ``∫g²``.
+    """
+    a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
+    u = np.abs(u)
+    c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
+    L = a - c
+    dG = _gint0(profile, a) - _gint0(profile, c)
+
+    def g2(x: np.ndarray) -> np.ndarray:
+        return np.where(x > 0, _normal.g_squared_integral(profile, np.maximum(x, 1e-300), rtol),
+                        0.0)
+
+    dG2 = g2(a) - g2(c)
+    h1 = mu * E_star * (d * L - dG)                       # ∫_c^a h
+    h2 = (mu * E_star) ** 2 * (d * d * L - 2 * d * dG + dG2)  # ∫_c^a h²
+    return np.maximum(2.0 * (u * h1 - h2 / G_star), 0.0)
+
+
+def shear(profile, E_star: float, mu: float, r: np.ndarray, a: np.ndarray, d: np.ndarray,
+          c: np.ndarray, rtol: float) -> np.ndarray:
+    """Tangential traction magnitude ``τ_x(r)``, Pa (Ciavarella–Jäger superposition, §5)."""
+    ga = _g0(profile, a)
+    gc = _g0(profile, c)
+    pa, _ = _normal.pressure(profile, E_star, r, a, d, ga, rtol)
+    inner = (r < c) & (c > 0)
+    pc = np.zeros(np.broadcast(r, c).shape)
+    if np.any(inner):
+        rr, cc, gg = np.broadcast_arrays(r, c, gc)
+        val, _ = _normal.pressure(profile, E_star, rr[inner], cc[inner], gg[inner], gg[inner], rtol)
+        pc[inner] = val
+    return mu * (pa - pc)

@@ -1,0 +1,508 @@
+"""``contact.simulate(path)``: a load path through the MDR foundation with frictional memory.
+
+The normal problem (non-adhesive) is path independent: it is solved first for every step,
+vectorised per segment, with the exact closed-form/bracketed normal solver of the contact. Then one
+loop over time steps advances the tangential and torsional Jenkins elements of the
+:class:`~contactlab.foundation.Winkler` foundation; every operation inside it is vectorised over
+the springs. Displacement/twist-controlled steps are explicit; force/torque-controlled steps are
+solved exactly (the element sum is piecewise linear and monotone in the increment); a target at or
+beyond full sliding gives gross sliding (flagged, not an error).
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .errors import (EffectNotPlannedError, NotSupportedError, OutsideTheoryError,
+                     ParameterError, UnknownNameError, ValidityWarning)
+from .foundation import Winkler
+from .loadpath import LoadPath
+from .loadpath.base import UNITS
+
+__all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD"]
+
+#: per-step series of a PathResult
+SERIES = ("time", "depth", "force", "radius", "displacement", "tangential_force", "twist",
+          "torque", "stick_radius", "dissipated_energy", "gross_sliding")
+_SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
+                     gross_sliding="1")
+#: paths with at least this many steps show a progress bar when ``progress=True``
+PROGRESS_THRESHOLD = 1000
+#: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
+_MIN_BLOCK = 8
+
+
+def _contact_for(profile, moduli, friction, rtol):
+    """A Contact built from effective moduli (for Foundation.for_path)."""
+    from .contact import Contact
+    c = Contact.__new__(Contact)
+    c.profile = profile
+    c.materials = (None, None)
+    c.friction = friction
+    c.work_of_adhesion = None
+    c.rtol = rtol
+    c.__dict__["moduli"] = moduli
+    return c
+
+
+def families_needed(path: LoadPath, *, approximate: bool = False) -> tuple[str, ...]:
+    """Spring families a path needs besides the normal springs.
+
+    Raises
+    ------
+    OutsideTheoryError
+        The path drives both a tangential shift and a twist, without ``approximate=True``.
+    """
+    groups = path.groups
+    needs = tuple(g for g in ("tangential", "torsion") if g in groups)
+    if len(needs) == 2 and not approximate:
+        raise OutsideTheoryError(
+            "the path drives both a tangential shift (displacement/tangential_force) and a twist "
+            "(twist/torque): combined shift and twist is outside the MDR theory (the slip "
+            "conditions couple). Pass approximate=True to run the two as independent spring "
+            "families, each with the full friction limit (an explicit approximation).")
+    return needs
+
+
+def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
+    """Normal state of every step, per leaf segment (exact; non-adhesive normal contact is path
+    independent)."""
+    out = []
+    cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
+                         "torque"), 0.0)
+    last = (np.zeros(1), np.zeros(1), np.zeros(1))
+    for leaf in path.leaves():
+        dt, vals = leaf.values(cur)
+        n = leaf.n_steps
+        if "depth" in vals:
+            ns = contact.normal(depth=vals["depth"])
+            d, a, F = ns._depth, ns._radius, ns._force
+        elif "force" in vals:
+            f = vals["force"]
+            if np.any(f < 0):
+                bad = f[f < 0][0]
+                raise ParameterError(f"force={bad!r} N is invalid: it is below the adhesion limit "
+                                     "0 N of this non-adhesive contact (use force >= 0, or a "
+                                     "negative depth to separate the bodies).")
+            ns = contact.normal(force=f)
+            d, a, F = ns._depth, ns._radius, ns._force
+        else:
+            d, a, F = (np.full(n, v[-1]) for v in last)
+        d, a, F = (np.asarray(v, float).reshape(n) for v in (d, a, F))
+        out.append({"dt": dt, "depth": d, "radius": a, "force": F})
+        last = (d, a, F)
+        cur["depth"], cur["force"] = float(d[-1]), float(F[-1])
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class PathResult:
+    """Per-step result of :meth:`Contact.simulate`.
+
+    Attributes
+    ----------
+    time, depth, force, radius, displacement, tangential_force, twist, torque, stick_radius,
+    dissipated_energy : ndarray
+        Per-step series in SI units (s, m, N, m, m, N, rad, N·m, m, J). ``stick_radius`` is the
+        outer radius of the central stick zone of the tangential springs (of the torsional
+        springs for a path without shift); ``dissipated_energy`` is cumulative.
+    gross_sliding : ndarray of bool
+        Steps where a force/torque target reached full sliding.
+    snapshots : dict
+        ``{step: {"x", "depth", "radius", "normal", "tangential", "torsion", "pressure",
+        "shear_tangential", "shear_torsion"}}``: spring states per cell (N, N·m) and the 3D
+        pressure and tractions (Pa) at the cell midpoints ``x``, at the requested steps. The
+        tractions are the MDR inverse of the spring line loads (piecewise-linear between cells).
+    meta : dict
+        ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``, ``approximate``.
+    """
+
+    data: dict
+    snapshots: dict = field(default_factory=dict)
+    meta: dict = field(default_factory=dict)
+
+    def __getattr__(self, name: str) -> Any:
+        if name in SERIES:
+            data = object.__getattribute__(self, "data")
+            if name not in data:
+                raise EffectNotPlannedError(f"{name!r} was not requested: add it to outputs= "
+                                            f"(requested: {sorted(data)}).")
+            return data[name]
+        raise AttributeError(name)
+
+    def __len__(self) -> int:
+        return int(next(iter(self.data.values())).size)
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Copies of the per-step series, keyed by name."""
+        return {k: np.array(v) for k, v in self.data.items()}
+
+    def to_csv(self, path: Any) -> None:
+        """Write the per-step series to CSV (``name [unit]`` headers)."""
+        from .loadpath.io import write_csv
+        write_csv(path, self.data, units=_SERIES_UNITS)
+
+    def to_dataframe(self):
+        """The per-step series as a :class:`pandas.DataFrame` (needs pandas)."""
+        try:
+            import pandas as pd
+        except ImportError as err:
+            raise ImportError("to_dataframe() needs pandas: pip install pandas") from err
+        return pd.DataFrame(self.to_dict())
+
+    def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None):
+        """Plot series against ``x`` (needs matplotlib); returns the axes.
+
+        ``quantities`` defaults to every driven series (force, tangential force, torque).
+        """
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as err:
+            raise ImportError("plot() needs matplotlib: pip install matplotlib "
+                              "(or pip install 'contactlab[plot]')") from err
+        if quantities is None:
+            quantities = [q for q in ("force", "tangential_force", "torque") if q in self.data
+                          and np.any(self.data[q] != 0)] or ["force"]
+        quantities = [quantities] if isinstance(quantities, str) else list(quantities)
+        if ax is None:
+            fig, axes = plt.subplots(len(quantities), 1, squeeze=False, sharex=True)
+            axes = axes[:, 0]
+        else:
+            axes = np.atleast_1d(ax)
+        for q, a in zip(quantities, axes):
+            a.plot(getattr(self, x), getattr(self, q))
+            a.set_ylabel(f"{q} [{_SERIES_UNITS.get(q, '')}]")
+        axes[-1].set_xlabel(f"{x} [{_SERIES_UNITS.get(x, '')}]")
+        return axes
+
+
+def _progress(total: int, progress: bool):
+    if not progress or total < PROGRESS_THRESHOLD:
+        return None
+    try:
+        from tqdm import tqdm
+    except ImportError as err:
+        raise ImportError("progress=True needs tqdm: pip install tqdm "
+                          "(or pip install 'contactlab[progress]')") from err
+    return tqdm(total=total, unit="step", desc="simulate")
+
+
+def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
+             spacing: str = "edge", snapshots: Any = None, progress: bool = False,
+             approximate: bool = False, strategy: str | None = None) -> PathResult:
+    """Run ``path`` through the MDR foundation of ``contact``.
+
+    Parameters
+    ----------
+    contact : Contact
+        Non-adhesive; ``friction=None`` means no slip.
+    path : LoadPath
+    outputs : iterable of str, optional
+        Per-step series to keep (default all of :data:`SERIES`).
+    n_springs : int, optional
+        Cells over the path's largest contact radius (default
+        :data:`~contactlab.foundation.DEFAULT_N_SPRINGS`).
+    spacing : {"edge", "uniform"}
+        Cell spacing (edge-refined by default).
+    snapshots : iterable of int, optional
+        Steps (0-based; negative counts from the end) at which spring states are stored.
+    progress : bool
+        Show a tqdm progress bar for paths of at least :data:`PROGRESS_THRESHOLD` steps
+        (library use is quiet by default).
+    approximate : bool
+        Allow combined shift and twist, run as independent spring families (warns).
+    strategy : {"segments", "steps"}, optional
+        Numerical route of the time loop, same results up to rounding. ``"segments"`` (default)
+        advances runs of steps with a held normal load and a monotone control in closed form
+        (sorted slip thresholds, ``O(log N)`` per step); ``"steps"`` updates every spring at
+        every step.
+
+    Returns
+    -------
+    PathResult
+
+    Raises
+    ------
+    OutsideTheoryError
+        Combined shift and twist without ``approximate=True``.
+    NotSupportedError
+        Adhesive contacts.
+    """
+    if not isinstance(path, LoadPath):
+        raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
+    if contact.is_adhesive:
+        raise NotSupportedError("simulate() supports non-adhesive contacts only "
+                                "(work_of_adhesion=None).")
+    strategy = "segments" if strategy is None else strategy
+    if strategy not in ("segments", "steps"):
+        raise UnknownNameError(f"strategy={strategy!r} is invalid: allowed are "
+                               "('segments', 'steps').")
+    needs = families_needed(path, approximate=approximate)
+    if len(needs) == 2:
+        warnings.warn("combined shift and twist is run as two independent spring families "
+                      "(approximate=True): outside the MDR theory, the slip limits do not "
+                      "interact.", ValidityWarning, stacklevel=3)
+    if outputs is None:
+        outputs = SERIES
+    outputs = tuple(outputs)
+    for o in outputs:
+        if o not in SERIES:
+            raise UnknownNameError(f"outputs contains {o!r}: allowed are {SERIES}.")
+    normal = compile_normal(contact, path)
+    n_total = path.n_steps
+    snaps = set()
+    for s in (snapshots or ()):
+        s = int(s)
+        s = s + n_total if s < 0 else s
+        if not 0 <= s < n_total:
+            raise ParameterError(f"snapshots contains {s!r}: steps must satisfy "
+                                 f"-{n_total} <= step < {n_total}.")
+        snaps.add(s)
+    a_max = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
+    res = {k: np.zeros(n_total) for k in SERIES if k != "gross_sliding"}
+    res["gross_sliding"] = np.zeros(n_total, bool)
+    t0 = 0.0
+    i0 = 0
+    for seg in normal:
+        n = seg["depth"].size
+        res["time"][i0:i0 + n] = t0 + seg["dt"]
+        for k in ("depth", "force", "radius"):
+            res[k][i0:i0 + n] = seg[k]
+        t0 = float(res["time"][i0 + n - 1]) if n else t0
+        i0 += n
+    meta = {"built": ["normal", *needs], "n_springs": None, "spacing": spacing,
+            "approximate": bool(approximate), "foundation": None}
+    snapshot_data: dict[int, dict] = {}
+    if a_max <= 0 or not needs:
+        # nothing but the (exact) normal problem: no tangential/torsional springs are built
+        res["stick_radius"][:] = res["radius"]
+        if needs:
+            _no_contact_controls(path, needs)
+        fnd = None
+        if snaps and a_max > 0:
+            fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max,
+                          n_springs=n_springs, spacing=spacing, needs=(), rtol=contact.rtol)
+            meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
+        for s in sorted(snaps):
+            snapshot_data[s] = _snapshot(contact, fnd, None, res, s)
+        return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
+    fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max, n_springs=n_springs,
+                  spacing=spacing, needs=needs, rtol=contact.rtol)
+    meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
+    _run(contact, fnd, path, normal, res, snaps, snapshot_data, "stick_radius" in outputs,
+         progress, strategy)
+    return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
+
+
+def _no_contact_controls(path, needs):
+    """A shift/twist on a contact that never touches: only zero targets are meaningful."""
+    raise ParameterError("the path prescribes " + " and ".join(needs) + " but the normal load "
+                         "never brings the bodies into contact (contact radius 0 at every step).")
+
+
+def _snapshot(contact, fnd, st, res, i) -> dict:
+    d, a = float(res["depth"][i]), float(res["radius"][i])
+    snap = {"depth": d, "radius": a}
+    if fnd is not None:
+        x = fnd.positions
+        snap["x"] = x.copy()
+        S = np.maximum(d * fnd.w - fnd.dG, 0.0)
+        S[fnd.bl >= a] = 0.0
+        if st is not None:
+            from .foundation.winkler import snapshot_shear
+            S = st.S.copy()
+            snap["tangential"] = None if st.tangential is None else st.tangential.copy()
+            snap["torsion"] = None if st.torsion is None else st.torsion.copy()
+            snap.update(snapshot_shear(fnd, st, x))
+        snap["normal"] = 2.0 * contact.moduli.normal * S
+        snap["pressure"] = (np.asarray(contact.normal(depth=d).pressure(x), float) if a > 0
+                            else np.zeros(x.size))
+    return snap
+
+
+def _turns(v0: float, v: np.ndarray) -> np.ndarray:
+    """Indices j where the increment v[j] - v[j-1] reverses the direction of the last non-zero
+    increment (v[-1] := v0): the starts of new monotone runs."""
+    inc = np.diff(np.concatenate(([v0], v)))
+    sg = np.sign(inc)
+    nz = np.flatnonzero(sg)
+    if nz.size < 2:
+        return np.zeros(0, int)
+    return nz[1:][sg[nz[1:]] != sg[nz[:-1]]]
+
+
+def _next(sorted_idx: np.ndarray, j: int, default: int) -> int:
+    k = int(np.searchsorted(sorted_idx, j, side="right"))
+    return int(sorted_idx[k]) if k < sorted_idx.size else default
+
+
+def _set_keff(ch: dict, weight: np.ndarray) -> None:
+    """Stiffness of the elements for this step: full stiffness times the contact weight."""
+    np.multiply(ch["K"], weight, out=ch["Keff"])
+    # 1/K_eff where in contact; elsewhere the slip is 0 and any finite value will do
+    np.divide(ch["invK"], weight, out=ch["iKeff"], where=weight > 0)
+
+
+def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
+         strategy="segments"):
+    """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
+    control are advanced in closed form (:func:`~contactlab.foundation.winkler.monotone_block`),
+    other steps one by one; ``"steps"``: every step one by one (same results up to rounding)."""
+    from .foundation.winkler import monotone_block
+    st = fnd.new_state()
+    n = fnd.n_springs
+    chans = []
+    if st.tangential is not None:
+        chans.append({"m": st.tangential, "K": fnd.K_tan, "invK": fnd.invK_tan, "L": "L_tan",
+                      "pos": "displacement", "frc": "tangential_force"})
+    if st.torsion is not None:
+        chans.append({"m": st.torsion, "K": fnd.K_tor, "invK": fnd.invK_tor, "L": "L_tor",
+                      "pos": "twist", "frc": "torque"})
+    for ch in chans:
+        ch.update(Keff=np.zeros(n), iKeff=np.zeros(n), ctrl=ch["pos"], x=0.0, dir=1.0,
+                  release=False)
+        ch["out_pos"], ch["out_frc"] = res[ch["pos"]], res[ch["frc"]]
+    stick_ch = chans[0] if chans else None
+    tmp = np.empty(n)
+    cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
+                         "torque"), 0.0)
+    out_W, out_stick, out_gross = res["dissipated_energy"], res["stick_radius"], res["gross_sliding"]
+    bar = _progress(res["time"].size, progress)
+    snap_idx = np.array(sorted(snaps), int)
+    state = {"W": 0.0, "first": True, "keff_is_frac": False}
+
+    def step(i, d, a, k_edge, S_edge, T_edge, targets):
+        W = state["W"]
+        if state["first"] or d != st.depth or a != st.radius:
+            state["first"] = False
+            release = d < st.depth  # slip limits only shrink when the depth decreases
+            weight = fnd.set_normal(st, d, a, k_edge, S_edge, T_edge)
+            state["keff_is_frac"] = weight is None
+            if weight is None:
+                weight = fnd.fraction(a)
+            for ch in chans:
+                _set_keff(ch, weight)
+                # springs beyond their new limit slide back to it (a prescribed displacement
+                # step does this in the same clip as its increment)
+                if release and ch["ctrl"] != ch["pos"]:
+                    W += fnd.jenkins(ch["m"], ch["Keff"], ch["iKeff"], getattr(st, ch["L"]),
+                                     getattr(st, "n" + ch["L"]), 0.0, tmp)
+                elif release:
+                    ch["release"] = True
+        elif not state["keff_is_frac"]:
+            frac = fnd.fraction(a)
+            for ch in chans:
+                _set_keff(ch, frac)
+            state["keff_is_frac"] = True
+        for ch, target in zip(chans, targets):
+            m = ch["m"]
+            L = getattr(st, ch["L"])
+            if ch["ctrl"] == ch["pos"]:
+                inc = target - ch["x"]
+            else:
+                inc, gross = fnd.solve(m, ch["Keff"], L, target)
+                out_gross[i] |= gross
+            if inc != 0.0 or ch["release"]:
+                if inc != 0.0:
+                    ch["dir"] = 1.0 if inc > 0 else -1.0
+                W += fnd.jenkins(m, ch["Keff"], ch["iKeff"], L, getattr(st, "n" + ch["L"]), inc,
+                                 tmp)
+                ch["x"] += inc
+                ch["release"] = False
+            if ch["ctrl"] == ch["pos"]:
+                ch["x"] = float(target)  # no round-off drift of a prescribed position
+            ch["out_pos"][i] = ch["x"]
+            ch["out_frc"][i] = m.sum()
+        out_W[i] = W
+        state["W"] = W
+        if want_stick:
+            out_stick[i] = (fnd.stick_radius(stick_ch["m"], getattr(st, stick_ch["L"]), fnd.bl, a)
+                            if stick_ch is not None else a)
+
+    def block(i0, i1, values):
+        if not state["keff_is_frac"]:
+            frac = fnd.fraction(st.radius)
+            for ch in chans:
+                _set_keff(ch, frac)
+            state["keff_is_frac"] = True
+        sl = slice(i0, i1)
+        Wblock = np.zeros(i1 - i0)
+        for ch, v in zip(chans, values):
+            m = ch["m"]
+            L = getattr(st, ch["L"])
+            ref = ch["x"] if ch["ctrl"] == ch["pos"] else float(m.sum())
+            nzv = v[v != ref]
+            sgn = ch["dir"] if nzv.size == 0 else (1.0 if nzv[0] > ref else -1.0)
+            ch["dir"] = sgn
+            want = want_stick and ch is stick_ch
+            if ch["ctrl"] == ch["pos"]:
+                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, du=sgn * (v - ref),
+                                     want_stick=want)
+                ch["out_pos"][sl] = v
+                ch["x"] = float(v[-1])
+            else:
+                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, target=v,
+                                     want_stick=want)
+                ch["out_pos"][sl] = ch["x"] + sgn * out["x"]
+                ch["x"] = float(ch["out_pos"][i1 - 1])
+                out_gross[sl] |= out["gross"]
+            ch["out_frc"][sl] = out["force"]
+            Wblock += out["dissipation"]
+            if want:
+                out_stick[sl] = out["stick"]
+        out_W[sl] = state["W"] + Wblock
+        state["W"] += float(Wblock[-1])
+        if want_stick and stick_ch is None:
+            out_stick[sl] = st.radius
+
+    base = 0
+    for leaf, nrm in zip(path.leaves(), normal):
+        if base:
+            cur["depth"], cur["force"] = float(res["depth"][base - 1]), float(res["force"][base - 1])
+        _, vals = leaf.values(cur)
+        nsteps = leaf.n_steps
+        d_arr, a_arr = nrm["depth"], nrm["radius"]
+        ed = fnd.edge_data(d_arr, a_arr)
+        ek, eS = ed["k"].tolist(), ed["S"].tolist()
+        eT = ed["T"].tolist() if "T" in ed else [None] * nsteps
+        prev_d = np.concatenate(([st.depth], d_arr[:-1]))
+        prev_a = np.concatenate(([st.radius], a_arr[:-1]))
+        changed = (d_arr != prev_d) | (a_arr != prev_a)
+        if state["first"]:
+            changed[0] = True
+        breaks = [np.array([0, nsteps])]
+        vs = []
+        for ch in chans:
+            pos, frc = ch["pos"], ch["frc"]
+            if pos in vals or frc in vals:
+                ch["ctrl"] = pos if pos in vals else frc
+                v = vals[ch["ctrl"]]
+            else:
+                v = np.full(nsteps, cur[ch["ctrl"]])
+            vs.append(v)
+            breaks.append(_turns(cur[ch["ctrl"]], v))
+        vlists = [v.tolist() for v in vs]
+        ci = np.flatnonzero(changed)
+        breaks += [ci, ci + 1, snap_idx - base + 1]
+        brk = np.unique(np.concatenate(breaks))
+        brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
+        dl, al = d_arr.tolist(), a_arr.tolist()
+        chl = changed.tolist()
+        for j0, j1 in zip(brk[:-1], brk[1:]):
+            if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not chl[j0]:
+                block(base + j0, base + j1, [v[j0:j1] for v in vs])
+            else:
+                for j in range(j0, j1):
+                    step(base + j, dl[j], al[j], ek[j], eS[j], eT[j], [v[j] for v in vlists])
+            if base + j1 - 1 in snaps:
+                snapshot_data[base + j1 - 1] = _snapshot(contact, fnd, st, res, base + j1 - 1)
+        base += nsteps
+        for ch in chans:
+            cur[ch["pos"]], cur[ch["frc"]] = ch["out_pos"][base - 1], ch["out_frc"][base - 1]
+        if bar is not None:
+            bar.update(nsteps)
+    if bar is not None:
+        bar.close()
