@@ -4,3 +4,12 @@ from .elastic import Elastic, Rigid
 from .pair import EffectiveModuli, effective_moduli
 
 __all__ = ["Material", "Elastic", "Rigid", "EffectiveModuli", "effective_moduli"]
+
+
+def _register_builtins() -> None:
+    from ..registry import registry
+    for cls in (Elastic, Rigid):
+        registry.register(cls, "material", builtin=True)
+
+
+_register_builtins()

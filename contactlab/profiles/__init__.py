@@ -15,3 +15,13 @@ __all__ = [
     "Profile", "G_STRATEGIES", "PowerLaw", "Paraboloid", "Cone", "Polynomial", "Sphere",
     "FlatPunch", "TruncatedParaboloid", "TruncatedCone", "Tabulated", "Sum", "Scaled",
 ]
+
+
+def _register_builtins() -> None:
+    from ..registry import registry
+    for cls in (PowerLaw, Paraboloid, Cone, Polynomial, Sphere, FlatPunch, TruncatedParaboloid,
+                TruncatedCone, Tabulated):
+        registry.register(cls, "profile", builtin=True)
+
+
+_register_builtins()
