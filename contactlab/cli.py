@@ -60,7 +60,7 @@ def _formulas(args: argparse.Namespace) -> int:
     profile = registry.create("profile", args.profile, **params)
     if not args.param:
         from .symbolic.formulas import profile_formulas
-        bound = {str(s) for s in profile_formulas(profile).values}
+        bound = {str(s) for s in profile_formulas(profile).numbers}
         fixed = [p.name for p in cls.params if p.symbol not in bound]
         if fixed:
             raise ParameterError(f"profile {args.profile!r}: give --param for {', '.join(fixed)} "

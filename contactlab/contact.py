@@ -216,7 +216,7 @@ class Contact:
         substitute : bool
             Insert the numbers of the profile parameters, of ``E_star``/``G_t`` and, when given,
             of ``mu`` (friction) and ``Delta_gamma`` (work of adhesion). Default: symbolic, with
-            the numbers in ``.values``.
+            the numbers in ``.numbers``.
 
         Returns
         -------

@@ -76,7 +76,7 @@ def to_latex(fs: FormulaSet, name: str | None = None, *, document: bool = False)
     rows = []
     for s, (desc, unit) in fs.symbols.items():
         tex = LATEX_NAMES.get(s, s)
-        val = next((v for k, v in fs.values.items() if str(k) == s), None)
+        val = next((v for k, v in fs.numbers.items() if str(k) == s), None)
         val_s = "" if val is None else f"{val:.10g}"
         rows.append(f"${tex}$ & {_tex_escape(desc)} & {_tex_escape(unit)} & {val_s} \\\\")
     table = ("\\begin{tabular}{llll}\nsymbol & meaning & unit & value \\\\ \\hline\n"
@@ -113,7 +113,7 @@ def _function_source(fs: FormulaSet, name: str) -> str:
             "lack; use FormulaSet.callable() (scipy) instead.")
     var = fs.variables(name)
     params = fs.parameters(name)
-    values = {str(k): v for k, v in fs.values.items()}
+    values = {str(k): v for k, v in fs.numbers.items()}
     args = ", ".join(_identifier(str(v)) for v in var)
     kw = []
     for p in params:
@@ -226,7 +226,7 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
         moduli = effective_moduli(*materials)
     fs = contact_formulas(profile, moduli, friction=friction, work_of_adhesion=work_of_adhesion)
     if title is not None:
-        fs = FormulaSet(dict(fs), fs.values, fs.unavailable, title)
+        fs = FormulaSet(dict(fs), fs.numbers, fs.unavailable, title)
     if fmt == "latex":
         return to_latex(fs.substitute() if substitute else fs, document=True)
     if fmt == "python":
@@ -236,9 +236,9 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
     width = max(len(k) for k in shown)
     lines = [f"Formulas for {fs.owner}"]
     lines += [f"  {k:<{width}} = {v}" for k, v in shown.items()]
-    if not substitute and fs.values:
+    if not substitute and fs.numbers:
         lines.append("where")
-        lines += [f"  {s} = {v!r}" for s, v in fs.values.items()]
+        lines += [f"  {s} = {v!r}" for s, v in fs.numbers.items()]
     if fs.unavailable:
         lines.append("not available:")
         lines += [f"  {k}: {v}" for k, v in fs.unavailable.items()]

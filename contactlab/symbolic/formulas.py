@@ -115,7 +115,7 @@ class FormulaSet(Mapping):
 
     Attributes
     ----------
-    values : dict
+    numbers : dict
         ``sympy.Symbol -> float`` for the parameters a number is known for.
     unavailable : dict
         ``name -> reason`` of the formulas that are not available.
@@ -135,7 +135,7 @@ class FormulaSet(Mapping):
     def __init__(self, exprs: Mapping[str, Any], values: Mapping[Any, float],
                  unavailable: Mapping[str, str] | None = None, owner: str = "") -> None:
         self._exprs = dict(exprs)
-        self.values = dict(values)
+        self.numbers = dict(values)
         self.unavailable = dict(unavailable or {})
         self.owner = owner
 
@@ -167,8 +167,8 @@ class FormulaSet(Mapping):
     def __repr__(self) -> str:
         lines = [f"FormulaSet for {self.owner}:"]
         lines += [f"  {k} = {v}" for k, v in self._exprs.items()]
-        if self.values:
-            lines.append("  where " + ", ".join(f"{s} = {v!r}" for s, v in self.values.items()))
+        if self.numbers:
+            lines.append("  where " + ", ".join(f"{s} = {v!r}" for s, v in self.numbers.items()))
         return "\n".join(lines)
 
     # ---------------------------------------------------------------- symbols
@@ -190,7 +190,7 @@ class FormulaSet(Mapping):
 
     # ---------------------------------------------------------------- substitution
     def _bind(self, overrides: Mapping[str, float]) -> dict:
-        vals = dict(self.values)
+        vals = dict(self.numbers)
         by_name = {str(s): s for e in self._exprs.values() for s in e.free_symbols}
         for k, v in overrides.items():
             vals[by_name.get(k, symbol(k))] = float(v)
@@ -260,6 +260,7 @@ class _Spec:
     pressure_shape: Callable | None = None  # ∫_r^a g'(x)/sqrt(x²-r²) dx
     power: list | None = None               # [(coefficient expr, rational n)]
     wall: Any = None                        # flat punch radius symbol
+    flat: Any = None                        # radius of a flat centre (g = 0 inside), symbol
     reason: str = ""                        # why something is missing
 
 
@@ -348,11 +349,11 @@ def _spec_of(profile: Any) -> _Spec:
             root = sp.sqrt(a**2 - b**2)
             return (a * (2 * a**2 - b**2) * root / 8 - b**4 / 8 * sp.acosh(a / b)) / R
         return _Spec(
-            values={b: profile.radius, R: profile.R},
+            values={b: profile.radius, R: profile.R}, flat=b,
             height=lambda r: (r**2 - b**2) / (2 * R),
-            height_piecewise=lambda r: sp.Piecewise((0, r <= b), ((r**2 - b**2) / (2 * R), True)),
+            height_piecewise=lambda r: sp.Max(r**2 - b**2, 0) / (2 * R),
             g=lambda x: x * sp.sqrt(x**2 - b**2) / R,
-            g_piecewise=lambda x: sp.Piecewise((0, x <= b), (x * sp.sqrt(x**2 - b**2) / R, True)),
+            g_piecewise=lambda x: x * sp.sqrt(sp.Max(x**2 - b**2, 0)) / R,
             g_int=lambda a: (a**2 - b**2) ** sp.Rational(3, 2) / (3 * R), xg_int=xg_int,
             radius_of_depth=lambda d: sp.sqrt((b**2 + sp.sqrt(b**4 + 4 * R**2 * d**2)) / 2),
             reason="the pressure of a truncated paraboloid has no closed form here "
@@ -362,11 +363,11 @@ def _spec_of(profile: Any) -> _Spec:
             return s * (a**3 / 3 * sp.acos(b / a)
                         - b / 6 * (a * sp.sqrt(a**2 - b**2) + b**2 * sp.acosh(a / b)))
         return _Spec(
-            values={b: profile.radius, s: profile.slope},
+            values={b: profile.radius, s: profile.slope}, flat=b,
             height=lambda r: s * (r - b),
-            height_piecewise=lambda r: sp.Piecewise((0, r <= b), (s * (r - b), True)),
+            height_piecewise=lambda r: s * sp.Max(r - b, 0),
             g=lambda x: s * x * sp.acos(b / x),
-            g_piecewise=lambda x: sp.Piecewise((0, x <= b), (s * x * sp.acos(b / x), True)),
+            g_piecewise=lambda x: s * x * sp.acos(sp.Min(b / x, 1)),
             g_int=lambda a: s * (a**2 / 2 * sp.acos(b / a) - b / 2 * sp.sqrt(a**2 - b**2)),
             xg_int=xg_int,
             reason="a truncated cone has no closed-form inverse of d = s a arccos(b/a) and no "
@@ -395,6 +396,7 @@ def _renamed(spec: _Spec, suffix: str, clash: set) -> _Spec:
 
     out = _Spec(values={sub.get(k, k): v for k, v in spec.values.items()}, reason=spec.reason,
                 wall=sub.get(spec.wall, spec.wall) if spec.wall is not None else None,
+                flat=sub.get(spec.flat, spec.flat) if spec.flat is not None else None,
                 power=None if spec.power is None else [(c.xreplace(sub), n) for c, n in spec.power])
     for name in ("height", "g", "g_piecewise", "height_piecewise", "g_int", "xg_int",
                  "radius_of_depth", "pressure_shape"):
@@ -425,10 +427,11 @@ def _sum_spec(specs: list[_Spec]) -> _Spec:
         power = [t for s_ in specs for t in s_.power]
         out = _power_spec(power, values)
         return out
+    has_flat = any(s_.flat is not None for s_ in specs)
     return _Spec(values=values, height=total("height"), g=total("g"),
                  g_piecewise=total("g_piecewise", "g"),
                  height_piecewise=total("height_piecewise", "height"),
-                 g_int=total("g_int"), xg_int=total("xg_int"),
+                 g_int=total("g_int"), xg_int=None if has_flat else total("xg_int"),
                  pressure_shape=total("pressure_shape"),
                  reason="; ".join(filter(None, {s_.reason for s_ in specs}))
                  or "a sum of profiles has no closed-form inverse g(a) = d in general")
@@ -443,7 +446,7 @@ def _scaled_spec(base: _Spec, factor: float) -> _Spec:
         return None if fn is None else (lambda *args: k * fn(*args))
 
     out = _Spec(values={**base.values, k: factor}, reason=base.reason or
-                "the inverse of a scaled profile is not derived", wall=base.wall)
+                "the inverse of a scaled profile is not derived", wall=base.wall, flat=base.flat)
     for name in ("height", "g", "g_piecewise", "height_piecewise", "g_int", "xg_int",
                  "pressure_shape"):
         setattr(out, name, wrap(getattr(base, name)))
@@ -553,7 +556,7 @@ def profile_formulas(profile: Any) -> FormulaSet:
     Returns
     -------
     FormulaSet
-        Symbolic parameters, with their numbers in ``.values`` (``.substitute()`` inserts them).
+        Symbolic parameters, with their numbers in ``.numbers`` (``.substitute()`` inserts them).
     """
     try:
         return _profile_formulas_cached(profile)
@@ -674,11 +677,13 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
             x2gp = a**2 * spec.g(a) - 2 * spec.xg_int(a)
         exprs["torque_full_slip_exact"] = pi / 2 * mu * E * x2gp
         exprs["torque_full_slip_mdr"] = 2 * mu * E * x2gp
-        tw = mu * E * (spec.g(a) - spec.g(cs)) / (4 * Gt * cs)
+        # a stick radius inside a flat centre: g = 0 and ∫_0^c x g = 0 there
+        ce = sp.Max(cs, spec.flat) if spec.flat is not None else cs
+        tw = mu * E * (spec.g(a) - spec.g(ce)) / (4 * Gt * cs)
         exprs["twist_of_stick_radius_mdr"] = tw
         exprs["torque_of_stick_radius_mdr"] = (
             sp.Rational(16, 3) * Gt * tw * cs**3
-            + 4 * mu * E * (spec.g(a) * (a**2 - cs**2) / 2 - (spec.xg_int(a) - spec.xg_int(cs))))
+            + 4 * mu * E * (spec.g(a) * (a**2 - cs**2) / 2 - (spec.xg_int(a) - spec.xg_int(ce))))
         if spec.power is not None:
             for k in ("twist_of_stick_radius_mdr", "torque_of_stick_radius_mdr"):
                 exprs[k] = sp.factor(sp.expand(exprs[k]))
