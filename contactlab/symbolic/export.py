@@ -48,8 +48,10 @@ def expr_latex(expr: Any, *, parseable: bool = False) -> str:
     if parseable:
         expr = expr.replace(sp.atanh, lambda z: sp.log((1 + z) / (1 - z)) / 2)
         expr = expr.replace(sp.acosh, lambda z: sp.log(z + sp.sqrt(z**2 - 1)))
+    # parseable: explicit \\cdot, else the parser reads "v (..)" as a function call
     return sp.latex(expr, symbol_names={} if parseable else _latex_names(expr),
-                    ln_notation=False, inv_trig_style="full")
+                    ln_notation=False, inv_trig_style="full",
+                    mul_symbol="dot" if parseable else None)
 
 
 def to_latex(fs: FormulaSet, name: str | None = None, *, document: bool = False) -> str:
@@ -96,8 +98,24 @@ def _tex_escape(s: str) -> str:
 # ====================================================================== Python source
 def _printer():
     from sympy.printing.numpy import NumPyPrinter
-    return NumPyPrinter({"fully_qualified_modules": True, "inline": True,
-                         "allow_unknown_functions": False})
+
+    class _Printer(NumPyPrinter):
+        """numpy printer writing Max/Min as nested numpy.maximum/minimum (no functools)."""
+
+        def _nested(self, fn: str, args: Any) -> str:
+            out = self._print(args[0])
+            for arg in args[1:]:
+                out = f"numpy.{fn}({out}, {self._print(arg)})"
+            return out
+
+        def _print_Max(self, expr: Any) -> str:
+            return self._nested("maximum", expr.args)
+
+        def _print_Min(self, expr: Any) -> str:
+            return self._nested("minimum", expr.args)
+
+    return _Printer({"fully_qualified_modules": True, "inline": True,
+                     "allow_unknown_functions": False})
 
 
 def _identifier(name: str) -> str:
