@@ -54,11 +54,12 @@ DISABLE_ENV = "CONTACTLAB_DISABLE_PLUGINS"
 @dataclass(frozen=True)
 class KindSpec:
     """A kind of registered type: its base class (``module:Class``), entry-point group and the
-    subpackage whose import registers the built-ins."""
+    function (``module:function``, called with the registry) that registers the built-ins; the
+    subpackage also calls it for the global registry when it is imported."""
 
     base: str
     group: str
-    builtins_module: str
+    builtins: str
 
     def base_class(self) -> type:
         mod, _, cls = self.base.partition(":")
@@ -84,9 +85,9 @@ class Registry:
     def __init__(self, kinds: dict[str, KindSpec] | None = None) -> None:
         self.kinds: dict[str, KindSpec] = dict(kinds or {
             "profile": KindSpec("contactlab.profiles.base:Profile", "contactlab.profiles",
-                                "contactlab.profiles"),
+                                "contactlab.profiles:_register_builtins"),
             "material": KindSpec("contactlab.materials.base:Material", "contactlab.materials",
-                                 "contactlab.materials"),
+                                 "contactlab.materials:_register_builtins"),
         })
         self._builtin: dict[str, dict[str, _Entry]] = {k: {} for k in self.kinds}
         self._session: dict[str, dict[str, _Entry]] = {k: {} for k in self.kinds}
@@ -274,7 +275,13 @@ class Registry:
 
     # ------------------------------------------------------------------ lookup
     def _ensure_builtins(self, kind: str) -> None:
-        importlib.import_module(self._kind(kind).builtins_module)
+        self._kind(kind)
+        if self._builtin[kind]:
+            return
+        mod, _, func = self._kind(kind).builtins.partition(":")
+        module = importlib.import_module(mod)      # registers into the global registry
+        if not self._builtin[kind] and func:
+            getattr(module, func)(self)
 
     def _tables(self, kind: str, discover: bool) -> list[dict[str, _Entry]]:
         self._ensure_builtins(kind)

@@ -6,8 +6,10 @@ from .pair import EffectiveModuli, effective_moduli
 __all__ = ["Material", "Elastic", "Rigid", "EffectiveModuli", "effective_moduli"]
 
 
-def _register_builtins() -> None:
-    from ..registry import registry
+def _register_builtins(registry=None) -> None:
+    """Register the built-in classes (into the global registry by default)."""
+    if registry is None:
+        from ..registry import registry
     for cls in (Elastic, Rigid):
         registry.register(cls, "material", builtin=True)
 

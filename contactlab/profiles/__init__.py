@@ -17,8 +17,10 @@ __all__ = [
 ]
 
 
-def _register_builtins() -> None:
-    from ..registry import registry
+def _register_builtins(registry=None) -> None:
+    """Register the built-in classes (into the global registry by default)."""
+    if registry is None:
+        from ..registry import registry
     for cls in (PowerLaw, Paraboloid, Cone, Polynomial, Sphere, FlatPunch, TruncatedParaboloid,
                 TruncatedCone, Tabulated):
         registry.register(cls, "profile", builtin=True)
