@@ -125,14 +125,14 @@ class Contact:
             a = prof._radius_of_depth(d)
         elif key == "radius":
             if np.any(arr < 0):
-                raise ParameterError(f"radius contains {arr[arr < 0].ravel()[0]!r}: contact "
+                raise ParameterError(f"radius contains {float(arr[arr < 0].ravel()[0])!r}: contact "
                                      "radii must be >= 0 m.")
             if np.isfinite(prof.wall_radius):
                 raise NotSupportedError(
                     f"radius= does not determine the state of {prof!r}: its contact radius is "
                     "fixed by the punch wall. Give depth= or force=.")
             if np.any(arr >= prof.max_radius):
-                raise OutsideTheoryError(f"radius={np.max(arr)!r} m is invalid: it must stay below "
+                raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay below "
                                          f"max_radius={prof.max_radius!r} m of {prof!r}.")
             a = arr.copy()
             a[a < prof.flat_radius] = np.where(a[a < prof.flat_radius] > 0, prof.flat_radius, 0.0)
@@ -190,7 +190,7 @@ class Contact:
                     if np.any(at_limit) and not np.isfinite(prof.wall_radius):
                         i = int(np.argmax(at_limit))
                         raise OutsideTheoryError(
-                            f"force={Fs[i]!r} N needs a contact radius >= max_radius={limit!r} m "
+                            f"force={float(Fs[i])!r} N needs a contact radius >= max_radius={limit!r} m "
                             f"of {prof!r}; reduce the force.")
                     lo = np.where(short, hi_c, lo)
                     hi = np.where(short, hi * 4.0, hi)
