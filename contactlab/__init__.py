@@ -8,8 +8,11 @@ from . import errors, materials, profiles
 from .contact import Contact
 from .materials import Elastic, Rigid, effective_moduli
 from .states import NormalState
+from . import registry
+from .registry import register_material, register_profile
 
 __version__ = "0.1.0"
 
 __all__ = ["Contact", "Elastic", "Rigid", "effective_moduli", "NormalState", "profiles",
-           "materials", "errors", "__version__"]
+           "materials", "errors", "__version__",
+           "registry", "register_profile", "register_material"]

@@ -1,7 +1,8 @@
 """The ``contactlab`` command line.
 
 Subcommands: ``demo`` (an embedded default scene), ``formulas`` (closed-form formulas of a
-profile, as text, LaTeX or Python) and ``--version``; later issues add ``run``, ``validate``, ``plan``. Exit codes: 0 ok, 2 invalid input, 1 numerical failure.
+profile, as text, LaTeX or Python) and ``--version``; later issues add ``run``, ``validate``,
+``plan``. Exit codes: 0 ok, 2 invalid input, 1 numerical failure.
 """
 from __future__ import annotations
 

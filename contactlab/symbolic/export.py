@@ -14,7 +14,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import NotSupportedError, ParameterError
-from .formulas import FORMULA_DOCS, LATEX_NAMES, SYMBOLS, FormulaSet, symbol
+from .formulas import FORMULA_DOCS, LATEX_NAMES, SYMBOLS, FormulaSet
 
 __all__ = ["to_latex", "to_python", "to_callable", "formulas_command", "FORMATS"]
 
@@ -262,5 +262,3 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
         lines += [f"  {k}: {v}" for k, v in fs.unavailable.items()]
     return "\n".join(lines) + "\n"
 
-
-_ = symbol  # re-exported for convenience of callers building expressions
