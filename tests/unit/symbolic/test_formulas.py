@@ -178,7 +178,7 @@ def test_hertz_torsion_and_jkr_textbook_forms():
 
 
 def test_cone_and_power_law_pull_off():
-    """physics.md §4: cone a_c = 18Δγ/(πE*tan²β), F_c = -54Δγ²/(πE*tan³β); power law: dF/da = 0."""
+    """physics.md §4: cone a_c = 18Δγ/(πE*tan²β), F_c = -54Δγ²/(πE*tan³β); power law: dF/da=0"""
     cone = cl.Contact(Cone(slope=0.2), materials=MATS)
     fs = cone.formulas()
     E = cone.moduli.normal
@@ -266,3 +266,27 @@ def test_unavailable_formulas_raise_with_reason():
 def test_sphere_g_closed_form():
     x, R = symbol("x"), symbol("R")
     assert sp.simplify(Sphere(R=0.01).formulas()["g"] - x * sp.atanh(x / R)) == 0
+
+
+# ---------------------------------------------------------------------- property check
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+def _in_typical(param):
+    lo, hi = param.typical
+    return st.floats(np.log10(lo), np.log10(hi)).map(lambda e: 10.0**e)
+
+
+@settings(max_examples=12, deadline=None)
+@given(R=_in_typical(Paraboloid.params[0]), slope=_in_typical(Cone.params[0]),
+       n=st.sampled_from([1.0, 1.5, 2.0, 3.0, 4.0, 6.0]), depth=st.floats(-9, -5))
+def test_formulas_match_solver_over_typical_parameters(R, slope, n, depth):
+    """Formulas vs solver at parameters drawn from each Param.typical range."""
+    d = 10.0**depth
+    for prof in (Paraboloid(R=R), Cone(slope=slope), PowerLaw(c=slope, n=n)):
+        c = cl.Contact(prof, materials=MATS)
+        fs = c.formulas()
+        s = c.normal(depth=d)
+        assert rel(fs.callable("radius_of_depth")(d), s.radius) < SYMBOLIC_VS_SOLVER
+        assert rel(fs.callable("force_of_depth")(d), s.force) < SYMBOLIC_VS_SOLVER
+        assert rel(fs.callable("radius_of_force")(s.force), s.radius) < SYMBOLIC_VS_SOLVER
