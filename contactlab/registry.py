@@ -317,6 +317,9 @@ class Registry:
                         return name
             raise UnknownNameError(f"class {name.__qualname__} is not a registered {kind}; "
                                    f"register it with registry.register({name.__qualname__}).")
+        if not isinstance(name, str):
+            raise UnknownNameError(f"{kind} name {name!r} is invalid: give a registered name "
+                                   f"(str) or class; available: {', '.join(self.available(kind))}.")
         for t in self._tables(kind, False):      # no plugin scan for known names
             if name in t:
                 return t[name].cls

@@ -86,6 +86,8 @@ def test_unknown_name_lists_available_and_close_matches():
 
     with pytest.raises(UnknownNameError, match="not a registered profile"):
         registry.get("profile", Unregistered)
+    with pytest.raises(UnknownNameError, match="name 3 is invalid"):
+        registry.get("profile", 3)
 
 
 def test_import_contactlab_scans_no_plugins_and_no_sympy():
