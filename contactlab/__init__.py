@@ -13,6 +13,8 @@ from .simulation import PathResult
 from .states import NormalState
 from .tangential import ShiftHistory, TangentialState
 from .viscoelastic import ViscoelasticHistory
+from . import registry
+from .registry import register_material, register_profile
 
 __version__ = "0.1.0"
 
@@ -20,5 +22,6 @@ __all__ = [
     "Contact", "Elastic", "Rigid", "effective_moduli", "LoadPath",
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult",
-    "profiles", "materials", "errors", "foundation", "loadpath", "__version__",
+    "profiles", "materials", "errors", "foundation", "loadpath", "registry",
+    "register_profile", "register_material", "__version__",
 ]

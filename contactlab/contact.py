@@ -308,3 +308,29 @@ class Contact:
         return simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                         snapshots=snapshots, progress=progress, approximate=approximate,
                         strategy=strategy)
+    # ---- symbolic formula export (issue 6)
+    def formulas(self, substitute: bool = False):
+        """Named sympy formulas of this contact (normal, torsion, JKR; physics.md §3, §4, §6).
+
+        Parameters
+        ----------
+        substitute : bool
+            Insert the numbers of the profile parameters, of ``E_star``/``G_t`` and, when given,
+            of ``mu`` (friction) and ``Delta_gamma`` (work of adhesion). Default: symbolic, with
+            the numbers in ``.numbers``.
+
+        Returns
+        -------
+        contactlab.symbolic.formulas.FormulaSet
+            Mapping ``name -> sympy expression``; ``.latex()``, ``.python()``, ``.callable(name)``.
+
+        Examples
+        --------
+        >>> import contactlab as cl
+        >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(1e9, 0.5), cl.Rigid()))
+        >>> c.formulas()["force_of_depth"]
+        4*E_star*sqrt(R)*d**(3/2)/3
+        """
+        from .symbolic.formulas import contact_formulas
+        return contact_formulas(self.profile, self.moduli, friction=self.friction,
+                                work_of_adhesion=self.work_of_adhesion, substitute=substitute)

@@ -44,3 +44,13 @@ def test_identity():
     assert cl.Elastic(E=1.0, nu=0.2) == cl.Elastic(E=1.0, nu=0.2)
     assert len({cl.Elastic(E=1.0, nu=0.2), cl.Elastic(E=1.0, nu=0.2)}) == 1
     assert repr(cl.Rigid()) == "Rigid()"
+
+
+def test_viscoelastic_materials_arrive_through_the_registry():
+    from contactlab.materials.viscoelastic import KelvinVoigt, StandardLinearSolid
+    reg = cl.registry.registry
+    for name in ("kelvin_voigt", "maxwell", "standard_linear_solid", "generalized_maxwell"):
+        assert name in reg.available("material")
+    assert reg.get("material", "kelvin_voigt") is KelvinVoigt
+    sls = reg.create("material", "standard_linear_solid", G_inf=1e6, G_1=2e6, eta_1=1e3)
+    assert isinstance(sls, StandardLinearSolid) and sls.is_viscoelastic

@@ -55,3 +55,14 @@ FOUNDATION_NORMAL = 1e-12
 #: energy per cycle of a periodic twist after the first cycle: Jenkins states repeat; only the
 #: rounding of the elastic increments differs between cycles
 ENERGY_DRIFT = 1e-10
+
+#: an exported sympy formula (lambdified, double precision) against the package's numeric solver
+#: at the same point: both are closed forms or converged quadratures in double precision; the
+#: budget covers rounding in cancelling forms such as the exact sphere's (a²-R²)/2·artanh(a/R)
+SYMBOLIC_VS_SOLVER = 1e-12
+#: a plugin profile given only by f(r): slope by Richardson-extrapolated 4th-order finite
+#: differences (truncation ~ h⁶ f⁽⁷⁾ with h = 1e-3 of the length scale) then tanh-sinh quadrature
+HEIGHT_ONLY_PROFILE = 1e-9
+#: the exact sphere's closed forms cancel: ∫_0^a g = (a²-R²)/2·artanh(a/R) + Ra/2 loses a factor
+#: ~(R/a)² to rounding (400 at a/R = 0.05), so formula and solver differ by ~1e-13..1e-12
+SYMBOLIC_SPHERE = 1e-10

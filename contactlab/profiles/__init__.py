@@ -15,3 +15,15 @@ __all__ = [
     "Profile", "G_STRATEGIES", "PowerLaw", "Paraboloid", "Cone", "Polynomial", "Sphere",
     "FlatPunch", "TruncatedParaboloid", "TruncatedCone", "Tabulated", "Sum", "Scaled",
 ]
+
+
+def _register_builtins(registry=None) -> None:
+    """Register the built-in classes (into the global registry by default)."""
+    if registry is None:
+        from ..registry import registry
+    for cls in (PowerLaw, Paraboloid, Cone, Polynomial, Sphere, FlatPunch, TruncatedParaboloid,
+                TruncatedCone, Tabulated):
+        registry.register(cls, "profile", builtin=True)
+
+
+_register_builtins()

@@ -1,4 +1,6 @@
 """Symbolic (sympy) route: exact MDR transforms of power-law sums and formula export."""
+from .formulas import FormulaSet, contact_formulas, profile_formulas
 from .transform import g_expression, g_callable, kappa, kappa_sympy
 
-__all__ = ["g_expression", "g_callable", "kappa", "kappa_sympy"]
+__all__ = ["g_expression", "g_callable", "kappa", "kappa_sympy", "FormulaSet",
+           "profile_formulas", "contact_formulas"]
