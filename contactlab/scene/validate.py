@@ -16,6 +16,7 @@ import csv
 import difflib
 import inspect
 import math
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -187,7 +188,7 @@ class _Checker:
             if k not in allowed:
                 close = difflib.get_close_matches(k, allowed, n=1, cutoff=0.6)
                 hint = f"; did you mean {close[0]!r}?" if close else ""
-                self.add(_join(path, k), k, f"one of {sorted(allowed)}{hint}")
+                self.add(_join(path, k), table[k], f"a key from {sorted(allowed)}{hint}")
 
     def quantity(self, path: str, value: Any, dim: str, domain: str = "real") -> float | None:
         try:
@@ -328,7 +329,12 @@ def _typed_object(ck: _Checker, path: str, raw: Any, kind: str) -> dict | None:
                if kind == "profile" else
                make_material(type_, {k: v for k, v in out.items() if k != "type"}))
     except (ContactlabError, ValueError, TypeError) as err:
-        ck.add(path, {k: v for k, v in tab.items()}, _first_line(err))
+        msg = _first_line(err)
+        m = re.match(r"^([A-Za-z_]\w*)=.*? is invalid: (.*)$", msg)
+        if m and m.group(1) in params:
+            ck.add(f"{path}.{m.group(1)}", params[m.group(1)], m.group(2))
+        else:
+            ck.add(path, dict(tab), msg)
         return None
     return {"out": out, "obj": obj}
 
