@@ -260,7 +260,14 @@ def make_plan(scene: "Scene") -> Plan:
         rows[eff] = Effect(eff, impl, "; ".join(reasons))
         if impl_call:
             calls.append(impl_call)
-    if slip:
+    if slip and foundation:
+        model = ("MDR torsional springs, Coulomb per spring (narrow-slip model)" if torsion else
+                 "MDR tangential springs, Coulomb per spring (exact Cattaneo-Mindlin)")
+        if torsion:
+            method = "mdr"
+        rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}; "
+                              "foundation route")
+    elif slip:
         model = {"exact": "exact partial slip (Jäger superposition)" if torsion else
                  "Cattaneo-Mindlin partial slip (exact)",
                  "mdr": "MDR narrow-slip approximation (springs, mu* = 2 mu)"}.get(method, method)
