@@ -9,8 +9,9 @@ QUADRATURE = 1e-9
 #: interpolation error ~ (Δr)² f''/8 relative to f, i.e. ~1e-7 for smooth profiles
 TABULATED_1000 = 1e-6
 #: scene example with a tabulated profile (1001 linear-interpolation nodes, Δr = 1 µm, contact
-#: radius ~100 µm) against Hertz: the interpolant overestimates r² by at most Δr²/4, i.e. a relative
-#: gap error ~ (Δr/a)²/4 = 2.5e-5, which moves force-controlled radius and depth by less than 1e-4
-TABULATED_SCENE = 1e-4
-#: CSV/JSON outputs are written with repr(float): the round trip is exact up to rounding
-OUTPUT_ROUNDTRIP = 1e-15
+#: radii 47-100 µm) against Hertz: the interpolant overestimates r² by at most Δr²/4, a relative
+#: gap error up to (Δr/a)²/4 = 1.2e-4 at the smallest loaded step (measured: 1.9e-4 in the radius)
+TABULATED_SCENE = 5e-4
+#: CSV/JSON outputs are written with repr(float) (exact); re-solving from a re-read output
+#: (e.g. the force, which is recomputed from the radius) moves results by a few ulps
+OUTPUT_ROUNDTRIP = 1e-13
