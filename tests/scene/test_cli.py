@@ -55,7 +55,9 @@ def test_hertz_steel_ball(tmp_path, fmt):
                                        pytest.approx(3.48291e-6, rel=5e-6))
     lib = Scene.from_toml(EX / "hertz_steel_ball.toml").contact().normal(force=F)
     np.testing.assert_allclose(s["depth"], lib.depth, rtol=OUTPUT_ROUNDTRIP)
-    np.testing.assert_allclose(f["pressure"], lib.pressure(f["r"])[-1], rtol=OUTPUT_ROUNDTRIP)
+    # at r = a the square-root edge turns the last-ulp difference of r into ~1e-8 p0
+    np.testing.assert_allclose(f["pressure"], lib.pressure(f["r"])[-1], rtol=OUTPUT_ROUNDTRIP,
+                               atol=1e-7 * f["pressure"][0])
 
 
 def test_conical_indenter(tmp_path):
