@@ -107,7 +107,7 @@ def parse_quantity(value: object, dimension: str, key: str = "value") -> float:
     >>> parse_quantity("1e-3 m", "length")
     0.001
     >>> round(parse_quantity("5 deg", "angle"), 12)
-    0.087266462599
+    0.0872664626
     """
     allowed = _allowed(dimension)
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
