@@ -238,7 +238,10 @@ def make_plan(scene: "Scene") -> Plan:
             reasons.append(f"the path has no {ctrl}: zero {'torque' if torsion else 'force'}")
         mono_api, hist_api = (("torsion", "twist_history") if torsion
                               else ("tangential", "shift_history"))
-        if foundation:
+        if not (twist_on if torsion else shift_on) and not foundation:
+            impl = ("no call: zero twist gives zero torque, stick radius = contact radius" if torsion
+                    else "no call: zero shift gives zero force, stick radius = contact radius")
+        elif foundation:
             impl = "contact.simulate (MDR " + ("torsional" if torsion else "tangential") + " springs)"
             if torsion and method in ("exact", "no-slip") and friction is not None:
                 reasons.append(f"method {method!r} has no foundation implementation: the MDR "

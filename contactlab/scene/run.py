@@ -168,6 +168,18 @@ def _get(obj: Any, name: str, n: int) -> np.ndarray:
 
 
 def run_scene(scene: "Scene") -> SceneResult:
+    """Run a validated scene along its plan (see :func:`_run`); a physics module missing from
+    this build (an unmerged issue) becomes a NotSupportedError naming it."""
+    try:
+        return _run(scene)
+    except ImportError as err:
+        if getattr(err, "name", "") and str(err.name).startswith("contactlab"):
+            raise NotSupportedError(f"the plan needs {err.name}, which this build of contactlab "
+                                    "does not provide yet.") from err
+        raise
+
+
+def _run(scene: "Scene") -> SceneResult:
     """Run a validated scene along its plan.
 
     Raises

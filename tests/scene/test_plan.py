@@ -99,7 +99,8 @@ def test_shift_monotone_and_history():
 
 def test_requested_torsion_without_twist():
     p = plan_of(base(outputs={"effects": ["torsion"]}))
-    assert p.names == ("normal", "torsion") and p.calls == ("normal", "torsion")
+    assert p.names == ("normal", "torsion") and p.calls == ("normal",)
+    assert "no call" in p["torsion"].implementation
     assert "requested in outputs.effects" in p["torsion"].reason
     assert "no twist" in p["torsion"].reason
 
@@ -146,3 +147,12 @@ def test_print_and_json():
 def test_unknown_effect_lookup():
     with pytest.raises(KeyError, match="torsion"):
         plan_of(base())["torsion"]
+
+
+def test_requested_torsion_without_twist_runs_without_torsion_machinery(monkeypatch):
+    monkeypatch.setattr(Contact, "torsion", None, raising=False)
+    res = Scene(base(outputs={"effects": ["torsion"]})).run()
+    assert res.meta["computed"] == ["normal"]
+    assert list(res.series) == ["time", "depth", "force", "radius", "twist", "torque",
+                                "stick_radius"]
+    assert not res["torque"].any() and (res["stick_radius"] == res["radius"]).all()

@@ -196,3 +196,17 @@ def test_oscillating_twist_masing_symmetry():
     # Masing: the loop is symmetric, M(-phi_max) = -M(phi_max)
     i_max, i_min = int(np.argmax(res["twist"])), int(np.argmin(res["twist"]))
     assert res["torque"][i_min] == pytest.approx(-res["torque"][i_max], rel=1e-6)
+
+
+def test_adhesive_scene_runs_or_names_the_missing_module():
+    s = Scene(base(interface={"work_of_adhesion": "0.05 J/m^2"}))
+    try:
+        import contactlab.physics.adhesion  # noqa: F401
+    except ImportError:
+        with pytest.raises(NotSupportedError, match="contactlab.physics.adhesion"):
+            s.run()
+    else:   # JKR (Johnson-Kendall-Roberts 1971): F = 4E*a^3/(3R) - sqrt(8 pi a^3 E* w)
+        res = s.run()
+        a, E, w, R = res["radius"][-1], E_STEEL, 0.05, 0.01
+        assert res["force"][-1] == pytest.approx(4 * E * a**3 / (3 * R)
+                                                 - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
