@@ -99,7 +99,7 @@ scene = st.fixed_dictionaries(
     optional={
         "interface": st.fixed_dictionaries({}, optional={
             "friction": mostly(st.floats(0.05, 1), junk),
-            "work_of_adhesion": mostly(st.just(0.0), junk)}),
+            "work_of_adhesion": mostly(st.sampled_from([0.0, 0.05, "50 mJ/m^2"]), junk)}),
         "outputs": st.fixed_dictionaries({}, optional={
             "series": st.lists(st.sampled_from([*SERIES, "torqe"]), max_size=4, unique=True),
             "fields": st.lists(st.sampled_from([*FIELDS, "presure"]), max_size=2, unique=True),
