@@ -172,7 +172,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactlab`` console script; returns the exit code."""
-    from .errors import ContactlabError, SceneError
+    from .errors import ContactlabError, ConvergenceError, SceneError
 
     parser = _parser()
     try:
@@ -198,7 +198,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(json.dumps({"ok": False, "exit": 1, "error": str(err),
                               "kind": type(err).__name__}, indent=1))
         else:
-            print(f"contactlab: numerical failure ({type(err).__name__}): {err}", file=sys.stderr)
+            what = "numerical failure" if isinstance(err, ConvergenceError) else "run failed"
+            print(f"contactlab: {what} ({type(err).__name__}): {err}", file=sys.stderr)
         return 1
 
 

@@ -210,3 +210,40 @@ def test_adhesive_scene_runs_or_names_the_missing_module():
         a, E, w, R = res["radius"][-1], E_STEEL, 0.05, 0.01
         assert res["force"][-1] == pytest.approx(4 * E * a**3 / (3 * R)
                                                  - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
+
+
+@pytest.mark.skipif(not hasattr(Contact, "tangential"), reason="contact.tangential (issue 4) not merged")
+def test_monotone_shift_against_cattaneo_mindlin():
+    res = Scene(twist_scene({"ramp": {"displacement": "0.3 um", "steps": 4}})).run()
+    assert res.meta["computed"] == ["normal", "tangential"]
+    mu, F = 0.2, 100.0
+    G = 210e9 / 2.6
+    G_star = 2 * G / (2 - 0.3)                       # 1/G* = 2 (2-nu)/(4G), identical bodies
+    a, _ = hertz(F, 0.01, E_STEEL)
+    u_star = 3 * mu * F / (4 * a * G_star)            # Mindlin 1949
+    u = res["displacement"][-4:]
+    np.testing.assert_allclose(res["tangential_force"][-4:],
+                               mu * F * (1 - (1 - u / u_star) ** 1.5), rtol=1e-9)
+    np.testing.assert_allclose(res["stick_radius"][-4:], a * np.sqrt(1 - u / u_star), rtol=1e-9)
+
+
+@pytest.mark.skipif(not hasattr(Contact, "shift_history"),
+                    reason="contact.shift_history (issue 4) not merged")
+def test_oscillating_shift_masing_energy():
+    amp = 0.2e-6
+    res = Scene(twist_scene({"sinusoid": {"displacement": amp, "cycles": 1,
+                                          "steps_per_cycle": 400}},
+                            {"sinusoid": {"displacement": amp, "cycles": 1,
+                                          "steps_per_cycle": 400}})).run()
+    assert res.meta["computed"] == ["normal", "shift_history"]
+    mu, F = 0.2, 100.0
+    G_star = 2 * (210e9 / 2.6) / 1.7
+    a, _ = hertz(F, 0.01, E_STEEL)
+    u_star = 3 * mu * F / (4 * a * G_star)
+    T = mu * F * (1 - (1 - amp / u_star) ** 1.5)      # force amplitude on the virgin curve
+    t = T / (mu * F)                                  # Mindlin-Deresiewicz loop energy
+    W = 18 / 5 * mu**2 * F**2 / (a * G_star) * (1 - (1 - t) ** (5 / 3)
+                                                 - 5 * t / 6 * (1 + (1 - t) ** (2 / 3)))
+    E = res["dissipated_energy"]
+    n = 400
+    assert E[-1] - E[-1 - n] == pytest.approx(W, rel=1e-6)   # second (steady) cycle
