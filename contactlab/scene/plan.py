@@ -230,8 +230,9 @@ def make_plan(scene: "Scene") -> Plan:
             reasons.append(f"path has {ctrl}")
         if eff in requested:
             reasons.append("requested in outputs.effects")
-        implied = [s for s in s_req if SERIES[s] == eff] + (["shear"] if torsion and "shear" in fields
-                                                           else [])
+        implied = [s for s in s_req if SERIES[s] == eff]
+        if torsion and "shear" in fields:
+            implied.append("shear")
         if implied:
             reasons.append(f"outputs ask for {', '.join(implied)}")
         if not (twist_on if torsion else shift_on):

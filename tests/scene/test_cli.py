@@ -30,8 +30,8 @@ def run(tmp_path, name, fmt):
     out = tmp_path / "out"
     assert main(["run", str(EX / name), "-o", str(out), "--format", fmt]) == 0
     if fmt == "csv":
-        return read_csv(out / "series.csv"), (read_csv(out / "fields.csv")
-                                               if (out / "fields.csv").exists() else {})
+        fields = read_csv(out / "fields.csv") if (out / "fields.csv").exists() else {}
+        return read_csv(out / "series.csv"), fields
     doc = json.loads((out / "result.json").read_text())
     return ({k: np.array(v, float) for k, v in doc["series"].items()},
             {k: np.array(v, float) for k, v in doc["fields"].items()})

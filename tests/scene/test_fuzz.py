@@ -106,8 +106,8 @@ scene = st.fixed_dictionaries(
             "method": st.sampled_from([*METHODS, "exakt"]),
             "effects": st.lists(st.sampled_from([*EFFECTS, "twist"]), max_size=2, unique=True),
             "field_points": mostly(st.integers(2, 30), junk)}),
-        "solver": st.fixed_dictionaries({}, optional={"rtol": mostly(st.floats(1e-12, 1e-3),
-                                                                      junk)})})
+        "solver": st.fixed_dictionaries(
+            {}, optional={"rtol": mostly(st.floats(1e-12, 1e-3), junk)})})
 
 
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])

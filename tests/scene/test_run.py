@@ -242,8 +242,8 @@ def test_oscillating_shift_masing_energy():
     u_star = 3 * mu * F / (4 * a * G_star)
     T = mu * F * (1 - (1 - amp / u_star) ** 1.5)      # force amplitude on the virgin curve
     t = T / (mu * F)                                  # Mindlin-Deresiewicz loop energy
-    W = 18 / 5 * mu**2 * F**2 / (a * G_star) * (1 - (1 - t) ** (5 / 3)
-                                                 - 5 * t / 6 * (1 + (1 - t) ** (2 / 3)))
+    bracket = 1 - (1 - t) ** (5 / 3) - 5 * t / 6 * (1 + (1 - t) ** (2 / 3))
+    W = 18 / 5 * mu**2 * F**2 / (a * G_star) * bracket
     E = res["dissipated_energy"]
     n = 400
     assert E[-1] - E[-1 - n] == pytest.approx(W, rel=1e-6)   # second (steady) cycle
