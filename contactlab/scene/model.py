@@ -174,15 +174,18 @@ class Scene:
         return cls(toml_io.loads(text), base_dir)
 
     @classmethod
-    def from_objects(cls, profile: Any, materials: tuple[Any, Any], load_path: Sequence[Mapping],
+    def from_objects(cls, profile: Any, materials: tuple[Any, Any], load_path: Any,
                      *, friction: float | None = None, work_of_adhesion: float | None = None,
                      outputs: Mapping[str, Any] | None = None,
                      solver: Mapping[str, Any] | None = None, title: str | None = None) -> "Scene":
-        """Scene from contactlab objects (profile, two materials) and a list of segments.
+        """Scene from contactlab objects (profile, two materials) and a load path.
 
-        ``load_path`` is a list of segment tables as in a scene file, e.g.
+        ``load_path`` is a :class:`~contactlab.LoadPath` (ramp, hold, sinusoid without ``mean``,
+        repeat, from_arrays) or a list of segment tables as in a scene file, e.g.
         ``[{"ramp": {"force": 100.0, "steps": 50}}, {"sinusoid": {"twist": 1e-3, "cycles": 2}}]``.
         """
+        if hasattr(load_path, "leaves"):
+            load_path = _segments_of_loadpath(load_path)
         data: dict[str, Any] = {
             "profile": _object_table(profile, "profile"),
             "materials": {"body1": _object_table(materials[0], "materials.body1"),
@@ -287,6 +290,32 @@ class Scene:
         """Compute what the plan calls for; returns a :class:`~contactlab.scene.run.SceneResult`."""
         from .run import run_scene
         return run_scene(self)
+
+
+def _segments_of_loadpath(path: Any) -> list[dict[str, Any]]:
+    """Scene segment tables of a :class:`~contactlab.LoadPath` (issue 4), leaf by leaf."""
+    out: list[dict[str, Any]] = []
+    for i, seg in enumerate(path.leaves()):
+        kind = type(seg).__name__.lower()
+        if kind == "ramp":
+            out.append({"ramp": {**{k: float(v) for k, v in seg.targets}, "steps": int(seg.steps),
+                                 "duration": float(seg.duration)}})
+        elif kind == "hold":
+            out.append({"hold": {"steps": int(seg.steps), "duration": float(seg.duration)}})
+        elif kind == "sinusoid" and getattr(seg, "mean", None) is None:
+            out.append({"sinusoid": {**{k: float(v) for k, v in seg.amplitudes},
+                                     "cycles": int(seg.cycles),
+                                     "steps_per_cycle": int(seg.steps_per_cycle),
+                                     "period": float(seg.period)}})
+        elif kind == "table":
+            out.append({"table": {"time": [float(t) for t in seg.time],
+                                  **{k: [float(x) for x in v] for k, v in seg.columns}}})
+        else:
+            raise SceneError(f"load_path segment {i} ({seg!r}) has no scene form: scenes "
+                             "sinusoids oscillate around the current value (no mean=).",
+                             [(f"load_path[{i}]", repr(seg), "ramp, hold, sinusoid without "
+                               "mean, repeat, from_arrays")])
+    return out
 
 
 def _object_table(obj: Any, path: str) -> dict[str, Any]:

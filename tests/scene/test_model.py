@@ -106,3 +106,16 @@ def test_history_sinusoid_around_current_value():
     h = Scene(d).history()
     np.testing.assert_allclose(h.values("normal"), [0, 0.5e-6, 1e-6, 1.5e-6, 1e-6], rtol=1e-14)
     np.testing.assert_allclose(h.time, [0, 1, 2, 2.5, 3.0])
+
+
+@pytest.mark.skipif(not hasattr(cl, "LoadPath"), reason="LoadPath (issue 4) not merged")
+def test_from_objects_with_a_loadpath():
+    steel = cl.Elastic(E=210e9, nu=0.3)
+    path = cl.LoadPath().ramp(force=100.0, steps=10).hold(steps=2).sinusoid(
+        twist=1e-3, cycles=2, steps_per_cycle=8)
+    s = Scene.from_objects(Paraboloid(R=0.01), (steel, steel), path, friction=0.2)
+    assert Scene.loads(s.to_toml()) == s
+    h = s.history()
+    assert h.n_steps == path.n_steps + 1          # the scene history includes the unloaded start
+    wave = 1e-3 * np.sin(2 * np.pi * np.arange(1, 9) / 8)
+    np.testing.assert_allclose(h.values("twist")[-8:], wave, atol=1e-18)
