@@ -331,5 +331,9 @@ def _object_table(obj: Any, path: str) -> dict[str, Any]:
     out: dict[str, Any] = {"type": name}
     for p in getattr(type(obj), "params", ()):
         v = getattr(obj, p.name)
-        out[p.name] = float(v) if isinstance(v, (int, float, np.floating)) else v
+        if isinstance(v, (int, float, np.floating)):
+            v = float(v)
+        elif isinstance(v, (tuple, list, np.ndarray)):
+            v = [float(x) for x in v]
+        out[p.name] = v
     return out

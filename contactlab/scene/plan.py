@@ -54,8 +54,9 @@ class Plan:
     effects : tuple of Effect
         Active effects in dependency order (normal, adhesion, viscoelastic, tangential, torsion,
         slip), each with implementation and reason.
-    route : {"closed_form", "foundation"}
-        Closed forms / exact histories, or the MDR foundation simulation.
+    route : {"closed_form", "foundation", "viscoelastic"}
+        Closed forms / exact histories, the MDR foundation simulation with frictional memory, or
+        the viscoelastic MDR history.
     calls : tuple of str
         The ``Contact`` methods the run will call, in order (``"normal"``, ``"torsion"``,
         ``"twist_history"``, ``"tangential"``, ``"shift_history"``, ``"simulate"``).
@@ -189,15 +190,23 @@ def make_plan(scene: "Scene") -> Plan:
     force_controlled_history = (drive_kind in ("torque", "tangential_force") and not monotone
                                 and method != "no-slip")
     foundation = visco or coupled_at is not None or force_controlled_history
-    route = "foundation" if foundation else "closed_form"
+    route = "viscoelastic" if visco else "foundation" if foundation else "closed_form"
+    if visco:
+        bad = [s for s in s_req if s not in ("time", "depth", "force", "radius")]
+        if bad:
+            issues.append(("outputs.series", bad, "time, depth, force, radius for a viscoelastic "
+                           "scene"))
 
     rows: dict[str, Effect] = {}
     calls: list[str] = []
     n = h.n_steps
-    if foundation:
-        if visco:
-            why = "viscoelastic body: time-dependent MDR foundation (elements of the material's type)"
-        elif coupled_at is not None:
+    if visco:
+        rows["normal"] = Effect("normal", "contact.viscoelastic_history (MDR foundation)",
+                                "viscoelastic body: the response depends on the load history in "
+                                "time, no elastic closed form")
+        calls.append("viscoelastic_history")
+    elif foundation:
+        if coupled_at is not None:
             seg = int(h.segment[coupled_at])
             why = (f"normal load varies while {'twisted' if axis == 'twist' else 'shifted'} "
                    f"(step {coupled_at}, load_path[{seg}]): no closed form, foundation with memory")
@@ -217,9 +226,9 @@ def make_plan(scene: "Scene") -> Plan:
                                   f"interface.work_of_adhesion = {_fmt(wa)} J/m^2")
     if visco:
         names = [type(m).__name__ for m in scene.materials if getattr(m, "is_viscoelastic", False)]
-        rows["viscoelastic"] = Effect("viscoelastic", "contact.simulate (rheological elements "
-                                      "scaled by 4 dx)", f"body material {', '.join(names)} is "
-                                      "viscoelastic")
+        rows["viscoelastic"] = Effect("viscoelastic", "rheological elements of the material's "
+                                      "type, parameters scaled by 4 dx [H3]",
+                                      f"body material {', '.join(names)} is viscoelastic")
 
     impl_call = None
     if torsion or tangential:

@@ -30,7 +30,7 @@ FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear":
 FIELD_EXTENT = 1.5
 
 _API_ISSUE = {"torsion": 3, "twist_history": 3, "simulate": 4, "tangential": 4,
-              "shift_history": 4}
+              "shift_history": 4, "viscoelastic_history": "6b"}
 
 
 @dataclass
@@ -200,7 +200,14 @@ def _run(scene: "Scene") -> SceneResult:
     out: dict[str, np.ndarray] = {"time": h.time.copy()}
     normal_state = None
 
-    if plan.route == "foundation":
+    if plan.route == "viscoelastic":
+        kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
+        res = _need(contact, "viscoelastic_history")(time=h.time, **{n_kind: N}, **kw)
+        computed.append("viscoelastic_history")
+        for k in plan.series:
+            if k != "time":
+                out[k] = _get(res, k, n)
+    elif plan.route == "foundation":
         import contactlab
         LoadPath = getattr(contactlab, "LoadPath", None)
         if LoadPath is None:

@@ -58,7 +58,8 @@ UNITS: dict[str, dict[str, float]] = {
 #: Param.unit strings (the SI unit a parameter is declared in) -> dimension
 DIMENSION_OF_SI_UNIT = {"m": "length", "N": "force", "Pa": "pressure", "rad": "angle",
                         "N m": "torque", "s": "time", "J/m^2": "energy_per_area", "J": "energy",
-                        "Pa s": "viscosity", "1": "dimensionless", "-": "dimensionless"}
+                        "Pa s": "viscosity", "Pa*s": "viscosity",
+                        "1": "dimensionless", "-": "dimensionless"}
 
 _NUMBER = r"[+-]?(?:\d+(?:_\d+)*(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
 _QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")

@@ -302,6 +302,8 @@ def _typed_object(ck: _Checker, path: str, raw: Any, kind: str) -> dict | None:
             val = ck.choice(kp, v, ("linear", "cubic"))
         elif dim == "terms":
             val = _terms(ck, kp, v)
+        elif isinstance(v, list):    # sequence parameters (e.g. Prony-series moduli)
+            val = ck.array(kp, v, dim if dim != "number" else "dimensionless")
         else:
             val = ck.quantity(kp, v, dim)
         if val is not None:
@@ -649,6 +651,14 @@ def validate(raw: Any, base_dir: str | Path | None = None) -> tuple[dict, dict]:
         except (ContactlabError, ValueError) as err:
             ck.add("materials", f"({data['materials']['body1']['type']}, "
                    f"{data['materials']['body2']['type']})", _first_line(err))
+    visco = [b for b in ("body1", "body2") if getattr(objects.get(b), "is_viscoelastic", False)]
+    if visco:
+        other = objects.get("body2" if visco[0] == "body1" else "body1")
+        if len(visco) == 2 or (other is not None and getattr(type(other), "name", "") != "rigid"):
+            ck.add("materials", f"({data['materials']['body1']['type']}, "
+                   f"{data['materials']['body2']['type']})",
+                   "a viscoelastic body against a rigid one (the viscoelastic MDR rules cover a "
+                   "rigid indenter on a viscoelastic half-space)")
     if "viscoelastic" in eff and not any(getattr(objects.get(b), "is_viscoelastic", False)
                                          for b in ("body1", "body2")):
         ck.add("outputs.effects", "viscoelastic", "'viscoelastic' only with a viscoelastic body")
