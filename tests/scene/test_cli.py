@@ -14,7 +14,8 @@ from contactlab import Contact
 from contactlab.cli import main
 from contactlab.scene import Scene
 
-from ..tolerances import CLOSED_FORM, OUTPUT_ROUNDTRIP, TABULATED_SCENE
+from .helpers import example_params
+from ..tolerances import CLOSED_FORM, OUTPUT_ROUNDTRIP, TABULATED_SCENE, VISCO_SCENE
 
 ROOT = Path(__file__).parents[2]
 EX = ROOT / "examples"
@@ -110,14 +111,35 @@ def test_hip_joint_torsion(tmp_path):
     assert s["dissipated_energy"][-1] > 0
 
 
+def _has_viscoelastic():
+    try:
+        from contactlab.materials import viscoelastic  # noqa: F401
+    except ImportError:
+        return False
+    return hasattr(Contact, "viscoelastic_history")
+
+
+@pytest.mark.skipif(not _has_viscoelastic(), reason="viscoelastic materials (issue 6b) not merged")
+def test_viscoelastic_creep(tmp_path):
+    s, _ = run(tmp_path, "viscoelastic_creep.toml", "csv")
+    t, a = s["time"][1:] - 1e-3, s["radius"][1:]
+    G_inf, G_1, eta_1, R, F0 = 1e6, 2e6, 3e6, 5e-3, 1.0
+    tau = eta_1 * (G_inf + G_1) / (G_inf * G_1)
+    J = 1 / G_inf - (1 / G_inf - 1 / (G_inf + G_1)) * np.exp(-t / tau)    # SLS creep compliance
+    # 1 ms ramp instead of a step (O(1e-3 s / tau)) plus the foundation's discretisation
+    np.testing.assert_allclose(a, (3 * R * F0 * J / 16) ** (1 / 3), rtol=VISCO_SCENE)
+    assert a[-1] == pytest.approx(0.976156e-3, rel=1e-5)
+
+
 def test_every_example_is_tested():
     names = {p.name for p in EX.glob("*.toml")}
     tested = {"hertz_steel_ball.toml", "conical_indenter.toml", "rounded_flat_punch.toml",
-              "measured_profile.toml", "steel_ball_twist.toml", "hip_joint_torsion.toml"}
+              "measured_profile.toml", "steel_ball_twist.toml", "hip_joint_torsion.toml",
+              "viscoelastic_creep.toml"}
     assert names == tested
 
 
-@pytest.mark.parametrize("path", sorted(EX.glob("*.toml")), ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", example_params())
 def test_every_example_validates_and_plans(path, capsys):
     assert main(["validate", str(path)]) == 0
     assert main(["plan", str(path), "--json"]) == 0

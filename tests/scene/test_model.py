@@ -1,7 +1,6 @@
 """Scene round trips (dict, TOML, objects), the TOML writer and the sampled load path."""
 import math
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,12 +13,10 @@ from contactlab.profiles import Cone, Paraboloid, Polynomial, Tabulated, Truncat
 from contactlab.scene import Scene
 from contactlab.scene.toml_io import dumps
 
-from .helpers import base, twist_scene
-
-EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
+from .helpers import base, example_params, twist_scene
 
 
-@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", example_params())
 def test_examples_round_trip(path):
     s = Scene.from_toml(path)
     assert Scene.from_dict(s.to_dict(), base_dir=path.parent) == s
