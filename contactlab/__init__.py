@@ -8,8 +8,11 @@ from . import errors, materials, profiles
 from .contact import Contact
 from .materials import Elastic, Rigid, effective_moduli
 from .states import NormalState
+from .adhesion import AdhesionCycle, AdhesiveNormalState
+from .viscoelastic import ViscoelasticHistory
 
 __version__ = "0.1.0"
 
 __all__ = ["Contact", "Elastic", "Rigid", "effective_moduli", "NormalState", "profiles",
-           "materials", "errors", "__version__"]
+           "materials", "errors", "__version__",
+           "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory"]

@@ -66,7 +66,11 @@ class Contact:
             "rtol", "rtol", "1", "positive", "relative tolerance").check(rtol)
         if self.rtol >= 1:
             raise ParameterError(f"rtol={rtol!r} is invalid: it must satisfy 0 < rtol < 1.")
-        self.moduli  # validate the pair now
+        if any(getattr(m, "is_viscoelastic", False) for m in self.materials):
+            from .physics.viscoelastic import check_pair
+            check_pair(m1, m2)  # only (viscoelastic, rigid) is covered (physics.md §7)
+        else:
+            self.moduli  # validate the pair now
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),
@@ -83,7 +87,8 @@ class Contact:
         return bool(self.work_of_adhesion)
 
     # ------------------------------------------------------------------ normal contact
-    def normal(self, *, depth: Any = None, force: Any = None, radius: Any = None) -> NormalState:
+    def normal(self, *, depth: Any = None, force: Any = None, radius: Any = None,
+               branch: str = "stable") -> NormalState:
         """Frictionless (non-adhesive) normal contact for given depth, force or contact radius.
 
         Exactly one of the keywords; scalars or arrays (the state has their shape).
@@ -96,6 +101,9 @@ class Contact:
             Normal force ``F_N``, N (``<= 0`` gives the unloaded state).
         radius : float or array_like, optional
             Contact radius ``a``, m (not for a flat punch, whose radius is fixed).
+        branch : {"stable", "unstable"}
+            Adhesive contacts only (``work_of_adhesion > 0``): which JKR equilibrium to return
+            for ``depth=``/``force=``; see :func:`contactlab.physics.adhesion.adhesive_normal`.
 
         Returns
         -------
@@ -115,7 +123,10 @@ class Contact:
                                  f"{sorted(given) or 'none'}.")
         if self.is_adhesive:
             from .physics.adhesion import adhesive_normal  # noqa: F401  (adhesion module)
-            return adhesive_normal(self, **given)
+            return adhesive_normal(self, branch=branch, **given)
+        if branch != "stable":
+            raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
+                                 "contact has a single equilibrium (use branch='stable').")
         key, value = next(iter(given.items()))
         arr = as_float_array(key, value)
         prof = self.profile
@@ -125,14 +136,14 @@ class Contact:
             a = prof._radius_of_depth(d)
         elif key == "radius":
             if np.any(arr < 0):
-                raise ParameterError(f"radius contains {arr[arr < 0].ravel()[0]!r}: contact "
+                raise ParameterError(f"radius contains {float(arr[arr < 0].ravel()[0])!r}: contact "
                                      "radii must be >= 0 m.")
             if np.isfinite(prof.wall_radius):
                 raise NotSupportedError(
                     f"radius= does not determine the state of {prof!r}: its contact radius is "
                     "fixed by the punch wall. Give depth= or force=.")
             if np.any(arr >= prof.max_radius):
-                raise OutsideTheoryError(f"radius={np.max(arr)!r} m is invalid: it must stay below "
+                raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay below "
                                          f"max_radius={prof.max_radius!r} m of {prof!r}.")
             a = arr.copy()
             a[a < prof.flat_radius] = np.where(a[a < prof.flat_radius] > 0, prof.flat_radius, 0.0)
@@ -190,7 +201,7 @@ class Contact:
                     if np.any(at_limit) and not np.isfinite(prof.wall_radius):
                         i = int(np.argmax(at_limit))
                         raise OutsideTheoryError(
-                            f"force={Fs[i]!r} N needs a contact radius >= max_radius={limit!r} m "
+                            f"force={float(Fs[i])!r} N needs a contact radius >= max_radius={limit!r} m "
                             f"of {prof!r}; reduce the force.")
                     lo = np.where(short, hi_c, lo)
                     hi = np.where(short, hi * 4.0, hi)
@@ -206,3 +217,45 @@ class Contact:
         d[pos] = dp
         prof._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))
         return a, d
+
+    # ---- adhesion (issue 6)
+    def pull_off(self, control: str = "force") -> NormalState:
+        """State at detachment of an adhesive contact (JKR through the MDR, physics.md §4).
+
+        Parameters
+        ----------
+        control : {"force", "displacement"}
+            Force control: minimum of ``F(a)`` (sphere: ``-3/2 πΔγR``). Displacement control
+            (fixed grips): minimum of ``d(a)`` (sphere: ``-5/6 πΔγR``).
+
+        Returns
+        -------
+        AdhesiveNormalState
+            ``.force``, ``.radius``, ``.depth`` at detachment.
+        """
+        self._require_adhesion("pull_off")
+        from .physics.adhesion import pull_off
+        return pull_off(self, control)
+
+    def adhesion_cycle(self, *, depth: Any = None, force: Any = None):
+        """Approach/retraction history with JKR jump-in and jump-off; see
+        :func:`contactlab.physics.adhesion.adhesion_cycle`."""
+        self._require_adhesion("adhesion_cycle")
+        from .physics.adhesion import adhesion_cycle
+        return adhesion_cycle(self, depth=depth, force=force)
+
+    def _require_adhesion(self, what: str) -> None:
+        if not self.is_adhesive:
+            raise ParameterError(f"{what}() needs work_of_adhesion > 0; got "
+                                 f"work_of_adhesion={self.work_of_adhesion!r}.")
+
+    # ---- viscoelastic materials (issue 6)
+    def viscoelastic_history(self, *, time: Any, depth: Any = None, force: Any = None,
+                             n_springs: int | None = None, max_radius: float | None = None):
+        """Normal contact history of a rigid indenter on a viscoelastic half-space (MDR, [H3]).
+
+        See :func:`contactlab.viscoelastic.viscoelastic_history`.
+        """
+        from .viscoelastic import viscoelastic_history
+        return viscoelastic_history(self, time=time, depth=depth, force=force,
+                                    n_springs=n_springs, max_radius=max_radius)

@@ -80,10 +80,13 @@ def check_finite(name: str, value: object, what: str = "", unit: str = "") -> fl
 def check_in_range(name: str, value: object, low: float, high: float, *, low_open: bool,
                    high_open: bool, what: str) -> float:
     """Check ``low <(=) value <(=) high`` and return the value as float."""
-    v = check_finite(name, value, what)
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        v = float("nan")
     lo_ok = v > low if low_open else v >= low
     hi_ok = v < high if high_open else v <= high
-    if not (lo_ok and hi_ok):
+    if not (lo_ok and hi_ok):   # also catches NaN
         lo_s = "<" if low_open else "<="
         hi_s = "<" if high_open else "<="
         raise ParameterError(
@@ -99,6 +102,6 @@ def as_float_array(name: str, value: object, *, allow_nan: bool = False) -> np.n
     except (TypeError, ValueError) as err:
         raise ParameterError(f"{name}={value!r} is invalid: expected real numbers.") from err
     if not allow_nan and not np.all(np.isfinite(arr)):
-        bad = arr[~np.isfinite(arr)].ravel()[0]
+        bad = float(arr[~np.isfinite(arr)].ravel()[0])
         raise ParameterError(f"{name} contains {bad!r}: every value must be finite.")
     return arr

@@ -5,6 +5,38 @@ CLOSED_FORM = 1e-10
 #: tanh-sinh quadrature at the default rtol 1e-10 against a closed form: the quadrature's own
 #: estimate is 1e-10; rounding in singular integrands (flat-punch edges, slope jumps) costs ~10x
 QUADRATURE = 1e-9
+
+
+def tabulated_linear(spacing_over_radius: float) -> float:
+    """Piecewise-linear table of a smooth profile: the interpolant differs from the profile at
+    second order, so force and radius errors are <= C (Δr/a)²; measured C = 0.35 (force) and
+    2.4 (radius) for paraboloid and n = 4 at 1000 points; 3 leaves margin."""
+    return 3.0 * spacing_over_radius**2
+
+
+#: Cubic-spline table (1000 points) of a smooth profile: interpolation error ~ (Δr/a)^4 ~ 1e-11,
+#: transform converged to rounding (per-interval Gauss rule); measured <= 2.2e-12.
+TABULATED_CUBIC_1000 = 1e-10
+#: JKR pull-off radii: bracketed solve of φ(a) = 3/2 or 1/2 to rtol 1e-14 on closed-form g'; the
+#: radius enters through a root of a smooth function, so only rounding (~1e-13) remains
+JKR_ROOT = 1e-10
+#: JKR pull-off with g' from 4th-order finite differences (profiles without closed-form g'):
+#: the force is stationary at the minimum, the radius carries the ~1e-9 derivative error
+JKR_FINITE_DIFFERENCE = 1e-7
+#: Δγ → 0: JKR differs from Hertz by O(sqrt(Δγ)); at Δγ = 1e-20 J/m² the relative gap is ~1e-9
+JKR_SMALL_ADHESION = 1e-7
+#: Gauss-Legendre (96 nodes in θ, r = a sinθ) integral of the JKR pressure against F
+PRESSURE_INTEGRAL = 1e-9
+#: MDR viscoelastic foundation, closed forms that are exact in time (Maxwell relaxation, elastic
+#: limits): only the midpoint sum over 2000 elements remains, O((Δx/a)²) ≈ 1e-6
+VISCO_SPATIAL = 1e-5
+#: SLS creep with 400 steps: second-order time integration, measured 1.5e-5; bound with margin
+VISCO_TIME = 5e-4
+#: Ting unloading (800 steps, 2000 elements): measured 4e-6 of the peak force
+VISCO_TING = 2e-5
+#: contact edge interpolated inside one element cell (linear interpolation of a smooth
+#: function over Δx): measured ≤ 6e-4 Δx; bound in units of the element spacing
+VISCO_EDGE = 1e-2
 #: Tabulated profile with 1000 linear-interpolation points sampled from an analytic profile:
 #: interpolation error ~ (Δr)² f''/8 relative to f, i.e. ~1e-7 for smooth profiles
 TABULATED_1000 = 1e-6

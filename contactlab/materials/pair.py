@@ -57,8 +57,12 @@ def effective_moduli(m1: Material, m2: Material) -> EffectiveModuli:
             raise ParameterError(f"materials[{i - 1}]={m!r} is invalid: expected a Material "
                                  "(e.g. contactlab.Elastic(E=..., nu=...) or Rigid()).")
         if m.is_viscoelastic:
-            raise NotSupportedError(f"materials[{i - 1}]={m!r} is viscoelastic: it has no "
-                                    "single effective modulus.")
+            raise NotSupportedError(
+                f"materials[{i - 1}]={m!r} is viscoelastic: it has no single effective modulus. "
+                "Only normal contact of a rigid indenter on an incompressible viscoelastic "
+                "half-space is covered (contact.viscoelastic_history); elastic solvers (normal, "
+                "tangential, torsion) with viscoelastic materials are not covered by the theory "
+                "in physics.md.")
     c1, c2 = m1._compliances(), m2._compliances()
     tot = [a + b for a, b in zip(c1, c2)]
     if min(tot) <= 0:

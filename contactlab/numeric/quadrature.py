@@ -26,7 +26,8 @@ __all__ = ["QuadratureResult", "tanh_sinh", "DEFAULT_RTOL", "MAX_LEVEL"]
 
 DEFAULT_RTOL = 1e-10
 MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
-_T_MAX = 3.15          # pi/2*sinh(3.15) ~ 18.3: weights below 1e-15 relative beyond
+_T_MAX = 4.5           # nodes reach within exp(-pi*sinh(4.5)) ~ 1e-61 of the ends: the tail of an
+                       # r**-0.7 end singularity beyond them is < 1e-18 (3.15 would lose 1e-8)
 _H0 = 0.5
 
 

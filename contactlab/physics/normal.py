@@ -66,6 +66,12 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
         x_hi = x_edges[1:].ravel()
         rr_b = np.broadcast_to(rp, lo.shape).ravel()
         gr_b = np.broadcast_to(grp, lo.shape).ravel()
+        # g varies on the scale u ~ sqrt(2(r - b)/r) just beyond a slope jump at b < r: the
+        # small-u cut-off (see integrand) must stay well below that scale
+        gap = np.full(rp.shape, np.inf)
+        for b in cuts:
+            gap = np.where(rp > b, np.minimum(gap, (rp - b) / rp), gap)
+        u_min = np.broadcast_to(np.minimum(_U_MIN, 1e-2 * np.sqrt(2 * gap)), lo.shape).ravel()
 
         def node_x(u: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             x = np.clip(rr_b[idx][:, None] * np.cosh(u), x_lo[idx][:, None], x_hi[idx][:, None])
@@ -77,7 +83,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
             # Below u = 1e-4 the integrand is g'(r)/2 + O(u²); evaluating it there would divide
             # rounding noise of g(x) - g(r) by u², so the value at 1e-4 is used instead (the
             # neglected variation is ~1e-8 relative over an interval of length 1e-4).
-            u = np.maximum(u, _U_MIN)
+            u = np.maximum(u, u_min[idx][:, None])
             x, interior = node_x(u, idx)
             sh = np.sinh(u)
             val = (profile._g(x) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)

@@ -15,7 +15,7 @@ To implement a subclass
    ``flat_radius`` (g = 0 for |x| < it), ``wall_radius`` (the contact radius cannot exceed it, as
    for a flat punch), ``breakpoints`` (radii where f' jumps; quadratures split there).
 
-Comes free: ``height``, ``slope``, ``g`` (with ``strategy=``), ``g_integral``,
+Comes free: ``height``, ``derivative`` (f'), ``g`` (with ``strategy=``), ``g_integral``,
 ``radius_of_depth``, ``inverse_transform``, ``available_strategies``, ``formulas``, ``to_latex``,
 ``+`` and scalar ``*`` (giving :class:`~contactlab.profiles.compound.Sum`), ``repr``/``==``/``hash``.
 """
@@ -129,8 +129,11 @@ class Profile(ABC):
         raise StrategyUnavailableError(
             f"{type(self).__name__} defines no f(r); only its transform g(x) is known.")
 
-    def slope(self, r: Any) -> np.ndarray:
-        """Slope ``f'(r)`` (dimensionless) for radii ``r >= 0`` (m)."""
+    def derivative(self, r: Any) -> np.ndarray:
+        """Slope ``f'(r)`` (dimensionless) for radii ``r >= 0`` (m).
+
+        (Named ``derivative`` because ``slope`` is a parameter of cone-like profiles.)
+        """
         r = self._check_radii("r", r)
         return self._slope_any(r)
 
@@ -332,7 +335,7 @@ class Profile(ABC):
         if np.any(a >= self.max_radius):
             i = int(np.argmax(a >= self.max_radius))
             raise OutsideTheoryError(
-                f"depth={dp.ravel()[i]!r} m needs a contact radius >= max_radius="
+                f"depth={float(dp.ravel()[i])!r} m needs a contact radius >= max_radius="
                 f"{self.max_radius!r} m of {self!r}; reduce the depth/force.")
         out[pos] = a
         self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
@@ -355,7 +358,7 @@ class Profile(ABC):
             if np.isfinite(limit) and np.any(short & (hi >= limit * (1 - 1e-15))):
                 i = int(np.argmax(short & (hi >= limit * (1 - 1e-15))))
                 raise OutsideTheoryError(
-                    f"depth={d.ravel()[i]!r} m needs a contact radius >= max_radius={limit!r} m "
+                    f"depth={float(d.ravel()[i])!r} m needs a contact radius >= max_radius={limit!r} m "
                     f"of {self!r}; reduce the depth/force.")
             lo = np.where(short, hi_c, lo)
             hi = np.where(short, hi * 4.0, hi)
@@ -398,5 +401,5 @@ class Profile(ABC):
     def _check_radii(self, name: str, r: Any) -> np.ndarray:
         arr = as_float_array(name, r)
         if np.any(arr < 0):
-            raise ParameterError(f"{name} contains {arr[arr < 0].ravel()[0]!r}: radii must be >= 0 m.")
+            raise ParameterError(f"{name} contains {float(arr[arr < 0].ravel()[0])!r}: radii must be >= 0 m.")
         return arr

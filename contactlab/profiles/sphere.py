@@ -48,7 +48,7 @@ class Sphere(Profile):
     def _guard(self, r: np.ndarray, name: str) -> None:
         if np.any(r >= self.R):
             raise OutsideTheoryError(
-                f"{name}={np.max(r)!r} m is invalid for Sphere(R={self.R!r}): radii must stay "
+                f"{name}={float(np.max(r))!r} m is invalid for Sphere(R={self.R!r}): radii must stay "
                 "below the sphere radius R.")
 
     def _height(self, r: np.ndarray) -> np.ndarray:

@@ -1,0 +1,159 @@
+"""Viscoelastic normal contact histories: driver and :class:`ViscoelasticHistory` result.
+
+The kernel is :mod:`contactlab.physics.viscoelastic` (MDR viscoelastic foundation, physics.md §7);
+:meth:`Contact.viscoelastic_history` calls :func:`viscoelastic_history`.
+"""
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .errors import ConvergenceError, NotSupportedError, ParameterError
+from .params import as_float_array
+from .physics import viscoelastic as _ve
+
+__all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS"]
+
+#: default number of foundation elements over the largest contact radius
+DEFAULT_N_SPRINGS = 2000
+
+
+@dataclass(frozen=True)
+class ViscoelasticHistory:
+    """Per-step result of a viscoelastic normal-contact history.
+
+    Attributes
+    ----------
+    time : ndarray
+        Times, s.
+    depth : ndarray
+        Indentation depth, m (under force control, the solved depth; after release, the depth at
+        which the indenter just touches the surface).
+    force : ndarray
+        Normal force, N (never tensile: no adhesion).
+    radius : ndarray
+        Contact radius, m, interpolated inside the outermost element's cell (growth front:
+        ``d = g(a)``; shrinking contact: zero element force).
+    meta : dict
+        ``control``, ``n_springs``, ``spacing`` (m), ``material``, ``foundation_radius`` (m).
+    """
+
+    time: np.ndarray
+    depth: np.ndarray
+    force: np.ndarray
+    radius: np.ndarray
+    meta: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Per-step arrays (``time``, ``depth``, ``force``, ``radius``)."""
+        return {"time": self.time, "depth": self.depth, "force": self.force,
+                "radius": self.radius}
+
+    def to_csv(self, path: str) -> None:
+        """Write the per-step arrays to a CSV file (SI units in the header)."""
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["time_s", "depth_m", "force_N", "radius_m"])
+            for row in zip(self.time, self.depth, self.force, self.radius):
+                w.writerow([repr(float(v)) for v in row])
+
+
+def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = None,
+                         n_springs: int | None = None, max_radius: float | None = None
+                         ) -> ViscoelasticHistory:
+    """Normal contact of a rigid indenter on a viscoelastic half-space under a load history.
+
+    Parameters
+    ----------
+    contact : Contact
+        ``materials = (viscoelastic, Rigid())`` (either order); no adhesion.
+    time : array_like
+        Non-decreasing times, s (1D). The first state is reached from the virgin, unloaded
+        half-space by a jump (glassy response); repeated times are jumps.
+    depth, force : array_like, exactly one
+        Prescribed indentation depth (m) or normal force (N), same length as ``time``.
+    n_springs : int, optional
+        Number of foundation elements (default 2000) over the foundation radius.
+    max_radius : float, optional
+        Foundation radius, m. Default: the geometric radius at the largest depth (depth
+        control) or the elastic radius at the largest force with the relaxed-at-the-end modulus
+        ``G(t_end)`` (force control; an upper bound since ``J(t) G(t) <= 1``), plus 10 %.
+
+    Returns
+    -------
+    ViscoelasticHistory
+
+    Raises
+    ------
+    NotSupportedError
+        Materials other than (viscoelastic, rigid), or adhesion.
+    ConvergenceError
+        The contact reached the edge of the foundation (give a larger ``max_radius``).
+    """
+    m1, m2 = contact.materials
+    mat = _ve.check_pair(m1, m2)
+    if contact.is_adhesive:
+        raise NotSupportedError("work_of_adhesion > 0 with a viscoelastic material is not covered "
+                                "by physics.md §7 (adhesion-free unloading only).")
+    given = {k: v for k, v in (("depth", depth), ("force", force)) if v is not None}
+    if len(given) != 1:
+        raise ParameterError("viscoelastic_history() needs exactly one of depth=, force=; got "
+                             f"{sorted(given) or 'none'}.")
+    key, value = next(iter(given.items()))
+    t = as_float_array("time", time)
+    load = as_float_array(key, value)
+    if t.ndim != 1 or t.size == 0:
+        raise ParameterError(f"time must be a non-empty 1D array; got shape {t.shape}.")
+    if load.shape != t.shape:
+        raise ParameterError(f"{key} has shape {load.shape} but time has shape {t.shape}: give one "
+                             "value per time.")
+    if np.any(np.diff(t) < 0):
+        i = int(np.argmax(np.diff(t) < 0)) + 1
+        raise ParameterError(f"time[{i}]={t[i]!r} s is invalid: times must be non-decreasing.")
+    if n_springs is None:
+        n_springs = DEFAULT_N_SPRINGS
+    if int(n_springs) != n_springs or n_springs < 2:
+        raise ParameterError(f"n_springs={n_springs!r} is invalid: it must be an integer >= 2.")
+    n_springs = int(n_springs)
+    prof = contact.profile
+    G_inf, Gk, tk, eta = mat.prony()
+    if max_radius is None:
+        if key == "depth":
+            d_max = float(np.max(load))
+            a_max = float(prof._radius_of_depth(np.array(d_max))) if d_max > 0 else 0.0
+        else:
+            F_max = float(np.max(load))
+            G_end = float(mat.relaxation(t[-1] - t[0])) if (G_inf > 0 or Gk.size) else 0.0
+            if G_end <= 0:
+                G_end = G_inf
+            from .contact import Contact
+            from .materials import Elastic, Rigid
+            ref = Contact(prof, (Elastic(E=3.0 * G_end, nu=0.5), Rigid()))
+            a_max = float(ref.normal(force=max(F_max, 0.0)).radius)
+        if a_max <= 0:
+            a_max = 1.0 if not np.isfinite(prof.max_radius) else 0.5 * prof.max_radius
+        L = 1.1 * a_max
+    else:
+        L = float(as_float_array("max_radius", max_radius))
+        if not L > 0:
+            raise ParameterError(f"max_radius={max_radius!r} is invalid: it must be > 0 m.")
+    L = min(L, prof.wall_radius, prof.max_radius * (1 - 1e-12))
+    dx = L / n_springs
+    x = (np.arange(n_springs) + 0.5) * dx
+    g_x = prof._g(x)
+    scale = float(prof._g(np.array(L))) if np.isfinite(prof._g(np.array(L))) else L * 1e-3
+    res = _ve.solve_history(g_x, dx, (G_inf, Gk, tk, eta), t,
+                            depth=load if key == "depth" else None,
+                            force=load if key == "force" else None,
+                            depth_scale=max(scale * 1e-3, 1e-300))
+    if np.any(res["edge_reached"]) and not np.isfinite(prof.wall_radius):
+        i = int(np.argmax(res["edge_reached"]))
+        raise ConvergenceError(
+            f"the contact reached the edge of the foundation (radius {L:.6g} m) at step {i}: "
+            "pass a larger max_radius=.")
+    meta = {"control": key, "n_springs": n_springs, "spacing": dx, "material": mat,
+            "foundation_radius": L}
+    return ViscoelasticHistory(t, res["depth"], res["force"], res["radius"], meta)

@@ -1,0 +1,46 @@
+"""Effective moduli (physics.md §1) against the formulas written out independently."""
+from __future__ import annotations
+
+import pytest
+
+import contactlab as cl
+from contactlab.materials import effective_moduli
+
+from .tolerances import CLOSED_FORM
+
+
+def test_steel_on_steel():
+    E, nu = 210e9, 0.3
+    G = E / (2 * (1 + nu))
+    m = effective_moduli(cl.Elastic(E=E, nu=nu), cl.Elastic(E=E, nu=nu))
+    assert m.normal == pytest.approx(E / (2 * (1 - nu**2)), rel=CLOSED_FORM)
+    assert m.tangential == pytest.approx(2 * G / (2 - nu), rel=CLOSED_FORM)
+    assert m.torsional == pytest.approx(G / 2, rel=CLOSED_FORM)     # identical bodies: G_t = G/2
+    assert m.elastically_similar
+    # physics.md §1: G*/G_t = 2.35 for steel on steel
+    assert m.tangential / m.torsional == pytest.approx(4 / (2 - nu) / 1, rel=CLOSED_FORM)
+    assert round(m.tangential / m.torsional, 2) == 2.35
+
+
+def test_incompressible_on_rigid():
+    G = 1e6
+    rubber = cl.Elastic.from_shear_modulus(G, 0.5)
+    m = effective_moduli(rubber, cl.Rigid())
+    assert m.normal == pytest.approx(4 * G, rel=CLOSED_FORM)     # E* = 4E/3 = 4G
+    assert m.torsional == pytest.approx(G, rel=CLOSED_FORM)
+    assert m.tangential == pytest.approx(4 * G / 1.5, rel=CLOSED_FORM)
+    assert m.elastically_similar
+
+
+def test_dissimilar_pair_compliances_add():
+    a, b = cl.Elastic(E=200e9, nu=0.3), cl.Elastic(E=1e9, nu=0.46)
+    m = a.pair(b)
+    assert 1 / m.torsional == pytest.approx(1 / a.G + 1 / b.G, rel=CLOSED_FORM)
+    assert 1 / m.normal == pytest.approx((1 - 0.09) / 200e9 + (1 - 0.46**2) / 1e9, rel=CLOSED_FORM)
+    assert not m.elastically_similar
+
+
+def test_identity():
+    assert cl.Elastic(E=1.0, nu=0.2) == cl.Elastic(E=1.0, nu=0.2)
+    assert len({cl.Elastic(E=1.0, nu=0.2), cl.Elastic(E=1.0, nu=0.2)}) == 1
+    assert repr(cl.Rigid()) == "Rigid()"
