@@ -39,6 +39,8 @@ sinusoid = { twist = "2 mrad", cycles = 2, steps_per_cycle = 100 }
 
 [outputs]
 method = "exact"
+series = ["time", "depth", "force", "radius", "peak_pressure", "twist", "torque", "stick_radius",
+          "dissipated_energy"]
 """
 
 
@@ -116,7 +118,7 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         note = f"note: {err} Showing the preload only."
         data = scene.to_dict()
         data["load_path"] = data["load_path"][:1]
-        data.pop("outputs", None)
+        data["outputs"] = {"series": ["time", "depth", "force", "radius", "peak_pressure"]}
         data.pop("interface", None)
         scene = Scene.from_dict(data)
         result = scene.run()
@@ -131,17 +133,39 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         payload.update({"ok": True, "files": [str(f) for f in files], "notes": note})
         print(json.dumps(payload, indent=1))
         return 0
-    from . import Contact  # noqa: F401  (the demo shows the moduli it used)
-    E_star = scene.contact().moduli.normal
+    moduli = scene.contact().moduli
     print(scene.title)
-    print(f"E* = {E_star / 1e9:.3f} GPa, G_t = {scene.contact().moduli.torsional / 1e9:.3f} GPa")
+    print(f"E* = {moduli.normal / 1e9:.3f} GPa, G_t = {moduli.torsional / 1e9:.3f} GPa")
     print(str(scene.plan()))
-    print(result.table(rows=12))
+    print(_demo_tables(scene, result))
     for f in files:
         print(f"wrote {f}")
     if note:
         print(note)
     return 0
+
+
+def _demo_tables(scene: Any, result: Any) -> str:
+    """Preload table (Hertz numbers) and, when computed, the twist cycle at its quarter points."""
+    import numpy as np
+    seg = scene.history().segment
+    s = result.series
+    pre = np.flatnonzero(seg == 0)
+    lines = ["preload (exact Hertz through the MDR):",
+             f"{'depth [um]':>12} {'force [N]':>12} {'radius [um]':>12} {'p_max [MPa]':>12}"]
+    for i in pre[np.linspace(0, pre.size - 1, 5).round().astype(int)]:
+        lines.append(f"{s['depth'][i] * 1e6:12.4f} {s['force'][i]:12.4f} "
+                     f"{s['radius'][i] * 1e6:12.4f} {s['peak_pressure'][i] / 1e6:12.2f}")
+    if "torque" in s:
+        tw = np.flatnonzero(seg == 1)
+        quarter = max(1, int(scene.to_dict()["load_path"][1]["sinusoid"]["steps_per_cycle"]) // 4)
+        lines += ["oscillating twist (exact Masing history):",
+                  f"{'step':>6} {'twist [mrad]':>13} {'torque [N mm]':>14} "
+                  f"{'stick radius [um]':>18} {'dissipated [uJ]':>16}"]
+        for i in tw[quarter - 1::quarter]:
+            lines.append(f"{'#' + str(i):>6} {s['twist'][i] * 1e3:13.4f} {s['torque'][i] * 1e3:14.5f} "
+                         f"{s['stick_radius'][i] * 1e6:18.3f} {s['dissipated_energy'][i] * 1e6:16.5f}")
+    return "\n".join(lines)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -175,10 +199,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from .errors import ContactlabError, ConvergenceError, SceneError
 
     parser = _parser()
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:   # --help, --version (0) and usage errors (2)
-        return int(exc.code or 0)
+    args = parser.parse_args(argv)   # --help/--version exit 0, usage errors exit 2 (SystemExit)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2

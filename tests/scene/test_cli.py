@@ -188,16 +188,21 @@ def test_numerical_failure_exit_1(tmp_path, capsys):
     assert json.loads(capsys.readouterr().out)["exit"] == 1
 
 
-def test_usage_errors():
+def test_usage_errors(capsys):
     assert main([]) == 2
-    assert main(["run"]) == 2
-    assert main(["--version"]) == 0
+    for argv, code in ((["run"], 2), (["run", "x.toml", "--format", "xml"], 2), (["--version"], 0)):
+        with pytest.raises(SystemExit) as e:
+            main(argv)
+        assert e.value.code == code
 
 
 def test_demo_runs_on_a_fresh_install(tmp_path, capsys):
     assert main(["demo", "-o", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "steel ball on steel flat" in out and "force [N]" in out
+    if hasattr(Contact, "twist_history"):
+        assert "oscillating twist (exact Masing history)" in out
+        assert "twist_history" in out
     try:
         import matplotlib  # noqa: F401
         assert (tmp_path / "contactlab_demo.png").exists()
