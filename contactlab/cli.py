@@ -1,35 +1,172 @@
 """The ``contactlab`` command line.
 
-Subcommands: ``demo`` (an embedded default scene), ``formulas`` (closed-form formulas of a
-profile, as text, LaTeX or Python) and ``--version``; later issues add ``run``, ``validate``,
-``plan``. Exit codes: 0 ok, 2 invalid input, 1 numerical failure.
+Subcommands: ``run SCENE``, ``validate SCENE``, ``plan SCENE``, ``demo``, ``formulas`` (closed-form
+formulas of a registered profile as text, LaTeX or Python); ``--version``.
+Exit codes: 0 ok, 2 invalid scene (or usage), 1 numerical failure. ``--json`` prints one JSON
+document on stdout for machines; messages for humans otherwise (errors on stderr).
 """
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
 
-__all__ = ["main"]
+__all__ = ["main", "DEMO_SCENE"]
+
+#: The scene ``contactlab demo`` runs: steel ball on a steel flat, preload then oscillating twist.
+DEMO_SCENE = """\
+[scene]
+title = "demo: steel ball on steel flat, preload then oscillating twist"
+
+[profile]
+type = "paraboloid"
+R = "10 mm"
+
+[materials]
+body1 = { type = "elastic", E = "210 GPa", nu = 0.3 }
+body2 = { type = "elastic", E = "210 GPa", nu = 0.3 }
+
+[interface]
+friction = 0.2
+
+[[load_path]]
+ramp = { force = "100 N", steps = 20 }
+
+[[load_path]]
+sinusoid = { twist = "2 mrad", cycles = 2, steps_per_cycle = 100 }
+
+[outputs]
+method = "exact"
+series = ["time", "depth", "force", "radius", "peak_pressure", "twist", "torque", "stick_radius",
+          "dissipated_energy"]
+"""
 
 
-def _demo(args: argparse.Namespace) -> int:
-    import numpy as np
+def _emit(args: argparse.Namespace, payload: dict[str, Any], text: str) -> None:
+    if getattr(args, "json", False):
+        print(json.dumps(payload, indent=1))
+    elif text:
+        print(text)
 
-    from . import Contact, Elastic
-    from .profiles import Paraboloid
 
-    steel = Elastic(E=210e9, nu=0.3)
-    ball = Paraboloid(R=0.01)
-    contact = Contact(ball, materials=(steel, steel))
-    depths = np.array([0.25, 0.5, 1.0, 2.0, 4.0]) * 1e-6
-    s = contact.normal(depth=depths)
-    print("contactlab demo: steel sphere (R = 10 mm) on a steel flat, E = 210 GPa, nu = 0.3")
-    print(f"effective modulus E* = {contact.moduli.normal / 1e9:.3f} GPa (exact Hertz via the MDR)")
-    print(f"{'depth [um]':>12} {'force [N]':>12} {'radius [um]':>12} {'p_max [MPa]':>12}")
-    for d, f, a, p in zip(s.depth, s.force, s.radius, s.peak_pressure):
-        print(f"{d * 1e6:12.3f} {f:12.4f} {a * 1e6:12.3f} {p / 1e6:12.2f}")
+def _load(args: argparse.Namespace) -> Any:
+    from .scene import Scene
+    return Scene.from_toml(args.scene)
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    scene = _load(args)
+    _emit(args, {"ok": True, "scene": str(args.scene), "steps": scene.history().n_steps},
+          f"{args.scene}: valid ({scene.history().n_steps} load steps)")
     return 0
+
+
+def _cmd_plan(args: argparse.Namespace) -> int:
+    plan = _load(args).plan()
+    _emit(args, {"ok": True, "plan": plan.to_dict()}, str(plan))
+    return 0
+
+
+def _write_outputs(args: argparse.Namespace, result: Any, outdir: Path | None) -> tuple[list, str]:
+    files: list[Path] = []
+    notes = ""
+    if outdir is not None:
+        files += result.write(outdir, args.format)
+    if args.plot:
+        try:
+            files.append(result.plot((outdir or Path(".")) / "plot.png"))
+        except ImportError as err:
+            notes = f"note: no plot written ({err})"
+    return files, notes
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    scene = _load(args)
+    plan = scene.plan()
+    if args.plan:
+        return _cmd_plan(args)
+    result = scene.run()
+    outdir = Path(args.output) if args.output else None
+    files, notes = _write_outputs(args, result, outdir)
+    if args.json:
+        payload = {"ok": True, "files": [str(f) for f in files], "notes": notes}
+        payload.update(result.to_dict() if outdir is None else
+                       {"plan": plan.to_dict(), "meta": result.meta,
+                        "final": {k: float(v[-1]) for k, v in result.series.items()}})
+        print(json.dumps(payload, indent=1))
+        return 0
+    print(f"{scene.title}: {plan.route.replace('_', ' ')} route, computed "
+          f"{', '.join(result.meta['computed'])}")
+    print(result.table())
+    for f in files:
+        print(f"wrote {f}")
+    if notes:
+        print(notes, file=sys.stderr)
+    return 0
+
+
+def _cmd_demo(args: argparse.Namespace) -> int:
+    from .errors import NotSupportedError
+    from .scene import Scene
+    scene = Scene.loads(DEMO_SCENE)
+    note = ""
+    try:
+        result = scene.run()
+    except NotSupportedError as err:  # torsion history not in this build: run the preload only
+        note = f"note: {err} Showing the preload only."
+        data = scene.to_dict()
+        data["load_path"] = data["load_path"][:1]
+        data["outputs"] = {"series": ["time", "depth", "force", "radius", "peak_pressure"]}
+        data.pop("interface", None)
+        scene = Scene.from_dict(data)
+        result = scene.run()
+    outdir = Path(args.output) if args.output else Path(".")
+    files: list[Path] = []
+    try:
+        files.append(result.plot(outdir / "contactlab_demo.png"))
+    except ImportError as err:
+        note = (note + "\n" if note else "") + f"note: no plot written ({err})"
+    if args.json:
+        payload = result.to_dict()
+        payload.update({"ok": True, "files": [str(f) for f in files], "notes": note})
+        print(json.dumps(payload, indent=1))
+        return 0
+    moduli = scene.contact().moduli
+    print(scene.title)
+    print(f"E* = {moduli.normal / 1e9:.3f} GPa, G_t = {moduli.torsional / 1e9:.3f} GPa")
+    print(str(scene.plan()))
+    print(_demo_tables(scene, result))
+    for f in files:
+        print(f"wrote {f}")
+    if note:
+        print(note)
+    return 0
+
+
+def _demo_tables(scene: Any, result: Any) -> str:
+    """Preload table (Hertz numbers) and, when computed, the twist cycle at its quarter points."""
+    import numpy as np
+    seg = scene.history().segment
+    s = result.series
+    pre = np.flatnonzero(seg == 0)
+    lines = ["preload (exact Hertz through the MDR):",
+             f"{'depth [um]':>12} {'force [N]':>12} {'radius [um]':>12} {'p_max [MPa]':>12}"]
+    for i in pre[np.linspace(0, pre.size - 1, 5).round().astype(int)]:
+        lines.append(f"{s['depth'][i] * 1e6:12.4f} {s['force'][i]:12.4f} "
+                     f"{s['radius'][i] * 1e6:12.4f} {s['peak_pressure'][i] / 1e6:12.2f}")
+    if "torque" in s:
+        tw = np.flatnonzero(seg == 1)
+        quarter = max(1, int(scene.to_dict()["load_path"][1]["sinusoid"]["steps_per_cycle"]) // 4)
+        lines += ["oscillating twist (exact Masing history):",
+                  f"{'step':>6} {'twist [mrad]':>13} {'torque [N mm]':>14} "
+                  f"{'stick radius [um]':>18} {'dissipated [uJ]':>16}"]
+        for i in tw[quarter - 1::quarter]:
+            lines.append(f"{'#' + str(i):>6} {s['twist'][i] * 1e3:13.4f} {s['torque'][i] * 1e3:14.5f} "
+                         f"{s['stick_radius'][i] * 1e6:18.3f} {s['dissipated_energy'][i] * 1e6:16.5f}")
+    return "\n".join(lines)
 
 
 def _parse_assignments(items: Sequence[str], what: str) -> dict[str, float]:
@@ -85,16 +222,29 @@ def _formulas(args: argparse.Namespace) -> int:
     return 0
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``contactlab`` console script; returns the exit code."""
+def _parser() -> argparse.ArgumentParser:
     from . import __version__
-    from .errors import ContactlabError, ConvergenceError
+    p = argparse.ArgumentParser(prog="contactlab", description=__doc__.splitlines()[0])
+    p.add_argument("--version", action="version", version=f"contactlab {__version__}")
+    sub = p.add_subparsers(dest="command")
 
-    parser = argparse.ArgumentParser(prog="contactlab", description=__doc__.splitlines()[0])
-    parser.add_argument("--version", action="version", version=f"contactlab {__version__}")
-    sub = parser.add_subparsers(dest="command")
-    p_demo = sub.add_parser("demo", help="run the embedded default scene")
-    p_demo.set_defaults(func=_demo)
+    def add(name: str, func: Any, help_: str, scene: bool = True) -> argparse.ArgumentParser:
+        sp = sub.add_parser(name, help=help_)
+        if scene:
+            sp.add_argument("scene", help="scene file (TOML)")
+        sp.add_argument("--json", action="store_true", help="machine-readable JSON on stdout")
+        sp.set_defaults(func=func)
+        return sp
+
+    r = add("run", _cmd_run, "run a scene")
+    r.add_argument("-o", "--output", metavar="DIR", help="write outputs into DIR")
+    r.add_argument("--format", choices=("csv", "json"), default="csv", help="output format")
+    r.add_argument("--plot", action="store_true", help="write plot.png (needs matplotlib)")
+    r.add_argument("--plan", action="store_true", help="show the plan, do not run")
+    add("validate", _cmd_validate, "check a scene, report every problem")
+    add("plan", _cmd_plan, "show which effects a scene computes, how and why")
+    d = add("demo", _cmd_demo, "run the embedded demo scene", scene=False)
+    d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot")
     p_form = sub.add_parser("formulas", help="print the closed-form formulas of a profile/contact",
                             description="Closed-form MDR formulas (normal, torsion, JKR) of a "
                             "registered profile, as text, a LaTeX document or Python source.")
@@ -113,18 +263,53 @@ def main(argv: Sequence[str] | None = None) -> int:
     fmt.add_argument("--latex", action="store_true", help="a complete LaTeX document")
     fmt.add_argument("--python", action="store_true", help="standalone Python functions")
     p_form.set_defaults(func=_formulas)
-    args = parser.parse_args(argv)
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``contactlab`` console script; returns the exit code."""
+    from .errors import (ContactlabError, ConvergenceError, ParameterError, SceneError,
+                         UnknownNameError)
+
+    parser = _parser()
+    args = parser.parse_args(argv)   # --help/--version exit 0, usage errors exit 2 (SystemExit)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    as_json = getattr(args, "json", False)
     try:
         return int(args.func(args))
-    except ConvergenceError as err:
-        print(f"contactlab: numerical failure: {err}", file=sys.stderr)
-        return 1
-    except ContactlabError as err:
-        print(f"contactlab: {err}", file=sys.stderr)
+    except (ParameterError, UnknownNameError) as err:     # invalid command-line input
+        if as_json:
+            print(json.dumps({"ok": False, "exit": 2, "error": str(err),
+                              "kind": type(err).__name__}, indent=1))
+        else:
+            print(f"contactlab: {err}", file=sys.stderr)
         return 2
+    except SceneError as err:
+        if as_json:
+            print(json.dumps({"ok": False, "exit": 2, "error": str(err).splitlines()[0],
+                              "issues": [{"path": p, "value": _plain(v), "allowed": a}
+                                         for p, v, a in err.issues]}, indent=1))
+        else:
+            print(f"contactlab: {err}", file=sys.stderr)
+        return 2
+    except ContactlabError as err:
+        if as_json:
+            print(json.dumps({"ok": False, "exit": 1, "error": str(err),
+                              "kind": type(err).__name__}, indent=1))
+        else:
+            what = "numerical failure" if isinstance(err, ConvergenceError) else "run failed"
+            print(f"contactlab: {what} ({type(err).__name__}): {err}", file=sys.stderr)
+        return 1
+
+
+def _plain(v: Any) -> Any:
+    try:
+        json.dumps(v)
+        return v
+    except (TypeError, ValueError):
+        return repr(v)
 
 
 if __name__ == "__main__":  # pragma: no cover

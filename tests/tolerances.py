@@ -66,3 +66,14 @@ HEIGHT_ONLY_PROFILE = 1e-9
 #: the exact sphere's closed forms cancel: ∫_0^a g = (a²-R²)/2·artanh(a/R) + Ra/2 loses a factor
 #: ~(R/a)² to rounding (400 at a/R = 0.05), so formula and solver differ by ~1e-13..1e-12
 SYMBOLIC_SPHERE = 1e-10
+#: scene example with a tabulated profile (1001 linear-interpolation nodes, Δr = 1 µm, contact
+#: radii 47-100 µm) against Hertz: the interpolant overestimates r² by at most Δr²/4, a relative
+#: gap error up to (Δr/a)²/4 = 1.2e-4 at the smallest loaded step (measured: 1.9e-4 in the radius)
+TABULATED_SCENE = 5e-4
+#: CSV/JSON outputs are written with repr(float) (exact); re-solving from a re-read output
+#: (e.g. the force, which is recomputed from the radius) moves results by a few ulps
+OUTPUT_ROUNDTRIP = 1e-13
+#: viscoelastic creep example (SLS, tau = 4.5 s) against the Lee-Radok step solution: the force
+#: is ramped in 1 ms instead of stepped (relative error ~ 1e-3 s / tau = 2e-4 right after the
+#: step, decaying) plus the foundation's radius discretisation (measured max 6e-5)
+VISCO_SCENE = 3e-4

@@ -1,0 +1,339 @@
+"""The :class:`Scene`: profile, materials, interface, load path and requested outputs.
+
+A scene is built from a TOML file, a TOML string, a plain mapping or Python objects, is validated
+once at construction (every problem reported together, see :mod:`.validate`) and converts back to
+a mapping or TOML (round trip: ``Scene.from_dict(s.to_dict()) == s``). It computes nothing until
+:meth:`Scene.run`; :meth:`Scene.plan` says what a run will compute and why.
+"""
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import SceneError
+from . import toml_io
+from .validate import CONTROLS, read_table, validate
+
+__all__ = ["Scene", "History"]
+
+#: seconds per load step when a segment gives no duration (only viscoelastic runs care)
+DEFAULT_STEP_TIME = 1.0
+#: steps per cycle of a sinusoid segment that does not say
+DEFAULT_STEPS_PER_CYCLE = 100
+
+
+@dataclass(frozen=True)
+class History:
+    """The load path sampled at its steps.
+
+    Attributes
+    ----------
+    time : ndarray
+        Time of each step, s (step 0 is the unloaded start unless a table says otherwise).
+    controls : dict
+        Axis (``"normal"``, ``"twist"``, ``"shift"``) -> ``(control name, values)``; e.g.
+        ``{"normal": ("force", array), "twist": ("twist", array)}``. Axes the path never
+        drives are absent.
+    segment : ndarray of int
+        Index of the load-path segment each step belongs to (-1 for the start).
+    """
+
+    time: np.ndarray
+    controls: dict[str, tuple[str, np.ndarray]]
+    segment: np.ndarray
+
+    @property
+    def n_steps(self) -> int:
+        return int(self.time.size)
+
+    def kind(self, axis: str) -> str | None:
+        """Control name driving ``axis`` or None."""
+        return self.controls[axis][0] if axis in self.controls else None
+
+    def values(self, axis: str) -> np.ndarray:
+        """Per-step values of ``axis`` (zeros when the path does not drive it)."""
+        return self.controls[axis][1] if axis in self.controls else np.zeros(self.time.shape)
+
+
+def _discretize(segments: Sequence[Mapping[str, Any]], base_dir: Path | None) -> History:
+    if len(segments) == 1 and "table" in segments[0]:
+        body = segments[0]["table"]
+        if "file" in body:
+            p = Path(body["file"])
+            if not p.is_absolute() and base_dir is not None:
+                p = base_dir / p
+            cols = read_table(p)
+        else:
+            cols = {k: np.asarray(v, float) for k, v in body.items()}
+        n = len(next(iter(cols.values())))
+        time = np.asarray(cols.get("time", np.arange(n, dtype=float)), float)
+        controls = {CONTROLS[k][0]: (k, np.asarray(v, float)) for k, v in cols.items()
+                    if k in CONTROLS}
+        return History(time, controls, np.zeros(n, dtype=int))
+    kinds: dict[str, str] = {}
+    for seg in segments:
+        for k in next(iter(seg.values())):
+            if k in CONTROLS:
+                kinds.setdefault(CONTROLS[k][0], k)
+    times = [np.zeros(1)]
+    values = {axis: [np.zeros(1)] for axis in kinds}
+    seg_index = [np.full(1, -1)]
+    t_now = 0.0
+    for i, seg in enumerate(segments):
+        kind, body = next(iter(seg.items()))
+        cur = {axis: float(values[axis][-1][-1]) for axis in kinds}
+        if kind in ("ramp", "hold"):
+            n = int(body["steps"])
+            dur = float(body.get("duration", n * DEFAULT_STEP_TIME))
+            frac = np.arange(1, n + 1) / n
+            t = t_now + dur * frac
+            for axis, ctrl in kinds.items():
+                if kind == "ramp" and ctrl in body:
+                    values[axis].append(cur[axis] + (float(body[ctrl]) - cur[axis]) * frac)
+                else:
+                    values[axis].append(np.full(n, cur[axis]))
+        else:  # sinusoid
+            spc = int(body.get("steps_per_cycle", DEFAULT_STEPS_PER_CYCLE))
+            n = max(1, int(round(float(body["cycles"]) * spc)))
+            period = float(body.get("period", spc * DEFAULT_STEP_TIME))
+            k = np.arange(1, n + 1)
+            t = t_now + period * k / spc
+            wave = np.sin(2.0 * np.pi * k / spc)
+            wave[np.abs(wave) < 1e-15] = 0.0   # exact zeros at half periods
+            for axis, ctrl in kinds.items():
+                amp = float(body.get(ctrl, 0.0))
+                values[axis].append(cur[axis] + amp * wave)
+        times.append(t)
+        seg_index.append(np.full(t.size, i))
+        t_now = float(t[-1])
+    return History(np.concatenate(times),
+                   {axis: (ctrl, np.concatenate(values[axis])) for axis, ctrl in kinds.items()},
+                   np.concatenate(seg_index))
+
+
+class Scene:
+    """A whole contact study: bodies, interface, load path and requested outputs.
+
+    Parameters
+    ----------
+    data : mapping
+        The scene as nested tables (see ``examples/*.toml``): ``profile``, ``materials``
+        (``body1``, ``body2``), ``interface`` (``friction``, ``work_of_adhesion``), ``load_path``
+        (list of segments ``ramp``/``hold``/``sinusoid``/``table``), ``outputs`` (``series``,
+        ``fields``, ``field_points``, ``method``, ``effects``), ``solver`` (``rtol``,
+        ``n_springs``), ``scene`` (``title``, ``description``). Quantities are SI numbers or
+        strings with a unit (``"10 um"``).
+    base_dir : path, optional
+        Directory that relative CSV file names refer to (the scene file's directory).
+
+    Raises
+    ------
+    SceneError
+        Every validation problem at once, in ``err.issues`` as (key path, value, allowed).
+
+    Examples
+    --------
+    >>> s = Scene({"profile": {"type": "paraboloid", "R": "10 mm"},
+    ...            "materials": {"body1": {"type": "elastic", "E": "210 GPa", "nu": 0.3},
+    ...                          "body2": {"type": "elastic", "E": "210 GPa", "nu": 0.3}},
+    ...            "load_path": [{"ramp": {"force": "100 N", "steps": 4}}]})
+    >>> s.to_dict()["profile"]
+    {'type': 'paraboloid', 'R': 0.01}
+    >>> [e.effect for e in s.plan().effects]
+    ['normal']
+    """
+
+    def __init__(self, data: Mapping[str, Any], base_dir: str | Path | None = None) -> None:
+        self.base_dir = Path(base_dir) if base_dir is not None else None
+        self._data, self._objects = validate(data, self.base_dir)
+        self._history: History | None = None
+        self._plan = None
+        self._contact = None
+        self._plan = self.plan()   # plan-level issues (conflicts) are validation errors too
+
+    # ---- construction ---------------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], base_dir: str | Path | None = None) -> "Scene":
+        """Scene from a mapping (as :func:`tomllib.loads` returns it)."""
+        return cls(data, base_dir)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "Scene":
+        """Scene from a TOML file; relative CSV names are relative to the file's directory."""
+        path = Path(path)
+        return cls(toml_io.load(path), base_dir=path.parent)
+
+    @classmethod
+    def loads(cls, text: str, base_dir: str | Path | None = None) -> "Scene":
+        """Scene from TOML text."""
+        return cls(toml_io.loads(text), base_dir)
+
+    @classmethod
+    def from_objects(cls, profile: Any, materials: tuple[Any, Any], load_path: Any,
+                     *, friction: float | None = None, work_of_adhesion: float | None = None,
+                     outputs: Mapping[str, Any] | None = None,
+                     solver: Mapping[str, Any] | None = None, title: str | None = None) -> "Scene":
+        """Scene from contactlab objects (profile, two materials) and a load path.
+
+        ``load_path`` is a :class:`~contactlab.LoadPath` (ramp, hold, sinusoid without ``mean``,
+        repeat, from_arrays) or a list of segment tables as in a scene file, e.g.
+        ``[{"ramp": {"force": 100.0, "steps": 50}}, {"sinusoid": {"twist": 1e-3, "cycles": 2}}]``.
+        """
+        if hasattr(load_path, "leaves"):
+            load_path = _segments_of_loadpath(load_path)
+        data: dict[str, Any] = {
+            "profile": _object_table(profile, "profile"),
+            "materials": {"body1": _object_table(materials[0], "materials.body1"),
+                          "body2": _object_table(materials[1], "materials.body2")},
+            "load_path": [dict(s) for s in load_path],
+        }
+        itf = {k: v for k, v in (("friction", friction), ("work_of_adhesion", work_of_adhesion))
+               if v is not None}
+        if itf:
+            data["interface"] = itf
+        if outputs:
+            data["outputs"] = dict(outputs)
+        if solver:
+            data["solver"] = dict(solver)
+        if title:
+            data["scene"] = {"title": title}
+        return cls(data)
+
+    # ---- back to data ---------------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """The normalised scene (SI floats) as a plain mapping; ``Scene.from_dict`` reads it."""
+        return copy.deepcopy(self._data)
+
+    def to_toml(self) -> str:
+        """The normalised scene as TOML text."""
+        return toml_io.dumps(self.to_dict())
+
+    def save(self, path: str | Path) -> None:
+        """Write :meth:`to_toml` to ``path``."""
+        Path(path).write_text(self.to_toml())
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Scene) and self._data == other._data
+
+    def __hash__(self) -> int:
+        return hash(self.to_toml())
+
+    def __repr__(self) -> str:
+        title = self._data.get("scene", {}).get("title")
+        prof = self._data["profile"]["type"]
+        return f"Scene({title or prof!r}, {len(self._data['load_path'])} segments)"
+
+    # ---- views ----------------------------------------------------------------------------------
+    @property
+    def title(self) -> str:
+        return self._data.get("scene", {}).get("title", self._data["profile"]["type"])
+
+    @property
+    def profile(self) -> Any:
+        """The profile object."""
+        return self._objects["profile"]
+
+    @property
+    def materials(self) -> tuple[Any, Any]:
+        """The two body materials."""
+        return self._objects["body1"], self._objects["body2"]
+
+    @property
+    def friction(self) -> float | None:
+        return self._data.get("interface", {}).get("friction")
+
+    @property
+    def work_of_adhesion(self) -> float | None:
+        return self._data.get("interface", {}).get("work_of_adhesion")
+
+    @property
+    def outputs(self) -> dict[str, Any]:
+        return dict(self._data.get("outputs", {}))
+
+    @property
+    def solver(self) -> dict[str, Any]:
+        return dict(self._data.get("solver", {}))
+
+    @property
+    def is_viscoelastic(self) -> bool:
+        return any(getattr(m, "is_viscoelastic", False) for m in self.materials)
+
+    def history(self) -> History:
+        """The load path sampled at its steps (cached)."""
+        if self._history is None:
+            self._history = _discretize(self._data["load_path"], self.base_dir)
+        return self._history
+
+    def contact(self) -> Any:
+        """The :class:`~contactlab.Contact` of this scene (built on first use)."""
+        if self._contact is None:
+            from ..contact import Contact
+            self._contact = Contact(self.profile, materials=self.materials, friction=self.friction,
+                                    work_of_adhesion=self.work_of_adhesion or None,
+                                    rtol=self.solver.get("rtol"))
+        return self._contact
+
+    # ---- planning and running -------------------------------------------------------------------
+    def plan(self) -> Any:
+        """The effect plan: which physics, which implementation, and why (pure, cached)."""
+        if self._plan is None:
+            from .plan import make_plan
+            self._plan = make_plan(self)
+        return self._plan
+
+    def run(self) -> Any:
+        """Compute what the plan calls for; returns a :class:`~contactlab.scene.run.SceneResult`."""
+        from .run import run_scene
+        return run_scene(self)
+
+
+def _segments_of_loadpath(path: Any) -> list[dict[str, Any]]:
+    """Scene segment tables of a :class:`~contactlab.LoadPath` (issue 4), leaf by leaf."""
+    out: list[dict[str, Any]] = []
+    for i, seg in enumerate(path.leaves()):
+        kind = type(seg).__name__.lower()
+        if kind == "ramp":
+            out.append({"ramp": {**{k: float(v) for k, v in seg.targets}, "steps": int(seg.steps),
+                                 "duration": float(seg.duration)}})
+        elif kind == "hold":
+            out.append({"hold": {"steps": int(seg.steps), "duration": float(seg.duration)}})
+        elif kind == "sinusoid" and getattr(seg, "mean", None) is None:
+            out.append({"sinusoid": {**{k: float(v) for k, v in seg.amplitudes},
+                                     "cycles": int(seg.cycles),
+                                     "steps_per_cycle": int(seg.steps_per_cycle),
+                                     "period": float(seg.period)}})
+        elif kind == "table":
+            out.append({"table": {"time": [float(t) for t in seg.time],
+                                  **{k: [float(x) for x in v] for k, v in seg.columns}}})
+        else:
+            raise SceneError(f"load_path segment {i} ({seg!r}) has no scene form: scenes "
+                             "sinusoids oscillate around the current value (no mean=).",
+                             [(f"load_path[{i}]", repr(seg), "ramp, hold, sinusoid without "
+                               "mean, repeat, from_arrays")])
+    return out
+
+
+def _object_table(obj: Any, path: str) -> dict[str, Any]:
+    name = getattr(type(obj), "name", "")
+    if not name or name in ("sum", "scaled"):
+        raise SceneError(f"{path}={obj!r} cannot be written to a scene: only named built-in or "
+                         "registered types can.", [(path, repr(obj), "a named profile/material")])
+    if name == "polynomial":
+        return {"type": name, "terms": [[float(c), float(n)] for c, n in obj.terms]}
+    if name == "tabulated":
+        return {"type": name, "r": [float(v) for v in obj.r], "f": [float(v) for v in obj.f],
+                "interpolation": obj.interpolation}
+    out: dict[str, Any] = {"type": name}
+    for p in getattr(type(obj), "params", ()):
+        v = getattr(obj, p.name)
+        if isinstance(v, (int, float, np.floating)):
+            v = float(v)
+        elif isinstance(v, (tuple, list, np.ndarray)):
+            v = [float(x) for x in v]
+        out[p.name] = v
+    return out

@@ -1,0 +1,330 @@
+"""Effect planning: which physics a scene calls for, which implementation answers it, and why.
+
+:func:`make_plan` is pure: it reads the validated scene and its sampled load path and returns a
+:class:`Plan` whose rows are ``(effect, implementation, reason)``. Rules:
+
+* Elastic normal contact is path-independent, so a normal-only path is answered by
+  ``contact.normal`` over all steps at once (closed form / exact transform), never by the
+  foundation.
+* A twist (shift) applied at constant normal load is answered exactly: monotone by
+  ``contact.torsion`` (``contact.tangential``), any other twist (shift) history by
+  ``contact.twist_history`` (``contact.shift_history``, exact Masing rule).
+* A normal load that changes while the contact is twisted or shifted, a force/torque-controlled
+  oscillation, or a viscoelastic body needs the MDR foundation with memory: ``contact.simulate``.
+* No torsion or tangential machinery unless the path drives it or the outputs ask for it;
+  no slip machinery without a friction coefficient.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import SceneError
+from .validate import EFFECTS, SERIES
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .model import Scene
+
+__all__ = ["Effect", "Plan", "make_plan"]
+
+_NORMAL_SERIES = ("time", "depth", "force", "radius")
+
+
+@dataclass(frozen=True)
+class Effect:
+    """One row of a plan: an effect, the implementation that computes it, and why."""
+
+    effect: str
+    implementation: str
+    reason: str
+
+    def to_dict(self) -> dict[str, str]:
+        return {"effect": self.effect, "implementation": self.implementation,
+                "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a run of a scene computes.
+
+    Attributes
+    ----------
+    effects : tuple of Effect
+        Active effects in dependency order (normal, adhesion, viscoelastic, tangential, torsion,
+        slip), each with implementation and reason.
+    route : {"closed_form", "foundation", "viscoelastic"}
+        Closed forms / exact histories, the MDR foundation simulation with frictional memory, or
+        the viscoelastic MDR history.
+    calls : tuple of str
+        The ``Contact`` methods the run will call, in order (``"normal"``, ``"torsion"``,
+        ``"twist_history"``, ``"tangential"``, ``"shift_history"``, ``"simulate"``).
+    series, fields : tuple of str
+        Output series (per step) and fields (over radius, at the final step).
+    outputs : tuple of Effect
+        How each field is computed (rows ``field:<name>``).
+    method : str or None
+        Torsion/tangential model: ``"no-slip"``, ``"exact"`` or ``"mdr"``.
+    n_steps : int
+        Load steps (including the start).
+    """
+
+    effects: tuple[Effect, ...]
+    route: str
+    calls: tuple[str, ...]
+    series: tuple[str, ...]
+    fields: tuple[str, ...] = ()
+    outputs: tuple[Effect, ...] = ()
+    method: str | None = None
+    n_steps: int = 0
+    details: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of the active effects."""
+        return tuple(e.effect for e in self.effects)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.names
+
+    def __getitem__(self, name: str) -> Effect:
+        for e in self.effects:
+            if e.effect == name:
+                return e
+        raise KeyError(f"effect {name!r} is not in the plan (active: {list(self.names)})")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form (``contactlab plan --json``)."""
+        return {"route": self.route, "calls": list(self.calls), "method": self.method,
+                "n_steps": self.n_steps, "effects": [e.to_dict() for e in self.effects],
+                "series": list(self.series), "fields": list(self.fields),
+                "outputs": [e.to_dict() for e in self.outputs]}
+
+    def __str__(self) -> str:
+        rows = [(e.effect, e.implementation, e.reason) for e in self.effects + self.outputs]
+        w1 = max(len("effect"), *(len(r[0]) for r in rows))
+        w2 = max(len("implementation"), *(len(r[1]) for r in rows))
+        lines = [f"plan: {self.route.replace('_', ' ')} route, {self.n_steps} load steps, "
+                 f"calls {', '.join(self.calls)}",
+                 f"  {'effect':<{w1}}  {'implementation':<{w2}}  reason",
+                 f"  {'-' * w1}  {'-' * w2}  {'-' * 6}"]
+        lines += [f"  {a:<{w1}}  {b:<{w2}}  {c}" for a, b, c in rows]
+        lines.append(f"  series: {', '.join(self.series)}")
+        return "\n".join(lines)
+
+
+def _monotone(v: np.ndarray) -> bool:
+    d = np.diff(v)
+    return bool(np.all(d >= 0) or np.all(d <= 0))
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.6g}"
+
+
+def make_plan(scene: "Scene") -> Plan:
+    """Plan the effects of a validated scene (pure: computes no physics).
+
+    Raises
+    ------
+    SceneError
+        Conflicting effects or outputs that no planned effect produces.
+    """
+    h = scene.history()
+    outs = scene.outputs
+    friction = scene.friction
+    wa = scene.work_of_adhesion or 0.0
+    requested = list(outs.get("effects", []))
+    series_req = outs.get("series")
+    fields = tuple(outs.get("fields", ()))
+    issues: list[tuple[str, Any, str]] = []
+
+    n_kind = h.kind("normal")
+    normal = h.values("normal")
+    tw_kind, sh_kind = h.kind("twist"), h.kind("shift")
+    twist_on = tw_kind is not None and bool(np.any(h.values("twist") != 0))
+    shift_on = sh_kind is not None and bool(np.any(h.values("shift") != 0))
+    s_req = list(series_req or [])
+    want_torsion = ("torsion" in requested or any(SERIES[s] == "torsion" for s in s_req)
+                    or "shear" in fields)
+    want_tangential = "tangential" in requested or any(SERIES[s] == "tangential" for s in s_req)
+    torsion = twist_on or want_torsion
+    tangential = shift_on or want_tangential
+    visco = scene.is_viscoelastic
+    adhesive = wa > 0
+    if torsion and tangential:
+        issues.append(("load_path", "twist and shift", "twist or shift, not both: combined "
+                       "torsion and tangential loading is outside the decoupled theory"))
+    if adhesive and visco:
+        issues.append(("interface.work_of_adhesion", wa, "0 with a viscoelastic body: adhesive "
+                       "viscoelastic contact is not covered by the theory"))
+    if visco and (torsion or tangential):
+        issues.append(("load_path", "twist/shift", "normal loading only with a viscoelastic body "
+                       "(viscoelastic torsion and tangential contact are not covered)"))
+    method = outs.get("method") or ("exact" if friction is not None else "no-slip")
+    if friction is None:
+        method = "no-slip"
+    slip = (torsion or tangential) and method != "no-slip"
+    if "slip" in requested and not (torsion or tangential):
+        issues.append(("outputs.effects", "slip", "'slip' with a twist or shift in the load path"))
+    if "stick_radius" in s_req and not (torsion or tangential):
+        issues.append(("outputs.series", "stick_radius", "'stick_radius' with a twist or shift "
+                       "in the load path (or 'torsion' in outputs.effects)"))
+    if "dissipated_energy" in s_req and not slip:
+        issues.append(("outputs.series", "dissipated_energy", "'dissipated_energy' with partial "
+                       "slip (a twist or shift and interface.friction)"))
+
+    axis = "twist" if torsion else "shift" if tangential else None
+    drive_kind = tw_kind if axis == "twist" else sh_kind if axis == "shift" else None
+    drive = h.values(axis) if axis else None
+    coupled_at = None
+    start = 0
+    if drive is not None and np.any(drive != 0):
+        i0 = int(np.argmax(drive != 0))
+        start = max(i0 - 1, 0)
+        varying = normal[start:] != normal[start]
+        if np.any(varying):
+            coupled_at = start + int(np.argmax(varying))
+    monotone = drive is None or _monotone(drive[start:])
+    force_controlled_history = (drive_kind in ("torque", "tangential_force") and not monotone
+                                and method != "no-slip")
+    foundation = visco or coupled_at is not None or force_controlled_history
+    route = "viscoelastic" if visco else "foundation" if foundation else "closed_form"
+    if visco:
+        bad = [s for s in s_req if s not in ("time", "depth", "force", "radius")]
+        if bad:
+            issues.append(("outputs.series", bad, "time, depth, force, radius for a viscoelastic "
+                           "scene"))
+
+    rows: dict[str, Effect] = {}
+    calls: list[str] = []
+    n = h.n_steps
+    if visco:
+        rows["normal"] = Effect("normal", "contact.viscoelastic_history (MDR foundation)",
+                                "viscoelastic body: the response depends on the load history in "
+                                "time, no elastic closed form")
+        calls.append("viscoelastic_history")
+    elif foundation:
+        if coupled_at is not None:
+            seg = int(h.segment[coupled_at])
+            why = (f"normal load varies while {'twisted' if axis == 'twist' else 'shifted'} "
+                   f"(step {coupled_at}, load_path[{seg}]): no closed form, foundation with memory")
+        else:
+            why = (f"{drive_kind}-controlled non-monotone history: no closed-form history API, "
+                   "foundation with memory")
+        rows["normal"] = Effect("normal", "contact.simulate (MDR foundation)", why)
+        calls.append("simulate")
+    else:
+        what = "JKR equilibrium branch" if adhesive else "elastic normal contact"
+        rows["normal"] = Effect("normal", f"contact.normal({n_kind}=<{n} steps>), vectorised",
+                                f"{what} is path-independent: closed form exists, no foundation")
+        calls.append("normal")
+    if adhesive:
+        rows["adhesion"] = Effect("adhesion", "JKR through the MDR (Heß rule)"
+                                  + (" in contact.normal" if not foundation else " in the foundation"),
+                                  f"interface.work_of_adhesion = {_fmt(wa)} J/m^2")
+    if visco:
+        names = [type(m).__name__ for m in scene.materials if getattr(m, "is_viscoelastic", False)]
+        rows["viscoelastic"] = Effect("viscoelastic", "rheological elements of the material's "
+                                      "type, parameters scaled by 4 dx [H3]",
+                                      f"body material {', '.join(names)} is viscoelastic")
+
+    impl_call = None
+    if torsion or tangential:
+        eff = "torsion" if torsion else "tangential"
+        ctrl = drive_kind or ("twist" if torsion else "displacement")
+        reasons = []
+        if (twist_on if torsion else shift_on):
+            reasons.append(f"path has {ctrl}")
+        if eff in requested:
+            reasons.append("requested in outputs.effects")
+        implied = [s for s in s_req if SERIES[s] == eff]
+        if torsion and "shear" in fields:
+            implied.append("shear")
+        if implied:
+            reasons.append(f"outputs ask for {', '.join(implied)}")
+        if not (twist_on if torsion else shift_on):
+            reasons.append(f"the path has no {ctrl}: zero {'torque' if torsion else 'force'}")
+        mono_api, hist_api = (("torsion", "twist_history") if torsion
+                              else ("tangential", "shift_history"))
+        if not (twist_on if torsion else shift_on) and not foundation:
+            impl = ("no call: zero twist gives zero torque, stick radius = contact radius" if torsion
+                    else "no call: zero shift gives zero force, stick radius = contact radius")
+        elif foundation:
+            impl = "contact.simulate (MDR " + ("torsional" if torsion else "tangential") + " springs)"
+            if torsion and method in ("exact", "no-slip") and friction is not None:
+                reasons.append(f"method {method!r} has no foundation implementation: the MDR "
+                               "spring model is used")
+        elif method == "no-slip":
+            impl_call = mono_api
+            impl = f"contact.{mono_api}(method='no-slip')" if torsion else f"contact.{mono_api}()"
+            reasons.append("no slip: the response is linear, any history is exact")
+        elif monotone and "dissipated_energy" not in s_req:
+            impl_call = mono_api
+            impl = f"contact.{mono_api}(method={method!r})" if torsion else f"contact.{mono_api}()"
+            reasons.append(f"monotone {ctrl} at constant normal load: exact closed form, "
+                           "no foundation")
+        else:
+            impl_call = hist_api
+            impl = f"contact.{hist_api}(method={method!r})" if torsion else f"contact.{hist_api}()"
+            reasons.append((f"non-monotone {ctrl}" if not monotone else "dissipated energy asked")
+                           + " at constant normal load: exact Masing history, no foundation")
+        rows[eff] = Effect(eff, impl, "; ".join(reasons))
+        if impl_call:
+            calls.append(impl_call)
+    if slip and foundation:
+        model = ("MDR torsional springs, Coulomb per spring (narrow-slip model)" if torsion else
+                 "MDR tangential springs, Coulomb per spring (exact Cattaneo-Mindlin)")
+        if torsion:
+            method = "mdr"
+        rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}; "
+                              "foundation route")
+    elif slip:
+        model = {"exact": "exact partial slip (Jäger superposition)" if torsion else
+                 "Cattaneo-Mindlin partial slip (exact)",
+                 "mdr": "MDR narrow-slip approximation (springs, mu* = 2 mu)"}.get(method, method)
+        rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
+                              + (" and outputs.method = " + repr(method) if "method" in outs else ""))
+
+    # fields
+    out_rows = []
+    for f in fields:
+        if f in ("pressure", "surface_displacement"):
+            if visco:
+                issues.append(("outputs.fields", f, "no fields for viscoelastic scenes"))
+                continue
+            if foundation:
+                out_rows.append(Effect(f"field:{f}", "contact.normal at the final depth",
+                                       "the normal problem is decoupled: exact at any step"))
+                if "normal" not in calls:
+                    calls.append("normal")
+            else:
+                out_rows.append(Effect(f"field:{f}", "NormalState at the final step",
+                                       "requested in outputs.fields"))
+        else:  # shear
+            if not torsion or foundation or impl_call != "torsion":
+                issues.append(("outputs.fields", f, "'shear' with a monotone twist at constant "
+                               "normal load (the exact torsion state at the final step)"))
+                continue
+            out_rows.append(Effect("field:shear", "TorsionState.shear at the final step",
+                                   "requested in outputs.fields"))
+    if issues:
+        from .validate import _summary
+        raise SceneError(_summary(issues), issues)
+
+    if series_req:
+        series = tuple(series_req)
+    else:
+        series = list(_NORMAL_SERIES)
+        if torsion:
+            series += ["twist", "torque", "stick_radius"]
+        if tangential:
+            series += ["displacement", "tangential_force", "stick_radius"]
+        if slip and (foundation or impl_call in ("twist_history", "shift_history")):
+            series.append("dissipated_energy")
+        series = tuple(series)
+    ordered = tuple(rows[e] for e in EFFECTS if e in rows)
+    return Plan(ordered, route, tuple(calls), series, fields, tuple(out_rows),
+                method if (torsion or tangential) else None, n,
+                {"axis": axis, "start": start, "monotone": monotone, "coupled_at": coupled_at})

@@ -1,0 +1,296 @@
+"""Execution of a planned scene: call exactly the ``Contact`` methods the plan names.
+
+``result.meta["computed"]`` lists the calls actually made, in order, so tests (and users) can
+check that an effect the plan left out was never computed.
+"""
+from __future__ import annotations
+
+import csv
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from .validate import SERIES
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .model import Scene
+    from .plan import Plan
+
+__all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS"]
+
+SERIES_UNITS = {"time": "s", "depth": "m", "force": "N", "radius": "m", "stiffness": "N/m",
+                "peak_pressure": "Pa", "twist": "rad", "torque": "N m", "stick_radius": "m",
+                "dissipated_energy": "J", "displacement": "m", "tangential_force": "N"}
+FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear": "Pa"}
+#: fields are sampled on r in [0, FIELD_EXTENT * a_final]
+FIELD_EXTENT = 1.5
+
+_API_ISSUE = {"torsion": 3, "twist_history": 3, "simulate": 4, "tangential": 4,
+              "shift_history": 4, "viscoelastic_history": "6b"}
+
+
+@dataclass
+class SceneResult:
+    """Outputs of a scene run.
+
+    Attributes
+    ----------
+    series : dict of ndarray
+        Per-step outputs (SI units, see :data:`SERIES_UNITS`), in the plan's order.
+    fields : dict of ndarray
+        ``r`` and the requested fields at the final step (empty when none were asked for).
+    plan : Plan
+    meta : dict
+        ``computed`` (Contact methods called, in order), ``route``, ``version``, ``title``.
+    """
+
+    series: dict[str, np.ndarray]
+    fields: dict[str, np.ndarray]
+    plan: "Plan"
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name in self.series:
+            return self.series[name]
+        if name in self.fields:
+            return self.fields[name]
+        if name in SERIES:
+            eff = SERIES[name] or "torsion"
+            raise EffectNotPlannedError(
+                f"{name!r} was not computed: the plan has {list(self.plan.names)}; add {eff!r} to "
+                f"outputs.effects or {name!r} to outputs.series.")
+        raise KeyError(f"{name!r} is not an output; series are {list(self.series)}")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: plan, series and fields as lists, units, meta."""
+        return {"title": self.meta.get("title"), "plan": self.plan.to_dict(),
+                "units": {k: SERIES_UNITS[k] for k in self.series},
+                "series": {k: _jsonable(v) for k, v in self.series.items()},
+                "fields": {k: _jsonable(v) for k, v in self.fields.items()},
+                "meta": {k: v for k, v in self.meta.items() if k != "title"}}
+
+    def write(self, directory: str | Path, fmt: str = "csv") -> list[Path]:
+        """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``."""
+        d = Path(directory)
+        d.mkdir(parents=True, exist_ok=True)
+        if fmt == "json":
+            p = d / "result.json"
+            p.write_text(json.dumps(self.to_dict(), indent=1))
+            return [p]
+        paths = [d / "series.csv"]
+        _write_csv(paths[0], self.series)
+        if self.fields:
+            paths.append(d / "fields.csv")
+            _write_csv(paths[1], self.fields)
+        return paths
+
+    def plot(self, path: str | Path) -> Path:
+        """Plot the series against the step (and the fields) into ``path`` (needs matplotlib)."""
+        try:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+        except ImportError as err:
+            raise ImportError("plotting needs matplotlib: pip install 'contactlab[plot]'") from err
+        names = [k for k in self.series if k != "time"]
+        x = self.series.get("time", np.arange(len(next(iter(self.series.values())))))
+        pairs = [("twist", "torque"), ("displacement", "tangential_force")]
+        loops = [(a, b) for a, b in pairs if a in self.series and b in self.series]
+        n = len(names) + len(loops) + (1 if self.fields else 0)
+        fig, axes = plt.subplots(n, 1, figsize=(6, 2.2 * n), squeeze=False)
+        for ax, k in zip(axes[:, 0], names):
+            ax.plot(x, self.series[k])
+            ax.set_ylabel(f"{k} [{SERIES_UNITS[k]}]")
+            ax.set_xlabel("time [s]")
+        for ax, (a, b) in zip(axes[len(names):, 0], loops):
+            ax.plot(self.series[a], self.series[b])
+            ax.set_xlabel(f"{a} [{SERIES_UNITS[a]}]")
+            ax.set_ylabel(f"{b} [{SERIES_UNITS[b]}]")
+        if self.fields:
+            ax = axes[-1, 0]
+            for k, v in self.fields.items():
+                if k != "r":
+                    ax.plot(self.fields["r"], v, label=f"{k} [{FIELD_UNITS[k]}]")
+            ax.set_xlabel("r [m]")
+            ax.legend()
+        fig.suptitle(str(self.meta.get("title", "")))
+        fig.tight_layout()
+        path = Path(path)
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        return path
+
+    def table(self, rows: int = 10) -> str:
+        """A short human table of the series (``rows`` steps, evenly spread, last included)."""
+        n = len(next(iter(self.series.values())))
+        idx = np.unique(np.linspace(0, n - 1, min(rows, n)).round().astype(int))
+        names = list(self.series)
+        head = " ".join(f"{f'{k} [{SERIES_UNITS[k]}]':>16}" for k in names)
+        lines = [head]
+        for i in idx:
+            lines.append(" ".join(f"{self.series[k][i]:16.6g}" for k in names))
+        return "\n".join(lines)
+
+
+def _jsonable(v: np.ndarray) -> list:
+    return [None if not np.isfinite(x) else float(x) for x in np.asarray(v, float).ravel()] \
+        if np.any(~np.isfinite(v)) else np.asarray(v, float).tolist()
+
+
+def _write_csv(path: Path, cols: dict[str, np.ndarray]) -> None:
+    names = list(cols)
+    data = np.column_stack([np.asarray(cols[k], float) for k in names])
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(names)
+        for row in data:
+            w.writerow([repr(float(x)) for x in row])
+
+
+def _need(contact: Any, name: str) -> Any:
+    fn = getattr(contact, name, None)
+    if fn is None:
+        raise NotSupportedError(
+            f"the plan needs contact.{name}() (issue {_API_ISSUE.get(name, '?')}), which this "
+            "build of contactlab does not provide yet.")
+    return fn
+
+
+def _get(obj: Any, name: str, n: int) -> np.ndarray:
+    if not hasattr(obj, name):
+        raise NotSupportedError(f"{type(obj).__name__} has no {name!r}: cannot fill that series.")
+    v = np.asarray(getattr(obj, name), dtype=float)
+    return np.broadcast_to(v, (n,)).copy() if v.ndim == 0 else v.reshape(-1)
+
+
+def run_scene(scene: "Scene") -> SceneResult:
+    """Run a validated scene along its plan (see :func:`_run`); a physics module missing from
+    this build (an unmerged issue) becomes a NotSupportedError naming it."""
+    try:
+        return _run(scene)
+    except ImportError as err:
+        if getattr(err, "name", "") and str(err.name).startswith("contactlab"):
+            raise NotSupportedError(f"the plan needs {err.name}, which this build of contactlab "
+                                    "does not provide yet.") from err
+        raise
+
+
+def _run(scene: "Scene") -> SceneResult:
+    """Run a validated scene along its plan.
+
+    Raises
+    ------
+    NotSupportedError
+        The plan needs a Contact method this build lacks.
+    ConvergenceError
+        A series came out NaN (never returned silently).
+    """
+    from .. import __version__
+    plan = scene.plan()
+    h = scene.history()
+    contact = scene.contact()
+    computed: list[str] = []
+    n = h.n_steps
+    n_kind = h.kind("normal")
+    N = h.values("normal")
+    out: dict[str, np.ndarray] = {"time": h.time.copy()}
+    normal_state = None
+
+    if plan.route == "viscoelastic":
+        kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
+        res = _need(contact, "viscoelastic_history")(time=h.time, **{n_kind: N}, **kw)
+        computed.append("viscoelastic_history")
+        for k in plan.series:
+            if k != "time":
+                out[k] = _get(res, k, n)
+    elif plan.route == "foundation":
+        import contactlab
+        LoadPath = getattr(contactlab, "LoadPath", None)
+        if LoadPath is None:
+            raise NotSupportedError("the plan needs contactlab.LoadPath and contact.simulate() "
+                                    "(issue 4), which this build does not provide yet.")
+        arrays = {"time": h.time}
+        for axis in ("normal", "twist", "shift"):
+            if h.kind(axis):
+                arrays[h.kind(axis)] = h.values(axis)
+        path = LoadPath.from_arrays(**arrays)
+        kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
+        res = _need(contact, "simulate")(path, **kw)
+        computed.append("simulate")
+        for k in plan.series:
+            if k != "time":
+                out[k] = _get(res, k, n)
+        if "normal" in plan.calls:   # fields from the decoupled normal problem
+            normal_state = contact.normal(depth=float(out["depth"][-1]) if "depth" in out
+                                          else float(np.asarray(res.depth)[-1]))
+            computed.append("normal")
+    else:
+        normal_state = contact.normal(**{n_kind: N})
+        computed.append("normal")
+        for k in ("depth", "force", "radius", "stiffness", "peak_pressure"):
+            if k in plan.series:
+                out[k] = _get(normal_state, k, n)
+        axis = plan.details["axis"]
+        call = next((c for c in plan.calls if c != "normal"), None)
+        if call is not None:
+            start = plan.details["start"]
+            ctrl = h.kind(axis) or ("twist" if axis == "twist" else "displacement")
+            drive = h.values(axis)
+            n0 = float(N[start])
+            kw = {n_kind: n0, ctrl: drive[start:]}
+            if call in ("torsion", "twist_history"):
+                kw["method"] = plan.method
+            res = _need(contact, call)(**kw)
+            computed.append(call)
+            m = n - start
+            radius = np.asarray(normal_state.radius, float).reshape(-1)
+            pre = {"twist": 0.0, "torque": 0.0, "displacement": 0.0, "tangential_force": 0.0,
+                   "dissipated_energy": 0.0}
+            for k in ("twist", "torque", "displacement", "tangential_force", "stick_radius",
+                      "dissipated_energy"):
+                if k not in plan.series:
+                    continue
+                col = np.empty(n)
+                col[:start] = radius[:start] if k == "stick_radius" else pre[k]
+                col[start:] = _get(res, k, m)
+                out[k] = col
+        else:
+            for k in ("twist", "torque", "stick_radius", "displacement", "tangential_force"):
+                if k in plan.series:   # requested effect with nothing driving it
+                    out[k] = np.zeros(n) if k != "stick_radius" else _get(normal_state, "radius", n)
+
+    fields: dict[str, np.ndarray] = {}
+    if plan.fields:
+        st = normal_state
+        a_end = float(np.asarray(st.radius, float).reshape(-1)[-1])
+        d_end = float(np.asarray(st.depth, float).reshape(-1)[-1])
+        pts = int(scene.outputs.get("field_points", 101))
+        r = np.linspace(0.0, FIELD_EXTENT * a_end, pts)
+        fields["r"] = r
+        last = contact.normal(depth=d_end) if st.shape else st
+        for f in plan.fields:
+            if f == "pressure":
+                fields[f] = np.asarray(last.pressure(r), float)
+            elif f == "surface_displacement":
+                fields[f] = np.asarray(last.displacement(r), float)
+            elif f == "shear":   # the exact torsion state at the final (monotone) twist
+                start = plan.details["start"]
+                ctrl = h.kind("twist") or "twist"
+                ts = _need(contact, "torsion")(**{n_kind: float(N[start]),
+                                                  ctrl: float(h.values("twist")[-1]),
+                                                  "method": plan.method})
+                fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
+
+    series = {k: out[k] for k in plan.series}
+    for k, v in list(series.items()) + list(fields.items()):
+        if np.any(np.isnan(v)):
+            i = int(np.argmax(np.isnan(v)))
+            raise ConvergenceError(f"{k}[{i}] is NaN: the computation failed at that step "
+                                   f"({scene.title!r}).")
+    meta = {"computed": computed, "route": plan.route, "version": __version__,
+            "title": scene.title}
+    return SceneResult(series, fields, plan, meta)
