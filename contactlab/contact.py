@@ -260,7 +260,7 @@ class Contact:
         >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(steel, steel), friction=0.3)
         >>> s = c.torsion(force=100.0, twist=1e-4)
         >>> round(s.stick_radius / s.radius, 4)
-        0.7767
+        0.9875
         """
         from .torsion import solve_torsion
         return solve_torsion(self, depth=depth, force=force, radius=radius, twist=twist,

@@ -111,7 +111,7 @@ class PowerLaw(_PowerSum):
     Examples
     --------
     >>> from contactlab.profiles import PowerLaw
-    >>> float(PowerLaw(c=1.0, n=2).g(0.5))
+    >>> round(float(PowerLaw(c=1.0, n=2).g(0.5)), 12)
     0.5
     """
 
