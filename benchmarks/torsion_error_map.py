@@ -30,7 +30,8 @@ import contactlab as cl  # noqa: E402
 from contactlab.errors import ValidityWarning  # noqa: E402
 
 OUT = Path(__file__).resolve().parent / "results"
-RATIOS = np.array([0.999, 0.995, 0.99, 0.98, 0.95, 0.92, 0.9, 0.88, 0.86, 0.85, 0.84, 0.82, 0.8,
+RATIOS = np.array([0.999, 0.995, 0.99, 0.98, 0.95, 0.92, 0.9, 0.88, 0.86, 0.85, 0.84, 0.83, 0.82,
+                   0.81, 0.8,
                    0.75, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1, 0.05, 0.01, 0.001])
 
 
@@ -42,6 +43,10 @@ def cases():
                                    friction=0.5), 1e-4
     yield "power_law_n4", cl.Contact(cl.profiles.PowerLaw(c=1e4, n=4), (mat, cl.Rigid()),
                                      friction=0.5), 0.01
+    yield "power_law_n20", cl.Contact(cl.profiles.PowerLaw(c=1e30, n=20), (mat, cl.Rigid()),
+                                      friction=0.5), 0.01
+    yield "truncated_paraboloid", cl.Contact(cl.profiles.TruncatedParaboloid(radius=0.005, R=1.0),
+                                             (mat, cl.Rigid()), friction=0.5), 0.01
 
 
 def main() -> list[dict]:
@@ -67,12 +72,12 @@ def main() -> list[dict]:
     return rows
 
 
-def threshold(rows: list[dict], limit: float = 0.01) -> tuple[float, str]:
-    """Smallest MDR c/a such that every tabulated point with MDR c/a above it errs <= limit."""
+def threshold(rows: list[dict], key: str, limit: float = 0.01) -> tuple[float, str]:
+    """Largest c/a (exact or MDR, by ``key``) at which some profile's error exceeds ``limit``."""
     worst, who = 0.0, ""
     for r in rows:
-        if abs(r["mdr_torque_error"]) > limit and r["c_over_a_mdr"] > worst:
-            worst, who = r["c_over_a_mdr"], r["profile"]
+        if abs(r["mdr_torque_error"]) > limit and r[key] > worst:
+            worst, who = r[key], r["profile"]
     return worst, who
 
 
@@ -84,15 +89,16 @@ if __name__ == "__main__":
         w.writeheader()
         w.writerows(rows)
     print(f"machine: {platform.processor() or platform.machine()}, python {platform.python_version()}")
-    print(f"{'profile':14s} {'c/a exact':>9s} {'c/a MDR':>9s} {'phi/phi_ref':>11s} {'M/M_full':>9s} "
+    print(f"{'profile':20s} {'c/a exact':>9s} {'c/a MDR':>9s} {'phi/phi_ref':>11s} {'M/M_full':>9s} "
           f"{'MDR error':>10s}")
     for r in rows:
-        print(f"{r['profile']:14s} {r['c_over_a_exact']:9.4g} {r['c_over_a_mdr']:9.4g} "
+        print(f"{r['profile']:20s} {r['c_over_a_exact']:9.4g} {r['c_over_a_mdr']:9.4g} "
               f"{r['twist_over_ref']:11.4g} {r['torque_exact_over_full']:9.4g} "
               f"{r['mdr_torque_error']:+10.3%}")
-    t, who = threshold(rows)
-    print(f"MDR torque error > 1 % first at MDR c/a = {t:.4g} ({who}); "
-          f"contactlab warns below MDR_VALID_STICK_RATIO = {cl.torsion.MDR_VALID_STICK_RATIO}")
+    t, who = threshold(rows, "c_over_a_mdr")
+    te, whoe = threshold(rows, "c_over_a_exact")
+    print(f"MDR torque error > 1 % first at MDR c/a = {t:.4g} ({who}), at exact c/a = {te:.4g} ({whoe}); "
+          f"contactlab warns where the exact c/a < MDR_VALID_STICK_RATIO = {cl.torsion.MDR_VALID_STICK_RATIO}")
     try:
         import matplotlib
         matplotlib.use("Agg")

@@ -28,8 +28,8 @@ from .physics import torsion_noslip as _noslip
 from .physics import normal as _normal
 
 __all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
-           "MDR_VALID_STICK_RATIO", "MDR_SAFE_STICK_RATIO", "MDR_WARN_STICK_RATIO",
-           "solve_torsion", "twist_history", "mdr_torque_error"]
+           "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
+           "mdr_validity_twist"]
 
 #: Physics models of :meth:`Contact.torsion` (``method=``).
 METHODS = ("no-slip", "exact", "mdr")
@@ -38,17 +38,13 @@ METHODS = ("no-slip", "exact", "mdr")
 #: :class:`~contactlab.errors.ValidityWarning` is emitted.
 MDR_ERROR_THRESHOLD = 0.01
 
-#: MDR stick-radius ratios ``c/a`` bounding the band where the MDR torque error crosses
-#: :data:`MDR_ERROR_THRESHOLD`, measured by ``benchmarks/torsion_error_map.py`` (docs/torsion.md):
-#: above ``MDR_SAFE_STICK_RATIO`` the error is below 1 % for every mapped profile (paraboloid,
-#: cone, flat punch, n = 4; the flat punch is the least favourable, 1 % at c/a ≈ 0.91); below
-#: ``MDR_WARN_STICK_RATIO`` it exceeds 1 % for all of them (smooth profiles: 1 % at c/a ≈ 0.81-0.82).
-#: In between, the exact torque at the same twist is computed for the states concerned and the
-#: warning is emitted only where the error really exceeds the threshold.
-MDR_SAFE_STICK_RATIO = 0.92
-MDR_WARN_STICK_RATIO = 0.80
-#: (kept for the documentation: "within 1 % while c/a > MDR_VALID_STICK_RATIO", every profile)
-MDR_VALID_STICK_RATIO = MDR_SAFE_STICK_RATIO
+#: Exact stick-radius ratio ``c/a`` below which the MDR torque errs by more than
+#: :data:`MDR_ERROR_THRESHOLD` at the same twist. Measured by ``benchmarks/torsion_error_map.py``
+#: (docs/torsion.md): as a function of the *exact* ``c/a`` the error is nearly universal, 1 % being
+#: crossed at c/a = 0.80 (cone), 0.805 (paraboloid, truncated paraboloid), 0.81 (n = 4), 0.822
+#: (n = 20) and 0.826 (flat punch). The MDR model warns when the twist exceeds the exact twist at
+#: ``c = MDR_VALID_STICK_RATIO a`` (one quadrature per normal state, no exact root solve).
+MDR_VALID_STICK_RATIO = 0.83
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
@@ -116,7 +112,7 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
         phi, M, c = kernel.of_stick_radius(q, a, d, g_a)
     slip = (c <= 0) & (phi != 0) & (method != "no-slip")
     if method == "mdr":
-        _warn_mdr(contact, phi, M, c, a, d, g_a)
+        _warn_mdr(contact, phi, a, d, g_a)
     meta = {"rtol": contact.rtol, "control": ctrl_key, "load": load_key,
             "routes": {"g": contact.profile.g_route},
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal}}
@@ -133,27 +129,34 @@ def mdr_torque_error(contact, phi: np.ndarray, M_mdr: np.ndarray, a: np.ndarray,
         return np.where(M_ex > 0, np.abs(M_mdr) / M_ex - 1.0, 0.0)
 
 
-def _warn_mdr(contact, phi: np.ndarray, M: np.ndarray, c: np.ndarray, a: np.ndarray,
-              d: np.ndarray, g_a: np.ndarray) -> None:
-    """Warn where the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD` (see the ratios)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(a > 0, c / np.where(a > 0, a, 1.0), 1.0)
-    bad = ratio < MDR_WARN_STICK_RATIO
-    band = ~bad & (ratio < MDR_SAFE_STICK_RATIO)
-    err = None
-    if np.any(band):
-        i = np.flatnonzero(band)
-        e = mdr_torque_error(contact, phi[i], M[i], a[i], d[i], g_a[i])
-        bad[i] = e > MDR_ERROR_THRESHOLD
-        err = float(np.max(e))
+def mdr_validity_twist(contact, a: np.ndarray, d: np.ndarray, g_a: np.ndarray) -> np.ndarray:
+    """Twist (rad) beyond which the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD`: the
+    exact twist at the stick radius ``MDR_VALID_STICK_RATIO * a`` (flat arrays)."""
+    out = np.full(a.shape, np.inf)
+    live = a > 0
+    if not np.any(live):
+        return out
+    keys, inv = np.unique(np.stack([a[live], d[live], g_a[live]], axis=1), axis=0,
+                          return_inverse=True)
+    ka, kd, kg = keys.T
+    P, _ = _exact.slip_function(contact.profile, contact.moduli.normal, MDR_VALID_STICK_RATIO * ka,
+                                ka, kd, kg, contact.rtol)
+    out[live] = _exact.twist_of_stick(contact.friction, contact.moduli.torsional, P)[inv.ravel()]
+    return out
+
+
+def _warn_mdr(contact, phi: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray) -> None:
+    """Warn where the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD` (see above)."""
+    limit = mdr_validity_twist(contact, a, d, g_a)
+    bad = np.abs(phi) > limit
     if np.any(bad):
-        worst = float(np.min(ratio[bad]))
-        detail = f" (measured {err:.2%})" if err is not None and err > MDR_ERROR_THRESHOLD else ""
+        i = int(np.argmax(np.abs(phi) / limit))
         warnings.warn(
-            f"MDR torsion model outside its validity: stick radius c/a={worst:.3g} leaves a slip "
-            f"annulus so wide that the MDR torque errs by more than {MDR_ERROR_THRESHOLD:.0%} "
-            f"against the exact solution{detail}, up to +27% at full sliding. Use "
-            "method='exact'.", ValidityWarning, stacklevel=4)
+            f"MDR torsion model outside its validity: twist {abs(float(phi[i])):.4g} rad exceeds "
+            f"{float(limit[i]):.4g} rad, where the exact stick radius falls below c/a="
+            f"{MDR_VALID_STICK_RATIO}; the slip annulus is then so wide that the MDR torque errs "
+            f"by more than {MDR_ERROR_THRESHOLD:.0%} against the exact solution (up to +27% at full "
+            "sliding). Use method='exact'.", ValidityWarning, stacklevel=4)
 
 
 class _MonotonicKernel:
@@ -548,7 +551,7 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
         s = 1.0 if phi[i] >= po else -1.0
         torque[i] = Mo + s * factor[i] * M_load[i]
     if method == "mdr":
-        _warn_mdr(contact, u_arg, M_u, c_u, A, Dd, GA)
+        _warn_mdr(contact, u_arg, A, Dd, GA)
     meta = {"rtol": contact.rtol, "load": load_key, "method": method,
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal}}
     return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta)

@@ -123,7 +123,7 @@ def test_exact_history_against_jenkins_elements(hertz):
 
 
 def test_mdr_history_against_jenkins_springs(hertz):
-    phi_hist = IRREGULAR * PHI_SCALE * 0.05                     # small: MDR stays valid
+    phi_hist = IRREGULAR * PHI_SCALE * 0.03                     # small: MDR stays valid
     fine = np.concatenate([np.linspace(phi_hist[i], phi_hist[i + 1], 50, endpoint=False)
                            for i in range(len(phi_hist) - 1)] + [phi_hist[-1:]])
     N = 4000
