@@ -530,9 +530,13 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
         return np.where(a > 0, c, 0.0)
     idx_live = np.flatnonzero(live)
     al, dl, gl, pl = a[live], d[live], g_a[live], phi[live]
-    P_top, _ = slip_function(profile, E_star, al, al, dl, gl, rtol)
+    # P at both ends of the bracket, once per distinct normal state
+    keys, inv = np.unique(np.stack([al, dl, gl], axis=1), axis=0, return_inverse=True)
+    inv = inv.ravel()
+    ka, kd, kg = keys.T
+    P_top = slip_function(profile, E_star, ka, ka, kd, kg, rtol)[0][inv]
     y_min = np.log(C_MIN_REL)
-    P_bot, _ = slip_function(profile, E_star, al * C_MIN_REL, al, dl, gl, rtol)
+    P_bot = slip_function(profile, E_star, ka * C_MIN_REL, ka, kd, kg, rtol)[0][inv]
     phi_top = twist_of_stick(mu, G_t, P_top)
     phi_bot = twist_of_stick(mu, G_t, P_bot)
     no_slip = pl <= phi_top
@@ -548,8 +552,8 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
                                  s_g[idx], rtol)
             return twist_of_stick(mu, G_t, P)
 
-        lo, hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min)
-        y = bracketed_root(func, pl[solve], lo, hi, rtol=rtol, ftol=rtol, what="stick radius")
+        lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min)
+        y = _bracketed(func, pl[solve], lo, hi, f_lo, f_hi, rtol, "stick radius")
         out[solve] = s_a * np.exp(y)
     c[idx_live] = out
     return np.where(a > 0, c, 0.0)
@@ -561,36 +565,77 @@ _Y_GRID = -np.logspace(-9.0, np.log10(-np.log(C_MIN_REL)), 120)[::-1]
 
 
 def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                   y_min: float, min_group: int = 16) -> tuple[np.ndarray, np.ndarray]:
+                   y_min: float, min_group: int = 16):
     """Narrow brackets in ``y = ln(c/a)`` for roots of a function decreasing in ``y``.
 
     Elements sharing one normal state ``(a, d, g(a))`` (a torque-twist curve) share one evaluation
-    of ``func`` on :data:`_Y_GRID`; each root is then bracketed by two neighbouring grid nodes, so
-    the root finder needs a few iterations instead of ~20. Groups smaller than ``min_group`` keep
-    the full bracket ``[y_min, 0]``.
+    of ``func`` on :data:`_Y_GRID`. Each root is bracketed by two neighbouring grid nodes, then
+    one inverse-interpolation step (quadratic in ``y`` through three grid nodes) splits that bracket
+    at a point very close to the root, so the root finder starts with one end nearly on the root.
+    Returns ``(lo, hi, f_lo, f_hi)`` (``f`` = NaN where unknown); groups smaller than ``min_group``
+    keep the full bracket ``[y_min, 0]``.
     """
-    lo = np.full(target.shape, y_min)
-    hi = np.zeros(target.shape)
+    n = target.size
+    lo = np.full(n, y_min)
+    hi = np.zeros(n)
+    f_lo = np.full(n, np.nan)
+    f_hi = np.full(n, np.nan)
     keys, inverse, counts = np.unique(np.stack([a, d, g_a], axis=1), axis=0, return_inverse=True,
                                       return_counts=True)
     inverse = inverse.ravel()
     big = np.flatnonzero(counts >= min_group)
     if big.size == 0:
-        return lo, hi
+        return lo, hi, f_lo, f_hi
     first = np.array([np.flatnonzero(inverse == k)[0] for k in big])
     grid = np.concatenate([[y_min], _Y_GRID[_Y_GRID > y_min], [0.0]])
     n_g = grid.size
-    # func's idx refers to the solve arrays: evaluate at each group's first element
     vals = func(np.tile(grid, big.size), np.repeat(first, n_g)).reshape(big.size, n_g)
     row = np.full(keys.shape[0], -1)
     row[big] = np.arange(big.size)
     sel = np.flatnonzero(row[inverse] >= 0)
     v = vals[row[inverse[sel]]]                       # (m, n_g), decreasing along the grid
-    k = np.sum(v > target[sel, None], axis=1)         # grid[k-1] has func > target >= func[k]
-    k = np.clip(k, 1, n_g - 1)
-    lo[sel] = grid[k - 1]
-    hi[sel] = grid[k]
-    return lo, hi
+    tg = target[sel]
+    k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
+    ylo, yhi = grid[k - 1], grid[k]
+    flo = v[np.arange(sel.size), k - 1]
+    fhi = v[np.arange(sel.size), k]
+    # inverse quadratic interpolation y(f) through the bracket and its neighbour
+    j = np.clip(np.where(k + 1 < n_g, k + 1, k - 2), 0, n_g - 1)
+    y3, f3 = grid[j], v[np.arange(sel.size), j]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        L1 = (tg - fhi) * (tg - f3) / ((flo - fhi) * (flo - f3))
+        L2 = (tg - flo) * (tg - f3) / ((fhi - flo) * (fhi - f3))
+        L3 = (tg - flo) * (tg - fhi) / ((f3 - flo) * (f3 - fhi))
+        y0 = L1 * ylo + L2 * yhi + L3 * y3
+        y_lin = ylo + (tg - flo) * (yhi - ylo) / (fhi - flo)
+    y0 = np.where(np.isfinite(y0) & (y0 > ylo) & (y0 < yhi), y0, y_lin)
+    y0 = np.where(np.isfinite(y0) & (y0 > ylo) & (y0 < yhi), y0, 0.5 * (ylo + yhi))
+    f0 = func(y0, sel)
+    above = f0 > tg                                   # root lies above y0
+    lo[sel] = np.where(above, y0, ylo)
+    f_lo[sel] = np.where(above, f0, flo)
+    hi[sel] = np.where(above, yhi, y0)
+    f_hi[sel] = np.where(above, fhi, f0)
+    return lo, hi, f_lo, f_hi
+
+
+def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
+               f_hi: np.ndarray, rtol: float, what: str) -> np.ndarray:
+    """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite."""
+    known = np.isfinite(f_lo) & np.isfinite(f_hi)
+    out = np.empty(target.shape)
+    for mask, use in ((known, True), (~known, False)):
+        if not np.any(mask):
+            continue
+        ids = np.flatnonzero(mask)
+
+        def sub(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return func(y, ids[idx])
+
+        out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=rtol,
+                                  what=what, f_lo=f_lo[ids] if use else None,
+                                  f_hi=f_hi[ids] if use else None)
+    return out
 
 
 def solve_stick_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.ndarray,
@@ -613,9 +658,12 @@ def solve_stick_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.n
         T, _ = torque_integral(profile, E_star, cc, aa, dd, gg, rtol)
         return torque_of_stick(mu, G_t, cc, twist_of_stick(mu, G_t, P), T)
 
-    M_top = torque_at(al, al, dl, gl)
+    keys, inv = np.unique(np.stack([al, dl, gl], axis=1), axis=0, return_inverse=True)
+    inv = inv.ravel()
+    ka, kd, kg = keys.T
+    M_top = torque_at(ka, ka, kd, kg)[inv]
     y_min = np.log(C_MIN_REL)
-    M_bot = torque_at(al * C_MIN_REL, al, dl, gl)
+    M_bot = torque_at(ka * C_MIN_REL, ka, kd, kg)[inv]
     no_slip = Ml <= M_top
     sliding = Ml >= M_bot
     solve = ~(no_slip | sliding)
@@ -627,8 +675,8 @@ def solve_stick_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.n
         def func(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return torque_at(s_a[idx] * np.exp(y), s_a[idx], s_d[idx], s_g[idx])
 
-        lo, hi = _grid_brackets(func, Ml[solve], s_a, s_d, s_g, y_min)
-        y = bracketed_root(func, Ml[solve], lo, hi, rtol=rtol, ftol=rtol, what="stick radius")
+        lo, hi, f_lo, f_hi = _grid_brackets(func, Ml[solve], s_a, s_d, s_g, y_min)
+        y = _bracketed(func, Ml[solve], lo, hi, f_lo, f_hi, rtol, "stick radius")
         out[solve] = s_a * np.exp(y)
     c[live] = out
     return c
