@@ -15,9 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
-from .torsion_exact import C_MIN_REL, x_g_integral
+from .torsion_exact import C_MIN_REL, _integrate_log, x_g_integral
 
 __all__ = ["slip_displacement", "stick_radius", "torque_of_stick", "annulus_integral",
            "sliding_torque", "twist_of_stick", "stick_radius_of_torque", "dissipation"]
@@ -80,25 +79,21 @@ def stick_radius(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
 def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
                      rtol: float) -> np.ndarray:
     """``∫_c^a x (d - g(x)) dx`` (m³) by quadrature of the non-negative integrand (no cancellation
-    as ``c → a``), split at the profile's breakpoints."""
+    as ``c → a``), split at the profile's breakpoints (composite rule for large tables). The part
+    below ``C_MIN_REL a`` (relative size 1e-200) is dropped."""
     out = np.zeros(c.shape)
     todo = np.flatnonzero(c < a)
     if todo.size == 0:
         return out
-    cs, as_, ds = c[todo], a[todo], d[todo]
-    cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
-    edges = np.stack([cs] + [np.clip(np.full_like(cs, b), cs, as_) for b in cuts] + [as_])
-    n_seg = edges.shape[0] - 1
-    d_b = np.broadcast_to(ds, (n_seg, ds.size)).ravel()
-    lo_b, hi_b = edges[:-1].ravel(), edges[1:].ravel()
+    as_, ds = a[todo], d[todo]
+    cs = np.maximum(c[todo], C_MIN_REL * as_)
 
-    def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        x = np.clip(x, lo_b[idx][:, None], hi_b[idx][:, None])
-        return x * (d_b[idx][:, None] - profile._g(x))
+    def kernel(x: np.ndarray, gx: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return x * (ds[idx][:, None] - gx)
 
-    scale = np.broadcast_to(ds * as_ * (as_ - cs), (n_seg, ds.size)).ravel()
-    res = tanh_sinh(integrand, lo_b, hi_b, rtol=rtol, atol=rtol * scale * 1e-3 + 1e-300)
-    out[todo] = res.value.reshape(n_seg, ds.size).sum(axis=0)
+    scale = ds * as_ * (as_ - cs)
+    val, _ = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
+    out[todo] = val
     return out
 
 
@@ -152,21 +147,15 @@ def dissipation(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray, 
     todo = np.flatnonzero(c < a)
     if todo.size == 0:
         return out
-    cs, as_, ds, ps = c[todo], a[todo], d[todo], phi[todo]
-    cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
-    edges = np.stack([cs] + [np.clip(np.full_like(cs, b), cs, as_) for b in cuts] + [as_])
-    n_seg = edges.shape[0] - 1
-    d_b = np.broadcast_to(ds, (n_seg, ds.size)).ravel()
-    p_b = np.broadcast_to(ps, (n_seg, ds.size)).ravel()
-    lo_b, hi_b = edges[:-1].ravel(), edges[1:].ravel()
+    as_, ds, ps = a[todo], d[todo], phi[todo]
+    cs = np.maximum(c[todo], C_MIN_REL * as_)
 
-    def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        x = np.clip(x, lo_b[idx][:, None], hi_b[idx][:, None])
-        us = slip_displacement(profile, E_star, G_t, mu, x, d_b[idx][:, None])
-        return us * np.maximum(x * p_b[idx][:, None] - us, 0.0)
+    def kernel(x: np.ndarray, gx: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        us = mu * E_star * (ds[idx][:, None] - gx) / (4.0 * G_t)
+        return us * np.maximum(x * ps[idx][:, None] - us, 0.0)
 
     us_scale = mu * E_star * ds / (4 * G_t)
-    scale = np.broadcast_to(us_scale * ps * as_ * (as_ - cs), (n_seg, ds.size)).ravel()
-    res = tanh_sinh(integrand, lo_b, hi_b, rtol=rtol, atol=rtol * scale * 1e-3 + 1e-300)
-    out[todo] = 16.0 * G_t * res.value.reshape(n_seg, ds.size).sum(axis=0)
+    scale = us_scale * ps * as_ * (as_ - cs)
+    val, _ = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
+    out[todo] = 16.0 * G_t * val
     return out
