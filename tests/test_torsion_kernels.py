@@ -32,7 +32,7 @@ def test_k_minus_e_over_m_against_carlson_and_mpmath():
     for pi in (1e-20, 0.3, 0.95, 1 - 1e-12):
         m = 1 - mp.mpf(pi)
         ref = (mp.ellipk(m) - mp.ellipe(m)) / m
-        assert abs(te.kme_over_m(np.array([pi]))[0] / ref - 1) < 1e-14
+        assert abs(te.kme_over_m(np.array([pi]))[0] / ref - 1) < 1e-13   # scipy ellipkm1: ~5e-14
     np.testing.assert_allclose(te.K_comp(np.array([1e-300, 0.5])),
                                [float(K_of_comp(mp.mpf("1e-150"))), float(K_of_comp(mp.sqrt(0.5)))],
                                rtol=1e-14)
