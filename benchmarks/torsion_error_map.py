@@ -97,8 +97,10 @@ if __name__ == "__main__":
               f"{r['mdr_torque_error']:+10.3%}")
     t, who = threshold(rows, "c_over_a_mdr")
     te, whoe = threshold(rows, "c_over_a_exact")
-    print(f"MDR torque error > 1 % first at MDR c/a = {t:.4g} ({who}), at exact c/a = {te:.4g} ({whoe}); "
-          f"contactlab warns where the exact c/a < MDR_VALID_STICK_RATIO = {cl.torsion.MDR_VALID_STICK_RATIO}")
+    print(f"MDR torque error > 1 % first at MDR c/a = {t:.4g} ({who}), "
+          f"at exact c/a = {te:.4g} ({whoe}); "
+          "contactlab warns where the exact c/a < MDR_VALID_STICK_RATIO = "
+          f"{cl.torsion.MDR_VALID_STICK_RATIO}")
     try:
         import matplotlib
         matplotlib.use("Agg")

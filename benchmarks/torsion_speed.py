@@ -79,7 +79,8 @@ def main(repeats: int = 5) -> dict:
 if __name__ == "__main__":
     res = main()
     print(f"machine: {machine()}")
-    print(f"{'profile':12s} {'exact [ms]':>11s} {'MDR [ms]':>9s} {'exact/MDR':>10s}   (200 twists, rtol 1e-6)")
+    print(f"{'profile':12s} {'exact [ms]':>11s} {'MDR [ms]':>9s} {'exact/MDR':>10s}   "
+          "(200 twists, rtol 1e-6)")
     for name, (te, tm) in res.items():
         print(f"{name:12s} {te * 1e3:11.1f} {tm * 1e3:9.1f} {te / tm:10.1f}")
     tp = res["paraboloid"][0]

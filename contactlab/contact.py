@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -14,6 +14,9 @@ from .numeric.roots import bracketed_root
 from .params import Param, as_float_array
 from .profiles import Profile
 from .states import NormalState
+
+if TYPE_CHECKING:  # torsion (issue 3)
+    from .torsion import TorsionState, TwistHistory
 
 __all__ = ["Contact"]
 

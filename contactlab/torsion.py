@@ -466,7 +466,7 @@ def _masing_program(phi: np.ndarray):
     origin = np.full(n, -1, dtype=np.int64)
     factor = np.ones(n)
     arg = np.zeros(n)
-    seg_step, seg_o, seg_f, seg_from, seg_to = [], [], [], [], []
+    segments: list[tuple[int, float, float, float, float]] = []
     stack: list[int] = []          # step indices of the active turning points
     prev = 0.0
     direction = 0.0
@@ -493,22 +493,21 @@ def _masing_program(phi: np.ndarray):
             else:
                 limit = None
             if limit is not None and direction != 0.0 and (p - limit) * direction > 0:
-                seg_step.append(i); seg_o.append(po); seg_f.append(fo)
-                seg_from.append(start); seg_to.append(limit)
+                segments.append((i, po, fo, start, limit))
                 start = limit
                 if len(stack) >= 2:
                     del stack[-2:]
                 else:
                     stack.pop()
                 continue
-            seg_step.append(i); seg_o.append(po); seg_f.append(fo)
-            seg_from.append(start); seg_to.append(p)
+            segments.append((i, po, fo, start, p))
             origin[i] = stack[-1] if stack else -1
             factor[i] = fo
             arg[i] = abs(p - po) / fo
             break
         prev = p
-    segs = tuple(np.asarray(v, float) for v in (seg_step, seg_o, seg_f, seg_from, seg_to))
+    arr = np.asarray(segments, float).reshape(-1, 5)
+    segs = tuple(arr[:, k].copy() for k in range(5))
     return origin, factor, arg, segs
 
 

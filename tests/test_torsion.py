@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import warnings
 
-import mpmath as mp
 import numpy as np
 import pytest
 

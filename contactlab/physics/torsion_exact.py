@@ -195,9 +195,9 @@ _TABLE_GL = 12
 
 def _table_nodes(profile) -> np.ndarray | None:
     """Interior nodes of a piecewise-linear table (where ``g`` has sqrt cusps), else None."""
-    if getattr(profile, "interpolation", None) == "linear" and isinstance(getattr(profile, "r", None),
-                                                                           np.ndarray):
-        return profile.r
+    r = getattr(profile, "r", None)
+    if getattr(profile, "interpolation", None) == "linear" and isinstance(r, np.ndarray):
+        return r
     return None
 
 

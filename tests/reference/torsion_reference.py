@@ -70,8 +70,8 @@ def torque_general(c, a, p, mu, G):
     M = (8/3) μ c³ P(c) + 4μ ∫_c^a p(r) [r² acos(c/r) + c sqrt(r² - c²)] dr."""
     c, a = mp.mpf(c), mp.mpf(a)
     Pc = slip_P(c, a, p)
-    I = mp.quad(lambda r: p(r) * (r**2 * mp.acos(c / r) + c * mp.sqrt(r**2 - c**2)), [c, a])
-    return mu * Pc / (2 * G), mp.mpf(8) / 3 * mu * c**3 * Pc + 4 * mu * I
+    ring = mp.quad(lambda r: p(r) * (r**2 * mp.acos(c / r) + c * mp.sqrt(r**2 - c**2)), [c, a])
+    return mu * Pc / (2 * G), mp.mpf(8) / 3 * mu * c**3 * Pc + 4 * mu * ring
 
 
 def sliding_torque_general(a, p, mu, singular_edge=False):
@@ -106,7 +106,8 @@ def hertz_mdr_hat(t):
 
 def hertz_loop_energy_hat(t0):
     """Energy per cycle ±φ0 (§6.5), W/(μ²F²/(G a)) with c0/a = t0:
-    W = 8∫_0^{φ0} M dφ - 4 φ0 M0, ∫_0^{φ0} M dφ = ∫_{t0}^1 M̂(t) |dφ̂/dt| dt, |dφ̂/dt| = (3/(4π)) E(1-t²)/t."""
+    W = 8∫_0^{φ0} M dφ - 4 φ0 M0, ∫_0^{φ0} M dφ = ∫_{t0}^1 M̂(t) |dφ̂/dt| dt,
+    |dφ̂/dt| = (3/(4π)) E(1-t²)/t."""
     t0 = mp.mpf(t0)
     integral = mp.quad(lambda t: hertz_torque_hat(t) * 3 / (4 * mp.pi) * E(1 - t**2) / t, [t0, 1])
     return 8 * integral - 4 * hertz_twist_hat(t0) * hertz_torque_hat(t0)
