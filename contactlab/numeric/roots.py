@@ -104,7 +104,9 @@ def bracketed_root(
         x[act] = xs
         new_width = np.abs(b[act] - a[act])
         # guarantee progress: force a bisection when the bracket shrank by less than half
-        slow = new_width > 0.5 * width
+        # (not when the regula falsi point already meets the residual test: bisecting would
+        # replace a converged x by the midpoint and discard it)
+        slow = (new_width > 0.5 * width) & (fx != 0) & ~(np.abs(fx) <= ftol * np.abs(t[act]))
         if np.any(slow):
             s = act[slow]
             ms = 0.5 * (a[s] + b[s])

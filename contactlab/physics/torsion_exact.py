@@ -687,16 +687,35 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     y0 = np.where(np.isfinite(y0) & (y0 > ylo) & (y0 < yhi), y0, 0.5 * (ylo + yhi))
     f0 = func(y0, sel)
     above = f0 > tg                                   # root lies above y0
-    lo[sel] = np.where(above, y0, ylo)
-    f_lo[sel] = np.where(above, f0, flo)
-    hi[sel] = np.where(above, yhi, y0)
-    f_hi[sel] = np.where(above, fhi, f0)
+    lo_s = np.where(above, y0, ylo)
+    flo_s = np.where(above, f0, flo)
+    hi_s = np.where(above, yhi, y0)
+    fhi_s = np.where(above, fhi, f0)
+    # a second point just across the root (4x the quadratic-vs-linear discrepancy), so that both
+    # ends are close: regula falsi then stops at once instead of bisecting from the far end
+    step = np.maximum(4.0 * np.abs(y0 - np.where(np.isfinite(y_lin), y_lin, y0)),
+                      1e-9 * np.maximum(np.abs(y0), 1e-6))
+    y1 = np.where(above, np.minimum(y0 + step, yhi), np.maximum(y0 - step, ylo))
+    inner = (y1 > lo_s) & (y1 < hi_s)
+    if np.any(inner):
+        k1 = np.flatnonzero(inner)
+        f1 = func(y1[k1], sel[k1])
+        up = f1 > tg[k1]                              # root above y1
+        lo_s[k1] = np.where(up, y1[k1], lo_s[k1])
+        flo_s[k1] = np.where(up, f1, flo_s[k1])
+        hi_s[k1] = np.where(up, hi_s[k1], y1[k1])
+        fhi_s[k1] = np.where(up, fhi_s[k1], f1)
+    lo[sel], f_lo[sel], hi[sel], f_hi[sel] = lo_s, flo_s, hi_s, fhi_s
     return lo, hi, f_lo, f_hi
 
 
 def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
-               f_hi: np.ndarray, rtol: float, what: str) -> np.ndarray:
-    """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite."""
+               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None) -> np.ndarray:
+    """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite.
+
+    ``ftol`` (default ``rtol``): residual test; 0 keeps refining the bracket in ``y`` to ``rtol``
+    (needed where the function is flat in ``y``: the torque near full sliding)."""
+    ftol = rtol if ftol is None else ftol
     known = np.isfinite(f_lo) & np.isfinite(f_hi)
     out = np.empty(target.shape)
     for mask, use in ((known, True), (~known, False)):
@@ -707,7 +726,7 @@ def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: n
         def sub(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return func(y, ids[idx])
 
-        out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=rtol,
+        out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=ftol,
                                   what=what, f_lo=f_lo[ids] if use else None,
                                   f_hi=f_hi[ids] if use else None)
     return out
@@ -751,7 +770,7 @@ def solve_stick_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.n
             return torque_at(s_a[idx] * np.exp(y), s_a[idx], s_d[idx], s_g[idx])
 
         lo, hi, f_lo, f_hi = _grid_brackets(func, Ml[solve], s_a, s_d, s_g, y_min)
-        y = _bracketed(func, Ml[solve], lo, hi, f_lo, f_hi, rtol, "stick radius")
+        y = _bracketed(func, Ml[solve], lo, hi, f_lo, f_hi, rtol, "stick radius", ftol=0.0)
         out[solve] = s_a * np.exp(y)
     c[live] = out
     return c

@@ -129,7 +129,7 @@ def stick_radius_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.
             ph = twist_of_stick(profile, E_star, G_t, mu, cc, s_d[idx])
             return torque_of_stick(profile, E_star, G_t, mu, ph, cc, s_a[idx], s_d[idx], rtol)
 
-        y = bracketed_root(func, Ml[solve], np.log(C_MIN_REL), 0.0, rtol=rtol, ftol=rtol,
+        y = bracketed_root(func, Ml[solve], np.log(C_MIN_REL), 0.0, rtol=rtol, ftol=0.0,
                            what="MDR stick radius")
         out[solve] = s_a * np.exp(y)
     c[live] = out
