@@ -170,3 +170,32 @@ def test_no_slip_history_is_linear_and_lossless():
     h = c.twist_history(twist=tw, force=F_HERTZ)
     np.testing.assert_allclose(h.torque, 16 / 3 * G_T * A**3 * tw, rtol=1e-9)
     assert np.all(h.dissipated_energy == 0)
+
+
+def test_tabulated_history_matches_analytic(hertz):
+    r = np.linspace(0, 1.5 * A, 1000)
+    tab = cl.Contact(cl.profiles.Tabulated(r, r**2 / (2 * R)), materials(), friction=MU)
+    tw = PHI_SCALE * np.array([0.0, 0.3, -0.2, 0.25, -0.3])
+    ht = tab.twist_history(twist=tw, force=F_HERTZ)
+    ha = hertz.twist_history(twist=tw, force=F_HERTZ)
+    np.testing.assert_allclose(ht.torque, ha.torque, rtol=tol.TORSION_TABLE_1000)
+    np.testing.assert_allclose(ht.dissipated_energy[1:], ha.dissipated_energy[1:],
+                               rtol=tol.TORSION_TABLE_1000)
+
+
+def test_flat_punch_history_energy_per_cycle():
+    """Flat punch: no dissipation below φ_0 (no slip); above, the loop energy follows
+    W = 8∫_0^{φ0} M dφ - 4φ0M0 with M from torsion() (trapezoid over a fine monotonic curve)."""
+    d = 1e-7
+    c = cl.Contact(cl.profiles.FlatPunch(radius=A), materials(), friction=MU)
+    phi_0 = MU * E_STAR * d / (4 * G_T * A)
+    small = c.twist_history(twist=[0.5 * phi_0, -0.5 * phi_0, 0.5 * phi_0], depth=d)
+    assert np.all(small.dissipated_energy == 0)
+    phi0 = 3 * phi_0
+    h = c.twist_history(twist=[phi0, -phi0, phi0], depth=d)
+    W = h.dissipated_energy[2] - h.dissipated_energy[0]
+    grid = np.linspace(0, phi0, 4001)
+    M = c.torsion(depth=d, twist=grid).torque
+    from scipy.integrate import simpson
+    W_ref = 8 * simpson(M, x=grid) - 4 * phi0 * M[-1]
+    assert rel(W, W_ref) < 1e-5          # Simpson across the kink of M at φ_0
