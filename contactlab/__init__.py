@@ -12,6 +12,7 @@ from .materials import Elastic, Rigid, effective_moduli
 from .simulation import PathResult
 from .states import NormalState
 from .tangential import ShiftHistory, TangentialState
+from .torsion import TorsionState, TwistHistory
 from .viscoelastic import ViscoelasticHistory
 from . import registry
 from .registry import register_material, register_profile
@@ -21,7 +22,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Contact", "Elastic", "Rigid", "effective_moduli", "LoadPath",
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
-    "TangentialState", "ShiftHistory", "PathResult",
+    "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "__version__",
 ]

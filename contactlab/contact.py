@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -14,6 +14,9 @@ from .numeric.roots import bracketed_root
 from .params import Param, as_float_array
 from .profiles import Profile
 from .states import NormalState
+
+if TYPE_CHECKING:  # torsion (issue 3)
+    from .torsion import TorsionState, TwistHistory
 
 __all__ = ["Contact"]
 
@@ -334,3 +337,89 @@ class Contact:
         from .symbolic.formulas import contact_formulas
         return contact_formulas(self.profile, self.moduli, friction=self.friction,
                                 work_of_adhesion=self.work_of_adhesion, substitute=substitute)
+
+    # ---- torsion (issue 3)
+    def torsion(self, *, depth: Any = None, force: Any = None, radius: Any = None,
+                twist: Any = None, torque: Any = None, stick_radius: Any = None,
+                method: str | None = None) -> "TorsionState":
+        """Monotonic twist of the contact at constant normal load (physics.md §6).
+
+        Give the normal preload by exactly one of ``depth=``, ``force=``, ``radius=`` and the twist
+        by exactly one of ``twist=``, ``torque=``, ``stick_radius=``; scalars or arrays (the two
+        broadcast together; the state has the broadcast shape).
+
+        Parameters
+        ----------
+        depth, force, radius : float or array_like
+            Normal preload: indentation depth (m), normal force (N) or contact radius (m).
+        twist : float or array_like, optional
+            Twist angle ``φ``, rad (sign gives the sense of rotation).
+        torque : float or array_like, optional
+            Torque ``M``, N·m; ``|M|`` must not exceed the sliding torque of the model.
+        stick_radius : float or array_like, optional
+            Stick radius ``c``, m, ``0 <= c <= a`` (not for ``method="no-slip"``).
+        method : {"no-slip", "exact", "mdr"}, optional
+            ``"no-slip"`` (Reissner-Sagoci, μ → ∞); ``"exact"`` (Jäger's partial-slip solution);
+            ``"mdr"`` (MDR narrow-slip springs with μ* = 2μ: fast, exact only as ``c → a``; warns
+            with :class:`~contactlab.errors.ValidityWarning` when its torque error exceeds 1 %).
+            Default: ``"no-slip"`` without friction, else ``"exact"``.
+
+        Returns
+        -------
+        TorsionState
+            ``.twist .torque .stick_radius .slip .method .normal .shear(r) .displacement(r)``.
+
+        Raises
+        ------
+        ParameterError
+            ``method="exact"``/``"mdr"`` without ``friction``; stick radius outside ``[0, a]``.
+        OutsideTheoryError
+            A torque beyond the sliding torque.
+        NotSupportedError
+            ``stick_radius=`` with ``method="no-slip"``; slip with adhesion.
+
+        Notes
+        -----
+        All models use the torsional modulus ``G_t`` (``1/G_t = 1/G1 + 1/G2``), not ``G*``.
+        For smooth profiles full sliding is reached only asymptotically (``φ → ∞``); stick radii
+        below ``1e-100 a`` are reported as 0 with ``slip=True``.
+
+        Examples
+        --------
+        >>> import contactlab as cl
+        >>> steel = cl.Elastic(E=210e9, nu=0.3)
+        >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(steel, steel), friction=0.3)
+        >>> s = c.torsion(force=100.0, twist=1e-4)
+        >>> round(s.stick_radius / s.radius, 4)
+        0.9875
+        """
+        from .torsion import solve_torsion
+        return solve_torsion(self, depth=depth, force=force, radius=radius, twist=twist,
+                             torque=torque, stick_radius=stick_radius, method=method)
+
+    def twist_history(self, *, twist: Any, depth: Any = None, force: Any = None,
+                      method: str | None = None) -> "TwistHistory":
+        """Torque response to an arbitrary twist history at constant normal load.
+
+        Parameters
+        ----------
+        twist : array_like, 1D
+            Twist per step, rad, starting from the untwisted virgin state.
+        depth, force : float
+            Constant normal preload (exactly one).
+        method : {"exact", "mdr", "no-slip"}, optional
+            Default ``"exact"`` with friction, ``"no-slip"`` without.
+
+        Returns
+        -------
+        TwistHistory
+            Per-step ``.twist .torque .stick_radius .dissipated_energy`` (cumulative, J).
+
+        Notes
+        -----
+        Masing's rule with turning-point memory (physics.md §6.5): after each reversal the
+        loading solution with doubled friction applies from the turning point; loops that close
+        are forgotten. The loading curve is solved once, batched, for every step.
+        """
+        from .torsion import twist_history
+        return twist_history(self, twist=twist, depth=depth, force=force, method=method)

@@ -27,6 +27,8 @@ def bracketed_root(
     ftol: float = 0.0,
     maxiter: int = 200,
     what: str = "root",
+    f_lo: np.ndarray | float | None = None,
+    f_hi: np.ndarray | float | None = None,
 ) -> np.ndarray:
     """Solve ``func(x, index) = target`` for each element with a bracket ``[lo, hi]``.
 
@@ -45,6 +47,8 @@ def bracketed_root(
         Iteration cap; reaching it raises :class:`~contactlab.errors.ConvergenceError`.
     what : str
         Name of the unknown, used in error messages.
+    f_lo, f_hi : array_like, optional
+        ``func`` at ``lo`` and ``hi`` when the caller already knows them (saves two evaluations).
 
     Returns
     -------
@@ -57,8 +61,10 @@ def bracketed_root(
     a = a.ravel().copy()
     b = b.ravel().copy()
     idx = np.arange(t.size)
-    fa = np.asarray(func(a, idx), dtype=float) - t
-    fb = np.asarray(func(b, idx), dtype=float) - t
+    fa = (np.asarray(func(a, idx), dtype=float) if f_lo is None
+          else np.broadcast_to(np.asarray(f_lo, dtype=float), shape).ravel().copy()) - t
+    fb = (np.asarray(func(b, idx), dtype=float) if f_hi is None
+          else np.broadcast_to(np.asarray(f_hi, dtype=float), shape).ravel().copy()) - t
     if np.any(fa * fb > 0):
         bad = np.flatnonzero(fa * fb > 0)[0]
         raise ConvergenceError(
@@ -98,7 +104,9 @@ def bracketed_root(
         x[act] = xs
         new_width = np.abs(b[act] - a[act])
         # guarantee progress: force a bisection when the bracket shrank by less than half
-        slow = new_width > 0.5 * width
+        # (not when the regula falsi point already meets the residual test: bisecting would
+        # replace a converged x by the midpoint and discard it)
+        slow = (new_width > 0.5 * width) & (fx != 0) & ~(np.abs(fx) <= ftol * np.abs(t[act]))
         if np.any(slow):
             s = act[slow]
             ms = 0.5 * (a[s] + b[s])

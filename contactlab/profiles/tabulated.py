@@ -218,6 +218,7 @@ class Tabulated(Profile):
             if np.any(pos):
                 xp = xs[pos][:, None]
                 q = np.minimum(nodes[None, :] / xp, 1.0)
+                # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
                 contrib = np.where(nodes[None, :] <= xp, ds[None, :] * np.arcsin(q), 0.0)
                 val[pos] = xs[pos] * (0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]]
                                       - contrib.sum(axis=1))
