@@ -45,8 +45,8 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
     if not np.any(inside):
         return out, err
     rr, aa = r[inside], a[inside]
-    g_a = profile._g(aa)
-    g_r = profile._g(rr)
+    g_a = profile._g(aa, rtol)
+    g_r = profile._g(rr, rtol)
     val = np.zeros(rr.shape)
     er = np.zeros(rr.shape)
     axis = rr == 0
@@ -80,7 +80,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
             u = np.maximum(u, _U_MIN)
             x, interior = node_x(u, idx)
             sh = np.sinh(u)
-            val = (profile._g(x) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)
+            val = (profile._g(x, rtol) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)
             return np.where(interior | np.isfinite(val), val, 0.0)
 
         tail = (g_a[pos] - grp) / np.sqrt((ap - rp) * (ap + rp))
@@ -113,7 +113,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
         lo0, hi0 = edges[:-1], edges[1:]
 
         def integrand0(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return profile._g(x) / (x * x)
+            return profile._g(x, rtol) / (x * x)
 
         scale0 = np.broadcast_to(rtol * g_a[axis] / a0, lo0.shape).ravel()
         res0 = tanh_sinh(integrand0, lo0.ravel(), hi0.ravel(), rtol=rtol, atol=scale0,
@@ -124,8 +124,8 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
         if np.any(unconverged):
             # g(x)/x not vanishing at the axis (cone-like tip, n <= 1): p(0) is infinite
             tiny = a0[unconverged]
-            h1 = profile._g(1e-12 * tiny) / (1e-12 * tiny)
-            h2 = profile._g(1e-6 * tiny) / (1e-6 * tiny)
+            h1 = profile._g(1e-12 * tiny, rtol) / (1e-12 * tiny)
+            h2 = profile._g(1e-6 * tiny, rtol) / (1e-6 * tiny)
             divergent = (h1 > 0) & (h1 >= 0.5 * h2)
             if not np.all(divergent):
                 from ..errors import ConvergenceError
@@ -152,7 +152,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
     if np.any(inside) and profile._has("_height"):
         out[inside] = profile._height(r[inside])
     elif np.any(inside):
-        out[inside] = profile.inverse_transform(r[inside])
+        out[inside] = profile.inverse_transform(r[inside], rtol)
     outside = r > a
     if np.any(outside):
         ro, ao = r[outside], a[outside]
@@ -164,7 +164,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
         r_b = np.broadcast_to(ro, lo.shape).ravel()
 
         def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return profile._g(r_b[idx][:, None] * np.sin(th))
+            return profile._g(r_b[idx][:, None] * np.sin(th), rtol)
 
         res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol)
         out[outside] = 2 / np.pi * res.value.reshape(lo.shape).sum(axis=0)
@@ -206,7 +206,7 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     a = np.asarray(a, float)
 
     def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return profile._g(x) ** 2
+        return profile._g(x, rtol) ** 2
 
     lo = np.broadcast_to(profile.flat_radius, a.shape).astype(float)
     lo = np.minimum(lo, a)

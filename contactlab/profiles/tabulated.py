@@ -233,6 +233,12 @@ class Tabulated(Profile):
             out[start:start + chunk] = (s[None, :] * (prim(hi) - prim(lo))).sum(axis=1)
         return out.reshape(a.shape)
 
+    def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        if self._spline is not None:
+            return self._g_integral_quadrature(a, rtol)
+        return super()._g_integral_with_error(a, rtol)
+
     # ------------------------------------------------------------------ contact radius
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
         if self._monotone_f:
