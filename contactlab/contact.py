@@ -138,7 +138,8 @@ class Contact:
                                          f"max_radius={prof.max_radius!r} m of {prof!r}.")
             a = arr.copy()
             a[a < prof.flat_radius] = np.where(a[a < prof.flat_radius] > 0, prof.flat_radius, 0.0)
-            d = np.where(a > 0, prof._g(a, rtol), 0.0)
+            g_a, g_a_err = prof._g_with_error(a, rtol)
+            d = np.where(a > 0, g_a, 0.0)
             prof._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
         else:
             a, d = self._radius_depth_of_force(arr, rtol)
@@ -152,6 +153,8 @@ class Contact:
                                                                           + np.abs(g_int))), 0.0)
         if key == "force":
             F_err = F_err + np.where(arr > 0, np.abs(F - arr), 0.0)
+        elif key == "radius":       # the depth g(a) itself carries the error of g
+            F_err = F_err + np.where(a > 0, 2.0 * E * a * np.abs(g_a_err), 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             rel = np.where(F > 0, F_err / np.where(F > 0, np.abs(F), 1.0), 0.0)
         meta = {"routes": {"g": prof.g_route}, "rtol": self.rtol, "control": key,

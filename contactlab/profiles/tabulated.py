@@ -33,6 +33,8 @@ from .base import Profile
 __all__ = ["Tabulated"]
 
 _CHUNK = 2_000_000   # elements per dense (x, node) block
+#: tables up to this many points declare their nodes as breakpoints (quadratures split there)
+BREAKPOINT_LIMIT = 2000
 
 
 class Tabulated(Profile):
@@ -203,7 +205,7 @@ class Tabulated(Profile):
             if np.any(pos):
                 xp = xs[pos][:, None]
                 q = np.minimum(nodes[None, :] / xp, 1.0)
-                contrib = np.where(nodes[None, :] < xp, ds[None, :] * np.arcsin(q), 0.0)
+                contrib = np.where(nodes[None, :] <= xp, ds[None, :] * np.arcsin(q), 0.0)
                 val[pos] = xs[pos] * (0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]]
                                       - contrib.sum(axis=1))
             out[start:start + chunk] = val
@@ -232,6 +234,145 @@ class Tabulated(Profile):
 
             out[start:start + chunk] = (s[None, :] * (prim(hi) - prim(lo))).sum(axis=1)
         return out.reshape(a.shape)
+
+    def _pressure_shape_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
+                                      ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` of the linear interpolant, term by term.
+
+        The interpolant is a cone of slope ``s_0`` plus truncated cones ``Δs_j (r - r_j)_+`` at the
+        interior nodes, so ``S = s_0 (π/2) arccosh(a/r) + Σ_j Δs_j S_j`` with
+        ``h_j'(x) = arccos(r_j/x) + r_j/sqrt(x²-r_j²)`` and
+
+        * ``r > r_j``: ``S_j = ∫_0^{arccosh(a/r)} h_j'(r cosh u) du``,
+        * ``r < r_j``: ``S_j = ∫_0^{arccosh(a/r_j)} r_j (1 + sinh v gd(v)) / sqrt(r_j² cosh²v - r²) dv``,
+
+        both with bounded, smooth integrands (one batched tanh-sinh quadrature). At a node
+        (``r = r_j``, a slope jump) the pressure is logarithmically infinite: ``±inf``. Cost
+        O(number of nodes below ``a``) per radius. Returns ``None`` for the cubic spline (which
+        takes the generic route).
+        """
+        if self._spline is not None:
+            return None
+        from ..numeric.quadrature import tanh_sinh
+        r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+        out = np.zeros(r.shape)
+        err = np.zeros(r.shape)
+        inside = r < a
+        if not np.any(inside):
+            return out, err
+        self._guard(a[inside], "a")
+        rr, aa = r[inside], a[inside]
+        s0 = self._slopes[0]
+        with np.errstate(divide="ignore"):
+            val = np.where(s0 != 0, s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0)),
+                           0.0)
+        er = np.zeros(rr.shape)
+        keep = self._dslope != 0
+        nodes, ds = self.r[1:-1][keep], self._dslope[keep]
+        chunk = max(1, 200_000 // max(nodes.size, 1))
+        for start in range(0, rr.size, chunk):
+            rc, ac = rr[start:start + chunk], aa[start:start + chunk]
+            ip, jn = np.nonzero(nodes[None, :] < ac[:, None])
+            if ip.size == 0:
+                continue
+            rp, ap, b, w = rc[ip], ac[ip], nodes[jn], ds[jn]
+            hit = rp == b
+            above = rp > b
+            with np.errstate(divide="ignore", invalid="ignore"):
+                hi = np.where(above, np.arccosh(ap / np.where(above, rp, 1.0)),
+                              np.arccosh(ap / b))
+            hi = np.where(hit, 0.0, hi)
+
+            def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                rv, bv = rp[idx][:, None], b[idx][:, None]
+                up = above[idx][:, None]
+                ch, sh = np.cosh(t), np.sinh(t)
+                x = rv * ch
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    root = np.sqrt(np.maximum((x - bv) * (x + bv), 0.0))
+                    f_above = np.arctan2(root, bv) + bv / root
+                    q = np.sqrt(np.maximum((bv * ch - rv) * (bv * ch + rv), 0.0))
+                    f_below = bv * (1.0 + sh * np.arctan(sh)) / q
+                return np.where(up, f_above, f_below)
+
+            res = tanh_sinh(integrand, np.zeros_like(hi), hi, rtol=rtol, raise_on_failure=False)
+            terms = w * res.value
+            terms = np.where(hit, np.sign(w) * np.inf, terms)
+            part = np.zeros(rc.size)
+            np.add.at(part, ip, terms)
+            e = np.zeros(rc.size)
+            np.add.at(e, ip, np.abs(w) * res.error)
+            val[start:start + chunk] += part
+            er[start:start + chunk] += e
+        out[inside] = val
+        err[inside] = er
+        return out, err
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        """Interior nodes with a slope jump (linear interpolation), for tables up to
+        :data:`BREAKPOINT_LIMIT` points; finer tables declare none (their kinks are weak and
+        splitting at every node would cost O(N²))."""
+        if self._spline is not None or self.r.size > BREAKPOINT_LIMIT:
+            return ()
+        return tuple(self.r[1:-1][self._dslope != 0].tolist())
+
+    def _abel_g_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
+                              ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``A(r, a) = (2/π) ∫_0^{asin(min(1,a/r))} g(r sinθ) dθ`` of the linear interpolant.
+
+        Inside the contact ``A = f(r)``. Outside, term by term over the cone plus truncated cones
+        (``h_j(x) = x arccos(r_j/x)`` for ``x > r_j``), with ``θ_a = asin(a/r)``:
+        ``A = s_0 r (1 - cos θ_a) + (2/π) Σ_j Δs_j ∫_{θ_j}^{θ_a} r sinθ arccos(r_j/(r sinθ)) dθ``,
+        ``θ_j = asin(r_j/r)``. Each integrand is smooth inside its interval (the kink of ``h_j``
+        sits at the lower end): one batched tanh-sinh quadrature. Returns ``None`` for the cubic
+        spline.
+        """
+        if self._spline is not None:
+            return None
+        from ..numeric.quadrature import tanh_sinh
+        r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+        out = np.zeros(r.shape)
+        err = np.zeros(r.shape)
+        inside = (r <= a) & (r > 0)
+        if np.any(inside):
+            out[inside] = self._height(r[inside])
+        outside = r > a
+        if not np.any(outside):
+            return out, err
+        self._guard(a[outside], "a")
+        ro, ao = r[outside], a[outside]
+        th_a = np.arcsin(ao / ro)
+        cone = self._slopes[0] * ro * (1.0 - np.cos(th_a))
+        val = np.zeros(ro.shape)
+        er = np.zeros(ro.shape)
+        keep = self._dslope != 0
+        nodes, ds = self.r[1:-1][keep], self._dslope[keep]
+        chunk = max(1, 200_000 // max(nodes.size, 1))
+        for start in range(0, ro.size, chunk):
+            rc, ac, tc = ro[start:start + chunk], ao[start:start + chunk], th_a[start:start + chunk]
+            ip, jn = np.nonzero(nodes[None, :] < ac[:, None])
+            if ip.size == 0:
+                continue
+            rp, b, w = rc[ip], nodes[jn], ds[jn]
+            lo = np.arcsin(b / rp)
+
+            def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                x = rp[idx][:, None] * np.sin(th)
+                bv = b[idx][:, None]
+                root = np.sqrt(np.maximum((x - bv) * (x + bv), 0.0))
+                return x * np.arctan2(root, bv)
+
+            res = tanh_sinh(integrand, lo, tc[ip], rtol=rtol, raise_on_failure=False)
+            part = np.zeros(rc.size)
+            np.add.at(part, ip, w * res.value)
+            e = np.zeros(rc.size)
+            np.add.at(e, ip, np.abs(w) * res.error)
+            val[start:start + chunk] += part
+            er[start:start + chunk] += e
+        out[outside] = cone + 2.0 / np.pi * val
+        err[outside] = 2.0 / np.pi * er
+        return out, err
 
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
