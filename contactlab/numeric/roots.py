@@ -76,7 +76,10 @@ def bracketed_root(
         aa, bb, ffa, ffb = a[act], b[act], fa[act], fb[act]
         # regula falsi step, bisection when it would stall at an end
         with np.errstate(invalid="ignore", divide="ignore"):
-            xs = bb - ffb * (bb - aa) / (ffb - ffa)
+            # step from the end with the smaller residual (same point, less cancellation; keeps
+            # roots near an end at 0 accurate down to subnormal values)
+            step = (bb - aa) / (ffb - ffa)
+            xs = np.where(np.abs(ffa) < np.abs(ffb), aa - ffa * step, bb - ffb * step)
         mid = 0.5 * (aa + bb)
         width = np.abs(bb - aa)
         bad = ~np.isfinite(xs) | (xs <= np.minimum(aa, bb)) | (xs >= np.maximum(aa, bb))
@@ -110,8 +113,10 @@ def bracketed_root(
             fb[s] = np.where(lm, fb[s], fm)
             x[s] = ms
             fx[slow] = fm
+        mid_c = 0.5 * (a[act] + b[act])
         conv = (np.abs(b[act] - a[act]) <= rtol * np.maximum(np.abs(x[act]), 1e-300)) | (
-            fx == 0) | (np.abs(fx) <= ftol * np.abs(t[act]))
+            fx == 0) | (np.abs(fx) <= ftol * np.abs(t[act])) | (
+            (mid_c == a[act]) | (mid_c == b[act]))    # no float left inside (subnormal roots)
         act = act[~conv]
     if act.size:
         raise ConvergenceError(
