@@ -88,8 +88,9 @@ def bracketed_root(
         left = np.sign(fx) == np.sign(ffa)
         # Anderson-Björck: scale the retained end's value when the same end is kept twice
         keep_b = left
-        m = 1.0 - fx / np.where(left, ffa, ffb)
-        m = np.where(m > 0, m, 0.5)
+        with np.errstate(invalid="ignore", divide="ignore"):   # a scaled end value may underflow
+            m = 1.0 - fx / np.where(left, ffa, ffb)
+        m = np.where(np.isfinite(m) & (m > 0), m, 0.5)
         same = side[act] == np.where(keep_b, 1, -1)
         new_fa = np.where(left, fx, np.where(same, ffa * m, ffa))
         new_fb = np.where(left, np.where(same, ffb * m, ffb), fx)

@@ -310,11 +310,14 @@ class Tabulated(Profile):
 
     @property
     def breakpoints(self) -> tuple[float, ...]:
-        """Interior nodes with a slope jump (linear interpolation), for tables up to
+        """Interior nodes where the interpolant is not smooth (slope jumps of the linear
+        interpolant; third-derivative jumps of the spline), for tables up to
         :data:`BREAKPOINT_LIMIT` points; finer tables declare none (their kinks are weak and
         splitting at every node would cost O(N²))."""
-        if self._spline is not None or self.r.size > BREAKPOINT_LIMIT:
+        if self.r.size > BREAKPOINT_LIMIT:
             return ()
+        if self._spline is not None:
+            return tuple(self.r[1:-1].tolist())
         return tuple(self.r[1:-1][self._dslope != 0].tolist())
 
     def _abel_g_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
