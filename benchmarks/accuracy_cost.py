@@ -165,6 +165,14 @@ def quadrature_knobs(quick: bool) -> list[Knob]:
 
         knobs.append(Knob("transform quadrature rtol", label + " [quadrature route]", "force",
                           ladder, run_force, cs["force"]))
+
+        def run_radius(rtol, prof=prof, cs=cs):
+            s = cl.Contact(prof, MATERIALS, rtol=rtol).normal(depth=cs["depth"])
+            return s.radius, s.error_estimates["radius"]
+
+        if "tabulated" not in label:        # (the table's exact radius is not A)
+            knobs.append(Knob("transform quadrature rtol", label + " [quadrature route]", "radius",
+                              ladder, run_radius, A))
         if cs["pressure"] is not None:
             def run_p(rtol, prof=prof, cs=cs):
                 s = cl.Contact(prof, MATERIALS, rtol=rtol).normal(depth=cs["depth"])
@@ -249,7 +257,7 @@ BEM_CASES = {
     "cone": (lambda r: 0.5 * r, 0.5 * np.pi * A * 0.5, 0.5 * np.pi * A * A * 0.5,
              0.25 * float(np.arccosh(2.0))),
     "n = 4": (lambda r: 10.0 * r**4, float(kappa(4)) * 10 * A**4,
-              2 * float(kappa(4)) * 10 * A**5 * 4 / 5, None),
+              2 * float(kappa(4)) * 10 * A**5 * 4 / 5, power_pressure_ref(10.0, 4.0, A, A / 2)),
 }
 CL_PROFILES = {"Hertz": Paraboloid(R_PAR), "cone": Cone(0.5), "n = 4": PowerLaw(10.0, 4.0)}
 
@@ -374,8 +382,9 @@ def bem_compare(quick: bool, quad_rows: list[Row]) -> list[dict]:
                 return min(ok) if ok else math.nan
             tcm, ttm = reach("contactmechanics"), reach("tamaas")
             tcl = cl_t[name]["closed"]
-            quad_key = ("transform quadrature rtol", map_case[name] + " [quadrature route]", "force")
-            tq = ttr.get(quad_key, {}).get(tol, math.nan) if key == "force_error" else math.nan
+            quad_key = ("transform quadrature rtol", map_case[name] + " [quadrature route]",
+                        "force" if key == "force_error" else "radius")
+            tq = ttr.get(quad_key, {}).get(tol, math.nan)
 
             def fmt(v):
                 return f"{v:10.3g}" if math.isfinite(v) else f"{'not reached':>10s}"

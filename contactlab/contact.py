@@ -143,20 +143,31 @@ class Contact:
             prof._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
         else:
             a, d = self._radius_depth_of_force(arr, rtol)
+        pos = a > 0
+        all_pos = bool(pos.all())
         g_int, g_int_err = prof._g_integral_with_error(a, rtol)
-        g_int = np.where(a > 0, g_int, 0.0)
-        F = np.where(a > 0, 2.0 * E * (a * d - g_int), 0.0)
+        ad = a * d
+        F = ad - g_int
+        F *= 2.0 * E
         # absolute force error: quadrature of ∫g, rounding of the difference, and (force control)
         # the residual of the radius solve against the requested force; errors of a enter F only
         # at second order because dF/da = 2E*(d - g(a)) = 0 at fixed depth.
-        F_err = np.where(a > 0, 2.0 * E * (np.abs(g_int_err) + ROUNDING * (np.abs(a * d)
-                                                                          + np.abs(g_int))), 0.0)
+        F_err = np.abs(ad)
+        F_err += np.abs(g_int)
+        F_err *= ROUNDING
+        F_err += np.abs(g_int_err)
+        F_err *= 2.0 * E
+        if not all_pos:
+            F = np.where(pos, F, 0.0)
+            F_err = np.where(pos, F_err, 0.0)
         if key == "force":
             F_err = F_err + np.where(arr > 0, np.abs(F - arr), 0.0)
         elif key == "radius":       # the depth g(a) itself carries the error of g
             F_err = F_err + np.where(a > 0, 2.0 * E * a * np.abs(g_a_err), 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
-            rel = np.where(F > 0, F_err / np.where(F > 0, np.abs(F), 1.0), 0.0)
+            rel = F_err / F
+        if not all_pos or rel.ndim == 0:
+            rel = np.where(F > 0, rel, 0.0)
         meta = {"routes": {"g": prof.g_route}, "rtol": self.rtol, "control": key,
                 "error_estimate": float(rel) if rel.ndim == 0 else rel}
         return NormalState(self, np.asarray(d, float), np.asarray(a, float), F, meta)

@@ -350,11 +350,11 @@ class Profile(ABC):
         return self._radius_of_depth(d)
 
     def _radius_of_depth(self, d: np.ndarray, rtol: float | None = None) -> np.ndarray:
-        out = np.zeros(d.shape)
         pos = d > 0
-        if not np.any(pos):
-            return out
-        dp = d[pos]
+        all_pos = bool(pos.all())
+        if not all_pos and not pos.any():
+            return np.zeros(d.shape)
+        dp = d if all_pos else d[pos]        # (no masked copies in the common all-positive case)
         if np.isfinite(self.wall_radius):
             a = np.full(dp.shape, self.wall_radius)
             if self.flat_radius < self.wall_radius:
@@ -367,12 +367,16 @@ class Profile(ABC):
             a = self._g_inverse_closed_form(dp)
         else:
             a = self._solve_radius(dp, self.max_radius, rtol)
-        if np.any(a >= self.max_radius):
+        if np.isfinite(self.max_radius) and np.any(a >= self.max_radius):
             i = int(np.argmax(a >= self.max_radius))
             raise OutsideTheoryError(
                 f"depth={dp.ravel()[i]!r} m needs a contact radius >= max_radius="
                 f"{self.max_radius!r} m of {self!r}; reduce the depth/force.")
-        out[pos] = a
+        if all_pos:
+            out = np.asarray(a, dtype=float).reshape(d.shape)
+        else:
+            out = np.zeros(d.shape)
+            out[pos] = a
         self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
         return out
 
