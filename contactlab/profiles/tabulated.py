@@ -194,9 +194,11 @@ class Tabulated(Profile):
         x = np.asarray(x, dtype=float)
         flat = x.ravel()
         out = np.zeros(flat.size)
-        nodes = self.r[1:-1]
-        ds = self._dslope
-        chunk = max(1, _CHUNK // max(nodes.size, 1))
+        # only nodes with a slope jump contribute, and only those below the largest x
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
         k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
@@ -204,6 +206,8 @@ class Tabulated(Profile):
             val = np.zeros(xs.size)
             if np.any(pos):
                 xp = xs[pos][:, None]
+                m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
+                nodes, ds = nodes_all[:m], ds_all[:m]
                 q = np.minimum(nodes[None, :] / xp, 1.0)
                 contrib = np.where(nodes[None, :] <= xp, ds[None, :] * np.arcsin(q), 0.0)
                 val[pos] = xs[pos] * (0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]]

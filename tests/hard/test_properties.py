@@ -102,7 +102,9 @@ def test_tabulated_radius_inverse_and_monotone(seed, frac):
     f = np.cumsum(rng.uniform(0, 1e-6, r.size))         # monotone measured-like heights
     prof = Tabulated(r, f)
     d = float(prof.g(1e-3 * (1 - 1e-9))) * frac
-    a = prof.radius_of_depth(d)
-    assert abs(float(prof.g(a)) / d - 1) <= PROPERTY_RTOL
+    a = float(prof.radius_of_depth(d))
+    # g has a vertical tangent just above each node (sqrt kink), so g(a) = d can only be met to
+    # ~sqrt(ulp) there; the well-conditioned statement is that a brackets the root tightly
+    assert float(prof.g(a * (1 - PROPERTY_RTOL))) <= d <= float(prof.g(a * (1 + PROPERTY_RTOL)))
     s = contact(prof).normal(depth=np.array([0.5 * d, d]))
     assert np.all(np.diff(s.force) > 0)
