@@ -97,14 +97,20 @@ class Tabulated(Profile):
         self._slopes = np.diff(f_rel) / np.diff(r_arr)
         # slope jumps Δs_j at interior nodes j = 1..N-2, and s_0 at the axis
         self._dslope = np.diff(self._slopes)
-        self._monotone_f = bool(np.all(self._slopes >= 0)) if interpolation == "linear" else None
+        # g is non-decreasing when r f'(r) is (g'(x) = ∫_0^{π/2} (r f')'(x sinθ) dθ): for the
+        # linear interpolant s_0 >= 0 and no negative slope jump. A monotone f is NOT enough (a
+        # slope that drops, e.g. a ramp then a plateau, makes g decrease: a ring contact).
+        self._monotone_f = (bool(self._slopes[0] >= 0 and np.all(self._dslope >= 0))
+                            if interpolation == "linear" else None)
+        self._verified_upto = 0.0
         self._spline = None
         if interpolation == "cubic":
             from scipy.interpolate import CubicSpline
             self._spline = CubicSpline(r_arr, f_rel)
             self._spline_d = self._spline.derivative()
             probe = np.linspace(0, r_arr[-1], 8 * r_arr.size)
-            self._monotone_f = bool(np.all(self._spline_d(probe) >= 0))
+            rfp = probe * self._spline_d(probe)            # r f'(r) non-decreasing
+            self._monotone_f = bool(np.all(self._spline_d(probe) >= 0) and np.all(np.diff(rfp) >= 0))
         self._node_g: np.ndarray | None = None
 
     @classmethod
@@ -388,8 +394,50 @@ class Tabulated(Profile):
         return super()._g_integral_with_error(a, rtol)
 
     # ------------------------------------------------------------------ contact radius
+    def _solve_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
+        """g(a) = d for the linear interpolant: bisection over the nodes, then a smooth solve.
+
+        Between two nodes g is analytic except for the ``sqrt(x - r_k)`` kink at the left node,
+        which ``x = r_k + (r_{k+1} - r_k) u²`` removes, so the bracketed solve in ``u`` converges
+        superlinearly. About ``log2(N) + 6`` evaluations of g instead of ~50 for the generic
+        solver on the kinked g. The cubic spline takes the generic route.
+        """
+        if self._spline is not None:
+            return super()._solve_radius(d, limit, rtol)
+        from ..errors import OutsideTheoryError
+        from ..numeric.roots import bracketed_root
+        from .base import root_rtol
+        rtol = self.rtol if rtol is None else rtol
+        flat = np.asarray(d, dtype=float).ravel()
+        r = self.r
+        g_end = float(self._g(np.array([r[-1]]))[0])
+        if np.any(flat > g_end):
+            i = int(np.argmax(flat > g_end))
+            raise OutsideTheoryError(
+                f"depth={flat[i]!r} m needs a contact radius >= max_radius={limit!r} m of "
+                f"{self!r}; reduce the depth/force.")
+        lo = np.zeros(flat.size, dtype=np.intp)
+        hi = np.full(flat.size, r.size - 1, dtype=np.intp)
+        while True:
+            open_ = hi - lo > 1
+            if not np.any(open_):
+                break
+            mid = (lo + hi) // 2
+            below = np.ones(flat.size, dtype=bool)
+            below[open_] = self._g(r[mid[open_]]) < flat[open_]
+            lo = np.where(open_ & below, mid, lo)
+            hi = np.where(open_ & ~below, mid, hi)
+        x0, h = r[lo], r[hi] - r[lo]
+
+        def func(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return self._g(x0[idx] + h[idx] * u * u)
+
+        u = bracketed_root(func, flat, np.zeros(flat.size), np.ones(flat.size),
+                           rtol=0.5 * root_rtol(rtol), what="contact radius")
+        return (x0 + h * u * u).reshape(np.shape(d))
+
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
-        if self._monotone_f:
+        if self._monotone_f or a_max <= self._verified_upto:
             return
         # g at all nodes up to a_max (and midpoints), cached for the largest range asked so far
         grid = np.union1d(self.r[self.r <= a_max], 0.5 * (self.r[1:] + self.r[:-1])[self.r[1:] <= a_max])
@@ -398,6 +446,8 @@ class Tabulated(Profile):
         dg = np.diff(g)
         scale = max(float(np.max(np.abs(g))), 1e-300)
         bad = np.flatnonzero(dg < -1e-12 * scale)
+        if not bad.size:
+            self._verified_upto = a_max
         if bad.size:
             i = int(bad[0])
             raise OutsideTheoryError(

@@ -264,8 +264,9 @@ def _tables():
     r_nonuni = 1e-3 * np.sort(np.concatenate([[0.0, 1.0], rng.uniform(0, 1, 60)])) ** 0.5
     r_off = np.linspace(2e-4, 1e-3, 40)
     r_noisy = np.linspace(0, 1e-3, 200)
-    f_noisy = r_noisy**2 / (2 * R_TAB) * (1 + 1e-3 * rng.standard_normal(r_noisy.size))
-    f_noisy = np.maximum.accumulate(np.abs(f_noisy))     # measured-like: noisy but monotone
+    # measured-like noise, small enough that g stays non-decreasing (see the test below for
+    # noise that makes it decrease)
+    f_noisy = r_noisy**2 / (2 * R_TAB) * (1 + 1e-6 * rng.standard_normal(r_noisy.size))
     return {
         "10 points": (r10, r10**2 / (2 * R_TAB)),
         "non-uniform": (r_nonuni, r_nonuni**2 / (2 * R_TAB)),
@@ -304,6 +305,21 @@ def test_tabulated_exact_transform(name):
     u = s.displacement(np.array([0.5 * a, 1.5 * a, 10 * a]))
     assert_finite(u)
     assert rel(u[0], s.depth - np.interp(0.5 * a, r_ref, f_ref)) <= TABLE_QUAD
+
+
+def test_noisy_table_with_decreasing_g_is_outside_theory():
+    """Monotone but noisy heights: the slope drops at some nodes, so g decreases there (a monotone
+    f does not imply a monotone g) and deep contacts are ring contacts: OutsideTheoryError, with
+    the depth where it happens, never a silent wrong radius."""
+    from contactlab.errors import OutsideTheoryError
+    rng = np.random.default_rng(3)
+    r = np.linspace(0, 1e-3, 200)
+    f = np.maximum.accumulate(r**2 / (2 * R_TAB) * (1 + 1e-2 * rng.standard_normal(r.size)))
+    prof = Tabulated(r, f)
+    g = ref.table_g_sum(r, f - f[0], r[1:])
+    assert np.any(np.diff(g) < 0)             # the independent transform does decrease
+    with pytest.raises(OutsideTheoryError, match="annulus"):
+        contact(prof).normal(depth=0.999 * float(g[-1]))
 
 
 def test_tabulated_million_points():

@@ -99,7 +99,10 @@ def test_tabulated_radius_inverse_and_monotone(seed, frac):
     rng = np.random.default_rng(seed)
     r = np.concatenate([[0.0], np.sort(rng.uniform(0, 1e-3, 30)), [1e-3]])
     r = np.unique(r)
-    f = np.cumsum(rng.uniform(0, 1e-6, r.size))         # monotone measured-like heights
+    # random convex table (sorted slopes): r f'(r) non-decreasing, so g is non-decreasing (a
+    # merely monotone f can give a decreasing g, a ring contact: see test_hard_cases)
+    slopes = np.sort(rng.uniform(0, 1.0, r.size - 1))
+    f = np.concatenate([[0.0], np.cumsum(slopes * np.diff(r))])
     prof = Tabulated(r, f)
     d = float(prof.g(1e-3 * (1 - 1e-9))) * frac
     a = float(prof.radius_of_depth(d))
