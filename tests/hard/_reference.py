@@ -95,3 +95,33 @@ def table_g_integral_quad(r: np.ndarray, f: np.ndarray, a: float) -> float:
         total += s[i] * integrate.quad(lambda t: np.sqrt(a * a - t * t), lo, hi, epsabs=0,
                                        epsrel=1e-13)[0]
     return total
+
+
+def table_pressure_shape_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
+    """S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx of the table, by parts so only g is needed:
+    S = (g(a)-g(r))/sqrt(a²-r²) + ∫_r^a (g(x)-g(r)) x/(x²-r²)^{3/2} dx (scipy quad, split at
+    the nodes; the integrand is bounded at x = r because g is smooth just above r off-node)."""
+    g_r = table_g_sum(r, f, np.array([rr]))[0]
+    g_a = table_g_sum(r, f, np.array([a]))[0]
+    pts = [float(x) for x in r if rr < x < a]
+
+    def integrand(x):
+        return (table_g_sum(r, f, np.array([x]))[0] - g_r) * x / (x * x - rr * rr) ** 1.5
+
+    # substitute x = r + t² near the lower end to tame the (x-r)^{-1/2} behaviour
+    def sub(t):
+        x = rr + t * t
+        return integrand(x) * 2 * t
+    edges = [0.0] + [np.sqrt(p - rr) for p in pts] + [np.sqrt(a - rr)]
+    total = sum(integrate.quad(sub, e0, e1, epsabs=0, epsrel=1e-12, limit=200)[0]
+                for e0, e1 in zip(edges[:-1], edges[1:]))
+    return (g_a - g_r) / np.sqrt(a * a - rr * rr) + total
+
+
+def table_abel_outside_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
+    """(2/π) ∫_0^a g(x)/sqrt(r²-x²) dx for r > a (scipy quad split at the nodes)."""
+    pts = [0.0] + [float(x) for x in r if 0 < x < a] + [a]
+    total = sum(integrate.quad(lambda x: table_g_sum(r, f, np.array([x]))[0] / np.sqrt(rr * rr - x * x),
+                               e0, e1, epsabs=0, epsrel=1e-12, limit=200)[0]
+                for e0, e1 in zip(pts[:-1], pts[1:]))
+    return 2 / np.pi * total

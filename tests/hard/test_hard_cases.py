@@ -379,3 +379,40 @@ def test_default_rtol_unchanged():
 def test_rtol_validation(bad):
     with pytest.raises(ParameterError, match="rtol"):
         contact(Paraboloid(0.01), rtol=bad)
+
+
+def test_tabulated_pressure_and_displacement_against_quad():
+    """The truncated-cone sums for p and u_z of a 10-point table against scipy quad of the
+    definitions built on the independent g (physics.md §3)."""
+    r = np.linspace(0, 1e-3, 10)
+    f = r**2 / (2 * R_TAB) + 1e-2 * r**3
+    a = 0.777e-3
+    s = contact(Tabulated(r, f)).normal(radius=a)
+    for rr in (0.0123e-3, 0.3e-3 * 1.0001, 0.7e-3):
+        expected = E_STAR / np.pi * ref.table_pressure_shape_quad(r, f, rr, a)
+        assert rel(s.pressure(rr), expected) <= TABLE_QUAD
+    for ro in (0.8e-3, 2e-3, 1e-2):
+        expected = 2 / np.pi * s.depth * np.arcsin(a / ro) - ref.table_abel_outside_quad(r, f, ro, a)
+        assert rel(s.displacement(ro), expected) <= TABLE_QUAD
+
+
+@pytest.mark.parametrize("e", [-0.3, -0.5, -0.7, -0.9])
+@pytest.mark.parametrize("rtol", [1e-3, 1e-8])
+def test_quadrature_endpoint_singularity_is_honest_or_loud(e, rtol):
+    """∫_0^1 x^e dx = 1/(1+e): the estimate (with the truncated-tail bound) covers the actual
+    error, or the quadrature raises."""
+    from contactlab.errors import ConvergenceError
+    from contactlab.numeric.quadrature import tanh_sinh
+    try:
+        res = tanh_sinh(lambda x, i: x**e, 0.0, 1.0, rtol=rtol)
+    except ConvergenceError:
+        assert e <= -0.7          # only the strong singularities may fail
+        return
+    assert abs(float(res.value) - 1 / (1 + e)) <= float(res.error) + 1e-15
+
+
+def test_root_near_zero_down_to_subnormal():
+    """A root at 1e-310 inside [0, 1] (regula falsi from the smaller residual, no float left)."""
+    from contactlab.numeric.roots import bracketed_root
+    x = bracketed_root(lambda x, i: 3.0 * x, np.array([3e-310]), 0.0, 1.0)
+    assert x[0] == pytest.approx(1e-310, rel=1e-6)
