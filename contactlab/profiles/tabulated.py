@@ -424,7 +424,7 @@ class Tabulated(Profile):
                 break
             mid = (lo + hi) // 2
             below = np.ones(flat.size, dtype=bool)
-            below[open_] = self._g(r[mid[open_]]) < flat[open_]
+            below[open_] = self._g_at_nodes(mid[open_]) < flat[open_]
             lo = np.where(open_ & below, mid, lo)
             hi = np.where(open_ & ~below, mid, hi)
         x0, h = r[lo], r[hi] - r[lo]
@@ -435,6 +435,19 @@ class Tabulated(Profile):
         u = bracketed_root(func, flat, np.zeros(flat.size), np.ones(flat.size),
                            rtol=0.5 * root_rtol(rtol), what="contact radius")
         return (x0 + h * u * u).reshape(np.shape(d))
+
+    def _g_at_nodes(self, idx: np.ndarray) -> np.ndarray:
+        """g at table nodes ``r[idx]``, memoised per node (the bisection revisits the same
+        nodes for every depth; the table is immutable, so the cache never goes stale)."""
+        if self._node_g is None:
+            self._node_g = np.full(self.r.size, np.nan)
+        vals = self._node_g[idx]
+        missing = np.isnan(vals)
+        if np.any(missing):
+            new = np.unique(idx[missing])
+            self._node_g[new] = self._g(self.r[new])
+            vals = self._node_g[idx]
+        return vals
 
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
         if self._monotone_f or a_max <= self._verified_upto:
