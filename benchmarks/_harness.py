@@ -56,7 +56,8 @@ class Knob:
     run: Callable[[Any], tuple[float, float]]
     reference: float
     error: Callable[[float, float], float] | None = None
-    setting_label: Callable[[Any], str] = field(default=lambda s: f"{s:g}" if isinstance(s, float) else str(s))
+    setting_label: Callable[[Any], str] = field(
+        default=lambda s: f"{s:g}" if isinstance(s, float) else str(s))
 
 
 @dataclass

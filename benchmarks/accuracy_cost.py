@@ -354,7 +354,8 @@ def contactlab_times(quad_rows: list[Row]) -> dict[str, dict[str, float]]:
         t, s = best_time(lambda: c.normal(depth=d), min_total=0.2, max_runs=2000)
         batch = np.full(10**4, d)
         tb, _ = best_time(lambda: c.normal(depth=batch), min_total=0.2, max_runs=200)
-        out[name] = {"closed": t, "batch": tb / batch.size, "closed_force_error": abs(s.force / BEM_CASES[name][2] - 1),
+        out[name] = {"closed": t, "batch": tb / batch.size,
+                     "closed_force_error": abs(s.force / BEM_CASES[name][2] - 1),
                      "closed_radius_error": abs(s.radius / A - 1)}
     return out
 

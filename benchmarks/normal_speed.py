@@ -15,7 +15,6 @@ on a 10^3-point grid of radii (what a plot of g needs) plus the construction of 
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import numpy as np

@@ -166,7 +166,6 @@ class NormalState:
         rtol = self.contact.rtol
         E = self.contact.moduli.normal
         a = self._radius
-        d = self._depth
         control = self.meta.get("control", "depth")
         rel_F = np.asarray(self.meta.get("error_estimate", 0.0), dtype=float) * np.ones(a.shape)
         pos = a > 0
