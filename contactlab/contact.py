@@ -13,6 +13,7 @@ from .numeric.quadrature import DEFAULT_RTOL
 from .numeric.roots import bracketed_root
 from .params import Param, as_float_array
 from .profiles import Profile
+from .profiles.base import ROUNDING, root_rtol
 from .states import NormalState
 
 if TYPE_CHECKING:  # torsion (issue 3)
@@ -134,9 +135,10 @@ class Contact:
         arr = as_float_array(key, value)
         prof = self.profile
         E = self.moduli.normal
+        rtol = self.rtol
         if key == "depth":
             d = arr
-            a = prof._radius_of_depth(d)
+            a = prof._radius_of_depth(d, rtol)
         elif key == "radius":
             if np.any(arr < 0):
                 raise ParameterError(f"radius contains {float(arr[arr < 0].ravel()[0])!r}: contact "
@@ -150,21 +152,49 @@ class Contact:
                                          f"max_radius={prof.max_radius!r} m of {prof!r}.")
             a = arr.copy()
             a[a < prof.flat_radius] = np.where(a[a < prof.flat_radius] > 0, prof.flat_radius, 0.0)
-            d = np.where(a > 0, prof._g(a), 0.0)
+            g_a, g_a_err = prof._g_with_error(a, rtol)
+            d = np.where(a > 0, g_a, 0.0)
             prof._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
         else:
-            a, d = self._radius_depth_of_force(arr)
-        g_int = np.where(a > 0, prof._g_integral(a), 0.0)
-        F = np.where(a > 0, 2.0 * E * (a * d - g_int), 0.0)
-        meta = {"routes": {"g": prof.g_route}, "rtol": self.rtol, "control": key}
+            a, d = self._radius_depth_of_force(arr, rtol)
+        pos = a > 0
+        all_pos = bool(pos.all())
+        g_int, g_int_err = prof._g_integral_with_error(a, rtol)
+        ad = a * d
+        F = ad - g_int
+        F *= 2.0 * E
+        # absolute force error: quadrature of ∫g, rounding of the difference, and (force control)
+        # the residual of the radius solve against the requested force; errors of a enter F only
+        # at second order because dF/da = 2E*(d - g(a)) = 0 at fixed depth.
+        F_err = np.abs(ad)
+        F_err += np.abs(g_int)
+        F_err *= ROUNDING
+        F_err += np.abs(g_int_err)
+        F_err *= 2.0 * E
+        if not all_pos:
+            F = np.where(pos, F, 0.0)
+            F_err = np.where(pos, F_err, 0.0)
+        if key == "force":
+            F_err = F_err + np.where(arr > 0, np.abs(F - arr), 0.0)
+        elif key == "radius":       # the depth g(a) itself carries the error of g
+            F_err = F_err + np.where(a > 0, 2.0 * E * a * np.abs(g_a_err), 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rel = F_err / F
+        if not all_pos or rel.ndim == 0:
+            rel = np.where(F > 0, rel, 0.0)
+        meta = {"routes": {"g": prof.g_route}, "rtol": self.rtol, "control": key,
+                "error_estimate": float(rel) if rel.ndim == 0 else rel}
         return NormalState(self, np.asarray(d, float), np.asarray(a, float), F, meta)
 
-    def _force_of_radius(self, a: np.ndarray) -> np.ndarray:
+    def _force_of_radius(self, a: np.ndarray, rtol: float | None = None) -> np.ndarray:
         """Non-adhesive force at contact radius a: ``2E*(a g(a) - ∫_0^a g)``."""
         prof = self.profile
-        return 2.0 * self.moduli.normal * (a * prof._g(a) - prof._g_integral(a))
+        rtol = self.rtol if rtol is None else rtol
+        return 2.0 * self.moduli.normal * (a * prof._g(a, rtol) - prof._g_integral(a, rtol))
 
-    def _radius_depth_of_force(self, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _radius_depth_of_force(self, F: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        rtol = self.rtol if rtol is None else rtol
         prof = self.profile
         E = self.moduli.normal
         a = np.zeros(F.shape)
@@ -177,7 +207,7 @@ class Contact:
         solve = np.ones(Fp.shape, dtype=bool)
         if np.isfinite(prof.wall_radius):
             b = prof.wall_radius
-            F_wall = float(self._force_of_radius(np.array(b))) if prof.flat_radius < b else 0.0
+            F_wall = float(self._force_of_radius(np.array(b), rtol)) if prof.flat_radius < b else 0.0
             at_wall = Fp >= F_wall
             ap[at_wall] = b
             solve = ~at_wall
@@ -196,7 +226,7 @@ class Contact:
                 hi = np.full(Fs.shape, prof._initial_bracket())
                 for _ in range(400):
                     hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
-                    short = self._force_of_radius(hi_c) < Fs
+                    short = self._force_of_radius(hi_c, rtol) < Fs
                     if not np.any(short):
                         hi = hi_c
                         break
@@ -208,14 +238,14 @@ class Contact:
                             f"of {prof!r}; reduce the force.")
                     lo = np.where(short, hi_c, lo)
                     hi = np.where(short, hi * 4.0, hi)
-                ap[solve] = bracketed_root(lambda x, idx: self._force_of_radius(x), Fs, lo, hi,
-                                           rtol=1e-15, what="contact radius")
+                ap[solve] = bracketed_root(lambda x, idx: self._force_of_radius(x, rtol), Fs, lo, hi,
+                                           rtol=root_rtol(rtol), what="contact radius")
         if np.isfinite(prof.wall_radius):
             # at the wall the depth follows from F = 2E*(b d - ∫_0^b g)
-            dp = np.where(ap >= prof.wall_radius, (Fp / (2 * E) + prof._g_integral(ap)) / ap,
-                          prof._g(ap))
+            dp = np.where(ap >= prof.wall_radius, (Fp / (2 * E) + prof._g_integral(ap, rtol)) / ap,
+                          prof._g(ap, rtol))
         else:
-            dp = prof._g(ap)
+            dp = prof._g(ap, rtol)
         a[pos] = ap
         d[pos] = dp
         prof._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))

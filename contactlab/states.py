@@ -13,6 +13,11 @@ from .physics import normal as _normal
 __all__ = ["NormalState"]
 
 
+#: relative rounding floor of pressures computed from a quadrature-route g (benchmarks/
+#: accuracy_cost.py measures up to 2e-12 at rtol <= 1e-12)
+NESTED_ROUNDING = 1e-11
+
+
 def _scalar_or_array(v: np.ndarray) -> Any:
     v = np.asarray(v, dtype=float)
     return float(v) if v.ndim == 0 else v
@@ -70,14 +75,15 @@ class NormalState:
 
     @cached_property
     def _g_at_radius(self) -> np.ndarray:
-        return np.where(self._radius > 0, self.contact.profile._g(self._radius), 0.0)
+        return np.where(self._radius > 0, self.contact.profile._g(self._radius, self.contact.rtol),
+                        0.0)
 
     @cached_property
     def elastic_energy(self) -> Any:
         """Elastic energy stored in the contact, J (``∫ F dd`` for non-adhesive contacts)."""
         prof = self.contact.profile
         a = self._radius
-        g_int = prof._g_integral(a)
+        g_int = prof._g_integral(a, self.contact.rtol)
         g2 = _normal.g_squared_integral(prof, a, self.contact.rtol)
         return _scalar_or_array(_normal.elastic_energy(self.contact.moduli.normal, a, self._depth,
                                                        g_int, g2))
@@ -93,16 +99,104 @@ class NormalState:
         ga = self._g_at_radius.reshape(sh + (1,) * r.ndim)
         return r, a, d, ga
 
-    def pressure(self, r: Any) -> Any:
+    def pressure(self, r: Any, return_error: bool = False) -> Any:
         """Contact pressure ``p(r)``, Pa, at radii ``r`` (m); 0 outside the contact.
 
         Singular points return ``inf`` (the flat-punch edge, the centre of a cone or of a power
         law with ``n < 1``).
+
+        Parameters
+        ----------
+        r : array_like
+            Radii, m (>= 0).
+        return_error : bool
+            Also return an absolute error estimate, Pa, of the same shape: the quadrature
+            estimate of the pressure integral (plus the tolerance of a quadrature-route g), a
+            rounding floor, and the effect of the contact-radius error
+            (:attr:`error_estimates`) through ``∂p/∂a ≈ p a/(a²-r²)``. It is ``inf`` at
+            singular points and grows towards the contact edge.
+
+        Returns
+        -------
+        p : float or ndarray
+            Pressure, Pa (shape ``state.shape + r.shape``).
+        error : float or ndarray
+            Only with ``return_error=True``.
         """
         r, a, d, ga = self._field_args(r)
-        val, err = _normal.pressure(self.contact.profile, self.contact.moduli.normal, r, a, d, ga,
-                                    self.contact.rtol)
-        return _scalar_or_array(val)
+        prof = self.contact.profile
+        E = self.contact.moduli.normal
+        rtol = self.contact.rtol
+        val, err = _normal.pressure(prof, E, r, a, d, ga, rtol)
+        if not return_error:
+            return _scalar_or_array(val)
+        from .profiles.base import ROUNDING
+        r_b, a_b = np.broadcast_arrays(r, a)
+        inner = 0.0
+        if prof.g_route == "quadrature":
+            # the tolerance of g itself, carried by S ∝ g, and the rounding floor of the nested
+            # by-parts route (differences g(x) - g(r) over sinh²u), measured at ~2e-12 relative
+            inner = (rtol + NESTED_ROUNDING) * np.abs(val)
+        da = np.asarray(self.error_estimates["radius"]).reshape(a.shape) * a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            edge = np.where(r_b < a_b, 2.0 * np.abs(val) * a_b * da / ((a_b - r_b) * (a_b + r_b)),
+                            0.0)
+        total = np.abs(err) + inner + 4 * ROUNDING * np.abs(val) + np.nan_to_num(edge, nan=np.inf)
+        total = np.where(np.isfinite(val), total, np.inf)
+        return _scalar_or_array(val), _scalar_or_array(total)
+
+    @property
+    def error_estimate(self) -> Any:
+        """Estimated relative error of :attr:`force` (also ``meta["error_estimate"]``).
+
+        For force control it includes the residual against the requested force.
+        """
+        return self.meta.get("error_estimate", 0.0)
+
+    @cached_property
+    def error_estimates(self) -> dict[str, Any]:
+        """Estimated relative errors ``{"force", "radius", "depth"}`` of this state.
+
+        The radius error combines the root-finder bracket width and the error of ``g`` (or of
+        ``F(a)`` under force control) divided by the local slope, found by a central difference
+        of g (two extra evaluations of g, done on first access only).
+        """
+        from .profiles.base import ROUNDING, root_rtol
+        prof = self.contact.profile
+        rtol = self.contact.rtol
+        E = self.contact.moduli.normal
+        a = self._radius
+        control = self.meta.get("control", "depth")
+        rel_F = np.asarray(self.meta.get("error_estimate", 0.0), dtype=float) * np.ones(a.shape)
+        pos = a > 0
+        rel_a = np.zeros(a.shape)
+        rel_d = np.zeros(a.shape)
+        if np.any(pos):
+            ap = a[pos]
+            g, g_err = prof._g_with_error(ap, rtol)
+            h = 1e-4 * ap
+            at_wall = ap >= prof.wall_radius
+            lo = np.maximum(ap - h, 0.0)
+            hi = np.where(ap + h < prof.max_radius, ap + h, ap)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                slope_a = ap * (prof._g(hi, rtol) - prof._g(lo, rtol)) / (hi - lo)  # a g'(a)
+            slope_a = np.where(np.isfinite(slope_a) & (slope_a > 0), slope_a, np.inf)
+            roots = root_rtol(rtol)
+            if control == "force":
+                F_abs = rel_F[pos] * np.abs(self._force[pos]) + 2 * E * ap * np.abs(g_err)
+                ra = roots + F_abs / (2 * E * ap * slope_a)
+                rd = ra * slope_a / np.maximum(g, 1e-300) + np.abs(g_err) / np.maximum(g, 1e-300)
+                rd = np.where(at_wall, rel_F[pos], rd)
+            elif control == "radius":
+                ra = np.zeros(ap.shape)
+                rd = np.abs(g_err) / np.maximum(np.abs(g), 1e-300) + ROUNDING
+            else:
+                ra = roots + np.abs(g_err) / slope_a
+                rd = np.zeros(ap.shape)
+            rel_a[pos] = np.where(at_wall, 0.0, ra)
+            rel_d[pos] = rd
+        out = {"force": rel_F, "radius": rel_a, "depth": rel_d}
+        return {k: (float(v) if v.ndim == 0 else v) for k, v in out.items()}
 
     def displacement(self, r: Any) -> Any:
         """Normal surface displacement ``u_z(r)``, m, inside (``d - f(r)``) and outside the contact."""

@@ -1,8 +1,9 @@
 """Vectorised bracketed root finding that cannot fail silently.
 
 :func:`bracketed_root` solves ``func(x) = target`` element-wise for monotone ``func`` inside a
-bracket, by the Anderson-Björck variant of regula falsi safeguarded by bisection. Every step
-keeps a sign change, so the answer is always inside the bracket; non-convergence raises.
+bracket, by Chandrupatla's method (inverse quadratic interpolation where it is safe, bisection
+otherwise; T. R. Chandrupatla, Adv. Eng. Softw. 28 (1997) 145-149). Every step keeps a sign
+change, so the answer is always inside the bracket; non-convergence raises.
 """
 from __future__ import annotations
 
@@ -48,7 +49,7 @@ def bracketed_root(
     what : str
         Name of the unknown, used in error messages.
     f_lo, f_hi : array_like, optional
-        ``func`` at ``lo`` and ``hi`` when the caller already knows them (saves two evaluations).
+        ``func`` at ``lo``/``hi`` when the caller already knows them (saves two evaluations).
 
     Returns
     -------
@@ -58,71 +59,67 @@ def bracketed_root(
     t, a, b = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (target, lo, hi)))
     shape = t.shape
     t = t.ravel().copy()
-    a = a.ravel().copy()
-    b = b.ravel().copy()
+    x1 = a.ravel().copy()
+    x2 = b.ravel().copy()
     idx = np.arange(t.size)
-    fa = (np.asarray(func(a, idx), dtype=float) if f_lo is None
+    f1 = (np.asarray(func(x1, idx), dtype=float) if f_lo is None
           else np.broadcast_to(np.asarray(f_lo, dtype=float), shape).ravel().copy()) - t
-    fb = (np.asarray(func(b, idx), dtype=float) if f_hi is None
+    f2 = (np.asarray(func(x2, idx), dtype=float) if f_hi is None
           else np.broadcast_to(np.asarray(f_hi, dtype=float), shape).ravel().copy()) - t
-    if np.any(fa * fb > 0):
-        bad = np.flatnonzero(fa * fb > 0)[0]
+    if np.any(f1 * f2 > 0):
+        bad = np.flatnonzero(f1 * f2 > 0)[0]
         raise ConvergenceError(
-            f"no sign change for {what} in [{a[bad]:.6g}, {b[bad]:.6g}] (target {t[bad]:.6g}): "
+            f"no sign change for {what} in [{x1[bad]:.6g}, {x2[bad]:.6g}] (target {t[bad]:.6g}): "
             "the requested value is outside the reachable range.")
-    x = np.where(np.abs(fa) <= np.abs(fb), a, b)
-    done = (fa == 0) | (fb == 0)
-    x[fa == 0] = a[fa == 0]
-    x[fb == 0] = b[fb == 0]
-    side = np.zeros(t.size, dtype=int)
+    # Chandrupatla (1997): x1 newest point, x2 the end of opposite sign, x3 the point dropped
+    # last; inverse quadratic interpolation when it is safe, bisection otherwise, and every
+    # step at least half a tolerance inside the bracket.
+    x = np.where(np.abs(f1) <= np.abs(f2), x1, x2)
+    done = (f1 == 0) | (f2 == 0)
+    x[f1 == 0] = x1[f1 == 0]
+    x[f2 == 0] = x2[f2 == 0]
+    x3 = x2.copy()
+    f3 = f2.copy()
+    step = np.full(t.size, 0.5)
     act = np.flatnonzero(~done)
     for _ in range(maxiter):
         if act.size == 0:
             break
-        aa, bb, ffa, ffb = a[act], b[act], fa[act], fb[act]
-        # regula falsi step, bisection when it would stall at an end
+        a1, a2, g1, g2 = x1[act], x2[act], f1[act], f2[act]
+        st = step[act]
+        # measured from the nearer end, so a step of a few ulps of the bracket stays exact
+        xn = np.where(st <= 0.5, a1 + st * (a2 - a1), a2 + (1.0 - st) * (a1 - a2))
+        fn = np.asarray(func(xn, act), dtype=float) - t[act]
+        same = np.sign(fn) == np.sign(g1)
+        x3[act] = np.where(same, a1, a2)
+        f3[act] = np.where(same, g1, g2)
+        x2[act] = np.where(same, a2, a1)
+        f2[act] = np.where(same, g2, g1)
+        x1[act] = xn
+        f1[act] = fn
+        a1, a2, a3 = x1[act], x2[act], x3[act]
+        g1, g2, g3 = f1[act], f2[act], f3[act]
+        best1 = np.abs(g1) <= np.abs(g2)
+        xm = np.where(best1, a1, a2)
+        x[act] = xm
+        width = np.abs(a2 - a1)
+        tol = rtol * np.maximum(np.abs(xm), 1e-300)
+        mid_c = 0.5 * (a1 + a2)
+        conv = (width <= tol) | (np.where(best1, g1, g2) == 0) | (
+            np.abs(np.where(best1, g1, g2)) <= ftol * np.abs(t[act])) | (
+            (mid_c == a1) | (mid_c == a2))    # no float left inside (subnormal roots)
         with np.errstate(invalid="ignore", divide="ignore"):
-            xs = bb - ffb * (bb - aa) / (ffb - ffa)
-        mid = 0.5 * (aa + bb)
-        width = np.abs(bb - aa)
-        bad = ~np.isfinite(xs) | (xs <= np.minimum(aa, bb)) | (xs >= np.maximum(aa, bb))
-        xs = np.where(bad, mid, xs)
-        fx = np.asarray(func(xs, act), dtype=float) - t[act]
-        left = np.sign(fx) == np.sign(ffa)
-        # Anderson-Björck: scale the retained end's value when the same end is kept twice
-        keep_b = left
-        m = 1.0 - fx / np.where(left, ffa, ffb)
-        m = np.where(m > 0, m, 0.5)
-        same = side[act] == np.where(keep_b, 1, -1)
-        new_fa = np.where(left, fx, np.where(same, ffa * m, ffa))
-        new_fb = np.where(left, np.where(same, ffb * m, ffb), fx)
-        a[act] = np.where(left, xs, aa)
-        b[act] = np.where(left, bb, xs)
-        fa[act] = new_fa
-        fb[act] = new_fb
-        side[act] = np.where(keep_b, 1, -1)
-        x[act] = xs
-        new_width = np.abs(b[act] - a[act])
-        # guarantee progress: force a bisection when the bracket shrank by less than half
-        # (not when the regula falsi point already meets the residual test: bisecting would
-        # replace a converged x by the midpoint and discard it)
-        slow = (new_width > 0.5 * width) & (fx != 0) & ~(np.abs(fx) <= ftol * np.abs(t[act]))
-        if np.any(slow):
-            s = act[slow]
-            ms = 0.5 * (a[s] + b[s])
-            fm = np.asarray(func(ms, s), dtype=float) - t[s]
-            lm = np.sign(fm) == np.sign(fa[s])
-            a[s] = np.where(lm, ms, a[s])
-            fa[s] = np.where(lm, fm, fa[s])
-            b[s] = np.where(lm, b[s], ms)
-            fb[s] = np.where(lm, fb[s], fm)
-            x[s] = ms
-            fx[slow] = fm
-        conv = (np.abs(b[act] - a[act]) <= rtol * np.maximum(np.abs(x[act]), 1e-300)) | (
-            fx == 0) | (np.abs(fx) <= ftol * np.abs(t[act]))
+            xi = (a1 - a2) / (a3 - a2)
+            phi = (g1 - g2) / (g3 - g2)
+            iqi = ((1 - np.sqrt(np.maximum(1 - xi, 0.0))) < phi) & (phi < np.sqrt(np.maximum(xi, 0.0)))
+            alpha = (a3 - a1) / (a2 - a1)
+            tq = (g1 / (g1 - g2) * g3 / (g3 - g2)
+                  - alpha * g1 / (g3 - g1) * g2 / (g2 - g3))
+            tl = 0.5 * tol / np.where(width > 0, width, 1.0)
+        tn = np.where(iqi & np.isfinite(tq), tq, 0.5)
+        # at least a few ulps of the bracket inside it: a root far below the bracket's scale
+        # (e.g. 1e-310 in [0, 1]) is then approached geometrically instead of stalling
+        tl = np.clip(tl, 4 * np.finfo(float).eps, 0.5)
+        step[act] = np.clip(tn, tl, 1 - tl)
         act = act[~conv]
-    if act.size:
-        raise ConvergenceError(
-            f"{what} did not converge in {maxiter} iterations for {act.size} element(s) "
-            f"(bracket [{a[act[0]]:.17g}, {b[act[0]]:.17g}]).")
     return x.reshape(shape)

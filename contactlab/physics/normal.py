@@ -36,6 +36,11 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     if profile._has("_pressure_shape_closed_form"):
         return profile._pressure_shape_closed_form(r, a), np.zeros(r.shape)
+    semi = getattr(profile, "_pressure_shape_semi_analytic", None)
+    if semi is not None:        # profile-specific route with an error estimate (or None: decline)
+        res = semi(r, a, rtol)
+        if res is not None:
+            return res
     if hasattr(profile, "terms"):       # Sum: the MDR is linear, each term takes its own route
         parts = [pressure_shape(t, r, a, rtol) for t in profile.terms]
         return sum(p[0] for p in parts), sum(p[1] for p in parts)
@@ -45,8 +50,8 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
     if not np.any(inside):
         return out, err
     rr, aa = r[inside], a[inside]
-    g_a = profile._g(aa)
-    g_r = profile._g(rr)
+    g_a = profile._g(aa, rtol)
+    g_r = profile._g(rr, rtol)
     val = np.zeros(rr.shape)
     er = np.zeros(rr.shape)
     axis = rr == 0
@@ -86,7 +91,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
             u = np.maximum(u, u_min[idx][:, None])
             x, interior = node_x(u, idx)
             sh = np.sinh(u)
-            val = (profile._g(x) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)
+            val = (profile._g(x, rtol) - gr_b[idx][:, None]) * (x / rv) / (rv * sh * sh)
             return np.where(interior | np.isfinite(val), val, 0.0)
 
         tail = (g_a[pos] - grp) / np.sqrt((ap - rp) * (ap + rp))
@@ -119,7 +124,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
         lo0, hi0 = edges[:-1], edges[1:]
 
         def integrand0(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return profile._g(x) / (x * x)
+            return profile._g(x, rtol) / (x * x)
 
         scale0 = np.broadcast_to(rtol * g_a[axis] / a0, lo0.shape).ravel()
         res0 = tanh_sinh(integrand0, lo0.ravel(), hi0.ravel(), rtol=rtol, atol=scale0,
@@ -130,8 +135,8 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
         if np.any(unconverged):
             # g(x)/x not vanishing at the axis (cone-like tip, n <= 1): p(0) is infinite
             tiny = a0[unconverged]
-            h1 = profile._g(1e-12 * tiny) / (1e-12 * tiny)
-            h2 = profile._g(1e-6 * tiny) / (1e-6 * tiny)
+            h1 = profile._g(1e-12 * tiny, rtol) / (1e-12 * tiny)
+            h2 = profile._g(1e-6 * tiny, rtol) / (1e-6 * tiny)
             divergent = (h1 > 0) & (h1 >= 0.5 * h2)
             if not np.all(divergent):
                 from ..errors import ConvergenceError
@@ -152,13 +157,18 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     if profile._has("_abel_g_closed_form"):
         return profile._abel_g_closed_form(r, a), np.zeros(r.shape)
+    semi = getattr(profile, "_abel_g_semi_analytic", None)
+    if semi is not None:        # profile-specific route with an error estimate (or None: decline)
+        res = semi(r, a, rtol)
+        if res is not None:
+            return res
     out = np.zeros(r.shape)
     err = np.zeros(r.shape)
     inside = (r <= a) & (r > 0)
     if np.any(inside) and profile._has("_height"):
         out[inside] = profile._height(r[inside])
     elif np.any(inside):
-        out[inside] = profile.inverse_transform(r[inside])
+        out[inside] = profile.inverse_transform(r[inside], rtol)
     outside = r > a
     if np.any(outside):
         ro, ao = r[outside], a[outside]
@@ -170,7 +180,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
         r_b = np.broadcast_to(ro, lo.shape).ravel()
 
         def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return profile._g(r_b[idx][:, None] * np.sin(th))
+            return profile._g(r_b[idx][:, None] * np.sin(th), rtol)
 
         res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol)
         out[outside] = 2 / np.pi * res.value.reshape(lo.shape).sum(axis=0)
@@ -190,6 +200,9 @@ def pressure(profile, E_star: float, r: np.ndarray, a: np.ndarray, d: np.ndarray
         edge_term = np.where(edge[inside] != 0,
                              edge[inside] / np.sqrt((a[inside] - r[inside]) * (a[inside] + r[inside])), 0.0)
     out[inside] = E_star / np.pi * (shape[inside] + edge_term)
+    # at the edge itself the edge term (flat punch, JKR) is singular: ±inf, as documented
+    at_edge = (r == a) & (a > 0) & (edge != 0)
+    out[at_edge] = np.sign(edge[at_edge]) * np.inf
     return out, E_star / np.pi * err
 
 
@@ -212,11 +225,15 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     a = np.asarray(a, float)
 
     def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return profile._g(x) ** 2
+        return profile._g(x, rtol) ** 2
 
     lo = np.broadcast_to(profile.flat_radius, a.shape).astype(float)
     lo = np.minimum(lo, a)
-    return tanh_sinh(integrand, lo.ravel(), a.ravel(), rtol=rtol).value.reshape(a.shape)
+    # split at the profile's breakpoints (g has kinks there)
+    cuts = sorted({b for b in profile.breakpoints if b > 0})
+    edges = np.stack([lo] + [np.clip(np.full(a.shape, b), lo, a) for b in cuts] + [a])
+    res = tanh_sinh(integrand, edges[:-1].ravel(), edges[1:].ravel(), rtol=rtol)
+    return res.value.reshape(edges[:-1].shape).sum(axis=0)
 
 
 def elastic_energy(E_star: float, a: np.ndarray, d: np.ndarray, g_int: np.ndarray,

@@ -33,7 +33,7 @@ from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root
 from ..params import Param, as_float_array
 
-__all__ = ["Profile", "G_STRATEGIES"]
+__all__ = ["Profile", "G_STRATEGIES", "ROUNDING", "root_rtol"]
 
 log = logging.getLogger("contactlab")
 
@@ -41,6 +41,20 @@ log = logging.getLogger("contactlab")
 G_STRATEGIES = ("closed_form", "symbolic", "quadrature")
 
 _HOOKS = ("_height", "_g_closed_form", "power_terms")
+
+#: relative error floor assumed for exact (closed-form, symbolic) routes: a few hundred ulps covers
+#: the rounding of the closed forms, including the arcsine sums of tabulated profiles
+ROUNDING = 256 * np.finfo(float).eps
+
+
+def root_rtol(rtol: float) -> float:
+    """Relative bracket width of the contact-radius solves for the numeric tolerance ``rtol``.
+
+    ``1e-5 * rtol``, floored at 1e-15: 1e-15 at the default ``rtol = 1e-10`` (the bracket of the
+    regula-falsi solver shrinks superlinearly, so the tight width costs a few iterations only; see
+    ``docs/accuracy.md``), and never looser than ``rtol`` itself.
+    """
+    return max(1e-15, 1e-5 * rtol)
 
 
 class Profile(ABC):
@@ -223,9 +237,25 @@ class Profile(ABC):
             return self._g_symbolic(xa)
         return self._g_quadrature(xa, rtol)[0]
 
-    def _g(self, xa: np.ndarray) -> np.ndarray:
-        """g for ``xa >= 0`` by the default route (hot path, no validation)."""
-        return self._g_route_eval(xa)
+    def _g(self, xa: np.ndarray, rtol: float | None = None) -> np.ndarray:
+        """g for ``xa >= 0`` by the default route (hot path, no validation).
+
+        ``rtol`` is the relative tolerance of a quadrature route (default :attr:`rtol`); exact
+        routes ignore it.
+        """
+        return self._g_route_eval(xa, None, rtol)
+
+    def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        """``(g, absolute error estimate)`` for ``xa >= 0`` by the default route.
+
+        Quadrature: the quadrature's own estimate. Exact routes: a rounding floor
+        (:data:`ROUNDING` times ``|g|``).
+        """
+        if self.g_route == "quadrature":
+            return self._g_quadrature(xa, rtol)
+        val = self._g(xa, rtol)
+        return val, ROUNDING * np.abs(val)
 
     def _g_symbolic(self, xa: np.ndarray) -> np.ndarray:
         from ..symbolic.transform import g_callable
@@ -279,13 +309,21 @@ class Profile(ABC):
         a = self._check_radii("a", a)
         return self._g_integral(a)
 
-    def _g_integral(self, a: np.ndarray) -> np.ndarray:
+    def _g_integral(self, a: np.ndarray, rtol: float | None = None) -> np.ndarray:
+        """``∫_0^a g dx`` (hot path); ``rtol`` applies to the quadrature route only."""
+        return self._g_integral_with_error(a, rtol)[0]
+
+    def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        """``(∫_0^a g dx, absolute error estimate)``; exact routes carry a rounding floor."""
         if self._has("_g_integral_closed_form"):
-            return self._g_integral_closed_form(a)
-        if self.power_terms() is not None:
-            return sum(self._power_kappa(n) * c * a ** (n + 1) / (n + 1)
-                       for c, n in self.power_terms())
-        return self._g_integral_quadrature(a)[0]
+            val = self._g_integral_closed_form(a)
+        elif self.power_terms() is not None:
+            val = sum(self._power_kappa(n) * c * a ** (n + 1) / (n + 1)
+                      for c, n in self.power_terms())
+        else:
+            return self._g_integral_quadrature(a, rtol)
+        return val, ROUNDING * np.abs(val)
 
     def _g_integral_quadrature(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
@@ -314,43 +352,52 @@ class Profile(ABC):
         d = as_float_array("depth", depth)
         return self._radius_of_depth(d)
 
-    def _radius_of_depth(self, d: np.ndarray) -> np.ndarray:
-        out = np.zeros(d.shape)
+    def _radius_of_depth(self, d: np.ndarray, rtol: float | None = None) -> np.ndarray:
         pos = d > 0
-        if not np.any(pos):
-            return out
-        dp = d[pos]
+        all_pos = bool(pos.all())
+        if not all_pos and not pos.any():
+            return np.zeros(d.shape)
+        dp = d if all_pos else d[pos]        # (no masked copies in the common all-positive case)
         if np.isfinite(self.wall_radius):
             a = np.full(dp.shape, self.wall_radius)
             if self.flat_radius < self.wall_radius:
                 # profile rises before the wall: the contact may be smaller than the wall
-                g_wall = self._g(np.array(self.wall_radius))
+                g_wall = self._g(np.array(self.wall_radius), rtol)
                 inner = dp < g_wall
                 if np.any(inner):
-                    a[inner] = self._solve_radius(dp[inner], self.wall_radius)
+                    a[inner] = self._solve_radius(dp[inner], self.wall_radius, rtol)
         elif self._has("_g_inverse_closed_form"):
             a = self._g_inverse_closed_form(dp)
         else:
-            a = self._solve_radius(dp, self.max_radius)
-        if np.any(a >= self.max_radius):
+            a = self._solve_radius(dp, self.max_radius, rtol)
+        if np.isfinite(self.max_radius) and np.any(a >= self.max_radius):
             i = int(np.argmax(a >= self.max_radius))
             raise OutsideTheoryError(
                 f"depth={float(dp.ravel()[i])!r} m needs a contact radius >= max_radius="
                 f"{self.max_radius!r} m of {self!r}; reduce the depth/force.")
-        out[pos] = a
+        if all_pos:
+            out = np.asarray(a, dtype=float).reshape(d.shape)
+        else:
+            out = np.zeros(d.shape)
+            out[pos] = a
         self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
         return out
 
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
         """Hook: raise OutsideTheoryError if g decreases on [0, a_max] (default: f' >= 0 assumed)."""
 
-    def _solve_radius(self, d: np.ndarray, limit: float) -> np.ndarray:
-        """Bracketed solve of g(a) = d (g non-decreasing) with an expanding upper bracket."""
+    def _solve_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
+        """Bracketed solve of g(a) = d (g non-decreasing) with an expanding upper bracket.
+
+        ``rtol`` (default :attr:`rtol`) sets the quadrature tolerance of g and, through
+        :func:`root_rtol`, the relative width of the final bracket.
+        """
+        rtol = self.rtol if rtol is None else rtol
         lo = np.full(d.shape, self.flat_radius)
         hi = np.full(d.shape, self._initial_bracket())
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
-            g_hi = self._g(hi_c)
+            g_hi = self._g(hi_c, rtol)
             short = g_hi < d
             if not np.any(short):
                 hi = hi_c
@@ -365,9 +412,9 @@ class Profile(ABC):
         d_flat = d.ravel()
 
         def func(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return self._g(x)
+            return self._g(x, rtol)
 
-        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=1e-15,
+        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=root_rtol(rtol),
                               what="contact radius").reshape(d.shape)
 
     def _initial_bracket(self) -> float:
@@ -378,7 +425,7 @@ class Profile(ABC):
         """Recover ``f(r) = (2/π) ∫_0^{π/2} g(r sinθ) dθ`` from g (a check of the forward route)."""
         r = self._check_radii("r", r)
         rtol = self.rtol if rtol is None else rtol
-        val, _ = self._theta_quadrature(r.ravel(), lambda x, th: self._g(x * np.sin(th)), rtol)
+        val, _ = self._theta_quadrature(r.ravel(), lambda x, th: self._g(x * np.sin(th), rtol), rtol)
         return (2 / np.pi * val).reshape(r.shape)
 
     # ------------------------------------------------------------------ symbolic

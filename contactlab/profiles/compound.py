@@ -72,6 +72,20 @@ class Sum(Profile):
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         return sum(t._g_integral(a) for t in self.terms)
 
+    # every term takes its own route at the caller's tolerance; errors add
+    def _g(self, xa: np.ndarray, rtol: float | None = None) -> np.ndarray:
+        return sum(t._g(xa, rtol) for t in self.terms)
+
+    def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        parts = [t._g_with_error(xa, rtol) for t in self.terms]
+        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+
+    def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        parts = [t._g_integral_with_error(a, rtol) for t in self.terms]
+        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+
     def _length_scale(self) -> float:
         return min(t._length_scale() for t in self.terms)
 
@@ -127,6 +141,19 @@ class Scaled(Profile):
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         return self.factor * self.base._g_integral(a)
+
+    def _g(self, xa: np.ndarray, rtol: float | None = None) -> np.ndarray:
+        return self.factor * self.base._g(xa, rtol)
+
+    def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        val, err = self.base._g_with_error(xa, rtol)
+        return self.factor * val, self.factor * err
+
+    def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
+                               ) -> tuple[np.ndarray, np.ndarray]:
+        val, err = self.base._g_integral_with_error(a, rtol)
+        return self.factor * val, self.factor * err
 
     def _length_scale(self) -> float:
         return self.base._length_scale()

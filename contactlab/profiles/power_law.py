@@ -22,26 +22,49 @@ __all__ = ["PowerLaw", "Paraboloid", "Cone", "Polynomial"]
 
 
 def _power_pressure_shape(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-    """``∫_r^a g'(x)/sqrt(x²-r²) dx`` for ``g = κ_n c x**n``, ``0 <= r < a`` (0 for r >= a)."""
+    """``∫_r^a g'(x)/sqrt(x²-r²) dx`` for ``g = κ_n c x**n``, ``0 <= r < a`` (0 for r >= a).
+
+    Near the edge (``1-ρ² <= 1/2``) the Gauss form ``n κ_n c a**(n-1) sqrt(1-ρ²)
+    ₂F₁(1-n/2, 1; 3/2; 1-ρ²)`` is used, with ``1-ρ² = (a-r)(a+r)/a²`` free of cancellation.
+    Closer to the axis ``₂F₁`` is evaluated near its branch point z = 1, where scipy's ``hyp2f1``
+    loses accuracy (1e-6 relative at n = 1.5, O(1) errors or ``inf`` for n ≤ 1.01): there the
+    integral ``n κ_n c ∫_0^U (r cosh u)**(n-1) du``, ``U = arccosh(a/r)``, is taken by tanh-sinh
+    quadrature to 1e-13. On the axis ``S(0, a) = n κ_n c a**(n-1)/(n-1)`` for ``n > 1``, ``inf``
+    for ``n <= 1``.
+    """
     r, a = np.broadcast_arrays(r, a)
     out = np.zeros(r.shape)
     inside = r < a
     if not np.any(inside):
         return out
     rr, aa = r[inside], a[inside]
-    rho2 = (rr / aa) ** 2
-    z = 1.0 - rho2
     k = kappa(n)
     if n == 2.0:
-        val = 2 * k * c * np.sqrt(aa**2 - rr**2)
+        val = 2 * k * c * np.sqrt((aa - rr) * (aa + rr))
     elif n == 1.0:
         with np.errstate(divide="ignore"):
             val = k * c * np.arccosh(aa / rr)
     else:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            val = n * k * c * aa ** (n - 1) * np.sqrt(z) * hyp2f1(1 - 0.5 * n, 1.0, 1.5, z)
-        if n < 1:
-            val = np.where(rr == 0, np.inf, val)
+        val = np.empty(rr.shape)
+        z = (aa - rr) * (aa + rr) / (aa * aa)
+        edge = z <= 0.5
+        if np.any(edge):
+            ze, ae = z[edge], aa[edge]
+            val[edge] = n * k * c * ae ** (n - 1) * np.sqrt(ze) * hyp2f1(1 - 0.5 * n, 1.0, 1.5, ze)
+        axis = rr == 0
+        if np.any(axis):
+            val[axis] = np.inf if n <= 1 else n * k * c * aa[axis] ** (n - 1) / (n - 1)
+        core = ~edge & ~axis
+        if np.any(core):
+            from ..numeric.quadrature import tanh_sinh
+            rc = rr[core]
+            U = np.arccosh(aa[core] / rc)
+
+            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                return (rc[idx][:, None] * np.cosh(u)) ** (n - 1)
+
+            res = tanh_sinh(integrand, np.zeros_like(U), U, rtol=1e-13, raise_on_failure=False)
+            val[core] = n * k * c * res.value
     out[inside] = val
     return out
 

@@ -1,0 +1,127 @@
+"""Independent reference values for the hard-case tests (physics.md §2-3, re-implemented here).
+
+Nothing in this module imports contactlab: closed forms are written from physics.md with
+mpmath or plain numpy, and the transform of tabulated data comes from the definition.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+from scipy import integrate
+
+mp.mp.dps = 30
+
+
+def kappa(n: float) -> mp.mpf:
+    """κ_n = √π Γ(n/2+1)/Γ(n/2+1/2), 30 digits."""
+    n = mp.mpf(n)
+    return mp.sqrt(mp.pi) * mp.gamma(n / 2 + 1) / mp.gamma(n / 2 + mp.mpf(1) / 2)
+
+
+def power_force(E_star: float, c: float, n: float, a: float) -> float:
+    """F = 2E* κ_n c a^{n+1} n/(n+1)."""
+    n_ = mp.mpf(n)
+    return float(2 * mp.mpf(E_star) * kappa(n) * c * mp.mpf(a) ** (n_ + 1) * n_ / (n_ + 1))
+
+
+def power_depth(c: float, n: float, a: float) -> float:
+    """d = κ_n c a^n."""
+    return float(kappa(n) * c * mp.mpf(a) ** n)
+
+
+def power_pressure(E_star: float, c: float, n: float, a: float, r: float) -> float:
+    """p(r) = (E*/π) ∫_0^{arccosh(a/r)} g'(r cosh u) du with g' = n κ_n c x^{n-1} (mpmath quad)."""
+    r_, a_ = mp.mpf(r), mp.mpf(a)
+    U = mp.acosh(a_ / r_)
+    k = kappa(n)
+    val = mp.quad(lambda u: n * k * c * (r_ * mp.cosh(u)) ** (n - 1), [0, U])
+    return float(mp.mpf(E_star) / mp.pi * val)
+
+
+def power_displacement_outside(c: float, n: float, a: float, d: float, r: float) -> float:
+    """u_z(r > a) = (2/π)[d asin(a/r) - (κ_n c a^{n+1}/(r(n+1))) ₂F₁(1/2,(n+1)/2;(n+3)/2;a²/r²)]."""
+    r_, a_, n_ = mp.mpf(r), mp.mpf(a), mp.mpf(n)
+    hyp = mp.hyp2f1(mp.mpf(1) / 2, (n_ + 1) / 2, (n_ + 3) / 2, (a_ / r_) ** 2)
+    return float(2 / mp.pi * (d * mp.asin(a_ / r_) - kappa(n) * c * a_ ** (n_ + 1) / (r_ * (n_ + 1)) * hyp))
+
+
+def cone_displacement_outside(slope: float, a: float, r: float) -> float:
+    """u_z(r > a) = tanβ [a asin(a/r) - r + sqrt(r²-a²)] (mpmath: no cancellation at r ≫ a)."""
+    r_, a_ = mp.mpf(r), mp.mpf(a)
+    return float(slope * (a_ * mp.asin(a_ / r_) - r_ + mp.sqrt(r_**2 - a_**2)))
+
+
+# ---------------------------------------------------------------- piecewise-linear tables
+def table_g_sum(r: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """physics.md §2 table row: g(x) = x Σ_i s_i [asin(min(r_{i+1},x)/x) - asin(r_i/x)], r_i < x.
+
+    ``r`` must start at 0 (prepend the flat extension before calling). Vectorised over ``x``.
+    """
+    s = np.diff(f) / np.diff(r)
+    x = np.atleast_1d(np.asarray(x, float))
+    out = np.empty(x.size)
+    for j, xj in enumerate(x):          # a loop over a handful of reference points only
+        lo, hi = r[:-1], np.minimum(r[1:], xj)
+        m = lo < xj
+        out[j] = xj * np.sum(s[m] * (np.arcsin(hi[m] / xj) - np.arcsin(lo[m] / xj)))
+    return out
+
+
+def table_g_quad(r: np.ndarray, f: np.ndarray, x: float) -> float:
+    """g(x) = x ∫_0^{π/2} f'(x sinθ) dθ by scipy quad, split at θ_i = asin(r_i/x)."""
+    s = np.diff(f) / np.diff(r)
+    cuts = [0.0] + [float(np.arcsin(ri / x)) for ri in r[1:-1] if ri < x] + [0.5 * np.pi]
+    total = 0.0
+    for t0, t1 in zip(cuts[:-1], cuts[1:]):
+        k = min(int(np.searchsorted(r, x * np.sin(0.5 * (t0 + t1)), side="right") - 1), s.size - 1)
+        total += s[k] * (t1 - t0)        # f' is constant on each θ piece
+    # and the independent quad check of the same integral (piecewise-constant integrand)
+    q, _ = integrate.quad(lambda th: s[min(int(np.searchsorted(r, x * np.sin(th), side="right") - 1),
+                                           s.size - 1)],
+                          0.0, 0.5 * np.pi, points=cuts[1:-1] or None, limit=500, epsabs=0,
+                          epsrel=1e-13)
+    assert abs(q - total) <= 1e-10 * abs(total)
+    return x * total
+
+
+def table_g_integral_quad(r: np.ndarray, f: np.ndarray, a: float) -> float:
+    """∫_0^a g dx = ∫_0^a f'(t) sqrt(a²-t²) dt by scipy quad on each table interval."""
+    s = np.diff(f) / np.diff(r)
+    total = 0.0
+    for i in range(s.size):
+        lo, hi = r[i], min(r[i + 1], a)
+        if lo >= a:
+            break
+        total += s[i] * integrate.quad(lambda t: np.sqrt(a * a - t * t), lo, hi, epsabs=0,
+                                       epsrel=1e-13)[0]
+    return total
+
+
+def table_pressure_shape_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
+    """S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx of the table, by parts so only g is needed:
+    S = (g(a)-g(r))/sqrt(a²-r²) + ∫_r^a (g(x)-g(r)) x/(x²-r²)^{3/2} dx (scipy quad, split at
+    the nodes; the integrand is bounded at x = r because g is smooth just above r off-node)."""
+    g_r = table_g_sum(r, f, np.array([rr]))[0]
+    g_a = table_g_sum(r, f, np.array([a]))[0]
+    pts = [float(x) for x in r if rr < x < a]
+
+    def integrand(x):
+        return (table_g_sum(r, f, np.array([x]))[0] - g_r) * x / (x * x - rr * rr) ** 1.5
+
+    # substitute x = r + t² near the lower end to tame the (x-r)^{-1/2} behaviour
+    def sub(t):
+        x = rr + t * t
+        return integrand(x) * 2 * t
+    edges = [0.0] + [np.sqrt(p - rr) for p in pts] + [np.sqrt(a - rr)]
+    total = sum(integrate.quad(sub, e0, e1, epsabs=0, epsrel=1e-12, limit=200)[0]
+                for e0, e1 in zip(edges[:-1], edges[1:]))
+    return (g_a - g_r) / np.sqrt(a * a - rr * rr) + total
+
+
+def table_abel_outside_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
+    """(2/π) ∫_0^a g(x)/sqrt(r²-x²) dx for r > a (scipy quad split at the nodes)."""
+    pts = [0.0] + [float(x) for x in r if 0 < x < a] + [a]
+    total = sum(integrate.quad(lambda x: table_g_sum(r, f, np.array([x]))[0] / np.sqrt(rr * rr - x * x),
+                               e0, e1, epsabs=0, epsrel=1e-12, limit=200)[0]
+                for e0, e1 in zip(pts[:-1], pts[1:]))
+    return 2 / np.pi * total
