@@ -13,7 +13,7 @@ import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["Param", "check_positive", "check_finite", "check_in_range", "as_float_array"]
+__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -65,6 +65,26 @@ class Param:
                 f"and {allowed} (unit {self.unit})."
             )
         return v
+
+
+class ParamIdentity:
+    """Mixin: ``repr``, ``==`` and ``hash`` from the declared ``params`` (class + values), so two
+    objects built with the same parameters are interchangeable (and usable as cache keys)."""
+
+    params: tuple[Param, ...] = ()
+
+    def _param_values(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, p.name) for p in self.params)
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{p.name}={getattr(self, p.name)!r}" for p in self.params)
+        return f"{type(self).__name__}({args})"
+
+    def __eq__(self, other: object) -> bool:
+        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return hash((type(self), self._param_values()))
 
 
 def check_positive(name: str, value: object, what: str = "", unit: str = "") -> float:

@@ -16,12 +16,12 @@ from abc import ABC
 from typing import Any, ClassVar
 
 from ..errors import NotSupportedError, PluginError
-from ..params import Param
+from ..params import Param, ParamIdentity
 
 __all__ = ["Material"]
 
 
-class Material(ABC):
+class Material(ParamIdentity, ABC):
     """A homogeneous isotropic body material (half-space model)."""
 
     name: ClassVar[str] = ""
@@ -40,19 +40,6 @@ class Material(ABC):
 
     def _compliances(self) -> tuple[float, float, float]:
         raise NotSupportedError(f"{type(self).__name__} has no elastic compliances.")
-
-    def _param_values(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, p.name) for p in self.params)
-
-    def __repr__(self) -> str:
-        args = ", ".join(f"{p.name}={getattr(self, p.name)!r}" for p in self.params)
-        return f"{type(self).__name__}({args})"
-
-    def __eq__(self, other: object) -> bool:
-        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
-
-    def __hash__(self) -> int:
-        return hash((type(self), self._param_values()))
 
     def pair(self, other: "Material"):
         """Effective moduli of this body against ``other``; see :func:`effective_moduli`."""

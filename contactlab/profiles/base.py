@@ -31,7 +31,7 @@ from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
 from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root
-from ..params import Param, as_float_array
+from ..params import Param, ParamIdentity, as_float_array
 
 __all__ = ["Profile", "G_STRATEGIES", "ROUNDING", "root_rtol"]
 
@@ -57,7 +57,7 @@ def root_rtol(rtol: float) -> float:
     return max(1e-15, 1e-5 * rtol)
 
 
-class Profile(ABC):
+class Profile(ParamIdentity, ABC):
     """Axisymmetric gap ``f(r)`` between two undeformed surfaces and its MDR transform.
 
     ``f(0) = 0``; ``f`` may be non-monotone (measured data) as long as its transform
@@ -75,8 +75,8 @@ class Profile(ABC):
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        if getattr(cls, "__abstractmethods__", None):
-            return
+        if getattr(cls, "__abstractmethods__", None) or cls.__name__.startswith("_"):
+            return      # abstract or private intermediate bases are not checked
         if not any(getattr(cls, h) is not getattr(Profile, h, None) for h in _HOOKS
                    if hasattr(cls, h)):
             raise PluginError(
@@ -109,19 +109,6 @@ class Profile(ABC):
         return None
 
     # ------------------------------------------------------------------ identity
-    def _param_values(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, p.name) for p in self.params)
-
-    def __repr__(self) -> str:
-        args = ", ".join(f"{p.name}={getattr(self, p.name)!r}" for p in self.params)
-        return f"{type(self).__name__}({args})"
-
-    def __eq__(self, other: object) -> bool:
-        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
-
-    def __hash__(self) -> int:
-        return hash((type(self), self._param_values()))
-
     def __add__(self, other: "Profile") -> "Profile":
         from .compound import Sum
         if not isinstance(other, Profile):

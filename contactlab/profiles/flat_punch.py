@@ -81,7 +81,25 @@ class FlatPunch(Profile):
         return ("closed_form",)
 
 
-class TruncatedParaboloid(Profile):
+class _FlatCentred(Profile):
+    """Shared features of a flat centre of radius ``radius`` with a rising edge beyond it: g = 0
+    inside, a slope jump (quadrature breakpoint) at the edge."""
+
+    radius: float
+
+    @property
+    def flat_radius(self) -> float:
+        return self.radius
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return (self.radius,)
+
+    def _length_scale(self) -> float:
+        return self.radius
+
+
+class TruncatedParaboloid(_FlatCentred):
     """Flat punch of radius ``radius`` with a parabolic rounded edge of radius ``R``.
 
     ``f = 0`` for ``r < b`` and ``(r² - b²)/(2R)`` beyond.
@@ -104,17 +122,6 @@ class TruncatedParaboloid(Profile):
         self.radius = self.params[0].check(radius)
         self.R = self.params[1].check(R)
 
-    @property
-    def flat_radius(self) -> float:
-        return self.radius
-
-    @property
-    def breakpoints(self) -> tuple[float, ...]:
-        return (self.radius,)
-
-    def _length_scale(self) -> float:
-        return self.radius
-
     def _height(self, r: np.ndarray) -> np.ndarray:
         b = self.radius
         return np.where(r > b, (r - b) * (r + b) / (2 * self.R), 0.0)
@@ -136,7 +143,7 @@ class TruncatedParaboloid(Profile):
         return np.sqrt(0.5 * (b**2 + np.sqrt(b**4 + 4 * self.R**2 * d**2)))
 
 
-class TruncatedCone(Profile):
+class TruncatedCone(_FlatCentred):
     """Flat punch of radius ``radius`` with a conical edge of slope ``slope``.
 
     ``f = 0`` for ``r < b`` and ``slope (r - b)`` beyond.
@@ -158,17 +165,6 @@ class TruncatedCone(Profile):
     def __init__(self, radius: float, slope: float) -> None:
         self.radius = self.params[0].check(radius)
         self.slope = self.params[1].check(slope)
-
-    @property
-    def flat_radius(self) -> float:
-        return self.radius
-
-    @property
-    def breakpoints(self) -> tuple[float, ...]:
-        return (self.radius,)
-
-    def _length_scale(self) -> float:
-        return self.radius
 
     def _height(self, r: np.ndarray) -> np.ndarray:
         return np.where(r > self.radius, self.slope * (r - self.radius), 0.0)
