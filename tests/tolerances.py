@@ -108,3 +108,8 @@ TABLE_QUAD = 1e-9
 #: rounded-edge punch converging to the flat punch: the relative difference is O(eps) for a
 #: rounding zone b..b(1+eps) (force: eps/3, pressure away from the edge: ~eps); allow 2 eps
 ROUNDED_PUNCH_FACTOR = 2.0
+# ---- hard cases of torsion and load paths (issue 7, accuracy2)
+#: torque increments of steps of 1e-13..1e-15 of the amplitude: M is a sum over 2000 spring
+#: moments (foundation) or a difference M_max - 2M_load (Masing) of O(M) terms, so each value
+#: carries rounding of a few to ~sqrt(N) ulps of |M|; measured <= 14 eps |M| (foundation)
+TORSION_TINY_STEP = 64 * 2.220446049250313e-16
