@@ -126,8 +126,8 @@ def mdr_torque(phi):
 
 
 def foundation_knobs(quick: bool) -> list[Knob]:
-    ladder = [50, 200, 1000, 5000] if quick else [50, 100, 200, 500, 1000, 2000, 5000, 10000,
-                                                   20000, 50000]
+    ladder = ([50, 200, 1000, 5000] if quick
+              else [50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000])
     ps, _ = hat_scale()
     phi1 = float(tr.hertz_mdr_hat(0.5)[0]) * ps
     c = hertz()
@@ -245,8 +245,8 @@ def history_knobs(quick: bool) -> list[Knob]:
                 return float(h.dissipated_energy[-1] - h.dissipated_energy[1]), NAN
         return float(h.torque[-1]), NAN
 
-    n_ladder = [50, 200, 1000, 5000] if quick else [50, 100, 200, 500, 1000, 2000, 5000, 10000,
-                                                     20000]
+    n_ladder = ([50, 200, 1000, 5000] if quick
+                else [50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000])
     path = LoadPath().ramp(force=F_N, steps=2).then(
         cl.loadpath.Table.create(None, {"twist": tw[1:]}))
 

@@ -334,4 +334,3 @@ def test_tiny_steps_twist_history(method):
     assert abs(h.torque[-1] - h.torque[1]) <= noise            # back at φ1: Masing closure
     assert abs(h.dissipated_energy[-1] - h.dissipated_energy[1]) <= noise * delta + \
         TORSION_TINY_STEP * h.dissipated_energy[1]
-
