@@ -108,3 +108,17 @@ TABLE_QUAD = 1e-9
 #: rounded-edge punch converging to the flat punch: the relative difference is O(eps) for a
 #: rounding zone b..b(1+eps) (force: eps/3, pressure away from the edge: ~eps); allow 2 eps
 ROUNDED_PUNCH_FACTOR = 2.0
+# ---- hard cases of torsion and load paths (issue 7, accuracy2)
+#: torque increments of steps of 1e-13..1e-15 of the amplitude: M is a sum over 2000 spring
+#: moments (foundation) or a difference M_max - 2M_load (Masing) of O(M) terms, so each value
+#: carries rounding of a few to ~sqrt(N) ulps of |M|; measured <= 14 eps |M| (foundation)
+TORSION_TINY_STEP = 64 * 2.220446049250313e-16
+#: dM/dφ by central differences (h = 1e-4 φ) at rtol 1e-13 against (16/3)G_t c³: truncation
+#: ~h² M'''/M' ~ 1e-8, quadrature noise 1e-13·M/(h M') <= 1e-8 for c/a >= 0.3 (M/(φM') < 40)
+FD_STIFFNESS = 1e-6
+#: Masing branches of a twist history against the monotonic solver at another argument (both
+#: converged to rtol 1e-10 on M), cycle work by Simpson's rule with 4000 steps per cycle
+MASING_HISTORY = 1e-7
+#: energy balance of the foundation: work bracketed per step (trapezoid + slack) and the stored
+#: energy Σ m²/(2K) summed over 400 cells: only rounding of O(steps + N) terms remains
+WORK_TRAPEZOID = 1e-10

@@ -259,7 +259,8 @@ def _run(scene: "Scene") -> SceneResult:
                 col[start:] = _get(res, k, m)
                 out[k] = col
         else:
-            for k in ("twist", "torque", "stick_radius", "displacement", "tangential_force"):
+            for k in ("twist", "torque", "stick_radius", "displacement", "tangential_force",
+                      "dissipated_energy"):
                 if k in plan.series:   # requested effect with nothing driving it
                     out[k] = np.zeros(n) if k != "stick_radius" else _get(normal_state, "radius", n)
 

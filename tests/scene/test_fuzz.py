@@ -160,3 +160,17 @@ def test_nan_and_inf_values_are_issues():
             assert err.issues[0][0] == "profile.R"
         else:
             raise AssertionError(f"R={bad!r} accepted")
+
+
+def test_dissipated_energy_without_tangential_drive_is_zero():
+    """Regression (found by the fuzz test): friction given, only a normal ramp, and
+    ``dissipated_energy`` requested used to raise KeyError; nothing slips, so it is 0 J."""
+    data = {"profile": {"type": "paraboloid", "R": 0.0625},
+            "materials": {"body1": {"type": "elastic", "E": 1e6, "nu": 0.0},
+                          "body2": {"type": "rigid"}},
+            "load_path": [{"ramp": {"force": 1.0, "steps": 3}}],
+            "interface": {"friction": 1.0}, "solver": {},
+            "outputs": {"series": ["time", "dissipated_energy", "depth", "twist"]}}
+    res = Scene(data).run()
+    assert np.all(res["dissipated_energy"] == 0.0) and np.all(res["twist"] == 0.0)
+    assert np.all(np.isfinite(res["depth"]))
