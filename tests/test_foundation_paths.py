@@ -268,9 +268,7 @@ def test_oscillating_twist_no_drift_over_1e4_cycles():
     assert np.max(np.abs(M[-1] - M[1])) <= ENERGY_DRIFT * np.max(np.abs(M))
 
 
-def test_jaeger_loop_comparison_optional():
-    if not hasattr(cl.Contact, "torsion"):
-        pytest.skip("contact.torsion (issue 3) not available on this branch")
+def test_jaeger_loop_comparison():
     c = hertz()
     a = c.normal(force=F).radius
     phi = 1e-3 * 3 * MU * F / (16 * c.moduli.torsional * a ** 2)  # very narrow slip annulus

@@ -27,23 +27,12 @@ def twist_scene(*segments, friction=0.2, **sections):
     return d
 
 
-def _has_viscoelastic():
-    try:
-        from contactlab.materials import viscoelastic  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
 def example_params():
-    """Every example scene as a pytest param; viscoelastic ones skip until issue 6b is merged."""
+    """Every example scene as a pytest param."""
     from pathlib import Path
 
     import pytest
     out = []
     for p in sorted((Path(__file__).parents[2] / "examples").glob("*.toml")):
-        needs_visco = "standard_linear_solid" in p.read_text()
-        out.append(pytest.param(p, id=p.stem, marks=pytest.mark.skipif(
-            needs_visco and not _has_viscoelastic(),
-            reason="viscoelastic materials (issue 6b) not merged")))
+        out.append(pytest.param(p, id=p.stem))
     return out

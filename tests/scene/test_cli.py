@@ -90,7 +90,6 @@ def test_measured_profile(tmp_path):
     assert a[-1] == pytest.approx(100.648e-6, rel=1e-5)
 
 
-@pytest.mark.skipif(not hasattr(Contact, "torsion"), reason="contact.torsion (issue 3) not merged")
 def test_steel_ball_twist(tmp_path):
     s, _ = run(tmp_path, "steel_ball_twist.toml", "csv")
     assert s["stick_radius"][-1] == pytest.approx(59.0360e-6, rel=1e-5)   # Lubkin, mpmath
@@ -100,8 +99,6 @@ def test_steel_ball_twist(tmp_path):
     assert s["torque"][-1] == pytest.approx(lib.torque, rel=OUTPUT_ROUNDTRIP)
 
 
-@pytest.mark.skipif(not (hasattr(Contact, "simulate") and hasattr(contactlab, "LoadPath")),
-                    reason="contact.simulate / LoadPath (issue 4) not merged")
 def test_hip_joint_torsion(tmp_path):
     s, _ = run(tmp_path, "hip_joint_torsion.toml", "csv")
     Es, R, mu = e_star((210e9, 0.3), (1e9, 0.46)), 0.1, 0.08
@@ -111,15 +108,6 @@ def test_hip_joint_torsion(tmp_path):
     assert s["dissipated_energy"][-1] > 0
 
 
-def _has_viscoelastic():
-    try:
-        from contactlab.materials import viscoelastic  # noqa: F401
-    except ImportError:
-        return False
-    return hasattr(Contact, "viscoelastic_history")
-
-
-@pytest.mark.skipif(not _has_viscoelastic(), reason="viscoelastic materials (issue 6b) not merged")
 def test_viscoelastic_creep(tmp_path):
     s, _ = run(tmp_path, "viscoelastic_creep.toml", "csv")
     t, a = s["time"][1:] - 1e-3, s["radius"][1:]

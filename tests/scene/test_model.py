@@ -105,7 +105,6 @@ def test_history_sinusoid_around_current_value():
     np.testing.assert_allclose(h.time, [0, 1, 2, 2.5, 3.0])
 
 
-@pytest.mark.skipif(not hasattr(cl, "LoadPath"), reason="LoadPath (issue 4) not merged")
 def test_from_objects_with_a_loadpath():
     steel = cl.Elastic(E=210e9, nu=0.3)
     path = cl.LoadPath().ramp(force=100.0, steps=10).hold(steps=2).sinusoid(

@@ -163,14 +163,13 @@ def test_nan_from_a_solver_is_a_convergence_error(monkeypatch):
         Scene(twist_scene()).run()
 
 
-@pytest.mark.skipif(hasattr(Contact, "twist_history"), reason="twist_history exists in this build")
-def test_missing_api_is_named():
+def test_missing_api_is_named(monkeypatch):
+    monkeypatch.delattr(Contact, "twist_history")     # a build without the torsion module
     with pytest.raises(NotSupportedError, match=r"twist_history\(\) \(issue 3\)"):
         Scene(twist_scene()).run()
 
 
 # ---- real physics once the torsion helper's API is merged ----------------------------------------
-@pytest.mark.skipif(not hasattr(Contact, "torsion"), reason="contact.torsion (issue 3) not merged")
 def test_monotone_twist_against_lubkin():
     import mpmath as mp
     res = Scene(twist_scene({"ramp": {"twist": "5 mrad", "steps": 5}})).run()
@@ -189,8 +188,6 @@ def test_monotone_twist_against_lubkin():
         assert c == pytest.approx(float(t) * a, rel=1e-6)
 
 
-@pytest.mark.skipif(not hasattr(Contact, "twist_history"),
-                    reason="contact.twist_history (issue 3) not merged")
 def test_oscillating_twist_masing_symmetry():
     res = Scene(twist_scene()).run()
     # Masing: the loop is symmetric, M(-phi_max) = -M(phi_max)
@@ -212,7 +209,6 @@ def test_adhesive_scene_runs_or_names_the_missing_module():
                                                  - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
 
 
-@pytest.mark.skipif(not hasattr(Contact, "tangential"), reason="contact.tangential (issue 4) not merged")
 def test_monotone_shift_against_cattaneo_mindlin():
     res = Scene(twist_scene({"ramp": {"displacement": "0.3 um", "steps": 4}})).run()
     assert res.meta["computed"] == ["normal", "tangential"]
@@ -227,8 +223,6 @@ def test_monotone_shift_against_cattaneo_mindlin():
     np.testing.assert_allclose(res["stick_radius"][-4:], a * np.sqrt(1 - u / u_star), rtol=1e-9)
 
 
-@pytest.mark.skipif(not hasattr(Contact, "shift_history"),
-                    reason="contact.shift_history (issue 4) not merged")
 def test_oscillating_shift_masing_energy():
     amp = 0.2e-6
     res = Scene(twist_scene({"sinusoid": {"displacement": amp, "cycles": 1,
