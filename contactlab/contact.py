@@ -292,6 +292,7 @@ class Contact:
         from .viscoelastic import viscoelastic_history
         return viscoelastic_history(self, time=time, depth=depth, force=force,
                                     n_springs=n_springs, max_radius=max_radius)
+
     # ---- tangential contact, load paths, simulation (issue 4)
     def tangential(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                    displacement: Any = None, tangential_force: Any = None,
@@ -341,6 +342,7 @@ class Contact:
         return simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                         snapshots=snapshots, progress=progress, approximate=approximate,
                         strategy=strategy)
+
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):
         """Named sympy formulas of this contact (normal, torsion, JKR; physics.md §3, §4, §6).

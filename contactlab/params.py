@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -81,7 +82,8 @@ class ParamIdentity:
         return f"{type(self).__name__}({args})"
 
     def __eq__(self, other: object) -> bool:
-        return type(self) is type(other) and self._param_values() == other._param_values()  # type: ignore[attr-defined]
+        return (type(self) is type(other)
+                and self._param_values() == other._param_values())  # type: ignore[attr-defined]
 
     def __hash__(self) -> int:
         return hash((type(self), self._param_values()))

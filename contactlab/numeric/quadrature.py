@@ -26,8 +26,9 @@ __all__ = ["QuadratureResult", "tanh_sinh", "DEFAULT_RTOL", "MAX_LEVEL"]
 
 DEFAULT_RTOL = 1e-10
 MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
-_T_MAX = 4.5           # nodes reach within exp(-pi*sinh(4.5)) ~ 1e-61 of the ends: the tail of an
-                       # r**-0.7 end singularity beyond them is < 1e-18 (3.15 would lose 1e-8)
+# nodes reach within exp(-pi*sinh(4.5)) ~ 1e-61 of the ends: the tail of an r**-0.7 end
+# singularity beyond them is < 1e-18 (3.15 would lose 1e-8)
+_T_MAX = 4.5
 _H0 = 0.5
 
 

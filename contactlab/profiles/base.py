@@ -160,7 +160,8 @@ class Profile(ParamIdentity, ABC):
         near0 = r <= 0
         if np.any(near0):
             hh = 1e-6 * self._length_scale()
-            est = np.where(near0, (self._height(np.full_like(r, hh)) - self._height(np.zeros_like(r))) / hh, est)
+            one_sided = (self._height(np.full_like(r, hh)) - self._height(np.zeros_like(r))) / hh
+            est = np.where(near0, one_sided, est)
         return est
 
     def _length_scale(self) -> float:

@@ -137,7 +137,6 @@ class TruncatedParaboloid(_FlatCentred):
         b = self.radius
         return np.where(a > b, np.maximum((a - b) * (a + b), 0.0) ** 1.5 / (3 * self.R), 0.0)
 
-
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         b = self.radius
         return np.sqrt(0.5 * (b**2 + np.sqrt(b**4 + 4 * self.R**2 * d**2)))
@@ -182,4 +181,3 @@ class TruncatedCone(_FlatCentred):
         root = np.sqrt(np.maximum((a - b) * (a + b), 0.0))
         val = self.slope * (0.5 * a**2 * np.arctan2(root, b) - 0.5 * b * root)
         return np.where(a > b, val, 0.0)
-

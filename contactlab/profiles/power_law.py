@@ -8,7 +8,7 @@ and the Abel integral of g outside the contact
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from typing import Any, ClassVar
+from typing import ClassVar
 
 import numpy as np
 from scipy.special import hyp2f1

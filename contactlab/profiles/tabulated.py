@@ -13,8 +13,8 @@ costs O(N) for N table points; nothing is precomputed for all nodes, so tables o
 ``interpolation="cubic"`` uses a C² cubic spline (scipy ``CubicSpline``, not-a-knot ends); its
 transform is a Gauss-Legendre rule per table interval in θ (12 nodes, error estimate from 8), which
 is converged to rounding because the spline slope is analytic inside each interval. (The exact
-antiderivatives are not used: their power-basis form cancels catastrophically for fine tables.) The two interpolants of
-the same table differ at the level of the interpolation error (~1e-4 relative for fine tables of
+antiderivatives are not used: their power-basis form cancels catastrophically for fine tables.)
+The two interpolants of the same table differ at the level of the interpolation error (~1e-4 relative for fine tables of
 smooth profiles).
 
 Heights are taken relative to the table's first value (the datum of a measurement is arbitrary),
@@ -90,8 +90,9 @@ class Tabulated(Profile):
                                      "be strictly increasing (remove or average duplicates).")
         if np.any(steps < 0):
             i = int(np.argmax(steps < 0))
-            raise TabulatedDataError(f"r[{i + 1}]={float(r_arr[i + 1])!r} < r[{i}]={float(r_arr[i])!r}: radii "
-                                     "must be strictly increasing (sort the table).")
+            raise TabulatedDataError(
+                f"r[{i + 1}]={float(r_arr[i + 1])!r} < r[{i}]={float(r_arr[i])!r}: radii must be "
+                "strictly increasing (sort the table).")
         f_rel = f_arr - f_arr[0]
         if r_arr[0] > 0:        # flat extension to the axis
             r_arr = np.concatenate([[0.0], r_arr])

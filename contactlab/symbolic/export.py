@@ -261,4 +261,3 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
         lines.append("not available:")
         lines += [f"  {k}: {v}" for k, v in fs.unavailable.items()]
     return "\n".join(lines) + "\n"
-

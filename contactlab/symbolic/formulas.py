@@ -198,7 +198,6 @@ class FormulaSet(Mapping):
 
     def substitute(self, **values: float) -> "FormulaSet":
         """A new set with every known parameter (plus ``values``, by symbol name) substituted."""
-        import sympy as sp
         vals = self._bind(values)
         subs = {s: _float(v) for s, v in vals.items()}
         exprs = {k: e.xreplace(subs) for k, e in self._exprs.items()}
@@ -212,7 +211,6 @@ class FormulaSet(Mapping):
         MissingParameterError
             If a parameter has no number (name it in ``values``).
         """
-        import sympy as sp
         vals = self._bind(values)
         expr = self[name]
         var = set(self.variables(name))
@@ -331,6 +329,7 @@ def _spec_of(profile: Any) -> _Spec:
                            {ci: cv for ci, (cv, _) in zip(cs, profile.terms)})
     if t is Sphere:
         from sympy.codegen.cfunctions import log1p   # accurate for a << R (numpy.log1p)
+
         def xg_int(a):
             return (a**3 / 3 * sp.atanh(a / R) + R * a**2 / 6
                     + R**3 / 6 * log1p(-a**2 / R**2))
