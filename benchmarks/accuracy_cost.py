@@ -354,7 +354,14 @@ def contactlab_times(quad_rows: list[Row]) -> dict[str, dict[str, float]]:
         t, s = best_time(lambda: c.normal(depth=d), min_total=0.2, max_runs=2000)
         batch = np.full(10**4, d)
         tb, _ = best_time(lambda: c.normal(depth=batch), min_total=0.2, max_runs=200)
-        out[name] = {"closed": t, "batch": tb / batch.size,
+        # the exported standalone law (contact.formulas(...).python(), the code a user embeds in
+        # a multibody or particle code): one force and one radius evaluation per call
+        law: dict = {}
+        exec(c.formulas(substitute=True).python(), law)
+        force_law, radius_law = law["force_of_depth"], law["radius_of_depth"]
+        te, _ = best_time(lambda: (force_law(d), radius_law(d)), min_total=0.2, max_runs=20000)
+        out[name] = {"closed": t, "batch": tb / batch.size, "exported": te,
+                     "exported_force_error": abs(force_law(d) / BEM_CASES[name][2] - 1),
                      "closed_force_error": abs(s.force / BEM_CASES[name][2] - 1),
                      "closed_radius_error": abs(s.radius / A - 1)}
     return out
@@ -400,10 +407,14 @@ def bem_compare(quick: bool, quad_rows: list[Row]) -> list[dict]:
         cm = [r["seconds"] for r in rows if r["solver"] == "contactmechanics" and r["case"] == name
               and r["converged"] and r["force_error"] <= 1e-3]
         ratio = f"{min(cm) / ct['batch']:.2g}" if cm else "n/a"
+        ratio_law = f"{min(cm) / ct['exported']:.2g}" if cm else "n/a"
         print(f"contactlab {name}: force error {ct['closed_force_error']:.1e}, radius error "
               f"{ct['closed_radius_error']:.1e}; {ct['closed'] * 1e6:.0f} µs per call, "
               f"{ct['batch'] * 1e9:.0f} ns per depth in a batch of 10^4 (contactmechanics 1e-3 "
-              f"force time / batch time per depth = {ratio})")
+              f"force time / batch time per depth = {ratio}); exported force law "
+              f"(formulas().python()): {ct['exported'] * 1e6:.2f} µs per force + radius, force "
+              f"error {ct['exported_force_error']:.1e} (contactmechanics 1e-3 / exported = "
+              f"{ratio_law})")
     return rows
 
 
