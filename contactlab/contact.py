@@ -217,10 +217,14 @@ class Contact:
         if np.any(solve):
             Fs = Fp[solve]
             terms = prof.power_terms()
+            fast = (prof._radius_of_reduced_force(Fs / (2 * E), rtol)
+                    if hasattr(prof, "_radius_of_reduced_force") else None)
             if terms is not None and len(terms) == 1 and not np.isfinite(prof.wall_radius):
                 from .symbolic.transform import kappa
                 c, n = terms[0]
                 ap[solve] = (Fs * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+            elif fast is not None:          # profile-specific solver (convex linear tables)
+                ap[solve] = fast
             else:
                 lo = np.full(Fs.shape, prof.flat_radius)
                 hi = np.full(Fs.shape, prof._initial_bracket())

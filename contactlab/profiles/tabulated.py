@@ -203,10 +203,21 @@ class Tabulated(Profile):
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
         """Exact transform of the piecewise-linear interpolant (sum of arcsines), chunked."""
+        return self._arcsine_sums(x, with_slope=False)[0]
+
+    def _arcsine_sums(self, x: np.ndarray, with_slope: bool
+                      ) -> tuple[np.ndarray, np.ndarray | None]:
+        """g(x) and, if asked, g'(x) of the linear interpolant in one pass over the nodes.
+
+        ``g = x [s_k π/2 − Σ Δs_j asin(r_j/x)]`` and
+        ``g' = s_k π/2 − Σ Δs_j [asin(r_j/x) − r_j/sqrt(x² − r_j²)]`` (nodes r_j <= x; g' is
+        infinite exactly at a node with a slope jump, the square-root cusp).
+        """
         self._guard(x, "x")
         x = np.asarray(x, dtype=float)
         flat = x.ravel()
         out = np.zeros(flat.size)
+        slope = np.zeros(flat.size) if with_slope else None
         # only nodes with a slope jump contribute, and only those below the largest x
         jump = self._dslope != 0
         nodes_all = self.r[1:-1][jump]
@@ -216,18 +227,23 @@ class Tabulated(Profile):
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
             pos = xs > 0
-            val = np.zeros(xs.size)
-            if np.any(pos):
-                xp = xs[pos][:, None]
-                m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
-                nodes, ds = nodes_all[:m], ds_all[:m]
-                q = np.minimum(nodes[None, :] / xp, 1.0)
-                # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
-                contrib = np.where(nodes[None, :] <= xp, ds[None, :] * np.arcsin(q), 0.0)
-                val[pos] = xs[pos] * (0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]]
-                                      - contrib.sum(axis=1))
-            out[start:start + chunk] = val
-        return out.reshape(x.shape)
+            if not np.any(pos):
+                continue
+            xp = xs[pos][:, None]
+            m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
+            nodes, ds = nodes_all[:m], ds_all[:m]
+            below = nodes[None, :] <= xp
+            q = np.minimum(nodes[None, :] / xp, 1.0)
+            # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
+            asin_sum = np.where(below, ds[None, :] * np.arcsin(q), 0.0).sum(axis=1)
+            base = 0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]] - asin_sum
+            out[start:start + chunk][pos] = xs[pos] * base
+            if with_slope:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    cusp = np.where(below, ds[None, :] * nodes[None, :]
+                                    / np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :])), 0.0)
+                slope[start:start + chunk][pos] = base + cusp.sum(axis=1)
+        return out.reshape(x.shape), None if slope is None else slope.reshape(x.shape)
 
     # ------------------------------------------------------------------ cubic: per-interval Gauss
     def _spline_theta_sum(self, x: np.ndarray, weight_power: int) -> tuple[np.ndarray, np.ndarray]:
@@ -283,21 +299,29 @@ class Tabulated(Profile):
         a = np.asarray(a, dtype=float)
         flat = a.ravel()
         out = np.zeros(flat.size)
-        lo_n, hi_n, s = self.r[:-1], self.r[1:], self._slopes
-        chunk = max(1, _CHUNK // s.size)
+        # summation by parts of Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr: with
+        # P_a(r) = (r sqrt(a²-r²) + a² asin(r/a))/2 and P_a(a) = πa²/4,
+        # ∫_0^a g = s_k πa²/4 − Σ_{r_j <= a} Δs_j P_a(r_j) (only nodes with a slope jump)
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
         for start in range(0, flat.size, chunk):
-            aa = flat[start:start + chunk][:, None]
-            lo = np.minimum(lo_n[None, :], aa)
-            hi = np.minimum(hi_n[None, :], aa)
-
-            def prim(t: np.ndarray) -> np.ndarray:
-                # ∫ sqrt(a²-r²) dr = (r sqrt(a²-r²) + a² asin(r/a))/2
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    q = np.where(aa > 0, t / np.where(aa > 0, aa, 1.0), 0.0)
-                return 0.5 * (t * np.sqrt(np.maximum((aa - t) * (aa + t), 0.0))
-                              + aa**2 * np.arcsin(np.minimum(q, 1.0)))
-
-            out[start:start + chunk] = (s[None, :] * (prim(hi) - prim(lo))).sum(axis=1)
+            aa = flat[start:start + chunk]
+            pos = aa > 0
+            if not np.any(pos):
+                continue
+            ap = aa[pos][:, None]
+            m = int(np.searchsorted(nodes_all, ap.max(), side="right"))
+            nodes, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
+            below = nodes <= ap
+            q = np.minimum(nodes / ap, 1.0)
+            P = 0.5 * (nodes * np.sqrt(np.maximum((ap - nodes) * (ap + nodes), 0.0))
+                       + ap**2 * np.arcsin(q))
+            out[start:start + chunk][pos] = (
+                self._slopes[k_all[start:start + chunk][pos]] * 0.25 * np.pi * aa[pos] ** 2
+                - np.where(below, ds * P, 0.0).sum(axis=1))
         return out.reshape(a.shape)
 
     def _pressure_shape_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
@@ -478,12 +502,15 @@ class Tabulated(Profile):
                               rtol=root_rtol(rtol), what="contact radius")
 
     def _solve_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
-        """g(a) = d for the linear interpolant: bisection over the nodes, then a smooth solve.
+        """g(a) = d for the linear interpolant: a search over the nodes, then a smooth solve.
 
-        Between two nodes g is analytic except for the ``sqrt(x - r_k)`` kink at the left node,
-        which ``x = r_k + (r_{k+1} - r_k) u²`` removes, so the bracketed solve in ``u`` converges
-        superlinearly. About ``log2(N) + 6`` evaluations of g instead of ~50 for the generic
-        solver on the kinked g. The cubic spline takes the generic route.
+        The node interval holding ``a`` is found by safeguarded interpolation search (g is nearly
+        linear across many nodes; each step tests the two nodes around the guess in one call and
+        alternates with bisection when the bracket does not halve), typically 2-3 calls instead
+        of ``log2(N)`` bisections. Between two nodes g is analytic except for the
+        ``sqrt(x - r_k)`` kink at the left node, which ``x = r_k + (r_{k+1} - r_k) u²`` removes,
+        so the bracketed solve in ``u`` (started with the memoised node values) converges
+        superlinearly. The cubic spline takes the generic route.
         """
         if self._spline is not None:
             return super()._solve_radius(d, limit, rtol)
@@ -495,31 +522,172 @@ class Tabulated(Profile):
         rtol = self.rtol if rtol is None else rtol
         flat = np.asarray(d, dtype=float).ravel()
         r = self.r
-        g_end = float(self._g(np.array([r[-1]]))[0])
+        coarse = self._coarse_nodes()               # includes the last node
+        g_end = float(self._node_g[-1])
         if np.any(flat > g_end):
             i = int(np.argmax(flat > g_end))
             raise OutsideTheoryError(
                 f"depth={flat[i]!r} m needs a contact radius >= max_radius={limit!r} m of "
                 f"{self!r}; reduce the depth/force.")
-        lo = np.zeros(flat.size, dtype=np.intp)
-        hi = np.full(flat.size, r.size - 1, dtype=np.intp)
-        while True:
-            open_ = hi - lo > 1
-            if not np.any(open_):
-                break
-            mid = (lo + hi) // 2
-            below = np.ones(flat.size, dtype=bool)
-            below[open_] = self._g_at_nodes(mid[open_]) < flat[open_]
-            lo = np.where(open_ & below, mid, lo)
-            hi = np.where(open_ & ~below, mid, hi)
+        # bracket from the cached coarse node grid (65 nodes, computed once per table)
+        j = np.clip(np.searchsorted(self._node_g[coarse], flat, side="left"), 1, coarse.size - 1)
+        lo, hi = coarse[j - 1], coarse[j]
+        g_lo, g_hi = self._node_g[lo].copy(), self._node_g[hi].copy()
+        lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
         x0, h = r[lo], r[hi] - r[lo]
+        g0, g1 = self._g_at_nodes(lo), self._g_at_nodes(hi)
+        tol = 0.5 * root_rtol(rtol)
+        # Newton in u (x = x0 + h u², which removes the cusp at x0), from linear interpolation
+        # of g in x (dense tables: the smooth part dominates); each step costs one pass for g
+        # and g' together; three to four steps reach the tolerance
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.sqrt(np.clip(np.where(g1 > g0, (flat - g0) / (g1 - g0), 0.25), 1e-12, 1.0))
+        done = np.zeros(flat.size, dtype=bool)
+        for _ in range(6):
+            act = np.flatnonzero(~done)
+            if act.size == 0:
+                break
+            x = x0[act] + h[act] * u[act] ** 2
+            g, gp = self._arcsine_sums(x, with_slope=True)
+            step = (g - flat[act]) / (gp * 2 * h[act] * u[act])
+            u_new = u[act] - step
+            ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
+            u[act] = np.where(ok, u_new, u[act])
+            conv = ok & (np.abs(step) * 2 * h[act] * u[act] <= tol * (x0[act] + h[act] * u[act] ** 2))
+            done[act[conv]] = True
+            done[act[~ok]] = False
+        rest = np.flatnonzero(~done)
+        if rest.size:       # safeguard: the bracketed solver on the node interval
+            def func(uu: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                return self._g(x0[rest][idx] + h[rest][idx] * uu * uu)
 
-        def func(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return self._g(x0[idx] + h[idx] * u * u)
-
-        u = bracketed_root(func, flat, np.zeros(flat.size), np.ones(flat.size),
-                           rtol=0.5 * root_rtol(rtol), what="contact radius")
+            u[rest] = bracketed_root(func, flat[rest], np.zeros(rest.size), np.ones(rest.size),
+                                     rtol=tol, what="contact radius", f_lo=g0[rest],
+                                     f_hi=g1[rest])
         return (x0 + h * u * u).reshape(np.shape(d))
+
+    @staticmethod
+    def _node_search(at_nodes, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                     v_lo: np.ndarray, v_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Narrow node brackets ``[lo, hi]`` of an increasing node function to adjacent nodes.
+
+        Safeguarded interpolation search: guess the node from the bracket values, test the two
+        nodes around the guess in one call of ``at_nodes`` (memoised), alternate with a bisection
+        step whenever the bracket did not halve.
+        """
+        interpolate = True
+        while True:
+            open_ = np.flatnonzero(hi - lo > 1)
+            if open_.size == 0:
+                break
+            lo_o, hi_o = lo[open_], hi[open_]
+            if interpolate:
+                # the function is nearly linear across a coarse bracket: guess the node interval
+                # from the bracket values and test both of its nodes in one call
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    frac = (target[open_] - v_lo[open_]) / (v_hi[open_] - v_lo[open_])
+                frac = np.where(np.isfinite(frac), frac, 0.5)
+                k = lo_o + np.floor(frac * (hi_o - lo_o)).astype(np.intp)
+                k = np.clip(k, lo_o, hi_o - 1)
+                pair = at_nodes(np.concatenate([k, k + 1])).reshape(2, -1)
+                below_k = pair[0] < target[open_]
+                below_k1 = pair[1] < target[open_]
+                # keep the tighter of the two tested nodes on each side of the target
+                new_lo = np.where(below_k1, k + 1, np.where(below_k, k, lo_o))
+                new_hi = np.where(~below_k, k, np.where(~below_k1, k + 1, hi_o))
+                v_lo[open_] = np.where(below_k1, pair[1], np.where(below_k, pair[0], v_lo[open_]))
+                v_hi[open_] = np.where(~below_k, pair[0], np.where(~below_k1, pair[1], v_hi[open_]))
+                shrunk = (new_hi - new_lo) <= 0.5 * (hi_o - lo_o)
+                lo[open_], hi[open_] = new_lo, new_hi
+                interpolate = bool(np.all(shrunk))   # else alternate with a bisection step
+            else:
+                mid = (lo_o + hi_o) // 2
+                v_mid = at_nodes(mid)
+                below = v_mid < target[open_]
+                lo[open_] = np.where(below, mid, lo_o)
+                hi[open_] = np.where(below, hi_o, mid)
+                v_lo[open_] = np.where(below, v_mid, v_lo[open_])
+                v_hi[open_] = np.where(below, v_hi[open_], v_mid)
+                interpolate = True
+        return lo, hi
+
+    def _reduced_force_at_nodes(self, idx: np.ndarray) -> np.ndarray:
+        """``H = a g(a) - ∫_0^a g`` (force / 2E*) at table nodes, memoised like g."""
+        cache = self.__dict__.get("_node_H")
+        if cache is None:
+            cache = np.full(self.r.size, np.nan)
+            self.__dict__["_node_H"] = cache
+        vals = cache[idx]
+        missing = np.isnan(vals)
+        if np.any(missing):
+            new = np.unique(idx[missing])
+            x = self.r[new]
+            cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
+            vals = cache[idx]
+        return vals
+
+    def _radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
+        """Contact radius with ``a g(a) - ∫_0^a g = target`` (= F/(2E*)), or None (generic route).
+
+        The same scheme as :meth:`_solve_radius`: node search on the memoised values, then Newton
+        in ``u`` with ``dH/da = a g'(a)``; used for convex linear tables only.
+        """
+        if self._spline is not None or not self._monotone_f:
+            return None
+        from ..errors import OutsideTheoryError
+        from ..numeric.roots import bracketed_root
+        from .base import root_rtol
+        r = self.r
+        flat = np.asarray(target, dtype=float).ravel()
+        coarse = self._coarse_nodes()
+        H_c = self._reduced_force_at_nodes(coarse)
+        if np.any(flat > H_c[-1]):
+            i = int(np.argmax(flat > H_c[-1]))
+            raise OutsideTheoryError(
+                f"force={2 * flat[i]!r}·E* N needs a contact radius beyond the table (last radius "
+                f"{float(r[-1])!r} m); extend the measured profile or reduce the force.")
+        j = np.clip(np.searchsorted(H_c, flat, side="left"), 1, coarse.size - 1)
+        lo, hi = coarse[j - 1], coarse[j]
+        lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
+                                   H_c[j - 1].copy(), H_c[j].copy())
+        x0, h = r[lo], r[hi] - r[lo]
+        H0, H1 = self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi)
+        tol = 0.5 * root_rtol(rtol)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.sqrt(np.clip(np.where(H1 > H0, (flat - H0) / (H1 - H0), 0.25), 1e-12, 1.0))
+        done = np.zeros(flat.size, dtype=bool)
+        for _ in range(6):
+            act = np.flatnonzero(~done)
+            if act.size == 0:
+                break
+            x = x0[act] + h[act] * u[act] ** 2
+            g, gp = self._arcsine_sums(x, with_slope=True)
+            H = x * g - self._g_integral_closed_form(x)
+            step = (H - flat[act]) / (x * gp * 2 * h[act] * u[act])
+            u_new = u[act] - step
+            ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
+            u[act] = np.where(ok, u_new, u[act])
+            conv = ok & (np.abs(step) * 2 * h[act] * u[act] <= tol * (x0[act] + h[act] * u[act] ** 2))
+            done[act[conv]] = True
+        rest = np.flatnonzero(~done)
+        if rest.size:       # safeguard: the bracketed solver on the node interval
+            def func(uu: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                xx = x0[rest][idx] + h[rest][idx] * uu * uu
+                return xx * self._g(xx) - self._g_integral_closed_form(xx)
+
+            u[rest] = bracketed_root(func, flat[rest], np.zeros(rest.size), np.ones(rest.size),
+                                     rtol=tol, what="contact radius", f_lo=H0[rest],
+                                     f_hi=H1[rest])
+        return (x0 + h * u * u).reshape(np.shape(target))
+
+    def _coarse_nodes(self) -> np.ndarray:
+        """Indices of 65 evenly spaced nodes whose g is memoised once (the search's first bracket)."""
+        idx = self.__dict__.get("_coarse_idx")
+        if idx is None:
+            idx = np.unique(np.linspace(0, self.r.size - 1, 65).round().astype(np.intp))
+            self._g_at_nodes(idx)
+            self.__dict__["_coarse_idx"] = idx
+        return idx
 
     def _g_at_nodes(self, idx: np.ndarray) -> np.ndarray:
         """g at table nodes ``r[idx]``, memoised per node (the bisection revisits the same
