@@ -53,6 +53,12 @@ MDR_VALID_STICK_RATIO = 0.83
 #: of the actual error.
 ROOT_SAFETY = 2.0
 
+#: Twist control, exact model: above this ``rtol`` the second-order torque error of the stick-radius
+#: root is estimated from the actual residual (one extra batched evaluation of ``P``); at or below
+#: it the a-priori bound ``1e2 rtol² |M|`` (< 1e-16 relative) is used, so the default rtol pays
+#: nothing for the estimate.
+ROOT_TERM_RTOL = 1e-9
+
 
 def _scalar_or_array(v: np.ndarray) -> Any:
     v = np.asarray(v)
@@ -214,7 +220,10 @@ class _MonotonicKernel:
             # M(c) at fixed φ is stationary at the root (dM/dc = 8c²(2G_tφ - μP(c)) = 0), so the
             # root tolerance enters only at second order: quadrature of T plus rounding
             M_err = 8.0 * self.mu * T_err + ROUNDING * (np.abs(M1) + 8.0 * self.mu * np.abs(T))
-            M_err += self._root_err_exact(phi, c, a, d, g_a)
+            if self.rtol > ROOT_TERM_RTOL:
+                M_err += self._root_err_exact(phi, c, a, d, g_a)
+            else:       # a-priori bound, below the rounding floor: no extra quadrature
+                M_err += 1e2 * self.rtol**2 * np.abs(M)
             slid = (c <= 0) & (a > 0)
             if np.any(slid):
                 M[slid] = self.sliding_torque(a[slid], d[slid])
@@ -501,9 +510,9 @@ class TorsionState:
         """Estimated relative errors ``{"torque", "twist", "stick_radius"}`` of this state.
 
         The twist error under torque control maps the torque residual and quadrature error
-        through ``dM = (16/3) G_t c³ dφ``; the stick-radius error maps the twist-side error (root
-        tolerance and quadrature of ``P``) through ``dφ/dc``, found by a central difference (two
-        extra evaluations of ``P``, done on first access only). 0 where the quantity is 0 or
+        through ``dM = (16/3) G_t c³ dφ``; the stick-radius error maps the twist-side error (the
+        root's actual residual and the quadrature error of ``P``) through ``dφ/dc``, found by a
+        central difference (three extra evaluations of ``P``, done on first access only). 0 where the quantity is 0 or
         ``inf``.
         """
         return {"torque": self.error_estimate,
@@ -526,31 +535,30 @@ class TorsionState:
         dp, gp = self._d.ravel()[part], self._g_a.ravel()[part]
         phi = np.abs(self._twist.ravel()[part])
         mu, G, E, rtol = ct.friction, ct.moduli.torsional, ct.moduli.normal, ct.rtol
-        h = 1e-4 * np.minimum(cp, ap - cp)
+        h = 0.1 * np.minimum(cp, ap - cp)      # the slope is needed to a factor ~2 only
         if self.method == "exact":
             P_lo, _ = _exact.slip_function(ct.profile, E, cp - h, ap, dp, gp, rtol)
             P_hi, _ = _exact.slip_function(ct.profile, E, cp + h, ap, dp, gp, rtol)
             dphi_dc = mu / (2 * G) * (P_hi - P_lo) / (2 * h)
             P_c, P_err = _exact.slip_function(ct.profile, E, cp, ap, dp, gp, rtol)
             P_err = _exact.sharpen_error(P_err, P_c)
-            # twist side: quadrature of P, the root's residual test (rtol φ) or bracket (rtol |y|)
-            dphi = mu / (2 * G) * P_err + rtol * phi
-            br = rtol * np.abs(np.log(cp / ap)) * cp
+            # twist side: quadrature of P and the actual residual of the root at c
+            dphi = mu / (2 * G) * (P_err + np.abs(P_c - 2 * G * phi / mu))
         else:
-            # root of f(c) = 4G_tφc/(μE*) + g(c) = d: residual test rtol·1e-3·d or bracket
+            # root of f(c) = 4G_tφc/(μE*) + g(c) = d: its actual residual at c
             k = 4.0 * G / (mu * E)
             f_lo = k * phi * (cp - h) + ct.profile._g(cp - h)
             f_hi = k * phi * (cp + h) + ct.profile._g(cp + h)
             dphi_dc = (f_hi - f_lo) / (2 * h)
-            dphi = rtol * 1e-3 * dp + 4 * ROUNDING * dp
-            br = rtol * np.abs(np.log(cp / ap)) * cp
+            f_c = k * phi * cp + ct.profile._g(cp)
+            dphi = np.abs(f_c - dp) + 4 * ROUNDING * dp
         rel_tw = np.asarray(self.meta.get("twist_error_estimate", 0.0), float)
         if control == "torque":
-            dphi = dphi + np.broadcast_to(rel_tw, self.shape).ravel()[part] * (
+            dphi = np.broadcast_to(rel_tw, self.shape).ravel()[part] * (
                 phi if self.method == "exact" else k * phi * cp)
         with np.errstate(divide="ignore", invalid="ignore"):
-            dc = np.abs(dphi / dphi_dc) + br
-        out[part] = np.where(np.isfinite(dc), dc / cp, np.inf) + ROUNDING
+            dc = ROOT_SAFETY * np.abs(dphi / dphi_dc)
+        out[part] = np.where(np.isfinite(dc), dc / cp, np.inf) + 4 * ROUNDING
         return out
 
     @property

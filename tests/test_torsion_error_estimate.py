@@ -89,6 +89,8 @@ def _cases():
                 tw = ct.torsion(depth=d, twist=phi, method="exact")
                 out.append((name, ratio, rtol, "torque|twist", tw.error_estimate,
                             abs(tw.torque / M - 1)))
+                out.append((name, ratio, rtol, "stick|twist", tw.error_estimates["stick_radius"],
+                            abs(tw.stick_radius / c - 1)))
                 st = ct.torsion(depth=d, stick_radius=c, method="exact")
                 out.append((name, ratio, rtol, "torque|stick", st.error_estimate,
                             abs(st.torque / M - 1)))
@@ -97,6 +99,8 @@ def _cases():
                 tq = ct.torsion(depth=d, torque=M, method="exact")
                 out.append((name, ratio, rtol, "twist|torque", tq.error_estimates["twist"],
                             abs(tq.twist / phi - 1)))
+                out.append((name, ratio, rtol, "stick|torque", tq.error_estimates["stick_radius"],
+                            abs(tq.stick_radius / c - 1)))
     return out
 
 
