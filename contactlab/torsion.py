@@ -512,8 +512,8 @@ class TorsionState:
         The twist error under torque control maps the torque residual and quadrature error
         through ``dM = (16/3) G_t c³ dφ``; the stick-radius error maps the twist-side error (the
         root's actual residual and the quadrature error of ``P``) through ``dφ/dc``, found by a
-        central difference (three extra evaluations of ``P``, done on first access only). 0 where the quantity is 0 or
-        ``inf``.
+        central difference (three extra evaluations of ``P``, done on first access only). 0 where
+        the quantity is 0 or ``inf``.
         """
         return {"torque": self.error_estimate,
                 "twist": self.meta.get("twist_error_estimate", 0.0),

@@ -107,8 +107,8 @@ def torque_of_stick(profile, E_star: float, G_t: float, mu: float, phi: np.ndarr
     """``M = (16/3) G_t φ c³ + 4μE* ∫_c^a x (d - g) dx`` (N·m); ``return_error=True``: also the
     absolute error estimate (N·m) from the quadrature and the rounding of the sum."""
     if not return_error:
-        return 16.0 / 3.0 * G_t * phi * c**3 + 4.0 * mu * E_star * annulus_integral(profile, c, a,
-                                                                                   d, rtol)
+        A = annulus_integral(profile, c, a, d, rtol)
+        return 16.0 / 3.0 * G_t * phi * c**3 + 4.0 * mu * E_star * A
     A, A_err = annulus_integral(profile, c, a, d, rtol, return_error=True)
     M1 = 16.0 / 3.0 * G_t * phi * c**3
     M2 = 4.0 * mu * E_star * A
