@@ -24,8 +24,9 @@ evaluation, best of several runs):
    ``twist_history`` (knob rtol), MDR ``twist_history`` (rtol) and ``simulate`` (knob N, MDR
    reference).
 
-No torsion / path API reports an error estimate (``TorsionState``, ``TwistHistory`` and
-``PathResult`` carry none), so the "honest" column is n/a for these rows.
+Torsion rows report ``TorsionState.error_estimate`` (torque) and ``error_estimates`` (twist,
+stick radius; issue 7) in the "honest" column; ``TwistHistory`` and ``PathResult`` carry no
+estimate, so the column is n/a for the other rows.
 
 Writes ``benchmarks/results/accuracy_cost_paths.csv`` and Pareto plots
 ``benchmarks/results/pareto_paths_*.png`` (matplotlib optional).
@@ -87,15 +88,23 @@ def torsion_knobs(quick: bool) -> list[Knob]:
         case = f"Hertz, c/a = {t}"
 
         def run_M(rtol, t=t):
-            return float(hertz(rtol).torsion(force=F_N, stick_radius=t * A_H).torque), NAN
+            s = hertz(rtol).torsion(force=F_N, stick_radius=t * A_H)
+            return float(s.torque), float(s.error_estimate)
+
+        def run_Mt(rtol, phi=phi):
+            s = hertz(rtol).torsion(force=F_N, twist=phi)
+            return float(s.torque), float(s.error_estimate)
 
         def run_c(rtol, phi=phi):
-            return float(hertz(rtol).torsion(force=F_N, twist=phi).stick_radius), NAN
+            s = hertz(rtol).torsion(force=F_N, twist=phi)
+            return float(s.stick_radius), float(s.error_estimates["stick_radius"])
 
         def run_phi(rtol, M=M):
-            return float(hertz(rtol).torsion(force=F_N, torque=M).twist), NAN
+            s = hertz(rtol).torsion(force=F_N, torque=M)
+            return float(s.twist), float(s.error_estimates["twist"])
 
         knobs += [Knob("torsion rtol (exact)", case, "torque", ladder, run_M, M),
+                  Knob("torsion rtol (exact)", case, "torque (twist ctl)", ladder, run_Mt, M),
                   Knob("torsion rtol (exact)", case, "stick radius", ladder, run_c, t * A_H),
                   Knob("torque-control root (rtol)", case, "twist", ladder, run_phi, phi)]
     # flat punch (§6.2.7): φ = μE*d/(2πG_t a) K(k_c)
@@ -104,11 +113,13 @@ def torsion_knobs(quick: bool) -> list[Knob]:
 
     def run_fc(rtol):
         c = cl.Contact(FlatPunch(b), materials=(STEEL, STEEL), friction=MU, rtol=rtol)
-        return float(c.torsion(depth=d, twist=phi_f).stick_radius), NAN
+        s = c.torsion(depth=d, twist=phi_f)
+        return float(s.stick_radius), float(s.error_estimates["stick_radius"])
 
     def run_fphi(rtol):
         c = cl.Contact(FlatPunch(b), materials=(STEEL, STEEL), friction=MU, rtol=rtol)
-        return float(c.torsion(depth=d, stick_radius=0.5 * b).twist), NAN
+        s = c.torsion(depth=d, stick_radius=0.5 * b)
+        return float(s.twist), float(s.error_estimates["twist"])
 
     knobs += [Knob("torsion rtol (exact)", "flat punch, c/a = 0.5", "stick radius", ladder,
                    run_fc, 0.5 * b),

@@ -122,3 +122,14 @@ MASING_HISTORY = 1e-7
 #: energy balance of the foundation: work bracketed per step (trapezoid + slack) and the stored
 #: energy Σ m²/(2K) summed over 400 cells: only rounding of O(steps + N) terms remains
 WORK_TRAPEZOID = 1e-10
+
+# ---- torsion error estimates (issue 7)
+#: Share of (estimate, actual) pairs where the estimate bounds the actual error (issue 7 target).
+TORSION_ERR_HONEST_FRACTION = 0.95
+#: Estimates should exceed the actual error by at most this factor (over this floor) in at least
+#: TORSION_ERR_HONEST_FRACTION of the pairs, and by at most TORSION_ERR_MAX_OVER_ALL in every pair:
+#: tanh-sinh's "change between the last two levels" is conservative by design (the error squares
+#: per level; measured worst 6e4 where a 1e-10 estimate meets an actual error of 1e-15).
+TORSION_ERR_MAX_OVER = 1e3
+TORSION_ERR_MAX_OVER_ALL = 1e5
+TORSION_ERR_FLOOR = 1e-15

@@ -40,11 +40,29 @@ __all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral
            "x_g_integral", "sliding_torque", "twist_of_stick", "torque_of_stick",
            "dissipation_integral", "stick_shear", "circumferential_displacement",
            "solve_stick_of_twist", "solve_stick_of_torque",
-           "C_MIN_REL"]
+           "C_MIN_REL", "sharpen_error", "QUAD_SAFETY"]
 
 #: Stick radii below ``C_MIN_REL * a`` count as full sliding: the torque then differs from the
 #: sliding torque by ~(c/a)³ < 1e-300 relative (and ``K(k)`` would overflow the float range).
 C_MIN_REL = 1e-100
+
+
+#: Safety factor of :func:`sharpen_error` (issue 7), measured on the honesty ladder of
+#: tests/test_torsion_error_estimate.py.
+QUAD_SAFETY = 10.0
+
+
+def sharpen_error(err: np.ndarray, val: np.ndarray) -> np.ndarray:
+    """Error of the *returned* tanh-sinh value from its estimate (issue 7).
+
+    :func:`~contactlab.numeric.quadrature.tanh_sinh` reports the change between its last two
+    levels, which bounds the error of the previous level; the error roughly squares per level, so
+    the returned value errs by about ``err²/|val|``. Returns ``min(err, QUAD_SAFETY err²/|val|)``.
+    """
+    err = np.abs(err)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sq = QUAD_SAFETY * err * err / np.abs(val)
+    return np.where(np.isfinite(sq), np.minimum(err, sq), err)
 
 
 # ---------------------------------------------------------------- elliptic helpers

@@ -16,7 +16,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..numeric.roots import bracketed_root
-from .torsion_exact import C_MIN_REL, _integrate_log, x_g_integral
+from ..profiles.base import ROUNDING as _ROUNDING
+from .torsion_exact import C_MIN_REL, _integrate_log, sharpen_error, x_g_integral
 
 __all__ = ["slip_displacement", "stick_radius", "torque_of_stick", "annulus_integral",
            "sliding_torque", "twist_of_stick", "stick_radius_of_torque", "dissipation"]
@@ -77,14 +78,16 @@ def stick_radius(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
 
 
 def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
-                     rtol: float) -> np.ndarray:
+                     rtol: float, return_error: bool = False):
     """``∫_c^a x (d - g(x)) dx`` (m³) by quadrature of the non-negative integrand (no cancellation
     as ``c → a``), split at the profile's breakpoints (composite rule for large tables). The part
-    below ``C_MIN_REL a`` (relative size 1e-200) is dropped."""
+    below ``C_MIN_REL a`` (relative size 1e-200) is dropped. ``return_error=True``: also the
+    absolute quadrature error estimate (m³)."""
     out = np.zeros(c.shape)
+    err = np.zeros(c.shape)
     todo = np.flatnonzero(c < a)
     if todo.size == 0:
-        return out
+        return (out, err) if return_error else out
     as_, ds = a[todo], d[todo]
     cs = np.maximum(c[todo], C_MIN_REL * as_)
 
@@ -92,15 +95,24 @@ def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
         return x * (ds[idx][:, None] - gx)
 
     scale = ds * as_ * (as_ - cs)
-    val, _ = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
+    val, e = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
     out[todo] = val
-    return out
+    err[todo] = e
+    return (out, err) if return_error else out
 
 
 def torque_of_stick(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
-                    c: np.ndarray, a: np.ndarray, d: np.ndarray, rtol: float) -> np.ndarray:
-    """``M = (16/3) G_t φ c³ + 4μE* ∫_c^a x (d - g) dx`` (N·m)."""
-    return 16.0 / 3.0 * G_t * phi * c**3 + 4.0 * mu * E_star * annulus_integral(profile, c, a, d, rtol)
+                    c: np.ndarray, a: np.ndarray, d: np.ndarray, rtol: float,
+                    return_error: bool = False):
+    """``M = (16/3) G_t φ c³ + 4μE* ∫_c^a x (d - g) dx`` (N·m); ``return_error=True``: also the
+    absolute error estimate (N·m) from the quadrature and the rounding of the sum."""
+    if not return_error:
+        A = annulus_integral(profile, c, a, d, rtol)
+        return 16.0 / 3.0 * G_t * phi * c**3 + 4.0 * mu * E_star * A
+    A, A_err = annulus_integral(profile, c, a, d, rtol, return_error=True)
+    M1 = 16.0 / 3.0 * G_t * phi * c**3
+    M2 = 4.0 * mu * E_star * A
+    return M1 + M2, 4.0 * mu * E_star * sharpen_error(A_err, A) + _ROUNDING * (np.abs(M1) + np.abs(M2))
 
 
 def sliding_torque(profile, E_star: float, mu: float, a: np.ndarray, d: np.ndarray,
