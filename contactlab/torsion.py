@@ -134,11 +134,22 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
         rel_M = np.where(M != 0, kernel.err_torque / np.abs(M), 0.0) + np.where(M != 0, n_rel, 0.0)
         rel_phi = (np.where(np.isfinite(phi) & (phi != 0), kernel.err_twist / np.abs(phi), 0.0)
                    + np.where(np.isfinite(phi) & (phi != 0) & (ctrl_key != "twist"), n_rel, 0.0))
+    deferred = getattr(kernel, "err_torque_deferred", None)
     meta = {"rtol": contact.rtol, "control": ctrl_key, "load": load_key,
             "routes": {"g": contact.profile.g_route},
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal},
             "error_estimate": _scalar_or_array(rel_M.reshape(shape)),
             "twist_error_estimate": _scalar_or_array(rel_phi.reshape(shape))}
+    if deferred is not None:
+        absM = np.abs(M)
+
+        def add_root_term() -> Any:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                extra = np.where(absM != 0, deferred() / absM, 0.0)
+            return _scalar_or_array((rel_M + extra).reshape(shape))
+
+        meta["error_estimate"] = None          # filled on first access of .error_estimate
+        meta["_error_estimate_pending"] = add_root_term
     return TorsionState(contact, normal, method, shape,
                         *(v.reshape(shape) for v in (phi, M, c, slip, a, d, g_a)), meta=meta)
 
@@ -221,7 +232,10 @@ class _MonotonicKernel:
             # root tolerance enters only at second order: quadrature of T plus rounding
             M_err = 8.0 * self.mu * T_err + ROUNDING * (np.abs(M1) + 8.0 * self.mu * np.abs(T))
             if self.rtol > ROOT_TERM_RTOL:
-                M_err += self._root_err_exact(phi, c, a, d, g_a)
+                # needs one extra batched evaluation of P: deferred to the first access of
+                # state.error_estimate (lazy: a torque-twist curve does not pay for it)
+                args = (phi.copy(), c.copy(), a.copy(), d.copy(), g_a.copy())
+                self.err_torque_deferred = lambda: self._root_err_exact(*args)
             else:       # a-priori bound, below the rounding floor: no extra quadrature
                 M_err += 1e2 * self.rtol**2 * np.abs(M)
             slid = (c <= 0) & (a > 0)
@@ -456,7 +470,9 @@ class TorsionState:
         The normal preload (its own shape; torsion arrays broadcast it with the twist input).
     meta : dict
         ``rtol``, ``control``, ``load``, ``routes``, ``moduli``, ``error_estimate`` (relative,
-        torque), ``twist_error_estimate`` (relative).
+        torque; under twist control at ``rtol > 1e-9`` it is ``None`` until
+        :attr:`error_estimate` is first read, which pays one extra batched quadrature),
+        ``twist_error_estimate`` (relative).
 
     Notes
     -----
@@ -503,6 +519,9 @@ class TorsionState:
         twist is stationary in ``c``); under torque control it is the residual of the returned
         state against the requested torque. docs/accuracy.md gives the measured honesty.
         """
+        pending = self.meta.pop("_error_estimate_pending", None)
+        if pending is not None:         # twist control at loose rtol: computed on first access
+            self.meta["error_estimate"] = pending()
         return self.meta.get("error_estimate", 0.0)
 
     @cached_property

@@ -100,8 +100,9 @@ def kme_over_m(p: np.ndarray) -> np.ndarray:
     p = np.asarray(p, float)
     m = 1.0 - p
     small = m <= 0.1
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = (ellipkm1(p) - ellipe(m)) / m
+    out = np.empty(p.shape)
+    big = ~small
+    out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions only where used
     if np.any(small):
         ms = m[small]
         acc = np.zeros(ms.shape)
