@@ -333,10 +333,12 @@ class Contact:
 
     def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
                  spacing: str = "edge", snapshots: Any = None, progress: bool = False,
-                 approximate: bool = False, strategy: str | None = None):
+                 approximate: bool = False, strategy: str | None = None,
+                 error_estimate: bool = False):
         """Run a :class:`~contactlab.LoadPath` through the MDR foundation with frictional memory.
 
-        See :func:`contactlab.simulation.simulate` for the parameters.
+        See :func:`contactlab.simulation.simulate` for the parameters (``error_estimate=True``
+        adds ``result.meta["error_estimates"]``, the spring-discretisation error per series).
 
         Returns
         -------
@@ -345,7 +347,7 @@ class Contact:
         from .simulation import simulate
         return simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                         snapshots=snapshots, progress=progress, approximate=approximate,
-                        strategy=strategy)
+                        strategy=strategy, error_estimate=error_estimate)
 
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):

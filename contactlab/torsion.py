@@ -775,7 +775,12 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
         _warn_mdr(contact, u_arg, A, Dd, GA)
     meta = {"rtol": contact.rtol, "load": load_key, "method": method,
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal}}
-    return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta)
+    # error bookkeeping for torque_error (computed on first access): the loading curve's
+    # absolute errors at the distinct arguments, its deferred root term, and the recursion
+    errors = (kernel.err_torque.copy(), getattr(kernel, "err_torque_deferred", None),
+              inv.ravel(), origin, factor, float(normal.meta.get("error_estimate", 0.0)))
+    return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
+                        errors)
 
 
 @dataclass(frozen=True, eq=False)
@@ -792,6 +797,9 @@ class TwistHistory:
         Radius of the central zone that has not slipped since the last turning point, m.
     dissipated_energy : ndarray
         Cumulative energy dissipated by friction, J (computed on first access).
+    torque_error, error_estimate : ndarray, float
+        Estimated absolute torque error per step (N·m) and its maximum relative to the torque
+        amplitude (computed on first access).
     method : str
         ``"exact"``, ``"mdr"`` or ``"no-slip"``.
     normal : NormalState
@@ -816,6 +824,34 @@ class TwistHistory:
     _state: tuple = field(repr=False)
     _segments: tuple = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+    _errors: tuple = field(default=(), repr=False)
+
+    @cached_property
+    def torque_error(self) -> np.ndarray:
+        """Estimated absolute error of :attr:`torque` per step, N·m (issue 7).
+
+        Every step is ``M_r ± f M_load(arg)`` (Masing, ``f = 2`` after a reversal), so the error
+        of the loading-curve values (quadrature estimates, rounding floors and the stick-radius
+        root term of :attr:`TorsionState.error_estimate`) is carried through the same recursion,
+        added in absolute value, plus the normal solution's relative error times ``|M|``.
+        """
+        if not self._errors:
+            return np.zeros(self.torque.shape)
+        err_u, deferred, inv, origin, factor, n_rel = self._errors
+        if deferred is not None:
+            err_u = err_u + deferred()
+        err_load = err_u[inv]
+        out = np.empty(self.torque.shape)
+        for i in range(out.size):                              # O(1) per step
+            o = origin[i]
+            out[i] = (out[o] if o >= 0 else 0.0) + factor[i] * err_load[i]
+        return out + n_rel * np.abs(self.torque)
+
+    @property
+    def error_estimate(self) -> float:
+        """Estimated error of the torque history relative to its amplitude ``max|M|``."""
+        amp = float(np.max(np.abs(self.torque), initial=0.0))
+        return float(np.max(self.torque_error, initial=0.0)) / amp if amp > 0 else 0.0
 
     @property
     def slip(self) -> np.ndarray:
