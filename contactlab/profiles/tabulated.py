@@ -517,11 +517,9 @@ class Tabulated(Profile):
         if not self._monotone_f:
             return self._solve_radius_first_crossing(d, self.rtol if rtol is None else rtol)
         from ..errors import OutsideTheoryError
-        from ..numeric.roots import bracketed_root
         from .base import root_rtol
         rtol = self.rtol if rtol is None else rtol
         flat = np.asarray(d, dtype=float).ravel()
-        r = self.r
         coarse = self._coarse_nodes()               # includes the last node
         g_end = float(self._node_g[-1])
         if np.any(flat > g_end):
@@ -534,37 +532,9 @@ class Tabulated(Profile):
         lo, hi = coarse[j - 1], coarse[j]
         g_lo, g_hi = self._node_g[lo].copy(), self._node_g[hi].copy()
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
-        x0, h = r[lo], r[hi] - r[lo]
-        g0, g1 = self._g_at_nodes(lo), self._g_at_nodes(hi)
-        tol = 0.5 * root_rtol(rtol)
-        # Newton in u (x = x0 + h u², which removes the cusp at x0), from linear interpolation
-        # of g in x (dense tables: the smooth part dominates); each step costs one pass for g
-        # and g' together; three to four steps reach the tolerance
-        with np.errstate(divide="ignore", invalid="ignore"):
-            u = np.sqrt(np.clip(np.where(g1 > g0, (flat - g0) / (g1 - g0), 0.25), 1e-12, 1.0))
-        done = np.zeros(flat.size, dtype=bool)
-        for _ in range(6):
-            act = np.flatnonzero(~done)
-            if act.size == 0:
-                break
-            x = x0[act] + h[act] * u[act] ** 2
-            g, gp = self._arcsine_sums(x, with_slope=True)
-            step = (g - flat[act]) / (gp * 2 * h[act] * u[act])
-            u_new = u[act] - step
-            ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
-            u[act] = np.where(ok, u_new, u[act])
-            conv = ok & (np.abs(step) * 2 * h[act] * u[act] <= tol * (x0[act] + h[act] * u[act] ** 2))
-            done[act[conv]] = True
-            done[act[~ok]] = False
-        rest = np.flatnonzero(~done)
-        if rest.size:       # safeguard: the bracketed solver on the node interval
-            def func(uu: np.ndarray, idx: np.ndarray) -> np.ndarray:
-                return self._g(x0[rest][idx] + h[rest][idx] * uu * uu)
-
-            u[rest] = bracketed_root(func, flat[rest], np.zeros(rest.size), np.ones(rest.size),
-                                     rtol=tol, what="contact radius", f_lo=g0[rest],
-                                     f_hi=g1[rest])
-        return (x0 + h * u * u).reshape(np.shape(d))
+        return self._newton_on_node_interval(
+            flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),
+            lambda x: self._arcsine_sums(x, with_slope=True), self._g).reshape(np.shape(d))
 
     @staticmethod
     def _node_search(at_nodes, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
@@ -635,7 +605,6 @@ class Tabulated(Profile):
         if self._spline is not None or not self._monotone_f:
             return None
         from ..errors import OutsideTheoryError
-        from ..numeric.roots import bracketed_root
         from .base import root_rtol
         r = self.r
         flat = np.asarray(target, dtype=float).ravel()
@@ -650,35 +619,54 @@ class Tabulated(Profile):
         lo, hi = coarse[j - 1], coarse[j]
         lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
                                    H_c[j - 1].copy(), H_c[j].copy())
-        x0, h = r[lo], r[hi] - r[lo]
-        H0, H1 = self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi)
-        tol = 0.5 * root_rtol(rtol)
+
+        def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            g, gp = self._arcsine_sums(x, with_slope=True)
+            return x * g - self._g_integral_closed_form(x), x * gp      # dH/da = a g'(a)
+
+        return self._newton_on_node_interval(
+            flat, lo, hi, self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi),
+            0.5 * root_rtol(rtol), value_and_slope,
+            lambda x: x * self._g(x) - self._g_integral_closed_form(x)).reshape(np.shape(target))
+
+    def _newton_on_node_interval(self, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                                 v0: np.ndarray, v1: np.ndarray, tol: float, value_and_slope,
+                                 value) -> np.ndarray:
+        """Solve ``v(x) = target`` inside node intervals ``[r[lo], r[hi]]`` (``v`` increasing).
+
+        Newton in ``u`` with ``x = r_lo + h u²`` (removes the square-root cusp of g at the left
+        node), started from linear interpolation of ``v`` in ``x`` (dense tables: the smooth part
+        dominates); each step costs one pass over the nodes for ``v`` and ``dv/dx`` together, and
+        three to four steps reach ``tol``. Elements that leave ``[0, 1]`` or do not converge go to
+        the bracketed solver on the same interval (``value`` only, end values known).
+        """
+        from ..numeric.roots import bracketed_root
+        x0, h = self.r[lo], self.r[hi] - self.r[lo]
         with np.errstate(divide="ignore", invalid="ignore"):
-            u = np.sqrt(np.clip(np.where(H1 > H0, (flat - H0) / (H1 - H0), 0.25), 1e-12, 1.0))
-        done = np.zeros(flat.size, dtype=bool)
+            u = np.sqrt(np.clip(np.where(v1 > v0, (target - v0) / (v1 - v0), 0.25), 1e-12, 1.0))
+        done = np.zeros(target.size, dtype=bool)
         for _ in range(6):
             act = np.flatnonzero(~done)
             if act.size == 0:
                 break
             x = x0[act] + h[act] * u[act] ** 2
-            g, gp = self._arcsine_sums(x, with_slope=True)
-            H = x * g - self._g_integral_closed_form(x)
-            step = (H - flat[act]) / (x * gp * 2 * h[act] * u[act])
+            v, dv = value_and_slope(x)
+            step = (v - target[act]) / (dv * 2 * h[act] * u[act])
             u_new = u[act] - step
             ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
             u[act] = np.where(ok, u_new, u[act])
-            conv = ok & (np.abs(step) * 2 * h[act] * u[act] <= tol * (x0[act] + h[act] * u[act] ** 2))
+            conv = ok & (np.abs(step) * 2 * h[act] * u[act]
+                         <= tol * (x0[act] + h[act] * u[act] ** 2))
             done[act[conv]] = True
         rest = np.flatnonzero(~done)
-        if rest.size:       # safeguard: the bracketed solver on the node interval
+        if rest.size:
             def func(uu: np.ndarray, idx: np.ndarray) -> np.ndarray:
-                xx = x0[rest][idx] + h[rest][idx] * uu * uu
-                return xx * self._g(xx) - self._g_integral_closed_form(xx)
+                return value(x0[rest][idx] + h[rest][idx] * uu * uu)
 
-            u[rest] = bracketed_root(func, flat[rest], np.zeros(rest.size), np.ones(rest.size),
-                                     rtol=tol, what="contact radius", f_lo=H0[rest],
-                                     f_hi=H1[rest])
-        return (x0 + h * u * u).reshape(np.shape(target))
+            u[rest] = bracketed_root(func, target[rest], np.zeros(rest.size), np.ones(rest.size),
+                                     rtol=tol, what="contact radius", f_lo=v0[rest],
+                                     f_hi=v1[rest])
+        return x0 + h * u * u
 
     def _coarse_nodes(self) -> np.ndarray:
         """Indices of 65 evenly spaced nodes whose g is memoised once (the search's first bracket)."""
