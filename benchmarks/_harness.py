@@ -185,7 +185,8 @@ def pareto_plot(rows: Sequence[Row], directory: str | Path, prefix: str = "paret
 
 
 def machine() -> str:
-    """One line naming the machine (platform, CPU, cores, Python, numpy)."""
+    """One line naming the machine (platform, CPU, cores, load average, Python, numpy); every
+    benchmark prints it."""
     cpu = platform.processor() or ""
     try:
         with open("/proc/cpuinfo") as fh:
@@ -195,5 +196,6 @@ def machine() -> str:
                     break
     except OSError:
         pass
+    load = f"{os.getloadavg()[0]:.2f}" if hasattr(os, "getloadavg") else "n/a"
     return (f"{platform.platform()} | CPU: {cpu or 'unknown'} | {os.cpu_count()} cores | "
-            f"Python {platform.python_version()} | numpy {np.__version__}")
+            f"load {load} | Python {platform.python_version()} | numpy {np.__version__}")

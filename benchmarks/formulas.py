@@ -1,17 +1,21 @@
 """Timing of formula export: derivation (first call, cached), lambdified callables vs the solver.
 
-Run: ``PYTHONPATH=. python benchmarks/formulas.py`` from the repository root. Prints ratios; no assertions.
+Run: ``python benchmarks/formulas.py``. Prints ratios; no assertions.
 """
 from __future__ import annotations
 
-import platform
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-import contactlab as cl
-from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere, TruncatedCone
-from contactlab.symbolic import formulas as _f
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import contactlab as cl  # noqa: E402
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
+from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere, TruncatedCone  # noqa: E402
+from contactlab.symbolic import formulas as _f  # noqa: E402
 
 
 def best(fn, repeat=5):
@@ -24,8 +28,7 @@ def best(fn, repeat=5):
 
 
 def main() -> None:
-    print(f"machine: {platform.node()} / {platform.processor() or platform.machine()}, "
-          f"python {platform.python_version()}")
+    print(f"machine: {machine()}")
     mats = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
     print(f"{'profile':<42} {'formulas() first [s]':>20} {'cached [us]':>12}")
     for prof in (Paraboloid(R=0.01), Cone(slope=0.2), PowerLaw(c=5e5, n=3), PowerLaw(c=30.0, n=1.5),

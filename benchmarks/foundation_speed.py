@@ -8,7 +8,6 @@ Run: python benchmarks/foundation_speed.py [n_springs] [n_steps]
 from __future__ import annotations
 
 import os
-import platform
 import resource
 import sys
 import time
@@ -17,21 +16,9 @@ import tracemalloc
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+sys.path.insert(0, os.path.dirname(__file__))
 import contactlab as cl  # noqa: E402
-
-
-def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return (f"{cpu}; {os.cpu_count()} logical CPUs; Python {platform.python_version()}; "
-            f"numpy {np.__version__}; {platform.system()} {platform.release()}")
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 
 
 def run(name, contact, path, n_springs, strategy):

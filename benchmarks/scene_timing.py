@@ -8,8 +8,6 @@ the ratios. Scenes needing an API this build lacks are reported as "n/a".
 from __future__ import annotations
 
 import copy
-import os
-import platform
 import sys
 import timeit
 from pathlib import Path
@@ -17,6 +15,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from contactlab.errors import NotSupportedError  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 from contactlab.scene import Scene  # noqa: E402
 
 STEEL = {"type": "elastic", "E": "210 GPa", "nu": 0.3}
@@ -54,8 +54,7 @@ def best(fn, repeat=7):
 
 
 def main() -> None:
-    print(f"machine: {platform.node()} | {platform.machine()} | {platform.processor() or '?'} | "
-          f"{os.cpu_count()} CPUs | Python {platform.python_version()} | {platform.system()}")
+    print(f"machine: {machine()}")
     t_build = best(lambda: Scene(NORMAL).plan())
     print(f"parse+validate+plan (normal only, 201 steps): {t_build * 1e3:8.3f} ms")
     base = None

@@ -17,7 +17,6 @@ Run: ``python benchmarks/torsion_error_map.py`` from the repository root.
 from __future__ import annotations
 
 import csv
-import platform
 import sys
 import warnings
 from pathlib import Path
@@ -27,6 +26,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import contactlab as cl  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 from contactlab.errors import ValidityWarning  # noqa: E402
 
 OUT = Path(__file__).resolve().parent / "results"
@@ -88,7 +89,7 @@ if __name__ == "__main__":
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    print(f"machine: {platform.processor() or platform.machine()}, python {platform.python_version()}")
+    print(f"machine: {machine()}")
     print(f"{'profile':20s} {'c/a exact':>9s} {'c/a MDR':>9s} {'phi/phi_ref':>11s} {'M/M_full':>9s} "
           f"{'MDR error':>10s}")
     for r in rows:

@@ -12,8 +12,6 @@ Run: ``python benchmarks/torsion_speed.py`` from the repository root.
 """
 from __future__ import annotations
 
-import os
-import platform
 import sys
 import time
 import warnings
@@ -24,21 +22,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import contactlab as cl  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 from contactlab.errors import ValidityWarning  # noqa: E402
-
-
-def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    return (f"{cpu}; {os.cpu_count()} logical CPUs; load {load:.2f}; python "
-            f"{platform.python_version()}; numpy {np.__version__}")
 
 
 def best_of(fn, repeats: int) -> float:

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import csv
 import os
-import platform
 import sys
 import time
 
@@ -26,6 +25,8 @@ from scipy.integrate import quad
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 import contactlab as cl  # noqa: E402
+sys.path.insert(0, os.path.dirname(__file__))
+from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 from contactlab.materials.viscoelastic import GeneralizedMaxwell, StandardLinearSolid  # noqa: E402
 from contactlab.profiles import Paraboloid  # noqa: E402
 
@@ -97,7 +98,7 @@ def accuracy(outdir: str) -> None:
 
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
-    print(f"machine: {platform.node()} {platform.machine()} {platform.processor() or ''} "
-          f"python {platform.python_version()} numpy {np.__version__} cpus {os.cpu_count()}")
+    os.makedirs(out, exist_ok=True)
+    print(f"machine: {machine()}")
     speed(out)
     accuracy(out)
