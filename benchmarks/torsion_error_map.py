@@ -101,7 +101,7 @@ if __name__ == "__main__":
     print(f"MDR torque error > 1 % first at MDR c/a = {t:.4g} ({who}), "
           f"at exact c/a = {te:.4g} ({whoe}); "
           "contactlab warns where the exact c/a < MDR_VALID_STICK_RATIO = "
-          f"{cl.torsion.MDR_VALID_STICK_RATIO}")
+          f"{cl.effects.torsion.MDR_VALID_STICK_RATIO}")
     try:
         import matplotlib
         matplotlib.use("Agg")

@@ -5,15 +5,11 @@ Public entry points: :class:`Contact`, :class:`Elastic`, :class:`Rigid`, :class:
 Importing contactlab does no sympy work and scans no plugins.
 """
 from . import errors, foundation, loadpath, materials, profiles
-from .adhesion import AdhesionCycle, AdhesiveNormalState
 from .contact import Contact
+from .effects import (AdhesionCycle, AdhesiveNormalState, NormalState, PathResult, ShiftHistory,
+                      TangentialState, TorsionState, TwistHistory, ViscoelasticHistory)
 from .loadpath import LoadPath
 from .materials import Elastic, Rigid, effective_moduli
-from .simulation import PathResult
-from .states import NormalState
-from .tangential import ShiftHistory, TangentialState
-from .torsion import TorsionState, TwistHistory
-from .viscoelastic import ViscoelasticHistory
 from . import registry
 from .registry import register_material, register_profile
 

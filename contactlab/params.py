@@ -14,7 +14,8 @@ import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array"]
+__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
+           "exactly_one", "scalar_or_array"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -127,3 +128,35 @@ def as_float_array(name: str, value: object, *, allow_nan: bool = False) -> np.n
         bad = float(arr[~np.isfinite(arr)].ravel()[0])
         raise ParameterError(f"{name} contains {bad!r}: every value must be finite.")
     return arr
+
+
+def exactly_one(what: str, options: dict[str, Any]) -> tuple[str, Any]:
+    """The one keyword of ``options`` that is not None, as ``(name, value)``.
+
+    Parameters
+    ----------
+    what : str
+        The caller, for the message (``"torsion()"``).
+    options : dict
+        Keyword name -> value (None = not given), in the order they are documented.
+
+    Raises
+    ------
+    ParameterError
+        None or more than one of the keywords was given.
+    """
+    given = [(k, v) for k, v in options.items() if v is not None]
+    if len(given) != 1:
+        raise ParameterError(f"{what} needs exactly one of {', '.join(k + '=' for k in options)}; "
+                             f"got {sorted(k for k, _ in given) or 'none'}.")
+    return given[0]
+
+
+def scalar_or_array(value: Any) -> Any:
+    """A 0-d result as a Python ``float`` (``bool`` for boolean arrays), else the ndarray itself."""
+    v = np.asarray(value)
+    if v.dtype == bool:
+        return bool(v) if v.ndim == 0 else v
+    if v.dtype.kind != "f":
+        v = v.astype(float)
+    return float(v) if v.ndim == 0 else v

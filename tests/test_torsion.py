@@ -356,7 +356,7 @@ def test_mdr_full_slip_torque_is_4_over_pi_of_exact(hertz):
 
 def test_mdr_validity_warning(hertz):
     """Warns once the exact stick radius at that twist drops below 0.83 a (1 % error, error map)."""
-    phi_lim = float(ref.hertz_twist_hat(cl.torsion.MDR_VALID_STICK_RATIO)) * PHI_SCALE
+    phi_lim = float(ref.hertz_twist_hat(cl.effects.torsion.MDR_VALID_STICK_RATIO)) * PHI_SCALE
     with pytest.warns(ValidityWarning, match="c/a=0.83"):
         hertz.torsion(radius=A, twist=1.001 * phi_lim, method="mdr")
     with warnings.catch_warnings():
@@ -370,7 +370,7 @@ def test_mdr_validity_warning(hertz):
 
 
 def test_mdr_error_helper_matches_table(hertz):
-    from contactlab.torsion import mdr_torque_error
+    from contactlab.effects.torsion import mdr_torque_error
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         md = hertz.torsion(radius=A, stick_radius=np.array([0.7, 0.5, 0.3]) * A, method="mdr")

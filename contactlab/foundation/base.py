@@ -19,9 +19,12 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError, UnknownNameError
+from ..errors import OutsideTheoryError, ParameterError, UnknownNameError
+from ..params import as_float_array
+from ..physics import normal as _normal
 
-__all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries"]
+__all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries", "families_needed",
+           "path_normal_states"]
 
 #: default number of springs (cells) over the path's maximum contact radius. The error is second
 #: order in 1/N (only the cell holding a stick–slip boundary is lumped); with the edge-refined
@@ -51,6 +54,65 @@ def cell_boundaries(radius: float, n_springs: int, spacing: str) -> np.ndarray:
         b = radius * (1.0 - (1.0 - s) ** 2)
     b[-1] = radius
     return b
+
+
+def families_needed(path: Any, *, approximate: bool = False) -> tuple[str, ...]:
+    """Spring families a path needs besides the normal springs.
+
+    Raises
+    ------
+    OutsideTheoryError
+        The path drives both a tangential shift and a twist, without ``approximate=True``.
+    """
+    groups = path.groups
+    needs = tuple(g for g in ("tangential", "torsion") if g in groups)
+    if len(needs) == 2 and not approximate:
+        raise OutsideTheoryError(
+            "the path drives both a tangential shift (displacement/tangential_force) and a twist "
+            "(twist/torque): combined shift and twist is outside the MDR theory (the slip "
+            "conditions couple). Pass approximate=True to run the two as independent spring "
+            "families, each with the full friction limit (an explicit approximation).")
+    return needs
+
+
+def path_normal_states(profile: Any, E_star: float, path: Any, rtol: float
+                       ) -> list[dict[str, np.ndarray]]:
+    """Normal state of every step of a load path, per leaf segment.
+
+    Exact and vectorised per segment: non-adhesive normal contact is path independent, so each
+    step is the normal solution of its depth or force (:func:`contactlab.physics.normal.solve`);
+    a segment that controls neither holds the last state.
+
+    Returns
+    -------
+    list of dict
+        Per leaf: ``dt`` (s), ``depth`` (m), ``radius`` (m), ``force`` (N), one value per step.
+    """
+    out = []
+    cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
+                         "torque"), 0.0)
+    last = (np.zeros(1), np.zeros(1), np.zeros(1))
+    for leaf in path.leaves():
+        dt, vals = leaf.values(cur)
+        n = leaf.n_steps
+        if "depth" in vals:
+            d, a, F, _ = _normal.solve(profile, E_star, "depth",
+                                       as_float_array("depth", vals["depth"]), rtol)
+        elif "force" in vals:
+            f = as_float_array("force", vals["force"])
+            if np.any(f < 0):
+                bad = f[f < 0][0]
+                raise ParameterError(f"force={bad!r} N is invalid: it is below the adhesion limit "
+                                     "0 N of this non-adhesive contact (use force >= 0, or a "
+                                     "negative depth to separate the bodies).")
+            d, a, F, _ = _normal.solve(profile, E_star, "force", f, rtol)
+        else:
+            d, a, F = (np.full(n, v[-1]) for v in last)
+        d, a, F = (np.asarray(v, float).reshape(n) for v in (d, a, F))
+        out.append({"dt": dt, "depth": d, "radius": a, "force": F})
+        last = (d, a, F)
+        cur["depth"], cur["force"] = float(d[-1]), float(F[-1])
+    return out
 
 
 class Foundation(ABC):
@@ -124,12 +186,10 @@ class Foundation(ABC):
         >>> f.built
         ['normal']
         """
-        from ..simulation import _contact_for, compile_normal, families_needed
         from .winkler import Winkler
         impl = Winkler if cls is Foundation else cls
-        contact = _contact_for(profile, moduli, friction, rtol)
         needs = families_needed(path, approximate=approximate)
-        normal = compile_normal(contact, path)
+        normal = path_normal_states(profile, moduli.normal, path, rtol)
         radius = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
         return impl(profile, moduli, friction, radius, n_springs=n_springs, spacing=spacing,
                     needs=needs, rtol=rtol)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from ..errors import NotSupportedError, ParameterError
 from .base import Material
 
-__all__ = ["EffectiveModuli", "effective_moduli"]
+__all__ = ["EffectiveModuli", "effective_moduli", "viscoelastic_body"]
 
 
 @dataclass(frozen=True)
@@ -80,3 +80,31 @@ def _dundurs_beta_zero(m1: Material, m2: Material) -> bool:
         return (1.0 - 2.0 * m.nu) / m.G  # type: ignore[attr-defined]
     a, b = k(m1), k(m2)
     return abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)
+
+
+def viscoelastic_body(m1: Material, m2: Material):
+    """The viscoelastic body of a (viscoelastic, rigid) pair, in either order.
+
+    Raises
+    ------
+    NotSupportedError
+        No viscoelastic body, two deformable bodies, or a partner that is not rigid: the MDR
+        viscoelastic rules cover a rigid indenter on one incompressible viscoelastic half-space
+        (``E*(t) = 4G(t)``) only.
+    """
+    from .elastic import Rigid
+    from .viscoelastic import Viscoelastic
+    visco = [m for m in (m1, m2) if isinstance(m, Material) and m.is_viscoelastic]
+    other = [m for m in (m1, m2) if not (isinstance(m, Material) and m.is_viscoelastic)]
+    if len(visco) == 1 and len(other) == 1 and isinstance(other[0], Rigid) \
+            and isinstance(visco[0], Viscoelastic):
+        return visco[0]
+    if len(visco) == 0:
+        raise NotSupportedError(
+            f"materials={(m1, m2)!r}: viscoelastic_history() needs a viscoelastic body; use "
+            "normal() for elastic bodies.")
+    raise NotSupportedError(
+        f"materials={(m1, m2)!r} is not supported: the MDR viscoelastic rules cover a rigid "
+        "indenter on one incompressible viscoelastic half-space (E*(t) = 4G(t)) only; two "
+        "deformable bodies or a compressible partner need the general E*(t) operator, which is "
+        "not covered here. Use materials=(viscoelastic, Rigid()).")

@@ -29,7 +29,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, PluginError
 from ..params import Param, as_float_array
 from .base import Material
 
@@ -53,6 +53,12 @@ class Viscoelastic(Material):
 
     is_viscoelastic: ClassVar[bool] = True
     __abstract__ = True
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if not cls.__dict__.get("__abstract__", False) and cls.prony is Viscoelastic.prony:
+            raise PluginError(f"viscoelastic material {cls.__qualname__} must implement prony() "
+                              "(rule: Material contract, item 3).")
 
     def prony(self) -> tuple[float, np.ndarray, np.ndarray, float]:  # pragma: no cover
         raise NotImplementedError

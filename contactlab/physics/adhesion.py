@@ -29,8 +29,9 @@ Profiles whose ``g`` grows no faster than ``sqrt(x)`` at large ``x`` (power laws
 depth- and force-controlled states and pull-off raise
 :class:`~contactlab.errors.OutsideTheoryError` (``radius=`` still works).
 
-The driver functions take a :class:`~contactlab.Contact` and return
-:class:`~contactlab.adhesion.AdhesiveNormalState` objects; the kernels are pure.
+Pure kernels: profile, moduli and arrays in, arrays out. The drivers that build
+:class:`~contactlab.effects.adhesion.AdhesiveNormalState` objects live in
+:mod:`contactlab.effects.adhesion`.
 """
 from __future__ import annotations
 
@@ -41,11 +42,9 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError, ParameterError
 from ..numeric.roots import bracketed_root
-from ..params import as_float_array
 
 __all__ = ["edge_elongation", "depth_of_radius", "force_of_radius", "g_prime", "phi",
-           "Branches", "branches", "adhesive_normal", "pull_off", "adhesion_cycle",
-           "BRANCHES"]
+           "Branches", "branches", "solve_depth", "solve_force", "check_branch", "BRANCHES"]
 
 #: accepted values of ``branch=``
 BRANCHES = ("stable", "unstable")
@@ -86,7 +85,7 @@ def g_prime(profile, x: np.ndarray) -> np.ndarray:
     if terms is not None:
         from ..symbolic.transform import kappa
         return sum(kappa(n) * c * n * x ** (n - 1.0) for c, n in terms) * np.ones_like(x)
-    if hasattr(profile, "terms") and isinstance(profile.terms, tuple):
+    if profile.has("terms"):
         return sum(g_prime(t, x) for t in profile.terms)
     # central differences (error ~ h⁴ g⁽⁵⁾ + eps g/h ≈ 1e-12 relative for smooth g), with the
     # step shrunk so that the stencil never crosses a slope jump, flat rim or wall of the profile
@@ -166,14 +165,20 @@ def _limit(profile) -> float:
     return min(profile.wall_radius, profile.max_radius)
 
 
-def branches(contact) -> Branches:
-    """Scan ``φ(a)`` and locate both pull-off radii (cached on the contact)."""
-    cached = contact.__dict__.get("_jkr_branches")
-    if cached is not None:
-        return cached
-    prof = contact.profile
-    E = contact.moduli.normal
-    w = contact.work_of_adhesion
+def branches(profile, E_star: float, dgamma: float) -> Branches:
+    """Scan ``φ(a)`` and locate both pull-off radii of one adhesive contact.
+
+    Parameters
+    ----------
+    profile : Profile
+    E_star : float
+        Effective modulus, Pa.
+    dgamma : float
+        Work of adhesion Δγ, J/m² (> 0).
+    """
+    prof = profile
+    E = E_star
+    w = dgamma
     terms = prof.power_terms()
     if terms is not None and max(n for _, n in terms) <= 0.5:
         raise OutsideTheoryError(
@@ -243,9 +248,7 @@ def branches(contact) -> Branches:
 
     a_f, a_f_low, pin_f = crossing(1.5)
     a_d, a_d_low, pin_d = crossing(0.5)
-    out = Branches(a_f, a_d, a_f_low, a_d_low, wall, pin_f, pin_d)
-    contact.__dict__["_jkr_branches"] = out
-    return out
+    return Branches(a_f, a_d, a_f_low, a_d_low, wall, pin_f, pin_d)
 
 
 # ---------------------------------------------------------------------------- solves on a branch
@@ -279,15 +282,17 @@ def _solve_increasing(func, target: np.ndarray, lo: float, top: float, what: str
     return a, pinned
 
 
-def _check_branch(branch: str) -> None:
+def check_branch(branch: str) -> None:
+    """Raise :class:`ParameterError` unless ``branch`` is one of :data:`BRANCHES`."""
     if branch not in BRANCHES:
         raise ParameterError(f"branch={branch!r} is invalid: choose one of {BRANCHES}.")
 
 
-def _solve_depth(contact, d: np.ndarray, branch: str) -> tuple[np.ndarray, np.ndarray]:
-    """Contact radius for depths ``d`` on the chosen branch (0 where detached)."""
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    br = branches(contact)
+def solve_depth(profile, E_star: float, dgamma: float, br: Branches, d: np.ndarray, branch: str
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """Contact radius (m) and pinned-at-the-wall mask for depths ``d`` on the chosen branch
+    (radius 0 where detached); ``br`` from :func:`branches`."""
+    prof, E, w = profile, E_star, dgamma
     dfun = lambda a: depth_of_radius(prof, E, w, a)  # noqa: E731
     a = np.zeros(d.shape)
     pinned = np.zeros(d.shape, bool)
@@ -314,11 +319,10 @@ def _solve_depth(contact, d: np.ndarray, branch: str) -> tuple[np.ndarray, np.nd
     return a, pinned
 
 
-def _solve_force(contact, F: np.ndarray, branch: str
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(radius, depth, pinned) for forces ``F`` on the chosen branch."""
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    br = branches(contact)
+def solve_force(profile, E_star: float, dgamma: float, br: Branches, F: np.ndarray, branch: str
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(radius m, depth m, pinned mask) for forces ``F`` (N) on the chosen branch."""
+    prof, E, w = profile, E_star, dgamma
     ffun = lambda a: force_of_radius(prof, E, w, a)  # noqa: E731
     a = np.zeros(F.shape)
     pinned = np.zeros(F.shape, bool)
@@ -352,219 +356,3 @@ def _solve_force(contact, F: np.ndarray, branch: str
         ap = a[pinned]
         d[pinned] = (F[pinned] / (2 * E) + prof._g_integral(ap)) / ap
     return a, d, pinned
-
-
-# ---------------------------------------------------------------------------- drivers
-def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: str,
-           branch: str, F: np.ndarray | None = None):
-    from ..adhesion import AdhesiveNormalState
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    if F is None:
-        F = force_of_radius(prof, E, w, a, d)
-    F = np.where(a > 0, F, 0.0)
-    if np.any(a > 0):
-        prof._check_monotone_upto(float(np.max(a)), float(np.max(np.where(a > 0, d, -np.inf))))
-    # stiffness dF/dd along the equilibrium curve; 2E*b when pinned at a wall, 0 when detached
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ph = np.where(a > 0, phi(prof, E, w, np.where(a > 0, a, 1.0)), 0.0)
-        k = 2 * E * a * (ph - 1.5) / (ph - 0.5)
-    k = np.where(pinned, 2 * E * a, np.where(a > 0, k, 0.0))
-    k = np.where(np.isnan(k), 2 * E * a, k)     # φ = ∞ (slope jump at a flat rim)
-    k = np.where(np.abs(ph - 0.5) < 1e-9, np.inf, k)   # at the fixed-grip pull-off
-    br = contact.__dict__.get("_jkr_branches")
-    meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": control,
-            "branch": branch, "work_of_adhesion": w}
-    if br is not None:
-        meta["stable_under_force"] = (a >= br.a_force * (1 - 1e-9)) & (a > 0)
-        meta["stable_under_displacement"] = (a >= br.a_disp * (1 - 1e-9)) & (a > 0)
-    return AdhesiveNormalState(contact, np.asarray(d, float), np.asarray(a, float),
-                               np.asarray(F, float), meta, np.asarray(k, float))
-
-
-def adhesive_normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
-                    branch: str = "stable"):
-    """JKR normal contact through the MDR (Heß rule) for given depth, force or contact radius.
-
-    Parameters
-    ----------
-    contact : Contact
-        With ``work_of_adhesion > 0``.
-    depth : float or array_like, optional
-        Indentation depth ``d``, m (may be negative). Depths below the displacement-controlled
-        pull-off depth give the detached state (radius 0, force 0).
-    force : float or array_like, optional
-        Normal force, N (negative = tensile). Forces below the force-controlled pull-off force
-        raise :class:`~contactlab.errors.OutsideTheoryError` (no equilibrium exists).
-    radius : float or array_like, optional
-        Contact radius ``a``, m (direct; every ``a > 0`` is an equilibrium, stable or not).
-    branch : {"stable", "unstable"}
-        For ``depth=``/``force=``: ``"stable"`` (default) is the equilibrium stable under that
-        control, the solution with the largest radius; ``"unstable"`` the smaller-radius solution
-        that exists between the pull-off point and ``a → 0`` (a ``ParameterError`` names the
-        reachable range otherwise).
-
-    Returns
-    -------
-    AdhesiveNormalState
-        ``meta["stable_under_force"]`` and ``meta["stable_under_displacement"]`` flag each state.
-
-    Notes
-    -----
-    ``d(a) = g(a) - sqrt(2π a Δγ/E*)`` and ``F(a) = 2E*(a d - ∫_0^a g)`` [Heß11; physics.md §4].
-    The state returned for a depth between the pull-off depth and 0 is the one reached on
-    retraction; on approach the bodies stay apart until ``d = 0`` (see
-    :meth:`Contact.adhesion_cycle`).
-    """
-    _check_branch(branch)
-    given = {k: v for k, v in (("depth", depth), ("force", force), ("radius", radius))
-             if v is not None}
-    if len(given) != 1:
-        raise ParameterError(f"normal() needs exactly one of depth=, force=, radius=; got "
-                             f"{sorted(given) or 'none'}.")
-    key, value = next(iter(given.items()))
-    arr = as_float_array(key, value)
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    if key == "radius":
-        if np.any(arr < 0):
-            raise ParameterError(f"radius contains {arr[arr < 0].ravel()[0]!r}: contact radii "
-                                 "must be >= 0 m.")
-        lim = _limit(prof)
-        if np.any(arr > prof.wall_radius) or np.any(arr >= prof.max_radius):
-            raise OutsideTheoryError(f"radius={np.max(arr)!r} m is invalid: it must stay below "
-                                     f"{lim!r} m for {prof!r}.")
-        a = arr.copy()
-        d = depth_of_radius(prof, E, w, a)
-        prof._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
-        try:
-            branches(contact)
-        except OutsideTheoryError:
-            pass
-        return _state(contact, d, a, np.zeros(a.shape, bool), "radius", "n/a")
-    if key == "depth":
-        a, pinned = _solve_depth(contact, arr, branch)
-        d = arr.copy()
-        F = None
-        if np.any(pinned):
-            F = force_of_radius(prof, E, w, a, d)
-        return _state(contact, d, a, pinned, "depth", branch, F)
-    a, d, pinned = _solve_force(contact, arr, branch)
-    return _state(contact, d, a, pinned, "force", branch, np.where(a > 0, arr, 0.0))
-
-
-def pull_off(contact, control: str = "force"):
-    """State at detachment: minimum of ``F(a)`` (force control) or of ``d(a)`` (fixed grips).
-
-    Parameters
-    ----------
-    contact : Contact
-        With ``work_of_adhesion > 0``.
-    control : {"force", "displacement"}
-        Loading device. Force control: the contact follows the stable branch while the tensile
-        force grows and jumps off at the minimum of ``F(a)`` (``dF/da = 0``). Displacement control:
-        it follows the branch further, to the minimum of ``d(a)`` (``dd/da = 0``).
-
-    Returns
-    -------
-    AdhesiveNormalState
-        ``.force``, ``.radius``, ``.depth`` at detachment.
-
-    Raises
-    ------
-    OutsideTheoryError
-        No interior minimum (power laws with ``n <= 1/2``, physics.md §4).
-
-    Warns
-    -----
-    ValidityWarning
-        When ``φ`` crosses the critical value more than once (e.g. a flat punch with a gently
-        rounded edge): the returned state ends the stable branch connected to large contacts, but
-        the contact may then jump onto a lower stable branch rather than separate.
-    """
-    controls = ("force", "displacement")
-    if control not in controls:
-        raise ParameterError(f"control={control!r} is invalid: choose one of {controls}.")
-    br = branches(contact)
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    a_c = br.a_force if control == "force" else br.a_disp
-    if a_c <= 0:
-        raise OutsideTheoryError(
-            f"{control}-controlled pull-off of {prof!r}: the stable branch reaches a -> 0 without "
-            "an interior minimum, so the contact carries no tensile force at detachment.")
-    low = br.a_force_low if control == "force" else br.a_disp_low
-    if low > 0:
-        import warnings
-        from ..errors import ValidityWarning
-        warnings.warn(
-            f"{control}-controlled pull-off of {prof!r}: the stability function crosses its "
-            f"critical value more than once, so another stable branch exists below "
-            f"a = {low:.6g} m. The state returned ends the stable branch connected to large "
-            "contacts; the contact may jump onto the lower branch instead of separating.",
-            ValidityWarning, stacklevel=3)
-    a = np.array(a_c)
-    d = depth_of_radius(prof, E, w, a)
-    pinned = np.array(br.pinned_force if control == "force" else br.pinned_disp)
-    return _state(contact, d, a, pinned, f"pull_off:{control}", "stable")
-
-
-def adhesion_cycle(contact, *, depth: Any = None, force: Any = None):
-    """Walk an approach/retraction history with JKR jump-in and jump-off (hysteresis).
-
-    Parameters
-    ----------
-    depth, force : array_like (1D), exactly one
-        The load history, m or N.
-
-    Returns
-    -------
-    AdhesionCycle
-        Per-step ``depth``, ``force``, ``radius``, ``in_contact`` and the step indices of the
-        jumps.
-
-    Notes
-    -----
-    Rules (quasi-static, short-range adhesion):
-
-    * Out of contact the bodies stay apart (zero force) until the surfaces touch: under depth
-      control at ``d >= 0``, under force control at ``F >= 0``. They then jump onto the stable
-      branch (JKR jump-in: for a paraboloid under fixed grips ``a³ = 2πΔγR²/E*`` at ``d = 0``).
-    * In contact the state follows the stable branch; there is no other memory.
-    * Contact is lost below the pull-off depth (depth control, ``dd/da = 0``) or the pull-off
-      force (force control, ``dF/da = 0``); the bodies jump apart.
-    """
-    given = {k: v for k, v in (("depth", depth), ("force", force)) if v is not None}
-    if len(given) != 1:
-        raise ParameterError("adhesion_cycle() needs exactly one of depth=, force=; got "
-                             f"{sorted(given) or 'none'}.")
-    key, value = next(iter(given.items()))
-    arr = as_float_array(key, value)
-    if arr.ndim != 1 or arr.size == 0:
-        raise ParameterError(f"{key} must be a non-empty 1D history; got shape {arr.shape}.")
-    br = branches(contact)
-    prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
-    if key == "depth":
-        a_c = br.a_disp
-        lim = float(depth_of_radius(prof, E, w, np.array(a_c)))
-    else:
-        a_c = br.a_force
-        lim = float(force_of_radius(prof, E, w, np.array(a_c)))
-    # contact flag: a scan with memory (jump-in at >= 0, jump-off below the pull-off value)
-    in_contact = np.zeros(arr.shape, bool)
-    state = False
-    for i, v in enumerate(arr):          # scalar bookkeeping only; the solves are vectorised
-        state = (v >= lim) if state else (v >= 0.0)
-        in_contact[i] = state
-    radius = np.zeros(arr.shape)
-    depth_out = arr.copy() if key == "depth" else np.zeros(arr.shape)
-    force_out = np.zeros(arr.shape) if key == "depth" else np.where(in_contact, arr, 0.0)
-    if np.any(in_contact):
-        s = adhesive_normal(contact, **{key: arr[in_contact]})
-        radius[in_contact] = s._radius
-        depth_out[in_contact] = s._depth
-        force_out[in_contact] = s._force
-    if key == "force":
-        # out of contact under force control the gap is undefined; report the touching depth 0
-        depth_out[~in_contact] = 0.0
-    jumps = np.flatnonzero(np.diff(in_contact.astype(int)) != 0) + 1
-    from ..adhesion import AdhesionCycle
-    return AdhesionCycle(control=key, depth=depth_out, force=force_out, radius=radius,
-                         in_contact=in_contact, jumps=jumps, pull_off_value=lim)

@@ -20,7 +20,7 @@ import numpy as np
 from ..numeric.quadrature import tanh_sinh
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "displacement", "elastic_energy",
-           "g_squared_integral"]
+           "g_squared_integral", "force_of_radius", "radius_depth_of_force", "solve"]
 
 
 _U_MIN = 1e-4
@@ -36,12 +36,11 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     if profile._has("_pressure_shape_closed_form"):
         return profile._pressure_shape_closed_form(r, a), np.zeros(r.shape)
-    semi = getattr(profile, "_pressure_shape_semi_analytic", None)
-    if semi is not None:        # profile-specific route with an error estimate (or None: decline)
-        res = semi(r, a, rtol)
+    if profile.has("semi_analytic_pressure_shape"):   # with an error estimate, or None: decline
+        res = profile._pressure_shape_semi_analytic(r, a, rtol)
         if res is not None:
             return res
-    if hasattr(profile, "terms"):       # Sum: the MDR is linear, each term takes its own route
+    if profile.has("terms"):       # Sum: the MDR is linear, each term takes its own route
         parts = [pressure_shape(t, r, a, rtol) for t in profile.terms]
         return sum(p[0] for p in parts), sum(p[1] for p in parts)
     out = np.zeros(r.shape)
@@ -157,9 +156,8 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     if profile._has("_abel_g_closed_form"):
         return profile._abel_g_closed_form(r, a), np.zeros(r.shape)
-    semi = getattr(profile, "_abel_g_semi_analytic", None)
-    if semi is not None:        # profile-specific route with an error estimate (or None: decline)
-        res = semi(r, a, rtol)
+    if profile.has("semi_analytic_abel_g"):   # with an error estimate, or None: decline
+        res = profile._abel_g_semi_analytic(r, a, rtol)
         if res is not None:
             return res
     out = np.zeros(r.shape)
@@ -240,3 +238,152 @@ def elastic_energy(E_star: float, a: np.ndarray, d: np.ndarray, g_int: np.ndarra
                    g2_int: np.ndarray) -> np.ndarray:
     """Stored elastic energy ``E* ∫_{-a}^{a} (d-g)²/2 dx = E* (a d² - 2 d ∫g + ∫g²)``, J."""
     return E_star * (a * d * d - 2.0 * d * g_int + g2_int)
+
+
+# ---------------------------------------------------------------------------- normal solves
+def force_of_radius(profile, E_star: float, a: np.ndarray, rtol: float) -> np.ndarray:
+    """Non-adhesive force at contact radius ``a``: ``2E*(a g(a) - ∫_0^a g)`` [S eq. 8], N."""
+    return 2.0 * E_star * (a * profile._g(a, rtol) - profile._g_integral(a, rtol))
+
+
+def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
+                          ) -> tuple[np.ndarray, np.ndarray]:
+    """Contact radius and depth (m) of non-adhesive normal forces ``F`` (N), any shape.
+
+    Single power terms invert ``F(a)`` in closed form; a profile declaring
+    ``"reduced_force_solver"`` solves itself; otherwise a bracket is grown from
+    ``profile._initial_bracket()`` and refined by a bracketed root (never silently inexact).
+    At a punch wall the depth follows from ``F = 2E*(b d - ∫_0^b g)``.
+
+    Raises
+    ------
+    OutsideTheoryError
+        The force needs a contact radius beyond ``profile.max_radius``, or g decreases
+        (a ring contact).
+    ConvergenceError
+        The bracketed solve failed.
+    """
+    from ..errors import OutsideTheoryError
+    from ..numeric.roots import bracketed_root
+    from ..profiles.base import root_rtol
+    a = np.zeros(F.shape)
+    d = np.zeros(F.shape)
+    pos = F > 0
+    if not np.any(pos):
+        return a, d
+    E = E_star
+    Fp = F[pos]
+    ap = np.zeros(Fp.shape)
+    solve = np.ones(Fp.shape, dtype=bool)
+    walled = np.isfinite(profile.wall_radius)
+    if walled:
+        b = profile.wall_radius
+        F_wall = (float(force_of_radius(profile, E, np.array(b), rtol))
+                  if profile.flat_radius < b else 0.0)
+        at_wall = Fp >= F_wall
+        ap[at_wall] = b
+        solve = ~at_wall
+        limit = b
+    else:
+        limit = profile.max_radius
+    if np.any(solve):
+        Fs = Fp[solve]
+        terms = profile.power_terms()
+        fast = (profile._radius_of_reduced_force(Fs / (2 * E), rtol)
+                if profile.has("reduced_force_solver") else None)
+        if terms is not None and len(terms) == 1 and not walled:
+            from ..symbolic.transform import kappa
+            c, n = terms[0]
+            ap[solve] = (Fs * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+        elif fast is not None:          # profile-specific solver (convex linear tables)
+            ap[solve] = fast
+        else:
+            lo = np.full(Fs.shape, profile.flat_radius)
+            hi = np.full(Fs.shape, profile._initial_bracket())
+            for _ in range(400):
+                hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
+                short = force_of_radius(profile, E, hi_c, rtol) < Fs
+                if not np.any(short):
+                    hi = hi_c
+                    break
+                at_limit = short & (hi_c >= limit * (1 - 1e-15))
+                if np.any(at_limit) and not walled:
+                    i = int(np.argmax(at_limit))
+                    raise OutsideTheoryError(
+                        f"force={float(Fs[i])!r} N needs a contact radius >= max_radius={limit!r} m "
+                        f"of {profile!r}; reduce the force.")
+                lo = np.where(short, hi_c, lo)
+                hi = np.where(short, hi * 4.0, hi)
+            ap[solve] = bracketed_root(lambda x, idx: force_of_radius(profile, E, x, rtol), Fs, lo,
+                                       hi, rtol=root_rtol(rtol), what="contact radius")
+    if walled:
+        dp = np.where(ap >= profile.wall_radius,
+                      (Fp / (2 * E) + profile._g_integral(ap, rtol)) / ap, profile._g(ap, rtol))
+    else:
+        dp = profile._g(ap, rtol)
+    a[pos] = ap
+    d[pos] = dp
+    profile._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))
+    return a, d
+
+
+def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Non-adhesive normal contact for one control, with the force's relative error estimate.
+
+    Parameters
+    ----------
+    profile : Profile
+    E_star : float
+        Effective modulus, Pa.
+    control : {"depth", "force", "radius"}
+    value : ndarray
+        Depths (m), forces (N) or contact radii (m >= 0, below ``profile.max_radius``; not for
+        a punch with a wall), validated by the caller.
+    rtol : float
+        Tolerance of every numeric route.
+
+    Returns
+    -------
+    depth, radius, force, force_rel_error : ndarray
+        Same shape as ``value``. The error sums the quadrature estimate of ``∫g``, the rounding
+        of ``a d - ∫g`` and, under force control, the residual against the requested force;
+        errors of ``a`` enter ``F`` only at second order (``dF/da = 2E*(d - g(a)) = 0``).
+    """
+    from ..profiles.base import ROUNDING
+    E = E_star
+    if control == "depth":
+        d = value
+        a = profile._radius_of_depth(d, rtol)
+    elif control == "radius":
+        a = value.copy()
+        small = a < profile.flat_radius
+        a[small] = np.where(a[small] > 0, profile.flat_radius, 0.0)
+        g_a, g_a_err = profile._g_with_error(a, rtol)
+        d = np.where(a > 0, g_a, 0.0)
+        profile._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
+    else:
+        a, d = radius_depth_of_force(profile, E, value, rtol)
+    pos = a > 0
+    all_pos = bool(pos.all())
+    g_int, g_int_err = profile._g_integral_with_error(a, rtol)
+    ad = a * d
+    F = ad - g_int
+    F *= 2.0 * E
+    F_err = np.abs(ad)
+    F_err += np.abs(g_int)
+    F_err *= ROUNDING
+    F_err += np.abs(g_int_err)
+    F_err *= 2.0 * E
+    if not all_pos:
+        F = np.where(pos, F, 0.0)
+        F_err = np.where(pos, F_err, 0.0)
+    if control == "force":
+        F_err = F_err + np.where(value > 0, np.abs(F - value), 0.0)
+    elif control == "radius":       # the depth g(a) itself carries the error of g
+        F_err = F_err + np.where(a > 0, 2.0 * E * a * np.abs(g_a_err), 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = F_err / F
+    if not all_pos or rel.ndim == 0:
+        rel = np.where(F > 0, rel, 0.0)
+    return np.asarray(d, float), np.asarray(a, float), F, rel

@@ -217,15 +217,11 @@ _TABLE_GL = 8
 
 def _table_nodes(profile) -> np.ndarray | None:
     """Interior nodes of a piecewise-linear table (where ``g`` has sqrt cusps), else None."""
-    r = getattr(profile, "r", None)
-    if getattr(profile, "interpolation", None) == "linear" and isinstance(r, np.ndarray):
-        return r
-    return None
+    return profile.table_nodes() if profile.has("linear_table") else None
 
 
 def _cuts(profile) -> list[float]:
-    cuts = {b for b in (*getattr(profile, "breakpoints", ()), getattr(profile, "flat_radius", 0.0))
-            if b > 0}
+    cuts = {b for b in (*profile.breakpoints, profile.flat_radius) if b > 0}
     nodes = _table_nodes(profile)
     if nodes is not None and nodes.size <= _TABLE_SPLIT_MAX:
         cuts |= {float(b) for b in nodes[1:-1] if b > 0}
@@ -281,14 +277,14 @@ def _table_rule(profile) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray
     and ``q``-point Gauss-Legendre in ``u ∈ [0, 1]``. g is evaluated once per profile (cached by
     the profile's value identity; a few tables at most are kept).
     """
-    key = (hash(profile), profile.r.size)
+    key = (hash(profile), profile.table_nodes().size)
     hit = _TABLE_CACHE.get(key)
     if hit is not None and hit[0] == profile:
         return hit[1]
     u, wu = np.polynomial.legendre.leggauss(_TABLE_GL)
     u = 0.5 * (u + 1.0)
     wu = 0.5 * wu
-    r = profile.r
+    r = profile.table_nodes()
     left, width = r[:-1, None], np.diff(r)[:, None]
     t = left + width * u**2
     w = 2.0 * width * u * wu
@@ -330,7 +326,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     seg0 = j_lo == 0
     if np.any(seg0):
         ids = np.flatnonzero(seg0)
-        s0 = 0.5 * np.pi * profile._slopes[0]
+        s0 = 0.5 * np.pi * profile.table_slopes()[0]
         l0, h0 = lo[ids], a_end[ids]
 
         def integrand(w: np.ndarray, idx: np.ndarray) -> np.ndarray:

@@ -33,9 +33,22 @@ from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root
 from ..params import Param, ParamIdentity, as_float_array
 
-__all__ = ["Profile", "G_STRATEGIES", "ROUNDING", "root_rtol"]
+__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
 
 log = logging.getLogger("contactlab")
+
+#: Capabilities a profile may declare (``Profile.capabilities``) and the hook each one promises.
+CAPABILITIES = {
+    "terms": "``terms``: the profile is a sum of profiles (the MDR is linear; each term takes its "
+             "own route)",
+    "linear_table": "``table_nodes()``: piecewise-linear table whose g has square-root cusps at "
+                    "the returned nodes (m); ``table_slopes()`` the slope of each segment",
+    "semi_analytic_pressure_shape": "``_pressure_shape_semi_analytic(r, a, rtol)`` -> (value, "
+                                    "error) or None to decline",
+    "semi_analytic_abel_g": "``_abel_g_semi_analytic(r, a, rtol)`` -> (value, error) or None",
+    "reduced_force_solver": "``_radius_of_reduced_force(F/(2E*), rtol)`` -> contact radii or None "
+                            "to decline",
+}
 
 #: Numerical routes to g(x), in order of preference.
 G_STRATEGIES = ("closed_form", "symbolic", "quadrature")
@@ -427,6 +440,20 @@ class Profile(ParamIdentity, ABC):
         import sympy as sp
         f = self.formulas()
         return "\n".join(f"{k} = {sp.latex(v)}" for k, v in f.items())
+
+    # ------------------------------------------------------------------ capabilities
+    @property
+    def capabilities(self) -> frozenset[str]:
+        """Optional routes this profile declares, by name (see :data:`CAPABILITIES`).
+
+        Kernels ask ``profile.has(name)`` instead of probing attributes; a profile that declares
+        a capability implements the hook that :data:`CAPABILITIES` names for it.
+        """
+        return frozenset()
+
+    def has(self, capability: str) -> bool:
+        """Whether the profile declares ``capability`` (one of :data:`CAPABILITIES`)."""
+        return capability in self.capabilities
 
     # ------------------------------------------------------------------ helpers
     def _has(self, hook: str) -> bool:

@@ -41,6 +41,11 @@ class Sum(Profile):
         return " + ".join(repr(t) for t in self.terms)
 
     @property
+    def capabilities(self) -> frozenset[str]:
+        """``"terms"``: kernels that are linear in the profile take each term's own route."""
+        return frozenset({"terms"})
+
+    @property
     def max_radius(self) -> float:
         return min(t.max_radius for t in self.terms)
 

@@ -324,6 +324,23 @@ class Tabulated(Profile):
                 - np.where(below, ds * P, 0.0).sum(axis=1))
         return out.reshape(a.shape)
 
+    @property
+    def capabilities(self) -> frozenset[str]:
+        """Semi-analytic pressure, Abel transform and force solves; ``"linear_table"`` (nodes
+        where g has square-root cusps) for linear interpolation."""
+        caps = {"semi_analytic_pressure_shape", "semi_analytic_abel_g", "reduced_force_solver"}
+        if self.interpolation == "linear":
+            caps.add("linear_table")
+        return frozenset(caps)
+
+    def table_nodes(self) -> np.ndarray:
+        """Radii of the table nodes, m (the axis included)."""
+        return self.r
+
+    def table_slopes(self) -> np.ndarray:
+        """Slope of the interpolant on each table segment (linear interpolation)."""
+        return self._slopes
+
     def _pressure_shape_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
                                       ) -> tuple[np.ndarray, np.ndarray] | None:
         """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` of the linear interpolant, term by term.

@@ -1,7 +1,8 @@
-"""Viscoelastic normal contact histories: driver and :class:`ViscoelasticHistory` result.
+"""Viscoelastic normal contact histories: the driver behind :meth:`Contact.viscoelastic_history`
+and its result :class:`ViscoelasticHistory`.
 
-The kernel is :mod:`contactlab.physics.viscoelastic` (MDR viscoelastic foundation, physics.md §7);
-:meth:`Contact.viscoelastic_history` calls :func:`viscoelastic_history`.
+The time stepping is that of the MDR viscoelastic foundation,
+:class:`contactlab.foundation.viscoelastic.Viscoelastic` (physics.md §7).
 """
 from __future__ import annotations
 
@@ -11,9 +12,12 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ConvergenceError, NotSupportedError, ParameterError
-from .params import as_float_array
-from .physics import viscoelastic as _ve
+from ..errors import ConvergenceError, NotSupportedError, ParameterError
+from ..foundation import viscoelastic as _ve
+from ..materials import Elastic, Rigid, effective_moduli
+from ..materials.pair import viscoelastic_body
+from ..params import as_float_array, exactly_one
+from ..physics.normal import radius_depth_of_force
 
 __all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS"]
 
@@ -94,15 +98,11 @@ def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = 
         The contact reached the edge of the foundation (give a larger ``max_radius``).
     """
     m1, m2 = contact.materials
-    mat = _ve.check_pair(m1, m2)
+    mat = viscoelastic_body(m1, m2)
     if contact.is_adhesive:
         raise NotSupportedError("work_of_adhesion > 0 with a viscoelastic material is not covered "
                                 "by physics.md §7 (adhesion-free unloading only).")
-    given = {k: v for k, v in (("depth", depth), ("force", force)) if v is not None}
-    if len(given) != 1:
-        raise ParameterError("viscoelastic_history() needs exactly one of depth=, force=; got "
-                             f"{sorted(given) or 'none'}.")
-    key, value = next(iter(given.items()))
+    key, value = exactly_one("viscoelastic_history()", {"depth": depth, "force": force})
     t = as_float_array("time", time)
     load = as_float_array(key, value)
     if t.ndim != 1 or t.size == 0:
@@ -129,10 +129,10 @@ def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = 
             G_end = float(mat.relaxation(t[-1] - t[0])) if (G_inf > 0 or Gk.size) else 0.0
             if G_end <= 0:
                 G_end = G_inf
-            from .contact import Contact
-            from .materials import Elastic, Rigid
-            ref = Contact(prof, (Elastic(E=3.0 * G_end, nu=0.5), Rigid()))
-            a_max = float(ref.normal(force=max(F_max, 0.0)).radius)
+            # the elastic radius with the relaxed modulus (incompressible: E = 3G)
+            E_end = effective_moduli(Elastic(E=3.0 * G_end, nu=0.5), Rigid()).normal
+            a_end, _ = radius_depth_of_force(prof, E_end, np.array(max(F_max, 0.0)), contact.rtol)
+            a_max = float(a_end)
         if a_max <= 0:
             a_max = 1.0 if not np.isfinite(prof.max_radius) else 0.5 * prof.max_radius
         L = 1.1 * a_max

@@ -1,9 +1,11 @@
-"""Closed-form tangential contact (Cattaneo–Mindlin through the MDR) and shift histories.
+"""Tangential contact (Cattaneo–Mindlin through the MDR): the drivers behind
+:meth:`Contact.tangential` and :meth:`Contact.shift_history`, and their results
+:class:`TangentialState` and :class:`ShiftHistory`.
 
 :func:`tangential` gives the state for one monotonic shift at constant normal load;
 :func:`shift_history` follows an arbitrary displacement history at constant normal load with the
-Masing rule and turning-point memory (exact for the MDR Jenkins elements and for the 3D theory).
-Both are used through :meth:`Contact.tangential` and :meth:`Contact.shift_history`.
+Masing rule and turning-point memory (:mod:`contactlab.physics.masing`; exact for the MDR Jenkins
+elements and for the 3D theory). The kernels are in :mod:`contactlab.physics.tangential`.
 """
 from __future__ import annotations
 
@@ -12,25 +14,21 @@ from typing import Any
 
 import numpy as np
 
-from .errors import NotSupportedError, ParameterError
-from .numeric.roots import bracketed_root
-from .params import as_float_array
-from .physics import tangential as _tan
+from ..errors import NotSupportedError, ParameterError
+from ..numeric.roots import bracketed_root
+from ..params import as_float_array, exactly_one, scalar_or_array
+from ..physics import tangential as _tan
+from ..physics.masing import masing_dissipation, masing_program, masing_response
 
 __all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history"]
 
 
 def _out(v: np.ndarray) -> Any:
-    v = np.asarray(v, float)
-    return float(v) if v.ndim == 0 else v
+    return scalar_or_array(np.asarray(v, float))
 
 
 def _one(name_values: dict[str, Any], what: str) -> tuple[str, Any]:
-    given = {k: v for k, v in name_values.items() if v is not None}
-    if len(given) != 1:
-        raise ParameterError(f"{what} needs exactly one of {', '.join(k + '=' for k in name_values)}"
-                             f" got {sorted(given) or 'none'}.")
-    return next(iter(given.items()))
+    return exactly_one(what, name_values)
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,45 +192,6 @@ class ShiftHistory:
     meta: dict = field(default_factory=dict, repr=False)
 
 
-def _masing_program(u: np.ndarray):
-    """Walk a displacement history with turning-point memory (Masing rule, Iwan erasure).
-
-    Returns ``branch`` (per step: index into ``branches`` or -1 for the virgin curve),
-    ``branches`` (list of ``(origin_u, direction, created_at_step)``) and the dissipation pieces
-    ``(step, branch, delta_from, delta_to)``.
-    """
-    stack: list[int] = []  # branch ids, innermost last
-    branches: list[tuple[float, float, int]] = []
-    branch = np.full(u.size, -1, dtype=int)
-    pieces: list[tuple[int, int, float, float]] = []
-    cur = 0.0
-    for i, un in enumerate(u):
-        du = un - cur
-        if du != 0:
-            step_dir = 1.0 if du > 0 else -1.0
-            s = branches[stack[-1]][1] if stack else (np.sign(cur) if cur != 0 else step_dir)
-            if step_dir != s:  # reversal at the current point
-                branches.append((cur, step_dir, i))
-                stack.append(len(branches) - 1)
-                s = step_dir
-            pos = cur
-            while stack:
-                o = branches[stack[-1]][0]
-                target = branches[stack[-2]][0] if len(stack) >= 2 else -branches[stack[0]][0]
-                if (un - target) * s > 0:  # loop closes at target: erase its memory
-                    pieces.append((i, stack[-1], abs(pos - o), abs(target - o)))
-                    pos = target
-                    del stack[-2 if len(stack) >= 2 else -1:]
-                    continue
-                pieces.append((i, stack[-1], abs(pos - o), abs(un - o)))
-                break
-            else:
-                pieces.append((i, -1, abs(pos), abs(un)))
-            cur = un
-        branch[i] = stack[-1] if stack else -1
-    return branch, branches, pieces
-
-
 def shift_history(contact, *, displacement: Any, depth: Any = None,
                   force: Any = None) -> ShiftHistory:
     """Exact tangential response to a displacement history at constant normal load.
@@ -250,36 +209,16 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     prof, E, Gs, mu = (contact.profile, contact.moduli.normal, contact.moduli.tangential,
                        contact.friction)
     a, d = float(ns._radius), float(ns._depth)
-    branch, branches, pieces = _masing_program(u)
+    origin, factor, arg, segments = masing_program(u)
 
     def F_load(delta):
         return _tan.force_of_displacement(prof, E, Gs, mu, a, d, np.asarray(delta, float))
 
-    n = u.size
-    origin = np.array([b[0] for b in branches] + [0.0])[branch]
-    virgin = branch < 0
-    delta = np.where(virgin, np.abs(u), np.abs(u - origin) / 2.0)
-    Fl, c_out = F_load(delta)
-    F = np.where(virgin, np.sign(u) * Fl, 0.0)
-    # a branch starts at the force of the step before its creation; resolve in step order
-    F_origin = np.zeros(len(branches))
-    done = np.zeros(len(branches), bool)
-    for i in np.flatnonzero(~virgin):
-        b = branch[i]
-        if not done[b]:
-            k = branches[b][2]
-            F_origin[b] = F[k - 1] if k > 0 else 0.0
-            done[b] = True
-        F[i] = F_origin[b] + branches[b][1] * 2.0 * Fl[i]
-    W = np.zeros(n)
-    if pieces:
-        st, br, d0, d1 = (np.array(v) for v in zip(*pieces))
-        vir = br < 0
+    Fl, c_out = F_load(arg)
+    F = masing_response(u, origin, factor, Fl)
 
-        def D(x: np.ndarray) -> np.ndarray:
-            return _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
+    def D(x: np.ndarray) -> np.ndarray:
+        return _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
 
-        inc = np.where(vir, D(d1) - D(d0), 2.0 * (D(d1 / 2) - D(d0 / 2)))
-        np.add.at(W, st, inc)
-    return ShiftHistory(ns, u.copy(), F, c_out, np.cumsum(W),
-                        {"method": "masing", "rtol": contact.rtol})
+    W = masing_dissipation(segments, u.size, D)
+    return ShiftHistory(ns, u.copy(), F, c_out, W, {"method": "masing", "rtol": contact.rtol})

@@ -1,4 +1,9 @@
-"""Immutable result states. Field quantities are computed lazily, on request."""
+"""Normal contact: the driver behind :meth:`Contact.normal` and its result, :class:`NormalState`.
+
+The kernels (force, radius and depth solves, pressure, displacement) are in
+:mod:`contactlab.physics.normal`; adhesive contacts are handed to :mod:`contactlab.effects.adhesion`.
+Field quantities of a state are computed lazily, on request.
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -7,10 +12,11 @@ from typing import Any
 
 import numpy as np
 
-from .params import as_float_array
-from .physics import normal as _normal
+from ..errors import NotSupportedError, OutsideTheoryError, ParameterError
+from ..params import as_float_array, exactly_one, scalar_or_array
+from ..physics import normal as _normal
 
-__all__ = ["NormalState"]
+__all__ = ["NormalState", "normal"]
 
 
 #: relative rounding floor of pressures computed from a quadrature-route g (benchmarks/
@@ -21,8 +27,36 @@ NESTED_ROUNDING = 3e-11
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
-    v = np.asarray(v, dtype=float)
-    return float(v) if v.ndim == 0 else v
+    return scalar_or_array(np.asarray(v, dtype=float))
+
+
+def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
+           branch: str = "stable") -> "NormalState":
+    """Driver of :meth:`contactlab.Contact.normal` (see there for the parameters)."""
+    key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
+    if contact.is_adhesive:
+        from .adhesion import adhesive_normal
+        return adhesive_normal(contact, branch=branch, **{key: value})
+    if branch != "stable":
+        raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
+                             "contact has a single equilibrium (use branch='stable').")
+    arr = as_float_array(key, value)
+    prof = contact.profile
+    if key == "radius":
+        if np.any(arr < 0):
+            raise ParameterError(f"radius contains {float(arr[arr < 0].ravel()[0])!r}: contact "
+                                 "radii must be >= 0 m.")
+        if np.isfinite(prof.wall_radius):
+            raise NotSupportedError(
+                f"radius= does not determine the state of {prof!r}: its contact radius is "
+                "fixed by the punch wall. Give depth= or force=.")
+        if np.any(arr >= prof.max_radius):
+            raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay "
+                                     f"below max_radius={prof.max_radius!r} m of {prof!r}.")
+    d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol)
+    meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
+            "error_estimate": float(rel) if rel.ndim == 0 else rel}
+    return NormalState(contact, d, a, F, meta)
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,7 +127,6 @@ class NormalState:
     def _field_args(self, r: Any) -> tuple[np.ndarray, ...]:
         r = as_float_array("r", r)
         if np.any(r < 0):
-            from .errors import ParameterError
             raise ParameterError(f"r contains {r[r < 0].ravel()[0]!r}: radii must be >= 0 m.")
         sh = self.shape
         a = self._radius.reshape(sh + (1,) * r.ndim)
@@ -132,7 +165,7 @@ class NormalState:
         val, err = _normal.pressure(prof, E, r, a, d, ga, rtol)
         if not return_error:
             return _scalar_or_array(val)
-        from .profiles.base import ROUNDING
+        from ..profiles.base import ROUNDING
         r_b, a_b = np.broadcast_arrays(r, a)
         inner = 0.0
         if prof.g_route == "quadrature":
@@ -163,7 +196,7 @@ class NormalState:
         ``F(a)`` under force control) divided by the local slope, found by a central difference
         of g (two extra evaluations of g, done on first access only).
         """
-        from .profiles.base import ROUNDING, root_rtol
+        from ..profiles.base import ROUNDING, root_rtol
         prof = self.contact.profile
         rtol = self.contact.rtol
         E = self.contact.moduli.normal

@@ -1,4 +1,5 @@
-"""``contact.simulate(path)``: a load path through the MDR foundation with frictional memory.
+"""Load paths through the MDR foundation: the driver behind :meth:`Contact.simulate` and its
+result :class:`PathResult`.
 
 The normal problem (non-adhesive) is path independent: it is solved first for every step,
 vectorised per segment, with the exact closed-form/bracketed normal solver of the contact. Then one
@@ -16,13 +17,14 @@ from typing import Any
 
 import numpy as np
 
-from .errors import (EffectNotPlannedError, NotSupportedError, OutsideTheoryError,
-                     ParameterError, UnknownNameError, ValidityWarning)
-from .foundation import Winkler
-from .loadpath import LoadPath
-from .loadpath.base import UNITS
+from ..errors import (EffectNotPlannedError, NotSupportedError, ParameterError, UnknownNameError,
+                      ValidityWarning)
+from ..foundation import Winkler
+from ..foundation.base import families_needed, path_normal_states
+from ..loadpath import LoadPath
+from ..loadpath.base import UNITS
 
-__all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD"]
+__all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal"]
 
 #: per-step series of a PathResult
 SERIES = ("time", "depth", "force", "radius", "displacement", "tangential_force", "twist",
@@ -31,71 +33,14 @@ _SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
                      gross_sliding="1")
 #: paths with at least this many steps show a progress bar when ``progress=True``
 PROGRESS_THRESHOLD = 1000
+def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
+    """Normal state of every step of ``path``, per leaf segment (exact; see
+    :func:`contactlab.foundation.base.path_normal_states`)."""
+    return path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol)
+
+
 #: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
 _MIN_BLOCK = 8
-
-
-def _contact_for(profile, moduli, friction, rtol):
-    """A Contact built from effective moduli (for Foundation.for_path)."""
-    from .contact import Contact
-    c = Contact.__new__(Contact)
-    c.profile = profile
-    c.materials = (None, None)
-    c.friction = friction
-    c.work_of_adhesion = None
-    c.rtol = rtol
-    c.__dict__["moduli"] = moduli
-    return c
-
-
-def families_needed(path: LoadPath, *, approximate: bool = False) -> tuple[str, ...]:
-    """Spring families a path needs besides the normal springs.
-
-    Raises
-    ------
-    OutsideTheoryError
-        The path drives both a tangential shift and a twist, without ``approximate=True``.
-    """
-    groups = path.groups
-    needs = tuple(g for g in ("tangential", "torsion") if g in groups)
-    if len(needs) == 2 and not approximate:
-        raise OutsideTheoryError(
-            "the path drives both a tangential shift (displacement/tangential_force) and a twist "
-            "(twist/torque): combined shift and twist is outside the MDR theory (the slip "
-            "conditions couple). Pass approximate=True to run the two as independent spring "
-            "families, each with the full friction limit (an explicit approximation).")
-    return needs
-
-
-def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
-    """Normal state of every step, per leaf segment (exact; non-adhesive normal contact is path
-    independent)."""
-    out = []
-    cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
-                         "torque"), 0.0)
-    last = (np.zeros(1), np.zeros(1), np.zeros(1))
-    for leaf in path.leaves():
-        dt, vals = leaf.values(cur)
-        n = leaf.n_steps
-        if "depth" in vals:
-            ns = contact.normal(depth=vals["depth"])
-            d, a, F = ns._depth, ns._radius, ns._force
-        elif "force" in vals:
-            f = vals["force"]
-            if np.any(f < 0):
-                bad = f[f < 0][0]
-                raise ParameterError(f"force={bad!r} N is invalid: it is below the adhesion limit "
-                                     "0 N of this non-adhesive contact (use force >= 0, or a "
-                                     "negative depth to separate the bodies).")
-            ns = contact.normal(force=f)
-            d, a, F = ns._depth, ns._radius, ns._force
-        else:
-            d, a, F = (np.full(n, v[-1]) for v in last)
-        d, a, F = (np.asarray(v, float).reshape(n) for v in (d, a, F))
-        out.append({"dt": dt, "depth": d, "radius": a, "force": F})
-        last = (d, a, F)
-        cur["depth"], cur["force"] = float(d[-1]), float(F[-1])
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -142,7 +87,7 @@ class PathResult:
 
     def to_csv(self, path: Any) -> None:
         """Write the per-step series to CSV (``name [unit]`` headers)."""
-        from .loadpath.io import write_csv
+        from ..loadpath.io import write_csv
         write_csv(path, self.data, units=_SERIES_UNITS)
 
     def to_dataframe(self):
@@ -347,7 +292,7 @@ def _snapshot(contact, fnd, st, res, i) -> dict:
         S = np.maximum(d * fnd.w - fnd.dG, 0.0)
         S[fnd.bl >= a] = 0.0
         if st is not None:
-            from .foundation.winkler import snapshot_shear
+            from ..foundation.winkler import snapshot_shear
             S = st.S.copy()
             snap["tangential"] = None if st.tangential is None else st.tangential.copy()
             snap["torsion"] = None if st.torsion is None else st.torsion.copy()
@@ -386,7 +331,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
     """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
     control are advanced in closed form (:func:`~contactlab.foundation.winkler.monotone_block`),
     other steps one by one; ``"steps"``: every step one by one (same results up to rounding)."""
-    from .foundation.winkler import monotone_block
+    from ..foundation.winkler import monotone_block
     st = fnd.new_state()
     n = fnd.n_springs
     chans = []

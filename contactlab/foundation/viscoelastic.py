@@ -1,4 +1,4 @@
-"""Viscoelastic normal contact through the MDR viscoelastic foundation [H3] (physics.md §7).
+"""The MDR viscoelastic foundation: independent rheological elements [H3] (physics.md §7).
 
 Rigid indenter on an incompressible linear viscoelastic half-space, ``E*(t) = 4G(t)``. The
 half-space becomes a row of independent 1D rheological elements at ``x_i`` (spacing ``Δx``), each a
@@ -8,7 +8,7 @@ copy of the material's element with every parameter scaled by ``4Δx``. For the 
     q_i = 4 [G_∞ u_i + Σ_k s_ik + η du_i/dt],    ds_ik/dt + s_ik/τ_k = G_k du_i/dt,
 
 with ``u_i`` its surface displacement (``d - g(x_i)`` while in contact). ``F = 2∫_0^a q dx``, with
-the edge ``a`` interpolated inside the outermost element's cell (see :meth:`Foundation.trial`).
+the edge ``a`` interpolated inside the outermost element's cell (see :meth:`Viscoelastic.trial`).
 
 Time integration (exact for displacements linear within a step): the arm stresses advance by
 the exponential integrator
@@ -36,30 +36,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ConvergenceError, NotSupportedError, ParameterError
+from ..errors import ConvergenceError, ParameterError
 from ..numeric.roots import bracketed_root
 
-__all__ = ["check_pair", "Foundation", "solve_history"]
-
-
-def check_pair(m1, m2):
-    """Return the viscoelastic body of a (viscoelastic, rigid) pair; otherwise NotSupportedError."""
-    from ..materials.elastic import Rigid
-    from ..materials.viscoelastic import Viscoelastic
-    visco = [m for m in (m1, m2) if getattr(m, "is_viscoelastic", False)]
-    other = [m for m in (m1, m2) if not getattr(m, "is_viscoelastic", False)]
-    if len(visco) == 1 and len(other) == 1 and isinstance(other[0], Rigid) \
-            and isinstance(visco[0], Viscoelastic):
-        return visco[0]
-    if len(visco) == 0:
-        raise NotSupportedError(
-            f"materials={(m1, m2)!r}: viscoelastic_history() needs a viscoelastic body; use "
-            "normal() for elastic bodies.")
-    raise NotSupportedError(
-        f"materials={(m1, m2)!r} is not supported: the MDR viscoelastic rules of physics.md §7 "
-        "cover a rigid indenter on one incompressible viscoelastic half-space (E*(t) = 4G(t)) "
-        "only; two deformable bodies or a compressible partner need the general E*(t) operator "
-        "([H3]), which is not covered here. Use materials=(viscoelastic, Rigid()).")
+__all__ = ["Viscoelastic", "solve_history"]
 
 
 def _beta(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -78,11 +58,11 @@ class _Trial:
     s: np.ndarray
     contact: np.ndarray
     stiffness: float = 0.0   # dq_sum/dd of the elements in contact (for Newton predictions)
-    radius: float = 0.0      # contact edge, m (sub-element, see Foundation.trial)
+    radius: float = 0.0      # contact edge, m (sub-element, see Viscoelastic.trial)
     total: float = 0.0       # normal force, N
 
 
-class Foundation:
+class Viscoelastic:
     """The MDR viscoelastic foundation: element state and the per-step update (half line x > 0).
 
     Parameters
@@ -270,7 +250,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
         ``edge_reached`` (contact touched the last element) arrays per step.
     """
     G_inf, Gk, tk, eta = prony
-    fd = Foundation(g_x, dx, G_inf, Gk, tk, eta)
+    fd = Viscoelastic(g_x, dx, G_inf, Gk, tk, eta)
     n = time.size
     out_d = np.zeros(n)
     out_F = np.zeros(n)
@@ -316,7 +296,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
             "edge_reached": edge}
 
 
-def _release_depth(fd: Foundation, d_old: float, dt: float, scale: float, step: int) -> float:
+def _release_depth(fd: Viscoelastic, d_old: float, dt: float, scale: float, step: int) -> float:
     """Largest end-of-step depth at which no element carries force (bisection on F > 0)."""
 
     def F(d: float) -> float:
@@ -345,7 +325,7 @@ def _release_depth(fd: Foundation, d_old: float, dt: float, scale: float, step: 
     return lo
 
 
-def _solve_force(fd: Foundation, target: float, d_old: float, dt: float, scale: float,
+def _solve_force(fd: Viscoelastic, target: float, d_old: float, dt: float, scale: float,
                  step: int, guess_step: float = 0.0) -> float:
     """Depth at the end of a step such that the foundation force equals ``target``."""
 

@@ -1,0 +1,23 @@
+"""One driver and its result objects per effect.
+
+Each module takes the :class:`~contactlab.Contact` as a parameter (it never imports
+``contact.py``), validates and broadcasts, calls the pure kernels of :mod:`contactlab.physics`
+(and, for load paths, a foundation of :mod:`contactlab.foundation`) and wraps the arrays in an
+immutable result:
+
+* :mod:`~contactlab.effects.normal`: :class:`NormalState`;
+* :mod:`~contactlab.effects.adhesion`: :class:`AdhesiveNormalState`, :class:`AdhesionCycle`;
+* :mod:`~contactlab.effects.tangential`: :class:`TangentialState`, :class:`ShiftHistory`;
+* :mod:`~contactlab.effects.torsion`: :class:`TorsionState`, :class:`TwistHistory`;
+* :mod:`~contactlab.effects.viscoelastic`: :class:`ViscoelasticHistory`;
+* :mod:`~contactlab.effects.path`: :class:`PathResult` (``contact.simulate``).
+"""
+from .adhesion import AdhesionCycle, AdhesiveNormalState
+from .normal import NormalState
+from .path import PathResult
+from .tangential import ShiftHistory, TangentialState
+from .torsion import TorsionState, TwistHistory
+from .viscoelastic import ViscoelasticHistory
+
+__all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
+           "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult"]
