@@ -1,4 +1,4 @@
-"""Benchmark of the MDR viscoelastic foundation (contactlab.physics.viscoelastic).
+"""Benchmark of the MDR viscoelastic foundation (contactlab.foundation.viscoelastic).
 
 1. Time per step against the number of foundation elements, for a depth-controlled triangle
    history (Ting unloading) and a force-controlled creep history, generalized Maxwell material
