@@ -240,8 +240,8 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
         raise ParameterError(f"fmt={fmt!r} is invalid: choose one of {', '.join(FORMATS)}.")
     moduli = None
     if materials is not None:
-        from ..materials import effective_moduli
-        moduli = effective_moduli(*materials)
+        first, second = materials
+        moduli = first.pair(second)         # Material.pair: the effective moduli of the two
     fs = contact_formulas(profile, moduli, friction=friction, work_of_adhesion=work_of_adhesion)
     if title is not None:
         fs = FormulaSet(dict(fs), fs.numbers, fs.unavailable, title)
