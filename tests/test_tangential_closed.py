@@ -7,6 +7,7 @@ from scipy.integrate import quad
 import contactlab as cl
 from contactlab.errors import NotSupportedError, ParameterError
 
+from .reference import hertz as hz
 from .tolerances import CLOSED_FORM, QUADRATURE
 
 MU = 0.3
@@ -20,8 +21,7 @@ def hertz():
 
 def hertz_ref(c, F, u):
     """Mindlin: F_x = μF[1-(1-u/u*)^{3/2}], c = a(1-u/u*)^{1/2}, u* = 3μF/(4aG*)."""
-    ns = c.normal(force=F)
-    a = ns.radius
+    a = hz.radius_of_force(F, 0.01, hz.effective_modulus(210e9, 0.3, 210e9, 0.3))   # [J85]
     us = 3 * MU * F / (4 * a * c.moduli.tangential)
     x = np.clip(np.abs(u) / us, 0, 1)
     return np.sign(u) * MU * F * (1 - (1 - x) ** 1.5), a * np.sqrt(1 - x), us, a

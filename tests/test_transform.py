@@ -10,7 +10,8 @@ from contactlab import profiles as P
 from contactlab.errors import StrategyUnavailableError
 
 from .reference import normal as ref
-from .tolerances import CLOSED_FORM, QUADRATURE, TABULATED_CUBIC_1000, tabulated_linear
+from .tolerances import (CLOSED_FORM, QUADRATURE, TABLE_6_DIGITS, TABULATED_CUBIC_1000,
+                         tabulated_linear)
 
 ANALYTIC = [
     (P.Paraboloid(R=0.01), 1e-3),
@@ -58,7 +59,7 @@ def test_kappa_values_from_physics_md():
     table = {1: np.pi / 2, 2: 2.0, 3: 3 * np.pi / 4, 4: 8 / 3, 8: 128 / 35, 0.5: 1.31103,
              20: 5.67546}
     for n, k in table.items():
-        tol = 1e-5 if n in (0.5, 20) else CLOSED_FORM   # the table gives 6 digits there
+        tol = TABLE_6_DIGITS if n in (0.5, 20) else CLOSED_FORM   # 6 printed digits there
         assert abs(kappa(n) / k - 1) < tol
         assert abs(float(kappa_sympy(n)) / kappa(n) - 1) < CLOSED_FORM
 

@@ -14,7 +14,9 @@ import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, PowerLaw, Profile, Tabulated,
                                  TruncatedParaboloid)
-from tests.hard import _reference as ref
+from tests.reference import power_law as ref
+from tests.reference import tabulated as tab
+from tests.reference.kappa import kappa
 from tests.tolerances import (HARD_CLOSED, HARD_PRESSURE, QUADRATURE, ROUNDED_PUNCH_FACTOR,
                               TABLE_EXACT, TABLE_QUAD)
 
@@ -172,7 +174,7 @@ def test_power_law_pressure(n):
     if n <= 1:
         assert centre == np.inf                  # documented singular point
     else:                                        # S(0,a) = n κ c a^{n-1}/(n-1)
-        expected0 = float(E_STAR / np.pi * n * ref.kappa(n) * c_coef * a ** (n - 1) / (n - 1))
+        expected0 = float(E_STAR / np.pi * n * kappa(n) * c_coef * a ** (n - 1) / (n - 1))
         assert rel(centre, expected0) <= HARD_CLOSED
 
 
@@ -283,14 +285,14 @@ def test_tabulated_exact_transform(name):
     f_ref = f - f[0] if r[0] == 0 else np.concatenate([[0.0], f - f[0]])
     x = np.concatenate([np.array([0.05, 0.3, 0.55, 0.77, 0.999]) * r[-1], r[[1, 3, -2]]])
     g = prof.g(x)          # (the last three sit exactly on nodes)
-    g_quad = np.array([ref.table_g_quad(r_ref, f_ref, xi) for xi in x])
+    g_quad = np.array([tab.table_g_quad(r_ref, f_ref, xi) for xi in x])
     np.testing.assert_allclose(g, g_quad, rtol=TABLE_QUAD, atol=1e-300)
-    np.testing.assert_allclose(g, ref.table_g_sum(r_ref, f_ref, x), rtol=TABLE_EXACT, atol=1e-300)
+    np.testing.assert_allclose(g, tab.table_g_sum(r_ref, f_ref, x), rtol=TABLE_EXACT, atol=1e-300)
     a = 0.8123 * r[-1]
     c = contact(prof)
     s = c.normal(radius=a)
-    gi = ref.table_g_integral_quad(r_ref, f_ref, a)
-    d = ref.table_g_sum(r_ref, f_ref, np.array([a]))[0]
+    gi = tab.table_g_integral_quad(r_ref, f_ref, a)
+    d = tab.table_g_sum(r_ref, f_ref, np.array([a]))[0]
     assert rel(s.force, 2 * E_STAR * (a * d - gi)) <= TABLE_QUAD
     s_d = c.normal(depth=d)
     assert rel(s_d.radius, a) <= TABLE_QUAD
@@ -314,7 +316,7 @@ def test_noisy_table_with_decreasing_g_is_outside_theory():
     r = np.linspace(0, 1e-3, 200)
     f = np.maximum.accumulate(r**2 / (2 * R_TAB) * (1 + 1e-2 * rng.standard_normal(r.size)))
     prof = Tabulated(r, f)
-    g = ref.table_g_sum(r, f - f[0], r[1:])
+    g = tab.table_g_sum(r, f - f[0], r[1:])
     assert np.any(np.diff(g) < 0)             # the independent transform does decrease
     with pytest.raises(OutsideTheoryError, match="annulus"):
         contact(prof).normal(depth=0.999 * float(g[-1]))
@@ -326,7 +328,7 @@ def test_tabulated_million_points():
     f = r**2 / (2 * R_TAB)
     prof = Tabulated(r, f)
     x = np.array([1e-4, 5e-4, 9e-4])
-    np.testing.assert_allclose(prof.g(x), ref.table_g_sum(r, f, x), rtol=TABLE_EXACT)
+    np.testing.assert_allclose(prof.g(x), tab.table_g_sum(r, f, x), rtol=TABLE_EXACT)
     a = 5e-4
     s = contact(prof).normal(depth=a * a / R_TAB)
     # the linear interpolant of r²/2R lies above it by ≤ Δr²/(8R): the radius is smaller
@@ -387,10 +389,10 @@ def test_tabulated_pressure_and_displacement_against_quad():
     a = 0.777e-3
     s = contact(Tabulated(r, f)).normal(radius=a)
     for rr in (0.0123e-3, 0.3e-3 * 1.0001, 0.7e-3):
-        expected = E_STAR / np.pi * ref.table_pressure_shape_quad(r, f, rr, a)
+        expected = E_STAR / np.pi * tab.table_pressure_shape_quad(r, f, rr, a)
         assert rel(s.pressure(rr), expected) <= TABLE_QUAD
     for ro in (0.8e-3, 2e-3, 1e-2):
-        expected = 2 / np.pi * s.depth * np.arcsin(a / ro) - ref.table_abel_outside_quad(r, f, ro, a)
+        expected = 2 / np.pi * s.depth * np.arcsin(a / ro) - tab.table_abel_outside_quad(r, f, ro, a)
         assert rel(s.displacement(ro), expected) <= TABLE_QUAD
 
 

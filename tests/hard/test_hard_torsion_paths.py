@@ -17,11 +17,14 @@ import contactlab as cl
 from contactlab import LoadPath
 from contactlab.errors import ValidityWarning
 from contactlab.profiles import FlatPunch, Paraboloid
+from tests.reference import hertz as hz
 from tests.reference import torsion_reference as tr
 from tests.tolerances import FOUNDATION_TORSION, HARD_CLOSED, TORSION_EXACT, TORSION_TINY_STEP
 
 MU = 0.3
 EPS = np.finfo(float).eps
+#: E* of two Elastic(E=1e9, nu=0.3) bodies (hertz_contact's default pair)
+E_STAR_DEFAULT = hz.effective_modulus(1e9, 0.3, 1e9, 0.3)
 
 
 def rel(x, y) -> float:
@@ -55,7 +58,7 @@ def test_exact_stick_radius_extremes_vs_lubkin(t):
     F = 10.0
     G_t = 1e9 / (2 * 1.3) / 2                               # identical bodies: G/2 (§1)
     assert rel(c.moduli.torsional, G_t) < HARD_CLOSED
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     s = c.torsion(force=F, stick_radius=t * a, method="exact")
     tt = mp.mpf(float(s.stick_radius)) / mp.mpf(a)
     ph, Mh = hats(s, F, G_t)
@@ -75,7 +78,7 @@ def test_exact_torque_control_near_full_sliding_is_consistent():
     a twist at least the one of c = 1e-9 a (φ grows as c shrinks)."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     s = c.torsion(force=F, stick_radius=1e-9 * a, method="exact")
     back = c.torsion(force=F, torque=s.torque, method="exact")
     assert back.torque == s.torque
@@ -94,7 +97,7 @@ def test_mdr_stick_radius_near_full_stick_vs_closed_form(t):
     c = hertz_contact()
     F = 10.0
     G_t = c.moduli.torsional
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     s = c.torsion(force=F, stick_radius=t * a, method="mdr")
     tt = mp.mpf(float(s.stick_radius)) / mp.mpf(a)
     ph_ref, M_ref = tr.hertz_mdr_hat(tt)
@@ -112,7 +115,7 @@ def test_mdr_stick_radius_near_full_sliding_warns_and_matches():
     and M̂ → 3/4 (§6.4) without overflow."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     with pytest.warns(ValidityWarning, match="outside its validity"):
         s = c.torsion(force=F, stick_radius=1e-9 * a, method="mdr")
     tt = mp.mpf(float(s.stick_radius)) / mp.mpf(a)
@@ -171,7 +174,7 @@ def test_full_sliding_torque_exact_and_mdr_limits():
     """Twist far beyond the sliding limit: exact → 3π/16 μFa, MDR → 3/4 μFa (ratio 4/π, §6.4)."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     ex = c.torsion(force=F, twist=1e6)
     assert rel(ex.torque / (MU * F * a), 3 * math.pi / 16) < HARD_CLOSED and ex.slip
     with pytest.warns(ValidityWarning):
@@ -246,7 +249,7 @@ def test_million_step_oscillating_twist_simulate():
     cycle is constant (periodic Jenkins states) and the loop closes. ~1.2 s with N = 2000."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     G_t = c.moduli.torsional
     phi0 = float(tr.hertz_mdr_hat(0.95)[0]) * MU * F / (G_t * a * a)
     cycles, spc = 1000, 1000
@@ -285,7 +288,7 @@ def test_steps_below_1e12_of_amplitude_simulate(rel_step):
     returning, and no dissipation during the tiny steps after the reversal."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     G_t = c.moduli.torsional
     phi1 = float(tr.hertz_mdr_hat(0.9)[0]) * MU * F / (G_t * a * a)
     n = 50
@@ -318,7 +321,7 @@ def test_tiny_steps_twist_history(method):
     with the full-stick stiffness (16/3)G_t a³ (§6.5), increments match it to the rounding of M."""
     c = hertz_contact()
     F = 10.0
-    a = float(c.normal(force=F).radius)
+    a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     G_t = c.moduli.torsional
     phi1 = float(tr.hertz_twist_hat(0.9)) * MU * F / (G_t * a * a)
     delta = 1e-13 * phi1

@@ -18,6 +18,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab import LoadPath
 from contactlab.profiles import Cone, FlatPunch, Paraboloid, PowerLaw
+from tests.reference import hertz as hz
 from tests.tolerances import FD_STIFFNESS, MASING_HISTORY, TORSION_TINY_STEP, WORK_TRAPEZOID
 
 SETTINGS = settings(max_examples=15, deadline=None)
@@ -33,7 +34,7 @@ def contact(profile=None, rtol=None) -> cl.Contact:
 
 
 CONTACT = contact()
-A = float(CONTACT.normal(force=F_N).radius)
+A = float(hz.radius_of_force(F_N, 0.01, hz.effective_modulus(1e9, 0.3, 1e9, 0.3)))   # Hertz [J85]
 G_T = 1e9 / 2.6 / 2                                        # identical bodies, physics.md §1
 PHI_REF = float(CONTACT.torsion(force=F_N, stick_radius=0.3 * A, method="exact").twist)
 

@@ -7,12 +7,10 @@ from __future__ import annotations
 
 import mpmath as mp
 
+from .kappa import kappa  # noqa: F401 (re-exported: ref.kappa)
+
 mp.mp.dps = 30
 
-
-def kappa(n):
-    n = mp.mpf(n)
-    return mp.sqrt(mp.pi) * mp.gamma(n / 2 + 1) / mp.gamma(n / 2 + mp.mpf(1) / 2)
 
 
 def hertz(E, R, d):

@@ -1,57 +1,15 @@
-"""Independent reference values for the hard-case tests (physics.md §2-3, re-implemented here).
+"""The MDR transform of piecewise-linear tables from its definition (independent re-implementation).
 
-Nothing in this module imports contactlab: closed forms are written from physics.md with
-mpmath or plain numpy, and the transform of tabulated data comes from the definition.
+g(x) = |x| ∫_0^|x| f'(r)/sqrt(x²-r²) dr summed in closed form per interval (f' constant there) and,
+separately, by scipy quad; the pressure shape and the outside displacement by quad of the MDR
+formulas. Source: V. L. Popov, M. Heß, MDR, Springer 2015, eqs. (3.7), (3.12), (3.13) [PH].
+Nothing here imports contactlab.
 """
 from __future__ import annotations
 
-import mpmath as mp
 import numpy as np
 from scipy import integrate
 
-mp.mp.dps = 30
-
-
-def kappa(n: float) -> mp.mpf:
-    """κ_n = √π Γ(n/2+1)/Γ(n/2+1/2), 30 digits."""
-    n = mp.mpf(n)
-    return mp.sqrt(mp.pi) * mp.gamma(n / 2 + 1) / mp.gamma(n / 2 + mp.mpf(1) / 2)
-
-
-def power_force(E_star: float, c: float, n: float, a: float) -> float:
-    """F = 2E* κ_n c a^{n+1} n/(n+1)."""
-    n_ = mp.mpf(n)
-    return float(2 * mp.mpf(E_star) * kappa(n) * c * mp.mpf(a) ** (n_ + 1) * n_ / (n_ + 1))
-
-
-def power_depth(c: float, n: float, a: float) -> float:
-    """d = κ_n c a^n."""
-    return float(kappa(n) * c * mp.mpf(a) ** n)
-
-
-def power_pressure(E_star: float, c: float, n: float, a: float, r: float) -> float:
-    """p(r) = (E*/π) ∫_0^{arccosh(a/r)} g'(r cosh u) du with g' = n κ_n c x^{n-1} (mpmath quad)."""
-    r_, a_ = mp.mpf(r), mp.mpf(a)
-    U = mp.acosh(a_ / r_)
-    k = kappa(n)
-    val = mp.quad(lambda u: n * k * c * (r_ * mp.cosh(u)) ** (n - 1), [0, U])
-    return float(mp.mpf(E_star) / mp.pi * val)
-
-
-def power_displacement_outside(c: float, n: float, a: float, d: float, r: float) -> float:
-    """u_z(r > a) = (2/π)[d asin(a/r) - (κ_n c a^{n+1}/(r(n+1))) ₂F₁(1/2,(n+1)/2;(n+3)/2;a²/r²)]."""
-    r_, a_, n_ = mp.mpf(r), mp.mpf(a), mp.mpf(n)
-    hyp = mp.hyp2f1(mp.mpf(1) / 2, (n_ + 1) / 2, (n_ + 3) / 2, (a_ / r_) ** 2)
-    return float(2 / mp.pi * (d * mp.asin(a_ / r_) - kappa(n) * c * a_ ** (n_ + 1) / (r_ * (n_ + 1)) * hyp))
-
-
-def cone_displacement_outside(slope: float, a: float, r: float) -> float:
-    """u_z(r > a) = tanβ [a asin(a/r) - r + sqrt(r²-a²)] (mpmath: no cancellation at r ≫ a)."""
-    r_, a_ = mp.mpf(r), mp.mpf(a)
-    return float(slope * (a_ * mp.asin(a_ / r_) - r_ + mp.sqrt(r_**2 - a_**2)))
-
-
-# ---------------------------------------------------------------- piecewise-linear tables
 def table_g_sum(r: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndarray:
     """physics.md §2 table row: g(x) = x Σ_i s_i [asin(min(r_{i+1},x)/x) - asin(r_i/x)], r_i < x.
 
