@@ -224,9 +224,11 @@ class LoadPath:
     def sample(self, *, start_time: float = 0.0) -> "Samples":
         """The prescribed values at every step, leaf segment after leaf segment.
 
-        Each segment starts from the values reached so far (0 before the first segment) and its
-        times follow the previous segment's last time (``start_time`` before the first one).
-        This is the same arithmetic :meth:`Contact.simulate` uses, so the two agree bit for bit.
+        Each segment starts from the values prescribed so far (0 before the first segment) and
+        its times follow the previous segment's last time (``start_time`` before the first one),
+        with the time arithmetic of :meth:`Contact.simulate`. A simulation starts each segment
+        from the contact's response instead (a force computed back from the depth), which can
+        differ from the prescribed value in the last digit.
 
         Parameters
         ----------
