@@ -8,7 +8,7 @@ group      quantity             unit
 normal     ``depth``, ``force`` m, N
 tangential ``displacement``,    m, N
            ``tangential_force``
-torsion    ``twist``, ``torque`` rad, N·m
+torsion    ``twist``, ``torque`` rad, N*m
 ========== ==================== =====
 
 A group a segment does not control keeps its current control quantity at its current value.
@@ -18,6 +18,7 @@ segment ramps the force from its current value to 100 N.
 from __future__ import annotations
 
 import difflib
+import re
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Iterator
@@ -26,13 +27,27 @@ import numpy as np
 
 from ..errors import ParameterError, UnknownNameError
 
-__all__ = ["LoadPath", "Segment", "Samples", "QUANTITIES", "GROUPS", "UNITS"]
+__all__ = ["LoadPath", "Segment", "Samples", "QUANTITIES", "GROUPS", "UNITS", "canonical_unit"]
 
 QUANTITIES = ("depth", "force", "displacement", "tangential_force", "twist", "torque")
 GROUPS = {"depth": "normal", "force": "normal", "displacement": "tangential",
           "tangential_force": "tangential", "twist": "torsion", "torque": "torsion"}
+#: SI unit of each quantity, in the one spelling contactlab writes (products with ``*``)
 UNITS = {"time": "s", "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N",
          "twist": "rad", "torque": "N*m"}
+
+_PRODUCT = re.compile(r"\s*[*·]\s*|\s+")
+
+
+def canonical_unit(unit: str) -> str:
+    """The spelling contactlab writes for ``unit``: factors joined by ``*``.
+
+    Input may join factors by a space, ``*`` or ``·``; all mean the same product.
+
+    >>> canonical_unit("N m"), canonical_unit(" mN·m "), canonical_unit("Pa * s")
+    ('N*m', 'mN*m', 'Pa*s')
+    """
+    return _PRODUCT.sub("*", unit.strip())
 
 
 def check_quantities(names: Any, where: str) -> None:

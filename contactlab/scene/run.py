@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from ..loadpath import UNITS
 from .validate import SERIES
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -22,9 +23,9 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS"]
 
-SERIES_UNITS = {"time": "s", "depth": "m", "force": "N", "radius": "m", "stiffness": "N/m",
-                "peak_pressure": "Pa", "twist": "rad", "torque": "N m", "stick_radius": "m",
-                "dissipated_energy": "J", "displacement": "m", "tangential_force": "N"}
+#: unit of each series: the load-path quantities' units plus the response quantities
+SERIES_UNITS = {**UNITS, "radius": "m", "stiffness": "N/m", "peak_pressure": "Pa",
+                "stick_radius": "m", "dissipated_energy": "J"}
 FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear": "Pa"}
 #: fields are sampled on r in [0, FIELD_EXTENT * a_final]
 FIELD_EXTENT = 1.5
