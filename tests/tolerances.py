@@ -133,3 +133,7 @@ TORSION_ERR_HONEST_FRACTION = 0.95
 TORSION_ERR_MAX_OVER = 1e3
 TORSION_ERR_MAX_OVER_ALL = 1e5
 TORSION_ERR_FLOOR = 1e-15
+#: sin(2πk/n) evaluated directly against a sampled sinusoid (one period computed, then tiled;
+#: exact zeros at half periods): the argument 2πk/n carries a rounding error ~k ulp, so beyond
+#: the first period the two differ by a few ulp of the amplitude; 8 ulp leaves margin
+SINE_TILING = 8 * 2.220446049250313e-16

@@ -8,7 +8,7 @@ group      quantity             unit
 normal     ``depth``, ``force`` m, N
 tangential ``displacement``,    m, N
            ``tangential_force``
-torsion    ``twist``, ``torque`` rad, N·m
+torsion    ``twist``, ``torque`` rad, N*m
 ========== ==================== =====
 
 A group a segment does not control keeps its current control quantity at its current value.
@@ -18,6 +18,7 @@ segment ramps the force from its current value to 100 N.
 from __future__ import annotations
 
 import difflib
+import re
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Iterator
@@ -26,13 +27,27 @@ import numpy as np
 
 from ..errors import ParameterError, UnknownNameError
 
-__all__ = ["LoadPath", "Segment", "QUANTITIES", "GROUPS", "UNITS"]
+__all__ = ["LoadPath", "Segment", "Samples", "QUANTITIES", "GROUPS", "UNITS", "canonical_unit"]
 
 QUANTITIES = ("depth", "force", "displacement", "tangential_force", "twist", "torque")
 GROUPS = {"depth": "normal", "force": "normal", "displacement": "tangential",
           "tangential_force": "tangential", "twist": "torsion", "torque": "torsion"}
+#: SI unit of each quantity, in the one spelling contactlab writes (products with ``*``)
 UNITS = {"time": "s", "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N",
          "twist": "rad", "torque": "N*m"}
+
+_PRODUCT = re.compile(r"\s*[*·]\s*|\s+")
+
+
+def canonical_unit(unit: str) -> str:
+    """The spelling contactlab writes for ``unit``: factors joined by ``*``.
+
+    Input may join factors by a space, ``*`` or ``·``; all mean the same product.
+
+    >>> canonical_unit("N m"), canonical_unit(" mN·m "), canonical_unit("Pa * s")
+    ('N*m', 'mN*m', 'Pa*s')
+    """
+    return _PRODUCT.sub("*", unit.strip())
 
 
 def check_quantities(names: Any, where: str) -> None:
@@ -101,6 +116,30 @@ class Segment(ABC):
         yield self
 
 
+@dataclass(frozen=True, eq=False)
+class Samples:
+    """A load path sampled at its steps (see :meth:`LoadPath.sample`).
+
+    Attributes
+    ----------
+    time : ndarray
+        Time of each step, s.
+    values : dict of ndarray
+        Quantity -> prescribed value at each step (SI, see :data:`UNITS`), for every quantity
+        the path controls; a segment that does not prescribe a quantity holds its last value.
+    leaf : ndarray of int
+        Index of the leaf segment (:meth:`LoadPath.leaves`) each step belongs to.
+    """
+
+    time: np.ndarray
+    values: dict
+    leaf: np.ndarray
+
+    @property
+    def n_steps(self) -> int:
+        return int(self.time.size)
+
+
 @dataclass(frozen=True)
 class LoadPath:
     """A time-ordered sequence of :class:`Segment` s (immutable; builder calls return new paths).
@@ -144,10 +183,10 @@ class LoadPath:
         from .segments import Hold
         return self.then(Hold(steps, duration))
 
-    def sinusoid(self, *, cycles: int = 1, steps_per_cycle: int = 100,
+    def sinusoid(self, *, cycles: float = 1, steps_per_cycle: int = 100,
                  period: float | None = None, mean: dict[str, float] | None = None,
                  **amplitudes: float) -> "LoadPath":
-        """``value = mean + amplitude sin(2π t/period)`` for ``cycles`` full cycles.
+        """``value = mean + amplitude sin(2π t/period)`` for ``cycles`` cycles (fractions allowed).
 
         ``mean`` defaults to the current value of each quantity. Example:
         ``path.sinusoid(twist=8e-4, cycles=10, steps_per_cycle=200)``.
@@ -196,6 +235,69 @@ class LoadPath:
     @property
     def n_steps(self) -> int:
         return int(sum(s.n_steps for s in self.segments))
+
+    def sample(self, *, start_time: float = 0.0) -> "Samples":
+        """The prescribed values at every step, leaf segment after leaf segment.
+
+        Each segment starts from the values prescribed so far (0 before the first segment) and
+        its times follow the previous segment's last time (``start_time`` before the first one),
+        with the time arithmetic of :meth:`Contact.simulate`. A simulation starts each segment
+        from the contact's response instead (a force computed back from the depth), which can
+        differ from the prescribed value in the last digit.
+
+        Parameters
+        ----------
+        start_time : float, optional
+            Time the first segment starts from, s.
+
+        Returns
+        -------
+        Samples
+            ``time``, the values of every quantity the path controls, and the leaf index of
+            each step.
+
+        Raises
+        ------
+        ParameterError
+            A group changes its control quantity (``depth`` then ``force``): the values of the
+            new control at the switch depend on the contact's response, which only a simulation
+            knows.
+
+        Examples
+        --------
+        >>> s = LoadPath().ramp(force=2.0, steps=2).hold(steps=1).sample()
+        >>> s.time.tolist(), s.values["force"].tolist(), s.leaf.tolist()
+        ([1.0, 2.0, 3.0], [1.0, 2.0, 2.0], [0, 0, 1])
+        """
+        controls = self.controls
+        by_group: dict[str, str] = {}
+        for q in sorted(controls, key=QUANTITIES.index):
+            g = GROUPS[q]
+            if g in by_group:
+                raise ParameterError(
+                    f"sample(): the path controls the {g} group by both {by_group[g]!r} and "
+                    f"{q!r}; the value of one after a segment driven by the other depends on the "
+                    "contact's response. Use Contact.simulate(path), or one control per group.")
+            by_group[g] = q
+        cur = dict.fromkeys(QUANTITIES, 0.0)
+        t0 = check_value("start_time", start_time)
+        times, leaf_index = [], []
+        vals: dict[str, list[np.ndarray]] = {q: [] for q in controls}
+        for i, leaf in enumerate(self.leaves()):
+            dt, v = leaf.values(cur)
+            n = leaf.n_steps
+            t = t0 + dt
+            times.append(t)
+            leaf_index.append(np.full(n, i))
+            for q in controls:
+                col = v[q] if q in v else np.full(n, cur[q])
+                vals[q].append(col)
+                cur[q] = float(col[-1])
+            t0 = float(t[-1])
+        if not times:
+            return Samples(np.zeros(0), {}, np.zeros(0, dtype=int))
+        return Samples(np.concatenate(times), {q: np.concatenate(vals[q]) for q in controls},
+                       np.concatenate(leaf_index))
 
     @property
     def controls(self) -> frozenset:

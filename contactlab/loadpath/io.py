@@ -2,7 +2,8 @@
 
 Format: a header row naming the columns ``time`` (optional) and quantities (``depth`` or
 ``force``, ``displacement`` or ``tangential_force``, ``twist`` or ``torque``), optionally with a
-unit in brackets that must be the SI unit (``force [N]``); then one row per step.
+unit in brackets that must be the SI unit (``force [N]``, ``torque [N*m]``; ``N m`` and ``N·m`` are
+read as ``N*m``); then one row per step.
 """
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError, TabulatedDataError
-from .base import UNITS, LoadPath
+from .base import UNITS, LoadPath, canonical_unit
 
 __all__ = ["read_csv", "write_csv"]
 
@@ -23,7 +24,7 @@ def _parse_header(name: str) -> str:
     if "[" in name:
         q, unit = name.split("[", 1)
         q, unit = q.strip(), unit.rstrip("]").strip()
-        if q in UNITS and unit.replace(" ", "") != UNITS[q].replace(" ", ""):
+        if q in UNITS and canonical_unit(unit) != UNITS[q]:
             raise ParameterError(f"column {name!r}: unit {unit!r} is invalid; {q} must be given "
                                  f"in {UNITS[q]}.")
         return q

@@ -75,13 +75,16 @@ class Hold(Segment):
 
 @dataclass(frozen=True)
 class Sinusoid(Segment):
-    """``mean + amplitude sin(2π k/steps_per_cycle)``, k = 1 … cycles·steps_per_cycle.
+    """``mean + amplitude sin(2π k/steps_per_cycle)``, k = 1 … round(cycles·steps_per_cycle).
 
-    One cycle is computed and tiled, so every cycle has bit-identical values.
+    One cycle is computed and tiled, so every cycle has bit-identical values; the samples where
+    the sine is zero (half period, end of cycle) are exactly the mean. ``cycles`` may be
+    fractional (``0.25`` ends at the first peak); it is rounded to whole steps, at least one.
+    Step ``k`` is at ``k period / steps_per_cycle`` after the segment start.
     """
 
     amplitudes: tuple
-    cycles: int = 1
+    cycles: float = 1
     steps_per_cycle: int = 100
     period: float | None = None
     mean: tuple | None = None
@@ -91,7 +94,7 @@ class Sinusoid(Segment):
             raise ParameterError("sinusoid() needs at least one amplitude, e.g. "
                                  "sinusoid(twist=1e-3).")
         object.__setattr__(self, "amplitudes", _pairs(self.amplitudes, "sinusoid()"))
-        object.__setattr__(self, "cycles", check_steps("cycles", self.cycles))
+        object.__setattr__(self, "cycles", _check_cycles(self.cycles))
         object.__setattr__(self, "steps_per_cycle",
                            check_steps("steps_per_cycle", self.steps_per_cycle))
         object.__setattr__(self, "period", check_duration(self.period, self.steps_per_cycle))
@@ -109,20 +112,35 @@ class Sinusoid(Segment):
 
     @property
     def n_steps(self) -> int:
-        return self.cycles * self.steps_per_cycle
+        return max(1, int(round(self.cycles * self.steps_per_cycle)))
 
     @property
     def duration(self) -> float:
-        return self.cycles * self.period
+        return self.n_steps * self.period / self.steps_per_cycle
 
     def values(self, start):
         n = self.steps_per_cycle
         one = np.sin(2.0 * np.pi * np.arange(1, n + 1) / n)
         one[-1] = 0.0
-        wave = np.tile(one, self.cycles)
+        if n % 2 == 0:
+            one[n // 2 - 1] = 0.0
+        m = self.n_steps
+        wave = np.tile(one, -(-m // n))[:m]
         mean = dict(self.mean or ())
-        t = np.arange(1, self.n_steps + 1) * (self.period / n)
+        t = np.arange(1, m + 1) * self.period / n
         return t, {k: mean.get(k, start[k]) + A * wave for k, A in self.amplitudes}
+
+
+def _check_cycles(value: Any) -> float:
+    """Whole cycles stay ints; fractional ones must be finite and > 0."""
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        return check_steps("cycles", value)
+    if isinstance(value, bool):
+        raise ParameterError(f"cycles={value!r} is invalid: it must be a number > 0.")
+    v = check_value("cycles", value)
+    if v <= 0:
+        raise ParameterError(f"cycles={value!r} is invalid: it must be > 0 (fractions allowed).")
+    return int(v) if v.is_integer() else v
 
 
 @dataclass(frozen=True)

@@ -16,13 +16,12 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneError
+from ..loadpath import Hold, LoadPath, Ramp, Sinusoid
 from . import toml_io
 from .validate import CONTROLS, read_table, validate
 
-__all__ = ["Scene", "History"]
+__all__ = ["Scene", "History", "build_load_path"]
 
-#: seconds per load step when a segment gives no duration (only viscoelastic runs care)
-DEFAULT_STEP_TIME = 1.0
 #: steps per cycle of a sinusoid segment that does not say
 DEFAULT_STEPS_PER_CYCLE = 100
 
@@ -60,7 +59,13 @@ class History:
         return self.controls[axis][1] if axis in self.controls else np.zeros(self.time.shape)
 
 
-def _discretize(segments: Sequence[Mapping[str, Any]], base_dir: Path | None) -> History:
+def build_load_path(segments: Sequence[Mapping[str, Any]], base_dir: Path | None) -> LoadPath:
+    """The typed :class:`~contactlab.LoadPath` of validated scene segments.
+
+    A scene path starts from the unloaded state at time 0: unless the path is a measured table
+    (whose first row is the start), it opens with a one-row :class:`~contactlab.loadpath.Table`
+    holding every control at 0, so step 0 of the scene is that start.
+    """
     if len(segments) == 1 and "table" in segments[0]:
         body = segments[0]["table"]
         if "file" in body:
@@ -69,51 +74,32 @@ def _discretize(segments: Sequence[Mapping[str, Any]], base_dir: Path | None) ->
                 p = base_dir / p
             cols = read_table(p)
         else:
-            cols = {k: np.asarray(v, float) for k, v in body.items()}
+            cols = dict(body)
         n = len(next(iter(cols.values())))
-        time = np.asarray(cols.get("time", np.arange(n, dtype=float)), float)
-        controls = {CONTROLS[k][0]: (k, np.asarray(v, float)) for k, v in cols.items()
-                    if k in CONTROLS}
-        return History(time, controls, np.zeros(n, dtype=int))
-    kinds: dict[str, str] = {}
+        return LoadPath.from_arrays(time=cols.get("time", np.arange(n, dtype=float)),
+                                    **{k: v for k, v in cols.items() if k in CONTROLS})
+    controls = {k for seg in segments for k in next(iter(seg.values())) if k in CONTROLS}
+    path = LoadPath.from_arrays(time=[0.0], **{k: [0.0] for k in sorted(controls)})
     for seg in segments:
-        for k in next(iter(seg.values())):
-            if k in CONTROLS:
-                kinds.setdefault(CONTROLS[k][0], k)
-    times = [np.zeros(1)]
-    values = {axis: [np.zeros(1)] for axis in kinds}
-    seg_index = [np.full(1, -1)]
-    t_now = 0.0
-    for i, seg in enumerate(segments):
         kind, body = next(iter(seg.items()))
-        cur = {axis: float(values[axis][-1][-1]) for axis in kinds}
-        if kind in ("ramp", "hold"):
-            n = int(body["steps"])
-            dur = float(body.get("duration", n * DEFAULT_STEP_TIME))
-            frac = np.arange(1, n + 1) / n
-            t = t_now + dur * frac
-            for axis, ctrl in kinds.items():
-                if kind == "ramp" and ctrl in body:
-                    values[axis].append(cur[axis] + (float(body[ctrl]) - cur[axis]) * frac)
-                else:
-                    values[axis].append(np.full(n, cur[axis]))
-        else:  # sinusoid
-            spc = int(body.get("steps_per_cycle", DEFAULT_STEPS_PER_CYCLE))
-            n = max(1, int(round(float(body["cycles"]) * spc)))
-            period = float(body.get("period", spc * DEFAULT_STEP_TIME))
-            k = np.arange(1, n + 1)
-            t = t_now + period * k / spc
-            wave = np.sin(2.0 * np.pi * k / spc)
-            wave[np.abs(wave) < 1e-15] = 0.0   # exact zeros at half periods
-            for axis, ctrl in kinds.items():
-                amp = float(body.get(ctrl, 0.0))
-                values[axis].append(cur[axis] + amp * wave)
-        times.append(t)
-        seg_index.append(np.full(t.size, i))
-        t_now = float(t[-1])
-    return History(np.concatenate(times),
-                   {axis: (ctrl, np.concatenate(values[axis])) for axis, ctrl in kinds.items()},
-                   np.concatenate(seg_index))
+        targets = tuple((k, v) for k, v in body.items() if k in CONTROLS)
+        if kind == "ramp":
+            path = path.then(Ramp(targets, body["steps"], body.get("duration")))
+        elif kind == "hold":
+            path = path.then(Hold(body["steps"], body.get("duration")))
+        else:
+            path = path.then(Sinusoid(targets, body["cycles"],
+                                      body.get("steps_per_cycle", DEFAULT_STEPS_PER_CYCLE),
+                                      body.get("period")))
+    return path
+
+
+def _history(path: LoadPath, opens_with_start: bool) -> History:
+    """Scene view of ``path.sample()``: controls by axis, scene segment index per step (leaf 0
+    is the unloaded start, segment -1, when ``opens_with_start``)."""
+    smp = path.sample(start_time=float(path.segments[0].time[0]))
+    controls = {CONTROLS[k][0]: (k, v) for k, v in smp.values.items()}
+    return History(smp.time, controls, smp.leaf - int(opens_with_start))
 
 
 class Scene:
@@ -151,6 +137,7 @@ class Scene:
     def __init__(self, data: Mapping[str, Any], base_dir: str | Path | None = None) -> None:
         self.base_dir = Path(base_dir) if base_dir is not None else None
         self._data, self._objects = validate(data, self.base_dir)
+        self._load_path: LoadPath | None = None
         self._history: History | None = None
         self._plan = None
         self._contact = None
@@ -263,10 +250,18 @@ class Scene:
     def is_viscoelastic(self) -> bool:
         return any(getattr(m, "is_viscoelastic", False) for m in self.materials)
 
+    @property
+    def load_path(self) -> LoadPath:
+        """The typed load path, opening with the unloaded start (see :func:`build_load_path`)."""
+        if self._load_path is None:
+            self._load_path = build_load_path(self._data["load_path"], self.base_dir)
+        return self._load_path
+
     def history(self) -> History:
         """The load path sampled at its steps (cached)."""
         if self._history is None:
-            self._history = _discretize(self._data["load_path"], self.base_dir)
+            opens_with_start = "table" not in self._data["load_path"][0]
+            self._history = _history(self.load_path, opens_with_start)
         return self._history
 
     def contact(self) -> Any:

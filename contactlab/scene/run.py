@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from ..loadpath import UNITS
 from .validate import SERIES
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -22,16 +23,12 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS"]
 
-SERIES_UNITS = {"time": "s", "depth": "m", "force": "N", "radius": "m", "stiffness": "N/m",
-                "peak_pressure": "Pa", "twist": "rad", "torque": "N m", "stick_radius": "m",
-                "dissipated_energy": "J", "displacement": "m", "tangential_force": "N"}
+#: unit of each series: the load-path quantities' units plus the response quantities
+SERIES_UNITS = {**UNITS, "radius": "m", "stiffness": "N/m", "peak_pressure": "Pa",
+                "stick_radius": "m", "dissipated_energy": "J"}
 FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear": "Pa"}
 #: fields are sampled on r in [0, FIELD_EXTENT * a_final]
 FIELD_EXTENT = 1.5
-
-_API_ISSUE = {"torsion": 3, "twist_history": 3, "simulate": 4, "tangential": 4,
-              "shift_history": 4, "viscoelastic_history": "6b"}
-
 
 @dataclass
 class SceneResult:
@@ -151,15 +148,6 @@ def _write_csv(path: Path, cols: dict[str, np.ndarray]) -> None:
             w.writerow([repr(float(x)) for x in row])
 
 
-def _need(contact: Any, name: str) -> Any:
-    fn = getattr(contact, name, None)
-    if fn is None:
-        raise NotSupportedError(
-            f"the plan needs contact.{name}() (issue {_API_ISSUE.get(name, '?')}), which this "
-            "build of contactlab does not provide yet.")
-    return fn
-
-
 def _get(obj: Any, name: str, n: int) -> np.ndarray:
     if not hasattr(obj, name):
         raise NotSupportedError(f"{type(obj).__name__} has no {name!r}: cannot fill that series.")
@@ -168,24 +156,12 @@ def _get(obj: Any, name: str, n: int) -> np.ndarray:
 
 
 def run_scene(scene: "Scene") -> SceneResult:
-    """Run a validated scene along its plan (see :func:`_run`); a physics module missing from
-    this build (an unmerged issue) becomes a NotSupportedError naming it."""
-    try:
-        return _run(scene)
-    except ImportError as err:
-        if getattr(err, "name", "") and str(err.name).startswith("contactlab"):
-            raise NotSupportedError(f"the plan needs {err.name}, which this build of contactlab "
-                                    "does not provide yet.") from err
-        raise
-
-
-def _run(scene: "Scene") -> SceneResult:
     """Run a validated scene along its plan.
 
     Raises
     ------
     NotSupportedError
-        The plan needs a Contact method this build lacks.
+        A planned series that the chosen route does not produce.
     ConvergenceError
         A series came out NaN (never returned silently).
     """
@@ -202,24 +178,14 @@ def _run(scene: "Scene") -> SceneResult:
 
     if plan.route == "viscoelastic":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
-        res = _need(contact, "viscoelastic_history")(time=h.time, **{n_kind: N}, **kw)
+        res = contact.viscoelastic_history(time=h.time, **{n_kind: N}, **kw)
         computed.append("viscoelastic_history")
         for k in plan.series:
             if k != "time":
                 out[k] = _get(res, k, n)
     elif plan.route == "foundation":
-        import contactlab
-        LoadPath = getattr(contactlab, "LoadPath", None)
-        if LoadPath is None:
-            raise NotSupportedError("the plan needs contactlab.LoadPath and contact.simulate() "
-                                    "(issue 4), which this build does not provide yet.")
-        arrays = {"time": h.time}
-        for axis in ("normal", "twist", "shift"):
-            if h.kind(axis):
-                arrays[h.kind(axis)] = h.values(axis)
-        path = LoadPath.from_arrays(**arrays)
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
-        res = _need(contact, "simulate")(path, **kw)
+        res = contact.simulate(scene.load_path, **kw)
         computed.append("simulate")
         for k in plan.series:
             if k != "time":
@@ -244,7 +210,7 @@ def _run(scene: "Scene") -> SceneResult:
             kw = {n_kind: n0, ctrl: drive[start:]}
             if call in ("torsion", "twist_history"):
                 kw["method"] = plan.method
-            res = _need(contact, call)(**kw)
+            res = getattr(contact, call)(**kw)
             computed.append(call)
             m = n - start
             radius = np.asarray(normal_state.radius, float).reshape(-1)
@@ -281,9 +247,8 @@ def _run(scene: "Scene") -> SceneResult:
             elif f == "shear":   # the exact torsion state at the final (monotone) twist
                 start = plan.details["start"]
                 ctrl = h.kind("twist") or "twist"
-                ts = _need(contact, "torsion")(**{n_kind: float(N[start]),
-                                                  ctrl: float(h.values("twist")[-1]),
-                                                  "method": plan.method})
+                ts = contact.torsion(**{n_kind: float(N[start]), ctrl: float(h.values("twist")[-1]),
+                                        "method": plan.method})
                 fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
 
     series = {k: out[k] for k in plan.series}

@@ -25,7 +25,7 @@ else:  # pragma: no cover - Python 3.10 needs the tomli backport
 
 __all__ = ["load", "loads", "dumps"]
 
-_BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
 def loads(text: str) -> dict[str, Any]:
@@ -66,7 +66,7 @@ def _string(s: str) -> str:
 
 
 def _key(k: str) -> str:
-    return k if _BARE_KEY.match(k) else _string(k)
+    return k if _BARE_KEY.fullmatch(k) else _string(k)
 
 
 def _value(v: Any) -> str:

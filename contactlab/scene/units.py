@@ -12,8 +12,10 @@ import math
 import re
 
 from ..errors import UnitError
+from ..loadpath.base import canonical_unit
 
-__all__ = ["UNITS", "DIMENSION_OF_SI_UNIT", "parse_quantity", "format_quantity", "dimension_of_unit"]
+__all__ = ["UNITS", "DIMENSION_OF_SI_UNIT", "SI_UNIT", "parse_quantity", "format_quantity",
+           "dimension_of_unit"]
 
 _MICRO = ("u", "µ", "μ")  # ASCII u, micro sign U+00B5, Greek mu U+03BC
 
@@ -31,7 +33,8 @@ def _scaled(base: str, factors: dict[str, float]) -> dict[str, float]:
 
 _SI = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3, "u": 1e-6, "n": 1e-9}
 
-#: dimension -> {unit spelling: factor to SI}
+#: dimension -> {unit spelling: factor to SI}. Products are spelled with ``*`` (``N*m``, ``Pa*s``),
+#: the one spelling contactlab writes; input may also join factors by a space or ``·``.
 UNITS: dict[str, dict[str, float]] = {
     "length": {**_scaled("m", {"": 1.0, "c": 1e-2, "m": 1e-3, "u": 1e-6, "n": 1e-9, "p": 1e-12,
                                "k": 1e3}), "micron": 1e-6, "Å": 1e-10, "angstrom": 1e-10},
@@ -40,26 +43,25 @@ UNITS: dict[str, dict[str, float]] = {
                  "N/m^2": 1.0, "N/mm^2": 1e6, "bar": 1e5, "psi": 6894.757293168361},
     "angle": {**_scaled("rad", {"": 1.0, "m": 1e-3, "u": 1e-6}), "deg": math.pi / 180,
               "°": math.pi / 180, "arcmin": math.pi / 10800, "arcsec": math.pi / 648000},
-    "torque": {**_scaled("N m", {"": 1.0, "k": 1e3, "m": 1e-3, "u": 1e-6}),
-               **_scaled("N*m", {"": 1.0, "k": 1e3, "m": 1e-3, "u": 1e-6}),
-               **_scaled("N·m", {"": 1.0, "k": 1e3, "m": 1e-3, "u": 1e-6}),
-               "Nm": 1.0, "mNm": 1e-3, "N mm": 1e-3, "N*mm": 1e-3},
+    "torque": {**_scaled("N*m", {"": 1.0, "k": 1e3, "m": 1e-3, "u": 1e-6}),
+               "Nm": 1.0, "mNm": 1e-3, "N*mm": 1e-3},
     "time": {**_scaled("s", {"": 1.0, "m": 1e-3, "u": 1e-6, "n": 1e-9}), "min": 60.0,
              "h": 3600.0},
     "energy_per_area": {**_scaled("J/m^2", {"": 1.0, "m": 1e-3, "u": 1e-6}),
                         **_scaled("J/m2", {"": 1.0, "m": 1e-3, "u": 1e-6}),
                         **_scaled("N/m", {"": 1.0, "m": 1e-3, "u": 1e-6})},
     "energy": _scaled("J", {"": 1.0, "m": 1e-3, "u": 1e-6, "n": 1e-9}),
-    "viscosity": {"Pa s": 1.0, "Pa*s": 1.0, "Pa·s": 1.0, "kPa s": 1e3, "MPa s": 1e6,
-                  "GPa s": 1e9, "mPa s": 1e-3},
+    "viscosity": _scaled("Pa*s", {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3}),
     "dimensionless": {"": 1.0, "1": 1.0, "%": 1e-2},
 }
 
 #: Param.unit strings (the SI unit a parameter is declared in) -> dimension
 DIMENSION_OF_SI_UNIT = {"m": "length", "N": "force", "Pa": "pressure", "rad": "angle",
-                        "N m": "torque", "s": "time", "J/m^2": "energy_per_area", "J": "energy",
-                        "Pa s": "viscosity", "Pa*s": "viscosity",
-                        "1": "dimensionless", "-": "dimensionless"}
+                        "N*m": "torque", "s": "time", "J/m^2": "energy_per_area", "J": "energy",
+                        "Pa*s": "viscosity", "1": "dimensionless", "-": "dimensionless"}
+#: dimension -> its SI unit as contactlab writes it
+SI_UNIT = {"length": "m", "force": "N", "pressure": "Pa", "angle": "rad", "torque": "N*m",
+           "time": "s", "energy_per_area": "J/m^2", "energy": "J", "viscosity": "Pa*s"}
 
 _NUMBER = r"[+-]?(?:\d+(?:_\d+)*(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
 _QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
@@ -74,8 +76,7 @@ def dimension_of_unit(unit: str) -> str | None:
 
 
 def _normalise_unit(unit: str) -> str:
-    u = " ".join(unit.split())
-    return u.replace("²", "^2").replace("**", "^")
+    return canonical_unit(unit.replace("²", "^2").replace("**", "^"))
 
 
 def parse_quantity(value: object, dimension: str, key: str = "value") -> float:
@@ -157,8 +158,7 @@ def parse_quantity(value: object, dimension: str, key: str = "value") -> float:
 
 def format_quantity(value: float, dimension: str) -> str:
     """Human string of an SI value with its SI unit (``"0.01 m"``); plain repr when dimensionless."""
-    unit = {"length": "m", "force": "N", "pressure": "Pa", "angle": "rad", "torque": "N m",
-            "time": "s", "energy_per_area": "J/m^2", "energy": "J", "viscosity": "Pa s"}.get(dimension)
+    unit = SI_UNIT.get(dimension)
     return f"{value!r} {unit}" if unit else repr(value)
 
 
@@ -171,8 +171,8 @@ def _allowed(dimension: str) -> str:
 
 def _example(dimension: str) -> str:
     return {"length": "10 um", "force": "2 kN", "pressure": "210 GPa", "angle": "5 deg",
-            "torque": "0.1 N m", "time": "2 s", "energy_per_area": "0.05 J/m^2", "energy": "1 mJ",
-            "viscosity": "1 MPa s", "dimensionless": "0.3", "number": "1.5"}[dimension]
+            "torque": "0.1 N*m", "time": "2 s", "energy_per_area": "0.05 J/m^2", "energy": "1 mJ",
+            "viscosity": "1 MPa*s", "dimensionless": "0.3", "number": "1.5"}[dimension]
 
 
 def _unit_error(key: str, value: object, allowed: str, message: str) -> UnitError:

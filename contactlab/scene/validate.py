@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ContactlabError, SceneError, UnknownNameError
+from ..loadpath.base import canonical_unit
 from .units import DIMENSION_OF_SI_UNIT, parse_quantity
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
@@ -142,7 +143,7 @@ def _spec(cls: type, alternates: dict[str, str]) -> tuple[dict[str, str], set[st
         if par.kind in (par.VAR_POSITIONAL, par.VAR_KEYWORD):
             continue
         unit = units.get(name, "1")
-        keys[name] = DIMENSION_OF_SI_UNIT.get(unit, "number")
+        keys[name] = DIMENSION_OF_SI_UNIT.get(canonical_unit(unit), "number")
         if par.default is inspect.Parameter.empty:
             required.add(name)
     keys.update(alternates)

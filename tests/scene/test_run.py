@@ -4,9 +4,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-import contactlab
 from contactlab import Contact
-from contactlab.errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from contactlab.errors import ConvergenceError, EffectNotPlannedError
 from contactlab.scene import Scene
 
 from ..tolerances import CLOSED_FORM, QUADRATURE
@@ -34,7 +33,6 @@ def test_normal_only_never_builds_torsion_or_slip(monkeypatch):
         return f
     for name in UNPLANNED:
         monkeypatch.setattr(Contact, name, forbidden(name), raising=False)
-    monkeypatch.setattr(contactlab, "LoadPath", forbidden("LoadPath"), raising=False)
     res = Scene(base(interface={"friction": 0.2})).run()
     assert res.meta["computed"] == ["normal"] and calls == []
     assert res.meta["route"] == "closed_form"
@@ -129,28 +127,26 @@ def test_monotone_twist_calls_torsion(monkeypatch):
     assert rec.calls[0][1]["method"] == "no-slip"
 
 
-def test_foundation_route_builds_path_from_arrays(monkeypatch):
+def test_foundation_route_passes_the_typed_path(monkeypatch):
     seen = {}
 
-    class FakePath:
-        @classmethod
-        def from_arrays(cls, **arrays):
-            seen.update(arrays)
-            return cls()
-
     def simulate(self, path, **kw):
-        seen["kw"] = kw
-        n = seen["time"].size
-        return SimpleNamespace(depth=np.ones(n), force=seen["force"], radius=np.ones(n),
-                               twist=seen["twist"], torque=np.zeros(n), stick_radius=np.ones(n),
-                               dissipated_energy=np.zeros(n))
-    monkeypatch.setattr(contactlab, "LoadPath", FakePath, raising=False)
+        seen.update(path=path, kw=kw)
+        smp = path.sample()
+        n = smp.n_steps
+        return SimpleNamespace(depth=np.ones(n), force=smp.values["force"], radius=np.ones(n),
+                               twist=smp.values["twist"], torque=np.zeros(n),
+                               stick_radius=np.ones(n), dissipated_energy=np.zeros(n))
     monkeypatch.setattr(Contact, "simulate", simulate, raising=False)
     d = twist_scene({"sinusoid": {"twist": 1e-3, "force": 50.0, "cycles": 1}},
                     solver={"n_springs": 64})
-    res = Scene(d).run()
+    s = Scene(d)
+    res = s.run()
     assert res.meta["computed"] == ["simulate"]
-    assert set(seen) == {"time", "force", "twist", "kw"} and seen["kw"] == {"n_springs": 64}
+    assert seen["path"] is s.load_path and seen["kw"] == {"n_springs": 64}
+    kinds = [type(seg).__name__ for seg in seen["path"].segments]
+    assert kinds == ["Table", "Ramp", "Sinusoid"]      # the unloaded start, then the scene's
+    np.testing.assert_array_equal(res["twist"], s.history().values("twist"))
 
 
 def test_nan_from_a_solver_is_a_convergence_error(monkeypatch):
@@ -160,12 +156,6 @@ def test_nan_from_a_solver_is_a_convergence_error(monkeypatch):
         return r
     monkeypatch.setattr(Contact, "twist_history", bad, raising=False)
     with pytest.raises(ConvergenceError, match=r"torque\[\d+\] is NaN"):
-        Scene(twist_scene()).run()
-
-
-def test_missing_api_is_named(monkeypatch):
-    monkeypatch.delattr(Contact, "twist_history")     # a build without the torsion module
-    with pytest.raises(NotSupportedError, match=r"twist_history\(\) \(issue 3\)"):
         Scene(twist_scene()).run()
 
 
@@ -195,18 +185,12 @@ def test_oscillating_twist_masing_symmetry():
     assert res["torque"][i_min] == pytest.approx(-res["torque"][i_max], rel=1e-6)
 
 
-def test_adhesive_scene_runs_or_names_the_missing_module():
-    s = Scene(base(interface={"work_of_adhesion": "0.05 J/m^2"}))
-    try:
-        import contactlab.physics.adhesion  # noqa: F401
-    except ImportError:
-        with pytest.raises(NotSupportedError, match="contactlab.physics.adhesion"):
-            s.run()
-    else:   # JKR (Johnson-Kendall-Roberts 1971): F = 4E*a^3/(3R) - sqrt(8 pi a^3 E* w)
-        res = s.run()
-        a, E, w, R = res["radius"][-1], E_STEEL, 0.05, 0.01
-        assert res["force"][-1] == pytest.approx(4 * E * a**3 / (3 * R)
-                                                 - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
+def test_adhesive_scene_against_jkr():
+    # JKR (Johnson-Kendall-Roberts 1971): F = 4E*a^3/(3R) - sqrt(8 pi a^3 E* w)
+    res = Scene(base(interface={"work_of_adhesion": "0.05 J/m^2"})).run()
+    a, E, w, R = res["radius"][-1], E_STEEL, 0.05, 0.01
+    assert res["force"][-1] == pytest.approx(4 * E * a**3 / (3 * R)
+                                             - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
 
 
 def test_monotone_shift_against_cattaneo_mindlin():
