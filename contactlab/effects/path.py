@@ -151,7 +151,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     (tangential force, torque, stick radius, dissipated energy). The spring error falls as 1/N²,
     so this difference is about three times the error of the N-spring run: a conservative
     estimate that costs about half a run more (issue 7; honesty tested in
-    tests/test_simulation_error.py).
+    tests/unit/effects/test_path_error_estimate.py).
     """
     res = _simulate(contact, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                     snapshots=snapshots, progress=progress, approximate=approximate,

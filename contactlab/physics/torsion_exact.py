@@ -48,7 +48,7 @@ C_MIN_REL = 1e-100
 
 
 #: Safety factor of :func:`sharpen_error` (issue 7), measured on the honesty ladder of
-#: tests/test_torsion_error_estimate.py.
+#: tests/unit/effects/test_torsion_error_estimate.py.
 QUAD_SAFETY = 10.0
 
 

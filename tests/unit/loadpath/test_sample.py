@@ -7,7 +7,7 @@ import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.loadpath import Sinusoid
 
-from ...tolerances import SINE_TILING
+from tests.tolerances import SINE_TILING
 
 
 def test_ramp_hold_sinusoid_against_the_formulas():

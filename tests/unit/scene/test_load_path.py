@@ -8,7 +8,7 @@ import pytest
 from contactlab.loadpath import Hold, Ramp, Sinusoid, Table
 from contactlab.scene import Scene
 
-from ...scene.helpers import example_params, twist_scene
+from tests.unit.scene.helpers import example_params, twist_scene
 
 
 def expected_history(segments):

@@ -13,7 +13,7 @@ from contactlab.scene.run import FIELD_UNITS, SERIES_UNITS
 from contactlab.scene.units import DIMENSION_OF_SI_UNIT, SI_UNIT, UNITS as SCENE_UNITS
 from contactlab.scene.units import format_quantity, parse_quantity
 
-from ...scene.helpers import twist_scene
+from tests.unit.scene.helpers import twist_scene
 
 
 def written_units():

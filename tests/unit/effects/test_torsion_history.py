@@ -18,7 +18,7 @@ import contactlab as cl
 from contactlab.errors import ValidityWarning
 from tests import tolerances as tol
 from tests.reference import torsion_reference as ref
-from tests.test_torsion import A, E_STAR, F_HERTZ, G_T, M_SCALE, MU, P0, PHI_SCALE, R, materials, rel
+from tests.unit.effects.test_torsion import A, E_STAR, F_HERTZ, G_T, M_SCALE, MU, P0, PHI_SCALE, R, materials, rel
 
 
 @pytest.fixture(scope="module")

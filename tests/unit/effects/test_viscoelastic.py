@@ -12,7 +12,7 @@ from contactlab.materials.viscoelastic import (GeneralizedMaxwell, KelvinVoigt, 
                                                StandardLinearSolid)
 from contactlab.profiles import FlatPunch, Paraboloid
 
-from .tolerances import VISCO_EDGE, VISCO_SPATIAL, VISCO_TIME, VISCO_TING
+from tests.tolerances import VISCO_EDGE, VISCO_SPATIAL, VISCO_TIME, VISCO_TING
 
 R = 0.01        # m
 G = 1.0e6       # Pa

@@ -4,7 +4,7 @@ import pytest
 from contactlab.errors import SceneError
 from contactlab.scene import Scene
 
-from .helpers import base, twist_scene
+from tests.unit.scene.helpers import base, twist_scene
 
 
 def issues_of(data, base_dir=None):

@@ -10,7 +10,7 @@ import pytest
 import contactlab as cl
 from contactlab.scene import Scene
 
-from ..tolerances import QUADRATURE
+from tests.tolerances import QUADRATURE
 
 pytestmark = pytest.mark.skipif(
     importlib.util.find_spec("contactlab_example_plugin") is None,

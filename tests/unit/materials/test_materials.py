@@ -6,7 +6,7 @@ import pytest
 import contactlab as cl
 from contactlab.materials import effective_moduli
 
-from .tolerances import CLOSED_FORM
+from tests.tolerances import CLOSED_FORM
 
 
 def test_steel_on_steel():

@@ -10,9 +10,9 @@ from contactlab.errors import OutsideTheoryError, ParameterError, ValidityWarnin
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, PowerLaw, Sphere,
                                  TruncatedCone, TruncatedParaboloid)
 
-from .reference import adhesion as ref_jkr
-from .reference.kappa import kappa_float as kappa
-from .tolerances import (CLOSED_FORM, JKR_FINITE_DIFFERENCE, JKR_ROOT, JKR_SMALL_ADHESION,
+from tests.reference import adhesion as ref_jkr
+from tests.reference.kappa import kappa_float as kappa
+from tests.tolerances import (CLOSED_FORM, JKR_FINITE_DIFFERENCE, JKR_ROOT, JKR_SMALL_ADHESION,
                          PRESSURE_INTEGRAL)
 
 E_STAR = 2.0e6          # Pa (rubber on glass)

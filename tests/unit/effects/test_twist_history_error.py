@@ -2,7 +2,7 @@
 
 The reference is the same history at rtol = 1e-13 (a converged second run): the estimate is
 about the numerical error of the Masing history against the model's exact loading curve, whose
-own accuracy against the independent mpmath closed forms is tested in tests/test_torsion*.py.
+own accuracy against the independent mpmath closed forms is tested in tests/unit/effects/test_torsion*.py.
 """
 from __future__ import annotations
 

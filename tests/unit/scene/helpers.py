@@ -33,6 +33,6 @@ def example_params():
 
     import pytest
     out = []
-    for p in sorted((Path(__file__).parents[2] / "examples").glob("*.toml")):
+    for p in sorted((Path(__file__).parents[3] / "examples").glob("*.toml")):
         out.append(pytest.param(p, id=p.stem))
     return out

@@ -13,7 +13,7 @@ from contactlab.profiles import Cone, Paraboloid, Polynomial, Tabulated, Truncat
 from contactlab.scene import Scene
 from contactlab.scene.toml_io import dumps
 
-from .helpers import base, example_params, twist_scene
+from tests.unit.scene.helpers import base, example_params, twist_scene
 
 
 @pytest.mark.parametrize("path", example_params())

@@ -7,8 +7,8 @@ from scipy.integrate import quad
 import contactlab as cl
 from contactlab.errors import NotSupportedError, ParameterError
 
-from .reference import hertz as hz
-from .tolerances import CLOSED_FORM, QUADRATURE
+from tests.reference import hertz as hz
+from tests.tolerances import CLOSED_FORM, QUADRATURE
 
 MU = 0.3
 STEEL = cl.Elastic(E=210e9, nu=0.3)

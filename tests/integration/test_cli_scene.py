@@ -14,8 +14,8 @@ from contactlab import Contact
 from contactlab.cli import main
 from contactlab.scene import Scene
 
-from .helpers import example_params
-from ..tolerances import CLOSED_FORM, OUTPUT_ROUNDTRIP, TABULATED_SCENE, VISCO_SCENE
+from tests.unit.scene.helpers import example_params
+from tests.tolerances import CLOSED_FORM, OUTPUT_ROUNDTRIP, TABULATED_SCENE, VISCO_SCENE
 
 ROOT = Path(__file__).parents[2]
 EX = ROOT / "examples"

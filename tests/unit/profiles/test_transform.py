@@ -9,8 +9,8 @@ import contactlab as cl
 from contactlab import profiles as P
 from contactlab.errors import StrategyUnavailableError
 
-from .reference import normal as ref
-from .tolerances import (CLOSED_FORM, QUADRATURE, TABLE_6_DIGITS, TABULATED_CUBIC_1000,
+from tests.reference import normal as ref
+from tests.tolerances import (CLOSED_FORM, QUADRATURE, TABLE_6_DIGITS, TABULATED_CUBIC_1000,
                          tabulated_linear)
 
 ANALYTIC = [

@@ -8,8 +8,8 @@ import pytest
 import contactlab as cl
 from contactlab import profiles as P
 
-from .reference import normal as ref
-from .tolerances import CLOSED_FORM, QUADRATURE
+from tests.reference import normal as ref
+from tests.tolerances import CLOSED_FORM, QUADRATURE
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 RUBBER = cl.Elastic(E=5e6, nu=0.49)

@@ -8,8 +8,8 @@ from contactlab import Contact
 from contactlab.errors import ConvergenceError, EffectNotPlannedError
 from contactlab.scene import Scene
 
-from ..tolerances import CLOSED_FORM, QUADRATURE
-from .helpers import base, twist_scene
+from tests.tolerances import CLOSED_FORM, QUADRATURE
+from tests.unit.scene.helpers import base, twist_scene
 
 UNPLANNED = ("torsion", "twist_history", "simulate", "tangential", "shift_history")
 

@@ -8,8 +8,8 @@ import contactlab as cl
 from contactlab.errors import OutsideTheoryError, ValidityWarning
 from contactlab.foundation import DEFAULT_N_SPRINGS, Winkler
 
-from .reference import hertz as hz
-from .tolerances import (ENERGY_DRIFT, FOUNDATION_CM, FOUNDATION_NORMAL, FOUNDATION_TORSION)
+from tests.reference import hertz as hz
+from tests.tolerances import (ENERGY_DRIFT, FOUNDATION_CM, FOUNDATION_NORMAL, FOUNDATION_TORSION)
 
 MU = 0.2
 STEEL = cl.Elastic(E=210e9, nu=0.3)

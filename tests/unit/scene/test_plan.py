@@ -6,7 +6,7 @@ import pytest
 from contactlab import Contact
 from contactlab.scene import Scene
 
-from .helpers import base, twist_scene
+from tests.unit.scene.helpers import base, twist_scene
 
 SLIP_EFFECTS = {"tangential", "torsion", "slip"}
 
