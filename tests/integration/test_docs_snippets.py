@@ -35,9 +35,16 @@ def test_snippets_run(page, tmp_path, monkeypatch):
         pass
     shutil.copytree(ROOT / "examples", tmp_path / "examples")
     monkeypatch.chdir(tmp_path)
+    from contactlab.registry import registry
+    before = {k: set(v) for k, v in registry._session.items()}
     env: dict = {"__name__": "__snippet__"}
-    for i, block in enumerate(_blocks(page)):
-        with warnings.catch_warnings():
-            # snippets may show a model's validity warning on purpose
-            warnings.simplefilter("ignore")
-            exec(compile(block, f"{page.name} block {i + 1}", "exec"), env)
+    try:
+        for i, block in enumerate(_blocks(page)):
+            with warnings.catch_warnings():
+                # snippets may show a model's validity warning on purpose
+                warnings.simplefilter("ignore")
+                exec(compile(block, f"{page.name} block {i + 1}", "exec"), env)
+    finally:        # a snippet may register a type for the session: leave the registry as found
+        for kind, names in registry._session.items():
+            for name in set(names) - before.get(kind, set()):
+                registry.unregister(kind, name)
