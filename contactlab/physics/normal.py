@@ -17,7 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.quadrature import tanh_sinh
+from ..numeric.roots import bracketed_root
+from ..profiles.base import ROUNDING, root_rtol
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "displacement", "elastic_energy",
            "g_squared_integral", "force_of_radius", "radius_depth_of_force", "solve"]
@@ -138,7 +141,6 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[
             h2 = profile._g(1e-6 * tiny, rtol) / (1e-6 * tiny)
             divergent = (h1 > 0) & (h1 >= 0.5 * h2)
             if not np.all(divergent):
-                from ..errors import ConvergenceError
                 raise ConvergenceError(
                     f"pressure at r=0 did not converge (estimate {v0[unconverged][0]:.6g}, error "
                     f"{e0[unconverged][0]:.3g}); loosen rtol.")
@@ -263,9 +265,6 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
     ConvergenceError
         The bracketed solve failed.
     """
-    from ..errors import OutsideTheoryError
-    from ..numeric.roots import bracketed_root
-    from ..profiles.base import root_rtol
     a = np.zeros(F.shape)
     d = np.zeros(F.shape)
     pos = F > 0
@@ -350,7 +349,6 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float
         of ``a d - ∫g`` and, under force control, the residual against the requested force;
         errors of ``a`` enter ``F`` only at second order (``dF/da = 2E*(d - g(a)) = 0``).
     """
-    from ..profiles.base import ROUNDING
     E = E_star
     if control == "depth":
         d = value
