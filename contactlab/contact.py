@@ -9,12 +9,14 @@ from functools import cached_property
 from typing import Any
 
 from .effects import adhesion as _adhesion
+from .effects import fretting as _fretting
 from .effects import normal as _normal
 from .effects import path as _path
 from .effects import tangential as _tangential
 from .effects import torsion as _torsion
 from .effects import viscoelastic as _viscoelastic
 from .effects.adhesion import AdhesionCycle
+from .effects.fretting import FrettingLoop, FrettingMap
 from .effects.normal import NormalState
 from .effects.path import PathResult
 from .effects.tangential import ShiftHistory, TangentialState
@@ -329,3 +331,65 @@ class Contact:
         are forgotten. The loading curve is solved once, batched, for every step.
         """
         return _torsion.twist_history(self, twist=twist, depth=depth, force=force, method=method)
+
+    # ---- fretting (issue 15)
+    def fretting_loop(self, *, force: Any = None, depth: Any = None,
+                      displacement_amplitude: Any = None, twist_amplitude: Any = None,
+                      method: str | None = None, criterion: str = "energy_ratio",
+                      threshold: float | None = None, n_points: int = 200) -> FrettingLoop:
+        """The steady fretting loop under a shift or twist amplitude at constant normal load.
+
+        Parameters
+        ----------
+        force, depth : float
+            Constant normal preload, N or m (exactly one).
+        displacement_amplitude : float, optional
+            Tangential amplitude ``δ*``, m (Cattaneo–Mindlin through the MDR springs, exact).
+        twist_amplitude : float, optional
+            Torsional amplitude ``φ*``, rad (exactly one of the two amplitudes).
+        method : {"exact", "mdr", "no-slip"}, optional
+            Torsion model (default ``"exact"``); the MDR model warns
+            (:class:`~contactlab.errors.ValidityWarning`) when its torque, energy per cycle or
+            stick radius errs by more than 1 %.
+        criterion : {"energy_ratio", "stick_ratio", "torque_ratio"}
+            Torsional gross-slip criterion (smooth profiles reach full sliding only as
+            ``φ* → ∞``); ``threshold`` defaults to 0.2, 0.1 and 0.95 respectively.
+        n_points : int
+            Points per loop branch.
+
+        Returns
+        -------
+        FrettingLoop
+            ``.energy .energy_ratio .peak .stick_radius .regime .x .y``; see
+            :mod:`contactlab.effects.fretting` and docs/fretting.md.
+
+        Examples
+        --------
+        >>> import contactlab as cl
+        >>> steel = cl.Elastic(E=210e9, nu=0.3)
+        >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(steel, steel), friction=0.5)
+        >>> loop = c.fretting_loop(force=100.0, displacement_amplitude=10e-6)
+        >>> loop.regime, round(loop.energy_ratio, 3)
+        ('gross_slip', 0.831)
+        """
+        return _fretting.fretting_loop(self, force=force, depth=depth,
+                                       displacement_amplitude=displacement_amplitude,
+                                       twist_amplitude=twist_amplitude, method=method,
+                                       criterion=criterion, threshold=threshold,
+                                       n_points=n_points)
+
+    def fretting_map(self, *, force: Any = None, depth: Any = None,
+                     displacement_amplitude: Any = None, twist_amplitude: Any = None,
+                     method: str | None = None, criterion: str = "energy_ratio",
+                     threshold: float | None = None, boundary: bool = True) -> FrettingMap:
+        """Fretting regime map over 1D arrays of normal loads and amplitudes.
+
+        Same keywords as :meth:`fretting_loop` with arrays; ``boundary=False`` skips the
+        torsional boundary root. Returns a :class:`~contactlab.effects.fretting.FrettingMap`
+        (``.regime .energy_ratio .energy .stick_ratio .boundary``, ``.plot()``,
+        ``.to_dataframe()``, ``.to_csv()``).
+        """
+        return _fretting.fretting_map(self, force=force, depth=depth,
+                                      displacement_amplitude=displacement_amplitude,
+                                      twist_amplitude=twist_amplitude, method=method,
+                                      criterion=criterion, threshold=threshold, boundary=boundary)

@@ -137,3 +137,18 @@ TORSION_ERR_FLOOR = 1e-15
 #: exact zeros at half periods): the argument 2πk/n carries a rounding error ~k ulp, so beyond
 #: the first period the two differ by a few ulp of the amplitude; 8 ulp leaves margin
 SINE_TILING = 8 * 2.220446049250313e-16
+
+# ---- fretting loops, maps and wear (issue 15)
+#: loop energy W = 4 D_load (Iwan form, closed-form ∫g and ∫g² of power laws) against the Masing
+#: integral of the closed-form virgin curve: both closed forms; only rounding in the cancelling
+#: difference 8∫Q - 4δQ* (a factor ~10 at A ~ 0.05)
+FRETTING_CLOSED = 1e-9
+#: trapezoid area of the returned loop (n points per branch) against W: error ~ W'' δ²/(12 n²);
+#: measured 2e-6 at n = 2000
+LOOP_TRAPEZOID = 1e-5
+#: torsional boundary (regula falsi in c/a, 3 refinements after a 48-point grid) against the
+#: closed form φ(c) of the Lubkin problem: stick_ratio is one direct evaluation (quadrature)
+TORSION_BOUNDARY = 1e-8
+#: torsional energy/torque-ratio boundary: root of the criterion in c/a after 3 regula-falsi steps;
+#: measured criterion residual <= 1e-6
+TORSION_BOUNDARY_ROOT = 1e-5

@@ -10,9 +10,11 @@ immutable result:
 * :mod:`~contactlab.effects.tangential`: :class:`TangentialState`, :class:`ShiftHistory`;
 * :mod:`~contactlab.effects.torsion`: :class:`TorsionState`, :class:`TwistHistory`;
 * :mod:`~contactlab.effects.viscoelastic`: :class:`ViscoelasticHistory`;
-* :mod:`~contactlab.effects.path`: :class:`PathResult` (``contact.simulate``).
+* :mod:`~contactlab.effects.path`: :class:`PathResult` (``contact.simulate``);
+* :mod:`~contactlab.effects.fretting`: :class:`FrettingLoop`, :class:`FrettingMap`.
 """
 from .adhesion import AdhesionCycle, AdhesiveNormalState
+from .fretting import FrettingLoop, FrettingMap
 from .normal import NormalState
 from .path import PathResult
 from .tangential import ShiftHistory, TangentialState
@@ -20,4 +22,5 @@ from .torsion import TorsionState, TwistHistory
 from .viscoelastic import ViscoelasticHistory
 
 __all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
-           "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult"]
+           "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult",
+           "FrettingLoop", "FrettingMap"]

@@ -1,0 +1,469 @@
+"""Fretting at constant normal load: the drivers behind :meth:`Contact.fretting_loop` and
+:meth:`Contact.fretting_map`, and their results :class:`FrettingLoop` and :class:`FrettingMap`.
+
+A steady fretting loop follows Masing's rule from the monotonic loading curve of the mode:
+Cattaneo–Mindlin through the MDR springs for a shift (exact, any profile), one of the torsion
+models of :data:`contactlab.physics.torsion.METHODS` for a twist. The kernels (energy ratio,
+loop branches, regimes, gross-slip criteria, MDR validity) are in
+:mod:`contactlab.physics.fretting`; the theory is in docs/fretting.md.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
+from ..params import as_float_array, exactly_one
+from ..physics import fretting as _fr
+from ..physics import tangential as _tan
+from .torsion import resolve_method, torsion_model
+
+__all__ = ["FrettingLoop", "FrettingMap", "fretting_loop", "fretting_map", "MODES",
+           "SERIES_UNITS"]
+
+#: Fretting modes and the name of their amplitude keyword.
+MODES = {"tangential": "displacement_amplitude", "torsion": "twist_amplitude"}
+
+#: Units of the per-point series (CSV headers).
+SERIES_UNITS = {"force": "N", "displacement_amplitude": "m", "twist_amplitude": "rad",
+                "tangential_force_amplitude": "N", "torque_amplitude": "N*m",
+                "energy": "J", "energy_ratio": "1", "stick_ratio": "1", "regime": "1",
+                "radius": "m", "stick_radius": "m"}
+
+
+# ---------------------------------------------------------------------------- shared checks
+def _mode_and_amplitude(what: str, displacement_amplitude: Any, twist_amplitude: Any):
+    key, val = exactly_one(what, {"displacement_amplitude": displacement_amplitude,
+                                  "twist_amplitude": twist_amplitude})
+    amp = as_float_array(key, val)
+    if np.any(amp < 0):
+        raise ParameterError(f"{key}={float(amp[amp < 0].ravel()[0])!r} is invalid: an amplitude "
+                             "must be >= 0 (the loop runs from -amplitude to +amplitude).")
+    return ("tangential" if key == "displacement_amplitude" else "torsion"), key, amp
+
+
+def check_contact(contact, what: str) -> None:
+    """Fretting needs friction and a non-adhesive contact."""
+    if contact.friction is None:
+        raise ParameterError(f"{what} needs a friction coefficient, but friction=None: give "
+                             "Contact(..., friction=mu).")
+    if contact.is_adhesive:
+        raise NotSupportedError(f"{what} with work_of_adhesion={contact.work_of_adhesion!r}: "
+                                "fretting of adhesive contacts is outside the implemented theory.")
+
+
+def resolve_criterion(criterion: str, threshold: float | None) -> tuple[str, float]:
+    """Validate the torsional gross-slip criterion and default its threshold."""
+    if criterion not in _fr.CRITERIA:
+        raise UnknownNameError(f"criterion={criterion!r} is invalid: gross-slip criteria are "
+                               f"{', '.join(repr(k) for k in _fr.CRITERIA)}.")
+    if threshold is None:
+        return criterion, _fr.CRITERIA[criterion]
+    t = float(as_float_array("threshold", threshold))
+    if not 0 < t < 1:
+        raise ParameterError(f"threshold={threshold!r} is invalid: the {criterion} threshold "
+                             "must satisfy 0 < threshold < 1.")
+    return criterion, t
+
+
+def _fresh_g(contact, a: np.ndarray, d: np.ndarray) -> np.ndarray:
+    g_a = np.where(a > 0, contact.profile._g(np.where(a > 0, a, 1.0)), 0.0)
+    if np.isfinite(contact.profile.wall_radius):
+        g_a = np.where(a >= contact.profile.wall_radius, np.minimum(g_a, d), g_a)
+    return g_a
+
+
+def loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,
+          amp: np.ndarray, criterion: str, threshold: float) -> dict[str, np.ndarray]:
+    """Steady loops for flat arrays of states: peak, stick radius, energy, ratio, regime.
+
+    The amplitudes ``amp`` are >= 0; ``a, d`` the normal states, ``F_N`` their forces.
+    """
+    prof, E, mu = contact.profile, contact.moduli.normal, contact.friction
+    if mode == "tangential":
+        Gs = contact.moduli.tangential
+        peak, c = _tan.force_of_displacement(prof, E, Gs, mu, a, d, amp)
+        W = 4.0 * _tan.virgin_dissipation(prof, E, Gs, mu, a, d, amp, contact.rtol)
+        sliding = mu * F_N
+        transition = _tan.full_slip_displacement(E, Gs, mu, d)   # g(0) = 0
+        gross = (amp >= transition) & (amp > 0)
+        A = _fr.energy_ratio(W, amp, peak)
+    else:
+        g_a = _fresh_g(contact, a, d)
+        model = torsion_model(contact, method)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)     # judged by the caller
+            sol = model.of_twist(amp, a, d, g_a)
+        peak, c = sol.torque, sol.stick_radius
+        W = 4.0 * model.dissipation(amp, c, a, d, g_a)
+        sliding = model.sliding_torque(a, d)
+        A = _fr.energy_ratio(W, amp, peak)
+        value = _fr.criterion_value(criterion, A, c, a, peak, sliding)
+        gross = _fr.torsional_gross_slip(criterion, threshold, value) & (amp > 0)
+        if method == "no-slip":
+            gross = np.zeros(amp.shape, bool)
+    regime = _fr.classify(c, a, amp, gross)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(a > 0, c / np.where(a > 0, a, 1.0), 1.0)
+    return {"peak": peak, "stick_radius": c, "energy": W, "energy_ratio": A, "regime": regime,
+            "sliding": sliding, "stick_ratio": ratio}
+
+
+def warn_mdr(contact, amp: np.ndarray, a: np.ndarray, d: np.ndarray, quantities,
+             stacklevel: int = 4) -> None:
+    """ValidityWarning when the MDR torsion model errs by > 1 % on a requested quantity."""
+    g_a = _fresh_g(contact, a, d)
+    limits = _fr.mdr_validity_twists(contact.profile, contact.moduli.normal,
+                                     contact.moduli.torsional, contact.friction, a, d, g_a,
+                                     quantities, contact.rtol)
+    bad = [(q, lim) for q, lim in limits.items() if np.any(amp > lim)]
+    if bad:
+        q, lim = bad[0]
+        i = int(np.argmax(amp - lim))
+        names = ", ".join(q for q, _ in bad)
+        warnings.warn(
+            f"MDR torsion model outside its validity for {names}: twist amplitude "
+            f"{float(amp[i]):.4g} rad exceeds {float(lim[i]):.4g} rad, beyond which the MDR "
+            f"{q.replace('_', ' ')} errs by more than 1 % against the exact solution (the exact "
+            f"stick ratio falls below c/a = {_fr.MDR_VALID_STICK_RATIOS[q]}; docs/fretting.md). "
+            "Use method='exact'.", ValidityWarning, stacklevel=stacklevel)
+
+
+def _normal_states(contact, what: str, force: Any, depth: Any):
+    key, val = exactly_one(what, {"force": force, "depth": depth})
+    ns = contact.normal(**{key: val})
+    return ns, key
+
+
+# ---------------------------------------------------------------------------- single loop
+@dataclass(frozen=True, eq=False)
+class FrettingLoop:
+    """The steady fretting loop at constant normal load.
+
+    Attributes
+    ----------
+    mode : {"tangential", "torsion"}
+    method : str
+        Torsion model (``"exact"``, ``"mdr"``, ``"no-slip"``); ``"mdr"`` for a shift (the MDR
+        springs are exact for Cattaneo–Mindlin).
+    amplitude : float
+        ``δ*`` (m) or ``φ*`` (rad).
+    peak : float
+        Loop maximum ``Q*`` (N) or ``M*`` (N·m).
+    energy : float
+        Energy dissipated per cycle ``W``, J.
+    energy_ratio : float
+        Fouvry's ``A = W/(4 δ* Q*)`` (torsion: ``W/(4 φ* M*)``).
+    stick_radius, radius : float
+        Minimum stick radius over the cycle and contact radius, m.
+    regime : str
+        ``"stick"``, ``"partial_slip"`` or ``"gross_slip"``.
+    sliding : float
+        Full-sliding force ``μF_N`` (N) or torque (N·m) of the model.
+    x, y : ndarray
+        The closed loop: displacement (m) or twist (rad), and force (N) or torque (N·m).
+    normal : NormalState
+    meta : dict
+        ``criterion``, ``threshold`` (torsion), ``gross_slip_amplitude`` (tangential: ``δ_t``).
+    """
+
+    mode: str
+    method: str
+    amplitude: float
+    peak: float
+    energy: float
+    energy_ratio: float
+    stick_radius: float
+    radius: float
+    regime: str
+    sliding: float
+    x: np.ndarray = field(repr=False)
+    y: np.ndarray = field(repr=False)
+    normal: Any = field(repr=False)
+    meta: dict = field(default_factory=dict, repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Scalars and loop arrays by name."""
+        return {k: getattr(self, k) for k in ("mode", "method", "amplitude", "peak", "energy",
+                                              "energy_ratio", "stick_radius", "radius",
+                                              "regime", "sliding", "x", "y")}
+
+    def plot(self, ax: Any = None):
+        """Draw the loop (needs matplotlib); returns the axes."""
+        plt = _pyplot()
+        if ax is None:
+            _, ax = plt.subplots()
+        ax.plot(self.x, self.y)
+        xl, yl = (("displacement [m]", "tangential force [N]") if self.mode == "tangential"
+                  else ("twist [rad]", "torque [N*m]"))
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+        ax.set_title(f"{self.regime.replace('_', ' ')}, A = {self.energy_ratio:.3g}")
+        return ax
+
+
+def fretting_loop(contact, *, force: Any = None, depth: Any = None,
+                  displacement_amplitude: Any = None, twist_amplitude: Any = None,
+                  method: str | None = None, criterion: str = "energy_ratio",
+                  threshold: float | None = None, n_points: int = 200) -> FrettingLoop:
+    """Implementation of :meth:`contactlab.Contact.fretting_loop` (see there)."""
+    check_contact(contact, "fretting_loop()")
+    mode, key, amp = _mode_and_amplitude("fretting_loop()", displacement_amplitude,
+                                         twist_amplitude)
+    if amp.ndim != 0:
+        raise ParameterError(f"{key} has shape {amp.shape}: fretting_loop() takes one amplitude; "
+                             "use fretting_map() for a grid.")
+    if int(n_points) < 2:
+        raise ParameterError(f"n_points={n_points!r} is invalid: give at least 2 points per "
+                             "branch.")
+    criterion, threshold = resolve_criterion(criterion, threshold)
+    ns, nkey = _normal_states(contact, "fretting_loop()", force, depth)
+    if ns.shape != ():
+        raise ParameterError(f"{nkey} must be a scalar for fretting_loop(); use fretting_map().")
+    if mode == "torsion":
+        method = resolve_method(contact, method)
+    elif method not in (None, "mdr", "exact"):
+        raise UnknownNameError(f"method={method!r} is invalid for a shift: the MDR springs are "
+                               "exact for Cattaneo–Mindlin; leave method=None.")
+    else:
+        method = "mdr"
+    a = np.atleast_1d(float(ns._radius))
+    d = np.atleast_1d(float(ns._depth))
+    F_N = np.atleast_1d(float(ns._force))
+    x1 = np.atleast_1d(float(amp))
+    res = loops(contact, mode, method, a, d, F_N, x1, criterion, threshold)
+    if mode == "torsion" and method == "mdr":
+        warn_mdr(contact, x1, a, d, ("torque", "energy", "stick_radius"))
+
+    prof, E, mu = contact.profile, contact.moduli.normal, contact.friction
+    if mode == "tangential":
+        Gs = contact.moduli.tangential
+
+        def curve(u: np.ndarray) -> np.ndarray:
+            return _tan.force_of_displacement(prof, E, Gs, mu, a[0], d[0], u)[0]
+        meta = {"gross_slip_amplitude": float(_tan.full_slip_displacement(E, Gs, mu, d[0]))}
+    else:
+        model = torsion_model(contact, method)
+        g_a = _fresh_g(contact, a, d)
+
+        def curve(p: np.ndarray) -> np.ndarray:
+            n = p.size
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)
+                return model.of_twist(p, np.full(n, a[0]), np.full(n, d[0]),
+                                      np.full(n, g_a[0])).torque
+        meta = {"criterion": criterion, "threshold": threshold}
+    peak = float(res["peak"][0])
+    x, y = _fr.loop_branches(float(amp), peak, curve, int(n_points))
+    meta.update({"rtol": contact.rtol, "load": nkey})
+    return FrettingLoop(mode, method, float(amp), peak, float(res["energy"][0]),
+                        float(res["energy_ratio"][0]), float(res["stick_radius"][0]),
+                        float(a[0]), _fr.REGIMES[int(res["regime"][0])],
+                        float(res["sliding"][0]), x, y, ns, meta)
+
+
+# ---------------------------------------------------------------------------- maps
+@dataclass(frozen=True, eq=False)
+class FrettingMap:
+    """Running-condition map over normal forces x amplitudes.
+
+    Attributes
+    ----------
+    mode, method, criterion : str
+    threshold : float
+    force : ndarray, shape (nF,)
+        Normal forces, N.
+    amplitude : ndarray, shape (nA,)
+        Amplitudes ``δ*`` (m) or ``φ*`` (rad).
+    regime : ndarray of int8, shape (nF, nA)
+        Codes into :attr:`regime_names` (0 stick, 1 partial slip, 2 gross slip).
+    energy_ratio, energy, stick_ratio, peak : ndarray, shape (nF, nA)
+        Fouvry's ``A``, energy per cycle (J), minimum ``c/a``, loop maximum (N or N·m).
+    boundary : ndarray, shape (nF,)
+        Gross-slip amplitude per force: tangential ``δ_t = μE*d/G*`` (exact); torsion the
+        amplitude where the criterion is met (root on the loading curve, see
+        :func:`torsional_boundary`).
+    """
+
+    mode: str
+    method: str
+    criterion: str
+    threshold: float
+    force: np.ndarray = field(repr=False)
+    amplitude: np.ndarray = field(repr=False)
+    regime: np.ndarray = field(repr=False)
+    energy_ratio: np.ndarray = field(repr=False)
+    energy: np.ndarray = field(repr=False)
+    stick_ratio: np.ndarray = field(repr=False)
+    peak: np.ndarray = field(repr=False)
+    boundary: np.ndarray = field(repr=False)
+    meta: dict = field(default_factory=dict, repr=False)
+
+    regime_names = _fr.REGIMES
+
+    @property
+    def amplitude_name(self) -> str:
+        return MODES[self.mode]
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """One row per grid point (force-major), as flat arrays."""
+        F, X = np.meshgrid(self.force, self.amplitude, indexing="ij")
+        peak = "tangential_force_amplitude" if self.mode == "tangential" else "torque_amplitude"
+        return {"force": F.ravel(), self.amplitude_name: X.ravel(),
+                "regime": self.regime.ravel().astype(float),
+                "energy_ratio": self.energy_ratio.ravel(), "energy": self.energy.ravel(),
+                "stick_ratio": self.stick_ratio.ravel(), peak: self.peak.ravel()}
+
+    def to_dataframe(self):
+        """The grid as a :class:`pandas.DataFrame` (needs pandas), regimes as names."""
+        try:
+            import pandas as pd
+        except ImportError as err:
+            raise ImportError("to_dataframe() needs pandas: pip install pandas "
+                              "(or pip install 'contactlab[data]')") from err
+        df = pd.DataFrame(self.to_dict())
+        df["regime"] = [self.regime_names[int(r)] for r in self.regime.ravel()]
+        return df
+
+    def to_csv(self, path: Any) -> None:
+        """Write the grid (one row per point, ``name [unit]`` headers; regime as its code)."""
+        from ..loadpath.io import write_csv
+        write_csv(path, self.to_dict(), units=SERIES_UNITS)
+
+    def plot(self, ax: Any = None, *, boundary: bool = True):
+        """The running-condition map: regimes over amplitude (x) and normal force (y), with the
+        analytic gross-slip boundary drawn on top (needs matplotlib); returns the axes."""
+        plt = _pyplot()
+        from matplotlib.colors import ListedColormap
+        if ax is None:
+            _, ax = plt.subplots()
+        cmap = ListedColormap(["#4c72b0", "#dd8452", "#c44e52"])
+        ax.pcolormesh(self.amplitude, self.force, self.regime, cmap=cmap, vmin=-0.5, vmax=2.5,
+                      shading="nearest")
+        if boundary and np.any(np.isfinite(self.boundary)):
+            ax.plot(self.boundary, self.force, "k-", lw=2, label="gross-slip boundary")
+            ax.legend(loc="best")
+        ax.set_xlim(self.amplitude.min(), self.amplitude.max())
+        if self.amplitude.min() > 0 and self.amplitude.max() > 10 * self.amplitude.min():
+            ax.set_xscale("log")
+        if self.force.min() > 0 and self.force.max() > 10 * self.force.min():
+            ax.set_yscale("log")
+        ax.set_xlabel("displacement amplitude [m]" if self.mode == "tangential"
+                      else "twist amplitude [rad]")
+        ax.set_ylabel("normal force [N]")
+        title = "partial slip | gross slip"
+        if self.mode == "torsion":
+            title += f" ({self.criterion} {self.threshold:g})"
+        ax.set_title(title)
+        return ax
+
+
+def _pyplot():
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as err:
+        raise ImportError("plot() needs matplotlib: pip install matplotlib "
+                          "(or pip install 'contactlab[plot]')") from err
+    return plt
+
+
+def torsional_boundary(contact, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,
+                       criterion: str, threshold: float, n_grid: int = 48,
+                       n_refine: int = 3) -> np.ndarray:
+    """Twist amplitude at which the torsional gross-slip criterion is met, per normal state.
+
+    ``stick_ratio``: the twist at ``c = threshold·a`` (one evaluation). The others: the criterion
+    is monotone in ``c``; it is evaluated on ``n_grid`` stick ratios per state, the crossing
+    bracketed and refined by ``n_refine`` regula-falsi steps in ``c/a`` (batched over states).
+    """
+    model = torsion_model(contact, method)
+    g_a = _fresh_g(contact, a, d)
+    if method == "no-slip":
+        return np.full(a.shape, np.inf)
+
+    def at_ratio(s: np.ndarray, idx: np.ndarray):
+        A_, D_, G_ = a[idx], d[idx], g_a[idx]
+        sol = model.of_stick_radius(s * A_, A_, D_, G_)
+        phi = sol.twist
+        W = 4.0 * model.dissipation(phi, sol.stick_radius, A_, D_, G_)
+        Ar = _fr.energy_ratio(W, phi, sol.torque)
+        v = _fr.criterion_value(criterion, Ar, sol.stick_radius, A_,
+                                sol.torque, model.sliding_torque(A_, D_))
+        return phi, v
+
+    n = a.size
+    if criterion == "stick_ratio":
+        return at_ratio(np.full(n, threshold), np.arange(n))[0]
+    s_grid = 1.0 - np.geomspace(1e-4, 0.999, n_grid)          # c/a from near 1 to 0.001
+    S = np.tile(s_grid, n)
+    idx = np.repeat(np.arange(n), n_grid)
+    _, v = at_ratio(S, idx)
+    v = v.reshape(n, n_grid)
+    f = v - threshold                    # energy/torque ratio increase as c/a decreases
+    hit = f >= 0
+    j = np.where(hit.any(axis=1), np.argmax(hit, axis=1), -1)
+    out = np.full(n, np.inf)
+    ok = j > 0
+    if not np.any(ok):
+        return out
+    rows = np.flatnonzero(ok)
+    lo_s, hi_s = s_grid[j[ok] - 1], s_grid[j[ok]]            # f(lo) < 0 <= f(hi)
+    f_lo, f_hi = f[rows, j[ok] - 1], f[rows, j[ok]]
+    for _ in range(n_refine):
+        s_new = lo_s + (hi_s - lo_s) * (-f_lo) / (f_hi - f_lo)
+        _, v_new = at_ratio(s_new, rows)
+        f_new = v_new - threshold
+        up = f_new >= 0
+        hi_s, f_hi = np.where(up, s_new, hi_s), np.where(up, f_new, f_hi)
+        lo_s, f_lo = np.where(up, lo_s, s_new), np.where(up, f_lo, f_new)
+    s_fin = lo_s + (hi_s - lo_s) * (-f_lo) / (f_hi - f_lo)
+    out[rows] = at_ratio(s_fin, rows)[0]
+    return out
+
+
+def fretting_map(contact, *, force: Any = None, depth: Any = None,
+                 displacement_amplitude: Any = None, twist_amplitude: Any = None,
+                 method: str | None = None, criterion: str = "energy_ratio",
+                 threshold: float | None = None, boundary: bool = True) -> FrettingMap:
+    """Implementation of :meth:`contactlab.Contact.fretting_map` (see there)."""
+    check_contact(contact, "fretting_map()")
+    mode, key, amp = _mode_and_amplitude("fretting_map()", displacement_amplitude,
+                                         twist_amplitude)
+    criterion, threshold = resolve_criterion(criterion, threshold)
+    ns, nkey = _normal_states(contact, "fretting_map()", force, depth)
+    loads = np.atleast_1d(np.asarray(ns._force, float))
+    if loads.ndim != 1 or amp.ndim > 1:
+        raise ParameterError(f"fretting_map() takes 1D arrays of {nkey} and {key}; got shapes "
+                             f"{np.shape(ns._force)} and {amp.shape}.")
+    amp = np.atleast_1d(amp)
+    if mode == "torsion":
+        method = resolve_method(contact, method)
+    elif method not in (None, "mdr", "exact"):
+        raise UnknownNameError(f"method={method!r} is invalid for a shift: leave method=None.")
+    else:
+        method = "mdr"
+    nF, nA = loads.size, amp.size
+    a1 = np.atleast_1d(np.asarray(ns._radius, float))
+    d1 = np.atleast_1d(np.asarray(ns._depth, float))
+    a, d, F_N = (np.repeat(v, nA) for v in (a1, d1, loads))
+    X = np.tile(amp, nF)
+    res = loops(contact, mode, method, a, d, F_N, X, criterion, threshold)
+    if mode == "torsion" and method == "mdr":
+        warn_mdr(contact, X, a, d, ("torque", "energy", "stick_radius"))
+    if mode == "tangential":
+        bnd = _tan.full_slip_displacement(contact.moduli.normal, contact.moduli.tangential,
+                                          contact.friction, d1)
+    elif boundary:
+        bnd = torsional_boundary(contact, method, a1, d1, loads, criterion, threshold)
+    else:
+        bnd = np.full(nF, np.nan)
+    shp = (nF, nA)
+    return FrettingMap(mode, method, criterion, threshold, loads.copy(), amp.copy(),
+                       res["regime"].reshape(shp), res["energy_ratio"].reshape(shp),
+                       res["energy"].reshape(shp), res["stick_ratio"].reshape(shp),
+                       res["peak"].reshape(shp), np.asarray(bnd, float),
+                       {"rtol": contact.rtol, "load": nkey})
+

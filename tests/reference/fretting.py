@@ -1,0 +1,61 @@
+"""Closed forms for fretting loops, derived for docs/fretting.md. Nothing here imports contactlab.
+
+Tangential (Cattaneo–Mindlin), power law f = C rⁿ, constant normal force F:
+  virgin curve Q(u) = μF[1 - (1 - u/u_t)^((n+1)/n)] for u <= u_t = μE* d/G* (Mindlin; [PH] §5);
+  Masing loop energy W = 8∫_0^{δ*} Q du - 4δ*Q*; at δ* = u_t: ∫_0^1 [1 - (1-s)^((n+1)/n)] ds =
+  (n+1)/(2n+1), so W_t = μF u_t (8(n+1)/(2n+1) - 4) = 4μF u_t/(2n+1) and Fouvry's ratio
+  A_t = W_t/(4 u_t μF) = 1/(2n+1)  (Hertz: 0.2, cone: 1/3, flat punch n → ∞: 0).
+  Gross-slip amplitude: d = κ_n C aⁿ and F = 2E*κ_n C a^(n+1) n/(n+1), so
+  u_t(F) = (μE*/G*) κ_n C [(n+1)F/(2nE*κ_n C)]^(n/(n+1)) ∝ F^(n/(n+1)).
+Hertz energy per cycle under force amplitude T (Mindlin & Deresiewicz 1953; Johnson 1985 §7.4):
+  W = (18/5) μ²F²/(aG*) [1 - (1-t)^(5/3) - (5t/6)(1 + (1-t)^(2/3))], t = T/(μF).
+Torsion, Hertz, small amplitude (derived): with dM/dφ = (16/3)G_t c³ and the small-slip expansion
+  c²/a² = 1 - φ/φ_1, φ_1 = 3μF/(16 G_t a²), M = K0(φ - 3φ²/(4φ_1)) + O(φ³), K0 = (16/3)G_t a³, so
+  W = (4/3) K0 (3/(4φ_1)) φ0³ = 256 G_t² a⁵ φ0³ / (9 μF) = 3 M0³/(16 μF G_t a⁴) (Deresiewicz 1954's
+  cube law). Torsional stick-ratio boundary (Lubkin problem): φ(c) = (3μF/(4πG_t a²))[K(k) - E(k)],
+  k² = 1 - c²/a².
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import ellipe, ellipk
+
+from tests.reference.kappa import kappa_float
+
+__all__ = ["onset_energy_ratio", "gross_slip_amplitude", "mindlin_energy_of_force_amplitude",
+           "hertz_torsion_small_energy", "hertz_twist_of_stick_ratio", "power_virgin_force"]
+
+
+def onset_energy_ratio(n: float) -> float:
+    """Fouvry's energy ratio at the onset of gross slip, power law of degree n: 1/(2n+1)."""
+    return 1.0 / (2.0 * n + 1.0)
+
+
+def gross_slip_amplitude(F, mu, E_star, G_star, C, n):
+    """Tangential gross-slip amplitude u_t(F), power law f = C rⁿ."""
+    k = kappa_float(n)
+    a = ((n + 1.0) * np.asarray(F, float) / (2.0 * n * E_star * k * C)) ** (1.0 / (n + 1.0))
+    return mu * E_star * k * C * a**n / G_star
+
+
+def power_virgin_force(u, F, mu, u_t, n):
+    """Virgin tangential force Q(u), power law (u <= u_t)."""
+    return mu * F * (1.0 - (1.0 - np.asarray(u, float) / u_t) ** ((n + 1.0) / n))
+
+
+def mindlin_energy_of_force_amplitude(T, F, mu, a, G_star):
+    """Hertz energy per cycle at tangential force amplitude T (Mindlin–Deresiewicz)."""
+    t = T / (mu * F)
+    return 18.0 / 5.0 * mu**2 * F**2 / (a * G_star) * (
+        1.0 - (1.0 - t) ** (5.0 / 3.0) - 5.0 * t / 6.0 * (1.0 + (1.0 - t) ** (2.0 / 3.0)))
+
+
+def hertz_torsion_small_energy(phi0, F, mu, a, G_t):
+    """Leading-order torsional energy per cycle (Hertz, small amplitude): 256 G_t² a⁵ φ0³/(9μF)."""
+    return 256.0 * G_t**2 * a**5 * phi0**3 / (9.0 * mu * F)
+
+
+def hertz_twist_of_stick_ratio(ratio, F, mu, a, G_t):
+    """Twist at stick ratio c/a (Hertz, exact Jäger solution; scipy's ellipk takes m = k²)."""
+    m = 1.0 - np.asarray(ratio, float) ** 2
+    return 3.0 * mu * F / (4.0 * np.pi * G_t * a**2) * (ellipk(m) - ellipe(m))
