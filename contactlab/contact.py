@@ -129,7 +129,8 @@ class Contact:
         ConvergenceError
             A bracketed solve failed (never silently).
         """
-        return _normal.normal(self, depth=depth, force=force, radius=radius, branch=branch)
+        solve = _adhesion.adhesive_normal if self.is_adhesive else _normal.normal
+        return solve(self, depth=depth, force=force, radius=radius, branch=branch)
 
     # ---- adhesion (issue 6)
     def pull_off(self, control: str = "force") -> NormalState:

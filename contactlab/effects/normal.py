@@ -1,7 +1,8 @@
 """Normal contact: the driver behind :meth:`Contact.normal` and its result, :class:`NormalState`.
 
 The kernels (force, radius and depth solves, pressure, displacement) are in
-:mod:`contactlab.physics.normal`; adhesive contacts are handed to :mod:`contactlab.effects.adhesion`.
+:mod:`contactlab.physics.normal`; adhesive contacts have their own driver in
+:mod:`contactlab.effects.adhesion`.
 Field quantities of a state are computed lazily, on request.
 """
 from __future__ import annotations
@@ -32,11 +33,9 @@ def _scalar_or_array(v: np.ndarray) -> Any:
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
            branch: str = "stable") -> "NormalState":
-    """Driver of :meth:`contactlab.Contact.normal` (see there for the parameters)."""
+    """Driver of :meth:`contactlab.Contact.normal` for non-adhesive contacts (see there for the
+    parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`)."""
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
-    if contact.is_adhesive:
-        from .adhesion import adhesive_normal
-        return adhesive_normal(contact, branch=branch, **{key: value})
     if branch != "stable":
         raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
                              "contact has a single equilibrium (use branch='stable').")
