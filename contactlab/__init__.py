@@ -12,6 +12,7 @@ from .loadpath import LoadPath
 from .materials import Elastic, Rigid, effective_moduli
 from . import registry
 from .registry import register_material, register_profile
+from .sweeps import sweep
 
 __version__ = "0.1.0"
 
@@ -20,5 +21,5 @@ __all__ = [
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
-    "register_profile", "register_material", "__version__",
+    "register_profile", "register_material", "sweep", "__version__",
 ]

@@ -35,6 +35,7 @@ ALLOWED: dict[str, set[str]] = {
     "scene": _LOW | {"registry", "symbolic", "profiles", "materials", "loadpath", "physics",
                      "foundation", "effects", "contact"},
 }
+ALLOWED["sweeps"] = ALLOWED["scene"] | {"scene"}
 ALLOWED["testing"] = set().union(*ALLOWED.values()) | set(ALLOWED) - {"testing"}
 ALLOWED["cli"] = ALLOWED["testing"] | {"testing"}
 ALLOWED["__main__"] = {"cli"}

@@ -1,0 +1,170 @@
+"""Where batches of points run: in this process, in a local process pool, on a Dask cluster.
+
+Every backend has one face: ``submit_all(batches)`` then iterate ``completed()`` for the record
+lists in the order they finish, ``roundtrip()`` for the time one empty task takes (the per-task
+overhead that batching must hide), ``cancel()`` and ``close()``. Results do not depend on the
+backend: each point is computed by :func:`~contactlab.sweeps.study.evaluate` alone.
+"""
+from __future__ import annotations
+
+import multiprocessing
+import pickle
+import statistics
+import time
+from collections.abc import Callable, Iterator
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from typing import Any
+
+from ..errors import ParameterError
+from .study import run_batch
+
+__all__ = ["Serial", "Pool", "DaskClient", "noop"]
+
+Batch = list[tuple[int, dict[str, Any]]]
+
+
+def noop() -> None:
+    """An empty task: its round trip is the backend's per-task overhead."""
+    return None
+
+
+def _median_roundtrip(submit: Callable[[], Any], n: int = 5) -> float:
+    submit()                                  # warm: start workers, import on them
+    times = []
+    for _ in range(n):
+        t0 = time.perf_counter()
+        submit()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+class Serial:
+    """Batches run one after the other in this process (``workers=1``)."""
+
+    workers = 1
+
+    def __init__(self, study: Callable[..., Any]) -> None:
+        self.study = study
+        self._batches: list[Batch] = []
+
+    def roundtrip(self) -> float:
+        return 0.0
+
+    def submit_all(self, batches: list[Batch]) -> None:
+        self._batches = list(batches)
+
+    def completed(self) -> Iterator[list[dict[str, Any]]]:
+        while self._batches:
+            yield run_batch(self.study, self._batches.pop(0))
+
+    def cancel(self) -> None:
+        self._batches = []
+
+    def close(self) -> None:
+        self.cancel()
+
+
+# ---- local process pool ------------------------------------------------------------------------
+_WORKER_STUDY: Any = None
+
+
+def _init_worker(blob: bytes) -> None:
+    global _WORKER_STUDY
+    _WORKER_STUDY = pickle.loads(blob)
+
+
+def _pool_batch(batch: Batch) -> list[dict[str, Any]]:
+    return run_batch(_WORKER_STUDY, batch)
+
+
+def _dumps(study: Any) -> bytes:
+    """The study as bytes: by cloudpickle when installed (lambdas, notebook functions), else
+    pickle (module-level functions and objects)."""
+    try:
+        import cloudpickle
+        return cloudpickle.dumps(study)
+    except ImportError:
+        pass
+    try:
+        return pickle.dumps(study)
+    except (pickle.PicklingError, AttributeError, TypeError) as err:
+        raise ParameterError(f"study={study!r} cannot be sent to worker processes: {err}. Define "
+                             "it at module level, or install cloudpickle (pip install "
+                             "'contactlab[dist]'), or run with workers=1.") from err
+
+
+def start_method() -> str:
+    """``forkserver`` where the platform has it (no fork of a threaded process), else spawn."""
+    methods = multiprocessing.get_all_start_methods()
+    return "forkserver" if "forkserver" in methods else "spawn"
+
+
+class Pool:
+    """A local pool of ``workers`` processes (the default when no client is given)."""
+
+    def __init__(self, study: Callable[..., Any], workers: int) -> None:
+        self.workers = int(workers)
+        ctx = multiprocessing.get_context(start_method())
+        self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx,
+                                         initializer=_init_worker, initargs=(_dumps(study),))
+        self._futures: set[Any] = set()
+
+    def roundtrip(self) -> float:
+        return _median_roundtrip(lambda: self._pool.submit(noop).result())
+
+    def submit_all(self, batches: list[Batch]) -> None:
+        self._futures = {self._pool.submit(_pool_batch, b) for b in batches}
+
+    def completed(self) -> Iterator[list[dict[str, Any]]]:
+        while self._futures:
+            done, self._futures = wait(self._futures, return_when=FIRST_COMPLETED)
+            for f in done:
+                yield f.result()
+
+    def cancel(self) -> None:
+        for f in self._futures:
+            f.cancel()
+        self._futures = set()
+
+    def close(self) -> None:
+        self.cancel()
+        self._pool.shutdown(wait=True, cancel_futures=True)
+
+
+class DaskClient:
+    """Batches as tasks of a ``dask.distributed.Client`` (local cluster or remote scheduler)."""
+
+    def __init__(self, study: Callable[..., Any], client: Any) -> None:
+        try:
+            from distributed import as_completed
+        except ImportError as err:
+            raise ImportError("client= needs dask.distributed: pip install "
+                              "'contactlab[dist]'") from err
+        if not (hasattr(client, "submit") and hasattr(client, "nthreads")):
+            raise ParameterError(f"client={client!r} is invalid: give a "
+                                 "dask.distributed.Client (or None for a local process pool).")
+        self.client = client
+        self.study = study
+        self._as_completed = as_completed
+        self._futures: list[Any] = []
+        self.workers = max(1, sum(client.nthreads().values()))
+
+    def roundtrip(self) -> float:
+        return _median_roundtrip(lambda: self.client.submit(noop, pure=False).result())
+
+    def submit_all(self, batches: list[Batch]) -> None:
+        self._futures = [self.client.submit(run_batch, self.study, b, pure=False)
+                         for b in batches]
+
+    def completed(self) -> Iterator[list[dict[str, Any]]]:
+        for f in self._as_completed(self._futures):
+            yield f.result()
+        self._futures = []
+
+    def cancel(self) -> None:
+        if self._futures:
+            self.client.cancel(self._futures)
+        self._futures = []
+
+    def close(self) -> None:
+        self.cancel()

@@ -1,0 +1,193 @@
+"""Sweep grids: a dict of value lists (full product) or a table of rows.
+
+:func:`make_grid` turns either form into a :class:`Grid`: the parameter names, one mapping per
+point (in a fixed order: the product runs the last key fastest, like :func:`itertools.product`
+and C-ordered arrays) and, for a full product, the axes (so the table can become an xarray
+Dataset). :func:`parse_axis` reads the command-line form ``key=a:b:n[:log]``.
+"""
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["Grid", "make_grid", "parse_axis"]
+
+#: column names a sweep table reserves for itself
+RESERVED = ("point", "error", "message", "warnings")
+
+
+@dataclass(frozen=True)
+class Grid:
+    """The points of a sweep.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Parameter names (scene key paths or a study function's keyword names), in column order.
+    points : tuple of dict
+        One ``{name: value}`` per point; point ``i`` is row ``i`` of the result table.
+    axes : dict or None
+        ``{name: values}`` when the grid is the full product of these axes (dict-of-lists input),
+        None for a table of rows.
+    """
+
+    names: tuple[str, ...]
+    points: tuple[dict[str, Any], ...]
+    axes: dict[str, list[Any]] | None
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def fingerprint(self) -> str:
+        """A hash of the names and every point's values (exact: floats by their repr)."""
+        text = json.dumps([list(self.names), [[repr(p[k]) for k in self.names]
+                                              for p in self.points]])
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _plain(value: Any, where: str) -> Any:
+    """A Python scalar (numbers, strings, bools) from a grid entry."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, (bool, int, float, str)):
+        return value
+    raise ParameterError(f"{where}={value!r} is invalid: grid values must be numbers or strings "
+                         f"(got {type(value).__name__}).")
+
+
+def _values(key: str, values: Any) -> list[Any]:
+    if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) \
+            and not hasattr(values, "__iter__"):
+        raise ParameterError(f"grid[{key!r}]={values!r} is invalid: give a list of values, "
+                             f"e.g. [{values!r}].")
+    arr = list(np.asarray(values).ravel()) if isinstance(values, np.ndarray) else list(values)
+    if not arr:
+        raise ParameterError(f"grid[{key!r}] is empty: give at least one value.")
+    return [_plain(v, f"grid[{key!r}][{i}]") for i, v in enumerate(arr)]
+
+
+def _check_name(name: Any) -> str:
+    if not isinstance(name, str) or not name:
+        raise ParameterError(f"grid key {name!r} is invalid: keys must be non-empty strings.")
+    if name in RESERVED:
+        raise ParameterError(f"grid key {name!r} is invalid: {list(RESERVED)} are the sweep "
+                             "table's own columns.")
+    return name
+
+
+def make_grid(grid: Any) -> Grid:
+    """The :class:`Grid` of a dict of value lists or of a table of rows.
+
+    Parameters
+    ----------
+    grid : dict of lists, pandas.DataFrame or list of dicts
+        ``{"interface.friction": [0.1, 0.2], "load_path[1].sinusoid.twist": [1e-3, 2e-3]}``
+        sweeps the full product (4 points, the last key running fastest); a DataFrame or a list
+        of dicts with the same keys sweeps its rows, in order.
+
+    Raises
+    ------
+    ParameterError
+        An empty grid or axis, a value that is not a number or string, rows with different keys.
+
+    Examples
+    --------
+    >>> g = make_grid({"a": [1, 2], "b": [0.5, 1.5]})
+    >>> len(g), g.points[1]
+    (4, {'a': 1, 'b': 1.5})
+    """
+    if isinstance(grid, Grid):
+        return grid
+    if isinstance(grid, Mapping):
+        if not grid:
+            raise ParameterError("grid={} is empty: give at least one key with a list of values.")
+        names = tuple(_check_name(k) for k in grid)
+        axes = {k: _values(k, grid[k]) for k in names}
+        points = tuple(dict(zip(names, combo)) for combo in itertools.product(*axes.values()))
+        return Grid(names, points, axes)
+    if hasattr(grid, "columns") and hasattr(grid, "to_dict"):          # a pandas DataFrame
+        rows = grid.to_dict("records")
+        names = tuple(_check_name(k) for k in grid.columns)
+    elif isinstance(grid, Sequence) and not isinstance(grid, (str, bytes)):
+        rows = list(grid)
+        if rows and not all(isinstance(r, Mapping) for r in rows):
+            raise ParameterError("grid rows must be dicts {name: value}, e.g. "
+                                 "[{'interface.friction': 0.1}, {'interface.friction': 0.2}].")
+        names = tuple(_check_name(k) for k in rows[0]) if rows else ()
+    else:
+        raise ParameterError(f"grid of type {type(grid).__name__} is invalid: give a dict of "
+                             "value lists, a pandas DataFrame or a list of dicts.")
+    if not rows:
+        raise ParameterError("grid has no rows: give at least one point.")
+    points = []
+    for i, row in enumerate(rows):
+        if set(row) != set(names):
+            raise ParameterError(f"grid row {i} has keys {sorted(row)}: every row needs exactly "
+                                 f"the keys of row 0, {sorted(names)}.")
+        points.append({k: _plain(row[k], f"grid row {i} [{k!r}]") for k in names})
+    return Grid(names, tuple(points), None)
+
+
+def _number_or_text(text: str) -> Any:
+    t = text.strip()
+    try:
+        v = float(t)
+    except ValueError:
+        return t
+    return int(v) if t.lstrip("+-").isdigit() else v
+
+
+def parse_axis(spec: str) -> tuple[str, list[Any]]:
+    """One grid axis from its command-line form.
+
+    Forms: ``key=a:b:n`` (``n`` values evenly spaced from ``a`` to ``b``), ``key=a:b:n:log``
+    (evenly spaced in the logarithm, ``a, b > 0``), ``key=v1,v2,...`` (the values as given;
+    numbers or text such as ``"10 um"`` or ``exact``).
+
+    Raises
+    ------
+    ParameterError
+        Not ``key=values``, ``n`` not a positive integer, a log axis with a bound <= 0.
+
+    Examples
+    --------
+    >>> parse_axis("interface.friction=0.1:0.3:3")
+    ('interface.friction', [0.1, 0.2, 0.3])
+    >>> parse_axis("x=1e-3:1e-1:3:log")[1]
+    [0.001, 0.01, 0.1]
+    """
+    key, sep, rhs = spec.partition("=")
+    key = key.strip()
+    if not sep or not key or not rhs.strip():
+        raise ParameterError(f"--grid {spec!r} is invalid: expected KEY=A:B:N[:log] or "
+                             "KEY=V1,V2,..., e.g. interface.friction=0.1:0.5:9.")
+    if ":" not in rhs:
+        return key, [_number_or_text(v) for v in rhs.split(",") if v.strip()]
+    parts = rhs.split(":")
+    log = len(parts) == 4 and parts[3].strip().lower() == "log"
+    if len(parts) not in (3, 4) or (len(parts) == 4 and not log):
+        raise ParameterError(f"--grid {spec!r} is invalid: a range is A:B:N or A:B:N:log.")
+    try:
+        a, b = float(parts[0]), float(parts[1])
+        n = int(parts[2])
+    except ValueError as err:
+        raise ParameterError(f"--grid {spec!r} is invalid: A and B must be numbers and N an "
+                             "integer, e.g. 0.1:0.5:9.") from err
+    if n < 1 or not (math.isfinite(a) and math.isfinite(b)):
+        raise ParameterError(f"--grid {spec!r} is invalid: N={n} must be >= 1 and A, B finite.")
+    if log:
+        if a <= 0 or b <= 0:
+            raise ParameterError(f"--grid {spec!r} is invalid: a log axis needs A > 0 and B > 0.")
+        vals = np.geomspace(a, b, n)
+    else:
+        vals = np.linspace(a, b, n)
+    return key, [float(v) for v in vals]
