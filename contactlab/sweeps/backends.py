@@ -13,6 +13,7 @@ import statistics
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
 from ..errors import ParameterError
@@ -110,7 +111,18 @@ class Pool:
         self._futures: set[Any] = set()
 
     def roundtrip(self) -> float:
-        return _median_roundtrip(lambda: self._pool.submit(noop).result())
+        return _median_roundtrip(lambda: self._result(self._pool.submit(noop)))
+
+    @staticmethod
+    def _result(future: Any) -> Any:
+        try:
+            return future.result()
+        except BrokenProcessPool as err:
+            raise BrokenProcessPool(
+                f"a sweep worker process died ({err}). A script that runs a sweep on several "
+                "processes must start it under `if __name__ == \"__main__\":` (worker processes "
+                "import the main module); a study that crashes the interpreter (out of memory, a "
+                "native crash) kills its worker too.") from err
 
     def submit_all(self, batches: list[Batch]) -> None:
         self._futures = {self._pool.submit(_pool_batch, b) for b in batches}
@@ -119,7 +131,7 @@ class Pool:
         while self._futures:
             done, self._futures = wait(self._futures, return_when=FIRST_COMPLETED)
             for f in done:
-                yield f.result()
+                yield self._result(f)
 
     def cancel(self) -> None:
         for f in self._futures:

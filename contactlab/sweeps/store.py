@@ -125,7 +125,7 @@ class Store:
             rows.append(row)
         df = self.pd.DataFrame(rows)
         for col in ("error", "message", "warnings"):
-            df[col] = df[col].astype(object)
+            df[col] = self.pd.Series([r[col] for r in records], index=df.index, dtype=object)
         tmp = self.path / f".{name}.tmp"
         df.to_parquet(tmp, index=False)
         os.replace(tmp, self.path / name)

@@ -45,8 +45,8 @@ def assemble(grid: Grid, records: dict[int, dict[str, Any]]) -> Any:
         rows.append(row)
     columns = ["point", *grid.names, *outputs, "error", "message", "warnings"]
     df = pd.DataFrame(rows, columns=columns)
-    for col in ("error", "message", "warnings"):
-        df[col] = df[col].astype(object)
+    for col in ("error", "message", "warnings"):    # None (not NaN) where nothing happened
+        df[col] = pd.Series([records[i][col] for i in order], index=df.index, dtype=object)
     df.attrs["sweep"] = {"axes": grid.axes, "names": list(grid.names)}
     return df
 

@@ -126,6 +126,8 @@ def _graph() -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {m: set() for m in names}
     for m, path in names.items():
         for _, mod in _imports(path):
+            if mod == "contactlab.__version__":       # data, not a dependency on the face
+                continue
             while mod and mod not in names:           # contactlab.a.b.NAME -> contactlab.a.b
                 mod = mod.rpartition(".")[0]
             if mod and mod != m:

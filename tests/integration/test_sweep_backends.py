@@ -1,0 +1,73 @@
+"""The same sweep serially, in a local process pool and on a real Dask LocalCluster (2 worker
+processes started here): bit-identical tables, failures and warnings included."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pd = pytest.importorskip("pandas")
+
+import contactlab
+from contactlab.scene import Scene
+
+from tests.unit.scene.helpers import twist_scene
+
+#: torsional loops: preload, then two twist cycles; exact and MDR torsion models
+LOOPS = twist_scene({"sinusoid": {"twist": "1 mrad", "cycles": 2, "steps_per_cycle": 40}},
+                    outputs={"method": "exact",
+                             "series": ["twist", "torque", "stick_radius", "dissipated_energy"]})
+GRID = {"interface.friction": [0.1, -0.2, 0.3],                 # -0.2: recorded as an error
+        "load_path[1].sinusoid.twist": [2e-4, 3e-3],
+        "outputs.method": ["exact", "mdr"]}                   # mdr at 3 mrad: a ValidityWarning
+
+
+def loop_energy(amplitude, friction):
+    """A function study: dissipated energy of one torsional loop per unit friction."""
+    contact = contactlab.Contact(contactlab.profiles.Paraboloid(R=0.01),
+                                 materials=(contactlab.Elastic(E=210e9, nu=0.3),) * 2,
+                                 friction=friction)
+    twist = amplitude * np.sin(np.linspace(0.0, 2 * np.pi, 41))
+    h = contact.twist_history(twist=twist, force=100.0, method="exact")
+    return {"energy_per_mu": h.dissipated_energy[-1] / friction, "torque": h.torque}
+
+
+FUNCTION_GRID = {"amplitude": [1e-4, 5e-4, 2e-3], "friction": [0.1, 0.25, 0.0]}
+
+
+def _same(a, b):
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    for col in a.columns:                                      # floats bit for bit (NaN too)
+        if a[col].dtype == float:
+            assert a[col].to_numpy().tobytes() == b[col].to_numpy().tobytes(), col
+
+
+@pytest.fixture(scope="module")
+def serial():
+    return (contactlab.sweep(Scene(LOOPS), GRID, workers=1),
+            contactlab.sweep(loop_energy, FUNCTION_GRID, workers=1))
+
+
+def test_serial_table_has_failures_and_warnings(serial):
+    scene, func = serial
+    assert (scene["error"] == "SceneError").sum() == 4 and scene["error"].notna().sum() == 4
+    warned = scene["warnings"].notna()
+    assert warned.any() and scene.loc[warned, "outputs.method"].eq("mdr").all()
+    assert all("ValidityWarning" in w for w in scene.loc[warned, "warnings"])
+    assert func["error"].tolist().count("ParameterError") == 3          # friction 0: invalid
+
+
+@pytest.mark.slow
+def test_local_process_pool_is_bit_identical(serial):
+    _same(contactlab.sweep(Scene(LOOPS), GRID, workers=2, batch_size=2), serial[0])
+    _same(contactlab.sweep(loop_energy, FUNCTION_GRID, workers=2, batch_size=1), serial[1])
+
+
+@pytest.mark.slow
+def test_dask_local_cluster_is_bit_identical(serial):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, death_timeout=60) as cluster, \
+            distributed.Client(cluster, timeout="60s") as client:
+        assert len(client.scheduler_info(n_workers=-1)["workers"]) == 2
+        _same(contactlab.sweep(Scene(LOOPS), GRID, client=client, batch_size=3), serial[0])
+        _same(contactlab.sweep(loop_energy, FUNCTION_GRID, client=client), serial[1])

@@ -1,0 +1,109 @@
+"""One point: scene overrides by key path, outputs as scalars, errors and warnings recorded."""
+from __future__ import annotations
+
+import math
+import pickle
+import warnings
+
+import numpy as np
+import pytest
+
+from contactlab.errors import ParameterError, ValidityWarning
+from contactlab.scene import Scene
+from contactlab.sweeps import SceneStudy, scalars
+from contactlab.sweeps.study import evaluate, study_id
+
+from tests.reference.hertz import effective_modulus, radius_of_force
+from tests.tolerances import CLOSED_FORM
+from tests.unit.scene.helpers import base, twist_scene
+
+
+def test_scalars_of_a_mapping():
+    out = scalars({"torque": np.array([0.0, 2.0, 1.0]), "mu": np.float32(0.5), "n": 3,
+                   "ok": True, "label": "exact", "missing": None, "one": [4.0]})
+    assert out == {"torque": 1.0, "torque_min": 0.0, "torque_max": 2.0, "mu": 0.5, "n": 3.0,
+                   "ok": 1.0, "label": "exact", "missing": out["missing"], "one": 4.0}
+    assert math.isnan(out["missing"]) and all(type(v) in (float, str) for v in out.values())
+
+
+@pytest.mark.parametrize("result, match", [({"x": object()}, "'x'=.* is invalid"),
+                                           ({"x": ["a", "b"]}, "'x' is not an array"),
+                                           (3.0, "result of type float")])
+def test_scalars_rejects_what_is_not_a_number(result, match):
+    with pytest.raises(ParameterError, match=match):
+        scalars(result)
+
+
+def test_scene_study_writes_values_by_key_path_hertz():
+    """The swept preload reaches the contact: the final radius is Hertz's a(F)."""
+    study = SceneStudy(base())
+    E_star = effective_modulus(210e9, 0.3, 210e9, 0.3)
+    for F in (10.0, 250.0):
+        out = study(**{"load_path[0].ramp.force": F})
+        assert out["force"] == pytest.approx(F, rel=CLOSED_FORM)
+        assert out["radius"] == pytest.approx(float(radius_of_force(F, 0.01, E_star)),
+                                              rel=CLOSED_FORM)
+    assert study(**{"load_path[0].ramp.force": "50 N"})["force"] == pytest.approx(50.0, rel=CLOSED_FORM)
+
+
+def test_scene_study_pickles_and_leaves_its_scene_alone():
+    study = SceneStudy(Scene(twist_scene()))
+    again = pickle.loads(pickle.dumps(study))
+    point = {"interface.friction": 0.3}
+    assert again(**point) == study(**point)
+    assert study.data == Scene(twist_scene()).to_dict()
+    assert study_id(again) == study_id(study) != study_id(SceneStudy(Scene(base())))
+
+
+def test_scene_study_from_file_keeps_its_folder(tmp_path):
+    (tmp_path / "s.toml").write_text(Scene(base()).to_toml())
+    study = SceneStudy(tmp_path / "s.toml")
+    assert study.base_dir == str(tmp_path.resolve())
+
+
+@pytest.mark.parametrize("key, match", [
+    ("interface.fricton", "grid key 'interface.fricton' is not a scene key.*did you mean 'friction'"),
+    ("load_path[1].sinusoid.twst", "did you mean 'twist'"),
+    ("load_path[7].ramp.force", "load_path has 2 entries"),
+])
+def test_check_rejects_keys_that_never_fit(key, match):
+    with pytest.raises(ParameterError, match=match):
+        SceneStudy(twist_scene()).check({key: 0.1})
+
+
+def test_check_lets_invalid_values_through():
+    SceneStudy(twist_scene()).check({"interface.friction": -0.1})     # recorded per point later
+
+
+def test_study_that_is_no_study():
+    with pytest.raises(ParameterError, match="study=42 is invalid"):
+        SceneStudy(42)
+
+
+def _warns_twice(x):
+    for _ in range(2):
+        warnings.warn("outside", ValidityWarning)
+    warnings.warn("other", UserWarning)
+    return {"y": 2 * x}
+
+
+def _fails(x):
+    raise ParameterError(f"x={x} is invalid: must be > 0.")
+
+
+def test_evaluate_records_outputs_errors_and_each_warning_once():
+    ok = evaluate(_warns_twice, 3, {"x": 1.5})
+    assert ok["point"] == 3 and ok["outputs"] == {"y": 3.0} and ok["error"] is None
+    assert ok["warnings"] == "ValidityWarning: outside\nUserWarning: other"
+    # the same again: warnings are recorded per point, not once per process
+    assert evaluate(_warns_twice, 4, {"x": 1.5})["warnings"] == ok["warnings"]
+    bad = evaluate(_fails, 0, {"x": -1})
+    assert bad["outputs"] == {} and bad["error"] == "ParameterError"
+    assert bad["message"] == "x=-1 is invalid: must be > 0." and bad["warnings"] is None
+
+
+def test_evaluate_lets_keyboard_interrupt_through():
+    def stop(x):
+        raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        evaluate(stop, 0, {"x": 1})
