@@ -1,7 +1,8 @@
 """The ``contactlab`` command line.
 
 Subcommands: ``run SCENE``, ``validate SCENE``, ``plan SCENE``, ``demo``, ``formulas`` (closed-form
-formulas of a registered profile as text, LaTeX or Python); ``--version``.
+formulas of a registered profile as text, LaTeX or Python), ``sweep SCENE --grid ...`` (a
+parameter study, see :func:`contactlab.sweep`); ``--version``.
 Exit codes: 0 ok, 2 invalid scene (or usage), 1 numerical failure. ``--json`` prints one JSON
 document on stdout for machines; messages for humans otherwise (errors on stderr).
 """
@@ -169,6 +170,21 @@ def _demo_tables(scene: Any, result: Any) -> str:
     return "\n".join(lines)
 
 
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    from .sweeps.command import sweep_command
+    try:
+        payload, text = sweep_command(args.scene, args.grid, args.output, scheduler=args.scheduler,
+                                      workers=args.workers, progress=not args.json,
+                                      on_error=args.on_error)
+    except ImportError as err:           # a missing optional extra (pandas, pyarrow, dask)
+        _emit(args, {"ok": False, "exit": 1, "error": str(err), "kind": "ImportError"}, "")
+        if not args.json:
+            print(f"contactlab: {err}", file=sys.stderr)
+        return 1
+    _emit(args, payload, text)
+    return 0
+
+
 def _parse_assignments(items: Sequence[str], what: str) -> dict[str, float]:
     from .errors import ParameterError
     out: dict[str, float] = {}
@@ -245,6 +261,17 @@ def _parser() -> argparse.ArgumentParser:
     add("plan", _cmd_plan, "show which effects a scene computes, how and why")
     d = add("demo", _cmd_demo, "run the embedded demo scene", scene=False)
     d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot")
+    sw = add("sweep", _cmd_sweep, "run a scene over a grid of values (serial, all cores or Dask)")
+    sw.add_argument("--grid", action="append", default=[], metavar="KEY=A:B:N[:log]",
+                    help="an axis (repeatable): scene key path = range or comma list, e.g. "
+                    "interface.friction=0.1:0.5:9 or load_path[1].sinusoid.twist=1e-4:1e-2:50:log")
+    sw.add_argument("-o", "--output", metavar="DIR",
+                    help="write DIR/sweep.csv; DIR/sweep.parquet checkpoints (a rerun resumes)")
+    where = sw.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="URL", help="Dask scheduler, e.g. tcp://host:8786")
+    where.add_argument("--workers", type=int, metavar="N", help="local processes (1: serial)")
+    sw.add_argument("--on-error", choices=("record", "raise"), default="record",
+                    help="record failed points (default) or stop at the first")
     p_form = sub.add_parser("formulas", help="print the closed-form formulas of a profile/contact",
                             description="Closed-form MDR formulas (normal, torsion, JKR) of a "
                             "registered profile, as text, a LaTeX document or Python source.")

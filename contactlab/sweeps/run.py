@@ -218,6 +218,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
             st.flush()
     if st is not None:
         st.compact()
+    stats.setdefault("backend", "Serial")     # every point ran here (calibration or resumed)
     stats["seconds"] = time.perf_counter() - t_start
     table = assemble(g, records)
     table.attrs["sweep"]["stats"] = stats
