@@ -11,7 +11,10 @@ To implement a subclass
    ``_g_integral_closed_form(a)`` (∫_0^a g dx), ``_g_inverse_closed_form(d)``,
    ``_pressure_shape_closed_form(r, a)`` (∫_r^a g'(x)/sqrt(x²-r²) dx),
    ``_abel_g_closed_form(r, a)`` ((2/π)∫_0^min(r,a) g(x)/sqrt(r²-x²) dx).
-4. Declare domain features when present: ``max_radius`` (largest admissible contact radius),
+4. Optional, for ``formulas()``: the sympy shorthands ``_height_sympy(r, **symbols)``,
+   ``_g_sympy(x, **symbols)``, ``_g_integral_sympy(a, **symbols)``, or the whole form by
+   overriding ``_sympy_form()`` (as the built-ins do); see :meth:`Profile._sympy_form`.
+5. Declare domain features when present: ``max_radius`` (largest admissible contact radius),
    ``flat_radius`` (g = 0 for |x| < it), ``wall_radius`` (the contact radius cannot exceed it, as
    for a flat punch), ``breakpoints`` (radii where f' jumps; quadratures split there).
 
@@ -32,6 +35,7 @@ from ..errors import (OutsideTheoryError, ParameterError, PluginError,
 from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root
 from ..params import Param, ParamIdentity, as_float_array
+from ..symbolic.form import SympyForm, form_from_hooks
 
 __all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
 
@@ -430,6 +434,28 @@ class Profile(ParamIdentity, ABC):
         return (2 / np.pi * val).reshape(r.shape)
 
     # ------------------------------------------------------------------ symbolic
+    def _sympy_form(self) -> SympyForm:
+        """Hook: the closed forms :meth:`formulas` derives every named formula from.
+
+        The one road to ``formulas()`` for built-in and plugin profiles alike. The default builds
+        the form from the shorthands ``_height_sympy(r, **symbols)``, ``_g_sympy(x, **symbols)``,
+        ``_g_integral_sympy(a, **symbols)`` (one positive symbol per parameter, named by
+        ``Param.symbol``, passed by ``Param.name``) or, without them, from :meth:`power_terms`.
+        Override it to declare more (a flat centre, a wall, piecewise forms, ``∫x g``, the
+        inverse ``a(d)``, the pressure shape); see :class:`~contactlab.symbolic.form.SympyForm`.
+        """
+        values = {}
+        for p in self.params:
+            try:
+                values[p.name] = float(getattr(self, p.name))
+            except (TypeError, ValueError, AttributeError):
+                pass
+        return form_from_hooks(
+            self.params, values, height_sympy=getattr(self, "_height_sympy", None),
+            g_sympy=getattr(self, "_g_sympy", None),
+            g_integral_sympy=getattr(self, "_g_integral_sympy", None),
+            power_terms=self.power_terms, owner=type(self).__name__)
+
     def formulas(self) -> dict[str, Any]:
         """Named sympy expressions for this profile (``height``, ``g``, …); see ``symbolic``."""
         from ..symbolic.formulas import profile_formulas

@@ -7,6 +7,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Param
+from ..symbolic.form import SympyForm, scaled_form, sum_form
 from .base import Profile
 
 __all__ = ["Sum", "Scaled"]
@@ -64,6 +65,10 @@ class Sum(Profile):
     def power_terms(self) -> list[tuple[float, float]] | None:
         parts = [t.power_terms() for t in self.terms]
         return None if any(p is None for p in parts) else [ct for p in parts for ct in p]
+
+    def _sympy_form(self) -> SympyForm:
+        # the MDR is linear: every term brings its own form
+        return sum_form([t._sympy_form() for t in self.terms])
 
     def _height(self, r: np.ndarray) -> np.ndarray:
         return sum(t._height(r) for t in self.terms)
@@ -134,6 +139,9 @@ class Scaled(Profile):
     def power_terms(self) -> list[tuple[float, float]] | None:
         p = self.base.power_terms()
         return None if p is None else [(self.factor * c, n) for c, n in p]
+
+    def _sympy_form(self) -> SympyForm:
+        return scaled_form(self.base._sympy_form(), self.factor)
 
     def _height(self, r: np.ndarray) -> np.ndarray:
         return self.factor * self.base._height(r)

@@ -19,6 +19,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..params import Param
+from ..symbolic.form import SympyForm, symbol
 from .base import Profile
 
 __all__ = ["FlatPunch", "TruncatedParaboloid", "TruncatedCone"]
@@ -79,6 +80,13 @@ class FlatPunch(Profile):
 
     def available_strategies(self) -> tuple[str, ...]:
         return ("closed_form",)
+
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        b = symbol("b")
+        return SympyForm(values={b: self.radius}, wall_radius=b,
+                         height=lambda r: sp.Piecewise((0, r <= b), (sp.oo, True)),
+                         reason="the contact radius of a flat punch is its radius b at every depth")
 
 
 class _FlatCentred(Profile):
@@ -141,6 +149,25 @@ class TruncatedParaboloid(_FlatCentred):
         b = self.radius
         return np.sqrt(0.5 * (b**2 + np.sqrt(b**4 + 4 * self.R**2 * d**2)))
 
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        b, R = symbol("b"), symbol("R")
+
+        def xg_integral(a):
+            root = sp.sqrt(a**2 - b**2)
+            return (a * (2 * a**2 - b**2) * root / 8 - b**4 / 8 * sp.acosh(a / b)) / R
+        return SympyForm(
+            values={b: self.radius, R: self.R}, flat_radius=b,
+            height=lambda r: (r**2 - b**2) / (2 * R),
+            height_piecewise=lambda r: sp.Max(r**2 - b**2, 0) / (2 * R),
+            g=lambda x: x * sp.sqrt(x**2 - b**2) / R,
+            g_piecewise=lambda x: x * sp.sqrt(sp.Max(x**2 - b**2, 0)) / R,
+            g_integral=lambda a: (a**2 - b**2) ** sp.Rational(3, 2) / (3 * R),
+            xg_integral=xg_integral,
+            radius_of_depth=lambda d: sp.sqrt((b**2 + sp.sqrt(b**4 + 4 * R**2 * d**2)) / 2),
+            reason="the pressure of a truncated paraboloid has no closed form here "
+                   "(elliptic integrals; physics.md §3: quadrature)")
+
 
 class TruncatedCone(_FlatCentred):
     """Flat punch of radius ``radius`` with a conical edge of slope ``slope``.
@@ -181,3 +208,21 @@ class TruncatedCone(_FlatCentred):
         root = np.sqrt(np.maximum((a - b) * (a + b), 0.0))
         val = self.slope * (0.5 * a**2 * np.arctan2(root, b) - 0.5 * b * root)
         return np.where(a > b, val, 0.0)
+
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        b, s = symbol("b"), symbol("s")
+
+        def xg_integral(a):
+            return s * (a**3 / 3 * sp.acos(b / a)
+                        - b / 6 * (a * sp.sqrt(a**2 - b**2) + b**2 * sp.acosh(a / b)))
+        return SympyForm(
+            values={b: self.radius, s: self.slope}, flat_radius=b,
+            height=lambda r: s * (r - b),
+            height_piecewise=lambda r: s * sp.Max(r - b, 0),
+            g=lambda x: s * x * sp.acos(b / x),
+            g_piecewise=lambda x: s * x * sp.acos(sp.Min(b / x, 1)),
+            g_integral=lambda a: s * (a**2 / 2 * sp.acos(b / a) - b / 2 * sp.sqrt(a**2 - b**2)),
+            xg_integral=xg_integral,
+            reason="a truncated cone has no closed-form inverse of d = s a arccos(b/a) and no "
+                   "closed-form pressure (physics.md §3: quadrature)")

@@ -15,6 +15,7 @@ from scipy.special import hyp2f1
 
 from ..errors import ParameterError
 from ..params import Param
+from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
 from .base import Profile
 
@@ -151,6 +152,11 @@ class PowerLaw(_PowerSum):
     def power_terms(self) -> list[tuple[float, float]]:
         return [(self.c, self.n)]
 
+    def _sympy_form(self) -> SympyForm:
+        # the exponent stays a number: it fixes the form of every formula
+        c = symbol("c")
+        return power_form([(c, rational(self.n))], {c: self.c})
+
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         return (d / (kappa(self.n) * self.c)) ** (1.0 / self.n)
 
@@ -179,6 +185,11 @@ class Paraboloid(PowerLaw):
         self.R = self.params[0].check(R)
         self.c = 1.0 / (2.0 * self.R)
         self.n = 2.0
+
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        R = symbol("R")
+        return power_form([(1 / (2 * R), sp.Integer(2))], {R: self.R})
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
         return x**2 / self.R
@@ -213,6 +224,11 @@ class Cone(PowerLaw):
         self.slope = self.params[0].check(slope)
         self.c = self.slope
         self.n = 1.0
+
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        s = symbol("s")
+        return power_form([(s, sp.Integer(1))], {s: self.slope})
 
     @classmethod
     def from_half_angle(cls, half_angle: float) -> "Cone":
@@ -267,3 +283,8 @@ class Polynomial(_PowerSum):
 
     def power_terms(self) -> list[tuple[float, float]]:
         return list(self.terms)
+
+    def _sympy_form(self) -> SympyForm:
+        cs = coefficient_symbols(len(self.terms))
+        return power_form([(ci, rational(n)) for ci, (_, n) in zip(cs, self.terms)],
+                          {ci: cv for ci, (cv, _) in zip(cs, self.terms)})

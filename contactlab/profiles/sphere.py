@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import OutsideTheoryError
 from ..params import Param
+from ..symbolic.form import SympyForm, symbol
 from .base import Profile
 
 __all__ = ["Sphere"]
@@ -82,6 +83,21 @@ class Sphere(Profile):
             ser += term / ((2 * k - 1) * (2 * k + 1))
         out[small] = R**2 * ser
         return out
+
+    def _sympy_form(self) -> SympyForm:
+        import sympy as sp
+        from sympy.codegen.cfunctions import log1p   # accurate for a << R (numpy.log1p)
+        R = symbol("R")
+
+        def xg_integral(a):
+            return (a**3 / 3 * sp.atanh(a / R) + R * a**2 / 6
+                    + R**3 / 6 * log1p(-a**2 / R**2))
+        return SympyForm(values={R: self.R}, height=lambda r: R - sp.sqrt(R**2 - r**2),
+                         g=lambda x: x * sp.atanh(x / R),
+                         g_integral=lambda a: (a**2 - R**2) / 2 * sp.atanh(a / R) + R * a / 2,
+                         xg_integral=xg_integral,
+                         reason="the exact sphere has no closed-form inverse of d = a artanh(a/R) "
+                                "and no closed-form pressure (physics.md §3: quadrature)")
 
     def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray:
         self._guard(x, "x")

@@ -32,6 +32,7 @@ import numpy as np
 
 from ..errors import OutsideTheoryError, ParameterError, TabulatedDataError
 from ..params import Param
+from ..symbolic.form import SympyForm
 from .base import Profile
 
 __all__ = ["Tabulated"]
@@ -177,6 +178,11 @@ class Tabulated(Profile):
 
     def _initial_bracket(self) -> float:
         return float(self.r[-1]) * (1 - 1e-12)
+
+    # ------------------------------------------------------------------ symbolic
+    def _sympy_form(self) -> SympyForm:
+        return SympyForm(reason="a tabulated (measured) profile has no symbolic form; use the "
+                                "numeric routes (contact.normal(...))")
 
     # ------------------------------------------------------------------ geometry
     def _guard(self, r: np.ndarray, name: str) -> None:
