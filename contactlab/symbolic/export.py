@@ -241,7 +241,10 @@ def formulas_command(profile: Any, materials: Any = None, fmt: str = "text", *,
     moduli = None
     if materials is not None:
         first, second = materials
-        moduli = first.pair(second)         # Material.pair: the effective moduli of the two
+        if not callable(getattr(first, "pair", None)):     # Material.pair: the effective moduli
+            raise ParameterError(f"materials[0]={first!r} is invalid: expected a Material "
+                                 "(e.g. contactlab.Elastic(E=..., nu=...) or Rigid()).")
+        moduli = first.pair(second)
     fs = contact_formulas(profile, moduli, friction=friction, work_of_adhesion=work_of_adhesion)
     if title is not None:
         fs = FormulaSet(dict(fs), fs.numbers, fs.unavailable, title)
