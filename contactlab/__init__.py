@@ -10,6 +10,7 @@ from .effects import (AdhesionCycle, AdhesiveNormalState, NormalState, PathResul
                       TangentialState, TorsionState, TwistHistory, ViscoelasticHistory)
 from .loadpath import LoadPath
 from .materials import Elastic, Rigid, effective_moduli
+from .params import memory_budget, set_memory_budget
 from . import registry
 from .registry import register_material, register_profile
 from .sweeps import sweep
@@ -21,5 +22,6 @@ __all__ = [
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
-    "register_profile", "register_material", "sweep", "__version__",
+    "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
+    "__version__",
 ]

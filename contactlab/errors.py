@@ -9,6 +9,7 @@ __all__ = [
     "ContactlabError",
     "ParameterError",
     "TabulatedDataError",
+    "MemoryBudgetError",
     "OutsideTheoryError",
     "UnknownNameError",
     "PluginError",
@@ -35,6 +36,14 @@ class ParameterError(ContactlabError, ValueError):
 
 class TabulatedDataError(ParameterError):
     """Tabulated (measured) data are unusable: unsorted, duplicate, non-finite, too short."""
+
+
+class MemoryBudgetError(ParameterError):
+    """A request would allocate more memory than the budget allows (steps × springs × series).
+
+    Raise the budget with :func:`contactlab.set_memory_budget` or the environment variable
+    ``CONTACTLAB_MEMORY_BUDGET`` (bytes; suffixes ``K``, ``M``, ``G`` allowed).
+    """
 
 
 class OutsideTheoryError(ContactlabError, ValueError):

@@ -12,10 +12,15 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ParameterError
+import os
+import threading
+
+from .errors import MemoryBudgetError, ParameterError
 
 __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
-           "exactly_one", "scalar_or_array"]
+           "as_real", "broadcast_inputs", "check_count", "exactly_one", "scalar_or_array",
+           "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
+           "MEMORY_BUDGET_ENV"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -54,13 +59,8 @@ class Param:
     def check(self, value: object) -> float:
         """Return ``value`` as a float after checking it lies in the domain."""
         allowed, ok = _DOMAINS[self.domain]
-        try:
-            v = float(value)  # type: ignore[arg-type]
-        except (TypeError, ValueError) as err:
-            raise ParameterError(
-                f"{self.name}={value!r} is invalid: {self.description or self.name} must be a real "
-                f"number {allowed} (unit {self.unit})."
-            ) from err
+        v = as_real(self.name, value, f"{self.description or self.name} must be a real number "
+                                      f"{allowed} (unit {self.unit})")
         if not math.isfinite(v) or not ok(v):
             raise ParameterError(
                 f"{self.name}={value!r} is invalid: {self.description or self.name} must be finite "
@@ -103,31 +103,124 @@ def check_finite(name: str, value: object, what: str = "", unit: str = "") -> fl
 def check_in_range(name: str, value: object, low: float, high: float, *, low_open: bool,
                    high_open: bool, what: str) -> float:
     """Check ``low <(=) value <(=) high`` and return the value as float."""
-    try:
-        v = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        v = float("nan")
+    lo_s = "<" if low_open else "<="
+    hi_s = "<" if high_open else "<="
+    v = as_real(name, value, f"{what} must be a real number with {low:g} {lo_s} {name} {hi_s} "
+                             f"{high:g}")
     lo_ok = v > low if low_open else v >= low
     hi_ok = v < high if high_open else v <= high
     if not (lo_ok and hi_ok):   # also catches NaN
-        lo_s = "<" if low_open else "<="
-        hi_s = "<" if high_open else "<="
         raise ParameterError(
             f"{name}={value!r} is invalid: {what} must satisfy {low:g} {lo_s} {name} {hi_s} {high:g}."
         )
     return v
 
 
-def as_float_array(name: str, value: object, *, allow_nan: bool = False) -> np.ndarray:
-    """Convert ``value`` to a float ndarray; reject non-numeric and (by default) non-finite input."""
+def _short(value: object, limit: int = 60) -> str:
+    """``repr(value)``, shortened for an error message (long arrays are not echoed in full)."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _is_bool(value: object) -> bool:
+    return isinstance(value, (bool, np.bool_))
+
+
+def as_real(name: str, value: object, allowed: str = "expected a real number") -> float:
+    """``value`` as a Python float, the one scalar entry point of every check.
+
+    Rejects what ``float()`` would silently accept although it is not a number: ``bool``
+    (``True`` is not 1.0 Pa), strings (``"1e9"``; scene files parse their own strings) and
+    0-d arrays holding either. Does not check finiteness or a domain.
+
+    Raises
+    ------
+    ParameterError
+        ``value`` is not a real number; the message names ``name``, the value and ``allowed``.
+    """
+    arr = value if isinstance(value, np.ndarray) else None
+    if (_is_bool(value) or isinstance(value, (str, bytes))
+            or (arr is not None and (arr.ndim != 0 or arr.dtype.kind not in "iuf"))):
+        raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}.")
     try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers.") from err
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError) as err:
+        raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}.") from err
+
+
+def as_float_array(name: str, value: object, *, allow_nan: bool = False,
+                   allow_empty: bool = False) -> np.ndarray:
+    """Convert ``value`` to a float ndarray, the one array entry point of every driver.
+
+    Rejects non-numeric input, booleans (``[True, False]`` is not ``[1.0, 0.0]``), strings,
+    empty arrays (unless ``allow_empty``) and, unless ``allow_nan``, non-finite values.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``, the offending value and what is allowed.
+    """
+    if _is_bool(value) or isinstance(value, (str, bytes)):
+        raise ParameterError(f"{name}={_short(value)} is invalid: expected real numbers "
+                             "(not bool or str).")
+    try:
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "iuf" and not (raw.dtype.kind == "O" or raw.size == 0):
+            raise TypeError(raw.dtype)
+        if raw.dtype.kind == "O" and any(_is_bool(v) or isinstance(v, (str, bytes))
+                                         for v in raw.ravel()):
+            raise TypeError("bool or str element")
+        arr = np.asarray(raw, dtype=float)
+    except (TypeError, ValueError, OverflowError) as err:
+        raise ParameterError(f"{name}={_short(value)} is invalid: expected real numbers "
+                             "(a float or an array of floats; not bool or str).") from err
+    if arr.size == 0 and not allow_empty:
+        raise ParameterError(f"{name}={_short(value)} is invalid: it is empty; give at least one "
+                             "value.")
     if not allow_nan and not np.all(np.isfinite(arr)):
         bad = float(arr[~np.isfinite(arr)].ravel()[0])
         raise ParameterError(f"{name} contains {bad!r}: every value must be finite.")
     return arr
+
+
+def broadcast_inputs(what: str, **arrays: Any) -> tuple[int, ...]:
+    """The common shape of the keyword arrays, or a :class:`ParameterError` naming them.
+
+    Parameters
+    ----------
+    what : str
+        The caller, for the message (``"torsion()"``).
+    **arrays : array_like
+        Name -> array (or anything with a shape); ``None`` values are skipped.
+
+    Examples
+    --------
+    >>> broadcast_inputs("torsion()", force=np.ones(3), twist=np.ones((2, 1)))
+    (2, 3)
+    """
+    shapes = {k: np.shape(v) for k, v in arrays.items() if v is not None}
+    try:
+        return tuple(np.broadcast_shapes(*shapes.values()))
+    except ValueError:
+        given = ", ".join(f"{k} {s}" for k, s in shapes.items())
+        raise ParameterError(f"{what}: the shapes of {given} do not broadcast together; give "
+                             "scalars, equal shapes, or shapes that broadcast (numpy rules)."
+                             ) from None
+
+
+def check_count(name: str, value: object, minimum: int = 1) -> int:
+    """An integer count (``n_springs``, ``steps``) ``>= minimum``: ints or integral floats only.
+
+    Raises
+    ------
+    ParameterError
+        ``value`` is a bool, a string, not integral, not finite or below ``minimum``.
+    """
+    v = as_real(name, value, f"it must be an integer >= {minimum}")
+    if not math.isfinite(v) or v != int(v) or v < minimum:
+        raise ParameterError(f"{name}={_short(value)} is invalid: it must be an integer >= "
+                             f"{minimum}.")
+    return int(v)
 
 
 def exactly_one(what: str, options: dict[str, Any]) -> tuple[str, Any]:
@@ -160,3 +253,93 @@ def scalar_or_array(value: Any) -> Any:
     if v.dtype.kind != "f":
         v = v.astype(float)
     return float(v) if v.ndim == 0 else v
+
+
+# ---------------------------------------------------------------------------- memory budget
+#: environment variable read for the budget (bytes; ``512M``, ``4G`` and ``inf`` accepted)
+MEMORY_BUDGET_ENV = "CONTACTLAB_MEMORY_BUDGET"
+#: default budget, bytes: 2 GiB, far above any documented example (a 10^5-step path through
+#: 2000 springs needs ~20 MB) and below what makes a shared machine swap
+DEFAULT_MEMORY_BUDGET = 2 * 1024**3
+
+_SUFFIX = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
+_budget_lock = threading.Lock()
+_budget_set: float | None = None
+
+
+def _parse_budget(name: str, value: object) -> float:
+    if isinstance(value, str):
+        text = value.strip().upper().removesuffix("B").removesuffix("I")
+        if text in ("INF", "INFINITY", "NONE"):
+            return math.inf
+        unit = text[-1:] if text[-1:] in _SUFFIX and text[-1:] != "" else ""
+        try:
+            number = float(text[: len(text) - len(unit)])
+        except ValueError:
+            number = math.nan
+        v = number * _SUFFIX[unit]
+    else:
+        v = as_real(name, value, "the memory budget must be a number of bytes > 0")
+    if not v > 0:       # also NaN
+        raise ParameterError(f"{name}={_short(value)} is invalid: the memory budget must be a "
+                             "number of bytes > 0 (suffixes K, M, G allowed; 'inf' for none).")
+    return v
+
+
+def memory_budget() -> float:
+    """The memory budget, bytes, that large requests are checked against.
+
+    :func:`set_memory_budget` if called, else the environment variable ``CONTACTLAB_MEMORY_BUDGET``
+    (bytes, ``512M``, ``4G`` or ``inf``), else :data:`DEFAULT_MEMORY_BUDGET` (2 GiB).
+    """
+    with _budget_lock:
+        if _budget_set is not None:
+            return _budget_set
+    env = os.environ.get(MEMORY_BUDGET_ENV)
+    if env:
+        return _parse_budget(MEMORY_BUDGET_ENV, env)
+    return float(DEFAULT_MEMORY_BUDGET)
+
+
+def set_memory_budget(n_bytes: float | str | None) -> float | None:
+    """Set the memory budget for this process; returns the previous setting (None = default).
+
+    Parameters
+    ----------
+    n_bytes : float, str or None
+        Bytes (> 0; ``math.inf`` or ``"inf"`` disables the check; ``"4G"`` style strings
+        accepted). ``None`` returns to the environment variable or the default.
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> previous = cl.set_memory_budget("8G")
+    >>> cl.memory_budget() == 8 * 1024**3
+    True
+    >>> _ = cl.set_memory_budget(previous)
+    """
+    global _budget_set
+    new = None if n_bytes is None else _parse_budget("n_bytes", n_bytes)
+    with _budget_lock:
+        old, _budget_set = _budget_set, new
+    return old
+
+
+def check_memory(what: str, n_bytes: float, detail: str) -> None:
+    """Raise :class:`MemoryBudgetError` if ``n_bytes`` exceeds :func:`memory_budget`.
+
+    Parameters
+    ----------
+    what : str
+        The request (``"simulate()"``).
+    n_bytes : float
+        Estimated peak memory of the request, bytes (estimated before anything is allocated).
+    detail : str
+        What drives the estimate (``"10**9 steps x 2000 springs"``), for the message.
+    """
+    budget = memory_budget()
+    if n_bytes > budget:
+        raise MemoryBudgetError(
+            f"{what} would need about {n_bytes / 1024**3:.3g} GiB ({detail}), above the memory "
+            f"budget of {budget / 1024**3:.3g} GiB: reduce the steps or n_springs, or raise the "
+            f"budget with contactlab.set_memory_budget(...) or {MEMORY_BUDGET_ENV}=...")
