@@ -18,7 +18,7 @@ from ..params import as_float_array, exactly_one
 from ..physics import normal as _normal
 from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_of_radius,
                                 force_of_radius, phi, solve_depth, solve_force)
-from .normal import NormalState, _scalar_or_array
+from .normal import NormalState, _scalar_or_array, warn_outside_validity
 
 __all__ = ["AdhesiveNormalState", "AdhesionCycle", "adhesive_normal", "pull_off", "adhesion_cycle",
            "contact_branches"]
@@ -119,6 +119,7 @@ def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: s
     if F is None:
         F = force_of_radius(prof, E, w, a, d)
     F = np.where(a > 0, F, 0.0)
+    warn_outside_validity(prof, a, stacklevel=5)
     if np.any(a > 0):
         prof._check_monotone_upto(float(np.max(a)), float(np.max(np.where(a > 0, d, -np.inf))))
     # stiffness dF/dd along the equilibrium curve; 2E*b when pinned at a wall, 0 when detached

@@ -7,17 +7,28 @@ Field quantities of a state are computed lazily, on request.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 
-from ..errors import NotSupportedError, OutsideTheoryError, ParameterError
+from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, ValidityWarning
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 
-__all__ = ["NormalState", "normal"]
+__all__ = ["NormalState", "normal", "warn_outside_validity"]
+
+
+def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
+    """:class:`ValidityWarning` if a contact radius exceeds ``profile.validity_radius``."""
+    limit = profile.validity_radius
+    if np.isfinite(limit) and np.any(np.asarray(a) > limit):
+        warnings.warn(f"contact radius {float(np.max(a))!r} m of {profile!r} exceeds "
+                      f"{limit!r} m, the range of the half-space theory for this profile; the "
+                      "result is the half-space solution, not that of the real body.",
+                      ValidityWarning, stacklevel=stacklevel)
 
 
 #: relative rounding floor of pressures computed from a quadrature-route g (benchmarks/
@@ -53,6 +64,7 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
             raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay "
                                      f"below max_radius={prof.max_radius!r} m of {prof!r}.")
     d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol)
+    warn_outside_validity(prof, a, stacklevel=4)
     meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
             "error_estimate": float(rel) if rel.ndim == 0 else rel}
     return NormalState(contact, d, a, F, meta)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import NotSupportedError, ParameterError
 from ..numeric.roots import bracketed_root
-from ..params import as_float_array, exactly_one, scalar_or_array
+from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
 
@@ -110,8 +110,9 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
     nkey, nval = _one({"depth": depth, "force": force, "radius": radius}, "tangential()")
     tkey, tval = _one({"displacement": displacement, "tangential_force": tangential_force,
                        "stick_radius": stick_radius}, "tangential()")
-    ns = contact.normal(**{nkey: nval})
     tv = as_float_array(tkey, tval)
+    broadcast_inputs("tangential()", **{nkey: as_float_array(nkey, nval), tkey: tv})
+    ns = contact.normal(**{nkey: nval})
     a0, d0, F0 = (np.asarray(v, float) for v in (ns._radius, ns._depth, ns._force))
     a, d, FN, t = np.broadcast_arrays(a0, d0, F0, tv)
     if ns.shape != a.shape:

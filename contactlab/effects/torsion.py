@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
-from ..params import as_float_array, exactly_one, scalar_or_array
+from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import torsion as _models
 from ..physics import torsion_exact as _exact
@@ -39,7 +39,8 @@ def _scalar_or_array(v: np.ndarray) -> Any:
 def resolve_method(contact, method: str | None) -> str:
     """Default and validate ``method`` for ``contact`` (friction decides the default)."""
     if method is None:
-        return "no-slip" if contact.friction is None else "exact"
+        # the default is checked like an explicit choice: friction + adhesion has no default
+        method = "no-slip" if contact.friction is None else "exact"
     if method not in METHODS:
         close = difflib.get_close_matches(str(method), METHODS, n=1)
         hint = f" Did you mean {close[0]!r}?" if close else ""
@@ -53,8 +54,8 @@ def resolve_method(contact, method: str | None) -> str:
         if contact.is_adhesive:
             raise NotSupportedError(
                 f"method={method!r} with work_of_adhesion={contact.work_of_adhesion!r}: torsion with "
-                "slip of adhesive contacts is outside the implemented theory (physics.md §6); use "
-                "method='no-slip'.")
+                "slip of adhesive contacts is outside the implemented theory; use "
+                "method='no-slip' (friction is then ignored).")
     return method
 
 
@@ -69,8 +70,9 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
     ctrl_key, ctrl_val = exactly_one("torsion()", {"twist": twist, "torque": torque,
                                                    "stick_radius": stick_radius})
     ctrl = as_float_array(ctrl_key, ctrl_val)
+    shape = broadcast_inputs("torsion()", **{load_key: as_float_array(load_key, load_val),
+                                              ctrl_key: ctrl})
     normal = contact.normal(**{load_key: load_val})
-    shape = np.broadcast_shapes(normal.shape, ctrl.shape)
     a = np.broadcast_to(normal._radius, shape).astype(float).ravel()
     d = np.broadcast_to(normal._depth, shape).astype(float).ravel()
     g_a = np.where(a > 0, contact.profile._g(a), 0.0) if a.size else a.copy()

@@ -16,13 +16,19 @@ from ..errors import ConvergenceError, NotSupportedError, ParameterError
 from ..foundation import viscoelastic as _ve
 from ..materials import Elastic, Rigid, effective_moduli
 from ..materials.pair import viscoelastic_body
-from ..params import as_float_array, exactly_one
+from ..params import as_float_array, check_count, check_memory, exactly_one
 from ..physics.normal import radius_depth_of_force
 
-__all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS"]
+__all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS", "history_memory"]
 
 #: default number of foundation elements over the largest contact radius
 DEFAULT_N_SPRINGS = 2000
+
+
+def history_memory(n_steps: int, n_springs: int, n_terms: int) -> float:
+    """Estimated peak memory of :func:`viscoelastic_history`, bytes (float64 values: 16 per
+    step, ``8 (n_terms + 4)`` per spring for the element states and their trial copies)."""
+    return 8.0 * (16.0 * n_steps + 8.0 * (n_terms + 4) * float(n_springs))
 
 
 @dataclass(frozen=True)
@@ -113,13 +119,11 @@ def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = 
     if np.any(np.diff(t) < 0):
         i = int(np.argmax(np.diff(t) < 0)) + 1
         raise ParameterError(f"time[{i}]={t[i]!r} s is invalid: times must be non-decreasing.")
-    if n_springs is None:
-        n_springs = DEFAULT_N_SPRINGS
-    if int(n_springs) != n_springs or n_springs < 2:
-        raise ParameterError(f"n_springs={n_springs!r} is invalid: it must be an integer >= 2.")
-    n_springs = int(n_springs)
+    n_springs = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs, 2)
     prof = contact.profile
     G_inf, Gk, tk, eta = mat.prony()
+    check_memory("viscoelastic_history()", history_memory(t.size, n_springs, Gk.size),
+                 f"{t.size} steps, {n_springs} springs, {Gk.size} Prony terms")
     if max_radius is None:
         if key == "depth":
             d_max = float(np.max(load))

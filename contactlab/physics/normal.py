@@ -172,7 +172,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
     outside = r > a
     if np.any(outside):
         ro, ao = r[outside], a[outside]
-        theta_max = np.arcsin(ao / ro)
+        theta_max = np.arctan2(ao, np.sqrt((ro - ao) * (ro + ao)))   # asin(a/r), exact near r = a
         cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
         ts = [np.clip(np.arcsin(np.minimum(b / ro, 1.0)), 0.0, theta_max) for b in cuts]
         edges = np.stack([np.zeros_like(ro)] + ts + [theta_max])
@@ -208,14 +208,24 @@ def pressure(profile, E_star: float, r: np.ndarray, a: np.ndarray, d: np.ndarray
 
 def displacement(profile, r: np.ndarray, a: np.ndarray, d: np.ndarray,
                  rtol: float) -> tuple[np.ndarray, np.ndarray]:
-    """Normal surface displacement ``u_z(r)``, m, inside (``d - f``) and outside the contact."""
+    """Normal surface displacement ``u_z(r)``, m, inside (``d - f``) and outside the contact.
+
+    ``asin(a/r)`` is taken as ``atan2(a, sqrt((r-a)(r+a)))``: near the edge ``a/r`` rounds to
+    within an ulp of 1, where ``asin`` amplifies that rounding to ~1e-8; the differences
+    ``r - a`` are exact there.
+    """
     r, a, d = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, a, d)))
+    shape = r.shape
+    # 1D inside: profile hooks assign into boolean-indexed parts, which a 0-d array cannot take
+    r, a, d = (v.reshape(-1) for v in (r, a, d))
     A, err = abel_g(profile, r, a, rtol)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ang = np.where(r > a, np.arcsin(np.where(r > 0, a / np.where(r > 0, r, 1.0), 0.0)), 0.5 * np.pi)
+    outside = r > a
+    ang = np.full(r.shape, 0.5 * np.pi)
+    ro, ao = r[outside], a[outside]
+    ang[outside] = np.arctan2(ao, np.sqrt((ro - ao) * (ro + ao)))
     out = 2.0 / np.pi * d * ang - A
     out = np.where(a > 0, out, 0.0)
-    return out, err
+    return out.reshape(shape), np.asarray(err, float).reshape(shape)
 
 
 def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:

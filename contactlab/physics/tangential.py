@@ -21,7 +21,8 @@ from . import normal as _normal
 
 __all__ = ["stick_radius_of_displacement", "displacement_of_stick_radius", "force_of_stick_radius",
            "force_of_displacement",
-           "stick_radius_of_force", "virgin_dissipation", "shear", "full_slip_displacement"]
+           "stick_radius_of_force", "virgin_dissipation", "shear", "full_slip_displacement",
+           "pressure_shape_difference_on_axis", "AXIS_RATIO"]
 
 
 def _g0(profile, x: np.ndarray) -> np.ndarray:
@@ -121,16 +122,65 @@ def virgin_dissipation(profile, E_star: float, G_star: float, mu: float, a: np.n
     return np.maximum(2.0 * (u * h1 - h2 / G_star), 0.0)
 
 
+#: below ``r = AXIS_RATIO * c`` the stick-zone traction takes its value on the axis: the
+#: difference ``S(r, a) - S(r, c) = ∫_c^a g'(x)/sqrt(x²-r²) dx`` is even and analytic in r for
+#: ``r < c`` with relative change ``O(r²/c²)``, below 1e-16 there
+AXIS_RATIO = 1e-8
+
+
+def pressure_shape_difference_on_axis(profile, a: np.ndarray, c: np.ndarray,
+                                      rtol: float) -> np.ndarray:
+    """``S(0, a) - S(0, c) = ∫_c^a g'(x)/x dx`` for ``0 < c <= a``, 1/m (finite even where
+    ``S(0, ·)`` itself is infinite: cone tips, ``n <= 1``).
+
+    By parts, ``g(a)/a - g(c)/c + ∫_c^a g(x)/x² dx`` (g only), the integral by tanh-sinh split
+    at the profile's breakpoints.
+    """
+    from ..numeric.quadrature import tanh_sinh
+    a = np.asarray(a, float)
+    c = np.asarray(c, float)
+    g_a = profile._g(a, rtol)
+    g_c = profile._g(c, rtol)
+    cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
+    edges = np.stack([c] + [np.clip(np.full_like(c, b), c, a) for b in cuts] + [a])
+    lo, hi = edges[:-1], edges[1:]
+
+    def integrand(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return profile._g(x, rtol) / (x * x)
+
+    scale = np.broadcast_to(rtol * np.abs(g_a) / a, lo.shape).ravel()
+    res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=scale)
+    return g_a / a - g_c / c + res.value.reshape(lo.shape).sum(axis=0)
+
+
 def shear(profile, E_star: float, mu: float, r: np.ndarray, a: np.ndarray, d: np.ndarray,
           c: np.ndarray, rtol: float) -> np.ndarray:
-    """Tangential traction magnitude ``τ_x(r)``, Pa (Ciavarella–Jäger superposition, §5)."""
+    """Tangential traction magnitude ``τ_x(r)``, Pa (Ciavarella–Jäger superposition, §5).
+
+    In the stick zone ``τ = μ(p_a - p_c)``. Near the axis (``r <= AXIS_RATIO c``) both pressures
+    may be infinite (cone tip) or lose digits to cancellation; there the finite limit
+    ``μ(E*/π)[∫_c^a g'(x)/x dx + (d - g(a))/sqrt(a² - r²)]`` is used.
+    """
+    r, a, d, c = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, a, d, c)))
+    shape = r.shape
+    r, a, d, c = (v.reshape(-1) for v in (r, a, d, c))
     ga = _g0(profile, a)
     gc = _g0(profile, c)
-    pa, _ = _normal.pressure(profile, E_star, r, a, d, ga, rtol)
+    out = np.zeros(r.shape)
     inner = (r < c) & (c > 0)
-    pc = np.zeros(np.broadcast(r, c).shape)
-    if np.any(inner):
-        rr, cc, gg = np.broadcast_arrays(r, c, gc)
-        val, _ = _normal.pressure(profile, E_star, rr[inner], cc[inner], gg[inner], gg[inner], rtol)
-        pc[inner] = val
-    return mu * (pa - pc)
+    axis = inner & (r <= AXIS_RATIO * c)
+    rest = ~axis
+    if np.any(rest):
+        pa, _ = _normal.pressure(profile, E_star, r[rest], a[rest], d[rest], ga[rest], rtol)
+        pc = np.zeros(pa.shape)
+        inn = inner[rest]
+        if np.any(inn):
+            cc, gg = c[rest][inn], gc[rest][inn]
+            pc[inn], _ = _normal.pressure(profile, E_star, r[rest][inn], cc, gg, gg, rtol)
+        out[rest] = mu * (pa - pc)
+    if np.any(axis):
+        ra, aa, da, ca = r[axis], a[axis], d[axis], c[axis]
+        diff = pressure_shape_difference_on_axis(profile, aa, ca, rtol)
+        edge = (da - ga[axis]) / np.sqrt((aa - ra) * (aa + ra))
+        out[axis] = mu * E_star / np.pi * (diff + edge)
+    return out.reshape(shape)

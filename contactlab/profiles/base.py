@@ -107,6 +107,16 @@ class Profile(ParamIdentity, ABC):
         return np.inf
 
     @property
+    def validity_radius(self) -> float:
+        """Largest contact radius inside the half-space theory's range, m (``inf`` if none).
+
+        A state with a larger contact radius is still returned, with a
+        :class:`~contactlab.errors.ValidityWarning` (:class:`~contactlab.profiles.Sphere`:
+        ``a > R/2``).
+        """
+        return np.inf
+
+    @property
     def flat_radius(self) -> float:
         """Radius of a flat central part (g = 0 for |x| below it), m."""
         return 0.0

@@ -71,15 +71,35 @@ def _power_pressure_shape(c: float, n: float, r: np.ndarray, a: np.ndarray) -> n
 
 
 def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-    """``(2/π) ∫_0^{min(r,a)} g(x)/sqrt(r²-x²) dx`` for ``g = κ_n c x**n`` (= f(r) for r <= a)."""
-    r, a = np.broadcast_arrays(r, a)
-    out = c * np.minimum(r, a) ** n
+    """``(2/π) ∫_0^{min(r,a)} g(x)/sqrt(r²-x²) dx`` for ``g = κ_n c x**n`` (= f(r) for r <= a).
+
+    Outside the contact, with ``q = a²/r²``: far out (``q < 1/2``) the Gauss series
+    ``(2κ_n c/π) a**(n+1)/(r(n+1)) ₂F₁(1/2, (n+1)/2; (n+3)/2; q)``; near the edge, where that
+    ₂F₁ sits at its branch point z = 1, its connection formula about ``1 - q`` (the first term
+    collapses to ``f(r)`` because ``₂F₁(1/2, b; 1/2; w) = (1-w)**-b``):
+    ``f(r) - (2κ_n c/π) (a**(n+1)/r) sqrt(1-q) ₂F₁(n/2+1, 1; 3/2; 1-q)``, with
+    ``1 - q = (r-a)(r+a)/r²`` free of cancellation.
+    """
+    r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+    out = np.array(c * np.minimum(r, a) ** n, dtype=float, ndmin=1).reshape(r.shape)
     outside = r > a
     if np.any(outside):
-        rr, aa = r[outside], a[outside]
+        rr, aa = np.atleast_1d(r[outside]), np.atleast_1d(a[outside])
         q = (aa / rr) ** 2
-        out[outside] = (2 * kappa(n) * c / np.pi) * aa ** (n + 1) / (rr * (n + 1)) * hyp2f1(
-            0.5, 0.5 * (n + 1), 0.5 * (n + 3), q)
+        w = (rr - aa) * (rr + aa) / (rr * rr)
+        val = np.empty(rr.shape)
+        far = w > 0.5
+        k2 = 2 * kappa(n) * c / np.pi
+        if np.any(far):
+            rf, af = rr[far], aa[far]
+            val[far] = k2 * af ** (n + 1) / (rf * (n + 1)) * hyp2f1(0.5, 0.5 * (n + 1),
+                                                                   0.5 * (n + 3), q[far])
+        near = ~far
+        if np.any(near):
+            rn, an, wn = rr[near], aa[near], w[near]
+            val[near] = c * rn ** n - k2 * an ** (n + 1) / rn * np.sqrt(wn) * hyp2f1(
+                0.5 * n + 1, 1.0, 1.5, wn)
+        out[outside] = val
     return out
 
 

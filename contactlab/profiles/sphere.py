@@ -1,7 +1,9 @@
 """Exact spherical cap ``f(r) = R - sqrt(R² - r²)``.
 
-``g(x) = x artanh(x/R)`` and ``∫_0^a g = (a²-R²)/2 artanh(a/R) + R a/2`` (physics.md §2). The
-contact radius must stay below R (``g → ∞`` as ``a → R``); half-space theory needs ``a ≪ R``.
+``g(x) = x artanh(x/R)`` and ``∫_0^a g = (a²-R²)/2 artanh(a/R) + R a/2``. The contact radius must
+stay below R (``g → ∞`` as ``a → R``); half-space theory needs ``a ≪ R``: beyond
+``a = VALIDITY_RATIO R`` (the surface slope at the edge exceeds tan 30° = 0.58) results carry a
+:class:`~contactlab.errors.ValidityWarning`.
 """
 from __future__ import annotations
 
@@ -14,7 +16,13 @@ from ..params import Param
 from ..symbolic.form import SympyForm, symbol
 from .base import Profile
 
-__all__ = ["Sphere"]
+__all__ = ["Sphere", "VALIDITY_RATIO"]
+
+#: a/R above which a sphere contact leaves the half-space theory (ValidityWarning): the theory
+#: linearises the boundary conditions in the surface slope, here a/sqrt(R²-a²) = 0.58 (30°) at
+#: the edge; the exact-sphere MDR solution stays exact for the half-space problem but no longer
+#: describes a real sphere (large strains, the load no longer normal to the surface)
+VALIDITY_RATIO = 0.5
 
 
 class Sphere(Profile):
@@ -23,7 +31,9 @@ class Sphere(Profile):
     Parameters
     ----------
     R : float
-        Sphere radius, m (> 0). Contact radii must satisfy ``a < R``.
+        Sphere radius, m (> 0). Contact radii must satisfy ``a < R``; above
+        ``a = VALIDITY_RATIO R = R/2`` the half-space theory is outside its range and states
+        carry a :class:`~contactlab.errors.ValidityWarning`.
 
     Raises
     ------
@@ -42,6 +52,10 @@ class Sphere(Profile):
     @property
     def max_radius(self) -> float:
         return self.R
+
+    @property
+    def validity_radius(self) -> float:
+        return VALIDITY_RATIO * self.R
 
     def _length_scale(self) -> float:
         return self.R

@@ -14,9 +14,15 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import NotSupportedError, ParameterError
+from ..params import as_float_array
 from .formulas import FORMULA_DOCS, LATEX_NAMES, SYMBOLS, FormulaSet
 
-__all__ = ["to_latex", "to_python", "to_callable", "formulas_command", "FORMATS"]
+__all__ = ["to_latex", "to_python", "to_callable", "formulas_command", "FORMATS", "UNLOADED_AT_ZERO"]
+
+#: formula -> its load variable: at a load <= 0 the bodies are apart and the callable returns 0,
+#: as :meth:`contactlab.Contact.normal` does (the closed forms hold for a positive load only)
+UNLOADED_AT_ZERO = {"force_of_depth": "d", "radius_of_depth": "d", "stiffness_of_depth": "d",
+                    "radius_of_force": "F", "depth_of_force": "F", "stiffness_of_force": "F"}
 
 #: output formats of :func:`formulas_command`
 FORMATS = ("text", "latex", "python")
@@ -199,14 +205,32 @@ def to_callable(fs: FormulaSet, name: str, **values: float) -> Callable[..., Any
     var = fs.variables(name)
     fn = sp.lambdify(var, expr, modules=[{"hyper": _hyper_numpy}, "numpy", "scipy"], cse=True)
 
+    names = [str(v) for v in var]
+    load = names.index(UNLOADED_AT_ZERO[name]) if UNLOADED_AT_ZERO.get(name) in names else None
+
     def f(*args: Any) -> Any:
         if len(args) != len(var):
             raise ParameterError(f"formula {name!r} takes {len(var)} argument(s) "
-                                 f"({', '.join(map(str, var))}); got {len(args)}.")
-        arr = [np.asarray(v, dtype=float) for v in args]
-        out = fn(*arr)
+                                 f"({', '.join(names)}); got {len(args)}.")
+        arr = [as_float_array(n, v) for n, v in zip(names, args)]
         shape = np.broadcast_shapes(*(v.shape for v in arr)) if arr else ()
-        return np.broadcast_to(np.asarray(out, dtype=float), shape).copy() if shape else float(out)
+        unloaded = np.zeros(shape, bool)
+        if load is not None:
+            unloaded = np.broadcast_to(arr[load] <= 0, shape)
+            arr[load] = np.where(arr[load] > 0, arr[load], 1.0)   # any point of the domain
+        for n, v in zip(names, arr):
+            if np.any(v < 0):
+                raise ParameterError(f"{n} contains {float(v[v < 0].ravel()[0])!r}: the "
+                                     f"variables of formula {name!r} are >= 0.")
+        with np.errstate(all="ignore"):
+            out = np.broadcast_to(np.asarray(fn(*arr), dtype=float), shape)
+        out = np.where(unloaded, 0.0, out)
+        if np.any(np.isnan(out)):
+            i = np.unravel_index(int(np.argmax(np.isnan(out))), shape) if shape else ()
+            at = ", ".join(f"{n}={float(np.broadcast_to(v, shape)[i])!r}" for n, v in zip(names, arr))
+            raise ParameterError(f"formula {name!r} is not defined at {at}: "
+                                 f"{FORMULA_DOCS.get(name, ('', name))[1]}.")
+        return out.copy() if shape else float(out)
 
     f.__name__ = name
     f.__doc__ = f"{FORMULA_DOCS.get(name, ('', name))[1]}: {expr}. Arguments: {', '.join(map(str, var))}."
