@@ -148,6 +148,18 @@ def as_real(name: str, value: object, allowed: str = "expected a real number") -
         raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}.") from err
 
 
+def _has_bool_or_str(seq: object) -> bool:
+    """Whether a (nested) list/tuple holds a bool or a string anywhere."""
+    stack = [seq]
+    while stack:
+        for v in stack.pop():
+            if isinstance(v, (list, tuple)):
+                stack.append(v)
+            elif _is_bool(v) or isinstance(v, (str, bytes)):
+                return True
+    return False
+
+
 def as_float_array(name: str, value: object, *, allow_nan: bool = False,
                    allow_empty: bool = False) -> np.ndarray:
     """Convert ``value`` to a float ndarray, the one array entry point of every driver.
@@ -160,7 +172,8 @@ def as_float_array(name: str, value: object, *, allow_nan: bool = False,
     ParameterError
         Naming ``name``, the offending value and what is allowed.
     """
-    if _is_bool(value) or isinstance(value, (str, bytes)):
+    if (_is_bool(value) or isinstance(value, (str, bytes))
+            or (isinstance(value, (list, tuple)) and _has_bool_or_str(value))):
         raise ParameterError(f"{name}={_short(value)} is invalid: expected real numbers "
                              "(not bool or str).")
     try:

@@ -26,6 +26,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from ..errors import ParameterError, UnknownNameError
+from ..params import as_real
 
 __all__ = ["LoadPath", "Segment", "Samples", "QUANTITIES", "GROUPS", "UNITS", "canonical_unit"]
 
@@ -73,10 +74,7 @@ def check_steps(name: str, value: Any) -> int:
 
 
 def check_value(name: str, value: Any) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{name}={value!r} is invalid: expected a real number.") from err
+    v = as_real(name, value)        # the shared path: no bool, no str
     if not np.isfinite(v):
         raise ParameterError(f"{name}={value!r} is invalid: it must be finite.")
     return v
