@@ -152,6 +152,7 @@ TORSION_BOUNDARY = 1e-8
 #: torsional energy/torque-ratio boundary: root of the criterion in c/a after 3 regula-falsi steps;
 #: measured criterion residual <= 1e-6
 TORSION_BOUNDARY_ROOT = 1e-5
+
 # ---- adversarial review (issue 11)
 #: surface displacement within 1000 rounding steps outside the contact edge against a 40-digit
 #: reference: closed-form route (atan2 angle, hypergeometric connection formula near z = 1),
