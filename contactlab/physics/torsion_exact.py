@@ -31,7 +31,6 @@ J. Jäger, Arch. Appl. Mech. 65 (1995). R. L. Lubkin, J. Appl. Mech. 18 (1951) 1
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ellipe, ellipkm1
 
 from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
@@ -84,6 +83,7 @@ def K_comp(p: np.ndarray) -> np.ndarray:
 
     (scipy ``ellipkm1``: full relative precision as ``k → 1``, where ``K ~ ln(4/sqrt(p))``.)
     """
+    from scipy.special import ellipkm1   # lazy: scipy.special costs ~0.1 s at import
     return ellipkm1(np.asarray(p, float))
 
 
@@ -102,6 +102,7 @@ def kme_over_m(p: np.ndarray) -> np.ndarray:
     small = m <= 0.1
     out = np.empty(p.shape)
     big = ~small
+    from scipy.special import ellipe, ellipkm1
     out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions only where used
     if np.any(small):
         ms = m[small]

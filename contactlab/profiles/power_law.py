@@ -11,7 +11,6 @@ from collections.abc import Iterable, Mapping
 from typing import ClassVar
 
 import numpy as np
-from scipy.special import hyp2f1
 
 from ..errors import ParameterError
 from ..params import Param
@@ -51,6 +50,7 @@ def _power_pressure_shape(c: float, n: float, r: np.ndarray, a: np.ndarray) -> n
         edge = z <= 0.5
         if np.any(edge):
             ze, ae = z[edge], aa[edge]
+            from scipy.special import hyp2f1   # lazy: scipy.special costs ~0.1 s at import
             val[edge] = n * k * c * ae ** (n - 1) * np.sqrt(ze) * hyp2f1(1 - 0.5 * n, 1.0, 1.5, ze)
         axis = rr == 0
         if np.any(axis):
@@ -84,6 +84,7 @@ def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
     out = np.array(c * np.minimum(r, a) ** n, dtype=float, ndmin=1).reshape(r.shape)
     outside = r > a
     if np.any(outside):
+        from scipy.special import hyp2f1
         rr, aa = np.atleast_1d(r[outside]), np.atleast_1d(a[outside])
         q = (aa / rr) ** 2
         w = (rr - aa) * (rr + aa) / (rr * rr)
