@@ -158,3 +158,10 @@ TORSION_BOUNDARY_ROOT = 1e-5
 #: reference: closed-form route (atan2 angle, hypergeometric connection formula near z = 1),
 #: only a few roundings remain (measured 4.4e-16); the issue's target
 EDGE_DISPLACEMENT = 1e-12
+
+# ---- speed (issue 13)
+#: a history whose amplitudes differ by rounding only (A sin(2πk/n) over 10^4 steps, ~1e-12 of A)
+#: against the same history with every distinct argument solved: merged arguments (closer than
+#: 1e-11 of the largest) move along the loading curve with its tangent stiffness, so only the
+#: second-order term and rounding remain; relative to the torque amplitude
+MERGED_ARGUMENTS = 1e-12

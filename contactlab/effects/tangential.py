@@ -221,5 +221,5 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     def D(x: np.ndarray) -> np.ndarray:
         return _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
 
-    W = masing_dissipation(segments, u.size, D)
+    W = masing_dissipation(segments, u.size, D, contact.rtol)
     return ShiftHistory(ns, u.copy(), F, c_out, W, {"method": "masing", "rtol": contact.rtol})

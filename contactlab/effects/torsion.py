@@ -23,7 +23,7 @@ from ..physics import normal as _normal
 from ..physics import torsion as _models
 from ..physics import torsion_exact as _exact
 from ..physics import torsion_noslip as _noslip
-from ..physics.masing import masing_dissipation, masing_program, masing_response
+from ..physics.masing import masing_dissipation, masing_program, masing_response, merge_close, merge_step
 from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHODS, ROOT_SAFETY)
 from ..profiles.base import ROUNDING
 
@@ -397,8 +397,11 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
     g_a = float(contact.profile._g(np.array(a))) if a > 0 else 0.0
     if np.isfinite(contact.profile.wall_radius) and a >= contact.profile.wall_radius:
         g_a = min(g_a, d)
-    # the loading curve at every distinct argument, one batched solve
-    u_arg, inv = np.unique(arg, return_inverse=True)
+    # the loading curve at every distinct argument, one batched solve; near-duplicates (closer
+    # than merge_step: 1e-11 of the largest argument at rtol 1e-10) share one solve, so rounding
+    # jitter of the amplitudes does not multiply the solves (cost follows the steps)
+    u_arg, inv, shift = merge_close(arg, merge_step(np.max(arg, initial=0.0), contact.rtol))
+    inv = inv.ravel()
     A = np.full(u_arg.shape, a)
     Dd = np.full(u_arg.shape, d)
     GA = np.full(u_arg.shape, g_a)
@@ -406,8 +409,16 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
         warnings.simplefilter("ignore", ValidityWarning)     # judged on the history below
         sol = model.of_twist(u_arg, A, Dd, GA)
     M_u, c_u = sol.torque, sol.stick_radius
-    M_load = M_u[inv.ravel()]
-    c = c_u[inv.ravel()]
+    M_load = M_u[inv]
+    c = c_u[inv]
+    k_t = 16.0 / 3.0 * contact.moduli.torsional
+    if np.any(shift > 0):
+        # a merged step moves along the loading curve from its group's representative with the
+        # curve's tangent stiffness, that of the stick zone, (16/3) G_t c³ [J97]; the slope lies
+        # in [0, (16/3) G_t a³], so the linearisation errs by at most that bound times the shift
+        dphi = arg - u_arg[inv]
+        M_load = M_load + k_t * np.where(np.isfinite(c), c, 0.0) ** 3 * dphi
+        shift = shift * (k_t * a**3)
     torque = masing_response(phi, origin, factor, M_load)
     if method == "mdr":
         _warn_mdr(contact, u_arg, A, Dd, GA)
@@ -415,8 +426,8 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal}}
     # error bookkeeping for torque_error (computed on first access): the loading curve's
     # absolute errors at the distinct arguments, its deferred root term, and the recursion
-    errors = (sol.torque_error.copy(), sol.torque_error_deferred,
-              inv.ravel(), origin, factor, float(normal.meta.get("error_estimate", 0.0)))
+    errors = (sol.torque_error + shift, sol.torque_error_deferred,
+              inv, origin, factor, float(normal.meta.get("error_estimate", 0.0)))
     return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
                         errors)
 
@@ -514,7 +525,7 @@ class TwistHistory:
                 sol = model.of_twist(u, A, Dd, GA)
             return model.dissipation(np.abs(sol.twist), sol.stick_radius, A, Dd, GA)
 
-        return masing_dissipation(self._segments, n, loading)
+        return masing_dissipation(self._segments, n, loading, self.contact.rtol)
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step arrays by name (``twist``, ``torque``, ``stick_radius``, ``dissipated_energy``)."""

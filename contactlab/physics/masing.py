@@ -12,7 +12,46 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["masing_program", "masing_response", "masing_dissipation"]
+__all__ = ["masing_program", "masing_response", "masing_dissipation", "merge_close", "merge_step"]
+
+
+def merge_step(amplitude: float, rtol: float) -> float:
+    """Largest gap, in the units of the argument, below which two loading-curve arguments merge.
+
+    ``min(0.1 rtol, 1e-11) amplitude`` (``amplitude = max |argument|``): 1e-11 of the amplitude
+    at the default ``rtol = 1e-10``, far below the loading curve's own tolerance and above the
+    rounding jitter of amplitudes written as ``A sin(2πk/n)`` (~1e-12 of ``A`` after 10^4 steps),
+    which would otherwise make every step a distinct argument and a separate solve. Never
+    coarser than 1e-11, so loose tolerances do not merge genuinely different amplitudes.
+    """
+    x = min(0.1 * rtol, 1e-11) * float(amplitude)
+    return x if (x > 0.0 and np.isfinite(x)) else 0.0
+
+
+def merge_close(x: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Distinct arguments of a history, near-duplicates merged: ``(values, inverse, shift)``.
+
+    Sorted distinct values closer than ``step`` to their neighbour form one group (a chain),
+    represented by its middle member, so ``values[inverse]`` equals ``x`` except within such
+    groups. ``shift[k]`` is the largest ``|x - values[k]|`` of group ``k`` (0 for a value that
+    stands alone), for the caller's error bound. Arguments that are not near-duplicates keep
+    their exact value; ``step = 0`` is :func:`numpy.unique`.
+    """
+    u, inv = np.unique(np.asarray(x, dtype=float), return_inverse=True)
+    inv = inv.ravel()
+    if step <= 0.0 or u.size < 2:
+        return u, inv, np.zeros(u.shape)
+    new = np.empty(u.size, dtype=bool)
+    new[0] = True
+    new[1:] = np.diff(u) >= step
+    if new.all():
+        return u, inv, np.zeros(u.shape)
+    group = np.cumsum(new) - 1
+    first = np.flatnonzero(new)
+    last = np.append(first[1:], u.size) - 1
+    rep = u[(first + last) // 2]
+    shift = np.maximum(rep - u[first], u[last] - rep)
+    return rep, group[inv], shift
 
 
 def masing_program(phi: np.ndarray):
@@ -91,19 +130,22 @@ def masing_response(x: np.ndarray, origin: np.ndarray, factor: np.ndarray,
 
 
 def masing_dissipation(segments: tuple, n_steps: int,
-                       dissipation_load: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+                       dissipation_load: Callable[[np.ndarray], np.ndarray],
+                       rtol: float = 0.0) -> np.ndarray:
     """Cumulative dissipated energy per step from the monotonic-loading dissipation.
 
     Along a branch of factor ``f`` from its turning point ``x_o`` the dissipation grows by
     ``f (D(|x_to - x_o|/f) - D(|x_from - x_o|/f))`` (Iwan picture); ``dissipation_load``
-    evaluates ``D`` on an array of (unique, sorted) loading-curve arguments.
+    evaluates ``D`` on an array of (unique, sorted) loading-curve arguments; near-duplicates
+    (closer than :func:`merge_step` for ``rtol``; 0: none) are merged by :func:`merge_close`.
     """
     step, xo, f, x_from_, x_to_ = segments
     if step.size == 0:
         return np.zeros(n_steps)
     x_from = np.abs(x_from_ - xo) / f
     x_to = np.abs(x_to_ - xo) / f
-    u, inv = np.unique(np.concatenate([x_from, x_to]), return_inverse=True)
+    both = np.concatenate([x_from, x_to])
+    u, inv, _ = merge_close(both, merge_step(np.max(both), rtol) if rtol > 0 else 0.0)
     D = dissipation_load(u)[inv.ravel()]
     incr = f * (D[step.size:] - D[:step.size])
     per_step = np.bincount(step.astype(np.int64), weights=incr, minlength=n_steps)
