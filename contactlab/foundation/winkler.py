@@ -198,7 +198,10 @@ class Winkler(Foundation):
         np.maximum(m, nL, out=m)
         tmp -= m
         tmp *= m
-        return float(np.dot(tmp, invK))
+        tmp *= invK
+        # a plain (pairwise) sum, not np.dot: a BLAS dot runs multithreaded on long vectors and
+        # costs 50x more at N = 10^5 on a loaded machine (and its result follows the thread count)
+        return float(tmp.sum())
 
     @staticmethod
     def solve(m: np.ndarray, K: np.ndarray, L: np.ndarray, target: float) -> tuple[float, bool]:
