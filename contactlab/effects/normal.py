@@ -7,6 +7,7 @@ Field quantities of a state are computed lazily, on request.
 """
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -17,6 +18,7 @@ import numpy as np
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, ValidityWarning
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
+from ..physics import normal_scalar as _scalar
 
 __all__ = ["NormalState", "normal", "warn_outside_validity"]
 
@@ -30,6 +32,8 @@ def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
                       "result is the half-space solution, not that of the real body.",
                       ValidityWarning, stacklevel=stacklevel)
 
+_SCALARS = (float, int, np.float64)
+
 
 #: relative rounding floor of pressures computed from a quadrature-route g (benchmarks/
 #: accuracy_cost.py measured up to 2e-12 at rtol <= 1e-12; since the deeper tanh-sinh truncation
@@ -39,13 +43,132 @@ NESTED_ROUNDING = 3e-11
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
+    if type(v) is np.ndarray and v.ndim == 0 and v.dtype == np.float64:
+        return float(v)
     return scalar_or_array(np.asarray(v, dtype=float))
+
+
+class LazyMeta(dict):
+    """A result's ``meta`` dict whose ``"error_estimate"`` is computed on first read.
+
+    ``pending`` is a callable returning the value; any read of the dict (item, ``get``, ``in``,
+    iteration, ``repr``, ...) computes it once. The value is a pure function of the result, so
+    when it is computed changes no bit of it.
+    """
+
+    __slots__ = ("_pending",)
+
+    def __init__(self, base: dict, pending: Any) -> None:
+        dict.__init__(self, base)
+        self._pending = pending
+
+    def _resolve(self) -> None:
+        pending = self._pending
+        if pending is not None:
+            dict.__setitem__(self, "error_estimate", pending())
+            self._pending = None
+
+    def __getitem__(self, key: Any) -> Any:
+        self._resolve()
+        return dict.__getitem__(self, key)
+
+    def get(self, key: Any, default: Any = None) -> Any:
+        self._resolve()
+        return dict.get(self, key, default)
+
+    def __contains__(self, key: object) -> bool:
+        self._resolve()
+        return dict.__contains__(self, key)
+
+    def __iter__(self):
+        self._resolve()
+        return dict.__iter__(self)
+
+    def __len__(self) -> int:
+        self._resolve()
+        return dict.__len__(self)
+
+    def __repr__(self) -> str:
+        self._resolve()
+        return dict.__repr__(self)
+
+    def __eq__(self, other: object) -> bool:
+        self._resolve()
+        return dict.__eq__(self, other)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def keys(self):
+        self._resolve()
+        return dict.keys(self)
+
+    def values(self):
+        self._resolve()
+        return dict.values(self)
+
+    def items(self):
+        self._resolve()
+        return dict.items(self)
+
+    def copy(self) -> dict:
+        self._resolve()
+        return dict(dict.items(self))
+
+    def __reduce__(self):
+        self._resolve()
+        return (dict, (dict(dict.items(self)),))
+
+
+def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
+    """One finite depth or force on a profile with scalar forms: plain floats, no arrays.
+
+    ``None`` when the profile has no scalar route (the array route then runs). The force's error
+    estimate is computed only when it is read (:class:`LazyMeta`).
+    """
+    prof = contact.profile
+    forms = prof.__dict__.get("_scalar_normal_forms", False)
+    if forms is False:
+        forms = _scalar.forms_of(prof)
+    if forms is None:
+        return None
+    v = float(value)
+    if not math.isfinite(v):
+        return None                     # the array route names the bad value
+    E = contact.moduli.normal
+    rtol = contact.rtol
+    if key == "depth":
+        if v > 0:
+            a = _scalar.solve_depth(prof, forms, v, rtol)
+            d = v
+        else:
+            a, d = 0.0, v
+    elif v > 0:
+        a, d = _scalar.solve_force(prof, forms, E, v, rtol)
+    else:
+        a, d = 0.0, 0.0
+    if a > forms.validity:
+        warn_outside_validity(prof, a, stacklevel=5)
+    if a > 0:
+        g_int = forms.g_integral(a)
+        F = (a * d - g_int) * (2.0 * E)
+    else:
+        g_int = F = 0.0
+    requested = v if key == "force" else None
+    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key},
+                    lambda: _scalar.force_rel_error(E, a, d, g_int, F, requested))
+    return NormalState(contact, np.array(d), np.array(a), np.array(F), meta)
 
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
            branch: str = "stable") -> "NormalState":
     """Driver of :meth:`contactlab.Contact.normal` for non-adhesive contacts (see there for the
     parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`)."""
+    if (radius is None and branch == "stable" and (depth is None) != (force is None)
+            and type(depth if force is None else force) in _SCALARS and not contact.is_adhesive):
+        state = _fast_normal(contact, "depth" if force is None else "force",
+                             depth if force is None else force)
+        if state is not None:
+            return state
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
     if branch != "stable":
         raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "

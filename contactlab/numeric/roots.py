@@ -7,14 +7,16 @@ change, so the answer is always inside the bracket; non-convergence raises.
 """
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["bracketed_root", "DEFAULT_XTOL"]
+__all__ = ["bracketed_root", "scalar_root", "DEFAULT_XTOL"]
 
+_EPS = float(np.finfo(float).eps)
 DEFAULT_XTOL = 4 * np.finfo(float).eps
 
 
@@ -123,3 +125,102 @@ def bracketed_root(
         step[act] = np.clip(tn, tl, 1 - tl)
         act = act[~conv]
     return x.reshape(shape)
+
+
+def scalar_root(func: Callable[[float], float], target: float, lo: float, hi: float, *,
+                rtol: float = DEFAULT_XTOL, fprime: Callable[[float], float] | None = None,
+                f_lo: float | None = None, f_hi: float | None = None, maxiter: int = 200,
+                what: str = "root") -> float:
+    """Solve ``func(x) = target`` for one monotone non-decreasing scalar function in ``[lo, hi]``.
+
+    The scalar counterpart of :func:`bracketed_root` for single calls, in plain floats (no array
+    overhead per iteration). With a closed-form derivative ``fprime`` it takes Newton steps,
+    safeguarded by the bracket (a step that leaves the bracket, or a non-positive slope, bisects
+    instead); without one, Chandrupatla's method as in :func:`bracketed_root`. Stops when the
+    bracket or the last step is ``<= rtol |x|``; never returns a point outside ``[lo, hi]``.
+
+    Raises
+    ------
+    ConvergenceError
+        No sign change in ``[lo, hi]``, or no convergence in ``maxiter`` steps.
+    """
+    f1 = (func(lo) if f_lo is None else f_lo) - target
+    f2 = (func(hi) if f_hi is None else f_hi) - target
+    if f1 * f2 > 0:
+        raise ConvergenceError(
+            f"no sign change for {what} in [{lo:.6g}, {hi:.6g}] (target {target:.6g}): "
+            "the requested value is outside the reachable range.")
+    if f1 == 0:
+        return lo
+    if f2 == 0:
+        return hi
+    if fprime is not None:
+        return _newton(func, fprime, target, lo, hi, f1, f2, rtol, maxiter, what)
+    return _chandrupatla(func, target, lo, hi, f1, f2, rtol, maxiter, what)
+
+
+def _newton(func, fprime, target, a, b, fa, fb, rtol, maxiter, what) -> float:
+    # bracket [a, b] with fa < 0 < fb (func non-decreasing); start at the end with the smaller
+    # residual
+    x = a if abs(fa) <= abs(fb) else b
+    fx = fa if x == a else fb
+    for _ in range(maxiter):
+        d = fprime(x)
+        step = fx / d if d > 0 and math.isfinite(d) else math.nan
+        if abs(step) <= rtol * abs(x):       # the next Newton step is below the tolerance
+            return x
+        xn = x - step
+        if not (a < xn < b):                 # also catches nan: bisect, in log scale while the
+            # bracket spans more than a factor 4 (a root far below a wide first bracket)
+            xn = 0.25 * b if a <= 0 else (math.sqrt(a * b) if b > 4 * a else 0.5 * (a + b))
+            step = x - xn
+        fn = func(xn) - target
+        if fn == 0:
+            return xn
+        if fn < 0:
+            a = xn
+        else:
+            b = xn
+        x, fx = xn, fn
+        if abs(step) <= rtol * abs(x) or b - a <= rtol * abs(x) or 0.5 * (a + b) in (a, b):
+            return x
+    raise ConvergenceError(f"{what}: Newton iteration did not converge in {maxiter} steps "
+                           f"(bracket [{a:.17g}, {b:.17g}]).")
+
+
+def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what) -> float:
+    # the same iteration as bracketed_root, for one element in plain floats
+    eps4 = 4 * _EPS
+    x3, f3 = x2, f2
+    t = 0.5
+    x = x1 if abs(f1) <= abs(f2) else x2
+    for _ in range(maxiter):
+        xn = x1 + t * (x2 - x1) if t <= 0.5 else x2 + (1.0 - t) * (x1 - x2)
+        fn = func(xn) - target
+        if (fn > 0) == (f1 > 0) and fn != 0:
+            x3, f3 = x1, f1
+        else:
+            x3, f3 = x2, f2
+            x2, f2 = x1, f1
+        x1, f1 = xn, fn
+        xm, fm = (x1, f1) if abs(f1) <= abs(f2) else (x2, f2)
+        x = xm
+        width = abs(x2 - x1)
+        tol = rtol * max(abs(xm), 1e-300)
+        mid = 0.5 * (x1 + x2)
+        if width <= tol or fm == 0 or mid == x1 or mid == x2:
+            return x
+        tl = min(max(0.5 * tol / width, eps4), 0.5)
+        xi = (x1 - x2) / (x3 - x2) if x3 != x2 else math.nan
+        phi = (f1 - f2) / (f3 - f2) if f3 != f2 else math.nan
+        tn = 0.5
+        if (1 - math.sqrt(max(1 - xi, 0.0))) < phi < math.sqrt(max(xi, 0.0)):
+            alpha = (x3 - x1) / (x2 - x1)
+            try:
+                tq = (f1 / (f1 - f2) * f3 / (f3 - f2) - alpha * f1 / (f3 - f1) * f2 / (f2 - f3))
+            except ZeroDivisionError:
+                tq = 0.5
+            if math.isfinite(tq):
+                tn = tq
+        t = min(max(tn, tl), 1 - tl)
+    raise ConvergenceError(f"{what}: bracketed solve did not converge in {maxiter} steps.")

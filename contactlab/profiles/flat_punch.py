@@ -14,6 +14,7 @@ there; ``breakpoints`` makes every quadrature split at ``b``.
 """
 from __future__ import annotations
 
+import math
 from typing import ClassVar
 
 import numpy as np
@@ -167,6 +168,22 @@ class TruncatedParaboloid(_FlatCentred):
             radius_of_depth=lambda d: sp.sqrt((b**2 + sp.sqrt(b**4 + 4 * R**2 * d**2)) / 2),
             reason="the pressure of a truncated paraboloid has no closed form here "
                    "(elliptic integrals; physics.md §3: quadrature)")
+
+    def _scalar_closed_forms(self) -> dict:
+        """Plain-float ``g``, ``∫g`` and ``g'`` for the scalar normal solve (same formulas)."""
+        b, R = self.radius, self.R
+
+        def g(x: float) -> float:
+            return x * math.sqrt(max((x - b) * (x + b), 0.0)) / R if x > b else 0.0
+
+        def g_integral(a: float) -> float:
+            return max((a - b) * (a + b), 0.0) ** 1.5 / (3 * R) if a > b else 0.0
+
+        def g_prime(x: float) -> float:     # (2x² - b²)/(R sqrt(x² - b²)), inf at the rim
+            q = (x - b) * (x + b)
+            return (2 * x * x - b * b) / (R * math.sqrt(q)) if q > 0 else math.inf
+
+        return {"g": g, "g_integral": g_integral, "g_prime": g_prime}
 
 
 class TruncatedCone(_FlatCentred):

@@ -7,6 +7,7 @@ stay below R (``g → ∞`` as ``a → R``); half-space theory needs ``a ≪ R``
 """
 from __future__ import annotations
 
+import math
 from typing import ClassVar
 
 import numpy as np
@@ -116,3 +117,29 @@ class Sphere(Profile):
     def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray:
         self._guard(x, "x")
         return np.arctanh(x / self.R) + x * self.R / ((self.R - x) * (self.R + x))
+
+    def _scalar_closed_forms(self) -> dict:
+        """Plain-float ``g``, ``∫g`` and ``g'`` for the scalar normal solve (same formulas)."""
+        R = self.R
+
+        def g(x: float) -> float:
+            if x >= R:
+                self._guard(np.array(x), "x")
+            return x * math.atanh(x / R)
+
+        def g_integral(a: float) -> float:
+            if a >= R:
+                self._guard(np.array(a), "a")
+            q = a / R
+            if q >= 0.1:
+                return 0.5 * (a**2 - R**2) * math.atanh(q) + 0.5 * R * a
+            ser, term = 0.0, q
+            for k in range(1, 18):
+                term = term * q * q if k > 1 else q**3
+                ser += term / ((2 * k - 1) * (2 * k + 1))
+            return R**2 * ser
+
+        def g_prime(x: float) -> float:
+            return math.atanh(x / R) + x * R / ((R - x) * (R + x))
+
+        return {"g": g, "g_integral": g_integral, "g_prime": g_prime}

@@ -1,0 +1,214 @@
+"""Scalar normal solves: one depth or one force, in plain floats (the fast path of ``normal()``).
+
+The array kernels of :mod:`contactlab.physics.normal` pay numpy's per-call overhead a few dozen
+times per solve (masks, broadcasting, 0-d arrays), which dominates a single call on a closed-form
+profile. Here the profile's closed forms are looked up **once per profile** and bound into plain
+float functions (:func:`forms_of`), so a scalar solve is a few float operations:
+
+* a single power term ``f = c r**n``: ``g = κ c a**n``, ``∫g = κ c a**(n+1)/(n+1)`` and both
+  inverses in closed form, no iteration;
+* other closed-form profiles (sphere, polynomial, truncated paraboloid): the contact radius by
+  :func:`contactlab.numeric.roots.scalar_root`, Newton on the closed-form derivative where the
+  profile has one (``g'``; for the force ``d(a g - ∫g)/da = a g'``), Chandrupatla otherwise.
+
+Profiles without a closed-form (or symbolic) ``g``, with a wall (flat punch) or with a ring-contact
+check (tables) are not handled here (:func:`forms_of` returns ``None``): their callers use the array
+kernels. The results agree with the array route to the same tolerance (the same formulas, the
+same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they need not be bit-identical
+to it, but every call of this route is deterministic.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..errors import OutsideTheoryError
+from ..numeric.roots import scalar_root
+from ..profiles.base import ROUNDING, Profile, root_rtol
+
+__all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
+
+_CACHE_KEY = "_scalar_normal_forms"
+
+
+@dataclass(frozen=True)
+class ScalarForms:
+    """Plain-float closed forms of one profile (see :func:`forms_of`).
+
+    ``g``, ``g_integral``: ``g(a)`` and ``∫_0^a g`` (m, m²); ``g_inverse``: contact radius of a
+    depth or ``None``; ``radius_of_reduced_force``: contact radius of ``F/(2E*)`` or ``None``;
+    ``g_prime``: ``g'(a)`` or ``None``; ``lo``: the flat radius (g = 0 below it); ``limit``: the
+    largest admissible contact radius; ``start``: the first upper bracket; ``wall``: the punch
+    wall radius (``inf`` without); ``validity``: the profile's ``validity_radius``.
+    """
+
+    g: Callable[[float], float]
+    g_integral: Callable[[float], float]
+    g_inverse: Callable[[float], float] | None
+    radius_of_reduced_force: Callable[[float], float] | None
+    g_prime: Callable[[float], float] | None
+    lo: float
+    limit: float
+    start: float
+    wall: float = math.inf
+    validity: float = math.inf
+
+
+def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], float]:
+    def call(x: float) -> float:
+        return float(fn(np.array(x)))
+    return call
+
+
+def _build(profile: Profile) -> ScalarForms | None:
+    if (profile.g_route not in ("closed_form", "symbolic") or profile.has("terms")
+            or profile._has("_check_monotone_upto")):
+        return None
+    lo = float(profile.flat_radius)
+    wall = float(profile.wall_radius)
+    if math.isfinite(wall):
+        if lo < wall:
+            return None             # a profile rising before its wall: the array route
+        # a flat punch: the contact radius is the wall's for every load
+        g_int = _on_scalar(lambda a: profile._g_integral_with_error(a)[0])
+        return ScalarForms(g=_on_scalar(profile._g), g_integral=g_int, g_inverse=None,
+                           radius_of_reduced_force=None, g_prime=None, lo=lo,
+                           limit=float(profile.max_radius), start=wall, wall=wall)
+    limit = float(profile.max_radius)
+    start = float(profile._initial_bracket())
+    terms = profile.power_terms()
+    if terms is not None and len(terms) == 1 and lo == 0.0:
+        c, n = (float(v) for v in terms[0])
+        kc = profile._power_kappa(n) * c
+        inv_n, inv_n1, n1 = 1.0 / n, 1.0 / (n + 1.0), n + 1.0
+        return ScalarForms(
+            g=lambda a: kc * a**n,
+            g_integral=lambda a: kc * a**n1 / n1,
+            g_inverse=lambda d: (d / kc) ** inv_n,
+            # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1)
+            radius_of_reduced_force=lambda fr: (fr * n1 / (kc * n)) ** inv_n1,
+            g_prime=lambda a: n * kc * a ** (n - 1.0),
+            lo=lo, limit=limit, start=start)
+    own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
+    g = _on_scalar(profile._g) if not profile._has("_g_closed_form") else _on_scalar(
+        profile._g_closed_form)
+    g_int = _on_scalar(lambda a: profile._g_integral_with_error(a)[0])
+    g_inv = (_on_scalar(profile._g_inverse_closed_form)
+             if profile._has("_g_inverse_closed_form") else None)
+    g_prime = (_on_scalar(profile._g_prime_closed_form)
+               if profile._has("_g_prime_closed_form") else None)
+    if terms is not None and lo == 0.0:
+        kn = [(profile._power_kappa(float(n)) * float(c), float(n)) for c, n in terms]
+
+        def g(a: float) -> float:
+            return sum(k * a**n for k, n in kn)
+
+        def g_int(a: float) -> float:
+            return sum(k * a ** (n + 1.0) / (n + 1.0) for k, n in kn)
+
+        def g_prime(a: float) -> float:
+            return sum(n * k * a ** (n - 1.0) for k, n in kn)
+    g, g_int = own.get("g", g), own.get("g_integral", g_int)
+    g_inv, g_prime = own.get("g_inverse", g_inv), own.get("g_prime", g_prime)
+    return ScalarForms(g=g, g_integral=g_int, g_inverse=g_inv, radius_of_reduced_force=None,
+                       g_prime=g_prime, lo=lo, limit=limit, start=start)
+
+
+def _with_validity(profile: Profile, forms: ScalarForms | None) -> ScalarForms | None:
+    if forms is None:
+        return None
+    from dataclasses import replace
+    return replace(forms, validity=float(getattr(profile, "validity_radius", math.inf)))
+
+
+def forms_of(profile: Profile) -> ScalarForms | None:
+    """The scalar forms of ``profile``, built on first use and kept on the profile.
+
+    ``None`` when the profile has no scalar route (numeric g, a wall, a sum of terms, a table).
+    The forms are a pure function of the (immutable) profile, so keeping them changes no result.
+    """
+    forms = profile.__dict__.get(_CACHE_KEY, False)
+    if forms is False:
+        forms = _with_validity(profile, _build(profile))
+        profile.__dict__[_CACHE_KEY] = forms
+    return forms
+
+
+def _too_deep(what: str, value: float, limit: float, profile: Profile) -> OutsideTheoryError:
+    return OutsideTheoryError(
+        f"{what}={value!r} {'m' if what == 'depth' else 'N'} needs a contact radius >= "
+        f"max_radius={limit!r} m of {profile!r}; reduce the {what}.")
+
+
+def _upper(forms: ScalarForms, h: Callable[[float], float], target: float, what: str,
+           value: float, profile: Profile) -> tuple[float, float, float]:
+    """Bracket ``[lo, hi]`` with ``h(lo) <= target <= h(hi)``, grown by 4x from ``forms.start``."""
+    lo, hi = forms.lo, forms.start
+    finite = math.isfinite(forms.limit)
+    cap = forms.limit * (1 - 1e-15) if finite else math.inf
+    for _ in range(400):
+        hi_c = min(hi, cap)
+        h_hi = h(hi_c)
+        if h_hi >= target:
+            return lo, hi_c, h_hi
+        if hi_c >= cap:
+            raise _too_deep(what, value, forms.limit, profile)
+        lo, hi = hi_c, 4.0 * hi
+    raise _too_deep(what, value, forms.limit, profile)  # pragma: no cover - 4**400 overflows
+
+
+def solve_depth(profile: Profile, forms: ScalarForms, d: float, rtol: float) -> float:
+    """Contact radius (m) of one non-adhesive depth ``d > 0`` (m)."""
+    if math.isfinite(forms.wall):
+        return forms.wall
+    if forms.g_inverse is not None:
+        a = forms.g_inverse(d)
+    else:
+        lo, hi, g_hi = _upper(forms, forms.g, d, "depth", d, profile)
+        a = scalar_root(forms.g, d, lo, hi, rtol=root_rtol(rtol), fprime=forms.g_prime,
+                        f_hi=g_hi, what="contact radius")
+    if a >= forms.limit:
+        raise _too_deep("depth", d, forms.limit, profile)
+    return a
+
+
+def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, rtol: float
+                ) -> tuple[float, float]:
+    """Contact radius and depth (m) of one non-adhesive force ``F > 0`` (N)."""
+    fr = F / (2.0 * E_star)
+    if math.isfinite(forms.wall):       # flat punch: F = 2E*(b d - ∫_0^b g)
+        b = forms.wall
+        return b, (fr + forms.g_integral(b)) / b
+    if forms.radius_of_reduced_force is not None:
+        a = forms.radius_of_reduced_force(fr)
+    else:
+        g, G, gp = forms.g, forms.g_integral, forms.g_prime
+
+        def h(x: float) -> float:          # F/(2E*) as a function of the contact radius
+            return x * g(x) - G(x)
+
+        lo, hi, h_hi = _upper(forms, h, fr, "force", F, profile)
+        dh = None if gp is None else (lambda x: x * gp(x))
+        a = scalar_root(h, fr, lo, hi, rtol=root_rtol(rtol), fprime=dh, f_hi=h_hi,
+                        what="contact radius")
+    if a >= forms.limit:
+        raise _too_deep("force", F, forms.limit, profile)
+    return a, forms.g(a)
+
+
+def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
+                    requested: float | None) -> float:
+    """Relative error estimate of the force, as :func:`contactlab.physics.normal.solve` gives it.
+
+    Closed-form routes: rounding of ``a d - ∫g`` and of ``∫g``; under force control plus the
+    residual against the requested force.
+    """
+    if not F > 0:
+        return 0.0
+    err = 2.0 * E_star * (ROUNDING * (abs(a * d) + abs(g_int)) + ROUNDING * abs(g_int))
+    if requested is not None and requested > 0:
+        err += abs(F - requested)
+    return err / F
