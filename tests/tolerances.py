@@ -165,3 +165,7 @@ EDGE_DISPLACEMENT = 1e-12
 #: 1e-11 of the largest) move along the loading curve with its tangent stiffness, so only the
 #: second-order term and rounding remain; relative to the torque amplitude
 MERGED_ARGUMENTS = 1e-12
+#: the scalar fast path of normal() against the array route on the same input: the same
+#: formulas in plain floats (libm) and in numpy (SIMD), and root solves to the same bracket
+#: tolerance 1e-15: a few ulps apart
+SCALAR_VS_ARRAY = 1e-14

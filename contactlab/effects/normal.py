@@ -43,7 +43,7 @@ NESTED_ROUNDING = 3e-11
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
-    if type(v) is np.ndarray and v.ndim == 0 and v.dtype == np.float64:
+    if type(v) is np.float64:           # the scalar fast path stores numpy float scalars
         return float(v)
     return scalar_or_array(np.asarray(v, dtype=float))
 
@@ -58,14 +58,14 @@ class LazyMeta(dict):
 
     __slots__ = ("_pending",)
 
-    def __init__(self, base: dict, pending: Any) -> None:
+    def __init__(self, base: dict, pending: Any, *args: Any) -> None:
         dict.__init__(self, base)
-        self._pending = pending
+        self._pending = (pending, args)
 
     def _resolve(self) -> None:
         pending = self._pending
         if pending is not None:
-            dict.__setitem__(self, "error_estimate", pending())
+            dict.__setitem__(self, "error_estimate", pending[0](*pending[1]))
             self._pending = None
 
     def __getitem__(self, key: Any) -> Any:
@@ -119,6 +119,10 @@ class LazyMeta(dict):
         return (dict, (dict(dict.items(self)),))
 
 
+_new_state = object.__new__
+_f64 = np.float64
+
+
 def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
     """One finite depth or force on a profile with scalar forms: plain floats, no arrays.
 
@@ -153,10 +157,14 @@ def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
         F = (a * d - g_int) * (2.0 * E)
     else:
         g_int = F = 0.0
-    requested = v if key == "force" else None
     meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key},
-                    lambda: _scalar.force_rel_error(E, a, d, g_int, F, requested))
-    return NormalState(contact, np.array(d), np.array(a), np.array(F), meta)
+                    _scalar.force_rel_error, E, a, d, g_int, F, v if key == "force" else None)
+    # (the dataclass __init__ and its frozen setattr cost more than the solve: fill the fields)
+    state = _new_state(NormalState)
+    # numpy float scalars: they act as 0-d arrays in every state method, at half the cost
+    state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
+                          meta=meta)
+    return state
 
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,

@@ -211,4 +211,4 @@ def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
     err = 2.0 * E_star * (ROUNDING * (abs(a * d) + abs(g_int)) + ROUNDING * abs(g_int))
     if requested is not None and requested > 0:
         err += abs(F - requested)
-    return err / F
+    return float(err / F)
