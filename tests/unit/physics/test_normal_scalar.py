@@ -1,15 +1,3 @@
-
-
-def test_validity_warning_like_the_array_route():
-    from contactlab.errors import ValidityWarning
-    c = cl.Contact(Sphere(1e-3), (STEEL, STEEL))
-    deep = 0.3e-3          # contact radius beyond R/2
-    with pytest.warns(ValidityWarning):
-        c.normal(depth=np.array([deep]))
-    with pytest.warns(ValidityWarning) as rec:
-        c.normal(depth=deep)
-    assert rec[0].filename == __file__        # points at the caller
-
 """The scalar fast path of normal() (issue 13) against the array route and the closed forms."""
 from __future__ import annotations
 
@@ -86,3 +74,14 @@ def test_same_call_is_bit_identical():
     c.normal(depth=np.linspace(0, 1e-6, 7))
     again = c.normal(force=3.0)
     assert (first.force, first.radius, first.depth) == (again.force, again.radius, again.depth)
+
+
+def test_validity_warning_like_the_array_route():
+    from contactlab.errors import ValidityWarning
+    c = cl.Contact(Sphere(1e-3), (STEEL, STEEL))
+    deep = 0.3e-3          # contact radius beyond R/2
+    with pytest.warns(ValidityWarning):
+        c.normal(depth=np.array([deep]))
+    with pytest.warns(ValidityWarning) as rec:
+        c.normal(depth=deep)
+    assert rec[0].filename == __file__        # points at the caller
