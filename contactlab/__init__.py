@@ -8,6 +8,7 @@ from . import errors, foundation, loadpath, materials, profiles
 from .contact import Contact
 from .effects import (AdhesionCycle, AdhesiveNormalState, NormalState, PathResult, ShiftHistory,
                       TangentialState, TorsionState, TwistHistory, ViscoelasticHistory)
+from .effects.law import ContactLaw, LawStep
 from .loadpath import LoadPath
 from .materials import Elastic, Rigid, effective_moduli
 from .params import memory_budget, set_memory_budget
@@ -21,6 +22,7 @@ __all__ = [
     "Contact", "Elastic", "Rigid", "effective_moduli", "LoadPath",
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
+    "ContactLaw", "LawStep",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
     "__version__",

@@ -169,3 +169,15 @@ MERGED_ARGUMENTS = 1e-12
 #: formulas in plain floats (libm) and in numpy (SIMD), and root solves to the same bracket
 #: tolerance 1e-15: a few ulps apart
 SCALAR_VS_ARRAY = 1e-14
+
+# ---- contact law (issue 14)
+#: ContactLaw (master curves + vectorised Masing) against Contact.twist_history/shift_history:
+#: the histories' own stick-radius root and quadratures are good to ~1e-12; margin for the
+#: Masing recursion adding branch values over many reversals
+LAW_HISTORY = 1e-9
+#: torsion master curves (certified piecewise polynomials) against the exact solvers at points
+#: that are not interpolation nodes: certified to 1e-13 absolute at construction
+MASTER_CURVE = 1e-12
+#: loop area by the trapezoid rule over 4000 steps per cycle against the law's dissipation:
+#: O(h²) with the curvature of the branches, measured ~1e-7
+LOOP_AREA = 1e-5

@@ -11,10 +11,14 @@ immutable result:
 * :mod:`~contactlab.effects.torsion`: :class:`TorsionState`, :class:`TwistHistory`;
 * :mod:`~contactlab.effects.viscoelastic`: :class:`ViscoelasticHistory`;
 * :mod:`~contactlab.effects.path`: :class:`PathResult` (``contact.simulate``);
-* :mod:`~contactlab.effects.fretting`: :class:`FrettingLoop`, :class:`FrettingMap`.
+* :mod:`~contactlab.effects.fretting`: :class:`FrettingLoop`, :class:`FrettingMap`;
+* :mod:`~contactlab.effects.law`: :class:`ContactLaw`, :class:`LawStep` (many contacts, for DEM
+  codes; takes plain per-contact arrays instead of a contact).
 """
 from .adhesion import AdhesionCycle, AdhesiveNormalState
 from .fretting import FrettingLoop, FrettingMap
+from .law import ContactLaw, LawStep
+>>>>>>> a454b13 (ContactLaw: vectorised exact contact law at constant normal load for many contacts (power-law families n >= 1): certified torsion master curves (physics/master.py, piecewise polynomials built from the exact solvers, certified at non-node points), Cattaneo-Mindlin closed form, vectorised Masing step with a bounded turning-point stack (physics/masing_stack.py); state save/restore, reset, validation naming the index; tests against twist_history/shift_history for 50 random contacts)
 from .normal import NormalState
 from .path import PathResult
 from .tangential import ShiftHistory, TangentialState
@@ -23,4 +27,4 @@ from .viscoelastic import ViscoelasticHistory
 
 __all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
            "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult",
-           "FrettingLoop", "FrettingMap"]
+           "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep"]

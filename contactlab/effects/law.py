@@ -1,0 +1,421 @@
+"""A vectorised contact law for many contacts (DEM and multibody codes): :class:`ContactLaw`.
+
+Every contact of a law belongs to one power-law profile family ``f = c r^n`` (``n >= 1``:
+:class:`~contactlab.profiles.Paraboloid` with per-contact ``R``, :class:`~contactlab.profiles.Cone`
+with per-contact ``slope``, :class:`~contactlab.profiles.PowerLaw` with per-contact ``c``), with
+its own moduli and friction. :meth:`ContactLaw.step` advances all contacts by one time step and
+carries each contact's memory (Masing turning points) to the next.
+
+At constant normal load the law is exact: normal contact by the closed forms, Cattaneo–Mindlin
+by its closed form and exact (Jäger) torsion by the family's certified master curve
+(:mod:`contactlab.physics.master`), both with Masing's rule and a turning-point stack of bounded
+depth per contact (:mod:`contactlab.physics.masing_stack`). The load counts as constant while
+the depth stays within ``load_rtol`` of the depth at which the contact's memory started.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
+from ..errors import ValidityWarning
+from ..params import exactly_one
+from ..physics import master as _master
+from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
+from ..profiles import Cone, Paraboloid, PowerLaw
+from ..symbolic.transform import kappa
+
+__all__ = ["ContactLaw", "LawStep", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL"]
+
+#: turning points stored per contact and channel (four nested loops)
+DEFAULT_MEMORY = 8
+#: relative change of the depth up to which the normal load counts as constant
+DEFAULT_LOAD_RTOL = 1e-9
+
+_UNITS = {"R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
+          "G_torsion": "Pa", "friction": "1"}
+
+
+@dataclass(frozen=True, eq=False)
+class LawStep:
+    """Result of one :meth:`ContactLaw.step`: one value per contact (SI units).
+
+    Attributes
+    ----------
+    depth, radius, force : ndarray
+        Indentation depth (m), contact radius (m), normal force (N).
+    tangential_force, torque : ndarray
+        Tangential force (N) along the given displacement, torque (N·m) about the normal.
+    stick_radius, torsion_stick_radius : ndarray
+        Stick radius of the tangential (Cattaneo–Mindlin) and of the torsional slip problem, m
+        (the contact radius without slip; of the active Masing branch).
+    dissipated_energy : ndarray
+        Energy dissipated by friction in this step, J (both channels).
+    exact : ndarray of bool
+        True where the result is exact (constant normal load).
+    """
+
+    depth: np.ndarray
+    radius: np.ndarray
+    force: np.ndarray
+    tangential_force: np.ndarray
+    torque: np.ndarray
+    stick_radius: np.ndarray
+    torsion_stick_radius: np.ndarray
+    dissipated_energy: np.ndarray
+    exact: np.ndarray
+
+
+def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
+    """A positive finite per-contact array (scalar or 1D), errors naming the index."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers "
+                             f"(unit {_UNITS.get(name, '-')}).") from err
+    if arr.ndim > 1:
+        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
+                             "contact (1D).")
+    if arr.ndim == 1 and size is not None and arr.size != size:
+        raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
+                             "give a scalar or one value per contact.")
+    bad = ~(np.isfinite(arr) & (arr > 0))
+    if np.any(bad):
+        if arr.ndim == 0:
+            raise ParameterError(f"{name}={float(arr)!r} is invalid: it must be finite and > 0 "
+                                 f"(unit {_UNITS.get(name, '-')}).")
+        i = int(np.argmax(bad))
+        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be "
+                             f"finite and > 0 (unit {_UNITS.get(name, '-')}).")
+    return arr
+
+
+def _per_step(name: str, value: Any, size: int, unit: str, nonneg: bool = False) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers ({unit}).") from err
+    if arr.ndim > 1 or (arr.ndim == 1 and arr.size != size):
+        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
+                             f"contact ({size}).")
+    arr = np.broadcast_to(arr, (size,))
+    bad = ~np.isfinite(arr) | ((arr < 0) if nonneg else False)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        allowed = "finite and >= 0" if nonneg else "finite"
+        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be "
+                             f"{allowed} ({unit}).")
+    return arr
+
+
+class ContactLaw:
+    """Normal, tangential and torsional response of ``n`` contacts with memory, vectorised.
+
+    Parameters
+    ----------
+    profile : Profile class or instance
+        :class:`~contactlab.profiles.Paraboloid` (per-contact ``R``),
+        :class:`~contactlab.profiles.Cone` (per-contact ``slope``) or
+        :class:`~contactlab.profiles.PowerLaw` (per-contact ``c``, one exponent ``n >= 1``); an
+        instance gives the same geometry to every contact.
+    R, slope, c : float or array_like, optional
+        Geometry per contact (m, 1, m^(1-n)), by the family's parameter name.
+    n : float, optional
+        Exponent of a :class:`~contactlab.profiles.PowerLaw` family.
+    E_star, G_star, G_torsion : float or array_like, optional
+        Effective normal, tangential (Cattaneo–Mindlin) and torsional moduli, Pa, per contact;
+        or ``materials=(m1, m2)`` (the same pair for every contact).
+    friction : float or array_like
+        Coulomb coefficient per contact (> 0).
+    torsion : {"exact"}
+        Torsion model at constant load (Jäger's exact partial slip).
+    memory : int
+        Turning points stored per contact and channel (see
+        :mod:`contactlab.physics.masing_stack` for what happens beyond).
+    load_rtol : float
+        Relative change of the depth, from the depth at which a contact's memory started, up to
+        which the normal load counts as constant.
+    size : int, optional
+        Number of contacts when every parameter is a scalar.
+
+    Notes
+    -----
+    A step with both a displacement and a twist treats the two slip problems independently,
+    each with the full friction limit (their slip conditions couple in reality; outside the
+    theory): a :class:`~contactlab.errors.ValidityWarning` is emitted once per law. A contact
+    whose depth is <= 0 carries nothing and its memory is cleared; :meth:`reset` clears it on
+    request (a DEM code recycling a contact slot). The displacement and twist are the relative
+    motions accumulated since the contact's memory started.
+
+    Examples
+    --------
+    >>> import numpy as np, contactlab as cl
+    >>> law = cl.ContactLaw(cl.profiles.Paraboloid, R=[0.01, 0.02], E_star=1.15e11,
+    ...                     G_star=4.4e10, G_torsion=4.0e10, friction=0.3)
+    >>> out = law.step(force=[10.0, 20.0], twist=[1e-4, 2e-4])
+    >>> out.torque.shape
+    (2,)
+    """
+
+    def __init__(self, profile: Any, *, R: Any = None, slope: Any = None, c: Any = None,
+                 n: float | None = None, E_star: Any = None, G_star: Any = None,
+                 G_torsion: Any = None, friction: Any = None, materials: Any = None,
+                 torsion: str = "exact", memory: int = DEFAULT_MEMORY,
+                 load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None) -> None:
+        cls = profile if isinstance(profile, type) else type(profile)
+        inst = None if isinstance(profile, type) else profile
+        if not (isinstance(cls, type) and issubclass(cls, PowerLaw)):
+            raise NotSupportedError(f"profile={profile!r} is not supported by ContactLaw: use "
+                                    "Paraboloid, Cone or PowerLaw (f = c r^n, n >= 1).")
+        if torsion not in ("exact",):
+            raise UnknownNameError(f"torsion={torsion!r} is invalid: allowed are ('exact',).")
+        if isinstance(memory, bool) or not isinstance(memory, (int, np.integer)) or memory < 2:
+            raise ParameterError(f"memory={memory!r} is invalid: it must be an integer >= 2.")
+        if not (isinstance(load_rtol, (int, float)) and np.isfinite(load_rtol)
+                and load_rtol >= 0):
+            raise ParameterError(f"load_rtol={load_rtol!r} is invalid: it must be finite and "
+                                 ">= 0.")
+        if size is not None and (isinstance(size, bool) or not isinstance(size, (int, np.integer))
+                                 or size < 1):
+            raise ParameterError(f"size={size!r} is invalid: it must be an integer >= 1.")
+        geo = {"R": R, "slope": slope, "c": c}
+        if cls is Paraboloid:
+            gname, expo = "R", 2.0
+        elif cls is Cone:
+            gname, expo = "slope", 1.0
+        else:
+            gname = "c"
+            if inst is None and n is None:
+                raise ParameterError("n is missing: a PowerLaw family needs its exponent n.")
+            expo = float(inst.n if inst is not None else n)
+        for k, v in geo.items():
+            if v is not None and k != gname:
+                raise ParameterError(f"{k}= is not a parameter of {cls.__name__}: give {gname}=.")
+        if inst is not None:
+            if geo[gname] is not None:
+                raise ParameterError(f"{gname}= given twice: by the profile instance and by "
+                                     "keyword.")
+            geo[gname] = getattr(inst, gname)
+        if geo[gname] is None:
+            raise ParameterError(f"{gname} is missing: {cls.__name__} contacts need {gname}= "
+                                 "(scalar or one value per contact).")
+        if not expo >= _master.MIN_EXPONENT:
+            raise NotSupportedError(f"n={expo!r} is not supported by ContactLaw: the exponent "
+                                    f"must satisfy n >= {_master.MIN_EXPONENT:g}.")
+        if materials is not None:
+            if any(v is not None for v in (E_star, G_star, G_torsion)):
+                raise ParameterError("give either materials=(m1, m2) or E_star/G_star/G_torsion, "
+                                     "not both.")
+            from ..materials import effective_moduli
+            mod = effective_moduli(*materials)
+            E_star, G_star, G_torsion = mod.normal, mod.tangential, mod.torsional
+        vals = {gname: geo[gname], "E_star": E_star, "G_star": G_star, "G_torsion": G_torsion,
+                "friction": friction}
+        for k, v in vals.items():
+            if v is None:
+                raise ParameterError(f"{k} is missing: ContactLaw needs {k}= (scalar or one "
+                                     "value per contact).")
+        sizes = {k: np.asarray(v).size for k, v in vals.items() if np.ndim(v) == 1}
+        if size is None and len(set(sizes.values())) > 1:
+            raise ParameterError("per-contact arrays have different lengths: "
+                                 + ", ".join(f"{k} has {v}" for k, v in sizes.items())
+                                 + "; give scalars or one value per contact.")
+        sizes = set(sizes.values())
+        if size is None:
+            size = max(sizes) if sizes else 1
+        arrs = {k: np.broadcast_to(_per_contact(k, v, size), (size,)).copy()
+                for k, v in vals.items()}
+        self.size = int(size)
+        self.n = expo
+        self.family = cls
+        g = arrs[gname]
+        # g(x) = kc x^n
+        self.kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
+        self.geometry = {gname: g}
+        self.E_star, self.G_star = arrs["E_star"], arrs["G_star"]
+        self.G_torsion, self.friction = arrs["G_torsion"], arrs["friction"]
+        self.memory = int(memory)
+        self.load_rtol = float(load_rtol)
+        self.torsion = torsion
+        self._master = _master.torsion_master(expo)
+        self._warned = False
+        self._st = self._fresh(self.size)
+
+    # ------------------------------------------------------------------ state
+    def _fresh(self, n: int) -> dict[str, np.ndarray]:
+        st = {"depth_ref": np.zeros(n)}
+        for ch in ("tan", "tor"):
+            for k, v in new_stack(n, self.memory).items():
+                st[f"{ch}_{k}"] = v
+        return st
+
+    @property
+    def state(self) -> dict[str, np.ndarray]:
+        """Every contact's memory as named arrays (copies): save with ``np.savez(file,
+        **law.state)``, restore with ``law.state = dict(np.load(file))``."""
+        return {k: v.copy() for k, v in self._st.items()}
+
+    @state.setter
+    def state(self, value: dict) -> None:
+        ref = self._st
+        missing = sorted(set(ref) - set(value))
+        extra = sorted(set(value) - set(ref))
+        if missing or extra:
+            raise ParameterError(f"state is invalid: missing keys {missing}, unknown keys "
+                                 f"{extra} (it must come from law.state of a law of the same "
+                                 "size and memory).")
+        new = {}
+        for k, v in ref.items():
+            arr = np.asarray(value[k])
+            if arr.shape != v.shape:
+                raise ParameterError(f"state[{k!r}] has shape {arr.shape}; this law needs "
+                                     f"{v.shape}.")
+            new[k] = arr.astype(v.dtype, copy=True)
+        self._st = new
+
+    def reset(self, mask: Any = None) -> None:
+        """Clear the memory of the contacts in ``mask`` (bool array or indices; all if None)."""
+        if mask is None:
+            self._st = self._fresh(self.size)
+            return
+        m = np.asarray(mask)
+        if m.dtype == bool:
+            if m.shape != (self.size,):
+                raise ParameterError(f"mask has shape {m.shape}: a boolean mask needs one value "
+                                     f"per contact ({self.size},).")
+            idx = np.flatnonzero(m)
+        else:
+            idx = m.astype(np.int64).ravel()
+            bad = (idx < 0) | (idx >= self.size)
+            if np.any(bad):
+                raise ParameterError(f"mask contains index {int(idx[bad][0])}: indices must "
+                                     f"satisfy 0 <= i < {self.size}.")
+        self._clear(idx)
+
+    def _clear(self, idx: np.ndarray) -> None:
+        if idx.size == 0:
+            return
+        for k, v in self._st.items():
+            v[idx] = 0
+
+    # ------------------------------------------------------------------ normal contact
+    def normal(self, *, depth: Any = None, force: Any = None) -> tuple[np.ndarray, ...]:
+        """``(depth, radius, force)`` per contact for a depth (m) or a force (N >= 0)."""
+        key, val = exactly_one("ContactLaw.normal()", {"depth": depth, "force": force})
+        n = self.n
+        if key == "depth":
+            d = _per_step("depth", val, self.size, "m")
+            dp = np.maximum(d, 0.0)
+            a = (dp / self.kc) ** (1.0 / n) if n != 2.0 else np.sqrt(dp / self.kc)
+            F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
+            return d.copy(), a, F
+        F = _per_step("force", val, self.size, "N", nonneg=True)
+        a = (F * (n + 1.0) / (2.0 * n * self.E_star * self.kc)) ** (1.0 / (n + 1.0))
+        d = self.kc * a**n if n != 2.0 else self.kc * a * a
+        return d, a, F.copy()
+
+    # ------------------------------------------------------------------ the step
+    def step(self, *, depth: Any = None, force: Any = None, displacement: Any = None,
+             twist: Any = None) -> LawStep:
+        """Advance every contact by one step.
+
+        Parameters
+        ----------
+        depth, force : array_like
+            Exactly one: indentation depth (m) or normal force (N >= 0) per contact.
+        displacement : array_like, optional
+            Tangential displacement (m) since the contact's memory started (omitted: no
+            tangential response).
+        twist : array_like, optional
+            Twist angle (rad) since the contact's memory started.
+
+        Returns
+        -------
+        LawStep
+
+        Raises
+        ------
+        OutsideTheoryError
+            A contact's depth left ``load_rtol`` of the depth at which its memory started (this
+            law is exact at constant normal load; :meth:`reset` restarts the memory).
+        """
+        d, a, F = self.normal(depth=depth, force=force)
+        size = self.size
+        u = None if displacement is None else _per_step("displacement", displacement, size, "m")
+        phi = None if twist is None else _per_step("twist", twist, size, "rad")
+        st = self._st
+        live = a > 0
+        if not np.all(live):
+            self._clear(np.flatnonzero(~live))
+        ref = st["depth_ref"]
+        new = live & (ref == 0)
+        ref[new] = d[new]
+        off = live & (np.abs(d - ref) > self.load_rtol * ref)
+        if np.any(off):
+            i = int(np.argmax(off))
+            raise OutsideTheoryError(
+                f"depth[{i}]={float(d[i])!r} m differs from the depth {float(ref[i])!r} m at "
+                f"which contact {i}'s memory started by more than load_rtol={self.load_rtol!r}: "
+                "this law is exact at constant normal load. Call law.reset(mask) to restart the "
+                "memory of contacts whose load changed, or raise load_rtol.")
+        if u is not None and phi is not None and not self._warned and np.any(
+                live & (u != 0) & (phi != 0)):
+            self._warned = True
+            warnings.warn("ContactLaw: displacement and twist together are treated as two "
+                          "independent slip problems, each with the full friction limit "
+                          "(outside the theory: the slip conditions couple).", ValidityWarning,
+                          stacklevel=2)
+        zero = np.zeros(size)
+        dW = zero.copy()
+        Ft, ct = zero.copy(), a.copy()
+        M, cm = zero.copy(), a.copy()
+        safe_a = np.where(live, a, 1.0)
+        safe_d = np.where(live, d, 1.0)
+        if u is not None:
+            Ft, ct, w = self._tangential(u, safe_a, safe_d, np.where(live, F, 0.0))
+            dW += w
+        if phi is not None:
+            M, cm, w = self._torsion(phi, safe_a, safe_d)
+            dW += w
+        if not np.all(live):
+            dead = ~live
+            for arr in (Ft, M, dW, ct, cm):
+                arr[dead] = 0.0
+            self._clear(np.flatnonzero(dead))
+        return LawStep(d, a, F, Ft, M, ct, cm, dW, live.copy())
+
+    def _channel(self, prefix: str) -> dict[str, np.ndarray]:
+        return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}
+
+    def _tangential(self, u, a, d, FN):
+        n = self.n
+        mu, E, G = self.friction, self.E_star, self.G_star
+        u_star = mu * E * d / G
+        muF = mu * FN
+        Dscale = 2.0 * a * (mu * E * d) ** 2 / G
+
+        def load(arg, idx):
+            if idx is None:
+                t, f, w = _master.tangential_master(n, arg / u_star)
+                return muF * f, a * t, Dscale * w
+            t, f, w = _master.tangential_master(n, arg / u_star[idx])
+            return muF[idx] * f, a[idx] * t, Dscale[idx] * w
+
+        return masing_step(self._channel("tan"), u, load)
+
+    def _torsion(self, phi, a, d):
+        phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
+                                               self.friction, a, d)
+        mc = self._master
+
+        def load(arg, idx):
+            if idx is None:
+                t, m, q = mc(arg / phi_s)
+                return M_full * m, a * t, M_full * arg * q
+            t, m, q = mc(arg / phi_s[idx])
+            return M_full[idx] * m, a[idx] * t, M_full[idx] * arg * q
+
+        return masing_step(self._channel("tor"), phi, load)

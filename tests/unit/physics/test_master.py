@@ -1,0 +1,81 @@
+"""Master curves of power-law contacts against the exact solvers, on ladders that reach
+c/a -> 1 (no slip) and c/a -> 0 (full sliding)."""
+import numpy as np
+import pytest
+
+from contactlab.physics import master, tangential, torsion_exact as ex
+from contactlab.physics.torsion import Exact
+from contactlab.profiles import PowerLaw
+from contactlab.symbolic.transform import kappa
+from tests.tolerances import CLOSED_FORM, MASTER_CURVE
+
+STICK_LADDER = np.array([1 - 1e-10, 1 - 1e-7, 1 - 1e-4, 0.999, 0.99, 0.9, 0.7, 0.5, 0.3, 0.1,
+                         1e-2, 1e-3, 1e-4, 1e-6])
+
+
+@pytest.mark.parametrize("n", [1.0, 2.0, 3.0])
+def test_torsion_master_on_stick_ladder(n):
+    """Parametrise by the stick ratio (no root solve): y = P(c)/(E*d/a), M from the torque
+    integral; the master curve evaluated at that y must return c/a and M/M_full."""
+    mc = master.torsion_master(n)
+    assert mc.certified_error <= master.CERTIFY_TOL
+    prof = PowerLaw(c=1.0, n=n)
+    k = float(kappa(n))
+    t = STICK_LADDER
+    one = np.ones(t.size)
+    P, _ = ex.slip_function(prof, 1.0, t, one, k, k, 1e-14)
+    y = P / k
+    phi = 0.5 * P
+    T, _ = ex.torque_integral(prof, 1.0, t, one, k, k, 1e-14)
+    M = ex.torque_of_stick(1.0, 1.0, t, phi, T)
+    M_full = np.pi * n / (2 * (n + 2)) * k
+    tt, m, q = mc(y)
+    np.testing.assert_allclose(tt, t, rtol=0, atol=MASTER_CURVE)
+    np.testing.assert_allclose(m, M / M_full, rtol=MASTER_CURVE, atol=0)
+    D = Exact(prof, 1.0, 1.0, 1.0, 1e-14).dissipation(phi, t, one, k * one, k * one)
+    # q = D/(M_full φ) is certified in absolute terms: the exact J = P T - I cancels as c -> a
+    np.testing.assert_allclose(q, D / (M_full * phi), rtol=0, atol=MASTER_CURVE)
+
+
+@pytest.mark.parametrize("n", [1.0, 2.0, 3.0])
+def test_torsion_master_on_twist_ladder(n):
+    """Relative accuracy as y -> 0 (torque ~ y, dissipation ~ y³) and the limit y -> ∞."""
+    mc = master.torsion_master(n)
+    y = np.array([1e-12, 1e-9, 1e-6, 1e-3, 0.1, 1.0, 3.0, 10.0, 30.0, 1e3, 1e6])
+    t_ex, m_ex, q_ex = master._exact_curves(n, y)
+    t, m, q = mc(y)
+    np.testing.assert_allclose(t, t_ex, rtol=0, atol=MASTER_CURVE)
+    np.testing.assert_allclose(m, m_ex, rtol=MASTER_CURVE, atol=0)
+    np.testing.assert_allclose(q, q_ex, rtol=0, atol=MASTER_CURVE)
+    # no-slip slope: M = (16/3) G_t a³ φ  <=>  m = 16 (n+2) y / (3 π n)
+    assert m[0] == pytest.approx(16 * (n + 2) * y[0] / (3 * np.pi * n), rel=MASTER_CURVE)
+    assert 0.0 <= t[-1] <= MASTER_CURVE and m[-1] == pytest.approx(1.0, abs=MASTER_CURVE)
+
+
+def test_torsion_master_rejects_n_below_one():
+    with pytest.raises(master.NotSupportedError, match="n=0.5"):
+        master.torsion_master(0.5)
+
+
+@pytest.mark.parametrize("n", [1.0, 2.0, 3.0, 1.7])
+def test_tangential_master_against_kernels(n):
+    prof = PowerLaw(c=2.0, n=n)
+    E, G, mu, a = 1.3e11, 5e10, 0.4, 1e-4
+    d = float(prof._g(np.array(a)))
+    u_star = mu * E * d / G
+    x = np.array([1e-6, 1e-3, 0.1, 0.5, 0.9, 0.999, 1.0, 1.5])
+    u = x * u_star
+    t, f, w = master.tangential_master(n, x)
+    F, c = tangential.force_of_displacement(prof, E, G, mu, a, d, u)
+    FN = 2 * E * d * a * n / (n + 1)
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.dps = 30
+    f_ref = [float(1 - (1 - mpmath.mpf(v)) ** (mpmath.mpf(n + 1) / n)) if v < 1 else 1.0
+             for v in x]
+    np.testing.assert_allclose(f, f_ref, rtol=1e-14)
+    # the spring-sum kernel cancels at small x (2G*cu + 2μE*∫(d - g) - ...): absolute comparison
+    np.testing.assert_allclose(f * mu * FN, F, rtol=0, atol=1e-12 * mu * FN)
+    np.testing.assert_allclose(t * a, c, rtol=0, atol=CLOSED_FORM * a)
+    D = tangential.virgin_dissipation(prof, E, G, mu, a, d, u, 1e-12)
+    np.testing.assert_allclose(2 * a * (mu * E * d) ** 2 / G * w, D, rtol=1e-9,
+                               atol=1e-12 * D.max())
