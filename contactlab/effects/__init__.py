@@ -18,7 +18,6 @@ immutable result:
 from .adhesion import AdhesionCycle, AdhesiveNormalState
 from .fretting import FrettingLoop, FrettingMap
 from .law import ContactLaw, LawStep
->>>>>>> a454b13 (ContactLaw: vectorised exact contact law at constant normal load for many contacts (power-law families n >= 1): certified torsion master curves (physics/master.py, piecewise polynomials built from the exact solvers, certified at non-node points), Cattaneo-Mindlin closed form, vectorised Masing step with a bounded turning-point stack (physics/masing_stack.py); state save/restore, reset, validation naming the index; tests against twist_history/shift_history for 50 random contacts)
 from .normal import NormalState
 from .path import PathResult
 from .tangential import ShiftHistory, TangentialState
