@@ -181,3 +181,132 @@ MASTER_CURVE = 1e-12
 #: loop area by the trapezoid rule over 4000 steps per cycle against the law's dissipation:
 #: O(h²) with the curvature of the branches, measured ~1e-7
 LOOP_AREA = 1e-5
+# ---- shared levels of agreement (named so each assertion states which kind it expects)
+#: one or two floating-point operations apart (a unit conversion, a compliance sum, a value written
+#: with repr() and read back, a constant): a few ulps
+ULPS = 1e-15
+#: the same closed form evaluated along two short arithmetic paths (a lambdified sympy formula
+#: against the hand-written formula, sampled load values against their formula)
+SHORT_ARITHMETIC = 1e-14
+#: the same closed form through a longer chain (sympy substitution into a solver state, an elliptic
+#: kernel against scipy's Carlson integral whose own error is ~5e-14)
+LONG_ARITHMETIC = 1e-13
+#: the same exact state reached by two exact routes (spring sums of the foundation against a closed
+#: form, a held or repeated load path against its first pass, loop closure): rounding of O(N) terms
+EXACT_ROUTES = 1e-12
+#: absolute floor for quantities that are exactly zero at some samples (unloaded steps, the axis),
+#: in the quantity's own unit or as a factor of its scale: far below any value of interest
+ABS_FLOOR = 1e-12
+#: absolute floor (N) for the forces of a viscoelastic history that start at exactly zero
+ABS_FLOOR_TINY = 1e-14
+#: absolute floor (rad) for twists that are exactly zero in a sampled scene history
+ABS_ZERO_TWIST = 1e-18
+#: an absolute floor that only keeps exact zeros from failing a relative comparison
+ABS_ZERO = 1e-300
+#: elliptic kernel (K-E)/k² against scipy's elliprd(0, p, 1)/3: both good to a few ulps
+ELLIPTIC_KERNEL = 5e-15
+#: absolute floor of the h(v) kernel against its series near v = 1 (h -> 0 there)
+H_SERIES_ABS = 1e-16
+#: exact torsion at c/a = 1 - 1e-12 against the no-slip Reissner-Sagoci torque: the slip annulus
+#: left contributes O((1 - c/a)^(3/2)); the root and quadrature tolerances add ~1e-12
+NO_SLIP_LIMIT = 1e-11
+#: an error estimate at the default rtol 1e-10 must stay below that rtol
+DEFAULT_RTOL_BOUND = 1e-10
+
+# ---- torsion fields and limits
+#: full-sliding torque 3π/16 μFa: ∫x g by tanh-sinh to rtol 1e-10 plus the limit c -> 0 of the root
+SLIDING_TORQUE = 1e-8
+#: a field (pressure, traction) integrated again with scipy quad over the contact (nested
+#: quadratures, square-root edge weight) against the integral quantity (force, sliding torque)
+FIELD_INTEGRAL = 1e-8
+#: 2π∫τ r² dr over the stick zone (nested quadrature of a nested quadrature) against the torque
+SHEAR_INTEGRAL = 1e-7
+#: dM/dφ by central differences with h = 1e-6 φ at rtol 1e-13: truncation ~h², noise ~1e-13/h
+FD_STIFFNESS_FINE = 1e-7
+#: stiffness at the smallest twist of a ladder against the no-slip (16/3) G_t a³: c/a = 1 - O(φ)
+SMALL_TWIST_STIFFNESS = 1e-6
+#: circumferential displacement at r = 2a against the far field M/(4πG_t r²): O((a/r)²)·small
+#: coefficient at the chosen radius
+FAR_FIELD_NEAR = 1e-6
+#: the same far field at r = 100 a, where the neglected terms are O((a/r)²) = 1e-4
+FAR_FIELD = 1e-4
+#: continuity of u_φ across r = a: both sides are nested quadratures converging as the edge is
+#: approached
+CONTINUITY_EDGE = 1e-6
+#: continuity of τ at the stick edge r = c approached to eps = 1e-10: the slip side approaches as
+#: O(sqrt(eps/c))
+CONTINUITY_SQRT = 1e-3
+#: stick radius -> twist -> stick radius round trip (MDR): the root in c at rtol 1e-10 has slope
+#: ~1/(1 - c/a) near the edge
+STICK_ROUND_TRIP = 1e-7
+#: stick radius of a history step from the exact twist root at rtol 1e-10 (slope ~1/(1 - c/a))
+STICK_RADIUS = 1e-8
+#: values printed to 3 significant digits in the reference table
+TABLE_3_DIGITS = 6e-4
+#: energy per cycle from the Iwan dissipation integral (tanh-sinh to rtol 1e-10 of a difference of
+#: two O(W) terms) against the closed-form loop energy
+MASING_ENERGY = 1e-8
+#: trapezoid area of a loop sampled with 4000 steps per cycle against its energy
+LOOP_AREA = 1e-6
+#: trapezoid area of a loop sampled with 200 points against its energy: ~W''δ²/(12 n²)
+LOOP_TRAPEZOID_200 = 5e-3
+#: cumulative dissipation of a brute-force 4000-Jenkins-element model against the exact history:
+#: the element slip thresholds resolve the stick edge to ~1/N, the energy converges as ~1/N
+JENKINS_DISSIPATION = 1e-3
+#: Simpson's rule for the cycle work across the kink of M(φ) at the reversal
+SIMPSON_KINK = 1e-5
+#: energy per cycle of a periodic foundation path after the first cycle (1e6 steps accumulate
+#: ~sqrt(steps) ulps of the cumulative sum)
+ENERGY_PER_CYCLE = 1e-9
+
+# ---- foundation
+#: force-controlled displacement of the foundation against Cattaneo–Mindlin: the one lumped cell at
+#: the stick edge, 1/N² at N = 2000
+FOUNDATION_DISPLACEMENT = 2e-6
+#: MDR foundation torque against the exact torque at a very narrow slip annulus (c/a ≈ 0.999):
+#: the model error ~(1 - c/a)² plus the 1/N² spring error
+NARROW_SLIP_FOUNDATION = 1e-4
+#: the "segments" (closed-form blocks) and "steps" routes of the time loop: same algebra, sums
+#: accumulated in a different order over 1e3 steps
+STRATEGY_AGREEMENT = 1e-9
+#: tractions of a snapshot from the spring line loads (the MDR inverse piecewise linear between
+#: cells) against the closed-form traction, relative to μ p0
+SNAPSHOT_TRACTION = 1e-3
+#: contact radius of a viscoelastic scene interpolated inside the outermost element's cell
+FOUNDATION_RADIUS = 1e-3
+
+# ---- tangential, adhesion, viscoelastic, scenes
+#: Cattaneo–Mindlin through the MDR against the Hertz closed forms: displacement root solved to
+#: rtol 1e-14, depth from the normal solve; a few 1e-10 at the stick edge
+CM_CLOSED = 1e-9
+#: location of a flat minimum by scipy's minimiser (xatol ~1e-8 of the position): ~sqrt(eps)
+MINIMISER_LOCATION = 1e-6
+#: the same with scipy's default tolerance
+MINIMISER_LOCATION_DEFAULT = 1e-5
+#: dF/dd at the force-controlled pull-off is zero analytically: 2E*a·(φ - 3/2) with φ from a root
+#: at rtol 1e-14 and g' from differences
+JKR_STIFFNESS_ZERO = 1e-6
+#: ratio of errors at two step sizes against the asymptotic order's ratio
+CONVERGENCE_ORDER = 1e-3
+#: the creep/relaxation identity ∫G(t-s) dJ(s) = 1 by scipy quad on stiff exponentials
+VISCO_IDENTITY = 1e-6
+#: force-controlled viscoelastic history against the depth-controlled one it reproduces: each step's
+#: depth is a root to rtol 1e-13 of a force that varies steeply at the contact edge
+VISCO_FORCE_CONTROL = 1e-8
+#: scene outputs (exact torsion, loops) against mpmath references evaluated with findroot and quad
+#: at mpmath's default precision (15 digits) through elliptic integrals near c/a -> 0
+SCENE_VS_MPMATH = 1e-6
+#: pressure at r = a in a scene output: the square-root edge turns the last-ulp difference of r
+#: into ~1e-8 p0
+EDGE_PRESSURE = 1e-7
+#: expected values quoted with 6 significant digits (scene comments, docs)
+PRINTED_6_DIGITS = 1e-5
+#: expected values printed with 5 significant digits (the demo's table)
+PRINTED_5_DIGITS = 1e-4
+#: a 200-point cubic spline of a parabola against the parabola: the spline is exact inside but its
+#: not-a-knot ends deviate at ~1e-9
+CUBIC_PARABOLA = 1e-8
+#: root of 3x at 1e-310 by regula falsi down to subnormal numbers (few significant bits left)
+SUBNORMAL_ROOT = 1e-6
+#: slack of the per-step work bracket of the foundation energy balance, relative to the work
+WORK_SLACK = 1e-2

@@ -14,6 +14,7 @@ import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, PowerLaw, Profile, Tabulated,
                                  TruncatedParaboloid)
+from tests import tolerances as TOL
 from tests.reference import power_law as ref
 from tests.reference import tabulated as tab
 from tests.reference.kappa import kappa
@@ -286,8 +287,8 @@ def test_tabulated_exact_transform(name):
     x = np.concatenate([np.array([0.05, 0.3, 0.55, 0.77, 0.999]) * r[-1], r[[1, 3, -2]]])
     g = prof.g(x)          # (the last three sit exactly on nodes)
     g_quad = np.array([tab.table_g_quad(r_ref, f_ref, xi) for xi in x])
-    np.testing.assert_allclose(g, g_quad, rtol=TABLE_QUAD, atol=1e-300)
-    np.testing.assert_allclose(g, tab.table_g_sum(r_ref, f_ref, x), rtol=TABLE_EXACT, atol=1e-300)
+    np.testing.assert_allclose(g, g_quad, rtol=TABLE_QUAD, atol=TOL.ABS_ZERO)
+    np.testing.assert_allclose(g, tab.table_g_sum(r_ref, f_ref, x), rtol=TABLE_EXACT, atol=TOL.ABS_ZERO)
     a = 0.8123 * r[-1]
     c = contact(prof)
     s = c.normal(radius=a)
@@ -415,4 +416,4 @@ def test_root_near_zero_down_to_subnormal():
     """A root at 1e-310 inside [0, 1] (regula falsi from the smaller residual, no float left)."""
     from contactlab.numeric.roots import bracketed_root
     x = bracketed_root(lambda x, i: 3.0 * x, np.array([3e-310]), 0.0, 1.0)
-    assert x[0] == pytest.approx(1e-310, rel=1e-6)
+    assert x[0] == pytest.approx(1e-310, rel=TOL.SUBNORMAL_ROOT)

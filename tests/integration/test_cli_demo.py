@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactlab.cli import main
+from tests import tolerances as TOL
 
 
 def test_demo_prints_hertz_table(capsys):
@@ -15,9 +16,9 @@ def test_demo_prints_hertz_table(capsys):
     assert len(rows) >= 3
     for d_um, f, a_um, p in (map(float, row[:4]) for row in rows):
         d = d_um * 1e-6
-        assert np.isclose(f, 4 / 3 * E_star * np.sqrt(R) * d**1.5, rtol=1e-4)
-        assert np.isclose(a_um * 1e-6, np.sqrt(R * d), rtol=1e-4)
-        assert np.isclose(p * 1e6, 2 * E_star * np.sqrt(R * d) / (np.pi * R), rtol=1e-4)
+        assert np.isclose(f, 4 / 3 * E_star * np.sqrt(R) * d**1.5, rtol=TOL.PRINTED_5_DIGITS)
+        assert np.isclose(a_um * 1e-6, np.sqrt(R * d), rtol=TOL.PRINTED_5_DIGITS)
+        assert np.isclose(p * 1e6, 2 * E_star * np.sqrt(R * d) / (np.pi * R), rtol=TOL.PRINTED_5_DIGITS)
 
 
 def test_version(capsys):

@@ -14,6 +14,7 @@ from contactlab import Contact
 from contactlab.cli import main
 from contactlab.scene import Scene
 
+from tests import tolerances as TOL
 from tests.unit.scene.helpers import example_params
 from tests.tolerances import CLOSED_FORM, OUTPUT_ROUNDTRIP, TABULATED_SCENE, VISCO_SCENE
 
@@ -50,15 +51,15 @@ def test_hertz_steel_ball(tmp_path, fmt):
     np.testing.assert_allclose(s["radius"], a, rtol=CLOSED_FORM)
     np.testing.assert_allclose(s["depth"], a**2 / R, rtol=CLOSED_FORM)
     np.testing.assert_allclose(s["stiffness"], 2 * Es * a, rtol=CLOSED_FORM)
-    assert s["peak_pressure"][-1] == pytest.approx(3 * 100 / (2 * np.pi * a[-1] ** 2), rel=1e-9)
+    assert s["peak_pressure"][-1] == pytest.approx(3 * 100 / (2 * np.pi * a[-1] ** 2), rel=TOL.QUADRATURE)
     # headline numbers written in the file's comment
-    assert (a[-1], s["depth"][-1]) == (pytest.approx(186.626e-6, rel=5e-6),
-                                       pytest.approx(3.48291e-6, rel=5e-6))
+    assert (a[-1], s["depth"][-1]) == (pytest.approx(186.626e-6, rel=TOL.TABLE_6_DIGITS),
+                                       pytest.approx(3.48291e-6, rel=TOL.TABLE_6_DIGITS))
     lib = Scene.from_toml(EX / "hertz_steel_ball.toml").contact().normal(force=F)
     np.testing.assert_allclose(s["depth"], lib.depth, rtol=OUTPUT_ROUNDTRIP)
     # at r = a the square-root edge turns the last-ulp difference of r into ~1e-8 p0
     np.testing.assert_allclose(f["pressure"], lib.pressure(f["r"])[-1], rtol=OUTPUT_ROUNDTRIP,
-                               atol=1e-7 * f["pressure"][0])
+                               atol=TOL.EDGE_PRESSURE * f["pressure"][0])
 
 
 def test_conical_indenter(tmp_path):
@@ -66,7 +67,7 @@ def test_conical_indenter(tmp_path):
     Es, tb, d = e_star((1141e9, 0.07), (72e9, 0.17)), 1 / math.tan(math.radians(70.3)), s["depth"]
     np.testing.assert_allclose(s["force"], 2 * Es * d**2 / (np.pi * tb), rtol=CLOSED_FORM)   # Sneddon
     np.testing.assert_allclose(s["radius"], 2 * d / (np.pi * tb), rtol=CLOSED_FORM)
-    assert s["force"].max() == pytest.approx(30.9550e-3, rel=1e-5)
+    assert s["force"].max() == pytest.approx(30.9550e-3, rel=TOL.PRINTED_6_DIGITS)
     assert d[-1] == 0 and s["force"][-1] == 0        # unloaded again
 
 
@@ -76,8 +77,8 @@ def test_rounded_flat_punch(tmp_path):
     a = np.sqrt((b * b + np.sqrt(b**4 + 4 * R * R * d * d)) / 2)
     F = 2 * Es * (a * d - (a * a - b * b) ** 1.5 / (3 * R))
     np.testing.assert_allclose(s["radius"][1:], a[1:], rtol=CLOSED_FORM)
-    np.testing.assert_allclose(s["force"], F, rtol=CLOSED_FORM, atol=1e-12)
-    assert s["force"][-1] == pytest.approx(136.978, rel=1e-5)
+    np.testing.assert_allclose(s["force"], F, rtol=CLOSED_FORM, atol=TOL.ABS_FLOOR)
+    assert s["force"][-1] == pytest.approx(136.978, rel=TOL.PRINTED_6_DIGITS)
     assert np.all(np.isfinite(f["pressure"][f["r"] < b]))
 
 
@@ -87,13 +88,13 @@ def test_measured_profile(tmp_path):
     a = (3 * F * R / (4 * Es)) ** (1 / 3)
     np.testing.assert_allclose(s["radius"], a, rtol=TABULATED_SCENE)
     np.testing.assert_allclose(s["depth"], a * a / R, rtol=TABULATED_SCENE)
-    assert a[-1] == pytest.approx(100.648e-6, rel=1e-5)
+    assert a[-1] == pytest.approx(100.648e-6, rel=TOL.PRINTED_6_DIGITS)
 
 
 def test_steel_ball_twist(tmp_path):
     s, _ = run(tmp_path, "steel_ball_twist.toml", "csv")
-    assert s["stick_radius"][-1] == pytest.approx(59.0360e-6, rel=1e-5)   # Lubkin, mpmath
-    assert s["torque"][-1] == pytest.approx(2.14505e-3, rel=1e-5)
+    assert s["stick_radius"][-1] == pytest.approx(59.0360e-6, rel=TOL.PRINTED_6_DIGITS)   # Lubkin, mpmath
+    assert s["torque"][-1] == pytest.approx(2.14505e-3, rel=TOL.PRINTED_6_DIGITS)
     lib = Scene.from_toml(EX / "steel_ball_twist.toml").contact().torsion(
         force=100.0, twist=s["twist"][-1], method="exact")
     assert s["torque"][-1] == pytest.approx(lib.torque, rel=OUTPUT_ROUNDTRIP)
@@ -103,7 +104,7 @@ def test_hip_joint_torsion(tmp_path):
     s, _ = run(tmp_path, "hip_joint_torsion.toml", "csv")
     Es, R, mu = e_star((210e9, 0.3), (1e9, 0.46)), 0.1, 0.08
     a = (3 * s["force"] * R / (4 * Es)) ** (1 / 3)
-    np.testing.assert_allclose(s["radius"], a, rtol=1e-3)      # foundation discretisation
+    np.testing.assert_allclose(s["radius"], a, rtol=TOL.FOUNDATION_RADIUS)      # foundation discretisation
     assert np.all(np.abs(s["torque"]) <= 0.75 * mu * s["force"] * a * (1 + 1e-3))
     assert s["dissipated_energy"][-1] > 0
 
@@ -116,7 +117,7 @@ def test_viscoelastic_creep(tmp_path):
     J = 1 / G_inf - (1 / G_inf - 1 / (G_inf + G_1)) * np.exp(-t / tau)    # SLS creep compliance
     # 1 ms ramp instead of a step (O(1e-3 s / tau)) plus the foundation's discretisation
     np.testing.assert_allclose(a, (3 * R * F0 * J / 16) ** (1 / 3), rtol=VISCO_SCENE)
-    assert a[-1] == pytest.approx(0.976156e-3, rel=1e-5)
+    assert a[-1] == pytest.approx(0.976156e-3, rel=TOL.PRINTED_6_DIGITS)
 
 
 def test_every_example_is_tested():

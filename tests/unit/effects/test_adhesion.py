@@ -10,6 +10,7 @@ from contactlab.errors import OutsideTheoryError, ParameterError, ValidityWarnin
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, PowerLaw, Sphere,
                                  TruncatedCone, TruncatedParaboloid)
 
+from tests import tolerances as TOL
 from tests.reference import adhesion as ref_jkr
 from tests.reference.kappa import kappa_float as kappa
 from tests.tolerances import (CLOSED_FORM, JKR_FINITE_DIFFERENCE, JKR_ROOT, JKR_SMALL_ADHESION,
@@ -45,7 +46,7 @@ def test_sphere_pull_off_force_control():
     a_c = (9 * np.pi * DGAMMA * R**2 / (8 * E_STAR)) ** (1 / 3)
     assert s.radius == pytest.approx(a_c, rel=JKR_ROOT)
     assert s.depth == pytest.approx(jkr_depth(a_c), rel=JKR_ROOT)
-    assert abs(s.stiffness) < 1e-6 * 2 * E_STAR * a_c        # dF/dd = 0 at the force minimum
+    assert abs(s.stiffness) < TOL.JKR_STIFFNESS_ZERO * 2 * E_STAR * a_c        # dF/dd = 0 at the force minimum
 
 
 def test_sphere_pull_off_displacement_control():
@@ -154,11 +155,11 @@ def test_jkr_displacement_inside_and_outside():
     d = jkr_depth(a)
     r_in = np.array([0.0, 0.5 * a])
     np.testing.assert_allclose(s.displacement(r_in), d - r_in**2 / (2 * R), rtol=CLOSED_FORM,
-                               atol=1e-12 * abs(d))
+                               atol=TOL.ABS_FLOOR * abs(d))
     r = np.array([1.5 * a, 4 * a])
     ref = (2 * d / np.pi) * np.arcsin(a / r) - (r**2 * np.arcsin(a / r)
                                               - a * np.sqrt(r**2 - a**2)) / (np.pi * R)
-    np.testing.assert_allclose(s.displacement(r), ref, rtol=1e-9)
+    np.testing.assert_allclose(s.displacement(r), ref, rtol=TOL.QUADRATURE)
 
 
 # ---- other profiles ------------------------------------------------------------------------
@@ -252,8 +253,8 @@ def test_exact_sphere_pull_off_against_direct_minimisation():
     ref = minimize_scalar(F, bounds=(1e-7, 0.9 * Rs), method="bounded",
                           options={"xatol": 1e-15})
     s = contact(Sphere(Rs)).pull_off()
-    assert s.force == pytest.approx(ref.fun, rel=1e-10)
-    assert s.radius == pytest.approx(ref.x, rel=1e-5)    # minimiser located to ~sqrt(eps)
+    assert s.force == pytest.approx(ref.fun, rel=TOL.CLOSED_FORM)
+    assert s.radius == pytest.approx(ref.x, rel=TOL.MINIMISER_LOCATION_DEFAULT)    # minimiser located to ~sqrt(eps)
 
 
 def test_finite_difference_route_pull_off():
@@ -284,8 +285,8 @@ def test_small_adhesion_recovers_hertz():
     states = [contact(Paraboloid(R), w=w).normal(depth=1e-6) for w in (1e-8, 1e-10)]
     gaps_F = [abs(st.force - hertz.force[1]) for st in states]
     gaps_a = [abs(st.radius - hertz.radius[1]) for st in states]
-    assert gaps_F[0] / gaps_F[1] == pytest.approx(100.0, rel=1e-3)
-    assert gaps_a[0] / gaps_a[1] == pytest.approx(10.0, rel=1e-3)
+    assert gaps_F[0] / gaps_F[1] == pytest.approx(100.0, rel=TOL.CONVERGENCE_ORDER)
+    assert gaps_a[0] / gaps_a[1] == pytest.approx(10.0, rel=TOL.CONVERGENCE_ORDER)
 
 
 def test_zero_adhesion_is_the_non_adhesive_solver():

@@ -9,6 +9,7 @@ import contactlab as cl
 from contactlab import profiles as P
 from contactlab.errors import ValidityWarning
 
+from tests import tolerances as TOL
 from tests.reference import normal as ref
 from tests.tolerances import CLOSED_FORM, QUADRATURE
 
@@ -25,7 +26,7 @@ def rel(a, b):
 
 def test_effective_modulus_of_identical_steel():
     c = cl.Contact(P.Paraboloid(R=0.01), materials=(STEEL, STEEL))
-    assert c.moduli.normal == pytest.approx(E_STAR, rel=1e-15)
+    assert c.moduli.normal == pytest.approx(E_STAR, rel=TOL.ULPS)
 
 
 @pytest.mark.parametrize("d", [1e-8, 1e-6, 3e-5])
@@ -78,7 +79,7 @@ def test_power_law_closed_forms(n):
 def test_cone_closed_forms_and_half_angle_constructor():
     slope = 0.2
     prof = P.Cone.from_half_angle(np.arctan(1 / slope))
-    assert prof.slope == pytest.approx(slope, rel=1e-14)
+    assert prof.slope == pytest.approx(slope, rel=TOL.SHORT_ARITHMETIC)
     con = cl.Contact(prof, materials=(STEEL, STEEL))
     a = 2e-4
     d, F, p, u = ref.cone(E_STAR, slope, a)
@@ -154,7 +155,7 @@ def test_force_from_pressure_integral_matches_force():
         total = sum(quad(lambda t: float(s.pressure(a * np.sin(t))) * a * np.sin(t) * a * np.cos(t),
                          lo, hi, epsabs=0, epsrel=1e-11, limit=200)[0]
                     for lo, hi in zip(pts[:-1], pts[1:]))
-        assert rel(2 * np.pi * total, s.force) < 1e-8
+        assert rel(2 * np.pi * total, s.force) < TOL.FIELD_INTEGRAL
 
 
 def test_zero_and_negative_depth_give_zero_state():

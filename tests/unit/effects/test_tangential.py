@@ -7,6 +7,7 @@ from scipy.integrate import quad
 import contactlab as cl
 from contactlab.errors import NotSupportedError, ParameterError
 
+from tests import tolerances as TOL
 from tests.reference import hertz as hz
 from tests.tolerances import CLOSED_FORM, QUADRATURE
 
@@ -34,9 +35,9 @@ def test_hertz_displacement_control():
     u = np.linspace(-0.99, 0.99, 21) * us
     s = c.tangential(force=F, displacement=u)
     Fx, cc, _, _ = hertz_ref(c, F, u)
-    np.testing.assert_allclose(s.tangential_force, Fx, rtol=CLOSED_FORM, atol=1e-12 * MU * F)
-    np.testing.assert_allclose(s.stick_radius, cc, rtol=1e-9)
-    np.testing.assert_allclose(s.stiffness, 2 * c.moduli.tangential * cc, rtol=1e-9)
+    np.testing.assert_allclose(s.tangential_force, Fx, rtol=CLOSED_FORM, atol=TOL.ABS_FLOOR * MU * F)
+    np.testing.assert_allclose(s.stick_radius, cc, rtol=TOL.CM_CLOSED)
+    np.testing.assert_allclose(s.stiffness, 2 * c.moduli.tangential * cc, rtol=TOL.CM_CLOSED)
 
 
 def test_hertz_force_and_stick_radius_control_round_trip():
@@ -46,9 +47,9 @@ def test_hertz_force_and_stick_radius_control_round_trip():
     T = np.array([0.1, 0.5, 0.9]) * MU * F
     s = c.tangential(force=F, tangential_force=T)
     Fx, cc, _, _ = hertz_ref(c, F, s.displacement)
-    np.testing.assert_allclose(Fx, T, rtol=1e-9)
+    np.testing.assert_allclose(Fx, T, rtol=TOL.CM_CLOSED)
     s2 = c.tangential(force=F, stick_radius=s.stick_radius)
-    np.testing.assert_allclose(s2.displacement, s.displacement, rtol=1e-9)
+    np.testing.assert_allclose(s2.displacement, s.displacement, rtol=TOL.CM_CLOSED)
 
 
 def test_cone_power_law_formula():
@@ -61,14 +62,14 @@ def test_cone_power_law_formula():
     # power law n = 1: F_x = μF[1 - (1-u/u*)^2], c = a(1-u/u*)
     np.testing.assert_allclose(s.tangential_force, MU * 2.0 * (1 - (1 - u / us) ** 2),
                                rtol=CLOSED_FORM)
-    np.testing.assert_allclose(s.stick_radius, ns.radius * (1 - u / us), rtol=1e-9)
+    np.testing.assert_allclose(s.stick_radius, ns.radius * (1 - u / us), rtol=TOL.CM_CLOSED)
 
 
 def test_gross_sliding_is_flagged_not_an_error():
     c = hertz()
     s = c.tangential(force=10.0, tangential_force=[0.5 * MU * 10, 2 * MU * 10])
     assert list(s.gross_sliding) == [False, True]
-    assert s.tangential_force[1] == pytest.approx(MU * 10.0, rel=1e-12)
+    assert s.tangential_force[1] == pytest.approx(MU * 10.0, rel=TOL.EXACT_ROUTES)
 
 
 def test_hertz_shear_traction():
@@ -98,10 +99,10 @@ def test_shift_history_mindlin_deresiewicz_loop_and_energy():
     h = c.shift_history(force=F, displacement=u)
     down = (k > 50) & (k <= 150)
     np.testing.assert_allclose(h.tangential_force[down], md_loop(c, F, u0, u[down]),
-                               rtol=1e-9, atol=1e-12 * MU * F)
+                               rtol=TOL.CM_CLOSED, atol=TOL.ABS_FLOOR * MU * F)
     up = (k > 150) & (k <= 250)
     np.testing.assert_allclose(h.tangential_force[up], -md_loop(c, F, u0, -u[up]),
-                               rtol=1e-9, atol=1e-12 * MU * F)
+                               rtol=TOL.CM_CLOSED, atol=TOL.ABS_FLOOR * MU * F)
     # energy per cycle, Mindlin–Deresiewicz (physics.md §5), t = T/(μF)
     a = c.normal(force=F).radius
     T = hertz_ref(c, F, u0)[0]
@@ -109,10 +110,10 @@ def test_shift_history_mindlin_deresiewicz_loop_and_energy():
     W = 18 / 5 * MU ** 2 * F ** 2 / (a * c.moduli.tangential) * (
         1 - (1 - t) ** (5 / 3) - 5 * t / 6 * (1 + (1 - t) ** (2 / 3)))
     per_cycle = h.dissipated_energy[349] - h.dissipated_energy[149]
-    assert per_cycle == pytest.approx(W, rel=1e-8)
+    assert per_cycle == pytest.approx(W, rel=TOL.MASING_ENERGY)
     # loop area equals the dissipation (independent: trapezoid over a fine cycle)
     loop = np.trapezoid(h.tangential_force[150:350], u[150:350])
-    assert loop == pytest.approx(W, rel=5e-3)  # 200-point trapezoid of the loop
+    assert loop == pytest.approx(W, rel=TOL.LOOP_TRAPEZOID_200)  # 200-point trapezoid of the loop
 
 
 def test_shift_history_memory_erases_closed_loops():
@@ -122,12 +123,12 @@ def test_shift_history_memory_erases_closed_loops():
     u = np.array([0.4, 0.2, 0.3, 0.5, 0.7]) * us
     h = c.shift_history(force=F, displacement=u)
     # after passing 0.4 again the virgin curve resumes
-    np.testing.assert_allclose(h.tangential_force[3:], hertz_ref(c, F, u[3:])[0], rtol=1e-10)
-    np.testing.assert_allclose(h.tangential_force[1], md_loop(c, F, u[0], u[1]), rtol=1e-10)
+    np.testing.assert_allclose(h.tangential_force[3:], hertz_ref(c, F, u[3:])[0], rtol=TOL.CLOSED_FORM)
+    np.testing.assert_allclose(h.tangential_force[1], md_loop(c, F, u[0], u[1]), rtol=TOL.CLOSED_FORM)
     # reloading 0.2 -> 0.3 follows a Masing branch from (0.2, F1)
     F1 = h.tangential_force[1]
     assert h.tangential_force[2] == pytest.approx(F1 + 2 * hertz_ref(c, F, (u[2] - u[1]) / 2)[0],
-                                                  rel=1e-10)
+                                                  rel=TOL.CLOSED_FORM)
 
 
 def test_tangential_validation():
@@ -163,7 +164,7 @@ def test_virgin_dissipation_quadrature():
     cc = a * (1 - 0.4)
     ref = 2 * quad(lambda x: h(x) * (u - h(x) / Gs), cc, a, epsabs=0, epsrel=1e-13)[0]
     got = virgin_dissipation(c.profile, E, Gs, MU, a, d, u, 1e-12)
-    assert float(got) == pytest.approx(ref, rel=1e-9)
+    assert float(got) == pytest.approx(ref, rel=TOL.QUADRATURE)
 
 
 def test_flat_punch_sticks_fully_until_full_slip():
@@ -178,4 +179,4 @@ def test_flat_punch_sticks_fully_until_full_slip():
     np.testing.assert_allclose(s.tangential_force, 2 * Gs * b * u, rtol=CLOSED_FORM)
     np.testing.assert_allclose(s.stick_radius, b, rtol=CLOSED_FORM)
     s2 = c.tangential(force=100.0, tangential_force=2 * Gs * b * u)
-    np.testing.assert_allclose(s2.displacement, u, rtol=1e-12)
+    np.testing.assert_allclose(s2.displacement, u, rtol=TOL.EXACT_ROUTES)

@@ -12,6 +12,7 @@ from contactlab.materials.viscoelastic import (GeneralizedMaxwell, KelvinVoigt, 
                                                StandardLinearSolid)
 from contactlab.profiles import FlatPunch, Paraboloid
 
+from tests import tolerances as TOL
 from tests.tolerances import VISCO_EDGE, VISCO_SPATIAL, VISCO_TIME, VISCO_TING
 
 R = 0.01        # m
@@ -52,7 +53,7 @@ def test_creep_is_the_inverse_of_relaxation(mat):
             2 * h if tau > h else tau + h)
         val = quad(lambda tau: mat.relaxation(t - tau) * dJ(tau), 0, t, epsabs=0,
                    epsrel=1e-10, limit=200)[0]
-        assert val + mat.relaxation(t) * mat.creep(0.0) == pytest.approx(1.0, rel=1e-6)
+        assert val + mat.relaxation(t) * mat.creep(0.0) == pytest.approx(1.0, rel=TOL.VISCO_IDENTITY)
 
 
 def test_kelvin_voigt_creep_solves_its_ode():
@@ -60,7 +61,7 @@ def test_kelvin_voigt_creep_solves_its_ode():
     t = np.array([1e-3, 1e-2, 5e-2])
     h = 1e-8
     dJ = (m.creep(t + h) - m.creep(t - h)) / (2 * h)
-    np.testing.assert_allclose(G * m.creep(t) + ETA * dJ, 1.0, rtol=1e-6)
+    np.testing.assert_allclose(G * m.creep(t) + ETA * dJ, 1.0, rtol=TOL.VISCO_IDENTITY)
 
 
 @pytest.mark.parametrize("make, match", [
@@ -118,7 +119,7 @@ def test_sls_step_force_creep():
     t = np.linspace(0.0, 0.05, 401)
     h = contact(m).viscoelastic_history(time=t, force=np.full(t.shape, F0))
     a3 = 3 * R * F0 * m.creep(t) / 16
-    np.testing.assert_allclose(h.force, F0, rtol=1e-10)
+    np.testing.assert_allclose(h.force, F0, rtol=TOL.CLOSED_FORM)
     np.testing.assert_allclose(h.depth, a3 ** (2 / 3) / R, rtol=VISCO_TIME)
 
 
@@ -204,7 +205,7 @@ def test_flat_punch_maxwell_relaxation():
     t = np.linspace(0.0, 0.05, 11)
     h = contact(Maxwell(G, ETA), FlatPunch(b)).viscoelastic_history(time=t,
                                                                     depth=np.full(t.shape, 1e-6))
-    np.testing.assert_allclose(h.force, 8 * G * b * 1e-6 * np.exp(-t * G / ETA), rtol=1e-12)
+    np.testing.assert_allclose(h.force, 8 * G * b * 1e-6 * np.exp(-t * G / ETA), rtol=TOL.EXACT_ROUTES)
 
 
 def test_time_step_convergence_order():
@@ -313,9 +314,9 @@ def test_force_and_depth_control_are_inverse(m):
     F = np.clip(0.1 * np.sin(np.pi * t / 0.04), 0.0, None) * (t <= 0.04)
     c = contact(m)
     hf = c.viscoelastic_history(time=t, force=F)
-    np.testing.assert_allclose(hf.force, F, rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(hf.force, F, rtol=TOL.CLOSED_FORM, atol=TOL.ABS_FLOOR_TINY)
     hd = c.viscoelastic_history(time=t, depth=hf.depth, max_radius=hf.meta["foundation_radius"])
-    np.testing.assert_allclose(hd.force, F, rtol=1e-8, atol=1e-10 * F.max())
+    np.testing.assert_allclose(hd.force, F, rtol=TOL.VISCO_FORCE_CONTROL, atol=TOL.CLOSED_FORM * F.max())
     # after release the free surface recovers (SLS): the touching depth decreases towards 0
     after = t > 0.045
     assert np.all(np.diff(hf.depth[after]) < 0) and np.all(hf.depth[after] > 0)

@@ -8,6 +8,7 @@ import contactlab as cl
 from contactlab.errors import OutsideTheoryError, ValidityWarning
 from contactlab.foundation import DEFAULT_N_SPRINGS, Winkler
 
+from tests import tolerances as TOL
 from tests.reference import hertz as hz
 from tests.tolerances import (ENERGY_DRIFT, FOUNDATION_CM, FOUNDATION_NORMAL, FOUNDATION_TORSION)
 
@@ -62,9 +63,9 @@ def test_normal_load_unload_equals_contact_normal_every_step():
     r = c.simulate(path, n_springs=50)
     a_ref, F_ref = hertz_normal(c, r.depth)
     np.testing.assert_allclose(r.radius, a_ref, rtol=FOUNDATION_NORMAL)
-    np.testing.assert_allclose(r.force, F_ref, rtol=FOUNDATION_NORMAL, atol=1e-12)
+    np.testing.assert_allclose(r.force, F_ref, rtol=FOUNDATION_NORMAL, atol=TOL.ABS_FLOOR)
     ns = c.normal(depth=r.depth)
-    np.testing.assert_allclose(r.force, ns.force, rtol=FOUNDATION_NORMAL, atol=1e-12)
+    np.testing.assert_allclose(r.force, ns.force, rtol=FOUNDATION_NORMAL, atol=TOL.ABS_FLOOR)
     assert r.meta["built"] == ["normal"]
 
 
@@ -107,7 +108,7 @@ def test_cattaneo_mindlin_and_mindlin_deresiewicz_loop(kind):
     c_ref = ns.radius * (1 - x) ** (1 / n)
     assert np.max(np.abs(r.stick_radius[load] - c_ref)) < 2.5 * ns.radius / DEFAULT_N_SPRINGS
     # the loop closes
-    assert Fx[1004] == pytest.approx(Fx[204], rel=1e-12)
+    assert Fx[1004] == pytest.approx(Fx[204], rel=TOL.EXACT_ROUTES)
 
 
 @pytest.mark.parametrize("spacing", ["uniform", "edge"])
@@ -168,14 +169,14 @@ def test_tangential_force_control_matches_closed_form():
     path = cl.LoadPath().ramp(force=F, steps=2).then(cl.loadpath.Table.create(
         None, {"tangential_force": T}))
     r = c.simulate(path)
-    np.testing.assert_allclose(r.tangential_force[2:], T, rtol=1e-12)
+    np.testing.assert_allclose(r.tangential_force[2:], T, rtol=TOL.EXACT_ROUTES)
     s = c.tangential(force=F, tangential_force=T)
-    np.testing.assert_allclose(r.displacement[2:], s.displacement, rtol=2e-6)
+    np.testing.assert_allclose(r.displacement[2:], s.displacement, rtol=TOL.FOUNDATION_DISPLACEMENT)
     # beyond μF_N: gross sliding, flagged
     over = cl.LoadPath().ramp(force=F, steps=2).ramp(tangential_force=2 * MU * F, steps=1)
     r2 = c.simulate(over, n_springs=100)
     assert r2.gross_sliding[-1] and not r2.gross_sliding[:-1].any()
-    assert r2.tangential_force[-1] == pytest.approx(MU * F, rel=1e-12)
+    assert r2.tangential_force[-1] == pytest.approx(MU * F, rel=TOL.EXACT_ROUTES)
 
 
 def test_unloading_normal_releases_tangential_springs():
@@ -220,13 +221,13 @@ def test_torque_control_and_full_sliding():
     path = cl.LoadPath().ramp(force=F, steps=2).then(cl.loadpath.Table.create(None,
                                                                               {"torque": Ms}))
     r = c.simulate(path)
-    np.testing.assert_allclose(r.torque[2:], Ms, rtol=1e-12)
+    np.testing.assert_allclose(r.torque[2:], Ms, rtol=TOL.EXACT_ROUTES)
     ref = mdr_torsion_hertz(c, F, a, r.twist[2:])[0]
     np.testing.assert_allclose(ref, Ms, rtol=FOUNDATION_TORSION)
     over = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(torque=1.5 * M_full, steps=1),
                       n_springs=300)
     assert over.gross_sliding[-1]
-    assert over.torque[-1] == pytest.approx(M_full, rel=1e-9)
+    assert over.torque[-1] == pytest.approx(M_full, rel=TOL.QUADRATURE)
 
 
 def test_history_twist_before_and_after_normal_load():
@@ -239,8 +240,8 @@ def test_history_twist_before_and_after_normal_load():
     before = c.simulate(cl.LoadPath().ramp(force=F0, steps=10).ramp(twist=phi, steps=5)
                         .ramp(force=F1, steps=20))
     after = c.simulate(cl.LoadPath().ramp(force=F1, steps=30).ramp(twist=phi, steps=5))
-    assert before.torque[-1] == pytest.approx(16 / 3 * Gt * a0 ** 3 * phi, rel=1e-12)
-    assert after.torque[-1] == pytest.approx(16 / 3 * Gt * a1 ** 3 * phi, rel=1e-12)
+    assert before.torque[-1] == pytest.approx(16 / 3 * Gt * a0 ** 3 * phi, rel=TOL.EXACT_ROUTES)
+    assert after.torque[-1] == pytest.approx(16 / 3 * Gt * a1 ** 3 * phi, rel=TOL.EXACT_ROUTES)
     assert before.torque[-1] < 0.5 * after.torque[-1]
 
 
@@ -275,7 +276,7 @@ def test_jaeger_loop_comparison():
     phi = 1e-3 * 3 * MU * F / (16 * c.moduli.torsional * a ** 2)  # very narrow slip annulus
     r = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(twist=phi, steps=20))
     exact = c.torsion(force=F, twist=phi, method="exact").torque
-    assert r.torque[-1] == pytest.approx(exact, rel=1e-4)
+    assert r.torque[-1] == pytest.approx(exact, rel=TOL.NARROW_SLIP_FOUNDATION)
 
 
 # ------------------------------------------------------------------ planning / errors
@@ -290,7 +291,7 @@ def test_only_needed_foundations_are_built():
     f = Winkler.for_path(c.profile, cl.LoadPath().ramp(force=F, steps=3), moduli=c.moduli,
                          friction=MU, n_springs=10)
     assert f.built == ["normal"] and not hasattr(f, "K_tor") and not hasattr(f, "K_tan")
-    assert f.radius == pytest.approx(c.normal(force=F).radius, rel=1e-14)
+    assert f.radius == pytest.approx(c.normal(force=F).radius, rel=TOL.SHORT_ARITHMETIC)
 
 
 def test_combined_shift_and_twist_needs_opt_in():
@@ -327,7 +328,7 @@ def test_segment_and_step_strategies_agree():
     b = c.simulate(path, n_springs=300, strategy="steps")
     for q in ("torque", "twist", "dissipated_energy", "stick_radius"):
         scale = np.max(np.abs(getattr(b, q)))
-        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=TOL.STRATEGY_AGREEMENT * scale)
     ns = c.normal(force=F)
     us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
     path = (cl.LoadPath().ramp(force=F, steps=5)
@@ -338,7 +339,7 @@ def test_segment_and_step_strategies_agree():
     b = c.simulate(path, n_springs=300, strategy="steps")
     for q in ("tangential_force", "displacement", "dissipated_energy", "stick_radius"):
         scale = np.max(np.abs(getattr(b, q)))
-        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=TOL.STRATEGY_AGREEMENT * scale)
 
 
 def test_snapshot_tractions_match_closed_forms():
@@ -358,13 +359,13 @@ def test_snapshot_tractions_match_closed_forms():
     sel = (x < 0.95 * a) & (np.abs(x - cc) > 0.02 * a)
     ref = MU * p0 * (np.sqrt(1 - (x / a) ** 2) - np.where(x < cc, cc / a * np.sqrt(
         np.clip(1 - (x / cc) ** 2, 0, None)), 0))
-    assert np.max(np.abs(snap["shear_tangential"][sel] - ref[sel])) < 1e-3 * MU * p0
+    assert np.max(np.abs(snap["shear_tangential"][sel] - ref[sel])) < TOL.SNAPSHOT_TRACTION * MU * p0
     np.testing.assert_allclose(snap["pressure"], 2 * c.moduli.normal / (np.pi * R) * np.sqrt(
-        np.clip(a * a - x * x, 0, None)), rtol=1e-9)
+        np.clip(a * a - x * x, 0, None)), rtol=TOL.QUADRATURE)
     c0 = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL))
     phi = 1e-5
     t = c0.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(twist=phi, steps=2), snapshots=[4])
     x = t.snapshots[4]["x"]
     sel = x < 0.9 * a
     ref = 4 * c0.moduli.torsional * phi / np.pi * x / np.sqrt(a * a - x * x)
-    np.testing.assert_allclose(t.snapshots[4]["shear_torsion"][sel], ref[sel], rtol=1e-3)
+    np.testing.assert_allclose(t.snapshots[4]["shear_torsion"][sel], ref[sel], rtol=TOL.SNAPSHOT_TRACTION)

@@ -7,6 +7,7 @@ import pytest
 import contactlab as cl
 from contactlab.errors import ParameterError, TabulatedDataError, UnknownNameError
 from contactlab.loadpath import Hold, Ramp, Repeat, Sinusoid, Table
+from tests import tolerances as TOL
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 
@@ -35,9 +36,9 @@ def test_repeat_runs_segments_again_from_the_reached_state():
     rp = p.repeat(3, last=2)
     assert isinstance(rp.segments[-1], Repeat) and rp.n_steps == 2 + 3 * 5
     r = contact().simulate(rp)
-    assert r.force[-1] == pytest.approx(20.0, rel=1e-12)
-    assert r.depth[4] == pytest.approx(1e-7, rel=1e-12)
-    assert r.depth[9] == pytest.approx(1e-7, rel=1e-12)
+    assert r.force[-1] == pytest.approx(20.0, rel=TOL.EXACT_ROUTES)
+    assert r.depth[4] == pytest.approx(1e-7, rel=TOL.EXACT_ROUTES)
+    assert r.depth[9] == pytest.approx(1e-7, rel=TOL.EXACT_ROUTES)
 
 
 def test_ramp_starts_from_the_current_value_of_a_new_control():
@@ -45,7 +46,7 @@ def test_ramp_starts_from_the_current_value_of_a_new_control():
     r = c.simulate(cl.LoadPath().ramp(depth=1e-6, steps=4).ramp(force=2 * c.normal(
         depth=1e-6).force, steps=2))
     F1 = c.normal(depth=1e-6).force
-    assert r.force[4] == pytest.approx(1.5 * F1, rel=1e-12)
+    assert r.force[4] == pytest.approx(1.5 * F1, rel=TOL.EXACT_ROUTES)
 
 
 def test_sinusoid_is_bitwise_periodic_and_time_is_ordered():
@@ -128,12 +129,12 @@ def test_csv_round_trip(tmp_path):
     assert isinstance(p.segments[0], Table) and p.n_steps == 4
     r = contact().simulate(p, n_springs=50)
     np.testing.assert_array_equal(r.time, [0, 1, 2, 3])
-    np.testing.assert_allclose(r.force, [0, 50, 100, 100], rtol=1e-12)
+    np.testing.assert_allclose(r.force, [0, 50, 100, 100], rtol=TOL.EXACT_ROUTES)
     out = tmp_path / "res.csv"
     r.to_csv(out)
     back = cl.loadpath.read_csv  # results are not paths, read as plain numbers
     data = np.genfromtxt(out, delimiter=",", names=True)
-    np.testing.assert_allclose(data["torque_Nm"], r.torque, rtol=1e-15)
+    np.testing.assert_allclose(data["torque_Nm"], r.torque, rtol=TOL.ULPS)
     assert callable(back)
     d = r.to_dict()
     assert set(d) >= {"time", "depth", "force", "radius", "displacement", "tangential_force",

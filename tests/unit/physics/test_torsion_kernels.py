@@ -5,6 +5,7 @@ import mpmath as mp
 import numpy as np
 
 from contactlab.physics import torsion_exact as te
+from tests import tolerances as TOL
 from tests.reference.torsion_reference import K_of_comp
 
 mp.mp.dps = 30
@@ -17,22 +18,22 @@ def test_h_kernel_against_mpmath_quadrature():
     for vi, gi in zip(v, got):
         ref = mp.quad(lambda u: u**2 * K_of_comp(u), [vi, 1]) if vi < 1 else mp.mpf(0)
         assert abs(gi - ref) <= 5e-14 * max(abs(ref), 1e-3), (vi, gi, ref)
-    assert abs(te.h_kernel(np.array([0.0]))[0] - np.pi**2 / 16) < 1e-15
+    assert abs(te.h_kernel(np.array([0.0]))[0] - np.pi**2 / 16) < TOL.ULPS
 
 
 def test_series_and_chebyshev_routes_agree():
     v = np.linspace(0, 1, 2001)
-    np.testing.assert_allclose(te.h_kernel(v), te._h_series(v), rtol=1e-13, atol=1e-16)
+    np.testing.assert_allclose(te.h_kernel(v), te._h_series(v), rtol=TOL.LONG_ARITHMETIC, atol=TOL.H_SERIES_ABS)
 
 
 def test_k_minus_e_over_m_against_carlson_and_mpmath():
     from scipy.special import elliprd
     p = np.concatenate([np.logspace(-200, -1e-3, 300), 1 - np.logspace(-17, -0.01, 300)])
-    np.testing.assert_allclose(te.kme_over_m(p), elliprd(0, p, 1) / 3, rtol=5e-15)
+    np.testing.assert_allclose(te.kme_over_m(p), elliprd(0, p, 1) / 3, rtol=TOL.ELLIPTIC_KERNEL)
     for pi in (1e-20, 0.3, 0.95, 1 - 1e-12):
         m = 1 - mp.mpf(pi)
         ref = (mp.ellipk(m) - mp.ellipe(m)) / m
-        assert abs(te.kme_over_m(np.array([pi]))[0] / ref - 1) < 1e-13   # scipy ellipkm1: ~5e-14
+        assert abs(te.kme_over_m(np.array([pi]))[0] / ref - 1) < TOL.LONG_ARITHMETIC   # scipy ellipkm1: ~5e-14
     np.testing.assert_allclose(te.K_comp(np.array([1e-300, 0.5])),
                                [float(K_of_comp(mp.mpf("1e-150"))), float(K_of_comp(mp.sqrt(0.5)))],
-                               rtol=1e-14)
+                               rtol=TOL.SHORT_ARITHMETIC)

@@ -9,6 +9,7 @@ import contactlab as cl
 from contactlab import profiles as P
 from contactlab.errors import StrategyUnavailableError
 
+from tests import tolerances as TOL
 from tests.reference import normal as ref
 from tests.tolerances import (CLOSED_FORM, QUADRATURE, TABLE_6_DIGITS, TABULATED_CUBIC_1000,
                          tabulated_linear)
@@ -117,7 +118,7 @@ def test_tabulated_linear_transform_is_exact_sum_of_arcsines():
     a = 0.8e-3
     brk = list(r[(r > 0) & (r < a)])
     total = quad(lambda t: float(tab.g(t)), 0, a, points=brk, epsabs=0, epsrel=1e-12, limit=200)[0]
-    assert rel(tab.g_integral(a), total) < 1e-10
+    assert rel(tab.g_integral(a), total) < TOL.CLOSED_FORM
 
 
 @pytest.mark.parametrize("prof,a", [(P.Paraboloid(R=0.01), 1e-4), (P.PowerLaw(c=1e10, n=4), 1e-3)])
@@ -154,7 +155,7 @@ def test_tabulated_cubic_is_smooth_alternative():
     exact = cl.Contact(prof, materials=(E, E)).normal(depth=1e-6)
     s = cl.Contact(cub, materials=(E, E)).normal(depth=1e-6)
     # a cubic spline reproduces a parabola up to its end conditions: far better than linear
-    assert rel(s.force, exact.force) < 1e-8
+    assert rel(s.force, exact.force) < TOL.CUBIC_PARABOLA
 
 
 def test_tabulated_from_csv(tmp_path):

@@ -18,6 +18,7 @@ from contactlab.materials import Material
 from contactlab.params import Param
 from contactlab.profiles import Cone, Paraboloid, PowerLaw, Profile
 from contactlab.registry import DISABLE_ENV, Registry, register_material, register_profile, registry
+from tests import tolerances as TOL
 from tests.tolerances import CLOSED_FORM, HEIGHT_ONLY_PROFILE
 
 PLUGIN_DIR = Path(__file__).resolve().parents[2] / "plugins" / "contactlab_example_plugin"
@@ -168,7 +169,7 @@ def test_decorators_register_for_the_session(session_registry):
 
     assert registry.get("profile", "bump") is Bump
     assert registry.sources("profile")["bump"] == "session"
-    assert registry.create("profile", "bump", h=2.0).g(1.0) == pytest.approx(2 * 1.0 * 16 / 5, rel=1e-14)
+    assert registry.create("profile", "bump", h=2.0).g(1.0) == pytest.approx(2 * 1.0 * 16 / 5, rel=TOL.SHORT_ARITHMETIC)
     assert registry.get("material", "stiff") is Stiff
     registry.unregister("profile", "bump")
     with pytest.raises(UnknownNameError):
@@ -332,9 +333,9 @@ def test_plugin_material(plugin_path):
     m = Incompressible(G=1e6)
     ref = cl.Elastic(E=3e6, nu=0.5)
     got, want = cl.effective_moduli(m, cl.Rigid()), cl.effective_moduli(ref, cl.Rigid())
-    assert got.normal == pytest.approx(4e6, rel=1e-15) == want.normal
-    assert got.torsional == pytest.approx(want.torsional, rel=1e-15)
-    assert got.tangential == pytest.approx(want.tangential, rel=1e-15)
+    assert got.normal == pytest.approx(4e6, rel=TOL.ULPS) == want.normal
+    assert got.torsional == pytest.approx(want.torsional, rel=TOL.ULPS)
+    assert got.tangential == pytest.approx(want.tangential, rel=TOL.ULPS)
 
 
 # ---------------------------------------------------------------------- installed plugin

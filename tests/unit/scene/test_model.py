@@ -13,6 +13,7 @@ from contactlab.profiles import Cone, Paraboloid, Polynomial, Tabulated, Truncat
 from contactlab.scene import Scene
 from contactlab.scene.toml_io import dumps
 
+from tests import tolerances as TOL
 from tests.unit.scene.helpers import base, example_params, twist_scene
 
 
@@ -28,7 +29,7 @@ def test_units_are_normalised_to_si():
     d = Scene(twist_scene()).to_dict()
     assert d["profile"] == {"type": "paraboloid", "R": 0.01}
     assert d["materials"]["body1"] == {"type": "elastic", "E": 210e9, "nu": 0.3}
-    assert d["load_path"][1]["sinusoid"]["twist"] == pytest.approx(2e-3, rel=1e-15)
+    assert d["load_path"][1]["sinusoid"]["twist"] == pytest.approx(2e-3, rel=TOL.ULPS)
 
 
 def test_save_and_load(tmp_path):
@@ -88,9 +89,9 @@ def test_history_ramp_hold_sinusoid():
                     {"sinusoid": {"twist": "1 mrad", "cycles": 1, "steps_per_cycle": 4}})
     h = Scene(d).history()
     assert h.n_steps == 1 + 10 + 2 + 4
-    np.testing.assert_allclose(h.values("normal")[:11], np.linspace(0, 100, 11), rtol=1e-15)
+    np.testing.assert_allclose(h.values("normal")[:11], np.linspace(0, 100, 11), rtol=TOL.ULPS)
     np.testing.assert_allclose(h.values("normal")[11:], 100.0)
-    np.testing.assert_allclose(h.values("twist"), [0] * 13 + [1e-3, 0, -1e-3, 0], atol=1e-18)
+    np.testing.assert_allclose(h.values("twist"), [0] * 13 + [1e-3, 0, -1e-3, 0], atol=TOL.ABS_ZERO_TWIST)
     np.testing.assert_allclose(h.time[:13], [*range(11), 12, 14])
     assert h.kind("normal") == "force" and h.kind("twist") == "twist" and h.kind("shift") is None
     assert list(h.segment[:2]) == [-1, 0] and h.segment[-1] == 2
@@ -101,7 +102,7 @@ def test_history_sinusoid_around_current_value():
                         {"sinusoid": {"depth": "0.5 um", "cycles": 0.5, "steps_per_cycle": 4,
                                       "period": "2 s"}}])
     h = Scene(d).history()
-    np.testing.assert_allclose(h.values("normal"), [0, 0.5e-6, 1e-6, 1.5e-6, 1e-6], rtol=1e-14)
+    np.testing.assert_allclose(h.values("normal"), [0, 0.5e-6, 1e-6, 1.5e-6, 1e-6], rtol=TOL.SHORT_ARITHMETIC)
     np.testing.assert_allclose(h.time, [0, 1, 2, 2.5, 3.0])
 
 
@@ -114,4 +115,4 @@ def test_from_objects_with_a_loadpath():
     h = s.history()
     assert h.n_steps == path.n_steps + 1          # the scene history includes the unloaded start
     wave = 1e-3 * np.sin(2 * np.pi * np.arange(1, 9) / 8)
-    np.testing.assert_allclose(h.values("twist")[-8:], wave, atol=1e-18)
+    np.testing.assert_allclose(h.values("twist")[-8:], wave, atol=TOL.ABS_ZERO_TWIST)

@@ -8,6 +8,7 @@ from contactlab import Contact
 from contactlab.errors import ConvergenceError, EffectNotPlannedError
 from contactlab.scene import Scene
 
+from tests import tolerances as TOL
 from tests.tolerances import CLOSED_FORM, QUADRATURE
 from tests.unit.scene.helpers import base, twist_scene
 
@@ -58,7 +59,7 @@ def test_fields_match_hertz_pressure_and_displacement():
                               "field_points": 31})).run()
     a, d = hertz(100.0, 0.01, E_STEEL)
     r = res.fields["r"]
-    assert r[-1] == pytest.approx(1.5 * a, rel=1e-14)
+    assert r[-1] == pytest.approx(1.5 * a, rel=TOL.SHORT_ARITHMETIC)
     inside = r < a
     p = 2 * E_STEEL / (np.pi * 0.01) * np.sqrt(np.clip(a * a - r * r, 0, None))   # Hertz
     np.testing.assert_allclose(res["pressure"], p, rtol=QUADRATURE, atol=QUADRATURE * p[0])
@@ -174,15 +175,15 @@ def test_monotone_twist_against_lubkin():
         t = mp.findroot(lambda t: phi_of_t(t) - phi, 0.5)
         M_ref = mu * F * a * (3 * mp.pi / 16 - 4 / mp.pi * mp.quad(
             lambda s: s * s * mp.ellipe(1 - s * s), [0, t]))
-        assert M == pytest.approx(float(M_ref), rel=1e-6)
-        assert c == pytest.approx(float(t) * a, rel=1e-6)
+        assert M == pytest.approx(float(M_ref), rel=TOL.SCENE_VS_MPMATH)
+        assert c == pytest.approx(float(t) * a, rel=TOL.SCENE_VS_MPMATH)
 
 
 def test_oscillating_twist_masing_symmetry():
     res = Scene(twist_scene()).run()
     # Masing: the loop is symmetric, M(-phi_max) = -M(phi_max)
     i_max, i_min = int(np.argmax(res["twist"])), int(np.argmin(res["twist"]))
-    assert res["torque"][i_min] == pytest.approx(-res["torque"][i_max], rel=1e-6)
+    assert res["torque"][i_min] == pytest.approx(-res["torque"][i_max], rel=TOL.SCENE_VS_MPMATH)
 
 
 def test_adhesive_scene_against_jkr():
@@ -190,7 +191,7 @@ def test_adhesive_scene_against_jkr():
     res = Scene(base(interface={"work_of_adhesion": "0.05 J/m^2"})).run()
     a, E, w, R = res["radius"][-1], E_STEEL, 0.05, 0.01
     assert res["force"][-1] == pytest.approx(4 * E * a**3 / (3 * R)
-                                             - np.sqrt(8 * np.pi * a**3 * E * w), rel=1e-9)
+                                             - np.sqrt(8 * np.pi * a**3 * E * w), rel=TOL.QUADRATURE)
 
 
 def test_monotone_shift_against_cattaneo_mindlin():
@@ -203,8 +204,8 @@ def test_monotone_shift_against_cattaneo_mindlin():
     u_star = 3 * mu * F / (4 * a * G_star)            # Mindlin 1949
     u = res["displacement"][-4:]
     np.testing.assert_allclose(res["tangential_force"][-4:],
-                               mu * F * (1 - (1 - u / u_star) ** 1.5), rtol=1e-9)
-    np.testing.assert_allclose(res["stick_radius"][-4:], a * np.sqrt(1 - u / u_star), rtol=1e-9)
+                               mu * F * (1 - (1 - u / u_star) ** 1.5), rtol=TOL.CM_CLOSED)
+    np.testing.assert_allclose(res["stick_radius"][-4:], a * np.sqrt(1 - u / u_star), rtol=TOL.CM_CLOSED)
 
 
 def test_oscillating_shift_masing_energy():
@@ -224,4 +225,4 @@ def test_oscillating_shift_masing_energy():
     W = 18 / 5 * mu**2 * F**2 / (a * G_star) * bracket
     E = res["dissipated_energy"]
     n = 400
-    assert E[-1] - E[-1 - n] == pytest.approx(W, rel=1e-6)   # second (steady) cycle
+    assert E[-1] - E[-1 - n] == pytest.approx(W, rel=TOL.SCENE_VS_MPMATH)   # second (steady) cycle

@@ -5,6 +5,7 @@ import pytest
 
 from contactlab.errors import SceneError, UnitError
 from contactlab.scene.units import UNITS, parse_quantity
+from tests import tolerances as TOL
 
 
 @pytest.mark.parametrize("text, dim, expected", [
@@ -34,7 +35,7 @@ from contactlab.scene.units import UNITS, parse_quantity
     ("1_000 N", "force", 1000.0),
 ])
 def test_parse_quantity(text, dim, expected):
-    assert parse_quantity(text, dim) == pytest.approx(expected, rel=1e-15)
+    assert parse_quantity(text, dim) == pytest.approx(expected, rel=TOL.ULPS)
 
 
 def test_plain_numbers_are_si():
@@ -45,7 +46,7 @@ def test_plain_numbers_are_si():
 def test_every_table_entry_parses():
     for dim, table in UNITS.items():
         for unit, factor in table.items():
-            assert parse_quantity(f"2 {unit}", dim) == pytest.approx(2 * factor, rel=1e-15)
+            assert parse_quantity(f"2 {unit}", dim) == pytest.approx(2 * factor, rel=TOL.ULPS)
 
 
 def test_unknown_unit_names_key_value_and_suggests():

@@ -13,6 +13,7 @@ from contactlab.errors import MissingParameterError, NotSupportedError, UnknownN
 from contactlab.profiles import (Cone, FlatPunch, Paraboloid, Polynomial, PowerLaw, Sphere,
                                  Tabulated, TruncatedCone, TruncatedParaboloid)
 from contactlab.symbolic.formulas import SYMBOLS, symbol
+from tests import tolerances as TOL
 from tests.tolerances import QUADRATURE, SYMBOLIC_SPHERE, SYMBOLIC_VS_SOLVER
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
@@ -120,9 +121,9 @@ def test_torsion_formulas_against_direct_integrals(case):
     prof = contact.profile
     E, Gt = contact.moduli.normal, contact.moduli.torsional
     # G_t from the two shear moduli (physics.md §1), not G*
-    assert Gt == pytest.approx(1 / (1 / STEEL.G + 1 / RUBBER.G), rel=1e-15)
+    assert Gt == pytest.approx(1 / (1 / STEEL.G + 1 / RUBBER.G), rel=TOL.ULPS)
     phi = 1e-3
-    assert rel(fs.callable("torque_no_slip")(a, phi), 16 / 3 * Gt * a**3 * phi) < 1e-14
+    assert rel(fs.callable("torque_no_slip")(a, phi), 16 / 3 * Gt * a**3 * phi) < TOL.SHORT_ARITHMETIC
     I = _x2_gprime(prof, a)
     assert rel(fs.callable("torque_full_slip_exact")(a), math.pi / 2 * MU * E * I) < SYMBOLIC_VS_SOLVER
     assert rel(fs.callable("torque_full_slip_mdr")(a), 2 * MU * E * I) < SYMBOLIC_VS_SOLVER
@@ -183,8 +184,8 @@ def test_cone_and_power_law_pull_off():
     fs = cone.formulas()
     E = cone.moduli.normal
     s = 0.2
-    assert rel(fs.callable("jkr_pull_off_radius", Delta_gamma=DG)(), 18 * DG / (np.pi * E * s**2)) < 1e-14
-    assert rel(fs.callable("jkr_pull_off_force", Delta_gamma=DG)(), -54 * DG**2 / (np.pi * E * s**3)) < 1e-14
+    assert rel(fs.callable("jkr_pull_off_radius", Delta_gamma=DG)(), 18 * DG / (np.pi * E * s**2)) < TOL.SHORT_ARITHMETIC
+    assert rel(fs.callable("jkr_pull_off_force", Delta_gamma=DG)(), -54 * DG**2 / (np.pi * E * s**3)) < TOL.SHORT_ARITHMETIC
     pl = cl.Contact(PowerLaw(c=5e5, n=3), materials=MATS)
     fs = pl.formulas()
     Fj = fs.callable("jkr_force_of_radius", Delta_gamma=DG)
@@ -192,8 +193,8 @@ def test_cone_and_power_law_pull_off():
     a_c = fs.callable("jkr_pull_off_radius", Delta_gamma=DG)()
     res = minimize_scalar(lambda x: float(Fj(x)), bounds=(0.2 * a_c, 5 * a_c), method="bounded",
                           options={"xatol": 1e-14 * a_c})
-    assert res.x == pytest.approx(a_c, rel=1e-6)      # location of a flat minimum: ~sqrt(eps)
-    assert fs.callable("jkr_pull_off_force", Delta_gamma=DG)() == pytest.approx(res.fun, rel=1e-12)
+    assert res.x == pytest.approx(a_c, rel=TOL.MINIMISER_LOCATION)      # location of a flat minimum: ~sqrt(eps)
+    assert fs.callable("jkr_pull_off_force", Delta_gamma=DG)() == pytest.approx(res.fun, rel=TOL.EXACT_ROUTES)
 
 
 def test_mdr_full_slip_is_4_over_pi_times_exact(case):
@@ -222,11 +223,11 @@ def test_flat_punch_formulas():
     r = np.array([0.0, 0.5, 0.9]) * b
     assert rel(fs.callable("pressure")(r, d), st.pressure(r)) < SYMBOLIC_VS_SOLVER
     # edge term of physics.md §6.2 item 4: exact (π/2)μE* b² d, MDR 4/π times it
-    assert rel(fs.callable("torque_full_slip_exact")(d), np.pi / 2 * MU * E * b**2 * d) < 1e-14
-    assert rel(fs.callable("torque_full_slip_mdr")(d), 2 * MU * E * b**2 * d) < 1e-14
+    assert rel(fs.callable("torque_full_slip_exact")(d), np.pi / 2 * MU * E * b**2 * d) < TOL.SHORT_ARITHMETIC
+    assert rel(fs.callable("torque_full_slip_mdr")(d), 2 * MU * E * b**2 * d) < TOL.SHORT_ARITHMETIC
     assert rel(fs.callable("jkr_pull_off_force", Delta_gamma=DG)(),
-               -np.sqrt(8 * np.pi * b**3 * E * DG)) < 1e-14
-    assert rel(fs.callable("torque_no_slip")(1e-3), 16 / 3 * Gt * b**3 * 1e-3) < 1e-14
+               -np.sqrt(8 * np.pi * b**3 * E * DG)) < TOL.SHORT_ARITHMETIC
+    assert rel(fs.callable("torque_no_slip")(1e-3), 16 / 3 * Gt * b**3 * 1e-3) < TOL.SHORT_ARITHMETIC
     with pytest.raises(NotSupportedError, match="flat punch"):
         fs["force_of_radius"]
 
@@ -238,7 +239,7 @@ def test_substitute_inserts_numbers():
     assert fs["force_of_depth"].free_symbols == {symbol("d")}
     assert fs["torque_full_slip_mdr"].free_symbols == {symbol("a")}
     d = 1e-6
-    assert rel(float(fs["force_of_depth"].subs(symbol("d"), d)), c.normal(depth=d).force) < 1e-13
+    assert rel(float(fs["force_of_depth"].subs(symbol("d"), d)), c.normal(depth=d).force) < TOL.LONG_ARITHMETIC
 
 
 def test_missing_parameter_is_named():
