@@ -247,7 +247,7 @@ TABLE_3_DIGITS = 6e-4
 #: two O(W) terms) against the closed-form loop energy
 MASING_ENERGY = 1e-8
 #: trapezoid area of a loop sampled with 4000 steps per cycle against its energy
-LOOP_AREA = 1e-6
+LOOP_AREA_HISTORY = 1e-6
 #: trapezoid area of a loop sampled with 200 points against its energy: ~W''δ²/(12 n²)
 LOOP_TRAPEZOID_200 = 5e-3
 #: cumulative dissipation of a brute-force 4000-Jenkins-element model against the exact history:
