@@ -310,3 +310,7 @@ CUBIC_PARABOLA = 1e-8
 SUBNORMAL_ROOT = 1e-6
 #: slack of the per-step work bracket of the foundation energy balance, relative to the work
 WORK_SLACK = 1e-2
+
+#: the numba and the numpy foundation kernels on the same path: element updates are bit-identical,
+#: the dissipated energy is summed in another order (sequential vs pairwise, ~N ulps of the sum)
+BACKENDS_AGREE = 1e-12

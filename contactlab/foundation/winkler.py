@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._compiled import jenkins_update
+
 from ..numeric.quadrature import tanh_sinh
 from .base import Foundation
 
@@ -192,16 +194,7 @@ class Winkler(Foundation):
         ``m ← clip(m + K inc, -L, L)`` (``nL = -L``); dissipation
         ``Σ |slip| L = Σ (trial - m) m / K``.
         """
-        np.multiply(K, inc, out=tmp)
-        tmp += m
-        np.minimum(tmp, L, out=m)
-        np.maximum(m, nL, out=m)
-        tmp -= m
-        tmp *= m
-        tmp *= invK
-        # a plain (pairwise) sum, not np.dot: a BLAS dot runs multithreaded on long vectors and
-        # costs 50x more at N = 10^5 on a loaded machine (and its result follows the thread count)
-        return float(tmp.sum())
+        return jenkins_update(m, K, invK, L, inc, tmp, nL)   # compiled when numba is installed
 
     @staticmethod
     def solve(m: np.ndarray, K: np.ndarray, L: np.ndarray, target: float) -> tuple[float, bool]:

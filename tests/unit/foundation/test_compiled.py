@@ -1,0 +1,57 @@
+"""The compiled foundation kernel (issue 13) against its numpy reference, and whole paths through
+simulate() with both backends."""
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import ParameterError
+from contactlab.foundation import _compiled
+from contactlab.loadpath import LoadPath
+from tests.tolerances import BACKENDS_AGREE
+
+
+def test_jenkins_update_matches_the_numpy_reference(foundation_backend):
+    rng = np.random.default_rng(7)
+    n = 5000
+    K = rng.uniform(0.5, 2.0, n)
+    L = rng.uniform(0.0, 1.0, n)
+    m0 = np.clip(rng.normal(0, 0.5, n), -L, L)
+    for inc in (0.0, 0.3, -1.7, 1e-9):
+        m_ref, m = m0.copy(), m0.copy()
+        w_ref = _compiled.jenkins_update_numpy(m_ref, K, 1 / K, L, inc)
+        w = _compiled.jenkins_update(m, K, 1 / K, L, inc)
+        assert np.array_equal(m, m_ref)                         # the clip is exact
+        assert abs(w - w_ref) <= BACKENDS_AGREE * max(abs(w_ref), 1e-300)
+        # dissipation = Σ L |slip|, slip = (trial - m)/K, over the elements that slid
+        trial = m0 + K * inc
+        assert abs(w_ref - np.sum(np.abs(trial - m_ref) * L / K)) <= 1e-12 * max(abs(w_ref), 1e-300)
+
+
+def test_unknown_backend_is_rejected():
+    with pytest.raises(ParameterError, match="backend"):
+        _compiled.set_backend("fortran")
+
+
+def _gait(kind):
+    """Gait-like: the normal force and the twist (or shift) change at every step."""
+    t = np.linspace(0, 1, 401)
+    extra = ({"twist": 2e-4 * np.sin(6 * np.pi * t)} if kind == "twist"
+             else {"displacement": 1e-7 * np.sin(4 * np.pi * t)})
+    return LoadPath.from_arrays(time=t, force=50 + 40 * np.sin(2 * np.pi * t), **extra)
+
+
+@pytest.mark.parametrize("kind", ["twist", "shift"])
+def test_simulate_agrees_between_backends(foundation_backend, kind):
+    if "numba" not in _compiled.available():
+        pytest.skip("numba is not installed (extra 'fast')")
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
+                   friction=0.3)
+    out = {}
+    for name in ("numpy", "numba"):
+        _compiled.set_backend(name)
+        out[name] = c.simulate(_gait(kind))
+    a, b = out["numpy"], out["numba"]
+    keys = ("torque",) if kind == "twist" else ("tangential_force",)
+    for key in ("force", "dissipated_energy", "stick_radius") + keys:
+        x, y = np.asarray(getattr(a, key)), np.asarray(getattr(b, key))
+        assert np.all(np.abs(x - y) <= BACKENDS_AGREE * np.max(np.abs(x))), key
