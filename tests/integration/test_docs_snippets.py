@@ -4,6 +4,8 @@ The blocks of one page run in order in one namespace (a later block may use name
 one), in a temporary folder that holds copies of the repository's examples/ (snippets may read
 example data or write result files). A block whose first line is ``# not run: <reason>`` is
 skipped: that marker says in the page itself why it cannot run here (e.g. it needs a cluster).
+A block whose first line is ``# needs: pandas, xarray`` skips the rest of its page when one of
+those optional packages is missing.
 Plots are drawn with the non-interactive Agg backend when matplotlib is installed.
 """
 from __future__ import annotations
@@ -40,6 +42,10 @@ def test_snippets_run(page, tmp_path, monkeypatch):
     env: dict = {"__name__": "__snippet__"}
     try:
         for i, block in enumerate(_blocks(page)):
+            first = block.lstrip().partition("\n")[0]
+            if first.startswith("# needs:"):        # optional extras the page's snippets use
+                for module in first[len("# needs:"):].split(","):
+                    pytest.importorskip(module.strip())
             with warnings.catch_warnings():
                 # snippets may show a model's validity warning on purpose
                 warnings.simplefilter("ignore")

@@ -70,7 +70,7 @@ def test_dask_local_cluster_is_bit_identical(serial):
     # dask and contactlab can take a minute to come up
     with dask.config.set({"distributed.comm.timeouts.connect": "300s"}), \
             distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=None, death_timeout=300) as cluster, \
+                                     dashboard_address=":0", death_timeout=300) as cluster, \
             distributed.Client(cluster, timeout="300s") as client:
         assert len(client.scheduler_info(n_workers=-1)["workers"]) == 2
         _same(contactlab.sweep(Scene(LOOPS), GRID, client=client, batch_size=3), serial[0])
