@@ -10,6 +10,7 @@ from typing import Any
 
 from .effects import adhesion as _adhesion
 from .effects import fretting as _fretting
+from .effects import wear as _wear
 from .effects import normal as _normal
 from .effects import path as _path
 from .effects import tangential as _tangential
@@ -17,6 +18,7 @@ from .effects import torsion as _torsion
 from .effects import viscoelastic as _viscoelastic
 from .effects.adhesion import AdhesionCycle
 from .effects.fretting import FrettingLoop, FrettingMap
+from .effects.wear import WearResult
 from .effects.normal import NormalState
 from .effects.path import PathResult
 from .effects.tangential import ShiftHistory, TangentialState
@@ -394,3 +396,45 @@ class Contact:
                                       displacement_amplitude=displacement_amplitude,
                                       twist_amplitude=twist_amplitude, method=method,
                                       criterion=criterion, threshold=threshold, boundary=boundary)
+
+    def wear(self, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
+             wear_coefficient: Any, cycles: Any, method: str | None = None,
+             checkpoints: Any = None, n_grid: int = 400, max_radius: Any = None,
+             jump_rtol: float = 1e-4) -> WearResult:
+        """Fretting wear at constant normal force (Archard's law on the 3D profile).
+
+        Parameters
+        ----------
+        force : float
+            Normal force, N.
+        displacement_amplitude, twist_amplitude : float
+            Shift amplitude ``δ*`` (m) or twist amplitude ``φ*`` (rad); exactly one.
+        wear_coefficient : float
+            Archard's ``k = K/H``, 1/Pa (worn depth per unit pressure and slip); 0 gives the
+            wear-free loops.
+        cycles : float
+            Number of cycles.
+        method : {"exact", "mdr"}, optional
+            Torsion: Jäger's exact slip (default) or the MDR springs (fast approximation; warns
+            when its worn volume or stick radius errs by more than 1 %).
+        checkpoints : int or array_like, optional
+            Cycle counts at which the worn profile is stored (an int: that many, log-spaced);
+            the last is always ``cycles``.
+        n_grid : int
+            Intervals of the worn-profile table.
+        max_radius : float, optional
+            Grid radius, m (default: estimated from the fresh loop and a wear-volume bound).
+        jump_rtol : float
+            Local error of one cycle jump (Euler vs Heun) relative to the indentation depth.
+
+        Returns
+        -------
+        WearResult
+            ``.profiles`` (:class:`~contactlab.profiles.Tabulated` at the checkpoints),
+            ``.profile``, series ``.cycles .depth .radius .stick_radius .volume
+            .max_wear_depth .dissipated_energy``, ``.plot()``; docs/fretting.md.
+        """
+        return _wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
+                          twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
+                          cycles=cycles, method=method, checkpoints=checkpoints, n_grid=n_grid,
+                          max_radius=max_radius, jump_rtol=jump_rtol)

@@ -59,3 +59,39 @@ def hertz_twist_of_stick_ratio(ratio, F, mu, a, G_t):
     """Twist at stick ratio c/a (Hertz, exact Jäger solution; scipy's ellipk takes m = k²)."""
     m = 1.0 - np.asarray(ratio, float) ** 2
     return 3.0 * mu * F / (4.0 * np.pi * G_t * a**2) * (ellipk(m) - ellipe(m))
+
+
+# ---------------------------------------------------------------- fretting wear (derived)
+def hertz_limiting_state(c, F, E_star, R):
+    """Limiting worn state of partial-slip fretting, Hertz, permanent stick radius c.
+
+    MDR picture (Popov 2014; Dmitriev et al. 2016): wear stops when the slip annulus carries no
+    load, i.e. the 1D profile is g0 inside c and flat at d∞ across the annulus. The stick zone
+    carries the force, F = 2E* ∫_0^c (d∞ - g0) dx, so d∞ = (F/(2E*) + c³/(3R))/c. The 3D profile
+    inside the scar is the inverse transform of that g; the wear depth is
+    h∞(r) = (2/π)[d∞ acos(c/r) - ((r²/2) acos(c/r) + (c/2) sqrt(r²-c²))/R], c < r < a∞, and the scar
+    ends where it meets the unworn surface, h∞(a∞) = 0. Returns (d∞, a∞, V∞, h∞).
+    """
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    d_inf = (F / (2.0 * E_star) + c**3 / (3.0 * R)) / c
+
+    def h(r):
+        ac = np.arccos(c / r)
+        return 2.0 / np.pi * (d_inf * ac - (0.5 * r * r * ac + 0.5 * c * np.sqrt(r * r - c * c)) / R)
+    a_inf = brentq(h, c * (1 + 1e-12), 20 * c, xtol=1e-16, rtol=1e-14)
+    V = quad(lambda r: 2 * np.pi * r * h(r), c, a_inf, epsabs=0, epsrel=1e-12)[0]
+    return d_inf, a_inf, V, h
+
+
+def hertz_gross_slip_scar(k, R, F, delta, N):
+    """Tangential gross slip at large amplitude (every point slides 4δ per cycle): worn volume
+    V = 4kFδN, worn flat cap πa⁴/(4R) ⇒ a = (16 k R F δ N / π)^(1/4)."""
+    return (16.0 * k * R * F * delta * np.asarray(N, float) / np.pi) ** 0.25
+
+
+def linear_table_volume(r, h):
+    """∫ 2πr h dr of the piecewise-linear h on the nodes r (exact, per interval)."""
+    r0, r1, h0, h1 = r[:-1], r[1:], h[:-1], h[1:]
+    dr = r1 - r0
+    return float(np.sum(2 * np.pi * dr * (h0 * (r0 / 2 + dr / 6) + h1 * (r0 / 2 + dr / 3))))

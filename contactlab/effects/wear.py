@@ -1,0 +1,345 @@
+"""Fretting wear at constant normal force: the driver behind :meth:`Contact.wear` and its result
+:class:`WearResult`.
+
+Archard's law on the 3D profile, ``dh(r)/dN = k p(r) s(r)``, with ``s(r)`` the slip path per
+cycle of the 3D surface (four times the slip under monotonic loading to the amplitude, Masing):
+the Abel transform of the MDR spring slip for a shift (exact Cattaneo–Mindlin), Jäger's exact
+solution for a twist (``method="exact"``) or the MDR springs' twist distribution
+(``method="mdr"``, the fast approximation). The worn profile is a piecewise-linear table on a
+radial grid; every transform of it is exact for that table (:mod:`contactlab.physics.wear`).
+
+Cycle jumping: one steady loop on the current profile gives the wear rate per cycle; a step of
+``ΔN`` cycles is taken with Heun's method (rates at the start and at the Euler prediction), and
+``ΔN`` adapts so that the difference of the two predictions, ``ΔN/2 max|r2 - r1|``, stays below
+``jump_rtol`` times the depth scale ``d + max h`` (indentation depth of the worn profile plus the
+largest wear depth). The energy dissipated in a step uses the same two
+rates, so worn volume = (k/μ) × dissipated energy holds to rounding for the table.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
+                      ValidityWarning)
+from ..params import as_float_array, check_positive
+from ..physics import wear as _wear
+from ..profiles import Tabulated
+from .fretting import _mode_and_amplitude, check_contact, loops, warn_mdr
+from .torsion import resolve_method
+
+__all__ = ["WearResult", "wear", "SERIES_UNITS", "DEFAULT_GRID", "DEFAULT_JUMP_RTOL"]
+
+#: Grid intervals of the worn-profile table (docs/fretting.md: convergence under halving).
+DEFAULT_GRID = 400
+#: Local error of one wear step (Euler vs Heun prediction) relative to the indentation depth.
+DEFAULT_JUMP_RTOL = 1e-4
+#: Relative difference of the grid's energy per cycle from the loop's (fresh contact) above which
+#: wear() warns that the grid does not resolve the slip zone.
+GRID_ENERGY_WARN = 0.02
+#: Smallest grid the operators accept.
+MIN_GRID = 16
+
+#: Wear depth, relative to the largest, that marks the edge of the scar.
+SCAR_EDGE = 1e-3
+
+SERIES_UNITS = {"cycles": "1", "depth": "m", "radius": "m", "scar_radius": "m",
+                "stick_radius": "m", "volume": "m^3",
+                "max_wear_depth": "m", "dissipated_energy": "J", "energy_per_cycle": "J"}
+
+
+@dataclass(frozen=True, eq=False)
+class WearResult:
+    """Fretting-wear run: worn profiles at checkpoints and series per wear step.
+
+    Attributes
+    ----------
+    mode, method : str
+        ``"tangential"`` or ``"torsion"``; ``"exact"`` or ``"mdr"`` (shift: ``"mdr"``, exact).
+    cycles, depth, radius, scar_radius, stick_radius, volume, max_wear_depth,
+    dissipated_energy, energy_per_cycle : ndarray
+        Per accepted step (the first entry is the fresh contact): cycle count, indentation depth
+        relative to the unworn surface (m), contact radius (m; the region that carries load),
+        scar radius (m; outermost radius worn by more than 1e-3 of the largest wear depth),
+        stick radius (m), worn volume
+        (m³), largest wear depth (m), cumulative energy dissipated by friction (J) and energy
+        per cycle (J).
+    checkpoints : ndarray
+        Cycle counts of the stored profiles (0 first).
+    profiles : list of Tabulated
+        Worn profile at each checkpoint (heights relative to the table's first value).
+    wear_depth : ndarray, shape (n_checkpoints, n_grid + 1)
+        Wear depth ``h(r)`` at the grid radii :attr:`r` at each checkpoint, m.
+    r : ndarray
+        Grid radii, m.
+    meta : dict
+        ``wear_coefficient``, ``amplitude``, ``force``, ``n_grid``, ``grid_radius``,
+        ``jump_rtol``, ``steps``, ``rejected``, ``rates`` (evaluations).
+    """
+
+    mode: str
+    method: str
+    cycles: np.ndarray = field(repr=False)
+    depth: np.ndarray = field(repr=False)
+    radius: np.ndarray = field(repr=False)
+    scar_radius: np.ndarray = field(repr=False)
+    stick_radius: np.ndarray = field(repr=False)
+    volume: np.ndarray = field(repr=False)
+    max_wear_depth: np.ndarray = field(repr=False)
+    dissipated_energy: np.ndarray = field(repr=False)
+    energy_per_cycle: np.ndarray = field(repr=False)
+    checkpoints: np.ndarray = field(repr=False)
+    profiles: list = field(repr=False)
+    wear_depth: np.ndarray = field(repr=False)
+    r: np.ndarray = field(repr=False)
+    meta: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def profile(self) -> Tabulated:
+        """The worn profile at the last checkpoint."""
+        return self.profiles[-1]
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Per-step series by name."""
+        return {k: getattr(self, k) for k in SERIES_UNITS}
+
+    def to_csv(self, path: Any) -> None:
+        """Write the per-step series (``name [unit]`` headers)."""
+        from ..loadpath.io import write_csv
+        write_csv(path, self.to_dict(), units=SERIES_UNITS)
+
+    def to_dataframe(self):
+        """The per-step series as a :class:`pandas.DataFrame` (needs pandas)."""
+        try:
+            import pandas as pd
+        except ImportError as err:
+            raise ImportError("to_dataframe() needs pandas: pip install pandas "
+                              "(or pip install 'contactlab[data]')") from err
+        return pd.DataFrame(self.to_dict())
+
+    def plot(self, axes: Any = None):
+        """Profile evolution, scar radius and worn volume against cycles (needs matplotlib)."""
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as err:
+            raise ImportError("plot() needs matplotlib: pip install matplotlib "
+                              "(or pip install 'contactlab[plot]')") from err
+        if axes is None:
+            _, axes = plt.subplots(1, 3, figsize=(13, 4))
+        ax0, ax1, ax2 = axes
+        rmax = 1.2 * float(np.max(self.radius))
+        keep = self.r <= rmax
+        for N, prof in zip(self.checkpoints, self.profiles):
+            ax0.plot(self.r[keep], prof.height(self.r[keep]), label=f"N = {N:.3g}")
+        ax0.set_xlabel("r [m]")
+        ax0.set_ylabel("worn profile f(r) [m]")
+        ax0.legend(fontsize="small")
+        N = np.maximum(self.cycles, 1.0)
+        ax1.loglog(N[1:], self.radius[1:], label="contact radius")
+        ax1.loglog(N[1:], np.maximum(self.scar_radius[1:], 1e-300), label="scar radius")
+        ax1.legend(fontsize="small")
+        ax1.set_xlabel("cycles")
+        ax1.set_ylabel("radius [m]")
+        ax2.loglog(N[1:], np.maximum(self.volume[1:], 1e-300))
+        ax2.set_xlabel("cycles")
+        ax2.set_ylabel("worn volume [m^3]")
+        return axes
+
+
+def _checkpoints(cycles: float, checkpoints: Any) -> np.ndarray:
+    if checkpoints is None:
+        return np.array([cycles])
+    if isinstance(checkpoints, (int, np.integer)) and not isinstance(checkpoints, bool):
+        if checkpoints < 1:
+            raise ParameterError(f"checkpoints={checkpoints!r} is invalid: give a count >= 1 or "
+                                 "an array of cycle numbers.")
+        pts = np.geomspace(min(1.0, cycles), cycles, int(checkpoints))
+        return np.unique(pts)
+    pts = as_float_array("checkpoints", checkpoints).ravel()
+    if np.any(pts <= 0) or np.any(pts > cycles):
+        raise ParameterError(f"checkpoints={checkpoints!r} is invalid: every checkpoint must "
+                             f"satisfy 0 < checkpoint <= cycles={cycles!r}.")
+    return np.unique(np.append(pts, cycles))
+
+
+def _grid_radius(contact, mode: str, F: float, amp: float, k: float, cycles: float,
+                 fresh: dict, a0: float, d0: float) -> float:
+    """Grid extent: partial slip, twice the radius where g reaches the limiting depth; gross
+    slip, the cap whose volume bounds the worn volume (every point sliding the amplitude)."""
+    prof = contact.profile
+    c0 = float(fresh["stick_radius"][0])
+    gross = int(fresh["regime"][0]) == 2
+    if not gross and c0 > 0:
+        gc = float(prof._g(np.array(c0)))
+        gint = float(prof._g_integral(np.array(c0)))
+        d_lim = (F / (2 * contact.moduli.normal) + gint) / c0
+        r_lim = float(prof._radius_of_depth(np.array(d_lim))) if d_lim > gc else a0
+        return 2.0 * max(r_lim, a0)
+
+    def cap(R: float) -> float:
+        rr = np.linspace(0.0, R, 401)
+        y = 2 * np.pi * rr * (prof.height(np.array(R)) - prof.height(rr))
+        return float(np.sum((y[1:] + y[:-1]) * np.diff(rr)) / 2)
+
+    lo, hi = a0, a0
+    def bound(R: float) -> float:
+        L = amp if mode == "tangential" else amp * R
+        return 4.0 * k * F * L * cycles
+    limit = min(prof.max_radius, 1e6 * a0)
+    while cap(hi) < bound(hi) and hi < limit:
+        lo, hi = hi, min(2 * hi, limit)
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if cap(mid) < bound(mid) else (lo, mid)
+    return 1.3 * max(hi, 1.25 * a0)
+
+
+def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
+         wear_coefficient: Any, cycles: Any, method: str | None = None, checkpoints: Any = None,
+         n_grid: int = DEFAULT_GRID, max_radius: Any = None,
+         jump_rtol: float = DEFAULT_JUMP_RTOL) -> WearResult:
+    """Implementation of :meth:`contactlab.Contact.wear` (see there)."""
+    check_contact(contact, "wear()")
+    mode, key, amp_arr = _mode_and_amplitude("wear()", displacement_amplitude, twist_amplitude)
+    if amp_arr.ndim != 0:
+        raise ParameterError(f"{key} has shape {amp_arr.shape}: wear() takes one amplitude.")
+    amp = float(amp_arr)
+    F = check_positive("force", force, "the normal force", "N")
+    k = float(as_float_array("wear_coefficient", wear_coefficient))
+    if k < 0:
+        raise ParameterError(f"wear_coefficient={wear_coefficient!r} is invalid: Archard's "
+                             "coefficient k = K/H must be >= 0 1/Pa.")
+    N_end = check_positive("cycles", cycles, "the number of cycles")
+    jump_rtol = check_positive("jump_rtol", jump_rtol, "the wear-step tolerance")
+    if not isinstance(n_grid, (int, np.integer)) or n_grid < MIN_GRID:
+        raise ParameterError(f"n_grid={n_grid!r} is invalid: give an integer >= {MIN_GRID}.")
+    if np.isfinite(contact.profile.wall_radius):
+        raise NotSupportedError(f"wear() of {contact.profile!r}: a profile with a wall (flat "
+                                "punch) cannot be worn into a table; use a rounded punch "
+                                "(TruncatedParaboloid) instead.")
+    if mode == "torsion":
+        method = resolve_method(contact, method)
+        if method == "no-slip":
+            raise NotSupportedError("wear() with method='no-slip': nothing slips, nothing wears.")
+    elif method not in (None, "mdr", "exact"):
+        raise UnknownNameError(f"method={method!r} is invalid for a shift: leave method=None.")
+    else:
+        method = "mdr"
+    ck = _checkpoints(N_end, checkpoints)
+    E, mu = contact.moduli.normal, contact.friction
+    ns = contact.normal(force=F)
+    a0, d0 = float(ns._radius), float(ns._depth)
+    one = lambda v: np.atleast_1d(float(v))                     # noqa: E731
+    fresh = loops(contact, mode, method, one(a0), one(d0), one(F), one(amp), "energy_ratio", 0.2)
+    if mode == "torsion" and method == "mdr":
+        warn_mdr(contact, one(amp), one(a0), one(d0), ("worn_volume", "stick_radius"))
+    R = (float(check_positive("max_radius", max_radius, "the grid radius", "m"))
+         if max_radius is not None else _grid_radius(contact, mode, F, amp, k, N_end, fresh,
+                                                      a0, d0))
+    R = min(R, 0.999 * contact.profile.max_radius)
+    if R <= a0:
+        raise ParameterError(f"max_radius={R!r} m is invalid: the grid must extend beyond the "
+                             f"contact radius {a0!r} m.")
+    ops = _wear.operators(R, int(n_grid))
+    r = ops["r"]
+    f0 = np.asarray(contact.profile.height(r), float)
+    v = ops["v"]
+    edge = 0.9 * R
+
+    def state(h: np.ndarray):
+        g = _wear.transform(ops, f0 + h)
+        try:
+            d = _wear.normal_depth(g, ops["w1"], E, F)
+        except OverflowError:
+            d = np.inf
+        if not np.isfinite(d):
+            raise ConvergenceError(f"wear(): the contact outgrew the grid (radius {R!r} m); give "
+                                   "a larger max_radius=.")
+        if mode == "tangential":
+            q, c, a = _wear.tangential_rate(ops, g, d, E, contact.moduli.tangential, mu, amp)
+        else:
+            q, c, a = _wear.torsion_rate(ops, g, d, E, contact.moduli.torsional, mu, amp, method)
+        if a > edge:
+            raise ConvergenceError(f"wear(): the contact radius {a!r} m reached 90 % of the grid "
+                                   f"radius {R!r} m after some wear; give a larger max_radius=.")
+        return q, d, c, a
+
+    q1, d, c, a = state(np.zeros(r.shape))
+    W_grid = 4.0 * mu * float(v @ q1)
+    W_loop = float(fresh["energy"][0])
+    grid_error = W_grid / W_loop - 1.0 if W_loop > 0 else 0.0
+    if method != "mdr" or mode == "tangential":
+        if abs(grid_error) > GRID_ENERGY_WARN:
+            warnings.warn(f"wear(): the grid of n_grid={n_grid} intervals over {R:.4g} m resolves "
+                          f"the slip zone (width {a - c:.3g} m) poorly: its energy per cycle "
+                          f"differs from the loop's by {grid_error:+.2%}. Increase n_grid or "
+                          "give a smaller max_radius=.", ValidityWarning, stacklevel=3)
+    h = np.zeros(r.shape)
+    N = 0.0
+    energy = 0.0
+    series = {kk: [] for kk in SERIES_UNITS}
+
+    def record(N, d, a, c, h, energy, q):
+        series["cycles"].append(N)
+        series["depth"].append(d + h[0])
+        series["radius"].append(a)
+        series["stick_radius"].append(c)
+        hm = float(np.max(h))
+        series["scar_radius"].append(_wear.contact_radius(r, h - SCAR_EDGE * hm) if hm > 0
+                                     else 0.0)
+        series["volume"].append(float(v @ h))
+        series["max_wear_depth"].append(float(np.max(h)))
+        series["dissipated_energy"].append(energy)
+        series["energy_per_cycle"].append(4.0 * mu * float(v @ q))
+
+    record(N, d, a, c, h, energy, q1)
+    profiles = [Tabulated(r, f0)]
+    depths = [h.copy()]
+    stops = list(ck)
+    rate_max = 4.0 * k * float(np.max(q1))
+    dN = N_end if rate_max == 0 else min(N_end, 0.01 * d / rate_max)
+    steps = rejected = evals = 0
+    while stops:
+        target = stops[0]
+        dN = min(dN, target - N)
+        r1 = 4.0 * k * q1
+        evals += 1
+        tol = jump_rtol * (d + float(np.max(h)))
+        try:
+            q2, *_ = state(h + dN * r1)
+        except ConvergenceError:        # the Euler prediction left the grid: a smaller jump
+            if dN <= 1e-9 * max(N, 1.0):
+                raise
+            rejected += 1
+            dN *= 0.25
+            continue
+        r2 = 4.0 * k * q2
+        err = 0.5 * dN * float(np.max(np.abs(r2 - r1)))
+        if err <= tol or dN <= 1e-9 * max(N, 1.0):
+            h = h + 0.5 * dN * (r1 + r2)
+            energy += 0.5 * dN * 4.0 * mu * float(v @ (q1 + q2))
+            N = target if target - (N + dN) <= 1e-12 * target else N + dN
+            q1, d, c, a = state(h)
+            evals += 1
+            steps += 1
+            record(N, d, a, c, h, energy, q1)
+            if N >= target:
+                stops.pop(0)
+                profiles.append(Tabulated(r, f0 + h))
+                depths.append(h.copy())
+        else:
+            rejected += 1
+        grow = 4.0 if err == 0 else min(4.0, max(0.2, 0.9 * np.sqrt(tol / err)))
+        dN = max(dN * grow, 1e-9 * max(N, 1.0))
+    meta = {"wear_coefficient": k, "amplitude": amp, "force": F, "n_grid": int(n_grid),
+            "grid_radius": R, "jump_rtol": jump_rtol, "steps": steps, "rejected": rejected,
+            "rates": evals + 1, "fresh_energy_per_cycle": float(fresh["energy"][0]),
+            "friction": mu, "fresh_grid_energy_error": grid_error}
+    arr = {kk: np.asarray(vv, float) for kk, vv in series.items()}
+    return WearResult(mode, method, arr["cycles"], arr["depth"], arr["radius"],
+                      arr["scar_radius"], arr["stick_radius"], arr["volume"], arr["max_wear_depth"],
+                      arr["dissipated_energy"], arr["energy_per_cycle"],
+                      np.concatenate([[0.0], ck]), profiles, np.array(depths), r.copy(), meta)
