@@ -55,7 +55,38 @@ def _emit(args: argparse.Namespace, payload: dict[str, Any], text: str) -> None:
 
 def _load(args: argparse.Namespace) -> Any:
     from .scene import Scene
-    return Scene.from_toml(args.scene)
+    return Scene.from_toml(args.scene, allow_outside=getattr(args, "allow_outside", False))
+
+
+def _output_dir(value: str | None, overwrite: bool) -> Path | None:
+    """The output folder of ``-o DIR``, created if missing, checked before any work is done.
+
+    Raises
+    ------
+    ParameterError
+        DIR is a file, cannot be created or written, or is not empty and ``--overwrite`` was
+        not given (exit 2).
+    """
+    import os
+
+    from .errors import ParameterError
+    if value is None:
+        return None
+    d = Path(value)
+    if d.exists() and not d.is_dir():
+        raise ParameterError(f"-o {value!r} is invalid: it is a file, not a folder; give a folder "
+                             "name (created if missing).")
+    if d.is_dir() and any(d.iterdir()) and not overwrite:
+        raise ParameterError(f"-o {value!r} is invalid: the folder is not empty; choose a new "
+                             "folder or pass --overwrite to replace an earlier run's files.")
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ParameterError(f"-o {value!r} is invalid: the folder cannot be created "
+                             f"({err.strerror or type(err).__name__}).") from None
+    if not os.access(d, os.W_OK | os.X_OK):
+        raise ParameterError(f"-o {value!r} is invalid: the folder is not writable.")
+    return d
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
@@ -89,8 +120,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
     plan = scene.plan()
     if args.plan:
         return _cmd_plan(args)
+    outdir = _output_dir(args.output, args.overwrite)    # before the (maybe long) run
     result = scene.run()
-    outdir = Path(args.output) if args.output else None
     files, notes = _write_outputs(args, result, outdir)
     if args.json:
         payload = {"ok": True, "files": [str(f) for f in files], "notes": notes}
@@ -112,6 +143,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
 def _cmd_demo(args: argparse.Namespace) -> int:
     from .errors import NotSupportedError
     from .scene import Scene
+    outdir = _output_dir(args.output, args.overwrite) or Path(".")
     scene = Scene.loads(DEMO_SCENE)
     note = ""
     try:
@@ -124,7 +156,6 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         data.pop("interface", None)
         scene = Scene.from_dict(data)
         result = scene.run()
-    outdir = Path(args.output) if args.output else Path(".")
     files: list[Path] = []
     try:
         files.append(result.plot(outdir / "contactlab_demo.png"))
@@ -238,16 +269,31 @@ def _formulas(args: argparse.Namespace) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the CLI's error contract: one line on stderr (or a JSON object), exit 2."""
+
+    def error(self, message: str) -> Any:  # type: ignore[override]
+        if "--json" in sys.argv[1:] or getattr(self, "_as_json", False):
+            print(json.dumps({"ok": False, "exit": 2, "error": message, "kind": "UsageError"},
+                             indent=1))
+        else:
+            print(f"{self.prog}: {message} (see {self.prog.split()[0]} --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
 def _parser() -> argparse.ArgumentParser:
     from . import __version__
-    p = argparse.ArgumentParser(prog="contactlab", description=__doc__.splitlines()[0])
+    p = _Parser(prog="contactlab", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"contactlab {__version__}")
     sub = p.add_subparsers(dest="command")
 
     def add(name: str, func: Any, help_: str, scene: bool = True) -> argparse.ArgumentParser:
         sp = sub.add_parser(name, help=help_)
+        sp._as_json = False  # type: ignore[attr-defined]
         if scene:
             sp.add_argument("scene", help="scene file (TOML)")
+            sp.add_argument("--allow-outside", action="store_true",
+                            help="let relative file names in the scene leave its folder")
         sp.add_argument("--json", action="store_true", help="machine-readable JSON on stdout")
         sp.set_defaults(func=func)
         return sp
@@ -257,10 +303,13 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--format", choices=("csv", "json"), default="csv", help="output format")
     r.add_argument("--plot", action="store_true", help="write plot.png (needs matplotlib)")
     r.add_argument("--plan", action="store_true", help="show the plan, do not run")
+    r.add_argument("--overwrite", action="store_true",
+                   help="write into a non-empty output folder (replacing an earlier run's files)")
     add("validate", _cmd_validate, "check a scene, report every problem")
     add("plan", _cmd_plan, "show which effects a scene computes, how and why")
     d = add("demo", _cmd_demo, "run the embedded demo scene", scene=False)
     d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot")
+    d.add_argument("--overwrite", action="store_true", help="write into a non-empty DIR")
     sw = add("sweep", _cmd_sweep, "run a scene over a grid of values (serial, all cores or Dask)")
     sw.add_argument("--grid", action="append", default=[], metavar="KEY=A:B:N[:log]",
                     help="an axis (repeatable): scene key path = range or comma list, e.g. "
@@ -299,6 +348,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                          UnknownNameError)
 
     parser = _parser()
+    if argv is not None and "--json" in argv:      # usage errors as JSON too
+        for action in parser._subparsers._group_actions if parser._subparsers else ():
+            for sp in getattr(action, "choices", {}).values():
+                sp._as_json = True
+        parser._as_json = True  # type: ignore[attr-defined]
     args = parser.parse_args(argv)   # --help/--version exit 0, usage errors exit 2 (SystemExit)
     if not getattr(args, "func", None):
         parser.print_help()
@@ -311,7 +365,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(json.dumps({"ok": False, "exit": 2, "error": str(err),
                               "kind": type(err).__name__}, indent=1))
         else:
-            print(f"contactlab: {err}", file=sys.stderr)
+            print(f"contactlab: {_one_line(err)}", file=sys.stderr)
         return 2
     except SceneError as err:
         if as_json:
@@ -327,8 +381,31 @@ def main(argv: Sequence[str] | None = None) -> int:
                               "kind": type(err).__name__}, indent=1))
         else:
             what = "numerical failure" if isinstance(err, ConvergenceError) else "run failed"
-            print(f"contactlab: {what} ({type(err).__name__}): {err}", file=sys.stderr)
+            print(f"contactlab: {what} ({type(err).__name__}): {_one_line(err)}", file=sys.stderr)
         return 1
+    except OSError as err:      # a file that cannot be read or written: the user's input
+        where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
+        msg = f"cannot access{where}: {err.strerror or type(err).__name__}"
+        if as_json:
+            print(json.dumps({"ok": False, "exit": 2, "error": msg, "kind": type(err).__name__},
+                             indent=1))
+        else:
+            print(f"contactlab: {msg}", file=sys.stderr)
+        return 2
+    except Exception as err:    # a bug: still one line, never a traceback
+        msg = (f"internal error ({type(err).__name__}): {_one_line(err)}; please report it with "
+               "the command line that caused it")
+        if as_json:
+            print(json.dumps({"ok": False, "exit": 1, "error": msg, "kind": type(err).__name__},
+                             indent=1))
+        else:
+            print(f"contactlab: {msg}", file=sys.stderr)
+        return 1
+
+
+def _one_line(err: BaseException) -> str:
+    text = " ".join(str(err).split())
+    return text or type(err).__name__
 
 
 def _plain(v: Any) -> Any:

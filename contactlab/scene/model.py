@@ -18,7 +18,7 @@ import numpy as np
 from ..errors import SceneError
 from ..loadpath import Hold, LoadPath, Ramp, Sinusoid
 from . import toml_io
-from .validate import CONTROLS, read_table, validate
+from .validate import CONTROLS, read_table, resolve_file, validate
 
 __all__ = ["Scene", "History", "build_load_path"]
 
@@ -69,10 +69,7 @@ def build_load_path(segments: Sequence[Mapping[str, Any]], base_dir: Path | None
     if len(segments) == 1 and "table" in segments[0]:
         body = segments[0]["table"]
         if "file" in body:
-            p = Path(body["file"])
-            if not p.is_absolute() and base_dir is not None:
-                p = base_dir / p
-            cols = read_table(p)
+            cols = read_table(resolve_file(body["file"], base_dir))
         else:
             cols = dict(body)
         n = len(next(iter(cols.values())))
@@ -134,9 +131,11 @@ class Scene:
     ['normal']
     """
 
-    def __init__(self, data: Mapping[str, Any], base_dir: str | Path | None = None) -> None:
+    def __init__(self, data: Mapping[str, Any], base_dir: str | Path | None = None, *,
+                 allow_outside: bool = False) -> None:
         self.base_dir = Path(base_dir) if base_dir is not None else None
-        self._data, self._objects = validate(data, self.base_dir)
+        self.allow_outside = bool(allow_outside)
+        self._data, self._objects = validate(data, self.base_dir, allow_outside=self.allow_outside)
         self._load_path: LoadPath | None = None
         self._history: History | None = None
         self._plan = None
@@ -150,10 +149,11 @@ class Scene:
         return cls(data, base_dir)
 
     @classmethod
-    def from_toml(cls, path: str | Path) -> "Scene":
-        """Scene from a TOML file; relative CSV names are relative to the file's directory."""
+    def from_toml(cls, path: str | Path, *, allow_outside: bool = False) -> "Scene":
+        """Scene from a TOML file; relative CSV names are relative to the file's directory and
+        must stay inside it unless ``allow_outside`` (absolute names are always used as given)."""
         path = Path(path)
-        return cls(toml_io.load(path), base_dir=path.parent)
+        return cls(toml_io.load(path), base_dir=path.parent, allow_outside=allow_outside)
 
     @classmethod
     def loads(cls, text: str, base_dir: str | Path | None = None) -> "Scene":

@@ -6,7 +6,10 @@ check that an effect the plan left out was never computed.
 from __future__ import annotations
 
 import csv
+import io
 import json
+import os
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -21,7 +24,33 @@ if TYPE_CHECKING:  # pragma: no cover
     from .model import Scene
     from .plan import Plan
 
-__all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS"]
+__all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS", "OUTPUT_FILES",
+           "atomic_write"]
+
+#: every file a run may write into its output folder (series/fields CSV, JSON, plot)
+OUTPUT_FILES = ("series.csv", "fields.csv", "result.json", "plot.png")
+
+
+def atomic_write(path: str | Path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` through a fresh temporary file in the same folder and a rename.
+
+    The temporary file is created exclusively (``O_EXCL``), and the rename replaces whatever
+    ``path`` was, a symbolic link included, without following it: a link planted in the output
+    folder is never written through, and readers see the old file or the complete new one.
+    """
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+    return path
 
 #: unit of each series: the load-path quantities' units plus the response quantities
 SERIES_UNITS = {**UNITS, "radius": "m", "stiffness": "N/m", "peak_pressure": "Pa",
@@ -71,18 +100,25 @@ class SceneResult:
                 "meta": {k: v for k, v in self.meta.items() if k != "title"}}
 
     def write(self, directory: str | Path, fmt: str = "csv") -> list[Path]:
-        """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``."""
+        """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``.
+
+        Every file is written atomically (:func:`atomic_write`); output files of an earlier run
+        that this run does not write (``series.csv`` beside a new ``result.json``, an old
+        ``plot.png``, ...) are removed, so the folder holds one consistent result.
+        """
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
         if fmt == "json":
-            p = d / "result.json"
-            p.write_text(json.dumps(self.to_dict(), indent=1))
-            return [p]
-        paths = [d / "series.csv"]
-        _write_csv(paths[0], self.series)
-        if self.fields:
-            paths.append(d / "fields.csv")
-            _write_csv(paths[1], self.fields)
+            paths = [atomic_write(d / "result.json",
+                                  json.dumps(self.to_dict(), indent=1).encode())]
+        else:
+            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series))]
+            if self.fields:
+                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields)))
+        for name in OUTPUT_FILES:
+            stale = d / name
+            if stale not in paths and (stale.exists() or stale.is_symlink()):
+                stale.unlink()
         return paths
 
     def plot(self, path: str | Path) -> Path:
@@ -116,10 +152,10 @@ class SceneResult:
             ax.legend()
         fig.suptitle(str(self.meta.get("title", "")))
         fig.tight_layout()
-        path = Path(path)
-        fig.savefig(path, dpi=120)
+        buf = io.BytesIO()
+        fig.savefig(buf, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
         plt.close(fig)
-        return path
+        return atomic_write(path, buf.getvalue())
 
     def table(self, rows: int = 10) -> str:
         """A short human table of the series (``rows`` steps, evenly spread, last included)."""
@@ -138,14 +174,15 @@ def _jsonable(v: np.ndarray) -> list:
         if np.any(~np.isfinite(v)) else np.asarray(v, float).tolist()
 
 
-def _write_csv(path: Path, cols: dict[str, np.ndarray]) -> None:
+def _csv_bytes(cols: dict[str, np.ndarray]) -> bytes:
     names = list(cols)
     data = np.column_stack([np.asarray(cols[k], float) for k in names])
-    with path.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(names)
-        for row in data:
-            w.writerow([repr(float(x)) for x in row])
+    fh = io.StringIO(newline="")
+    w = csv.writer(fh)
+    w.writerow(names)
+    for row in data:
+        w.writerow([repr(float(x)) for x in row])
+    return fh.getvalue().encode()
 
 
 def _get(obj: Any, name: str, n: int) -> np.ndarray:

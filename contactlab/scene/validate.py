@@ -17,19 +17,19 @@ import difflib
 import inspect
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import ContactlabError, SceneError, UnknownNameError
+from ..errors import ContactlabError, ParameterError, SceneError, UnknownNameError
 from ..loadpath.base import canonical_unit
 from .units import DIMENSION_OF_SI_UNIT, parse_quantity
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
            "SECTIONS", "SERIES", "FIELDS", "EFFECTS", "METHODS", "CONTROLS", "SEGMENTS",
-           "MAX_STEPS", "read_table"]
+           "MAX_STEPS", "read_table", "resolve_file"]
 
 Issue = tuple[str, Any, str]
 
@@ -105,6 +105,33 @@ def material_class(name: str) -> type:
     return _lookup("material", name, _material_table())
 
 
+def resolve_file(value: str | Path, base_dir: Path | None, allow_outside: bool = True) -> Path:
+    """The path a scene's file reference names.
+
+    A relative name is taken relative to ``base_dir`` (the scene's folder) and, unless
+    ``allow_outside``, must stay inside it after resolving ``..`` and symbolic links; an absolute
+    name is the user's explicit choice and is used as given.
+
+    Raises
+    ------
+    ParameterError
+        A relative name that leaves the scene's folder (``../../etc/passwd``, or a link to
+        outside) while ``allow_outside`` is False. The message never shows file contents.
+    """
+    p = Path(value)
+    if p.is_absolute() or base_dir is None:
+        return p
+    full = Path(base_dir) / p
+    if not allow_outside:
+        root = Path(base_dir).resolve()
+        if not full.resolve().is_relative_to(root):
+            raise ParameterError(
+                f"file {str(value)!r} resolves outside the scene's folder {str(root)!r}: scene "
+                "files may only refer to files in their folder or below (give an absolute "
+                "path, or run with --allow-outside, to read it anyway).")
+    return full
+
+
 def make_profile(type_: str, params: Mapping[str, Any], base_dir: Path | None = None) -> Any:
     """Build a profile from its scene table (SI values): the one constructor call for scenes."""
     cls = profile_class(type_)
@@ -112,9 +139,7 @@ def make_profile(type_: str, params: Mapping[str, Any], base_dir: Path | None = 
     if type_ == "cone" and "half_angle" in p:
         return cls.from_half_angle(p["half_angle"])
     if type_ == "tabulated" and "file" in p:
-        path = Path(p["file"])
-        if not path.is_absolute() and base_dir is not None:
-            path = Path(base_dir) / path
+        path = resolve_file(p["file"], base_dir)
         return cls.from_csv(path, interpolation=p.get("interpolation", "linear"))
     if type_ == "polynomial":
         return cls([tuple(t) for t in p["terms"]])
@@ -152,7 +177,8 @@ def _spec(cls: type, alternates: dict[str, str]) -> tuple[dict[str, str], set[st
 
 # ---- the checker ---------------------------------------------------------------------------------
 class _Checker:
-    def __init__(self, base_dir: Path | None) -> None:
+    def __init__(self, base_dir: Path | None, allow_outside: bool = False) -> None:
+        self.allow_outside = allow_outside
         self.issues: list[Issue] = []
         self.base_dir = base_dir
 
@@ -239,9 +265,12 @@ class _Checker:
         if not isinstance(value, str) or not value:
             self.add(path, value, "a file name (relative to the scene file)")
             return None
-        p = Path(value)
-        if not p.is_absolute() and self.base_dir is not None:
-            p = Path(self.base_dir) / p
+        try:
+            p = resolve_file(value, self.base_dir, self.allow_outside)
+        except ParameterError:
+            self.add(path, value, "a file inside the scene's folder (an absolute path or "
+                     "--allow-outside reads files elsewhere)")
+            return None
         if not p.is_file():
             self.add(path, value, f"an existing file (looked for {str(p)!r})")
             return None
@@ -355,10 +384,27 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
     if len(rows) < 2:
         raise ValueError("needs a header row and at least one data row")
     names = [h.strip() for h in rows[0]]
-    data = np.array([[float(v) for v in r] for r in rows[1:]], dtype=float)
+    if not all(re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*( *\[[^\]]*\])?", n) for n in names):
+        # (the header is not echoed: a mistaken file name must not print another file's lines)
+        raise ValueError("the header row must name the columns (time, force, depth, ...)")
+    if len(rows) - 1 > MAX_STEPS:
+        raise ValueError(f"{len(rows) - 1} rows exceed the limit of {MAX_STEPS} steps")
+    try:
+        data = np.array([[float(v) for v in r] for r in rows[1:]], dtype=float)
+    except ValueError:
+        bad = next(i for i, r in enumerate(rows[1:], 2) if not _all_numbers(r))
+        raise ValueError(f"row {bad} holds a value that is not a number") from None
     if data.ndim != 2 or data.shape[1] != len(names):
         raise ValueError(f"every row needs {len(names)} numbers ({', '.join(names)})")
     return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def _all_numbers(row: Sequence[str]) -> bool:
+    try:
+        [float(v) for v in row]
+    except ValueError:
+        return False
+    return True
 
 
 def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]) -> dict | None:
@@ -417,9 +463,7 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
             ck.add(sp, dict(body), "either file = 'history.csv' or inline columns "
                    "(time = [...] optional, plus controls such as force = [...])")
         elif "file" in out:
-            p = Path(out["file"])
-            if not p.is_absolute() and ck.base_dir is not None:
-                p = Path(ck.base_dir) / p
+            p = resolve_file(out["file"], ck.base_dir)     # contained: ck.file checked it
             try:
                 cols = read_table(p)
             except (OSError, ValueError) as err:
@@ -463,10 +507,13 @@ def _segment_steps(seg: dict) -> int:
         return int(body["steps"])
     if kind == "sinusoid":
         return max(1, int(round(body["cycles"] * body.get("steps_per_cycle", 100))))
-    return 0  # tables: counted when read
+    if "file" in body:
+        return 0  # a CSV history: read_table refuses more than MAX_STEPS rows
+    return max((len(v) for k, v in body.items() if k in CONTROLS or k == "time"), default=0)
 
 
-def validate(raw: Any, base_dir: str | Path | None = None) -> tuple[dict, dict]:
+def validate(raw: Any, base_dir: str | Path | None = None, *,
+             allow_outside: bool = False) -> tuple[dict, dict]:
     """Validate a raw scene mapping and normalise it to SI.
 
     Parameters
@@ -475,6 +522,8 @@ def validate(raw: Any, base_dir: str | Path | None = None) -> tuple[dict, dict]:
         The scene as parsed from TOML (or built in Python).
     base_dir : path, optional
         Directory that relative file names (tabulated profiles, CSV histories) refer to.
+    allow_outside : bool
+        Let relative file names leave ``base_dir`` (``..``, links); default False.
 
     Returns
     -------
@@ -488,7 +537,7 @@ def validate(raw: Any, base_dir: str | Path | None = None) -> tuple[dict, dict]:
     SceneError
         With ``issues`` listing every problem found (key path, value, allowed).
     """
-    ck = _Checker(Path(base_dir) if base_dir is not None else None)
+    ck = _Checker(Path(base_dir) if base_dir is not None else None, allow_outside)
     top = ck.table("", raw)
     if top is None:
         raise SceneError("scene is invalid: expected a table of sections", ck.issues)
