@@ -20,7 +20,7 @@ from .errors import MemoryBudgetError, ParameterError
 __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
            "as_real", "broadcast_inputs", "check_count", "exactly_one", "scalar_or_array",
            "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
-           "MEMORY_BUDGET_ENV"]
+           "MEMORY_BUDGET_ENV", "values_equal"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -234,6 +234,27 @@ def check_count(name: str, value: object, minimum: int = 1) -> int:
         raise ParameterError(f"{name}={_short(value)} is invalid: it must be an integer >= "
                              f"{minimum}.")
     return int(v)
+
+
+def values_equal(a: Any, b: Any) -> bool:
+    """Exact equality of result values: arrays element for element (same shape and dtype; NaN
+    equals NaN), dicts, lists and tuples item by item, everything else by ``==``.
+
+    The ``==`` of result objects (a result and its unpickled copy compare equal).
+    """
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a_, b_ = np.asarray(a), np.asarray(b)
+        if a_.shape != b_.shape or a_.dtype != b_.dtype:
+            return False
+        return bool(np.array_equal(a_, b_, equal_nan=a_.dtype.kind in "fc"))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(values_equal(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return (type(a) is type(b) and len(a) == len(b)
+                and all(values_equal(x, y) for x, y in zip(a, b)))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return bool(a == b)
 
 
 def exactly_one(what: str, options: dict[str, Any]) -> tuple[str, Any]:

@@ -8,13 +8,13 @@ The kernels (Heß rule, stability function, branch scan, solves on a branch) are
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..errors import OutsideTheoryError, ParameterError, ValidityWarning
-from ..params import as_float_array, exactly_one
+from ..params import as_float_array, exactly_one, values_equal
 from ..physics import normal as _normal
 from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_of_radius,
                                 force_of_radius, phi, solve_depth, solve_force)
@@ -79,7 +79,7 @@ class AdhesiveNormalState(NormalState):
         return _scalar_or_array(np.where(self._radius > 0, peak, 0.0))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class AdhesionCycle:
     """An approach/retraction history of an adhesive contact (JKR hysteresis).
 
@@ -105,6 +105,16 @@ class AdhesionCycle:
     in_contact: np.ndarray
     jumps: np.ndarray
     pull_off_value: float
+
+
+    def __eq__(self, other: object) -> bool:
+        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
+                   for f in fields(self))
+
+    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     def to_dict(self) -> dict[str, Any]:
         """Per-step arrays as a dict (for pandas/CSV)."""

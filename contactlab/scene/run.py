@@ -10,13 +10,14 @@ import io
 import json
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from ..params import values_equal
 from ..loadpath import UNITS
 from .validate import SERIES
 
@@ -59,7 +60,7 @@ FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear":
 #: fields are sampled on r in [0, FIELD_EXTENT * a_final]
 FIELD_EXTENT = 1.5
 
-@dataclass
+@dataclass(eq=False)
 class SceneResult:
     """Outputs of a scene run.
 
@@ -78,6 +79,16 @@ class SceneResult:
     fields: dict[str, np.ndarray]
     plan: "Plan"
     meta: dict[str, Any] = field(default_factory=dict)
+
+
+    def __eq__(self, other: object) -> bool:
+        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
+                   for f in fields(self))
+
+    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name in self.series:
