@@ -116,7 +116,13 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
     a0, d0, F0 = (np.asarray(v, float) for v in (ns._radius, ns._depth, ns._force))
     a, d, FN, t = np.broadcast_arrays(a0, d0, F0, tv)
     if ns.shape != a.shape:
-        ns = contact.normal(depth=d.copy())
+        # the same normal states, broadcast (re-solving from the depths could move a by an ulp,
+        # and the stick radius c <= a must hold for the reported radius exactly)
+        from .normal import NormalState
+        meta = dict(ns.meta)
+        meta["error_estimate"] = np.broadcast_to(np.asarray(ns.meta.get("error_estimate", 0.0),
+                                                            float), a.shape).copy()
+        ns = NormalState(contact, d.copy(), a.copy(), FN.copy(), meta)
     prof = contact.profile
     E, Gs = contact.moduli.normal, contact.moduli.tangential
     mu = contact.friction
