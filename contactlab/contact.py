@@ -210,11 +210,14 @@ class Contact:
     def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
                  spacing: str = "edge", snapshots: Any = None, progress: bool = False,
                  approximate: bool = False, strategy: str | None = None,
-                 error_estimate: bool = False) -> PathResult:
+                 error_estimate: bool = False, method: str | None = None,
+                 n_rings: int | None = None) -> PathResult:
         """Run a :class:`~contactlab.LoadPath` through the MDR foundation with frictional memory.
 
         See :func:`contactlab.effects.path.simulate` for the parameters (``error_estimate=True``
-        adds ``result.meta["error_estimates"]``, the spring-discretisation error per series).
+        adds ``result.meta["error_estimates"]``, the discretisation error per series). A path with
+        twist or torque runs the exact torsion solver by default (``method="exact"``, ``n_rings``
+        rings); ``method="mdr"`` keeps the MDR spring model.
 
         Returns
         -------
@@ -222,7 +225,8 @@ class Contact:
         """
         return _path.simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                         snapshots=snapshots, progress=progress, approximate=approximate,
-                        strategy=strategy, error_estimate=error_estimate)
+                        strategy=strategy, error_estimate=error_estimate, method=method,
+                        n_rings=n_rings)
 
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):

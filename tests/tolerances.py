@@ -333,3 +333,26 @@ WEAR_LIMIT_VOLUME = 6e-2
 #: tangential gross-slip scar radius against the asymptote (16kRFδN/π)^(1/4) after 10⁶ cycles at
 #: δ = 50 µm (Hertz): measured 5e-4; the transient decays as the elastic slip share does
 WEAR_SCAR_ASYMPTOTE = 1e-2
+# ---- exact ring solver for torsion along load paths (issue 18)
+#: 200 rings (default) against the exact Jäger/Masing twist_history at constant load (monotone,
+#: oscillating, irregular Hertz histories): measured max 4.1e-5 of the sliding torque (the ring
+#: that holds the stick–slip boundary dominates); bound with margin
+RINGS_CONSTANT_LOAD = 1e-4
+#: 400 rings on the same histories: measured max 8.6e-6
+RINGS_CONSTANT_LOAD_FINE = 2e-5
+#: full sliding, torque weights against 2π∫μp r² dr (Hertz closed form): error falls as N^-2.5,
+#: measured 3.3e-7 at 200 rings
+RINGS_FULL_SLIDING = 1e-6
+#: no slip with a growing contact, incremental stiffness against (16/3) G_t a³: the flat-punch
+#: edge of each increment falls between ring nodes, measured 1.35e-2 at 200 rings and 5.8e-3 at
+#: 400 (order ~1.2)
+RINGS_NO_SLIP_GROWING = 3e-2
+#: discrete energy identity (midpoint traction): only rounding of the per-step sums remains
+RINGS_WORK_BALANCE = 1e-10
+#: dissipated energy against twist_history's exact integral, 800 steps of an oscillation (the
+#: midpoint rule in time is second order): measured 6.2e-5
+RINGS_DISSIPATION_800_STEPS = 3e-4
+#: 120 rings against the independent brute-force (piecewise-constant punch density, BVLS,
+#: 300 rings) on a 16-step path with the force changing every step: both carry the edge error of
+#: a contact radius between ring nodes (order ~1.2); measured 6.8e-4 of the sliding torque
+RINGS_VS_BRUTE_FORCE = 3e-3

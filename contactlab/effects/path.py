@@ -26,7 +26,7 @@ from ..loadpath.base import UNITS
 from ..params import check_count, check_memory
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
-           "simulate_memory"]
+           "simulate_memory", "PATH_METHODS", "resolve_path_method"]
 
 #: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
 #: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
@@ -156,8 +156,16 @@ _ESTIMATED = ("tangential_force", "torque", "stick_radius", "dissipated_energy")
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
              spacing: str = "edge", snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,
-             error_estimate: bool = False) -> PathResult:
+             error_estimate: bool = False, method: str | None = None,
+             n_rings: int | None = None) -> PathResult:
     """Run ``path`` through the MDR foundation; see :func:`_simulate` for the parameters.
+
+    ``method`` picks the torsion model of a path with twist or torque (default
+    :data:`DEFAULT_TORSION_METHOD`): ``"exact"`` (exact normal solution per step, exact
+    half-space torsion on ``n_rings`` rings with Coulomb friction and memory,
+    :func:`contactlab.effects.torsion_path.simulate_exact`) or
+    ``"mdr"`` (the MDR spring foundation, exact only while the slip annulus is narrow). Paths
+    without twist always run through the MDR foundation (``"mdr"``).
 
     ``error_estimate=True`` runs the path a second time with half the springs and stores, in
     ``result.meta["error_estimates"]``, ``max|s_N - s_{N/2}| / max|s_N|`` for each estimated series
@@ -166,6 +174,11 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     estimate that costs about half a run more (issue 7; honesty tested in
     tests/unit/effects/test_path_error_estimate.py).
     """
+    method = resolve_path_method(path, method, approximate)
+    if method == "exact":
+        from .torsion_path import simulate_exact
+        return simulate_exact(contact, path, outputs=outputs, n_rings=n_rings,
+                              snapshots=snapshots, error_estimate=error_estimate)
     res = _simulate(contact, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                     snapshots=snapshots, progress=progress, approximate=approximate,
                     strategy=strategy)
@@ -181,6 +194,28 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
                 est[name] = float(np.max(np.abs(full - coarse), initial=0.0)) / scale if scale else 0.0
         res.meta["error_estimates"] = est
     return res
+
+
+#: torsion models of :func:`simulate` (``method=``)
+PATH_METHODS = ("exact", "mdr")
+#: model of a path with twist/torque and no shift when ``method=None``
+DEFAULT_TORSION_METHOD = "mdr"
+
+
+def resolve_path_method(path: LoadPath, method: str | None, approximate: bool = False) -> str:
+    """The torsion model a path runs with: :data:`DEFAULT_TORSION_METHOD` for a path with
+    twist/torque and no shift, else ``"mdr"``."""
+    if method is not None and method not in PATH_METHODS:
+        raise UnknownNameError(f"method={method!r} is invalid: allowed are {PATH_METHODS}.")
+    groups = getattr(path, "groups", ())
+    torsion_only = "torsion" in groups and "tangential" not in groups
+    if method is None:
+        return DEFAULT_TORSION_METHOD if torsion_only and not approximate else "mdr"
+    if method == "exact" and not torsion_only:
+        raise NotSupportedError("method='exact' solves paths with twist or torque and no shift; "
+                                "this path has " + (" and ".join(sorted(groups)) or "no twist")
+                                + ": use method='mdr'.")
+    return method
 
 
 def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,

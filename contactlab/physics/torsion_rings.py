@@ -1,0 +1,274 @@
+"""Kernels of the exact ring solver for frictional torsion under any normal-load history.
+
+Torsion decouples from the normal problem for every material pair, so with the pressure
+``p(r, t)`` known exactly at every step, what remains is an axisymmetric frictional problem in the
+radius alone: circumferential traction ``τ(r)`` and displacement ``u_φ(r)`` of the half-space,
+Coulomb's law ``|τ| ≤ μ p`` with stick/slip complementarity, and memory between steps.
+
+Representation (Jäger's superposition of twisted rigid flat punches): a traction supported on
+``r < R`` is ``τ(r) = (4 G_t/π) r ∫_r^R w(t) / sqrt(t² − r²) dt``, the superposition of punches of
+radius ``t`` twisted by ``w(t) dt`` (Reissner–Sagoci: ``τ = (4G_tω/π) r/sqrt(t²−r²)``). The
+elastic energy of any two such tractions is local in the punch radius:
+
+    ⟨τ_A, u_B⟩ = 2π ∫ r τ_A u_B dr = 16 G_t ∫_0^R x² Ψ_A(x) Ψ_B(x) dx,   Ψ(x) = ∫_x^R w(t) dt,
+
+(the punch-punch energy is ``(16/3) G_t min(t, s)³``), so the influence (energy) matrix of any
+basis is an exact quadrature. Here ``w`` is continuous piecewise linear on rings (hat functions at
+the nodes, ``w(0) = 0``), which gives a continuous traction; the traction of each hat at any
+radius and its torque are closed forms.
+
+Discrete problem: the traction values ``z_i = τ(r_i)`` at one collocation point per ring (the ring
+midpoints) are the unknowns. With ``B`` (traction at the points per hat), ``K`` (energy matrix) and
+``m`` (torque per hat), the complementary-energy matrix is ``H = B⁻ᵀ K B⁻¹`` and the torque weights
+``g = B⁻ᵀ m``; one step from traction ``z_o`` by a twist increment ``Δφ`` solves the
+box-constrained quadratic programme
+
+    min ½ zᵀ H z − zᵀ (H z_o + Δφ g)   subject to   |z_i| ≤ μ p_i,
+
+whose multipliers ``λ = H z_o + Δφ g − H z`` are the (area-weighted) slip increments: zero where
+the point sticks, of the sign of ``z_i`` where it slides. Points outside the contact have
+``p_i = 0``, hence zero traction and a free ``λ`` (the surface moves freely there), which makes a
+point entering the contact start traction-free with the displacement it had. Energy identities of
+the discrete problem are exact: with the midpoint traction, ``ΔE = ½(M_o + M_n) Δφ − ½(z_o + z_n)·λ``.
+
+All functions are pure: arrays in, arrays out.
+"""
+from __future__ import annotations
+
+from math import comb
+
+import numpy as np
+import scipy.linalg as _la
+
+from ..errors import ConvergenceError
+
+__all__ = ["hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence",
+           "box_step", "stick_radius", "slip_density", "GAUSS_NODES", "MAX_PIVOTS"]
+
+#: Gauss–Legendre nodes per ring for the energy matrix: ``x² Ψ_j Ψ_k`` is a polynomial of degree
+#: 6 on each ring for piecewise-linear ``w``, which 4 nodes integrate exactly
+GAUSS_NODES = 4
+#: iterations of the block-pivoting box-QP solve per step before it switches to single pivots
+MAX_PIVOTS = 60
+
+
+def _ring_traction(b: np.ndarray, r: np.ndarray, G_t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Traction at ``r`` (rows) of ``w = 1`` and ``w = t`` on each ring ``[b_j, b_{j+1}]`` (cols)."""
+    t0, t1 = b[:-1][None, :], b[1:][None, :]
+    rr = np.asarray(r, float)[:, None]
+    lo = np.maximum(t0, rr)
+    s1 = np.sqrt(np.maximum(t1 * t1 - rr * rr, 0.0))
+    s0 = np.sqrt(np.maximum(lo * lo - rr * rr, 0.0))
+    inside = (rr < t1) & (rr > 0)
+    c = 4.0 * G_t / np.pi
+    with np.errstate(divide="ignore", invalid="ignore"):
+        T1 = np.where(inside, c * rr * np.log((t1 + s1) / np.where(inside, lo + s0, 1.0)), 0.0)
+    Tt = np.where(inside, c * rr * (s1 - s0), 0.0)
+    return T1, Tt
+
+
+def _hat_combine(b: np.ndarray, A1: np.ndarray, At: np.ndarray) -> np.ndarray:
+    """Columns per hat (nodes ``b_1 .. b_N``) from the per-ring ``w = 1`` / ``w = t`` columns.
+
+    Hat ``j`` rises on ring ``j−1`` as ``(t − b_{j−1})/h_{j−1}`` and falls on ring ``j`` as
+    ``(b_{j+1} − t)/h_j`` (the last hat only rises: ``w`` may be non-zero at the outer radius).
+    """
+    h = np.diff(b)
+    rise = (At - b[:-1] * A1) / h
+    fall = (b[1:] * A1 - At) / h
+    out = rise.copy()
+    out[..., :-1] += fall[..., 1:]
+    return out
+
+
+def hat_traction(b: np.ndarray, r: np.ndarray, G_t: float) -> np.ndarray:
+    """Traction (Pa per rad/m) at radii ``r`` of each hat of the ring grid ``b``, shape (r, N)."""
+    T1, Tt = _ring_traction(b, r, G_t)
+    return _hat_combine(b, T1, Tt)
+
+
+def hat_torque(b: np.ndarray, G_t: float) -> np.ndarray:
+    """Torque of each hat, ``∫ (16/3) G_t t³ w(t) dt`` (N·m per rad/m), closed form."""
+    m1 = 4.0 / 3.0 * G_t * (b[1:] ** 4 - b[:-1] ** 4)
+    mt = 16.0 / 15.0 * G_t * (b[1:] ** 5 - b[:-1] ** 5)
+    return _hat_combine(b, m1[None, :], mt[None, :])[0]
+
+
+def hat_psi(b: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``Ψ_j(x) = ∫_x^∞ w_j(t) dt`` of each hat at ``x``, m per (rad/m), shape (x, N)."""
+    x = np.asarray(x, float)[:, None]
+    h = np.diff(b)
+    left, mid = b[:-1][None, :], b[1:][None, :]
+    right = np.append(b[2:], b[-1])[None, :]
+    hl, hr = h[None, :], np.append(h[1:], 1.0)[None, :]
+    last = np.zeros(h.size, bool)
+    last[-1] = True
+    tot = 0.5 * (right - left)
+    v = np.where(x <= left, tot, 0.0)
+    rise = (x > left) & (x <= mid)
+    v = np.where(rise, tot - 0.5 * (x - left) ** 2 / hl, v)
+    fall = (x > mid) & (x < right) & ~last[None, :]
+    return np.where(fall, 0.5 * (right - x) ** 2 / hr, v)
+
+
+def energy_matrix(b: np.ndarray, G_t: float, b_other: np.ndarray | None = None) -> np.ndarray:
+    """``K_jk = 16 G_t ∫ x² Ψ_j Ψ_k dx`` (hats of ``b`` against hats of ``b_other``), exact Gauss."""
+    nodes = b if b_other is None else np.union1d(b, b_other)
+    h = np.diff(nodes)
+    xg, wg = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    X = (nodes[:-1, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]).ravel()
+    W = (0.5 * wg[None, :] * h[:, None]).ravel() * X * X
+    P = hat_psi(b, X)
+    Q = P if b_other is None else hat_psi(b_other, X)
+    return 16.0 * G_t * (P.T * W) @ Q
+
+
+def influence(b: np.ndarray, r: np.ndarray, G_t: float) -> dict[str, np.ndarray]:
+    """Matrices of the ring grid ``b`` (nodes, m) with collocation points ``r`` (one per ring).
+
+    Returns
+    -------
+    dict
+        ``H`` (m³/Pa... the complementary-energy matrix in point tractions, J/Pa²), ``g`` (torque
+        per point traction, m³), ``B`` (traction per hat at the points) and ``lu`` (its LU
+        factors, to map point tractions back to punch densities).
+    """
+    B = hat_traction(b, r, G_t)
+    K = energy_matrix(b, G_t)
+    m = hat_torque(b, G_t)
+    lu = _la.lu_factor(B, check_finite=False)
+    Y = _la.lu_solve(lu, K, trans=1, check_finite=False)
+    H = _la.lu_solve(lu, Y.T, trans=1, check_finite=False).T
+    H = 0.5 * (H + H.T)
+    g = _la.lu_solve(lu, m, trans=1, check_finite=False)
+    return {"H": H, "g": g, "B": B, "lu": lu}
+
+
+def _solve_free(H, rhs, F, zA, A):
+    HFF = H[np.ix_(F, F)]
+    r = rhs[F] - H[np.ix_(F, A)] @ zA if zA.size else rhs[F]
+    return _la.solve(HFF, r, assume_a="pos", check_finite=False)
+
+
+def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray, *,
+             dphi: float | None = None, torque: float | None = None,
+             guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, float, int]:
+    """One load step: the box-constrained QP of the module docstring, twist or torque controlled.
+
+    Parameters
+    ----------
+    H, g : ndarray
+        Complementary-energy matrix and torque weights (:func:`influence`).
+    z_old : ndarray
+        Point tractions before the step, Pa.
+    bound : ndarray
+        ``μ p_i`` at the end of the step, Pa (0 outside the contact, ``inf`` without slip).
+    dphi : float, optional
+        Twist increment, rad (twist control).
+    torque : float, optional
+        Target torque, N·m (torque control; the twist increment is solved for).
+    guess : ndarray of int, optional
+        Active-set guess per point (-1 lower bound, 0 free, +1 upper bound).
+
+    Returns
+    -------
+    z : ndarray
+        Point tractions after the step, Pa.
+    lam : ndarray
+        Area-weighted slip increments (``H z_old + Δφ g − H z``), m³.
+    dphi : float
+        The twist increment (``nan`` when a torque target exceeds the full-sliding torque).
+    iterations : int
+    """
+    n = g.size
+    fixed = bound == 0.0
+    base = H @ z_old
+    state = np.zeros(n, int) if guess is None else guess.copy()
+    state[(state == 2) | ~np.isfinite(bound)] = 0
+    state[fixed] = 2
+    single = False
+    for it in range(1, 4 * n + MAX_PIVOTS + 2):
+        lo_set, up_set = state == -1, state == 1
+        z = np.zeros(n)
+        z[up_set] = bound[up_set]
+        z[lo_set] = -bound[lo_set]
+        F = state == 0
+        A = ~F
+        zA = z[A]
+        if torque is None:
+            rhs = base + dphi * g
+            if F.any():
+                z[F] = _solve_free(H, rhs, F, zA, A)
+            d = dphi
+        else:
+            if F.any():
+                both = np.stack([base, g], axis=1)
+                HFF = H[np.ix_(F, F)]
+                r0 = both[F, 0] - (H[np.ix_(F, A)] @ zA if zA.size else 0.0)
+                sol = _la.solve(HFF, np.stack([r0, both[F, 1]], axis=1), assume_a="pos",
+                                check_finite=False)
+                gz0 = g[A] @ zA + g[F] @ sol[:, 0]
+                gz1 = g[F] @ sol[:, 1]
+                d = (torque - gz0) / gz1
+                z[F] = sol[:, 0] + d * sol[:, 1]
+                rhs = base + d * g
+            else:
+                cap = float(g[A] @ zA)
+                if abs(torque) > abs(cap) * (1 + 1e-12) or np.sign(torque) != np.sign(cap):
+                    return z, np.zeros(n), float("nan"), it
+                d, rhs = 0.0, base
+        lam = rhs - H @ z
+        tol = 1e-12 * np.maximum(bound, np.abs(z)).clip(min=1e-300)
+        bad_hi = F & (z > bound + tol)
+        bad_lo = F & (z < -bound - tol)
+        ltol = 1e-13 * (np.abs(rhs) + np.abs(H @ z)).clip(min=1e-300)
+        bad_up = up_set & (lam < -ltol)
+        bad_dn = lo_set & (lam > ltol)
+        bad = bad_hi | bad_lo | bad_up | bad_dn
+        if not bad.any():
+            lam[F] = 0.0
+            return z, lam, float(d), it
+        if it > MAX_PIVOTS:
+            single = True
+        if single:  # one pivot at a time (Murty): the largest index among the violators
+            k = int(np.flatnonzero(bad)[-1])
+            keep = np.zeros(n, bool)
+            keep[k] = True
+            bad_hi, bad_lo, bad_up, bad_dn = (m & keep for m in (bad_hi, bad_lo, bad_up, bad_dn))
+        state[bad_hi] = 1
+        state[bad_lo] = -1
+        state[bad_up | bad_dn] = 0
+    raise ConvergenceError("the ring solver's active-set iteration did not converge "
+                           f"({4 * n + MAX_PIVOTS + 1} pivots)")
+
+
+def stick_radius(r: np.ndarray, z: np.ndarray, bound: np.ndarray, radius: float,
+                 rtol: float = 1e-9) -> float:
+    """Outer radius of the central zone below the friction limit, m.
+
+    The first point at its limit is found; the boundary between it and the last point below the
+    limit is placed by the square-root approach of the traction to ``μp`` at a stick–slip
+    boundary (``(μp − |τ|)²`` linear in ``r``, extrapolated from the two points inside).
+    """
+    inside = (bound > 0) & (r < radius)
+    at = inside & (np.abs(z) >= bound * (1.0 - rtol))
+    idx = np.flatnonzero(at)
+    if idx.size == 0:
+        return float(radius)
+    k = int(idx[0])
+    if k == 0:
+        return 0.0
+    s1 = (bound[k - 1] - abs(z[k - 1])) ** 2
+    if k >= 2 and np.isfinite(bound[k - 2]):
+        s0 = (bound[k - 2] - abs(z[k - 2])) ** 2
+        if s0 > s1 > 0:
+            c = r[k - 1] + s1 * (r[k - 1] - r[k - 2]) / (s0 - s1)
+            return float(min(max(c, r[k - 1]), r[k]))
+    return float(0.5 * (r[k - 1] + r[k]))
+
+
+def slip_density(S: np.ndarray, r: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """Slip displacement at the points, m, from the area-weighted slips ``S`` (``g_i/r_i`` is the
+    area ``2π r_i Δr_i`` each point represents)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(g != 0, S * r / g, 0.0)

@@ -1,0 +1,70 @@
+"""Kernels of the exact ring solver against direct quadratures of Jäger's punch superposition."""
+import numpy as np
+import pytest
+from scipy.integrate import dblquad, quad
+
+from contactlab.physics import torsion_rings as tr
+from tests.tolerances import QUADRATURE
+
+G = 80e9
+B = np.array([0.0, 0.3, 0.55, 0.8, 1.0]) * 1e-4
+
+
+def hat(j, t):
+    """Hat j (node B[j+1]) as a plain function."""
+    lo, mid = B[j], B[j + 1]
+    hi = B[j + 2] if j + 2 < B.size else mid
+    if lo <= t <= mid:
+        return (t - lo) / (mid - lo)
+    if mid < t <= hi:
+        return (hi - t) / (hi - mid)
+    return 0.0
+
+
+def traction_quad(j, r):
+    f = lambda t: hat(j, t) / np.sqrt(t * t - r * r)
+    pts = [p for p in B if p > r]
+    val = sum(quad(f, max(lo, r), hi, limit=200)[0] for lo, hi in zip([r] + pts[:-1], pts)
+              if hi > max(lo, r))
+    return 4 * G / np.pi * r * val
+
+
+@pytest.mark.parametrize("r", [0.1e-4, 0.42e-4, 0.79e-4, 0.95e-4])
+def test_hat_traction_matches_the_punch_superposition(r):
+    got = tr.hat_traction(B, np.array([r]), G)[0]
+    want = np.array([traction_quad(j, r) for j in range(B.size - 1)])
+    assert np.allclose(got, want, rtol=QUADRATURE * 10, atol=QUADRATURE * np.max(np.abs(want)))
+
+
+def test_hat_torque_is_the_moment_of_its_traction():
+    for j in range(B.size - 1):
+        M = quad(lambda r: 2 * np.pi * r * r * traction_quad(j, r), 0, B[-1], limit=200,
+                 points=list(B[1:-1]))[0]
+        # nested adaptive quadrature of a traction with square-root kinks: ~1e-6
+        assert tr.hat_torque(B, G)[j] == pytest.approx(M, rel=1e-5)
+
+
+def test_energy_matrix_is_the_punch_energy():
+    K = tr.energy_matrix(B, G)
+    for j, k in [(0, 0), (1, 3), (2, 2), (3, 1)]:
+        f = lambda s, t: hat(j, t) * hat(k, s) * 16 / 3 * G * min(t, s) ** 3
+        val = 0.0
+        for t0, t1 in zip(B[:-1], B[1:]):          # ring pieces; split the diagonal kink
+            for s0, s1 in zip(B[:-1], B[1:]):
+                if t0 == s0:
+                    val += dblquad(f, t0, t1, t0, lambda t: t, epsabs=0, epsrel=1e-11)[0]
+                    val += dblquad(f, t0, t1, lambda t: t, t1, epsabs=0, epsrel=1e-11)[0]
+                else:
+                    val += dblquad(f, t0, t1, s0, s1, epsabs=0, epsrel=1e-11)[0]
+        assert K[j, k] == pytest.approx(val, rel=1e-8)
+
+
+def test_box_step_single_point_sticks_then_slides():
+    H = np.array([[2.0]])
+    g = np.array([1.0])
+    z, lam, d, _ = tr.box_step(H, g, np.zeros(1), np.array([1.0]), dphi=1.0)
+    assert z[0] == pytest.approx(0.5) and lam[0] == 0.0
+    z, lam, d, _ = tr.box_step(H, g, z, np.array([1.0]), dphi=2.0)
+    assert z[0] == 1.0 and lam[0] == pytest.approx(1.0)      # 2·0.5 + 2 − 2·1
+    z, lam, d, _ = tr.box_step(H, g, z, np.array([1.0]), torque=0.25)
+    assert z[0] == pytest.approx(0.25) and d == pytest.approx(-1.5)
