@@ -2,7 +2,8 @@
 
 Subcommands: ``run SCENE``, ``validate SCENE``, ``plan SCENE``, ``demo``, ``formulas`` (closed-form
 formulas of a registered profile as text, LaTeX or Python), ``sweep SCENE --grid ...`` (a
-parameter study, see :func:`contactlab.sweep`); ``--version``.
+parameter study, see :func:`contactlab.sweep`), ``cost SCENE`` (what accuracy costs: error
+against wall time over a ladder of each numeric knob); ``--version``.
 Exit codes: 0 ok, 2 invalid scene (or usage), 1 numerical failure. ``--json`` prints one JSON
 document on stdout for machines; messages for humans otherwise (errors on stderr).
 """
@@ -201,6 +202,23 @@ def _demo_tables(scene: Any, result: Any) -> str:
     return "\n".join(lines)
 
 
+def _cmd_cost(args: argparse.Namespace) -> int:
+    from .scene.cost import scene_cost
+    report = scene_cost(_load(args), target=args.target)
+    notes = ""
+    if args.plot:
+        try:
+            report.plot(args.plot)
+        except ImportError as err:
+            notes = f"note: no plot written ({err})"
+    _emit(args, {"ok": True, **report.to_dict(), "plot": args.plot if args.plot and not notes
+                 else None, "notes": notes}, str(report) + (f"\nwrote {args.plot}" if args.plot
+                                                             and not notes else ""))
+    if notes and not args.json:
+        print(notes, file=sys.stderr)
+    return 0
+
+
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from .sweeps.command import sweep_command
     try:
@@ -310,6 +328,12 @@ def _parser() -> argparse.ArgumentParser:
     d = add("demo", _cmd_demo, "run the embedded demo scene", scene=False)
     d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot")
     d.add_argument("--overwrite", action="store_true", help="write into a non-empty DIR")
+    co = add("cost", _cmd_cost, "what accuracy costs: each numeric knob over a ladder, error "
+             "against wall time, the cheapest setting meeting --target")
+    co.add_argument("--target", type=float, default=1e-6, help="relative error to meet "
+                    "(default 1e-6)")
+    co.add_argument("--plot", metavar="FILE", help="write error against time to FILE "
+                    "(needs matplotlib)")
     sw = add("sweep", _cmd_sweep, "run a scene over a grid of values (serial, all cores or Dask)")
     sw.add_argument("--grid", action="append", default=[], metavar="KEY=A:B:N[:log]",
                     help="an axis (repeatable): scene key path = range or comma list, e.g. "

@@ -5,6 +5,7 @@
 >>> print(scene.plan())                                        # doctest: +SKIP
 >>> result = scene.run()                                       # doctest: +SKIP
 """
+from .cost import CostReport, scene_cost
 from .model import History, Scene
 from .plan import Effect, Plan, make_plan
 from .run import SceneResult, run_scene
@@ -12,4 +13,4 @@ from .units import parse_quantity
 from .validate import validate
 
 __all__ = ["Scene", "History", "Effect", "Plan", "make_plan", "SceneResult", "run_scene",
-           "parse_quantity", "validate"]
+           "parse_quantity", "validate", "scene_cost", "CostReport"]

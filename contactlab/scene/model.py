@@ -286,6 +286,13 @@ class Scene:
         from .run import run_scene
         return run_scene(self)
 
+    def cost(self, target: float = 1e-6, **kwargs: Any) -> Any:
+        """What accuracy costs for this scene: each numeric knob over a ladder, error against
+        wall time, and the cheapest setting meeting ``target``; see
+        :func:`contactlab.scene.cost.scene_cost` (keyword arguments go there)."""
+        from .cost import scene_cost
+        return scene_cost(self, target=target, **kwargs)
+
 
 def _segments_of_loadpath(path: Any) -> list[dict[str, Any]]:
     """Scene segment tables of a :class:`~contactlab.LoadPath` (issue 4), leaf by leaf."""

@@ -1,0 +1,146 @@
+"""``contactlab cost`` / ``Scene.cost()``: the recommended setting really meets the target.
+
+For every example scene the recommended (cheapest certified) setting is run and compared with a
+run tighter than every rung of the ladders (rtol 100x tighter, twice the reference springs and
+steps, the cubic interpolant): the difference must stay below the target. The comparison here is
+written independently of the module: steps are matched by their time.
+"""
+import json
+
+import numpy as np
+import pytest
+
+from contactlab.cli import main
+from contactlab.errors import ParameterError, UnknownNameError
+from contactlab.scene import Scene, scene_cost
+from contactlab.scene.cost import knobs_of, with_setting
+
+from .helpers import example_params, twist_scene
+
+#: targets the small ladders certify; the foundation and viscoelastic scenes converge in their
+#: steps at first order, so 1e-6 would need 10^3-10^4 times their steps
+TARGETS = {"hip_joint_torsion": 2e-2, "viscoelastic_creep": 1e-3, "measured_profile": 1e-3}
+#: small ladders (seconds for all examples); the scene's own setting is added by scene_cost
+SMALL = {"rtol": [1e-4, 1e-6, 1e-8], "n_springs": [50, 100, 200], "steps": [0.5, 1.0, 2.0],
+         "interpolation": ["linear", "cubic"]}
+
+
+def _tighter(scene, report):
+    """Each knob one step beyond the tightest rung of its ladder."""
+    ref = {k: [r.value for r in report.rungs if r.knob == k and r.reference][0]
+           for k in report.knobs}
+    out = scene
+    for k, v in ref.items():
+        tight = ("cubic" if k == "interpolation" else
+                 {"rtol": v / 100, "n_springs": 2 * v, "steps": 2 * v}[k])
+        out = with_setting(out, k, tight)
+    return out
+
+
+def _error(res, fine, t_res, t_fine):
+    """Largest relative difference over series (matched by time) and fields."""
+    idx = np.searchsorted(t_fine, t_res - 1e-9 * max(1.0, float(t_fine[-1])))
+    assert np.allclose(t_fine[idx], t_res, rtol=1e-12, atol=1e-12)
+    worst = 0.0
+    for k, v in list(res.series.items()) + list(res.fields.items()):
+        if k == "time":
+            continue
+        ref = fine.series[k][idx] if k in res.series else fine.fields[k]
+        scale = np.max(np.abs(ref))
+        diff = np.max(np.abs(np.asarray(v) - ref))
+        worst = max(worst, diff / scale if scale > 0 else diff)
+    return worst
+
+
+def _check(path, ladders):
+    scene = Scene.from_toml(path)
+    target = TARGETS.get(path.stem, 1e-6)
+    lad = {k: v for k, v in ladders.items() if k in knobs_of(scene)} if ladders else None
+    report = scene_cost(scene, target=target, ladders=lad)
+    assert all(report.certified.values()), str(report)
+    chosen = scene
+    for k, v in report.choice.items():
+        chosen = with_setting(chosen, k, v)
+    fine = _tighter(scene, report)
+    res, ref = chosen.run(), fine.run()
+    err = _error(res, ref, res.series["time"], ref.series["time"])
+    assert err <= target, (path.stem, report.choice, err)
+    return report
+
+
+@pytest.mark.parametrize("path", example_params())
+def test_chosen_setting_meets_the_target_small_ladders(path):
+    report = _check(path, SMALL)
+    assert set(report.knobs) == set(knobs_of(Scene.from_toml(path)))
+    assert sum(r.default for r in report.rungs) == len(report.knobs)
+    assert sum(r.chosen for r in report.rungs) == len(report.knobs)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", example_params())
+def test_chosen_setting_meets_the_target_default_ladders(path):
+    _check(path, None)
+
+
+def test_knobs_follow_the_route():
+    closed = Scene.from_dict(twist_scene())          # constant load: exact Masing history
+    assert knobs_of(closed) == ("rtol",)
+    coupled = Scene.from_dict(twist_scene({"sinusoid": {"force": "50 N", "twist": "2 mrad",
+                                                        "cycles": 1, "steps_per_cycle": 20}}))
+    assert knobs_of(coupled) == ("rtol", "n_springs", "steps")
+
+
+def test_with_setting_changes_only_its_knob():
+    s = Scene.from_dict(twist_scene({"sinusoid": {"force": "50 N", "twist": "2 mrad",
+                                                  "cycles": 1, "steps_per_cycle": 20}}))
+    s2 = with_setting(s, "steps", 2.0)
+    assert s2.history().n_steps - 1 == 2 * (s.history().n_steps - 1)
+    assert s2.history().time[-1] == s.history().time[-1]   # durations held
+    assert with_setting(s, "rtol", 1e-7).contact().rtol == 1e-7
+    assert with_setting(s, "n_springs", 77).solver["n_springs"] == 77
+    with pytest.raises(ParameterError, match="steps"):
+        with_setting(s, "steps", 0.25)
+
+
+def test_rung_errors_are_deterministic():
+    s = Scene.from_toml(example_params()[2].values[0])      # hip joint (foundation)
+    a = scene_cost(s, target=1e-2, ladders={"n_springs": [50, 100], "steps": [1.0, 2.0]})
+    b = scene_cost(s, target=1e-2, ladders={"n_springs": [50, 100], "steps": [1.0, 2.0]})
+    assert [r.error for r in a.rungs] == [r.error for r in b.rungs]
+
+
+def test_bad_arguments():
+    s = Scene.from_dict(twist_scene())
+    with pytest.raises(ParameterError, match="target"):
+        scene_cost(s, target=0.0)
+    with pytest.raises(ParameterError, match="target"):
+        scene_cost(s, target=True)
+    with pytest.raises(UnknownNameError, match="n_springs"):
+        scene_cost(s, knobs=["n_springs"])
+    with pytest.raises(ParameterError, match="at least two"):
+        scene_cost(s, ladders={"rtol": [1e-6]})
+
+
+def test_cli_cost_text_json_and_exit_codes(capsys, tmp_path):
+    path = str(example_params()[1].values[0])                # hertz
+    assert main(["cost", path, "--target", "1e-8"]) == 0
+    out = capsys.readouterr().out
+    assert "rtol" in out and "recommended" in out and "default" in out
+    assert main(["cost", path, "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["ok"] and doc["knobs"] == ["rtol"] and doc["certified"] == {"rtol": True}
+    assert main(["cost", path, "--target", "2"]) == 2
+    assert "target" in capsys.readouterr().err
+
+
+def test_cli_cost_plot(capsys, tmp_path):
+    path = str(example_params()[1].values[0])
+    out = tmp_path / "cost.png"
+    assert main(["cost", path, "--plot", str(out)]) == 0
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        assert "no plot written" in capsys.readouterr().err
+        assert not out.exists()
+    else:
+        assert out.exists()
