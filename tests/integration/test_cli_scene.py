@@ -197,7 +197,8 @@ def test_demo_runs_on_a_fresh_install(tmp_path, capsys):
         assert (tmp_path / "contactlab_demo.png").exists()
     except ImportError:
         assert "no plot written" in out
-    assert main(["demo", "-o", str(tmp_path), "--json"]) == 0
+    # a fresh folder: with matplotlib the first run left its plot in tmp_path
+    assert main(["demo", "-o", str(tmp_path / "again"), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["ok"] and doc["series"]["force"][-1] == pytest.approx(100.0)
 
