@@ -4,7 +4,8 @@ Public entry points: :class:`Contact`, :class:`Elastic`, :class:`Rigid`, :class:
 :mod:`contactlab.profiles` and :mod:`contactlab.materials` subpackages and :mod:`contactlab.errors`.
 Importing contactlab does no sympy work and scans no plugins.
 """
-from . import errors, foundation, loadpath, materials, profiles
+from . import citations, errors, foundation, loadpath, materials, profiles
+from .citations import cite
 from .contact import Contact
 from .effects import (AdhesionCycle, AdhesiveNormalState, NormalState, PathResult, ShiftHistory,
                       TangentialState, TorsionState, TwistHistory, ViscoelasticHistory)
@@ -25,5 +26,6 @@ __all__ = [
     "ContactLaw", "LawStep",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
+    "cite", "citations",
     "__version__",
 ]

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import OutsideTheoryError, ParameterError, ValidityWarning
 from ..params import as_float_array, exactly_one, values_equal
 from ..physics import normal as _normal
@@ -80,7 +81,7 @@ class AdhesiveNormalState(NormalState):
 
 
 @dataclass(frozen=True, eq=False)
-class AdhesionCycle:
+class AdhesionCycle(Cited):
     """An approach/retraction history of an adhesive contact (JKR hysteresis).
 
     Attributes
@@ -105,6 +106,7 @@ class AdhesionCycle:
     in_contact: np.ndarray
     jumps: np.ndarray
     pull_off_value: float
+    meta: dict = field(default_factory=dict, repr=False)
 
 
     def __eq__(self, other: object) -> bool:
@@ -123,6 +125,12 @@ class AdhesionCycle:
 
 
 # ---------------------------------------------------------------------------- drivers
+def adhesion_sources(profile: Any) -> tuple[str, ...]:
+    """Source tags of an adhesive computation on ``profile`` (see :mod:`contactlab.citations`)."""
+    punch = ("adhesion:flat_punch",) if getattr(profile, "name", "") == "flat_punch" else ()
+    return sources_for("normal", "adhesion", *punch)
+
+
 def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: str,
            branch: str, F: np.ndarray | None = None):
     prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
@@ -141,7 +149,7 @@ def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: s
     k = np.where(np.abs(ph - 0.5) < 1e-9, np.inf, k)   # at the fixed-grip pull-off
     br = contact.__dict__.get("_jkr_branches")
     meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": control,
-            "branch": branch, "work_of_adhesion": w}
+            "branch": branch, "work_of_adhesion": w, "citations": adhesion_sources(prof)}
     if br is not None:
         meta["stable_under_force"] = (a >= br.a_force * (1 - 1e-9)) & (a > 0)
         meta["stable_under_displacement"] = (a >= br.a_disp * (1 - 1e-9)) & (a > 0)
@@ -323,4 +331,5 @@ def adhesion_cycle(contact, *, depth: Any = None, force: Any = None):
         depth_out[~in_contact] = 0.0
     jumps = np.flatnonzero(np.diff(in_contact.astype(int)) != 0) + 1
     return AdhesionCycle(control=key, depth=depth_out, force=force_out, radius=radius,
-                         in_contact=in_contact, jumps=jumps, pull_off_value=lim)
+                         in_contact=in_contact, jumps=jumps, pull_off_value=lim,
+                         meta={"citations": adhesion_sources(prof)})

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
 from ..params import as_float_array, exactly_one
 from ..physics import fretting as _fr
@@ -43,6 +44,13 @@ def _mode_and_amplitude(what: str, displacement_amplitude: Any, twist_amplitude:
         raise ParameterError(f"{key}={float(amp[amp < 0].ravel()[0])!r} is invalid: an amplitude "
                              "must be >= 0 (the loop runs from -amplitude to +amplitude).")
     return ("tangential" if key == "displacement_amplitude" else "torsion"), key, amp
+
+
+def fretting_sources(mode: str, method: str) -> tuple[str, ...]:
+    """Source tags of a fretting computation (see :mod:`contactlab.citations`)."""
+    if mode == "tangential":
+        return sources_for("normal", "tangential", "masing:tangential", "fretting")
+    return sources_for("normal", f"torsion:{method}", "masing:torsion", "fretting")
 
 
 def check_contact(contact, what: str) -> None:
@@ -140,7 +148,7 @@ def _normal_states(contact, what: str, force: Any, depth: Any):
 
 # ---------------------------------------------------------------------------- single loop
 @dataclass(frozen=True, eq=False)
-class FrettingLoop:
+class FrettingLoop(Cited):
     """The steady fretting loop at constant normal load.
 
     Attributes
@@ -258,7 +266,8 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
         meta = {"criterion": criterion, "threshold": threshold}
     peak = float(res["peak"][0])
     x, y = _fr.loop_branches(float(amp), peak, curve, int(n_points))
-    meta.update({"rtol": contact.rtol, "load": nkey})
+    meta.update({"rtol": contact.rtol, "load": nkey,
+                 "citations": fretting_sources(mode, method)})
     return FrettingLoop(mode, method, float(amp), peak, float(res["energy"][0]),
                         float(res["energy_ratio"][0]), float(res["stick_radius"][0]),
                         float(a[0]), _fr.REGIMES[int(res["regime"][0])],
@@ -267,7 +276,7 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
 
 # ---------------------------------------------------------------------------- maps
 @dataclass(frozen=True, eq=False)
-class FrettingMap:
+class FrettingMap(Cited):
     """Running-condition map over normal forces x amplitudes.
 
     Attributes
@@ -465,5 +474,6 @@ def fretting_map(contact, *, force: Any = None, depth: Any = None,
                        res["regime"].reshape(shp), res["energy_ratio"].reshape(shp),
                        res["energy"].reshape(shp), res["stick_ratio"].reshape(shp),
                        res["peak"].reshape(shp), np.asarray(bnd, float),
-                       {"rtol": contact.rtol, "load": nkey})
+                       {"rtol": contact.rtol, "load": nkey,
+                        "citations": fretting_sources(mode, method)})
 

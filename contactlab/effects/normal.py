@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, ValidityWarning
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
@@ -33,6 +34,8 @@ def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
                       ValidityWarning, stacklevel=stacklevel)
 
 _SCALARS = (float, int, np.float64)
+#: sources of a normal-contact result (see :mod:`contactlab.citations`)
+_SOURCES = sources_for("normal")
 
 
 #: relative rounding floor of pressures computed from a quadrature-route g (benchmarks/
@@ -157,7 +160,8 @@ def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
         F = (a * d - g_int) * (2.0 * E)
     else:
         g_int = F = 0.0
-    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key},
+    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key,
+                     "citations": _SOURCES},
                     _scalar.force_rel_error, E, a, d, g_int, F, v if key == "force" else None)
     # (the dataclass __init__ and its frozen setattr cost more than the solve: fill the fields)
     state = _new_state(NormalState)
@@ -197,12 +201,13 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
     d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol)
     warn_outside_validity(prof, a, stacklevel=4)
     meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
-            "error_estimate": float(rel) if rel.ndim == 0 else rel}
+            "error_estimate": float(rel) if rel.ndim == 0 else rel,
+            "citations": _SOURCES}
     return NormalState(contact, d, a, F, meta)
 
 
 @dataclass(frozen=True, eq=False)
-class NormalState:
+class NormalState(Cited):
     """State of a normal contact (one load or an array of loads).
 
     Attributes

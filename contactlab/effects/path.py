@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import (EffectNotPlannedError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
 from ..foundation import DEFAULT_N_SPRINGS, Winkler
@@ -57,7 +58,7 @@ _MIN_BLOCK = 8
 
 
 @dataclass(frozen=True, eq=False)
-class PathResult:
+class PathResult(Cited):
     """Per-step result of :meth:`Contact.simulate`.
 
     Attributes
@@ -311,7 +312,10 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
         t0 = float(res["time"][i0 + n - 1]) if n else t0
         i0 += n
     meta = {"built": ["normal", *needs], "n_springs": None, "spacing": spacing,
-            "approximate": bool(approximate), "foundation": None}
+            "approximate": bool(approximate), "foundation": None,
+            "citations": sources_for("normal", "foundation",
+                                     *(("tangential",) if "tangential" in needs else ()),
+                                     *(("foundation:torsion",) if "torsion" in needs else ()))}
     snapshot_data: dict[int, dict] = {}
     if a_max <= 0 or not needs:
         # nothing but the (exact) normal problem: no tangential/torsional springs are built

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError
 from ..numeric.roots import bracketed_root
 from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
@@ -32,7 +33,7 @@ def _one(name_values: dict[str, Any], what: str) -> tuple[str, Any]:
 
 
 @dataclass(frozen=True, eq=False)
-class TangentialState:
+class TangentialState(Cited):
     """Cattaneo–Mindlin state (one load or an array of loads) at constant normal load.
 
     Attributes
@@ -139,7 +140,8 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
             if np.any((k == 0) & (t != 0)):
                 raise ParameterError("tangential_force != 0 is invalid without contact (force 0).")
         return TangentialState(contact, ns, u, k * u, a.copy(), np.zeros(a.shape, bool),
-                               {"control": tkey, "method": "no-slip"})
+                               {"control": tkey, "method": "no-slip",
+                                "citations": sources_for("normal", "tangential")})
     sliding = np.zeros(a.shape, bool)
     if tkey == "displacement":
         ustar = _tan.full_slip_displacement(E, Gs, mu, d)
@@ -176,11 +178,12 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
     if tkey == "tangential_force":
         F = np.where(sliding, sign * mu * FN, F)
     return TangentialState(contact, ns, u, F, c, sliding,
-                           {"control": tkey, "method": "cattaneo-mindlin", "rtol": contact.rtol})
+                           {"control": tkey, "method": "cattaneo-mindlin", "rtol": contact.rtol,
+                            "citations": sources_for("normal", "tangential")})
 
 
 @dataclass(frozen=True, eq=False)
-class ShiftHistory:
+class ShiftHistory(Cited):
     """Result of :meth:`Contact.shift_history`: per-step arrays at constant normal load.
 
     Attributes
@@ -228,4 +231,5 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
         return _tan.virgin_dissipation(prof, E, Gs, mu, a, d, x, contact.rtol)
 
     W = masing_dissipation(segments, u.size, D, contact.rtol)
-    return ShiftHistory(ns, u.copy(), F, c_out, W, {"method": "masing", "rtol": contact.rtol})
+    return ShiftHistory(ns, u.copy(), F, c_out, W, {"method": "masing", "rtol": contact.rtol,
+                         "citations": sources_for("normal", "tangential", "masing:tangential")})

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
 from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
 from ..physics import normal as _normal
@@ -99,7 +100,8 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
             "routes": {"g": contact.profile.g_route},
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal},
             "error_estimate": _scalar_or_array(rel_M.reshape(shape)),
-            "twist_error_estimate": _scalar_or_array(rel_phi.reshape(shape))}
+            "twist_error_estimate": _scalar_or_array(rel_phi.reshape(shape)),
+            "citations": sources_for("normal", f"torsion:{method}")}
     if deferred is not None:
         absM = np.abs(M)
 
@@ -151,7 +153,7 @@ def torsion_model(contact, method: str) -> _models.TorsionModel:
 
 
 @dataclass(frozen=True, eq=False)
-class TorsionState:
+class TorsionState(Cited):
     """State of a twisted contact at constant normal load (one or an array of states).
 
     Attributes
@@ -423,7 +425,8 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
     if method == "mdr":
         _warn_mdr(contact, u_arg, A, Dd, GA)
     meta = {"rtol": contact.rtol, "load": load_key, "method": method,
-            "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal}}
+            "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal},
+            "citations": sources_for("normal", f"torsion:{method}", "masing:torsion")}
     # error bookkeeping for torque_error (computed on first access): the loading curve's
     # absolute errors at the distinct arguments, its deferred root term, and the recursion
     errors = (sol.torque_error + shift, sol.torque_error_deferred,
@@ -433,7 +436,7 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
 
 
 @dataclass(frozen=True, eq=False)
-class TwistHistory:
+class TwistHistory(Cited):
     """Response to a twist history at constant normal load (Masing rule with turning-point memory).
 
     Attributes

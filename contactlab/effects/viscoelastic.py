@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import ConvergenceError, NotSupportedError, ParameterError
 from ..foundation import viscoelastic as _ve
 from ..materials import Elastic, Rigid, effective_moduli
@@ -32,7 +33,7 @@ def history_memory(n_steps: int, n_springs: int, n_terms: int) -> float:
 
 
 @dataclass(frozen=True, eq=False)
-class ViscoelasticHistory:
+class ViscoelasticHistory(Cited):
     """Per-step result of a viscoelastic normal-contact history.
 
     Attributes
@@ -169,5 +170,5 @@ def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = 
             f"the contact reached the edge of the foundation (radius {L:.6g} m) at step {i}: "
             "pass a larger max_radius=.")
     meta = {"control": key, "n_springs": n_springs, "spacing": dx, "material": mat,
-            "foundation_radius": L}
+            "foundation_radius": L, "citations": sources_for("mdr", "viscoelastic")}
     return ViscoelasticHistory(t, res["depth"], res["force"], res["radius"], meta)

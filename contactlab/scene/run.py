@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
 from ..params import values_equal
 from ..loadpath import UNITS
@@ -60,8 +61,21 @@ FIELD_UNITS = {"r": "m", "pressure": "Pa", "surface_displacement": "m", "shear":
 #: fields are sampled on r in [0, FIELD_EXTENT * a_final]
 FIELD_EXTENT = 1.5
 
+
+def _sources(computed: list[str], method: str | None, contact: Any) -> tuple[str, ...]:
+    """Source tags of the calls a scene made (see :mod:`contactlab.citations`)."""
+    names = {"normal": ("normal", *(("adhesion",) if contact.is_adhesive else ())),
+             "torsion": ("normal", f"torsion:{method or 'exact'}"),
+             "twist_history": ("normal", f"torsion:{method or 'exact'}", "masing:torsion"),
+             "tangential": ("normal", "tangential"),
+             "shift_history": ("normal", "tangential", "masing:tangential"),
+             "simulate": ("normal", "foundation"),
+             "viscoelastic_history": ("mdr", "viscoelastic")}
+    return sources_for(*(n for c in computed for n in names.get(c, ())))
+
+
 @dataclass(eq=False)
-class SceneResult:
+class SceneResult(Cited):
     """Outputs of a scene run.
 
     Attributes
@@ -306,5 +320,5 @@ def run_scene(scene: "Scene") -> SceneResult:
             raise ConvergenceError(f"{k}[{i}] is NaN: the computation failed at that step "
                                    f"({scene.title!r}).")
     meta = {"computed": computed, "route": plan.route, "version": __version__,
-            "title": scene.title}
+            "title": scene.title, "citations": _sources(computed, plan.method, contact)}
     return SceneResult(series, fields, plan, meta)

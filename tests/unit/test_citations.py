@@ -1,0 +1,158 @@
+"""Every result lists the sources its computation used; cite() prints them; tags resolve.
+
+The expected tags per effect are written here from the literature each computation follows (not
+read back from contactlab.citations.EFFECT_SOURCES): Sneddon's solution and the MDR handbook for
+normal contact, Heß's rule and JKR for adhesion, Cattaneo and Mindlin for tangential contact,
+Reissner–Sagoci / Jäger / the seed paper for the three torsion models, Lee–Radok, Ting and the
+viscoelastic handbook for viscoelastic media, Vingsbo–Söderberg and Fouvry for fretting.
+"""
+from __future__ import annotations
+
+import io
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.citations import SOURCES, Citations, bibliography_markdown
+from contactlab.errors import ParameterError, UnknownNameError
+
+ROOT = Path(__file__).resolve().parents[2]
+STEEL = cl.Elastic(E=210e9, nu=0.3)
+MDR = {"PH", "H1"}
+
+
+def _contact(**kw):
+    return cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(STEEL, STEEL), **kw)
+
+
+def _tags(result) -> set[str]:
+    return set(result.citations.tags)
+
+
+def test_normal():
+    assert _tags(_contact().normal(force=10.0)) == MDR | {"Sn65"}
+
+
+def test_adhesion():
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=1.5e6, nu=0.5),
+                   cl.Rigid()), work_of_adhesion=0.05)
+    assert {"Heß11", "JKR71"} | MDR <= _tags(c.normal(depth=1e-6))
+    assert {"Heß11", "JKR71"} <= _tags(c.pull_off())
+    assert {"Heß11", "JKR71"} <= _tags(c.adhesion_cycle(depth=np.linspace(-1e-6, 1e-6, 5)))
+    punch = cl.Contact(cl.profiles.FlatPunch(radius=1e-3), materials=(cl.Elastic(E=1.5e6, nu=0.5),
+                       cl.Rigid()), work_of_adhesion=0.05)
+    assert "K71" in _tags(punch.normal(depth=1e-6))
+    assert "K71" not in _tags(c.normal(depth=1e-6))
+
+
+def test_tangential():
+    c = _contact(friction=0.3)
+    assert {"Cat38", "Min49"} | MDR <= _tags(c.tangential(force=10.0, displacement=1e-7))
+    h = c.shift_history(force=10.0, displacement=1e-7 * np.sin(np.linspace(0, 6, 30)))
+    assert {"Cat38", "Min49", "MD53"} <= _tags(h)
+
+
+@pytest.mark.parametrize("method, expected, absent", [
+    ("no-slip", {"RS44"}, {"J95", "S"}),
+    ("exact", {"J95", "RS44"}, {"S"}),
+    ("mdr", {"S"}, {"J95"}),
+])
+def test_torsion(method, expected, absent):
+    c = _contact(friction=0.3)
+    t = _tags(c.torsion(force=10.0, twist=1e-5, method=method))
+    assert expected | MDR <= t and not (absent & t)
+    h = c.twist_history(force=10.0, twist=1e-5 * np.sin(np.linspace(0, 6, 30)), method=method)
+    assert expected | {"D54"} <= _tags(h)
+
+
+def test_viscoelastic():
+    from contactlab.materials.viscoelastic import KelvinVoigt
+    kv = KelvinVoigt(G=1e6, eta=1e3)
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(kv, cl.Rigid()))
+    h = c.viscoelastic_history(time=np.linspace(0, 1, 11), depth=np.linspace(0, 1e-5, 11))
+    assert {"H3", "LR60", "T66"} <= _tags(h)
+
+
+def test_foundation_path():
+    c = _contact(friction=0.3)
+    res = c.simulate(cl.LoadPath().ramp(force=10.0, steps=5).sinusoid(twist=1e-5, cycles=1,
+                                                                     steps_per_cycle=8),
+                     n_springs=50)
+    assert MDR | {"S"} <= _tags(res)
+
+
+def test_fretting():
+    c = _contact(friction=0.5)
+    assert {"VS88", "F96", "Cat38", "MD53"} <= _tags(
+        c.fretting_loop(force=100.0, displacement_amplitude=1e-6, n_points=20))
+    assert {"VS88", "F96", "J95", "D54"} <= _tags(
+        c.fretting_loop(force=100.0, twist_amplitude=1e-4, n_points=20))
+
+
+def test_scene():
+    from contactlab.scene import Scene
+    res = Scene.from_toml(ROOT / "examples" / "steel_ball_twist.toml").run()
+    assert {"J95"} | MDR <= _tags(res) or {"S"} | MDR <= _tags(res)
+
+
+def test_cite_prints_text_and_bibtex():
+    s = _contact(friction=0.3).torsion(force=10.0, twist=1e-5)
+    buf = io.StringIO()
+    out = cl.cite(s, file=buf)
+    assert buf.getvalue().rstrip("\n") == out
+    assert "Jäger" in out and "@article{Jaeger1995," in out and "@book{Popov2015MDR," in out
+    assert cl.cite(s, format="bibtex", file=None).startswith("@")
+    assert "[JKR71]" in cl.cite("JKR71", format="text", file=None)
+    assert "[PH]" in cl.cite(file=None)
+
+
+def test_cite_bad_input():
+    with pytest.raises(ParameterError, match="format"):
+        cl.cite(format="html", file=None)
+    with pytest.raises(UnknownNameError, match="XYZ99"):
+        cl.cite("XYZ99", file=None)
+    with pytest.raises(ParameterError, match="cite"):
+        cl.cite(3.0, file=None)
+
+
+def test_bibtex_entries_are_balanced():
+    text = Citations(SOURCES).bibtex()
+    assert text.count("{") == text.count("}")
+    assert len(set(s.key for s in SOURCES.values())) == len(SOURCES)
+
+
+def test_references_page_is_generated():
+    page = (ROOT / "docs" / "about" / "references.md").read_text(encoding="utf-8")
+    assert page == bibliography_markdown(), (
+        "docs/about/references.md is out of date: regenerate it with "
+        "python -c \"from contactlab.citations import bibliography_markdown as b; "
+        "open('docs/about/references.md', 'w').write(b())\"")
+
+
+# ------------------------------------------------------------------ every tag used resolves
+_TAG = re.compile(r"^(S|PH|H\d|[A-Z][a-zß]*\d{2})$")
+_BRACKET = re.compile(r"\[([^\[\]\n]{1,80})\]")
+_FILES = [p for p in ROOT.rglob("*") if p.suffix in {".py", ".md", ".toml", ".txt", ".cfg"}
+          and not ({".git", "_build", "auto_examples", "generated", "build"} & set(p.parts))
+          and ".egg-info" not in str(p) and p.is_file()]
+
+
+def _used_tags() -> dict[str, str]:
+    found: dict[str, str] = {}
+    for path in _FILES:
+        for m in _BRACKET.finditer(path.read_text(encoding="utf-8", errors="replace")):
+            for part in re.split(r"[;,/]", m.group(1)):
+                word = part.strip().split(" ")[0] if part.strip() else ""
+                if _TAG.match(word):
+                    found.setdefault(word, str(path.relative_to(ROOT)))
+    return found
+
+
+def test_every_source_tag_used_in_the_repository_resolves():
+    used = _used_tags()
+    assert {"J95", "H1", "S"} <= set(used)            # the scan sees the tags we know are used
+    unknown = {t: f for t, f in used.items() if t not in SOURCES}
+    assert not unknown, f"source tags without a bibliography entry (citations.SOURCES): {unknown}"
