@@ -1,6 +1,7 @@
 """The ``contactlab`` command line.
 
-Subcommands: ``run SCENE``, ``validate SCENE``, ``plan SCENE``, ``demo``, ``formulas`` (closed-form
+Subcommands: ``run SCENE``, ``validate SCENE``, ``plan SCENE``, ``demo``, ``list`` (registered
+profiles, materials and effects with their parameters and units), ``formulas`` (closed-form
 formulas of a registered profile as text, LaTeX or Python), ``sweep SCENE --grid ...`` (a
 parameter study, see :func:`contactlab.sweep`), ``cost SCENE`` (what accuracy costs: error
 against wall time over a ladder of each numeric knob); ``--version``.
@@ -219,6 +220,15 @@ def _cmd_cost(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_list(args: argparse.Namespace) -> int:
+    from .scene.catalog import catalog, catalog_text
+    data = catalog()
+    if args.what != "all":
+        data = {args.what: data[args.what]}
+    _emit(args, {"ok": True, **data}, catalog_text(args.what).rstrip("\n"))
+    return 0
+
+
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from .sweeps.command import sweep_command
     try:
@@ -254,17 +264,32 @@ def _formulas(args: argparse.Namespace) -> int:
     from .registry import registry
     from .symbolic.export import formulas_command
 
-    params = _parse_assignments(args.param, "--param")
+    given = _parse_assignments(args.param, "--param")
     cls = registry.get("profile", args.profile)
-    substitute = bool(params) and not args.symbolic
-    if not params:
-        # fully symbolic: placeholders (never shown) for every parameter that becomes a symbol
-        params = {p.name: p.typical[0] for p in getattr(cls, "params", ())}
-    profile = registry.create("profile", args.profile, **params)
-    if not args.param:
+    specs = tuple(getattr(cls, "params", ()))
+    missing = [p for p in specs if p.name not in given]
+    # parameters not given stay symbols: placeholders (never shown) stand in for their numbers
+    params = {**{p.name: p.typical[0] for p in missing}, **given}
+    substitute = not missing and bool(given) and not args.symbolic
+    try:
+        profile = registry.create("profile", args.profile, **params)
+    except (TypeError, ValueError) as err:
+        if not missing or set(given) - {p.name for p in specs}:
+            raise                     # the user's own values: the message names them
+        kinds = ", ".join(f"{p.name} ({p.description})" for p in specs)
+        hint = (" It is a measured table: run it in a scene (contactlab run) or load it with "
+                "contactlab.profiles.Tabulated.from_csv in Python."
+                if args.profile == "tabulated" else
+                " Build it in Python, e.g. contact = contactlab.Contact("
+                "contactlab.profiles.Polynomial({2: 50.0, 4: 1e6}), materials=...), then "
+                "contact.formulas(); one power term is --profile power_law --param n=2."
+                if args.profile == "polynomial" else "")
+        raise ParameterError(f"profile {args.profile!r} cannot be built from --param NAME=NUMBER "
+                             f"values (its parameters: {kinds}).{hint}") from err
+    if missing:
         from .symbolic.formulas import profile_formulas
         bound = {str(s) for s in profile_formulas(profile).numbers}
-        fixed = [p.name for p in cls.params if p.symbol not in bound]
+        fixed = [p.name for p in missing if p.symbol not in bound]
         if fixed:
             raise ParameterError(f"profile {args.profile!r}: give --param for {', '.join(fixed)} "
                                  "(they fix the form of the formulas), e.g. --param n=3.")
@@ -280,10 +305,13 @@ def _formulas(args: argparse.Namespace) -> int:
             materials.append(registry.create("material", name.strip(),
                                              **_parse_assignments([rest], "--material")))
     fmt = "latex" if args.latex else "python" if args.python else "text"
-    substitute = substitute or bool(materials and not args.symbolic)
+    substitute = substitute or bool(materials and not missing and not args.symbolic)
+    given_txt = ", ".join(f"{k}={v:g}" for k, v in given.items())
+    title = (None if substitute else
+             f"{cls.__name__}({given_txt}) (symbolic)" if given else f"{cls.__name__} (symbolic)")
     print(formulas_command(profile, materials, fmt, substitute=substitute,
                            friction=args.friction, work_of_adhesion=args.work_of_adhesion,
-                           title=None if args.param else f"{cls.__name__} (symbolic)"), end="")
+                           title=title), end="")
     return 0
 
 
@@ -334,6 +362,10 @@ def _parser() -> argparse.ArgumentParser:
                     "(default 1e-6)")
     co.add_argument("--plot", metavar="FILE", help="write error against time to FILE "
                     "(needs matplotlib)")
+    ls = add("list", _cmd_list, "registered profiles and materials, the effects; with units",
+             scene=False)
+    ls.add_argument("what", nargs="?", default="all",
+                    choices=("all", "profiles", "materials", "effects"), help="what to list")
     sw = add("sweep", _cmd_sweep, "run a scene over a grid of values (serial, all cores or Dask)")
     sw.add_argument("--grid", action="append", default=[], metavar="KEY=A:B:N[:log]",
                     help="an axis (repeatable): scene key path = range or comma list, e.g. "

@@ -1,6 +1,7 @@
 """``contactlab formulas`` end to end (in-process main() and one real subprocess)."""
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -65,3 +66,20 @@ def test_console_entry_subprocess():
                           "--param", "R=0.01"], capture_output=True, text=True, cwd=root, check=False)
     assert out.returncode == 0, out.stderr
     assert "atanh" in out.stdout and "not available:" in out.stdout
+
+
+def test_documented_power_law_latex_command(capsys):
+    """docs/formulas.md: ``--profile power_law --param n=3 --latex`` keeps c symbolic."""
+    code, out, err = run(capsys, "--profile", "power_law", "--param", "n=3", "--latex")
+    assert code == 0 and err == ""
+    assert r"\documentclass" in out and "c r^{3}" in out and "PowerLaw(n=3) (symbolic)" in out
+
+
+@pytest.mark.parametrize("profile, match", [
+    ("polynomial", "Polynomial\\({2: 50.0"),     # was a TypeError traceback
+    ("tabulated", "measured table"),             # was "interpolation=0.001 is invalid"
+])
+def test_profiles_not_built_from_numbers_exit_2(capsys, profile, match):
+    code, out, err = run(capsys, "--profile", profile)
+    assert code == 2 and out == "" and "Traceback" not in err
+    assert re.search(match, err), err
