@@ -118,7 +118,7 @@ class Profile(ParamIdentity, ABC):
 
     @property
     def flat_radius(self) -> float:
-        """Radius of a flat central part (g = 0 for |x| below it), m."""
+        """Radius of a flat central part (``g = 0`` for ``|x|`` below it), m."""
         return 0.0
 
     @property
