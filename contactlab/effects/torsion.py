@@ -416,7 +416,7 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
     k_t = 16.0 / 3.0 * contact.moduli.torsional
     if np.any(shift > 0):
         # a merged step moves along the loading curve from its group's representative with the
-        # curve's tangent stiffness, that of the stick zone, (16/3) G_t c³ [J97]; the slope lies
+        # curve's tangent stiffness, that of the stick zone, (16/3) G_t c³ [J95]; the slope lies
         # in [0, (16/3) G_t a³], so the linearisation errs by at most that bound times the shift
         dphi = arg - u_arg[inv]
         M_load = M_load + k_t * np.where(np.isfinite(c), c, 0.0) ** 3 * dphi
