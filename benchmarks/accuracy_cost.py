@@ -102,7 +102,7 @@ def power_pressure_ref(c: float, n: float, a: float, r: float) -> float:
 
 
 def table_transform(r: np.ndarray, f: np.ndarray, x: float) -> tuple[float, float]:
-    """Exact g(x) and ∫_0^x g of the piecewise-linear table (physics.md §2 row, re-implemented)."""
+    """Exact g(x) and ∫_0^x g of the piecewise-linear table (theory §2 row, re-implemented)."""
     s = np.diff(f) / np.diff(r)
     lo, hi = r[:-1], np.minimum(r[1:], x)
     m = lo < x

@@ -11,7 +11,7 @@ evaluation, best of several runs):
 1. ``torsion rtol (exact)``: ``Contact(..., rtol=...)`` for the exact (Jäger) partial-slip model:
    torque under stick-radius control, stick radius under twist control, twist under torque
    control (the torque root solve), Hertz at c/a = 0.99, 0.5, 0.01 and flat punch at c/a = 0.5.
-   References: mpmath, physics.md §6.3 (Lubkin closed forms) and §6.2.7 (flat punch).
+   References: mpmath, theory §6.3 (Lubkin closed forms) and §6.2.7 (flat punch).
 2. ``foundation springs N``: ``contact.simulate(..., n_springs=N)`` against the MDR torsion
    closed form (§6.4, Masing §6.5) and Cattaneo-Mindlin (§5): torque at +φ1 and after reversal to
    -φ1, tangential force at 0.8 u*.
@@ -60,7 +60,7 @@ MU = 0.3
 R = 0.01
 F_N = 10.0
 STEEL = cl.Elastic(E=210e9, nu=0.3)
-E_STAR = 1 / (2 * (1 - 0.09) / 210e9)                 # identical bodies, physics.md §1
+E_STAR = 1 / (2 * (1 - 0.09) / 210e9)                 # identical bodies, theory §1
 G_T = 210e9 / 2.6 / 2
 G_STAR = 1 / (2 * (2 - 0.3) / (4 * 210e9 / 2.6))
 A_H = (3 * F_N * R / (4 * E_STAR)) ** (1 / 3)          # Hertz radius, §3

@@ -1,11 +1,11 @@
 """Accuracy of the MDR foundation against closed forms vs number of springs, and its cost.
 
 1. Tangential (Cattaneo–Mindlin virgin curve + Mindlin–Deresiewicz unloading/reloading) and
-   torsional (MDR closed form, physics.md §6.4, loading + Masing unloading) force error, Hertz and
+   torsional (MDR closed form, theory §6.4, loading + Masing unloading) force error, Hertz and
    cone, for N = 50 … 4000 springs, both spacings; error = max |F - F_ref| / max |F_ref| over the
    loop; run time per step. Written to ``foundation_accuracy.csv``.
 2. Energy per cycle of oscillating twist: MDR foundation vs the EXACT (Jäger/Lubkin) Hertz
-   torsion hysteresis (physics.md §6.3, §6.5, re-implemented here with scipy), for amplitudes up to
+   torsion hysteresis (theory §6.3, §6.5, re-implemented here with scipy), for amplitudes up to
    near full sliding; the gap is printed and written to ``torsion_energy_gap.csv``.
 
 Run: python benchmarks/foundation_accuracy.py [output_dir]
@@ -74,7 +74,7 @@ def torsion_case(c, N, spacing):
     return np.max(np.abs(r.torque[4:] - ref)) / np.max(np.abs(ref)), dt
 
 
-# ---- exact Hertz torsion (Lubkin problem via Jäger), physics.md §6.3, §6.5
+# ---- exact Hertz torsion (Lubkin problem via Jäger), theory §6.3, §6.5
 def exact_twist(c_over_a, a, Gt):
     m = 1 - c_over_a ** 2
     return 3 * MU * F / (4 * np.pi * Gt * a ** 2) * (ellipk(m) - ellipe(m))

@@ -4,7 +4,7 @@
    history (Ting unloading) and a force-controlled creep history, generalized Maxwell material
    with 1 and 4 arms.
 2. Accuracy against the time step: SLS creep under a step force on a paraboloid against the
-   closed form a³(t) = 3RF0 J(t)/16 (physics.md §7), and SLS constant-rate indentation against the
+   closed form a³(t) = 3RF0 J(t)/16 (theory §7), and SLS constant-rate indentation against the
    Lee-Radok hereditary integral; fitted order.
 
 Writes ``viscoelastic_speed.csv`` and ``viscoelastic_accuracy.csv`` next to this script (or to

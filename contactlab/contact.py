@@ -136,7 +136,7 @@ class Contact:
 
     # ---- adhesion (issue 6)
     def pull_off(self, control: str = "force") -> NormalState:
-        """State at detachment of an adhesive contact (JKR through the MDR, physics.md §4).
+        """State at detachment of an adhesive contact (JKR through the MDR, theory §4).
 
         Parameters
         ----------
@@ -182,7 +182,7 @@ class Contact:
 
         One normal keyword (``depth=``, ``force=``, ``radius=``) and one tangential keyword
         (``displacement=`` m, ``tangential_force=`` N, ``stick_radius=`` m); scalars or arrays.
-        Monotonic shift at constant normal load [physics.md §5]. A tangential force at or above
+        Monotonic shift at constant normal load [theory §5]. A tangential force at or above
         ``μF_N`` is gross sliding (``state.gross_sliding``), not an error.
 
         Returns
@@ -198,7 +198,7 @@ class Contact:
         """Tangential force for an arbitrary displacement history at constant normal load.
 
         Exact Masing hysteresis with turning-point memory (closed loops are erased), from the
-        Cattaneo–Mindlin virgin curve [physics.md §5].
+        Cattaneo–Mindlin virgin curve [theory §5].
 
         Returns
         -------
@@ -230,7 +230,7 @@ class Contact:
 
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):
-        """Named sympy formulas of this contact (normal, torsion, JKR; physics.md §3, §4, §6).
+        """Named sympy formulas of this contact (normal, torsion, JKR; theory §3, §4, §6).
 
         Parameters
         ----------
@@ -259,7 +259,7 @@ class Contact:
     def torsion(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                 twist: Any = None, torque: Any = None, stick_radius: Any = None,
                 method: str | None = None) -> TorsionState:
-        """Monotonic twist of the contact at constant normal load (physics.md §6).
+        """Monotonic twist of the contact at constant normal load (theory §6).
 
         Give the normal preload by exactly one of ``depth=``, ``force=``, ``radius=`` and the twist
         by exactly one of ``twist=``, ``torque=``, ``stick_radius=``; scalars or arrays (the two
@@ -333,7 +333,7 @@ class Contact:
 
         Notes
         -----
-        Masing's rule with turning-point memory (physics.md §6.5): after each reversal the
+        Masing's rule with turning-point memory (theory §6.5): after each reversal the
         loading solution with doubled friction applies from the turning point; loops that close
         are forgotten. The loading curve is solved once, batched, for every step.
         """

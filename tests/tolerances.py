@@ -47,7 +47,7 @@ TABULATED_1000 = 1e-6
 #: is lumped, error ~ 1/N² of the local force; measured 2.0e-7 (Hertz), 3.4e-7 (cone), see
 #: benchmarks/foundation_accuracy.py. This is the issue's target rtol.
 FOUNDATION_CM = 1e-6
-#: foundation torsion against the MDR torsion closed form (physics.md §6.4) at the default N,
+#: foundation torsion against the MDR torsion closed form (theory §6.4) at the default N,
 #: relative to the loop amplitude; measured 6.2e-7 (Hertz). Same target as the tangential loop.
 FOUNDATION_TORSION = 1e-6
 #: normal force through the foundation: the cells integrate (d - g)_+ exactly, so only rounding
@@ -84,7 +84,7 @@ TORSION_EXACT = 1e-9
 #: c/a = 1 - 1e-6: the slip function is ~1e-6 of its scale, so the rounding of g(t) - g(x) (1e-16
 #: of g) costs ~1e-10 relative; the twist inverts a function of slope ~1e6
 TORSION_NEAR_STICK = 1e-8
-#: physics.md table values are printed with 6 significant digits
+#: docs/theory table values are printed with 6 significant digits
 TABLE_6_DIGITS = 5e-6
 #: brute-force Jenkins-element simulation of a hysteresis with N elements (midpoint rule, slip
 #: thresholds resolved to ~1/N): discretisation error ~1/N² relative for N = 4000 plus the

@@ -186,7 +186,7 @@ def adhesive_normal(contact, *, depth: Any = None, force: Any = None, radius: An
 
     Notes
     -----
-    ``d(a) = g(a) - sqrt(2π a Δγ/E*)`` and ``F(a) = 2E*(a d - ∫_0^a g)`` [Heß11; physics.md §4].
+    ``d(a) = g(a) - sqrt(2π a Δγ/E*)`` and ``F(a) = 2E*(a d - ∫_0^a g)`` [Heß11; theory §4].
     The state returned for a depth between the pull-off depth and 0 is the one reached on
     retraction; on approach the bodies stay apart until ``d = 0`` (see
     :meth:`Contact.adhesion_cycle`).
@@ -242,7 +242,7 @@ def pull_off(contact, control: str = "force"):
     Raises
     ------
     OutsideTheoryError
-        No interior minimum (power laws with ``n <= 1/2``, physics.md §4).
+        No interior minimum (power laws with ``n <= 1/2``, theory §4).
 
     Warns
     -----

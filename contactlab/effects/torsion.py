@@ -289,7 +289,7 @@ class TorsionState(Cited):
 
     @property
     def stiffness(self) -> Any:
-        """Incremental torsional stiffness ``dM/dφ = (16/3) G_t c³``, N·m/rad (physics.md §6.2)."""
+        """Incremental torsional stiffness ``dM/dφ = (16/3) G_t c³``, N·m/rad (theory §6.2)."""
         return _scalar_or_array(16.0 / 3.0 * self.contact.moduli.torsional * self._stick**3)
 
     @cached_property
@@ -320,7 +320,7 @@ class TorsionState(Cited):
         """Circumferential traction ``τ(r)``, Pa, at radii ``r`` (m); 0 outside the contact.
 
         Exact model: ``μ p(r)`` in the slip annulus ``c <= r < a`` and the stick-zone solution of
-        physics.md §6.2 item 5 inside (continuous at ``r = c``, ``τ(0) = 0``, ``|τ| <= μ p``).
+        theory §6.2 item 5 inside (continuous at ``r = c``, ``τ(0) = 0``, ``|τ| <= μ p``).
         MDR: the traction of the MDR twist distribution (§8 item 1). No slip: Reissner-Sagoci.
         Singular points return ``inf`` (no-slip edge).
         """
@@ -354,7 +354,7 @@ class TorsionState(Cited):
     def displacement(self, r: Any) -> Any:
         """Circumferential surface displacement ``u_φ(r)``, m, inside and outside the contact.
 
-        ``φ r`` in the stick zone; physics.md §6.2 item 6 elsewhere (with the MDR twist
+        ``φ r`` in the stick zone; theory §6.2 item 6 elsewhere (with the MDR twist
         distribution for ``method="mdr"``); Reissner-Sagoci for no slip. Decays as
         ``M/(4π G_t r²)`` far away.
         """
@@ -460,7 +460,7 @@ class TwistHistory(Cited):
     Notes
     -----
     After a reversal at ``(φ_r, M_r)``: ``M = M_r ± 2 M_load(|φ - φ_r|/2)``; a branch that passes
-    an older turning point closes that loop, which is then forgotten (physics.md §6.5). Exact for
+    an older turning point closes that loop, which is then forgotten (theory §6.5). Exact for
     the exact solution (flat-punch superposition) and for the MDR springs (Jenkins elements).
     The dissipated energy uses the Jenkins-element (Iwan) form of both models: along a branch
     ``D = D_r + 2 D_load(|φ - φ_r|/2)`` with ``D_load`` the energy dissipated under monotonic

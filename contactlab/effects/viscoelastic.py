@@ -2,7 +2,7 @@
 and its result :class:`ViscoelasticHistory`.
 
 The time stepping is that of the MDR viscoelastic foundation,
-:class:`contactlab.foundation.viscoelastic.Viscoelastic` (physics.md §7).
+:class:`contactlab.foundation.viscoelastic.Viscoelastic` (theory §7).
 """
 from __future__ import annotations
 
@@ -118,7 +118,7 @@ def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = 
     mat = viscoelastic_body(m1, m2)
     if contact.is_adhesive:
         raise NotSupportedError("work_of_adhesion > 0 with a viscoelastic material is not covered "
-                                "by physics.md §7 (adhesion-free unloading only).")
+                                "by theory §7 (adhesion-free unloading only).")
     key, value = exactly_one("viscoelastic_history()", {"depth": depth, "force": force})
     t = as_float_array("time", time)
     load = as_float_array(key, value)

@@ -1,4 +1,4 @@
-"""The MDR viscoelastic foundation: independent rheological elements [H3] (physics.md §7).
+"""The MDR viscoelastic foundation: independent rheological elements [H3] (theory §7).
 
 Rigid indenter on an incompressible linear viscoelastic half-space, ``E*(t) = 4G(t)``. The
 half-space becomes a row of independent 1D rheological elements at ``x_i`` (spacing ``Δx``), each a

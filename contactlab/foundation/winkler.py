@@ -1,6 +1,6 @@
 """The Winkler (independent-spring) MDR foundation with Jenkins stick/slip elements.
 
-Each cell ``[b_i, b_{i+1}]`` lumps the springs of ``±x`` in it [H1, PH; physics.md §3, §5, §6.4]:
+Each cell ``[b_i, b_{i+1}]`` lumps the springs of ``±x`` in it [H1, PH; theory §3, §5, §6.4]:
 
 * normal: compression ``d - g(x)``; cell force ``2E* S_i`` with ``S_i = ∫_cell (d - g)_+ dx``
   integrated exactly (so the normal force is exact at any N);
@@ -332,7 +332,7 @@ def abel_traction(x: np.ndarray, q: np.ndarray, a: float, q_edge: float,
 
     ``q`` is the piecewise-linear interpolant through ``(x_i, q_i)``, constant on ``[0, x_0]`` and
     linear from the last node to ``(a, q_edge)``; ``q_edge`` is the value at ``a⁻`` (a jump to 0
-    at ``a`` gives the edge term). MDR inverse of a line load [H1; physics.md §3]. Returns 0 for
+    at ``a`` gives the edge term). MDR inverse of a line load [H1; theory §3]. Returns 0 for
     ``r >= a``.
     """
     r = np.asarray(r, float)
@@ -355,7 +355,7 @@ def snapshot_shear(fnd: "Winkler", st: SpringState, r: np.ndarray) -> dict[str, 
 
     Tangential: line load ``q_x = f_i/(2 w_i)`` (both sides lumped in ``f_i``),
     ``τ_x = -(1/π)∫ q_x'/sqrt(x²-r²)``. Torsion: cell rotation ``ψ_i = m_i/K_i`` (``u_y = xψ``),
-    ``τ = (4G_t r/π)[-∫ ψ'/sqrt(x²-r²) + ψ(a)/sqrt(a²-r²)]`` (physics.md §8, item 1).
+    ``τ = (4G_t r/π)[-∫ ψ'/sqrt(x²-r²) + ψ(a)/sqrt(a²-r²)]`` (theory §8, item 1).
     A cell at its slip limit next to the edge means ``u(a) = 0``; otherwise the edge cell's value
     holds up to ``a`` (no slip).
     """

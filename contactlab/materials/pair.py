@@ -1,4 +1,4 @@
-"""Effective moduli of a pair of bodies (physics.md §1).
+"""Effective moduli of a pair of bodies (theory §1).
 
 * normal ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` [J85];
 * tangential ``1/G* = (2-ν1)/(4G1) + (2-ν2)/(4G2)`` (MDR handbook, Cattaneo-Mindlin) [H1];
@@ -62,7 +62,7 @@ def effective_moduli(m1: Material, m2: Material) -> EffectiveModuli:
                 "Only normal contact of a rigid indenter on an incompressible viscoelastic "
                 "half-space is covered (contact.viscoelastic_history); elastic solvers (normal, "
                 "tangential, torsion) with viscoelastic materials are not covered by the theory "
-                "in physics.md.")
+                "in docs/theory.")
     c1, c2 = m1._compliances(), m2._compliances()
     tot = [a + b for a, b in zip(c1, c2)]
     if min(tot) <= 0:

@@ -1,7 +1,7 @@
 """Linear viscoelastic materials, defined by their shear relaxation function ``G(t)``.
 
 Every material here is an *incompressible* isotropic half-space (Poisson's ratio 1/2), so that
-against a rigid indenter ``E*(t) = 4G(t)`` (physics.md §7, [H3]). All of them share the Prony
+against a rigid indenter ``E*(t) = 4G(t)`` (theory §7, [H3]). All of them share the Prony
 form used by the solver,
 
     G(t) = G_∞ + Σ_k G_k exp(-t/τ_k) + η δ(t),
@@ -180,7 +180,7 @@ class StandardLinearSolid(Viscoelastic):
     -----
     ``G(t) = G_∞ + G_1 exp(-t/τ_1)``, ``τ_1 = η_1/G_1``. Creep:
     ``J(t) = 1/G_∞ - (1/G_∞ - 1/(G_∞+G_1)) exp(-t/τ_c)`` with
-    ``τ_c = η_1 (G_∞+G_1)/(G_∞ G_1)`` (physics.md §7).
+    ``τ_c = η_1 (G_∞+G_1)/(G_∞ G_1)`` (theory §7).
     """
 
     name: ClassVar[str] = "standard_linear_solid"

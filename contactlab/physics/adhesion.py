@@ -1,4 +1,4 @@
-"""Adhesive (JKR) normal contact through the MDR: the Heß rule [Heß11; H1; PH] (physics.md §4).
+"""Adhesive (JKR) normal contact through the MDR: the Heß rule [Heß11; H1; PH] (theory §4).
 
 The outermost springs of the 1D foundation detach when their elongation reaches the critical
 value ``Δl(a) = sqrt(2π a Δγ / E*)``, so on the equilibrium curve
@@ -184,7 +184,7 @@ def branches(profile, E_star: float, dgamma: float) -> Branches:
         raise OutsideTheoryError(
             f"profile {prof!r} grows like r**n with n <= 1/2: adhesion outgrows elasticity at large "
             "contact radii, F(a) has no interior minimum and there is no stable JKR branch "
-            "(physics.md §4). Only normal(radius=...) is defined for this adhesive contact.")
+            "(theory §4). Only normal(radius=...) is defined for this adhesive contact.")
     wall = prof.wall_radius
     limit = _limit(prof)
     top = limit * (1 - 1e-12) if np.isfinite(limit) else np.inf
@@ -208,7 +208,7 @@ def branches(profile, E_star: float, dgamma: float) -> Branches:
     else:
         raise OutsideTheoryError(
             f"no stable adhesive branch found for {prof!r} up to a = {s:.3g} m: g(a) grows no "
-            "faster than sqrt(a) (physics.md §4).")
+            "faster than sqrt(a) (theory §4).")
     if capped and not np.isfinite(wall):
         raise OutsideTheoryError(
             f"the stable adhesive branch of {prof!r} lies beyond its max_radius={prof.max_radius!r} m "

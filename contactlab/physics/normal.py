@@ -1,4 +1,4 @@
-"""Normal contact through the MDR [S eqs. 1-20; H1; Sn65] (physics.md §3).
+"""Normal contact through the MDR [S eqs. 1-20; H1; Sn65] (theory §3).
 
 With the 1D foundation ``Δk = E* Δx`` and spring compression ``d - g(x)`` for ``|x| <= a``:
 

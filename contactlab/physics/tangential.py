@@ -1,6 +1,6 @@
 """Cattaneo–Mindlin tangential contact through the MDR: pure, vectorised kernels.
 
-[Cat38, Min49, H1, PH]; physics.md §5. The normal load is constant and non-adhesive
+[Cat38, Min49, H1, PH]; theory §5. The normal load is constant and non-adhesive
 (``d = g(a)``, or ``d >= g(b)`` for a flat punch). MDR springs ``Δk_x = G*Δx`` stick while
 ``G*|u_x1D| < μE*(d - g(x))``. With ``h(x) = μE*(d - g(x))``:
 
@@ -45,7 +45,7 @@ def stick_radius_of_displacement(profile, E_star: float, G_star: float, mu: floa
                                  d: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Stick radius ``c``, m, of the virgin curve at displacement magnitude ``|u|``.
 
-    Solves ``g(c) = d - G*|u|/(μE*)`` [physics.md §5]; ``c = a`` at ``u = 0`` and ``c = 0`` at and
+    Solves ``g(c) = d - G*|u|/(μE*)`` [theory §5]; ``c = a`` at ``u = 0`` and ``c = 0`` at and
     beyond full slip. For a flat punch, ``c`` stays at the punch radius until full slip.
     """
     a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
@@ -65,7 +65,7 @@ def displacement_of_stick_radius(profile, E_star: float, G_star: float, mu: floa
 
 def force_of_stick_radius(profile, E_star: float, mu: float, a: np.ndarray, d: np.ndarray,
                           c: np.ndarray) -> np.ndarray:
-    """Virgin-curve tangential force ``μ[F_N(a) - F_N(c)]``, N [physics.md §5].
+    """Virgin-curve tangential force ``μ[F_N(a) - F_N(c)]``, N [theory §5].
 
     Valid where the stick boundary satisfies ``G*u = μE*(d - g(c))`` (smooth profiles); for a
     stick zone held at a punch wall use :func:`force_of_displacement`.

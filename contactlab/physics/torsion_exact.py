@@ -1,6 +1,6 @@
 """Exact partial-slip torsion: Jäger's flat-punch superposition [J95; S eqs. 24-30, 35, 43-44, 53].
 
-Pure, vectorised kernels (physics.md §6.2). With the slip function
+Pure, vectorised kernels (theory §6.2). With the slip function
 
     P(x) = ∫_x^a p(s)/sqrt(s²-x²) ds,
 
@@ -485,7 +485,7 @@ def twist_of_stick(mu: float, G_t: float, P_c: np.ndarray) -> np.ndarray:
 
 def torque_of_stick(mu: float, G_t: float, c: np.ndarray, phi: np.ndarray,
                     T_c: np.ndarray) -> np.ndarray:
-    """``M = (16/3) G_t φ c³ + 8μ T(c)`` (physics.md §6.2 item 3), N·m."""
+    """``M = (16/3) G_t φ c³ + 8μ T(c)`` (theory §6.2 item 3), N·m."""
     return 16.0 / 3.0 * G_t * phi * c**3 + 8.0 * mu * T_c
 
 
@@ -496,7 +496,7 @@ def dissipation_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d
 
     Under monotonic twisting the exact solution is a set of independent Jenkins elements in the
     1D coordinate: at ``x`` a rotational stiffness ``16 G_t x² dx`` that slips at the rotation
-    ``(μ/2G_t) P(x)`` (physics.md §6.2 item 3). The energy dissipated while twisting from 0 to
+    ``(μ/2G_t) P(x)`` (theory §6.2 item 3). The energy dissipated while twisting from 0 to
     ``φ(c)`` is therefore ``D = 16G_t ∫_c^a x² θ_s (φ - θ_s) dx = (4μ²/G_t) J(c)``.
 
     Computed as ``J = P(c) T(c) - I(c)`` with ``I(c) = ∫_c^a x² P² dx`` accumulated from ``x = a``
@@ -547,7 +547,7 @@ def dissipation_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d
 # ---------------------------------------------------------------- fields
 def stick_shear(psi, psi_l: np.ndarray, G_t: float, r: np.ndarray, ell: np.ndarray,
                 a: np.ndarray, rtol: float) -> np.ndarray:
-    """Circumferential traction from the twist distribution (physics.md §6.2 item 5, §8 item 1).
+    """Circumferential traction from the twist distribution (theory §6.2 item 5, §8 item 1).
 
     ``τ(r) = (4G_t r/π) [ψ(ℓ)/sqrt(a²-r²) - ∫_ℓ^a (ψ(t) - ψ(ℓ)) t/(t²-r²)^{3/2} dt]`` for
     ``r <= ℓ < a`` (``ℓ = c`` in the stick zone, ``ℓ = r`` in the slip zone), where
@@ -582,7 +582,7 @@ def _check_field(res, rtol: float, scale: np.ndarray, what: str) -> None:
 
 def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndarray,
                                  a: np.ndarray, rtol: float) -> np.ndarray:
-    """``u_φ(r)`` (m) inside and outside the contact (physics.md §6.2 item 6, integrated by parts).
+    """``u_φ(r)`` (m) inside and outside the contact (theory §6.2 item 6, integrated by parts).
 
     ``u_φ = r φ`` for ``r <= c``; otherwise
     ``u_φ = (2/π) [φ W(c) + ∫_c^{min(r,a)} ψ(t) 2t²/(r sqrt(r²-t²)) dt]`` with

@@ -1,4 +1,4 @@
-"""MDR narrow-slip model of torsion with slip [S eqs. 47-52] (physics.md §6.4).
+"""MDR narrow-slip model of torsion with slip [S eqs. 47-52] (theory §6.4).
 
 Springs of torsional stiffness ``8 G_t Δx`` with the equivalent friction coefficient ``μ* = 2μ``:
 a spring at ``x`` sticks (``u_y = xφ``) until ``8 G_t |u_y| = μ* E* (d - g(x))``, then slides with

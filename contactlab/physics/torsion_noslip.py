@@ -1,4 +1,4 @@
-"""Torsion without slip (μ → ∞): Reissner-Sagoci [RS44; S eqs. 21-23, 30-34] (physics.md §6.1).
+"""Torsion without slip (μ → ∞): Reissner-Sagoci [RS44; S eqs. 21-23, 30-34] (theory §6.1).
 
 The whole contact of radius ``a`` turns rigidly by ``φ``; the result depends on ``a`` only:
 

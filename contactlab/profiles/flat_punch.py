@@ -1,6 +1,6 @@
 """Flat punch and flat punches with a rounded (truncated paraboloid) or conical (truncated cone) edge.
 
-Closed forms (physics.md §2-3):
+Closed forms (theory §2-3):
 
 * flat punch radius b: ``g = 0`` for ``|x| <= b``, the wall fixes ``a = b``; the whole pressure is
   the edge term ``E* d/(π sqrt(b²-r²))`` (Boussinesq).
@@ -167,7 +167,7 @@ class TruncatedParaboloid(_FlatCentred):
             xg_integral=xg_integral,
             radius_of_depth=lambda d: sp.sqrt((b**2 + sp.sqrt(b**4 + 4 * R**2 * d**2)) / 2),
             reason="the pressure of a truncated paraboloid has no closed form here "
-                   "(elliptic integrals; physics.md §3: quadrature)")
+                   "(elliptic integrals; theory §3: quadrature)")
 
     def _scalar_closed_forms(self) -> dict:
         """Plain-float ``g``, ``∫g`` and ``g'`` for the scalar normal solve (same formulas)."""
@@ -242,4 +242,4 @@ class TruncatedCone(_FlatCentred):
             g_integral=lambda a: s * (a**2 / 2 * sp.acos(b / a) - b / 2 * sp.sqrt(a**2 - b**2)),
             xg_integral=xg_integral,
             reason="a truncated cone has no closed-form inverse of d = s a arccos(b/a) and no "
-                   "closed-form pressure (physics.md §3: quadrature)")
+                   "closed-form pressure (theory §3: quadrature)")

@@ -112,7 +112,7 @@ class Sphere(Profile):
                          g_integral=lambda a: (a**2 - R**2) / 2 * sp.atanh(a / R) + R * a / 2,
                          xg_integral=xg_integral,
                          reason="the exact sphere has no closed-form inverse of d = a artanh(a/R) "
-                                "and no closed-form pressure (physics.md §3: quadrature)")
+                                "and no closed-form pressure (theory §3: quadrature)")
 
     def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray:
         self._guard(x, "x")

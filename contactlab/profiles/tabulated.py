@@ -1,7 +1,7 @@
 """Measured (tabulated) profiles.
 
 ``interpolation="linear"`` (default) is the piecewise-linear interpolant of the table. Its MDR
-transform is exact, a sum of truncated-cone transforms (physics.md §2):
+transform is exact, a sum of truncated-cone transforms (theory §2):
 
     g(x) = x [ s_k π/2 - Σ_{j=1..k} (s_j - s_{j-1}) asin(r_j/x) ],   r_k <= x < r_{k+1}
 

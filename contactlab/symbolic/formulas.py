@@ -1,9 +1,9 @@
-"""Named sympy formulas of a profile and of a contact (physics.md §2-4, §6).
+"""Named sympy formulas of a profile and of a contact (theory §2-4, §6).
 
 Every formula is derived on a route that always terminates: power terms through
 ``κ_n = √π Γ(n/2+1)/Γ(n/2+1/2)`` [H1], the pressure through the hypergeometric form of
-physics.md §3 simplified with :func:`sympy.hyperexpand` (elementary for integer ``n``; a Gauss
-``₂F₁`` remains for other ``n``), the other profiles through the closed forms of physics.md §2.
+theory §3 simplified with :func:`sympy.hyperexpand` (elementary for integer ``n``; a Gauss
+``₂F₁`` remains for other ``n``), the other profiles through the closed forms of theory §2.
 No open-ended ``integrate``/``solve`` runs. A formula that is not known in closed form is *absent*
 and asking for it raises :class:`~contactlab.errors.NotSupportedError` with the reason.
 
@@ -18,7 +18,7 @@ their :class:`~contactlab.params.Param` ``symbol`` (``R``, ``c``, ``s``, ``b``..
 
 References
 ----------
-V. L. Popov, M. Heß, Facta Univ. Mech. Eng. 12 (2014) 1-14 [H1]; physics.md (this project).
+V. L. Popov, M. Heß, Facta Univ. Mech. Eng. 12 (2014) 1-14 [H1]; docs/theory (this project).
 """
 from __future__ import annotations
 
@@ -312,7 +312,7 @@ def profile_formulas(profile: Any) -> FormulaSet:
 def contact_formulas(profile: Any, moduli: Any = None, *, friction: float | None = None,
                      work_of_adhesion: float | None = None, substitute: bool = False
                      ) -> FormulaSet:
-    """Named sympy formulas of a contact (physics.md §3, §4, §6).
+    """Named sympy formulas of a contact (theory §3, §4, §6).
 
     Parameters
     ----------
@@ -383,7 +383,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
             missing[k] = form.reason
         return FormulaSet(exprs, values, missing, owner=repr(profile))
 
-    # ---- normal contact (physics.md §3)
+    # ---- normal contact (theory §3)
     if form.g and form.g_integral:
         F_a = 2 * E * (a * form.g(a) - form.g_integral(a))
         if form.power_terms is not None:
@@ -414,7 +414,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
     else:
         missing["pressure"] = why
 
-    # ---- torsion (physics.md §6): ∫_0^a x² g' dx = a² g(a) - 2 ∫_0^a x g dx
+    # ---- torsion (theory §6): ∫_0^a x² g' dx = a² g(a) - 2 ∫_0^a x g dx
     if form.g and form.xg_integral:
         if form.power_terms is not None:
             x2gp = sp.Add(*[kappa_sympy(n) * c * n / (n + 2) * a ** (n + 2) for c, n in form.power_terms])
@@ -437,7 +437,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
                   "torque_of_stick_radius_mdr"):
             missing[k] = why
 
-    # ---- JKR through the MDR (physics.md §4)
+    # ---- JKR through the MDR (theory §4)
     if "force_of_radius" in exprs:
         exprs["jkr_depth_of_radius"] = form.g(a) - sp.sqrt(2 * pi * a * dg / E)
         exprs["jkr_force_of_radius"] = exprs["force_of_radius"] - sp.sqrt(8 * pi * a**3 * E * dg)

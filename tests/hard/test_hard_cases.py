@@ -1,6 +1,6 @@
 """Hard cases of normal contact that must stay numerically stable (issue 7).
 
-Every expected value is independent of contactlab: closed forms from physics.md re-implemented in
+Every expected value is independent of contactlab: closed forms from docs/theory re-implemented in
 ``_reference.py`` (mpmath, 30 digits), or the definition of the transform integrated by scipy.
 """
 from __future__ import annotations
@@ -99,7 +99,7 @@ class TestRoundedPunch:
         prof = self.profile(eps)
         s = contact(prof).normal(depth=self.d)
         a = self.b * (1 + eps)
-        # physics.md §3: F = 2E*[a d - (a²-b²)^{3/2}/(3R)]
+        # theory §3: F = 2E*[a d - (a²-b²)^{3/2}/(3R)]
         F = 2 * E_STAR * (a * self.d - ((a - self.b) * (a + self.b)) ** 1.5 / (3 * prof.R))
         assert rel(s.radius, a) <= HARD_CLOSED
         assert rel(s.force, F) <= HARD_CLOSED
@@ -246,7 +246,7 @@ def test_two_rigid_bodies_rejected():
 
 
 def test_very_dissimilar_moduli():
-    """E ratio 1e6: E* from physics.md §1, Hertz force, no loss of the soft body's term."""
+    """E ratio 1e6: E* from theory §1, Hertz force, no loss of the soft body's term."""
     hard, soft = cl.Elastic(E=1e12, nu=0.2), cl.Elastic(E=1e6, nu=0.45)
     Es = 1.0 / ((1 - 0.2**2) / 1e12 + (1 - 0.45**2) / 1e6)
     c = cl.Contact(Paraboloid(0.01), materials=(hard, soft))
@@ -301,7 +301,7 @@ def test_tabulated_exact_transform(name):
     p = s.pressure(rr)
     assert_finite(p, s_d.force, s_d.error_estimate)
     assert np.all(p >= 0)
-    # the pressure integrates to the force (physics.md §3: F = 2π ∫ p r dr); the integrand has
+    # the pressure integrates to the force (theory §3: F = 2π ∫ p r dr); the integrand has
     # log singularities at the nodes, so this is a coarse consistency check only
     u = s.displacement(np.array([0.5 * a, 1.5 * a, 10 * a]))
     assert_finite(u)
@@ -343,7 +343,7 @@ def test_tabulated_million_points():
 
 @pytest.mark.parametrize("interpolation", ["linear", "cubic"])
 def test_tabulated_converges_to_analytic(interpolation):
-    """A sampled exact sphere converges to physics.md's sphere force as the table is refined.
+    """A sampled exact sphere converges to the theory's sphere force as the table is refined.
 
     The linear interpolant's slope error makes g converge like (Δr/a)^{3/2} (the 1/sqrt weight
     of the transform near x = r); the spline converges much faster. Bounds, not fitted orders:
@@ -384,7 +384,7 @@ def test_rtol_validation(bad):
 
 def test_tabulated_pressure_and_displacement_against_quad():
     """The truncated-cone sums for p and u_z of a 10-point table against scipy quad of the
-    definitions built on the independent g (physics.md §3)."""
+    definitions built on the independent g (theory §3)."""
     r = np.linspace(0, 1e-3, 10)
     f = r**2 / (2 * R_TAB) + 1e-2 * r**3
     a = 0.777e-3

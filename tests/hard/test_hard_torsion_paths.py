@@ -1,8 +1,8 @@
 """Hard cases of torsion and load paths that must stay numerically stable (issue 7).
 
 Expected values are independent of contactlab: the mpmath reference ``tests/reference/
-torsion_reference.py`` (physics.md §6.2-6.4 closed forms: Lubkin/Hertz table, flat-punch onset,
-MDR narrow-slip formulas), moduli and Hertz radii re-derived here from physics.md §1/§3.
+torsion_reference.py`` (theory §6.2-6.4 closed forms: Lubkin/Hertz table, flat-punch onset,
+MDR narrow-slip formulas), moduli and Hertz radii re-derived here from theory §1/§3.
 """
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ def hertz_contact(R=0.01, m1=None, m2=None, mu=MU) -> cl.Contact:
 
 
 def hats(state, F, G_t, mu=MU):
-    """φ̂ = φ G_t a²/(μF), M̂ = M/(μFa) (physics.md §6.3) with the state's own radius."""
+    """φ̂ = φ G_t a²/(μF), M̂ = M/(μFa) (theory §6.3) with the state's own radius."""
     a = float(state.normal.radius)
     return state.twist * G_t * a * a / (mu * F), state.torque / (mu * F * a)
 
@@ -201,7 +201,7 @@ SCALES = {
 
 
 def moduli_by_hand(mats):
-    """physics.md §1: 1/E* = Σ(1-ν²)/E, 1/G_t = Σ 1/G (rigid: 0)."""
+    """theory §1: 1/E* = Σ(1-ν²)/E, 1/G_t = Σ 1/G (rigid: 0)."""
     inv_e = sum((1 - m.nu**2) / m.E for m in mats if isinstance(m, cl.Elastic))
     inv_g = sum(2 * (1 + m.nu) / m.E for m in mats if isinstance(m, cl.Elastic))
     return 1 / inv_e, 1 / inv_g

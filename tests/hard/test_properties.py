@@ -3,7 +3,7 @@
 * F(d) is non-decreasing (strictly, once in contact): stiffness 2E*a >= 0.
 * F ∝ E* at fixed depth; the contact radius does not depend on E*.
 * Power-law self-similarity: a ∝ d^{1/n} and F ∝ a^{n+1}, so F(λd) = λ^{(n+1)/n} F(d) and
-  a(λd) = λ^{1/n} a(d) (physics.md §3: d = κ_n c a^n, F = 2E* κ_n c a^{n+1} n/(n+1)).
+  a(λd) = λ^{1/n} a(d) (theory §3: d = κ_n c a^n, F = 2E* κ_n c a^{n+1} n/(n+1)).
 * Force → depth → force round trip; g(radius_of_depth(d)) = d (the inverse of the transform).
 """
 from __future__ import annotations

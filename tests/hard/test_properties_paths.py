@@ -1,9 +1,9 @@
 """Property tests (hypothesis) of torsion and load-path invariants (issue 7).
 
 * energy balance of the MDR foundation (contact.simulate): work in = stored + dissipated, with
-  the stored energy rebuilt from the spring states (Σ m²/(2K), K = 16G_t∫_cell x² dx, physics.md
+  the stored energy rebuilt from the spring states (Σ m²/(2K), K = 16G_t∫_cell x² dx, docs/theory
   §6.4) and the normal elastic energy (§3); the per-step work is bracketed rigorously (below);
-* Masing rule (physics.md §6.5) for random twist histories: branches from the monotonic solver,
+* Masing rule (theory §6.5) for random twist histories: branches from the monotonic solver,
   closure of wiped-out loops, odd symmetry;
 * dM/dφ = (16/3)G_t c³ (§6.2 item 4, §6.4) from finite differences;
 * monotonic loading: M(φ) non-decreasing, c(φ) non-increasing.
@@ -36,7 +36,7 @@ def contact(profile=None, rtol=None) -> cl.Contact:
 
 CONTACT = contact()
 A = float(hz.radius_of_force(F_N, 0.01, hz.effective_modulus(1e9, 0.3, 1e9, 0.3)))   # Hertz [J85]
-G_T = 1e9 / 2.6 / 2                                        # identical bodies, physics.md §1
+G_T = 1e9 / 2.6 / 2                                        # identical bodies, theory §1
 PHI_REF = float(CONTACT.torsion(force=F_N, stick_radius=0.3 * A, method="exact").twist)
 
 #: random twist histories: turning points as fractions of PHI_REF, steps per run
@@ -102,7 +102,7 @@ def test_energy_balance_random_twist_history_simulate(points, n, probe):
 def test_energy_balance_fine_steps_simulate(family):
     """Fine steps (1000 per run): the work bracket shrinks to ~4e-3 of the work, and
     ∫F dd + ∫M dφ (or ∫F_x du) = U_N + Σ m²/(2K) + D stays inside it; tangential cells have
-    K = 2G*w (springs G*Δx on both sides, physics.md §5), G* = 2G/(2-ν) for identical bodies."""
+    K = 2G*w (springs G*Δx on both sides, theory §5), G* = 2G/(2-ν) for identical bodies."""
     G = 1e9 / 2.6
     if family == "twist":
         amp, K_of = PHI_REF, (lambda b: 16.0 * G_T * np.diff(b**3) / 3.0)

@@ -1,4 +1,4 @@
-"""Independent reference implementations of normal-contact closed forms (physics.md §2-3).
+"""Independent reference implementations of normal-contact closed forms (theory §2-3).
 
 Written with mpmath at 30 digits, from the published formulas, without importing contactlab.
 Sources: Hertz / Boussinesq / Sneddon [Sn65], power laws [H1, PH], exact sphere [PH].
@@ -31,7 +31,7 @@ def hertz(E, R, d):
 
 
 def power_law(E, c, n, a):
-    """f = c r^n at contact radius a: d, F, p(r), u_outside(r) (physics.md §3 table)."""
+    """f = c r^n at contact radius a: d, F, p(r), u_outside(r) (theory §3 table)."""
     E, c, n, a = map(mp.mpf, (E, c, n, a))
     k = kappa(n)
     d = k * c * a**n
@@ -80,7 +80,7 @@ def flat_punch(E, b, d):
 
 
 def sphere(E, R, a):
-    """Exact spherical cap: d, F (physics.md §3 table); pressure by mp.quad of the MDR integral."""
+    """Exact spherical cap: d, F (theory §3 table); pressure by mp.quad of the MDR integral."""
     E, R, a = map(mp.mpf, (E, R, a))
     d = a / 2 * mp.log((R + a) / (R - a))
     F = E * ((a**2 + R**2) / 2 * mp.log((R + a) / (R - a)) - a * R)

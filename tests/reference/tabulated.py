@@ -11,7 +11,7 @@ import numpy as np
 from scipy import integrate
 
 def table_g_sum(r: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """physics.md §2 table row: g(x) = x Σ_i s_i [asin(min(r_{i+1},x)/x) - asin(r_i/x)], r_i < x.
+    """theory §2 table row: g(x) = x Σ_i s_i [asin(min(r_{i+1},x)/x) - asin(r_i/x)], r_i < x.
 
     ``r`` must start at 0 (prepend the flat extension before calling). Vectorised over ``x``.
     """

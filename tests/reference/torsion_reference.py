@@ -1,12 +1,12 @@
-"""Independent high-precision (mpmath) reference for torsion, written from physics.md §6 only.
+"""Independent high-precision (mpmath) reference for torsion, written from theory §6 only.
 
-Nothing here imports contactlab. Pressures come from the closed forms of physics.md §3; the slip
+Nothing here imports contactlab. Pressures come from the closed forms of theory §3; the slip
 function ``P(x) = ∫_x^a p(s)/sqrt(s²-x²) ds`` is integrated directly from the pressure (substitution
 ``s = x cosh u``), the torque from the *swapped single integral* of §6.2 item 3 (a different route
 from contactlab's universal-kernel form), full sliding from ``2πμ∫ p r² dr``. Hertz uses the
 Lubkin-problem closed forms of §6.3 (complete elliptic integrals).
 
-Sources: physics.md §3 (pressures), §6.1-6.5 (torsion), [J95], [L51], [D54], [RS44].
+Sources: theory §3 (pressures), §6.1-6.5 (torsion), [J95], [L51], [D54], [RS44].
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def K_of_comp(u):
     return mp.pi / (2 * mp.agm(1, u))
 
 
-# ------------------------------------------------------------------ pressures (physics.md §3)
+# ------------------------------------------------------------------ pressures (theory §3)
 def pressure_power(r, a, E_star, c, n):
     """Power law f = c r^n, non-adhesive: (E* n κ_n c a^{n-1}/π) sqrt(1-ρ²) ₂F₁(1-n/2,1;3/2;1-ρ²)."""
     r, a, c, n = (mp.mpf(v) for v in (r, a, c, n))

@@ -1,4 +1,4 @@
-"""Adhesive (JKR) contacts through the MDR against independent closed forms (physics.md §4)."""
+"""Adhesive (JKR) contacts through the MDR against independent closed forms (theory §4)."""
 from __future__ import annotations
 
 import numpy as np

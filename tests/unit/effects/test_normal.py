@@ -1,4 +1,4 @@
-"""Normal contact against independent closed forms (physics.md §3), rtol <= 1e-10."""
+"""Normal contact against independent closed forms (theory §3), rtol <= 1e-10."""
 from __future__ import annotations
 
 import mpmath as mp

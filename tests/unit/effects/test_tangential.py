@@ -1,5 +1,5 @@
 """Cattaneo–Mindlin closed forms (contact.tangential, contact.shift_history) against independent
-re-implementations of physics.md §5 (Mindlin 1949, Mindlin–Deresiewicz 1953)."""
+re-implementations of theory §5 (Mindlin 1949, Mindlin–Deresiewicz 1953)."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -103,7 +103,7 @@ def test_shift_history_mindlin_deresiewicz_loop_and_energy():
     up = (k > 150) & (k <= 250)
     np.testing.assert_allclose(h.tangential_force[up], -md_loop(c, F, u0, -u[up]),
                                rtol=TOL.CM_CLOSED, atol=TOL.ABS_FLOOR * MU * F)
-    # energy per cycle, Mindlin–Deresiewicz (physics.md §5), t = T/(μF)
+    # energy per cycle, Mindlin–Deresiewicz (theory §5), t = T/(μF)
     a = c.normal(force=F).radius
     T = hertz_ref(c, F, u0)[0]
     t = T / (MU * F)

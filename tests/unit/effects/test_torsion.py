@@ -1,7 +1,7 @@
-"""Torsion (issue 3): no slip, exact partial slip, MDR narrow-slip model, against physics.md §6.
+"""Torsion (issue 3): no slip, exact partial slip, MDR narrow-slip model, against theory §6.
 
 Expected values come from tests/reference/torsion_reference.py (independent mpmath, 30 digits) or
-from the reference tables of physics.md §6.3/6.4 (independent 30-digit computation), never from
+from the reference tables of theory §6.3/6.4 (independent 30-digit computation), never from
 contactlab's own output.
 """
 from __future__ import annotations
@@ -18,7 +18,7 @@ from tests.reference import torsion_reference as ref
 
 E1, NU1, E2, NU2 = 210e9, 0.3, 70e9, 0.33
 G1, G2 = E1 / (2 * (1 + NU1)), E2 / (2 * (1 + NU2))
-G_T = 1.0 / (1.0 / G1 + 1.0 / G2)                       # physics.md §1: compliances add
+G_T = 1.0 / (1.0 / G1 + 1.0 / G2)                       # theory §1: compliances add
 E_STAR = 1.0 / ((1 - NU1**2) / E1 + (1 - NU2**2) / E2)
 MU = 0.3
 R = 0.01
@@ -29,7 +29,7 @@ PHI_SCALE = MU * F_HERTZ / (G_T * A**2)                 # φ̂ = φ / PHI_SCALE
 M_SCALE = MU * F_HERTZ * A                              # M̂ = M / M_SCALE
 RATIOS = [0.99, 0.9, 0.5, 0.1, 0.01]
 
-# physics.md §6.3 reference table: c/a -> (φ̂ exact, M̂ exact, φ̂ MDR, M̂ MDR)
+# theory §6.3 reference table: c/a -> (φ̂ exact, M̂ exact, φ̂ MDR, M̂ MDR)
 TABLE_63 = {0.99: (0.00375945, 0.0197514, 0.00376894, 0.0198010),
             0.9: (0.0385139, 0.176345, 0.0395833, 0.180975),
             0.5: (0.225712, 0.528576, 0.28125, 0.609375),
@@ -146,7 +146,7 @@ def test_hertz_hard_stick_ratios(hertz, t):
 
 
 def test_incremental_stiffness_identity(hertz):
-    """dM/dφ = (16/3) G_t c³ (physics.md §6.2 item 4), by central differences."""
+    """dM/dφ = (16/3) G_t c³ (theory §6.2 item 4), by central differences."""
     phi = 0.3 * PHI_SCALE
     h = 1e-5 * phi
     s = hertz.torsion(radius=A, twist=[phi - h, phi, phi + h])
@@ -162,7 +162,7 @@ def test_hertz_stick_zone_traction(hertz):
     tau = s.shear(rho * A) / (MU * P0)
     expect = [float(ref.hertz_stick_shear_hat(x, t)) for x in rho]
     np.testing.assert_allclose(tau, expect, rtol=TOL.TORSION_EXACT, atol=TOL.ABS_FLOOR)
-    # physics.md §8 item 2 (4 digits)
+    # theory §8 item 2 (4 digits)
     np.testing.assert_allclose(tau[:4], [0, 0.0865, 0.231, 0.438], atol=TOL.TABLE_3_DIGITS)
 
 
@@ -327,7 +327,7 @@ def test_mdr_reproduces_seed_eq52_hertz(hertz, t):
 
 
 def test_mdr_converges_to_exact_with_second_order(hertz):
-    """Relative torque error at equal twist → 0 as c/a → 1, like (1 - c/a)² (physics.md §6.4)."""
+    """Relative torque error at equal twist → 0 as c/a → 1, like (1 - c/a)² (theory §6.4)."""
     t = 1 - np.array([1e-2, 5e-3, 2.5e-3, 1.25e-3])
     ex = hertz.torsion(radius=A, stick_radius=t * A)
     md = hertz.torsion(radius=A, twist=ex.twist, method="mdr")
@@ -335,7 +335,7 @@ def test_mdr_converges_to_exact_with_second_order(hertz):
     assert np.all(err > 0)
     slope = np.polyfit(np.log(1 - t), np.log(err), 1)[0]
     assert abs(slope - 2.0) < 0.05
-    # physics.md §6.4 table: 2.5e-5 at c/a = 0.99 (same φ), 0.27 % at 0.9
+    # theory §6.4 table: 2.5e-5 at c/a = 0.99 (same φ), 0.27 % at 0.9
     md2 = hertz.torsion(radius=A, stick_radius=np.array([0.99, 0.9]) * A, method="mdr")
     ex2 = hertz.torsion(radius=A, twist=md2.twist)
     np.testing.assert_allclose(md2.torque / ex2.torque, [1.000025, 1.00272], atol=TOL.TABLE_6_DIGITS)  # 6 digits

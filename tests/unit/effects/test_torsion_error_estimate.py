@@ -3,7 +3,7 @@
 stick ratios ``c/a``.
 
 Actual errors come from the independent mpmath reference (tests/reference/torsion_reference.py:
-Hertz closed forms of physics.md §6.3 for the paraboloid, the direct pressure integrals of §6.2
+Hertz closed forms of theory §6.3 for the paraboloid, the direct pressure integrals of §6.2
 for cone, flat punch and n = 4). The 200-point tabulated paraboloid has no closed form for its
 piecewise-linear shape; its reference is the same state at ``rtol = 1e-14`` (a second, converged
 run: the estimate is about the numerical error against the given table, not the interpolation).
@@ -134,7 +134,7 @@ def test_estimate_in_meta_and_array_shape():
 @pytest.mark.parametrize("method", ["no-slip", "mdr"])
 def test_closed_form_parts_carry_a_rounding_floor(method):
     """No-slip: ``M = (16/3) G_t a³ φ`` (closed form) — the estimate is a rounding floor, above the
-    actual error; MDR against its own closed form for Hertz (physics.md §6.4)."""
+    actual error; MDR against its own closed form for Hertz (theory §6.4)."""
     ct = cl.Contact(cl.profiles.Paraboloid(R=R), (MAT, MAT), friction=MU, rtol=1e-10)
     d = 4e-6
     a = float(ct.normal(depth=d).radius)

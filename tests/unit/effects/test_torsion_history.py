@@ -1,4 +1,4 @@
-"""Twist histories (physics.md §6.5): Masing rule with turning-point memory, dissipated energy.
+"""Twist histories (theory §6.5): Masing rule with turning-point memory, dissipated energy.
 
 Independent checks: the Lubkin closed forms (mpmath), the loop-energy formula
 W = 8∫M_load dφ - 4φ0M0 integrated in mpmath, the small-amplitude cube law of [D54], and a
@@ -83,7 +83,7 @@ def test_small_amplitude_cube_law(hertz, t0, excess):
 
 
 def _hertz_slip_rotation(x: np.ndarray) -> np.ndarray:
-    """μ P(x)/(2G_t) with P = p0 [K(k) - E(k)], k² = 1 - x²/a² (physics.md §6.3; scipy, not contactlab)."""
+    """μ P(x)/(2G_t) with P = p0 [K(k) - E(k)], k² = 1 - x²/a² (theory §6.3; scipy, not contactlab)."""
     m = 1 - (x / A) ** 2
     return MU * P0 * (ellipk(m) - ellipe(m)) / (2 * G_T)
 
@@ -203,7 +203,7 @@ def test_flat_punch_history_energy_per_cycle():
 
 @pytest.mark.parametrize("t0,low", [(0.99, 0.0025), (0.9, 0.024)])
 def test_mdr_loop_energy_vs_exact(hertz, t0, low):
-    """physics.md §6.5: at the same φ0 the MDR W is 0.25 % low at c0/a = 0.99, 2.4 % low at 0.9."""
+    """theory §6.5: at the same φ0 the MDR W is 0.25 % low at c0/a = 0.99, 2.4 % low at 0.9."""
     phi0 = float(ref.hertz_twist_hat(t0)) * PHI_SCALE
     tw = [phi0, -phi0, phi0]
     W_ex = np.diff(hertz.twist_history(twist=tw, force=F_HERTZ).dissipated_energy[[0, 2]])[0]
@@ -211,4 +211,4 @@ def test_mdr_loop_energy_vs_exact(hertz, t0, low):
         warnings.simplefilter("ignore", ValidityWarning)
         hm = hertz.twist_history(twist=tw, force=F_HERTZ, method="mdr")
     W_md = hm.dissipated_energy[2] - hm.dissipated_energy[0]
-    assert abs((1 - W_md / W_ex) / low - 1) < 0.05      # physics.md quotes two digits
+    assert abs((1 - W_md / W_ex) / low - 1) < 0.05      # docs/theory quotes two digits

@@ -1,4 +1,4 @@
-"""Viscoelastic materials and the MDR viscoelastic foundation against closed forms (physics.md §7)."""
+"""Viscoelastic materials and the MDR viscoelastic foundation against closed forms (theory §7)."""
 from __future__ import annotations
 
 import numpy as np
@@ -88,7 +88,7 @@ def test_relaxation_rejects_negative_time():
         Maxwell(G, ETA).relaxation(-1.0)
 
 
-# ---- closed forms of physics.md §7 ---------------------------------------------------------
+# ---- closed forms of theory §7 ---------------------------------------------------------
 def test_kelvin_voigt_constant_rate():
     """F = (16/3) G a³/R + 8ηva with a = sqrt(R v t)."""
     v = 1e-5
@@ -236,7 +236,7 @@ def test_two_viscoelastic_bodies_not_supported():
 
 def test_elastic_solvers_and_torsion_not_covered():
     c = contact(Maxwell(G, ETA))
-    with pytest.raises(NotSupportedError, match="not covered by the theory in physics.md"):
+    with pytest.raises(NotSupportedError, match="not covered by the theory in docs/theory"):
         c.normal(depth=1e-6)
     # torsion (issue 3) and tangential solvers go through the same effective moduli
     with pytest.raises(NotSupportedError, match="torsion"):

@@ -47,7 +47,7 @@ def cm_loop(FN, us, n, u, u_turn):
 
 
 def mdr_torsion_hertz(c, FN, a, phi):
-    """physics.md §6.4, Hertz: φ = 3μF(1-t²)/(16 G_t a² t), M = (3/4)μFa(1-t²)(1+t²/3)."""
+    """theory §6.4, Hertz: φ = 3μF(1-t²)/(16 G_t a² t), M = (3/4)μFa(1-t²)(1+t²/3)."""
     Gt = c.moduli.torsional
     beta = 16 * Gt * a ** 2 * np.abs(phi) / (3 * MU * FN)
     t = np.sqrt(1 + beta ** 2 / 4) - beta / 2

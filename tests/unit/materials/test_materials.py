@@ -1,4 +1,4 @@
-"""Effective moduli (physics.md §1) against the formulas written out independently."""
+"""Effective moduli (theory §1) against the formulas written out independently."""
 from __future__ import annotations
 
 import pytest
@@ -17,7 +17,7 @@ def test_steel_on_steel():
     assert m.tangential == pytest.approx(2 * G / (2 - nu), rel=CLOSED_FORM)
     assert m.torsional == pytest.approx(G / 2, rel=CLOSED_FORM)     # identical bodies: G_t = G/2
     assert m.elastically_similar
-    # physics.md §1: G*/G_t = 2.35 for steel on steel
+    # theory §1: G*/G_t = 2.35 for steel on steel
     assert m.tangential / m.torsional == pytest.approx(4 / (2 - nu) / 1, rel=CLOSED_FORM)
     assert round(m.tangential / m.torsional, 2) == 2.35
 

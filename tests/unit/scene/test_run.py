@@ -168,7 +168,7 @@ def test_monotone_twist_against_lubkin():
     a, _ = hertz(100.0, 0.01, E_STEEL)
     mu, F = 0.2, 100.0
 
-    def phi_of_t(t):   # physics.md §6.3
+    def phi_of_t(t):   # theory §6.3
         m = 1 - t * t
         return 3 * mu * F / (4 * mp.pi * G_t * a * a) * (mp.ellipk(m) - mp.ellipe(m))
     for phi, M, c in zip(res["twist"][-3:], res["torque"][-3:], res["stick_radius"][-3:]):

@@ -1,4 +1,4 @@
-"""Exported formulas against the numeric solver and independent closed forms (physics.md)."""
+"""Exported formulas against the numeric solver and independent closed forms (docs/theory)."""
 from __future__ import annotations
 
 import math
@@ -116,11 +116,11 @@ def _x2_gprime(prof, a):
 
 
 def test_torsion_formulas_against_direct_integrals(case):
-    """physics.md §6.2 item 4 (exact full sliding), §6.4 (MDR stick radius and torque)."""
+    """theory §6.2 item 4 (exact full sliding), §6.4 (MDR stick radius and torque)."""
     contact, fs, a = case
     prof = contact.profile
     E, Gt = contact.moduli.normal, contact.moduli.torsional
-    # G_t from the two shear moduli (physics.md §1), not G*
+    # G_t from the two shear moduli (theory §1), not G*
     assert Gt == pytest.approx(1 / (1 / STEEL.G + 1 / RUBBER.G), rel=TOL.ULPS)
     phi = 1e-3
     assert rel(fs.callable("torque_no_slip")(a, phi), 16 / 3 * Gt * a**3 * phi) < TOL.SHORT_ARITHMETIC
@@ -140,7 +140,7 @@ def test_torsion_formulas_against_direct_integrals(case):
 
 
 def test_jkr_relations(case):
-    """physics.md §4: d = g(a) - sqrt(2πaΔγ/E*), F = F_nonadh(a) - sqrt(8πa³E*Δγ)."""
+    """theory §4: d = g(a) - sqrt(2πaΔγ/E*), F = F_nonadh(a) - sqrt(8πa³E*Δγ)."""
     contact, fs, a = case
     E = contact.moduli.normal
     radii = np.array([0.75, 1.0]) * a
@@ -169,7 +169,7 @@ def test_hertz_torsion_and_jkr_textbook_forms():
     t = cs / a
     assert sp.simplify(c["torque_full_slip_exact"] - 3 * sp.pi / 16 * mu * F * a) == 0
     assert sp.simplify(c["torque_full_slip_mdr"] - sp.Rational(3, 4) * mu * F * a) == 0
-    # physics.md §6.4 (Hertz, derived): φ = 3μF(1-t²)/(16 G_t a² t), M = (3/4)μFa(1-t²)(1+t²/3)
+    # theory §6.4 (Hertz, derived): φ = 3μF(1-t²)/(16 G_t a² t), M = (3/4)μFa(1-t²)(1+t²/3)
     assert sp.simplify(c["twist_of_stick_radius_mdr"] - 3 * mu * F * (1 - t**2) / (16 * Gt * a**2 * t)) == 0
     assert sp.simplify(c["torque_of_stick_radius_mdr"]
                        - sp.Rational(3, 4) * mu * F * a * (1 - t**2) * (1 + t**2 / 3)) == 0
@@ -179,7 +179,7 @@ def test_hertz_torsion_and_jkr_textbook_forms():
 
 
 def test_cone_and_power_law_pull_off():
-    """physics.md §4: cone a_c = 18Δγ/(πE*tan²β), F_c = -54Δγ²/(πE*tan³β); power law: dF/da=0"""
+    """theory §4: cone a_c = 18Δγ/(πE*tan²β), F_c = -54Δγ²/(πE*tan³β); power law: dF/da=0"""
     cone = cl.Contact(Cone(slope=0.2), materials=MATS)
     fs = cone.formulas()
     E = cone.moduli.normal
@@ -222,7 +222,7 @@ def test_flat_punch_formulas():
     assert rel(fs.callable("depth_of_force")(st.force), d) < SYMBOLIC_VS_SOLVER
     r = np.array([0.0, 0.5, 0.9]) * b
     assert rel(fs.callable("pressure")(r, d), st.pressure(r)) < SYMBOLIC_VS_SOLVER
-    # edge term of physics.md §6.2 item 4: exact (π/2)μE* b² d, MDR 4/π times it
+    # edge term of theory §6.2 item 4: exact (π/2)μE* b² d, MDR 4/π times it
     assert rel(fs.callable("torque_full_slip_exact")(d), np.pi / 2 * MU * E * b**2 * d) < TOL.SHORT_ARITHMETIC
     assert rel(fs.callable("torque_full_slip_mdr")(d), 2 * MU * E * b**2 * d) < TOL.SHORT_ARITHMETIC
     assert rel(fs.callable("jkr_pull_off_force", Delta_gamma=DG)(),
