@@ -96,7 +96,7 @@ def _commands(page: Path) -> list[str]:
             line = re.sub(r"^pip install .*?&&\s*", "", line)
             if not line.startswith("contactlab"):
                 continue
-            line = re.sub(r"\s*\[[^\]]*\]", "", line)           # optional parts: left out
+            line = re.sub(r"\s+\[[^\]]*\]", "", line)           # optional parts: left out
             line = re.sub(r"(\S+)\|\S+", r"\1", line)              # a|b: the first choice
             out.append(line)
     return out
