@@ -148,7 +148,8 @@ class TruncatedParaboloid(_FlatCentred):
 
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         b = self.radius
-        return np.sqrt(0.5 * (b**2 + np.sqrt(b**4 + 4 * self.R**2 * d**2)))
+        bb = b * b          # hypot: no overflow of b⁴ or d² (plain floats raise on ** overflow)
+        return np.sqrt(0.5 * (bb + np.hypot(bb, 2.0 * self.R * d)))
 
     def _sympy_form(self) -> SympyForm:
         import sympy as sp
