@@ -99,6 +99,7 @@ class Contact:
 
     @property
     def is_adhesive(self) -> bool:
+        """True when the contact has a work of adhesion ``Δγ > 0`` J/m² (JKR states)."""
         return bool(self.work_of_adhesion)
 
     # ------------------------------------------------------------------ normal contact
@@ -147,14 +148,27 @@ class Contact:
         Returns
         -------
         AdhesiveNormalState
-            ``.force``, ``.radius``, ``.depth`` at detachment.
+            ``.force`` (N), ``.radius`` (m), ``.depth`` (m) at detachment.
         """
         self._require_adhesion("pull_off")
         return _adhesion.pull_off(self, control)
 
     def adhesion_cycle(self, *, depth: Any = None, force: Any = None) -> AdhesionCycle:
-        """Approach/retraction history with JKR jump-in and jump-off; see
-        :func:`contactlab.effects.adhesion.adhesion_cycle`."""
+        """Approach/retraction history with JKR jump-in and jump-off.
+
+        Parameters
+        ----------
+        depth : array_like, 1D
+            Depth history, m (exactly one of ``depth``/``force``).
+        force : array_like, 1D
+            Force history, N.
+
+        Returns
+        -------
+        AdhesionCycle
+            Per-step depth (m), force (N), radius (m) and contact flag; see
+            :func:`contactlab.effects.adhesion.adhesion_cycle`.
+        """
         self._require_adhesion("adhesion_cycle")
         return _adhesion.adhesion_cycle(self, depth=depth, force=force)
 
@@ -169,7 +183,19 @@ class Contact:
                              ) -> ViscoelasticHistory:
         """Normal contact history of a rigid indenter on a viscoelastic half-space (MDR, [H3]).
 
-        See :func:`contactlab.effects.viscoelastic.viscoelastic_history`.
+        Parameters
+        ----------
+        time : array_like, 1D
+            Times, s (increasing).
+        depth, force : array_like, 1D
+            Depth history (m) or force history (N); exactly one.
+        n_springs : int, optional
+            Foundation elements; ``max_radius`` (m) bounds the foundation.
+
+        Returns
+        -------
+        ViscoelasticHistory
+            See :func:`contactlab.effects.viscoelastic.viscoelastic_history`.
         """
         return _viscoelastic.viscoelastic_history(self, time=time, depth=depth, force=force,
                                     n_springs=n_springs, max_radius=max_radius)
@@ -200,10 +226,18 @@ class Contact:
         Exact Masing hysteresis with turning-point memory (closed loops are erased), from the
         Cattaneo–Mindlin virgin curve [theory §5].
 
+        Parameters
+        ----------
+        displacement : array_like, 1D
+            Tangential displacement history, m.
+        depth, force : float
+            Constant normal preload, m or N (exactly one).
+
         Returns
         -------
         ShiftHistory
-            ``.displacement .tangential_force .stick_radius .dissipated_energy`` per step.
+            Per step: ``.displacement`` (m), ``.tangential_force`` (N), ``.stick_radius`` (m),
+            ``.dissipated_energy`` (J, cumulative).
         """
         return _tangential.shift_history(self, displacement=displacement, depth=depth, force=force)
 
@@ -219,9 +253,15 @@ class Contact:
         twist or torque runs the exact torsion solver by default (``method="exact"``, ``n_rings``
         rings); ``method="mdr"`` keeps the MDR spring model.
 
+        Parameters
+        ----------
+        path : LoadPath
+            The load path; its quantities are SI (m, N, rad, N*m, s).
+
         Returns
         -------
         PathResult
+            Per-step series in SI units (the units are in the ``to_csv`` headers).
         """
         return _path.simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                         snapshots=snapshots, progress=progress, approximate=approximate,
@@ -242,6 +282,7 @@ class Contact:
         Returns
         -------
         contactlab.symbolic.formulas.FormulaSet
+            Formulas in SI units (lengths m, forces N, moduli Pa, angles rad).
             Mapping ``name -> sympy expression``; ``.latex()``, ``.python()``, ``.callable(name)``.
 
         Examples
@@ -391,7 +432,8 @@ class Contact:
                      threshold: float | None = None, boundary: bool = True) -> FrettingMap:
         """Fretting regime map over 1D arrays of normal loads and amplitudes.
 
-        Same keywords as :meth:`fretting_loop` with arrays; ``boundary=False`` skips the
+        Same keywords as :meth:`fretting_loop` with 1D arrays (normal forces in N, amplitudes in
+        m or rad); ``boundary=False`` skips the
         torsional boundary root. Returns a :class:`~contactlab.effects.fretting.FrettingMap`
         (``.regime .energy_ratio .energy .stick_ratio .boundary``, ``.plot()``,
         ``.to_dataframe()``, ``.to_csv()``).

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError
 from ..foundation.base import path_normal_states
 from ..foundation.rings import Rings
@@ -166,5 +167,6 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots):
     meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_springs,
             "n_springs": None, "spacing": spacing, "foundation": repr(rings),
             "approximate": False, "iterations": iters,
-            "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss}}
+            "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},
+            "citations": sources_for("normal", "torsion:exact")}
     return PathResult({k: res[k] for k in outputs}, snap_data, meta)

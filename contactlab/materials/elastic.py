@@ -55,7 +55,7 @@ class Elastic(Material):
 
 
 class Rigid(Material):
-    """A rigid body (all compliances zero)."""
+    """A rigid body (all compliances zero: ``1/E = 1/G = 0`` 1/Pa)."""
 
     name: ClassVar[str] = "rigid"
     params: ClassVar[tuple[Param, ...]] = ()

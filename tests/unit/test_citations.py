@@ -82,6 +82,10 @@ def test_foundation_path():
                                                                      steps_per_cycle=8),
                      n_springs=50)
     assert MDR | {"S"} <= _tags(res)
+    exact = c.simulate(cl.LoadPath().ramp(force=10.0, steps=5).sinusoid(twist=1e-5, cycles=1,
+                                                                       steps_per_cycle=8),
+                       method="exact")
+    assert MDR | {"J95"} <= _tags(exact) and "S" not in _tags(exact)
 
 
 def test_fretting():
