@@ -387,6 +387,58 @@ def _set_keff(ch: dict, weight: np.ndarray) -> None:
     np.divide(ch["invK"], weight, out=ch["iKeff"], where=weight > 0)
 
 
+def _fused_step(fnd: Winkler, chans: list) -> Any:
+    """The compiled fused step (numba backend) for one spring family with friction, else None;
+    its arguments per family: the limit's cell integrals and friction factor."""
+    from ..foundation._compiled import fused_step
+    if len(chans) != 1 or fnd.friction is None:
+        return None
+    kernel = fused_step()
+    if kernel is None:
+        return None
+    tor = chans[0]["L"] == "L_tor"
+    chans[0]["fused"] = ((fnd.X1, fnd.dH, fnd._c_tor) if tor else (fnd.w, fnd.dG, fnd._c_tan))
+    return kernel
+
+
+def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, out_W,
+               out_stick):
+    """Steps ``i0 ...`` (each with a new depth, a prescribed displacement/twist) in one compiled
+    call (the same element arithmetic as ``set_normal`` + stiffness weighting + ``jenkins`` + sum
+    + stick radius per step), then the normal state and slip limits of the last step."""
+    X1, dH, c = ch["fused"]
+    n = d.size
+    sl = slice(i0, i0 + n)
+    stick = out_stick[sl] if out_stick is not None else np.empty(n)
+    W = out_W[sl]
+    sgn, lo = kernel(d, a, k, S_edge, T_edge, target, st.depth, st.k, ch["x"], ch["release"], c,
+                     fnd.w, fnd.dG, X1, dH, ch["K"], ch["invK"], ch["iKeff"], st.S, ch["m"],
+                     fnd.bl, state["W"], ch["out_frc"][sl], W, stick, out_stick is not None)
+    ch["iKeff"][:lo] = ch["invK"][:lo]   # the bulk of the last step (weight 1)
+    dl, kl = float(d[-1]), int(k[-1])
+    S = dl * fnd.w
+    S -= fnd.dG
+    S[kl + 1:] = 0.0
+    S[kl] = S_edge[-1]
+    if ch["L"] == "L_tor":
+        T = dl * X1
+        T -= dH
+        T[kl + 1:] = 0.0
+        T[kl] = T_edge[-1]
+        st.L_tor = c * T
+        st.nL_tor = -st.L_tor
+    else:
+        st.L_tan = c * S
+        st.nL_tan = -st.L_tan
+    st.S, st.depth, st.radius, st.k = S, dl, float(a[-1]), kl
+    state.update(first=False, keff_is_frac=False, W=float(W[-1]))
+    if sgn != 0.0:
+        ch["dir"] = sgn
+    ch["release"] = False
+    ch["x"] = float(target[-1])
+    ch["out_pos"][sl] = target
+
+
 def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
          strategy="segments"):
     """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
@@ -414,6 +466,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
     bar = _progress(res["time"].size, progress)
     snap_idx = np.array(sorted(snaps), int)
     state = {"W": 0.0, "first": True, "keff_is_frac": False}
+    fused = _fused_step(fnd, chans)
 
     def step(i, d, a, k_edge, S_edge, T_edge, targets):
         W = state["W"]
@@ -512,6 +565,9 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         prev_d = np.concatenate(([st.depth], d_arr[:-1]))
         prev_a = np.concatenate(([st.radius], a_arr[:-1]))
         changed = (d_arr != prev_d) | (a_arr != prev_a)
+        d_same = np.flatnonzero(d_arr == prev_d)   # steps the fused kernel leaves to step()
+        eT_arr = (ed["T"] if "T" in ed and chans and chans[0]["L"] == "L_tor"
+                  else ed["S"]).astype(float)
         if state["first"]:
             changed[0] = True
         breaks = [np.array([0, nsteps])]
@@ -532,14 +588,37 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
         dl, al = d_arr.tolist(), a_arr.tolist()
         chl = changed.tolist()
+        fusing = fused is not None and chans[0]["ctrl"] == chans[0]["pos"]
+
+        def steps(j0, j1):
+            j = j0
+            while j < j1:   # runs of steps with a new depth each: one compiled call per run
+                r = min(j1, _next(d_same, j - 1, nsteps)) if fusing else j
+                if r > j:
+                    _fused_run(fused, fnd, st, chans[0], base + j, d_arr[j:r], a_arr[j:r],
+                               ed["k"][j:r], ed["S"][j:r], eT_arr[j:r], vs[0][j:r], state,
+                               out_W, out_stick if want_stick else None)
+                    j = r
+                else:
+                    step(base + j, dl[j], al[j], ek[j], eS[j], eT[j], [v[j] for v in vlists])
+                    j += 1
+
+        pending = None   # first step of a stretch of step-by-step intervals not yet run
         for j0, j1 in zip(brk[:-1], brk[1:]):
             if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not chl[j0]:
+                if pending is not None:
+                    steps(pending, j0)
+                    pending = None
                 block(base + j0, base + j1, [v[j0:j1] for v in vs])
-            else:
-                for j in range(j0, j1):
-                    step(base + j, dl[j], al[j], ek[j], eS[j], eT[j], [v[j] for v in vlists])
+            elif pending is None:
+                pending = j0
             if base + j1 - 1 in snaps:
+                if pending is not None:
+                    steps(pending, j1)
+                    pending = None
                 snapshot_data[base + j1 - 1] = _snapshot(contact, fnd, st, res, base + j1 - 1)
+        if pending is not None:
+            steps(pending, nsteps)
         base += nsteps
         for ch in chans:
             cur[ch["pos"]], cur[ch["frc"]] = ch["out_pos"][base - 1], ch["out_frc"][base - 1]

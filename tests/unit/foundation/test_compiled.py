@@ -55,3 +55,58 @@ def test_simulate_agrees_between_backends(foundation_backend, kind):
     for key in ("force", "dissipated_energy", "stick_radius") + keys:
         x, y = np.asarray(getattr(a, key)), np.asarray(getattr(b, key))
         assert np.all(np.abs(x - y) <= BACKENDS_AGREE * np.max(np.abs(x))), key
+
+
+def _paths():
+    """Paths that exercise the fused compiled step: depth up and down while twisted/shifted,
+    snapshots inside a run, held stretches between runs, force control mixed in."""
+    t = np.linspace(0, 1, 301)
+    up_down = LoadPath.from_arrays(time=t, force=60 - 50 * np.abs(np.sin(3 * np.pi * t)),
+                                   twist=3e-4 * np.sin(5 * np.pi * t))
+    mixed = (LoadPath().ramp(force=50.0, steps=20).ramp(twist=2e-4, steps=30)
+             .sinusoid(force=30.0, twist=1e-4, cycles=2, steps_per_cycle=40)
+             .hold(steps=10).ramp(force=5.0, steps=25))
+    shift = (LoadPath().ramp(force=40.0, steps=10)
+             .sinusoid(force=20.0, displacement=1e-7, cycles=3, steps_per_cycle=30))
+    torque = (LoadPath().ramp(force=40.0, steps=10).ramp(torque=1e-3, steps=10)
+              .sinusoid(force=20.0, cycles=1, steps_per_cycle=30))
+    return {"up_down": up_down, "mixed": mixed, "shift": shift, "torque": torque}
+
+
+@pytest.mark.parametrize("name", ["up_down", "mixed", "shift", "torque"])
+@pytest.mark.parametrize("kw", [{}, {"strategy": "steps", "snapshots": [7, 45, -1]},
+                                {"spacing": "uniform", "n_springs": 301}])
+def test_fused_step_agrees_with_numpy(foundation_backend, name, kw):
+    """Every series and snapshot of the numba backend (fused step) within BACKENDS_AGREE of the
+    numpy reference, relative to the series' largest value."""
+    if "numba" not in _compiled.available():
+        pytest.skip("numba is not installed (extra 'fast')")
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
+                   friction=0.3)
+    path = _paths()[name]
+    out = {}
+    for b in ("numpy", "numba"):
+        _compiled.set_backend(b)
+        out[b] = c.simulate(path, **kw)
+    a, b = out["numpy"], out["numba"]
+    for key, x in a.data.items():
+        x, y = np.asarray(x, float), np.asarray(b.data[key], float)
+        scale = max(float(np.max(np.abs(x))), 1e-300)
+        assert np.all(np.abs(x - y) <= BACKENDS_AGREE * scale), (name, key)
+    for step, snap in a.snapshots.items():
+        for key, x in snap.items():
+            if x is None or np.ndim(x) == 0:
+                assert b.snapshots[step][key] == x
+                continue
+            x, y = np.asarray(x, float), np.asarray(b.snapshots[step][key], float)
+            scale = max(float(np.max(np.abs(x))), 1e-300)
+            assert np.all(np.abs(x - y) <= BACKENDS_AGREE * scale), (name, step, key)
+
+
+def test_fused_step_is_deterministic(foundation_backend):
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
+                   friction=0.3)
+    path = _paths()["up_down"]
+    r1, r2 = c.simulate(path), c.simulate(path)
+    for key in r1.data:
+        assert np.array_equal(r1.data[key], r2.data[key]), key
