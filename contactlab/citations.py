@@ -197,6 +197,7 @@ EFFECT_SOURCES: dict[str, tuple[str, ...]] = {
     "foundation": ("PH", "H1"),
     "foundation:torsion": ("S",),
     "fretting": ("VS88", "F96"),
+    "wear": ("D14",),
 }
 
 

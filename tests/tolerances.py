@@ -333,6 +333,11 @@ WEAR_LIMIT_VOLUME = 6e-2
 #: tangential gross-slip scar radius against the asymptote (16kRFδN/π)^(1/4) after 10⁶ cycles at
 #: δ = 50 µm (Hertz): measured 5e-4; the transient decays as the elastic slip share does
 WEAR_SCAR_ASYMPTOTE = 1e-2
+#: Hertz torsional loop energy of the reference (adaptive quadrature of Lubkin's closed forms
+#: M(c/a) and φ'(c/a) = -C E(1 - (c/a)²)/(c/a)) against the exact solver: measured <= 1.2e-12 in
+#: the energy ratio (amplified by 1/A ~ 150 at c/a = 0.99 from the cancelling 8∫M dφ - 4φM)
+LUBKIN_ENERGY_REFERENCE = 1e-9
+
 # ---- exact ring solver for torsion along load paths (issue 18)
 #: 200 rings (default) against the exact Jäger/Masing twist_history at constant load (monotone,
 #: oscillating, irregular Hertz histories): measured max 4.1e-5 of the sliding torque (the ring

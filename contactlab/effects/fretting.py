@@ -10,14 +10,14 @@ loop branches, regimes, gross-slip criteria, MDR validity) are in
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
-from ..params import as_float_array, exactly_one
+from ..params import as_float_array, exactly_one, values_equal
 from ..physics import fretting as _fr
 from ..physics import tangential as _tan
 from .torsion import resolve_method, torsion_model
@@ -313,6 +313,15 @@ class FrettingMap(Cited):
 
     regime_names = _fr.REGIMES
 
+    def __eq__(self, other: object) -> bool:
+        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
+                   for f in fields(self))
+
+    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
+
     @property
     def amplitude_name(self) -> str:
         return MODES[self.mode]
@@ -443,7 +452,8 @@ def fretting_map(contact, *, force: Any = None, depth: Any = None,
                                          twist_amplitude)
     criterion, threshold = resolve_criterion(criterion, threshold)
     ns, nkey = _normal_states(contact, "fretting_map()", force, depth)
-    loads = np.atleast_1d(np.asarray(ns._force, float))
+    # the forces as given (the solved state's force differs from them by rounding)
+    loads = np.atleast_1d(np.asarray(ns._force if force is None else force, float))
     if loads.ndim != 1 or amp.ndim > 1:
         raise ParameterError(f"fretting_map() takes 1D arrays of {nkey} and {key}; got shapes "
                              f"{np.shape(ns._force)} and {amp.shape}.")

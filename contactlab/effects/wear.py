@@ -18,14 +18,14 @@ rates, so worn volume = (k/μ) × dissipated energy holds to rounding for the ta
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
-from ..params import as_float_array, check_positive
+from ..params import as_float_array, check_positive, values_equal
 from ..physics import wear as _wear
 from ..profiles import Tabulated
 from .fretting import _mode_and_amplitude, check_contact, loops, warn_mdr
@@ -96,6 +96,15 @@ class WearResult:
     wear_depth: np.ndarray = field(repr=False)
     r: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    def __eq__(self, other: object) -> bool:
+        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
+                   for f in fields(self))
+
+    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     @property
     def profile(self) -> Tabulated:

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import SceneError
-from .validate import EFFECTS, SERIES
+from .validate import EFFECTS, SERIES, axis_values, fretting_segment
 
 if TYPE_CHECKING:  # pragma: no cover
     from .model import Scene
@@ -287,6 +287,11 @@ def make_plan(scene: "Scene") -> Plan:
         rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
                               + (" and outputs.method = " + repr(method) if "method" in outs else ""))
 
+    extra = _fretting_rows(scene, h, method, issues)
+    for name, (row, det) in extra.items():
+        rows[name] = row
+        calls.append(name)
+
     # fields
     out_rows = []
     for f in fields:
@@ -324,7 +329,85 @@ def make_plan(scene: "Scene") -> Plan:
         if slip and (foundation or impl_call in ("twist_history", "shift_history")):
             series.append("dissipated_energy")
         series = tuple(series)
-    ordered = tuple(rows[e] for e in EFFECTS if e in rows)
+    ordered = tuple(rows[e] for e in EFFECTS + FRETTING_EFFECTS if e in rows)
     return Plan(ordered, route, tuple(calls), series, fields, tuple(out_rows),
                 method if (torsion or tangential) else None, n,
-                {"axis": axis, "start": start, "monotone": monotone, "coupled_at": coupled_at})
+                {"axis": axis, "start": start, "monotone": monotone, "coupled_at": coupled_at,
+                 **{name: det for name, (_, det) in extra.items()}})
+
+
+#: effects planned from the [wear] and [fretting_map] tables (after the path's effects)
+FRETTING_EFFECTS = ("wear", "fretting_map")
+
+_SLIP_MODEL = {("torsion", "exact"): "3D slip from Jäger's exact partial-slip solution",
+               ("torsion", "mdr"): "3D slip from the MDR springs' twist distribution (the fast "
+                                   "approximation; warns beyond its validity)",
+               ("tangential", None): "3D slip as the Abel transform of the MDR spring slip "
+                                     "(exact Cattaneo-Mindlin)"}
+
+
+def _fretting_method(table: dict, outs: dict, mode: str) -> str | None:
+    if mode == "tangential":
+        return None
+    m = table.get("method") or outs.get("method")
+    return m if m in ("exact", "mdr") else "exact"
+
+
+def _fretting_rows(scene: "Scene", h: Any, path_method: str | None,
+                   issues: list) -> dict[str, tuple[Effect, dict[str, Any]]]:
+    """Plan rows (and run details) for the [wear] and [fretting_map] tables."""
+    data = scene.to_dict()
+    outs = scene.outputs
+    out: dict[str, tuple[Effect, dict[str, Any]]] = {}
+    if "wear" in data:
+        w = data["wear"]
+        i, ctrl, amp = fretting_segment(data["load_path"])   # validated: exists
+        steps = np.flatnonzero(h.segment == i)
+        force = float(h.values("normal")[steps[0]]) if steps.size else 0.0
+        if force <= 0:
+            issues.append((f"load_path[{i}]", f"normal force {force:g} N", "a positive normal "
+                           "force during the fretting segment for [wear]"))
+        else:
+            mode = "torsion" if ctrl == "twist" else "tangential"
+            key = "twist_amplitude" if mode == "torsion" else "displacement_amplitude"
+            unit = "rad" if mode == "torsion" else "m"
+            method = _fretting_method(w, outs, mode)
+            kw = {"force": force, key: amp, "wear_coefficient": w["wear_coefficient"],
+                  "cycles": w["cycles"], "method": method}
+            for k in ("checkpoints", "n_grid", "jump_rtol", "max_radius"):
+                if k in w:
+                    kw[k] = w[k]
+            impl = (f"contact.wear(force={_fmt(force)} N, {key}={_fmt(amp)} {unit}, "
+                    f"wear_coefficient={_fmt(w['wear_coefficient'])} 1/Pa, "
+                    f"cycles={_fmt(w['cycles'])}"
+                    + (f", method={method!r}" if method else "") + ")")
+            why = (f"[wear] table; fretting condition of load_path[{i}] ({ctrl} sinusoid of "
+                   f"amplitude {_fmt(amp)} {unit} at constant force {_fmt(force)} N); Archard "
+                   f"wear with the {_SLIP_MODEL[(mode, method)]}; Heun cycle jumping, local "
+                   f"error <= {_fmt(w.get('jump_rtol', 1e-4))} x depth")
+            out["wear"] = (Effect("wear", impl, why), {"kwargs": kw, "segment": i, "mode": mode})
+    if "fretting_map" in data:
+        m = data["fretting_map"]
+        key = "twist_amplitude" if "twist_amplitude" in m else "displacement_amplitude"
+        mode = "torsion" if key == "twist_amplitude" else "tangential"
+        forces, amps = axis_values(m["force"]), axis_values(m[key])
+        method = _fretting_method(m, outs, mode)
+        kw: dict[str, Any] = {"force": forces, key: amps}
+        if method:
+            kw["method"] = method
+        for k in ("criterion", "threshold"):
+            if k in m:
+                kw[k] = m[k]
+        if mode == "torsion":
+            crit = m.get("criterion", "energy_ratio")
+            thr = m.get("threshold", {"energy_ratio": 0.2, "stick_ratio": 0.1,
+                                      "torque_ratio": 0.95}[crit])
+            why = (f"[fretting_map] table; torsional gross slip declared by {crit} "
+                   f"(threshold {_fmt(thr)}): a smooth profile keeps a stick zone at any twist")
+        else:
+            why = ("[fretting_map] table; gross slip exact where the whole contact slides "
+                   "(delta_t = mu E* d / G*)")
+        impl = (f"contact.fretting_map(force=<{forces.size} values>, {key}=<{amps.size} values>"
+                + (f", method={method!r}" if method else "") + "), vectorised")
+        out["fretting_map"] = (Effect("fretting_map", impl, why), {"kwargs": kw, "mode": mode})
+    return out

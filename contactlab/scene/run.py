@@ -20,6 +20,8 @@ from ..citations import Cited, sources_for
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
 from ..params import values_equal
 from ..loadpath import UNITS
+from ..effects.fretting import SERIES_UNITS as MAP_UNITS
+from ..effects.wear import SERIES_UNITS as WEAR_UNITS
 from .validate import SERIES
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -29,8 +31,11 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS", "OUTPUT_FILES",
            "atomic_write"]
 
-#: every file a run may write into its output folder (series/fields CSV, JSON, plot)
-OUTPUT_FILES = ("series.csv", "fields.csv", "result.json", "plot.png")
+#: every file a run may write into its output folder (series/fields CSV, JSON, plot; wear series,
+#: worn profiles and the final worn profile; fretting map and its gross-slip boundary)
+OUTPUT_FILES = ("series.csv", "fields.csv", "result.json", "plot.png", "wear.csv",
+                "wear_profiles.csv", "worn_profile.csv", "fretting_map.csv",
+                "fretting_boundary.csv")
 
 
 def atomic_write(path: str | Path, data: bytes) -> Path:
@@ -70,7 +75,8 @@ def _sources(computed: list[str], method: str | None, contact: Any) -> tuple[str
              "tangential": ("normal", "tangential"),
              "shift_history": ("normal", "tangential", "masing:tangential"),
              "simulate": ("normal", "foundation"),
-             "viscoelastic_history": ("mdr", "viscoelastic")}
+             "viscoelastic_history": ("mdr", "viscoelastic"),
+             "wear": ("normal", "fretting", "wear"), "fretting_map": ("normal", "fretting")}
     return sources_for(*(n for c in computed for n in names.get(c, ())))
 
 
@@ -86,13 +92,20 @@ class SceneResult(Cited):
         ``r`` and the requested fields at the final step (empty when none were asked for).
     plan : Plan
     meta : dict
-        ``computed`` (Contact methods called, in order), ``route``, ``version``, ``title``.
+        ``computed`` (Contact methods called, in order), ``route``, ``version``, ``title``;
+        ``wear`` and ``fretting_map`` headline numbers when those tables were planned.
+    wear : WearResult or None
+        The fretting-wear run of a ``[wear]`` table (:meth:`contactlab.Contact.wear`).
+    fretting_map : FrettingMap or None
+        The map of a ``[fretting_map]`` table (:meth:`contactlab.Contact.fretting_map`).
     """
 
     series: dict[str, np.ndarray]
     fields: dict[str, np.ndarray]
     plan: "Plan"
     meta: dict[str, Any] = field(default_factory=dict)
+    wear: Any = None
+    fretting_map: Any = None
 
 
     def __eq__(self, other: object) -> bool:
@@ -118,11 +131,24 @@ class SceneResult(Cited):
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: plan, series and fields as lists, units, meta."""
-        return {"title": self.meta.get("title"), "plan": self.plan.to_dict(),
-                "units": {k: SERIES_UNITS[k] for k in self.series},
-                "series": {k: _jsonable(v) for k, v in self.series.items()},
-                "fields": {k: _jsonable(v) for k, v in self.fields.items()},
-                "meta": {k: v for k, v in self.meta.items() if k != "title"}}
+        out = {"title": self.meta.get("title"), "plan": self.plan.to_dict(),
+               "units": {k: SERIES_UNITS[k] for k in self.series},
+               "series": {k: _jsonable(v) for k, v in self.series.items()},
+               "fields": {k: _jsonable(v) for k, v in self.fields.items()},
+               "meta": {k: v for k, v in self.meta.items() if k != "title"}}
+        if self.wear is not None:
+            w = self.wear
+            out["wear"] = {"units": dict(WEAR_UNITS),
+                           "series": {k: _jsonable(v) for k, v in w.to_dict().items()},
+                           "checkpoints": _jsonable(w.checkpoints), "r": _jsonable(w.r),
+                           "profiles": [_jsonable(p.f) for p in w.profiles]}
+        if self.fretting_map is not None:
+            out["fretting_map"] = {"units": {k: MAP_UNITS[k] for k in
+                                             self.fretting_map.to_dict()},
+                                   "points": {k: _jsonable(v) for k, v in
+                                              self.fretting_map.to_dict().items()},
+                                   "boundary": _jsonable(self.fretting_map.boundary)}
+        return out
 
     def write(self, directory: str | Path, fmt: str = "csv") -> list[Path]:
         """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``.
@@ -140,10 +166,33 @@ class SceneResult(Cited):
             paths = [atomic_write(d / "series.csv", _csv_bytes(self.series))]
             if self.fields:
                 paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields)))
+            paths += self._write_fretting(d)
         for name in OUTPUT_FILES:
             stale = d / name
             if stale not in paths and (stale.exists() or stale.is_symlink()):
                 stale.unlink()
+        return paths
+
+    def _write_fretting(self, d: Path) -> list[Path]:
+        """CSV files of the wear run and the fretting map (``name [unit]`` headers)."""
+        paths = []
+        if self.wear is not None:
+            w = self.wear
+            paths.append(atomic_write(d / "wear.csv", _csv_bytes(w.to_dict(), WEAR_UNITS)))
+            cols = {"r": w.r}
+            for N, prof in zip(w.checkpoints, w.profiles):
+                cols[f"profile@{N:.6g}"] = prof.f
+            units = {k: "m" for k in cols}
+            paths.append(atomic_write(d / "wear_profiles.csv", _csv_bytes(cols, units)))
+            paths.append(atomic_write(d / "worn_profile.csv",
+                                      _csv_bytes({"r": w.r, "f": w.profile.f}, units={"r": "m",
+                                                                                       "f": "m"})))
+        if self.fretting_map is not None:
+            m = self.fretting_map
+            paths.append(atomic_write(d / "fretting_map.csv", _csv_bytes(m.to_dict(), MAP_UNITS)))
+            amp = m.amplitude_name
+            paths.append(atomic_write(d / "fretting_boundary.csv", _csv_bytes(
+                {"force": m.force, amp: m.boundary}, MAP_UNITS)))
         return paths
 
     def plot(self, path: str | Path) -> Path:
@@ -191,7 +240,25 @@ class SceneResult(Cited):
         lines = [head]
         for i in idx:
             lines.append(" ".join(f"{self.series[k][i]:16.6g}" for k in names))
+        lines += _fretting_lines(self)
         return "\n".join(lines)
+
+
+def _fretting_lines(res: SceneResult) -> list[str]:
+    """Headline lines of the wear run and the fretting map for :meth:`SceneResult.table`."""
+    lines = []
+    if res.wear is not None:
+        w = res.meta["wear"]
+        lines += [f"wear ({res.wear.mode}, {res.wear.method}) after {w['cycles']:.6g} cycles: "
+                  f"worn volume {w['volume']:.4g} m^3, max wear depth {w['max_wear_depth']:.4g} "
+                  f"m, scar radius {w['scar_radius']:.4g} m, contact radius {w['radius']:.4g} m, "
+                  f"stick radius {w['stick_radius']:.4g} m, energy dissipated "
+                  f"{w['dissipated_energy']:.4g} J ({w['steps']} wear steps)"]
+    if res.fretting_map is not None:
+        m = res.meta["fretting_map"]
+        counts = ", ".join(f"{k} {v}" for k, v in m["regimes"].items())
+        lines += [f"fretting map ({res.fretting_map.mode}, {m['points']} points): {counts}"]
+    return lines
 
 
 def _jsonable(v: np.ndarray) -> list:
@@ -199,12 +266,14 @@ def _jsonable(v: np.ndarray) -> list:
         if np.any(~np.isfinite(v)) else np.asarray(v, float).tolist()
 
 
-def _csv_bytes(cols: dict[str, np.ndarray]) -> bytes:
+def _csv_bytes(cols: dict[str, np.ndarray], units: dict[str, str] | None = None) -> bytes:
+    """CSV of equal-length columns; with ``units``, ``name [unit]`` headers."""
     names = list(cols)
     data = np.column_stack([np.asarray(cols[k], float) for k in names])
     fh = io.StringIO(newline="")
     w = csv.writer(fh)
-    w.writerow(names)
+    w.writerow(names if units is None else
+               [f"{k} [{units[k]}]" if k in units else k for k in names])
     for row in data:
         w.writerow([repr(float(x)) for x in row])
     return fh.getvalue().encode()
@@ -313,6 +382,22 @@ def run_scene(scene: "Scene") -> SceneResult:
                                         "method": plan.method})
                 fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
 
+    wear_res = fmap = None
+    meta_extra: dict[str, Any] = {}
+    if "wear" in plan.calls:
+        wear_res = contact.wear(**plan.details["wear"]["kwargs"])
+        computed.append("wear")
+        meta_extra["wear"] = {**{k: float(v[-1]) for k, v in wear_res.to_dict().items()},
+                              "steps": int(wear_res.meta["steps"]),
+                              "mode": wear_res.mode, "method": wear_res.method}
+    if "fretting_map" in plan.calls:
+        fmap = contact.fretting_map(**plan.details["fretting_map"]["kwargs"])
+        computed.append("fretting_map")
+        meta_extra["fretting_map"] = {
+            "points": int(fmap.regime.size),
+            "regimes": {name: int(np.sum(fmap.regime == i))
+                        for i, name in enumerate(fmap.regime_names)}}
+
     series = {k: out[k] for k in plan.series}
     for k, v in list(series.items()) + list(fields.items()):
         if np.any(np.isnan(v)):
@@ -320,5 +405,6 @@ def run_scene(scene: "Scene") -> SceneResult:
             raise ConvergenceError(f"{k}[{i}] is NaN: the computation failed at that step "
                                    f"({scene.title!r}).")
     meta = {"computed": computed, "route": plan.route, "version": __version__,
-            "title": scene.title, "citations": _sources(computed, plan.method, contact)}
-    return SceneResult(series, fields, plan, meta)
+            "title": scene.title, "citations": _sources(computed, plan.method, contact),
+            **meta_extra}
+    return SceneResult(series, fields, plan, meta, wear_res, fmap)

@@ -53,15 +53,20 @@ UNITS: dict[str, dict[str, float]] = {
     "energy": _scaled("J", {"": 1.0, "m": 1e-3, "u": 1e-6, "n": 1e-9}),
     "viscosity": _scaled("Pa*s", {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3}),
     "dimensionless": {"": 1.0, "1": 1.0, "%": 1e-2},
+    # Archard's wear coefficient k = K/H: worn volume per normal force and sliding distance
+    "wear_coefficient": {"1/Pa": 1.0, "1/kPa": 1e-3, "1/MPa": 1e-6, "1/GPa": 1e-9,
+                         "m^3/(N*m)": 1.0, "mm^3/(N*m)": 1e-9},
 }
 
 #: Param.unit strings (the SI unit a parameter is declared in) -> dimension
 DIMENSION_OF_SI_UNIT = {"m": "length", "N": "force", "Pa": "pressure", "rad": "angle",
                         "N*m": "torque", "s": "time", "J/m^2": "energy_per_area", "J": "energy",
-                        "Pa*s": "viscosity", "1": "dimensionless", "-": "dimensionless"}
+                        "Pa*s": "viscosity", "1": "dimensionless", "-": "dimensionless",
+                        "1/Pa": "wear_coefficient"}
 #: dimension -> its SI unit as contactlab writes it
 SI_UNIT = {"length": "m", "force": "N", "pressure": "Pa", "angle": "rad", "torque": "N*m",
-           "time": "s", "energy_per_area": "J/m^2", "energy": "J", "viscosity": "Pa*s"}
+           "time": "s", "energy_per_area": "J/m^2", "energy": "J", "viscosity": "Pa*s",
+           "wear_coefficient": "1/Pa"}
 
 _NUMBER = r"[+-]?(?:\d+(?:_\d+)*(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
 _QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
@@ -172,7 +177,8 @@ def _allowed(dimension: str) -> str:
 def _example(dimension: str) -> str:
     return {"length": "10 um", "force": "2 kN", "pressure": "210 GPa", "angle": "5 deg",
             "torque": "0.1 N*m", "time": "2 s", "energy_per_area": "0.05 J/m^2", "energy": "1 mJ",
-            "viscosity": "1 MPa*s", "dimensionless": "0.3", "number": "1.5"}[dimension]
+            "viscosity": "1 MPa*s", "dimensionless": "0.3", "number": "1.5",
+            "wear_coefficient": "1e-6 mm^3/(N*m)"}[dimension]
 
 
 def _unit_error(key: str, value: object, allowed: str, message: str) -> UnitError:

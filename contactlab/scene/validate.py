@@ -29,12 +29,14 @@ from .units import DIMENSION_OF_SI_UNIT, parse_quantity
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
            "SECTIONS", "SERIES", "FIELDS", "EFFECTS", "METHODS", "CONTROLS", "SEGMENTS",
-           "MAX_STEPS", "read_table", "resolve_file"]
+           "MAX_STEPS", "read_table", "resolve_file", "WEAR_KEYS", "FRETTING_MAP_KEYS",
+           "CRITERIA", "MAX_MAP_POINTS", "fretting_segment", "axis_values"]
 
 Issue = tuple[str, Any, str]
 
 #: top-level tables of a scene
-SECTIONS = ("scene", "profile", "materials", "interface", "load_path", "outputs", "solver")
+SECTIONS = ("scene", "profile", "materials", "interface", "load_path", "outputs", "solver",
+            "wear", "fretting_map")
 #: per-step series a run can write -> the effect that produces it
 SERIES = {"time": "normal", "depth": "normal", "force": "normal", "radius": "normal",
           "stiffness": "normal", "peak_pressure": "normal", "twist": "torsion",
@@ -61,6 +63,21 @@ SEGMENTS: dict[str, dict[str, tuple[str, bool]]] = {
 MAX_STEPS = 200_000
 #: most field points
 MAX_FIELD_POINTS = 100_000
+#: keys of a [wear] table -> (dimension or kind, required)
+WEAR_KEYS = {"wear_coefficient": ("wear_coefficient", True), "cycles": ("count", True),
+             "checkpoints": ("checkpoints", False), "method": ("method", False),
+             "n_grid": ("int", False), "jump_rtol": ("dimensionless", False),
+             "max_radius": ("length", False)}
+#: keys of a [fretting_map] table
+FRETTING_MAP_KEYS = ("force", "twist_amplitude", "displacement_amplitude", "method", "criterion",
+                     "threshold")
+#: torsional gross-slip criteria of a fretting map (docs/fretting.md, section 2)
+CRITERIA = ("energy_ratio", "stick_ratio", "torque_ratio")
+#: most points of a scene's fretting map (force x amplitude)
+MAX_MAP_POINTS = 250_000
+#: most cycles of a scene's wear run, and most checkpoints
+MAX_WEAR_CYCLES = 1e12
+MAX_CHECKPOINTS = 1000
 
 # ---- name lookup (swap in contactlab.registry here) ---------------------------------------------
 # Extra keys some built-ins accept besides their constructor arguments: key -> dimension/kind.
@@ -662,6 +679,15 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
                     s["n_springs"] = v
             data["solver"] = s
 
+    if "wear" in top:
+        w = _wear(ck, top["wear"], data, objects)
+        if w is not None:
+            data["wear"] = w
+    if "fretting_map" in top:
+        m = _fretting_map(ck, top["fretting_map"], data, objects)
+        if m is not None:
+            data["fretting_map"] = m
+
     # cross-section rules
     itf = data.get("interface", {})
     outs = data.get("outputs", {})
@@ -698,6 +724,206 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
     if ck.issues:
         raise SceneError(_summary(ck.issues), ck.issues)
     return data, objects
+
+
+# ---- fretting: [wear] and [fretting_map] -----------------------------------------------------------
+def fretting_segment(segments: Sequence[Mapping[str, Any]]) -> tuple[int, str, float] | None:
+    """The fretting condition of a load path: the last sinusoid that oscillates a twist or a
+    displacement, as ``(segment index, control, amplitude)``, or None."""
+    for i in range(len(segments) - 1, -1, -1):
+        kind, body = next(iter(segments[i].items()))
+        if kind == "sinusoid":
+            for k in ("twist", "displacement"):
+                if k in body:
+                    return i, k, abs(float(body[k]))
+    return None
+
+
+def _fretting_needs(ck: _Checker, path: str, data: dict, objects: dict) -> None:
+    """What wear and fretting maps need from the rest of the scene: friction, no adhesion,
+    elastic bodies."""
+    itf = data.get("interface", {})
+    if "friction" not in itf and not any(i[0] == "interface.friction" for i in ck.issues):
+        ck.add("interface.friction", None, f"a friction coefficient (required by [{path}]: "
+               "fretting is frictional slip)")
+    if itf.get("work_of_adhesion"):
+        ck.add("interface.work_of_adhesion", itf["work_of_adhesion"], f"0 with [{path}] "
+               "(fretting of adhesive contacts is outside the implemented theory)")
+    if any(getattr(objects.get(b), "is_viscoelastic", False) for b in ("body1", "body2")):
+        ck.add(path, "viscoelastic body", "elastic bodies (fretting and wear are elastic theory)")
+
+
+def _wear(ck: _Checker, raw: Any, data: dict, objects: dict) -> dict | None:
+    tab = ck.table("wear", raw)
+    if tab is None:
+        return None
+    ck.unknown_keys("wear", tab, WEAR_KEYS)
+    n_before = len(ck.issues)
+    out: dict[str, Any] = {}
+    for k, (dim, req) in WEAR_KEYS.items():
+        kp = f"wear.{k}"
+        if k not in tab:
+            if req:
+                ck.add(kp, None, {"wear_coefficient": "Archard's coefficient k = K/H, e.g. "
+                                  "'1e-6 mm^3/(N*m)' or '1e-15 1/Pa' (required)",
+                                  "cycles": "the number of fretting cycles, e.g. 1e6 "
+                                  "(required)"}[k])
+            continue
+        v = tab[k]
+        if k == "wear_coefficient":
+            val = ck.quantity(kp, v, dim, "nonnegative")
+        elif k == "cycles":
+            val = ck.quantity(kp, v, "dimensionless", "positive")
+            if val is not None and val > MAX_WEAR_CYCLES:
+                ck.add(kp, v, f"at most {MAX_WEAR_CYCLES:g} cycles")
+                val = None
+        elif k == "checkpoints":
+            if isinstance(v, list):
+                val = ck.array(kp, v, "dimensionless")
+                if val is not None and any(x <= 0 for x in val):
+                    ck.add(kp, v, "cycle numbers > 0")
+                    val = None
+                elif val is not None and len(val) > MAX_CHECKPOINTS:
+                    ck.add(kp, f"{len(val)} checkpoints", f"at most {MAX_CHECKPOINTS}")
+                    val = None
+            else:
+                val = ck.integer(kp, v, 1, MAX_CHECKPOINTS)
+        elif k == "method":
+            val = ck.choice(kp, v, ("exact", "mdr"))
+        elif k == "n_grid":
+            val = ck.integer(kp, v, 16, 20_000)
+        elif k == "jump_rtol":
+            val = ck.quantity(kp, v, "dimensionless", "positive")
+            if val is not None and val >= 0.1:
+                ck.add(kp, v, "0 < jump_rtol < 0.1")
+                val = None
+        else:
+            val = ck.quantity(kp, v, dim, "positive")
+        if val is not None:
+            out[k] = val
+    cyc, pts = out.get("cycles"), out.get("checkpoints")
+    if isinstance(pts, list) and cyc is not None and max(pts) > cyc:
+        ck.add("wear.checkpoints", tab["checkpoints"], f"cycle numbers <= wear.cycles = {cyc:g}")
+    _fretting_needs(ck, "wear", data, objects)
+    prof = objects.get("profile")
+    if prof is not None and math.isfinite(getattr(prof, "wall_radius", math.inf)):
+        ck.add("profile.type", data["profile"]["type"], "a profile without a wall for [wear] (a "
+               "flat punch cannot be worn into a table; use truncated_paraboloid)")
+    segs = data.get("load_path")
+    if segs is not None:
+        got = fretting_segment(segs)
+        if got is None:
+            ck.add("wear", "no fretting segment", "a load path with a sinusoid of twist or "
+                   "displacement (the fretting amplitude) after the normal force is applied, "
+                   "e.g. [[load_path]] sinusoid = { twist = '2 mrad', cycles = 1 }")
+        else:
+            i, ctrl, amp = got
+            body = segs[i]["sinusoid"]
+            moving = [k for k in body if k in CONTROLS and CONTROLS[k][0] == "normal"]
+            if moving:
+                ck.add(f"load_path[{i}].sinusoid.{moving[0]}", body[moving[0]], "no normal "
+                       "oscillation in the fretting segment: [wear] runs at constant normal force")
+            if amp == 0:
+                ck.add(f"load_path[{i}].sinusoid.{ctrl}", body[ctrl], "a non-zero fretting "
+                       "amplitude for [wear]")
+            normal = {k for s in segs for k in next(iter(s.values()))
+                      if k in CONTROLS and CONTROLS[k][0] == "normal"}
+            if "depth" in normal:
+                ck.add("load_path", "depth", "a force-controlled normal load for [wear] (wear "
+                       "runs at constant normal force; give force = ... instead of depth)")
+    return out if len(ck.issues) == n_before else None
+
+
+def _axis(ck: _Checker, path: str, v: Any, dim: str, domain: str) -> list[float] | None:
+    """A map axis: a list of quantities or a range table {from, to, points, spacing}."""
+    if isinstance(v, list):
+        vals = ck.array(path, v, dim)
+        if vals is not None and any(x < 0 or (domain == "positive" and x == 0) for x in vals):
+            ck.add(path, v, "values > 0" if domain == "positive" else "values >= 0")
+            return None
+        return vals
+    tab = ck.table(path, v)
+    if tab is None:
+        return None
+    keys = ("from", "to", "points", "spacing")
+    ck.unknown_keys(path, tab, keys)
+    n_before = len(ck.issues)
+    for k in ("from", "to", "points"):
+        if k not in tab:
+            ck.add(f"{path}.{k}", None, "required in a range table { from = ..., to = ..., "
+                   "points = N, spacing = 'log' or 'linear' }")
+    lo = ck.quantity(f"{path}.from", tab["from"], dim, "nonnegative") if "from" in tab else None
+    hi = ck.quantity(f"{path}.to", tab["to"], dim, "positive") if "to" in tab else None
+    n = ck.integer(f"{path}.points", tab["points"], 1, 10_000) if "points" in tab else None
+    spacing = (ck.choice(f"{path}.spacing", tab["spacing"], ("linear", "log"))
+               if "spacing" in tab else "linear")
+    if lo is not None and hi is not None and lo > hi:
+        ck.add(f"{path}.to", tab["to"], f">= from ({tab['from']!r})")
+    if lo == 0 and (spacing == "log" or domain == "positive"):
+        ck.add(f"{path}.from", tab["from"], "> 0" + (" with spacing = 'log'"
+                                                     if spacing == "log" else ""))
+    if len(ck.issues) > n_before or None in (lo, hi, n, spacing):
+        return None
+    return {"from": lo, "to": hi, "points": n, "spacing": spacing}  # type: ignore[return-value]
+
+
+def axis_values(spec: Any) -> np.ndarray:
+    """The values of a validated map axis (list, or range table)."""
+    if isinstance(spec, Mapping):
+        lo, hi, n = spec["from"], spec["to"], int(spec["points"])
+        return (np.geomspace(lo, hi, n) if spec.get("spacing") == "log"
+                else np.linspace(lo, hi, n))
+    return np.asarray(spec, float)
+
+
+def _fretting_map(ck: _Checker, raw: Any, data: dict, objects: dict) -> dict | None:
+    tab = ck.table("fretting_map", raw)
+    if tab is None:
+        return None
+    ck.unknown_keys("fretting_map", tab, FRETTING_MAP_KEYS)
+    n_before = len(ck.issues)
+    out: dict[str, Any] = {}
+    if "force" not in tab:
+        ck.add("fretting_map.force", None, "the normal forces, a list ['10 N', '100 N'] or a "
+               "range { from = '10 N', to = '1 kN', points = 8, spacing = 'log' } (required)")
+    else:
+        v = _axis(ck, "fretting_map.force", tab["force"], "force", "positive")
+        if v is not None:
+            out["force"] = v
+    amps = [k for k in ("twist_amplitude", "displacement_amplitude") if k in tab]
+    if len(amps) != 1:
+        ck.add("fretting_map", amps or None, "exactly one of twist_amplitude (torsional "
+               "fretting) or displacement_amplitude (tangential fretting)")
+    for k in amps:
+        v = _axis(ck, f"fretting_map.{k}", tab[k],
+                  "angle" if k == "twist_amplitude" else "length", "nonnegative")
+        if v is not None:
+            out[k] = v
+    if "method" in tab:
+        v = ck.choice("fretting_map.method", tab["method"], ("exact", "mdr"))
+        if v is not None:
+            out["method"] = v
+    if "criterion" in tab:
+        v = ck.choice("fretting_map.criterion", tab["criterion"], CRITERIA)
+        if v is not None:
+            out["criterion"] = v
+    if "threshold" in tab:
+        v = ck.quantity("fretting_map.threshold", tab["threshold"], "dimensionless", "positive")
+        if v is not None and v >= 1:
+            ck.add("fretting_map.threshold", tab["threshold"], "0 < threshold < 1")
+        elif v is not None:
+            out["threshold"] = v
+    if amps == ["displacement_amplitude"] and ("criterion" in tab or "threshold" in tab):
+        ck.add("fretting_map.criterion", tab.get("criterion", tab.get("threshold")),
+               "no criterion for a tangential map (gross slip is exact: the whole contact "
+               "slides at delta_t = mu E* d / G*)")
+    if len(ck.issues) == n_before and len(amps) == 1:
+        n = axis_values(out["force"]).size * axis_values(out[amps[0]]).size
+        if n > MAX_MAP_POINTS:
+            ck.add("fretting_map", f"{n} points", f"at most {MAX_MAP_POINTS} points "
+                   "(force x amplitude); run larger maps through contactlab.sweep")
+    _fretting_needs(ck, "fretting_map", data, objects)
+    return out if len(ck.issues) == n_before else None
 
 
 def _summary(issues: list[Issue]) -> str:

@@ -124,7 +124,7 @@ def test_every_example_is_tested():
     names = {p.name for p in EX.glob("*.toml")}
     tested = {"hertz_steel_ball.toml", "conical_indenter.toml", "rounded_flat_punch.toml",
               "measured_profile.toml", "steel_ball_twist.toml", "hip_joint_torsion.toml",
-              "viscoelastic_creep.toml"}
+              "viscoelastic_creep.toml", "steel_ball_fretting_map.toml", "hip_taper_wear.toml"}
     assert names == tested
 
 

@@ -18,12 +18,14 @@ Torsion, Hertz, small amplitude (derived): with dM/dφ = (16/3)G_t c³ and the s
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ellipe, ellipk
+from scipy.special import ellipe, ellipkm1
 
 from tests.reference.kappa import kappa_float
 
 __all__ = ["onset_energy_ratio", "gross_slip_amplitude", "mindlin_energy_of_force_amplitude",
-           "hertz_torsion_small_energy", "hertz_twist_of_stick_ratio", "power_virgin_force"]
+           "hertz_torsion_small_energy", "hertz_twist_of_stick_ratio", "power_virgin_force",
+           "hertz_limiting_state", "hertz_gross_slip_scar", "linear_table_volume",
+           "hertz_torque_of_stick_ratio", "hertz_torsion_energy_ratio"]
 
 
 def onset_energy_ratio(n: float) -> float:
@@ -56,9 +58,11 @@ def hertz_torsion_small_energy(phi0, F, mu, a, G_t):
 
 
 def hertz_twist_of_stick_ratio(ratio, F, mu, a, G_t):
-    """Twist at stick ratio c/a (Hertz, exact Jäger solution; scipy's ellipk takes m = k²)."""
-    m = 1.0 - np.asarray(ratio, float) ** 2
-    return 3.0 * mu * F / (4.0 * np.pi * G_t * a**2) * (ellipk(m) - ellipe(m))
+    """Twist at stick ratio c/a (Hertz, exact Jäger solution; scipy's elliptic integrals take
+    m = k² = 1 - (c/a)²)."""
+    s = np.asarray(ratio, float)
+    # K(m) through ellipkm1(1 - m) = ellipkm1(s²): accurate for c/a -> 0 (m -> 1)
+    return 3.0 * mu * F / (4.0 * np.pi * G_t * a**2) * (ellipkm1(s * s) - ellipe(1.0 - s * s))
 
 
 # ---------------------------------------------------------------- fretting wear (derived)
@@ -95,3 +99,29 @@ def linear_table_volume(r, h):
     r0, r1, h0, h1 = r[:-1], r[1:], h[:-1], h[1:]
     dr = r1 - r0
     return float(np.sum(2 * np.pi * dr * (h0 * (r0 / 2 + dr / 6) + h1 * (r0 / 2 + dr / 3))))
+
+
+# ---------------------------------------------------------------- torsion, Hertz (Lubkin)
+def hertz_torque_of_stick_ratio(ratio, F, mu, a):
+    """Torque at stick ratio s = c/a (Hertz, exact; Lubkin 1951 / Jäger 1995):
+    M = μFa [3π/16 - (4/π) ∫_0^s t² E(sqrt(1 - t²)) dt]  (scipy's ellipe takes m = k²)."""
+    from scipy.integrate import quad
+    s = float(ratio)
+    inner = quad(lambda t: t * t * ellipe(1.0 - t * t), 0.0, s, epsabs=0, epsrel=1e-13)[0]
+    return mu * F * a * (3.0 * np.pi / 16.0 - 4.0 / np.pi * inner)
+
+
+def hertz_torsion_energy_ratio(ratio, F, mu, a, G_t):
+    """Fouvry's energy ratio A = W/(4φ*M*) of the steady torsional loop whose amplitude has
+    stick ratio s = c/a (Hertz). Masing: W = 8 ∫_0^φ* M dφ - 4φ*M*, the integral taken along the
+    loading curve in the stick ratio: with φ(s) = C [K(m) - E(m)], m = 1 - s², C = 3μF/(4πG_t a²),
+    and d(K - E)/dm = E(m)/(2(1 - m)), the derivative is φ'(s) = -C E(m)/s, so
+    ∫_0^φ* M dφ = C ∫_s^1 M(t) E(1 - t²)/t dt."""
+    from scipy.integrate import quad
+    s0 = float(ratio)
+    C = 3.0 * mu * F / (4.0 * np.pi * G_t * a**2)
+    I = C * quad(lambda t: hertz_torque_of_stick_ratio(t, F, mu, a) * ellipe(1.0 - t * t) / t,
+                 s0, 1.0, epsabs=0, epsrel=1e-13, limit=200)[0]
+    M0 = hertz_torque_of_stick_ratio(s0, F, mu, a)
+    p0 = float(hertz_twist_of_stick_ratio(s0, F, mu, a, G_t))
+    return (8.0 * I - 4.0 * p0 * M0) / (4.0 * p0 * M0)
