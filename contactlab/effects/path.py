@@ -53,6 +53,8 @@ def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
     return path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol)
 
 
+#: steps converted to plain floats at a time by the step-by-step loop (bounded temporaries)
+_CHUNK = 4096
 #: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
 _MIN_BLOCK = 8
 
@@ -559,17 +561,24 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         _, vals = leaf.values(cur)
         nsteps = leaf.n_steps
         d_arr, a_arr = nrm["depth"], nrm["radius"]
-        ed = fnd.edge_data(d_arr, a_arr)
-        ek, eS = ed["k"].tolist(), ed["S"].tolist()
-        eT = ed["T"].tolist() if "T" in ed else [None] * nsteps
         prev_d = np.concatenate(([st.depth], d_arr[:-1]))
         prev_a = np.concatenate(([st.radius], a_arr[:-1]))
         changed = (d_arr != prev_d) | (a_arr != prev_a)
         d_same = np.flatnonzero(d_arr == prev_d)   # steps the fused kernel leaves to step()
-        eT_arr = (ed["T"] if "T" in ed and chans and chans[0]["L"] == "L_tor"
-                  else ed["S"]).astype(float)
+        del prev_d, prev_a
         if state["first"]:
             changed[0] = True
+        # edge data only where the normal state changes (no per-step temporaries at held load)
+        ci = np.flatnonzero(changed)
+        edc = fnd.edge_data(d_arr[ci], a_arr[ci])
+        ek_arr, eS_arr = np.zeros(nsteps, np.int64), np.zeros(nsteps)
+        ek_arr[ci], eS_arr[ci] = edc["k"], edc["S"]
+        has_T = "T" in edc
+        if has_T:
+            eT_full = np.zeros(nsteps)
+            eT_full[ci] = edc["T"]
+        del edc
+        eT_arr = eT_full if has_T and chans and chans[0]["L"] == "L_tor" else eS_arr
         breaks = [np.array([0, nsteps])]
         vs = []
         for ch in chans:
@@ -581,31 +590,41 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
                 v = np.full(nsteps, cur[ch["ctrl"]])
             vs.append(v)
             breaks.append(_turns(cur[ch["ctrl"]], v))
-        vlists = [v.tolist() for v in vs]
-        ci = np.flatnonzero(changed)
         breaks += [ci, ci + 1, snap_idx - base + 1]
         brk = np.unique(np.concatenate(breaks))
+        del breaks, ci
         brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
-        dl, al = d_arr.tolist(), a_arr.tolist()
-        chl = changed.tolist()
         fusing = fused is not None and chans[0]["ctrl"] == chans[0]["pos"]
 
+        def one_by_one(j0, j1):
+            for c0 in range(j0, j1, _CHUNK):   # plain floats, converted a chunk at a time
+                c1 = min(c0 + _CHUNK, j1)
+                dl, al = d_arr[c0:c1].tolist(), a_arr[c0:c1].tolist()
+                ek, eS = ek_arr[c0:c1].tolist(), eS_arr[c0:c1].tolist()
+                eT = eT_full[c0:c1].tolist() if has_T else [None] * (c1 - c0)
+                vl = [v[c0:c1].tolist() for v in vs]
+                for o in range(c1 - c0):
+                    step(base + c0 + o, dl[o], al[o], ek[o], eS[o], eT[o], [v[o] for v in vl])
+
         def steps(j0, j1):
+            if not fusing:
+                one_by_one(j0, j1)
+                return
             j = j0
             while j < j1:   # runs of steps with a new depth each: one compiled call per run
-                r = min(j1, _next(d_same, j - 1, nsteps)) if fusing else j
+                r = min(j1, _next(d_same, j - 1, nsteps))
                 if r > j:
                     _fused_run(fused, fnd, st, chans[0], base + j, d_arr[j:r], a_arr[j:r],
-                               ed["k"][j:r], ed["S"][j:r], eT_arr[j:r], vs[0][j:r], state,
+                               ek_arr[j:r], eS_arr[j:r], eT_arr[j:r], vs[0][j:r], state,
                                out_W, out_stick if want_stick else None)
                     j = r
                 else:
-                    step(base + j, dl[j], al[j], ek[j], eS[j], eT[j], [v[j] for v in vlists])
+                    one_by_one(j, j + 1)
                     j += 1
 
         pending = None   # first step of a stretch of step-by-step intervals not yet run
         for j0, j1 in zip(brk[:-1], brk[1:]):
-            if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not chl[j0]:
+            if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not changed[j0]:
                 if pending is not None:
                     steps(pending, j0)
                     pending = None
