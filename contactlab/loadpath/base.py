@@ -18,7 +18,6 @@ segment ramps the force from its current value to 100 N.
 from __future__ import annotations
 
 import difflib
-import re
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Iterator
@@ -26,6 +25,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from ..errors import ParameterError, UnknownNameError
+from ..numeric.units import canonical_unit
 from ..params import as_real
 
 __all__ = ["LoadPath", "Segment", "Samples", "QUANTITIES", "GROUPS", "UNITS", "canonical_unit"]
@@ -36,19 +36,6 @@ GROUPS = {"depth": "normal", "force": "normal", "displacement": "tangential",
 #: SI unit of each quantity, in the one spelling contactlab writes (products with ``*``)
 UNITS = {"time": "s", "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N",
          "twist": "rad", "torque": "N*m"}
-
-_PRODUCT = re.compile(r"\s*[*·]\s*|\s+")
-
-
-def canonical_unit(unit: str) -> str:
-    """The spelling contactlab writes for ``unit``: factors joined by ``*``.
-
-    Input may join factors by a space, ``*`` or ``·``; all mean the same product.
-
-    >>> canonical_unit("N m"), canonical_unit(" mN·m "), canonical_unit("Pa * s")
-    ('N*m', 'mN*m', 'Pa*s')
-    """
-    return _PRODUCT.sub("*", unit.strip())
 
 
 def check_quantities(names: Any, where: str) -> None:

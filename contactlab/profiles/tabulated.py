@@ -55,12 +55,37 @@ class Tabulated(Profile):
         Heights (gap), m, same length. Need not be monotone, but the transform g must be
         non-decreasing over the contact (checked, see :meth:`radius_of_depth`).
     interpolation : {"linear", "cubic"}
-        Piecewise-linear (exact transform, default) or cubic spline (quadrature transform).
+        Piecewise-linear (exact transform, default) or cubic spline.
+    smoothing : None, "auto" or float
+        Noisy data: replace the heights by a smoothing spline of the table (see
+        :mod:`contactlab.profiles.smoothing`). ``"auto"`` picks the smoothing from the data
+        (generalised cross-validation, or matched to ``noise`` when given); a float is the
+        spline's dimensionless λ. :attr:`smoothing_report` says what it did, and the error
+        estimates of every result include the uncertainty it leaves (noise and bias).
+    noise : float, optional
+        Standard deviation of the measurement noise of ``f``, m (used by ``smoothing="auto"``
+        and by the error estimate).
+    admissible : None or "nearest"
+        ``"nearest"`` replaces the (smoothed) table by the nearest one whose linear
+        interpolant has ``r f'(r)`` non-decreasing (slopes >= 0 and non-decreasing), so ``g`` is
+        monotone at every load; :attr:`smoothing_report` gives the largest change. Without it, a
+        table whose ``g`` decreases is reported (radius and depth) when a load reaches there.
 
     Raises
     ------
     TabulatedDataError
         Unsorted, duplicate, negative or non-finite radii; non-finite heights; length mismatch.
+    ParameterError
+        An invalid ``smoothing``, ``noise`` or ``admissible``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> r = np.linspace(0.0, 1e-3, 200)
+    >>> f = r**2 / 0.02 + 5e-9 * np.random.default_rng(1).standard_normal(r.size)
+    >>> tab = Tabulated(r, f, smoothing="auto", noise=5e-9)
+    >>> tab.smoothing_report.method, tab.smoothing_report.rms_change < 1e-8
+    ('noise', True)
     """
 
     name: ClassVar[str] = "tabulated"
@@ -70,10 +95,24 @@ class Tabulated(Profile):
         Param("interpolation", "-", "-", "real", "interpolation"),
     )
 
-    def __init__(self, r: Any, f: Any, interpolation: str = "linear") -> None:
+    def __init__(self, r: Any, f: Any, interpolation: str = "linear", *,
+                 smoothing: Any = None, noise: float | None = None,
+                 admissible: str | None = None) -> None:
         if interpolation not in ("linear", "cubic"):
             raise ParameterError(f"interpolation={interpolation!r} is invalid: use 'linear' "
                                  "(exact transform) or 'cubic' (smooth spline).")
+        if admissible not in (None, "nearest"):
+            raise ParameterError(f"admissible={admissible!r} is invalid: use None (report a "
+                                 "non-monotone g when a load reaches it) or 'nearest'.")
+        if noise is not None:
+            try:
+                noise = float(noise)
+            except (TypeError, ValueError):
+                raise ParameterError(f"noise={noise!r} is invalid: expected a number >= 0 "
+                                     "(m).") from None
+            if not np.isfinite(noise) or noise < 0:
+                raise ParameterError(f"noise={noise!r} m is invalid: it must be finite and "
+                                     ">= 0.")
         r_arr = self._table_array("r", r)
         f_arr = self._table_array("f", f)
         if r_arr.shape != f_arr.shape:
@@ -95,6 +134,10 @@ class Tabulated(Profile):
             raise TabulatedDataError(
                 f"r[{i + 1}]={float(r_arr[i + 1])!r} < r[{i}]={float(r_arr[i])!r}: radii must be "
                 "strictly increasing (sort the table).")
+        self.smoothing_report = None
+        self._band = None
+        if smoothing is not None or admissible is not None:
+            f_arr = self._smooth(r_arr, f_arr, smoothing, noise, admissible)
         f_rel = f_arr - f_arr[0]
         if r_arr[0] > 0:        # flat extension to the axis
             r_arr = np.concatenate([[0.0], r_arr])
@@ -121,31 +164,125 @@ class Tabulated(Profile):
             self._monotone_f = bool(np.all(self._spline_d(probe) >= 0) and np.all(np.diff(rfp) >= 0))
         self._node_g: np.ndarray | None = None
 
+    def _smooth(self, r: np.ndarray, f: np.ndarray, smoothing: Any, noise: float | None,
+                admissible: str | None) -> np.ndarray:
+        """Smoothed and/or projected heights; sets :attr:`smoothing_report` and the error band."""
+        from dataclasses import replace
+
+        from .smoothing import SmoothingReport, nearest_admissible, slope_violations, smooth_table
+        parts = None
+        if smoothing is not None:
+            f_new, report, parts = smooth_table(r, f, smoothing, noise)
+        else:
+            f_new = f.copy()
+            report = SmoothingReport("admissible", 0.0, 0.0, 0.0, float(noise or 0.0), r.size)
+        project = admissible == "nearest"
+        if not project and smoothing == "auto" and slope_violations(r, f_new).size:
+            # a projection smaller than the noise is not a change the data can tell apart
+            f_adm = nearest_admissible(r, f_new)
+            project = bool(np.max(np.abs(f_adm - f_new)) <= 3.0 * report.noise)
+        if project:
+            f_adm = nearest_admissible(r, f_new)
+            report = replace(report, admissible_change=float(np.max(np.abs(f_adm - f_new))))
+            if parts is not None:
+                parts["bias"] = parts["bias"] + (f_adm - f_new)
+            else:
+                parts = {"bias": f_adm - f_new, "spread": None}
+            f_new = f_adm
+            change = f_new - f
+            report = replace(report, max_change=float(np.max(np.abs(change))),
+                             rms_change=float(np.sqrt(np.mean(change ** 2))))
+        self.smoothing_report = report
+        self._band_parts = (r, parts)
+        return f_new
+
+    def _smoothing_band(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """``(x grid, |δg|, |δ∫g|)``: error bands the smoothing leaves (bias + 3 σ of the
+        re-smoothed noise copies), on 65 radii, as envelopes (computed on first use)."""
+        if self._band is not None or getattr(self, "_band_parts", None) is None:
+            return self._band
+        r, parts = self._band_parts
+        grid = np.linspace(0.0, float(self.r[-1]), 65)
+
+        def transforms(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            t = Tabulated(r, v)
+            return np.abs(t._g_closed_form(grid)), np.abs(t._g_integral_closed_form(grid))
+
+        bg, bi = transforms(parts["bias"])
+        sg = np.zeros(grid.size)
+        si = np.zeros(grid.size)
+        if parts.get("spread") is not None:
+            # signed copies: the RMS over the probes is the standard deviation
+            def signed(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                t = Tabulated(r, v)
+                return t._g_closed_form(grid), t._g_integral_closed_form(grid)
+            cols = [signed(parts["spread"][:, k]) for k in range(parts["spread"].shape[1])]
+            sg = np.sqrt(np.mean([c[0] ** 2 for c in cols], axis=0))
+            si = np.sqrt(np.mean([c[1] ** 2 for c in cols], axis=0))
+        eg, ei = bg + 3.0 * sg, bi + 3.0 * si
+        # envelope: the larger of the neighbouring grid values, so interpolation never dips
+        eg = np.maximum(eg, np.maximum(np.r_[eg[1:], eg[-1]], np.r_[eg[0], eg[:-1]]))
+        ei = np.maximum(ei, np.maximum(np.r_[ei[1:], ei[-1]], np.r_[ei[0], ei[:-1]]))
+        self._band = (grid, eg, ei)
+        return self._band
+
+    def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        val, err = super()._g_with_error(xa, rtol)
+        band = self._smoothing_band()
+        if band is not None:
+            err = err + np.interp(xa, band[0], band[1])
+        return val, err
+
     @classmethod
     def from_csv(cls, path: str | Path, interpolation: str = "linear", *,
-                 delimiter: str | None = None) -> "Tabulated":
-        """Read a two-column table (r [m], f [m]); a non-numeric first row is a header."""
-        path = Path(path)
-        try:
-            text = path.read_text()
-        except OSError as err:
-            raise TabulatedDataError(f"file={str(path)!r} cannot be read: {err}.") from err
-        dialect_delim = delimiter or (";" if text.count(";") > text.count(",") else ",")
-        rows = [row for row in csv.reader(text.splitlines(), delimiter=dialect_delim)
-                if row and not row[0].lstrip().startswith("#")]
-        if rows:
-            try:
-                float(rows[0][0])
-            except ValueError:
-                rows = rows[1:]
-        try:
-            data = np.array([[float(v) for v in row[:2]] for row in rows], dtype=float)
-        except (ValueError, IndexError) as err:
-            raise TabulatedDataError(f"file={str(path)!r}: every row needs two numbers r, f "
-                                     f"({err}).") from err
-        if data.ndim != 2 or data.shape[0] == 0:
-            raise TabulatedDataError(f"file={str(path)!r} holds no data rows.")
-        return cls(data[:, 0], data[:, 1], interpolation=interpolation)
+                 r_unit: str | None = None, f_unit: str | None = None,
+                 delimiter: str | None = None, smoothing: Any = None,
+                 noise: float | None = None, admissible: str | None = None) -> "Tabulated":
+        """Read a table: two columns r, f (further columns are ignored).
+
+        Parameters
+        ----------
+        path : path-like
+            CSV file. An optional header names the columns with their units in brackets, in the
+            unit grammar of scene files: ``r [mm],f [um]``. Lines starting with ``#`` are
+            comments; ``;`` separates columns if the file holds more of them than commas.
+        interpolation : {"linear", "cubic"}
+            See :class:`Tabulated`.
+        r_unit, f_unit : str, optional
+            Units of the columns when the header gives none (``"mm"``, ``"um"``, ``"nm"``);
+            default m. A unit in the header and a different one here is an error.
+        delimiter : str, optional
+            Column separator (default: detected).
+        smoothing, noise, admissible
+            See :class:`Tabulated` (``noise`` in m, whatever the file's units).
+
+        Raises
+        ------
+        TabulatedDataError
+            Unreadable file, fewer than two columns, a cell that is not a number, conflicting
+            units, and every check of :class:`Tabulated`.
+        UnitError
+            A unit that is unknown or not a length.
+
+        Examples
+        --------
+        >>> import pathlib, tempfile
+        >>> p = pathlib.Path(tempfile.mkdtemp()) / "cup.csv"
+        >>> _ = p.write_text("r [mm],f [um]\\n0,0\\n1,25\\n2,100\\n")
+        >>> Tabulated.from_csv(p).f.tolist()
+        [0.0, 2.5e-05, 0.0001]
+        """
+        from ..numeric.tables import read_columns
+        units = {k: v for k, v in ((0, r_unit), (1, f_unit)) if v is not None}
+        names, cols = read_columns(path, names=("r", "f"), units=units, delimiter=delimiter,
+                                   min_columns=2,
+                                   dimension=("length", "length"))
+        for extra in names[2:]:
+            cols.pop(extra, None)
+        r_name, f_name = names[0], names[1]
+        return cls(cols[r_name], cols[f_name], interpolation=interpolation, smoothing=smoothing,
+                   noise=noise, admissible=admissible)
 
     @staticmethod
     def _table_array(name: str, values: Any) -> np.ndarray:
@@ -492,8 +629,13 @@ class Tabulated(Profile):
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
         if self._spline is not None:
-            return self._g_integral_quadrature(a, rtol)
-        return super()._g_integral_with_error(a, rtol)
+            val, err = self._g_integral_quadrature(a, rtol)
+        else:
+            val, err = super()._g_integral_with_error(a, rtol)
+        band = self._smoothing_band()
+        if band is not None:
+            err = err + np.interp(a, band[0], band[2])
+        return val, err
 
     # ------------------------------------------------------------------ contact radius
     def _grid_g(self) -> tuple[np.ndarray, np.ndarray]:

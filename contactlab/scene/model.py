@@ -59,31 +59,46 @@ class History:
         return self.controls[axis][1] if axis in self.controls else np.zeros(self.time.shape)
 
 
+def _table_columns(body: Mapping[str, Any], base_dir: Path | None) -> dict[str, Any]:
+    if "file" in body:
+        return read_table(resolve_file(body["file"], base_dir))
+    return dict(body)
+
+
 def build_load_path(segments: Sequence[Mapping[str, Any]], base_dir: Path | None) -> LoadPath:
     """The typed :class:`~contactlab.LoadPath` of validated scene segments.
 
     A scene path starts from the unloaded state at time 0: unless the path is a measured table
-    (whose first row is the start), it opens with a one-row :class:`~contactlab.loadpath.Table`
-    holding every control at 0, so step 0 of the scene is that start.
+    alone (whose first row is the start), it opens with a one-row
+    :class:`~contactlab.loadpath.Table` holding every control at 0, so step 0 of the scene is
+    that start. A ``table`` among other segments is one segment like the rest (its times are
+    offsets from its first row, which follows the previous segment's last step); ``repeat =
+    { times = N, last = k }`` runs the ``k`` segments before it (default 1) ``N`` times in all.
     """
     if len(segments) == 1 and "table" in segments[0]:
-        body = segments[0]["table"]
-        if "file" in body:
-            cols = read_table(resolve_file(body["file"], base_dir))
-        else:
-            cols = dict(body)
+        cols = _table_columns(segments[0]["table"], base_dir)
         n = len(next(iter(cols.values())))
         return LoadPath.from_arrays(time=cols.get("time", np.arange(n, dtype=float)),
                                     **{k: v for k, v in cols.items() if k in CONTROLS})
+    tables = {i: _table_columns(seg["table"], base_dir) for i, seg in enumerate(segments)
+              if "table" in seg}
     controls = {k for seg in segments for k in next(iter(seg.values())) if k in CONTROLS}
+    controls |= {k for cols in tables.values() for k in cols if k in CONTROLS}
     path = LoadPath.from_arrays(time=[0.0], **{k: [0.0] for k in sorted(controls)})
-    for seg in segments:
+    for i, seg in enumerate(segments):
         kind, body = next(iter(seg.items()))
         targets = tuple((k, v) for k, v in body.items() if k in CONTROLS)
         if kind == "ramp":
             path = path.then(Ramp(targets, body["steps"], body.get("duration")))
         elif kind == "hold":
             path = path.then(Hold(body["steps"], body.get("duration")))
+        elif kind == "table":
+            cols = tables[i]
+            path = path + LoadPath.from_arrays(
+                time=cols.get("time"),
+                **{k: v for k, v in cols.items() if k in CONTROLS})
+        elif kind == "repeat":
+            path = path.repeat(body["times"], last=body.get("last", 1))
         else:
             path = path.then(Sinusoid(targets, body["cycles"],
                                       body.get("steps_per_cycle", DEFAULT_STEPS_PER_CYCLE),

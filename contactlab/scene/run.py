@@ -163,9 +163,9 @@ class SceneResult(Cited):
             paths = [atomic_write(d / "result.json",
                                   json.dumps(self.to_dict(), indent=1).encode())]
         else:
-            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series))]
+            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series, SERIES_UNITS))]
             if self.fields:
-                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields)))
+                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields, FIELD_UNITS)))
             paths += self._write_fretting(d)
         for name in OUTPUT_FILES:
             stale = d / name

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..errors import ContactlabError, ParameterError, SceneError, UnknownNameError
 from ..loadpath.base import canonical_unit
-from .units import DIMENSION_OF_SI_UNIT, parse_quantity
+from .units import DIMENSION_OF_SI_UNIT, parse_quantity, split_header, unit_factor
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
            "SECTIONS", "SERIES", "FIELDS", "EFFECTS", "METHODS", "CONTROLS", "SEGMENTS",
@@ -58,6 +58,7 @@ SEGMENTS: dict[str, dict[str, tuple[str, bool]]] = {
     "sinusoid": {"cycles": ("count", True), "steps_per_cycle": ("int", False),
                  "period": ("time", False)},
     "table": {"file": ("path", False), "time": ("array", False)},
+    "repeat": {"times": ("int", True), "last": ("int", False)},
 }
 #: a scene may not ask for more load steps than this (fuzzed scenes must stay cheap)
 MAX_STEPS = 200_000
@@ -83,7 +84,9 @@ MAX_CHECKPOINTS = 1000
 # Extra keys some built-ins accept besides their constructor arguments: key -> dimension/kind.
 _PROFILE_ALTERNATES: dict[str, dict[str, str]] = {
     "cone": {"half_angle": "angle"},
-    "tabulated": {"file": "path", "r": "array", "f": "array", "interpolation": "choice"},
+    "tabulated": {"file": "path", "r": "array", "f": "array", "interpolation": "choice",
+                  "r_unit": "unit:length", "f_unit": "unit:length", "smoothing": "smoothing",
+                  "noise": "length", "admissible": "admissible"},
     "polynomial": {"terms": "terms"},
 }
 _MATERIAL_ALTERNATES: dict[str, dict[str, str]] = {"elastic": {"G": "pressure"}}
@@ -157,7 +160,7 @@ def make_profile(type_: str, params: Mapping[str, Any], base_dir: Path | None = 
         return cls.from_half_angle(p["half_angle"])
     if type_ == "tabulated" and "file" in p:
         path = resolve_file(p["file"], base_dir)
-        return cls.from_csv(path, interpolation=p.get("interpolation", "linear"))
+        return cls.from_csv(path, **{k: v for k, v in p.items() if k != "file"})
     if type_ == "polynomial":
         return cls([tuple(t) for t in p["terms"]])
     return cls(**p)
@@ -329,6 +332,19 @@ def _typed_object(ck: _Checker, path: str, raw: Any, kind: str) -> dict | None:
             val = ck.array(kp, v, "length")
         elif dim == "choice":
             val = ck.choice(kp, v, ("linear", "cubic"))
+        elif dim.startswith("unit:"):          # a unit name for the columns of a CSV file
+            try:
+                unit_factor(v, dim[5:], kp)
+                val = v
+            except SceneError as err:
+                ck.issues.extend(err.issues)
+                val = None
+        elif dim == "smoothing":
+            val = (v if v == "auto" else
+                   ck.quantity(kp, v, "dimensionless", "nonnegative") if not isinstance(v, str)
+                   else ck.choice(kp, v, ("auto",)))
+        elif dim == "admissible":
+            val = ck.choice(kp, v, ("nearest",))
         elif dim == "terms":
             val = _terms(ck, kp, v)
         elif isinstance(v, list):    # sequence parameters (e.g. Prony-series moduli)
@@ -395,7 +411,8 @@ def _first_line(err: BaseException) -> str:
 
 
 def read_table(path: Path) -> dict[str, np.ndarray]:
-    """Read a load-history CSV: a header row of column names, then numbers (SI)."""
+    """Read a load-history CSV: a header row of column names with optional units in the grammar
+    of scene files (``time [ms],force [kN],twist [deg]``), then numbers; returns SI columns."""
     text = Path(path).read_text()
     rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
     if len(rows) < 2:
@@ -413,7 +430,15 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
         raise ValueError(f"row {bad} holds a value that is not a number") from None
     if data.ndim != 2 or data.shape[1] != len(names):
         raise ValueError(f"every row needs {len(names)} numbers ({', '.join(names)})")
-    return {n: data[:, i] for i, n in enumerate(names)}
+    from ..loadpath.io import DIMENSIONS
+    out: dict[str, np.ndarray] = {}
+    for i, header in enumerate(names):
+        name, unit = split_header(header)
+        col = data[:, i]
+        if unit is not None and name in DIMENSIONS:
+            col = col * unit_factor(unit, DIMENSIONS[name], f"column {name}")
+        out[name] = col
+    return out
 
 
 def _all_numbers(row: Sequence[str]) -> bool:
@@ -441,7 +466,7 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
     if body is None:
         return None
     opts = SEGMENTS[kind]
-    allowed_keys = list(opts) + (list(CONTROLS) if kind != "hold" else [])
+    allowed_keys = list(opts) + (list(CONTROLS) if kind not in ("hold", "repeat") else [])
     ck.unknown_keys(sp, body, allowed_keys)
     out: dict[str, Any] = {}
     n_before = len(ck.issues)
@@ -484,7 +509,7 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
             try:
                 cols = read_table(p)
             except (OSError, ValueError) as err:
-                ck.add(f"{sp}.file", body["file"], f"a readable CSV history ({err})")
+                ck.add(f"{sp}.file", body["file"], f"a readable CSV history ({_first_line(err)})")
                 cols = None
             if cols is not None:
                 for name in cols:
@@ -518,14 +543,37 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
     return {kind: out}
 
 
+def _total_steps(segs: list) -> int:
+    counts: list[int] = []
+    for seg in segs:
+        if "repeat" in seg:
+            k = min(seg["repeat"].get("last", 1), len(counts))
+            counts[-k:] = [seg["repeat"]["times"] * sum(counts[-k:])] if k else []
+        else:
+            counts.append(_segment_steps(seg))
+    return sum(counts)
+
+
+def _check_repeats(ck: _Checker, segs: list) -> None:
+    """``repeat = { times = N, last = k }`` repeats the ``k`` segments before it (default 1)."""
+    for i, seg in enumerate(segs):
+        if "repeat" in seg:
+            last = seg["repeat"].get("last", 1)
+            prior = [s for s in segs[:i] if "repeat" not in s]
+            if i == 0 or last > i or any("repeat" in s for s in segs[i - last:i]):
+                ck.add(f"load_path[{i}].repeat.last", last,
+                       f"1 <= last <= {i} segments before it, none of them a repeat"
+                       if prior else "a segment to repeat before the repeat")
+
+
 def _segment_steps(seg: dict) -> int:
     kind, body = next(iter(seg.items()))
     if kind in ("ramp", "hold"):
         return int(body["steps"])
     if kind == "sinusoid":
         return max(1, int(round(body["cycles"] * body.get("steps_per_cycle", 100))))
-    if "file" in body:
-        return 0  # a CSV history: read_table refuses more than MAX_STEPS rows
+    if kind == "repeat" or "file" in body:
+        return 0  # repeats: counted by the caller; CSV histories: read_table limits the rows
     return max((len(v) for k, v in body.items() if k in CONTROLS or k == "time"), default=0)
 
 
@@ -623,16 +671,13 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
             segs = [_segment(ck, f"load_path[{i}]", s, axes) for i, s in enumerate(lp)]
             if all(s is not None for s in segs):
                 data["load_path"] = segs
-                n = sum(_segment_steps(s) for s in segs)
+                n = _total_steps(segs)
                 if n > MAX_STEPS:
                     ck.add("load_path", f"{n} steps", f"at most {MAX_STEPS} steps in total")
                 if "normal" not in axes:
                     ck.add("load_path", [next(iter(s)) for s in segs],
                            "a normal control (force or depth) in at least one segment")
-                tables = [i for i, s in enumerate(segs) if "table" in s]
-                if tables and len(segs) > 1:
-                    ck.add(f"load_path[{tables[0]}].table", "table with other segments",
-                           "a table segment as the only segment of the path")
+                _check_repeats(ck, segs)
 
     if "outputs" in top:
         outs = ck.table("outputs", top["outputs"])

@@ -25,7 +25,9 @@ EX = ROOT / "examples"
 def read_csv(path):
     with open(path) as fh:
         rows = list(csv.reader(fh))
-    return {k: np.array([float(r[i]) for r in rows[1:]]) for i, k in enumerate(rows[0])}
+    # headers are "name [unit]" (one style for every CSV contactlab writes)
+    return {k.split(" [")[0]: np.array([float(r[i]) for r in rows[1:]])
+            for i, k in enumerate(rows[0])}
 
 
 def run(tmp_path, name, fmt):

@@ -58,10 +58,13 @@ def test_csv_reader_accepts_every_spelling(tmp_path, header):
     np.testing.assert_array_equal(dict(seg.columns)["torque"], [0.0, 0.5])
 
 
-def test_csv_reader_still_rejects_another_unit(tmp_path):
+def test_csv_reader_converts_units_and_rejects_another_dimension(tmp_path):
     f = tmp_path / "h.csv"
-    f.write_text("force [N],torque [N*mm]\n1.0,0.0\n")
-    with pytest.raises(cl.errors.ParameterError, match=r"torque must be given in N\*m"):
+    f.write_text("force [N],torque [N*mm]\n1.0,2.0\n")
+    seg, = read_csv(f).segments
+    assert dict(seg.columns)["torque"].tolist() == [2e-3]
+    f.write_text("force [N],torque [mm]\n1.0,0.0\n")
+    with pytest.raises(cl.errors.UnitError, match=r"dimension length"):
         read_csv(f)
 
 

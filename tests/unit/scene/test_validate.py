@@ -185,8 +185,13 @@ def test_table_segment_inline_and_rules():
         "load_path[0].table"]
     assert paths(base(load_path=[{"table": {"time": [0, 2, 1], "force": [0, 5, 10]}}])) == [
         "load_path[0].table.time"]
-    assert paths(base(load_path=[{"table": {"force": [0, 5]}},
-                                 {"hold": {"steps": 2}}])) == ["load_path[0].table"]
+    # a table composes with other segments (issue 12): ramp, table, repeat, hold
+    s = Scene(base(load_path=[{"ramp": {"force": 5, "steps": 2}},
+                              {"table": {"force": [6, 7, 5]}}, {"repeat": {"times": 3}},
+                              {"hold": {"steps": 2}}]))
+    assert s.history().n_steps == 1 + 2 + 3 * 3 + 2
+    assert paths(base(load_path=[{"repeat": {"times": 2}},
+                                 {"ramp": {"force": 1, "steps": 1}}])) == ["load_path[0].repeat.last"]
 
 
 def test_table_segment_csv(tmp_path):

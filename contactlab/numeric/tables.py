@@ -1,0 +1,160 @@
+"""Reading and writing numeric CSV tables with units in the header (``r [mm], f [um]``).
+
+One reader serves measured profiles and measured load histories, so both accept the same
+header grammar (:func:`~contactlab.numeric.units.split_header`), the same unit spellings
+(:mod:`contactlab.numeric.units`) and fail with the same errors: a file that cannot be read, a
+row with too few numbers, a unit that is unknown or of the wrong dimension. Written tables use
+one header style, ``name [unit]``.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import TabulatedDataError, UnitError
+from .units import split_header, unit_factor
+
+__all__ = ["read_columns", "write_columns"]
+
+
+def _rows(path: Any, delimiter: str | None) -> list[list[str]]:
+    try:
+        with open(os.fspath(path), newline="") as fh:
+            text = fh.read()
+    except (OSError, TypeError, ValueError) as err:
+        raise TabulatedDataError(f"file={str(path)!r} cannot be read: "
+                                 f"{getattr(err, 'strerror', None) or err}.") from err
+    delim = delimiter or (";" if text.count(";") > text.count(",") else ",")
+    return [[c.strip() for c in row] for row in csv.reader(text.splitlines(), delimiter=delim)
+            if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
+                 dimension: Callable[[str], str | None] | tuple[str | None, ...],
+                 units: dict[str, str | None] | None = None,
+                 delimiter: str | None = None, min_columns: int = 1,
+                 ) -> tuple[list[str], dict[str, np.ndarray]]:
+    """Read a CSV table and convert every column to SI.
+
+    Parameters
+    ----------
+    path : path-like
+        The file. Lines starting with ``#`` are comments.
+    names : tuple of str, optional
+        Column names to use when the file has no header row (positional columns).
+    dimension : callable
+        Column name -> its dimension (``"length"``, ``"force"``, ...; see
+        :data:`~contactlab.numeric.units.UNITS`), None for a column of plain numbers, or
+        ``"ignore"`` for a column that is read but neither converted nor checked. A tuple gives
+        the dimensions by position; columns beyond it are ignored.
+    units : dict, optional
+        Column name or position -> unit given by the caller (``{"force": "kN"}``, ``{0: "mm"}``);
+        it must agree with a unit in the header, if there is one.
+    delimiter : str, optional
+        Column separator; default: ``;`` if the file holds more of them than commas, else ``,``.
+    min_columns : int
+        Columns every row must have.
+
+    Returns
+    -------
+    names : list of str
+        Column names (from the header, or ``names``).
+    columns : dict of ndarray
+        Column name -> values in SI units.
+
+    Raises
+    ------
+    TabulatedDataError
+        Unreadable file, no data rows, too few columns, a cell that is not a number, a unit
+        given both in the header and by the caller that disagree.
+    UnitError
+        A unit that is unknown or of another dimension than the column's.
+    """
+    rows = _rows(path, delimiter)
+    where = f"file={str(path)!r}"
+    header: list[str] | None = None
+    if rows and not all(_is_number(c) for c in rows[0] if c):
+        header, rows = rows[0], rows[1:]
+    if not rows:
+        raise TabulatedDataError(f"{where} holds no data rows (expected a header row, then one "
+                                 "row of numbers per point).")
+    if header is not None:
+        parsed = [split_header(h) for h in header]
+        col_names = [n for n, _ in parsed]
+        header_units = {n: u for n, u in parsed}
+    else:
+        width = len(rows[0])
+        col_names = list(names[:width]) if names else [f"column {i}" for i in range(width)]
+        header_units = {}
+    if len(col_names) < min_columns:
+        raise TabulatedDataError(
+            f"{where} has {len(col_names)} column(s) ({', '.join(col_names)}): it needs at "
+            f"least {min_columns}" + (f" ({', '.join(names[:min_columns])})" if names else "")
+            + ".")
+    width = len(col_names)
+    data = np.empty((len(rows), width))
+    for i, row in enumerate(rows):
+        cells = [c for c in row]
+        if len(cells) < width or any(c != "" for c in cells[width:]):
+            raise TabulatedDataError(
+                f"{where}: data row {i + 1} has {len(cells)} value(s) {cells!r}; every row "
+                f"needs {width} ({', '.join(col_names)}).")
+        for j in range(width):
+            try:
+                data[i, j] = float(cells[j])
+            except ValueError:
+                raise TabulatedDataError(
+                    f"{where}: data row {i + 1}, column {col_names[j]!r} holds {cells[j]!r}, "
+                    "which is not a number.") from None
+    given = dict(units or {})
+    out: dict[str, np.ndarray] = {}
+    for j, name in enumerate(col_names):
+        if isinstance(dimension, tuple):
+            dim = dimension[j] if j < len(dimension) else "ignore"
+        else:
+            dim = dimension(name)
+        unit_h = header_units.get(name)
+        unit_a = given.get(name, given.get(j))
+        col = data[:, j]
+        if dim == "ignore":
+            out[name] = col
+            continue
+        if dim is None:
+            if unit_h not in (None, "", "1", "-"):
+                raise UnitError(f"{where}: column {name!r} has unit {unit_h!r}, but it takes "
+                                "plain numbers.", [(f"{name} [unit]", unit_h, "no unit")])
+            out[name] = col
+            continue
+        factor_h = None if unit_h is None else unit_factor(unit_h, dim, f"{name} [unit]")
+        factor_a = None if unit_a is None else unit_factor(unit_a, dim, f"unit of {name}")
+        if factor_h is not None and factor_a is not None and not math.isclose(factor_h, factor_a):
+            raise TabulatedDataError(
+                f"{where}: column {name!r} is in {unit_h!r} by its header but {unit_a!r} was "
+                f"given as an argument; give one unit, or make them agree.")
+        factor = factor_h if factor_h is not None else (factor_a if factor_a is not None else 1.0)
+        out[name] = col * factor if factor != 1.0 else col
+    return col_names, out
+
+
+def write_columns(path: Any, columns: dict[str, Any], units: dict[str, str]) -> None:
+    """Write equal-length columns with ``name [unit]`` headers (``name`` alone when the column
+    has no unit in ``units``); values as ``repr`` of floats, so they read back bit for bit."""
+    names = list(columns)
+    arrs = [np.asarray(columns[n], float).ravel() for n in names]
+    with open(os.fspath(path), "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow([f"{n} [{units[n]}]" if units.get(n) else n for n in names])
+        for row in zip(*arrs):
+            w.writerow([repr(float(v)) for v in row])
