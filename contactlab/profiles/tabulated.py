@@ -873,4 +873,5 @@ class Tabulated(Profile):
                 f"depth={d_for_message!r} m: the transformed profile g(x) decreases at x="
                 f"{xx[i]:.6g} m (g={gg[i]:.6g} m, then {gg[i + 1]:.6g} m), so beyond depth "
                 f"{gg[i]:.6g} m the contact is an annulus, outside the MDR. Smooth the measured "
-                "profile or limit the load.")
+                "profile (Tabulated(..., smoothing='auto')), take the nearest admissible table "
+                "(admissible='nearest', slopes made non-decreasing) or limit the load.")
