@@ -20,6 +20,12 @@ SMOOTHER_SECOND_METHOD = 1e-10
 #: slopes of a table integrated from non-decreasing slopes (cumsum, then differences): rounding
 #: of heights ~100 times larger than one step's rise (measured 5e-15 relative)
 INTEGRATED_SLOPES = 1e-13
+#: hip-cup study (examples/hip_cup.toml): contact radius of the smoothed noisy table under the
+#: gait load against Hertz; the r^4 wear term (< 1e-3), the smoothing (~1e-4) and the foundation
+#: with 400 springs (~1e-4) (measured 8.7e-4)
+HIP_CUP_RADIUS = 3e-3
+#: |torque| <= (3/4) mu F a (full slip) up to rounding of the spring sums
+SLIP_BOUND = 1e-9
 
 
 def tabulated_linear(spacing_over_radius: float) -> float:
