@@ -11,9 +11,35 @@ from contactlab.scene import Scene
 from tests.unit.scene.helpers import example_params, twist_scene
 
 
-def expected_history(segments):
+_FACTORS = {"s": 1.0, "ms": 1e-3, "N": 1.0, "kN": 1e3, "rad": 1.0, "deg": np.pi / 180, "m": 1.0}
+
+
+def _read_history(path):
+    """A CSV history with ``name [unit]`` headers, read with numpy and a small unit table."""
+    lines = [ln for ln in Path(path).read_text().splitlines() if not ln.startswith("#")]
+    heads = [h.strip() for h in lines[0].split(",")]
+    data = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
+    out = {}
+    for i, h in enumerate(heads):
+        name, _, unit = h.partition(" [")
+        out[name] = data[:, i] * _FACTORS[unit.rstrip("]") or "s"]
+    return out
+
+
+def expected_history(segments, base_dir=None):
     """Independent sampling of scene segments (SI dicts): ramp linear in k/n, hold constant,
-    sinusoid cur + A sin(2πk/spc) with one period tiled and exact zeros at half periods."""
+    sinusoid cur + A sin(2πk/spc) with one period tiled and exact zeros at half periods; a table
+    at offsets from its first row after the last step; repeat copies the segments before it."""
+    expanded = []
+    for seg in segments:
+        if "repeat" in seg:
+            k = seg["repeat"].get("last", 1)
+            expanded += expanded[-k:] * (seg["repeat"]["times"] - 1)
+        elif "table" in seg and "file" in seg["table"]:
+            expanded.append({"table": _read_history(Path(base_dir) / seg["table"]["file"])})
+        else:
+            expanded.append(seg)
+    segments = expanded
     kinds = sorted({k for s in segments for k in next(iter(s.values()))
                     if k in ("depth", "force", "displacement", "tangential_force", "twist",
                              "torque")})
@@ -21,7 +47,12 @@ def expected_history(segments):
     vals = {k: [0.0] for k in kinds}
     for seg in segments:
         kind, body = next(iter(seg.items()))
-        if kind in ("ramp", "hold"):
+        if kind == "table":
+            n = len(next(v for k, v in body.items() if k != "time"))
+            tt = np.asarray(body.get("time", np.arange(1.0, n + 1)))
+            times = t[-1] + (tt - tt[0])
+            new = {k: np.asarray(body[k]) if k in body else np.full(n, cur[k]) for k in kinds}
+        elif kind in ("ramp", "hold"):
             n = body["steps"]
             f = np.arange(1, n + 1) / n
             times = t[-1] + f * body.get("duration", float(n))
@@ -45,7 +76,7 @@ def expected_history(segments):
 @pytest.mark.parametrize("path", example_params())
 def test_example_history_is_the_segment_formulas_bit_for_bit(path):
     s = Scene.from_toml(path)
-    t, vals = expected_history(s.to_dict()["load_path"])
+    t, vals = expected_history(s.to_dict()["load_path"], path.parent)
     h = s.history()
     np.testing.assert_array_equal(h.time, t)
     for axis, (kind, v) in h.controls.items():
