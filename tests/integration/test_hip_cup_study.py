@@ -20,7 +20,7 @@ from contactlab.scene import Scene
 from tests.reference.hertz import radius_of_force
 from tests.tolerances import HIP_CUP_RADIUS, SLIP_BOUND
 
-EX = Path(__file__).parents[2] / "examples"
+EX = Path(__file__).parents[2] / "examples" / "hip_cup"
 
 
 def test_hip_cup_study_end_to_end(tmp_path):
