@@ -174,13 +174,44 @@ def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
            branch: str = "stable") -> "NormalState":
     """Driver of :meth:`contactlab.Contact.normal` for non-adhesive contacts (see there for the
-    parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`)."""
-    if (radius is None and branch == "stable" and (depth is None) != (force is None)
-            and type(depth if force is None else force) in _SCALARS and not contact.is_adhesive):
-        state = _fast_normal(contact, "depth" if force is None else "force",
-                             depth if force is None else force)
-        if state is not None:
-            return state
+    parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`).
+
+    A state whose numbers leave double precision (lengths of 1e100 m, say) raises
+    :class:`~contactlab.errors.OutsideTheoryError` instead of returning inf or NaN.
+    """
+    try:
+        if (radius is None and branch == "stable" and (depth is None) != (force is None)
+                and type(depth if force is None else force) in _SCALARS
+                and not contact.is_adhesive):
+            value = depth if force is None else force
+            state = _fast_normal(contact, "depth" if force is None else "force", value)
+            if state is not None:           # plain floats: overflow gives inf (or raises)
+                F = state._force
+                if not math.isfinite(F + state._depth + state._radius) or (
+                        force is not None and F > 0 and not abs(F - force) <= 1e-8 * abs(force)):
+                    raise FloatingPointError("non-finite or inconsistent state")
+                return state
+        with np.errstate(over="raise"):
+            state = _normal_state(contact, depth, force, radius, branch)
+        F, d, a = (np.asarray(v, float) for v in (state._force, state._depth, state._radius))
+        bad = ~np.isfinite(F + d + a)
+        if force is not None:               # a force-controlled state carries the requested force
+            req = np.broadcast_to(np.asarray(force, float), F.shape)
+            bad |= (req > 0) & ~(np.abs(F - req) <= 1e-8 * req)
+        if np.any(bad):
+            raise FloatingPointError("non-finite or inconsistent state")
+        return state
+    except (FloatingPointError, OverflowError) as err:
+        given = {k: v for k, v in (("depth", depth), ("force", force), ("radius", radius))
+                 if v is not None}
+        raise OutsideTheoryError(
+            f"normal({', '.join(f'{k}={v!r}' for k, v in given.items())}) of {contact.profile!r} "
+            "overflows double precision: the problem's scales are too far apart (check the units "
+            "of the profile parameters, moduli and loads; SI: m, Pa, N).") from err
+
+
+def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> "NormalState":
+    """The array route of :func:`normal` (validation, the kernel, the state)."""
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
     if branch != "stable":
         raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
