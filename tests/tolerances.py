@@ -358,6 +358,15 @@ WEAR_SCAR_ASYMPTOTE = 1e-2
 #: M(c/a) and φ'(c/a) = -C E(1 - (c/a)²)/(c/a)) against the exact solver: measured <= 1.2e-12 in
 #: the energy ratio (amplified by 1/A ~ 150 at c/a = 0.99 from the cancelling 8∫M dφ - 4φM)
 LUBKIN_ENERGY_REFERENCE = 1e-9
+#: shift and twist wear runs (Hertz, n = 200) tuned to the same final stick radius: the secant on
+#: the twist amplitude stops within this relative difference of the stick radii
+WEAR_SAME_STICK = 2e-4
+#: their limiting states against each other (the same shape, Dmitriev et al. 2016): depth, scar
+#: radius and largest wear depth measured <= 2.8e-3 (the stick edge falls at different places in a
+#: grid cell of 2 µm); volume 5e-3 and the profile away from the 3 cells at the stick edge 4.6e-3
+#: of the largest wear depth
+WEAR_MODES_SAME_LIMIT = 5e-3
+WEAR_MODES_SAME_LIMIT_VOLUME = 1e-2
 
 # ---- exact ring solver for torsion along load paths (issue 18)
 #: 200 rings (default) against the exact Jäger/Masing twist_history at constant load (monotone,
