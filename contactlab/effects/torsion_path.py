@@ -121,10 +121,10 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots):
             z_old = st.z
             if ctrl == "twist":
                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], dphi=target[j] - st.twist,
-                                                guess=st.active)
+                                                guess=st.active, C=rings.C)
             else:
                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], torque=float(target[j]),
-                                                guess=st.active)
+                                                guess=st.active, C=rings.C)
             iters += it
             if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
                 res["gross_sliding"][k] = True

@@ -64,7 +64,8 @@ class Rings(Foundation):
         b = self.boundaries
         self.points = 0.5 * (b[1:] + b[:-1])
         mats = _tr.influence(b, self.points, self.moduli.torsional)
-        self.H, self.g, self.B, self.lu = mats["H"], mats["g"], mats["B"], mats["lu"]
+        self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
+        self.B, self.lu = mats["B"], mats["lu"]
 
     def new_state(self) -> RingState:
         n = self.n_springs

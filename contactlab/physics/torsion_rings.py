@@ -129,8 +129,8 @@ def influence(b: np.ndarray, r: np.ndarray, G_t: float) -> dict[str, np.ndarray]
     Returns
     -------
     dict
-        ``H`` (m³/Pa... the complementary-energy matrix in point tractions, J/Pa²), ``g`` (torque
-        per point traction, m³), ``B`` (traction per hat at the points) and ``lu`` (its LU
+        ``H`` (the complementary-energy matrix in point tractions, J/Pa²), its inverse ``C``,
+        ``g`` (torque per point traction, m³), ``B`` (traction per hat at the points) and ``lu`` (its LU
         factors, to map point tractions back to punch densities).
     """
     B = hat_traction(b, r, G_t)
@@ -141,7 +141,8 @@ def influence(b: np.ndarray, r: np.ndarray, G_t: float) -> dict[str, np.ndarray]
     H = _la.lu_solve(lu, Y.T, trans=1, check_finite=False).T
     H = 0.5 * (H + H.T)
     g = _la.lu_solve(lu, m, trans=1, check_finite=False)
-    return {"H": H, "g": g, "B": B, "lu": lu}
+    C = _la.cho_solve(_la.cho_factor(H, check_finite=False), np.eye(g.size), check_finite=False)
+    return {"H": H, "C": 0.5 * (C + C.T), "g": g, "B": B, "lu": lu}
 
 
 def _solve_free(H, rhs, F, zA, A):
@@ -150,9 +151,21 @@ def _solve_free(H, rhs, F, zA, A):
     return _la.solve(HFF, r, assume_a="pos", check_finite=False)
 
 
+def _solve_active(C, rhs_cols, A, zA):
+    """Solution with the multipliers of the active set (``H = C⁻¹``): ``z = C(rhs − λ)``,
+    ``C_AA λ_A = (C rhs)_A − z_A``; cheaper than the free-set solve when few points are active."""
+    Cr = C @ rhs_cols
+    if not A.any():
+        return Cr, np.zeros((0,) + rhs_cols.shape[1:])
+    rhs_A = Cr[A] - (zA if rhs_cols.ndim == 1 else np.stack([zA, np.zeros_like(zA)], axis=1))
+    lamA = _la.solve(C[np.ix_(A, A)], rhs_A, assume_a="pos", check_finite=False)
+    return Cr - C[:, A] @ lamA, lamA
+
+
 def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray, *,
              dphi: float | None = None, torque: float | None = None,
-             guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, float, int]:
+             guess: np.ndarray | None = None, C: np.ndarray | None = None
+             ) -> tuple[np.ndarray, np.ndarray, float, int]:
     """One load step: the box-constrained QP of the module docstring, twist or torque controlled.
 
     Parameters
@@ -169,6 +182,9 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         Target torque, N·m (torque control; the twist increment is solved for).
     guess : ndarray of int, optional
         Active-set guess per point (-1 lower bound, 0 free, +1 upper bound).
+    C : ndarray, optional
+        ``H⁻¹``; when given, each pivot solves the smaller of the free-set system (size of the
+        stuck set) and the active-set system (size of the sliding and out-of-contact set).
 
     Returns
     -------
@@ -195,7 +211,18 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         F = state == 0
         A = ~F
         zA = z[A]
-        if torque is None:
+        if C is not None and A.sum() < F.sum():
+            if torque is None:
+                rhs = base + dphi * g
+                z, _ = _solve_active(C, rhs, A, zA)
+                d = dphi
+            else:
+                cols, _ = _solve_active(C, np.stack([base, g], axis=1), A, zA)
+                d = (torque - g @ cols[:, 0]) / (g @ cols[:, 1])
+                z = cols[:, 0] + d * cols[:, 1]
+                rhs = base + d * g
+            z[A] = zA
+        elif torque is None:
             rhs = base + dphi * g
             if F.any():
                 z[F] = _solve_free(H, rhs, F, zA, A)

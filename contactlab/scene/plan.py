@@ -253,7 +253,13 @@ def make_plan(scene: "Scene") -> Plan:
                     else "no call: zero shift gives zero force, stick radius = contact radius")
         elif foundation:
             impl = "contact.simulate (MDR " + ("torsional" if torsion else "tangential") + " springs)"
-            if torsion and method in ("exact", "no-slip") and friction is not None:
+            if torsion and method == "exact" and friction is not None and not visco:
+                impl = "contact.simulate(method='exact') (exact ring solver)"
+                reasons.append("the normal load changes while twisted: exact pressure per step, "
+                               "the half-space's torsional influence on rings, Coulomb friction "
+                               "with memory (the MDR springs err by up to ~20 % of the sliding "
+                               "torque on such paths)")
+            elif torsion and method == "no-slip" and friction is not None:
                 reasons.append(f"method {method!r} has no foundation implementation: the MDR "
                                "spring model is used")
         elif method == "no-slip":
@@ -273,7 +279,12 @@ def make_plan(scene: "Scene") -> Plan:
         rows[eff] = Effect(eff, impl, "; ".join(reasons))
         if impl_call:
             calls.append(impl_call)
-    if slip and foundation:
+    exact_path = bool(foundation and torsion and method == "exact" and friction is not None
+                      and not visco)
+    if slip and exact_path:
+        rows["slip"] = Effect("slip", "exact Coulomb friction per ring with memory (ring solver)",
+                              f"interface.friction = {_fmt(friction)}; foundation route")
+    elif slip and foundation:
         model = ("MDR torsional springs, Coulomb per spring (narrow-slip model)" if torsion else
                  "MDR tangential springs, Coulomb per spring (exact Cattaneo-Mindlin)")
         if torsion:
@@ -333,6 +344,7 @@ def make_plan(scene: "Scene") -> Plan:
     return Plan(ordered, route, tuple(calls), series, fields, tuple(out_rows),
                 method if (torsion or tangential) else None, n,
                 {"axis": axis, "start": start, "monotone": monotone, "coupled_at": coupled_at,
+                 "exact_torsion_path": exact_path,
                  **{name: det for name, (_, det) in extra.items()}})
 
 

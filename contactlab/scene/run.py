@@ -316,6 +316,8 @@ def run_scene(scene: "Scene") -> SceneResult:
                 out[k] = _get(res, k, n)
     elif plan.route == "foundation":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
+        if plan.details.get("exact_torsion_path", False):
+            kw = {"method": "exact"}       # the exact ring solver (issue 18)
         res = contact.simulate(scene.load_path, **kw)
         computed.append("simulate")
         for k in plan.series:

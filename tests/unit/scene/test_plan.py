@@ -75,7 +75,10 @@ def test_varying_normal_load_while_twisted_needs_foundation():
     p = plan_of(d)
     assert p.route == "foundation" and p.calls == ("simulate",)
     assert "normal load varies while twisted (step 15, load_path[2])" in p["normal"].reason
-    assert "MDR spring model" in p["torsion"].reason   # exact -> MDR swap is stated
+    # the exact ring solver runs such paths (issue 18), and the plan says why
+    assert "exact ring solver" in p["torsion"].implementation
+    assert "exact pressure per step" in p["torsion"].reason
+    assert p.details["exact_torsion_path"]
 
 
 def test_torque_controlled_oscillation_needs_foundation():

@@ -1,0 +1,182 @@
+"""Exact torsion along load paths (``contact.simulate(path, method="exact")``): accuracy, cost, and
+the error of the MDR spring model when the normal force changes (issue 18).
+
+1. Accuracy–cost front at constant load: torque error of the ring solver against the exact
+   Jäger/Masing ``twist_history`` (oscillating + irregular Hertz histories), per number of rings,
+   with the time per step.
+2. The 180-step varying-load path (Hertz, force 10 N ± 40 % at two cycles, twist oscillating in
+   partial slip at three cycles): time and torque error of ``method="exact"`` at several ring
+   counts and of ``method="mdr"`` (2000 springs), all against a 4x finer exact run, side by side in
+   one run.
+3. MDR-vs-exact error map under changing normal load (Hertz and cone; constant, sinusoidal and a
+   gait-like double-hump force): torque error (of the instantaneous sliding torque and of the
+   path's), dissipated energy of the last twist cycle, smallest stick radius.
+
+Writes ``benchmarks/results/torsion_rings.csv`` and prints the tables.
+Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3).
+"""
+from __future__ import annotations
+
+import csv
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import contactlab as cl  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _harness import machine  # noqa: E402
+
+MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
+MU = 0.3
+OUT = Path(__file__).resolve().parent / "results"
+
+
+def timed(fn, repeat=3):
+    best, out = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def sliding(c, force):
+    """Exact full-sliding torque per step, 2π μ ∫ p r² dr (through the exact torsion model)."""
+    from contactlab.physics.torsion import METHODS
+    ns = c.normal(force=np.asarray(force, float))
+    a, d = np.asarray(ns._radius, float), np.asarray(ns._depth, float)
+    model = METHODS["exact"](c.profile, c.moduli.normal, c.moduli.torsional, MU, c.rtol)
+    return model.sliding_torque(a, d)
+
+
+def front():
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=MAT, friction=MU)
+    F = 10.0
+    a = float(c.normal(force=F)._radius)
+    s = MU * F / (c.moduli.torsional * a * a)
+    M_full = 3 * np.pi / 16 * MU * F * a
+    rng = np.random.default_rng(1)
+    hist = np.concatenate([0.6 * s * np.sin(np.linspace(0.2, 4 * np.pi, 60)),
+                           np.cumsum(rng.normal(0, 0.25, 60)) * s])
+    ref = c.twist_history(twist=hist, force=F).torque
+    path = (cl.LoadPath().ramp(force=F, steps=2)
+            + cl.LoadPath.from_arrays(twist=hist, force=np.full(hist.size, F)))
+    rows = []
+    for n in (25, 50, 100, 200, 400, 800):
+        t, r = timed(lambda: c.simulate(path, method="exact", n_rings=n), 1 if n > 200 else 3)
+        err = float(np.max(np.abs(r.torque[2:] - ref)) / M_full)
+        rows.append({"part": "constant load", "case": "hertz", "method": "exact", "n": n,
+                     "steps": path.n_steps, "time_s": t, "time_per_step_s": t / path.n_steps,
+                     "torque_error": err})
+    return rows
+
+
+def gait(t):
+    return 0.35 + 0.65 * (np.exp(-((t % 1 - 0.15) / 0.08) ** 2)
+                          + 0.8 * np.exp(-((t % 1 - 0.5) / 0.08) ** 2))
+
+
+def varying_path(kind, n=180, F0=10.0):
+    t = np.arange(1, n + 1) / n
+    if kind == "constant":
+        force = np.full(n, F0)
+    elif kind == "sinusoid":
+        force = F0 * (1 + 0.4 * np.sin(2 * np.pi * 2 * t + 0.3))
+    else:
+        force = F0 * gait(2 * t)
+    return t, force
+
+
+def speed():
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=MAT, friction=MU)
+    t, force = varying_path("sinusoid")
+    a_max = float(np.max(c.normal(force=force)._radius))
+    s = MU * 10.0 / (c.moduli.torsional * a_max ** 2)
+    phi = 0.8 * s * np.sin(2 * np.pi * 3 * t) * np.minimum(1, 2 * t)
+    path = cl.LoadPath.from_arrays(force=force, twist=phi)
+    M_s = sliding(c, force)
+    ref = c.simulate(path, method="exact", n_rings=800).torque
+    rows = []
+    for method, n in (("exact", 100), ("exact", 150), ("exact", 200), ("exact", 400),
+                      ("mdr", None)):
+        kw = {"n_rings": n} if method == "exact" else {}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            tt, r = timed(lambda: c.simulate(path, method=method, **kw))
+        rows.append({"part": "180-step varying load", "case": "hertz sinusoid", "method": method,
+                     "n": n or 2000, "steps": path.n_steps, "time_s": tt,
+                     "time_per_step_s": tt / path.n_steps,
+                     "torque_error": float(np.max(np.abs(r.torque - ref)) / M_s.max())})
+    return rows
+
+
+def error_map():
+    rows = []
+    profiles = {"hertz": cl.profiles.Paraboloid(R=0.01),
+                "cone": cl.profiles.Cone(slope=0.02) if hasattr(cl.profiles, "Cone") else None}
+    for pname, prof in profiles.items():
+        if prof is None:
+            continue
+        c = cl.Contact(prof, materials=MAT, friction=MU)
+        for kind in ("constant", "sinusoid", "gait"):
+            t, force = varying_path(kind)
+            a_ref = float(c.normal(force=10.0)._radius)
+            s = MU * 10.0 / (c.moduli.torsional * a_ref ** 2)
+            for amp in (0.3, 0.8):
+                phi = amp * s * np.sin(2 * np.pi * 3 * t) * np.minimum(1, 2 * t)
+                path = cl.LoadPath.from_arrays(force=force, twist=phi)
+                M_s = sliding(c, force)
+                ex = c.simulate(path, method="exact", n_rings=400)
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    md = c.simulate(path, method="mdr")
+                last = t > 2 / 3
+                W_ex = ex.dissipated_energy[-1] - ex.dissipated_energy[~last][-1]
+                W_md = md.dissipated_energy[-1] - md.dissipated_energy[~last][-1]
+                inside = ex.torque != 0
+                rows.append({
+                    "part": "mdr error map", "case": f"{pname} {kind} amp={amp}",
+                    "method": "mdr vs exact", "n": 400, "steps": 180,
+                    "torque_error": float(np.max(np.abs(md.torque - ex.torque)) / M_s.max()),
+                    "torque_error_inst": float(np.max(np.abs(md.torque - ex.torque)[inside]
+                                                      / M_s[inside])),
+                    "energy_error_last_cycle": float(W_md / W_ex - 1) if W_ex > 0 else np.nan,
+                    "min_stick_exact": float(np.min(ex.stick_radius / ex.radius)),
+                    "min_stick_mdr": float(np.min(md.stick_radius / md.radius))})
+    return rows
+
+
+def main():
+    print(machine())
+    rows = front()
+    print("\n1. constant load, error vs twist_history (of the sliding torque), time per step")
+    for r in rows:
+        print(f"  N={r['n']:4d}  error {r['torque_error']:.2e}  {1e3 * r['time_per_step_s']:.2f} ms/step")
+    sp = speed()
+    print("\n2. 180-step varying-load path (error of the max sliding torque vs exact N=800)")
+    for r in sp:
+        print(f"  {r['method']:5s} N={r['n']:5d}  {r['time_s']:.3f} s  error {r['torque_error']:.2e}")
+    rows += sp
+    if "--quick" not in sys.argv:
+        em = error_map()
+        print("\n3. MDR vs exact under changing normal load (180 steps)")
+        for r in em:
+            print(f"  {r['case']:28s} torque {r['torque_error']:.3f} (inst {r['torque_error_inst']:.3f})"
+                  f"  energy/cycle {r['energy_error_last_cycle']:+.3f}"
+                  f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}")
+        rows += em
+    OUT.mkdir(exist_ok=True)
+    keys = sorted({k for r in rows for k in r})
+    with open(OUT / "torsion_rings.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()
