@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
 from ..params import exactly_one
+from ..physics import law_kernel as _kernel
 from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, Paraboloid, PowerLaw
@@ -140,6 +141,9 @@ class ContactLaw:
         which the normal load counts as constant.
     size : int, optional
         Number of contacts when every parameter is a scalar.
+    fast : bool, optional
+        Use the compiled kernel (numba, extra ``fast``); default: when numba is installed.
+        ``False`` runs the numpy reference path (same results to rounding).
 
     Notes
     -----
@@ -164,7 +168,8 @@ class ContactLaw:
                  n: float | None = None, E_star: Any = None, G_star: Any = None,
                  G_torsion: Any = None, friction: Any = None, materials: Any = None,
                  torsion: str = "exact", memory: int = DEFAULT_MEMORY,
-                 load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None) -> None:
+                 load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
+                 fast: bool | None = None) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
         if not (isinstance(cls, type) and issubclass(cls, PowerLaw)):
@@ -240,6 +245,9 @@ class ContactLaw:
         self.memory = int(memory)
         self.load_rtol = float(load_rtol)
         self.torsion = torsion
+        if fast and not _kernel.AVAILABLE:
+            raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
+        self.fast = _kernel.AVAILABLE if fast is None else bool(fast)
         self._master = _master.torsion_master(expo)
         self._warned = False
         self._st = self._fresh(self.size)
@@ -396,6 +404,10 @@ class ContactLaw:
         u_star = mu * E * d / G
         muF = mu * FN
         Dscale = 2.0 * a * (mu * E * d) ** 2 / G
+        if self.fast:
+            mc = self._master
+            return _kernel.channel_step(_kernel.TANGENTIAL, self._channel("tan"), u, u_star, muF,
+                                        a, Dscale, mc.coef, mc.y_scale, n)
 
         def load(arg, idx):
             if idx is None:
@@ -410,6 +422,9 @@ class ContactLaw:
         phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
                                                self.friction, a, d)
         mc = self._master
+        if self.fast:
+            return _kernel.channel_step(_kernel.TORSION, self._channel("tor"), phi, phi_s, M_full,
+                                        a, M_full, mc.coef, mc.y_scale, self.n)
 
         def load(arg, idx):
             if idx is None:

@@ -253,3 +253,27 @@ def test_validation_profiles_and_steps():
         law.step(force=[1.0, 2.0, 3.5, 4.0], twist=1e-5)
     with pytest.raises(ParameterError, match="state is invalid"):
         law.state = {"depth_ref": np.zeros(4)}
+
+
+@pytest.mark.skipif(not cl.effects.law._kernel.AVAILABLE, reason="numba (extra 'fast') not installed")
+def test_compiled_kernel_matches_numpy():
+    rng = np.random.default_rng(5)
+    n = 200
+    kw = dict(R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+              friction=rng.uniform(0.1, 0.5, n), memory=4)
+    fast = cl.ContactLaw(cl.profiles.Paraboloid, fast=True, **kw)
+    slow = cl.ContactLaw(cl.profiles.Paraboloid, fast=False, **kw)
+    F = rng.uniform(1, 100, n)
+    phi = np.cumsum(rng.standard_normal((80, n)), axis=0) * 1e-4
+    u = np.cumsum(rng.standard_normal((80, n)), axis=0) * 3e-8
+    with pytest.warns(ValidityWarning):
+        for k in range(80):
+            a = fast.step(force=F, twist=phi[k], displacement=u[k])
+            b = slow.step(force=F, twist=phi[k], displacement=u[k])
+            for name in ("torque", "tangential_force", "stick_radius", "torsion_stick_radius",
+                         "dissipated_energy"):
+                x, y = getattr(a, name), getattr(b, name)
+                np.testing.assert_allclose(x, y, rtol=1e-13, atol=1e-13 * np.max(np.abs(y)))
+    assert fast.state["tor_overflow"].any()      # the overflow path is exercised too
+    for k, v in fast.state.items():
+        np.testing.assert_allclose(v, slow.state[k], rtol=1e-13, atol=0, err_msg=k)
