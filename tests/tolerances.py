@@ -206,6 +206,10 @@ MASTER_CURVE = 1e-12
 #: loop area by the trapezoid rule over 4000 steps per cycle against the law's dissipation:
 #: O(h²) with the curvature of the branches, measured ~1e-7
 LOOP_AREA = 1e-5
+#: the law's generated standalone source (ContactLaw.to_source) against ContactLaw: the same
+#: kernels and embedded coefficients (repr round-trips), so they agree to rounding; 1e-12 is the
+#: issue's bar
+LAW_SOURCE = 1e-12
 # ---- shared levels of agreement (named so each assertion states which kind it expects)
 #: one or two floating-point operations apart (a unit conversion, a compliance sum, a value written
 #: with repr() and read back, a constant): a few ulps

@@ -309,6 +309,24 @@ class ContactLaw:
         for k, v in self._st.items():
             v[idx] = 0
 
+    def to_source(self) -> str:
+        """Standalone Python source (numpy only, no contactlab import) of this law's family at
+        constant normal load, for codes that vendor the law.
+
+        The module defines ``Law(<geometry>, E_star, G_star, G_torsion, friction)`` with the
+        same ``step`` inputs as :meth:`step` (returning a dict of arrays), ``state`` and
+        ``reset``; the certified master-curve coefficients are embedded exactly, and the kernels
+        are the ones of this law's numpy path, so the results agree with :meth:`step` to
+        rounding. A load change beyond ``load_rtol`` raises ``ValueError`` there.
+
+        Returns
+        -------
+        str
+            Python source; write it to a ``.py`` file and import it.
+        """
+        from .law_source import law_source
+        return law_source(self)
+
     # ------------------------------------------------------------------ normal contact
     def normal(self, *, depth: Any = None, force: Any = None) -> tuple[np.ndarray, ...]:
         """``(depth, radius, force)`` per contact for a depth (m) or a force (N >= 0)."""
