@@ -139,8 +139,11 @@ def test_foundation_route_passes_the_typed_path(monkeypatch):
                                twist=smp.values["twist"], torque=np.zeros(n),
                                stick_radius=np.ones(n), dissipated_energy=np.zeros(n))
     monkeypatch.setattr(Contact, "simulate", simulate, raising=False)
-    d = twist_scene({"sinusoid": {"twist": 1e-3, "force": 50.0, "cycles": 1}},
-                    solver={"n_springs": 64})
+    seg = {"sinusoid": {"twist": 1e-3, "force": 50.0, "cycles": 1}}
+    # the default (exact) torsion method routes a changing load to the exact ring solver
+    Scene(twist_scene(seg, solver={"n_springs": 64})).run()
+    assert seen["kw"] == {"method": "exact"}
+    d = twist_scene(seg, solver={"n_springs": 64}, outputs={"method": "mdr"})
     s = Scene(d)
     res = s.run()
     assert res.meta["computed"] == ["simulate"]
