@@ -24,19 +24,25 @@ from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, Unkn
 from ..errors import ValidityWarning
 from ..params import exactly_one
 from ..physics import law_kernel as _kernel
+from ..physics import law_springs as _springs
 from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 
-__all__ = ["ContactLaw", "LawStep", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL"]
+__all__ = ["ContactLaw", "LawStep", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
+           "DEFAULT_SPRING_COVER"]
 
 #: turning points stored per contact and channel (four nested loops)
 DEFAULT_MEMORY = 8
 #: relative change of the depth up to which the normal load counts as constant
 DEFAULT_LOAD_RTOL = 1e-9
+#: MDR springs (cells) per contact once its normal load changes
+DEFAULT_SPRINGS = 16
+#: the springs of a contact cover this multiple of its contact radius (grown when exceeded)
+DEFAULT_SPRING_COVER = 1.5
 
-_UNITS = {"R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
+_UNITS = {"spring_cover": "1", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
           "G_torsion": "Pa", "friction": "1"}
 
 
@@ -139,6 +145,14 @@ class ContactLaw:
     load_rtol : float
         Relative change of the depth, from the depth at which a contact's memory started, up to
         which the normal load counts as constant.
+    springs : int
+        MDR springs (edge-refined cells of the Winkler foundation) per contact for contacts whose
+        load changed beyond ``load_rtol``; ``0`` raises :class:`~contactlab.errors.OutsideTheoryError`
+        instead (a strictly constant-load law).
+    spring_cover : float or array_like
+        The springs of a contact cover ``spring_cover`` times the larger of its contact radii
+        before and at the change (per contact, >= 1); a contact radius beyond the cover grows it
+        (the element forces are carried over by their cumulative line load, approximate).
     size : int, optional
         Number of contacts when every parameter is a scalar.
     fast : bool, optional
@@ -169,7 +183,8 @@ class ContactLaw:
                  G_torsion: Any = None, friction: Any = None, materials: Any = None,
                  torsion: str = "exact", memory: int = DEFAULT_MEMORY,
                  load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
-                 fast: bool | None = None) -> None:
+                 fast: bool | None = None, springs: int = DEFAULT_SPRINGS,
+                 spring_cover: Any = DEFAULT_SPRING_COVER) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
         if not (isinstance(cls, type) and issubclass(cls, PowerLaw)):
@@ -186,6 +201,10 @@ class ContactLaw:
         if size is not None and (isinstance(size, bool) or not isinstance(size, (int, np.integer))
                                  or size < 1):
             raise ParameterError(f"size={size!r} is invalid: it must be an integer >= 1.")
+        if (isinstance(springs, bool) or not isinstance(springs, (int, np.integer))
+                or not (springs == 0 or 2 <= springs <= 4096)):
+            raise ParameterError(f"springs={springs!r} is invalid: it must be 0 (no springs) or "
+                                 "an integer in [2, 4096].")
         geo = {"R": R, "slope": slope, "c": c}
         if cls is Paraboloid:
             gname, expo = "R", 2.0
@@ -244,6 +263,15 @@ class ContactLaw:
         self.G_torsion, self.friction = arrs["G_torsion"], arrs["friction"]
         self.memory = int(memory)
         self.load_rtol = float(load_rtol)
+        self.springs = int(springs)
+        cover = _per_contact("spring_cover", spring_cover, self.size)
+        if np.any(cover < 1.0):
+            i = int(np.argmax(np.broadcast_to(cover, (self.size,)) < 1.0))
+            raise ParameterError(f"spring_cover[{i}]={float(np.broadcast_to(cover, (self.size,))[i])!r} "
+                                 "is invalid: the springs must cover at least the contact radius "
+                                 "(>= 1).")
+        self.spring_cover = np.broadcast_to(cover, (self.size,)).copy()
+        self._beta = _springs.unit_boundaries(max(self.springs, 2))
         self.torsion = torsion
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
@@ -258,6 +286,12 @@ class ContactLaw:
         for ch in ("tan", "tor"):
             for k, v in new_stack(n, self.memory).items():
                 st[f"{ch}_{k}"] = v
+        if self.springs:
+            N = self.springs
+            st.update(spr_on=np.zeros(n, bool), spr_cover=np.zeros(n), spr_depth=np.zeros(n),
+                      spr_k=np.zeros(n, np.int64), spr_S=np.zeros((n, N)),
+                      spr_tan=np.zeros((n, N)), spr_tor=np.zeros((n, N)),
+                      spr_x_tan=np.zeros(n), spr_x_tor=np.zeros(n))
         return st
 
     @property
@@ -380,6 +414,10 @@ class ContactLaw:
         new = live & (ref == 0)
         ref[new] = d[new]
         off = live & (np.abs(d - ref) > self.load_rtol * ref)
+        if self.springs:
+            on = st["spr_on"]
+            self._to_springs(np.flatnonzero(off & ~on), d, a)
+            off = np.zeros(size, bool)
         if np.any(off):
             i = int(np.argmax(off))
             raise OutsideTheoryError(
@@ -406,12 +444,99 @@ class ContactLaw:
         if phi is not None:
             M, cm, w = self._torsion(phi, safe_a, safe_d)
             dW += w
+        exact = live.copy()
+        if self.springs and np.any(st["spr_on"]):
+            idx = np.flatnonzero(st["spr_on"] & live)
+            r = self._spring_step(idx, d[idx], a[idx], None if u is None else u[idx],
+                                  None if phi is None else phi[idx])
+            for arr, v in zip((Ft, ct, M, cm, dW), r):
+                arr[idx] = v
+            exact[idx] = False
         if not np.all(live):
             dead = ~live
             for arr in (Ft, M, dW, ct, cm):
                 arr[dead] = 0.0
             self._clear(np.flatnonzero(dead))
-        return LawStep(d, a, F, Ft, M, ct, cm, dW, live.copy())
+        return LawStep(d, a, F, Ft, M, ct, cm, dW, exact)
+
+    # ------------------------------------------------------------------ changing load: springs
+    def _geometry(self, idx: np.ndarray) -> dict:
+        return _springs.cells(self._st["spr_cover"][idx], self.kc[idx], self.n, self._beta)
+
+    def _limits(self, idx, S, T):
+        mu, E = self.friction[idx, None], self.E_star[idx, None]
+        return 2.0 * mu * E * S, 4.0 * mu * E * T
+
+    def _to_springs(self, idx: np.ndarray, d: np.ndarray, a: np.ndarray) -> None:
+        """Switch contacts ``idx`` from the exact constant-load law to MDR springs: the cells
+        take the state of the held load the contact leaves (its Masing turning points replayed
+        through the elements at that load)."""
+        if idx.size == 0:
+            return
+        st = self._st
+        d0 = st["depth_ref"][idx]
+        a0 = self._radius(d0, idx)
+        st["spr_cover"][idx] = self.spring_cover[idx] * np.maximum(a0, a[idx])
+        geo = self._geometry(idx)
+        S, T, k = _springs.normal_cells(geo, d0, a0)
+        frac = _springs.weights(geo, S, S, k, k, np.zeros(idx.size), a0)
+        L_tan, L_tor = self._limits(idx, S, T)
+        K_tan = 2.0 * self.G_star[idx, None] * geo["w"]
+        K_tor = 16.0 * self.G_torsion[idx, None] * geo["X2"]
+        for ch, K, L in (("tan", K_tan, L_tan), ("tor", K_tor, L_tor)):
+            st[f"spr_{ch}"][idx] = _springs.replay(st[f"{ch}_X"][idx], st[f"{ch}_depth"][idx],
+                                                   st[f"{ch}_x"][idx], K * frac, L)
+            st[f"spr_x_{ch}"][idx] = st[f"{ch}_x"][idx]
+        st["spr_S"][idx], st["spr_k"][idx], st["spr_depth"][idx] = S, k, d0
+        st["spr_on"][idx] = True
+
+    def _regrid(self, idx: np.ndarray, a_new: np.ndarray) -> None:
+        """Grow the cover of contacts ``idx`` to ``spring_cover × a_new``; element forces are
+        carried over by their cumulative line load (approximate)."""
+        st = self._st
+        old = self._geometry(idx)
+        st["spr_cover"][idx] = self.spring_cover[idx] * a_new
+        new = self._geometry(idx)
+        for ch in ("tan", "tor"):
+            m = st[f"spr_{ch}"][idx]
+            cum = np.concatenate([np.zeros((idx.size, 1)), np.cumsum(m, axis=1)], axis=1)
+            st[f"spr_{ch}"][idx] = np.diff(_springs.interp_rows(new["b"], old["b"], cum), axis=1)
+        d0 = st["spr_depth"][idx]
+        S, _, k = _springs.normal_cells(new, d0, self._radius(d0, idx))
+        st["spr_S"][idx], st["spr_k"][idx] = S, k
+
+    def _radius(self, d: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """Contact radius (m) of contacts ``idx`` at depths ``d >= 0``."""
+        return (d / self.kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self.kc[idx])
+
+    def _spring_step(self, idx, d, a, u, phi):
+        st = self._st
+        grow = a > st["spr_cover"][idx]
+        if np.any(grow):
+            self._regrid(idx[grow], a[grow])
+        geo = self._geometry(idx)
+        S, T, k = _springs.normal_cells(geo, d, a)
+        dd = d - st["spr_depth"][idx]
+        wgt = _springs.weights(geo, S, st["spr_S"][idx], k, st["spr_k"][idx], dd, a)
+        L_tan, L_tor = self._limits(idx, S, T)
+        zero = np.zeros(idx.size)
+        Ft, ct, M, cm, dW = zero, a.copy(), zero, a.copy(), zero.copy()
+        if u is not None:
+            m = st["spr_tan"][idx]
+            Keff = 2.0 * self.G_star[idx, None] * geo["w"] * wgt
+            dW += _springs.jenkins_rows(m, Keff, L_tan, u - st["spr_x_tan"][idx])
+            st["spr_tan"][idx], st["spr_x_tan"][idx] = m, u
+            Ft = m.sum(axis=1)
+            ct = _springs.stick_radius(m, L_tan, geo["bl"], a)
+        if phi is not None:
+            m = st["spr_tor"][idx]
+            Keff = 16.0 * self.G_torsion[idx, None] * geo["X2"] * wgt
+            dW += _springs.jenkins_rows(m, Keff, L_tor, phi - st["spr_x_tor"][idx])
+            st["spr_tor"][idx], st["spr_x_tor"][idx] = m, phi
+            M = m.sum(axis=1)
+            cm = _springs.stick_radius(m, L_tor, geo["bl"], a)
+        st["spr_S"][idx], st["spr_k"][idx], st["spr_depth"][idx] = S, k, d
+        return Ft, ct, M, cm, dW
 
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}

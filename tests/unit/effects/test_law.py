@@ -241,7 +241,7 @@ def test_validation_profiles_and_steps():
         cl.ContactLaw(cl.profiles.PowerLaw, c=1.0, n=0.5, E_star=1e11, G_star=4e10,
                       G_torsion=4e10, friction=0.3)
     law = cl.ContactLaw(cl.profiles.Paraboloid, R=[0.01] * 4, E_star=1e11, G_star=4e10,
-                        G_torsion=4e10, friction=0.3)
+                        G_torsion=4e10, friction=0.3, springs=0)
     with pytest.raises(ParameterError, match=r"twist\[2\]=nan"):
         law.step(force=1.0, twist=[0, 0, np.nan, 0])
     with pytest.raises(ParameterError, match=r"force\[3\]=-1.0"):

@@ -1,0 +1,92 @@
+"""ContactLaw under a changing normal load: per-contact MDR springs against Contact.simulate at
+equal spring counts and cell layout (edge spacing over the path's largest contact radius)."""
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import OutsideTheoryError
+from tests.tolerances import LAW_SPRINGS
+
+N = 16
+
+
+def _contacts(rng, n):
+    R = rng.uniform(5e-3, 2e-2, n)
+    mu = rng.uniform(0.2, 0.6, n)
+    out = [cl.Contact(cl.profiles.Paraboloid(R=R[i]),
+                      materials=(cl.Elastic(E=rng.uniform(1e11, 2e11), nu=rng.uniform(0.2, 0.35)),
+                                 cl.Elastic(E=rng.uniform(1e11, 2e11), nu=rng.uniform(0.2, 0.35))),
+                      friction=mu[i]) for i in range(n)]
+    mod = [c.moduli for c in out]
+    par = dict(R=R, friction=mu, E_star=np.array([m.normal for m in mod]),
+               G_star=np.array([m.tangential for m in mod]),
+               G_torsion=np.array([m.torsional for m in mod]))
+    return out, par
+
+
+HELD = 14      # steps at the first load (step 0 loads, then a held-load history)
+
+
+def _path(F0, chan, amp):
+    return (cl.LoadPath().ramp(force=F0, steps=1)
+            .ramp(**{chan: amp / 2}, steps=5).ramp(**{chan: -amp / 3}, steps=5)
+            .ramp(**{chan: amp / 6}, steps=3)
+            .ramp(force=2 * F0, **{chan: amp}, steps=13)
+            .ramp(force=0.7 * F0, **{chan: -amp / 2}, steps=17)
+            .ramp(force=1.5 * F0, **{chan: amp / 3}, steps=11).hold(steps=5)
+            .ramp(**{chan: -amp}, steps=9)
+            .ramp(force=0.3 * F0, steps=10))
+
+
+@pytest.mark.parametrize("chan, key, amp", [("twist", "torque", 3e-4),
+                                            ("displacement", "tangential_force", 3e-7)])
+def test_changing_load_matches_simulate(chan, key, amp):
+    rng = np.random.default_rng(140)
+    n = 4
+    contacts, par = _contacts(rng, n)
+    F0 = rng.uniform(5, 50, n)
+    res = [c.simulate(_path(F0[i], chan, amp), n_springs=N, strategy="steps")
+           for i, c in enumerate(contacts)]
+    dep = np.stack([r.depth for r in res], 1)
+    x = np.stack([getattr(r, chan) for r in res], 1)
+    a = np.stack([r.radius for r in res], 1)
+    # the springs must cover the path's largest radius, as the foundation of simulate does
+    cover = a.max(0) / np.maximum(a[HELD - 1], a[HELD])
+    law = cl.ContactLaw(cl.profiles.Paraboloid, springs=N, spring_cover=cover, fast=False,
+                        **par)
+    out = [law.step(depth=dep[k], **{chan: x[k]}) for k in range(dep.shape[0])]
+    exact = np.stack([o.exact for o in out])
+    assert exact[:HELD].all() and not exact[HELD:].any()
+    # from the load change on: the held-load history is carried into the springs by replaying
+    # the Masing turning points, so simulate (springs throughout) is matched step by step
+    y = np.stack([getattr(o, key) for o in out])[HELD:]
+    ys = np.stack([getattr(r, key) for r in res], 1)[HELD:]
+    np.testing.assert_allclose(y, ys, rtol=0, atol=LAW_SPRINGS * np.abs(ys).max())
+    dW = np.stack([o.dissipated_energy for o in out])[HELD:]
+    dWs = np.diff(np.stack([r.dissipated_energy for r in res], 1), axis=0)[HELD - 1:]
+    Ws = np.stack([r.dissipated_energy for r in res], 1)
+    np.testing.assert_allclose(dW, dWs, rtol=0, atol=LAW_SPRINGS * Ws.max())
+    c = np.stack([o.stick_radius if chan == "displacement" else o.torsion_stick_radius
+                  for o in out])[HELD:]
+    cs = np.minimum(np.stack([r.stick_radius for r in res], 1), a)[HELD:]
+    np.testing.assert_allclose(c, cs, rtol=LAW_SPRINGS, atol=0)
+
+
+def test_cover_grows_and_springs_zero_raises():
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, E_star=1e11, G_star=4e10,
+                        G_torsion=4e10, friction=0.3, size=2, springs=8)
+    law.step(force=[1.0, 1.0], twist=1e-5)
+    out = law.step(force=[1.0, 1.2], twist=2e-5)
+    assert out.exact.tolist() == [True, False]
+    cover = law.state["spr_cover"][1]
+    assert cover == pytest.approx(1.5 * out.radius[1], rel=1e-15)
+    big = law.step(force=[1.0, 10.0], twist=3e-5)      # radius beyond the cover: regrid
+    assert law.state["spr_cover"][1] == pytest.approx(1.5 * big.radius[1], rel=1e-15)
+    assert np.all(np.isfinite(big.torque)) and 0 < big.torque[1]
+    law.reset([1])
+    assert not law.state["spr_on"].any()
+    strict = cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, E_star=1e11, G_star=4e10,
+                           G_torsion=4e10, friction=0.3, size=2, springs=0)
+    strict.step(force=[1.0, 1.0], twist=1e-5)
+    with pytest.raises(OutsideTheoryError, match=r"depth\[1\]"):
+        strict.step(force=[1.0, 1.2], twist=1e-5)
