@@ -82,6 +82,8 @@ _SECTIONS = [
     ("Results", "Immutable result objects; each records its sources in ``.citations``.",
      ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState", "ShiftHistory",
       "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult"], ["contactlab.effects"]),
+    ("Plots", "One style for every ``plot()``; ``units=\"engineering\"`` for µm, mN·m, MPa.", [],
+     ["contactlab.plotting"]),
     ("Citations", "", ["cite"], ["contactlab.citations"]),
     ("Scenes, studies and the command line", "", ["sweep"],
      ["contactlab.scene", "contactlab.sweeps", "contactlab.cli"]),

@@ -199,17 +199,25 @@ class FrettingLoop(Cited):
                                               "energy_ratio", "stick_radius", "radius",
                                               "regime", "sliding", "x", "y")}
 
-    def plot(self, ax: Any = None):
-        """Draw the loop (needs matplotlib); returns the axes."""
-        plt = _pyplot()
-        if ax is None:
-            _, ax = plt.subplots()
-        ax.plot(self.x, self.y)
-        xl, yl = (("displacement [m]", "tangential force [N]") if self.mode == "tangential"
-                  else ("twist [rad]", "torque [N*m]"))
-        ax.set_xlabel(xl)
-        ax.set_ylabel(yl)
-        ax.set_title(f"{self.regime.replace('_', ' ')}, A = {self.energy_ratio:.3g}")
+    def plot(self, ax: Any = None, *, units: str = "si"):
+        """Draw the loop (needs matplotlib); returns the axes.
+
+        ``units="engineering"`` labels µm or mrad and mN·m (see :mod:`contactlab.plotting`).
+        """
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
+        xu, yu = ("m", "N") if self.mode == "tangential" else ("rad", "N*m")
+        with pl.style():
+            if ax is None:
+                _, ax = pl.subplots(figsize=(4.8, 3.6))
+            ax.plot(pl.scaled(self.x, xu, units), pl.scaled(self.y, yu, units))
+            xl, yl = (("displacement", "tangential force") if self.mode == "tangential"
+                      else ("twist", "torque"))
+            ax.set_xlabel(pl.axis_label(xl, xu, units))
+            ax.set_ylabel(pl.axis_label(yl, yu, units))
+            ax.set_title(f"{self.regime.replace('_', ' ')}, A = {self.energy_ratio:.3g}")
+            pl.loop_axes(ax)
         return ax
 
 
@@ -351,41 +359,47 @@ class FrettingMap(Cited):
         from ..loadpath.io import write_csv
         write_csv(path, self.to_dict(), units=SERIES_UNITS)
 
-    def plot(self, ax: Any = None, *, boundary: bool = True):
+    def plot(self, ax: Any = None, *, boundary: bool = True, units: str = "si"):
         """The running-condition map: regimes over amplitude (x) and normal force (y), with the
-        analytic gross-slip boundary drawn on top (needs matplotlib); returns the axes."""
-        plt = _pyplot()
+        analytic gross-slip boundary drawn on top (needs matplotlib); returns the axes.
+
+        ``units="engineering"`` labels the amplitude in µm or mrad (see
+        :mod:`contactlab.plotting`).
+        """
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
         from matplotlib.colors import ListedColormap
-        if ax is None:
-            _, ax = plt.subplots()
-        cmap = ListedColormap(["#4c72b0", "#dd8452", "#c44e52"])
-        ax.pcolormesh(self.amplitude, self.force, self.regime, cmap=cmap, vmin=-0.5, vmax=2.5,
-                      shading="nearest")
-        if boundary and np.any(np.isfinite(self.boundary)):
-            ax.plot(self.boundary, self.force, "k-", lw=2, label="gross-slip boundary")
-            ax.legend(loc="best")
-        ax.set_xlim(self.amplitude.min(), self.amplitude.max())
-        if self.amplitude.min() > 0 and self.amplitude.max() > 10 * self.amplitude.min():
-            ax.set_xscale("log")
-        if self.force.min() > 0 and self.force.max() > 10 * self.force.min():
-            ax.set_yscale("log")
-        ax.set_xlabel("displacement amplitude [m]" if self.mode == "tangential"
-                      else "twist amplitude [rad]")
-        ax.set_ylabel("normal force [N]")
-        title = "partial slip | gross slip"
-        if self.mode == "torsion":
-            title += f" ({self.criterion} {self.threshold:g})"
-        ax.set_title(title)
+        from matplotlib.patches import Patch
+        xu = "m" if self.mode == "tangential" else "rad"
+        amp = pl.scaled(self.amplitude, xu, units)
+        with pl.style():
+            if ax is None:
+                _, ax = pl.subplots(figsize=(5.6, 4.0))
+            colors = ["#4c72b0", "#dd8452", "#c44e52"]
+            ax.pcolormesh(amp, self.force, self.regime, cmap=ListedColormap(colors),
+                          vmin=-0.5, vmax=2.5, shading="nearest")
+            ax.grid(False)
+            handles = [Patch(color=c, label=n.replace("_", " "))
+                       for c, n in zip(colors, self.regime_names)]
+            if boundary and np.any(np.isfinite(self.boundary)):
+                handles += ax.plot(pl.scaled(self.boundary, xu, units), self.force, "k-", lw=2,
+                                   label="gross-slip boundary")
+            ax.set_xlim(amp.min(), amp.max())
+            if self.amplitude.min() > 0 and self.amplitude.max() > 10 * self.amplitude.min():
+                ax.set_xscale("log")
+            if self.force.min() > 0 and self.force.max() > 10 * self.force.min():
+                ax.set_yscale("log")
+            ax.set_xlabel(pl.axis_label("displacement amplitude" if self.mode == "tangential"
+                                        else "twist amplitude", xu, units))
+            ax.set_ylabel(pl.axis_label("normal force", "N", units))
+            ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.18),
+                      ncol=2, frameon=False)
+            title = "running-condition map"
+            if self.mode == "torsion":
+                title += f" ({self.criterion.replace('_', ' ')} {self.threshold:g})"
+            ax.set_title(title)
         return ax
-
-
-def _pyplot():
-    try:
-        import matplotlib.pyplot as plt
-    except ImportError as err:
-        raise ImportError("plot() needs matplotlib: pip install matplotlib "
-                          "(or pip install 'contactlab[plot]')") from err
-    return plt
 
 
 def torsional_boundary(contact, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,

@@ -114,29 +114,37 @@ class PathResult(Cited):
             raise ImportError("to_dataframe() needs pandas: pip install pandas") from err
         return pd.DataFrame(self.to_dict())
 
-    def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None):
+    def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None,
+             units: str = "si"):
         """Plot series against ``x`` (needs matplotlib); returns the axes.
 
         ``quantities`` defaults to every driven series (force, tangential force, torque).
+        ``units="engineering"`` labels µm, mN·m, mrad, µJ instead of SI (see
+        :mod:`contactlab.plotting`). A loop (``x="twist"`` against torque, ``x="displacement"``
+        against tangential force) gets the loop tick format.
         """
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as err:
-            raise ImportError("plot() needs matplotlib: pip install matplotlib "
-                              "(or pip install 'contactlab[plot]')") from err
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
         if quantities is None:
             quantities = [q for q in ("force", "tangential_force", "torque") if q in self.data
                           and np.any(self.data[q] != 0)] or ["force"]
         quantities = [quantities] if isinstance(quantities, str) else list(quantities)
-        if ax is None:
-            fig, axes = plt.subplots(len(quantities), 1, squeeze=False, sharex=True)
-            axes = axes[:, 0]
-        else:
-            axes = np.atleast_1d(ax)
-        for q, a in zip(quantities, axes):
-            a.plot(getattr(self, x), getattr(self, q))
-            a.set_ylabel(f"{q} [{_SERIES_UNITS.get(q, '')}]")
-        axes[-1].set_xlabel(f"{x} [{_SERIES_UNITS.get(x, '')}]")
+        with pl.style():
+            if ax is None:
+                _, axes = pl.subplots(len(quantities), 1, squeeze=False, sharex=True,
+                                      figsize=(6.0, 1.2 + 1.8 * len(quantities)))
+                axes = axes[:, 0]
+            else:
+                axes = np.atleast_1d(ax)
+            xu = _SERIES_UNITS.get(x, "")
+            for q, a in zip(quantities, axes):
+                qu = _SERIES_UNITS.get(q, "")
+                a.plot(pl.scaled(getattr(self, x), xu, units), pl.scaled(getattr(self, q), qu, units))
+                a.set_ylabel(pl.axis_label(q.replace("_", " "), qu, units))
+                if x != "time" and x != "step":
+                    pl.loop_axes(a)
+            axes[-1].set_xlabel(pl.axis_label(x.replace("_", " "), xu, units))
         return axes
 
 

@@ -201,6 +201,15 @@ class ShiftHistory(Cited):
     dissipated_energy: np.ndarray
     meta: dict = field(default_factory=dict, repr=False)
 
+    def plot(self, axes: Any = None, *, units: str = "si"):
+        """Force–displacement loop and stick radius per step (needs matplotlib); returns the two
+        axes. ``units="engineering"`` labels µm (see :mod:`contactlab.plotting`).
+        """
+        from .. import plotting as pl
+        return pl.history(self.displacement, self.tangential_force, self.stick_radius,
+                          x_name="displacement", x_unit="m", y_name="tangential force",
+                          y_unit="N", units=units, axes=axes, title="shift history")
+
 
 def shift_history(contact, *, displacement: Any, depth: Any = None,
                   force: Any = None) -> ShiftHistory:

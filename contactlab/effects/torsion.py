@@ -530,6 +530,16 @@ class TwistHistory(Cited):
 
         return masing_dissipation(self._segments, n, loading, self.contact.rtol)
 
+    def plot(self, axes: Any = None, *, units: str = "si"):
+        """Torque–twist loop and stick radius per step (needs matplotlib); returns the two axes.
+
+        ``units="engineering"`` labels mrad, mN·m and µm (see :mod:`contactlab.plotting`).
+        """
+        from .. import plotting as pl
+        return pl.history(self.twist, self.torque, self.stick_radius, x_name="twist",
+                          x_unit="rad", y_name="torque", y_unit="N*m", units=units, axes=axes,
+                          title=f"twist history ({self.method})")
+
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step arrays by name (``twist``, ``torque``, ``stick_radius``, ``dissipated_energy``)."""
         return {"twist": self.twist, "torque": self.torque, "stick_radius": self.stick_radius,

@@ -129,32 +129,41 @@ class WearResult:
                               "(or pip install 'contactlab[data]')") from err
         return pd.DataFrame(self.to_dict())
 
-    def plot(self, axes: Any = None):
-        """Profile evolution, scar radius and worn volume against cycles (needs matplotlib)."""
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as err:
-            raise ImportError("plot() needs matplotlib: pip install matplotlib "
-                              "(or pip install 'contactlab[plot]')") from err
-        if axes is None:
-            _, axes = plt.subplots(1, 3, figsize=(13, 4))
-        ax0, ax1, ax2 = axes
-        rmax = 1.2 * float(np.max(self.radius))
-        keep = self.r <= rmax
-        for N, prof in zip(self.checkpoints, self.profiles):
-            ax0.plot(self.r[keep], prof.height(self.r[keep]), label=f"N = {N:.3g}")
-        ax0.set_xlabel("r [m]")
-        ax0.set_ylabel("worn profile f(r) [m]")
-        ax0.legend(fontsize="small")
-        N = np.maximum(self.cycles, 1.0)
-        ax1.loglog(N[1:], self.radius[1:], label="contact radius")
-        ax1.loglog(N[1:], np.maximum(self.scar_radius[1:], 1e-300), label="scar radius")
-        ax1.legend(fontsize="small")
-        ax1.set_xlabel("cycles")
-        ax1.set_ylabel("radius [m]")
-        ax2.loglog(N[1:], np.maximum(self.volume[1:], 1e-300))
-        ax2.set_xlabel("cycles")
-        ax2.set_ylabel("worn volume [m^3]")
+    def plot(self, axes: Any = None, *, units: str = "si"):
+        """Profile evolution, scar radius and worn volume against cycles (needs matplotlib).
+
+        ``units="engineering"`` labels µm and µm³ instead of m and m³ (see
+        :mod:`contactlab.plotting`); returns the three axes.
+        """
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
+        with pl.style():
+            if axes is None:
+                _, axes = pl.subplots(1, 3, figsize=(11.0, 3.6))
+            ax0, ax1, ax2 = axes
+            rmax = 1.2 * float(np.max(self.radius))
+            keep = self.r <= rmax
+            r = pl.scaled(self.r[keep], "m", units)
+            for N, prof in zip(self.checkpoints, self.profiles):
+                ax0.plot(r, pl.scaled(prof.height(self.r[keep]), "m", units),
+                         label=f"N = {N:.3g}")
+            ax0.set_xlabel(pl.axis_label("r", "m", units))
+            ax0.set_ylabel(pl.axis_label("worn profile f(r)", "m", units))
+            ax0.set_title("profile")
+            ax0.legend()
+            N = np.maximum(self.cycles, 1.0)
+            ax1.loglog(N[1:], pl.scaled(self.radius[1:], "m", units), label="contact radius")
+            ax1.loglog(N[1:], pl.scaled(np.maximum(self.scar_radius[1:], 1e-300), "m", units),
+                       label="scar radius")
+            ax1.legend()
+            ax1.set_xlabel("cycles")
+            ax1.set_ylabel(pl.axis_label("radius", "m", units))
+            ax1.set_title("radii")
+            ax2.loglog(N[1:], pl.scaled(np.maximum(self.volume[1:], 1e-300), "m^3", units))
+            ax2.set_xlabel("cycles")
+            ax2.set_ylabel(pl.axis_label("worn volume", "m^3", units))
+            ax2.set_title("worn volume")
         return axes
 
 

@@ -169,32 +169,33 @@ class CostReport:
             import matplotlib.pyplot as plt
         except ImportError as err:
             raise ImportError("plotting needs matplotlib: pip install 'contactlab[plot]'") from err
+        from .. import plotting as pl
         floor = self.budget * 1e-6
-        fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        for knob in self.knobs:
-            rs = [r for r in self.rungs if r.knob == knob and r.error is not None]
-            if not rs:
-                continue
-            t = [r.seconds for r in rs]
-            e = [max(r.error, floor) for r in rs]
-            line, = ax.loglog(t, e, "o-", label=knob)
-            for r, ti, ei in zip(rs, t, e):
-                if r.default:
-                    ax.plot(ti, ei, "o", ms=12, mfc="none", mec=line.get_color())
-                if r.chosen:
-                    ax.plot(ti, ei, "*", ms=14, color=line.get_color())
-                ax.annotate(_fmt(r.value), (ti, ei), fontsize=7, xytext=(3, 3),
-                            textcoords="offset points")
-        ax.axhline(self.target, color="k", ls="--", lw=0.8, label="target")
-        ax.axhline(self.budget, color="k", ls=":", lw=0.8, label="per-knob share")
-        ax.set_xlabel("wall time [s]")
-        ax.set_ylabel(f"relative error (floor {floor:.0e})")
-        ax.set_title(f"{self.title}\nring: default, star: cheapest meeting the target",
-                     fontsize=9)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
+        with pl.style():
+            fig, ax = pl.subplots(figsize=(6.4, 4.4))
+            for knob in self.knobs:
+                rs = [r for r in self.rungs if r.knob == knob and r.error is not None]
+                if not rs:
+                    continue
+                t = [r.seconds for r in rs]
+                e = [max(r.error, floor) for r in rs]
+                line, = ax.loglog(t, e, "o-", label=knob)
+                for r, ti, ei in zip(rs, t, e):
+                    if r.default:
+                        ax.plot(ti, ei, "o", ms=12, mfc="none", mec=line.get_color())
+                    if r.chosen:
+                        ax.plot(ti, ei, "*", ms=14, color=line.get_color())
+                    ax.annotate(_fmt(r.value), (ti, ei), fontsize=7, xytext=(3, 3),
+                                textcoords="offset points")
+            ax.axhline(self.target, color="k", ls="--", lw=0.8, label="target")
+            ax.axhline(self.budget, color="k", ls=":", lw=0.8, label="per-knob share")
+            ax.set_xlabel("wall time [s]")
+            ax.set_ylabel(f"relative error (floor {floor:.0e})")
+            ax.set_title(f"{self.title}\nring: default, star: cheapest meeting the target",
+                         fontsize=9)
+            ax.legend(fontsize=8)
         path = Path(path)
-        fig.savefig(path, dpi=120)
+        pl.save(fig, path)
         plt.close(fig)
         return path
 

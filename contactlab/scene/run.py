@@ -207,27 +207,29 @@ class SceneResult(Cited):
         x = self.series.get("time", np.arange(len(next(iter(self.series.values())))))
         pairs = [("twist", "torque"), ("displacement", "tangential_force")]
         loops = [(a, b) for a, b in pairs if a in self.series and b in self.series]
+        from .. import plotting as pl
         n = len(names) + len(loops) + (1 if self.fields else 0)
-        fig, axes = plt.subplots(n, 1, figsize=(6, 2.2 * n), squeeze=False)
-        for ax, k in zip(axes[:, 0], names):
-            ax.plot(x, self.series[k])
-            ax.set_ylabel(f"{k} [{SERIES_UNITS[k]}]")
-            ax.set_xlabel("time [s]")
-        for ax, (a, b) in zip(axes[len(names):, 0], loops):
-            ax.plot(self.series[a], self.series[b])
-            ax.set_xlabel(f"{a} [{SERIES_UNITS[a]}]")
-            ax.set_ylabel(f"{b} [{SERIES_UNITS[b]}]")
-        if self.fields:
-            ax = axes[-1, 0]
-            for k, v in self.fields.items():
-                if k != "r":
-                    ax.plot(self.fields["r"], v, label=f"{k} [{FIELD_UNITS[k]}]")
-            ax.set_xlabel("r [m]")
-            ax.legend()
-        fig.suptitle(str(self.meta.get("title", "")))
-        fig.tight_layout()
+        with pl.style():
+            fig, axes = pl.subplots(n, 1, figsize=(6, 0.6 + 2.0 * n), squeeze=False)
+            for ax, k in zip(axes[:, 0], names):
+                ax.plot(x, self.series[k])
+                ax.set_ylabel(f"{k} [{SERIES_UNITS[k]}]")
+                ax.set_xlabel("time [s]")
+            for ax, (a, b) in zip(axes[len(names):, 0], loops):
+                ax.plot(self.series[a], self.series[b])
+                ax.set_xlabel(f"{a} [{SERIES_UNITS[a]}]")
+                ax.set_ylabel(f"{b} [{SERIES_UNITS[b]}]")
+                pl.loop_axes(ax)
+            if self.fields:
+                ax = axes[-1, 0]
+                for k, v in self.fields.items():
+                    if k != "r":
+                        ax.plot(self.fields["r"], v, label=f"{k} [{FIELD_UNITS[k]}]")
+                ax.set_xlabel("r [m]")
+                ax.legend()
+            fig.suptitle(str(self.meta.get("title", "")))
         buf = io.BytesIO()
-        fig.savefig(buf, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
+        pl.save(fig, buf, format=Path(path).suffix.lstrip(".") or "png")
         plt.close(fig)
         return atomic_write(path, buf.getvalue())
 
