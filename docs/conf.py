@@ -133,6 +133,7 @@ def _write_api_index() -> None:
             out += [f"   {m.removeprefix('contactlab.')}" for m in modules] + [""]
     text = "\n".join(out)
     path = Path(__file__).parent / "api" / "index.rst"
+    path.parent.mkdir(exist_ok=True)          # docs/api/ is generated (not in a fresh checkout)
     if not path.exists() or path.read_text(encoding="utf-8") != text:
         path.write_text(text, encoding="utf-8")
 
