@@ -1,6 +1,7 @@
 """ContactLaw speed (issue 14): one step of normal + torsion + tangential with memory for n Hertz
-contacts at constant normal load, compiled kernel (numba, extra ``fast``) and numpy path side by
-side in one run, and the per-step cost over n (linear scaling).
+contacts at constant normal load, compiled kernel (numba, extra ``fast``; serial and on numba's
+threads, ``parallel=True``) and numpy path side by side in one run, and the per-step cost over n
+(linear scaling).
 
     python benchmarks/law_speed.py            # n = 1e3 .. 1e6
     python benchmarks/law_speed.py --big      # adds n = 1e7 (about 4 GB of state and temporaries)
@@ -24,10 +25,11 @@ from contactlab.errors import ValidityWarning               # noqa: E402
 from contactlab.physics import law_kernel                   # noqa: E402
 
 
-def per_step(n: int, fast: bool, steps: int = 10) -> float:
+def per_step(n: int, mode: str, steps: int = 10) -> float:
     rng = np.random.default_rng(0)
     law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
-                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, fast=fast)
+                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, fast=mode != "numpy",
+                        parallel=mode == "threads")
     F = rng.uniform(1.0, 100.0, n)
     ph = rng.uniform(0.0, 2 * np.pi, n)
     times = []
@@ -46,14 +48,19 @@ def main() -> None:
     print(machine())
     cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, E_star=1e11, G_star=4e10, G_torsion=4e10,
                   friction=0.3).step(force=1.0, twist=1e-5, displacement=0.0)   # build + JIT
-    modes = [True, False] if law_kernel.AVAILABLE else [False]
-    print(f"{'n':>10} " + " ".join(f"{('fast' if m else 'numpy') + ' s/step':>16}" for m in modes)
-          + f" {'ns/contact':>12}" + (f" {'numpy/fast':>11}" if len(modes) == 2 else ""))
+    modes = ["fast", "threads", "numpy"] if law_kernel.AVAILABLE else ["numpy"]
+    for m in modes[:-1]:                                                          # JIT builds
+        cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, E_star=1e11, G_star=4e10, G_torsion=4e10,
+                      friction=0.3, parallel=m == "threads").step(force=1.0, twist=1e-5,
+                                                                   displacement=1e-9)
+    print(f"{'n':>10} " + " ".join(f"{m + ' s/step':>16}" for m in modes)
+          + f" {'ns/contact':>12}" + (f" {'numpy/fast':>11} {'fast/threads':>13}"
+                                      if len(modes) == 3 else ""))
     for n in sizes:
         t = [per_step(n, m) for m in modes]
         line = f"{n:>10} " + " ".join(f"{v:>16.4g}" for v in t) + f" {1e9 * t[0] / n:>12.1f}"
-        if len(t) == 2:
-            line += f" {t[1] / t[0]:>11.2f}"
+        if len(t) == 3:
+            line += f" {t[2] / t[0]:>11.2f} {t[0] / t[1]:>13.2f}"
         print(line, flush=True)
 
 

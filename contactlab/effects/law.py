@@ -158,6 +158,9 @@ class ContactLaw:
     fast : bool, optional
         Use the compiled kernel (numba, extra ``fast``); default: when numba is installed.
         ``False`` runs the numpy reference path (same results to rounding).
+    parallel : bool
+        Run the compiled kernel on numba's threads (over contacts; bit-identical to the serial
+        kernel). Off by default: a threading layer inside forked worker processes can hang.
 
     Notes
     -----
@@ -183,7 +186,8 @@ class ContactLaw:
                  G_torsion: Any = None, friction: Any = None, materials: Any = None,
                  torsion: str = "exact", memory: int = DEFAULT_MEMORY,
                  load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
-                 fast: bool | None = None, springs: int = DEFAULT_SPRINGS,
+                 fast: bool | None = None, parallel: bool = False,
+                 springs: int = DEFAULT_SPRINGS,
                  spring_cover: Any = DEFAULT_SPRING_COVER) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
@@ -276,6 +280,7 @@ class ContactLaw:
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
         self.fast = _kernel.AVAILABLE if fast is None else bool(fast)
+        self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._warned = False
         self._st = self._fresh(self.size)
@@ -438,11 +443,16 @@ class ContactLaw:
         M, cm = zero.copy(), a.copy()
         safe_a = np.where(live, a, 1.0)
         safe_d = np.where(live, d, 1.0)
+        FN = np.where(live, F, 0.0)
+        sc = None
+        if self.fast and (u is not None or phi is not None):
+            sc = _kernel.scales(self.friction, self.E_star, self.G_star, self.G_torsion, safe_a,
+                                safe_d, FN, self.n, self.parallel)
         if u is not None:
-            Ft, ct, w = self._tangential(u, safe_a, safe_d, np.where(live, F, 0.0))
+            Ft, ct, w = self._tangential(u, safe_a, safe_d, FN, sc)
             dW += w
         if phi is not None:
-            M, cm, w = self._torsion(phi, safe_a, safe_d)
+            M, cm, w = self._torsion(phi, safe_a, safe_d, sc)
             dW += w
         exact = live.copy()
         if self.springs and np.any(st["spr_on"]):
@@ -541,8 +551,12 @@ class ContactLaw:
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}
 
-    def _tangential(self, u, a, d, FN):
+    def _tangential(self, u, a, d, FN, sc=None):
         n = self.n
+        if sc is not None:                    # compiled: scales from kernel.scales
+            mc = self._master
+            return _kernel.channel_step(_kernel.TANGENTIAL, self._channel("tan"), u, sc[0],
+                                        sc[1], a, sc[2], mc.coef, mc.y_scale, n, self.parallel)
         mu, E, G = self.friction, self.E_star, self.G_star
         u_star = mu * E * d / G
         muF = mu * FN
@@ -561,7 +575,11 @@ class ContactLaw:
 
         return masing_step(self._channel("tan"), u, load)
 
-    def _torsion(self, phi, a, d):
+    def _torsion(self, phi, a, d, sc=None):
+        mc = self._master
+        if sc is not None:
+            return _kernel.channel_step(_kernel.TORSION, self._channel("tor"), phi, sc[3], sc[4],
+                                        a, sc[4], mc.coef, mc.y_scale, self.n, self.parallel)
         phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
                                                self.friction, a, d)
         mc = self._master

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-__all__ = ["AVAILABLE", "channel_step", "TORSION", "TANGENTIAL"]
+__all__ = ["AVAILABLE", "channel_step", "scales", "TORSION", "TANGENTIAL"]
 
 TORSION = 0
 TANGENTIAL = 1
@@ -19,9 +19,11 @@ TANGENTIAL = 1
 try:                                    # optional dependency (extra "fast")
     import numba
     AVAILABLE = True
+    _prange = numba.prange
 except ImportError:                     # pragma: no cover - exercised without numba only
     numba = None
     AVAILABLE = False
+    _prange = range
 
 
 def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
@@ -70,7 +72,7 @@ def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
 def _channel_step(kind, x, sx, sy, sw, last, depth, X, Y, overflow, xs, ys, auxs, Ds, coef,
                   y_scale, n, out_y, out_aux, out_dW):
     K = X.shape[1]
-    for i in range(x.size):
+    for i in _prange(x.size):
         xi = x[i]
         xp = sx[i]
         dW = 0.0
@@ -120,22 +122,50 @@ def _channel_step(kind, x, sx, sy, sw, last, depth, X, Y, overflow, xs, ys, auxs
         out_dW[i] = dW
 
 
+def _scales(mu, E, G, Gt, a, d, FN, n, u_star, muF, Dscale, phi_s, M_full):
+    c = math.pi * n / (2.0 * (n + 2.0))
+    for i in _prange(a.size):
+        mEd = mu[i] * E[i] * d[i]
+        u_star[i] = mEd / G[i]
+        muF[i] = mu[i] * FN[i]
+        Dscale[i] = 2.0 * a[i] * (mEd * mEd) / G[i]
+        phi_s[i] = mEd / (2.0 * Gt[i] * a[i])
+        M_full[i] = c * mu[i] * E[i] * d[i] * a[i] * a[i]
+
+
 if AVAILABLE:
     _load = numba.njit(cache=False, nogil=True)(_load)
-    _channel_step = numba.njit(cache=False, nogil=True)(_channel_step)
+    # serial (default) and threaded builds of the same loops; contacts are independent, so the
+    # threaded build gives bit-identical results (prange is range in the serial build)
+    _KERNELS = {par: (numba.njit(cache=False, nogil=True, parallel=par)(_scales),
+                      numba.njit(cache=False, nogil=True, parallel=par)(_channel_step))
+                for par in (False, True)}
+else:                                   # pragma: no cover - without numba
+    _KERNELS = {False: (_scales, _channel_step), True: (_scales, _channel_step)}
 
 
 def channel_step(kind: int, st: dict, x: np.ndarray, xs, ys, auxs, Ds, coef, y_scale: float,
-                 n: float):
+                 n: float, parallel: bool = False):
     """One compiled Masing step of a channel (state ``st`` of
     :func:`~contactlab.physics.masing_stack.new_stack`, updated in place).
 
     ``xs`` scales the argument (twist scale or full-slip displacement), ``ys`` the response
     (full-sliding torque, μF_N), ``auxs`` the stick ratio (contact radius), ``Ds`` the
-    tangential dissipation (unused for torsion). Returns ``(y, aux, dW)``.
+    tangential dissipation (unused for torsion). ``parallel``: the threaded build (numba
+    threads over contacts, same results). Returns ``(y, aux, dW)``.
     """
     m = x.size
     out = (np.empty(m), np.empty(m), np.empty(m))
-    _channel_step(kind, x, st["x"], st["y"], st["w"], st["last"], st["depth"], st["X"], st["Y"],
-                  st["overflow"], xs, ys, auxs, Ds, coef, float(y_scale), float(n), *out)
+    _KERNELS[parallel][1](kind, x, st["x"], st["y"], st["w"], st["last"], st["depth"], st["X"],
+                          st["Y"], st["overflow"], xs, ys, auxs, Ds, coef, float(y_scale),
+                          float(n), *out)
+    return out
+
+
+def scales(mu, E, G, Gt, a, d, FN, n: float, parallel: bool = False):
+    """One compiled pass for the scales of both channels (the same arithmetic as the numpy
+    path): ``(u_star, muF, Dscale, phi_s, M_full)``."""
+    m = a.size
+    out = tuple(np.empty(m) for _ in range(5))
+    _KERNELS[parallel][0](mu, E, G, Gt, a, d, FN, float(n), *out)
     return out

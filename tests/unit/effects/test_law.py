@@ -277,3 +277,23 @@ def test_compiled_kernel_matches_numpy():
     assert fast.state["tor_overflow"].any()      # the overflow path is exercised too
     for k, v in fast.state.items():
         np.testing.assert_allclose(v, slow.state[k], rtol=1e-13, atol=0, err_msg=k)
+
+
+@pytest.mark.skipif(not cl.effects.law._kernel.AVAILABLE, reason="numba (extra 'fast') not installed")
+def test_threaded_kernel_is_bit_identical():
+    rng = np.random.default_rng(6)
+    n = 3000
+    kw = dict(R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+              friction=rng.uniform(0.1, 0.5, n), memory=4)
+    par = cl.ContactLaw(cl.profiles.Paraboloid, fast=True, parallel=True, **kw)
+    ser = cl.ContactLaw(cl.profiles.Paraboloid, fast=True, **kw)
+    F = rng.uniform(1, 100, n)
+    with pytest.warns(ValidityWarning):
+        for k in range(30):
+            phi = np.sin(0.7 * k + np.arange(n)) * 3e-4
+            u = np.cos(0.5 * k + np.arange(n)) * 1e-7
+            a = par.step(force=F, twist=phi, displacement=u)
+            b = ser.step(force=F, twist=phi, displacement=u)
+            for name in ("torque", "tangential_force", "stick_radius", "torsion_stick_radius",
+                         "dissipated_energy"):
+                assert np.array_equal(getattr(a, name), getattr(b, name)), name
