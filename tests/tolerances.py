@@ -399,3 +399,7 @@ RINGS_DISSIPATION_800_STEPS = 3e-4
 #: 300 rings) on a 16-step path with the force changing every step: both carry the edge error of
 #: a contact radius between ring nodes (order ~1.2); measured 6.8e-4 of the sliding torque
 RINGS_VS_BRUTE_FORCE = 3e-3
+#: simulate() with its long-path windows (normal solve, edge data, fused runs, turn search)
+#: shrunk to a few steps against the default windows: the same arithmetic per step, only the
+#: grouping of vectorised calls differs (rounding)
+WINDOWED_PATH = 1e-12

@@ -21,7 +21,7 @@ from ..citations import Cited, sources_for
 from ..errors import (EffectNotPlannedError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
 from ..foundation import DEFAULT_N_SPRINGS, Winkler
-from ..foundation.base import families_needed, path_normal_states
+from ..foundation.base import families_needed, iter_path_normal_states, path_normal_states
 from ..loadpath import LoadPath
 from ..loadpath.base import UNITS
 from ..params import check_count, check_memory
@@ -55,6 +55,10 @@ def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
 
 #: steps converted to plain floats at a time by the step-by-step loop (bounded temporaries)
 _CHUNK = 4096
+#: steps of a leaf's normal solve at a time (bounded solver temporaries on long paths)
+_SOLVE_CHUNK = 1 << 16
+#: steps per window of the direction-reversal search (bounded temporaries)
+_TURN_WINDOW = 1 << 16
 #: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
 _MIN_BLOCK = 8
 
@@ -298,7 +302,6 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
     snapshots = list(snapshots or ())
     check_memory("simulate()", simulate_memory(n_total, n_springs, len(snapshots)),
                  f"{n_total} steps, {n_springs} springs, {len(snapshots)} snapshots")
-    normal = compile_normal(contact, path)
     snaps = set()
     for s in (snapshots or ()):
         s = int(s)
@@ -307,20 +310,26 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
             raise ParameterError(f"snapshots contains {s!r}: steps must satisfy "
                                  f"-{n_total} <= step < {n_total}.")
         snaps.add(s)
-    a_max = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
-    from .normal import warn_outside_validity
-    warn_outside_validity(contact.profile, a_max, stacklevel=4)
     res = {k: np.zeros(n_total) for k in SERIES if k != "gross_sliding"}
     res["gross_sliding"] = np.zeros(n_total, bool)
+    # the normal states go straight into the series, one leaf at a time; the time loop reads
+    # them back as views (no second copy of the path's normal arrays)
     t0 = 0.0
     i0 = 0
-    for seg in normal:
+    normal = []
+    for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol,
+                                       chunk=_SOLVE_CHUNK):
         n = seg["depth"].size
         res["time"][i0:i0 + n] = t0 + seg["dt"]
         for k in ("depth", "force", "radius"):
             res[k][i0:i0 + n] = seg[k]
+        del seg
+        normal.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
         t0 = float(res["time"][i0 + n - 1]) if n else t0
         i0 += n
+    a_max = float(np.max(res["radius"], initial=0.0))
+    from .normal import warn_outside_validity
+    warn_outside_validity(contact.profile, a_max, stacklevel=4)
     meta = {"built": ["normal", *needs], "n_springs": None, "spacing": spacing,
             "approximate": bool(approximate), "foundation": None,
             "citations": sources_for("normal", "foundation",
@@ -376,13 +385,30 @@ def _snapshot(contact, fnd, st, res, i) -> dict:
 
 def _turns(v0: float, v: np.ndarray) -> np.ndarray:
     """Indices j where the increment v[j] - v[j-1] reverses the direction of the last non-zero
-    increment (v[-1] := v0): the starts of new monotone runs."""
-    inc = np.diff(np.concatenate(([v0], v)))
-    sg = np.sign(inc)
-    nz = np.flatnonzero(sg)
-    if nz.size < 2:
-        return np.zeros(0, int)
-    return nz[1:][sg[nz[1:]] != sg[nz[:-1]]]
+    increment (v[-1] := v0): the starts of new monotone runs (a window of steps at a time:
+    bounded temporaries)."""
+    out = [np.zeros(0, np.int64)]
+    last, prev = 0.0, v0
+    for c0 in range(0, v.size, _TURN_WINDOW):
+        w = v[c0:c0 + _TURN_WINDOW]
+        sg = np.sign(np.diff(w, prepend=prev))
+        nz = np.flatnonzero(sg)
+        prev = w[-1]
+        if nz.size == 0:
+            continue
+        s = sg[nz]
+        flips = nz[1:][s[1:] != s[:-1]]
+        if last != 0.0 and s[0] != last:
+            flips = np.concatenate((nz[:1], flips))
+        out.append(flips + c0)
+        last = s[-1]
+    return np.concatenate(out)
+
+
+def _run_edges(flags: np.ndarray) -> np.ndarray:
+    """Starts and ends (one past) of the runs of True in ``flags``."""
+    f = flags.view(np.int8)
+    return np.flatnonzero(np.diff(f, prepend=np.int8(0), append=np.int8(0)))
 
 
 def _next(sorted_idx: np.ndarray, j: int, default: int) -> int:
@@ -569,24 +595,11 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         _, vals = leaf.values(cur)
         nsteps = leaf.n_steps
         d_arr, a_arr = nrm["depth"], nrm["radius"]
-        prev_d = np.concatenate(([st.depth], d_arr[:-1]))
-        prev_a = np.concatenate(([st.radius], a_arr[:-1]))
-        changed = (d_arr != prev_d) | (a_arr != prev_a)
-        d_same = np.flatnonzero(d_arr == prev_d)   # steps the fused kernel leaves to step()
-        del prev_d, prev_a
-        if state["first"]:
-            changed[0] = True
-        # edge data only where the normal state changes (no per-step temporaries at held load)
-        ci = np.flatnonzero(changed)
-        edc = fnd.edge_data(d_arr[ci], a_arr[ci])
-        ek_arr, eS_arr = np.zeros(nsteps, np.int64), np.zeros(nsteps)
-        ek_arr[ci], eS_arr[ci] = edc["k"], edc["S"]
-        has_T = "T" in edc
-        if has_T:
-            eT_full = np.zeros(nsteps)
-            eT_full[ci] = edc["T"]
-        del edc
-        eT_arr = eT_full if has_T and chans and chans[0]["L"] == "L_tor" else eS_arr
+        d0, a0 = st.depth, st.radius
+        changed = np.empty(nsteps, bool)
+        changed[0] = d_arr[0] != d0 or a_arr[0] != a0 or state["first"]
+        np.not_equal(d_arr[1:], d_arr[:-1], out=changed[1:])
+        changed[1:] |= a_arr[1:] != a_arr[:-1]
         breaks = [np.array([0, nsteps])]
         vs = []
         for ch in chans:
@@ -598,18 +611,35 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
                 v = np.full(nsteps, cur[ch["ctrl"]])
             vs.append(v)
             breaks.append(_turns(cur[ch["ctrl"]], v))
-        breaks += [ci, ci + 1, snap_idx - base + 1]
+        del vals
+        # runs of steps whose normal state changes are run step by step: their ends are breaks
+        breaks += [_run_edges(changed), snap_idx - base + 1]
         brk = np.unique(np.concatenate(breaks))
-        del breaks, ci
+        del breaks
         brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
         fusing = fused is not None and chans[0]["ctrl"] == chans[0]["pos"]
+        tor_edge = bool(chans) and chans[0]["L"] == "L_tor"
+
+        def edges(c0, c1):
+            """Edge cell data of steps c0..c1-1, computed where the normal state changes
+            (zeros elsewhere: step() does not read them there)."""
+            ci = np.flatnonzero(changed[c0:c1])
+            ek, eS = np.zeros(c1 - c0, np.int64), np.zeros(c1 - c0)
+            eT = np.zeros(c1 - c0) if "torsion" in fnd.needs else None
+            if ci.size:
+                edc = fnd.edge_data(d_arr[c0:c1][ci], a_arr[c0:c1][ci])
+                ek[ci], eS[ci] = edc["k"], edc["S"]
+                if eT is not None:
+                    eT[ci] = edc["T"]
+            return ek, eS, eT
 
         def one_by_one(j0, j1):
             for c0 in range(j0, j1, _CHUNK):   # plain floats, converted a chunk at a time
                 c1 = min(c0 + _CHUNK, j1)
                 dl, al = d_arr[c0:c1].tolist(), a_arr[c0:c1].tolist()
-                ek, eS = ek_arr[c0:c1].tolist(), eS_arr[c0:c1].tolist()
-                eT = eT_full[c0:c1].tolist() if has_T else [None] * (c1 - c0)
+                ek, eS, eT = edges(c0, c1)
+                ek, eS = ek.tolist(), eS.tolist()
+                eT = eT.tolist() if eT is not None else [None] * (c1 - c0)
                 vl = [v[c0:c1].tolist() for v in vs]
                 for o in range(c1 - c0):
                     step(base + c0 + o, dl[o], al[o], ek[o], eS[o], eT[o], [v[o] for v in vl])
@@ -618,17 +648,24 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
             if not fusing:
                 one_by_one(j0, j1)
                 return
-            j = j0
-            while j < j1:   # runs of steps with a new depth each: one compiled call per run
-                r = min(j1, _next(d_same, j - 1, nsteps))
-                if r > j:
-                    _fused_run(fused, fnd, st, chans[0], base + j, d_arr[j:r], a_arr[j:r],
-                               ek_arr[j:r], eS_arr[j:r], eT_arr[j:r], vs[0][j:r], state,
-                               out_W, out_stick if want_stick else None)
-                    j = r
-                else:
-                    one_by_one(j, j + 1)
-                    j += 1
+            for c0 in range(j0, j1, _CHUNK):   # windows: edge data a window at a time
+                c1 = min(c0 + _CHUNK, j1)
+                prev = d_arr[c0 - 1] if c0 > 0 else d0
+                same = np.flatnonzero(d_arr[c0:c1] == np.concatenate(([prev], d_arr[c0:c1 - 1])))
+                ek, eS, eT = edges(c0, c1)
+                eT = eT if tor_edge else eS
+                j = 0
+                while j < c1 - c0:   # runs of steps with a new depth each: one compiled call
+                    r = _next(same, j - 1, c1 - c0)
+                    if r > j:
+                        _fused_run(fused, fnd, st, chans[0], base + c0 + j, d_arr[c0 + j:c0 + r],
+                                   a_arr[c0 + j:c0 + r], ek[j:r], eS[j:r], eT[j:r],
+                                   vs[0][c0 + j:c0 + r], state, out_W,
+                                   out_stick if want_stick else None)
+                        j = r
+                    else:
+                        one_by_one(c0 + j, c0 + j + 1)
+                        j += 1
 
         pending = None   # first step of a stretch of step-by-step intervals not yet run
         for j0, j1 in zip(brk[:-1], brk[1:]):

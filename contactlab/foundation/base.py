@@ -24,7 +24,7 @@ from ..params import as_float_array
 from ..physics import normal as _normal
 
 __all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries", "families_needed",
-           "path_normal_states"]
+           "path_normal_states", "iter_path_normal_states"]
 
 #: default number of springs (cells) over the path's maximum contact radius. The error is second
 #: order in 1/N (only the cell holding a stick–slip boundary is lumped); with the edge-refined
@@ -88,31 +88,46 @@ def path_normal_states(profile: Any, E_star: float, path: Any, rtol: float
     list of dict
         Per leaf: ``dt`` (s), ``depth`` (m), ``radius`` (m), ``force`` (N), one value per step.
     """
-    out = []
+    return list(iter_path_normal_states(profile, E_star, path, rtol))
+
+
+def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
+                            chunk: int | None = None):
+    """:func:`path_normal_states` one leaf at a time (a caller that copies each leaf into its own
+    series holds one leaf's arrays, not the whole path's); ``chunk``: leaves longer than this
+    many steps are solved a chunk of steps at a time (bounded solver temporaries; the same
+    result for the same ``chunk``)."""
     cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
                          "torque"), 0.0)
     last = (np.zeros(1), np.zeros(1), np.zeros(1))
     for leaf in path.leaves():
         dt, vals = leaf.values(cur)
         n = leaf.n_steps
-        if "depth" in vals:
-            d, a, F, _ = _normal.solve(profile, E_star, "depth",
-                                       as_float_array("depth", vals["depth"]), rtol)
-        elif "force" in vals:
-            f = as_float_array("force", vals["force"])
-            if np.any(f < 0):
-                bad = f[f < 0][0]
+        if "depth" in vals or "force" in vals:
+            kind = "depth" if "depth" in vals else "force"
+            x = as_float_array(kind, vals[kind])
+            if kind == "force" and np.any(x < 0):
+                bad = x[x < 0][0]
                 raise ParameterError(f"force={bad!r} N is invalid: it is below the adhesion limit "
                                      "0 N of this non-adhesive contact (use force >= 0, or a "
                                      "negative depth to separate the bodies).")
-            d, a, F, _ = _normal.solve(profile, E_star, "force", f, rtol)
+            if chunk is None or x.size <= chunk:
+                d, a, F, _ = _normal.solve(profile, E_star, kind, x, rtol)
+            else:   # long leaf: solve a chunk at a time (bounded solver temporaries)
+                x = x.reshape(-1)
+                d, a, F = np.empty(x.size), np.empty(x.size), np.empty(x.size)
+                for c0 in range(0, x.size, chunk):
+                    sl = slice(c0, c0 + chunk)
+                    d[sl], a[sl], F[sl] = (np.asarray(v, float).reshape(-1) for v in
+                                           _normal.solve(profile, E_star, kind, x[sl], rtol)[:3])
+            del x
         else:
             d, a, F = (np.full(n, v[-1]) for v in last)
+        del vals
         d, a, F = (np.asarray(v, float).reshape(n) for v in (d, a, F))
-        out.append({"dt": dt, "depth": d, "radius": a, "force": F})
-        last = (d, a, F)
+        last = (d[-1:].copy(), a[-1:].copy(), F[-1:].copy())  # not views: a leaf is freed
         cur["depth"], cur["force"] = float(d[-1]), float(F[-1])
-    return out
+        yield {"dt": dt, "depth": d, "radius": a, "force": F}
 
 
 class Foundation(ABC):

@@ -26,6 +26,16 @@ from ._compiled import jenkins_update
 
 from ..numeric.quadrature import tanh_sinh
 from .base import Foundation
+from ..errors import OutsideTheoryError
+
+
+def _check_stiffness(K: np.ndarray, radius: float) -> None:
+    """Cell stiffnesses must be finite and > 0 (a contact radius of ~1e-100 m makes b³ underflow)."""
+    if not np.all((K > 0) & np.isfinite(K)):
+        raise OutsideTheoryError(f"the path's largest contact radius {radius!r} m is outside double "
+                                 "precision for the spring foundation (cell stiffnesses underflow "
+                                 "to 0 or overflow): load the contact further or use the closed-form "
+                                 "routes (normal(), torsion()).")
 
 __all__ = ["Winkler", "SpringState", "xg_integral"]
 
@@ -119,10 +129,12 @@ class Winkler(Foundation):
         self._c_tor = 4.0 * mu * E if mu is not None else np.inf
         if "tangential" in self.needs:
             self.K_tan = 2.0 * self.moduli.tangential * self.w
+            _check_stiffness(self.K_tan, self.radius)
             self.invK_tan = 1.0 / self.K_tan
         if "torsion" in self.needs:
             self.X1 = np.diff(b ** 2) / 2.0
             self.K_tor = 16.0 * self.moduli.torsional * np.diff(b ** 3) / 3.0
+            _check_stiffness(self.K_tor, self.radius)
             self.invK_tor = 1.0 / self.K_tor
             Hb = xg_integral(prof, b, self.rtol)
             self.dH = np.diff(Hb)
