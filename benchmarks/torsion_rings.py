@@ -13,7 +13,9 @@ the error of the MDR spring model when the normal force changes (issue 18).
    path's), dissipated energy of the last twist cycle, smallest stick radius.
 
 Writes ``benchmarks/results/torsion_rings.csv`` and prints the tables.
-Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3).
+Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3;
+``--map`` runs only part 3, about a minute with ``OPENBLAS_NUM_THREADS=1``, and writes
+``benchmarks/results/torsion_rings_map.csv``).
 """
 from __future__ import annotations
 
@@ -151,7 +153,26 @@ def error_map():
     return rows
 
 
+def main_map():
+    """Part 3 only (``--map``): writes ``benchmarks/results/torsion_rings_map.csv``."""
+    print(machine())
+    em = error_map()
+    print("\n3. MDR vs exact under changing normal load (180 steps)")
+    for r in em:
+        print(f"  {r['case']:28s} torque {r['torque_error']:.3f} (inst {r['torque_error_inst']:.3f})"
+              f"  energy/cycle {r['energy_error_last_cycle']:+.3f}"
+              f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}")
+    OUT.mkdir(exist_ok=True)
+    keys = sorted({k for r in em for k in r})
+    with open(OUT / "torsion_rings_map.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        w.writerows(em)
+
+
 def main():
+    if "--map" in sys.argv:
+        return main_map()
     print(machine())
     rows = front()
     print("\n1. constant load, error vs twist_history (of the sliding torque), time per step")

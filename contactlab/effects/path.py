@@ -193,7 +193,8 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     if method == "exact":
         from .torsion_path import simulate_exact
         return simulate_exact(contact, path, outputs=outputs, n_rings=n_rings,
-                              snapshots=snapshots, error_estimate=error_estimate)
+                              snapshots=snapshots, error_estimate=error_estimate,
+                              progress=progress)
     res = _simulate(contact, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
                     snapshots=snapshots, progress=progress, approximate=approximate,
                     strategy=strategy)
@@ -214,7 +215,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
 #: torsion models of :func:`simulate` (``method=``)
 PATH_METHODS = ("exact", "mdr")
 #: model of a path with twist/torque and no shift when ``method=None``
-DEFAULT_TORSION_METHOD = "mdr"
+DEFAULT_TORSION_METHOD = "exact"
 
 
 def resolve_path_method(path: LoadPath, method: str | None, approximate: bool = False) -> str:

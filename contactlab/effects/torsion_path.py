@@ -29,15 +29,16 @@ ESTIMATED = ("torque", "twist", "stick_radius", "dissipated_energy")
 
 def simulate_exact(contact, path: LoadPath, *, outputs: Any = None, n_rings: int | None = None,
                    spacing: str = "uniform", snapshots: Any = None,
-                   error_estimate: bool = False):
+                   error_estimate: bool = False, progress: bool = False):
     """Run a twist/torque path exactly; see :func:`contactlab.effects.path.simulate`.
 
     ``error_estimate=True`` repeats the run with half the rings and stores
     ``max|s_N − s_{N/2}| / max|s_N|`` per series in ``meta["error_estimates"]`` (the torque error
     falls at least as fast as ``N^-1`` on varying-load paths, so this bounds the error of the
-    ``N``-ring run from above).
+    ``N``-ring run from above). ``progress=True`` shows a tqdm bar for paths of at least
+    :data:`contactlab.effects.path.PROGRESS_THRESHOLD` steps (the half-ring run shows none).
     """
-    res = _run(contact, path, outputs, n_rings, spacing, snapshots)
+    res = _run(contact, path, outputs, n_rings, spacing, snapshots, progress)
     if error_estimate:
         half = _run(contact, path, outputs, max(4, res.meta["n_rings"] // 2), spacing, None)
         est = {}
@@ -51,8 +52,8 @@ def simulate_exact(contact, path: LoadPath, *, outputs: Any = None, n_rings: int
     return res
 
 
-def _run(contact, path, outputs, n_rings, spacing, snapshots):
-    from .path import SERIES, PathResult
+def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False):
+    from .path import SERIES, PathResult, _progress
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
     if contact.is_adhesive:
@@ -97,6 +98,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots):
     snap_data: dict[int, dict] = {}
     t0, i = 0.0, 0
     iters = 0
+    bar = _progress(n_total, progress)
     for leaf, nrm in zip(path.leaves(), normal):
         _, vals = leaf.values(cur)
         n = leaf.n_steps
@@ -140,6 +142,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots):
             st.z = z
             st.active = np.where(bound[j] == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
             M_old = M
+            if bar is not None:
+                bar.update(1)
             res["twist"][k] = st.twist
             res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
                                                           res["gross_sliding"][k] else M)
@@ -164,6 +168,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots):
         cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
                    force=float(nrm["force"][-1]) if n else cur["force"],
                    twist=st.twist, torque=M_old)
+    if bar is not None:
+        bar.close()
     meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_springs,
             "n_springs": None, "spacing": spacing, "foundation": repr(rings),
             "approximate": False, "iterations": iters,

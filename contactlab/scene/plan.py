@@ -257,8 +257,9 @@ def make_plan(scene: "Scene") -> Plan:
                 impl = "contact.simulate(method='exact') (exact ring solver)"
                 reasons.append("the normal load changes while twisted: exact pressure per step, "
                                "the half-space's torsional influence on rings, Coulomb friction "
-                               "with memory (the MDR springs err by up to ~20 % of the sliding "
-                               "torque on such paths)")
+                               "with memory (the default of contact.simulate for twisted paths; "
+                               "the MDR springs err by up to 24 % of the sliding torque on such "
+                               "paths, benchmarks/results/torsion_rings_map.csv)")
             elif torsion and method == "no-slip" and friction is not None:
                 reasons.append(f"method {method!r} has no foundation implementation: the MDR "
                                "spring model is used")

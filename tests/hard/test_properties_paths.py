@@ -73,7 +73,7 @@ def test_energy_balance_random_twist_history_simulate(points, n, probe):
                                 twist=np.concatenate([np.zeros(ramp.size), twist]))
     total = ramp.size + twist.size
     i_probe = ramp.size + int(probe * (twist.size - 1))
-    r = CONTACT.simulate(path, n_springs=N_SPRINGS, snapshots=[i_probe, total - 1])
+    r = CONTACT.simulate(path, n_springs=N_SPRINGS, snapshots=[i_probe, total - 1], method="mdr")
     j = np.linspace(0.0, 1.0, N_SPRINGS + 1)     # default "edge" cells b_j = a_max(1 - (1 - j/N)²)
     b = float(np.max(r.radius)) * (1.0 - (1.0 - j) ** 2)
     K = 16.0 * G_T * np.diff(b**3) / 3.0
@@ -114,7 +114,7 @@ def test_energy_balance_fine_steps_simulate(family):
     path = LoadPath.from_arrays(force=np.concatenate([ramp, np.full(x.size, F_N)]),
                                 **{family: np.concatenate([np.zeros(ramp.size), x])})
     last = ramp.size + x.size - 1
-    r = CONTACT.simulate(path, n_springs=N_SPRINGS, snapshots=[last])
+    r = CONTACT.simulate(path, n_springs=N_SPRINGS, snapshots=[last], method="mdr")
     j = np.linspace(0.0, 1.0, N_SPRINGS + 1)
     K = K_of(float(np.max(r.radius)) * (1.0 - (1.0 - j) ** 2))
     m = r.snapshots[last]["torsion" if family == "twist" else "tangential"]

@@ -45,7 +45,7 @@ def test_changing_load_matches_simulate(chan, key, amp):
     n = 4
     contacts, par = _contacts(rng, n)
     F0 = rng.uniform(5, 50, n)
-    res = [c.simulate(_path(F0[i], chan, amp), n_springs=N, strategy="steps")
+    res = [c.simulate(_path(F0[i], chan, amp), n_springs=N, strategy="steps", method="mdr")
            for i, c in enumerate(contacts)]
     dep = np.stack([r.depth for r in res], 1)
     x = np.stack([getattr(r, chan) for r in res], 1)

@@ -40,7 +40,7 @@ def test_spring_error_estimate_is_honest():
         for n in LADDER:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)   # MDR torsion: intended
-                res = c.simulate(path, n_springs=n, error_estimate=True)
+                res = c.simulate(path, n_springs=n, error_estimate=True, method="mdr")
                 ref = exact(res)
             series = getattr(res, name)[5:]
             actual = np.max(np.abs(series - ref)) / np.max(np.abs(series))
@@ -53,5 +53,5 @@ def test_spring_error_estimate_is_honest():
 
 def test_no_estimate_unless_asked():
     c = _contact()
-    res = c.simulate(cl.LoadPath().ramp(force=F_N, steps=3), n_springs=50)
+    res = c.simulate(cl.LoadPath().ramp(force=F_N, steps=3), n_springs=50, method="mdr")
     assert "error_estimates" not in res.meta

@@ -60,7 +60,7 @@ def test_normal_load_unload_equals_contact_normal_every_step():
     d_max = 2e-6
     path = cl.LoadPath().ramp(depth=d_max, steps=40).ramp(depth=0.3 * d_max, steps=30).ramp(
         force=50.0, steps=20).ramp(depth=-1e-7, steps=10)
-    r = c.simulate(path, n_springs=50)
+    r = c.simulate(path, n_springs=50, method="mdr")
     a_ref, F_ref = hertz_normal(c, r.depth)
     np.testing.assert_allclose(r.radius, a_ref, rtol=FOUNDATION_NORMAL)
     np.testing.assert_allclose(r.force, F_ref, rtol=FOUNDATION_NORMAL, atol=TOL.ABS_FLOOR)
@@ -72,7 +72,7 @@ def test_normal_load_unload_equals_contact_normal_every_step():
 def test_normal_spring_forces_integrate_to_the_normal_force():
     c = cone()
     path = cl.LoadPath().ramp(force=3.0, steps=7).ramp(twist=1e-6, steps=2)
-    r = c.simulate(path, n_springs=37, spacing="uniform", snapshots=[3, -1])
+    r = c.simulate(path, n_springs=37, spacing="uniform", snapshots=[3, -1], method="mdr")
     for step, snap in r.snapshots.items():
         assert snap["normal"].sum() == pytest.approx(r.force[step], rel=FOUNDATION_NORMAL)
 
@@ -88,7 +88,7 @@ def test_cattaneo_mindlin_and_mindlin_deresiewicz_loop(kind):
     u0 = 0.8 * us
     path = (cl.LoadPath().ramp(force=FN, steps=5).ramp(displacement=u0, steps=200)
             .ramp(displacement=-u0, steps=400).ramp(displacement=u0, steps=400))
-    r = c.simulate(path)
+    r = c.simulate(path, method="mdr")
     assert r.meta["n_springs"] == DEFAULT_N_SPRINGS
     u, Fx = r.displacement, r.tangential_force
     load = slice(5, 205)
@@ -121,7 +121,7 @@ def test_cattaneo_mindlin_convergence_order(spacing):
     for N in Ns:
         path = cl.LoadPath().ramp(force=F, steps=2).ramp(displacement=0.9 * us, steps=150).ramp(
             displacement=-0.9 * us, steps=150)
-        r = c.simulate(path, n_springs=int(N), spacing=spacing)
+        r = c.simulate(path, n_springs=int(N), spacing=spacing, method="mdr")
         u = r.displacement[2:]
         ref = np.concatenate([cm_virgin(F, us, 2, u[:150]), cm_loop(F, us, 2, u[150:], 0.9 * us)])
         errs.append(np.max(np.abs(r.tangential_force[2:] - ref)) / (MU * F))
@@ -143,7 +143,7 @@ def test_oblique_loading_below_and_above_friction():
         d = np.linspace(d0, d1, 101)
         path = cl.LoadPath().ramp(depth=d0, steps=3).then(
             cl.loadpath.Table.create(None, {"depth": d[1:], "displacement": lam * (d[1:] - d0)}))
-        r = c.simulate(path)
+        r = c.simulate(path, method="mdr")
         dd = r.depth[3:]
         a, FN = hertz_normal(c, dd)
         _, F0 = hertz_normal(c, d0)
@@ -168,13 +168,13 @@ def test_tangential_force_control_matches_closed_form():
     T = np.linspace(0.05, 0.95, 10) * MU * F
     path = cl.LoadPath().ramp(force=F, steps=2).then(cl.loadpath.Table.create(
         None, {"tangential_force": T}))
-    r = c.simulate(path)
+    r = c.simulate(path, method="mdr")
     np.testing.assert_allclose(r.tangential_force[2:], T, rtol=TOL.EXACT_ROUTES)
     s = c.tangential(force=F, tangential_force=T)
     np.testing.assert_allclose(r.displacement[2:], s.displacement, rtol=TOL.FOUNDATION_DISPLACEMENT)
     # beyond μF_N: gross sliding, flagged
     over = cl.LoadPath().ramp(force=F, steps=2).ramp(tangential_force=2 * MU * F, steps=1)
-    r2 = c.simulate(over, n_springs=100)
+    r2 = c.simulate(over, n_springs=100, method="mdr")
     assert r2.gross_sliding[-1] and not r2.gross_sliding[:-1].any()
     assert r2.tangential_force[-1] == pytest.approx(MU * F, rel=TOL.EXACT_ROUTES)
 
@@ -185,7 +185,7 @@ def test_unloading_normal_releases_tangential_springs():
     us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
     path = (cl.LoadPath().ramp(force=F, steps=5).ramp(displacement=0.5 * us, steps=20)
             .ramp(depth=-1e-9, steps=10))
-    r = c.simulate(path, n_springs=200)
+    r = c.simulate(path, n_springs=200, method="mdr")
     assert r.tangential_force[-1] == 0.0
     # a force that decreases under a held shift can never exceed μ F_N
     assert np.all(np.abs(r.tangential_force) <= MU * r.force * (1 + 1e-12))
@@ -200,7 +200,7 @@ def test_torsion_equals_mdr_closed_form_every_step():
     phi_half = 3 * MU * F * (1 - 0.25) / (16 * Gt * a ** 2 * 0.5)  # t = 0.5
     path = (cl.LoadPath().ramp(force=F, steps=4).ramp(twist=phi_half, steps=100)
             .ramp(twist=-phi_half, steps=200).ramp(twist=phi_half, steps=200))
-    r = c.simulate(path)
+    r = c.simulate(path, method="mdr")
     assert r.meta["built"] == ["normal", "torsion"]
     ph, M = r.twist[4:], r.torque[4:]
     ref = np.empty_like(M)
@@ -220,12 +220,12 @@ def test_torque_control_and_full_sliding():
     Ms = np.array([0.2, 0.6, 0.95]) * M_full
     path = cl.LoadPath().ramp(force=F, steps=2).then(cl.loadpath.Table.create(None,
                                                                               {"torque": Ms}))
-    r = c.simulate(path)
+    r = c.simulate(path, method="mdr")
     np.testing.assert_allclose(r.torque[2:], Ms, rtol=TOL.EXACT_ROUTES)
     ref = mdr_torsion_hertz(c, F, a, r.twist[2:])[0]
     np.testing.assert_allclose(ref, Ms, rtol=FOUNDATION_TORSION)
     over = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(torque=1.5 * M_full, steps=1),
-                      n_springs=300)
+                      n_springs=300, method="mdr")
     assert over.gross_sliding[-1]
     assert over.torque[-1] == pytest.approx(M_full, rel=TOL.QUADRATURE)
 
@@ -238,8 +238,8 @@ def test_history_twist_before_and_after_normal_load():
     F0, F1 = 10.0, 100.0
     a0, a1 = c.normal(force=F0).radius, c.normal(force=F1).radius
     before = c.simulate(cl.LoadPath().ramp(force=F0, steps=10).ramp(twist=phi, steps=5)
-                        .ramp(force=F1, steps=20))
-    after = c.simulate(cl.LoadPath().ramp(force=F1, steps=30).ramp(twist=phi, steps=5))
+                        .ramp(force=F1, steps=20), method="mdr")
+    after = c.simulate(cl.LoadPath().ramp(force=F1, steps=30).ramp(twist=phi, steps=5), method="mdr")
     assert before.torque[-1] == pytest.approx(16 / 3 * Gt * a0 ** 3 * phi, rel=TOL.EXACT_ROUTES)
     assert after.torque[-1] == pytest.approx(16 / 3 * Gt * a1 ** 3 * phi, rel=TOL.EXACT_ROUTES)
     assert before.torque[-1] < 0.5 * after.torque[-1]
@@ -248,7 +248,7 @@ def test_history_twist_before_and_after_normal_load():
 def test_twist_without_contact_then_load_gives_no_torque():
     c = hertz()
     r = c.simulate(cl.LoadPath().ramp(force=1.0, steps=1).ramp(depth=-1e-9, steps=1)
-                   .ramp(twist=1e-4, steps=3).ramp(force=F, steps=10), n_springs=100)
+                   .ramp(twist=1e-4, steps=3).ramp(force=F, steps=10), n_springs=100, method="mdr")
     assert np.all(r.torque[3:] == 0.0)
     assert np.all(r.dissipated_energy == 0.0)
 
@@ -261,7 +261,7 @@ def test_oscillating_twist_no_drift_over_1e4_cycles():
     cycles = 10_000
     path = (cl.LoadPath().ramp(force=F, steps=2)
             .sinusoid(twist=phi0, cycles=cycles, steps_per_cycle=spc))
-    r = c.simulate(path, n_springs=100, outputs=["torque", "dissipated_energy", "twist"])
+    r = c.simulate(path, n_springs=100, outputs=["torque", "dissipated_energy", "twist"], method="mdr")
     W = r.dissipated_energy[2 + spc - 1::spc]  # end of each cycle
     per = np.diff(W)[1:]
     assert per[0] > 0
@@ -274,7 +274,7 @@ def test_jaeger_loop_comparison():
     c = hertz()
     a = c.normal(force=F).radius
     phi = 1e-3 * 3 * MU * F / (16 * c.moduli.torsional * a ** 2)  # very narrow slip annulus
-    r = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(twist=phi, steps=20))
+    r = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(twist=phi, steps=20), method="mdr")
     exact = c.torsion(force=F, twist=phi, method="exact").torque
     assert r.torque[-1] == pytest.approx(exact, rel=TOL.NARROW_SLIP_FOUNDATION)
 
@@ -283,10 +283,10 @@ def test_jaeger_loop_comparison():
 def test_only_needed_foundations_are_built():
     c = hertz()
     shift = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(displacement=1e-8, steps=2),
-                       n_springs=20)
+                       n_springs=20, method="mdr")
     assert shift.meta["built"] == ["normal", "tangential"]
     twist = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(twist=1e-6, steps=2),
-                       n_springs=20)
+                       n_springs=20, method="mdr")
     assert twist.meta["built"] == ["normal", "torsion"]
     f = Winkler.for_path(c.profile, cl.LoadPath().ramp(force=F, steps=3), moduli=c.moduli,
                          friction=MU, n_springs=10)
@@ -298,19 +298,19 @@ def test_combined_shift_and_twist_needs_opt_in():
     c = hertz()
     path = cl.LoadPath().ramp(force=F, steps=2).ramp(displacement=1e-8, twist=1e-6, steps=2)
     with pytest.raises(OutsideTheoryError, match="approximate=True"):
-        c.simulate(path)
+        c.simulate(path, method="mdr")
     with pytest.warns(ValidityWarning, match="independent"):
-        r = c.simulate(path, approximate=True, n_springs=20)
+        r = c.simulate(path, approximate=True, n_springs=20, method="mdr")
     assert r.meta["built"] == ["normal", "tangential", "torsion"]
 
 
 def test_outputs_selection_and_unplanned_output():
     c = hertz()
-    r = c.simulate(cl.LoadPath().ramp(force=F, steps=3), outputs=["force"])
+    r = c.simulate(cl.LoadPath().ramp(force=F, steps=3), outputs=["force"], method="mdr")
     with pytest.raises(cl.errors.EffectNotPlannedError, match="torque"):
         r.torque
     with pytest.raises(cl.errors.UnknownNameError, match="outputs"):
-        c.simulate(cl.LoadPath().ramp(force=F, steps=3), outputs=["forse"])
+        c.simulate(cl.LoadPath().ramp(force=F, steps=3), outputs=["forse"], method="mdr")
 
 
 def test_segment_and_step_strategies_agree():
@@ -324,8 +324,8 @@ def test_segment_and_step_strategies_agree():
                                                   "twist": 1e-4 * np.sin(k / 15)}))
             .hold(steps=20).ramp(torque=0.5 * 0.75 * MU * F * c.normal(force=F).radius, steps=30)
             .ramp(torque=-0.3 * 0.75 * MU * F * c.normal(force=F).radius, steps=30))
-    a = c.simulate(path, n_springs=300, strategy="segments")
-    b = c.simulate(path, n_springs=300, strategy="steps")
+    a = c.simulate(path, n_springs=300, strategy="segments", method="mdr")
+    b = c.simulate(path, n_springs=300, strategy="steps", method="mdr")
     for q in ("torque", "twist", "dissipated_energy", "stick_radius"):
         scale = np.max(np.abs(getattr(b, q)))
         np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=TOL.STRATEGY_AGREEMENT * scale)
@@ -335,8 +335,8 @@ def test_segment_and_step_strategies_agree():
             .sinusoid(displacement=0.7 * us, cycles=2, steps_per_cycle=60)
             .ramp(tangential_force=0.5 * MU * F, steps=25).ramp(force=0.5 * F, steps=20)
             .ramp(tangential_force=-0.4 * MU * F, steps=25))
-    a = c.simulate(path, n_springs=300, strategy="segments")
-    b = c.simulate(path, n_springs=300, strategy="steps")
+    a = c.simulate(path, n_springs=300, strategy="segments", method="mdr")
+    b = c.simulate(path, n_springs=300, strategy="steps", method="mdr")
     for q in ("tangential_force", "displacement", "dissipated_energy", "stick_radius"):
         scale = np.max(np.abs(getattr(b, q)))
         np.testing.assert_allclose(getattr(a, q), getattr(b, q), rtol=0, atol=TOL.STRATEGY_AGREEMENT * scale)
@@ -351,7 +351,7 @@ def test_snapshot_tractions_match_closed_forms():
     us = MU * c.moduli.normal * ns.depth / c.moduli.tangential
     u = 0.5 * us
     r = c.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(displacement=u, steps=20),
-                   snapshots=[-1])
+                   snapshots=[-1], method="mdr")
     snap = r.snapshots[22]
     x = snap["x"]
     cc = a * np.sqrt(1 - u / us)
@@ -364,7 +364,7 @@ def test_snapshot_tractions_match_closed_forms():
         np.clip(a * a - x * x, 0, None)), rtol=TOL.QUADRATURE)
     c0 = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL))
     phi = 1e-5
-    t = c0.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(twist=phi, steps=2), snapshots=[4])
+    t = c0.simulate(cl.LoadPath().ramp(force=F, steps=3).ramp(twist=phi, steps=2), snapshots=[4], method="mdr")
     x = t.snapshots[4]["x"]
     sel = x < 0.9 * a
     ref = 4 * c0.moduli.torsional * phi / np.pi * x / np.sqrt(a * a - x * x)

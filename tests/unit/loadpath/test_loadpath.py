@@ -111,9 +111,9 @@ def test_rule_force_below_adhesion_limit():
 def test_rule_n_springs_and_spacing():
     p = cl.LoadPath().ramp(force=1.0).ramp(twist=1e-6)
     with pytest.raises(ParameterError, match="n_springs"):
-        contact().simulate(p, n_springs=0)
+        contact().simulate(p, n_springs=0, method="mdr")
     with pytest.raises(UnknownNameError, match="spacing"):
-        contact().simulate(p, spacing="log")
+        contact().simulate(p, spacing="log", method="mdr")
 
 
 def test_rule_shift_without_contact():
@@ -177,8 +177,28 @@ def test_plot_with_matplotlib():
 def test_progress_bar_optional_and_quiet_by_default(monkeypatch, capsys):
     p = (cl.LoadPath().ramp(force=10.0, steps=2)
          .sinusoid(twist=1e-5, cycles=200, steps_per_cycle=10))
-    contact().simulate(p, n_springs=10)
+    contact().simulate(p, n_springs=10, method="mdr")
     assert capsys.readouterr().err == ""
     monkeypatch.setitem(sys.modules, "tqdm", None)
     with pytest.raises(ImportError, match="pip install tqdm"):
-        contact().simulate(p, n_springs=10, progress=True)
+        contact().simulate(p, n_springs=10, progress=True, method="mdr")
+
+
+@pytest.mark.parametrize("method", ["exact", "mdr"])
+def test_progress_bar_counts_every_step(method, capsys):
+    """Both torsion drivers (the default exact ring solver and the MDR springs) show the bar."""
+    pytest.importorskip("tqdm")
+    p = (cl.LoadPath().ramp(force=10.0, steps=2)
+         .sinusoid(twist=1e-5, cycles=200, steps_per_cycle=10))
+    contact().simulate(p, n_rings=20, method=method, progress=True) if method == "exact" else \
+        contact().simulate(p, n_springs=10, method=method, progress=True)
+    err = capsys.readouterr().err
+    assert f"{p.n_steps}/{p.n_steps}" in err
+
+
+def test_progress_bar_exact_is_the_default_for_twist(monkeypatch):
+    p = (cl.LoadPath().ramp(force=10.0, steps=2)
+         .sinusoid(twist=1e-5, cycles=200, steps_per_cycle=10))
+    monkeypatch.setitem(sys.modules, "tqdm", None)
+    with pytest.raises(ImportError, match="pip install tqdm"):
+        contact().simulate(p, n_rings=20, progress=True)
