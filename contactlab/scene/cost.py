@@ -155,8 +155,15 @@ class CostReport:
             for k in self.knobs))
         return "\n".join(lines)
 
-    def plot(self, path: str | Path) -> Path:
-        """Error against wall time per knob (default and chosen rungs marked) into ``path``.
+    def plot(self, path: str | Path | None = None, *, ax: Any = None) -> Any:
+        """Error against wall time per knob, the default and chosen rungs marked.
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            Write the figure there (PNG, PDF, ... by suffix) and close it; returns the path.
+        ax : matplotlib Axes, optional
+            Draw into these axes (default: a new styled figure); returned when ``path`` is None.
 
         Raises
         ------
@@ -164,15 +171,16 @@ class CostReport:
             matplotlib is not installed (extra ``plot``).
         """
         try:
-            import matplotlib
-            matplotlib.use("Agg")
             import matplotlib.pyplot as plt
         except ImportError as err:
             raise ImportError("plotting needs matplotlib: pip install 'contactlab[plot]'") from err
         from .. import plotting as pl
         floor = self.budget * 1e-6
         with pl.style():
-            fig, ax = pl.subplots(figsize=(6.4, 4.4))
+            if ax is None:
+                fig, ax = pl.subplots(figsize=(6.4, 4.4))
+            else:
+                fig = ax.figure
             for knob in self.knobs:
                 rs = [r for r in self.rungs if r.knob == knob and r.error is not None]
                 if not rs:
@@ -194,6 +202,8 @@ class CostReport:
             ax.set_title(f"{self.title}\nring: default, star: cheapest meeting the target",
                          fontsize=9)
             ax.legend(fontsize=8)
+        if path is None:
+            return ax
         path = Path(path)
         pl.save(fig, path)
         plt.close(fig)

@@ -144,3 +144,15 @@ def test_cli_cost_plot(capsys, tmp_path):
         assert not out.exists()
     else:
         assert out.exists()
+
+
+def test_cost_plot_into_given_axes():
+    """The gallery and notebooks draw the report into their own axes (no file, figure kept)."""
+    plt = pytest.importorskip("matplotlib.pyplot")
+    report = Scene(twist_scene()).cost(target=1e-6, ladders={"rtol": [1e-4, 1e-8, 1e-12]})
+    fig, ax = plt.subplots()
+    assert report.plot(ax=ax) is ax
+    knob_lines = [ln for ln in ax.get_lines() if ln.get_label() == "rtol"]
+    measured = [r for r in report.rungs if r.knob == "rtol" and r.error is not None]
+    assert len(knob_lines) == 1 and len(knob_lines[0].get_xdata()) == len(measured) >= 2
+    plt.close(fig)
