@@ -42,6 +42,10 @@ _GL_HI = np.polynomial.legendre.leggauss(12)
 _GL_LO = np.polynomial.legendre.leggauss(8)
 #: tables up to this many points declare their nodes as breakpoints (quadratures split there)
 BREAKPOINT_LIMIT = 2000
+#: cubic tables: points whose closed-form node sum carries a worst-case rounding estimate (8 eps
+#: times the sum of |terms|, pessimistic by 5-50x) above this fraction
+#: of the value are recomputed by the per-interval Gauss rule
+CUBIC_SUM_RTOL = 1e-6
 
 
 class Tabulated(Profile):
@@ -162,6 +166,21 @@ class Tabulated(Profile):
             probe = np.linspace(0, r_arr[-1], 8 * r_arr.size)
             rfp = probe * self._spline_d(probe)            # r f'(r) non-decreasing
             self._monotone_f = bool(np.all(self._spline_d(probe) >= 0) and np.all(np.diff(rfp) >= 0))
+            # transform once: f'(r) = P_0(r) + Σ_j ΔP_j(r) [r > r_j], P_k the slope polynomial of
+            # piece k and ΔP_j = α_j + β_j (r - r_j) + γ_j (r - r_j)² its change at node j. For a C²
+            # spline only γ_j = 3 Δd_j is nonzero in exact arithmetic; the rounding-level α, β are
+            # kept so the sum telescopes to every piece exactly (without them the node terms,
+            # extrapolated over the whole table, drift by ~1e-9 at 10^4 points).
+            c = self._spline.c
+            h = np.diff(r_arr)[:-1]
+            self._cubic_base = (float(c[2, 0]), float(c[1, 0]), float(c[0, 0]))
+            alpha = c[2, 1:] - (c[2, :-1] + (2.0 * c[1, :-1] + 3.0 * c[0, :-1] * h) * h)
+            beta = 2.0 * c[1, 1:] - (2.0 * c[1, :-1] + 6.0 * c[0, :-1] * h)
+            gamma = 3.0 * np.diff(c[0])
+            keep = (alpha != 0) | (beta != 0) | (gamma != 0)
+            self._cubic_nodes = np.ascontiguousarray(r_arr[1:-1][keep])
+            self._cubic_jumps = np.ascontiguousarray(np.stack([alpha[keep], beta[keep],
+                                                               gamma[keep]]))
         self._node_g: np.ndarray | None = None
 
     def _smooth(self, r: np.ndarray, f: np.ndarray, smoothing: Any, noise: float | None,
@@ -228,7 +247,10 @@ class Tabulated(Profile):
 
     def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
                       ) -> tuple[np.ndarray, np.ndarray]:
-        val, err = super()._g_with_error(xa, rtol)
+        if self._spline is not None and self.g_route == "closed_form":
+            val, err, _ = self._cubic_value(xa, "g")
+        else:
+            val, err = super()._g_with_error(xa, rtol)
         band = self._smoothing_band()
         if band is not None:
             err = err + np.interp(xa, band[0], band[1])
@@ -342,11 +364,110 @@ class Tabulated(Profile):
         return self._slopes[k]
 
     def available_strategies(self) -> tuple[str, ...]:
-        return ("closed_form", "quadrature") if self._spline is None else ("quadrature",)
+        return ("closed_form", "quadrature")
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
-        """Exact transform of the piecewise-linear interpolant (sum of arcsines), chunked."""
+        """Exact transform of the interpolant (sum of arcsines, or of the spline's node terms),
+        chunked."""
+        if self._spline is not None:
+            return self._cubic_value(x, "g")[0]
         return self._arcsine_sums(x, with_slope=False)[0]
+
+    def _cubic_value(self, x: np.ndarray, kind: str, with_slope: bool = False
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """``(value, error)`` of the spline's transform (``kind`` "g" or "int"): the closed-form
+        node sums, and the per-interval Gauss rule at the points where their rounding estimate
+        exceeds :data:`CUBIC_SUM_RTOL` (tables with nearly coincident nodes, whose spline has
+        huge third-derivative jumps that cancel in the sums)."""
+        val, err, slope = self._cubic_sums(x, kind, with_slope)
+        bad = err > CUBIC_SUM_RTOL * np.abs(val)
+        if np.any(bad):
+            xb = np.asarray(x, dtype=float)[bad]
+            v, e = self._spline_theta_sum(xb, 0 if kind == "g" else 2)
+            p = 1 if kind == "g" else 2
+            val[bad], err[bad] = v * xb**p, e * xb**p
+        return val, err, slope
+
+    def _g_and_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(g, g')`` of the interpolant in one pass over the nodes."""
+        if self._spline is not None:
+            g, _, gp = self._cubic_value(x, "g", with_slope=True)
+            return g, gp
+        return self._arcsine_sums(x, with_slope=True)
+
+    def _cubic_sums(self, x: np.ndarray, kind: str, with_slope: bool = False
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """Closed-form transform of the cubic spline: ``(value, rounding estimate, g')``.
+
+        With ``f'(r) = b0 + 2c0 r + 3d0 r² + Σ_j [α_j + β_j (r - r_j) + J_j (r - r_j)²]_+`` (set
+        up once; α, β are rounding-level, their terms ``α acos + β (sqrt - r_j acos)`` and
+        ``α K0 + β (s³/3 - r_j K0)``, ``K0 = (a²θ - r_j s)/2``, are included below):
+
+        * ``kind="g"``: ``g = x [b0 π/2 + 2c0 x + 3d0 πx²/4 + Σ_{r_j<x} J_j S_j]``,
+          ``S_j = (x²/2 + r_j²) acos(r_j/x) - 1.5 r_j sqrt(x² - r_j²)``, and
+          ``g' = g/x + x [2c0 + 3d0 πx/2 + Σ J_j (x acos(r_j/x) - (r_j/x) sqrt(x² - r_j²))]``;
+        * ``kind="int"``: ``∫_0^a g = b0 πa²/4 + 2c0 a³/3 + 3d0 πa⁴/16 + Σ_{r_j<a} J_j T_j``,
+          ``T_j = θ (a⁴/8 + a² r_j²/2) - r_j s (13a²/24 + r_j²/12)``, ``θ = acos(r_j/a)``,
+          ``s = sqrt(a² - r_j²)``.
+
+        O(nodes below x) per point, no quadrature; the rounding estimate is 8 eps times the sum
+        of the absolute terms.
+        """
+        self._guard(x, "x" if kind == "g" else "a")
+        x = np.asarray(x, dtype=float)
+        flat = x.ravel()
+        out = np.zeros(flat.size)
+        err = np.zeros(flat.size)
+        slope = np.zeros(flat.size) if with_slope else None
+        b0, c0, d0 = self._cubic_base
+        nodes_all, jump_all = self._cubic_nodes, self._cubic_jumps
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        eps = np.finfo(float).eps
+        for start in range(0, flat.size, chunk):
+            xs = flat[start:start + chunk]
+            pos = xs > 0
+            if not np.any(pos):
+                continue
+            xv = xs[pos]
+            xp = xv[:, None]
+            m = int(np.searchsorted(nodes_all, xv.max(), side="left"))
+            nodes = nodes_all[:m][None, :]
+            al, be, jmp = (jump_all[k, :m][None, :] for k in range(3))
+            below = nodes < xp
+            root = np.sqrt(np.maximum((xp - nodes) * (xp + nodes), 0.0))
+            theta = np.arctan2(root, nodes)                       # acos(r_j/x), accurate near x
+            if kind == "g":
+                terms = np.where(below, al * theta + be * (root - nodes * theta)
+                                 + jmp * ((0.5 * xp * xp + nodes * nodes) * theta
+                                          - 1.5 * nodes * root), 0.0)
+                head = (b0 * 0.5 * np.pi, 2.0 * c0 * xv, 0.75 * np.pi * d0 * xv * xv)
+                total = head[0] + head[1] + head[2] + terms.sum(axis=1)
+                size = (abs(head[0]) + np.abs(head[1]) + np.abs(head[2])
+                        + np.abs(terms).sum(axis=1))
+                out[start:start + chunk][pos] = xv * total
+                err[start:start + chunk][pos] = 8 * eps * xv * size
+                if with_slope:
+                    # (the rounding-level α term, a cusp, is left out of the Newton slope)
+                    dterms = np.where(below, be * root / xp
+                                      + jmp * (xp * theta - nodes * root / xp), 0.0)
+                    slope[start:start + chunk][pos] = total + xv * (
+                        2.0 * c0 + 1.5 * np.pi * d0 * xv + dterms.sum(axis=1))
+            else:
+                a2 = xp * xp
+                k0 = 0.5 * (a2 * theta - nodes * root)
+                terms = np.where(below, al * k0 + be * (root ** 3 / 3.0 - nodes * k0)
+                                 + jmp * (theta * (0.125 * a2 * a2 + 0.5 * a2 * nodes * nodes)
+                                               - nodes * root * (13.0 / 24.0 * a2
+                                                                 + nodes * nodes / 12.0)), 0.0)
+                av2 = xv * xv
+                head = (0.25 * np.pi * b0 * av2, 2.0 / 3.0 * c0 * av2 * xv,
+                        0.1875 * np.pi * d0 * av2 * av2)
+                out[start:start + chunk][pos] = head[0] + head[1] + head[2] + terms.sum(axis=1)
+                err[start:start + chunk][pos] = 8 * eps * (
+                    np.abs(head[0]) + np.abs(head[1]) + np.abs(head[2])
+                    + np.abs(terms).sum(axis=1))
+        return (out.reshape(x.shape), err.reshape(x.shape),
+                None if slope is None else slope.reshape(x.shape))
 
     def _arcsine_sums(self, x: np.ndarray, with_slope: bool
                       ) -> tuple[np.ndarray, np.ndarray | None]:
@@ -437,7 +558,7 @@ class Tabulated(Profile):
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         if self._spline is not None:
-            return self._g_integral_quadrature(a)[0]
+            return self._cubic_value(a, "int")[0]
         self._guard(a, "a")
         a = np.asarray(a, dtype=float)
         flat = a.ravel()
@@ -559,14 +680,14 @@ class Tabulated(Profile):
 
     @property
     def breakpoints(self) -> tuple[float, ...]:
-        """Interior nodes where the interpolant is not smooth (slope jumps of the linear
-        interpolant; third-derivative jumps of the spline), for tables up to
-        :data:`BREAKPOINT_LIMIT` points; finer tables declare none (their kinks are weak and
-        splitting at every node would cost O(N²))."""
-        if self.r.size > BREAKPOINT_LIMIT:
+        """Interior nodes where the linear interpolant's slope jumps, for tables up to
+        :data:`BREAKPOINT_LIMIT` points; finer tables and the cubic spline declare none (their
+        kinks are weak and splitting at every node would cost O(N²))."""
+        if self.r.size > BREAKPOINT_LIMIT or self._spline is not None:
+            # the spline's transform is C² (its third-derivative jumps leave (x - r_j)^(5/2)
+            # kinks): quadratures need no split there, and splitting at every node made an exact
+            # torque-twist curve on 1000 points 14x slower for a 6e-14 change
             return ()
-        if self._spline is not None:
-            return tuple(self.r[1:-1].tolist())
         return tuple(self.r[1:-1][self._dslope != 0].tolist())
 
     def _abel_g_semi_analytic(self, r: np.ndarray, a: np.ndarray, rtol: float
@@ -629,7 +750,7 @@ class Tabulated(Profile):
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
         if self._spline is not None:
-            val, err = self._g_integral_quadrature(a, rtol)
+            val, err, _ = self._cubic_value(a, "int")
         else:
             val, err = super()._g_integral_with_error(a, rtol)
         band = self._smoothing_band()
@@ -677,8 +798,6 @@ class Tabulated(Profile):
         so the bracketed solve in ``u`` (started with the memoised node values) converges
         superlinearly. The cubic spline takes the generic route.
         """
-        if self._spline is not None:
-            return super()._solve_radius(d, limit, rtol)
         if not self._monotone_f:
             return self._solve_radius_first_crossing(d, self.rtol if rtol is None else rtol)
         from ..errors import OutsideTheoryError
@@ -699,7 +818,7 @@ class Tabulated(Profile):
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
         return self._newton_on_node_interval(
             flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),
-            lambda x: self._arcsine_sums(x, with_slope=True), self._g).reshape(np.shape(d))
+            self._g_and_slope, self._g).reshape(np.shape(d))
 
     @staticmethod
     def _node_search(at_nodes, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
@@ -767,7 +886,7 @@ class Tabulated(Profile):
         The same scheme as :meth:`_solve_radius`: node search on the memoised values, then Newton
         in ``u`` with ``dH/da = a g'(a)``; used for convex linear tables only.
         """
-        if self._spline is not None or not self._monotone_f:
+        if not self._monotone_f:
             return None
         from ..errors import OutsideTheoryError
         from .base import root_rtol
@@ -786,7 +905,7 @@ class Tabulated(Profile):
                                    H_c[j - 1].copy(), H_c[j].copy())
 
         def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            g, gp = self._arcsine_sums(x, with_slope=True)
+            g, gp = self._g_and_slope(x)
             return x * g - self._g_integral_closed_form(x), x * gp      # dH/da = a g'(a)
 
         return self._newton_on_node_interval(

@@ -1,0 +1,85 @@
+"""Cubic tables: the closed-form transform (set up once, node sums) against a second method."""
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.profiles import Tabulated
+
+from ...tolerances import CUBIC_CLOSED_FORM, CUBIC_CLOSED_FORM_CLUSTERED, CUBIC_SLOPE_FD
+
+
+def _table(n: int, kind: str, spacing: str) -> Tabulated:
+    if spacing == "uniform":
+        r = np.linspace(0.0, 1e-3, n)
+    else:
+        r = 1e-3 * np.sort(np.r_[0.0, np.random.default_rng(1).random(n - 2), 1.0])
+    f = {"sphere": 0.01 - np.sqrt(0.01**2 - r**2),
+         "n4": 1e-5 * (r / 1e-3) ** 4,
+         "mixed": r**2 / 0.02 + 1e-6 * (r / 1e-3) ** 3}[kind]
+    return Tabulated(r, f, "cubic")
+
+
+def _rel(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+@pytest.mark.parametrize("n", [10, 100, 1000, 10_000])
+@pytest.mark.parametrize("kind", ["sphere", "n4", "mixed"])
+@pytest.mark.parametrize("spacing", ["uniform", "random"])
+def test_closed_form_matches_per_interval_gauss(n, kind, spacing):
+    tab = _table(n, kind, spacing)
+    x = np.linspace(0.0, 1e-3, 57)
+    for kind_, p in (("g", 0), ("int", 2)):
+        val, est, _ = tab._cubic_value(x, kind_)
+        ref, ref_err = tab._spline_theta_sum(x, p)
+        ref, ref_err = ref * x ** (p or 1), ref_err * x ** (p or 1)
+        tol = CUBIC_CLOSED_FORM_CLUSTERED if (spacing, n) == ("random", 10_000) \
+            else CUBIC_CLOSED_FORM
+        assert _rel(val, ref) < tol, (kind_, _rel(val, ref))
+    assert tab.g_route == "closed_form"
+
+
+def test_closed_form_against_independent_high_precision_sum():
+    """g of the spline's own pieces, integrated piece by piece in 40-digit arithmetic
+    (elementary antiderivatives of r^m/sqrt(x²-r²), no node-term rearrangement)."""
+    tab = _table(300, "sphere", "uniform")
+    c, R = tab._spline.c, tab.r
+    mp.mp.dps = 40
+    for xv in (2.3e-4, 1e-3):
+        x = mp.mpf(xv)
+        total = mp.mpf(0)
+        for j in range(R.size - 1):
+            lo, hi = mp.mpf(R[j]), min(mp.mpf(R[j + 1]), x)
+            if lo >= x:
+                break
+            A0 = lambda u: mp.asin(u / x)                                     # noqa: E731
+            A1 = lambda u: -mp.sqrt(x * x - u * u)                            # noqa: E731
+            A2 = lambda u: x * x / 2 * mp.asin(u / x) - u / 2 * mp.sqrt(x * x - u * u)  # noqa
+            B, C, D = (mp.mpf(float(v)) for v in (c[2, j], c[1, j], c[0, j]))
+            p0, p1, p2 = B - 2 * C * lo + 3 * D * lo**2, 2 * C - 6 * D * lo, 3 * D
+            total += p0 * (A0(hi) - A0(lo)) + p1 * (A1(hi) - A1(lo)) + p2 * (A2(hi) - A2(lo))
+        ref = float(x * total)
+        assert abs(float(tab._g_closed_form(np.array(xv))) / ref - 1) < CUBIC_CLOSED_FORM
+
+
+def test_slope_matches_difference_of_g():
+    tab = _table(100, "mixed", "uniform")
+    x = np.linspace(1e-5, 9.9e-4, 40)
+    _, gp = tab._g_and_slope(x)
+    h = 1e-9
+    fd = (tab._g_closed_form(x + h) - tab._g_closed_form(x - h)) / (2 * h)
+    assert _rel(gp, fd) < CUBIC_SLOPE_FD
+
+
+def test_cubic_normal_force_route_matches_depth_route():
+    """normal(force=) takes the node-search route for cubic tables too; its radius reproduces
+    the force through the independent depth route."""
+    tab = _table(2000, "sphere", "uniform")
+    E = cl.Elastic(E=210e9, nu=0.3)
+    c = cl.Contact(tab, (E, E))
+    s = c.normal(force=np.array([0.5, 5.0, 50.0]))
+    back = c.normal(depth=s.depth)
+    assert _rel(back.force, np.array([0.5, 5.0, 50.0])) < 1e-9
