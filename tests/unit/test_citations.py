@@ -136,12 +136,12 @@ def test_references_page_is_generated():
         "open('docs/about/references.md', 'w').write(b())\"")
 
 
+from tests.repo_files import repository_files  # noqa: E402
+
 # ------------------------------------------------------------------ every tag used resolves
 _TAG = re.compile(r"^(S|PH|H\d|[A-Z][a-zß]*\d{2})$")
 _BRACKET = re.compile(r"\[([^\[\]\n]{1,80})\]")
-_FILES = [p for p in ROOT.rglob("*") if p.suffix in {".py", ".md", ".toml", ".txt", ".cfg"}
-          and not ({".git", "_build", "auto_examples", "generated", "build"} & set(p.parts))
-          and ".egg-info" not in str(p) and p.is_file()]
+_FILES = [p for p in repository_files() if p.suffix in {".py", ".md", ".toml", ".txt", ".cfg"}]
 
 
 def _used_tags() -> dict[str, str]:
