@@ -19,6 +19,7 @@ from .errors import MemoryBudgetError, ParameterError
 
 __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
            "as_real", "broadcast_inputs", "check_count", "exactly_one", "scalar_or_array",
+           "step_indices",
            "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
            "MEMORY_BUDGET_ENV", "values_equal"]
 
@@ -377,3 +378,22 @@ def check_memory(what: str, n_bytes: float, detail: str) -> None:
             f"{what} would need about {n_bytes / 1024**3:.3g} GiB ({detail}), above the memory "
             f"budget of {budget / 1024**3:.3g} GiB: reduce the steps or n_springs, or raise the "
             f"budget with contactlab.set_memory_budget(...) or {MEMORY_BUDGET_ENV}=...")
+
+
+def step_indices(name: str, steps: Any, n_steps: int) -> set[int]:
+    """Step indices of a path (0-based; negative counts from the end) as a set of 0-based ints.
+
+    Raises
+    ------
+    ParameterError
+        An index outside ``-n_steps <= step < n_steps``.
+    """
+    out = set()
+    for s in (steps or ()):
+        s = int(s)
+        s = s + n_steps if s < 0 else s
+        if not 0 <= s < n_steps:
+            raise ParameterError(f"{name} contains {s!r}: steps must satisfy "
+                                 f"-{n_steps} <= step < {n_steps}.")
+        out.add(s)
+    return out

@@ -24,7 +24,7 @@ from ..foundation import DEFAULT_N_SPRINGS, Winkler
 from ..foundation.base import families_needed, iter_path_normal_states, path_normal_states
 from ..loadpath import LoadPath
 from ..loadpath.base import UNITS
-from ..params import check_count, check_memory
+from ..params import check_count, check_memory, step_indices
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method"]
@@ -303,14 +303,7 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
     snapshots = list(snapshots or ())
     check_memory("simulate()", simulate_memory(n_total, n_springs, len(snapshots)),
                  f"{n_total} steps, {n_springs} springs, {len(snapshots)} snapshots")
-    snaps = set()
-    for s in (snapshots or ()):
-        s = int(s)
-        s = s + n_total if s < 0 else s
-        if not 0 <= s < n_total:
-            raise ParameterError(f"snapshots contains {s!r}: steps must satisfy "
-                                 f"-{n_total} <= step < {n_total}.")
-        snaps.add(s)
+    snaps = step_indices("snapshots", snapshots, n_total)
     res = {k: np.zeros(n_total) for k in SERIES if k != "gross_sliding"}
     res["gross_sliding"] = np.zeros(n_total, bool)
     # the normal states go straight into the series, one leaf at a time; the time loop reads

@@ -18,6 +18,7 @@ from ..errors import NotSupportedError, ParameterError, UnknownNameError
 from ..foundation.base import path_normal_states
 from ..foundation.rings import Rings
 from ..loadpath import LoadPath
+from ..params import step_indices
 from ..physics import normal as _normal
 from ..physics import torsion_rings as _tr
 
@@ -69,14 +70,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False):
             raise UnknownNameError(f"outputs contains {o!r}: allowed are {SERIES}.")
     normal = path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol)
     n_total = path.n_steps
-    snaps = set()
-    for s in (snapshots or ()):
-        s = int(s)
-        s = s + n_total if s < 0 else s
-        if not 0 <= s < n_total:
-            raise ParameterError(f"snapshots contains {s!r}: steps must satisfy "
-                                 f"-{n_total} <= step < {n_total}.")
-        snaps.add(s)
+    snaps = step_indices("snapshots", snapshots, n_total)
     a_max = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
     if a_max <= 0:
         raise ParameterError("the path prescribes a twist or torque but the normal load never "
