@@ -111,8 +111,9 @@ def main() -> int:
     res = {}
     for b in backends:
         _compiled.set_backend(b)
-        c.simulate(path)
-        res[b] = min(timeit.repeat(lambda: c.simulate(path), number=1, repeat=3))
+        c.simulate(path, n_springs=2000, method="mdr")
+        res[b] = min(timeit.repeat(lambda: c.simulate(path, n_springs=2000, method="mdr"),
+                                   number=1, repeat=3))
         print(f"  {b:6s} {res[b]:.3f} s  {2000 * 2000 / res[b]:.3g} spring-updates/s")
     if "numba" in res:
         print(f"  numpy/numba: {res['numpy'] / res['numba']:.2f}")
@@ -125,7 +126,7 @@ def main() -> int:
     tw = (2e-4 * np.sin(6 * np.pi * t)).tolist()
     _compiled.set_backend("numpy")
     both = [min(timeit.repeat(f, number=1, repeat=3)) for f in
-            (lambda: c.simulate(path),
+            (lambda: c.simulate(path, n_springs=2000, method="mdr"),
              lambda: gait_replica(fnd, nrm["depth"], ed, tw, fnd._c_tor))]
     print(f"  numpy simulate {both[0]:.3f} s, minimal numpy replica of the step {both[1]:.3f} s: "
           f"ratio {both[0] / both[1]:.2f} (target <= 1.1)")
