@@ -12,7 +12,7 @@ evaluation, best of several runs):
    torque under stick-radius control, stick radius under twist control, twist under torque
    control (the torque root solve), Hertz at c/a = 0.99, 0.5, 0.01 and flat punch at c/a = 0.5.
    References: mpmath, theory §6.3 (Lubkin closed forms) and §6.2.7 (flat punch).
-2. ``foundation springs N``: ``contact.simulate(..., n_springs=N)`` against the MDR torsion
+2. ``foundation springs N``: ``contact.simulate(..., n_springs=N, method="mdr")`` against the MDR torsion
    closed form (§6.4, Masing §6.5) and Cattaneo-Mindlin (§5): torque at +φ1 and after reversal to
    -φ1, tangential force at 0.8 u*.
 3. ``time steps (varying normal load)``: oblique loading by force ramp with u = κ(F - F0) (u not
@@ -154,11 +154,11 @@ def foundation_knobs(quick: bool) -> list[Knob]:
     def run_tor(N, i):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ValidityWarning)
-            r = c.simulate(tor_path, n_springs=N)
+            r = c.simulate(tor_path, n_springs=N, method="mdr")
         return float(r.torque[i]), NAN
 
     def run_tan(N):
-        return float(c.simulate(tan_path, n_springs=N).tangential_force[-1]), NAN
+        return float(c.simulate(tan_path, n_springs=N, method="mdr").tangential_force[-1]), NAN
 
     lab = (lambda s: str(s))
     return [Knob("foundation springs N", "Hertz torsion, virgin (c/a = 0.5)", "torque", ladder,
@@ -213,7 +213,7 @@ def timestep_knobs(quick: bool) -> list[Knob]:
         F = np.linspace(F0, F1, steps + 1)
         path = LoadPath().ramp(force=F0, steps=2).then(
             cl.loadpath.Table.create(None, {"force": F[1:], "displacement": kappa * (F[1:] - F0)}))
-        return float(c.simulate(path, n_springs=N).tangential_force[-1]), NAN
+        return float(c.simulate(path, n_springs=N, method="mdr").tangential_force[-1]), NAN
 
     return [Knob("time steps (varying normal load)", f"Hertz oblique force ramp, N = {N}",
                  "tangential force", ladder, run, ref, setting_label=str)]
@@ -262,7 +262,7 @@ def history_knobs(quick: bool) -> list[Knob]:
         cl.loadpath.Table.create(None, {"twist": tw[1:]}))
 
     def run_sim(N, what):
-        r = hertz().simulate(path, n_springs=N)
+        r = hertz().simulate(path, n_springs=N, method="mdr")
         if what == "energy":
             return float(r.dissipated_energy[-1] - r.dissipated_energy[2]), NAN
         return float(r.torque[-1]), NAN

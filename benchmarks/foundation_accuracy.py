@@ -43,7 +43,7 @@ def tangential_case(c, FN, n, N, spacing):
     path = (cl.LoadPath().ramp(force=FN, steps=5).ramp(displacement=u0, steps=200)
             .ramp(displacement=-u0, steps=400).ramp(displacement=u0, steps=400))
     t0 = time.perf_counter()
-    r = c.simulate(path, n_springs=N, spacing=spacing, strategy="steps")
+    r = c.simulate(path, n_springs=N, spacing=spacing, strategy="steps", method="mdr")
     dt = (time.perf_counter() - t0) / path.n_steps
     u = r.displacement
     ref = np.empty_like(u)
@@ -67,7 +67,7 @@ def torsion_case(c, N, spacing):
     path = (cl.LoadPath().ramp(force=F, steps=4).ramp(twist=p0, steps=100)
             .ramp(twist=-p0, steps=200))
     t0 = time.perf_counter()
-    r = c.simulate(path, n_springs=N, spacing=spacing, strategy="steps")
+    r = c.simulate(path, n_springs=N, spacing=spacing, strategy="steps", method="mdr")
     dt = (time.perf_counter() - t0) / path.n_steps
     ph = r.twist[4:]
     ref = np.concatenate([M(ph[:100]), M(p0) - 2 * M((p0 - ph[100:]) / 2)])
@@ -136,7 +136,7 @@ def main() -> None:
         spc = 400
         p = (cl.LoadPath().ramp(force=F, steps=2)
              .sinusoid(twist=phi0, cycles=2, steps_per_cycle=spc))
-        r = hertz.simulate(p, n_springs=2000)
+        r = hertz.simulate(p, n_springs=2000, method="mdr")
         W_mdr = r.dissipated_energy[2 + 2 * spc - 1] - r.dissipated_energy[2 + spc - 1]
         M0_mdr = np.max(r.torque[2 + spc:])
         M0_ex = exact_torque(t0, a)

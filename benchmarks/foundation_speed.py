@@ -23,7 +23,7 @@ from _harness import machine  # noqa: E402  (one machine description for every b
 
 def run(name, contact, path, n_springs, strategy):
     t0 = time.perf_counter()
-    contact.simulate(path, n_springs=n_springs, strategy=strategy)
+    contact.simulate(path, n_springs=n_springs, strategy=strategy, method="mdr")
     dt = time.perf_counter() - t0
     steps = path.n_steps
     rate = n_springs * steps / dt
@@ -34,7 +34,7 @@ def run(name, contact, path, n_springs, strategy):
 def memory(contact, path, n_springs):
     """Peak Python/numpy allocation of one run (tracemalloc; a separate, untimed run)."""
     tracemalloc.start()
-    contact.simulate(path, n_springs=n_springs)
+    contact.simulate(path, n_springs=n_springs, method="mdr")
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     return peak / 2 ** 20

@@ -60,7 +60,7 @@ def main() -> None:
         a0 = np.sqrt(R * d0)
         scale = (mu * par["E_star"] * d0 / (2 * par["G_torsion"] * a0) if chan == "twist"
                  else mu * par["E_star"] * d0 / par["G_star"])
-        ref = [c.simulate(path(F0[i], chan, 1.5 * scale[i])) for i, c in enumerate(cons)]
+        ref = [c.simulate(path(F0[i], chan, 1.5 * scale[i]), method="mdr") for i, c in enumerate(cons)]
         dep = np.stack([r.depth for r in ref], 1)
         x = np.stack([getattr(r, chan) for r in ref], 1)
         y_ref = np.stack([getattr(r, key) for r in ref], 1)
