@@ -207,18 +207,25 @@ def h_kernel(v: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------- quadrature plumbing
-#: linear tables with more nodes than this take the composite route (:func:`_integrate_table`)
+#: tables (linear or cubic) with more nodes than this take the composite route
+#: (:func:`_integrate_table`)
 _TABLE_SPLIT_MAX = 48
 #: Gauss-Legendre order per table segment of the composite route (with ``t = r_j + Δ u²``). The
 #: nearest singularity (the cusp of g at the previous node) lies at ``u = ±i``, a Bernstein ellipse
 #: of ρ ≈ 4.6 for ``u ∈ [0, 1]``: error ~ρ^(-16) ≈ 2e-11 of that node's share; measured agreement
-#: with the split adaptive route: 3e-13 (rtol 1e-12).
+#: with the split adaptive route: 3e-13 (rtol 1e-12). A cubic spline's g has only
+#: ``(t - r_j)^(5/2)`` kinks at the nodes (``u^5`` after the substitution), so the same rule serves.
 _TABLE_GL = 8
 
 
 def _table_nodes(profile) -> np.ndarray | None:
     """Interior nodes of a piecewise-linear table (where ``g`` has sqrt cusps), else None."""
     return profile.table_nodes() if profile.has("linear_table") else None
+
+
+def _composite_nodes(profile) -> np.ndarray | None:
+    """Nodes of a table whose g is analytic between them (linear or cubic), else None."""
+    return profile.table_nodes() if profile.has("node_table") else None
 
 
 def _cuts(profile) -> list[float]:
@@ -247,10 +254,10 @@ def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
 
     ``kernel(t, g_t, idx)`` receives nodes ``t`` (shape (m, k)), ``g`` there and the flat element
     indices ``idx`` (shape (m,)) into ``lo``/``hi``. Nodes are clipped into their exact segment so
-    that rounding of ``exp(ln t)`` never crosses a breakpoint. Large linear tables go through
-    :func:`_integrate_table`.
+    that rounding of ``exp(ln t)`` never crosses a breakpoint. Large tables (linear or cubic) go
+    through :func:`_integrate_table`.
     """
-    nodes = _table_nodes(profile)
+    nodes = _composite_nodes(profile)
     if nodes is not None and nodes.size > _TABLE_SPLIT_MAX:
         return _integrate_table(profile, kernel, lo, hi, rtol, atol)
     w_lo, w_hi, t_lo, t_hi = _log_segments(profile, lo, hi)
@@ -299,7 +306,8 @@ def _table_rule(profile) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray
 
 def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
                      atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``∫_lo^hi kernel(t, g(t), idx) dt`` for a large linear table (N nodes, sqrt cusps of g).
+    """``∫_lo^hi kernel(t, g(t), idx) dt`` for a large table (N nodes, g analytic between them:
+    sqrt cusps of a linear table, weaker kinks of a cubic spline).
 
     Every table segment is integrated with ``t = left + Δ u²`` and 8-point Gauss-Legendre in ``u``
     (the sqrt cusp of g at a node becomes smooth): the whole segments by the cached rule of
@@ -307,8 +315,8 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     ``[r_j, hi]`` with g computed once per distinct ``hi``, the first partial segment
     ``[lo, r_{j+1}]`` with 8 fresh nodes (its length is at most ``lo``, so the kernel, which
     varies on the scale ``lo``, is smooth there). A ``lo`` inside the first segment, where the
-    kernel may vary over many decades, is integrated adaptively in ``ln t`` with the exact linear
-    ``g = (π/2) s_0 t`` of that segment; only this part carries an error estimate. The composite
+    kernel may vary over many decades, is integrated adaptively in ``ln t`` with the closed-form
+    g of that segment (``profile.table_g_first``); only this part carries an error estimate. The composite
     rule's own error is verified in the tests against the split adaptive route (1e-9).
     """
     t_n, w_n, g_n, r = _table_rule(profile)
@@ -327,12 +335,11 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     seg0 = j_lo == 0
     if np.any(seg0):
         ids = np.flatnonzero(seg0)
-        s0 = 0.5 * np.pi * profile.table_slopes()[0]
         l0, h0 = lo[ids], a_end[ids]
 
         def integrand(w: np.ndarray, idx: np.ndarray) -> np.ndarray:
             t = np.clip(np.exp(w), l0[idx][:, None], h0[idx][:, None])
-            return kernel(t, s0 * t, ids[idx]) * t
+            return kernel(t, profile.table_g_first(t), ids[idx]) * t
 
         at = np.broadcast_to(np.asarray(atol, float), (n,))[ids] / 2.0
         res = tanh_sinh(integrand, np.log(l0), np.log(np.maximum(h0, l0)), rtol=rtol, atol=at)

@@ -590,9 +590,11 @@ class Tabulated(Profile):
 
     @property
     def capabilities(self) -> frozenset[str]:
-        """Semi-analytic pressure, Abel transform and force solves; ``"linear_table"`` (nodes
-        where g has square-root cusps) for linear interpolation."""
-        caps = {"semi_analytic_pressure_shape", "semi_analytic_abel_g", "reduced_force_solver"}
+        """Semi-analytic pressure, Abel transform and force solves; ``"node_table"`` (g analytic
+        between the nodes: composite quadrature rules per segment) and, for linear
+        interpolation, ``"linear_table"`` (nodes where g has square-root cusps)."""
+        caps = {"semi_analytic_pressure_shape", "semi_analytic_abel_g", "reduced_force_solver",
+                "node_table"}
         if self.interpolation == "linear":
             caps.add("linear_table")
         return frozenset(caps)
@@ -600,6 +602,16 @@ class Tabulated(Profile):
     def table_nodes(self) -> np.ndarray:
         """Radii of the table nodes, m (the axis included)."""
         return self.r
+
+    def table_g_first(self, t: np.ndarray) -> np.ndarray:
+        """g on the first table segment ``0 <= t <= r_1`` in closed form, m: ``(π/2) s_0 t``
+        (linear) or ``t (b0 π/2 + 2 c0 t + 3 d0 π t²/4)`` (the spline's first piece, which no
+        node term reaches below ``r_1``)."""
+        t = np.asarray(t, dtype=float)
+        if self._spline is None:
+            return 0.5 * np.pi * self._slopes[0] * t
+        b0, c0, d0 = self._cubic_base
+        return t * (0.5 * np.pi * b0 + t * (2.0 * c0 + 0.75 * np.pi * d0 * t))
 
     def table_slopes(self) -> np.ndarray:
         """Slope of the interpolant on each table segment (linear interpolation)."""

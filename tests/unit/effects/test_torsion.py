@@ -291,6 +291,40 @@ def test_large_table_composite_route_equals_split_route(monkeypatch):
     np.testing.assert_allclose(a_split[1][1], a_split[0][1], rtol=TOL.TORSION_EXACT)
 
 
+def test_cubic_table_composite_route_equals_adaptive_route(monkeypatch):
+    """Cubic tables take the cached composite rule too (their g has only (t - r_j)^(5/2) kinks at
+    the nodes): against the adaptive route over the whole interval (no split, the route cubic
+    tables took before) on a 1000-point spline of a non-polynomial shape, down to c/a = 1e-6."""
+    from contactlab.physics import torsion_exact
+    r = np.linspace(0, 1.5 * A, 1000)
+    f = R - np.sqrt(R**2 - r**2) + 0.3 * r**3 / A**2 * 1e-4
+    c = cl.Contact(cl.profiles.Tabulated(r, f, "cubic"), materials(), friction=MU)
+    t = np.array([0.95, 0.5, 1e-2, 1e-6])
+    phi = np.array([0.05, 0.4, 2.0]) * PHI_SCALE
+    out = []
+    for limit in (10**6, 0):
+        monkeypatch.setattr(torsion_exact, "_TABLE_SPLIT_MAX", limit)
+        s = c.torsion(radius=A, stick_radius=t * A)
+        w = c.torsion(radius=A, twist=phi)
+        out.append((s.twist, s.torque, w.torque, w.stick_radius))
+    for new, old in zip(out[1], out[0]):
+        np.testing.assert_allclose(new, old, rtol=TOL.TORSION_EXACT)
+
+
+def test_cubic_table_of_paraboloid_matches_paraboloid():
+    """A not-a-knot cubic spline reproduces a parabola, so the composite route on a 1000-point
+    cubic table must give the paraboloid's exact torque-twist curve (whose g = x²/R comes from
+    its power term: an independent route)."""
+    r = np.linspace(0, 1.5 * A, 1000)
+    tab = cl.Contact(cl.profiles.Tabulated(r, r**2 / (2 * R), "cubic"), materials(), friction=MU)
+    ana = cl.Contact(cl.profiles.Paraboloid(R=R), materials(), friction=MU)
+    phi = np.array([0.05, 0.4, 2.0]) * PHI_SCALE
+    st = tab.torsion(radius=A, twist=phi)
+    sa = ana.torsion(radius=A, twist=phi)
+    np.testing.assert_allclose(st.torque, sa.torque, rtol=TOL.TORSION_EXACT)
+    np.testing.assert_allclose(st.stick_radius, sa.stick_radius, rtol=TOL.TORSION_EXACT)
+
+
 def test_truncated_cone_equals_two_segment_table():
     """A slope jump (log-singular pressure at r = b): the closed-form transform of TruncatedCone and
     the arcsine-sum transform of a two-segment linear table are two routes to the same g."""

@@ -47,22 +47,22 @@ def test_closed_form_against_independent_high_precision_sum():
     (elementary antiderivatives of r^m/sqrt(x²-r²), no node-term rearrangement)."""
     tab = _table(300, "sphere", "uniform")
     c, R = tab._spline.c, tab.r
-    mp.mp.dps = 40
-    for xv in (2.3e-4, 1e-3):
-        x = mp.mpf(xv)
-        total = mp.mpf(0)
-        for j in range(R.size - 1):
-            lo, hi = mp.mpf(R[j]), min(mp.mpf(R[j + 1]), x)
-            if lo >= x:
-                break
-            A0 = lambda u: mp.asin(u / x)                                     # noqa: E731
-            A1 = lambda u: -mp.sqrt(x * x - u * u)                            # noqa: E731
-            A2 = lambda u: x * x / 2 * mp.asin(u / x) - u / 2 * mp.sqrt(x * x - u * u)  # noqa
-            B, C, D = (mp.mpf(float(v)) for v in (c[2, j], c[1, j], c[0, j]))
-            p0, p1, p2 = B - 2 * C * lo + 3 * D * lo**2, 2 * C - 6 * D * lo, 3 * D
-            total += p0 * (A0(hi) - A0(lo)) + p1 * (A1(hi) - A1(lo)) + p2 * (A2(hi) - A2(lo))
-        ref = float(x * total)
-        assert abs(float(tab._g_closed_form(np.array(xv))) / ref - 1) < CUBIC_CLOSED_FORM
+    with mp.workdps(40):       # local precision: later tests see mpmath unchanged
+        for xv in (2.3e-4, 1e-3):
+            x = mp.mpf(xv)
+            total = mp.mpf(0)
+            for j in range(R.size - 1):
+                lo, hi = mp.mpf(R[j]), min(mp.mpf(R[j + 1]), x)
+                if lo >= x:
+                    break
+                A0 = lambda u: mp.asin(u / x)                                     # noqa: E731
+                A1 = lambda u: -mp.sqrt(x * x - u * u)                            # noqa: E731
+                A2 = lambda u: x * x / 2 * mp.asin(u / x) - u / 2 * mp.sqrt(x * x - u * u)  # noqa
+                B, C, D = (mp.mpf(float(v)) for v in (c[2, j], c[1, j], c[0, j]))
+                p0, p1, p2 = B - 2 * C * lo + 3 * D * lo**2, 2 * C - 6 * D * lo, 3 * D
+                total += p0 * (A0(hi) - A0(lo)) + p1 * (A1(hi) - A1(lo)) + p2 * (A2(hi) - A2(lo))
+            ref = float(x * total)
+            assert abs(float(tab._g_closed_form(np.array(xv))) / ref - 1) < CUBIC_CLOSED_FORM
 
 
 def test_slope_matches_difference_of_g():
