@@ -253,3 +253,22 @@ def test_toml_syntax_error():
     with pytest.raises(SceneError, match="not valid TOML") as e:
         Scene.loads("[profile\ntype = 1")
     assert e.value.issues[0][0] == "<toml>"
+
+
+def test_table_file_rows_count_against_the_step_limit(tmp_path, monkeypatch):
+    """Rows of a CSV history count like inline rows, times its repeats (issue 12)."""
+    import importlib
+    v = importlib.import_module("contactlab.scene.validate")
+    monkeypatch.setattr(v, "MAX_STEPS", 100)
+    rows = "\n".join(f"{i},{i + 1}" for i in range(60))
+    (tmp_path / "h.csv").write_text("time,force\n" + rows + "\n")
+    Scene(base(load_path=[{"table": {"file": "h.csv"}}]), tmp_path)               # 60 rows
+    Scene(base(load_path=[{"ramp": {"force": 1, "steps": 39}},
+                          {"table": {"file": "h.csv"}}]), tmp_path)                # 99 steps
+    got = issues_of(base(load_path=[{"ramp": {"force": 1, "steps": 41}},
+                                    {"table": {"file": "h.csv"}}]), tmp_path)
+    assert [(p, val) for p, val, _ in got] == [("load_path", "101 steps")]
+    got = issues_of(base(load_path=[{"table": {"file": "h.csv"}}, {"repeat": {"times": 2}}]),
+                    tmp_path)
+    assert [(p, val) for p, val, _ in got] == [("load_path", "120 steps")]
+    assert "at most 100 steps" in got[0][2]
