@@ -90,3 +90,67 @@ def test_cover_grows_and_springs_zero_raises():
     strict.step(force=[1.0, 1.0], twist=1e-5)
     with pytest.raises(OutsideTheoryError, match=r"depth\[1\]"):
         strict.step(force=[1.0, 1.2], twist=1e-5)
+
+
+def _random_path(rng, F0, chan, scale):
+    """A held-load history (``HELD`` steps) then random load and control changes with reversals,
+    ending with unloading; amplitudes around the contact's full-slip scale."""
+    s = scale * rng.uniform(0.3, 2.0, 8) * rng.choice([-1.0, 1.0], 8)
+    f = F0 * rng.uniform(0.3, 2.5, 4)
+    return (cl.LoadPath().ramp(force=F0, steps=1)
+            .ramp(**{chan: s[0]}, steps=5).ramp(**{chan: -s[1] / 2}, steps=5)
+            .ramp(**{chan: s[2] / 3}, steps=3)
+            .ramp(force=f[0], **{chan: s[3]}, steps=11)
+            .ramp(force=f[1], **{chan: s[4]}, steps=11)
+            .ramp(**{chan: s[5]}, steps=6)
+            .ramp(force=f[2], **{chan: s[6]}, steps=11).hold(steps=3)
+            .ramp(force=f[3], **{chan: s[7]}, steps=11)
+            .ramp(force=0.2 * F0, steps=6))
+
+
+@pytest.mark.parametrize("chan, key", [("twist", "torque"), ("displacement", "tangential_force")])
+def test_fifty_random_contacts_changing_load_match_simulate(chan, key):
+    """Issue 14's must-show: 50 random contacts (radius, moduli, friction, load) on random
+    changing-load paths, the law with N springs against Contact.simulate(method="mdr") with N
+    springs (the spring foundation, not the exact ring solver), step by step to 1e-12."""
+    rng = np.random.default_rng(1450)
+    n = 50
+    contacts, par = _contacts(rng, n)
+    F0 = 10 ** rng.uniform(0, 2.5, n)
+    mu, Es, Gs, Gt = par["friction"], par["E_star"], par["G_star"], par["G_torsion"]
+    a0 = (3 * F0 * par["R"] / (4 * Es)) ** (1 / 3)
+    d0 = a0 * a0 / par["R"]
+    scale = mu * Es * d0 / (2 * Gt * a0) if chan == "twist" else mu * Es * d0 / Gs
+    res = []
+    for i, c in enumerate(contacts):
+        r = c.simulate(_random_path(rng, F0[i], chan, scale[i]), n_springs=N, strategy="steps",
+                       method="mdr")
+        assert r.meta["n_springs"] == N and "Winkler" in r.meta["foundation"]   # springs ran
+        res.append(r)
+    steps = min(len(r.depth) for r in res)
+    dep = np.stack([r.depth[:steps] for r in res], 1)
+    x = np.stack([getattr(r, chan)[:steps] for r in res], 1)
+    a_all = [r.radius for r in res]
+    a = np.stack([ra[:steps] for ra in a_all], 1)
+    # the law's cover (spring_cover x the larger radius at the switch) must reach the path's
+    # largest radius, as simulate's foundation does: a few ulps more so that rounding does not
+    # trigger a regrid (a different cell layout, tested separately)
+    cover = np.array([ra.max() for ra in a_all]) / np.maximum(a[HELD - 1], a[HELD]) * (1 + 1e-15)
+    law = cl.ContactLaw(cl.profiles.Paraboloid, springs=N, spring_cover=cover, fast=False,
+                        **par)
+    out = [law.step(depth=dep[k], **{chan: x[k]}) for k in range(steps)]
+    exact = np.stack([o.exact for o in out])
+    assert exact[:HELD].all() and not exact[HELD:].any()
+    y = np.stack([getattr(o, key) for o in out])[HELD:]
+    ys = np.stack([getattr(r, key)[:steps] for r in res], 1)[HELD:]
+    peak = np.abs(ys).max(0)
+    assert np.all(peak > 0)
+    np.testing.assert_allclose(y / peak, ys / peak, rtol=0, atol=LAW_SPRINGS)
+    dW = np.stack([o.dissipated_energy for o in out])[HELD:]
+    Ws = np.stack([r.dissipated_energy[:steps] for r in res], 1)
+    dWs = np.diff(Ws, axis=0)[HELD - 1:]
+    np.testing.assert_allclose(dW / Ws.max(0), dWs / Ws.max(0), rtol=0, atol=LAW_SPRINGS)
+    c = np.stack([o.stick_radius if chan == "displacement" else o.torsion_stick_radius
+                  for o in out])[HELD:]
+    cs = np.minimum(np.stack([r.stick_radius[:steps] for r in res], 1), a)[HELD:]
+    np.testing.assert_allclose(c, cs, rtol=LAW_SPRINGS, atol=0)
