@@ -195,39 +195,62 @@ class SceneResult(Cited):
                 {"force": m.force, amp: m.boundary}, MAP_UNITS)))
         return paths
 
-    def plot(self, path: str | Path) -> Path:
-        """Plot the series against the step (and the fields) into ``path`` (needs matplotlib)."""
+    def figure(self, *, units: str = "si") -> Any:
+        """The figure :meth:`plot` saves (needs matplotlib): one row per series against time, the
+        loops, the fields, and, when the scene had them, a row with the wear run (profile
+        evolution, radii and worn volume against cycles, :meth:`WearResult.plot`) and a row with
+        the fretting map (:meth:`FrettingMap.plot`). ``units`` applies to the wear and map rows
+        (``"engineering"``: µm, mrad, ...)."""
+        from .. import plotting as pl
+        pl.check_units(units)
+        plt = pl.pyplot()
+        names = [k for k in self.series if k != "time"]
+        x = self.series.get("time", np.arange(len(next(iter(self.series.values())))))
+        pairs = [("twist", "torque"), ("displacement", "tangential_force")]
+        loops = [(a, b) for a, b in pairs if a in self.series and b in self.series]
+        n = len(names) + len(loops) + (1 if self.fields else 0)
+        extra = [h for h, on in ((2.6, self.wear is not None),
+                                 (3.4, self.fretting_map is not None)) if on]
+        width = 11.0 if self.wear is not None else 6.0
+        with pl.style():
+            fig = plt.figure(figsize=(width, 0.6 + 2.0 * n + sum(extra)), layout="constrained")
+            gs = fig.add_gridspec(n + len(extra), 3, height_ratios=[2.0] * n + extra)
+            rows = [fig.add_subplot(gs[i, :]) for i in range(n)]
+            for ax, k in zip(rows, names):
+                ax.plot(x, self.series[k])
+                ax.set_ylabel(f"{k} [{SERIES_UNITS[k]}]")
+                ax.set_xlabel("time [s]")
+            for ax, (a, b) in zip(rows[len(names):], loops):
+                ax.plot(self.series[a], self.series[b])
+                ax.set_xlabel(f"{a} [{SERIES_UNITS[a]}]")
+                ax.set_ylabel(f"{b} [{SERIES_UNITS[b]}]")
+                pl.loop_axes(ax)
+            if self.fields:
+                ax = rows[-1]
+                for k, v in self.fields.items():
+                    if k != "r":
+                        ax.plot(self.fields["r"], v, label=f"{k} [{FIELD_UNITS[k]}]")
+                ax.set_xlabel("r [m]")
+                ax.legend()
+            row = n
+            if self.wear is not None:
+                self.wear.plot([fig.add_subplot(gs[row, j]) for j in range(3)], units=units)
+                row += 1
+            if self.fretting_map is not None:
+                self.fretting_map.plot(fig.add_subplot(gs[row, :]), units=units)
+            fig.suptitle(str(self.meta.get("title", "")))
+        return fig
+
+    def plot(self, path: str | Path, *, units: str = "si") -> Path:
+        """Save :meth:`figure` to ``path`` (format from the suffix; needs matplotlib)."""
         try:
             import matplotlib
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
         except ImportError as err:
             raise ImportError("plotting needs matplotlib: pip install 'contactlab[plot]'") from err
-        names = [k for k in self.series if k != "time"]
-        x = self.series.get("time", np.arange(len(next(iter(self.series.values())))))
-        pairs = [("twist", "torque"), ("displacement", "tangential_force")]
-        loops = [(a, b) for a, b in pairs if a in self.series and b in self.series]
         from .. import plotting as pl
-        n = len(names) + len(loops) + (1 if self.fields else 0)
-        with pl.style():
-            fig, axes = pl.subplots(n, 1, figsize=(6, 0.6 + 2.0 * n), squeeze=False)
-            for ax, k in zip(axes[:, 0], names):
-                ax.plot(x, self.series[k])
-                ax.set_ylabel(f"{k} [{SERIES_UNITS[k]}]")
-                ax.set_xlabel("time [s]")
-            for ax, (a, b) in zip(axes[len(names):, 0], loops):
-                ax.plot(self.series[a], self.series[b])
-                ax.set_xlabel(f"{a} [{SERIES_UNITS[a]}]")
-                ax.set_ylabel(f"{b} [{SERIES_UNITS[b]}]")
-                pl.loop_axes(ax)
-            if self.fields:
-                ax = axes[-1, 0]
-                for k, v in self.fields.items():
-                    if k != "r":
-                        ax.plot(self.fields["r"], v, label=f"{k} [{FIELD_UNITS[k]}]")
-                ax.set_xlabel("r [m]")
-                ax.legend()
-            fig.suptitle(str(self.meta.get("title", "")))
+        fig = self.figure(units=units)
         buf = io.BytesIO()
         pl.save(fig, buf, format=Path(path).suffix.lstrip(".") or "png")
         plt.close(fig)

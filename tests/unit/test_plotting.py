@@ -119,6 +119,56 @@ def test_scene_and_cost_plots(tmp_path):
     assert fig_path.stat().st_size > 0
 
 
+def _wear_map_scene(tmp_path):
+    """The hip-taper wear example with a small fretting map added (both tables in one scene)."""
+    from pathlib import Path
+
+    from contactlab.scene import Scene
+    ex = Path(__file__).resolve().parents[2] / "examples"
+    data = Scene.from_toml(ex / "hip_taper_wear.toml").to_dict()
+    data["wear"]["cycles"] = 1e4
+    data["wear"]["checkpoints"] = [1e2, 1e3]
+    data["fretting_map"] = {"force": [500.0, 1000.0, 2000.0],
+                            "twist_amplitude": [1e-4, 1e-3, 1e-2, 1e-1]}
+    return Scene.from_dict(data, tmp_path)
+
+
+@pytest.mark.parametrize("units", ["si", "engineering"])
+def test_scene_plot_draws_wear_and_fretting_map(tmp_path, units):
+    res = _wear_map_scene(tmp_path).run()
+    assert res.wear is not None and res.fretting_map is not None
+    fig = res.figure(units=units)
+    titles = [ax.get_title() for ax in fig.axes]
+    # the wear row (profile evolution, radii, worn volume against cycles) and the map row
+    assert {"profile", "radii", "worn volume"} <= set(titles)
+    profile_ax = fig.axes[titles.index("profile")]
+    assert len(profile_ax.get_lines()) == res.wear.checkpoints.size
+    volume_ax = fig.axes[titles.index("worn volume")]
+    np.testing.assert_array_equal(volume_ax.get_lines()[0].get_xdata(), res.wear.cycles[1:])
+    map_ax = [ax for ax in fig.axes if ax.collections]
+    assert len(map_ax) == 1 and "twist amplitude" in map_ax[0].get_xlabel()
+    assert "gross-slip boundary" in [t.get_text() for t in map_ax[0].get_legend().get_texts()]
+    _check_figure(fig, tmp_path, f"scene_wear_map_{units}")
+
+
+def test_cli_run_plot_with_wear(tmp_path):
+    from contactlab.cli import main
+    scene = _wear_map_scene(tmp_path)
+    path = tmp_path / "scene.toml"
+    path.write_text(scene.to_toml())
+    out = tmp_path / "out"
+    assert main(["run", str(path), "-o", str(out), "--plot"]) == 0
+    png = out / "plot.png"
+    assert png.stat().st_size > 0
+    img = plt.imread(png)
+    # the same figure as SceneResult.figure(): series rows plus the wear and map rows
+    fig = scene.run().figure()
+    dpi = pl.STYLE["savefig.dpi"]
+    assert img.shape[:2] == (round(fig.get_figheight() * dpi), round(fig.get_figwidth() * dpi))
+    assert "worn volume" in [ax.get_title() for ax in fig.axes]
+    plt.close(fig)
+
+
 def test_units_checked():
     with pytest.raises(ParameterError, match="units='imperial'"):
         pl.axis_label("depth", "m", "imperial")
