@@ -16,11 +16,16 @@ setting:
 ``interpolation``
     ``"linear"`` against ``"cubic"`` for a tabulated profile (the difference of the two
     interpolants of the same table estimates the linear one's interpolation error).
+``n_grid``
+    Intervals of the worn-profile grid of a ``[wear]`` table (multiples of the scene's value).
+``jump_rtol``
+    Local error of one wear step (cycle jump) of a ``[wear]`` table.
 
 The error of a rung is ``max over outputs of max|s - s_ref| / max|s_ref|``, every series and
 field of the scene's outputs compared with the same knob's tightest rung (the last of its ladder,
 the reference; a coarser ``steps`` rung is compared at its own steps, which the reference also
-samples). The wall time is the best of up to three runs.
+samples). A wear run is compared at its checkpoints (every series of the run, and the wear
+depth interpolated onto the reference's grid), since its steps adapt to each setting. The wall time is the best of up to three runs.
 
 Choosing. With ``k`` knobs, a rung meets the target when its error is at most ``target / (2k)``:
 the errors of independent knobs add to first order (so ``k`` shares of the budget), and a ladder
@@ -50,13 +55,21 @@ __all__ = ["CostReport", "Rung", "scene_cost", "knobs_of", "default_ladders", "w
            "output_error", "KNOBS"]
 
 #: every knob :func:`scene_cost` knows, in report order
-KNOBS = ("rtol", "n_springs", "steps", "interpolation")
+KNOBS = ("rtol", "n_springs", "steps", "interpolation", "n_grid", "jump_rtol")
 #: default rtol ladder (loosest first; the last is the reference)
 RTOL_LADDER = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 #: n_springs ladder as multiples of the scene's value (the last is the reference)
 SPRING_FACTORS = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0)
 #: steps ladder: refinement factors of every segment (the last is the reference)
 STEP_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
+#: n_grid ladder (wear) as multiples of the scene's value (the last is the reference)
+GRID_FACTORS = (0.25, 0.5, 1.0, 2.0)
+#: jump_rtol ladder (wear; loosest first, the last is the reference)
+JUMP_LADDER = (1e-2, 1e-3, 1e-4, 1e-5)
+#: wear series left out of the comparison: once the slip annulus carries no load (the partial-slip
+#: limiting state) the contact radius is the edge of a load-free, touching annulus whose gap is
+#: zero to rounding, so any setting moves it by whole cells; the scar radius is the well-posed one
+WEAR_NOT_COMPARED = ("radius",)
 #: the share of the target one knob may use is target / (SAFETY * number of knobs)
 SAFETY = 2.0
 #: runs shorter than this are repeated (up to three times) and the best time kept, s
@@ -223,20 +236,27 @@ def knobs_of(scene: "Scene") -> tuple[str, ...]:
         out.append("n_springs")
         if not any("table" in seg for seg in scene.to_dict()["load_path"]):
             out.append("steps")
-    if scene.to_dict()["profile"]["type"] == "tabulated":
+    data = scene.to_dict()
+    if data["profile"]["type"] == "tabulated":
         out.append("interpolation")
+    if "wear" in data:
+        out += ["n_grid", "jump_rtol"]
     return tuple(out)
 
 
 def _defaults(scene: "Scene") -> dict[str, Any]:
     from ..effects.viscoelastic import DEFAULT_N_SPRINGS as VISCO_N
+    from ..effects.wear import DEFAULT_GRID, DEFAULT_JUMP_RTOL
     from ..foundation import DEFAULT_N_SPRINGS
     data = scene.to_dict()
+    wear = data.get("wear", {})
     sol = data.get("solver", {})
     n_def = VISCO_N if scene.plan().route == "viscoelastic" else DEFAULT_N_SPRINGS
     return {"rtol": float(sol.get("rtol", DEFAULT_RTOL)),
             "n_springs": int(sol.get("n_springs", n_def)), "steps": 1.0,
-            "interpolation": data["profile"].get("interpolation", "linear")}
+            "interpolation": data["profile"].get("interpolation", "linear"),
+            "n_grid": int(wear.get("n_grid", DEFAULT_GRID)),
+            "jump_rtol": float(wear.get("jump_rtol", DEFAULT_JUMP_RTOL))}
 
 
 def default_ladders(scene: "Scene") -> dict[str, list[Any]]:
@@ -252,6 +272,11 @@ def default_ladders(scene: "Scene") -> dict[str, list[Any]]:
             vals = sorted({max(2, int(round(n0 * f))) for f in SPRING_FACTORS})
         elif knob == "steps":
             vals = [f for f in STEP_FACTORS if _refined(scene.to_dict(), f) is not None]
+        elif knob == "n_grid":
+            from ..effects.wear import MIN_GRID
+            vals = sorted({max(MIN_GRID, int(round(dflt["n_grid"] * f))) for f in GRID_FACTORS})
+        elif knob == "jump_rtol":
+            vals = sorted(set(JUMP_LADDER) | {dflt["jump_rtol"]}, reverse=True)
         else:
             vals = ["linear", "cubic"]
         out[knob] = vals
@@ -305,8 +330,11 @@ def with_setting(scene: "Scene", knob: str, value: Any) -> "Scene":
         data = refined
     elif knob == "interpolation":
         data["profile"]["interpolation"] = str(value)
+    elif knob in ("n_grid", "jump_rtol") and "wear" in data:
+        data["wear"][knob] = int(value) if knob == "n_grid" else float(value)
     else:
-        raise UnknownNameError(f"knob={knob!r} is invalid: allowed are {KNOBS}.")
+        raise UnknownNameError(f"knob={knob!r} is invalid: allowed are {KNOBS} (n_grid and "
+                               "jump_rtol for a scene with a [wear] table).")
     return Scene.from_dict(data, scene.base_dir)
 
 
@@ -355,6 +383,7 @@ def output_error(result: Any, reference: Any, index: np.ndarray | None = None) -
     pairs = [(k, v, reference.series[k] if index is None else reference.series[k][index])
              for k, v in result.series.items() if k != "time"]
     pairs += [(k, v, reference.fields[k]) for k, v in result.fields.items()]
+    pairs += _wear_pairs(getattr(result, "wear", None), getattr(reference, "wear", None))
     for _, v, ref in pairs:
         v, ref = np.asarray(v, float), np.asarray(ref, float)
         diff = float(np.max(np.abs(v - ref), initial=0.0))
@@ -362,6 +391,24 @@ def output_error(result: Any, reference: Any, index: np.ndarray | None = None) -
         err = diff / scale if scale > 0 else (0.0 if diff == 0 else float("inf"))
         worst = max(worst, err)
     return worst
+
+
+def _wear_pairs(w: Any, ref: Any) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """Wear series at the checkpoints of both runs and the wear depth at the checkpoints on the
+    reference's grid (linear interpolation: the worn profile is piecewise linear)."""
+    if w is None or ref is None:
+        return []
+    at = lambda res: np.searchsorted(res.cycles, res.checkpoints)      # noqa: E731
+    i, j = at(w), at(ref)
+    out = [(f"wear.{k}", v[i], getattr(ref, k)[j]) for k, v in w.to_dict().items()
+           if k not in WEAR_NOT_COMPARED]
+    # the worn profile in the volume norm: ∫2πr|h - h_ref| dr against ∫2πr h_ref dr per
+    # checkpoint (pointwise, the step at the stick edge of a partial-slip scar moves by cells)
+    depth = np.array([np.interp(ref.r, w.r, h, right=0.0) for h in w.wear_depth])
+    weight = 2 * np.pi * ref.r * np.gradient(ref.r)
+    vol_ref = ref.wear_depth @ weight
+    out.append(("wear.wear_depth", vol_ref + np.abs(depth - ref.wear_depth) @ weight, vol_ref))
+    return out
 
 
 def scene_cost(scene: "Scene", *, target: float = 1e-6,
@@ -456,7 +503,7 @@ def _ordered(knob: str, vals: list[Any]) -> list[Any]:
     """Distinct values, loosest first (the reference, the tightest, last)."""
     if knob == "interpolation":
         return [v for v in ("linear", "cubic") if v in vals]
-    return sorted(set(vals), reverse=knob == "rtol")
+    return sorted(set(vals), reverse=knob in ("rtol", "jump_rtol"))
 
 
 def _label(knob: str, value: Any, scene: "Scene") -> str:

@@ -6,6 +6,7 @@ steps, the cubic interpolant): the difference must stay below the target. The co
 written independently of the module: steps are matched by their time.
 """
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,12 +18,18 @@ from contactlab.scene.cost import knobs_of, with_setting
 
 from .helpers import example_params, twist_scene
 
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
+
 #: targets the small ladders certify; the foundation and viscoelastic scenes converge in their
 #: steps at first order, so 1e-6 would need 10^3-10^4 times their steps
-TARGETS = {"hip_joint_torsion": 2e-2, "viscoelastic_creep": 1e-3, "measured_profile": 1e-3}
+TARGETS = {"hip_joint_torsion": 2e-2, "viscoelastic_creep": 1e-3, "measured_profile": 1e-3,
+           # 1e6 cycles end in the partial-slip limiting state, whose worn volume converges in
+           # the grid non-monotonically at the few-percent level (measured: n_grid 100, 200
+           # against 400 differ by 2.7 %, 3.5 %), so the ladders certify only a loose target
+           "hip_taper_wear": 0.5}
 #: small ladders (seconds for all examples); the scene's own setting is added by scene_cost
 SMALL = {"rtol": [1e-4, 1e-6, 1e-8], "n_springs": [50, 100, 200], "steps": [0.5, 1.0, 2.0],
-         "interpolation": ["linear", "cubic"]}
+         "interpolation": ["linear", "cubic"], "n_grid": [50, 100], "jump_rtol": [1e-3, 1e-4]}
 
 
 def _tighter(scene, report):
@@ -32,13 +39,32 @@ def _tighter(scene, report):
     out = scene
     for k, v in ref.items():
         tight = ("cubic" if k == "interpolation" else
-                 {"rtol": v / 100, "n_springs": 2 * v, "steps": 2 * v}[k])
+                 {"rtol": v / 100, "n_springs": 2 * v, "steps": 2 * v, "n_grid": 2 * v,
+                  "jump_rtol": v / 10}[k])
         out = with_setting(out, k, tight)
     return out
 
 
+def _wear_error(w, ref):
+    """Largest relative difference of two wear runs at their common checkpoints: the series
+    except the contact radius (undetermined once the annulus carries no load), and the worn
+    volume between the two wear-depth tables (trapezoid rule on the finer grid)."""
+    assert np.array_equal(w.checkpoints, ref.checkpoints)
+    worst = 0.0
+    for k in ("depth", "scar_radius", "stick_radius", "volume", "max_wear_depth",
+              "dissipated_energy", "energy_per_cycle"):
+        a = np.array([getattr(w, k)[w.cycles == N][0] for N in w.checkpoints])
+        b = np.array([getattr(ref, k)[ref.cycles == N][0] for N in ref.checkpoints])
+        worst = max(worst, np.max(np.abs(a - b)) / np.max(np.abs(b)))
+    r = ref.r
+    diff = [np.trapezoid(2 * np.pi * r * np.abs(np.interp(r, w.r, h, right=0.0) - h_ref), r)
+            for h, h_ref in zip(w.wear_depth, ref.wear_depth)]
+    vol = [np.trapezoid(2 * np.pi * r * h_ref, r) for h_ref in ref.wear_depth]
+    return max(worst, max(diff) / max(vol))
+
+
 def _error(res, fine, t_res, t_fine):
-    """Largest relative difference over series (matched by time) and fields."""
+    """Largest relative difference over series (matched by time), fields and a wear run."""
     idx = np.searchsorted(t_fine, t_res - 1e-9 * max(1.0, float(t_fine[-1])))
     assert np.allclose(t_fine[idx], t_res, rtol=1e-12, atol=1e-12)
     worst = 0.0
@@ -49,6 +75,8 @@ def _error(res, fine, t_res, t_fine):
         scale = np.max(np.abs(ref))
         diff = np.max(np.abs(np.asarray(v) - ref))
         worst = max(worst, diff / scale if scale > 0 else diff)
+    if res.wear is not None:
+        worst = max(worst, _wear_error(res.wear, fine.wear))
     return worst
 
 
@@ -68,6 +96,11 @@ def _check(path, ladders):
     return report
 
 
+#: coarse wear-grid rungs warn that they resolve the slip annulus poorly: expected on a ladder
+COARSE_GRID = r"ignore:wear\(\). the grid of:contactlab.errors.ValidityWarning"
+
+
+@pytest.mark.filterwarnings(COARSE_GRID)
 @pytest.mark.parametrize("path", example_params())
 def test_chosen_setting_meets_the_target_small_ladders(path):
     report = _check(path, SMALL)
@@ -77,9 +110,35 @@ def test_chosen_setting_meets_the_target_small_ladders(path):
 
 
 @pytest.mark.slow
+@pytest.mark.filterwarnings(COARSE_GRID)
 @pytest.mark.parametrize("path", example_params())
 def test_chosen_setting_meets_the_target_default_ladders(path):
     _check(path, None)
+
+
+@pytest.mark.filterwarnings(COARSE_GRID)
+def test_wear_knobs_chosen_setting_meets_the_target():
+    """A wear scene short of the limiting state (the hip taper over 1e5 cycles): its grid and
+    cycle-jump ladders converge regularly, so a 5 % target is certified and the chosen setting
+    meets it against a run with twice the reference grid and a ten times tighter jump."""
+    data = Scene.from_toml(EXAMPLES / "hip_taper_wear.toml").to_dict()
+    data["wear"].update(cycles=1e5, checkpoints=[1e3, 1e4])
+    scene = Scene.from_dict(data)
+    assert knobs_of(scene) == ("rtol", "n_grid", "jump_rtol")
+    target = 0.05
+    report = scene_cost(scene, target=target, knobs=["n_grid", "jump_rtol"],
+                        ladders={"n_grid": [50, 100, 200, 400], "jump_rtol": [1e-2, 1e-3, 1e-4]})
+    assert all(report.certified.values()), str(report)
+    assert report.choice["n_grid"] < 400            # a coarser grid than the reference suffices
+    chosen = with_setting(with_setting(scene, "n_grid", report.choice["n_grid"]), "jump_rtol",
+                          report.choice["jump_rtol"])
+    fine = with_setting(with_setting(scene, "n_grid", 800), "jump_rtol", 1e-5)
+    res, ref = chosen.run(), fine.run()
+    assert res.wear.meta["n_grid"] == report.choice["n_grid"]
+    err = _wear_error(res.wear, ref.wear)
+    assert err <= target, (report.choice, err)
+    # the loosest rungs do not meet it: the knobs matter for this scene
+    assert max(r.error for r in report.rungs if r.error is not None) > target / 4
 
 
 def test_knobs_follow_the_route():
