@@ -242,7 +242,7 @@ class Contact:
         return _tangential.shift_history(self, displacement=displacement, depth=depth, force=force)
 
     def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
-                 spacing: str = "edge", snapshots: Any = None, progress: bool = False,
+                 spacing: str | None = None, snapshots: Any = None, progress: bool = False,
                  approximate: bool = False, strategy: str | None = None,
                  error_estimate: bool = False, method: str | None = None,
                  n_rings: int | None = None) -> PathResult:

@@ -27,7 +27,7 @@ from ..loadpath.base import UNITS
 from ..params import check_count, check_memory, step_indices
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
-           "simulate_memory", "PATH_METHODS", "resolve_path_method"]
+           "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS"]
 
 #: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
 #: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
@@ -169,7 +169,7 @@ _ESTIMATED = ("tangential_force", "torque", "stick_radius", "dissipated_energy")
 
 
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
-             spacing: str = "edge", snapshots: Any = None, progress: bool = False,
+             spacing: str | None = None, snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,
              error_estimate: bool = False, method: str | None = None,
              n_rings: int | None = None) -> PathResult:
@@ -180,7 +180,10 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     half-space torsion on ``n_rings`` rings with Coulomb friction and memory,
     :func:`contactlab.effects.torsion_path.simulate_exact`) or
     ``"mdr"`` (the MDR spring foundation, exact only while the slip annulus is narrow). Paths
-    without twist always run through the MDR foundation (``"mdr"``).
+    without twist always run through the MDR foundation (``"mdr"``). The discretisation
+    arguments belong to one method (:data:`METHOD_ARGUMENTS`): ``n_springs``, ``spacing`` and
+    ``strategy`` to ``"mdr"``, ``n_rings`` to ``"exact"``; given to the other method they raise
+    :class:`~contactlab.errors.ParameterError` instead of being ignored.
 
     ``error_estimate=True`` runs the path a second time with half the springs and stores, in
     ``result.meta["error_estimates"]``, ``max|s_N - s_{N/2}| / max|s_N|`` for each estimated series
@@ -190,6 +193,9 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     tests/unit/effects/test_path_error_estimate.py).
     """
     method = resolve_path_method(path, method, approximate)
+    _check_method_arguments(method, n_springs=n_springs, spacing=spacing, strategy=strategy,
+                            n_rings=n_rings)
+    spacing = "edge" if spacing is None else spacing
     if method == "exact":
         from .torsion_path import simulate_exact
         return simulate_exact(contact, path, outputs=outputs, n_rings=n_rings,
@@ -214,6 +220,27 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
 
 #: torsion models of :func:`simulate` (``method=``)
 PATH_METHODS = ("exact", "mdr")
+#: arguments of :func:`simulate` that only one method reads (its discretisation)
+METHOD_ARGUMENTS = {"mdr": ("n_springs", "spacing", "strategy"), "exact": ("n_rings",)}
+
+
+def _check_method_arguments(method: str, **given: Any) -> None:
+    """:class:`ParameterError` for an argument of the other method's discretisation: it would be
+    ignored silently (``n_springs`` on a twisted path, which runs the ring solver by default)."""
+    for other, names in METHOD_ARGUMENTS.items():
+        if other == method:
+            continue
+        for name in names:
+            if given.get(name) is not None:
+                hint = ("pass method='mdr' to run the MDR spring foundation, or n_rings= to set "
+                        "the ring solver's resolution" if other == "mdr" else
+                        "it sets the ring solver's resolution (method='exact', paths with twist "
+                        "or torque and no shift)")
+                raise ParameterError(
+                    f"{name}={given[name]!r} applies to method={other!r} only, but this path "
+                    f"runs method={method!r}"
+                    + (" (the default for a path with twist or torque)" if method == "exact"
+                       else "") + f": {hint}.")
 #: model of a path with twist/torque and no shift when ``method=None``
 DEFAULT_TORSION_METHOD = "exact"
 

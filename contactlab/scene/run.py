@@ -343,6 +343,8 @@ def run_scene(scene: "Scene") -> SceneResult:
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
         if plan.details.get("exact_torsion_path", False):
             kw = {"method": "exact"}       # the exact ring solver (issue 18)
+        else:                              # the plan chose the MDR springs
+            kw["method"] = "mdr"
         res = contact.simulate(scene.load_path, **kw)
         computed.append("simulate")
         for k in plan.series:

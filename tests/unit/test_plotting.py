@@ -93,7 +93,7 @@ def test_fretting_plots(tmp_path):
 def test_path_result_plot(tmp_path):
     path = cl.LoadPath().ramp(force=10.0, steps=5).ramp(twist=1e-4, steps=5) \
         .ramp(twist=-1e-4, steps=10)
-    r = _contact().simulate(path, n_springs=40)
+    r = _contact().simulate(path, n_rings=40)
     axes = r.plot(units="engineering")
     assert "mN·m" in _labels(axes[0].figure)
     _check_figure(axes[0].figure, tmp_path, "path")

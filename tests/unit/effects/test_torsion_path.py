@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.errors import NotSupportedError, UnknownNameError
+from contactlab.errors import NotSupportedError, ParameterError, UnknownNameError
 from tests.reference import hertz
 from tests.reference.torsion_rings_bruteforce import torque_history
 from tests.tolerances import (RINGS_CONSTANT_LOAD, RINGS_CONSTANT_LOAD_FINE,
@@ -160,3 +160,28 @@ def test_error_estimate_bounds_the_error():
     r = c.simulate(at_constant_load(phi), method="exact", n_rings=100, error_estimate=True)
     err = np.max(np.abs(r.torque[2:] - ref)) / np.max(np.abs(r.torque))
     assert err <= r.meta["error_estimates"]["torque"]
+
+
+@pytest.mark.parametrize("arg", [{"n_springs": 100}, {"spacing": "uniform"},
+                                 {"strategy": "steps"}])
+def test_spring_arguments_on_the_ring_solver_raise(arg):
+    c = contact()
+    path = cl.LoadPath.from_arrays(force=[5.0, 8.0, 6.0], twist=[1e-5, 3e-5, -2e-5])
+    (name, value), = arg.items()
+    for method in (None, "exact"):      # the default of a twisted path is the ring solver
+        with pytest.raises(ParameterError, match=rf"{name}={value!r} applies to method='mdr'"):
+            c.simulate(path, method=method, **arg)
+    r = c.simulate(path, method="mdr", **arg)     # where they apply, they are used
+    assert r.meta.get("method") != "exact"
+    assert r.meta["spacing"] == arg.get("spacing", "edge")
+    assert r.meta["n_springs"] == arg.get("n_springs", r.meta["n_springs"])
+
+
+def test_ring_argument_on_the_springs_raises():
+    c = contact()
+    twisted = cl.LoadPath.from_arrays(force=[5.0, 8.0, 6.0], twist=[1e-5, 3e-5, -2e-5])
+    shifted = cl.LoadPath.from_arrays(force=[5.0, 6.0], displacement=[1e-8, 2e-8])
+    for path, method in ((twisted, "mdr"), (shifted, None)):
+        with pytest.raises(ParameterError, match="n_rings=50 applies to method='exact'"):
+            c.simulate(path, method=method, n_rings=50)
+    assert c.simulate(twisted, n_rings=50).meta["n_rings"] == 50

@@ -52,7 +52,7 @@ def test_ramp_starts_from_the_current_value_of_a_new_control():
 def test_sinusoid_is_bitwise_periodic_and_time_is_ordered():
     p = cl.LoadPath().ramp(force=1.0, steps=3, duration=0.5).sinusoid(
         twist=1e-5, cycles=3, steps_per_cycle=7, period=2.0)
-    r = contact().simulate(p, n_springs=10)
+    r = contact().simulate(p, n_springs=10, method="mdr")
     tw = r.twist[3:].reshape(3, 7)
     assert np.array_equal(tw[0], tw[2])
     assert np.all(np.diff(r.time) > 0) and r.time[-1] == pytest.approx(0.5 + 6.0)
@@ -127,7 +127,7 @@ def test_csv_round_trip(tmp_path):
     f.write_text("time [s],force [N],twist [rad]\n0,0,0\n1,50,0\n2,100,1e-5\n3,100,-1e-5\n")
     p = cl.LoadPath.from_csv(f)
     assert isinstance(p.segments[0], Table) and p.n_steps == 4
-    r = contact().simulate(p, n_springs=50)
+    r = contact().simulate(p, n_rings=50)
     np.testing.assert_array_equal(r.time, [0, 1, 2, 3])
     np.testing.assert_allclose(r.force, [0, 50, 100, 100], rtol=TOL.EXACT_ROUTES)
     out = tmp_path / "res.csv"
@@ -169,7 +169,7 @@ def test_plot_with_matplotlib():
     import matplotlib
     matplotlib.use("Agg")
     r = contact().simulate(cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-5, steps=3),
-                           n_springs=20)
+                           n_rings=20)
     axes = r.plot()
     assert len(axes) == 2
 

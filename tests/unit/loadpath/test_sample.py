@@ -47,7 +47,7 @@ def test_sample_time_matches_simulate():
         twist=1e-6, cycles=1.5, steps_per_cycle=6, period=0.7)
     c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=210e9, nu=0.3),) * 2,
                    friction=0.2)
-    r = c.simulate(p, n_springs=10)
+    r = c.simulate(p, n_rings=10)
     s = p.sample()
     np.testing.assert_array_equal(r.time, s.time)
     np.testing.assert_array_equal(r.twist, s.values["twist"])

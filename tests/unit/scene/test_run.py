@@ -147,7 +147,7 @@ def test_foundation_route_passes_the_typed_path(monkeypatch):
     s = Scene(d)
     res = s.run()
     assert res.meta["computed"] == ["simulate"]
-    assert seen["path"] is s.load_path and seen["kw"] == {"n_springs": 64}
+    assert seen["path"] is s.load_path and seen["kw"] == {"n_springs": 64, "method": "mdr"}
     kinds = [type(seg).__name__ for seg in seen["path"].segments]
     assert kinds == ["Table", "Ramp", "Sinusoid"]      # the unloaded start, then the scene's
     np.testing.assert_array_equal(res["twist"], s.history().values("twist"))
