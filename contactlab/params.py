@@ -18,7 +18,7 @@ import threading
 from .errors import MemoryBudgetError, ParameterError
 
 __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
-           "as_real", "broadcast_inputs", "check_count", "exactly_one", "scalar_or_array",
+           "as_real", "as_checked_array", "broadcast_inputs", "check_count", "check_result_finite", "exactly_one", "scalar_or_array",
            "step_indices",
            "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
            "MEMORY_BUDGET_ENV", "values_equal"]
@@ -197,6 +197,60 @@ def as_float_array(name: str, value: object, *, allow_nan: bool = False,
     return arr
 
 
+_ARRAY_DOMAINS = {
+    "positive": ("finite and > 0", lambda a: a > 0),
+    "nonnegative": ("finite and >= 0", lambda a: a >= 0),
+    "real": ("finite", lambda a: np.ones(a.shape, bool)),
+}
+
+
+def as_checked_array(name: str, value: object, *, domain: str = "real", unit: str = "-",
+                     size: int | None = None, allow_empty: bool = False) -> np.ndarray:
+    """:func:`as_float_array` plus a domain check that names the first offending element.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the message.
+    value : array_like
+        Scalar or array of real numbers (no bool, no str).
+    domain : {"real", "positive", "nonnegative"}
+        Every element must be finite and satisfy this.
+    unit : str
+        SI unit, for the message.
+    size : int, optional
+        A scalar or a 1D array of exactly this many values (one per item, e.g. per contact).
+    allow_empty : bool
+        Accept an empty array.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``, the offending value (with its index) and what is allowed.
+
+    Examples
+    --------
+    >>> as_checked_array("R", [0.01, 0.02], domain="positive", unit="m", size=2)
+    array([0.01, 0.02])
+    """
+    allowed, ok = _ARRAY_DOMAINS[domain]
+    arr = as_float_array(name, value, allow_nan=True, allow_empty=allow_empty)
+    if size is not None and (arr.ndim > 1 or (arr.ndim == 1 and arr.size != size)):
+        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
+                             f"item (1D, {size} values; unit {unit}).")
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.isfinite(arr) & ok(arr))
+    if np.any(bad):
+        if arr.ndim == 0:
+            raise ParameterError(f"{name}={float(arr)!r} is invalid: it must be {allowed} "
+                                 f"(unit {unit}).")
+        i = np.unravel_index(int(np.argmax(bad)), arr.shape)
+        where = ", ".join(str(int(k)) for k in i)
+        raise ParameterError(f"{name}[{where}]={float(arr[i])!r} is invalid: every value must be "
+                             f"{allowed} (unit {unit}).")
+    return arr
+
+
 def broadcast_inputs(what: str, **arrays: Any) -> tuple[int, ...]:
     """The common shape of the keyword arrays, or a :class:`ParameterError` naming them.
 
@@ -235,6 +289,35 @@ def check_count(name: str, value: object, minimum: int = 1) -> int:
         raise ParameterError(f"{name}={_short(value)} is invalid: it must be an integer >= "
                              f"{minimum}.")
     return int(v)
+
+
+def check_result_finite(what: str, inputs: dict[str, Any], **results: Any) -> None:
+    """Refuse a result that overflowed float64 (never return inf or NaN from valid inputs).
+
+    Parameters
+    ----------
+    what : str
+        The call (``"fretting_loop()"``), for the message.
+    inputs : dict
+        Name -> input array broadcast like the results, quoted at the first bad element.
+    **results : array_like
+        The outputs to check.
+
+    Raises
+    ------
+    ParameterError
+        Some result is not finite: the inputs are outside any physical range (``force=1e300``).
+    """
+    for key, val in results.items():
+        arr = np.asarray(val, dtype=float)
+        bad = ~np.isfinite(arr)
+        if np.any(bad):
+            i = int(np.argmax(bad.ravel()))
+            given = ", ".join(f"{k}={float(np.ravel(v)[i % np.size(v)])!r}"
+                              for k, v in inputs.items() if np.size(v))
+            raise ParameterError(f"{what}: {given} gives {key}={float(arr.ravel()[i])!r}, which "
+                                 "overflows float64: the inputs are outside any physical range "
+                                 "(give them in SI units: m, N, rad, Pa).")
 
 
 def values_equal(a: Any, b: Any) -> bool:

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
-from ..params import as_float_array, exactly_one, values_equal
+from ..params import as_float_array, as_real, check_count, check_memory, check_result_finite, exactly_one, values_equal
 from ..physics import fretting as _fr
 from ..physics import tangential as _tan
 from .torsion import resolve_method, torsion_model
@@ -34,6 +34,10 @@ SERIES_UNITS = {"force": "N", "displacement_amplitude": "m", "twist_amplitude": 
                 "energy": "J", "energy_ratio": "1", "stick_ratio": "1", "regime": "1",
                 "radius": "m", "stick_radius": "m"}
 
+
+#: memory of fretting_loop() per loop point, floats (two branches of x and y with temporaries;
+#: generous: the loop's own arrays are 4 floats per point)
+LOOP_FLOATS = 64
 
 # ---------------------------------------------------------------------------- shared checks
 def _mode_and_amplitude(what: str, displacement_amplitude: Any, twist_amplitude: Any):
@@ -70,7 +74,8 @@ def resolve_criterion(criterion: str, threshold: float | None) -> tuple[str, flo
                                f"{', '.join(repr(k) for k in _fr.CRITERIA)}.")
     if threshold is None:
         return criterion, _fr.CRITERIA[criterion]
-    t = float(as_float_array("threshold", threshold))
+    t = as_real("threshold", threshold, f"the {criterion} threshold must be a real number with "
+                                        "0 < threshold < 1")
     if not 0 < t < 1:
         raise ParameterError(f"threshold={threshold!r} is invalid: the {criterion} threshold "
                              "must satisfy 0 < threshold < 1.")
@@ -89,7 +94,21 @@ def loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: np
     """Steady loops for flat arrays of states: peak, stick radius, energy, ratio, regime.
 
     The amplitudes ``amp`` are >= 0; ``a, d`` the normal states, ``F_N`` their forces.
+
+    Raises
+    ------
+    ParameterError
+        A result overflows float64 (inputs far outside any physical range).
     """
+    with np.errstate(over="ignore", invalid="ignore"):
+        res = _loops(contact, mode, method, a, d, F_N, amp, criterion, threshold)
+    check_result_finite(f"fretting ({mode})", {"force": F_N, "amplitude": amp},
+                        peak=res["peak"], energy=res["energy"], energy_ratio=res["energy_ratio"])
+    return res
+
+
+def _loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,
+           amp: np.ndarray, criterion: str, threshold: float) -> dict[str, np.ndarray]:
     prof, E, mu = contact.profile, contact.moduli.normal, contact.friction
     if mode == "tangential":
         Gs = contact.moduli.tangential
@@ -232,9 +251,8 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
     if amp.ndim != 0:
         raise ParameterError(f"{key} has shape {amp.shape}: fretting_loop() takes one amplitude; "
                              "use fretting_map() for a grid.")
-    if int(n_points) < 2:
-        raise ParameterError(f"n_points={n_points!r} is invalid: give at least 2 points per "
-                             "branch.")
+    n_points = check_count("n_points", n_points, 2)
+    check_memory("fretting_loop()", LOOP_FLOATS * 8.0 * n_points, f"n_points={n_points}")
     criterion, threshold = resolve_criterion(criterion, threshold)
     ns, nkey = _normal_states(contact, "fretting_loop()", force, depth)
     if ns.shape != ():

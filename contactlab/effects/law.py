@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
-from ..params import exactly_one
+from ..params import as_checked_array, as_real, check_count, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
 from ..physics import master as _master
@@ -78,44 +78,21 @@ class LawStep:
 
 def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
     """A positive finite per-contact array (scalar or 1D), errors naming the index."""
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers "
-                             f"(unit {_UNITS.get(name, '-')}).") from err
+    arr = as_checked_array(name, value, domain="positive", unit=_UNITS.get(name, "-"))
     if arr.ndim > 1:
         raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
                              "contact (1D).")
     if arr.ndim == 1 and size is not None and arr.size != size:
         raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
                              "give a scalar or one value per contact.")
-    bad = ~(np.isfinite(arr) & (arr > 0))
-    if np.any(bad):
-        if arr.ndim == 0:
-            raise ParameterError(f"{name}={float(arr)!r} is invalid: it must be finite and > 0 "
-                                 f"(unit {_UNITS.get(name, '-')}).")
-        i = int(np.argmax(bad))
-        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be "
-                             f"finite and > 0 (unit {_UNITS.get(name, '-')}).")
     return arr
 
 
 def _per_step(name: str, value: Any, size: int, unit: str, nonneg: bool = False) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{name}={value!r} is invalid: expected real numbers ({unit}).") from err
-    if arr.ndim > 1 or (arr.ndim == 1 and arr.size != size):
-        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
-                             f"contact ({size}).")
-    arr = np.broadcast_to(arr, (size,))
-    bad = ~np.isfinite(arr) | ((arr < 0) if nonneg else False)
-    if np.any(bad):
-        i = int(np.argmax(bad))
-        allowed = "finite and >= 0" if nonneg else "finite"
-        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be "
-                             f"{allowed} ({unit}).")
-    return arr
+    """A finite (``nonneg``: and >= 0) scalar or one value per contact, broadcast to ``size``."""
+    arr = as_checked_array(name, value, domain="nonnegative" if nonneg else "real", unit=unit,
+                           size=size)
+    return np.broadcast_to(arr, (size,))
 
 
 class ContactLaw:
@@ -198,8 +175,8 @@ class ContactLaw:
             raise UnknownNameError(f"torsion={torsion!r} is invalid: allowed are ('exact',).")
         if isinstance(memory, bool) or not isinstance(memory, (int, np.integer)) or memory < 2:
             raise ParameterError(f"memory={memory!r} is invalid: it must be an integer >= 2.")
-        if not (isinstance(load_rtol, (int, float)) and np.isfinite(load_rtol)
-                and load_rtol >= 0):
+        rtol = as_real("load_rtol", load_rtol, "it must be a real number, finite and >= 0")
+        if not (np.isfinite(rtol) and rtol >= 0):
             raise ParameterError(f"load_rtol={load_rtol!r} is invalid: it must be finite and "
                                  ">= 0.")
         if size is not None and (isinstance(size, bool) or not isinstance(size, (int, np.integer))
@@ -218,7 +195,8 @@ class ContactLaw:
             gname = "c"
             if inst is None and n is None:
                 raise ParameterError("n is missing: a PowerLaw family needs its exponent n.")
-            expo = float(inst.n if inst is not None else n)
+            expo = as_real("n", inst.n if inst is not None else n,
+                           "the exponent n of PowerLaw must be a real number >= 1")
         for k, v in geo.items():
             if v is not None and k != gname:
                 raise ParameterError(f"{k}= is not a parameter of {cls.__name__}: give {gname}=.")
@@ -230,7 +208,7 @@ class ContactLaw:
         if geo[gname] is None:
             raise ParameterError(f"{gname} is missing: {cls.__name__} contacts need {gname}= "
                                  "(scalar or one value per contact).")
-        if not expo >= _master.MIN_EXPONENT:
+        if not (expo >= _master.MIN_EXPONENT and np.isfinite(expo)):
             raise NotSupportedError(f"n={expo!r} is not supported by ContactLaw: the exponent "
                                     f"must satisfy n >= {_master.MIN_EXPONENT:g}.")
         if materials is not None:
@@ -246,7 +224,8 @@ class ContactLaw:
             if v is None:
                 raise ParameterError(f"{k} is missing: ContactLaw needs {k}= (scalar or one "
                                      "value per contact).")
-        sizes = {k: np.asarray(v).size for k, v in vals.items() if np.ndim(v) == 1}
+        vals = {k: _per_contact(k, v, None) for k, v in vals.items()}
+        sizes = {k: v.size for k, v in vals.items() if v.ndim == 1}
         if size is None and len(set(sizes.values())) > 1:
             raise ParameterError("per-contact arrays have different lengths: "
                                  + ", ".join(f"{k} has {v}" for k, v in sizes.items())
@@ -467,7 +446,25 @@ class ContactLaw:
             for arr in (Ft, M, dW, ct, cm):
                 arr[dead] = 0.0
             self._clear(np.flatnonzero(dead))
+        self._check_finite(live, d, a, F, Ft, M, ct, cm, dW)
         return LawStep(d, a, F, Ft, M, ct, cm, dW, exact)
+
+    def _check_finite(self, live: np.ndarray, *outputs: np.ndarray) -> None:
+        """Refuse a step whose response overflows float64 (inputs far outside any physical
+        range, e.g. ``force=1e300``): the overflowing contacts are reset and an error names the
+        first of them."""
+        bad = np.zeros(self.size, bool)
+        for arr in outputs:
+            bad |= ~np.isfinite(arr)
+        if np.any(bad):
+            idx = np.flatnonzero(bad)
+            self._clear(idx)
+            i = int(idx[0])
+            raise ParameterError(
+                f"contact {i}: depth[{i}]={float(outputs[0][i])!r} m, force[{i}]="
+                f"{float(outputs[2][i])!r} N gives a response that overflows float64 (outside any "
+                "physical range): give inputs in SI units (m, N, rad). The memory of the "
+                f"{idx.size} overflowing contact(s) was reset.")
 
     # ------------------------------------------------------------------ changing load: springs
     def _geometry(self, idx: np.ndarray) -> dict:

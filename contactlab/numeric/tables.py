@@ -11,11 +11,12 @@ from __future__ import annotations
 import csv
 import math
 import os
+from collections.abc import Mapping
 from typing import Any, Callable
 
 import numpy as np
 
-from ..errors import TabulatedDataError, UnitError
+from ..errors import ParameterError, TabulatedDataError, UnitError
 from .units import split_header, unit_factor
 
 __all__ = ["read_columns", "write_columns"]
@@ -31,6 +32,27 @@ def _rows(path: Any, delimiter: str | None) -> list[list[str]]:
     delim = delimiter or (";" if text.count(";") > text.count(",") else ",")
     return [[c.strip() for c in row] for row in csv.reader(text.splitlines(), delimiter=delim)
             if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
+
+
+def _check_arguments(units: Any, delimiter: Any) -> None:
+    """``units`` a mapping of column name (or position) -> unit string; ``delimiter`` one
+    character or None."""
+    if delimiter is not None and not (isinstance(delimiter, str) and len(delimiter) == 1
+                                      and delimiter not in "\r\n\"'"):
+        raise ParameterError(f"delimiter={delimiter!r} is invalid: give one character such as "
+                             "',' or ';' (None detects it).")
+    if units is None:
+        return
+    if not isinstance(units, Mapping):
+        raise ParameterError(f"units={units!r} is invalid: give a mapping of column name to "
+                             "unit, e.g. {'force': 'kN'}.")
+    for key, unit in units.items():
+        if isinstance(key, bool) or not isinstance(key, (str, int)):
+            raise ParameterError(f"units key {key!r} is invalid: give a column name (str) or a "
+                                 "column position (int).")
+        if unit is not None and not isinstance(unit, str):
+            raise ParameterError(f"units[{key!r}]={unit!r} is invalid: a unit is a string such "
+                                 "as 'kN', 'mm' or 'deg'.")
 
 
 def _is_number(text: str) -> bool:
@@ -82,6 +104,7 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
     UnitError
         A unit that is unknown or of another dimension than the column's.
     """
+    _check_arguments(units, delimiter)
     rows = _rows(path, delimiter)
     where = f"file={str(path)!r}"
     header: list[str] | None = None
@@ -119,6 +142,10 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
                     f"{where}: data row {i + 1}, column {col_names[j]!r} holds {cells[j]!r}, "
                     "which is not a number.") from None
     given = dict(units or {})
+    for key in given:
+        if key not in col_names and not (isinstance(key, int) and 0 <= key < len(col_names)):
+            raise ParameterError(f"units names column {key!r}, which {where} does not have "
+                                 f"(its columns: {', '.join(col_names)}).")
     out: dict[str, np.ndarray] = {}
     for j, name in enumerate(col_names):
         if isinstance(dimension, tuple):

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError, TabulatedDataError
+from ..params import as_real
 
 __all__ = ["SmoothingReport", "smooth_table", "nearest_admissible", "slope_violations"]
 
@@ -183,7 +184,7 @@ def smooth_table(r: np.ndarray, f: np.ndarray, smoothing: object, noise: float |
             raise ParameterError(f"smoothing={smoothing!r} is invalid: use None, 'auto' or a "
                                  "number >= 0 (the spline's dimensionless λ).")
         if noise is not None:
-            target = float(noise) ** 2 * r.size
+            target = float(noise) * float(noise) * r.size     # inf for absurd noise: no overflow error
 
             def excess(log_lam: float) -> float:
                 return np.log(max(sm.rss(10.0 ** log_lam)[0], 1e-300)) - np.log(target)
@@ -205,11 +206,8 @@ def smooth_table(r: np.ndarray, f: np.ndarray, smoothing: object, noise: float |
             method = "gcv"
         lam = 10.0 ** log_lam
     else:
-        try:
-            lam = float(smoothing)  # type: ignore[arg-type]
-        except (TypeError, ValueError):
-            raise ParameterError(f"smoothing={smoothing!r} is invalid: use None, 'auto' or a "
-                                 "number >= 0 (the spline's dimensionless λ).") from None
+        lam = as_real("smoothing", smoothing, "use None, 'auto' or a number >= 0 (the "
+                                              "spline's dimensionless λ)")
         if not np.isfinite(lam) or lam < 0:
             raise ParameterError(f"smoothing={smoothing!r} is invalid: λ must be a finite "
                                  "number >= 0.")

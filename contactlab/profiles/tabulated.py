@@ -31,7 +31,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import OutsideTheoryError, ParameterError, TabulatedDataError
-from ..params import Param
+from ..params import Param, as_real
 from ..symbolic.form import SympyForm
 from .base import Profile
 
@@ -109,11 +109,7 @@ class Tabulated(Profile):
             raise ParameterError(f"admissible={admissible!r} is invalid: use None (report a "
                                  "non-monotone g when a load reaches it) or 'nearest'.")
         if noise is not None:
-            try:
-                noise = float(noise)
-            except (TypeError, ValueError):
-                raise ParameterError(f"noise={noise!r} is invalid: expected a number >= 0 "
-                                     "(m).") from None
+            noise = as_real("noise", noise, "expected a number >= 0 (m)")
             if not np.isfinite(noise) or noise < 0:
                 raise ParameterError(f"noise={noise!r} m is invalid: it must be finite and "
                                      ">= 0.")

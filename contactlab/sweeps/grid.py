@@ -58,6 +58,9 @@ def _plain(value: Any, where: str) -> Any:
     """A Python scalar (numbers, strings, bools) from a grid entry."""
     if isinstance(value, np.generic):
         value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ParameterError(f"{where}={value!r} is invalid: grid values must be finite (a NaN "
+                             "in the result table marks a failed point).")
     if isinstance(value, (bool, int, float, str)):
         return value
     raise ParameterError(f"{where}={value!r} is invalid: grid values must be numbers or strings "
@@ -69,6 +72,9 @@ def _values(key: str, values: Any) -> list[Any]:
             and not hasattr(values, "__iter__"):
         raise ParameterError(f"grid[{key!r}]={values!r} is invalid: give a list of values, "
                              f"e.g. [{values!r}].")
+    if isinstance(values, np.ndarray) and values.ndim > 1:
+        raise ParameterError(f"grid[{key!r}] has shape {values.shape}: give a 1D list of values "
+                             "per key (the grid is their product).")
     arr = list(np.asarray(values).ravel()) if isinstance(values, np.ndarray) else list(values)
     if not arr:
         raise ParameterError(f"grid[{key!r}] is empty: give at least one value.")

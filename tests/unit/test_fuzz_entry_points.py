@@ -1,0 +1,224 @@
+"""Fuzzed arguments of the newer public entry points (ContactLaw, wear, fretting, sweeps, exact
+simulate, Tabulated smoothing, load-path CSV units): NaN, inf, negative, bool, str, empty,
+wrong shapes and absurd sizes give a ``contactlab.errors`` exception that names the parameter,
+never a numpy/stdlib traceback, a NaN or an inf (issue 11)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab import profiles as P
+from contactlab.errors import ContactlabError, MemoryBudgetError, ParameterError
+
+STEEL = cl.Elastic(E=210e9, nu=0.3)
+NOT_NUMBERS = {"nan": math.nan, "inf": math.inf, "bool": True, "npbool": np.bool_(True),
+               "str": "1", "obj": object(), "complex": 1 + 1j}
+NOT_SCALARS = {"empty": [], "2d": [[1.0, 2.0]], "list": [1.0, 2.0, 3.0]}
+
+
+def contact():
+    return cl.Contact(P.Paraboloid(R=0.01), materials=(STEEL, STEEL), friction=0.3)
+
+
+def law(**kw):
+    base = dict(R=[0.01, 0.01], E_star=1e11, G_star=5e10, G_torsion=8e10, friction=0.3)
+    base.update(kw)
+    return cl.ContactLaw(P.Paraboloid, **base)
+
+
+def raises_naming(name, call):
+    """``call()`` raises a ContactlabError whose message names ``name``."""
+    with pytest.raises(ContactlabError) as info:
+        call()
+    assert name in str(info.value), str(info.value)
+
+
+# ------------------------------------------------------------------ ContactLaw
+@pytest.mark.parametrize("bad", list(NOT_NUMBERS.values()) + [[], [0.01, -1.0], [[0.01]]],
+                         ids=list(NOT_NUMBERS) + ["empty", "negative", "2d"])
+@pytest.mark.parametrize("name", ["R", "E_star", "G_star", "G_torsion", "friction",
+                                  "spring_cover"])
+def test_law_per_contact_parameters(name, bad):
+    raises_naming(name, lambda: law(**{name: bad}))
+
+
+@pytest.mark.parametrize("bad", list(NOT_NUMBERS.values()) + [[1.0, 2.0, 3.0], [[1.0, 1.0]]],
+                         ids=list(NOT_NUMBERS) + ["wrong length", "2d"])
+@pytest.mark.parametrize("name", ["force", "depth", "displacement", "twist"])
+def test_law_step_inputs(name, bad):
+    normal = {} if name in ("force", "depth") else {"force": [1.0, 2.0]}
+    raises_naming(name, lambda: law().step(**normal, **{name: bad}))
+
+
+@pytest.mark.parametrize("kw, name", [({"load_rtol": True}, "load_rtol"),
+                                      ({"load_rtol": math.nan}, "load_rtol"),
+                                      ({"load_rtol": "0"}, "load_rtol"),
+                                      ({"memory": 2.5}, "memory"), ({"springs": True}, "springs"),
+                                      ({"size": 0}, "size")])
+def test_law_options(kw, name):
+    raises_naming(name, lambda: law(**kw))
+
+
+def test_law_powerlaw_exponent_must_be_a_finite_number():
+    base = dict(c=1.0, E_star=1e11, G_star=5e10, G_torsion=8e10, friction=0.3)
+    for n in (True, "2", math.inf, math.nan):
+        raises_naming("n", lambda: cl.ContactLaw(P.PowerLaw, n=n, **base))
+
+
+def test_law_overflowing_step_is_refused_and_resets_that_contact():
+    lw = law(springs=0)
+    with pytest.raises(ParameterError, match="contact 0.*overflows"):
+        lw.step(force=[1e300, 1.0], displacement=[1e-7, 1e-7])
+    assert lw.state["depth_ref"][0] == 0.0 and lw.state["depth_ref"][1] > 0.0
+    out = lw.step(force=[1.0, 1.0], displacement=[1e-7, 1e-7])
+    assert np.all(np.isfinite(out.dissipated_energy)) and np.all(np.isfinite(out.torque))
+
+
+# ------------------------------------------------------------------ fretting and wear
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -1, 1, 2.5, True, "20", None, [20, 30],
+                                 10**12])
+def test_fretting_loop_n_points(bad):
+    exc = MemoryBudgetError if bad == 10**12 else ParameterError
+    with pytest.raises(exc, match="n_points"):
+        contact().fretting_loop(force=10.0, displacement_amplitude=1e-6, n_points=bad)
+
+
+@pytest.mark.parametrize("bad", [math.nan, 0.0, 1.0, True, "0.2", [0.1, 0.2], [[0.1]]])
+def test_fretting_threshold(bad):
+    raises_naming("threshold", lambda: contact().fretting_loop(
+        force=10.0, twist_amplitude=1e-4, threshold=bad, n_points=10))
+
+
+@pytest.mark.parametrize("amp", ["displacement_amplitude", "twist_amplitude"])
+def test_fretting_overflow_is_an_error_not_nan(amp):
+    c = contact()
+    with pytest.raises(ParameterError, match="overflows float64"):
+        c.fretting_loop(force=1e300, **{amp: 1e-6}, n_points=10)
+    try:
+        m = c.fretting_map(force=[10.0, 1e300], **{amp: [1e-6]}, boundary=False)
+    except ParameterError as err:
+        assert "overflows float64" in str(err)
+    else:           # a huge contact under a tiny twist sticks: finite, no NaN
+        for v in (m.energy, m.energy_ratio, m.peak, m.stick_ratio):
+            assert np.all(np.isfinite(v))
+
+
+@pytest.mark.parametrize("name, bad", [
+    ("displacement_amplitude", math.nan), ("displacement_amplitude", -1e-6),
+    ("displacement_amplitude", True), ("displacement_amplitude", [[1e-6]]),
+    ("force", [10.0, True]), ("force", []), ("force", [math.inf])])
+def test_fretting_map_arrays(name, bad):
+    kw = {"force": [10.0, 20.0], "displacement_amplitude": [1e-6, 2e-6]}
+    kw[name] = bad
+    raises_naming(name.split("_")[0], lambda: contact().fretting_map(**kw))
+
+
+@pytest.mark.parametrize("name, bad", [
+    ("wear_coefficient", [1e-15, 2e-15]), ("wear_coefficient", math.nan),
+    ("wear_coefficient", -1e-15), ("wear_coefficient", True), ("wear_coefficient", "1e-15"),
+    ("cycles", math.inf), ("cycles", 0.0), ("cycles", True), ("jump_rtol", math.nan),
+    ("n_grid", True), ("n_grid", 100.0), ("n_grid", 10**6), ("force", math.nan),
+    ("max_radius", -1.0), ("checkpoints", [0.0]), ("checkpoints", [True])])
+def test_wear_arguments(name, bad):
+    kw = dict(force=10.0, displacement_amplitude=1e-6, wear_coefficient=1e-15, cycles=100.0,
+              n_grid=100)
+    kw[name] = bad
+    exc = MemoryBudgetError if bad == 10**6 else ContactlabError
+    with pytest.raises(exc, match=name):
+        contact().wear(**kw)
+
+
+# ------------------------------------------------------------------ exact simulate
+@pytest.mark.parametrize("bad", [math.nan, 0, -3, 2.5, True, "50", [50]])
+def test_exact_simulate_names_n_rings(bad):
+    path = cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=3)
+    with pytest.raises(ParameterError, match="n_rings"):
+        contact().simulate(path, method="exact", n_rings=bad)
+
+
+@pytest.mark.parametrize("path, kw, match", [
+    (cl.LoadPath().ramp(force=10.0, steps=10**7).ramp(twist=1e-4, steps=5), {},
+     "longest segment 10000000 steps"),
+    (cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=5), {"n_rings": 10**6},
+     "1000000 rings"),
+    (cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=5).repeat(10**8), {},
+     "800000000 steps"),
+    (cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=5), {"n_rings": 1e300},
+     "rings"),
+])
+def test_exact_simulate_memory_guard(path, kw, match):
+    with pytest.raises(MemoryBudgetError, match=match):
+        contact().simulate(path, method="exact", **kw)
+
+
+def test_exact_simulate_memory_estimate_covers_a_measured_run():
+    import tracemalloc
+    from contactlab.effects.torsion_path import exact_memory
+    path = cl.LoadPath().ramp(force=10.0, steps=2000).ramp(twist=1e-4, steps=5)
+    tracemalloc.start()
+    try:
+        contact().simulate(path, method="exact", n_rings=100)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    estimate = exact_memory(2005, 2000, 100)
+    assert peak <= estimate <= 4 * peak
+
+
+# ------------------------------------------------------------------ Tabulated smoothing
+R_TAB = np.linspace(0.0, 1e-3, 40)
+F_TAB = R_TAB**2 / 0.02
+
+
+@pytest.mark.parametrize("name, bad", [("smoothing", True), ("smoothing", math.nan),
+                                       ("smoothing", -1.0), ("smoothing", "often"),
+                                       ("smoothing", [1.0]), ("noise", True), ("noise", "1e-9"),
+                                       ("noise", -1e-9), ("noise", math.inf)])
+def test_tabulated_smoothing_arguments(name, bad):
+    kw = {"smoothing": "auto", "noise": 1e-9}
+    kw[name] = bad
+    raises_naming(name, lambda: P.Tabulated(R_TAB, F_TAB, **kw))
+
+
+def test_tabulated_absurd_noise_is_finite():
+    tab = P.Tabulated(R_TAB, F_TAB, smoothing="auto", noise=1e300)
+    assert np.all(np.isfinite(tab.f))
+
+
+# ------------------------------------------------------------------ load-path CSV arguments
+@pytest.mark.parametrize("kw, match", [
+    ({"units": "kN"}, "units='kN'"), ({"units": ["N"]}, "units=\\['N'\\]"),
+    ({"units": math.nan}, "units=nan"), ({"units": {"force": 1.0}}, "units\\['force'\\]"),
+    ({"units": {True: "N"}}, "units key True"), ({"units": {"bogus": "N"}}, "'bogus'"),
+    ({"delimiter": 1.0}, "delimiter=1.0"), ({"delimiter": ",,"}, "delimiter"),
+    ({"delimiter": True}, "delimiter=True")])
+def test_loadpath_csv_arguments(tmp_path, kw, match):
+    f = tmp_path / "p.csv"
+    f.write_text("time,force\n0,0\n1,10\n")
+    with pytest.raises(ParameterError, match=match):
+        cl.LoadPath.from_csv(f, **kw)
+
+
+def test_loadpath_csv_unit_argument_converts(tmp_path):
+    f = tmp_path / "p.csv"
+    f.write_text("time,force\n0,0\n1,10\n")
+    seg, = cl.LoadPath.from_csv(f, units={"force": "kN"}).segments
+    assert dict(seg.columns)["force"].tolist() == [0.0, 10e3]
+
+
+# ------------------------------------------------------------------ sweep grids
+def _study(x=1.0):
+    return {"y": x}
+
+
+@pytest.mark.parametrize("grid, match", [
+    ({"x": [math.nan]}, "finite"), ({"x": [math.inf, 1.0]}, "finite"),
+    ({"x": np.zeros((2, 2))}, "shape"), ({"x": []}, "empty"), ({"x": 1.0}, "list"),
+    ({"x": [object()]}, "numbers or strings"), ({"x": [1 + 1j]}, "numbers or strings"),
+    ({"x": [[1.0]]}, "numbers or strings"), ({}, "empty"), ({"": [1.0]}, "non-empty")])
+def test_sweep_grid_values(grid, match):
+    with pytest.raises(ParameterError, match=match):
+        cl.sweep(_study, grid, workers=1, progress=False)
