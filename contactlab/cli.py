@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -415,7 +416,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     as_json = getattr(args, "json", False)
     try:
-        return int(args.func(args))
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning      # one line per warning, no source echo
+            return int(args.func(args))
     except (ParameterError, UnknownNameError) as err:     # invalid command-line input
         if as_json:
             print(json.dumps({"ok": False, "exit": 2, "error": str(err),
@@ -425,11 +428,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except SceneError as err:
         if as_json:
-            print(json.dumps({"ok": False, "exit": 2, "error": str(err).splitlines()[0],
+            print(json.dumps({"ok": False, "exit": 2,
+                              "error": _scene_line(err, getattr(args, "scene", None)),
+                              "kind": type(err).__name__,
                               "issues": [{"path": p, "value": _plain(v), "allowed": a}
                                          for p, v, a in err.issues]}, indent=1))
         else:
-            print(f"contactlab: {err}", file=sys.stderr)
+            print(f"contactlab: {_scene_line(err, getattr(args, 'scene', None))}",
+                  file=sys.stderr)
         return 2
     except ContactlabError as err:
         if as_json:
@@ -457,6 +463,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         else:
             print(f"contactlab: {msg}", file=sys.stderr)
         return 1
+
+
+def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None,
+                  line: Any = None) -> None:
+    print(f"contactlab: {category.__name__}: {_one_line(message)}", file=sys.stderr)
+
+
+def _scene_line(err: Any, scene: Any) -> str:
+    """A scene's problems on one line: ``s.toml: 2 problems: a = 1: expected > 0; b = ...``
+    (the full list is in the ``--json`` error object)."""
+    issues = getattr(err, "issues", None)
+    if not issues:
+        return _one_line(err)
+    from .scene.validate import _short
+    where = f"{Path(str(scene)).name}: " if scene else ""
+    parts = [f"{p or '<scene>'} = {_short(v)}: expected {str(a).rstrip('.')}"
+             for p, v, a in issues]
+    n = len(parts)
+    return " ".join(f"{where}{n} problem{'s' if n > 1 else ''}: {'; '.join(parts)}".split())
 
 
 def _one_line(err: BaseException) -> str:

@@ -174,3 +174,31 @@ def test_real_process_prints_no_traceback(tmp_path):
                        env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])})
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_scene_problems_are_one_stderr_line_and_listed_in_json(tmp_path, capsys):
+    p = tmp_path / "bad.toml"
+    p.write_text(SCENE.replace('R = "10 mm"', 'R = "-10 mm"')
+                 .replace('nu = 0.3', 'nu = 0.7').replace("steps = 5", "steps = 0"))
+    line, doc = failure(["validate", str(p)], capsys, 2)
+    assert line.startswith("contactlab: bad.toml: 3 problems: ")
+    for key in ("profile.R = '-10 mm'", "materials.body1.nu = 0.7", "load_path[0].ramp.steps = 0"):
+        assert key in line
+    assert line.count(";") == 2
+    assert doc["kind"] == "SceneError" and doc["error"] == line.removeprefix("contactlab: ")
+    assert [i["path"] for i in doc["issues"]] == ["profile.R", "materials.body1.nu",
+                                                 "load_path[0].ramp.steps"]
+    failure(["run", str(p)], capsys, 2)
+
+
+def test_warnings_are_one_line_each(tmp_path):
+    """A ValidityWarning during a run is one stderr line (class and message, no source echo)."""
+    p = tmp_path / "s.toml"
+    p.write_text(SCENE.replace('type = "paraboloid"', 'type = "sphere"')
+                 .replace('E = "210 GPa"', 'E = "1 GPa"').replace('"10 N"', '"1e5 N"'))
+    r = subprocess.run([sys.executable, "-m", "contactlab", "run", str(p)],
+                       capture_output=True, text=True, cwd=tmp_path,
+                       env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])})
+    assert r.returncode == 0, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert lines and all(ln.startswith("contactlab: ValidityWarning: ") for ln in lines), lines
