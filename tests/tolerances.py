@@ -179,10 +179,16 @@ TORSION_BOUNDARY_ROOT = 1e-5
 #: reference: closed-form route (atan2 angle, hypergeometric connection formula near z = 1),
 #: only a few roundings remain (measured 4.4e-16); the issue's target
 EDGE_DISPLACEMENT = 1e-12
-#: Masing dissipation of small loops from the closed forms 2(u ∫h - ∫h²/G*) over [c, a]: the
-#: integrals are differences of integrals from 0, and ∫(d-g)² cancels by ~(u*/u)² more; at
-#: u = 0.01 u* the measured error is 3e-10 of the loop energy (hypothesis, 10^4 examples)
-DISSIPATION_CANCELLATION = 1e-8
+#: Masing dissipation along sampled histories, relative to the total: small loops integrate
+#: their definition over [c, a] directly (Gauss-Legendre) instead of differencing integrals from
+#: 0, so only a few ε·a/(a-c) remain (closed form before: 3e-10 at u = 0.01 u*; now ~1e-15 there)
+DISSIPATION_CANCELLATION = 1e-12
+#: energy per cycle of small Hertz loops against Mindlin-Deresiewicz in 50 digits: the rounding
+#: of d - g(x) at the nodes leaves ~ε·a/(a-c) with a - c ≈ a·u/(2u*): measured 2.6e-15 at
+#: u = 0.01 u*, 9e-14 at 1e-3, 3.3e-12 at 1e-4; the bound is this factor times u*/u, and
+#: SMALL_LOOP_FLOOR for large loops (closed form, 1.3e-14 measured at u = 0.5 u*)
+SMALL_LOOP_ENERGY = 1e-15
+SMALL_LOOP_FLOOR = 1e-13
 
 # ---- speed (issue 13)
 #: a history whose amplitudes differ by rounding only (A sin(2πk/n) over 10^4 steps, ~1e-12 of A)

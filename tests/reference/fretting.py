@@ -25,7 +25,8 @@ from tests.reference.kappa import kappa_float
 __all__ = ["onset_energy_ratio", "gross_slip_amplitude", "mindlin_energy_of_force_amplitude",
            "hertz_torsion_small_energy", "hertz_twist_of_stick_ratio", "power_virgin_force",
            "hertz_limiting_state", "hertz_gross_slip_scar", "linear_table_volume",
-           "hertz_torque_of_stick_ratio", "hertz_torsion_energy_ratio"]
+           "hertz_torque_of_stick_ratio", "hertz_torsion_energy_ratio",
+           "mindlin_loop_energy_of_displacement"]
 
 
 def onset_energy_ratio(n: float) -> float:
@@ -125,3 +126,23 @@ def hertz_torsion_energy_ratio(ratio, F, mu, a, G_t):
     M0 = hertz_torque_of_stick_ratio(s0, F, mu, a)
     p0 = float(hertz_twist_of_stick_ratio(s0, F, mu, a, G_t))
     return (8.0 * I - 4.0 * p0 * M0) / (4.0 * p0 * M0)
+
+
+def mindlin_loop_energy_of_displacement(u0, F, mu, E_star, G_star, R, digits=50):
+    """Hertz energy per cycle at displacement amplitude ``u0`` (Mindlin & Deresiewicz), in
+    ``digits``-digit arithmetic (mpmath): the closed form cancels as ``t³`` for small
+    amplitudes, which double precision cannot follow (Johnson 1985 §7.4; small-amplitude law
+    ``W ≈ T³/(9μFaG*)``). Returns (W, T) as floats, J and N.
+
+    a = (3FR/(4E*))^(1/3), d = a²/R, u_t = μE*d/G*, T = μF[1 - (1 - u0/u_t)^(3/2)].
+    """
+    import mpmath as mp
+    with mp.workdps(digits):
+        F_, mu_, E_, G_, R_, u_ = (mp.mpf(v) for v in (F, mu, E_star, G_star, R, u0))
+        a = (3 * F_ * R_ / (4 * E_)) ** (mp.mpf(1) / 3)
+        u_t = mu_ * E_ * a * a / R_ / G_
+        T = mu_ * F_ * (1 - (1 - u_ / u_t) ** mp.mpf(1.5))
+        t = T / (mu_ * F_)
+        W = (mp.mpf(18) / 5 * mu_**2 * F_**2 / (a * G_)
+             * (1 - (1 - t) ** (mp.mpf(5) / 3) - 5 * t / 6 * (1 + (1 - t) ** (mp.mpf(2) / 3))))
+        return float(W), float(T)

@@ -11,8 +11,8 @@ import contactlab as cl
 from contactlab.errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
 from tests.reference import fretting as ref
 from tests.reference.hertz import radius_of_force
-from tests.tolerances import (FRETTING_CLOSED, LOOP_TRAPEZOID, TORSION_BOUNDARY,
-                              TORSION_BOUNDARY_ROOT)
+from tests.tolerances import (FRETTING_CLOSED, LOOP_TRAPEZOID, SMALL_LOOP_ENERGY, SMALL_LOOP_FLOOR,
+                              TORSION_BOUNDARY, TORSION_BOUNDARY_ROOT)
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 MU = 0.5
@@ -68,6 +68,28 @@ def test_hertz_tangential_energy_mindlin(frac):
     assert loop.energy == pytest.approx(W, rel=FRETTING_CLOSED)
     Q = ref.power_virgin_force(frac * u_t, F, MU, u_t, 2.0)
     assert loop.peak == pytest.approx(Q, rel=FRETTING_CLOSED)
+
+
+@pytest.mark.parametrize("ratio", [0.5, 0.3, 1e-2, 1e-3, 1e-4])
+def test_small_hertz_loops_exact_against_mindlin_deresiewicz(ratio):
+    """Small loops: the energy per cycle of the fretting loop and of a Masing shift history
+    against Mindlin-Deresiewicz in 50-digit arithmetic, and the small-amplitude cube law
+    W = T³/(9μFaG*) (Johnson 1985 eq. 7.61)."""
+    c = contact()
+    E, G = c.moduli.normal, c.moduli.tangential
+    u_t = ref.gross_slip_amplitude(F, MU, E, G, 50.0, 2.0)
+    u0 = ratio * u_t
+    W, T = ref.mindlin_loop_energy_of_displacement(u0, F, MU, E, G, 0.01)
+    tol = max(SMALL_LOOP_ENERGY / ratio, SMALL_LOOP_FLOOR)      # 1e-12 at ratio 1e-3
+    loop = c.fretting_loop(force=F, displacement_amplitude=u0, n_points=4)
+    assert loop.energy == pytest.approx(W, rel=tol)
+    h = c.shift_history(force=F, displacement=u0 * np.array([1.0, -1.0, 1.0, -1.0, 1.0]))
+    per_cycle = np.diff(h.dissipated_energy[::2])
+    np.testing.assert_allclose(per_cycle, W, rtol=tol)
+    if ratio <= 1e-3:
+        a = radius_of_force(F, 0.01, E)
+        cube = T**3 / (9 * MU * F * a * G)
+        assert loop.energy == pytest.approx(cube, rel=3 * ratio)   # next term O(T/μF)
 
 
 def test_gross_slip_energy_linear_in_amplitude():
