@@ -21,7 +21,7 @@ __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in
            "as_real", "as_checked_array", "broadcast_inputs", "check_count", "check_result_finite", "exactly_one", "scalar_or_array",
            "step_indices",
            "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
-           "MEMORY_BUDGET_ENV", "values_equal"]
+           "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -339,6 +339,34 @@ def values_equal(a: Any, b: Any) -> bool:
     if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         return True
     return bool(a == b)
+
+
+class FieldsEqual:
+    """Mixin for result dataclasses: ``==`` compares the type and every field by
+    :func:`values_equal` (arrays element for element), so a result equals its unpickled copy;
+    unhashable (the fields hold arrays).
+
+    Declare the dataclass with ``eq=False``: otherwise ``@dataclass`` writes its own ``__eq__``
+    (tuple comparison, which raises on arrays) over this one.
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True, eq=False)
+    ... class R(FieldsEqual):
+    ...     x: np.ndarray
+    >>> R(np.arange(3.0)) == R(np.arange(3.0)), R(np.arange(3.0)) == R(np.zeros(3))
+    (True, False)
+    """
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        from dataclasses import fields
+        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
+                   for f in fields(self))  # type: ignore[arg-type]
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 def exactly_one(what: str, options: dict[str, Any]) -> tuple[str, Any]:

@@ -8,14 +8,14 @@ The kernels (Heß rule, stability function, branch scan, solves on a branch) are
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import OutsideTheoryError, ParameterError, ValidityWarning
-from ..params import as_float_array, exactly_one, values_equal
+from ..params import FieldsEqual, as_float_array, exactly_one
 from ..physics import normal as _normal
 from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_of_radius,
                                 force_of_radius, phi, solve_depth, solve_force)
@@ -81,7 +81,7 @@ class AdhesiveNormalState(NormalState):
 
 
 @dataclass(frozen=True, eq=False)
-class AdhesionCycle(Cited):
+class AdhesionCycle(FieldsEqual, Cited):
     """An approach/retraction history of an adhesive contact (JKR hysteresis).
 
     Attributes
@@ -109,14 +109,6 @@ class AdhesionCycle(Cited):
     meta: dict = field(default_factory=dict, repr=False)
 
 
-    def __eq__(self, other: object) -> bool:
-        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
-                   for f in fields(self))
-
-    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     def to_dict(self) -> dict[str, Any]:
         """Per-step arrays as a dict (for pandas/CSV)."""

@@ -10,14 +10,15 @@ loop branches, regimes, gross-slip criteria, MDR validity) are in
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
-from ..params import as_float_array, as_real, check_count, check_memory, check_result_finite, exactly_one, values_equal
+from ..params import (FieldsEqual, as_float_array, as_real, check_count, check_memory,
+                     check_result_finite, exactly_one)
 from ..physics import fretting as _fr
 from ..physics import tangential as _tan
 from .torsion import resolve_method, torsion_model
@@ -302,7 +303,7 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
 
 # ---------------------------------------------------------------------------- maps
 @dataclass(frozen=True, eq=False)
-class FrettingMap(Cited):
+class FrettingMap(FieldsEqual, Cited):
     """Running-condition map over normal forces x amplitudes.
 
     Attributes
@@ -339,14 +340,6 @@ class FrettingMap(Cited):
 
     regime_names = _fr.REGIMES
 
-    def __eq__(self, other: object) -> bool:
-        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
-                   for f in fields(self))
-
-    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     @property
     def amplitude_name(self) -> str:

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
-from ..params import as_checked_array, as_real, check_count, exactly_one
+from ..params import as_checked_array, as_real, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
 from ..physics import master as _master

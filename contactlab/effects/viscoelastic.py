@@ -7,7 +7,7 @@ The time stepping is that of the MDR viscoelastic foundation,
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -17,7 +17,7 @@ from ..errors import ConvergenceError, NotSupportedError, ParameterError
 from ..foundation import viscoelastic as _ve
 from ..materials import Elastic, Rigid, effective_moduli
 from ..materials.pair import viscoelastic_body
-from ..params import as_float_array, check_count, check_memory, exactly_one, values_equal
+from ..params import FieldsEqual, as_float_array, check_count, check_memory, exactly_one
 from ..physics.normal import radius_depth_of_force
 
 __all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS", "history_memory"]
@@ -33,7 +33,7 @@ def history_memory(n_steps: int, n_springs: int, n_terms: int) -> float:
 
 
 @dataclass(frozen=True, eq=False)
-class ViscoelasticHistory(Cited):
+class ViscoelasticHistory(FieldsEqual, Cited):
     """Per-step result of a viscoelastic normal-contact history.
 
     Attributes
@@ -59,14 +59,6 @@ class ViscoelasticHistory(Cited):
     meta: dict = field(default_factory=dict)
 
 
-    def __eq__(self, other: object) -> bool:
-        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
-                   for f in fields(self))
-
-    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step arrays (``time``, ``depth``, ``force``, ``radius``)."""

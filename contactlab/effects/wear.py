@@ -18,14 +18,15 @@ rates, so worn volume = (k/μ) × dissipated energy holds to rounding for the ta
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
-from ..params import as_float_array, as_real, check_count, check_memory, check_positive, values_equal
+from ..params import (FieldsEqual, as_float_array, as_real, check_memory,
+                     check_positive)
 from ..physics import wear as _wear
 from ..profiles import Tabulated
 from .fretting import _mode_and_amplitude, check_contact, loops, warn_mdr
@@ -52,7 +53,7 @@ SERIES_UNITS = {"cycles": "1", "depth": "m", "radius": "m", "scar_radius": "m",
 
 
 @dataclass(frozen=True, eq=False)
-class WearResult:
+class WearResult(FieldsEqual):
     """Fretting-wear run: worn profiles at checkpoints and series per wear step.
 
     Attributes
@@ -97,14 +98,6 @@ class WearResult:
     r: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
-    def __eq__(self, other: object) -> bool:
-        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
-                   for f in fields(self))
-
-    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     @property
     def profile(self) -> Tabulated:

@@ -10,7 +10,7 @@ import io
 import json
 import os
 import tempfile
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -18,7 +18,7 @@ import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
-from ..params import values_equal
+from ..params import FieldsEqual
 from ..loadpath import UNITS
 from ..effects.fretting import SERIES_UNITS as MAP_UNITS
 from ..effects.wear import SERIES_UNITS as WEAR_UNITS
@@ -81,7 +81,7 @@ def _sources(computed: list[str], method: str | None, contact: Any) -> tuple[str
 
 
 @dataclass(eq=False)
-class SceneResult(Cited):
+class SceneResult(FieldsEqual, Cited):
     """Outputs of a scene run.
 
     Attributes
@@ -108,14 +108,6 @@ class SceneResult(Cited):
     fretting_map: Any = None
 
 
-    def __eq__(self, other: object) -> bool:
-        """Same type and equal fields (arrays element for element, see ``values_equal``)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(values_equal(getattr(self, f.name), getattr(other, f.name))
-                   for f in fields(self))
-
-    __hash__ = None  # type: ignore[assignment]   (holds arrays: mutable content)
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name in self.series:

@@ -7,7 +7,8 @@ from contactlab.cli import main
 from tests import tolerances as TOL
 
 
-def test_demo_prints_hertz_table(capsys):
+def test_demo_prints_hertz_table(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)        # `demo` without -o writes its plot into the cwd
     assert main(["demo"]) == 0
     out = capsys.readouterr().out
     E_star = 210e9 / (2 * (1 - 0.3**2))

@@ -134,3 +134,27 @@ ramp = {force = "10 N", steps = 5}
     assert copy.series["force"].tobytes() == res.series["force"].tobytes()
     with pytest.raises(TypeError):
         hash(res)
+
+
+def test_fretting_and_wear_results_pickle_and_compare_equal():
+    c = cl.Contact(P.Paraboloid(R=0.01), materials=(STEEL, STEEL), friction=0.3)
+    fm = c.fretting_map(force=[10.0, 20.0], displacement_amplitude=[1e-7, 1e-6])
+    _roundtrip(fm)
+    assert fm != c.fretting_map(force=[10.0, 21.0], displacement_amplitude=[1e-7, 1e-6])
+    w = c.wear(force=10.0, displacement_amplitude=1e-6, wear_coefficient=1e-15, cycles=10.0,
+               n_grid=100, max_radius=2e-4)
+    _roundtrip(w)
+
+
+def test_result_equality_is_one_shared_implementation():
+    """Every array-holding result compares through params.FieldsEqual (a dataclass with eq=True
+    would write its own tuple __eq__ over it, which raises on arrays)."""
+    from contactlab.effects.adhesion import AdhesionCycle
+    from contactlab.effects.fretting import FrettingMap
+    from contactlab.effects.viscoelastic import ViscoelasticHistory
+    from contactlab.effects.wear import WearResult
+    from contactlab.params import FieldsEqual
+    from contactlab.scene.run import SceneResult
+    for cls in (AdhesionCycle, ViscoelasticHistory, FrettingMap, WearResult, SceneResult):
+        assert cls.__eq__ is FieldsEqual.__eq__ and cls.__hash__ is None, cls
+        assert not cls.__dataclass_params__.eq, cls
