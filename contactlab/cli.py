@@ -235,7 +235,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     try:
         payload, text = sweep_command(args.scene, args.grid, args.output, scheduler=args.scheduler,
                                       workers=args.workers, progress=not args.json,
-                                      on_error=args.on_error)
+                                      on_error=args.on_error,
+                                      allow_outside=args.allow_outside)
     except ImportError as err:           # a missing optional extra (pandas, pyarrow, dask)
         _emit(args, {"ok": False, "exit": 1, "error": str(err), "kind": "ImportError"}, "")
         if not args.json:

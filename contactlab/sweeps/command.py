@@ -39,7 +39,8 @@ def _has_pyarrow() -> bool:
 
 def sweep_command(scene: str | Path, specs: Sequence[str], output: str | Path | None = None, *,
                   scheduler: str | None = None, workers: int | None = None,
-                  progress: bool = True, on_error: str = "record") -> tuple[dict[str, Any], str]:
+                  progress: bool = True, on_error: str = "record",
+                  allow_outside: bool = False) -> tuple[dict[str, Any], str]:
     """Run the sweep of the command line; returns (JSON payload, text for humans)."""
     grid = _grid(specs)
     outdir = Path(output) if output is not None else None
@@ -62,7 +63,7 @@ def sweep_command(scene: str | Path, specs: Sequence[str], output: str | Path | 
         client = Client(scheduler, timeout="30s")
     try:
         table = sweep(scene, grid, client=client, workers=workers, progress=progress,
-                      on_error=on_error, store=store)
+                      on_error=on_error, store=store, allow_outside=allow_outside)
     finally:
         if client is not None:
             client.close()

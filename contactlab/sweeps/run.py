@@ -87,7 +87,7 @@ def _cpu_count() -> int:
 
 def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = None,
           progress: bool = True, on_error: str = "record", store: str | Path | None = None,
-          batch_size: int | None = None) -> Any:
+          batch_size: int | None = None, allow_outside: bool | None = None) -> Any:
     """Run a study at every point of a grid: serially, on all local cores or on a Dask cluster.
 
     Parameters
@@ -119,6 +119,10 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     batch_size : int, optional
         Points per task; default chosen so the per-task overhead stays under
         :data:`TARGET_OVERHEAD` of the compute time (see :func:`batch_size`).
+    allow_outside : bool, optional
+        Scene studies: let relative file names in the scene (tables, histories) leave the scene's
+        folder, as ``contactlab run --allow-outside``; default: the Scene's own setting (False
+        for files and tables).
 
     Returns
     -------
@@ -155,7 +159,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     if batch_size is not None and (isinstance(batch_size, bool) or not isinstance(batch_size, int)
                                    or batch_size < 1):
         raise ParameterError(f"batch_size={batch_size!r} is invalid: give an integer >= 1 or None.")
-    fn = as_study(study)
+    fn = as_study(study, allow_outside)
     if isinstance(fn, SceneStudy):
         fn.check(g.points[0])
     st = Store(store, g, study_id(fn)) if store is not None else None

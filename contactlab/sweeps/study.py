@@ -39,6 +39,9 @@ class SceneStudy:
         A :class:`~contactlab.scene.Scene`, its tables or a TOML file.
     base_dir : path, optional
         Directory of the scene's relative CSV files (taken from the Scene or file by default).
+    allow_outside : bool, optional
+        Let relative file names in the scene leave its folder (as ``contactlab run
+        --allow-outside``); default: the Scene's own setting, False for files and tables.
 
     Examples
     --------
@@ -46,15 +49,23 @@ class SceneStudy:
     >>> study(**{"interface.friction": 0.3})["torque"]          # doctest: +SKIP
     """
 
-    def __init__(self, scene: Any, base_dir: str | Path | None = None) -> None:
+    def __init__(self, scene: Any, base_dir: str | Path | None = None, *,
+                 allow_outside: bool | None = None) -> None:
         from ..scene import Scene
+        if allow_outside is not None and not isinstance(allow_outside, (bool, np.bool_)):
+            raise ParameterError(f"allow_outside={allow_outside!r} is invalid: give True, False "
+                                 "or None (the scene's own setting).")
+        outside = bool(allow_outside)
         if isinstance(scene, (str, Path)):
-            scene = Scene.from_toml(scene)
+            scene = Scene.from_toml(scene, allow_outside=outside)
         elif isinstance(scene, Mapping):
-            scene = Scene(scene, base_dir)
+            scene = Scene(scene, base_dir, allow_outside=outside)
         elif not isinstance(scene, Scene):
             raise ParameterError(f"study={scene!r} is invalid: give a Scene, a scene file, its "
                                  "tables or a picklable function of keyword arguments.")
+        elif allow_outside is not None and outside != scene.allow_outside:
+            scene = Scene(scene.to_dict(), scene.base_dir, allow_outside=outside)
+        self.allow_outside = scene.allow_outside
         self.data = scene.to_dict()
         bd = base_dir if base_dir is not None else scene.base_dir
         self.base_dir = str(Path(bd).resolve()) if bd is not None else None
@@ -65,7 +76,7 @@ class SceneStudy:
         data = copy.deepcopy(self.data)
         for key, value in values.items():
             set_key_path(data, key, value)
-        return Scene(data, self.base_dir)
+        return Scene(data, self.base_dir, allow_outside=self.allow_outside)
 
     def __call__(self, **values: Any) -> dict[str, Any]:
         return scalars(self.scene(**values).run())
@@ -92,17 +103,31 @@ class SceneStudy:
         return f"SceneStudy({title!r})"
 
 
-def as_study(study: Any) -> Callable[..., Any]:
-    """A scene (file, tables, Scene) becomes a :class:`SceneStudy`; a callable stays itself."""
-    if isinstance(study, SceneStudy) or (callable(study) and not isinstance(study, type)):
+def as_study(study: Any, allow_outside: bool | None = None) -> Callable[..., Any]:
+    """A scene (file, tables, Scene) becomes a :class:`SceneStudy`; a callable stays itself.
+
+    ``allow_outside`` (scene studies only) lets the scene's relative file names leave its folder.
+    """
+    if isinstance(study, SceneStudy):
+        if allow_outside is not None and bool(allow_outside) != study.allow_outside:
+            raise ParameterError(f"allow_outside={allow_outside!r} disagrees with the "
+                                 f"SceneStudy's allow_outside={study.allow_outside!r}: set it "
+                                 "when building the SceneStudy.")
         return study
-    return SceneStudy(study)
+    if callable(study) and not isinstance(study, type):
+        if allow_outside is not None:
+            raise ParameterError(f"allow_outside={allow_outside!r} applies to scene studies "
+                                 "(files a scene refers to); a study function reads its own "
+                                 "files.")
+        return study
+    return SceneStudy(study, allow_outside=allow_outside)
 
 
 def study_id(study: Any) -> str:
     """A stable name of a study, to tell whether a store belongs to it."""
     if isinstance(study, SceneStudy):
-        text = repr(sorted(study.data.items(), key=lambda kv: kv[0])) + str(study.base_dir)
+        text = (repr(sorted(study.data.items(), key=lambda kv: kv[0])) + str(study.base_dir)
+                + ("|outside" if study.allow_outside else ""))
         return "scene:" + hashlib.sha256(text.encode()).hexdigest()[:16]
     mod = getattr(study, "__module__", None) or type(study).__module__
     name = getattr(study, "__qualname__", None) or type(study).__qualname__

@@ -107,3 +107,67 @@ def test_evaluate_lets_keyboard_interrupt_through():
         raise KeyboardInterrupt
     with pytest.raises(KeyboardInterrupt):
         evaluate(stop, 0, {"x": 1})
+
+
+def _outside_scene(tmp_path):
+    """A scene in tmp/a/ whose tabulated profile is ../lens.csv (outside its folder)."""
+    r = np.linspace(0.0, 2e-3, 41)
+    (tmp_path / "lens.csv").write_text("r,f\n" + "\n".join(f"{float(x)!r},{float(x * x / 0.02)!r}"
+                                                          for x in r) + "\n")
+    d = tmp_path / "a"
+    d.mkdir()
+    data = base()
+    data["profile"] = {"type": "tabulated", "file": "../lens.csv"}
+    text = Scene(base()).to_toml().replace('type = "paraboloid"', 'type = "tabulated"')
+    text = text.replace('R = 0.01', 'file = "../lens.csv"')
+    (d / "s.toml").write_text(text)
+    return d / "s.toml", data, d
+
+
+def test_allow_outside_passes_through_like_the_cli(tmp_path):
+    """sweep(..., allow_outside=True) reads a file outside the scene's folder at every point,
+    as `contactlab run --allow-outside` does; without it the scene is refused, as the CLI does."""
+    import contactlab as cl
+    from contactlab.cli import main
+    from contactlab.errors import SceneError
+    path, data, folder = _outside_scene(tmp_path)
+    assert main(["validate", str(path)]) == 2
+    assert main(["validate", str(path), "--allow-outside"]) == 0
+    with pytest.raises(SceneError, match="inside the scene's folder"):
+        SceneStudy(path)
+    grid = {"load_path[0].ramp.force": [10.0, 20.0]}
+    (folder / "inside.csv").write_text((tmp_path / "lens.csv").read_text())
+    (folder / "inside.toml").write_text(path.read_text().replace("../lens.csv", "inside.csv"))
+    inside = cl.sweep(folder / "inside.toml", grid, workers=1, progress=False)
+    assert inside["error"].isna().all() and inside["radius"].gt(0).all()
+    for study in (path, Scene.from_toml(path, allow_outside=True), data):
+        kw = {} if isinstance(study, Scene) else {"allow_outside": True}
+        if isinstance(study, dict):
+            study = SceneStudy(study, folder, allow_outside=True)
+            kw = {}
+        table = cl.sweep(study, grid, workers=1, progress=False, **kw)
+        assert table["error"].isna().all(), table["message"].tolist()
+        assert table["radius"].tolist() == inside["radius"].tolist()
+    study = SceneStudy(Scene.from_toml(path, allow_outside=True))
+    assert study.allow_outside and pickle.loads(pickle.dumps(study)).allow_outside
+    with pytest.raises(SceneError, match="inside the scene's folder"):
+        SceneStudy(Scene.from_toml(path, allow_outside=True), allow_outside=False)
+    with pytest.raises(ParameterError, match="disagrees"):
+        cl.sweep(study, grid, workers=1, progress=False, allow_outside=False)
+    with pytest.raises(ParameterError, match="scene studies"):
+        cl.sweep(lambda x: {"x": x}, {"x": [1.0]}, workers=1, progress=False, allow_outside=True)
+    with pytest.raises(ParameterError, match="allow_outside='yes'"):
+        SceneStudy(path, allow_outside="yes")
+
+
+def test_cli_sweep_allow_outside(tmp_path, capsys):
+    pytest.importorskip("pandas")
+    from contactlab.cli import main
+    path, _, _ = _outside_scene(tmp_path)
+    argv = ["sweep", str(path), "--grid", "load_path[0].ramp.force=10,20", "--workers", "1",
+            "--json"]
+    assert main(argv) == 2
+    capsys.readouterr()
+    assert main(argv + ["--allow-outside"]) == 0
+    out = capsys.readouterr().out
+    assert '"ok": true' in out
