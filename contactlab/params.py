@@ -487,7 +487,7 @@ def check_memory(what: str, n_bytes: float, detail: str) -> None:
     if n_bytes > budget:
         raise MemoryBudgetError(
             f"{what} would need about {n_bytes / 1024**3:.3g} GiB ({detail}), above the memory "
-            f"budget of {budget / 1024**3:.3g} GiB: reduce the steps or n_springs, or raise the "
+            f"budget of {budget / 1024**3:.3g} GiB: reduce what drives it, or raise the "
             f"budget with contactlab.set_memory_budget(...) or {MEMORY_BUDGET_ENV}=...")
 
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
-from ..params import as_checked_array, as_real, exactly_one
+from ..params import as_checked_array, as_real, check_memory, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
 from ..physics import master as _master
@@ -30,7 +30,7 @@ from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 
-__all__ = ["ContactLaw", "LawStep", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
+__all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
            "DEFAULT_SPRING_COVER"]
 
 #: turning points stored per contact and channel (four nested loops)
@@ -93,6 +93,22 @@ def _per_step(name: str, value: Any, size: int, unit: str, nonneg: bool = False)
     arr = as_checked_array(name, value, domain="nonnegative" if nonneg else "real", unit=unit,
                            size=size)
     return np.broadcast_to(arr, (size,))
+
+
+#: float64 values per contact held by a law (tracemalloc, rounded up: 22 + 4 per memory level
+#: + 3 per spring measured) and per contact on springs during a step (20-21 per spring measured)
+_PER_CONTACT, _PER_LEVEL, _PER_SPRING, _PER_SPRING_STEP = 32, 4, 4, 24
+
+
+def law_memory(size: int, memory: int, springs: int) -> float:
+    """Estimated memory of a :class:`ContactLaw`'s state, bytes (checked against the memory
+    budget, :func:`contactlab.set_memory_budget`, before it is allocated)."""
+    return 8.0 * float(size) * (_PER_CONTACT + _PER_LEVEL * memory + _PER_SPRING * springs)
+
+
+def law_spring_memory(n_contacts: int, springs: int) -> float:
+    """Estimated peak temporaries of a step with ``n_contacts`` contacts on springs, bytes."""
+    return 8.0 * float(n_contacts) * (_PER_CONTACT + _PER_SPRING_STEP * springs)
 
 
 class ContactLaw:
@@ -233,6 +249,8 @@ class ContactLaw:
         sizes = set(sizes.values())
         if size is None:
             size = max(sizes) if sizes else 1
+        check_memory("ContactLaw()", law_memory(size, memory, springs),
+                     f"{size} contacts, memory={memory}, springs={springs}")
         arrs = {k: np.broadcast_to(_per_contact(k, v, size), (size,)).copy()
                 for k, v in vals.items()}
         self.size = int(size)
@@ -400,6 +418,10 @@ class ContactLaw:
         off = live & (np.abs(d - ref) > self.load_rtol * ref)
         if self.springs:
             on = st["spr_on"]
+            if np.any(off & ~on):
+                n_spr = int(np.count_nonzero(on | off))
+                check_memory("ContactLaw.step()", law_spring_memory(n_spr, self.springs),
+                             f"{n_spr} contacts on {self.springs} springs each")
             self._to_springs(np.flatnonzero(off & ~on), d, a)
             off = np.zeros(size, bool)
         if np.any(off):

@@ -201,8 +201,7 @@ class _Checker:
         self.allow_outside = allow_outside
         self.issues: list[Issue] = []
         self.base_dir = base_dir
-        #: rows of each load-path table file, by segment path (they count against MAX_STEPS)
-        self.file_rows: dict[str, int] = {}
+        self.file_steps: dict[str, int] = {}     # load_path[i] -> rows of its CSV history
 
     def add(self, path: str, value: Any, allowed: str) -> None:
         self.issues.append((path, value, allowed))
@@ -514,7 +513,7 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
                 ck.add(f"{sp}.file", body["file"], f"a readable CSV history ({_first_line(err)})")
                 cols = None
             if cols is not None:
-                ck.file_rows[path] = len(next(iter(cols.values())))
+                ck.file_steps[path] = max((len(v) for v in cols.values()), default=0)
                 for name in cols:
                     if name != "time" and name not in CONTROLS:
                         ck.unknown_keys(f"{sp}.file[columns]", {name: None},
@@ -546,15 +545,16 @@ def _segment(ck: _Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]
     return {kind: out}
 
 
-def _total_steps(segs: list, file_rows: Sequence[int] = ()) -> int:
-    """Steps of a validated path; ``file_rows[i]``: rows of segment i's table file (0 if none)."""
+def _total_steps(segs: list, file_steps: Sequence[int] = ()) -> int:
+    """Steps of the whole load path: every segment kind, repeats expanded, and the rows of CSV
+    histories (``file_steps[i]``: rows of segment ``i``'s file, read during validation)."""
     counts: list[int] = []
     for i, seg in enumerate(segs):
         if "repeat" in seg:
             k = min(seg["repeat"].get("last", 1), len(counts))
             counts[-k:] = [seg["repeat"]["times"] * sum(counts[-k:])] if k else []
         else:
-            counts.append(_segment_steps(seg) or (file_rows[i] if i < len(file_rows) else 0))
+            counts.append(_segment_steps(seg) or (file_steps[i] if i < len(file_steps) else 0))
     return sum(counts)
 
 
@@ -577,7 +577,7 @@ def _segment_steps(seg: dict) -> int:
     if kind == "sinusoid":
         return max(1, int(round(body["cycles"] * body.get("steps_per_cycle", 100))))
     if kind == "repeat" or "file" in body:
-        return 0  # repeats and the rows of CSV histories: counted by the caller
+        return 0  # repeats and CSV histories: counted by _total_steps
     return max((len(v) for k, v in body.items() if k in CONTROLS or k == "time"), default=0)
 
 
@@ -675,7 +675,7 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
             segs = [_segment(ck, f"load_path[{i}]", s, axes) for i, s in enumerate(lp)]
             if all(s is not None for s in segs):
                 data["load_path"] = segs
-                n = _total_steps(segs, [ck.file_rows.get(f"load_path[{i}]", 0)
+                n = _total_steps(segs, [ck.file_steps.get(f"load_path[{i}]", 0)
                                         for i in range(len(segs))])
                 if n > MAX_STEPS:
                     ck.add("load_path", f"{n} steps", f"at most {MAX_STEPS} steps in total")

@@ -202,3 +202,38 @@ def test_warnings_are_one_line_each(tmp_path):
     assert r.returncode == 0, r.stderr
     lines = r.stderr.strip().splitlines()
     assert lines and all(ln.startswith("contactlab: ValidityWarning: ") for ln in lines), lines
+
+
+@pytest.mark.parametrize("segments", [
+    # a CSV history's rows count, also under a repeat (each row is one step)
+    ['table = {{file = "h.csv"}}', 'repeat = {{times = {big}}}'],
+    ['table = {{file = "h.csv"}}', 'ramp = {{force = "5 N", steps = {rest}}}'],
+    ['ramp = {{force = "5 N", steps = {rest}}}', 'table = {{file = "h.csv"}}'],
+    # every other kind counts as well
+    ['ramp = {{force = "5 N", steps = {half}}}', 'hold = {{steps = {half}}}',
+     'table = {{force = [1.0, 2.0]}}'],
+    ['ramp = {{force = "5 N", steps = 10}}',
+     'sinusoid = {{force = "1 N", cycles = {quarter}, steps_per_cycle = 4}}',
+     'hold = {{steps = 3}}'],
+    ['ramp = {{force = "5 N", steps = 10}}', 'hold = {{steps = 10}}',
+     'repeat = {{times = {big20}, last = 2}}'],
+])
+def test_every_segment_kind_and_history_file_counts_toward_the_step_limit(tmp_path, capsys,
+                                                                         segments):
+    from contactlab.scene.validate import MAX_STEPS
+    rows = 100
+    (tmp_path / "h.csv").write_text("time,force\n" + "".join(f"{i},{1.0 + i % 3}\n"
+                                                            for i in range(rows)))
+    fmt = {"big": MAX_STEPS // rows + 1, "rest": MAX_STEPS - rows + 1, "half": MAX_STEPS // 2,
+           "quarter": MAX_STEPS // 4, "big20": MAX_STEPS // 20 + 1}
+    body = "".join(f"[[load_path]]\n{s.format(**fmt)}\n" for s in segments)
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE.split("[[load_path]]")[0] + body)
+    assert main(["validate", str(scene)]) == 2
+    assert f"at most {MAX_STEPS} steps in total" in capsys.readouterr().err
+    # one step fewer is accepted (the limit is exact), for the history-file cases
+    if "rest" in segments[-1] or "rest" in segments[0]:
+        fmt["rest"] -= 1
+        body = "".join(f"[[load_path]]\n{s.format(**fmt)}\n" for s in segments)
+        scene.write_text(SCENE.split("[[load_path]]")[0] + body)
+        assert main(["validate", str(scene)]) == 0, capsys.readouterr().err

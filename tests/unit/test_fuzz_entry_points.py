@@ -222,3 +222,43 @@ def _study(x=1.0):
 def test_sweep_grid_values(grid, match):
     with pytest.raises(ParameterError, match=match):
         cl.sweep(_study, grid, workers=1, progress=False)
+
+
+# ------------------------------------------------------------------ ContactLaw memory
+def test_law_memory_guard_before_allocating():
+    with pytest.raises(MemoryBudgetError, match=r"ContactLaw\(\) would need .*1000000000 contacts"):
+        law(R=0.01, size=10**9)
+    with pytest.raises(MemoryBudgetError, match="springs=4096"):
+        law(R=0.01, size=10**6, springs=4096)
+
+
+def test_law_memory_estimate_covers_a_measured_law():
+    import tracemalloc
+    from contactlab.effects.law import law_memory, law_spring_memory
+    n = 20_000
+    R = np.full(n, 0.01)
+    law(R=R).step(force=1.0, displacement=1e-7)          # warm: compiled kernels, tables
+    tracemalloc.start()
+    try:
+        lw = law(R=R)
+        lw.step(force=1.0, displacement=1e-7)
+        lw.step(force=1.0, twist=1e-4)
+        state = tracemalloc.get_traced_memory()[1]
+        tracemalloc.reset_peak()
+        lw.step(force=2.0, displacement=1e-7)           # every contact moves to its springs
+        springs = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert state <= law_memory(n, 8, 16) <= 4 * state
+    assert springs - state <= law_spring_memory(n, 16) + law_memory(n, 8, 16)
+
+
+def test_law_spring_memory_guard_on_a_load_change():
+    previous = cl.set_memory_budget(2e6)           # state of 1000 contacts fits, springs do not
+    try:
+        lw = law(R=np.full(1000, 0.01))
+        lw.step(force=1.0, displacement=1e-7)
+        with pytest.raises(MemoryBudgetError, match=r"ContactLaw.step\(\).*1000 contacts on 16"):
+            lw.step(force=2.0, displacement=1e-7)
+    finally:
+        cl.set_memory_budget(previous)
