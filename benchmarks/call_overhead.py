@@ -48,7 +48,12 @@ def main() -> int:
     for prof, target in ((Paraboloid(R), (5, 8)), (Cone(0.2), (5, 8)), (PowerLaw(1e3, 4.0), (5, 8)),
                          (FlatPunch(1e-3), (5, 8)), (Sphere(R), (100, 100)),
                          (Polynomial({2: 50.0, 4: 1e6}), (100, 100)),
-                         (TruncatedParaboloid(1e-4, R), (100, 100))):
+                         (TruncatedParaboloid(1e-4, R), (100, 100)),
+                         # scaled single power terms and punches stay closed forms; sums are
+                         # root-solved (Newton on the summed closed-form g')
+                         (2.0 * Paraboloid(R), (5, 8)), (3.0 * FlatPunch(1e-3), (5, 8)),
+                         (2.0 * Sphere(R), (100, 100)), (Paraboloid(R) + Cone(0.2), (100, 100)),
+                         (Sphere(R) + PowerLaw(1e3, 4.0), (100, 100))):
         c = cl.Contact(prof, (STEEL, STEEL))
         c.normal(depth=1e-6), c.normal(force=10.0)         # warm: scalar forms, kappa, imports
         td = per_call(lambda: c.normal(depth=1e-6))

@@ -160,7 +160,7 @@ def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
         F = (a * d - g_int) * (2.0 * E)
     else:
         g_int = F = 0.0
-    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key,
+    meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,
                      "citations": _SOURCES},
                     _scalar.force_rel_error, E, a, d, g_int, F, v if key == "force" else None)
     # (the dataclass __init__ and its frozen setattr cost more than the solve: fill the fields)
@@ -189,7 +189,7 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
     try:
         if (radius is None and branch == "stable" and (depth is None) != (force is None)
                 and type(depth if force is None else force) in _SCALARS
-                and not contact.is_adhesive):
+                and not contact.work_of_adhesion):
             value = depth if force is None else force
             state = _fast_normal(contact, "depth" if force is None else "force", value)
             if state is not None:           # plain floats: overflow gives inf (or raises)

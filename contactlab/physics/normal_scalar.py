@@ -11,9 +11,12 @@ float functions (:func:`forms_of`), so a scalar solve is a few float operations:
   :func:`contactlab.numeric.roots.scalar_root`, Newton on the closed-form derivative where the
   profile has one (``g'``; for the force ``d(a g - ∫g)/da = a g'``), Chandrupatla otherwise.
 
-Profiles without a closed-form (or symbolic) ``g``, with a wall (flat punch) or with a ring-contact
-check (tables) are not handled here (:func:`forms_of` returns ``None``): their callers use the array
-kernels. The results agree with the array route to the same tolerance (the same formulas, the
+* a flat punch: the contact radius is the wall's; ``g`` and ``∫g`` there are evaluated once;
+* sums and scaled profiles: composed from their terms' (base's) scalar forms.
+
+Profiles without a closed-form (or symbolic) ``g``, rising before a wall, summed with a punch, or
+with a ring-contact check (tables) are not handled here (:func:`forms_of` returns ``None``): their
+callers use the array kernels. The results agree with the array route to the same tolerance (the same formulas, the
 same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they need not be bit-identical
 to it, but every call of this route is deterministic.
 """
@@ -42,7 +45,8 @@ class ScalarForms:
     depth or ``None``; ``radius_of_reduced_force``: contact radius of ``F/(2E*)`` or ``None``;
     ``g_prime``: ``g'(a)`` or ``None``; ``lo``: the flat radius (g = 0 below it); ``limit``: the
     largest admissible contact radius; ``start``: the first upper bracket; ``wall``: the punch
-    wall radius (``inf`` without); ``validity``: the profile's ``validity_radius``.
+    wall radius (``inf`` without); ``validity``: the profile's ``validity_radius``; ``route``: its
+    ``g_route`` (reported in the result's meta).
     """
 
     g: Callable[[float], float]
@@ -55,6 +59,7 @@ class ScalarForms:
     start: float
     wall: float = math.inf
     validity: float = math.inf
+    route: str = ""
 
 
 def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], float]:
@@ -63,9 +68,66 @@ def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], floa
     return call
 
 
+def _at_wall(fn: Callable[[float], float], wall: float) -> Callable[[float], float]:
+    """``fn`` with its value at the wall radius computed once (a punch's contact radius is the
+    wall's for every load, so that is the only argument the fast path passes)."""
+    at_wall = fn(wall)
+
+    def call(x: float) -> float:
+        return at_wall if x == wall else fn(x)
+    return call
+
+
+def _sum_forms(profile: Profile) -> ScalarForms | None:
+    """A sum of profiles: g, ∫g and g' are sums of the terms' scalar forms (the MDR transform is
+    linear in the profile); ``None`` when a term has no scalar forms or a wall."""
+    parts = [forms_of(t) for t in profile.terms]
+    if any(f is None or math.isfinite(f.wall) for f in parts):
+        return None
+    gs = tuple(f.g for f in parts)
+    gis = tuple(f.g_integral for f in parts)
+    gps = tuple(f.g_prime for f in parts)
+
+    def g(a: float) -> float:
+        return sum(f(a) for f in gs)
+
+    def g_int(a: float) -> float:
+        return sum(f(a) for f in gis)
+
+    def g_prime(a: float) -> float:
+        return sum(f(a) for f in gps)
+    return ScalarForms(g=g, g_integral=g_int, g_inverse=None, radius_of_reduced_force=None,
+                       g_prime=None if None in gps else g_prime,
+                       lo=float(profile.flat_radius), limit=float(profile.max_radius),
+                       start=float(profile._initial_bracket()))
+
+
+def _scaled_forms(profile: Profile) -> ScalarForms | None:
+    """``k f``: g, ∫g, g' scale by k; the inverses take the depth or reduced force over k."""
+    base = forms_of(profile.base)
+    if base is None:
+        return None
+    k = float(profile.factor)
+    inv_k = 1.0 / k
+    bg, bgi, bgp, binv, brf = (base.g, base.g_integral, base.g_prime, base.g_inverse,
+                               base.radius_of_reduced_force)
+    return ScalarForms(
+        g=lambda a: k * bg(a), g_integral=lambda a: k * bgi(a),
+        g_inverse=None if binv is None else (lambda d: binv(d * inv_k)),
+        radius_of_reduced_force=None if brf is None else (lambda fr: brf(fr * inv_k)),
+        g_prime=None if bgp is None else (lambda a: k * bgp(a)),
+        lo=base.lo, limit=float(profile.max_radius), start=base.start, wall=base.wall)
+
+
 def _build(profile: Profile) -> ScalarForms | None:
-    if (profile.g_route not in ("closed_form", "symbolic") or profile.has("terms")
-            or profile._has("_check_monotone_upto")):
+    if profile.g_route not in ("closed_form", "symbolic") or profile._has("_check_monotone_upto"):
+        return None
+    from ..profiles.compound import Scaled, Sum
+    if type(profile) is Sum:
+        return _sum_forms(profile)
+    if type(profile) is Scaled and profile.power_terms() is None:
+        return _scaled_forms(profile)
+    if profile.has("terms"):
         return None
     lo = float(profile.flat_radius)
     wall = float(profile.wall_radius)
@@ -73,9 +135,9 @@ def _build(profile: Profile) -> ScalarForms | None:
         if lo < wall:
             return None             # a profile rising before its wall: the array route
         # a flat punch: the contact radius is the wall's for every load
-        g_int = _on_scalar(lambda a: profile._g_integral_with_error(a)[0])
-        return ScalarForms(g=_on_scalar(profile._g), g_integral=g_int, g_inverse=None,
-                           radius_of_reduced_force=None, g_prime=None, lo=lo,
+        g_int = _at_wall(_on_scalar(lambda a: profile._g_integral_with_error(a)[0]), wall)
+        return ScalarForms(g=_at_wall(_on_scalar(profile._g), wall), g_integral=g_int,
+                           g_inverse=None, radius_of_reduced_force=None, g_prime=None, lo=lo,
                            limit=float(profile.max_radius), start=wall, wall=wall)
     limit = float(profile.max_radius)
     start = float(profile._initial_bracket())
@@ -121,13 +183,15 @@ def _with_validity(profile: Profile, forms: ScalarForms | None) -> ScalarForms |
     if forms is None:
         return None
     from dataclasses import replace
-    return replace(forms, validity=float(getattr(profile, "validity_radius", math.inf)))
+    return replace(forms, validity=float(getattr(profile, "validity_radius", math.inf)),
+                   route=profile.g_route)
 
 
 def forms_of(profile: Profile) -> ScalarForms | None:
     """The scalar forms of ``profile``, built on first use and kept on the profile.
 
-    ``None`` when the profile has no scalar route (numeric g, a wall, a sum of terms, a table).
+    ``None`` when the profile has no scalar route (numeric g, a profile rising before its wall, a
+    sum with a punch term, a table).
     The forms are a pure function of the (immutable) profile, so keeping them changes no result.
     """
     forms = profile.__dict__.get(_CACHE_KEY, False)

@@ -14,7 +14,11 @@ from tests.tolerances import CLOSED_FORM, SCALAR_VS_ARRAY
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 PROFILES = [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0), PowerLaw(2e-2, 0.7), Sphere(0.01),
-            Polynomial({2: 50.0, 4: 1e6}), TruncatedParaboloid(1e-4, 0.01), FlatPunch(1e-3)]
+            Polynomial({2: 50.0, 4: 1e6}), TruncatedParaboloid(1e-4, 0.01), FlatPunch(1e-3),
+            # sums and scaled profiles: composed from their terms' scalar forms
+            Paraboloid(0.01) + Cone(0.1), Sphere(0.01) + PowerLaw(1e3, 4.0),
+            TruncatedParaboloid(1e-4, 0.01) + Cone(0.2), 2.0 * Sphere(0.01),
+            3.0 * FlatPunch(1e-3), 0.5 * Polynomial({2: 50.0, 4: 1e6})]
 
 
 @pytest.mark.parametrize("prof", PROFILES, ids=repr)
@@ -46,6 +50,19 @@ def test_hertz_closed_form():
         assert abs(d.force - F) <= CLOSED_FORM * F
 
 
+def test_flat_punch_closed_form():
+    """Boussinesq: the contact radius is the punch radius b and F = 2 E* b d."""
+    E = hertz.effective_modulus(210e9, 0.3, 210e9, 0.3)
+    b = 1e-3
+    for prof, k in ((FlatPunch(b), 1.0), (3.0 * FlatPunch(b), 3.0)):
+        c = cl.Contact(prof, (STEEL, STEEL))
+        for d in (1e-9, 2e-6):
+            s = c.normal(depth=d)
+            assert s.radius == b and abs(s.force - 2 * E * b * d) <= CLOSED_FORM * s.force
+            f = c.normal(force=s.force)
+            assert f.radius == b and abs(f.depth - d) <= CLOSED_FORM * d
+
+
 def test_error_estimate_is_lazy_and_complete():
     c = cl.Contact(Sphere(0.01), (STEEL, STEEL))
     s = c.normal(force=10.0)
@@ -65,7 +82,8 @@ def test_sphere_too_deep_raises_like_the_array_route():
 def test_profiles_without_scalar_forms_use_the_array_route():
     r = np.linspace(0, 1e-3, 50)
     assert normal_scalar.forms_of(Tabulated(r, r**2 / 0.02)) is None
-    assert normal_scalar.forms_of(Paraboloid(0.01) + Cone(0.1)) is None
+    assert normal_scalar.forms_of(FlatPunch(1e-3) + Paraboloid(0.01)) is None   # rises at a wall
+    assert normal_scalar.forms_of(Paraboloid(0.01) + Tabulated(r, r**2 / 0.02)) is None
 
 
 def test_same_call_is_bit_identical():
