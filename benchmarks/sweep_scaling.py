@@ -4,20 +4,24 @@ Run from the repository root (needs the extras dist and data):
 ``python benchmarks/sweep_scaling.py`` (``--quick`` for a smaller run). Prints the machine, then
 
 1. 200 torsional loops (exact Masing history, 10 twist cycles of 100 steps each, amplitude x
-   friction grid), run serially in this process, on a LocalCluster of 1 worker process and of 2
-   worker processes, side by side: wall times and the 2-vs-1 speed-up;
+   friction grid), run serially in this process and on LocalClusters side by side: 1 worker with
+   Dask's default worker environment, 1 and 2 workers with ``MALLOC_TRIM_THRESHOLD_`` left unset
+   (Dask's nanny sets it to 65536 by default, which makes glibc return freed memory at once and
+   costs numpy-heavy studies ~20 % CPU); wall times, the 2-vs-1 speed-up, and the compute time
+   the points took on the workers (summed per point) against the serial one;
 2. the scheduler's per-task overhead: 400 empty points, one point per task, on the 1-worker
    cluster and on a local process pool of 1;
 3. small tasks (one exact torsion point, milliseconds) and tiny ones (a closed-form Hertz point,
    microseconds): one point per task versus the automatic batch size (Hertz: on 10x as many points),
-   on the 1-worker cluster; overhead = cluster wall / serial wall - 1 (the serial sweep
-   evaluates and tabulates the same points in this process; best of two, alternating).
+   on the 1-worker cluster (Dask defaults); overhead = cluster wall / serial wall - 1 (the serial
+   sweep evaluates and tabulates the same points in this process; best of three, alternating).
 
 Clusters are started before the timings (their start-up is printed separately).
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -40,6 +44,14 @@ def torsion_loop(amplitude, friction, cycles=10, steps_per_cycle=100):
     t = np.linspace(0.0, 2 * np.pi * cycles, cycles * steps_per_cycle + 1)
     h = contact.twist_history(twist=amplitude * np.sin(t), force=100.0, method="exact")
     return {"energy": h.dissipated_energy[-1], "torque_max": np.max(np.abs(h.torque))}
+
+
+def timed_loop(amplitude, friction):
+    """:func:`torsion_loop` and the seconds it took where it ran (column ``cpu``)."""
+    t0 = time.perf_counter()
+    out = torsion_loop(amplitude, friction)
+    out["cpu"] = time.perf_counter() - t0
+    return out
 
 
 def empty(i):
@@ -70,6 +82,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer loops and tiny tasks")
     args = ap.parse_args()
+    import dask
     from distributed import Client, LocalCluster
 
     print(machine())
@@ -80,26 +93,36 @@ def main() -> None:
     n_tiny = 1000 if args.quick else 3000
     tiny = {"force": list(np.linspace(1.0, 1000.0, n_tiny))}
 
-    t_serial, serial = timed(lambda: contactlab.sweep(torsion_loop, loops, workers=1,
+    t_serial, serial = timed(lambda: contactlab.sweep(timed_loop, loops, workers=1,
                                                       progress=False))
-    rows = [("serial, this process", 1, t_serial, "")]
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0") as c2, Client(c2) as client2, \
-            LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
-                         dashboard_address=":0") as c1, Client(c1) as client1:
+    rows = [("serial, this process", 1, t_serial, serial.pop("cpu").sum(), "")]
+    cluster = dict(threads_per_worker=1, processes=True, dashboard_address=":0")
+    # the clusters without the variable first: a nanny leaves its variables in this process's
+    # environment, which later worker processes inherit
+    os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+        c1n = LocalCluster(n_workers=1, **cluster)
+        c2n = LocalCluster(n_workers=2, **cluster)
+    with c1n, c2n, Client(c1n) as client1n, Client(c2n) as client2n, \
+            LocalCluster(n_workers=1, **cluster) as c1, Client(c1) as client1:
         for name, client, w in (("LocalCluster, 1 worker", client1, 1),
-                                ("LocalCluster, 2 workers", client2, 2)):
+                                ("1 worker, no MALLOC_TRIM", client1n, 1),
+                                ("2 workers, no MALLOC_TRIM", client2n, 2)):
             contactlab.sweep(empty, {"i": [0, 1]}, client=client, progress=False)   # warm
-            t, table = timed(lambda: contactlab.sweep(torsion_loop, loops, client=client,
+            t, table = timed(lambda: contactlab.sweep(timed_loop, loops, client=client,
                                                       progress=False))
+            cpu = table.pop("cpu").sum()
             assert table.equals(serial), "cluster table differs from the serial one"
             st = table.attrs["sweep"]["stats"]
-            rows.append((name, w, t, f"batch {st['batch_size']}, {st['tasks']} tasks"))
-        print(f"\n1. {n_loops} torsional loops (10 cycles x 100 steps, exact), tables identical:")
-        for name, w, t, note in rows:
-            print(f"   {name:<26} {t:8.2f} s   {n_loops / t:7.1f} loops/s   {note}")
-        print(f"   speed-up 2 vs 1 worker: {rows[1][2] / rows[2][2]:.2f}x   "
-              f"(ideal 2.00x; 1 worker vs serial: {rows[0][2] / rows[1][2]:.2f}x)")
+            rows.append((name, w, t, cpu, f"batch {st['batch_size']}, {st['tasks']} tasks"))
+        print(f"\n1. {n_loops} torsional loops (10 cycles x 100 steps, exact), tables identical; "
+              "compute = the points' own time summed:")
+        for name, w, t, cpu, note in rows:
+            print(f"   {name:<26} {t:8.2f} s   {n_loops / t:7.1f} loops/s   compute {cpu:6.2f} s"
+                  f"   {note}")
+        print(f"   speed-up 2 vs 1 worker (no MALLOC_TRIM): {rows[2][2] / rows[3][2]:.2f}x (ideal "
+              f"2.00x); 1 worker vs serial: {rows[0][2] / rows[1][2]:.2f}x with Dask's default "
+              f"environment, {rows[0][2] / rows[2][2]:.2f}x without MALLOC_TRIM_THRESHOLD_")
 
         n_empty = 400
         print(f"\n2. scheduler overhead per task ({n_empty} empty points, 1 point per task):")
@@ -130,7 +153,7 @@ def main() -> None:
             for label, bs, m in (("1 point per task", 1, n_one), ("automatic batches", None, n_auto)):
                 grid = {"force": list(np.linspace(1.0, 1000.0, m))}
                 t_ser = t = np.inf
-                for _ in range(2):          # alternate, best of two: the load drifts
+                for _ in range(3):          # alternate, best of three: the load drifts
                     t_ser = min(t_ser, timed(lambda: contactlab.sweep(
                         study, grid, workers=1, progress=False))[0])
                     dt, table = timed(lambda: contactlab.sweep(
@@ -138,8 +161,12 @@ def main() -> None:
                     t = min(t, dt)
                 st = table.attrs["sweep"]["stats"]
                 print(f"   {study_name:<14} {label:<18} {m:6d} points, {1e6 * t_ser / m:7.1f} us "
-                      f"each; batch {st['batch_size']:5d}, {st['tasks']:5d} tasks: {t:7.2f} s vs "
+                      f"each; {st.get('calibration_points', 0):5d} timed here, batch "
+                      f"{st.get('batch_size', 0):5d}, {st.get('tasks', 0):5d} tasks: {t:7.2f} s vs "
                       f"{t_ser:6.2f} s serial, overhead {t / t_ser - 1:7.1%}")
+
+    print(f"\nload average at the end: {os.getloadavg()[0]:.2f}")
+
 
 if __name__ == "__main__":
     main()

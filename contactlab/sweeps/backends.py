@@ -1,27 +1,31 @@
 """Where batches of points run: in this process, in a local process pool, on a Dask cluster.
 
-Every backend has one face: ``submit_all(batches)`` then iterate ``completed()`` for the record
-lists in the order they finish, ``roundtrip()`` for the time one empty task takes (the per-task
-overhead that batching must hide), ``cancel()`` and ``close()``. Results do not depend on the
-backend: each point is computed by :func:`~contactlab.sweeps.study.evaluate` alone.
+Every backend has one face: ``submit_all(batches)`` then iterate ``completed()`` for the
+:class:`~contactlab.sweeps.study.Records` of each batch in the order they finish, ``roundtrip()``
+for the time one empty task takes (the per-task overhead that batching must hide), ``cancel()``
+and ``close()``. A batch is a :class:`~contactlab.sweeps.study.Points`. Results do not depend on
+the backend: each point is computed by :func:`~contactlab.sweeps.study.run_batch` alone.
 """
 from __future__ import annotations
 
+import math
 import multiprocessing
 import pickle
 import statistics
 import time
+import weakref
+from collections import deque
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
 from ..errors import ParameterError
-from .study import run_batch
+from .study import Points, Records, run_batch
 
 __all__ = ["Serial", "Pool", "DaskClient", "noop"]
 
-Batch = list[tuple[int, dict[str, Any]]]
+Batch = Points
 
 
 def noop() -> None:
@@ -40,26 +44,40 @@ def _median_roundtrip(submit: Callable[[], Any], n: int = 5) -> float:
 
 
 class Serial:
-    """Batches run one after the other in this process (``workers=1``)."""
+    """Batches run one after the other in this process (``workers=1``).
+
+    If a point is interrupted (KeyboardInterrupt), the points of its batch finished before it
+    are left in :attr:`partial`, so the caller can keep them.
+    """
 
     workers = 1
 
     def __init__(self, study: Callable[..., Any]) -> None:
         self.study = study
-        self._batches: list[Batch] = []
+        self._batches: deque[Batch] = deque()
+        self.partial: Records | None = None
 
     def roundtrip(self) -> float:
         return 0.0
 
-    def submit_all(self, batches: list[Batch]) -> None:
-        self._batches = list(batches)
+    def run(self, batch: Batch) -> Records:
+        """Run one batch here."""
+        out = Records()
+        try:
+            return run_batch(self.study, batch, out)
+        except BaseException:
+            self.partial = out
+            raise
 
-    def completed(self) -> Iterator[list[dict[str, Any]]]:
+    def submit_all(self, batches: list[Batch]) -> None:
+        self._batches = deque(batches)
+
+    def completed(self) -> Iterator[Records]:
         while self._batches:
-            yield run_batch(self.study, self._batches.pop(0))
+            yield self.run(self._batches.popleft())
 
     def cancel(self) -> None:
-        self._batches = []
+        self._batches = deque()
 
     def close(self) -> None:
         self.cancel()
@@ -74,7 +92,7 @@ def _init_worker(blob: bytes) -> None:
     _WORKER_STUDY = pickle.loads(blob)
 
 
-def _pool_batch(batch: Batch) -> list[dict[str, Any]]:
+def _pool_batch(batch: Batch) -> Records:
     return run_batch(_WORKER_STUDY, batch)
 
 
@@ -127,7 +145,7 @@ class Pool:
     def submit_all(self, batches: list[Batch]) -> None:
         self._futures = {self._pool.submit(_pool_batch, b) for b in batches}
 
-    def completed(self) -> Iterator[list[dict[str, Any]]]:
+    def completed(self) -> Iterator[Records]:
         while self._futures:
             done, self._futures = wait(self._futures, return_when=FIRST_COMPLETED)
             for f in done:
@@ -143,8 +161,17 @@ class Pool:
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
+#: a client's measured round trip is reused for this long (s): measuring costs a few round trips
+ROUNDTRIP_CACHE_SECONDS = 300.0
+_ROUNDTRIPS: weakref.WeakKeyDictionary[Any, tuple[float, float]] = weakref.WeakKeyDictionary()
+
+
 class DaskClient:
-    """Batches as tasks of a ``dask.distributed.Client`` (local cluster or remote scheduler)."""
+    """Batches as tasks of a ``dask.distributed.Client`` (local cluster or remote scheduler).
+
+    The per-task round trip is measured once per client (the first measurement also imports
+    contactlab on the workers) and reused for :data:`ROUNDTRIP_CACHE_SECONDS`.
+    """
 
     def __init__(self, study: Callable[..., Any], client: Any) -> None:
         try:
@@ -162,13 +189,24 @@ class DaskClient:
         self.workers = max(1, sum(client.nthreads().values()))
 
     def roundtrip(self) -> float:
-        return _median_roundtrip(lambda: self.client.submit(noop, pure=False).result())
+        try:
+            when, value = _ROUNDTRIPS[self.client]
+        except (KeyError, TypeError):
+            when, value = -math.inf, math.nan
+        if time.monotonic() - when < ROUNDTRIP_CACHE_SECONDS:
+            return value
+        value = _median_roundtrip(lambda: self.client.submit(noop, pure=False).result())
+        try:
+            _ROUNDTRIPS[self.client] = (time.monotonic(), value)
+        except TypeError:        # pragma: no cover - a client object that takes no weak reference
+            pass
+        return value
 
     def submit_all(self, batches: list[Batch]) -> None:
         self._futures = [self.client.submit(run_batch, self.study, b, pure=False)
                          for b in batches]
 
-    def completed(self) -> Iterator[list[dict[str, Any]]]:
+    def completed(self) -> Iterator[Records]:
         for f in self._as_completed(self._futures):
             yield f.result()
         self._futures = []

@@ -54,8 +54,13 @@ class Grid:
         return hashlib.sha256(text.encode()).hexdigest()
 
 
+_PLAIN = frozenset((bool, int, float, str))
+
+
 def _plain(value: Any, where: str) -> Any:
     """A Python scalar (numbers, strings, bools) from a grid entry."""
+    if type(value) in _PLAIN:
+        return value
     if isinstance(value, np.generic):
         value = value.item()
     if isinstance(value, float) and not math.isfinite(value):

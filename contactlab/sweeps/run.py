@@ -1,11 +1,13 @@
 """``sweep``: one call for a parameter study, serially, on all local cores or on a Dask cluster.
 
 The flow: the grid becomes points (:mod:`.grid`); a store, if given, supplies the points already
-finished (:mod:`.store`); the first points run here, which times a point; the backend is chosen
-(:mod:`.backends`) and its per-task round trip measured; the remaining points go out in batches
-large enough that this round trip costs under :data:`TARGET_OVERHEAD` of a batch's compute time
-(:func:`batch_size`); records come back in any order and the table is assembled by point
-(:mod:`.table`), so it does not depend on the backend.
+finished (:mod:`.store`); the first points run here in growing batches (1, 2, 8, 32, ... until a
+batch takes :data:`CALIBRATION_SECONDS`), which warms this process and times a point; the backend
+is chosen (:mod:`.backends`) and its per-task round trip measured; the remaining points go out in
+batches large enough that this round trip costs under :data:`TARGET_OVERHEAD` of a batch's
+compute time (:func:`batch_size`). Batches travel as columns (:class:`~.study.Points` out,
+:class:`~.study.Records` back), not as per-point dicts; records come back in any order and the
+table is assembled by point (:mod:`.table`), so it does not depend on the backend.
 """
 from __future__ import annotations
 
@@ -20,7 +22,7 @@ from ..errors import ContactlabError, ParameterError
 from .backends import DaskClient, Pool, Serial
 from .grid import Grid, make_grid
 from .store import Store
-from .study import SceneStudy, as_study, evaluate, study_id
+from .study import Points, Records, SceneStudy, as_study, study_id
 from .table import _pandas, assemble, output_name
 
 __all__ = ["sweep", "batch_size", "TARGET_OVERHEAD"]
@@ -31,8 +33,12 @@ TARGET_OVERHEAD = 0.1
 BATCHES_PER_WORKER = 4
 #: ``workers=None`` runs in this process when the whole sweep should take less than this (s)
 SERIAL_BELOW_SECONDS = 1.0
-#: points timed here before choosing the backend: the first warms caches, the rest are timed
-CALIBRATION_POINTS = 3
+#: the timing batches run here grow until one takes this long (s)
+CALIBRATION_SECONDS = 0.01
+#: ... or until this share of the sweep ran here (at least 3 points)
+CALIBRATION_SHARE = 1 / 16
+#: batches of the serial backend take about this long (s): progress, checkpoints, interrupts
+SERIAL_BATCH_SECONDS = 0.25
 #: a point slower than this (s) needs no more timing: batches of one already meet the target
 SLOW_POINT_SECONDS = 0.05
 #: a progress bar is shown when the sweep is expected to take longer than this (s)
@@ -42,9 +48,12 @@ PROGRESS_SECONDS = 2.0
 def batch_size(point_seconds: float, overhead_seconds: float, remaining: int, workers: int) -> int:
     """Points per task so that the per-task overhead stays under :data:`TARGET_OVERHEAD`.
 
-    The size is the smallest ``b`` with ``overhead <= TARGET_OVERHEAD * b * point_seconds``,
-    reduced to leave :data:`BATCHES_PER_WORKER` batches per worker when the sweep is that
-    small (then the whole sweep takes only a few round trips).
+    The size is the smallest ``b`` with ``overhead <= TARGET_OVERHEAD * b * point_seconds``.
+    Where that still leaves :data:`BATCHES_PER_WORKER` batches per worker, it is the size;
+    where it does not (a sweep whose whole compute time is a few round trips), the overhead
+    target wins over load balance, but no batch is made larger than one worker's share of the
+    sweep (every worker gets work; a sweep whose share is under ten round trips cannot meet the
+    target on that cluster at all).
 
     Examples
     --------
@@ -55,7 +64,9 @@ def batch_size(point_seconds: float, overhead_seconds: float, remaining: int, wo
     """
     need = math.ceil(overhead_seconds / (TARGET_OVERHEAD * max(point_seconds, 1e-9)) - 1e-9)
     balance = math.ceil(remaining / (BATCHES_PER_WORKER * max(workers, 1)))
-    return max(1, min(need, balance))
+    if need <= balance:
+        return max(1, need)
+    return max(1, min(need, math.ceil(remaining / max(workers, 1))))
 
 
 def _bar(total: int, initial: int, show: bool) -> Any:
@@ -163,60 +174,74 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     if isinstance(fn, SceneStudy):
         fn.check(g.points[0])
     st = Store(store, g, study_id(fn)) if store is not None else None
-    records: dict[int, dict[str, Any]] = st.load() if st is not None else {}
-    resumed = len(records)
-    todo = [i for i in range(len(g)) if i not in records]
+    chunks: list[Records] = [st.load()] if st is not None else []
+    resumed = len(chunks[0]) if chunks else 0
+    finished = set(chunks[0].point) if chunks else set()
+    todo = [i for i in range(len(g)) if i not in finished]
     stats: dict[str, Any] = {"points": len(g), "resumed": resumed, "computed": len(todo)}
     t_start = time.perf_counter()
-    backend = None
+    local = Serial(fn)
+    backend: Any = None
     bar = None
+
+    def keep(chunk: Records, source: Any) -> None:
+        chunk = _accept(chunk, g, fn, on_error, source)
+        chunks.append(chunk)
+        if st is not None:
+            st.add(chunk)
+        if bar is not None:
+            bar.update(len(chunk))
+
     try:
-        # ---- calibration: the first points run here and time a point ------------------------
-        timed: list[float] = []
-        while todo and len(timed) < CALIBRATION_POINTS:
-            i = todo.pop(0)
-            rec = _accept(evaluate(fn, i, g.points[i]), g, fn, on_error)
-            records[i] = rec
-            timed.append(rec.pop("seconds"))
-            if st is not None:
-                st.add([rec])
-            if timed[-1] >= SLOW_POINT_SECONDS:
+        # ---- calibration: growing batches run here, warm this process and time a point -------
+        point_seconds, size, timed = 0.0, 1, 0
+        cap = max(3, math.ceil(len(todo) * CALIBRATION_SHARE))
+        while todo:
+            take, todo = todo[:size], todo[size:]
+            t0 = time.perf_counter()
+            chunk = local.run(Points.of(g.points, take, g.names))
+            point_seconds = (time.perf_counter() - t0) / len(take)
+            keep(chunk, None)
+            timed += len(take)
+            if point_seconds >= SLOW_POINT_SECONDS or (
+                    timed > 1 and (len(take) * point_seconds >= CALIBRATION_SECONDS
+                                   or timed >= cap)):
                 break
-        point_seconds = min(timed[1:] or timed) if timed else 0.0
+            size = 2 if timed == 1 else min(4 * size, cap - timed)
         expected = point_seconds * len(todo)
         stats["point_seconds"] = point_seconds
+        stats["calibration_points"] = timed
         # ---- backend and batches -------------------------------------------------------------
         if todo:
             if client is not None:
                 backend = DaskClient(fn, client)
             elif workers == 1 or (workers is None and (expected < SERIAL_BELOW_SECONDS
                                                        or _cpu_count() == 1)):
-                backend = Serial(fn)
+                backend = local
             else:
                 backend = Pool(fn, workers or _cpu_count())
             overhead = backend.roundtrip()
-            size = batch_size or (1 if isinstance(backend, Serial) else
-                                  _size(point_seconds, overhead, len(todo), backend.workers))
-            batches = [[(i, g.points[i]) for i in todo[k:k + size]]
+            if batch_size is not None:
+                size = batch_size
+            elif backend is local:
+                size = max(1, math.ceil(SERIAL_BATCH_SECONDS / max(point_seconds, 1e-9)))
+            else:
+                size = _size(point_seconds, overhead, len(todo), backend.workers)
+            batches = [Points.of(g.points, todo[k:k + size], g.names)
                        for k in range(0, len(todo), size)]
             stats.update(backend=type(backend).__name__, workers=backend.workers,
                          roundtrip_seconds=overhead, batch_size=size, tasks=len(batches))
-            bar = _bar(len(g), len(records), progress and expected / backend.workers
+            bar = _bar(len(g), len(g) - len(todo), progress and expected / backend.workers
                        >= PROGRESS_SECONDS)
             backend.submit_all(batches)
-            for recs in backend.completed():
-                for rec in recs:
-                    rec = _accept(rec, g, fn, on_error, backend)
-                    rec.pop("seconds")
-                    records[rec["point"]] = rec
-                if st is not None:
-                    st.add(recs)
-                if bar is not None:
-                    bar.update(len(recs))
+            for chunk in backend.completed():
+                keep(chunk, backend)
     finally:
         if bar is not None:
             bar.close()
-        if backend is not None:
+        if local.partial is not None and st is not None:      # points done before an interrupt
+            st.add(_accept(local.partial, g, fn, "record"))
+        if backend is not None and backend is not local:
             backend.close()
         if st is not None:
             st.flush()
@@ -224,7 +249,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
         st.compact()
     stats.setdefault("backend", "Serial")     # every point ran here (calibration or resumed)
     stats["seconds"] = time.perf_counter() - t_start
-    table = assemble(g, records)
+    table = assemble(g, chunks)
     table.attrs["sweep"]["stats"] = stats
     return table
 
@@ -232,14 +257,17 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
 _size = batch_size   # the module function; ``sweep``'s keyword shadows the name inside it
 
 
-def _accept(rec: dict[str, Any], grid: Grid, fn: Callable[..., Any], on_error: str,
-            backend: Any = None) -> dict[str, Any]:
+def _accept(rec: Records, grid: Grid, fn: Callable[..., Any], on_error: str,
+            backend: Any = None) -> Records:
     """Rename colliding outputs; under ``on_error="raise"`` re-raise a failure here."""
-    rec["outputs"] = {output_name(k, grid): v for k, v in rec["outputs"].items()}
-    if rec["error"] is not None and on_error == "raise":
-        if backend is not None:
-            backend.cancel()
-        fn(**grid.points[rec["point"]])     # recompute here: the genuine exception and traceback
-        raise ContactlabError(f"point {rec['point']} failed on a worker but not here: "
-                              f"{rec['error']}: {rec['message']}")
+    rec.rename(lambda k: output_name(k, grid))
+    if on_error == "raise":
+        for j, error in enumerate(rec.error):
+            if error is not None:
+                if backend is not None:
+                    backend.cancel()
+                i = rec.point[j]
+                fn(**grid.points[i])     # recompute here: the genuine exception and traceback
+                raise ContactlabError(f"point {i} failed on a worker but not here: "
+                                      f"{error}: {rec.message[j]}")
     return rec

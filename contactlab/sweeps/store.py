@@ -18,6 +18,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from .grid import Grid
+from .study import Records
 
 __all__ = ["Store", "read_store"]
 
@@ -93,8 +94,8 @@ class Store:
     def _parts(self) -> list[Path]:
         return sorted(self.path.glob("part-*.parquet"))
 
-    def load(self) -> dict[int, dict[str, Any]]:
-        """Records of the points already finished, by point index."""
+    def load(self) -> Records:
+        """Records of the points already finished, in point order."""
         out: dict[int, dict[str, Any]] = {}
         for part in self._parts():
             df = self.pd.read_parquet(part)
@@ -107,11 +108,11 @@ class Store:
                 out[i] = {"point": i, "outputs": {k: _value(row[k]) for k in keys},
                           "error": _text(row["error"]), "message": _text(row["message"]),
                           "warnings": _text(row["warnings"])}
-        return out
+        return Records.from_rows(out[i] for i in sorted(out))
 
-    def add(self, records: list[dict[str, Any]]) -> None:
+    def add(self, records: Records) -> None:
         """Buffer finished records; written when :data:`FLUSH_SECONDS` passed since the last."""
-        self._buffer += records
+        self._buffer += records.rows()
         if time.monotonic() - self._last >= FLUSH_SECONDS:
             self.flush()
 
@@ -144,7 +145,7 @@ class Store:
         self.flush()
         parts = self._parts()
         if len(parts) > 1:
-            records = sorted(self.load().values(), key=lambda r: r["point"])
+            records = self.load().rows()
             n = int(parts[-1].stem.split("-")[1]) + 1
             self._write(records, f"part-{n:06d}.parquet")
             for p in parts:

@@ -22,7 +22,8 @@ import numpy as np
 from ..errors import ParameterError, SceneError
 from .keypath import set_key_path
 
-__all__ = ["SceneStudy", "as_study", "scalars", "evaluate", "run_batch", "study_id"]
+__all__ = ["SceneStudy", "as_study", "scalars", "evaluate", "run_batch", "study_id", "Points",
+           "Records"]
 
 
 class SceneStudy:
@@ -165,7 +166,7 @@ def scalars(result: Any) -> dict[str, float | str]:
     {'torque': 1.0, 'torque_min': 0.0, 'torque_max': 2.0, 'mu': 0.2}
     """
     strict = True
-    if isinstance(result, Mapping):
+    if type(result) is dict or isinstance(result, Mapping):
         items = dict(result)
     elif isinstance(getattr(result, "series", None), Mapping):         # a scene result
         items = {k: v for k, v in result.series.items() if k != "time"}
@@ -176,6 +177,9 @@ def scalars(result: Any) -> dict[str, float | str]:
                              "a dict of numbers or a contactlab result.")
     out: dict[str, float | str] = {}
     for key, value in items.items():
+        if type(value) is float and type(key) is str:         # the usual case, fast
+            out[key] = value
+            continue
         key = str(key)
         if isinstance(value, (list, tuple, np.ndarray)):
             try:
@@ -199,6 +203,139 @@ def scalars(result: Any) -> dict[str, float | str]:
     return out
 
 
+class Points:
+    """A batch of grid points as sent to a worker: point indices and one column per name.
+
+    One object with a few lists inside, not a list of per-point dicts: it pickles in one go and a
+    task scheduler (Dask walks the arguments of every task looking for futures) sees one opaque
+    argument instead of thousands of nested containers.
+    """
+
+    __slots__ = ("index", "names", "columns")
+
+    def __init__(self, index: list[int], names: tuple[str, ...], columns: list[list[Any]]) -> None:
+        self.index = index
+        self.names = names
+        self.columns = columns
+
+    @classmethod
+    def of(cls, points: Any, indices: list[int], names: tuple[str, ...]) -> Points:
+        """The points ``points[i]`` (mappings) for ``i`` in ``indices``."""
+        return cls(list(indices), tuple(names),
+                   [[points[i][k] for i in indices] for k in names])
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+    def __iter__(self) -> Any:
+        names = self.names
+        for i, values in zip(self.index, zip(*self.columns) if self.columns
+                             else [()] * len(self.index)):
+            yield i, dict(zip(names, values))
+
+    def __getstate__(self) -> tuple[Any, ...]:
+        return self.index, self.names, self.columns
+
+    def __setstate__(self, state: tuple[Any, ...]) -> None:
+        self.index, self.names, self.columns = state
+
+
+class Records:
+    """Outcomes of points, one column per field (what a batch sends back).
+
+    ``point``, ``error``, ``message``, ``warnings``, ``seconds`` are lists with one entry per
+    point; ``outputs`` maps each output name (in the order the points first returned them) to a
+    list with the point's value, or None where that point did not return the name (a failed
+    point returns none; outputs are never None themselves: :func:`scalars` turns None into NaN).
+    """
+
+    __slots__ = ("point", "outputs", "error", "message", "warnings", "seconds")
+
+    def __init__(self) -> None:
+        self.point: list[int] = []
+        self.outputs: dict[str, list[Any]] = {}
+        self.error: list[str | None] = []
+        self.message: list[str | None] = []
+        self.warnings: list[str | None] = []
+        self.seconds: list[float] = []
+
+    def __len__(self) -> int:
+        return len(self.point)
+
+    def append(self, index: int, outputs: Mapping[str, Any], error: str | None,
+               message: str | None, warned: str | None, seconds: float) -> None:
+        """Add one point's outcome."""
+        cols = self.outputs
+        if outputs.keys() == cols.keys():            # the usual case: the same names again
+            for key, value in outputs.items():
+                cols[key].append(value)
+        else:
+            n = len(self.point)
+            for key, value in outputs.items():
+                col = cols.get(key)
+                if col is None:
+                    cols[key] = col = [None] * n
+                col.append(value)
+            n += 1
+            for col in cols.values():
+                if len(col) < n:
+                    col.append(None)
+        self.point.append(int(index))
+        self.error.append(error)
+        self.message.append(message)
+        self.warnings.append(warned)
+        self.seconds.append(seconds)
+
+    def extend(self, other: Records) -> None:
+        """Append every point of ``other``."""
+        n, m = len(self), len(other)
+        for key, col in other.outputs.items():
+            mine = self.outputs.get(key)
+            if mine is None:
+                self.outputs[key] = mine = [None] * n
+            mine.extend(col)
+        for col in self.outputs.values():
+            if len(col) < n + m:
+                col.extend([None] * m)
+        self.point.extend(other.point)
+        self.error.extend(other.error)
+        self.message.extend(other.message)
+        self.warnings.extend(other.warnings)
+        self.seconds.extend(other.seconds)
+
+    def rows(self) -> list[dict[str, Any]]:
+        """One dict per point: ``point``, ``outputs`` (the names it returned), ``error``,
+        ``message``, ``warnings``, ``seconds``."""
+        names = list(self.outputs)
+        out = []
+        for j, i in enumerate(self.point):
+            outs = {k: self.outputs[k][j] for k in names if self.outputs[k][j] is not None}
+            out.append({"point": i, "outputs": outs, "error": self.error[j],
+                        "message": self.message[j], "warnings": self.warnings[j],
+                        "seconds": self.seconds[j]})
+        return out
+
+    @classmethod
+    def from_rows(cls, rows: Any) -> Records:
+        """The inverse of :meth:`rows` (``seconds`` optional)."""
+        rec = cls()
+        for r in rows:
+            rec.append(r["point"], r["outputs"], r["error"], r["message"], r["warnings"],
+                       r.get("seconds", 0.0))
+        return rec
+
+    def rename(self, name: Callable[[str], str]) -> None:
+        """Rename every output column through ``name``."""
+        self.outputs = {name(k): v for k, v in self.outputs.items()}
+
+    def __getstate__(self) -> tuple[Any, ...]:
+        return (self.point, self.outputs, self.error, self.message, self.warnings, self.seconds)
+
+    def __setstate__(self, state: tuple[Any, ...]) -> None:
+        (self.point, self.outputs, self.error, self.message, self.warnings,
+         self.seconds) = state
+
+
 def evaluate(study: Callable[..., Any], index: int, point: Mapping[str, Any]) -> dict[str, Any]:
     """Run ``study(**point)`` and record the outcome.
 
@@ -210,23 +347,47 @@ def evaluate(study: Callable[..., Any], index: int, point: Mapping[str, Any]) ->
         distinct warning raised, joined by newlines, or None) and ``seconds`` (compute time).
         Any :class:`Exception` is recorded; KeyboardInterrupt and SystemExit pass.
     """
-    t0 = time.perf_counter()
+    return run_batch(study, [(index, point)]).rows()[0]
+
+
+def run_batch(study: Callable[..., Any], batch: Any, out: Records | None = None) -> Records:
+    """Run ``study`` at each ``(index, point)`` of ``batch`` (a :class:`Points` or a list of
+    pairs), in order, and record each outcome as :func:`evaluate` describes.
+
+    Every point records its own warnings, whatever ran before: warnings are caught under the
+    ``"always"`` filter (set once per batch and set again if a study changed the filters), and
+    each point keeps the distinct ones it raised.
+
+    Parameters
+    ----------
+    out : Records, optional
+        Fill this object point by point (a caller in this process keeps the points finished
+        before an interrupt); default a new one.
+    """
+    rec = Records() if out is None else out
+    clock = time.perf_counter
     with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")   # every point records its own warnings, whatever ran before
-        try:
-            outputs, error, message = scalars(study(**point)), None, None
-        except Exception as err:          # noqa: BLE001 - recorded per point by design
-            outputs, error, message = {}, type(err).__name__, str(err)
-    seen: list[str] = []
-    for w in caught:
-        text = f"{w.category.__name__}: {w.message}"
-        if text not in seen:
-            seen.append(text)
-    return {"point": int(index), "outputs": outputs, "error": error, "message": message,
-            "warnings": "\n".join(seen) or None, "seconds": time.perf_counter() - t0}
-
-
-def run_batch(study: Callable[..., Any],
-              batch: list[tuple[int, Mapping[str, Any]]]) -> list[dict[str, Any]]:
-    """:func:`evaluate` each ``(index, point)`` of ``batch``, in order."""
-    return [evaluate(study, i, p) for i, p in batch]
+        warnings.simplefilter("always")
+        top = warnings.filters[0]
+        for index, point in batch:
+            if not warnings.filters or warnings.filters[0] is not top:
+                warnings.simplefilter("always")
+                top = warnings.filters[0]
+            start = len(caught)
+            t0 = clock()
+            try:
+                outputs, error, message = scalars(study(**point)), None, None
+            except Exception as err:          # noqa: BLE001 - recorded per point by design
+                outputs, error, message = {}, type(err).__name__, str(err)
+            seconds = clock() - t0
+            warned = None
+            if len(caught) > start:
+                seen: list[str] = []
+                for w in caught[start:]:
+                    text = f"{w.category.__name__}: {w.message}"
+                    if text not in seen:
+                        seen.append(text)
+                warned = "\n".join(seen)
+                del caught[start:]
+            rec.append(index, outputs, error, message, warned, seconds)
+    return rec

@@ -6,6 +6,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from .grid import RESERVED, Grid
+from .study import Records
 
 __all__ = ["assemble", "to_dataset", "output_name"]
 
@@ -24,29 +25,41 @@ def output_name(name: str, grid: Grid) -> str:
     return f"output.{name}" if name in grid.names or name in RESERVED else name
 
 
-def assemble(grid: Grid, records: dict[int, dict[str, Any]]) -> Any:
+def assemble(grid: Grid, records: Records | list[Records]) -> Any:
     """One row per point, in point order: ``point``, the grid values, the outputs (in the order
     the lowest-numbered point returned them), ``error``, ``message``, ``warnings``.
 
-    Built from the records alone, so the table is the same whichever backend computed them and
-    in whatever order they arrived.
+    Built from the records alone, column by column, so the table is the same whichever backend
+    computed them, in whatever batches and order they arrived.
     """
     pd = _pandas()
-    order = sorted(records)
-    outputs: dict[str, None] = {}
-    for i in order:
-        outputs.update(dict.fromkeys(records[i]["outputs"]))
-    rows = []
-    for i in order:
-        r = records[i]
-        row: dict[str, Any] = {"point": i, **grid.points[i]}
-        row.update({k: r["outputs"].get(k, math.nan) for k in outputs})
-        row.update(error=r["error"], message=r["message"], warnings=r["warnings"])
-        rows.append(row)
-    columns = ["point", *grid.names, *outputs, "error", "message", "warnings"]
-    df = pd.DataFrame(rows, columns=columns)
+    chunks = [records] if isinstance(records, Records) else list(records)
+    rec = Records()
+    for chunk in chunks:
+        rec.extend(chunk)
+    n = len(rec)
+    order = sorted(range(n), key=rec.point.__getitem__)
+    # an output's column position: the first point that returned it, then that point's own order
+    rank: dict[str, tuple[int, int]] = {}
+    for chunk in chunks:
+        for pos, (key, col) in enumerate(chunk.outputs.items()):
+            first = min((chunk.point[j] for j, v in enumerate(col) if v is not None),
+                        default=None)
+            if first is not None and (key not in rank or (first, pos) < rank[key]):
+                rank[key] = (first, pos)
+    outputs = sorted(rank, key=rank.__getitem__)
+    points = [rec.point[j] for j in order]
+    data: dict[str, Any] = {"point": points}
+    for name in grid.names:
+        data[name] = [grid.points[i][name] for i in points]
+    nan = math.nan
+    for key in outputs:
+        col = rec.outputs[key]
+        data[key] = [nan if col[j] is None else col[j] for j in order]
+    df = pd.DataFrame(data, columns=["point", *grid.names, *outputs])
     for col in ("error", "message", "warnings"):    # None (not NaN) where nothing happened
-        df[col] = pd.Series([records[i][col] for i in order], index=df.index, dtype=object)
+        values = getattr(rec, col)
+        df[col] = pd.Series([values[j] for j in order], index=df.index, dtype=object)
     df.attrs["sweep"] = {"axes": grid.axes, "names": list(grid.names)}
     return df
 

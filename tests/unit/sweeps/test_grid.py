@@ -115,6 +115,10 @@ def test_batches_keep_the_overhead_under_target(point_s, overhead_s):
     b = batch_size(point_s, overhead_s, remaining=10**9, workers=2)
     assert overhead_s <= TARGET_OVERHEAD * b * point_s * (1 + 1e-12)
     assert b == 1 or overhead_s > TARGET_OVERHEAD * (b - 1) * point_s     # and no larger
-    # a sweep too small for that is split so that every worker gets several batches
+    need = b
+    # a sweep large enough for both: the overhead size, leaving 4 batches per worker
+    for remaining in (8 * need, 8 * need + 1, 10**6):
+        assert batch_size(point_s, overhead_s, remaining=remaining, workers=2) == need
+    # a sweep too small for both: the overhead target wins, but every worker gets a batch
     small = batch_size(point_s, overhead_s, remaining=40, workers=2)
-    assert 1 <= small <= max(1, math.ceil(40 / 8))
+    assert small == min(need, 20)

@@ -11,7 +11,7 @@ import pytest
 from contactlab.errors import ParameterError, ValidityWarning
 from contactlab.scene import Scene
 from contactlab.sweeps import SceneStudy, scalars
-from contactlab.sweeps.study import evaluate, study_id
+from contactlab.sweeps.study import Points, Records, evaluate, run_batch, study_id
 
 from tests.reference.hertz import effective_modulus, radius_of_force
 from tests.tolerances import CLOSED_FORM
@@ -171,3 +171,35 @@ def test_cli_sweep_allow_outside(tmp_path, capsys):
     assert main(argv + ["--allow-outside"]) == 0
     out = capsys.readouterr().out
     assert '"ok": true' in out
+
+
+# ---- batches: columns out, columns back --------------------------------------------------------
+def _silences_then_warns(x):
+    if x == 1.0:
+        warnings.simplefilter("ignore")          # a study that changes the filters for good
+    warnings.warn("outside", ValidityWarning)
+    return {"y": 2 * x} if x != 2.0 else {"z": x, "y": 1.0}
+
+
+def test_a_batch_records_each_points_own_warnings_like_single_points():
+    batch = Points.of([{"x": float(x)} for x in range(4)], [0, 1, 2, 3], ("x",))
+    rec = run_batch(_silences_then_warns, batch)
+    alone = [evaluate(_silences_then_warns, i, p) for i, p in batch]
+    assert rec.rows() == [{**r, "seconds": rec.seconds[j]} for j, r in enumerate(alone)]
+    w = "ValidityWarning: outside"
+    assert rec.warnings == [w, None, w, w]        # point 1 silenced itself, not the next ones
+    # a point that did not return a name has None in that column
+    assert rec.outputs == {"y": [0.0, 2.0, 1.0, 6.0], "z": [None, None, 2.0, None]}
+
+
+def test_points_and_records_pickle_as_columns():
+    pts = Points.of([{"a": 1, "b": "x"}, {"a": 2, "b": "y"}, {"a": 3, "b": "z"}], [2, 0], ("a", "b"))
+    assert list(pts) == [(2, {"a": 3, "b": "z"}), (0, {"a": 1, "b": "x"})]
+    back = pickle.loads(pickle.dumps(pts))
+    assert list(back) == list(pts) and back.columns == [[3, 1], ["z", "x"]]
+    rec = run_batch(_fails, Points([5], ("x",), [[-1]]))
+    rec.extend(run_batch(_warns_twice, Points([7], ("x",), [[1.5]])))
+    assert rec.outputs == {"y": [None, 3.0]} and rec.error == ["ParameterError", None]
+    again = pickle.loads(pickle.dumps(rec))
+    assert again.rows() == rec.rows()
+    assert Records.from_rows(rec.rows()).rows() == rec.rows()
