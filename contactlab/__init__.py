@@ -15,7 +15,7 @@ from .materials import Elastic, Rigid, effective_moduli
 from .params import memory_budget, set_memory_budget
 from . import registry
 from .registry import register_material, register_profile
-from .sweeps import sweep
+from .sweeps import fretting_map_sweep, sweep
 
 __version__ = "0.1.0"
 
@@ -26,6 +26,7 @@ __all__ = [
     "ContactLaw", "LawStep",
     "profiles", "materials", "errors", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
+    "fretting_map_sweep",
     "cite", "citations",
     "__version__",
 ]

@@ -24,7 +24,8 @@ from ..physics import tangential as _tan
 from .torsion import resolve_method, torsion_model
 
 __all__ = ["FrettingLoop", "FrettingMap", "fretting_loop", "fretting_map", "MODES",
-           "SERIES_UNITS"]
+           "SERIES_UNITS", "MapPlan", "plan_map", "map_block", "finish_map", "MAP_BLOCK",
+           "BOUNDARY_BLOCK"]
 
 #: Fretting modes and the name of their amplitude keyword.
 MODES = {"tangential": "displacement_amplitude", "torsion": "twist_amplitude"}
@@ -467,11 +468,49 @@ def torsional_boundary(contact, method: str, a: np.ndarray, d: np.ndarray, F_N: 
     return out
 
 
-def fretting_map(contact, *, force: Any = None, depth: Any = None,
-                 displacement_amplitude: Any = None, twist_amplitude: Any = None,
-                 method: str | None = None, criterion: str = "energy_ratio",
-                 threshold: float | None = None, boundary: bool = True) -> FrettingMap:
-    """Implementation of :meth:`contactlab.Contact.fretting_map` (see there)."""
+#: grid points per block of a map: a large map is computed block by block, here or on workers
+#: (the blocks are the same either way, so the map is the same bit for bit)
+MAP_BLOCK = 1024
+#: normal states per block of the torsional gross-slip boundary (a root search per state)
+BOUNDARY_BLOCK = 16
+
+
+@dataclass(frozen=True, eq=False)
+class MapPlan:
+    """A validated fretting map before it is computed: its settings, normal states and blocks.
+
+    Plain data (pickles): :func:`map_block` computes one of :meth:`blocks` from it and the
+    contact, :func:`finish_map` assembles the blocks' results into the :class:`FrettingMap`.
+    """
+
+    mode: str
+    method: str
+    criterion: str
+    threshold: float
+    load_key: str
+    loads: np.ndarray
+    amplitude: np.ndarray
+    radius: np.ndarray
+    depth: np.ndarray
+    boundary: bool
+
+    def blocks(self) -> list[tuple[str, int, int]]:
+        """``("loops", start, stop)`` over the force-major grid points (:data:`MAP_BLOCK` each),
+        then ``("boundary", start, stop)`` over the forces (:data:`BOUNDARY_BLOCK` each) when a
+        torsional boundary is asked for."""
+        n, nF = self.loads.size * self.amplitude.size, self.loads.size
+        out = [("loops", s, min(s + MAP_BLOCK, n)) for s in range(0, n, MAP_BLOCK)]
+        if self.mode == "torsion" and self.boundary:
+            out += [("boundary", s, min(s + BOUNDARY_BLOCK, nF))
+                    for s in range(0, nF, BOUNDARY_BLOCK)]
+        return out
+
+
+def plan_map(contact, *, force: Any = None, depth: Any = None,
+             displacement_amplitude: Any = None, twist_amplitude: Any = None,
+             method: str | None = None, criterion: str = "energy_ratio",
+             threshold: float | None = None, boundary: bool = True) -> MapPlan:
+    """Validate a map's arguments and solve its normal states (see :func:`fretting_map`)."""
     check_contact(contact, "fretting_map()")
     mode, key, amp = _mode_and_amplitude("fretting_map()", displacement_amplitude,
                                          twist_amplitude)
@@ -489,26 +528,65 @@ def fretting_map(contact, *, force: Any = None, depth: Any = None,
         raise UnknownNameError(f"method={method!r} is invalid for a shift: leave method=None.")
     else:
         method = "mdr"
-    nF, nA = loads.size, amp.size
-    a1 = np.atleast_1d(np.asarray(ns._radius, float))
-    d1 = np.atleast_1d(np.asarray(ns._depth, float))
-    a, d, F_N = (np.repeat(v, nA) for v in (a1, d1, loads))
-    X = np.tile(amp, nF)
-    res = loops(contact, mode, method, a, d, F_N, X, criterion, threshold)
-    if mode == "torsion" and method == "mdr":
-        warn_mdr(contact, X, a, d, ("torque", "energy", "stick_radius"))
-    if mode == "tangential":
+    return MapPlan(mode, method, criterion, threshold, nkey, loads, amp,
+                   np.atleast_1d(np.asarray(ns._radius, float)),
+                   np.atleast_1d(np.asarray(ns._depth, float)), bool(boundary))
+
+
+_MAP_FIELDS = ("regime", "energy_ratio", "energy", "stick_ratio", "peak")
+
+
+def map_block(contact, plan: MapPlan, block: tuple[str, int, int]) -> dict[str, np.ndarray]:
+    """The results of one block of :meth:`MapPlan.blocks` (flat arrays)."""
+    kind, start, stop = block
+    if kind == "boundary":
+        sl = slice(start, stop)
+        return {"boundary": torsional_boundary(contact, plan.method, plan.radius[sl],
+                                               plan.depth[sl], plan.loads[sl], plan.criterion,
+                                               plan.threshold)}
+    k = np.arange(start, stop)
+    rows, cols = k // plan.amplitude.size, k % plan.amplitude.size
+    res = loops(contact, plan.mode, plan.method, plan.radius[rows], plan.depth[rows],
+                plan.loads[rows], plan.amplitude[cols], plan.criterion, plan.threshold)
+    return {f: res[f] for f in _MAP_FIELDS}
+
+
+def finish_map(contact, plan: MapPlan, results: list[dict[str, np.ndarray]],
+               stacklevel: int = 5) -> FrettingMap:
+    """The :class:`FrettingMap` from the results of every block, in :meth:`MapPlan.blocks`
+    order (with the MDR validity warning where it applies, ``stacklevel`` pointing at the
+    user's call)."""
+    nF, nA = plan.loads.size, plan.amplitude.size
+    parts = [r for r in results if "boundary" not in r]
+    res = {f: np.concatenate([r[f] for r in parts]) for f in _MAP_FIELDS}
+    if plan.mode == "torsion" and plan.method == "mdr":
+        warn_mdr(contact, np.tile(plan.amplitude, nF), np.repeat(plan.radius, nA),
+                 np.repeat(plan.depth, nA), ("torque", "energy", "stick_radius"), stacklevel=stacklevel)
+    if plan.mode == "tangential":
         bnd = _tan.full_slip_displacement(contact.moduli.normal, contact.moduli.tangential,
-                                          contact.friction, d1)
-    elif boundary:
-        bnd = torsional_boundary(contact, method, a1, d1, loads, criterion, threshold)
+                                          contact.friction, plan.depth)
+    elif plan.boundary:
+        bnd = np.concatenate([r["boundary"] for r in results if "boundary" in r])
     else:
         bnd = np.full(nF, np.nan)
     shp = (nF, nA)
-    return FrettingMap(mode, method, criterion, threshold, loads.copy(), amp.copy(),
-                       res["regime"].reshape(shp), res["energy_ratio"].reshape(shp),
-                       res["energy"].reshape(shp), res["stick_ratio"].reshape(shp),
-                       res["peak"].reshape(shp), np.asarray(bnd, float),
-                       {"rtol": contact.rtol, "load": nkey,
-                        "citations": fretting_sources(mode, method)})
+    return FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
+                       plan.amplitude.copy(), res["regime"].reshape(shp),
+                       res["energy_ratio"].reshape(shp), res["energy"].reshape(shp),
+                       res["stick_ratio"].reshape(shp), res["peak"].reshape(shp),
+                       np.asarray(bnd, float),
+                       {"rtol": contact.rtol, "load": plan.load_key,
+                        "citations": fretting_sources(plan.mode, plan.method)})
 
+
+def fretting_map(contact, *, force: Any = None, depth: Any = None,
+                 displacement_amplitude: Any = None, twist_amplitude: Any = None,
+                 method: str | None = None, criterion: str = "energy_ratio",
+                 threshold: float | None = None, boundary: bool = True) -> FrettingMap:
+    """Implementation of :meth:`contactlab.Contact.fretting_map` (see there): plan, every
+    block here, finish (``contactlab.fretting_map_sweep`` runs the same blocks on workers)."""
+    plan = plan_map(contact, force=force, depth=depth,
+                    displacement_amplitude=displacement_amplitude,
+                    twist_amplitude=twist_amplitude, method=method, criterion=criterion,
+                    threshold=threshold, boundary=boundary)
+    return finish_map(contact, plan, [map_block(contact, plan, b) for b in plan.blocks()])

@@ -52,8 +52,10 @@ class Serial:
 
     workers = 1
 
-    def __init__(self, study: Callable[..., Any]) -> None:
+    def __init__(self, study: Callable[..., Any], runner: Callable[..., Records] = run_batch
+                 ) -> None:
         self.study = study
+        self.runner = runner
         self._batches: deque[Batch] = deque()
         self.partial: Records | None = None
 
@@ -64,7 +66,7 @@ class Serial:
         """Run one batch here."""
         out = Records()
         try:
-            return run_batch(self.study, batch, out)
+            return self.runner(self.study, batch, out)
         except BaseException:
             self.partial = out
             raise
@@ -85,15 +87,17 @@ class Serial:
 
 # ---- local process pool ------------------------------------------------------------------------
 _WORKER_STUDY: Any = None
+_WORKER_RUNNER: Callable[..., Records] = run_batch
 
 
-def _init_worker(blob: bytes) -> None:
-    global _WORKER_STUDY
+def _init_worker(blob: bytes, runner: Callable[..., Records] = run_batch) -> None:
+    global _WORKER_STUDY, _WORKER_RUNNER
     _WORKER_STUDY = pickle.loads(blob)
+    _WORKER_RUNNER = runner
 
 
 def _pool_batch(batch: Batch) -> Records:
-    return run_batch(_WORKER_STUDY, batch)
+    return _WORKER_RUNNER(_WORKER_STUDY, batch)
 
 
 def _dumps(study: Any) -> bytes:
@@ -121,11 +125,13 @@ def start_method() -> str:
 class Pool:
     """A local pool of ``workers`` processes (the default when no client is given)."""
 
-    def __init__(self, study: Callable[..., Any], workers: int) -> None:
+    def __init__(self, study: Callable[..., Any], workers: int,
+                 runner: Callable[..., Records] = run_batch) -> None:
         self.workers = int(workers)
         ctx = multiprocessing.get_context(start_method())
         self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx,
-                                         initializer=_init_worker, initargs=(_dumps(study),))
+                                         initializer=_init_worker,
+                                         initargs=(_dumps(study), runner))
         self._futures: set[Any] = set()
 
     def roundtrip(self) -> float:
@@ -173,7 +179,8 @@ class DaskClient:
     contactlab on the workers) and reused for :data:`ROUNDTRIP_CACHE_SECONDS`.
     """
 
-    def __init__(self, study: Callable[..., Any], client: Any) -> None:
+    def __init__(self, study: Callable[..., Any], client: Any,
+                 runner: Callable[..., Records] = run_batch) -> None:
         try:
             from distributed import as_completed
         except ImportError as err:
@@ -184,6 +191,7 @@ class DaskClient:
                                  "dask.distributed.Client (or None for a local process pool).")
         self.client = client
         self.study = study
+        self.runner = runner
         self._as_completed = as_completed
         self._futures: list[Any] = []
         self.workers = max(1, sum(client.nthreads().values()))
@@ -203,7 +211,7 @@ class DaskClient:
         return value
 
     def submit_all(self, batches: list[Batch]) -> None:
-        self._futures = [self.client.submit(run_batch, self.study, b, pure=False)
+        self._futures = [self.client.submit(self.runner, self.study, b, pure=False)
                          for b in batches]
 
     def completed(self) -> Iterator[Records]:

@@ -22,10 +22,10 @@ from ..errors import ContactlabError, ParameterError
 from .backends import DaskClient, Pool, Serial
 from .grid import Grid, make_grid
 from .store import Store
-from .study import Points, Records, SceneStudy, as_study, study_id
+from .study import Points, Records, SceneStudy, as_study, run_calls, study_id
 from .table import _pandas, assemble, output_name
 
-__all__ = ["sweep", "batch_size", "TARGET_OVERHEAD"]
+__all__ = ["sweep", "run_tasks", "batch_size", "TARGET_OVERHEAD"]
 
 #: per-task overhead allowed, as a fraction of a batch's compute time
 TARGET_OVERHEAD = 0.1
@@ -69,14 +69,14 @@ def batch_size(point_seconds: float, overhead_seconds: float, remaining: int, wo
     return max(1, min(need, math.ceil(remaining / max(workers, 1))))
 
 
-def _bar(total: int, initial: int, show: bool) -> Any:
+def _bar(total: int, initial: int, show: bool, unit: str = "point") -> Any:
     if not show:
         return None
     try:
         from tqdm.auto import tqdm
     except ImportError:
         return None
-    return tqdm(total=total, initial=initial, unit="point", desc="sweep")
+    return tqdm(total=total, initial=initial, unit=unit, desc="sweep")
 
 
 def _check_workers(workers: Any, client: Any) -> None:
@@ -271,3 +271,77 @@ def _accept(rec: Records, grid: Grid, fn: Callable[..., Any], on_error: str,
                 raise ContactlabError(f"point {i} failed on a worker but not here: "
                                       f"{error}: {rec.message[j]}")
     return rec
+
+
+class _ItemCall:
+    """``fn(item)`` called as a study, ``study(item=...)`` (pickles when ``fn`` does)."""
+
+    def __init__(self, fn: Callable[[Any], Any]) -> None:
+        self.fn = fn
+
+    def __call__(self, item: Any) -> Any:
+        return self.fn(item)
+
+
+def run_tasks(fn: Callable[[Any], Any], items: Any, *, client: Any = None,
+              workers: int | None = None, progress: bool = True, unit: str = "task") -> list[Any]:
+    """``[fn(item) for item in items]``, run the way :func:`sweep` runs points.
+
+    For work whose pieces return arrays rather than table rows (the blocks of a fretting map):
+    the first item runs here and times an item, then the others go to this process, a local
+    process pool or a Dask cluster exactly as in :func:`sweep` (same ``client``/``workers``
+    rules, batches sized by :func:`batch_size`, a progress bar counting ``unit``).
+
+    Returns
+    -------
+    list
+        The results in the order of ``items``.
+
+    Raises
+    ------
+    Exception
+        The first exception an item raises (on a worker or here) is raised here; the rest of
+        the work is cancelled.
+    """
+    _check_workers(workers, client)
+    items = list(items)
+    study = _ItemCall(fn)
+    local = Serial(study, run_calls)
+    results: list[Any] = [None] * len(items)
+    if not items:
+        return results
+    t0 = time.perf_counter()
+    first = local.run(Points([0], ("item",), [[items[0]]]))
+    item_seconds = time.perf_counter() - t0
+    results[0] = first.outputs["value"][0]
+    todo = list(range(1, len(items)))
+    if not todo:
+        return results
+    expected = item_seconds * len(todo)
+    if client is not None:
+        backend: Any = DaskClient(study, client, run_calls)
+    elif workers == 1 or (workers is None and (expected < SERIAL_BELOW_SECONDS
+                                               or _cpu_count() == 1)):
+        backend = local
+    else:
+        backend = Pool(study, workers or _cpu_count(), run_calls)
+    bar = None
+    try:
+        size = (1 if backend is local else
+                _size(item_seconds, backend.roundtrip(), len(todo), backend.workers))
+        backend.submit_all([Points(todo[k:k + size], ("item",),
+                                   [[items[i] for i in todo[k:k + size]]])
+                            for k in range(0, len(todo), size)])
+        bar = _bar(len(items), 1, progress and expected / backend.workers >= PROGRESS_SECONDS,
+                   unit)
+        for chunk in backend.completed():
+            for i, value in zip(chunk.point, chunk.outputs["value"]):
+                results[i] = value
+            if bar is not None:
+                bar.update(len(chunk))
+    finally:
+        if bar is not None:
+            bar.close()
+        if backend is not local:
+            backend.close()
+    return results

@@ -22,8 +22,8 @@ import numpy as np
 from ..errors import ParameterError, SceneError
 from .keypath import set_key_path
 
-__all__ = ["SceneStudy", "as_study", "scalars", "evaluate", "run_batch", "study_id", "Points",
-           "Records"]
+__all__ = ["SceneStudy", "as_study", "scalars", "evaluate", "run_batch", "run_calls", "study_id",
+           "Points", "Records"]
 
 
 class SceneStudy:
@@ -390,4 +390,17 @@ def run_batch(study: Callable[..., Any], batch: Any, out: Records | None = None)
                 warned = "\n".join(seen)
                 del caught[start:]
             rec.append(index, outputs, error, message, warned, seconds)
+    return rec
+
+
+def run_calls(fn: Callable[..., Any], batch: Any, out: Records | None = None) -> Records:
+    """``fn(**point)`` for each ``(index, point)`` of ``batch``, its return value kept as it is
+    (output ``"value"``): the runner of :func:`~contactlab.sweeps.run.run_tasks`, whose tasks
+    return arrays. An exception is not recorded: it ends the batch and reaches the caller."""
+    rec = Records() if out is None else out
+    clock = time.perf_counter
+    for index, point in batch:
+        t0 = clock()
+        value = fn(**point)
+        rec.append(index, {"value": value}, None, None, None, clock() - t0)
     return rec
