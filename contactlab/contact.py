@@ -436,7 +436,9 @@ class Contact:
         m or rad); ``boundary=False`` skips the
         torsional boundary root. Returns a :class:`~contactlab.effects.fretting.FrettingMap`
         (``.regime .energy_ratio .energy .stick_ratio .boundary``, ``.plot()``,
-        ``.to_dataframe()``, ``.to_csv()``).
+        ``.to_dataframe()``, ``.to_csv()``). A large map is computed in blocks of 1024 grid
+        points; ``contactlab.fretting_map_sweep`` runs the same blocks on every core or a Dask
+        cluster and returns the same map.
         """
         return _fretting.fretting_map(self, force=force, depth=depth,
                                       displacement_amplitude=displacement_amplitude,

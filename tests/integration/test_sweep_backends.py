@@ -62,15 +62,49 @@ def test_local_process_pool_is_bit_identical(serial):
     _same(contactlab.sweep(loop_energy, FUNCTION_GRID, workers=2, batch_size=1), serial[1])
 
 
-def test_dask_local_cluster_is_bit_identical(serial):
+@pytest.fixture(scope="module")
+def dask_client():
+    """A real LocalCluster of 2 worker processes (one thread each), no dashboard."""
     distributed = pytest.importorskip("distributed")
     import dask
     # bounded, but generous: on a loaded shared 2-core machine two worker processes importing
     # dask and contactlab can take a minute to come up
     with dask.config.set({"distributed.comm.timeouts.connect": "300s"}), \
             distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=":0", death_timeout=300) as cluster, \
+                                     dashboard_address=None, death_timeout=300) as cluster, \
             distributed.Client(cluster, timeout="300s") as client:
         assert len(client.scheduler_info(n_workers=-1)["workers"]) == 2
-        _same(contactlab.sweep(Scene(LOOPS), GRID, client=client, batch_size=3), serial[0])
-        _same(contactlab.sweep(loop_energy, FUNCTION_GRID, client=client), serial[1])
+        yield client
+
+
+def test_dask_local_cluster_is_bit_identical(serial, dask_client):
+    _same(contactlab.sweep(Scene(LOOPS), GRID, client=dask_client, batch_size=3), serial[0])
+    _same(contactlab.sweep(loop_energy, FUNCTION_GRID, client=dask_client), serial[1])
+
+
+def test_progress_bar_on_a_dask_cluster(serial, dask_client, capsys, monkeypatch):
+    pytest.importorskip("tqdm")
+    monkeypatch.setattr("contactlab.sweeps.run.PROGRESS_SECONDS", 0.0)   # always show the bar
+    table = contactlab.sweep(loop_energy, FUNCTION_GRID, client=dask_client, batch_size=2,
+                             progress=True)
+    _same(table, serial[1])
+    err = capsys.readouterr().err
+    assert "sweep" in err and "9/9" in err           # fed by the tasks as they completed
+
+
+def test_fretting_map_on_a_dask_cluster_is_the_local_map(dask_client, monkeypatch, capsys):
+    from contactlab.effects import fretting as fr
+    monkeypatch.setattr(fr, "MAP_BLOCK", 10)              # several blocks of each kind
+    monkeypatch.setattr(fr, "BOUNDARY_BLOCK", 2)
+    monkeypatch.setattr("contactlab.sweeps.run.PROGRESS_SECONDS", 0.0)
+    contact = contactlab.Contact(contactlab.profiles.Paraboloid(R=0.01),
+                                 materials=(contactlab.Elastic(E=210e9, nu=0.3),) * 2,
+                                 friction=0.3)
+    kw = dict(force=np.geomspace(1.0, 1000.0, 7), twist_amplitude=np.geomspace(1e-5, 1e-2, 11),
+              method="exact")
+    local = contact.fretting_map(**kw)
+    swept = contactlab.fretting_map_sweep(contact, **kw, client=dask_client, progress=True)
+    assert swept == local
+    for f in ("regime", "energy_ratio", "energy", "stick_ratio", "peak", "boundary"):
+        assert getattr(swept, f).tobytes() == getattr(local, f).tobytes(), f
+    assert "12/12" in capsys.readouterr().err           # 8 map blocks + 4 boundary blocks
