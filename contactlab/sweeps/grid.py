@@ -59,17 +59,16 @@ _PLAIN = frozenset((bool, int, float, str))
 
 def _plain(value: Any, where: str) -> Any:
     """A Python scalar (numbers, strings, bools) from a grid entry."""
-    if type(value) in _PLAIN:
-        return value
-    if isinstance(value, np.generic):
-        value = value.item()
+    if type(value) not in _PLAIN:
+        if isinstance(value, np.generic):
+            value = value.item()
+        if not isinstance(value, (bool, int, float, str)):
+            raise ParameterError(f"{where}={value!r} is invalid: grid values must be numbers or "
+                                 f"strings (got {type(value).__name__}).")
     if isinstance(value, float) and not math.isfinite(value):
         raise ParameterError(f"{where}={value!r} is invalid: grid values must be finite (a NaN "
                              "in the result table marks a failed point).")
-    if isinstance(value, (bool, int, float, str)):
-        return value
-    raise ParameterError(f"{where}={value!r} is invalid: grid values must be numbers or strings "
-                         f"(got {type(value).__name__}).")
+    return value
 
 
 def _values(key: str, values: Any) -> list[Any]:
