@@ -234,10 +234,12 @@ class Points:
             yield i, dict(zip(names, values))
 
     def __getstate__(self) -> tuple[Any, ...]:
-        return self.index, self.names, self.columns
+        return _pack_index(self.index), self.names, [_pack(c) for c in self.columns]
 
     def __setstate__(self, state: tuple[Any, ...]) -> None:
-        self.index, self.names, self.columns = state
+        index, self.names, columns = state
+        self.index = _unpack_index(index)
+        self.columns = [_unpack(c, len(self.index)) for c in columns]
 
 
 class Records:
@@ -329,11 +331,48 @@ class Records:
         self.outputs = {name(k): v for k, v in self.outputs.items()}
 
     def __getstate__(self) -> tuple[Any, ...]:
-        return (self.point, self.outputs, self.error, self.message, self.warnings, self.seconds)
+        return (_pack_index(self.point), {k: _pack(v) for k, v in self.outputs.items()},
+                _pack(self.error), _pack(self.message), _pack(self.warnings), _pack(self.seconds))
 
     def __setstate__(self, state: tuple[Any, ...]) -> None:
-        (self.point, self.outputs, self.error, self.message, self.warnings,
-         self.seconds) = state
+        point, outputs, error, message, warned, seconds = state
+        self.point = _unpack_index(point)
+        n = len(self.point)
+        self.outputs = {k: _unpack(v, n) for k, v in outputs.items()}
+        self.error, self.message = _unpack(error, n), _unpack(message, n)
+        self.warnings, self.seconds = _unpack(warned, n), _unpack(seconds, n)
+
+
+# ---- compact pickles of columns: what a worker sends and receives -------------------------------
+# A column of Python floats travels as one float64 array (8 bytes a value, one buffer) and comes
+# back as the same Python floats (``tolist`` is exact); a column of Nones as None; a run of
+# consecutive indices as its bounds. Anything else travels as the list it is.
+_FLOATS, _NONES = "f8", "none"
+
+
+def _pack(col: list[Any]) -> Any:
+    if col and all(type(v) is float for v in col):
+        return (_FLOATS, np.array(col, dtype=np.float64))
+    if all(v is None for v in col):
+        return (_NONES,)
+    return col
+
+
+def _unpack(packed: Any, n: int) -> list[Any]:
+    if type(packed) is tuple:
+        return packed[1].tolist() if packed[0] == _FLOATS else [None] * n
+    return packed
+
+
+def _pack_index(index: list[int]) -> Any:
+    if index and index[-1] - index[0] == len(index) - 1 and all(
+            b - a == 1 for a, b in zip(index, index[1:])):
+        return (index[0], index[-1] + 1)
+    return index
+
+
+def _unpack_index(packed: Any) -> list[int]:
+    return list(range(*packed)) if type(packed) is tuple else packed
 
 
 def evaluate(study: Callable[..., Any], index: int, point: Mapping[str, Any]) -> dict[str, Any]:

@@ -203,3 +203,29 @@ def test_points_and_records_pickle_as_columns():
     again = pickle.loads(pickle.dumps(rec))
     assert again.rows() == rec.rows()
     assert Records.from_rows(rec.rows()).rows() == rec.rows()
+
+
+def _double(x):
+    return {"y": 2 * x}
+
+
+def test_columns_travel_compactly_and_come_back_exactly():
+    floats = [0.1, -0.0, float("nan"), float("inf"), 1e-310, 2.0 / 3.0]
+    ints_then_floats = [1, 2.5, 3, 4.0, 5, 6.0]
+    pts = Points(list(range(10, 16)), ("a", "b", "c"),
+                 [floats, ints_then_floats, ["x", None, "y", "z", "w", "v"]])
+    back = pickle.loads(pickle.dumps(pts))
+    assert back.index == pts.index
+    for mine, theirs in zip(pts.columns, back.columns):
+        assert [type(v) for v in theirs] == [type(v) for v in mine]
+        assert [repr(v) for v in theirs] == [repr(v) for v in mine]
+    assert np.array(back.columns[0]).tobytes() == np.array(floats).tobytes()   # bit for bit
+    scattered = Points([3, 1, 7], ("a",), [[1.0, 2.0, 3.0]])
+    assert pickle.loads(pickle.dumps(scattered)).index == [3, 1, 7]
+    rec = run_batch(_warns_twice, Points(list(range(5)), ("x",), [[0.5, 1.0, 1.5, 2.0, 2.5]]))
+    again = pickle.loads(pickle.dumps(rec))
+    assert again.rows() == rec.rows() and again.error == [None] * 5
+    assert [type(v) for v in again.outputs["y"]] == [float] * 5
+    big = run_batch(_double, Points(list(range(3000)), ("x",), [[1.5] * 3000]))
+    # y and seconds as float64 (8 bytes a value), the indices as a range, no error: one marker
+    assert len(pickle.dumps(big)) < 3000 * 8 * 2 + 1000
