@@ -7,7 +7,7 @@ Run from the repository root (needs the extras dist and data):
    friction grid), run serially in this process and on LocalClusters side by side: 1 worker with
    Dask's default worker environment, 1 and 2 workers with ``MALLOC_TRIM_THRESHOLD_`` left unset
    (Dask's nanny sets it to 65536 by default, which makes glibc return freed memory at once and
-   costs numpy-heavy studies ~20 % CPU); wall times, the 2-vs-1 speed-up, and the compute time
+   costs numpy-heavy studies ~20 % CPU); wall times, the 2-vs-1 speed-up, and the CPU time
    the points took on the workers (summed per point) against the serial one;
 2. the scheduler's per-task overhead: 400 empty points, one point per task, on the 1-worker
    cluster and on a local process pool of 1;
@@ -47,10 +47,11 @@ def torsion_loop(amplitude, friction, cycles=10, steps_per_cycle=100):
 
 
 def timed_loop(amplitude, friction):
-    """:func:`torsion_loop` and the seconds it took where it ran (column ``cpu``)."""
-    t0 = time.perf_counter()
+    """:func:`torsion_loop` and the CPU seconds it took where it ran (column ``cpu``: process
+    time, which other processes on a busy machine do not inflate as they do wall time)."""
+    t0 = time.process_time()
     out = torsion_loop(amplitude, friction)
-    out["cpu"] = time.perf_counter() - t0
+    out["cpu"] = time.process_time() - t0
     return out
 
 
@@ -116,9 +117,9 @@ def main() -> None:
             st = table.attrs["sweep"]["stats"]
             rows.append((name, w, t, cpu, f"batch {st['batch_size']}, {st['tasks']} tasks"))
         print(f"\n1. {n_loops} torsional loops (10 cycles x 100 steps, exact), tables identical; "
-              "compute = the points' own time summed:")
+              "cpu = the points' own CPU time summed:")
         for name, w, t, cpu, note in rows:
-            print(f"   {name:<26} {t:8.2f} s   {n_loops / t:7.1f} loops/s   compute {cpu:6.2f} s"
+            print(f"   {name:<26} {t:8.2f} s   {n_loops / t:7.1f} loops/s   cpu {cpu:6.2f} s"
                   f"   {note}")
         print(f"   speed-up 2 vs 1 worker (no MALLOC_TRIM): {rows[2][2] / rows[3][2]:.2f}x (ideal "
               f"2.00x); 1 worker vs serial: {rows[0][2] / rows[1][2]:.2f}x with Dask's default "
