@@ -27,7 +27,7 @@ from .validate import EFFECTS, SERIES, axis_values, fretting_segment
 if TYPE_CHECKING:  # pragma: no cover
     from .model import Scene
 
-__all__ = ["Effect", "Plan", "make_plan"]
+__all__ = ["Effect", "Plan", "make_plan", "deliverable_series"]
 
 _NORMAL_SERIES = ("time", "depth", "force", "radius")
 
@@ -114,6 +114,32 @@ class Plan:
         return "\n".join(lines)
 
 
+#: per-step series each route's run fills (the closed-form route: every series, the rules of
+#: :func:`make_plan` pick the call that fills it); checked before any computation
+_ROUTE_SERIES = {"viscoelastic": ("time", "depth", "force", "radius")}
+
+
+def deliverable_series(route: str, axis: str | None = None) -> tuple[str, ...]:
+    """Series a run on ``route`` (``"closed_form"``, ``"foundation"``, ``"viscoelastic"``) can
+    fill, for a path driving ``axis`` (``"twist"``, ``"shift"`` or None): requested series
+    outside it are rejected when the scene is planned, not after the run."""
+    if route == "foundation":
+        from ..effects.path import SERIES as PATH_SERIES   # what contact.simulate returns
+        other = {"twist": ("tangential",), "shift": ("torsion",)}.get(axis or "", ())
+        return tuple(s for s in SERIES if s in PATH_SERIES and SERIES[s] not in other)
+    return _ROUTE_SERIES.get(route, tuple(SERIES))
+
+
+def _route_label(route: str, exact_path: bool, calls: list[str]) -> str:
+    """The route in words, with the calls that run it (for messages)."""
+    if route == "viscoelastic":
+        return "viscoelastic route (contact.viscoelastic_history)"
+    if route == "foundation":
+        return ("foundation route (contact.simulate(method='exact'), exact ring solver)"
+                if exact_path else "foundation route (contact.simulate, MDR springs)")
+    return "closed-form route (" + ", ".join(f"contact.{c}" for c in calls) + ")"
+
+
 def _monotone(v: np.ndarray) -> bool:
     d = np.diff(v)
     return bool(np.all(d >= 0) or np.all(d <= 0))
@@ -168,12 +194,13 @@ def make_plan(scene: "Scene") -> Plan:
     slip = (torsion or tangential) and method != "no-slip"
     if "slip" in requested and not (torsion or tangential):
         issues.append(("outputs.effects", "slip", "'slip' with a twist or shift in the load path"))
+    pending = []      # output issues that name the route (known below)
     if "stick_radius" in s_req and not (torsion or tangential):
-        issues.append(("outputs.series", "stick_radius", "'stick_radius' with a twist or shift "
-                       "in the load path (or 'torsion' in outputs.effects)"))
+        pending.append(("outputs.series", "stick_radius", "'stick_radius' with a twist or shift "
+                        "in the load path (or 'torsion' in outputs.effects)"))
     if "dissipated_energy" in s_req and not slip:
-        issues.append(("outputs.series", "dissipated_energy", "'dissipated_energy' with partial "
-                       "slip (a twist or shift and interface.friction)"))
+        pending.append(("outputs.series", "dissipated_energy", "'dissipated_energy' with partial "
+                        "slip (a twist or shift and interface.friction)"))
 
     axis = "twist" if torsion else "shift" if tangential else None
     drive_kind = tw_kind if axis == "twist" else sh_kind if axis == "shift" else None
@@ -191,11 +218,12 @@ def make_plan(scene: "Scene") -> Plan:
                                 and method != "no-slip")
     foundation = visco or coupled_at is not None or force_controlled_history
     route = "viscoelastic" if visco else "foundation" if foundation else "closed_form"
-    if visco:
-        bad = [s for s in s_req if s not in ("time", "depth", "force", "radius")]
-        if bad:
-            issues.append(("outputs.series", bad, "time, depth, force, radius for a viscoelastic "
-                           "scene"))
+    if adhesive and not visco and (foundation or shift_on or (twist_on and method != "no-slip")):
+        why = ("the foundation route (contact.simulate) covers non-adhesive contacts only"
+               if foundation else "a tangential shift of adhesive bodies is outside the "
+               "implemented theory" if shift_on else "torsion with slip of adhesive bodies is "
+               "outside the implemented theory (without interface.friction it runs, no slip)")
+        issues.append(("interface.work_of_adhesion", wa, f"0 for this load path: {why}"))
 
     rows: dict[str, Effect] = {}
     calls: list[str] = []
@@ -282,6 +310,17 @@ def make_plan(scene: "Scene") -> Plan:
             calls.append(impl_call)
     exact_path = bool(foundation and torsion and method == "exact" and friction is not None
                       and not visco)
+    label = _route_label(route, exact_path, calls)
+    avail = deliverable_series(route, axis)
+    issues += [(p, v, f"{a}; this scene runs the {label}") for p, v, a in pending]
+    for name in s_req:
+        if name not in avail and name not in {v for _, v, _ in pending}:
+            hint = {"peak_pressure": "; the pressure at the final step: outputs.fields = "
+                                     "['pressure']",
+                    "stiffness": "; per-step stiffness: the same normal load path without "
+                                 "twist or shift (closed-form route)"}.get(name, "")
+            issues.append(("outputs.series", name, f"a series the {label} delivers "
+                           f"({', '.join(avail)}){hint}"))
     if slip and exact_path:
         rows["slip"] = Effect("slip", "exact Coulomb friction per ring with memory (ring solver)",
                               f"interface.friction = {_fmt(friction)}; foundation route")
@@ -309,7 +348,8 @@ def make_plan(scene: "Scene") -> Plan:
     for f in fields:
         if f in ("pressure", "surface_displacement"):
             if visco:
-                issues.append(("outputs.fields", f, "no fields for viscoelastic scenes"))
+                issues.append(("outputs.fields", f, f"a field the {label} delivers (none: "
+                               "no fields for viscoelastic scenes)"))
                 continue
             if foundation:
                 out_rows.append(Effect(f"field:{f}", "contact.normal at the final depth",
@@ -321,8 +361,10 @@ def make_plan(scene: "Scene") -> Plan:
                                        "requested in outputs.fields"))
         else:  # shear
             if not torsion or foundation or impl_call != "torsion":
-                issues.append(("outputs.fields", f, "'shear' with a monotone twist at constant "
-                               "normal load (the exact torsion state at the final step)"))
+                have = "none" if visco else "pressure, surface_displacement"
+                issues.append(("outputs.fields", f, f"a field the {label} delivers ({have}): "
+                               "'shear' needs a monotone twist at constant normal load (the "
+                               "exact torsion state at the final step)"))
                 continue
             out_rows.append(Effect("field:shear", "TorsionState.shear at the final step",
                                    "requested in outputs.fields"))
