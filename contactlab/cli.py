@@ -119,12 +119,18 @@ def _write_outputs(args: argparse.Namespace, result: Any, outdir: Path | None) -
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
+    from .errors import ContactlabError
     scene = _load(args)
     plan = scene.plan()
     if args.plan:
         return _cmd_plan(args)
     outdir = _output_dir(args.output, args.overwrite)    # before the (maybe long) run
-    result = scene.run()
+    try:
+        result = scene.run()
+    except ContactlabError as err:
+        if getattr(err, "partial", None) is None:
+            raise
+        return _partial_run(args, err, outdir)
     files, notes = _write_outputs(args, result, outdir)
     if args.json:
         payload = {"ok": True, "files": [str(f) for f in files], "notes": notes}
@@ -141,6 +147,27 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if notes:
         print(notes, file=sys.stderr)
     return 0
+
+
+def _partial_run(args: argparse.Namespace, err: Any, outdir: Path | None) -> int:
+    """A run that failed part-way: write what it computed (atomically, with status.json), then
+    one line naming the step and the files (or one JSON object), exit 1."""
+    from .errors import ConvergenceError
+    part = err.partial
+    files = part.write(outdir, args.format) if outdir is not None else []
+    msg = _one_line(err).rstrip(".")
+    if files:
+        msg += f"; wrote what was computed to {', '.join(str(f) for f in files)}"
+    if args.json:
+        payload = {"ok": False, "exit": 1, "error": msg, "kind": type(err).__name__,
+                   "failed_at": err.failed_at, "files": [str(f) for f in files]}
+        if outdir is None:
+            payload["partial"] = part.to_dict()
+        print(json.dumps(payload, indent=1))
+    else:
+        what = "numerical failure" if isinstance(err, ConvergenceError) else "run failed"
+        print(f"contactlab: {what} ({type(err).__name__}): {msg}", file=sys.stderr)
+    return 1
 
 
 def _cmd_demo(args: argparse.Namespace) -> int:

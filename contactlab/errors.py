@@ -23,11 +23,27 @@ __all__ = [
     "ContactlabWarning",
     "ValidityWarning",
     "PluginWarning",
+    "failed_part_way",
 ]
 
 
 class ContactlabError(Exception):
-    """Base class of every contactlab exception."""
+    """Base class of every contactlab exception.
+
+    Attributes
+    ----------
+    partial : object or None
+        Set by a run that failed part-way (``Contact.simulate``, ``Scene.run``): what it
+        computed before the failing step, a result of the run's own type with its series cut at
+        that step and ``meta["status"] == "partial"``. None otherwise.
+    failed_at : dict or None
+        Where such a run failed: ``step`` (0-based index, the first step not computed),
+        ``n_steps``, ``time`` (s) and the load-path ``segment``, or the ``stage`` after the
+        path (``"fields"``, ``"wear"``, ``"fretting_map"``).
+    """
+
+    partial: object = None
+    failed_at: dict | None = None
 
 
 class ParameterError(ContactlabError, ValueError):
@@ -104,3 +120,21 @@ class ValidityWarning(ContactlabWarning):
 
 class PluginWarning(ContactlabWarning):
     """A plugin could not be loaded, or clashes with another one; it was skipped."""
+
+
+def failed_part_way(err: ContactlabError, where: str, partial: object = None,
+                    **failed_at: object) -> ContactlabError:
+    """Name where a run failed in ``err``'s message and attach what it computed; returns ``err``.
+
+    The error keeps its type and traceback; its message becomes ``"<where>: <original message>"``
+    (the original is kept once: a caller higher up that names the step in its own terms
+    replaces the lower-level prefix rather than adding to it).
+    """
+    detail = getattr(err, "_detail", None)
+    if detail is None:
+        detail = str(err)
+        err._detail = detail          # type: ignore[attr-defined]
+    err.args = (f"{where}: {detail}",)
+    err.partial = partial
+    err.failed_at = dict(failed_at)
+    return err

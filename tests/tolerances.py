@@ -94,6 +94,10 @@ TABULATED_SCENE = 5e-4
 #: CSV/JSON outputs are written with repr(float) (exact); re-solving from a re-read output
 #: (e.g. the force, which is recomputed from the radius) moves results by a few ulps
 OUTPUT_ROUNDTRIP = 1e-13
+#: the normal series of a partial run (a load path whose normal solve failed at step k) against
+#: contact.normal on the loads of steps 0..k-1: the same solver on another batch of steps (the
+#: path solves per segment), whose iterations stop when the whole batch has converged
+PARTIAL_PREFIX_NORMAL = 1e-12
 #: viscoelastic creep example (SLS, tau = 4.5 s) against the Lee-Radok step solution: the force
 #: is ramped in 1 ms instead of stepped (relative error ~ 1e-3 s / tau = 2e-4 right after the
 #: step, decaying) plus the foundation's radius discretisation (measured max 6e-5)

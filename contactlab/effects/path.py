@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import (EffectNotPlannedError, NotSupportedError, ParameterError, UnknownNameError,
-                      ValidityWarning)
+from ..errors import (ContactlabError, EffectNotPlannedError, NotSupportedError, ParameterError,
+                      UnknownNameError, ValidityWarning, failed_part_way)
 from ..foundation import DEFAULT_N_SPRINGS, Winkler
 from ..foundation.base import families_needed, iter_path_normal_states, path_normal_states
 from ..loadpath import LoadPath
@@ -27,7 +27,8 @@ from ..loadpath.base import UNITS
 from ..params import check_count, check_memory, step_indices
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
-           "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS"]
+           "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
+           "partial_path_failure"]
 
 #: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
 #: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
@@ -191,6 +192,11 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     so this difference is about three times the error of the N-spring run: a conservative
     estimate that costs about half a run more (issue 7; honesty tested in
     tests/unit/effects/test_path_error_estimate.py).
+
+    A step that fails (a normal solve, a spring or ring step) raises its error with its type,
+    the message naming the step (index, time, path segment); ``err.partial`` is the
+    :class:`PathResult` of the steps before it (``meta["status"] == "partial"``; only the normal
+    series when the normal solve failed, before the time loop) and ``err.failed_at`` the place.
     """
     method = resolve_path_method(path, method, approximate)
     _check_method_arguments(method, n_springs=n_springs, spacing=spacing, strategy=strategy,
@@ -338,16 +344,28 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
     t0 = 0.0
     i0 = 0
     normal = []
-    for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol,
-                                       chunk=_SOLVE_CHUNK):
-        n = seg["depth"].size
-        res["time"][i0:i0 + n] = t0 + seg["dt"]
-        for k in ("depth", "force", "radius"):
-            res[k][i0:i0 + n] = seg[k]
-        del seg
-        normal.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
-        t0 = float(res["time"][i0 + n - 1]) if n else t0
-        i0 += n
+    try:
+        for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path,
+                                           contact.rtol, chunk=_SOLVE_CHUNK):
+            n = seg["depth"].size
+            res["time"][i0:i0 + n] = t0 + seg["dt"]
+            for k in ("depth", "force", "radius"):
+                res[k][i0:i0 + n] = seg[k]
+            del seg
+            normal.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
+            t0 = float(res["time"][i0 + n - 1]) if n else t0
+            i0 += n
+    except ContactlabError as err:
+        pre = err.partial if isinstance(err.partial, dict) else None
+        k = i0 + (pre["depth"].size if pre is not None else 0)
+        if pre is not None:
+            res["time"][i0:k] = t0 + pre["dt"]
+            for name in ("depth", "force", "radius"):
+                res[name][i0:k] = pre[name]
+        # the time loop had not started: the partial result holds the normal series only
+        raise partial_path_failure(err, path, res, [o for o in outputs if o in _NORMAL], k,
+                                   {"method": "mdr"},
+                                   time=t0 + (err.failed_at or {}).get("dt", 0.0)) from None
     a_max = float(np.max(res["radius"], initial=0.0))
     from .normal import warn_outside_validity
     warn_outside_validity(contact.profile, a_max, stacklevel=4)
@@ -370,12 +388,43 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
         for s in sorted(snaps):
             snapshot_data[s] = _snapshot(contact, fnd, None, res, s)
         return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
-    fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max, n_springs=n_springs,
-                  spacing=spacing, needs=needs, rtol=contact.rtol)
-    meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
-    _run(contact, fnd, path, normal, res, snaps, snapshot_data, "stick_radius" in outputs,
-         progress, strategy)
+    track: dict[str, Any] = {"done": 0}
+    try:
+        fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max,
+                      n_springs=n_springs, spacing=spacing, needs=needs, rtol=contact.rtol)
+        meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
+        _run(contact, fnd, path, normal, res, snaps, snapshot_data, "stick_radius" in outputs,
+             progress, strategy, track)
+    except ContactlabError as err:
+        snaps_done = {s: v for s, v in snapshot_data.items() if s < track["done"]}
+        raise partial_path_failure(err, path, res, outputs, track["done"], meta,
+                                   snaps_done) from None
     return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
+
+
+_NORMAL = ("time", "depth", "force", "radius")
+
+
+def partial_path_failure(err: ContactlabError, path: LoadPath, res: dict, outputs: Any, k: int,
+                         meta: dict, snapshots: dict | None = None,
+                         time: float | None = None) -> ContactlabError:
+    """``err`` from step ``k`` of ``path`` (steps ``0 .. k-1`` complete in ``res``), named by
+    step, time (``res["time"][k]`` unless given) and segment, with the :class:`PathResult` of
+    those steps as ``err.partial`` (``meta["status"] == "partial"``)."""
+    n = path.n_steps
+    leaves = list(path.leaves())
+    ends = np.cumsum([lf.n_steps for lf in leaves])
+    leaf = min(int(np.searchsorted(ends, k, side="right")), ends.size - 1)
+    kind = type(leaves[leaf]).__name__.lower()
+    t = float(time) if time is not None else float(res["time"][k]) if k < n else float("nan")
+    where = (f"step {k} of {n} failed (t = {t:.6g} s, path segment {leaf}, {kind}; "
+             + (f"steps 0-{k - 1} computed, in err.partial)" if k else "no step computed)"))
+    info = {"step": k, "n_steps": n, "time": t, "segment": leaf}
+    part = PathResult({o: np.array(res[o][:k]) for o in outputs}, dict(snapshots or {}),
+                      {**meta, "status": "partial", "failed_at": info})
+    failed_part_way(err, where, part, **info)
+    part.meta["error"] = f"{type(err).__name__}: {err}"
+    return err
 
 
 def _no_contact_controls(path, needs):
@@ -497,7 +546,7 @@ def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, 
 
 
 def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
-         strategy="segments"):
+         strategy="segments", track=None):
     """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
     control are advanced in closed form (:func:`~contactlab.foundation.winkler.monotone_block`),
     other steps one by one; ``"steps"``: every step one by one (same results up to rounding)."""
@@ -522,7 +571,8 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
     out_W, out_stick, out_gross = res["dissipated_energy"], res["stick_radius"], res["gross_sliding"]
     bar = _progress(res["time"].size, progress)
     snap_idx = np.array(sorted(snaps), int)
-    state = {"W": 0.0, "first": True, "keff_is_frac": False}
+    state = track if track is not None else {}      # "done": steps complete (partial results)
+    state.update(W=0.0, first=True, keff_is_frac=False, done=0)
     fused = _fused_step(fnd, chans)
 
     def step(i, d, a, k_edge, S_edge, T_edge, targets):
@@ -572,6 +622,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         if want_stick:
             out_stick[i] = (fnd.stick_radius(stick_ch["m"], getattr(st, stick_ch["L"]), fnd.bl, a)
                             if stick_ch is not None else a)
+        state["done"] = i + 1
 
     def block(i0, i1, values):
         if not state["keff_is_frac"]:
@@ -608,6 +659,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         state["W"] += float(Wblock[-1])
         if want_stick and stick_ch is None:
             out_stick[sl] = st.radius
+        state["done"] = i1
 
     base = 0
     for leaf, nrm in zip(path.leaves(), normal):
@@ -683,6 +735,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
                                    a_arr[c0 + j:c0 + r], ek[j:r], eS[j:r], eT[j:r],
                                    vs[0][c0 + j:c0 + r], state, out_W,
                                    out_stick if want_stick else None)
+                        state["done"] = base + c0 + r
                         j = r
                     else:
                         one_by_one(c0 + j, c0 + j + 1)

@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 
 from ..citations import sources_for
-from ..errors import NotSupportedError, ParameterError, UnknownNameError
-from ..foundation.base import path_normal_states
+from ..errors import ContactlabError, NotSupportedError, ParameterError, UnknownNameError
+from ..foundation.base import iter_path_normal_states
 from ..foundation.rings import DEFAULT_N_RINGS, Rings
 from ..loadpath import LoadPath
 from ..params import check_count, check_memory, step_indices
@@ -73,8 +73,35 @@ def _longest_leaf(seg) -> int:
     return max((_longest_leaf(s) for s in inner), default=0)
 
 
+def _normal_states(contact, path, outputs, n_total):
+    """The normal state of every leaf; a failing step raises with the steps before it as a
+    partial result (normal series only: the torsion steps had not started)."""
+    from .path import SERIES, partial_path_failure
+    normal: list = []
+    try:
+        for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path,
+                                           contact.rtol):
+            normal.append(seg)
+    except ContactlabError as err:
+        pre = [err.partial] if isinstance(err.partial, dict) else []
+        res = {k: np.zeros(n_total) for k in ("time", "depth", "force", "radius")}
+        t0, i = 0.0, 0
+        for seg in normal + pre:
+            n = seg["depth"].size
+            res["time"][i:i + n] = t0 + seg["dt"]
+            for k in ("depth", "force", "radius"):
+                res[k][i:i + n] = seg[k]
+            if seg is not (pre[0] if pre else None):    # time of the failing leaf's start
+                t0 = float(res["time"][i + n - 1]) if n else t0
+            i += n
+        outs = [o for o in (SERIES if outputs is None else outputs) if o in res]
+        raise partial_path_failure(err, path, res, outs, i, {"method": "exact"},
+                                   time=t0 + (err.failed_at or {}).get("dt", 0.0)) from None
+    return normal
+
+
 def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False):
-    from .path import SERIES, PathResult, _progress
+    from .path import SERIES, PathResult, _progress, partial_path_failure
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
     if contact.is_adhesive:
@@ -93,7 +120,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False):
     longest = max((_longest_leaf(s) for s in path.segments), default=0)
     check_memory("simulate(method='exact')", exact_memory(n_total, longest, n_rings),
                  f"{n_total} steps, longest segment {longest} steps, {n_rings} rings")
-    normal = path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol)
+    normal = _normal_states(contact, path, outputs, n_total)
     snaps = step_indices("snapshots", snapshots, n_total)
     a_max = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
     if a_max <= 0:
@@ -117,75 +144,86 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False):
     t0, i = 0.0, 0
     iters = 0
     bar = _progress(n_total, progress)
-    for leaf, nrm in zip(path.leaves(), normal):
-        _, vals = leaf.values(cur)
-        n = leaf.n_steps
-        d_arr, a_arr = nrm["depth"], nrm["radius"]
-        if "twist" in vals or "torque" in vals:
-            ctrl = "twist" if "twist" in vals else "torque"
-            target = np.asarray(vals[ctrl], float)
-        else:
-            target = np.full(n, cur[ctrl])
-        g_a = np.where(a_arr > 0, prof._g(np.maximum(a_arr, 1e-300)), 0.0)
-        if np.isfinite(prof.wall_radius):
-            g_a = np.where(a_arr >= prof.wall_radius, np.minimum(g_a, d_arr), g_a)
-        if mu is None:
-            bound = np.where(r[None, :] < a_arr[:, None], np.inf, 0.0)
-            p = None
-        else:
-            p = _normal.pressure(prof, E, r[None, :], a_arr[:, None], d_arr[:, None],
-                                 g_a[:, None], contact.rtol)[0]
-            bound = mu * np.where(r[None, :] < a_arr[:, None], np.maximum(p, 0.0), 0.0)
-        for j in range(n):
-            k = i + j
-            z_old = st.z
-            if ctrl == "twist":
-                z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], dphi=target[j] - st.twist,
-                                                guess=st.active, C=rings.C)
+    done = 0        # steps complete (the partial result of a failure)
+    try:
+        for leaf, nrm in zip(path.leaves(), normal):
+            _, vals = leaf.values(cur)
+            n = leaf.n_steps
+            d_arr, a_arr = nrm["depth"], nrm["radius"]
+            res["time"][i:i + n] = t0 + nrm["dt"]
+            res["depth"][i:i + n] = d_arr
+            res["force"][i:i + n] = nrm["force"]
+            res["radius"][i:i + n] = a_arr
+            if "twist" in vals or "torque" in vals:
+                ctrl = "twist" if "twist" in vals else "torque"
+                target = np.asarray(vals[ctrl], float)
             else:
-                z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], torque=float(target[j]),
-                                                guess=st.active, C=rings.C)
-            iters += it
-            if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
-                res["gross_sliding"][k] = True
-                z = np.sign(target[j]) * bound[j]
-                lam = np.zeros_like(z)
-                dphi = 0.0
-            M = float(g @ z)
-            W_in += 0.5 * (M_old + M) * dphi
-            dW = 0.5 * float((z_old + z) @ lam)
-            W_d += dW
-            st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
-            st.S = st.S + np.where(bound[j] > 0, lam, 0.0)
-            st.z = z
-            st.active = np.where(bound[j] == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
-            M_old = M
-            if bar is not None:
-                bar.update(1)
-            res["twist"][k] = st.twist
-            res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
-                                                          res["gross_sliding"][k] else M)
-            res["dissipated_energy"][k] = W_d
-            res["stick_radius"][k] = _tr.stick_radius(r, z, bound[j], float(a_arr[j]))
-            work[k], step_diss[k] = W_in, dW
-            stored[k] = 0.5 * float(z @ (H @ z))
-            if k in snaps:
-                snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
-                                "radius": float(a_arr[j]), "shear_torsion": z.copy(),
-                                "pressure": (np.zeros(r.size) if p is None else
-                                             np.where(r < a_arr[j], p[j], 0.0)),
-                                "slip": _tr.slip_density(st.S, r, g),
-                                "slip_increment": _tr.slip_density(
-                                    np.where(bound[j] > 0, lam, 0.0), r, g)}
-        res["time"][i:i + n] = t0 + nrm["dt"]
-        res["depth"][i:i + n] = d_arr
-        res["force"][i:i + n] = nrm["force"]
-        res["radius"][i:i + n] = a_arr
-        t0 = float(res["time"][i + n - 1]) if n else t0
-        i += n
-        cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
-                   force=float(nrm["force"][-1]) if n else cur["force"],
-                   twist=st.twist, torque=M_old)
+                target = np.full(n, cur[ctrl])
+            g_a = np.where(a_arr > 0, prof._g(np.maximum(a_arr, 1e-300)), 0.0)
+            if np.isfinite(prof.wall_radius):
+                g_a = np.where(a_arr >= prof.wall_radius, np.minimum(g_a, d_arr), g_a)
+            if mu is None:
+                bound = np.where(r[None, :] < a_arr[:, None], np.inf, 0.0)
+                p = None
+            else:
+                p = _normal.pressure(prof, E, r[None, :], a_arr[:, None], d_arr[:, None],
+                                     g_a[:, None], contact.rtol)[0]
+                bound = mu * np.where(r[None, :] < a_arr[:, None], np.maximum(p, 0.0), 0.0)
+            for j in range(n):
+                k = i + j
+                z_old = st.z
+                if ctrl == "twist":
+                    z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], dphi=target[j] - st.twist,
+                                                    guess=st.active, C=rings.C)
+                else:
+                    z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], torque=float(target[j]),
+                                                    guess=st.active, C=rings.C)
+                iters += it
+                if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
+                    res["gross_sliding"][k] = True
+                    z = np.sign(target[j]) * bound[j]
+                    lam = np.zeros_like(z)
+                    dphi = 0.0
+                M = float(g @ z)
+                W_in += 0.5 * (M_old + M) * dphi
+                dW = 0.5 * float((z_old + z) @ lam)
+                W_d += dW
+                st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
+                st.S = st.S + np.where(bound[j] > 0, lam, 0.0)
+                st.z = z
+                st.active = np.where(bound[j] == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
+                M_old = M
+                if bar is not None:
+                    bar.update(1)
+                res["twist"][k] = st.twist
+                res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
+                                                              res["gross_sliding"][k] else M)
+                res["dissipated_energy"][k] = W_d
+                res["stick_radius"][k] = _tr.stick_radius(r, z, bound[j], float(a_arr[j]))
+                work[k], step_diss[k] = W_in, dW
+                stored[k] = 0.5 * float(z @ (H @ z))
+                done = k + 1
+                if k in snaps:
+                    snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
+                                    "radius": float(a_arr[j]), "shear_torsion": z.copy(),
+                                    "pressure": (np.zeros(r.size) if p is None else
+                                                 np.where(r < a_arr[j], p[j], 0.0)),
+                                    "slip": _tr.slip_density(st.S, r, g),
+                                    "slip_increment": _tr.slip_density(
+                                        np.where(bound[j] > 0, lam, 0.0), r, g)}
+            t0 = float(res["time"][i + n - 1]) if n else t0
+            i += n
+            cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
+                       force=float(nrm["force"][-1]) if n else cur["force"],
+                       twist=st.twist, torque=M_old)
+    except ContactlabError as err:
+        if bar is not None:
+            bar.close()
+        meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_springs,
+                "n_springs": None, "spacing": spacing, "foundation": repr(rings),
+                "approximate": False, "iterations": iters}
+        raise partial_path_failure(err, path, res, outputs, done, meta,
+                                   {s: v for s, v in snap_data.items() if s < done}) from None
     if bar is not None:
         bar.close()
     meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_springs,

@@ -19,7 +19,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import OutsideTheoryError, ParameterError, UnknownNameError
+from ..errors import (ContactlabError, OutsideTheoryError, ParameterError, UnknownNameError,
+                      failed_part_way)
+from ..numeric.prefix import solved_prefix
 from ..params import as_float_array
 from ..physics import normal as _normal
 
@@ -100,7 +102,8 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
     cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
                          "torque"), 0.0)
     last = (np.zeros(1), np.zeros(1), np.zeros(1))
-    for leaf in path.leaves():
+    i0 = 0
+    for li, leaf in enumerate(path.leaves()):
         dt, vals = leaf.values(cur)
         n = leaf.n_steps
         if "depth" in vals or "force" in vals:
@@ -111,15 +114,20 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
                 raise ParameterError(f"force={bad!r} N is invalid: it is below the adhesion limit "
                                      "0 N of this non-adhesive contact (use force >= 0, or a "
                                      "negative depth to separate the bodies).")
-            if chunk is None or x.size <= chunk:
-                d, a, F, _ = _normal.solve(profile, E_star, kind, x, rtol)
-            else:   # long leaf: solve a chunk at a time (bounded solver temporaries)
-                x = x.reshape(-1)
-                d, a, F = np.empty(x.size), np.empty(x.size), np.empty(x.size)
-                for c0 in range(0, x.size, chunk):
-                    sl = slice(c0, c0 + chunk)
-                    d[sl], a[sl], F[sl] = (np.asarray(v, float).reshape(-1) for v in
-                                           _normal.solve(profile, E_star, kind, x[sl], rtol)[:3])
+            c0 = 0
+            try:
+                if chunk is None or x.size <= chunk:
+                    d, a, F, _ = _normal.solve(profile, E_star, kind, x, rtol)
+                else:   # long leaf: solve a chunk at a time (bounded solver temporaries)
+                    x = x.reshape(-1)
+                    d, a, F = np.empty(x.size), np.empty(x.size), np.empty(x.size)
+                    for c0 in range(0, x.size, chunk):
+                        sl = slice(c0, c0 + chunk)
+                        d[sl], a[sl], F[sl] = (np.asarray(v, float).reshape(-1) for v in
+                                               _normal.solve(profile, E_star, kind, x[sl], rtol)[:3])
+            except ContactlabError as err:
+                raise _normal_failure(err, profile, E_star, kind, x, rtol, c0, chunk, dt,
+                                      None if c0 == 0 else (d, a, F), i0, li) from None
             del x
         else:
             d, a, F = (np.full(n, v[-1]) for v in last)
@@ -127,7 +135,29 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
         d, a, F = (np.asarray(v, float).reshape(n) for v in (d, a, F))
         last = (d[-1:].copy(), a[-1:].copy(), F[-1:].copy())  # not views: a leaf is freed
         cur["depth"], cur["force"] = float(d[-1]), float(F[-1])
+        i0 += n
         yield {"dt": dt, "depth": d, "radius": a, "force": F}
+
+
+def _normal_failure(err, profile, E_star, kind, x, rtol, c0, chunk, dt, done, i0, leaf):
+    """The normal solve of a leaf failed (in the chunk starting at ``c0``): find the first
+    failing step by bisection over prefixes of that chunk and attach the leaf's solved prefix
+    (``dt``, ``depth``, ``radius``, ``force``) as ``err.partial``, the step as ``err.failed_at``."""
+    x = np.asarray(x, float).reshape(-1)
+    n = x.size - c0 if chunk is None else min(chunk, x.size - c0)
+
+    def solve(m):
+        return [np.asarray(v, float).reshape(-1)
+                for v in _normal.solve(profile, E_star, kind, x[c0:c0 + m], rtol)[:3]]
+
+    m, got = solved_prefix(solve, n)
+    cols = [np.concatenate((done[j][:c0] if done is not None else np.zeros(0),
+                            got[j] if got is not None else np.zeros(0))) for j in range(3)]
+    k = c0 + m
+    dts = np.broadcast_to(np.asarray(dt, float), x.shape)
+    pre = {"dt": dts[:k].copy(), "depth": cols[0], "radius": cols[1], "force": cols[2]}
+    return failed_part_way(err, f"the normal solve failed at step {i0 + k} ({kind} "
+                           f"{x[k]:.6g})", pre, step=i0 + k, leaf=leaf, dt=float(dts[k]))
 
 
 class Foundation(ABC):

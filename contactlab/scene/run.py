@@ -17,7 +17,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import ConvergenceError, EffectNotPlannedError, NotSupportedError
+from ..errors import (ConvergenceError, ContactlabError, EffectNotPlannedError,
+                      NotSupportedError, failed_part_way)
+from ..numeric.prefix import solved_prefix
 from ..params import FieldsEqual
 from ..loadpath import UNITS
 from ..effects.fretting import SERIES_UNITS as MAP_UNITS
@@ -32,10 +34,11 @@ __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS", "OUTPUT_FI
            "atomic_write"]
 
 #: every file a run may write into its output folder (series/fields CSV, JSON, plot; wear series,
-#: worn profiles and the final worn profile; fretting map and its gross-slip boundary)
+#: worn profiles and the final worn profile; fretting map and its gross-slip boundary; the status
+#: of a partial run)
 OUTPUT_FILES = ("series.csv", "fields.csv", "result.json", "plot.png", "wear.csv",
                 "wear_profiles.csv", "worn_profile.csv", "fretting_map.csv",
-                "fretting_boundary.csv")
+                "fretting_boundary.csv", "status.json")
 
 
 def atomic_write(path: str | Path, data: bytes) -> Path:
@@ -145,6 +148,10 @@ class SceneResult(FieldsEqual, Cited):
     def write(self, directory: str | Path, fmt: str = "csv") -> list[Path]:
         """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``.
 
+        A partial result (``meta["status"] == "partial"``, the ``err.partial`` of a run that failed
+        part-way) writes the steps it holds and, beside the CSV files, ``status.json`` (status,
+        where it failed, the error); ``result.json`` carries the same in ``meta``.
+
         Every file is written atomically (:func:`atomic_write`); output files of an earlier run
         that this run does not write (``series.csv`` beside a new ``result.json``, an old
         ``plot.png``, ...) are removed, so the folder holds one consistent result.
@@ -159,6 +166,11 @@ class SceneResult(FieldsEqual, Cited):
             if self.fields:
                 paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields, FIELD_UNITS)))
             paths += self._write_fretting(d)
+            if self.meta.get("status") == "partial":     # the CSV files cannot say so
+                status = {k: self.meta.get(k) for k in ("status", "failed_at", "error", "title",
+                                                        "computed", "route", "version")}
+                paths.append(atomic_write(d / "status.json",
+                                          json.dumps(status, indent=1).encode()))
         for name in OUTPUT_FILES:
             stale = d / name
             if stale not in paths and (stale.exists() or stale.is_symlink()):
@@ -303,8 +315,85 @@ def _get(obj: Any, name: str, n: int) -> np.ndarray:
     return np.broadcast_to(v, (n,)).copy() if v.ndim == 0 else v.reshape(-1)
 
 
+def _closed_form(contact: Any, plan: "Plan", h: Any, m: int
+                 ) -> tuple[dict[str, np.ndarray], Any, list[str]]:
+    """Series of the closed-form route for the first ``m`` steps (``m = n``: the whole path)."""
+    n_kind = h.kind("normal")
+    N = h.values("normal")[:m]
+    out: dict[str, np.ndarray] = {"time": h.time[:m].copy()}
+    computed = ["normal"]
+    normal_state = contact.normal(**{n_kind: N})
+    for k in ("depth", "force", "radius", "stiffness", "peak_pressure"):
+        if k in plan.series:
+            out[k] = _get(normal_state, k, m)
+    axis = plan.details["axis"]
+    call = next((c for c in plan.calls if c in ("torsion", "twist_history", "tangential",
+                                                 "shift_history")), None)
+    start = min(plan.details["start"], m)
+    radius = np.asarray(normal_state.radius, float).reshape(-1)
+    if call is not None and m > start:
+        ctrl = h.kind(axis) or ("twist" if axis == "twist" else "displacement")
+        drive = h.values(axis)[:m]
+        kw = {n_kind: float(N[start]), ctrl: drive[start:]}
+        if call in ("torsion", "twist_history"):
+            kw["method"] = plan.method
+        res = getattr(contact, call)(**kw)
+        computed.append(call)
+        pre = {"twist": 0.0, "torque": 0.0, "displacement": 0.0, "tangential_force": 0.0,
+               "dissipated_energy": 0.0}
+        for k in ("twist", "torque", "displacement", "tangential_force", "stick_radius",
+                  "dissipated_energy"):
+            if k not in plan.series:
+                continue
+            col = np.empty(m)
+            col[:start] = radius[:start] if k == "stick_radius" else pre[k]
+            col[start:] = _get(res, k, m - start)
+            out[k] = col
+    else:
+        for k in ("twist", "torque", "stick_radius", "displacement", "tangential_force",
+                  "dissipated_energy"):
+            if k in plan.series:   # requested effect with nothing driving it (yet)
+                out[k] = np.zeros(m) if k != "stick_radius" else _get(normal_state, "radius", m)
+    return out, normal_state, computed
+
+
+def _step_failure(scene: "Scene", plan: "Plan", h: Any, err: ContactlabError, k: int,
+                  series: dict[str, np.ndarray], computed: list[str]) -> ContactlabError:
+    """``err`` at step ``k`` of the scene's path, named by step, time and scene segment, with the
+    :class:`SceneResult` of steps ``0 .. k-1`` as ``err.partial``."""
+    n = h.n_steps
+    seg = int(h.segment[min(k, n - 1)])
+    segs = scene.to_dict()["load_path"]
+    what = ("the unloaded start" if seg < 0 else
+            f"load_path[{seg}] {next(iter(segs[seg]))}" if seg < len(segs) else
+            f"load_path[{seg}]")
+    t = float(h.time[min(k, n - 1)])
+    where = (f"step {k} of {n} failed (t = {t:.6g} s, {what}; "
+             + (f"steps 0-{k - 1} computed)" if k else "no step computed)"))
+    info = {"step": k, "n_steps": n, "time": t, "segment": seg}
+    part = _partial_result(scene, plan, series, {}, computed, info)
+    failed_part_way(err, where, part, **info)
+    part.meta["error"] = f"{type(err).__name__}: {err}"
+    return err
+
+
+def _partial_result(scene: "Scene", plan: "Plan", series: dict, fields: dict, computed: list,
+                    info: dict, **results: Any) -> SceneResult:
+    from .. import __version__
+    meta = {"computed": list(computed), "route": plan.route, "version": __version__,
+            "title": scene.title, "status": "partial", "failed_at": dict(info),
+            "citations": _sources(computed, plan.method, scene.contact())}
+    return SceneResult({k: np.asarray(v) for k, v in series.items()}, dict(fields), plan, meta,
+                       results.get("wear"), results.get("fretting_map"))
+
+
 def run_scene(scene: "Scene") -> SceneResult:
     """Run a validated scene along its plan.
+
+    A run that fails part-way raises its error (same type) naming the step (index, time, scene
+    segment) or the stage after the path (fields, wear, fretting map), with what was computed
+    before it as ``err.partial`` (a :class:`SceneResult` with ``meta["status"] == "partial"``)
+    and the place as ``err.failed_at``.
 
     Raises
     ------
@@ -326,7 +415,16 @@ def run_scene(scene: "Scene") -> SceneResult:
 
     if plan.route == "viscoelastic":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
-        res = contact.viscoelastic_history(time=h.time, **{n_kind: N}, **kw)
+
+        def visco(m: int) -> Any:
+            return contact.viscoelastic_history(time=h.time[:m], **{n_kind: N[:m]}, **kw)
+        try:
+            res = visco(n)
+        except ContactlabError as err:
+            m, got = solved_prefix(visco, n)
+            raise _step_failure(scene, plan, h, err, m, {} if got is None else {
+                k: (h.time[:m] if k == "time" else _get(got, k, m)) for k in plan.series},
+                ["viscoelastic_history"] if got is not None else []) from None
         computed.append("viscoelastic_history")
         for k in plan.series:
             if k != "time":
@@ -337,94 +435,95 @@ def run_scene(scene: "Scene") -> SceneResult:
             kw = {"method": "exact"}       # the exact ring solver (issue 18)
         else:                              # the plan chose the MDR springs
             kw["method"] = "mdr"
-        res = contact.simulate(scene.load_path, **kw)
+        try:
+            res = contact.simulate(scene.load_path, **kw)
+        except ContactlabError as err:
+            part, at = err.partial, err.failed_at or {}
+            if not hasattr(part, "data") or "step" not in at:
+                raise
+            raise _step_failure(scene, plan, h, err, int(at["step"]),
+                                {k: part.data[k] for k in plan.series if k in part.data},
+                                ["simulate"]) from None
         computed.append("simulate")
         for k in plan.series:
             if k != "time":
                 out[k] = _get(res, k, n)
-        if "normal" in plan.calls:   # fields from the decoupled normal problem
-            normal_state = contact.normal(depth=float(out["depth"][-1]) if "depth" in out
-                                          else float(np.asarray(res.depth)[-1]))
-            computed.append("normal")
     else:
-        normal_state = contact.normal(**{n_kind: N})
-        computed.append("normal")
-        for k in ("depth", "force", "radius", "stiffness", "peak_pressure"):
-            if k in plan.series:
-                out[k] = _get(normal_state, k, n)
-        axis = plan.details["axis"]
-        call = next((c for c in plan.calls if c != "normal"), None)
-        if call is not None:
-            start = plan.details["start"]
-            ctrl = h.kind(axis) or ("twist" if axis == "twist" else "displacement")
-            drive = h.values(axis)
-            n0 = float(N[start])
-            kw = {n_kind: n0, ctrl: drive[start:]}
-            if call in ("torsion", "twist_history"):
-                kw["method"] = plan.method
-            res = getattr(contact, call)(**kw)
-            computed.append(call)
-            m = n - start
-            radius = np.asarray(normal_state.radius, float).reshape(-1)
-            pre = {"twist": 0.0, "torque": 0.0, "displacement": 0.0, "tangential_force": 0.0,
-                   "dissipated_energy": 0.0}
-            for k in ("twist", "torque", "displacement", "tangential_force", "stick_radius",
-                      "dissipated_energy"):
-                if k not in plan.series:
-                    continue
-                col = np.empty(n)
-                col[:start] = radius[:start] if k == "stick_radius" else pre[k]
-                col[start:] = _get(res, k, m)
-                out[k] = col
-        else:
-            for k in ("twist", "torque", "stick_radius", "displacement", "tangential_force",
-                      "dissipated_energy"):
-                if k in plan.series:   # requested effect with nothing driving it
-                    out[k] = np.zeros(n) if k != "stick_radius" else _get(normal_state, "radius", n)
-
-    fields: dict[str, np.ndarray] = {}
-    if plan.fields:
-        st = normal_state
-        a_end = float(np.asarray(st.radius, float).reshape(-1)[-1])
-        d_end = float(np.asarray(st.depth, float).reshape(-1)[-1])
-        pts = int(scene.outputs.get("field_points", 101))
-        r = np.linspace(0.0, FIELD_EXTENT * a_end, pts)
-        fields["r"] = r
-        last = contact.normal(depth=d_end) if st.shape else st
-        for f in plan.fields:
-            if f == "pressure":
-                fields[f] = np.asarray(last.pressure(r), float)
-            elif f == "surface_displacement":
-                fields[f] = np.asarray(last.displacement(r), float)
-            elif f == "shear":   # the exact torsion state at the final (monotone) twist
-                start = plan.details["start"]
-                ctrl = h.kind("twist") or "twist"
-                ts = contact.torsion(**{n_kind: float(N[start]), ctrl: float(h.values("twist")[-1]),
-                                        "method": plan.method})
-                fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
-
-    wear_res = fmap = None
-    meta_extra: dict[str, Any] = {}
-    if "wear" in plan.calls:
-        wear_res = contact.wear(**plan.details["wear"]["kwargs"])
-        computed.append("wear")
-        meta_extra["wear"] = {**{k: float(v[-1]) for k, v in wear_res.to_dict().items()},
-                              "steps": int(wear_res.meta["steps"]),
-                              "mode": wear_res.mode, "method": wear_res.method}
-    if "fretting_map" in plan.calls:
-        fmap = contact.fretting_map(**plan.details["fretting_map"]["kwargs"])
-        computed.append("fretting_map")
-        meta_extra["fretting_map"] = {
-            "points": int(fmap.regime.size),
-            "regimes": {name: int(np.sum(fmap.regime == i))
-                        for i, name in enumerate(fmap.regime_names)}}
+        try:
+            out, normal_state, computed = _closed_form(contact, plan, h, n)
+        except ContactlabError as err:
+            m, got = solved_prefix(lambda m: _closed_form(contact, plan, h, m), n)
+            raise _step_failure(scene, plan, h, err, m, got[0] if got else {},
+                                got[2] if got else []) from None
 
     series = {k: out[k] for k in plan.series}
-    for k, v in list(series.items()) + list(fields.items()):
-        if np.any(np.isnan(v)):
-            i = int(np.argmax(np.isnan(v)))
-            raise ConvergenceError(f"{k}[{i}] is NaN: the computation failed at that step "
-                                   f"({scene.title!r}).")
+    nan_at = [int(np.argmax(np.isnan(v))) for v in series.values() if np.any(np.isnan(v))]
+    if nan_at:
+        k = min(nan_at)
+        name = next(key for key, v in series.items() if np.isnan(v[k]))
+        err = ConvergenceError(f"{name}[{k}] is NaN: the computation failed at that step "
+                               f"({scene.title!r}).")
+        raise _step_failure(scene, plan, h, err, k, {key: v[:k] for key, v in series.items()},
+                            computed)
+
+    fields: dict[str, np.ndarray] = {}
+    stage = "fields"
+    wear_res = fmap = None
+    meta_extra: dict[str, Any] = {}
+    try:
+        if plan.fields:
+            if normal_state is None:   # fields from the decoupled normal problem
+                normal_state = contact.normal(depth=float(out["depth"][-1]) if "depth" in out
+                                              else float(np.asarray(res.depth)[-1]))
+                computed.append("normal")
+            st = normal_state
+            a_end = float(np.asarray(st.radius, float).reshape(-1)[-1])
+            d_end = float(np.asarray(st.depth, float).reshape(-1)[-1])
+            pts = int(scene.outputs.get("field_points", 101))
+            r = np.linspace(0.0, FIELD_EXTENT * a_end, pts)
+            fields["r"] = r
+            last = contact.normal(depth=d_end) if st.shape else st
+            for f in plan.fields:
+                if f == "pressure":
+                    fields[f] = np.asarray(last.pressure(r), float)
+                elif f == "surface_displacement":
+                    fields[f] = np.asarray(last.displacement(r), float)
+                elif f == "shear":   # the exact torsion state at the final (monotone) twist
+                    start = plan.details["start"]
+                    ctrl = h.kind("twist") or "twist"
+                    ts = contact.torsion(**{n_kind: float(N[start]),
+                                            ctrl: float(h.values("twist")[-1]),
+                                            "method": plan.method})
+                    fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
+            for k, v in fields.items():
+                if np.any(np.isnan(v)):
+                    raise ConvergenceError(f"field {k}[{int(np.argmax(np.isnan(v)))}] is NaN "
+                                           f"({scene.title!r}).")
+        if "wear" in plan.calls:
+            stage = "wear"
+            wear_res = contact.wear(**plan.details["wear"]["kwargs"])
+            computed.append("wear")
+            meta_extra["wear"] = {**{k: float(v[-1]) for k, v in wear_res.to_dict().items()},
+                                  "steps": int(wear_res.meta["steps"]),
+                                  "mode": wear_res.mode, "method": wear_res.method}
+        if "fretting_map" in plan.calls:
+            stage = "fretting_map"
+            fmap = contact.fretting_map(**plan.details["fretting_map"]["kwargs"])
+            computed.append("fretting_map")
+            meta_extra["fretting_map"] = {
+                "points": int(fmap.regime.size),
+                "regimes": {name: int(np.sum(fmap.regime == i))
+                            for i, name in enumerate(fmap.regime_names)}}
+    except ContactlabError as err:
+        info = {"stage": stage, "step": n, "n_steps": n}
+        part = _partial_result(scene, plan, series, fields if stage != "fields" else {},
+                               computed, info, wear=wear_res)
+        part.meta.update(meta_extra)
+        failed_part_way(err, f"the {stage.replace('_', ' ')} stage after the load path "
+                        f"failed (all {n} steps computed)", part, **info)
+        part.meta["error"] = f"{type(err).__name__}: {err}"
+        raise err from None
+
     meta = {"computed": computed, "route": plan.route, "version": __version__,
             "title": scene.title, "citations": _sources(computed, plan.method, contact),
             **meta_extra}

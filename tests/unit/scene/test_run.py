@@ -147,6 +147,8 @@ def test_foundation_route_passes_the_typed_path(monkeypatch):
     s = Scene(d)
     res = s.run()
     assert res.meta["computed"] == ["simulate"]
+    # outputs.method = 'mdr' asks for the spring foundation by name (simulate's default for a
+    # twisted path is the exact ring solver)
     assert seen["path"] is s.load_path and seen["kw"] == {"n_springs": 64, "method": "mdr"}
     kinds = [type(seg).__name__ for seg in seen["path"].segments]
     assert kinds == ["Table", "Ramp", "Sinusoid"]      # the unloaded start, then the scene's
