@@ -20,7 +20,7 @@ from ..loadpath import Hold, LoadPath, Ramp, Sinusoid
 from . import toml_io
 from .validate import CONTROLS, read_table, resolve_file, validate
 
-__all__ = ["Scene", "History", "build_load_path"]
+__all__ = ["Scene", "History", "build_load_path", "leaf_segments"]
 
 #: steps per cycle of a sinusoid segment that does not say
 DEFAULT_STEPS_PER_CYCLE = 100
@@ -104,6 +104,27 @@ def build_load_path(segments: Sequence[Mapping[str, Any]], base_dir: Path | None
                                       body.get("steps_per_cycle", DEFAULT_STEPS_PER_CYCLE),
                                       body.get("period")))
     return path
+
+
+def leaf_segments(segments: Sequence[Mapping[str, Any]]) -> list[tuple[int, int, int]]:
+    """Scene segment of each leaf of the built path, in order (repeats expanded, the unloaded
+    start left out, so :attr:`History.segment` indexes this list): ``(segment index,
+    repetition, times)``, repetition 0-based, ``times`` 1 unless a ``repeat`` runs it again.
+
+    >>> leaf_segments([{"ramp": {}}, {"table": {}}, {"repeat": {"times": 3}}, {"hold": {}}])
+    [(0, 0, 1), (1, 0, 3), (1, 1, 3), (1, 2, 3), (3, 0, 1)]
+    """
+    groups: list[list[tuple[int, int, int]]] = []
+    for i, seg in enumerate(segments):
+        if "repeat" in seg:
+            k = min(int(seg["repeat"].get("last", 1)), len(groups))
+            times = int(seg["repeat"]["times"])
+            block = [leaf for g in groups[len(groups) - k:] for leaf in g]
+            groups[len(groups) - k:] = [[(j, r, times) for r in range(times)
+                                         for j, _, _ in block]]
+        else:
+            groups.append([(i, 0, 1)])
+    return [leaf for g in groups for leaf in g]
 
 
 def _history(path: LoadPath, opens_with_start: bool) -> History:

@@ -235,7 +235,10 @@ def make_plan(scene: "Scene") -> Plan:
         calls.append("viscoelastic_history")
     elif foundation:
         if coupled_at is not None:
-            seg = int(h.segment[coupled_at])
+            from .model import leaf_segments
+            owners = leaf_segments(scene.to_dict()["load_path"])
+            leaf = int(h.segment[coupled_at])
+            seg = owners[leaf][0] if 0 <= leaf < len(owners) else leaf
             why = (f"normal load varies while {'twisted' if axis == 'twist' else 'shifted'} "
                    f"(step {coupled_at}, load_path[{seg}]): no closed form, foundation with memory")
         else:

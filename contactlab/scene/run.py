@@ -361,16 +361,19 @@ def _step_failure(scene: "Scene", plan: "Plan", h: Any, err: ContactlabError, k:
                   series: dict[str, np.ndarray], computed: list[str]) -> ContactlabError:
     """``err`` at step ``k`` of the scene's path, named by step, time and scene segment, with the
     :class:`SceneResult` of steps ``0 .. k-1`` as ``err.partial``."""
+    from .model import leaf_segments
     n = h.n_steps
-    seg = int(h.segment[min(k, n - 1)])
+    leaf = int(h.segment[min(k, n - 1)])
     segs = scene.to_dict()["load_path"]
-    what = ("the unloaded start" if seg < 0 else
-            f"load_path[{seg}] {next(iter(segs[seg]))}" if seg < len(segs) else
-            f"load_path[{seg}]")
+    owners = leaf_segments(segs)
+    seg, rep, times = owners[leaf] if 0 <= leaf < len(owners) else (leaf, 0, 1)
+    what = ("the unloaded start" if seg < 0 else f"load_path[{seg}] {next(iter(segs[seg]))}"
+            + (f", repetition {rep + 1} of {times}" if times > 1 else ""))
     t = float(h.time[min(k, n - 1)])
     where = (f"step {k} of {n} failed (t = {t:.6g} s, {what}; "
              + (f"steps 0-{k - 1} computed)" if k else "no step computed)"))
-    info = {"step": k, "n_steps": n, "time": t, "segment": seg}
+    info = {"step": k, "n_steps": n, "time": t, "segment": seg,
+            **({"repetition": rep + 1} if times > 1 else {})}
     part = _partial_result(scene, plan, series, {}, computed, info)
     failed_part_way(err, where, part, **info)
     part.meta["error"] = f"{type(err).__name__}: {err}"

@@ -200,6 +200,8 @@ def test_a_complete_run_removes_the_status_file(failing_scene, tmp_path, capsys)
     out = tmp_path / "out"
     assert main(["run", str(failing_scene), "-o", str(out)]) == 1
     assert (out / "status.json").exists()
-    failing_scene.write_text(SCENE_TOML.replace("300 N", "110 N"))
+    failing_scene.write_text(SCENE_TOML.replace(              # inside the table, no twist
+        'ramp = { force = "300 N", twist = "1 mrad", steps = 20 }',
+        'ramp = { force = "110 N", steps = 20 }'))
     assert main(["run", str(failing_scene), "-o", str(out), "--overwrite"]) == 0
     assert sorted(p.name for p in out.iterdir()) == ["series.csv"]
