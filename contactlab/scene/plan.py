@@ -420,7 +420,10 @@ def _fretting_rows(scene: "Scene", h: Any, path_method: str | None,
     if "wear" in data:
         w = data["wear"]
         i, ctrl, amp = fretting_segment(data["load_path"])   # validated: exists
-        steps = np.flatnonzero(h.segment == i)
+        from .model import leaf_segments     # History.segment counts leaves (repeats expanded)
+        leaves = [j for j, (seg, rep, _) in enumerate(leaf_segments(data["load_path"]))
+                  if seg == i and rep == 0]
+        steps = np.flatnonzero(np.isin(h.segment, leaves[:1]))
         force = float(h.values("normal")[steps[0]]) if steps.size else 0.0
         if force <= 0:
             issues.append((f"load_path[{i}]", f"normal force {force:g} N", "a positive normal "

@@ -61,6 +61,20 @@ def test_wear_needs_a_fretting_segment_at_constant_force():
     assert "<= wear.cycles" in issues(d)["wear.checkpoints"][1]
 
 
+def test_wear_force_after_repeated_segments():
+    """The fretting force is read at the fretting segment's own steps, not at the step block of
+    the same index (History.segment counts leaves: a repeat before the fretting segment shifts
+    them): 100 N, then 200 N, both ramps repeated, then the twist at 200 N."""
+    d = base(interface={"friction": 0.3}, wear=WEAR)
+    d["load_path"] = [{"ramp": {"force": "100 N", "steps": 10}},
+                      {"ramp": {"force": "200 N", "steps": 5}},
+                      {"repeat": {"times": 2, "last": 2}},
+                      {"sinusoid": {"twist": "1 mrad", "cycles": 1, "steps_per_cycle": 20}}]
+    p = Scene(d).plan()
+    assert p.details["wear"]["kwargs"]["force"] == 200.0
+    assert p.details["wear"]["segment"] == 3
+
+
 def test_every_map_issue_is_collected():
     d = twist_scene(fretting_map={"force": {"from": "1 kN", "to": "10 N", "points": 3},
                                   "twist_amplitude": ["1 mrad"], "displacement_amplitude": [1e-6],
