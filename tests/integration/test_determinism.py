@@ -2,7 +2,9 @@
 
 A shuffled workload over shared Contact objects is run serially on fresh contacts (the reference),
 serially on one warm contact per profile in a shuffled order, in 4 threads sharing the contacts,
-and in a process pool; every number must agree bit for bit. Lazy caches (profile routes, JKR
+and in a process pool; every number must agree bit for bit. The workload covers normal,
+tangential and torsion states, spring and exact (ring) simulate, fretting loops, wear and a
+ContactLaw history (its family master curve is a shared lazy cache). Lazy caches (profile routes, JKR
 branches, table rules, error estimates filled on first access) must never change a result. Also:
 results pickle and compare equal to their copies."""
 from __future__ import annotations
@@ -63,6 +65,31 @@ def task(contacts, key):
                                                               steps_per_cycle=40)
         r = c.simulate(path, n_springs=200, error_estimate=True)
         return _numbers(*r.data.values(), *r.meta["error_estimates"].values())
+    if kind == "exact":
+        path = (cl.LoadPath().ramp(force=x, steps=5).ramp(twist=2e-4, steps=6)
+                .ramp(force=2 * x, twist=-1e-4, steps=6))
+        r = c.simulate(path, method="exact", n_rings=60, error_estimate=True)
+        return _numbers(*r.data.values(), *r.meta["error_estimates"].values())
+    if kind == "fretting_loop":
+        a = c.fretting_loop(force=x, displacement_amplitude=2e-7, n_points=20)
+        b = c.fretting_loop(force=x, twist_amplitude=1e-4, n_points=20)
+        return _numbers(a.energy, a.peak, a.x, a.y, b.energy, b.peak, b.stick_radius, b.x, b.y)
+    if kind == "wear":
+        w = c.wear(force=x, twist_amplitude=2e-3, wear_coefficient=1e-14, cycles=1e3,
+                   n_grid=100, checkpoints=3)
+        return _numbers(w.cycles, w.depth, w.radius, w.volume, w.dissipated_energy,
+                        *(p.f for p in w.profiles))
+    if kind == "law":
+        law = cl.ContactLaw(P.Paraboloid, R=[0.01, 0.005, 0.02], materials=(STEEL, STEEL),
+                            friction=0.3)
+        out = []
+        for k in range(12):           # constant load, then a load change (MDR springs)
+            F = x * (1.0 if k < 8 else 1.0 + 0.05 * (k - 7))
+            st = law.step(force=F, twist=2e-4 * np.sin(0.7 * k) * np.array([1.0, 0.5, 2.0]))
+            st2 = law.step(force=F, displacement=1e-7 * np.cos(0.9 * k) * np.array([1, 2, 0.5]))
+            out += [st.torque, st.torsion_stick_radius, st.dissipated_energy,
+                    st2.tangential_force, st2.stick_radius, st2.dissipated_energy]
+        return _numbers(*out)
     raise AssertionError(kind)
 
 
@@ -73,6 +100,9 @@ def workload():
         keys += [(name, "depth", 1e-6), (name, "torsion", 10.0), (name, "tangential", 10.0)]
     keys += [("paraboloid", "simulate", 10.0), ("table", "simulate", 10.0)]
     keys += [("adhesive", "normal", 1.0), ("adhesive", "pull_off", 0.0)]
+    keys += [("paraboloid", "exact", 10.0), ("table", "exact", 10.0),
+             ("paraboloid", "fretting_loop", 10.0), ("cone+sphere", "fretting_loop", 10.0),
+             ("paraboloid", "wear", 10.0), ("paraboloid", "law", 10.0)]
     return keys
 
 
