@@ -429,6 +429,18 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactlab`` console script; returns the exit code."""
+    try:
+        return _main(argv)
+    except BrokenPipeError:      # `contactlab ... | head`: the reader left; no traceback
+        import os
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):
+            pass
+        return 1
+
+
+def _main(argv: Sequence[str] | None) -> int:
     from .errors import (ContactlabError, ConvergenceError, ParameterError, SceneError,
                          UnknownNameError)
 

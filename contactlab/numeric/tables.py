@@ -66,7 +66,7 @@ def _is_number(text: str) -> bool:
 def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
                  dimension: Callable[[str], str | None] | tuple[str | None, ...],
                  units: dict[str, str | None] | None = None,
-                 delimiter: str | None = None, min_columns: int = 1,
+                 delimiter: str | None = None, min_columns: int = 1, quote: bool = True,
                  ) -> tuple[list[str], dict[str, np.ndarray]]:
     """Read a CSV table and convert every column to SI.
 
@@ -88,6 +88,10 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         Column separator; default: ``;`` if the file holds more of them than commas, else ``,``.
     min_columns : int
         Columns every row must have.
+    quote : bool
+        Quote the file in error messages (a cell that is not a number, the header's names and
+        units). False names rows and columns by position only: scene files use it, so that a
+        file named by mistake (or on purpose) is never shown.
 
     Returns
     -------
@@ -107,6 +111,13 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
     _check_arguments(units, delimiter)
     rows = _rows(path, delimiter)
     where = f"file={str(path)!r}"
+
+    def q(text: Any) -> str:
+        return repr(text) if quote else "(not shown)"
+
+    def cname(j: int, name: str) -> str:
+        return repr(name) if quote else f"{j + 1}"
+
     header: list[str] | None = None
     if rows and not all(_is_number(c) for c in rows[0] if c):
         header, rows = rows[0], rows[1:]
@@ -123,7 +134,8 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         header_units = {}
     if len(col_names) < min_columns:
         raise TabulatedDataError(
-            f"{where} has {len(col_names)} column(s) ({', '.join(col_names)}): it needs at "
+            f"{where} has {len(col_names)} column(s)"
+            + (f" ({', '.join(col_names)})" if quote else "") + ": it needs at "
             f"least {min_columns}" + (f" ({', '.join(names[:min_columns])})" if names else "")
             + ".")
     width = len(col_names)
@@ -132,20 +144,22 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         cells = [c for c in row]
         if len(cells) < width or any(c != "" for c in cells[width:]):
             raise TabulatedDataError(
-                f"{where}: data row {i + 1} has {len(cells)} value(s) {cells!r}; every row "
-                f"needs {width} ({', '.join(col_names)}).")
+                f"{where}: data row {i + 1} has {len(cells)} value(s)"
+                + (f" {cells!r}" if quote else "") + f"; every row needs {width}"
+                + (f" ({', '.join(col_names)})." if quote else "."))
         for j in range(width):
             try:
                 data[i, j] = float(cells[j])
             except ValueError:
                 raise TabulatedDataError(
-                    f"{where}: data row {i + 1}, column {col_names[j]!r} holds {cells[j]!r}, "
-                    "which is not a number.") from None
+                    f"{where}: data row {i + 1}, column {cname(j, col_names[j])} holds "
+                    f"{q(cells[j])}, which is not a number.") from None
     given = dict(units or {})
     for key in given:
         if key not in col_names and not (isinstance(key, int) and 0 <= key < len(col_names)):
             raise ParameterError(f"units names column {key!r}, which {where} does not have "
-                                 f"(its columns: {', '.join(col_names)}).")
+                                 + (f"(its columns: {', '.join(col_names)})." if quote
+                                    else f"(it has {len(col_names)} columns)."))
     out: dict[str, np.ndarray] = {}
     for j, name in enumerate(col_names):
         if isinstance(dimension, tuple):
@@ -160,15 +174,23 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
             continue
         if dim is None:
             if unit_h not in (None, "", "1", "-"):
-                raise UnitError(f"{where}: column {name!r} has unit {unit_h!r}, but it takes "
-                                "plain numbers.", [(f"{name} [unit]", unit_h, "no unit")])
+                raise UnitError(f"{where}: column {cname(j, name)} has unit {q(unit_h)}, but it "
+                                "takes plain numbers.",
+                                [(f"{name} [unit]", unit_h, "no unit")] if quote else [])
             out[name] = col
             continue
-        factor_h = None if unit_h is None else unit_factor(unit_h, dim, f"{name} [unit]")
+        try:
+            factor_h = None if unit_h is None else unit_factor(unit_h, dim, f"{name} [unit]")
+        except UnitError:
+            if quote:
+                raise
+            raise UnitError(f"{where}: the unit in the header of column {j + 1} is unknown or "
+                            f"not a unit of {dim}.") from None
         factor_a = None if unit_a is None else unit_factor(unit_a, dim, f"unit of {name}")
         if factor_h is not None and factor_a is not None and not math.isclose(factor_h, factor_a):
             raise TabulatedDataError(
-                f"{where}: column {name!r} is in {unit_h!r} by its header but {unit_a!r} was "
+                f"{where}: column {cname(j, name)} is in {q(unit_h)} by its header but "
+                f"{unit_a!r} was "
                 f"given as an argument; give one unit, or make them agree.")
         factor = factor_h if factor_h is not None else (factor_a if factor_a is not None else 1.0)
         out[name] = col * factor if factor != 1.0 else col

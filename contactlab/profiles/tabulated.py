@@ -256,7 +256,8 @@ class Tabulated(Profile):
     def from_csv(cls, path: str | Path, interpolation: str = "linear", *,
                  r_unit: str | None = None, f_unit: str | None = None,
                  delimiter: str | None = None, smoothing: Any = None,
-                 noise: float | None = None, admissible: str | None = None) -> "Tabulated":
+                 noise: float | None = None, admissible: str | None = None,
+                 quote_contents: bool = True) -> "Tabulated":
         """Read a table: two columns r, f (further columns are ignored).
 
         Parameters
@@ -274,6 +275,9 @@ class Tabulated(Profile):
             Column separator (default: detected).
         smoothing, noise, admissible
             See :class:`Tabulated` (``noise`` in m, whatever the file's units).
+        quote_contents : bool
+            Quote the file in error messages (the bad cell, the header). False names rows and
+            columns by position only (scene files: a file is never shown).
 
         Raises
         ------
@@ -294,7 +298,7 @@ class Tabulated(Profile):
         from ..numeric.tables import read_columns
         units = {k: v for k, v in ((0, r_unit), (1, f_unit)) if v is not None}
         names, cols = read_columns(path, names=("r", "f"), units=units, delimiter=delimiter,
-                                   min_columns=2,
+                                   min_columns=2, quote=bool(quote_contents),
                                    dimension=("length", "length"))
         for extra in names[2:]:
             cols.pop(extra, None)

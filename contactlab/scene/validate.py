@@ -160,7 +160,8 @@ def make_profile(type_: str, params: Mapping[str, Any], base_dir: Path | None = 
         return cls.from_half_angle(p["half_angle"])
     if type_ == "tabulated" and "file" in p:
         path = resolve_file(p["file"], base_dir)
-        return cls.from_csv(path, **{k: v for k, v in p.items() if k != "file"})
+        return cls.from_csv(path, quote_contents=False,    # never show the file in a message
+                            **{k: v for k, v in p.items() if k != "file"})
     if type_ == "polynomial":
         return cls([tuple(t) for t in p["terms"]])
     return cls(**p)

@@ -237,3 +237,31 @@ def test_every_segment_kind_and_history_file_counts_toward_the_step_limit(tmp_pa
         body = "".join(f"[[load_path]]\n{s.format(**fmt)}\n" for s in segments)
         scene.write_text(SCENE.split("[[load_path]]")[0] + body)
         assert main(["validate", str(scene)]) == 0, capsys.readouterr().err
+
+
+@pytest.mark.parametrize("text", ["root:x:0:0:root:/root:/bin/bash\nTOPSECRET,1\n",
+                                  "r,f\n0,0\n1e-3,TOPSECRET\n",
+                                  "r [TOPSECRET],f\n0,0\n1e-3,1e-9\n2e-3,4e-9\n",
+                                  "r,f\n0,0\n1e-3,1e-9,TOPSECRET\n"])
+def test_profile_file_errors_never_show_the_file(tmp_path, capsys, text):
+    """A tabulated profile named outside the scene's folder (read with --allow-outside) that is
+    not a valid table: the error names rows and columns by position, never the contents."""
+    (tmp_path / "secret.csv").write_text(text)
+    d = tmp_path / "a" / "b"
+    d.mkdir(parents=True)
+    scene = d / "s.toml"
+    scene.write_text(SCENE.replace('type = "paraboloid"\nR = "10 mm"',
+                                   'type = "tabulated"\nfile = "../../secret.csv"'))
+    for argv in (["validate", str(scene), "--allow-outside"],
+                 ["validate", str(scene), "--allow-outside", "--json"]):
+        assert main(argv) == 2
+        out, err = capsys.readouterr()
+        assert "secret.csv" in out + err
+        assert "TOPSECRET" not in out + err and "root:x" not in out + err
+
+
+def test_broken_pipe_is_no_traceback(scene):
+    r = subprocess.run(f"{sys.executable} -m contactlab validate {scene} --json | head -c 1",
+                       shell=True, capture_output=True, text=True,
+                       env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])})
+    assert "Traceback" not in r.stderr
