@@ -262,3 +262,9 @@ def test_law_spring_memory_guard_on_a_load_change():
             lw.step(force=2.0, displacement=1e-7)
     finally:
         cl.set_memory_budget(previous)
+
+
+def test_sweep_grid_memory_guard_before_building_the_product():
+    with pytest.raises(MemoryBudgetError, match=r"sweep grid .*100000000 points = 10000 x 10000"):
+        cl.sweep(_study, {"x": list(range(10**4)), "y": list(range(10**4))}, workers=1,
+                 progress=False)
