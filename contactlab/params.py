@@ -19,7 +19,7 @@ from .errors import MemoryBudgetError, ParameterError
 
 __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
            "as_real", "as_checked_array", "broadcast_inputs", "check_count", "check_result_finite", "exactly_one", "scalar_or_array",
-           "step_indices",
+           "step_indices", "check_flag", "name_list",
            "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
            "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual"]
 
@@ -497,14 +497,55 @@ def step_indices(name: str, steps: Any, n_steps: int) -> set[int]:
     Raises
     ------
     ParameterError
-        An index outside ``-n_steps <= step < n_steps``.
+        ``steps`` is not a list of integers (a bool, a string, a fraction, NaN), or an index
+        outside ``-n_steps <= step < n_steps``.
     """
+    if steps is None:
+        return set()
+    if isinstance(steps, (str, bytes)) or not hasattr(steps, "__iter__"):
+        raise ParameterError(f"{name}={_short(steps)} is invalid: give a list of step indices "
+                             "(integers; negative counts from the end).")
     out = set()
-    for s in (steps or ()):
-        s = int(s)
-        s = s + n_steps if s < 0 else s
-        if not 0 <= s < n_steps:
-            raise ParameterError(f"{name} contains {s!r}: steps must satisfy "
+    for s in steps:
+        v = as_real(name, s, "every step index must be an integer (negative counts from the end)")
+        if not math.isfinite(v) or v != int(v):
+            raise ParameterError(f"{name} contains {_short(s)}: every step index must be an "
+                                 "integer (negative counts from the end).")
+        k = int(v)
+        k = k + n_steps if k < 0 else k
+        if not 0 <= k < n_steps:
+            raise ParameterError(f"{name} contains {int(v)!r}: steps must satisfy "
                                  f"-{n_steps} <= step < {n_steps}.")
-        out.add(s)
+        out.add(k)
+    return out
+
+
+def check_flag(name: str, value: Any) -> bool:
+    """A switch given as ``True``/``False`` (numpy booleans too); anything else is refused
+    (``"no"`` is truthy in Python, which would silently switch the option on)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ParameterError(f"{name}={_short(value)} is invalid: give True or False.")
+    return bool(value)
+
+
+def name_list(name: str, value: Any, allowed: tuple[str, ...]) -> tuple[str, ...]:
+    """A tuple of names from ``allowed``: one name or an iterable of names.
+
+    Raises
+    ------
+    ParameterError
+        Not a name or an iterable of names.
+    UnknownNameError
+        A name that is not allowed.
+    """
+    from .errors import UnknownNameError
+    if isinstance(value, str):
+        value = (value,)
+    if not hasattr(value, "__iter__"):
+        raise ParameterError(f"{name}={_short(value)} is invalid: give a name or a list of names "
+                             f"from {allowed}.")
+    out = tuple(value)
+    for o in out:
+        if not isinstance(o, str) or o not in allowed:
+            raise UnknownNameError(f"{name} contains {o!r}: allowed are {allowed}.")
     return out

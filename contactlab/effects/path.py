@@ -21,10 +21,11 @@ from ..citations import Cited, sources_for
 from ..errors import (ContactlabError, EffectNotPlannedError, NotSupportedError, ParameterError,
                       UnknownNameError, ValidityWarning, failed_part_way)
 from ..foundation import DEFAULT_N_SPRINGS, Winkler
-from ..foundation.base import families_needed, iter_path_normal_states, path_normal_states
+from ..foundation.base import (SPACINGS, families_needed, iter_path_normal_states,
+                               path_normal_states)
 from ..loadpath import LoadPath
 from ..loadpath.base import UNITS
-from ..params import check_count, check_memory, step_indices
+from ..params import check_count, check_flag, check_memory, name_list, step_indices
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
@@ -198,6 +199,13 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     :class:`PathResult` of the steps before it (``meta["status"] == "partial"``; only the normal
     series when the normal solve failed, before the time loop) and ``err.failed_at`` the place.
     """
+    approximate = check_flag("approximate", approximate)
+    error_estimate = check_flag("error_estimate", error_estimate)
+    progress = check_flag("progress", progress)
+    if spacing not in SPACINGS:
+        raise UnknownNameError(f"spacing={spacing!r} is invalid: allowed are {SPACINGS}.")
+    if outputs is not None:
+        outputs = name_list("outputs", outputs, SERIES)
     method = resolve_path_method(path, method, approximate)
     _check_method_arguments(method, n_springs=n_springs, spacing=spacing, strategy=strategy,
                             n_rings=n_rings)
@@ -333,7 +341,8 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
         raise ParameterError("path has no steps: add a segment, e.g. "
                              "LoadPath().ramp(force=1.0, steps=10).")
     n_springs = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs)
-    snapshots = list(snapshots or ())
+    step_indices("snapshots", snapshots, n_total)             # a list of valid step indices
+    snapshots = [] if snapshots is None else list(snapshots)
     check_memory("simulate()", simulate_memory(n_total, n_springs, len(snapshots)),
                  f"{n_total} steps, {n_springs} springs, {len(snapshots)} snapshots")
     snaps = step_indices("snapshots", snapshots, n_total)

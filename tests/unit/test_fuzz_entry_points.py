@@ -268,3 +268,27 @@ def test_sweep_grid_memory_guard_before_building_the_product():
     with pytest.raises(MemoryBudgetError, match=r"sweep grid .*100000000 points = 10000 x 10000"):
         cl.sweep(_study, {"x": list(range(10**4)), "y": list(range(10**4))}, workers=1,
                  progress=False)
+
+
+# ------------------------------------------------------------------ simulate options
+@pytest.mark.parametrize("method", ["exact", "mdr"])
+@pytest.mark.parametrize("kw, match", [
+    ({"snapshots": ["a"]}, "snapshots"), ({"snapshots": [1.5]}, "snapshots contains 1.5"),
+    ({"snapshots": [True]}, "snapshots=True"), ({"snapshots": [math.nan]}, "snapshots"),
+    ({"snapshots": 5}, "list of step indices"), ({"snapshots": [[1]]}, "snapshots"),
+    ({"snapshots": [99]}, "snapshots contains 99"),
+    ({"outputs": [1]}, "outputs contains 1"), ({"outputs": 5}, "outputs=5"),
+    ({"spacing": "bogus"}, "spacing='bogus'"), ({"spacing": 1}, "spacing=1"),
+    ({"error_estimate": "yes"}, "error_estimate='yes'"), ({"progress": "no"}, "progress='no'"),
+    ({"approximate": 1}, "approximate=1")])
+def test_simulate_options(method, kw, match):
+    path = cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=3)
+    with pytest.raises(ContactlabError, match=match):
+        contact().simulate(path, method=method, **kw)
+
+
+@pytest.mark.parametrize("method", ["exact", "mdr"])
+def test_simulate_snapshots_as_array_and_one_output_name(method):
+    path = cl.LoadPath().ramp(force=10.0, steps=3).ramp(twist=1e-4, steps=3)
+    r = contact().simulate(path, method=method, snapshots=np.array([1, -1]), outputs="torque")
+    assert list(r.data) == ["torque"] and np.all(np.isfinite(r.data["torque"]))
