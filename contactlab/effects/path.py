@@ -202,7 +202,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     approximate = check_flag("approximate", approximate)
     error_estimate = check_flag("error_estimate", error_estimate)
     progress = check_flag("progress", progress)
-    if spacing not in SPACINGS:
+    if spacing is not None and spacing not in SPACINGS:
         raise UnknownNameError(f"spacing={spacing!r} is invalid: allowed are {SPACINGS}.")
     if outputs is not None:
         outputs = name_list("outputs", outputs, SERIES)
