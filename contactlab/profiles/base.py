@@ -305,7 +305,12 @@ class Profile(ParamIdentity, ABC):
 
     def _theta_quadrature(self, flat: np.ndarray, weight, rtol: float
                           ) -> tuple[np.ndarray, np.ndarray]:
-        """``Σ_segments ∫ weight(x, θ) dθ`` over the split θ range for each ``x`` in ``flat``."""
+        """``Σ_segments ∫ weight(x, θ) dθ`` over the split θ range for each ``x`` in ``flat``.
+
+        ``rtol`` applies to the sum over the segments of one ``x``, not to each segment: a
+        segment far smaller than the sum (a table with hundreds of nodes splits θ at each of them)
+        need not reach ``rtol`` relative to itself.
+        """
         val = np.zeros(flat.shape)
         err = np.zeros(flat.shape)
         nz = flat > 0          # x = 0 contributes nothing (every caller multiplies by a power of x)
@@ -317,9 +322,18 @@ class Profile(ParamIdentity, ABC):
         def integrand(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return weight(xr[idx][:, None], theta)
 
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol)
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol,
+                        raise_on_failure=lo.shape[0] == 1)
         val[nz] = res.value.reshape(lo.shape).sum(axis=0)
         err[nz] = res.error.reshape(lo.shape).sum(axis=0)
+        missed = err > rtol * np.abs(val)
+        if np.any(missed):
+            from ..errors import ConvergenceError
+            i = int(np.argmax(missed))
+            raise ConvergenceError(
+                f"quadrature over θ at x={float(flat[i])!r} m did not reach rtol={rtol:g} "
+                f"(value {val[i]:.6g}, error estimate {err[i]:.3g} summed over "
+                f"{lo.shape[0]} segments); loosen rtol.")
         return val, err
 
     def g_integral(self, a: Any) -> np.ndarray:

@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.errors import ConvergenceError
 from contactlab.materials.viscoelastic import GeneralizedMaxwell
 from contactlab.profiles import Paraboloid, Polynomial, Tabulated
 from contactlab.registry import registry
@@ -73,18 +72,6 @@ class TestRegisteredProfiles(ProfileChecks):
 
     def make_profile(self):
         return PROFILES[self._name]
-
-    def test_inverse_transform_round_trip(self):
-        if self._name == "tabulated_linear":
-            # Known defect (reported, measured-data issue): inverse_transform of a *linear* table
-            # splits θ at every node; one sub-integral of ~1e-13 m cannot reach rtol 1e-10
-            # relative to itself, so the whole call raises although the sum is converged (it
-            # passes at rtol=1e-9). Cubic tables no longer split (their transform is C²).
-            # When fixed, this branch fails and must be removed.
-            with pytest.raises(ConvergenceError, match="quadrature did not reach"):
-                super().test_inverse_transform_round_trip()
-            return
-        super().test_inverse_transform_round_trip()
 
 
 @pytest.fixture(params=sorted(MATERIALS), ids=str)
