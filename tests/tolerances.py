@@ -429,3 +429,14 @@ CUBIC_SLOPE_FD = 1e-8
 #: entry's last bits depend on the other entries: a map computed in small blocks against the map
 #: in one block (observed 1.1e-14 relative on the exact model's energy)
 MAP_BLOCKS = 1e-12
+# Table audit (issue 12, tests/hard/test_table_audit.py): every route on tables of 10..10^6
+# points. normal(depth=normal(force=F).depth).force against F: both radius solves converge to a
+# relative bracket of 1e-15; the force is smooth in the radius (contactlab.testing ROUND_TRIP).
+TABLE_ROUND_TRIP = 1e-9
+# inverse transform (2/π)∫g(r sinθ)dθ of a table against its interpolated height: a quadrature
+# (rtol 1e-10, summed over the θ segments of a linear table) of the exact transform.
+TABLE_INVERSE = 1e-8
+# dissipated energy of a shift loop, 1000-point linear table of a paraboloid against the
+# paraboloid: a difference of ∫g and ∫g² terms over the slip annulus, which amplifies the table's
+# own error ((Δr/a)² ~ 1.1e-4 at a = 0.19 mm); measured 2.6e-4.
+TABLE_1000_DISSIPATION = 1e-3

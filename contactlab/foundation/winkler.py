@@ -46,8 +46,10 @@ def _gint(profile, x: np.ndarray) -> np.ndarray:
 
 
 def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
-    """``H(x) = ∫_0^x s g(s) ds``, m⁴ (closed form for power terms, else tanh-sinh)."""
+    """``H(x) = ∫_0^x s g(s) ds``, m⁴ (closed form for power terms and tables, else tanh-sinh)."""
     x = np.asarray(x, float)
+    if profile._has("_xg_integral_closed_form"):
+        return np.where(x > 0, profile._xg_integral_closed_form(np.maximum(x, 0.0)), 0.0)
     terms = profile.power_terms()
     if terms is not None:
         out = np.zeros(x.shape)
@@ -63,21 +65,8 @@ def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
     out = np.zeros(flat.shape)
     pos = flat > lo.ravel()
     if np.any(pos):
-        out[pos] = tanh_sinh(integrand, lo.ravel()[pos], flat[pos], rtol=rtol,
-                             atol=_table_floor(profile, flat[pos])).value
+        out[pos] = tanh_sinh(integrand, lo.ravel()[pos], flat[pos], rtol=rtol).value
     return out.reshape(x.shape)
-
-
-def _table_floor(profile, x: np.ndarray) -> np.ndarray | float:
-    """Absolute floor of ``H(x)`` for a table: its interpolant is known only to the table's
-    resolution, relative ``(h/x)²`` for node spacing ``h`` (the linear interpolation error of a
-    smooth profile), and g's square-root cusps at the nodes keep the quadrature from reaching a
-    tighter relative tolerance. Scale: ``H(x) <= x² g(x)/2``. 0 for profiles without a table."""
-    if not profile.has("linear_table") and not hasattr(profile, "table_nodes"):
-        return 0.0
-    h = float(np.min(np.diff(profile.table_nodes())))
-    scale = 0.5 * x**2 * np.abs(profile._g(x))
-    return scale * np.minimum((h / x) ** 2, 1.0)
 
 
 @dataclass

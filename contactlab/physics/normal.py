@@ -242,8 +242,38 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     # split at the profile's breakpoints (g has kinks there)
     cuts = sorted({b for b in profile.breakpoints if b > 0})
     edges = np.stack([lo] + [np.clip(np.full(a.shape, b), lo, a) for b in cuts] + [a])
-    res = tanh_sinh(integrand, edges[:-1].ravel(), edges[1:].ravel(), rtol=rtol)
-    return res.value.reshape(edges[:-1].shape).sum(axis=0)
+    table = profile.has("node_table") and not cuts
+    res = tanh_sinh(integrand, edges[:-1].ravel(), edges[1:].ravel(), rtol=rtol,
+                    raise_on_failure=not table)
+    value = res.value.reshape(edges[:-1].shape).sum(axis=0)
+    if table:
+        # a table too fine to split at every node: g has a kink at each of them, which the
+        # quadrature resolves only down to the table's own resolution (∫g² <= a g(a)²)
+        err = res.error.reshape(edges[:-1].shape).sum(axis=0)
+        missed = err > rtol * np.abs(value) + table_floor(profile, a, a * profile._g(a) ** 2)
+        if np.any(missed):
+            from ..errors import ConvergenceError
+            i = int(np.argmax(missed))
+            raise ConvergenceError(
+                f"∫g² over [0, {a.ravel()[i]!r}] m: quadrature error estimate "
+                f"{err.ravel()[i]:.3g} for {value.ravel()[i]:.6g} exceeds the table's "
+                f"resolution (rtol={rtol:g}).")
+    return value
+
+
+def table_floor(profile, x: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    """Absolute floor ``scale · min((h/x)², 1)`` of a quadrature over ``[0, x]`` of a table's g.
+
+    ``h`` is the largest node spacing below ``x``: the interpolant is known only to the table's
+    resolution (relative ``(h/x)²`` for data sampled from a smooth surface), and the kinks of g at
+    thousands of nodes keep an adaptive quadrature from converging much beyond it.
+    """
+    nodes = profile.table_nodes()
+    gaps = np.maximum.accumulate(np.diff(nodes))
+    k = np.clip(np.searchsorted(nodes, x, side="left") - 1, 0, gaps.size - 1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.where(x > 0, np.minimum((gaps[k] / np.where(x > 0, x, 1.0)) ** 2, 1.0), 0.0)
+    return np.abs(scale) * rel
 
 
 def elastic_energy(E_star: float, a: np.ndarray, d: np.ndarray, g_int: np.ndarray,

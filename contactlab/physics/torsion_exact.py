@@ -278,30 +278,42 @@ def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
 _TABLE_CACHE: dict = {}
 
 
-def _table_rule(profile) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _table_rule(profile, upto: float | None = None
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Composite rule over every table segment: nodes (n_seg, q), weights, g at the nodes, ends.
 
     On segment ``[r_j, r_{j+1}]``: ``t = r_j + Δ u²`` (the sqrt cusp of g at ``r_j`` becomes smooth)
     and ``q``-point Gauss-Legendre in ``u ∈ [0, 1]``. g is evaluated once per profile (cached by
-    the profile's value identity; a few tables at most are kept).
+    the profile's value identity; a few tables at most are kept), and only on the segments below
+    ``upto`` (extended on demand): each g costs O(nodes below it), so a contact over the first
+    tenth of a table costs a hundredth of the whole table.
     """
     key = (hash(profile), profile.table_nodes().size)
     hit = _TABLE_CACHE.get(key)
-    if hit is not None and hit[0] == profile:
-        return hit[1]
-    u, wu = np.polynomial.legendre.leggauss(_TABLE_GL)
-    u = 0.5 * (u + 1.0)
-    wu = 0.5 * wu
-    r = profile.table_nodes()
-    left, width = r[:-1, None], np.diff(r)[:, None]
-    t = left + width * u**2
-    w = 2.0 * width * u * wu
-    g = profile._g(t.ravel()).reshape(t.shape)
-    rule = (t, w, g, r)
-    if len(_TABLE_CACHE) > 8:
-        _TABLE_CACHE.clear()
-    _TABLE_CACHE[key] = (profile, rule)
-    return rule
+    if hit is None or hit[0] != profile:
+        u, wu = np.polynomial.legendre.leggauss(_TABLE_GL)
+        u = 0.5 * (u + 1.0)
+        wu = 0.5 * wu
+        r = profile.table_nodes()
+        left, width = r[:-1, None], np.diff(r)[:, None]
+        t = left + width * u**2
+        w = 2.0 * width * u * wu
+        # (unfilled g is 0, not NaN: masked-out segments still pass through the kernels, and
+        # special functions of NaN take slow paths)
+        hit = [profile, (t, w, np.zeros(t.shape), r), 0]
+        if len(_TABLE_CACHE) > 8:
+            _TABLE_CACHE.clear()
+        _TABLE_CACHE[key] = hit
+    t, w, g, r = hit[1]
+    n_seg = t.shape[0]
+    need = n_seg if upto is None else min(n_seg, int(np.searchsorted(r, upto, side="left")) + 1)
+    done = hit[2]
+    if need > done:
+        # grow geometrically so that a slowly rising contact radius costs O(1) extensions
+        need = min(n_seg, max(need, done + done // 2))
+        g[done:need] = profile._g(t[done:need].ravel()).reshape(need - done, t.shape[1])
+        hit[2] = need
+    return hit[1]
 
 
 def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
@@ -319,7 +331,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     g of that segment (``profile.table_g_first``); only this part carries an error estimate. The composite
     rule's own error is verified in the tests against the split adaptive route (1e-9).
     """
-    t_n, w_n, g_n, r = _table_rule(profile)
+    t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
     n = lo.size
     q = t_n.shape[1]
     u, wu = np.polynomial.legendre.leggauss(q)
@@ -365,24 +377,26 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         kww = 2.0 * kw * u * wu
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[last] += np.sum(kernel(kt[inv], kg[inv], last) * kww[inv], axis=1)
-    # whole segments j_lo+1 .. j_hi-1, chunked over elements
+    # whole segments j_lo+1 .. j_hi-1: one row of q rule nodes per (element, segment), no
+    # padding, chunked over elements so that a chunk holds at most ~2e6 nodes
     first, last = j_lo + 1, j_hi - 1
     count = np.maximum(last - first + 1, 0)
     todo = np.flatnonzero(count > 0)
     q = t_n.shape[1]
-    chunk = max(1, 2_000_000 // (q * max(int(np.max(count, initial=1)), 1)))
-    for start in range(0, todo.size, chunk):
-        ids = todo[start:start + chunk]
-        k = int(np.max(count[ids]))
-        seg = first[ids, None] + np.arange(k)[None, :]             # (m, k)
-        valid = seg <= last[ids, None]
-        seg = np.minimum(seg, r.size - 2)
-        tt = t_n[seg].reshape(ids.size, k * q)
-        gg = g_n[seg].reshape(ids.size, k * q)
-        ww = (w_n[seg] * valid[..., None]).reshape(ids.size, k * q)
+    ends = np.cumsum(count[todo])
+    start = 0
+    while start < todo.size:
+        base = ends[start - 1] if start else 0
+        stop = max(start + 1, int(np.searchsorted(ends, base + 2_000_000 // q, side="right")))
+        ids = todo[start:stop]
+        cnt = count[ids]
+        elem = np.repeat(ids, cnt)                                  # element of each row
+        offs = np.arange(elem.size) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+        seg = first[elem] + offs
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            f = kernel(tt, gg, ids)
-        val[ids] += np.sum(np.where(ww != 0, f * ww, 0.0), axis=1)
+            f = kernel(t_n[seg], g_n[seg], elem)
+        val += np.bincount(elem, weights=np.sum(f * w_n[seg], axis=1), minlength=n)
+        start = stop
     return val, err
 
 
@@ -454,8 +468,10 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
 
 
 def x_g_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
-    """``∫_0^a x g(x) dx`` (m³): closed form for power terms, otherwise quadrature."""
+    """``∫_0^a x g(x) dx`` (m³): closed form for power terms and tables, otherwise quadrature."""
     a = np.asarray(a, float)
+    if profile._has("_xg_integral_closed_form"):
+        return np.where(a > 0, profile._xg_integral_closed_form(np.maximum(a, 0.0)), 0.0)
     terms = profile.power_terms()
     if terms is not None and not np.isfinite(profile.wall_radius):
         from ..symbolic.transform import kappa

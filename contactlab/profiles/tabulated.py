@@ -383,8 +383,8 @@ class Tabulated(Profile):
         bad = err > CUBIC_SUM_RTOL * np.abs(val)
         if np.any(bad):
             xb = np.asarray(x, dtype=float)[bad]
-            v, e = self._spline_theta_sum(xb, 0 if kind == "g" else 2)
-            p = 1 if kind == "g" else 2
+            weight, p = {"g": (0, 1), "int": (2, 2), "xg": ("xg", 3)}[kind]
+            v, e = self._spline_theta_sum(xb, weight)
             val[bad], err[bad] = v * xb**p, e * xb**p
         return val, err, slope
 
@@ -410,8 +410,13 @@ class Tabulated(Profile):
           ``T_j = θ (a⁴/8 + a² r_j²/2) - r_j s (13a²/24 + r_j²/12)``, ``θ = acos(r_j/a)``,
           ``s = sqrt(a² - r_j²)``.
 
+        * ``kind="xg"``: ``∫_0^a x g dx`` with the node integrals of
+          :meth:`_xg_integral_closed_form`.
+
         O(nodes below x) per point, no quadrature; the rounding estimate is 8 eps times the sum
-        of the absolute terms.
+        of the absolute values of every part of every term before they cancel (conservative also
+        for nearly coincident nodes, whose huge jumps cancel between neighbours and inside each
+        term as r_j -> x).
         """
         self._guard(x, "x" if kind == "g" else "a")
         x = np.asarray(x, dtype=float)
@@ -436,38 +441,85 @@ class Tabulated(Profile):
             below = nodes < xp
             root = np.sqrt(np.maximum((xp - nodes) * (xp + nodes), 0.0))
             theta = np.arctan2(root, nodes)                       # acos(r_j/x), accurate near x
+            # each node term is a difference of parts that cancel as r_j -> x (the J term by
+            # (root/x)^2 and more): its rounding is eps times the parts' magnitudes, not its value.
+            # g and ∫g: the node terms are θ, root (and root³) times per-node coefficients and
+            # powers of x, so their sums (and the parts' magnitudes) are contractions with
+            # coefficient columns set up once (θ = root = 0 at nodes >= x: no mask needed)
+            if kind in ("g", "int"):
+                c_th, c_rt, c_r3 = (None if v is None else v[:m]
+                                    for v in self._cubic_columns(kind))
+                T = np.einsum("ij,jk->ik", theta, c_th)
+                S = np.einsum("ij,jk->ik", root, c_rt)
+                xv2 = xv * xv
             if kind == "g":
-                terms = np.where(below, al * theta + be * (root - nodes * theta)
-                                 + jmp * ((0.5 * xp * xp + nodes * nodes) * theta
-                                          - 1.5 * nodes * root), 0.0)
-                head = (b0 * 0.5 * np.pi, 2.0 * c0 * xv, 0.75 * np.pi * d0 * xv * xv)
-                total = head[0] + head[1] + head[2] + terms.sum(axis=1)
-                size = (abs(head[0]) + np.abs(head[1]) + np.abs(head[2])
-                        + np.abs(terms).sum(axis=1))
+                total_nodes = T[:, 0] + 0.5 * xv2 * T[:, 1] + S[:, 0]
+                mag_nodes = T[:, 2] + 0.5 * xv2 * T[:, 3] + S[:, 1]
+                head = (b0 * 0.5 * np.pi, 2.0 * c0 * xv, 0.75 * np.pi * d0 * xv2)
+                total = head[0] + head[1] + head[2] + total_nodes
+                size = abs(head[0]) + np.abs(head[1]) + np.abs(head[2]) + mag_nodes
                 out[start:start + chunk][pos] = xv * total
                 err[start:start + chunk][pos] = 8 * eps * xv * size
                 if with_slope:
                     # (the rounding-level α term, a cusp, is left out of the Newton slope)
-                    dterms = np.where(below, be * root / xp
-                                      + jmp * (xp * theta - nodes * root / xp), 0.0)
+                    dnodes = (S[:, 2] - S[:, 3]) / xv + xv * T[:, 1]
                     slope[start:start + chunk][pos] = total + xv * (
-                        2.0 * c0 + 1.5 * np.pi * d0 * xv + dterms.sum(axis=1))
-            else:
-                a2 = xp * xp
-                k0 = 0.5 * (a2 * theta - nodes * root)
-                terms = np.where(below, al * k0 + be * (root ** 3 / 3.0 - nodes * k0)
-                                 + jmp * (theta * (0.125 * a2 * a2 + 0.5 * a2 * nodes * nodes)
-                                               - nodes * root * (13.0 / 24.0 * a2
-                                                                 + nodes * nodes / 12.0)), 0.0)
-                av2 = xv * xv
-                head = (0.25 * np.pi * b0 * av2, 2.0 / 3.0 * c0 * av2 * xv,
-                        0.1875 * np.pi * d0 * av2 * av2)
-                out[start:start + chunk][pos] = head[0] + head[1] + head[2] + terms.sum(axis=1)
+                        2.0 * c0 + 1.5 * np.pi * d0 * xv + dnodes)
+                continue
+            if kind == "int":
+                R3 = np.einsum("ij,jk->ik", root ** 3 / 3.0, c_r3)
+                c13 = 13.0 / 24.0 * xv2
+                out[start:start + chunk][pos] = (
+                    0.25 * np.pi * b0 * xv2 + 2.0 / 3.0 * c0 * xv2 * xv
+                    + 0.1875 * np.pi * d0 * xv2 * xv2
+                    + 0.5 * xv2 * T[:, 0] + 0.125 * xv2 * xv2 * T[:, 1] + S[:, 0]
+                    - c13 * S[:, 1] + R3[:, 0])
                 err[start:start + chunk][pos] = 8 * eps * (
-                    np.abs(head[0]) + np.abs(head[1]) + np.abs(head[2])
-                    + np.abs(terms).sum(axis=1))
+                    np.abs(0.25 * np.pi * b0 * xv2) + np.abs(2.0 / 3.0 * c0 * xv2 * xv)
+                    + np.abs(0.1875 * np.pi * d0 * xv2 * xv2)
+                    + 0.5 * xv2 * T[:, 2] + 0.125 * xv2 * xv2 * T[:, 3] + S[:, 2]
+                    + c13 * S[:, 3] + R3[:, 1])
+                continue
+            # "xg": ∫_0^a x g dx
+            P2, Q2, P4, (m2, mq, m4) = self._node_moments(xp, nodes)
+            b2 = nodes * nodes
+            terms = np.where(below, al * P2 + be * (Q2 - nodes * P2)
+                             + jmp * (0.5 * P4 + b2 * P2 - 1.5 * nodes * Q2), 0.0)
+            mags = np.where(below, np.abs(al) * m2 + np.abs(be) * (mq + nodes * m2)
+                            + np.abs(jmp) * (0.5 * m4 + b2 * m2 + 1.5 * nodes * mq), 0.0)
+            av2 = xv * xv
+            head = (np.pi / 6.0 * b0 * av2 * xv, 0.5 * c0 * av2 * av2,
+                    0.15 * np.pi * d0 * av2 * av2 * xv)
+            out[start:start + chunk][pos] = head[0] + head[1] + head[2] + terms.sum(axis=1)
+            err[start:start + chunk][pos] = 8 * eps * (
+                np.abs(head[0]) + np.abs(head[1]) + np.abs(head[2]) + mags.sum(axis=1))
         return (out.reshape(x.shape), err.reshape(x.shape),
                 None if slope is None else slope.reshape(x.shape))
+
+    def _cubic_columns(self, kind: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """Per-node coefficient columns of the node sums of :meth:`_cubic_sums` (set up once).
+
+        ``kind="g"``: θ-columns ``[α - bβ + b²J, J, |α| + b|β| + b²|J|, |J|]``, root-columns
+        ``[β - 1.5bJ, |β| + 1.5b|J|, β, bJ]``; ``kind="int"``: θ-columns as for g, root-columns
+        ``[-bα/2 + b²β/2 - b³J/12, bJ, b|α|/2 + b²|β|/2 + b³|J|/12, b|J|]``, root³/3-columns
+        ``[β, |β|]`` (b = r_j; the signed columns give the value, the absolute ones the parts'
+        magnitudes for the rounding estimate).
+        """
+        cache = self.__dict__.setdefault("_cubic_cols", {})
+        if kind not in cache:
+            b = self._cubic_nodes
+            al, be, J = self._cubic_jumps
+            aa, ab, aJ = np.abs(al), np.abs(be), np.abs(J)
+            th = np.stack([al - b * be + b * b * J, J, aa + b * ab + b * b * aJ, aJ], axis=1)
+            if kind == "g":
+                rt = np.stack([be - 1.5 * b * J, ab + 1.5 * b * aJ, be, b * J], axis=1)
+                r3 = None
+            else:
+                rt = np.stack([-0.5 * b * al + 0.5 * b * b * be - b**3 * J / 12.0, b * J,
+                               0.5 * b * aa + 0.5 * b * b * ab + b**3 * aJ / 12.0, b * aJ], axis=1)
+                r3 = np.stack([be, ab], axis=1)
+            cache[kind] = (th, rt, r3)
+        return cache[kind]
 
     def _arcsine_sums(self, x: np.ndarray, with_slope: bool
                       ) -> tuple[np.ndarray, np.ndarray | None]:
@@ -510,10 +562,15 @@ class Tabulated(Profile):
         return out.reshape(x.shape), None if slope is None else slope.reshape(x.shape)
 
     # ------------------------------------------------------------------ cubic: per-interval Gauss
-    def _spline_theta_sum(self, x: np.ndarray, weight_power: int) -> tuple[np.ndarray, np.ndarray]:
-        """``∫_0^{π/2} f'(x sinθ) cos^p θ dθ`` for the spline, one Gauss-Legendre rule per table
+    def _spline_theta_sum(self, x: np.ndarray, weight_power: int | str
+                          ) -> tuple[np.ndarray, np.ndarray]:
+        """``∫_0^{π/2} f'(x sinθ) w(θ) dθ`` for the spline, one Gauss-Legendre rule per table
         interval in θ (the integrand is analytic inside each interval, so 12 nodes reach rounding
-        level; the 8-node rule gives the error estimate)."""
+        level; the 8-node rule gives the error estimate).
+
+        ``w = cos^p θ`` for ``weight_power = p`` (``g/x``: p = 0, ``∫g / a²``: p = 2), or
+        ``w = cosθ (cosθ + sin²θ asinh(cotθ))/2`` for ``"xg"`` (``∫_0^a x g dx / a³``, from
+        ``∫_0^a x g = ∫_0^a f'(r) ∫_r^a x²/sqrt(x² - r²) dx dr``)."""
         flat = np.asarray(x, dtype=float).ravel()
         val = np.zeros(flat.size)
         err = np.zeros(flat.size)
@@ -533,7 +590,10 @@ class Tabulated(Profile):
             for nodes, weights in (_GL_HI, _GL_LO):
                 th = mid[..., None] + half[..., None] * nodes
                 vals = self._spline_d(np.minimum(xp[..., None] * np.sin(th), self.r[-1]))
-                if weight_power:
+                if weight_power == "xg":
+                    co, si = np.cos(th), np.sin(th)
+                    vals = vals * 0.5 * co * (co + si * si * np.arcsinh(co / si))
+                elif weight_power:
                     vals = vals * np.cos(th) ** weight_power
                 sums.append((vals @ weights * half).sum(axis=1))
             val[start:start + chunk][pos] = sums[0]
@@ -587,6 +647,65 @@ class Tabulated(Profile):
                 self._slopes[k_all[start:start + chunk][pos]] * 0.25 * np.pi * aa[pos] ** 2
                 - np.where(below, ds * P, 0.0).sum(axis=1))
         return out.reshape(a.shape)
+
+    def _xg_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
+        """``∫_0^a x g(x) dx`` (m³) of the interpolant in closed form, O(nodes below a) per point.
+
+        With ``g = x [s_0 π/2 + Σ_{r_j<x} Δs_j acos(r_j/x)]`` (linear; the spline's node terms
+        likewise, see :meth:`_cubic_sums`) every node contributes elementary integrals
+        (``b = r_j``, ``s = sqrt(a² - b²)``, ``θ = acos(b/a)``, ``L = asinh(s/b)``):
+
+        * ``P2 = ∫_b^a x² acos(b/x) dx = a³θ/3 - (b/6)(a s + b² L)``,
+        * ``Q2 = ∫_b^a x² sqrt(x² - b²) dx = a(2a² - b²) s/8 - b⁴ L/8``,
+        * ``P4 = ∫_b^a x⁴ acos(b/x) dx = a⁵θ/5 - (b/5)(a³ s/4 + 3b² (a s + b² L)/8)``.
+
+        The quadratures this replaces (torsion's sliding torque, the spring foundation's
+        ``∫_0^x s g(s) ds``) could not converge across thousands of square-root cusps.
+        """
+        self._guard(np.asarray(a), "a")
+        if self._spline is not None:
+            return self._cubic_value(a, "xg")[0]
+        a = np.asarray(a, dtype=float)
+        flat = a.ravel()
+        out = np.zeros(flat.size)
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        for start in range(0, flat.size, chunk):
+            aa = flat[start:start + chunk]
+            pos = aa > 0
+            if not np.any(pos):
+                continue
+            av = aa[pos]
+            m = int(np.searchsorted(nodes_all, av.max(), side="left"))
+            ap = av[:, None]
+            b, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
+            P2 = self._node_moments(ap, b)[0]
+            out[start:start + chunk][pos] = (np.pi / 6.0 * self._slopes[0] * av**3
+                                             + np.where(b < ap, ds * P2, 0.0).sum(axis=1))
+        return out.reshape(a.shape)
+
+    @staticmethod
+    def _node_moments(ap: np.ndarray, b: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
+        """``(P2, Q2, P4, magnitudes)`` of :meth:`_xg_integral_closed_form` for ``b < a``
+        (entries with ``b >= a`` are 0); ``magnitudes`` are the sums of the absolute values of
+        each formula's parts (before they cancel), for rounding estimates."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = np.sqrt(np.maximum((ap - b) * (ap + b), 0.0))
+            theta = np.arctan2(s, b)
+            L = np.where(s > 0, np.arcsinh(s / np.where(b > 0, b, 1.0)), 0.0)
+        a2, a3, b2 = ap * ap, ap * ap * ap, b * b
+        ks = b / 6.0 * (ap * s + b2 * L)
+        P2 = a3 * theta / 3.0 - ks
+        q1, q2 = ap * (2.0 * a2 - b2) * s / 8.0, b2 * b2 * L / 8.0
+        Q2 = q1 - q2
+        p4a = a3 * a2 * theta / 5.0
+        p4b = b / 5.0 * (a3 * s / 4.0 + 3.0 * b2 / 8.0 * (ap * s + b2 * L))
+        P4 = p4a - p4b
+        mags = (a3 * theta / 3.0 + ks, np.abs(q1) + q2, p4a + p4b)
+        return P2, Q2, P4, mags
 
     @property
     def capabilities(self) -> frozenset[str]:

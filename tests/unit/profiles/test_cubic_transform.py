@@ -8,7 +8,8 @@ import pytest
 import contactlab as cl
 from contactlab.profiles import Tabulated
 
-from ...tolerances import CUBIC_CLOSED_FORM, CUBIC_CLOSED_FORM_CLUSTERED, CUBIC_SLOPE_FD
+from ...tolerances import (CUBIC_CLOSED_FORM, CUBIC_CLOSED_FORM_CLUSTERED, CUBIC_SLOPE_FD,
+                           TABLE_EXACT)
 
 
 def _table(n: int, kind: str, spacing: str) -> Tabulated:
@@ -83,3 +84,50 @@ def test_cubic_normal_force_route_matches_depth_route():
     s = c.normal(force=np.array([0.5, 5.0, 50.0]))
     back = c.normal(depth=s.depth)
     assert _rel(back.force, np.array([0.5, 5.0, 50.0])) < 1e-9
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("shape", ["sphere", "mixed"])
+def test_rounding_estimate_covers_error_on_nearly_coincident_nodes(seed, shape):
+    """Nodes 1e-9 of the radius apart: the spline's third-derivative jumps are huge and cancel
+    between neighbours and inside each node term as r_j -> x. The closed form's rounding estimate
+    must cover its actual error (against the per-interval Gauss rule, converged to rounding),
+    so that the Gauss fallback fires where the sums are not accurate (the estimate from the
+    terms' values alone missed it by up to 5000x on these tables)."""
+    rng = np.random.default_rng(seed)
+    base = np.linspace(0.0, 1e-3, 200)
+    extra = rng.choice(base[5:-5], 20, replace=False) + 1e-12 * rng.integers(1, 5, 20)
+    r = np.unique(np.r_[base, extra])
+    f = (0.01 - np.sqrt(0.01**2 - r**2) if shape == "sphere"
+         else r**2 / 0.02 + 1e-6 * (r / 1e-3) ** 3)
+    tab = Tabulated(r, f, "cubic")
+    x = np.sort(np.r_[np.linspace(1e-6, 1e-3, 200), extra + 3e-13, extra + 1e-10, extra + 1e-8])
+    x = x[x <= 1e-3]
+    for kind, weight, p in (("g", 0, 1), ("int", 2, 2), ("xg", "xg", 3)):
+        val, est, _ = tab._cubic_sums(x, kind)
+        ref, ref_err = tab._spline_theta_sum(x, weight)
+        ref, ref_err = ref * x**p, ref_err * x**p
+        actual = np.abs(val - ref)
+        sharp = ref_err < 0.1 * actual             # where the reference can judge the error
+        assert np.all(actual[sharp] <= est[sharp]), (kind, np.max(actual[sharp] / est[sharp]))
+        # and the value handed out (closed form or its fallback) is accurate to its estimate
+        v2, e2, _ = tab._cubic_value(x, kind)
+        assert np.all(np.abs(v2 - ref) <= e2 + ref_err + 4 * np.finfo(float).eps * np.abs(ref))
+
+
+def test_xg_integral_matches_independent_quadrature():
+    """∫_0^a x g dx in closed form (linear and cubic tables) against scipy quad of x g(x)
+    split at every node (a second method)."""
+    from scipy.integrate import quad
+    for kind in ("linear", "cubic"):
+        for spacing in ("uniform", "random"):
+            n = 60
+            r = (np.linspace(0.0, 1e-3, n) if spacing == "uniform" else
+                 1e-3 * np.sort(np.r_[0.0, np.random.default_rng(3).random(n - 2), 1.0]))
+            tab = Tabulated(r, 0.01 - np.sqrt(0.01**2 - r**2) + 1e-6 * (r / 1e-3) ** 3, kind)
+            a = np.array([1e-6, 3.3e-4, 7.77e-4, 1e-3])
+            ref = [quad(lambda x: x * float(tab._g_closed_form(np.array(x))), 0.0, aa,
+                        points=[b for b in r if 0 < b < aa], limit=500, epsabs=0,
+                        epsrel=1e-13)[0] for aa in a]
+            tol = CUBIC_CLOSED_FORM if kind == "cubic" else TABLE_EXACT
+            assert _rel(tab._xg_integral_closed_form(a), np.array(ref)) < tol
