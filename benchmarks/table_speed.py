@@ -1,19 +1,26 @@
-"""Cubic against linear tables, side by side in one run (issue 12 targets).
+"""Cubic against linear tables, side by side in one run: every speed target of issue 12.
 
-Run from the repository root: ``python benchmarks/table_speed.py``.
+Run from the repository root: ``python benchmarks/table_speed.py`` (``--quick`` shortens the
+exact-torsion path and skips the 10^6-point tables).
 
-Targets:
+Targets, each printed with its verdict:
 
-* per ``normal(force=)`` call after set-up, 10^4-point table: cubic within 2x of linear;
-* 10^6-point cubic table: set-up + one ``normal(force=)`` in under 5 s;
-* gait ``simulate`` (10^4 steps, force and twist vary every step) on a 200-point table: cubic
-  within 2x of linear;
-* a 200-point exact torque-twist curve on a 1000-point table in under 50 ms.
+1. per ``normal(force=)`` call after set-up, 10^4-point table: cubic within 2x of linear;
+2. 10^6-point cubic table: set-up + one ``normal(force=)`` in under 5 s (linear alongside);
+3. gait ``simulate`` (10^4 steps, force and twist vary every step) on a 200-point table: cubic
+   within 2x of linear. Timed on the spring foundation (``method="mdr"``, 400 springs), the
+   route the target was set for; a twisted path runs the exact ring solver by default
+   (``method="exact"``), which is timed too, on a shorter path (its per-step cost is dominated
+   by the pressure at every ring, recomputed for every step of a changing normal load);
+4. a 200-point exact torque-twist curve on a 1000-point table in under 50 ms (linear and cubic).
 
-The tables sample f = r²/(2R) + c r⁴ (R = 10 mm, c = 2 m⁻³) on 0..2 mm; steel on steel.
+Times are wall-clock best-of-N with the process CPU time alongside (the machine is a shared,
+noisy 2-core VM: the load average is printed before and after). The tables sample
+f = r²/(2R) + c r⁴ (R = 10 mm, c = 2 m⁻³) on 0..2 mm; steel on steel, μ = 0.3.
 """
 from __future__ import annotations
 
+import os
 import sys
 import time
 from pathlib import Path
@@ -25,7 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import contactlab as cl  # noqa: E402
 from contactlab.profiles import Tabulated  # noqa: E402
-from _harness import best_time, machine  # noqa: E402
+from _harness import machine  # noqa: E402
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 
@@ -43,60 +50,99 @@ def verdict(ok: bool, what: str) -> str:
     return f"{'OK    ' if ok else 'MISSED'} {what}"
 
 
-def main() -> int:
+def timed(fn, min_total: float = 0.3, max_runs: int = 20) -> tuple[float, float]:
+    """Best-of-N (wall, CPU) seconds of ``fn()``."""
+    best_w = best_c = np.inf
+    total = 0.0
+    for _ in range(max_runs):
+        w0, c0 = time.perf_counter(), time.process_time()
+        fn()
+        dw, dc = time.perf_counter() - w0, time.process_time() - c0
+        best_w, best_c = min(best_w, dw), min(best_c, dc)
+        total += dw
+        if total >= min_total:
+            break
+    return best_w, best_c
+
+
+def load() -> str:
+    return "load %.2f %.2f %.2f" % os.getloadavg()
+
+
+def gait_path(c: cl.Contact, steps: int, per_cycle: int = 200) -> cl.LoadPath:
+    a = c.normal(force=100.0).radius
+    phi0 = 0.5 * 3 * 0.3 * 100.0 / (16 * c.moduli.torsional * a**2)
+    k = np.arange(1, steps + 1)
+    return cl.LoadPath().ramp(force=75.0, steps=1).then(cl.loadpath.Table.create(
+        None, {"force": 100.0 * (0.75 + 0.25 * np.sin(2 * np.pi * k / (7 * per_cycle))),
+               "twist": phi0 * np.sin(2 * np.pi * k / per_cycle)}))
+
+
+def main(argv: list[str]) -> int:
+    quick = "--quick" in argv
     print("Machine:", machine())
-    # ---- per call, 10^4 points
-    forces = iter(np.linspace(50.0, 150.0, 10_000))
+    print("Start:", load())
+    # ---- 1. per call, 10^4 points
     per = {}
     for kind in ("linear", "cubic"):
         c = contact(table(10_000, kind))
         c.normal(force=100.0)                                   # set-up (memoised node values)
-        per[kind], _ = best_time(lambda: c.normal(force=float(next(forces))), min_total=0.5)
-    ratio = per["cubic"] / per["linear"]
-    print(f"normal(force=) per call, 10^4 points: linear {per['linear'] * 1e3:.2f} ms, cubic "
-          f"{per['cubic'] * 1e3:.2f} ms, ratio {ratio:.2f}  "
-          + verdict(ratio < 2, "(cubic within 2x)"))
-    # ---- 10^6-point cubic: set-up + one force
-    r = np.linspace(0.0, 2e-3, 1_000_000)
-    f = r**2 / 0.02 + 2.0 * r**4
-    t0 = time.perf_counter()
-    contact(Tabulated(r, f, "cubic")).normal(force=100.0)
-    dt = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    contact(Tabulated(r, f, "linear")).normal(force=100.0)
-    dl = time.perf_counter() - t0
-    print(f"10^6 points, set-up + one force: cubic {dt:.2f} s, linear {dl:.2f} s  "
-          + verdict(dt < 5, "(cubic < 5 s)"))
-    # ---- gait simulate, 200-point tables
-    steps, spc = 10_000, 200
-    k = np.arange(1, steps + 1)
-    probe = contact(table(200, "linear"))
-    a = probe.normal(force=100.0).radius
-    phi0 = 0.5 * 3 * 0.3 * 100.0 / (16 * probe.moduli.torsional * a**2)
-    path = cl.LoadPath().ramp(force=75.0, steps=1).then(cl.loadpath.Table.create(
-        None, {"force": 100.0 * (0.75 + 0.25 * np.sin(2 * np.pi * k / (7 * spc))),
-               "twist": phi0 * np.sin(2 * np.pi * k / spc)}))
+        forces = iter(np.linspace(50.0, 150.0, 100_000))
+        per[kind] = timed(lambda: c.normal(force=float(next(forces))), min_total=0.5, max_runs=200)
+    ratio = per["cubic"][0] / per["linear"][0]
+    print(f"1. normal(force=) per call, 10^4 points: linear {per['linear'][0] * 1e3:.2f} ms "
+          f"(cpu {per['linear'][1] * 1e3:.2f}), cubic {per['cubic'][0] * 1e3:.2f} ms "
+          f"(cpu {per['cubic'][1] * 1e3:.2f}), ratio {ratio:.2f}  "
+          + verdict(ratio <= 2, "(cubic within 2x)"))
+    # ---- 2. 10^6-point cubic: set-up + one force
+    if not quick:
+        r = np.linspace(0.0, 2e-3, 1_000_000)
+        f = r**2 / 0.02 + 2.0 * r**4
+        big = {}
+        for kind in ("linear", "cubic"):
+            w0, c0 = time.perf_counter(), time.process_time()
+            contact(Tabulated(r, f, kind)).normal(force=100.0)
+            big[kind] = (time.perf_counter() - w0, time.process_time() - c0)
+        print(f"2. 10^6 points, set-up + one force: cubic {big['cubic'][0]:.2f} s (cpu "
+              f"{big['cubic'][1]:.2f}), linear {big['linear'][0]:.2f} s (cpu "
+              f"{big['linear'][1]:.2f})  " + verdict(big["cubic"][0] < 5, "(cubic < 5 s)"))
+    # ---- 3. gait simulate, 200-point tables
+    path = gait_path(contact(table(200, "linear")), 10_000)
     sim = {}
     for kind in ("linear", "cubic"):
         c = contact(table(200, kind))
-        t0 = time.perf_counter()
-        c.simulate(path, n_springs=400, method="mdr")
-        sim[kind] = time.perf_counter() - t0
-    ratio = sim["cubic"] / sim["linear"]
-    print(f"gait simulate 10^4 steps, 200 points: linear {sim['linear']:.2f} s, cubic "
-          f"{sim['cubic']:.2f} s, ratio {ratio:.2f}  " + verdict(ratio < 2, "(cubic within 2x)"))
-    # ---- exact torque-twist curve, 1000-point tables
+        sim[kind] = timed(lambda: c.simulate(path, n_springs=400, method="mdr"), min_total=0,
+                          max_runs=1)
+    ratio = sim["cubic"][0] / sim["linear"][0]
+    print(f"3. gait simulate 10^4 steps, 200 points, spring foundation (method='mdr', 400 "
+          f"springs): linear {sim['linear'][0]:.2f} s (cpu {sim['linear'][1]:.2f}), cubic "
+          f"{sim['cubic'][0]:.2f} s (cpu {sim['cubic'][1]:.2f}), ratio {ratio:.2f}  "
+          + verdict(ratio <= 2, "(cubic within 2x)"))
+    steps = 100 if quick else 1000
+    path = gait_path(contact(table(200, "linear")), steps)
+    ex = {}
+    for kind in ("linear", "cubic"):
+        c = contact(table(200, kind))
+        ex[kind] = timed(lambda: c.simulate(path, method="exact"), min_total=0, max_runs=1)
+    ratio = ex["cubic"][0] / ex["linear"][0]
+    print(f"3b. same gait, {steps} steps, exact ring solver (method='exact', the default for "
+          f"twisted paths): linear {ex['linear'][0]:.2f} s (cpu {ex['linear'][1]:.2f}), cubic "
+          f"{ex['cubic'][0]:.2f} s (cpu {ex['cubic'][1]:.2f}), ratio {ratio:.2f}  "
+          + verdict(ratio <= 2, "(cubic within 2x)"))
+    # ---- 4. exact torque-twist curve, 1000-point tables
     for kind in ("linear", "cubic"):
         c = contact(table(1000, kind))
         a = c.normal(force=100.0).radius
+        phi0 = 0.5 * 3 * 0.3 * 100.0 / (16 * c.moduli.torsional * a**2)
         twist = np.linspace(0.0, 2 * phi0, 201)[1:]
-        c.torsion(radius=a, twist=twist[:3], method="exact")      # warm-up
-        dt, _ = best_time(lambda: c.torsion(radius=a, twist=twist, method="exact"),
-                          min_total=0.2, max_runs=5)
-        print(f"exact torque-twist, 200 twists, 1000-point {kind}: {dt * 1e3:.1f} ms  "
-              + verdict(dt < 0.05, "(< 50 ms)"))
+        c.torsion(radius=a, twist=twist[:3], method="exact")    # set-up (rule below a)
+        dt = timed(lambda: c.torsion(radius=a, twist=twist, method="exact"), min_total=0.3,
+                   max_runs=10)
+        print(f"4. exact torque-twist, 200 twists, 1000-point {kind}: {dt[0] * 1e3:.1f} ms "
+              f"(cpu {dt[1] * 1e3:.1f})  " + verdict(dt[0] < 0.05, "(< 50 ms)"))
+    print("End:", load())
     return 0
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    raise SystemExit(main(sys.argv[1:]))
