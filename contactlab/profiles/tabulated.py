@@ -809,6 +809,19 @@ class Tabulated(Profile):
         err[inside] = er
         return out, err
 
+    def _quadrature_floor(self, x: np.ndarray, value: np.ndarray) -> np.ndarray | float:
+        """A table that declares no breakpoints (too fine, or a spline) leaves a kink of g at
+        every node inside one θ quadrature: it is accepted to the table's own resolution,
+        ``|value| (h/x)²`` with ``h`` the largest node spacing below ``x`` (the interpolant of data
+        sampled from a smooth surface is known to that relative accuracy)."""
+        if self.breakpoints:
+            return 0.0
+        gaps = np.maximum.accumulate(np.diff(self.r))
+        k = np.clip(np.searchsorted(self.r, x, side="left") - 1, 0, gaps.size - 1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rel = np.where(x > 0, np.minimum((gaps[k] / np.where(x > 0, x, 1.0)) ** 2, 1.0), 0.0)
+        return np.abs(value) * rel
+
     @property
     def breakpoints(self) -> tuple[float, ...]:
         """Interior nodes where the linear interpolant's slope jumps, for tables up to
