@@ -111,8 +111,13 @@ def transform(ops: dict, f: np.ndarray) -> np.ndarray:
 
 def normal_depth(g: np.ndarray, w1: np.ndarray, E_star: float, F: float) -> float:
     """Depth ``d`` with ``2E* Σ w1 (d - g)_+ = F`` (exact for the nodal positive part)."""
-    gs = np.sort(g)
-    Fk = 2.0 * E_star * np.sum(w1[None, :] * np.maximum(gs[:, None] - g[None, :], 0.0), axis=1)
+    order = np.argsort(g, kind="stable")
+    gs, ws = g[order], w1[order]
+    # force at d = gs[k]: only nodes below it push, F_k = 2E* (gs_k W_k - S_k) with the
+    # exclusive running sums W_k = Σ_{i<k} w_i, S_k = Σ_{i<k} w_i g_i (O(n log n), not O(n²))
+    W = np.concatenate(([0.0], np.cumsum(ws[:-1])))
+    S = np.concatenate(([0.0], np.cumsum(ws[:-1] * gs[:-1])))
+    Fk = 2.0 * E_star * np.maximum(gs * W - S, 0.0)
     k = int(np.searchsorted(Fk, F))
     if k == 0:
         return float(gs[0])
