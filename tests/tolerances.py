@@ -372,6 +372,12 @@ WEAR_LIMIT_VOLUME = 6e-2
 #: tangential gross-slip scar radius against the asymptote (16kRFδN/π)^(1/4) after 10⁶ cycles at
 #: δ = 50 µm (Hertz): measured 5e-4; the transient decays as the elastic slip share does
 WEAR_SCAR_ASYMPTOTE = 1e-2
+#: torsional gross-slip scar radius against (6kRFφN/π)^(1/3) inside the bracket of its two
+#: leading corrections (docs/fretting.md section 6): the elastic excess of the contact over the
+#: worn cap, at most (a0/a)³ (measured factor 0.8-1.1 of it in the tangential run), and the
+#: unworn pillar's load share ψ, which slows the cap by (1 - ψ)^(1/3); the slack is the grid
+#: (scar radius at 3e5 cycles: 1.0118, 1.0121, 1.0183 for grid cells of 6, 3, 1.5 µm)
+WEAR_TORSION_SCAR_GRID = 1e-2
 #: Hertz torsional loop energy of the reference (adaptive quadrature of Lubkin's closed forms
 #: M(c/a) and φ'(c/a) = -C E(1 - (c/a)²)/(c/a)) against the exact solver: measured <= 1.2e-12 in
 #: the energy ratio (amplified by 1/A ~ 150 at c/a = 0.99 from the cancelling 8∫M dφ - 4φM)

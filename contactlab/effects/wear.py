@@ -41,6 +41,10 @@ DEFAULT_JUMP_RTOL = 1e-4
 #: Relative difference of the grid's energy per cycle from the loop's (fresh contact) above which
 #: wear() warns that the grid does not resolve the slip zone.
 GRID_ENERGY_WARN = 0.02
+#: Tensile load of the MDR pressure, relative to the compressive, above which the worn profile has
+#: left the MDR (its 1D profile dips: a proud island, docs/fretting.md section 6) and wear() warns.
+#: Partial-slip runs pass through about 1e-3 for a while as the stick edge steepens (measured).
+MDR_TENSILE_WARN = 1e-2
 #: Smallest grid the operators accept.
 MIN_GRID = 16
 
@@ -78,7 +82,10 @@ class WearResult(FieldsEqual):
         Grid radii, m.
     meta : dict
         ``wear_coefficient``, ``amplitude``, ``force``, ``n_grid``, ``grid_radius``,
-        ``jump_rtol``, ``steps``, ``rejected``, ``rates`` (evaluations).
+        ``jump_rtol``, ``steps``, ``rejected``, ``rates`` (evaluations),
+        ``mdr_valid_cycles`` (last cycle count at which the worn profile was still a simply
+        connected MDR contact; inf when it stayed one, otherwise wear() warned) and
+        ``tensile_fraction`` (largest tensile share of the MDR pressure over the run).
     """
 
     mode: str
@@ -314,6 +321,8 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
         series["energy_per_cycle"].append(4.0 * mu * float(v @ q))
 
     record(N, d, a, c, h, energy, q1)
+    tensile = [_wear.tensile_fraction(ops, _wear.transform(ops, f0), d, E)]
+    valid_until = np.inf                 # last accepted cycle count the MDR still describes
     profiles = [Tabulated(r, f0)]
     depths = [h.copy()]
     stops = list(ck)
@@ -344,6 +353,9 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             evals += 1
             steps += 1
             record(N, d, a, c, h, energy, q1)
+            tensile.append(_wear.tensile_fraction(ops, _wear.transform(ops, f0 + h), d, E))
+            if tensile[-1] > MDR_TENSILE_WARN and np.isinf(valid_until):
+                valid_until = series["cycles"][-2]
             if N >= target:
                 stops.pop(0)
                 profiles.append(Tabulated(r, f0 + h))
@@ -355,7 +367,16 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     meta = {"wear_coefficient": k, "amplitude": amp, "force": F, "n_grid": int(n_grid),
             "grid_radius": R, "jump_rtol": jump_rtol, "steps": steps, "rejected": rejected,
             "rates": evals + 1, "fresh_energy_per_cycle": float(fresh["energy"][0]),
-            "friction": mu, "fresh_grid_energy_error": grid_error}
+            "friction": mu, "fresh_grid_energy_error": grid_error,
+            "mdr_valid_cycles": float(valid_until), "tensile_fraction": float(max(tensile))}
+    if np.isfinite(valid_until):
+        warnings.warn(f"wear(): after {valid_until:.4g} cycles the worn profile left the MDR: its "
+                      "1D profile dips (a proud unworn stick zone with a steep edge: torsion at "
+                      "large twist, or a small stick zone in partial slip), so the contact is no "
+                      "longer simply connected and the MDR "
+                      f"pressure turns tensile ({max(tensile):.2g} of the load). Results beyond "
+                      "that cycle count are not reliable (meta['mdr_valid_cycles']).",
+                      ValidityWarning, stacklevel=3)
     arr = {kk: np.asarray(vv, float) for kk, vv in series.items()}
     return WearResult(mode, method, arr["cycles"], arr["depth"], arr["radius"],
                       arr["scar_radius"], arr["stick_radius"], arr["volume"], arr["max_wear_depth"],

@@ -29,7 +29,7 @@ import numpy as np
 from scipy.special import ellipk
 
 __all__ = ["operators", "normal_depth", "contact_radius", "tangential_rate", "torsion_rate",
-           "first_crossing"]
+           "first_crossing", "tensile_fraction"]
 
 _GL = np.polynomial.legendre.leggauss(8)
 
@@ -148,6 +148,21 @@ def contact_radius(r: np.ndarray, u: np.ndarray) -> float:
     if k + 1 >= u.size:
         return float(r[-1])
     return float(r[k] + (r[k + 1] - r[k]) * u[k] / (u[k] - u[k + 1]))
+
+
+def tensile_fraction(ops: dict, g: np.ndarray, d: float, E_star: float) -> float:
+    """Tensile load of the MDR pressure of ``u = (d - g)_+`` relative to its compressive load.
+
+    Zero (to rounding) while ``g`` rises monotonically over the contact; a worn profile whose
+    ``g`` dips (a proud, unworn island in the middle of a scar) makes the 1D contact region
+    disconnected, the back-transformed pressure turns tensile, and the MDR no longer describes
+    the 3D contact (docs/fretting.md, gross slip under torsion).
+    """
+    u = np.maximum(d - g, 0.0)
+    p = -(E_star / np.pi) * (ops["Pm"] @ (np.diff(u) / ops["dr"]))
+    p[0] = p[1]
+    push = float(ops["v"] @ np.maximum(p, 0.0))
+    return float(-(ops["v"] @ np.minimum(p, 0.0)) / push) if push > 0 else 0.0
 
 
 def _pressure(ops: dict, u: np.ndarray, E_star: float) -> np.ndarray:

@@ -146,3 +146,24 @@ def mindlin_loop_energy_of_displacement(u0, F, mu, E_star, G_star, R, digits=50)
         W = (mp.mpf(18) / 5 * mu_**2 * F_**2 / (a * G_)
              * (1 - (1 - t) ** (mp.mpf(5) / 3) - 5 * t / 6 * (1 + (1 - t) ** (mp.mpf(2) / 3))))
         return float(W), float(T)
+
+
+def hertz_torsion_gross_slip_scar(k, R, F, phi, N):
+    """Torsional gross slip at large twist, uniform wear of the slipping scar: slip 4φr per
+    cycle, so p ∝ 1/r (the wear rate k p 4φr is the same everywhere), sliding torque μFa/2,
+    dV/dN = 2kFφa, worn flat cap V = πa⁴/(4R) ⇒ a = (6 k R F φ N / π)^(1/3)."""
+    return (6.0 * k * R * F * phi * np.asarray(N, float) / np.pi) ** (1.0 / 3.0)
+
+
+def pillar_load_share(b, a, a0, E_star, R, F):
+    """Load share of the unworn central pillar of radius b (the stick zone never slips, so never
+    wears): it protrudes by the growth of the cap depth, (a² - a0²)/(2R), and as a flat punch of
+    radius b carries 2E*b times that: ψ = E*b(a² - a0²)/(RF)."""
+    return E_star * b * (np.asarray(a, float) ** 2 - a0**2) / (R * F)
+
+
+def hertz_stick_radius_of_twist(phi, F, mu, a, G_t):
+    """Stick radius of a fresh Hertz contact twisted to φ (root of the Lubkin closed form)."""
+    from scipy.optimize import brentq
+    return a * brentq(lambda s: hertz_twist_of_stick_ratio(s, F, mu, a, G_t) - phi, 1e-12,
+                      1 - 1e-12, xtol=1e-15)

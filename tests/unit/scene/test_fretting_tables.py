@@ -5,7 +5,7 @@ import pickle
 import numpy as np
 import pytest
 
-from contactlab.errors import SceneError
+from contactlab.errors import SceneError, ValidityWarning
 from contactlab.scene import Scene
 
 from tests import tolerances as TOL
@@ -130,8 +130,12 @@ def test_run_is_deterministic_and_pickles():
 def test_tangential_wear_scene(tmp_path):
     d = twist_scene({"sinusoid": {"displacement": "2 um", "cycles": 1}}, friction=0.5,
                     wear={**WEAR, "wear_coefficient": "1e-13 1/Pa", "cycles": 1e5})
-    res = Scene(d).run()
+    # c/a = 0.23: the small stick zone stands proud with a steep edge and the worn profile
+    # leaves the MDR on its way to the limiting state (docs/fretting.md section 6); wear() says so
+    with pytest.warns(ValidityWarning, match="left the MDR"):
+        res = Scene(d).run()
     w = res.wear
+    assert 1e4 < w.meta["mdr_valid_cycles"] < 1e5
     assert w.mode == "tangential"
     assert "Abel transform" in res.plan["wear"].reason
     np.testing.assert_allclose(w.volume, 1e-13 / 0.5 * w.dissipated_energy,
