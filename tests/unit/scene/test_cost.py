@@ -98,9 +98,14 @@ def _check(path, ladders):
 
 #: coarse wear-grid rungs warn that they resolve the slip annulus poorly: expected on a ladder
 COARSE_GRID = r"ignore:wear\(\). the grid of:contactlab.errors.ValidityWarning"
+#: loose cycle jumps overshoot at the stick edge on the way to the limiting state and dip the
+#: worn profile's transform (hip taper, n_grid 200: tensile share 1.9 % at jump_rtol 1e-3,
+#: 0.2 % at 1e-4): wear() warns, as it should, for those rungs
+LOOSE_JUMP = r"ignore:wear\(\). after:contactlab.errors.ValidityWarning"
 
 
 @pytest.mark.filterwarnings(COARSE_GRID)
+@pytest.mark.filterwarnings(LOOSE_JUMP)
 @pytest.mark.parametrize("path", example_params())
 def test_chosen_setting_meets_the_target_small_ladders(path):
     report = _check(path, SMALL)
@@ -111,12 +116,14 @@ def test_chosen_setting_meets_the_target_small_ladders(path):
 
 @pytest.mark.slow
 @pytest.mark.filterwarnings(COARSE_GRID)
+@pytest.mark.filterwarnings(LOOSE_JUMP)
 @pytest.mark.parametrize("path", example_params())
 def test_chosen_setting_meets_the_target_default_ladders(path):
     _check(path, None)
 
 
 @pytest.mark.filterwarnings(COARSE_GRID)
+@pytest.mark.filterwarnings(LOOSE_JUMP)
 def test_wear_knobs_chosen_setting_meets_the_target():
     """A wear scene short of the limiting state (the hip taper over 1e5 cycles): its grid and
     cycle-jump ladders converge regularly, so a 5 % target is certified and the chosen setting
