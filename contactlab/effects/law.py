@@ -2,7 +2,8 @@
 
 Every contact of a law belongs to one power-law profile family ``f = c r^n`` (``n >= 1``:
 :class:`~contactlab.profiles.Paraboloid` with per-contact ``R``, :class:`~contactlab.profiles.Cone`
-with per-contact ``slope``, :class:`~contactlab.profiles.PowerLaw` with per-contact ``c``), with
+with per-contact ``slope``, :class:`~contactlab.profiles.PowerLaw` with per-contact ``c``) or
+to the flat punches (:class:`~contactlab.profiles.FlatPunch`, per-contact ``radius``), with
 its own moduli and friction. :meth:`ContactLaw.step` advances all contacts by one time step and
 carries each contact's memory (Masing turning points) to the next.
 
@@ -22,12 +23,12 @@ import numpy as np
 
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
-from ..params import as_checked_array, as_real, check_memory, exactly_one
+from ..params import as_checked_array, as_float_array, as_real, check_memory, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
 from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
-from ..profiles import Cone, Paraboloid, PowerLaw
+from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 
 __all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
@@ -42,7 +43,10 @@ DEFAULT_SPRINGS = 16
 #: the springs of a contact cover this multiple of its contact radius (grown when exceeded)
 DEFAULT_SPRING_COVER = 1.5
 
-_UNITS = {"spring_cover": "1", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
+_NO_FLAT = np.zeros(1)
+_OUT_FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
+               "torsion_stick_radius", "dissipated_energy", "exact")
+_UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
           "G_torsion": "Pa", "friction": "1"}
 
 
@@ -118,11 +122,12 @@ class ContactLaw:
     ----------
     profile : Profile class or instance
         :class:`~contactlab.profiles.Paraboloid` (per-contact ``R``),
-        :class:`~contactlab.profiles.Cone` (per-contact ``slope``) or
-        :class:`~contactlab.profiles.PowerLaw` (per-contact ``c``, one exponent ``n >= 1``); an
-        instance gives the same geometry to every contact.
-    R, slope, c : float or array_like, optional
-        Geometry per contact (m, 1, m^(1-n)), by the family's parameter name.
+        :class:`~contactlab.profiles.Cone` (per-contact ``slope``),
+        :class:`~contactlab.profiles.PowerLaw` (per-contact ``c``, one exponent ``n >= 1``) or
+        :class:`~contactlab.profiles.FlatPunch` (per-contact ``radius``); an instance gives the
+        same geometry to every contact.
+    R, slope, c, radius : float or array_like, optional
+        Geometry per contact (m, 1, m^(1-n), m), by the family's parameter name.
     n : float, optional
         Exponent of a :class:`~contactlab.profiles.PowerLaw` family.
     E_star, G_star, G_torsion : float or array_like, optional
@@ -175,7 +180,7 @@ class ContactLaw:
     """
 
     def __init__(self, profile: Any, *, R: Any = None, slope: Any = None, c: Any = None,
-                 n: float | None = None, E_star: Any = None, G_star: Any = None,
+                 radius: Any = None, n: float | None = None, E_star: Any = None, G_star: Any = None,
                  G_torsion: Any = None, friction: Any = None, materials: Any = None,
                  torsion: str = "exact", memory: int = DEFAULT_MEMORY,
                  load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
@@ -184,9 +189,10 @@ class ContactLaw:
                  spring_cover: Any = DEFAULT_SPRING_COVER) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
-        if not (isinstance(cls, type) and issubclass(cls, PowerLaw)):
+        if not (isinstance(cls, type) and issubclass(cls, (PowerLaw, FlatPunch))):
             raise NotSupportedError(f"profile={profile!r} is not supported by ContactLaw: use "
-                                    "Paraboloid, Cone or PowerLaw (f = c r^n, n >= 1).")
+                                    "Paraboloid, Cone, PowerLaw (f = c r^n, n >= 1) or "
+                                    "FlatPunch.")
         if torsion not in ("exact",):
             raise UnknownNameError(f"torsion={torsion!r} is invalid: allowed are ('exact',).")
         if isinstance(memory, bool) or not isinstance(memory, (int, np.integer)) or memory < 2:
@@ -202,8 +208,10 @@ class ContactLaw:
                 or not (springs == 0 or 2 <= springs <= 4096)):
             raise ParameterError(f"springs={springs!r} is invalid: it must be 0 (no springs) or "
                                  "an integer in [2, 4096].")
-        geo = {"R": R, "slope": slope, "c": c}
-        if cls is Paraboloid:
+        geo = {"R": R, "slope": slope, "c": c, "radius": radius}
+        if issubclass(cls, FlatPunch):
+            gname, expo = "radius", np.inf
+        elif cls is Paraboloid:
             gname, expo = "R", 2.0
         elif cls is Cone:
             gname, expo = "slope", 1.0
@@ -224,7 +232,7 @@ class ContactLaw:
         if geo[gname] is None:
             raise ParameterError(f"{gname} is missing: {cls.__name__} contacts need {gname}= "
                                  "(scalar or one value per contact).")
-        if not (expo >= _master.MIN_EXPONENT and np.isfinite(expo)):
+        if not (expo >= _master.MIN_EXPONENT and (np.isfinite(expo) or gname == "radius")):
             raise NotSupportedError(f"n={expo!r} is not supported by ContactLaw: the exponent "
                                     f"must satisfy n >= {_master.MIN_EXPONENT:g}.")
         if materials is not None:
@@ -257,8 +265,11 @@ class ContactLaw:
         self.n = expo
         self.family = cls
         g = arrs[gname]
-        # g(x) = kc x^n
-        self.kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
+        # g(x) = kc x^n (flat punch: g = 0 inside the punch radius, kept in _flat)
+        if expo == np.inf:
+            self.kc = np.zeros(self.size)
+        else:
+            self.kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
         self.geometry = {gname: g}
         self.E_star, self.G_star = arrs["E_star"], arrs["G_star"]
         self.G_torsion, self.friction = arrs["G_torsion"], arrs["friction"]
@@ -279,15 +290,21 @@ class ContactLaw:
         self.fast = _kernel.AVAILABLE if fast is None else bool(fast)
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
+        self._flat = g if expo == np.inf else _NO_FLAT
+        self._flag = None
         self._warned = False
         self._st = self._fresh(self.size)
 
     # ------------------------------------------------------------------ state
     def _fresh(self, n: int) -> dict[str, np.ndarray]:
         st = {"depth_ref": np.zeros(n)}
-        for ch in ("tan", "tor"):
-            for k, v in new_stack(n, self.memory).items():
-                st[f"{ch}_{k}"] = v
+        # both channels' stacks in one array per field (leading axis: tangential, torsion) for
+        # the compiled kernel; the state names views of it
+        one = new_stack(n, self.memory)
+        self._chan = {k: np.zeros((2,) + v.shape, v.dtype) for k, v in one.items()}
+        for c, ch in enumerate(("tan", "tor")):
+            for k in STACK_FIELDS:
+                st[f"{ch}_{k}"] = self._chan[k][c]
         if self.springs:
             N = self.springs
             st.update(spr_on=np.zeros(n, bool), spr_cover=np.zeros(n), spr_depth=np.zeros(n),
@@ -318,7 +335,8 @@ class ContactLaw:
                 raise ParameterError(f"state[{k!r}] has shape {arr.shape}; this law needs "
                                      f"{v.shape}.")
             new[k] = arr.astype(v.dtype, copy=True)
-        self._st = new
+        for k, v in new.items():                # in place: channel fields are views
+            ref[k][...] = v
 
     def reset(self, mask: Any = None) -> None:
         """Clear the memory of the contacts in ``mask`` (bool array or indices; all if None)."""
@@ -360,6 +378,9 @@ class ContactLaw:
         str
             Python source; write it to a ``.py`` file and import it.
         """
+        if self.n == np.inf:
+            raise NotSupportedError("to_source() covers the power-law families (Paraboloid, "
+                                    "Cone, PowerLaw); the flat punch law is not generated.")
         from .law_source import law_source
         return law_source(self)
 
@@ -368,6 +389,14 @@ class ContactLaw:
         """``(depth, radius, force)`` per contact for a depth (m) or a force (N >= 0)."""
         key, val = exactly_one("ContactLaw.normal()", {"depth": depth, "force": force})
         n = self.n
+        if n == np.inf:                                 # flat punch: a = punch radius
+            b = self._flat
+            if key == "depth":
+                d = _per_step("depth", val, self.size, "m")
+                dp = np.maximum(d, 0.0)
+                return d.copy(), np.where(dp > 0, b, 0.0), 2.0 * self.E_star * dp * b
+            F = _per_step("force", val, self.size, "N", nonneg=True)
+            return F / (2.0 * self.E_star * b), np.where(F > 0, b, 0.0), F.copy()
         if key == "depth":
             d = _per_step("depth", val, self.size, "m")
             dp = np.maximum(d, 0.0)
@@ -381,7 +410,7 @@ class ContactLaw:
 
     # ------------------------------------------------------------------ the step
     def step(self, *, depth: Any = None, force: Any = None, displacement: Any = None,
-             twist: Any = None) -> LawStep:
+             twist: Any = None, out: LawStep | None = None) -> LawStep:
         """Advance every contact by one step.
 
         Parameters
@@ -393,6 +422,10 @@ class ContactLaw:
             tangential response).
         twist : array_like, optional
             Twist angle (rad) since the contact's memory started.
+        out : LawStep, optional
+            A result of an earlier step of this law whose arrays are overwritten with this
+            step's results (and returned): a time loop that does not keep old results saves
+            allocating (and page-faulting) nine fresh arrays per step.
 
         Returns
         -------
@@ -404,6 +437,30 @@ class ContactLaw:
             A contact's depth left ``load_rtol`` of the depth at which its memory started (this
             law is exact at constant normal load; :meth:`reset` restarts the memory).
         """
+        if out is not None:
+            self._check_out(out)
+        if self.fast:
+            return self._step_fast(depth, force, displacement, twist, out)
+        res = self._step_numpy(depth, force, displacement, twist)
+        if out is None:
+            return res
+        for f in _OUT_FIELDS:
+            getattr(out, f)[...] = getattr(res, f)
+        return out
+
+    def _check_out(self, out: Any) -> None:
+        ok = isinstance(out, LawStep)
+        for f in _OUT_FIELDS if ok else ():
+            v = getattr(out, f)
+            want = bool if f == "exact" else float
+            if not (isinstance(v, np.ndarray) and v.shape == (self.size,) and v.dtype == want
+                    and v.flags.writeable and v.flags.c_contiguous):
+                ok = False
+        if not ok:
+            raise ParameterError(f"out={type(out).__name__} is invalid: give a LawStep returned "
+                                 f"by an earlier step of a law with {self.size} contacts.")
+
+    def _step_numpy(self, depth, force, displacement, twist) -> LawStep:
         d, a, F = self.normal(depth=depth, force=force)
         size = self.size
         u = None if displacement is None else _per_step("displacement", displacement, size, "m")
@@ -445,15 +502,11 @@ class ContactLaw:
         safe_a = np.where(live, a, 1.0)
         safe_d = np.where(live, d, 1.0)
         FN = np.where(live, F, 0.0)
-        sc = None
-        if self.fast and (u is not None or phi is not None):
-            sc = _kernel.scales(self.friction, self.E_star, self.G_star, self.G_torsion, safe_a,
-                                safe_d, FN, self.n, self.parallel)
         if u is not None:
-            Ft, ct, w = self._tangential(u, safe_a, safe_d, FN, sc)
+            Ft, ct, w = self._tangential(u, safe_a, safe_d, FN)
             dW += w
         if phi is not None:
-            M, cm, w = self._torsion(phi, safe_a, safe_d, sc)
+            M, cm, w = self._torsion(phi, safe_a, safe_d)
             dW += w
         exact = live.copy()
         if self.springs and np.any(st["spr_on"]):
@@ -488,9 +541,85 @@ class ContactLaw:
                 "physical range): give inputs in SI units (m, N, rad). The memory of the "
                 f"{idx.size} overflowing contact(s) was reset.")
 
+    def _step_fast(self, depth, force, displacement, twist, out) -> LawStep:
+        """The compiled step: a normal pass (checks, depth/radius/force, flags), one fused pass
+        over both Masing channels, and the compiled spring pass for contacts on springs."""
+        key, val = exactly_one("ContactLaw.step()", {"depth": depth, "force": force})
+        size = self.size
+        arrs = []
+        for name, v, unit in ((key, val, "m" if key == "depth" else "N"),
+                              ("displacement", displacement, "m"), ("twist", twist, "rad")):
+            if v is None:
+                arrs.append(None)
+                continue
+            # types and shapes here; finiteness and sign in the normal pass
+            x = as_float_array(name, v, allow_nan=True)
+            if x.ndim > 1 or (x.ndim == 1 and x.size != size):
+                _per_step(name, v, size, unit)          # raises the error naming the input
+            arrs.append(np.broadcast_to(x, (size,)))
+        v, u, phi = arrs
+        st = self._st
+        if self._flag is None:
+            self._flag = np.empty(size, np.int8)        # scratch: reused every step
+        d, a, F, flag, (bad, dead, off, both, nonfinite) = _kernel.normal_pass(
+            key == "force", v, u, phi, self.kc, self.E_star, self.n, self._flat, st["depth_ref"],
+            self.load_rtol, self.parallel,
+            None if out is None else (out.depth, out.radius, out.force, self._flag))
+        if bad:                                         # the numpy checks name the entry
+            _per_step(key, v, size, "m" if key == "depth" else "N", nonneg=key == "force")
+            _per_step("displacement", u if u is not None else 0.0, size, "m")
+            _per_step("twist", phi if phi is not None else 0.0, size, "rad")
+        if dead:
+            self._clear(np.flatnonzero(flag == 1))
+        if off:
+            offm = flag == 2
+            if not self.springs:
+                i = int(np.argmax(offm))
+                ref = st["depth_ref"]
+                raise OutsideTheoryError(
+                    f"depth[{i}]={float(d[i])!r} m differs from the depth {float(ref[i])!r} m at "
+                    f"which contact {i}'s memory started by more than load_rtol="
+                    f"{self.load_rtol!r}: this law is exact at constant normal load. Call "
+                    "law.reset(mask) to restart the memory of contacts whose load changed, or "
+                    "raise load_rtol.")
+            new = offm & ~st["spr_on"]
+            if np.any(new):
+                n_spr = int(np.count_nonzero(st["spr_on"] | offm))
+                check_memory("ContactLaw.step()", law_spring_memory(n_spr, self.springs),
+                             f"{n_spr} contacts on {self.springs} springs each")
+            self._to_springs(np.flatnonzero(new), d, a)
+        if both and not self._warned:
+            self._warned = True
+            warnings.warn("ContactLaw: displacement and twist together are treated as two "
+                          "independent slip problems, each with the full friction limit "
+                          "(outside the theory: the slip conditions couple).", ValidityWarning,
+                          stacklevel=3)
+        spr = None
+        if self.springs and (off or np.any(st["spr_on"])):
+            spr = np.flatnonzero(st["spr_on"] & (flag != 1))
+            flag[spr] = 3                               # the fused pass leaves them out
+        mc = self._master
+        Ft, ct, M, cm, dW, exact, nf = _kernel.fused_pass(
+            u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
+            self.G_torsion, self.n, mc, self._chan, self.parallel,
+            None if out is None else (out.tangential_force, out.stick_radius, out.torque,
+                                      out.torsion_stick_radius, out.dissipated_energy, out.exact))
+        if spr is not None and spr.size:
+            grow = a[spr] > st["spr_cover"][spr]
+            if np.any(grow):
+                self._regrid(spr[grow], a[spr][grow])
+            nf += _kernel.spring_pass(spr, d, a, u, phi, st["spr_cover"], self.kc, self.n,
+                                      self._beta, self.friction, self.E_star, self.G_star,
+                                      self.G_torsion, st, (Ft, ct, M, cm, dW), self.parallel)
+        if nonfinite or nf:                             # overflow: refused, contacts reset
+            self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
+        return out if out is not None else LawStep(d, a, F, Ft, M, ct, cm, dW, exact)
+
     # ------------------------------------------------------------------ changing load: springs
     def _geometry(self, idx: np.ndarray) -> dict:
-        return _springs.cells(self._st["spr_cover"][idx], self.kc[idx], self.n, self._beta)
+        # flat punch: kc = 0 (g = 0 inside the punch radius) with any finite exponent
+        return _springs.cells(self._st["spr_cover"][idx], self.kc[idx],
+                              self.n if self.n != np.inf else 1.0, self._beta)
 
     def _limits(self, idx, S, T):
         mu, E = self.friction[idx, None], self.E_star[idx, None]
@@ -536,6 +665,8 @@ class ContactLaw:
 
     def _radius(self, d: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Contact radius (m) of contacts ``idx`` at depths ``d >= 0``."""
+        if self.n == np.inf:
+            return np.where(d > 0, self._flat[idx], 0.0)
         return (d / self.kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self.kc[idx])
 
     def _spring_step(self, idx, d, a, u, phi):
@@ -570,20 +701,12 @@ class ContactLaw:
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}
 
-    def _tangential(self, u, a, d, FN, sc=None):
+    def _tangential(self, u, a, d, FN):
         n = self.n
-        if sc is not None:                    # compiled: scales from kernel.scales
-            mc = self._master
-            return _kernel.channel_step(_kernel.TANGENTIAL, self._channel("tan"), u, sc[0],
-                                        sc[1], a, sc[2], mc.coef, mc.y_scale, n, self.parallel)
         mu, E, G = self.friction, self.E_star, self.G_star
         u_star = mu * E * d / G
         muF = mu * FN
         Dscale = 2.0 * a * (mu * E * d) ** 2 / G
-        if self.fast:
-            mc = self._master
-            return _kernel.channel_step(_kernel.TANGENTIAL, self._channel("tan"), u, u_star, muF,
-                                        a, Dscale, mc.coef, mc.y_scale, n)
 
         def load(arg, idx):
             if idx is None:
@@ -594,17 +717,10 @@ class ContactLaw:
 
         return masing_step(self._channel("tan"), u, load)
 
-    def _torsion(self, phi, a, d, sc=None):
+    def _torsion(self, phi, a, d):
         mc = self._master
-        if sc is not None:
-            return _kernel.channel_step(_kernel.TORSION, self._channel("tor"), phi, sc[3], sc[4],
-                                        a, sc[4], mc.coef, mc.y_scale, self.n, self.parallel)
         phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
                                                self.friction, a, d)
-        mc = self._master
-        if self.fast:
-            return _kernel.channel_step(_kernel.TORSION, self._channel("tor"), phi, phi_s, M_full,
-                                        a, M_full, mc.coef, mc.y_scale, self.n)
 
         def load(arg, idx):
             if idx is None:

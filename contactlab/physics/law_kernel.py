@@ -1,9 +1,13 @@
-"""Compiled (numba, extra ``fast``) version of one Masing step of the contact law.
+"""Compiled (numba, extra ``fast``) contact-law step: normal contact, both Masing channels.
 
-The same arithmetic as :func:`contactlab.physics.masing_stack.masing_step` with the loading
-curves of :mod:`contactlab.physics.master` (torsion master curve or Cattaneo–Mindlin closed
-form), one loop over contacts instead of array passes; the numpy path stays the reference and
-the tests compare the two. :data:`AVAILABLE` is False when numba is not installed.
+The same arithmetic as the numpy path (:func:`contactlab.physics.masing_stack.masing_step` with
+the loading curves of :mod:`contactlab.physics.master`), as loops over contacts instead of array
+passes; the numpy path stays the reference and the tests compare the two. A step of the law is
+two passes over the contacts: :func:`normal_pass` (inputs checked, depth/radius/force, which
+contacts separate or leave the constant-load regime; no state written) and :func:`fused_pass`
+(scale factors, tangential and torsional Masing steps and the outputs of every contact in one
+loop, no temporary arrays). :func:`channel_step` runs one channel alone. :data:`AVAILABLE` is
+False when numba is not installed.
 """
 from __future__ import annotations
 
@@ -11,7 +15,8 @@ import math
 
 import numpy as np
 
-__all__ = ["AVAILABLE", "channel_step", "scales", "TORSION", "TANGENTIAL"]
+__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "TORSION",
+           "TANGENTIAL"]
 
 TORSION = 0
 TANGENTIAL = 1
@@ -26,10 +31,15 @@ except ImportError:                     # pragma: no cover - exercised without n
     _prange = range
 
 
-def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
-    """(y_load, aux, D_load) of contact i at argument arg >= 0."""
+def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0):
+    """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds);
+    ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond)."""
     if kind == TORSION:
-        y = arg / xs[i]
+        y = arg / xs
+        if y0 > 0.0:
+            if y <= y0:
+                return ys * (m0 * y), aux, 0.0
+            y = y - y0
         N = coef.shape[1]
         s = y / (y + y_scale)
         z = s * N
@@ -44,10 +54,11 @@ def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
             m = m * u + coef[1, j, p]
             q = q * u + coef[2, j, p]
         t = min(max(t, 0.0), 1.0)
-        m = m * s
-        q = q * (s * s)
-        return ys[i] * m, auxs[i] * t, ys[i] * arg * q
-    x = arg / xs[i]
+        if y0 == 0.0:
+            m = m * s
+            q = q * (s * s)
+        return ys * m, aux * t, ys * arg * q
+    x = arg / xs
     xc = min(x, 1.0)
     r = 1.0 - xc
     if n == 2.0:
@@ -56,6 +67,9 @@ def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
     elif n == 1.0:
         t = r
         one_t = xc
+    elif n == math.inf:
+        one_t = 0.0 if xc < 1.0 else 1.0
+        t = 1.0 - one_t
     else:
         one_t = -math.expm1(math.log1p(-xc) / n) if xc < 1.0 else 1.0
         t = 1.0 - one_t
@@ -66,106 +80,359 @@ def _load(kind, arg, i, xs, ys, auxs, Ds, coef, y_scale, n):
     J1 = one_t - f * a1
     J2 = one_t - 2.0 * f * a1 + f2 * a2
     w = max(x * J1 - J2, 0.0)
-    return ys[i] * f, auxs[i] * t, Ds[i] * w
+    return ys * f, aux * t, Ds * w
 
 
-def _channel_step(kind, x, sx, sy, sw, last, depth, X, Y, overflow, xs, ys, auxs, Ds, coef,
-                  y_scale, n, out_y, out_aux, out_dW):
-    K = X.shape[1]
-    for i in _prange(x.size):
-        xi = x[i]
-        xp = sx[i]
-        dW = 0.0
-        if xi != xp:
-            s = 1 if xi > xp else -1
-            if last[i] != 0 and s != last[i]:
-                if depth[i] >= K:
-                    overflow[i] = True
-                    depth[i] -= 2
-                d = depth[i]
-                X[i, d] = xp
-                Y[i, d] = sy[i]
-                depth[i] = d + 1
-                sw[i] = 0.0
-            last[i] = s
-            while depth[i] > 0:
-                d = depth[i]
-                lim = X[i, d - 2] if d >= 2 else -X[i, 0]
-                if (xi - lim) * last[i] <= 0:
-                    break
-                xo = X[i, d - 1]
-                D = _load(kind, abs(lim - xo) / 2.0, i, xs, ys, auxs, Ds, coef, y_scale, n)[2]
-                dW += max(2.0 * D - sw[i], 0.0)
-                d = d - 2 if d >= 2 else 0
-                depth[i] = d
-                if d > 0:
-                    xo2, f2 = X[i, d - 1], 2.0
-                else:
-                    xo2, f2 = 0.0, 1.0
-                D = _load(kind, abs(lim - xo2) / f2, i, xs, ys, auxs, Ds, coef, y_scale, n)[2]
-                sw[i] = f2 * D
-        d = depth[i]
-        if d > 0:
-            xo, yo, f = X[i, d - 1], Y[i, d - 1], 2.0
+def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rtol,
+                 d_out, a_out, F_out, flag):
+    """Depth, radius and force of every contact; flag: 0 constant load, 1 separated (a <= 0),
+    2 depth left rtol of the reference depth. Returns counts (bad inputs, separated, off,
+    contacts moved in both channels, non-finite results)."""
+    bad = 0
+    dead = 0
+    off = 0
+    both = 0
+    nonfinite = 0
+    c2 = 2.0 * n / (n + 1.0) if n != math.inf else 2.0
+    for i in _prange(val.size):
+        v = val[i]
+        ok = math.isfinite(v) and (v >= 0.0 or not by_force)
+        if has_u and not math.isfinite(u[i]):
+            ok = False
+        if has_phi and not math.isfinite(phi[i]):
+            ok = False
+        if not ok:
+            bad += 1
+            v = 0.0
+        if n == math.inf:                       # flat punch of radius flat[i]
+            if by_force:
+                ai = flat[i] if v > 0.0 else 0.0
+                di = v / (2.0 * E[i] * flat[i])
+                Fi = v
+            else:
+                dp = max(v, 0.0)
+                ai = flat[i] if dp > 0.0 else 0.0
+                di = v
+                Fi = 2.0 * E[i] * dp * flat[i]
+        elif by_force:
+            ai = (v * (n + 1.0) / (2.0 * n * E[i] * kc[i])) ** (1.0 / (n + 1.0))
+            di = kc[i] * ai * ai if n == 2.0 else kc[i] * ai ** n
+            Fi = v
         else:
-            xo, yo, f = 0.0, 0.0, 1.0
-        yl, aux, D = _load(kind, abs(xi - xo) / f, i, xs, ys, auxs, Ds, coef, y_scale, n)
-        sg = 1.0 if xi > xo else (-1.0 if xi < xo else 0.0)
-        yv = yo + sg * f * yl
-        wn = f * D
-        dW += max(wn - sw[i], 0.0)
-        sw[i] = max(sw[i], wn)
-        sx[i] = xi
-        sy[i] = yv
-        out_y[i] = yv
-        out_aux[i] = aux
-        out_dW[i] = dW
+            dp = max(v, 0.0)
+            ai = math.sqrt(dp / kc[i]) if n == 2.0 else (dp / kc[i]) ** (1.0 / n)
+            di = v
+            Fi = c2 * E[i] * dp * ai
+        d_out[i] = di
+        a_out[i] = ai
+        F_out[i] = Fi
+        if not (math.isfinite(di) and math.isfinite(ai) and math.isfinite(Fi)):
+            nonfinite += 1
+        fl = 0
+        if not ai > 0.0:
+            fl = 1
+            dead += 1
+        else:
+            r = ref[i]
+            if r != 0.0 and abs(di - r) > rtol * r:
+                fl = 2
+                off += 1
+            if has_u and has_phi and u[i] != 0.0 and phi[i] != 0.0:
+                both += 1
+        flag[i] = fl
+    return bad, dead, off, both, nonfinite
 
 
-def _scales(mu, E, G, Gt, a, d, FN, n, u_star, muF, Dscale, phi_s, M_full):
-    c = math.pi * n / (2.0 * (n + 2.0))
+def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coef, y_scale,
+                y0, m0, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
+    """Scales, tangential and torsional Masing steps (the same bookkeeping as
+    :func:`~contactlab.physics.masing_stack.masing_step`) and outputs of every contact.
+
+    Channel state with a leading channel axis (0 tangential, 1 torsion): ``sx, sy, sw, last,
+    depth, over`` (2, n), turning points ``X, Y`` (2, n, K)."""
+    cM = math.pi * n / (2.0 * (n + 2.0)) if n != math.inf else 0.5 * math.pi
+    K = X.shape[2]
+    nonfinite = 0
     for i in _prange(a.size):
-        mEd = mu[i] * E[i] * d[i]
-        u_star[i] = mEd / G[i]
-        muF[i] = mu[i] * FN[i]
-        Dscale[i] = 2.0 * a[i] * (mEd * mEd) / G[i]
-        phi_s[i] = mEd / (2.0 * Gt[i] * a[i])
-        M_full[i] = c * mu[i] * E[i] * d[i] * a[i] * a[i]
+        ai = a[i]
+        if flag[i] == 3:                        # on springs: the spring pass writes
+            exact[i] = False
+            continue
+        if flag[i] == 1:                        # separated: nothing carried, memory cleared
+            Ft[i] = 0.0
+            M[i] = 0.0
+            dW[i] = 0.0
+            ct[i] = ai
+            cm[i] = ai
+            exact[i] = False
+            continue
+        di = d[i]
+        if ref[i] == 0.0:
+            ref[i] = di
+        exact[i] = True
+        mEd = mu[i] * E[i] * di
+        wsum = 0.0
+        for c in range(2):
+            if c == 0:
+                if not has_u:
+                    Ft[i] = 0.0
+                    ct[i] = ai
+                    continue
+                kind = TANGENTIAL
+                xi = u[i]
+                xs = mEd / G[i]
+                ys = mu[i] * F[i]
+                Ds = 2.0 * ai * (mEd * mEd) / G[i]
+            else:
+                if not has_phi:
+                    M[i] = 0.0
+                    cm[i] = ai
+                    continue
+                kind = TORSION
+                xi = phi[i]
+                xs = mEd / (2.0 * Gt[i] * ai)
+                ys = cM * mu[i] * E[i] * di * ai * ai
+                Ds = ys
+            xp = sx[c, i]
+            e = 0.0
+            if xi != xp:
+                s = 1 if xi > xp else -1
+                if last[c, i] != 0 and s != last[c, i]:
+                    if depth[c, i] >= K:            # full: forget the innermost open loop
+                        over[c, i] = True
+                        depth[c, i] -= 2
+                    k = depth[c, i]
+                    X[c, i, k] = xp
+                    Y[c, i, k] = sy[c, i]
+                    depth[c, i] = k + 1
+                    sw[c, i] = 0.0
+                last[c, i] = s
+                while depth[c, i] > 0:              # loop closure (Iwan erasure)
+                    k = depth[c, i]
+                    lim = X[c, i, k - 2] if k >= 2 else -X[c, i, 0]
+                    if (xi - lim) * last[c, i] <= 0:
+                        break
+                    xo = X[c, i, k - 1]
+                    D = _load(kind, abs(lim - xo) / 2.0, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                              m0)[2]
+                    e += max(2.0 * D - sw[c, i], 0.0)
+                    k = k - 2 if k >= 2 else 0
+                    depth[c, i] = k
+                    if k > 0:
+                        xo2, f2 = X[c, i, k - 1], 2.0
+                    else:
+                        xo2, f2 = 0.0, 1.0
+                    D = _load(kind, abs(lim - xo2) / f2, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                              m0)[2]
+                    sw[c, i] = f2 * D
+            k = depth[c, i]
+            if k > 0:
+                xo, yo, f = X[c, i, k - 1], Y[c, i, k - 1], 2.0
+            else:
+                xo, yo, f = 0.0, 0.0, 1.0
+            yl, ax, D = _load(kind, abs(xi - xo) / f, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                               m0)
+            sg = 1.0 if xi > xo else (-1.0 if xi < xo else 0.0)
+            yv = yo + sg * f * yl
+            wn = f * D
+            e += max(wn - sw[c, i], 0.0)
+            sw[c, i] = max(sw[c, i], wn)
+            sx[c, i] = xi
+            sy[c, i] = yv
+            if c == 0:
+                Ft[i] = yv
+                ct[i] = ax
+            else:
+                M[i] = yv
+                cm[i] = ax
+            wsum += e
+        dW[i] = wsum
+        if not (math.isfinite(wsum) and math.isfinite(Ft[i]) and math.isfinite(M[i])
+                and math.isfinite(ct[i]) and math.isfinite(cm[i])):
+            nonfinite += 1
+    return nonfinite
+
+
+def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G, Gt,
+                 S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW):
+    """One MDR spring step of the contacts ``idx`` (the arithmetic of
+    :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
+    weights, Jenkins elements of both channels, forces, stick radii and dissipation."""
+    N = beta.size - 1
+    n1 = n + 1.0
+    n2 = n + 2.0
+    nonfinite = 0
+    for j in _prange(idx.size):
+        c = idx[j]
+        cov = cover[c]
+        kcc = kc[c]
+        dj = d[c]
+        aj = a[c]
+        if n == 2.0:
+            cp1 = kcc * cov * cov * cov
+            Ga = kcc * aj * aj * aj / n1
+            Ha = kcc * aj * aj * aj * aj / n2
+        else:
+            cp1 = kcc * cov ** n1
+            Ga = kcc * aj ** n1 / n1
+            Ha = kcc * aj ** n2 / n2
+        cp2 = cp1 * cov
+        k = 0
+        while k < N - 1 and cov * beta[k + 1] < aj:
+            k += 1
+        ko = k_old[c]
+        lo = min(k, ko)
+        hi = max(k, ko) + 1
+        dd = dj - d_old[c]
+        mu_E = mu[c] * E[c]
+        du = u[c] - x_tan[c] if has_u else 0.0
+        dp = phi[c] - x_tor[c] if has_phi else 0.0
+        Ft_j = 0.0
+        M_j = 0.0
+        e = 0.0
+        ct_j = aj
+        cm_j = aj
+        free_t = True
+        free_m = True
+        for i in range(N):
+            bl = cov * beta[i]
+            br = cov * beta[i + 1]
+            w = br - bl
+            if i < k:
+                S = dj * w - (cp1 * bG[i + 1] - cp1 * bG[i])
+                T = dj * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
+            elif i == k:
+                if aj > bl:
+                    S = max(dj * (aj - bl) - (Ga - cp1 * bG[i]), 0.0)
+                    T = max(dj * (aj * aj - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+                else:
+                    S = 0.0
+                    T = 0.0
+            else:
+                S = 0.0
+                T = 0.0
+            if dd != 0.0:
+                if i < lo:
+                    wgt = 1.0
+                elif i >= hi:
+                    wgt = 0.0
+                else:
+                    wgt = min(max((S - S_old[c, i]) / (dd * w), 0.0), 1.0)
+            else:
+                wgt = min(max((aj - bl) / w, 0.0), 1.0)
+            S_old[c, i] = S
+            if has_u:
+                L = 2.0 * mu_E * S
+                Kt = 2.0 * G[c] * w * wgt
+                mo = m_tan[c, i]
+                trial = mo + Kt * du
+                mn = min(max(trial, -L), L)
+                m_tan[c, i] = mn
+                if Kt > 0.0:
+                    e += (trial - mn) * mn / Kt
+                Ft_j += mn
+                if free_t and abs(mn) >= L:
+                    free_t = False
+                    ct_j = min(bl, aj)
+            if has_phi:
+                L = 4.0 * mu_E * T
+                Kr = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * wgt
+                mo = m_tor[c, i]
+                trial = mo + Kr * dp
+                mn = min(max(trial, -L), L)
+                m_tor[c, i] = mn
+                if Kr > 0.0:
+                    e += (trial - mn) * mn / Kr
+                M_j += mn
+                if free_m and abs(mn) >= L:
+                    free_m = False
+                    cm_j = min(bl, aj)
+        k_old[c] = k
+        d_old[c] = dj
+        if has_u:
+            x_tan[c] = u[c]
+            Ft[c] = Ft_j
+            ct[c] = ct_j
+        else:
+            Ft[c] = 0.0
+            ct[c] = aj
+        if has_phi:
+            x_tor[c] = phi[c]
+            M[c] = M_j
+            cm[c] = cm_j
+        else:
+            M[c] = 0.0
+            cm[c] = aj
+        dW[c] = e
+        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
+            nonfinite += 1
+    return nonfinite
 
 
 if AVAILABLE:
     _load = numba.njit(cache=False, nogil=True)(_load)
     # serial (default) and threaded builds of the same loops; contacts are independent, so the
     # threaded build gives bit-identical results (prange is range in the serial build)
-    _KERNELS = {par: (numba.njit(cache=False, nogil=True, parallel=par)(_scales),
-                      numba.njit(cache=False, nogil=True, parallel=par)(_channel_step))
+    _KERNELS = {par: tuple(numba.njit(cache=False, nogil=True, parallel=par)(f)
+                           for f in (_normal_pass, _fused_pass, _spring_pass))
                 for par in (False, True)}
 else:                                   # pragma: no cover - without numba
-    _KERNELS = {False: (_scales, _channel_step), True: (_scales, _channel_step)}
+    _KERNELS = {False: (_normal_pass, _fused_pass, _spring_pass),
+                True: (_normal_pass, _fused_pass, _spring_pass)}
 
 
-def channel_step(kind: int, st: dict, x: np.ndarray, xs, ys, auxs, Ds, coef, y_scale: float,
-                 n: float, parallel: bool = False):
-    """One compiled Masing step of a channel (state ``st`` of
-    :func:`~contactlab.physics.masing_stack.new_stack`, updated in place).
-
-    ``xs`` scales the argument (twist scale or full-slip displacement), ``ys`` the response
-    (full-sliding torque, μF_N), ``auxs`` the stick ratio (contact radius), ``Ds`` the
-    tangential dissipation (unused for torsion). ``parallel``: the threaded build (numba
-    threads over contacts, same results). Returns ``(y, aux, dW)``.
-    """
-    m = x.size
-    out = (np.empty(m), np.empty(m), np.empty(m))
-    _KERNELS[parallel][1](kind, x, st["x"], st["y"], st["w"], st["last"], st["depth"], st["X"],
-                          st["Y"], st["overflow"], xs, ys, auxs, Ds, coef, float(y_scale),
-                          float(n), *out)
-    return out
+_EMPTY = np.zeros(1)
 
 
-def scales(mu, E, G, Gt, a, d, FN, n: float, parallel: bool = False):
-    """One compiled pass for the scales of both channels (the same arithmetic as the numpy
-    path): ``(u_star, muF, Dscale, phi_s, M_full)``."""
+def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: float,
+                parallel: bool = False, out=None):
+    """Normal contact of every contact from a force (``by_force``) or a depth ``val``; ``u``,
+    ``phi`` (or None) are only checked. ``flat``: punch radii (flat punch family, ``n = inf``).
+    Returns ``(d, a, F, flag, counts)`` with ``flag`` 0 (constant load), 1 (separated), 2 (depth
+    beyond ``rtol`` of ``ref``) and ``counts = (bad inputs, separated, off, both channels)``.
+    ``out``: the four arrays to write into (default: new arrays)."""
+    m = val.size
+    d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
+                     if out is None else out)
+    counts = _KERNELS[parallel][0](bool(by_force), val, _EMPTY if u is None else u,
+                                   _EMPTY if phi is None else phi, u is not None,
+                                   phi is not None, kc, E, float(n), flat, ref, float(rtol),
+                                   d, a, F, flag)
+    return d, a, F, flag, counts
+
+
+def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan: dict,
+               parallel: bool = False, out=None):
+    """Both channels of every contact in one pass (``master``: the torsion
+    :class:`~contactlab.physics.master.MasterCurve`; ``chan``: the fields of
+    :func:`~contactlab.physics.masing_stack.new_stack` stacked over a leading channel axis, 0
+    tangential and 1 torsion, updated in place; ``ref`` set where it is 0). Returns
+    ``(Ft, ct, M, cm, dW, exact)`` (written into ``out`` when given)."""
     m = a.size
-    out = tuple(np.empty(m) for _ in range(5))
-    _KERNELS[parallel][0](mu, E, G, Gt, a, d, FN, float(n), *out)
-    return out
+    if out is None:
+        out = (np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
+               np.empty(m, bool))
+    nf = _KERNELS[parallel][1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
+                          u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
+                          float(n), master.coef, float(master.y_scale), float(master.y0),
+                          float(master.m0), chan["x"], chan["y"], chan["w"],
+                          chan["last"], chan["depth"], chan["X"], chan["Y"], chan["overflow"],
+                          *out)
+    return out + (nf,)
+
+
+def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: dict,
+                out: tuple, parallel: bool = False) -> int:
+    """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
+    radius and controls of all contacts, or None; ``cover``, ``kc``, moduli: per contact;
+    ``beta``: unit cell boundaries). Spring state ``st`` (the law's ``spr_*`` arrays) is updated
+    in place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
+    Returns the number of contacts whose outputs are not finite.
+    Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
+    nn = float(n) if n != np.inf else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    return _KERNELS[parallel][2](idx, d, a, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
+                          u is not None, phi is not None, cover, kc, nn, beta, bG, bH, mu, E,
+                          G, Gt, st["spr_S"], st["spr_k"], st["spr_depth"], st["spr_tan"],
+                          st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"], *out)

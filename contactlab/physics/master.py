@@ -67,12 +67,21 @@ class MasterCurve:
         first) of ``t = c/a``, ``m/s`` and ``q/s²`` with ``m = M/M_full`` and ``q = D/(M_full φ)``.
     certified_error : float
         Largest absolute difference to the exact solvers at the certification points.
+    y0, m0 : float
+        Flat punch (``n = inf``): no slip up to ``y0 = 1/2`` (``t = 1``, ``m = m0 y``, no
+        dissipation); the panels map ``s = (y - y0)/(y - y0 + y_s)`` beyond. 0 for power laws.
+    scaled : bool
+        The table holds ``m/s`` and ``q/s²`` (power laws, where both vanish as ``y → 0``) or
+        ``m`` and ``q`` themselves (flat punch).
     """
 
     n: float
     y_scale: float
     coef: np.ndarray
     certified_error: float
+    y0: float = 0.0
+    m0: float = 0.0
+    scaled: bool = True
 
     @property
     def panels(self) -> int:
@@ -80,17 +89,26 @@ class MasterCurve:
 
     def __call__(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(t, m, q)`` at dimensionless twists ``y >= 0`` (any shape)."""
-        return evaluate(self.coef, self.y_scale, np.asarray(y, float))
+        return evaluate(self.coef, self.y_scale, np.asarray(y, float), self.y0, self.m0,
+                        self.scaled)
 
 
-def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray
+def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
+             m0: float = 0.0, scaled: bool = True
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate the three curves of ``coef`` at ``y`` (numpy reference of the kernel).
 
     The table holds ``t``, ``m/s`` and ``q/s²`` (smooth and non-zero at ``s = 0``, so torque and
     dissipation keep their relative accuracy as ``y → 0``), as monomials in the panel's local
-    variable ``u ∈ [-1, 1]``.
+    variable ``u ∈ [-1, 1]``. Flat punch (``y0 > 0``, ``scaled`` False): ``t = 1``,
+    ``m = m0 y``, ``q = 0`` up to ``y0``; the table holds ``t``, ``m``, ``q`` in
+    ``s = (y - y0)/(y - y0 + y_s)`` beyond.
     """
+    if y0 > 0.0:
+        stuck = y <= y0
+        t, m, q = evaluate(coef, y_scale, np.maximum(y - y0, 0.0), 0.0, 0.0, scaled)
+        return (np.where(stuck, 1.0, t), np.where(stuck, m0 * y, m),
+                np.where(stuck, 0.0, q))
     N = coef.shape[1]
     s = y / (y + y_scale)
     z = s * N
@@ -103,14 +121,18 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray
         for p in range(coef.shape[2] - 2, -1, -1):
             acc = acc * u + ck[j, p]
         out.append(acc)
+    if not scaled:
+        return np.clip(out[0], 0.0, 1.0), out[1], out[2]
     return np.clip(out[0], 0.0, 1.0), out[1] * s, out[2] * (s * s)
 
 
 def torsion_scales(n: float, E_star, G_t, mu, a, d):
     """``(φ_s, M_full, n)``: twist scale ``μE*d/(2G_t a)`` (rad) and full-sliding torque
-    ``π n/(2(n+2)) μ E* d a²`` (N·m) of power-law contacts; ``y = φ/φ_s``."""
+    ``π n/(2(n+2)) μ E* d a²`` (N·m) of power-law contacts (flat punch, ``n = inf``:
+    ``π/2 μ E* d a²``); ``y = φ/φ_s``."""
     phi_s = mu * E_star * d / (2.0 * G_t * a)
-    M_full = np.pi * n / (2.0 * (n + 2.0)) * mu * E_star * d * a * a
+    cM = np.pi * n / (2.0 * (n + 2.0)) if n != np.inf else 0.5 * np.pi
+    M_full = cM * mu * E_star * d * a * a
     return phi_s, M_full
 
 
@@ -154,6 +176,41 @@ def _exact_curves(n: float, y: np.ndarray, rtol: float = MASTER_RTOL):
     return t, M / M_full, q
 
 
+#: flat punch: no slip up to y = 1/2 (the edge's shear and pressure singularities have the same
+#: strength, so slip starts at the edge at φ = μE*d/(4 G_t a)); torque 16/3 G_t a³ φ there
+FLAT_Y0 = 0.5
+FLAT_M0 = 16.0 / (3.0 * np.pi)
+
+
+def _flat_exact_curves(y: np.ndarray, rtol: float = MASTER_RTOL):
+    """``(t, m, q)`` of the flat punch at ``y > 1/2`` (unit contact: a = d = E* = G_t = μ = 1).
+
+    Closed forms with ``P(x) = K(√(1-x²))/π`` (only the edge term of the slip function
+    survives, ``g = 0`` inside): the stick ratio from ``P(t) = y`` (bisection in ``ln t`` to
+    rounding), ``M = (16/3)(y/2) t³ + 8 h(t)/π`` over ``M_full = π/2``; the dissipation by the
+    exact solver's integral (:func:`~contactlab.physics.torsion_exact.dissipation_integral`)."""
+    from ..profiles import FlatPunch
+    from . import torsion_exact as ex
+    from .torsion import Exact
+    y = np.asarray(y, float)
+    lo = np.full(y.shape, np.log(ex.C_MIN_REL))
+    hi = np.zeros(y.shape)
+    for _ in range(80):                     # K(√(1-t²)) decreases with t; ln t in [-230, 0]
+        mid = 0.5 * (lo + hi)
+        big = ex.K_comp(np.exp(2.0 * mid)) / np.pi > y
+        lo = np.where(big, mid, lo)
+        hi = np.where(big, hi, mid)
+    t = np.exp(0.5 * (lo + hi))
+    t = np.where(t <= ex.C_MIN_REL * 1.0000001, 0.0, t)
+    phi = 0.5 * y
+    M = 16.0 / 3.0 * phi * t**3 + 8.0 * ex.h_kernel(t) / np.pi
+    M_full = 0.5 * np.pi
+    one = np.ones(y.shape)
+    D = Exact(FlatPunch(radius=1.0), 1.0, 1.0, 1.0, rtol).dissipation(phi, t, one, one,
+                                                                    np.zeros(y.shape))
+    return t, M / M_full, D / (M_full * phi)
+
+
 def _fit(n: float, N: int, p: int, y_scale: float):
     """Interpolate at Chebyshev points of each panel; certify at the midpoints between them."""
     from numpy.polynomial import chebyshev as C
@@ -163,15 +220,19 @@ def _fit(n: float, N: int, p: int, y_scale: float):
     s_chk = left + 0.25 * (uc[1:] + uc[:-1] + 2.0) / N
     s_all = np.concatenate([s.ravel(), s_chk.ravel(), [1.0 - 1e-9]])
     y_all = y_scale * s_all / (1.0 - s_all)
-    t, m, q = _exact_curves(n, y_all)
+    flat = n == np.inf
+    if flat:
+        t, m, q = _flat_exact_curves(FLAT_Y0 + y_all)
+    else:
+        t, m, q = _exact_curves(n, y_all)
     ns = s.size
-    table = (t, m / s_all, q / s_all**2)
+    table = (t, m, q) if flat else (t, m / s_all, q / s_all**2)
     V = C.chebvander(uc, p)
     to_mono = np.stack([np.pad(C.cheb2poly(e), (0, p + 1 - j - 1))
                         for j, e in enumerate(np.eye(p + 1))])      # row j: T_j in monomials
     coef = np.stack([np.linalg.solve(V, v[:ns].reshape(N, p + 1).T).T @ to_mono
                      for v in table])
-    approx = evaluate(coef, y_scale, y_all[ns:])
+    approx = evaluate(coef, y_scale, y_all[ns:], scaled=not flat)
     err = max(float(np.max(np.abs(ap - v[ns:]))) for ap, v in zip(approx, (t, m, q)))
     return coef, err
 
@@ -179,7 +240,8 @@ def _fit(n: float, N: int, p: int, y_scale: float):
 @lru_cache(maxsize=16)
 def torsion_master(n: float, degree: int = MASTER_DEGREE, tol: float = CERTIFY_TOL
                    ) -> MasterCurve:
-    """Certified master curves of exact torsion for ``f = c r^n`` (computed once per ``n``).
+    """Certified master curves of exact torsion for ``f = c r^n`` (computed once per ``n``;
+    ``n = inf``: the flat punch).
 
     The panels start at :data:`MASTER_PANELS` and double until the certified error is at most
     ``tol`` (at most :data:`MAX_PANELS`); a build takes 1-5 s.
@@ -196,11 +258,18 @@ def torsion_master(n: float, degree: int = MASTER_DEGREE, tol: float = CERTIFY_T
         raise NotSupportedError(f"n={n!r} is not supported by the torsion master curves: the "
                                 f"exponent must satisfy n >= {MIN_EXPONENT:g}.")
     # y_s: the twist at which c/a = 1/2, so that the panels split the curve evenly
-    y_scale = float(_y_half(n))
+    flat = n == np.inf
+    if flat:
+        from . import torsion_exact as ex
+        y_scale = float(ex.K_comp(np.array(0.25)) / np.pi) - FLAT_Y0
+    else:
+        y_scale = float(_y_half(n))
     panels = MASTER_PANELS
     while True:
         coef, err = _fit(n, panels, degree, y_scale)
         if err <= tol:
+            if flat:
+                return MasterCurve(n, y_scale, coef, err, FLAT_Y0, FLAT_M0, False)
             return MasterCurve(n, y_scale, coef, err)
         if panels >= MAX_PANELS:
             raise ConvergenceError(f"torsion master curve for n={n!r}: certified error "
@@ -237,6 +306,9 @@ def tangential_master(n: float, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
     elif n == 1.0:
         t = r
         one_t = xc
+    elif n == np.inf:                   # flat punch: stick until full slip (uniform limits)
+        one_t = np.where(xc >= 1.0, 1.0, 0.0)
+        t = 1.0 - one_t
     else:
         with np.errstate(divide="ignore"):
             one_t = -np.expm1(np.log1p(-xc) / n)
