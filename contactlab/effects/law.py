@@ -556,7 +556,13 @@ class ContactLaw:
             x = as_float_array(name, v, allow_nan=True)
             if x.ndim > 1 or (x.ndim == 1 and x.size != size):
                 _per_step(name, v, size, unit)          # raises the error naming the input
-            arrs.append(np.broadcast_to(x, (size,)))
+            # one array type for the kernels (1D, C-contiguous, writeable): a scalar or a
+            # read-only view would compile another specialisation on first use
+            if x.ndim == 0:
+                x = np.full(size, float(x))
+            elif not (x.flags.c_contiguous and x.flags.writeable):
+                x = np.array(x, dtype=float)
+            arrs.append(x)
         v, u, phi = arrs
         st = self._st
         if self._flag is None:
