@@ -46,8 +46,13 @@ def contact(prof: Tabulated) -> cl.Contact:
     return cl.Contact(prof, (STEEL, STEEL), friction=0.3)
 
 
-def verdict(ok: bool, what: str) -> str:
-    return f"{'OK    ' if ok else 'MISSED'} {what}"
+def verdict(ok: bool, what: str, cpu_ok: bool | None = None) -> str:
+    """Verdict on wall time; with ``cpu_ok``, also on CPU time (on a loaded machine the wall
+    time of a single-threaded run is inflated by the other processes, its CPU time much less)."""
+    out = f"{'OK    ' if ok else 'MISSED'} {what}"
+    if cpu_ok is not None and cpu_ok != ok:
+        out += f" [on CPU time: {'OK' if cpu_ok else 'MISSED'}]"
+    return out
 
 
 def timed(fn, min_total: float = 0.3, max_runs: int = 20) -> tuple[float, float]:
@@ -105,7 +110,7 @@ def main(argv: list[str]) -> int:
             big[kind] = (time.perf_counter() - w0, time.process_time() - c0)
         print(f"2. 10^6 points, set-up + one force: cubic {big['cubic'][0]:.2f} s (cpu "
               f"{big['cubic'][1]:.2f}), linear {big['linear'][0]:.2f} s (cpu "
-              f"{big['linear'][1]:.2f})  " + verdict(big["cubic"][0] < 5, "(cubic < 5 s)"))
+              f"{big['linear'][1]:.2f})  " + verdict(big["cubic"][0] < 5, "(cubic < 5 s)", big["cubic"][1] < 5))
     # ---- 3. gait simulate, 200-point tables
     path = gait_path(contact(table(200, "linear")), 10_000)
     sim = {}
@@ -139,7 +144,7 @@ def main(argv: list[str]) -> int:
         dt = timed(lambda: c.torsion(radius=a, twist=twist, method="exact"), min_total=0.3,
                    max_runs=10)
         print(f"4. exact torque-twist, 200 twists, 1000-point {kind}: {dt[0] * 1e3:.1f} ms "
-              f"(cpu {dt[1] * 1e3:.1f})  " + verdict(dt[0] < 0.05, "(< 50 ms)"))
+              f"(cpu {dt[1] * 1e3:.1f})  " + verdict(dt[0] < 0.05, "(< 50 ms)", dt[1] < 0.05))
     print("End:", load())
     return 0
 
