@@ -1041,8 +1041,9 @@ class Tabulated(Profile):
         if np.any(flat > H_c[-1]):
             i = int(np.argmax(flat > H_c[-1]))
             raise OutsideTheoryError(
-                f"force={2 * flat[i]!r}·E* N needs a contact radius beyond the table (last radius "
-                f"{float(r[-1])!r} m); extend the measured profile or reduce the force.")
+                f"force/E* = {2 * float(flat[i]):.6g} m² needs a contact radius beyond the table "
+                f"(last radius {float(r[-1])!r} m, which carries force/E* = "
+                f"{2 * float(H_c[-1]):.6g} m²); extend the measured profile or reduce the force.")
         j = np.clip(np.searchsorted(H_c, flat, side="left"), 1, coarse.size - 1)
         lo, hi = coarse[j - 1], coarse[j]
         lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
