@@ -10,7 +10,9 @@ the error of the MDR spring model when the normal force changes (issue 18).
    one run.
 3. MDR-vs-exact error map under changing normal load (Hertz and cone; constant, sinusoidal and a
    gait-like double-hump force): torque error (of the instantaneous sliding torque and of the
-   path's), dissipated energy of the last twist cycle, smallest stick radius.
+   path's), dissipated energy of the last twist cycle, smallest stick radius, and the path's
+   largest twist over the MDR validity twist (``effects.path.mdr_path_validity``; the MDR run
+   warns above 1).
 
 Writes ``benchmarks/results/torsion_rings.csv`` and prints the tables.
 Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3;
@@ -30,6 +32,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import contactlab as cl  # noqa: E402
+from contactlab.effects.path import mdr_path_validity  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _harness import machine  # noqa: E402
 
@@ -129,14 +132,16 @@ def error_map():
             t, force = varying_path(kind)
             a_ref = float(c.normal(force=10.0)._radius)
             s = MU * 10.0 / (c.moduli.torsional * a_ref ** 2)
-            for amp in (0.3, 0.8):
+            for amp in (0.02, 0.04, 0.06, 0.08, 0.3, 0.8):
                 phi = amp * s * np.sin(2 * np.pi * 3 * t) * np.minimum(1, 2 * t)
                 path = cl.LoadPath.from_arrays(force=force, twist=phi)
                 M_s = sliding(c, force)
                 ex = c.simulate(path, method="exact", n_rings=400)
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
+                with warnings.catch_warnings(record=True) as rec:
+                    warnings.simplefilter("always")
                     md = c.simulate(path, method="mdr")
+                warned = any(issubclass(w.category, cl.errors.ValidityWarning) for w in rec)
+                ratio = mdr_path_validity(c, ex.twist, ex.radius, ex.depth)[0]
                 last = t > 2 / 3
                 W_ex = ex.dissipated_energy[-1] - ex.dissipated_energy[~last][-1]
                 W_md = md.dissipated_energy[-1] - md.dissipated_energy[~last][-1]
@@ -149,7 +154,8 @@ def error_map():
                                                       / M_s[inside])),
                     "energy_error_last_cycle": float(W_md / W_ex - 1) if W_ex > 0 else np.nan,
                     "min_stick_exact": float(np.min(ex.stick_radius / ex.radius)),
-                    "min_stick_mdr": float(np.min(md.stick_radius / md.radius))})
+                    "min_stick_mdr": float(np.min(md.stick_radius / md.radius)),
+                    "validity_ratio": float(ratio), "mdr_warns": bool(warned)})
     return rows
 
 
@@ -161,7 +167,8 @@ def main_map():
     for r in em:
         print(f"  {r['case']:28s} torque {r['torque_error']:.3f} (inst {r['torque_error_inst']:.3f})"
               f"  energy/cycle {r['energy_error_last_cycle']:+.3f}"
-              f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}")
+              f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}"
+              f"  twist/validity {r['validity_ratio']:.2f} warns {r['mdr_warns']}")
     OUT.mkdir(exist_ok=True)
     keys = sorted({k for r in em for k in r})
     with open(OUT / "torsion_rings_map.csv", "w", newline="") as fh:
@@ -189,7 +196,8 @@ def main():
         for r in em:
             print(f"  {r['case']:28s} torque {r['torque_error']:.3f} (inst {r['torque_error_inst']:.3f})"
                   f"  energy/cycle {r['energy_error_last_cycle']:+.3f}"
-                  f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}")
+                  f"  c/a min exact {r['min_stick_exact']:.3f} mdr {r['min_stick_mdr']:.3f}"
+                  f"  twist/validity {r['validity_ratio']:.2f} warns {r['mdr_warns']}")
         rows += em
     OUT.mkdir(exist_ok=True)
     keys = sorted({k for r in rows for k in r})

@@ -1,10 +1,12 @@
 """The compiled foundation kernel (issue 13) against its numpy reference, and whole paths through
 simulate() with both backends."""
+import contextlib
+
 import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.errors import ParameterError
+from contactlab.errors import ParameterError, ValidityWarning
 from contactlab.foundation import _compiled
 from contactlab.loadpath import LoadPath
 from tests.tolerances import BACKENDS_AGREE
@@ -87,7 +89,10 @@ def test_fused_step_agrees_with_numpy(foundation_backend, name, kw):
     out = {}
     for b in ("numpy", "numba"):
         _compiled.set_backend(b)
-        out[b] = c.simulate(path, **kw, method="mdr")
+        # the torque path twists beyond the MDR springs' validity while the force changes
+        with (pytest.warns(ValidityWarning, match="method='exact'") if name == "torque"
+              else contextlib.nullcontext()):
+            out[b] = c.simulate(path, **kw, method="mdr")
     a, b = out["numpy"], out["numba"]
     for key, x in a.data.items():
         x, y = np.asarray(x, float), np.asarray(b.data[key], float)
