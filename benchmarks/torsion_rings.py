@@ -2,12 +2,14 @@
 the error of the MDR spring model when the normal force changes (issue 18).
 
 1. Accuracy–cost front at constant load: torque error of the ring solver against the exact
-   Jäger/Masing ``twist_history`` (oscillating + irregular Hertz histories), per number of rings,
-   with the time per step.
+   Jäger/Masing ``twist_history`` (oscillating + irregular histories; Hertz, and a flat punch with
+   and without the edge punch in the basis), per number of rings, with the time per step and the
+   observed order.
 2. The 180-step varying-load path (Hertz, force 10 N ± 40 % at two cycles, twist oscillating in
    partial slip at three cycles): time and torque error of ``method="exact"`` at several ring
-   counts and of ``method="mdr"`` (2000 springs), all against a 4x finer exact run, side by side in
-   one run.
+   counts (nodes at the path's contact radii, and the uniform grid without them) and of
+   ``method="mdr"`` (2000 springs), all against an exact run at 1600 rings, side by side in one
+   run.
 3. MDR-vs-exact error map under changing normal load (Hertz and cone; constant, sinusoidal and a
    gait-like double-hump force): torque error (of the instantaneous sliding torque and of the
    path's), dissipated energy of the last twist cycle, smallest stick radius, and the path's
@@ -33,6 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import contactlab as cl  # noqa: E402
 from contactlab.effects.path import mdr_path_validity  # noqa: E402
+from contactlab.effects.torsion_path import _run  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _harness import machine  # noqa: E402
 
@@ -78,7 +81,36 @@ def front():
         rows.append({"part": "constant load", "case": "hertz", "method": "exact", "n": n,
                      "steps": path.n_steps, "time_s": t, "time_per_step_s": t / path.n_steps,
                      "torque_error": err})
+    # flat punch (square-root singular edge pressure): with and without the edge punch
+    c = cl.Contact(cl.profiles.FlatPunch(radius=1e-3), materials=MAT, friction=MU)
+    F, a = 100.0, 1e-3
+    s = MU * F / (c.moduli.torsional * a * a)
+    M_full = np.pi / 4 * MU * F * a
+    hist = np.concatenate([0.6 * s * np.sin(np.linspace(0.2, 4 * np.pi, 60)),
+                           np.cumsum(np.random.default_rng(1).normal(0, 0.25, 60)) * s])
+    ref = c.twist_history(twist=hist, force=F).torque
+    path = (cl.LoadPath().ramp(force=F, steps=2)
+            + cl.LoadPath.from_arrays(twist=hist, force=np.full(hist.size, F)))
+    for edge in (True, False):
+        for n in (25, 50, 100, 200, 400):
+            t, r = timed(lambda: _run(c, path, None, n, "uniform", None, edge=edge),
+                         1 if n > 200 else 3)
+            rows.append({"part": "constant load", "case": "flat punch" + ("" if edge else
+                                                                          " (no edge punch)"),
+                         "method": "exact", "n": n, "steps": path.n_steps, "time_s": t,
+                         "time_per_step_s": t / path.n_steps,
+                         "torque_error": float(np.max(np.abs(r.torque[2:] - ref)) / M_full)})
     return rows
+
+
+def orders(rows):
+    """Observed order between successive ring counts of one case: log(e1/e2)/log(n2/n1)."""
+    out = {}
+    for r1, r2 in zip(rows, rows[1:]):
+        if r1["case"] == r2["case"] and r1["part"] == r2["part"] and r2["n"] > r1["n"]:
+            out[(r1["case"], r2["n"])] = (np.log(r1["torque_error"] / r2["torque_error"])
+                                          / np.log(r2["n"] / r1["n"]))
+    return out
 
 
 def gait(t):
@@ -105,17 +137,25 @@ def speed():
     phi = 0.8 * s * np.sin(2 * np.pi * 3 * t) * np.minimum(1, 2 * t)
     path = cl.LoadPath.from_arrays(force=force, twist=phi)
     M_s = sliding(c, force)
-    ref = c.simulate(path, method="exact", n_rings=800).torque
+    ref = c.simulate(path, method="exact", n_rings=1600).torque
     rows = []
-    for method, n in (("exact", 100), ("exact", 150), ("exact", 200), ("exact", 400),
-                      ("mdr", None)):
-        kw = {"n_rings": n} if method == "exact" else {}
+    for method, n, align in (("exact", 100, True), ("exact", 150, True), ("exact", 200, True),
+                             ("exact", 400, True), ("exact", 800, True), ("exact", 100, False),
+                             ("exact", 200, False), ("exact", 400, False), ("mdr", None, None)):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            tt, r = timed(lambda: c.simulate(path, method=method, **kw))
-        rows.append({"part": "180-step varying load", "case": "hertz sinusoid", "method": method,
-                     "n": n or 2000, "steps": path.n_steps, "time_s": tt,
-                     "time_per_step_s": tt / path.n_steps,
+            if method == "mdr":
+                tt, r = timed(lambda: c.simulate(path, method="mdr"))
+            elif align:
+                tt, r = timed(lambda: c.simulate(path, method="exact", n_rings=n),
+                              1 if n > 400 else 3)
+            else:       # the grid before issue 18's third part: contact edge between nodes
+                tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, align=False))
+        rows.append({"part": "180-step varying load",
+                     "case": "hertz sinusoid" + ("" if align in (True, None) else " uniform grid"),
+                     "method": method, "n": n or 2000,
+                     "rings": r.meta.get("rings", n or 2000), "steps": path.n_steps,
+                     "time_s": tt, "time_per_step_s": tt / path.n_steps,
                      "torque_error": float(np.max(np.abs(r.torque - ref)) / M_s.max())})
     return rows
 
@@ -182,13 +222,21 @@ def main():
         return main_map()
     print(machine())
     rows = front()
+    od = orders(rows)
     print("\n1. constant load, error vs twist_history (of the sliding torque), time per step")
     for r in rows:
-        print(f"  N={r['n']:4d}  error {r['torque_error']:.2e}  {1e3 * r['time_per_step_s']:.2f} ms/step")
+        o = od.get((r["case"], r["n"]))
+        print(f"  {r['case']:26s} N={r['n']:4d}  error {r['torque_error']:.2e}"
+              f"  {1e3 * r['time_per_step_s']:.2f} ms/step"
+              + (f"  order {o:.2f}" if o is not None else ""))
     sp = speed()
-    print("\n2. 180-step varying-load path (error of the max sliding torque vs exact N=800)")
+    od = orders([r for r in sp if r["method"] == "exact"])
+    print("\n2. 180-step varying-load path (error of the max sliding torque vs exact N=1600)")
     for r in sp:
-        print(f"  {r['method']:5s} N={r['n']:5d}  {r['time_s']:.3f} s  error {r['torque_error']:.2e}")
+        o = od.get((r["case"], r["n"]))
+        print(f"  {r['method']:5s} {r['case']:28s} N={r['n']:5d} rings {r['rings']:5d}"
+              f"  {r['time_s']:.3f} s  error {r['torque_error']:.2e}"
+              + (f"  order {o:.2f}" if o is not None else ""))
     rows += sp
     if "--quick" not in sys.argv:
         em = error_map()

@@ -17,12 +17,15 @@ from .base import Foundation
 
 __all__ = ["Rings", "RingState", "DEFAULT_N_RINGS"]
 
-#: default number of rings over the path's largest contact radius. Measured by
-#: benchmarks/torsion_rings.py (Hertz, 2-core VM): at constant load the torque of the exact
-#: Jäger/Masing history is reproduced to <= 2e-6 of the sliding torque (monotone, oscillating,
-#: irregular), on a 180-step path whose normal force changes every step to ~6e-4 of the sliding
-#: torque against a 4x finer run, in ~0.5 s.
+#: default number of rings over the path's largest contact radius (before the nodes added at the
+#: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
+#: load the torque of the exact Jäger/Masing history is reproduced to 4.1e-5 of the sliding torque
+#: (Hertz; flat punch 2.0e-6), on a 180-step path whose normal force changes every step to 1.0e-4
+#: against 1600 rings, in 0.7 s at load average 12.8 (244 rings).
 DEFAULT_N_RINGS = 200
+#: with the edge punch (contact pinned at a wall): its collocation point sits this fraction of
+#: the last ring's width inside the edge (the ring's midpoint is the other point of that ring)
+EDGE_POINT = 0.1
 
 
 @dataclass
@@ -52,21 +55,32 @@ class Rings(Foundation):
     Parameters are those of :class:`~contactlab.foundation.Foundation`; ``n_springs`` is the
     number of rings and ``spacing`` defaults to ``"uniform"`` (measured more accurate here than
     the edge-refined spacing, whose fine cells sit at the largest radius only).
+    ``contact_radii`` (m, optional): the contact radii of the path's steps; nodes are added at
+    them (:func:`contactlab.physics.torsion_rings.aligned_grid`) so that the moving contact edge
+    sits on a node. ``n_uniform`` keeps the requested ring count, ``n_springs`` the actual one.
     """
 
     def __init__(self, profile, moduli, friction, radius, *, n_springs=None, spacing="uniform",
-                 needs=("torsion",), rtol=1e-10) -> None:
+                 needs=("torsion",), rtol=1e-10, contact_radii=None, edge_punch=False) -> None:
+        self._contact_radii = None if contact_radii is None else np.asarray(contact_radii, float)
+        self.edge_punch = bool(edge_punch)
         super().__init__(profile, moduli, friction, radius,
                          n_springs=DEFAULT_N_RINGS if n_springs is None else n_springs,
                          spacing=spacing, needs=needs, rtol=rtol)
 
     def _build(self) -> None:
+        self.n_uniform = self.n_springs
+        if self._contact_radii is not None:
+            self.boundaries = _tr.aligned_grid(self.boundaries, self._contact_radii)
+            self.n_springs = self.boundaries.size - 1
         b = self.boundaries
         self.points = 0.5 * (b[1:] + b[:-1])
-        mats = _tr.influence(b, self.points, self.moduli.torsional)
+        if self.edge_punch:     # one more point, in the last ring, for the edge punch
+            self.points = np.append(self.points, b[-1] - EDGE_POINT * (b[-1] - b[-2]))
+        mats = _tr.influence(b, self.points, self.moduli.torsional, edge_punch=self.edge_punch)
         self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
         self.B, self.lu = mats["B"], mats["lu"]
 
     def new_state(self) -> RingState:
-        n = self.n_springs
+        n = self.points.size
         return RingState(np.zeros(n), np.zeros(n), np.zeros(n, int))

@@ -4,7 +4,7 @@ import pytest
 from scipy.integrate import dblquad, quad
 
 from contactlab.physics import torsion_rings as tr
-from tests.tolerances import QUADRATURE
+from tests.tolerances import QUADRATURE, QUADRATURE_EDGE_PUNCH
 
 G = 80e9
 B = np.array([0.0, 0.3, 0.55, 0.8, 1.0]) * 1e-4
@@ -68,3 +68,32 @@ def test_box_step_single_point_sticks_then_slides():
     assert z[0] == 1.0 and lam[0] == pytest.approx(1.0)      # 2·0.5 + 2 − 2·1
     z, lam, d, _ = tr.box_step(H, g, z, np.array([1.0]), torque=0.25)
     assert z[0] == pytest.approx(0.25) and d == pytest.approx(-1.5)
+
+
+def test_aligned_grid_puts_every_contact_radius_on_a_node():
+    rng = np.random.default_rng(3)
+    b = np.linspace(0.0, 1e-4, 101)
+    h = 1e-6
+    radii = np.concatenate([rng.uniform(0.2e-4, 1e-4, 30), [1e-4, 0.0, 2e-4]])
+    out = tr.aligned_grid(b, radii)
+    assert out[0] == 0.0 and out[-1] == b[-1] and np.all(np.diff(out) >= tr.ALIGN_GAP * h)
+    inside = radii[(radii > 0) & (radii <= b[-1])]
+    assert np.max(np.min(np.abs(inside[:, None] - out[None, :]), axis=1)) <= 2 * tr.ALIGN_GAP * h
+    assert np.max(np.diff(out)) <= (1 + 2 * tr.ALIGN_MERGE) * h * (1 + 1e-12)
+    few = np.array([0.37e-4, 0.61e-4])                # radii far apart: each is a node exactly
+    assert np.all(np.isin(few, tr.aligned_grid(b, few)))
+    many = tr.aligned_grid(b, rng.uniform(0.2e-4, 1e-4, 3000))   # capped: the gap grows
+    assert many.size - 1 <= tr.ALIGN_MAX_FACTOR * 100 and np.all(np.diff(many) > 0)
+
+
+def test_edge_punch_carries_the_singular_sliding_traction():
+    """Full sliding of a flat punch, p ∝ 1/sqrt(a² − r²): the torque weights with the edge punch
+    reproduce 2π∫ r² p dr = π²a²/2 at order > 2 (without it the square-root singularity is missed)."""
+    a, errs = 1e-3, []
+    for n in (50, 200):
+        b = np.linspace(0.0, a, n + 1)
+        r = np.append(0.5 * (b[1:] + b[:-1]), a - 0.1 * (a - b[-2]))
+        g = tr.influence(b, r, G, edge_punch=True)["g"]
+        assert np.all(g > 0)
+        errs.append(abs(g @ (1 / np.sqrt(a * a - r * r)) / (np.pi ** 2 * a * a / 2) - 1))
+    assert errs[1] < QUADRATURE_EDGE_PUNCH and errs[0] / errs[1] > 4.0 ** 2
