@@ -249,6 +249,8 @@ class Records:
     point; ``outputs`` maps each output name (in the order the points first returned them) to a
     list with the point's value, or None where that point did not return the name (a failed
     point returns none; outputs are never None themselves: :func:`scalars` turns None into NaN).
+    ``seconds`` is the compute time where the points ran; it is not pickled (NaN after a trip
+    from a worker): a sweep times points in the calling process.
     """
 
     __slots__ = ("point", "outputs", "error", "message", "warnings", "seconds")
@@ -332,15 +334,16 @@ class Records:
 
     def __getstate__(self) -> tuple[Any, ...]:
         return (_pack_index(self.point), {k: _pack(v) for k, v in self.outputs.items()},
-                _pack(self.error), _pack(self.message), _pack(self.warnings), _pack(self.seconds))
+                _pack(self.error), _pack(self.message), _pack(self.warnings))
 
     def __setstate__(self, state: tuple[Any, ...]) -> None:
-        point, outputs, error, message, warned, seconds = state
+        point, outputs, error, message, warned = state
         self.point = _unpack_index(point)
         n = len(self.point)
         self.outputs = {k: _unpack(v, n) for k, v in outputs.items()}
         self.error, self.message = _unpack(error, n), _unpack(message, n)
-        self.warnings, self.seconds = _unpack(warned, n), _unpack(seconds, n)
+        self.warnings = _unpack(warned, n)
+        self.seconds = [math.nan] * n        # timed where the points ran; not sent back
 
 
 # ---- compact pickles of columns: what a worker sends and receives -------------------------------
