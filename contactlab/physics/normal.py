@@ -262,17 +262,21 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
 
 
 def table_floor(profile, x: np.ndarray, scale: np.ndarray) -> np.ndarray:
-    """Absolute floor ``scale · min((h/x)², 1)`` of a quadrature over ``[0, x]`` of a table's g.
+    """Absolute floor ``scale · min(max((h/x)², 1e-3 h/x), 1)`` of a quadrature over ``[0, x]``
+    of a table's g.
 
     ``h`` is the largest node spacing below ``x``: the interpolant is known only to the table's
     resolution (relative ``(h/x)²`` for data sampled from a smooth surface), and the kinks of g at
-    thousands of nodes keep an adaptive quadrature from converging much beyond it.
+    thousands of nodes keep an adaptive quadrature from converging much beyond it: its error
+    falls only about linearly in ``h`` (∫g² on uniform tables: 7e-8 relative at 10^4 points,
+    9.5e-10 at 10^6, where ``(h/x)²`` is 1.2e-10), which ``1e-3 h/x`` covers.
     """
     nodes = profile.table_nodes()
     gaps = np.maximum.accumulate(np.diff(nodes))
     k = np.clip(np.searchsorted(nodes, x, side="left") - 1, 0, gaps.size - 1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        rel = np.where(x > 0, np.minimum((gaps[k] / np.where(x > 0, x, 1.0)) ** 2, 1.0), 0.0)
+        q = gaps[k] / np.where(x > 0, x, 1.0)
+        rel = np.where(x > 0, np.minimum(np.maximum(q * q, 1e-3 * q), 1.0), 0.0)
     return np.abs(scale) * rel
 
 
