@@ -2,9 +2,12 @@
 
 Two 10^6-step paths, N = 2000 springs, traced with tracemalloc after a warm-up run (so that a
 numba JIT compile is not counted): a held normal load with a twist sinusoid (10^4 cycles of
-100 steps) and a gait-like table (force and twist change at every step).
+100 steps) and a gait-like table (force and twist change at every step), both on the spring
+foundation (``method="mdr"``); then the gait table on the exact ring solver (the default of a
+twisted path, ``method="exact"``) with ``exact_steps`` steps (default 10^4: the ring solver costs
+~1 ms per step).
 
-Run from the repository root: ``python benchmarks/simulate_memory.py [steps]``
+Run from the repository root: ``python benchmarks/simulate_memory.py [steps] [exact_steps]``
 """
 from __future__ import annotations
 
@@ -23,6 +26,7 @@ from _harness import machine  # noqa: E402
 
 def main() -> None:
     steps = int(sys.argv[1]) if len(sys.argv) > 1 else 10 ** 6
+    exact_steps = int(sys.argv[2]) if len(sys.argv) > 2 else 10 ** 4
     print("machine:", machine())
     steel = cl.Elastic(E=210e9, nu=0.3)
     c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(steel, steel), friction=0.2)
@@ -38,10 +42,16 @@ def main() -> None:
     del F, tw, k
     c.simulate(cl.LoadPath().ramp(force=50.0, steps=3).ramp(force=40.0, twist=phi0, steps=20),
                n_springs=100, method="mdr")   # warm-up (JIT)
-    for name, path in (("held load + twist sinusoid", held), ("gait table", gait)):
+    ke = np.arange(1, exact_steps + 1)
+    gait_exact = cl.LoadPath().ramp(force=37.5, steps=1).then(cl.loadpath.Table.create(
+        None, {"force": 50.0 * (0.75 + 0.25 * np.sin(2 * np.pi * ke / 700)),
+               "twist": phi0 * np.sin(2 * np.pi * ke / 100)}))
+    for name, path, kw in (("held load + twist sinusoid", held, dict(n_springs=2000, method="mdr")),
+                           ("gait table", gait, dict(n_springs=2000, method="mdr")),
+                           ("gait table, exact rings", gait_exact, dict(method="exact"))):
         tracemalloc.start()
         t0 = time.perf_counter()
-        r = c.simulate(path, n_springs=2000, method="mdr")
+        r = c.simulate(path, **kw)
         dt = time.perf_counter() - t0
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()

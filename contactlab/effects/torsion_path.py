@@ -34,9 +34,11 @@ _PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 16, 64
 
 def exact_memory(n_steps: int, longest_leaf: int, n_rings: int) -> float:
     """Estimated peak memory of ``simulate(method="exact")``, bytes: per-step series, the
-    per-leaf ring arrays (steps of the longest leaf x rings) and the dense ring matrices;
-    checked against the memory budget before anything is allocated."""
-    return 8.0 * (_PER_STEP * float(n_steps) + _PER_LEAF_STEP_RING * float(longest_leaf)
+    ring arrays of a chunk of steps (the longest leaf's steps up to :data:`_BOUND_CHUNK`, x
+    rings) and the dense ring matrices; checked against the memory budget before anything is
+    allocated."""
+    chunk = min(float(longest_leaf), float(_BOUND_CHUNK))
+    return 8.0 * (_PER_STEP * float(n_steps) + _PER_LEAF_STEP_RING * chunk
                   * float(n_rings) + _PER_RING2 * float(n_rings) * float(n_rings))
 
 
@@ -63,6 +65,10 @@ def simulate_exact(contact, path: LoadPath, *, outputs: Any = None, n_rings: int
                              if scale else 0.0)
         res.meta["error_estimates"] = est
     return res
+
+
+#: steps whose ring slip limits are held at once (memory: chunk x rings floats)
+_BOUND_CHUNK = 128
 
 
 def _longest_leaf(seg) -> int:
@@ -169,55 +175,60 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
             g_a = np.where(a_arr > 0, prof._g(np.maximum(a_arr, 1e-300)), 0.0)
             if np.isfinite(prof.wall_radius):
                 g_a = np.where(a_arr >= prof.wall_radius, np.minimum(g_a, d_arr), g_a)
-            if mu is None:
-                bound = np.where(r[None, :] < a_arr[:, None], np.inf, 0.0)
-                p = None
-            else:
-                p = _normal.pressure(prof, E, r[None, :], a_arr[:, None], d_arr[:, None],
-                                     g_a[:, None], contact.rtol)[0]
-                bound = mu * np.where(r[None, :] < a_arr[:, None], np.maximum(p, 0.0), 0.0)
-            for j in range(n):
-                k = i + j
-                z_old = st.z
-                if ctrl == "twist":
-                    z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], dphi=target[j] - st.twist,
-                                                    guess=st.active, C=rings.C)
+            for c0 in range(0, n, _BOUND_CHUNK):
+                # slip limits of the rings a chunk of steps at a time (a steps x rings array for a
+                # whole leaf would outgrow the result series many times over)
+                c1 = min(n, c0 + _BOUND_CHUNK)
+                ac, dc = a_arr[c0:c1], d_arr[c0:c1]
+                if mu is None:
+                    bound = np.where(r[None, :] < ac[:, None], np.inf, 0.0)
+                    p = None
                 else:
-                    z, lam, dphi, it = _tr.box_step(H, g, z_old, bound[j], torque=float(target[j]),
-                                                    guess=st.active, C=rings.C)
-                iters += it
-                if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
-                    res["gross_sliding"][k] = True
-                    z = np.sign(target[j]) * bound[j]
-                    lam = np.zeros_like(z)
-                    dphi = 0.0
-                M = float(g @ z)
-                W_in += 0.5 * (M_old + M) * dphi
-                dW = 0.5 * float((z_old + z) @ lam)
-                W_d += dW
-                st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
-                st.S = st.S + np.where(bound[j] > 0, lam, 0.0)
-                st.z = z
-                st.active = np.where(bound[j] == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
-                M_old = M
-                if bar is not None:
-                    bar.update(1)
-                res["twist"][k] = st.twist
-                res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
-                                                              res["gross_sliding"][k] else M)
-                res["dissipated_energy"][k] = W_d
-                res["stick_radius"][k] = _tr.stick_radius(r, z, bound[j], float(a_arr[j]))
-                work[k], step_diss[k] = W_in, dW
-                stored[k] = 0.5 * float(z @ (H @ z))
-                done = k + 1
-                if k in snaps:
-                    snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
-                                    "radius": float(a_arr[j]), "shear_torsion": z.copy(),
-                                    "pressure": (np.zeros(r.size) if p is None else
-                                                 np.where(r < a_arr[j], p[j], 0.0)),
-                                    "slip": _tr.slip_density(st.S, r, g),
-                                    "slip_increment": _tr.slip_density(
-                                        np.where(bound[j] > 0, lam, 0.0), r, g)}
+                    p = _normal.pressure(prof, E, r[None, :], ac[:, None], dc[:, None],
+                                         g_a[c0:c1, None], contact.rtol)[0]
+                    bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
+                for j in range(c0, c1):
+                    k = i + j
+                    z_old, bj = st.z, bound[j - c0]
+                    if ctrl == "twist":
+                        z, lam, dphi, it = _tr.box_step(H, g, z_old, bj, dphi=target[j] - st.twist,
+                                                        guess=st.active, C=rings.C)
+                    else:
+                        z, lam, dphi, it = _tr.box_step(H, g, z_old, bj, torque=float(target[j]),
+                                                        guess=st.active, C=rings.C)
+                    iters += it
+                    if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
+                        res["gross_sliding"][k] = True
+                        z = np.sign(target[j]) * bj
+                        lam = np.zeros_like(z)
+                        dphi = 0.0
+                    M = float(g @ z)
+                    W_in += 0.5 * (M_old + M) * dphi
+                    dW = 0.5 * float((z_old + z) @ lam)
+                    W_d += dW
+                    st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
+                    st.S = st.S + np.where(bj > 0, lam, 0.0)
+                    st.z = z
+                    st.active = np.where(bj == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
+                    M_old = M
+                    if bar is not None:
+                        bar.update(1)
+                    res["twist"][k] = st.twist
+                    res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
+                                                                  res["gross_sliding"][k] else M)
+                    res["dissipated_energy"][k] = W_d
+                    res["stick_radius"][k] = _tr.stick_radius(r, z, bj, float(a_arr[j]))
+                    work[k], step_diss[k] = W_in, dW
+                    stored[k] = 0.5 * float(z @ (H @ z))
+                    done = k + 1
+                    if k in snaps:
+                        snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
+                                        "radius": float(a_arr[j]), "shear_torsion": z.copy(),
+                                        "pressure": (np.zeros(r.size) if p is None else
+                                                     np.where(r < a_arr[j], p[j - c0], 0.0)),
+                                        "slip": _tr.slip_density(st.S, r, g),
+                                        "slip_increment": _tr.slip_density(
+                                            np.where(bj > 0, lam, 0.0), r, g)}
             t0 = float(res["time"][i + n - 1]) if n else t0
             i += n
             cur.update(depth=float(d_arr[-1]) if n else cur["depth"],

@@ -230,3 +230,28 @@ def test_contact_edge_on_a_node_under_a_changing_load():
     err_a = np.max(np.abs(aligned.torque - ref)) / M_s
     err_u = np.max(np.abs(uniform.torque - ref)) / M_s
     assert err_a < 0.5 * err_u
+
+
+@pytest.mark.parametrize("mu", [MU, None])
+def test_slip_limits_in_chunks_change_nothing(monkeypatch, mu):
+    """The rings' slip limits are computed a chunk of steps at a time (memory); chunks of 3 steps
+    give bit-identical series, snapshots and energies (twist, then torque control, then a hold)."""
+    from contactlab.effects import torsion_path
+    c = contact(mu)
+    a, s, M_full = scales(c)
+    t = np.arange(1, 17) / 16
+    path = (cl.LoadPath.from_arrays(force=F * (1 + 0.3 * np.sin(2 * np.pi * t)),
+                                    twist=0.7 * s * np.sin(3 * np.pi * t))
+            .ramp(torque=0.2 * M_full, steps=7).hold(steps=4))
+    runs = []
+    for chunk in (torsion_path._BOUND_CHUNK, 3):
+        monkeypatch.setattr(torsion_path, "_BOUND_CHUNK", chunk)
+        runs.append(c.simulate(path, method="exact", n_rings=40, snapshots=[0, 5, 17, -1]))
+    ref, small = runs
+    for k in ref.data:
+        assert np.array_equal(ref.data[k], small.data[k]), k
+    for k in ref.meta["energy"]:
+        assert np.array_equal(ref.meta["energy"][k], small.meta["energy"][k]), k
+    for i in ref.snapshots:
+        for q in ref.snapshots[i]:
+            assert np.array_equal(ref.snapshots[i][q], small.snapshots[i][q]), (i, q)
