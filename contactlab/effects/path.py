@@ -611,6 +611,7 @@ def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, 
     """Steps ``i0 ...`` (each with a new depth, a prescribed displacement/twist) in one compiled
     call (the same element arithmetic as ``set_normal`` + stiffness weighting + ``jenkins`` + sum
     + stick radius per step), then the normal state and slip limits of the last step."""
+    from ..foundation import _compiled
     X1, dH, c = ch["fused"]
     n = d.size
     sl = slice(i0, i0 + n)
@@ -618,7 +619,8 @@ def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, 
     W = out_W[sl]
     sgn, lo = kernel(d, a, k, S_edge, T_edge, target, st.depth, st.k, ch["x"], ch["release"], c,
                      fnd.w, fnd.dG, X1, dH, ch["K"], ch["invK"], ch["iKeff"], st.S, ch["m"],
-                     fnd.bl, state["W"], ch["out_frc"][sl], W, stick, out_stick is not None)
+                     fnd.bl, state["W"], ch["out_frc"][sl], W, stick, out_stick is not None,
+                     _compiled.FUSED_BLOCK, _compiled.FUSED_BLOCK_FROM)
     ch["iKeff"][:lo] = ch["invK"][:lo]   # the bulk of the last step (weight 1)
     dl, kl = float(d[-1]), int(k[-1])
     S = dl * fnd.w

@@ -108,6 +108,37 @@ def test_fused_step_agrees_with_numpy(foundation_backend, name, kw):
             assert np.all(np.abs(x - y) <= BACKENDS_AGREE * scale), (name, step, key)
 
 
+@pytest.mark.parametrize("name", ["up_down", "mixed", "shift", "torque"])
+def test_fused_step_in_small_blocks(monkeypatch, name):
+    """The fused step runs the springs in blocks (each block through every step of a run):
+    blocks of 7 springs (a remainder and a partial unrolled group per block) against one pass
+    give bit-identical element forces (snapshots) and stick radius, sums within BACKENDS_AGREE."""
+    if "numba" not in _compiled.available():
+        pytest.skip("numba is not installed (extra 'fast')")
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
+                   friction=0.3)
+    path = _paths()[name]
+    out = {}
+    try:
+        _compiled.set_backend("numba")
+        for block in (10**6, 7):
+            monkeypatch.setattr(_compiled, "FUSED_BLOCK", block)
+            monkeypatch.setattr(_compiled, "FUSED_BLOCK_FROM", min(block, 10**6))
+            out[block] = c.simulate(path, n_springs=301, snapshots=[7, 45, -1], method="mdr")
+    finally:
+        _compiled.set_backend(None)
+    a, b = out[10**6], out[7]
+    for key, x in a.data.items():
+        x, y = np.asarray(x, float), np.asarray(b.data[key], float)
+        if key in ("stick_radius", "twist", "displacement", "depth", "force", "radius", "time"):
+            assert np.array_equal(x, y), (name, key)
+        scale = max(float(np.max(np.abs(x))), 1e-300)
+        assert np.all(np.abs(x - y) <= BACKENDS_AGREE * scale), (name, key)
+    for step, snap in a.snapshots.items():
+        for key, x in snap.items():
+            assert np.array_equal(np.asarray(x), np.asarray(b.snapshots[step][key])), (step, key)
+
+
 def test_fused_step_is_deterministic(foundation_backend):
     c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
                    friction=0.3)
