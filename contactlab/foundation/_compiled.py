@@ -51,10 +51,11 @@ _state: dict = {"backend": None, "kernel": None, "fused": None}
 
 #: springs per block of the fused step (each block runs every step of a run while its ~6 arrays
 #: of ``FUSED_BLOCK`` floats stay in the core's cache) ...
-FUSED_BLOCK = 2048
-#: ... above this many springs; up to it one pass per step is faster (measured on the 2-core VM:
-#: blocks of 2048 springs 1.2-1.4x slower at N = 10^4-10^5, 1.35x faster at N = 10^6)
-FUSED_BLOCK_FROM = 2**19
+FUSED_BLOCK = 8192
+#: ... above this many springs; up to it one pass per step is as fast (measured on the 2-core VM,
+#: kernel alone: N = 10^4 blocks of 2048 1.2x slower than one pass; N = 10^5 blocks of 8192 1.2x
+#: faster, N = 10^6 1.3x faster)
+FUSED_BLOCK_FROM = 2**16
 
 
 def jenkins_update_numpy(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.ndarray,
@@ -240,119 +241,125 @@ def _numba_fused():
         return sgn, lo
 
     @jit
+    def steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH, K,
+                    invK, iKeff, S, m, off, F_step, W_step, first,
+                    want_stick):     # pragma: no cover - compiled
+        """The springs ``off ... off + m.size - 1`` (arrays sliced to them; ``k``, ``k0``
+        global) through every step: ``steps_flat``'s arithmetic per element, the block's part
+        of each step's sums into ``F_step``, ``W_step`` and of the first element at its limit
+        (global index) into ``first`` where not found in an earlier block."""
+        n = m.size
+        d_prev = d0
+        k_prev = k0 - off
+        Se_prev = 0.0
+        x = x0
+        lo_prev = 0
+        nz = n              # m is zero from nz on (unknown at first)
+        for j in range(d.size):
+            dj = d[j]
+            kj = k[j] - off
+            dd = dj - d_prev
+            inc = target[j] - x
+            update = inc != 0.0 or dj < d_prev or release
+            lo = min(max(min(kj, k_prev), 0), n)
+            hi = max(min(max(kj, k_prev) + 1, n), 0)
+            if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
+                for i in range(lo, lo_prev):
+                    iKeff[i] = invK[i]
+            W, F = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update)
+            for i in range(lo, hi):
+                if j == 0:
+                    s_old = S[i]
+                elif i < k_prev:
+                    s_old = d_prev * w[i] - dG[i]
+                elif i == k_prev:
+                    s_old = Se_prev
+                else:
+                    s_old = 0.0
+                if i < kj:
+                    si = dj * w[i] - dG[i]
+                    ti = dj * X1[i] - dH[i]
+                elif i == kj:
+                    si = S_edge[j]
+                    ti = T_edge[j]
+                else:
+                    si = 0.0
+                    ti = 0.0
+                wt = (si - s_old) / (dd * w[i])
+                wt = min(max(wt, 0.0), 1.0)
+                li = c * ti
+                mi = m[i]
+                if update:
+                    t = K[i] * wt * inc + mi
+                    v = max(min(t, li), -li)
+                    m[i] = v
+                    if wt > 0:
+                        iKeff[i] = invK[i] / wt
+                    W += (t - v) * v * iKeff[i]
+                    mi = v
+                F += mi
+            if update:
+                for i in range(hi, nz):
+                    if m[i] != 0.0:
+                        m[i] = 0.0
+                nz = hi
+            if want_stick and first[j] < 0:
+                for i in range(n):
+                    if i < kj:
+                        li = c * (dj * X1[i] - dH[i])
+                    elif i == kj:
+                        li = c * T_edge[j]
+                    else:
+                        li = 0.0
+                    if abs(m[i]) >= li:
+                        first[j] = i + off
+                        break
+            release = False
+            x = target[j]
+            F_step[j] = F
+            W_step[j] = W
+            d_prev = dj
+            k_prev = kj
+            Se_prev = S_edge[j]
+            lo_prev = lo
+
+    @jit
     def steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
                       K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
                       block):     # pragma: no cover - compiled
         n = m.size
         ns = d.size
-        # the per-step scalars first (they do not depend on the springs)
-        lo_s = np.empty(ns, np.int64)
-        hi_s = np.empty(ns, np.int64)
-        inc_s = np.empty(ns)
-        upd_s = np.empty(ns, np.bool_)
-        d_prev = d0
-        k_prev = k0
-        x = x0
-        sgn = 0.0
-        for j in range(ns):
-            kj = k[j]
-            inc = target[j] - x
-            inc_s[j] = inc
-            upd_s[j] = inc != 0.0 or d[j] < d_prev or (release and j == 0)
-            lo_s[j] = min(kj, k_prev)
-            hi_s[j] = min(max(kj, k_prev) + 1, n)
-            if inc != 0.0:
-                sgn = 1.0 if inc > 0 else -1.0
-            x = target[j]
-            d_prev = d[j]
-            k_prev = kj
+        Fb = np.empty(ns)
+        Wb = np.empty(ns)
         Wst = np.zeros(ns)
-        first = np.full(ns, -1, np.int64)       # per step: the first element at its limit
+        first = np.full(ns, -1, np.int64)
         # blocks of springs, each through every step while it sits in cache (the element
         # updates do not couple springs; the per-step sums add the blocks in a fixed order)
         for b0 in range(0, n, block):
             b1 = min(n, b0 + block)
-            nz = b1             # m is zero from nz to the block end (unknown at first)
-            d_prev = d0
-            k_prev = k0
-            Se_prev = 0.0
-            for j in range(ns):
-                dj = d[j]
-                kj = k[j]
-                dd = dj - d_prev
-                inc = inc_s[j]
-                update = upd_s[j]
-                lo = lo_s[j]
-                hi = hi_s[j]
-                if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
-                    for i in range(max(lo, b0), min(lo_s[j - 1], b1)):
-                        iKeff[i] = invK[i]
-                W, F = bulk(b0, max(min(lo, b1), b0), dj, c, X1, dH, K, invK, m, inc, update)
-                # the cells the edge crossed: weight = change of S over the step / (w dd)
-                for i in range(max(lo, b0), min(hi, b1)):
-                    if j == 0:
-                        s_old = S[i]
-                    elif i < k_prev:
-                        s_old = d_prev * w[i] - dG[i]
-                    elif i == k_prev:
-                        s_old = Se_prev
-                    else:
-                        s_old = 0.0
-                    if i < kj:
-                        si = dj * w[i] - dG[i]
-                        ti = dj * X1[i] - dH[i]
-                    elif i == kj:
-                        si = S_edge[j]
-                        ti = T_edge[j]
-                    else:
-                        si = 0.0
-                        ti = 0.0
-                    wt = (si - s_old) / (dd * w[i])
-                    wt = min(max(wt, 0.0), 1.0)
-                    li = c * ti
-                    mi = m[i]
-                    if update:
-                        t = K[i] * wt * inc + mi
-                        v = max(min(t, li), -li)
-                        m[i] = v
-                        if wt > 0:
-                            iKeff[i] = invK[i] / wt
-                        W += (t - v) * v * iKeff[i]
-                        mi = v
-                    F += mi
-                # outside: limit 0, so an update leaves no element force
-                if update:
-                    for i in range(max(hi, b0), nz):
-                        if m[i] != 0.0:
-                            m[i] = 0.0
-                    nz = min(max(hi, b0), b1)
-                if b0 == 0:
-                    Wst[j] = W
-                    out_F[j] = F
-                else:
-                    Wst[j] += W
-                    out_F[j] += F
-                if want_stick and first[j] < 0:   # from the centre
-                    for i in range(b0, b1):
-                        if i < kj:
-                            li = c * (dj * X1[i] - dH[i])
-                        elif i == kj:
-                            li = c * T_edge[j]
-                        else:
-                            li = 0.0
-                        if abs(m[i]) >= li:
-                            first[j] = i
-                            break
-                d_prev = dj
-                k_prev = kj
-                Se_prev = S_edge[j]
+            steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w[b0:b1],
+                        dG[b0:b1], X1[b0:b1], dH[b0:b1], K[b0:b1], invK[b0:b1], iKeff[b0:b1],
+                        S[b0:b1], m[b0:b1], b0, Fb, Wb, first, want_stick)
+            if b0 == 0:
+                out_F[:] = Fb
+                Wst[:] = Wb
+            else:
+                out_F += Fb
+                Wst += Wb
         Wtot = W0
+        sgn = 0.0
+        x = x0
         for j in range(ns):
             Wtot += Wst[j]
             out_W[j] = Wtot
             if want_stick:
                 out_stick[j] = bl[first[j]] if first[j] >= 0 else a[j]
-        return sgn, lo_s[ns - 1]
+            inc = target[j] - x
+            if inc != 0.0:
+                sgn = 1.0 if inc > 0 else -1.0
+            x = target[j]
+        k_prev = k0 if ns == 1 else k[ns - 2]
+        return sgn, min(k[ns - 1], k_prev)
 
     @jit
     def winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
