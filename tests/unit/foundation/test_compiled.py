@@ -29,6 +29,23 @@ def test_jenkins_update_matches_the_numpy_reference(foundation_backend):
         assert abs(w_ref - np.sum(np.abs(trial - m_ref) * L / K)) <= 1e-12 * max(abs(w_ref), 1e-300)
 
 
+def test_numpy_update_in_chunks_is_bit_identical(monkeypatch):
+    """Long vectors run the numpy update a chunk at a time: chunks of 7 elements change no bit
+    of the element forces or the dissipated energy (the final sum is over the whole vector)."""
+    rng = np.random.default_rng(3)
+    n = 1001
+    K = rng.uniform(0.5, 2.0, n)
+    invK, L = 1 / K, rng.uniform(0.0, 1.0, n)
+    out = {}
+    for chunk in (10**9, 7):
+        monkeypatch.setattr(_compiled, "NUMPY_CHUNK", chunk)
+        m, W = np.zeros(n), []
+        for inc in (0.3, -0.5, 0.2, 0.0, -0.1):
+            W.append(_compiled.jenkins_update_numpy(m, K, invK, L, inc))
+        out[chunk] = (m, W)
+    assert np.array_equal(out[10**9][0], out[7][0]) and out[10**9][1] == out[7][1]
+
+
 def test_unknown_backend_is_rejected():
     with pytest.raises(ParameterError, match="backend"):
         _compiled.set_backend("fortran")
