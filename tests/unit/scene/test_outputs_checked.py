@@ -106,6 +106,8 @@ def test_deliverable_series_excludes(route, axis, series):
     assert {"time", "depth", "force", "radius"} <= set(deliverable_series(route, axis))
 
 
+# the MDR springs warn beyond their validity twist: not the subject here
+@pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 def test_what_the_foundation_route_says_it_delivers_it_delivers():
     """The list is not a promise on paper: a run asking for all of it fills all of it."""
     avail = deliverable_series("foundation", "twist")

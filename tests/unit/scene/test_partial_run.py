@@ -92,6 +92,8 @@ def test_exact_ring_route_step_failure(monkeypatch):
         np.testing.assert_array_equal(v, full.series[k][:15], err_msg=k)
 
 
+# the MDR springs warn beyond their validity twist: not the subject here
+@pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 def test_spring_route_step_failure(monkeypatch):
     monkeypatch.setattr(path_driver, "_fused_step", lambda fnd, chans: None)
     d = twist_scene({"ramp": {"force": "300 N", "twist": "1 mrad", "steps": 20}},
