@@ -10,7 +10,9 @@ the point of this file is that none of them raises :class:`~contactlab.errors.Co
 (or any other error) and none returns a non-finite number.
 
 Cost: 10 and 51 points, and 1000 points except the path simulations, run by default; the rest
-is marked ``slow``. The 10^6-point tables run the routes whose cost stays linear in the table
+is marked ``slow`` (CI's slow job), except the 10^6-point tables and the exact ring solver on
+tables of 10^3 points and more, which are marked ``exhaustive`` (minutes to an hour each; run
+them with ``python -m pytest -m exhaustive tests/hard/test_table_audit.py``). The 10^6-point tables run the routes whose cost stays linear in the table
 size per evaluation point (normal, tangential, shift history, no-slip torsion, the spring
 foundation); the partial-slip torsion kernels (exact and MDR) integrate over the rule nodes of
 every table segment below the contact radius (8 per segment, each g costing O(N)), which is
@@ -142,7 +144,11 @@ def _cases():
                     if n == 1_000_000 and op not in LINEAR_COST:
                         continue
                     slow = n >= 10_000 or (n == 1000 and op.startswith("simulate"))
-                    marks = [pytest.mark.slow] if slow else []
+                    # 10^6 points, and the exact ring solver on 10^3+ point tables (its table
+                    # pressures cost minutes per run): the exhaustive job, not CI
+                    huge = n == 1_000_000 or (op == "simulate_exact" and n >= 1000)
+                    marks = ([pytest.mark.exhaustive] if huge else
+                             [pytest.mark.slow] if slow else [])
                     yield pytest.param(kind, n, spacing, op, marks=marks,
                                        id=f"{kind}-{n}-{spacing}-{op}")
 
