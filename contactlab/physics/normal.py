@@ -275,8 +275,9 @@ def table_floor(profile, x: np.ndarray, scale: np.ndarray) -> np.ndarray:
     gaps = np.maximum.accumulate(np.diff(nodes))
     k = np.clip(np.searchsorted(nodes, x, side="left") - 1, 0, gaps.size - 1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        q = gaps[k] / np.where(x > 0, x, 1.0)
-        rel = np.where(x > 0, np.minimum(np.maximum(q * q, 1e-3 * q), 1.0), 0.0)
+        # q clipped at 1 first: the result is the same and q² cannot overflow at tiny x
+        q = np.minimum(gaps[k] / np.where(x > 0, x, 1.0), 1.0)
+        rel = np.where(x > 0, np.maximum(q * q, 1e-3 * q), 0.0)
     return np.abs(scale) * rel
 
 

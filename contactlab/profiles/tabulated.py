@@ -549,7 +549,9 @@ class Tabulated(Profile):
             m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
             nodes, ds = nodes_all[:m], ds_all[:m]
             below = nodes[None, :] <= xp
-            q = np.minimum(nodes[None, :] / xp, 1.0)
+            # nodes above x give 1 (masked below); dividing by max(x, node) keeps a tiny x
+            # (radius floors of 1e-300) from overflowing node / x
+            q = nodes[None, :] / np.maximum(xp, nodes[None, :])
             # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
             asin_sum = np.where(below, ds[None, :] * np.arcsin(q), 0.0).sum(axis=1)
             base = 0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]] - asin_sum
@@ -582,8 +584,9 @@ class Tabulated(Profile):
             if not np.any(pos):
                 continue
             xp = xs[pos][:, None]
-            t_lo = np.arcsin(np.minimum(lo_n[None, :] / xp, 1.0))
-            t_hi = np.arcsin(np.minimum(hi_n[None, :] / xp, 1.0))
+            # min(node / x, 1) without overflow for tiny x (node / max(x, node))
+            t_lo = np.arcsin(lo_n[None, :] / np.maximum(xp, lo_n[None, :]))
+            t_hi = np.arcsin(hi_n[None, :] / np.maximum(xp, hi_n[None, :]))
             half = 0.5 * (t_hi - t_lo)
             mid = 0.5 * (t_hi + t_lo)
             sums = []
