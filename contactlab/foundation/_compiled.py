@@ -162,6 +162,47 @@ def _numba_fused():
         return (W0 + W1) + (W2 + W3), (F0 + F1) + (F2 + F3)
 
     @jit
+    def edge_cells(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, dG, X1, dH, K,
+                   invK, iKeff, S, m, inc, update, W, F):     # pragma: no cover - compiled
+        """The cells ``lo ... hi - 1`` the contact edge crossed in a step (edge cell ``kj``
+        now, ``k_prev`` before; ``first``: the run's first step, weights from ``S``): weight =
+        change of the cell's S over the step / (w dd), Jenkins update, energy and force added
+        to ``W``, ``F`` (one loop shared by ``steps_flat`` and ``steps_block``)."""
+        dd = dj - d_prev
+        for i in range(lo, hi):
+            if first:
+                s_old = S[i]
+            elif i < k_prev:
+                s_old = d_prev * w[i] - dG[i]
+            elif i == k_prev:
+                s_old = Se_prev
+            else:
+                s_old = 0.0
+            if i < kj:
+                si = dj * w[i] - dG[i]
+                ti = dj * X1[i] - dH[i]
+            elif i == kj:
+                si = Se
+                ti = Te
+            else:
+                si = 0.0
+                ti = 0.0
+            wt = (si - s_old) / (dd * w[i])
+            wt = min(max(wt, 0.0), 1.0)
+            li = c * ti
+            mi = m[i]
+            if update:
+                t = K[i] * wt * inc + mi
+                v = max(min(t, li), -li)
+                m[i] = v
+                if wt > 0:
+                    iKeff[i] = invK[i] / wt
+                W += (t - v) * v * iKeff[i]
+                mi = v
+            F += mi
+        return W, F
+
+    @jit
     def steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
                       K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick
                       ):     # pragma: no cover - compiled
@@ -178,7 +219,6 @@ def _numba_fused():
         for j in range(d.size):
             dj = d[j]
             kj = k[j]
-            dd = dj - d_prev
             inc = target[j] - x
             update = inc != 0.0 or dj < d_prev or release
             lo = min(kj, k_prev)
@@ -188,37 +228,9 @@ def _numba_fused():
                     iKeff[i] = invK[i]
             W, F = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update)
             # the cells the edge crossed: weight = change of S over the step / (w dd)
-            for i in range(lo, hi):
-                if j == 0:
-                    s_old = S[i]
-                elif i < k_prev:
-                    s_old = d_prev * w[i] - dG[i]
-                elif i == k_prev:
-                    s_old = Se_prev
-                else:
-                    s_old = 0.0
-                if i < kj:
-                    si = dj * w[i] - dG[i]
-                    ti = dj * X1[i] - dH[i]
-                elif i == kj:
-                    si = S_edge[j]
-                    ti = T_edge[j]
-                else:
-                    si = 0.0
-                    ti = 0.0
-                wt = (si - s_old) / (dd * w[i])
-                wt = min(max(wt, 0.0), 1.0)
-                li = c * ti
-                mi = m[i]
-                if update:
-                    t = K[i] * wt * inc + mi
-                    v = max(min(t, li), -li)
-                    m[i] = v
-                    if wt > 0:
-                        iKeff[i] = invK[i] / wt
-                    W += (t - v) * v * iKeff[i]
-                    mi = v
-                F += mi
+            W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
+                              T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
+                              W, F)
             # outside: limit 0, so an update leaves no element force
             if update:
                 for i in range(hi, nz):
@@ -269,7 +281,6 @@ def _numba_fused():
         for j in range(d.size):
             dj = d[j]
             kj = k[j] - off
-            dd = dj - d_prev
             inc = target[j] - x
             update = inc != 0.0 or dj < d_prev or release
             lo = min(max(min(kj, k_prev), 0), n)
@@ -278,37 +289,9 @@ def _numba_fused():
                 for i in range(lo, lo_prev):
                     iKeff[i] = invK[i]
             W, F = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update)
-            for i in range(lo, hi):
-                if j == 0:
-                    s_old = S[i]
-                elif i < k_prev:
-                    s_old = d_prev * w[i] - dG[i]
-                elif i == k_prev:
-                    s_old = Se_prev
-                else:
-                    s_old = 0.0
-                if i < kj:
-                    si = dj * w[i] - dG[i]
-                    ti = dj * X1[i] - dH[i]
-                elif i == kj:
-                    si = S_edge[j]
-                    ti = T_edge[j]
-                else:
-                    si = 0.0
-                    ti = 0.0
-                wt = (si - s_old) / (dd * w[i])
-                wt = min(max(wt, 0.0), 1.0)
-                li = c * ti
-                mi = m[i]
-                if update:
-                    t = K[i] * wt * inc + mi
-                    v = max(min(t, li), -li)
-                    m[i] = v
-                    if wt > 0:
-                        iKeff[i] = invK[i] / wt
-                    W += (t - v) * v * iKeff[i]
-                    mi = v
-                F += mi
+            W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
+                              T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
+                              W, F)
             if update:
                 for i in range(hi, nz):
                     if m[i] != 0.0:
