@@ -367,7 +367,8 @@ class ContactLaw:
         """Standalone Python source (numpy only, no contactlab import) of this law's family at
         constant normal load, for codes that vendor the law.
 
-        The module defines ``Law(<geometry>, E_star, G_star, G_torsion, friction)`` with the
+        Every family is covered (power laws and flat punches). The module defines
+        ``Law(<geometry>, E_star, G_star, G_torsion, friction)`` with the
         same ``step`` inputs as :meth:`step` (returning a dict of arrays), ``state`` and
         ``reset``; the certified master-curve coefficients are embedded exactly, and the kernels
         are the ones of this law's numpy path, so the results agree with :meth:`step` to
@@ -378,9 +379,6 @@ class ContactLaw:
         str
             Python source; write it to a ``.py`` file and import it.
         """
-        if self.n == np.inf:
-            raise NotSupportedError("to_source() covers the power-law families (Paraboloid, "
-                                    "Cone, PowerLaw); the flat punch law is not generated.")
         from .law_source import law_source
         return law_source(self)
 

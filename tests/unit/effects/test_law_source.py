@@ -1,6 +1,6 @@
 """ContactLaw.to_source(): the generated numpy-only module, imported from a temporary folder,
 against ContactLaw on random contacts and histories (with reversals, loop closures, overflow,
-separation and reset)."""
+separation and reset), for every family (power laws and flat punches)."""
 import importlib.util
 import numpy as np
 import pytest
@@ -10,7 +10,8 @@ from tests.tolerances import LAW_SOURCE
 
 FAMILIES = [(cl.profiles.Paraboloid, "R", {}, (1e-3, 1e-2)),
             (cl.profiles.Cone, "slope", {}, (0.05, 0.2)),
-            (cl.profiles.PowerLaw, "c", {"n": 4.0}, (1e5, 1e7))]
+            (cl.profiles.PowerLaw, "c", {"n": 4.0}, (1e5, 1e7)),
+            (cl.profiles.FlatPunch, "radius", {}, (1e-4, 1e-2))]
 
 
 def _import(tmp_path, src, name):
