@@ -1,6 +1,6 @@
 """A vectorised contact law for many contacts (DEM and multibody codes): :class:`ContactLaw`.
 
-Every contact of a law belongs to one power-law profile family ``f = c r^n`` (``n >= 1``:
+Every contact of a law belongs to one power-law profile family ``f = c r^n`` (``n >= 0.01``:
 :class:`~contactlab.profiles.Paraboloid` with per-contact ``R``, :class:`~contactlab.profiles.Cone`
 with per-contact ``slope``, :class:`~contactlab.profiles.PowerLaw` with per-contact ``c``) or
 to the flat punches (:class:`~contactlab.profiles.FlatPunch`, per-contact ``radius``), with
@@ -123,7 +123,7 @@ class ContactLaw:
     profile : Profile class or instance
         :class:`~contactlab.profiles.Paraboloid` (per-contact ``R``),
         :class:`~contactlab.profiles.Cone` (per-contact ``slope``),
-        :class:`~contactlab.profiles.PowerLaw` (per-contact ``c``, one exponent ``n >= 1``) or
+        :class:`~contactlab.profiles.PowerLaw` (per-contact ``c``, one exponent ``n >= 0.01``) or
         :class:`~contactlab.profiles.FlatPunch` (per-contact ``radius``); an instance gives the
         same geometry to every contact.
     R, slope, c, radius : float or array_like, optional
@@ -191,8 +191,8 @@ class ContactLaw:
         inst = None if isinstance(profile, type) else profile
         if not (isinstance(cls, type) and issubclass(cls, (PowerLaw, FlatPunch))):
             raise NotSupportedError(f"profile={profile!r} is not supported by ContactLaw: use "
-                                    "Paraboloid, Cone, PowerLaw (f = c r^n, n >= 1) or "
-                                    "FlatPunch.")
+                                    "Paraboloid, Cone, PowerLaw (f = c r^n, n >= "
+                                    f"{_master.MIN_EXPONENT:g}) or FlatPunch.")
         if torsion not in ("exact",):
             raise UnknownNameError(f"torsion={torsion!r} is invalid: allowed are ('exact',).")
         if isinstance(memory, bool) or not isinstance(memory, (int, np.integer)) or memory < 2:
@@ -220,7 +220,8 @@ class ContactLaw:
             if inst is None and n is None:
                 raise ParameterError("n is missing: a PowerLaw family needs its exponent n.")
             expo = as_real("n", inst.n if inst is not None else n,
-                           "the exponent n of PowerLaw must be a real number >= 1")
+                           f"the exponent n of PowerLaw must be a real number >= "
+                           f"{_master.MIN_EXPONENT:g}")
         for k, v in geo.items():
             if v is not None and k != gname:
                 raise ParameterError(f"{k}= is not a parameter of {cls.__name__}: give {gname}=.")
@@ -233,8 +234,11 @@ class ContactLaw:
             raise ParameterError(f"{gname} is missing: {cls.__name__} contacts need {gname}= "
                                  "(scalar or one value per contact).")
         if not (expo >= _master.MIN_EXPONENT and (np.isfinite(expo) or gname == "radius")):
-            raise NotSupportedError(f"n={expo!r} is not supported by ContactLaw: the exponent "
-                                    f"must satisfy n >= {_master.MIN_EXPONENT:g}.")
+            raise NotSupportedError(
+                f"n={expo!r} is not supported by ContactLaw: the exponent must satisfy n >= "
+                f"{_master.MIN_EXPONENT:g} (below, the centre singularity of the pressure, "
+                "p ∝ r^(n-1), approaches non-integrability and the exact solvers no longer "
+                f"certify the torsion master curve to {_master.CERTIFY_TOL:g}).")
         if materials is not None:
             if any(v is not None for v in (E_star, G_star, G_torsion)):
                 raise ParameterError("give either materials=(m1, m2) or E_star/G_star/G_torsion, "

@@ -45,7 +45,8 @@ KC_FACTOR = {kc_factor!r}          # g(x) = {g_doc}
 Y_SCALE = {y_scale!r}
 Y0 = {y0!r}                        # flat punch: no slip up to y = Y0, torque M0 * y there
 M0 = {m0!r}
-SCALED = {scaled!r}                # the table holds t, m/s, q/s^2 (True) or t, m, q
+SCALED = {scaled!r}                # the table holds t, m/s^K, q/s^2K (True) or t, m, q
+K_POWER = {power!r}                 # panel map s = r/(1+r), r = (y/Y_SCALE)^(1/K_POWER)
 MEMORY = {memory!r}
 LOAD_RTOL = {load_rtol!r}
 COEF = np.array({coef}, dtype=float).reshape({shape!r})
@@ -175,9 +176,11 @@ class Law:
 
             def rload(arg, idx):
                 if idx is None:
-                    t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s, Y0, M0, SCALED)
+                    t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s, Y0, M0, SCALED,
+                                              K_POWER)
                     return M_full * m, sa * t, M_full * arg * q
-                t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s[idx], Y0, M0, SCALED)
+                t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s[idx], Y0, M0, SCALED,
+                                          K_POWER)
                 return M_full[idx] * m, sa[idx] * t, M_full[idx] * arg * q
 
             M, cm, w = masing_step(self._channel("tor"), phi, rload)
@@ -229,7 +232,7 @@ def law_source(law: Any) -> str:
                           version=__version__, cert=mc.certified_error, memory=law.memory,
                           gname=gname, kc_factor=kc_factor, g_doc=g_doc,
                           y_scale=float(mc.y_scale), y0=float(mc.y0), m0=float(mc.m0),
-                          scaled=bool(mc.scaled), load_rtol=law.load_rtol, coef=flat_coef,
+                          scaled=bool(mc.scaled), power=int(mc.power), load_rtol=law.load_rtol, coef=flat_coef,
                           shape=coef.shape, fields=tuple(_ms.STACK_FIELDS))
     body = _LAW.format(gname=gname, kc_expr=kc_expr, normal_geo=normal_geo,
                        normal_geo_doc=geo_doc, normal_body=normal)

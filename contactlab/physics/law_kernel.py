@@ -31,9 +31,10 @@ except ImportError:                     # pragma: no cover - exercised without n
     _prange = range
 
 
-def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0):
+def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
     """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds);
-    ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond)."""
+    ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond); ``kp``: power of the
+    panel map (:func:`contactlab.physics.master.evaluate`)."""
     if kind == TORSION:
         y = arg / xs
         if y0 > 0.0:
@@ -41,7 +42,11 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0):
                 return ys * (m0 * y), aux, 0.0
             y = y - y0
         N = coef.shape[1]
-        s = y / (y + y_scale)
+        if kp == 1:
+            s = y / (y + y_scale)
+        else:
+            r = (y / y_scale) ** (1.0 / kp)
+            s = r / (1.0 + r)
         z = s * N
         j = min(int(z), N - 1)
         u = 2.0 * (z - j) - 1.0
@@ -55,6 +60,8 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0):
             q = q * u + coef[2, j, p]
         t = min(max(t, 0.0), 1.0)
         if y0 == 0.0:
+            if kp != 1:
+                s = s ** kp
             m = m * s
             q = q * (s * s)
         return ys * m, aux * t, ys * arg * q
@@ -144,7 +151,7 @@ def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rto
 
 
 def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coef, y_scale,
-                y0, m0, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
+                y0, m0, kp, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
     """Scales, tangential and torsional Masing steps (the same bookkeeping as
     :func:`~contactlab.physics.masing_stack.masing_step`) and outputs of every contact.
 
@@ -214,7 +221,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                         break
                     xo = X[c, i, k - 1]
                     D = _load(kind, abs(lim - xo) / 2.0, xs, ys, ai, Ds, coef, y_scale, n, y0,
-                              m0)[2]
+                              m0, kp)[2]
                     e += max(2.0 * D - sw[c, i], 0.0)
                     k = k - 2 if k >= 2 else 0
                     depth[c, i] = k
@@ -223,7 +230,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                     else:
                         xo2, f2 = 0.0, 1.0
                     D = _load(kind, abs(lim - xo2) / f2, xs, ys, ai, Ds, coef, y_scale, n, y0,
-                              m0)[2]
+                              m0, kp)[2]
                     sw[c, i] = f2 * D
             k = depth[c, i]
             if k > 0:
@@ -231,7 +238,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
             else:
                 xo, yo, f = 0.0, 0.0, 1.0
             yl, ax, D = _load(kind, abs(xi - xo) / f, xs, ys, ai, Ds, coef, y_scale, n, y0,
-                               m0)
+                               m0, kp)
             sg = 1.0 if xi > xo else (-1.0 if xi < xo else 0.0)
             yv = yo + sg * f * yl
             wn = f * D
@@ -415,7 +422,7 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     nf = _KERNELS[parallel][1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
-                          float(master.m0), chan["x"], chan["y"], chan["w"],
+                          float(master.m0), int(master.power), chan["x"], chan["y"], chan["w"],
                           chan["last"], chan["depth"], chan["X"], chan["Y"], chan["overflow"],
                           *out)
     return out + (nf,)

@@ -1,5 +1,6 @@
 """Master curves of power-law contacts against the exact solvers, on ladders that reach
-c/a -> 1 (no slip) and c/a -> 0 (full sliding)."""
+c/a -> 1 (no slip) and c/a -> 0 (full sliding); exponents below 1 (pressure singular at the
+centre, algebraic decay of c/a, map power k = 4) included."""
 import numpy as np
 import pytest
 
@@ -13,7 +14,11 @@ STICK_LADDER = np.array([1 - 1e-10, 1 - 1e-7, 1 - 1e-4, 0.999, 0.99, 0.9, 0.7, 0
                          1e-2, 1e-3, 1e-4, 1e-6])
 
 
-@pytest.mark.parametrize("n", [1.0, 2.0, 3.0])
+#: exponents of the ladders: below 1 (k = 4 map), the cone (slowest decay for k = 1) and above
+EXPONENTS = [0.01, 0.2, 0.5, 0.9, 0.99, 1.0, 2.0, 3.0]
+
+
+@pytest.mark.parametrize("n", EXPONENTS)
 def test_torsion_master_on_stick_ladder(n):
     """Parametrise by the stick ratio (no root solve): y = P(c)/(E*d/a), M from the torque
     integral; the master curve evaluated at that y must return c/a and M/M_full."""
@@ -37,7 +42,7 @@ def test_torsion_master_on_stick_ladder(n):
     np.testing.assert_allclose(q, D / (M_full * phi), rtol=0, atol=MASTER_CURVE)
 
 
-@pytest.mark.parametrize("n", [1.0, 2.0, 3.0])
+@pytest.mark.parametrize("n", EXPONENTS)
 def test_torsion_master_on_twist_ladder(n):
     """Relative accuracy as y -> 0 (torque ~ y, dissipation ~ y³) and the limit y -> ∞."""
     mc = master.torsion_master(n)
@@ -49,12 +54,32 @@ def test_torsion_master_on_twist_ladder(n):
     np.testing.assert_allclose(q, q_ex, rtol=0, atol=MASTER_CURVE)
     # no-slip slope: M = (16/3) G_t a³ φ  <=>  m = 16 (n+2) y / (3 π n)
     assert m[0] == pytest.approx(16 * (n + 2) * y[0] / (3 * np.pi * n), rel=MASTER_CURVE)
+    if n < 1:       # algebraic decay (c/a ~ 1e-6 at y = 1e6 for n = 0.01): go further out
+        t, m, _ = mc(np.array([1e30]))
     assert 0.0 <= t[-1] <= MASTER_CURVE and m[-1] == pytest.approx(1.0, abs=MASTER_CURVE)
 
 
-def test_torsion_master_rejects_n_below_one():
-    with pytest.raises(master.NotSupportedError, match="n=0.5"):
-        master.torsion_master(0.5)
+def test_torsion_master_map_power():
+    """n < 1 tables use the k = 4 map, n >= 1 the plain one (their tables are unchanged)."""
+    assert master.torsion_master(0.5).power == master.MAP_POWER_BELOW_ONE == 4
+    assert master.torsion_master(2.0).power == 1 and master.torsion_master(np.inf).power == 1
+
+
+def test_torsion_master_below_one_decays_algebraically():
+    """Independent of the solvers' quadrature: deep in sliding, c/a ∝ y^(-1/(1-n)) (the slip
+    function P(c) ∝ c^(n-1) of the centre singularity p ∝ r^(n-1)); the local log-slope of the
+    master curve tends to -1/(1-n)."""
+    for n in (0.2, 0.5):
+        mc = master.torsion_master(n)
+        y = np.array([1e6, 1e6 * 1.01])
+        t, _, _ = mc(y)
+        slope = np.log(t[1] / t[0]) / np.log(1.01)
+        assert slope == pytest.approx(-1 / (1 - n), rel=1e-2)
+
+
+def test_torsion_master_rejects_n_below_minimum():
+    with pytest.raises(master.NotSupportedError, match=r"n=0.005.*n >= 0.01.*singularity"):
+        master.torsion_master(0.005)
 
 
 @pytest.mark.parametrize("n", [1.0, 2.0, 3.0, 1.7])
