@@ -104,3 +104,21 @@ def test_tangential_master_against_kernels(n):
     D = tangential.virgin_dissipation(prof, E, G, mu, a, d, u, 1e-12)
     np.testing.assert_allclose(2 * a * (mu * E * d) ** 2 / G * w, D, rtol=1e-9,
                                atol=1e-12 * D.max())
+
+
+@pytest.mark.parametrize("n", [0.3, 0.75])
+def test_torsion_master_below_one_against_independent_reference(n):
+    """n < 1 against the independent mpmath reference (tests/reference/torsion_reference.py:
+    the slip function integrated directly from the closed-form pressure, singular at the centre
+    as r^(n-1), and the torque by its swapped single integral), parametrised by the stick
+    ratio; M_full = π n/(2(n+2)) μE*d a² in closed form."""
+    ref = pytest.importorskip("tests.reference.torsion_reference")
+    mc = master.torsion_master(n)
+    k = float(kappa(n))                     # unit contact: c = a = E* = G_t = μ = 1, d = κ
+    M_full = np.pi * n / (2 * (n + 2)) * k
+    p = lambda r: ref.pressure_power(r, 1, 1, 1, n)  # noqa: E731
+    for t in (0.99, 0.5, 1e-3):
+        phi, M = ref.torque_general(t, 1, p, 1, 1)
+        tt, m, _ = mc(np.array([2 * float(phi) / k]))
+        assert tt[0] == pytest.approx(t, rel=MASTER_CURVE, abs=MASTER_CURVE)
+        assert m[0] == pytest.approx(float(M) / M_full, rel=MASTER_CURVE)
