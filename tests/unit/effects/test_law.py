@@ -161,6 +161,32 @@ def test_energy_per_cycle_is_loop_area():
     assert W == pytest.approx(area, rel=LOOP_AREA)
 
 
+@pytest.mark.parametrize("t0", [0.7, 0.2])
+def test_energy_per_cycle_matches_twist_history_and_closed_form(t0):
+    """Steady cycles ±φ0: the law's energy per cycle equals Contact.twist_history's (exact
+    Masing hysteresis of the single-contact API) and the closed form of Hertz torsion
+    (independent mpmath reference: W = 8∫_0^φ0 M dφ - 4φ0 M0 with Lubkin's M(φ))."""
+    ref = pytest.importorskip("tests.reference.torsion_reference")
+    steel = cl.Elastic(E=210e9, nu=0.3)
+    R, F, mu = 0.01, 100.0, 0.3
+    con = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(steel, steel), friction=mu)
+    a, G = con.normal(force=F).radius, con.moduli.torsional
+    phi0 = float(ref.hertz_twist_hat(t0)) * mu * F / (G * a * a)
+    steps, cycles = 40, 4
+    k = np.arange(1, steps * cycles + 1)
+    hist = np.concatenate([np.linspace(0, phi0, 11)[1:], phi0 * np.cos(2 * np.pi * k / steps)])
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=R, materials=(steel, steel), friction=mu,
+                        size=1)
+    W = np.cumsum([law.step(force=F, twist=p).dissipated_energy[0] for p in hist])
+    h = con.twist_history(force=F, twist=hist, method="exact")
+    ends = 10 - 1 + steps * np.arange(cycles + 1)          # after the ramp, after each cycle
+    per_law = np.diff(W[ends])
+    per_hist = np.diff(h.dissipated_energy[ends])
+    closed = float(ref.hertz_loop_energy_hat(t0)) * (mu * F) ** 2 / (G * a)
+    np.testing.assert_allclose(per_law, per_hist, rtol=LAW_HISTORY)
+    np.testing.assert_allclose(per_law, closed, rtol=LAW_HISTORY)
+
+
 def test_state_round_trip_and_reset(tmp_path):
     rng = np.random.default_rng(3)
     phi = np.cumsum(rng.standard_normal((40, 5)), axis=0) * 1e-4
