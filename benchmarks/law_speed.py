@@ -2,7 +2,8 @@
 contacts at constant normal load, side by side in one run: the numpy path, the compiled step
 (numba, extra ``fast``: a normal pass and one fused pass over both Masing channels), the same
 writing into the arrays of the previous result (``step(out=...)``: no fresh output arrays), and
-the compiled step on numba's threads (``parallel=True``); plus the per-step cost over n; then
+the compiled step on numba's threads (``parallel=True``); plus the per-step cost over n and a
+linear fit ``t = t0 + c n`` of it (fixed cost, cost per contact, largest deviation); then
 one changing-load step with every contact on its 16 MDR springs, numpy and compiled.
 
     python benchmarks/law_speed.py            # n = 1e3 .. 1e6
@@ -82,6 +83,19 @@ def springs_table() -> None:
         print(line + f"   (load {os.getloadavg()[0]:.1f})", flush=True)
 
 
+def linearity(best_of: dict[int, float]) -> None:
+    """Fit ``t = t0 + c n`` (relative least squares) to the fastest mode's step times and print
+    the fixed cost, the cost per contact and the largest relative deviation from the fit: the
+    per-step cost is linear in n when the deviation is of the order of the timing noise."""
+    n = np.array(sorted(best_of), float)
+    t = np.array([best_of[k] for k in sorted(best_of)])
+    A = np.stack([np.ones_like(n), n], axis=1) / t[:, None]
+    (t0, c), *_ = np.linalg.lstsq(A, np.ones_like(t), rcond=None)
+    dev = np.max(np.abs((t0 + c * n) / t - 1.0))
+    print(f"linear fit over n = {int(n[0])}..{int(n[-1])}: t = {1e6 * t0:.1f} us + "
+          f"{1e9 * c:.1f} ns x n, largest deviation {100 * dev:.0f} %", flush=True)
+
+
 def main() -> None:
     warnings.simplefilter("ignore", ValidityWarning)    # combined shift + twist, documented
     sizes = [10**3, 10**4, 10**5, 10**6] + ([10**7] if "--big" in sys.argv else [])
@@ -96,15 +110,18 @@ def main() -> None:
     print(f"{'n':>10} " + " ".join(f"{m + ' s':>12}" for m in modes)
           + f" {'ns/contact':>11}" + (f" {'numpy/fast':>11} {'fast/out':>9} {'fast/thr':>9}"
                                       if len(modes) == 4 else ""))
+    best_of = {}
     for n in sizes:
         t = {m: (per_step(n, m) if (n < 10**7 or m != "numpy") else float("nan"))
              for m in modes}
         best = t.get("fast+out", t["numpy"])
+        best_of[n] = best
         line = f"{n:>10} " + " ".join(f"{t[m]:>12.4g}" for m in modes) + f" {1e9 * best / n:>11.1f}"
         if len(modes) == 4:
             line += (f" {t['numpy'] / t['fast']:>11.2f} {t['fast'] / t['fast+out']:>9.2f}"
                      f" {t['fast'] / t['threads']:>9.2f}")
         print(line + f"   (load {os.getloadavg()[0]:.1f})", flush=True)
+    linearity(best_of)
     springs_table()
 
 
