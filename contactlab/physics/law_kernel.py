@@ -34,7 +34,8 @@ except ImportError:                     # pragma: no cover - exercised without n
 def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
     """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds);
     ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond); ``kp``: power of the
-    panel map (:func:`contactlab.physics.master.evaluate`)."""
+    panel map (:func:`contactlab.physics.master.evaluate`), None for 1 (numba compiles a
+    separate specialisation for None and prunes the branches: the n >= 1 loop is unchanged)."""
     if kind == TORSION:
         y = arg / xs
         if y0 > 0.0:
@@ -42,7 +43,7 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
                 return ys * (m0 * y), aux, 0.0
             y = y - y0
         N = coef.shape[1]
-        if kp == 1:
+        if kp is None:
             s = y / (y + y_scale)
         else:
             r = (y / y_scale) ** (1.0 / kp)
@@ -60,7 +61,7 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
             q = q * u + coef[2, j, p]
         t = min(max(t, 0.0), 1.0)
         if y0 == 0.0:
-            if kp != 1:
+            if kp is not None:
                 s = s ** kp
             m = m * s
             q = q * (s * s)
@@ -422,7 +423,7 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     nf = _KERNELS[parallel][1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
-                          float(master.m0), int(master.power), chan["x"], chan["y"], chan["w"],
+                          float(master.m0), None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
                           chan["last"], chan["depth"], chan["X"], chan["Y"], chan["overflow"],
                           *out)
     return out + (nf,)
