@@ -11,8 +11,9 @@ import hashlib
 import itertools
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -33,30 +34,41 @@ RESERVED = ("point", "error", "message", "warnings")
 
 @dataclass(frozen=True)
 class Grid:
-    """The points of a sweep.
+    """The points of a sweep, held as one column of values per name.
 
     Attributes
     ----------
     names : tuple of str
         Parameter names (scene key paths or a study function's keyword names), in column order.
-    points : tuple of dict
-        One ``{name: value}`` per point; point ``i`` is row ``i`` of the result table.
+    columns : tuple of list
+        One list of values per name; entry ``i`` of each is point ``i`` (row ``i`` of the result
+        table). Columns, not one dict per point: a grid of 10^5 points is built, batched and
+        tabulated without 10^5 small dicts.
     axes : dict or None
         ``{name: values}`` when the grid is the full product of these axes (dict-of-lists input),
         None for a table of rows.
     """
 
     names: tuple[str, ...]
-    points: tuple[dict[str, Any], ...]
+    columns: tuple[list[Any], ...]
     axes: dict[str, list[Any]] | None
 
     def __len__(self) -> int:
-        return len(self.points)
+        return len(self.columns[0]) if self.columns else 0
+
+    def point(self, i: int) -> dict[str, Any]:
+        """Point ``i`` as ``{name: value}``."""
+        return {k: c[i] for k, c in zip(self.names, self.columns)}
+
+    @cached_property
+    def points(self) -> tuple[dict[str, Any], ...]:
+        """Every point as ``{name: value}`` (built on first use)."""
+        return tuple(dict(zip(self.names, values)) for values in zip(*self.columns))
 
     def fingerprint(self) -> str:
         """A hash of the names and every point's values (exact: floats by their repr)."""
-        text = json.dumps([list(self.names), [[repr(p[k]) for k in self.names]
-                                              for p in self.points]])
+        text = json.dumps([list(self.names),
+                           [list(map(repr, values)) for values in zip(*self.columns)]])
         return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -77,6 +89,26 @@ def _plain(value: Any, where: str) -> Any:
     return value
 
 
+def _column(values: Any, where: Callable[[int], str]) -> list[Any]:
+    """``values`` (a list or 1D array) as a list of Python scalars, each checked by
+    :func:`_plain` (``where(i)`` names entry ``i`` in a message). Whole columns of floats, of
+    ints or of strings are converted and checked at once; anything else value by value."""
+    if isinstance(values, np.ndarray):
+        if values.dtype.kind == "f" and np.isfinite(values).all() or values.dtype.kind in "iuU":
+            return values.tolist()                     # exact: float64 -> float, int64 -> int
+        values = list(values)
+    elif not isinstance(values, list):
+        values = list(values)
+    kinds = set(map(type, values))
+    if kinds <= {float, np.float64}:
+        arr = np.array(values, dtype=np.float64)
+        if np.isfinite(arr).all():
+            return arr.tolist() if np.float64 in kinds else values
+    elif kinds == {int} or kinds == {str}:
+        return values
+    return [_plain(v, where(i)) for i, v in enumerate(values)]
+
+
 def _values(key: str, values: Any) -> list[Any]:
     if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) \
             and not hasattr(values, "__iter__"):
@@ -85,10 +117,10 @@ def _values(key: str, values: Any) -> list[Any]:
     if isinstance(values, np.ndarray) and values.ndim > 1:
         raise ParameterError(f"grid[{key!r}] has shape {values.shape}: give a 1D list of values "
                              "per key (the grid is their product).")
-    arr = list(np.asarray(values).ravel()) if isinstance(values, np.ndarray) else list(values)
-    if not arr:
+    arr = np.asarray(values).ravel() if isinstance(values, np.ndarray) else list(values)
+    if not len(arr):
         raise ParameterError(f"grid[{key!r}] is empty: give at least one value.")
-    return [_plain(v, f"grid[{key!r}][{i}]") for i, v in enumerate(arr)]
+    return _column(arr, lambda i: f"grid[{key!r}][{i}]")
 
 
 def _check_name(name: Any) -> str:
@@ -118,7 +150,7 @@ def make_grid(grid: Any) -> Grid:
     Examples
     --------
     >>> g = make_grid({"a": [1, 2], "b": [0.5, 1.5]})
-    >>> len(g), g.points[1]
+    >>> len(g), g.point(1)
     (4, {'a': 1, 'b': 1.5})
     """
     if isinstance(grid, Grid):
@@ -131,12 +163,18 @@ def make_grid(grid: Any) -> Grid:
         n = math.prod(len(v) for v in axes.values())
         check_memory("sweep grid", float(n) * POINT_BYTES,
                      f"{n} points = " + " x ".join(str(len(v)) for v in axes.values()))
-        points = tuple(dict(zip(names, combo)) for combo in itertools.product(*axes.values()))
-        return Grid(names, points, axes)
+        if len(names) == 1:
+            columns: tuple[list[Any], ...] = (list(axes[names[0]]),)
+        else:
+            columns = tuple(map(list, zip(*itertools.product(*axes.values()))))
+        return Grid(names, columns, axes)
     if hasattr(grid, "columns") and hasattr(grid, "to_dict"):          # a pandas DataFrame
-        rows = grid.to_dict("records")
         names = tuple(_check_name(k) for k in grid.columns)
-    elif isinstance(grid, Sequence) and not isinstance(grid, (str, bytes)):
+        if not len(grid) or not names:
+            raise ParameterError("grid has no rows: give at least one point.")
+        return Grid(names, tuple(_column(grid[k].to_numpy(), lambda i, k=k: f"grid row {i} "
+                                         f"[{k!r}]") for k in names), None)
+    if isinstance(grid, Sequence) and not isinstance(grid, (str, bytes)):
         rows = list(grid)
         if rows and not all(isinstance(r, Mapping) for r in rows):
             raise ParameterError("grid rows must be dicts {name: value}, e.g. "
@@ -145,15 +183,15 @@ def make_grid(grid: Any) -> Grid:
     else:
         raise ParameterError(f"grid of type {type(grid).__name__} is invalid: give a dict of "
                              "value lists, a pandas DataFrame or a list of dicts.")
-    if not rows:
+    if not rows or not names:
         raise ParameterError("grid has no rows: give at least one point.")
-    points = []
+    keys = set(names)
     for i, row in enumerate(rows):
-        if set(row) != set(names):
+        if row.keys() != keys:
             raise ParameterError(f"grid row {i} has keys {sorted(row)}: every row needs exactly "
                                  f"the keys of row 0, {sorted(names)}.")
-        points.append({k: _plain(row[k], f"grid row {i} [{k!r}]") for k in names})
-    return Grid(names, tuple(points), None)
+    return Grid(names, tuple(_column([r[k] for r in rows], lambda i, k=k: f"grid row {i} "
+                                     f"[{k!r}]") for k in names), None)
 
 
 def _number_or_text(text: str) -> Any:

@@ -172,12 +172,12 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
         raise ParameterError(f"batch_size={batch_size!r} is invalid: give an integer >= 1 or None.")
     fn = as_study(study, allow_outside)
     if isinstance(fn, SceneStudy):
-        fn.check(g.points[0])
+        fn.check(g.point(0))
     st = Store(store, g, study_id(fn)) if store is not None else None
     chunks: list[Records] = [st.load()] if st is not None else []
     resumed = len(chunks[0]) if chunks else 0
     finished = set(chunks[0].point) if chunks else set()
-    todo = [i for i in range(len(g)) if i not in finished]
+    todo = [i for i in range(len(g)) if i not in finished] if finished else list(range(len(g)))
     stats: dict[str, Any] = {"points": len(g), "resumed": resumed, "computed": len(todo)}
     t_start = time.perf_counter()
     local = Serial(fn)
@@ -199,7 +199,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
         while todo:
             take, todo = todo[:size], todo[size:]
             t0 = time.perf_counter()
-            chunk = local.run(Points.of(g.points, take, g.names))
+            chunk = local.run(Points.take(g, take))
             point_seconds = (time.perf_counter() - t0) / len(take)
             keep(chunk, None)
             timed += len(take)
@@ -221,14 +221,17 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
             else:
                 backend = Pool(fn, workers or _cpu_count())
             overhead = backend.roundtrip()
+            if backend is not local and batch_size is None and expected <= overhead:
+                # the rest takes less here than one round trip to the workers: keep it here
+                backend.close()
+                backend = local
             if batch_size is not None:
                 size = batch_size
             elif backend is local:
                 size = max(1, math.ceil(SERIAL_BATCH_SECONDS / max(point_seconds, 1e-9)))
             else:
                 size = _size(point_seconds, overhead, len(todo), backend.workers)
-            batches = [Points.of(g.points, todo[k:k + size], g.names)
-                       for k in range(0, len(todo), size)]
+            batches = [Points.take(g, todo[k:k + size]) for k in range(0, len(todo), size)]
             stats.update(backend=type(backend).__name__, workers=backend.workers,
                          roundtrip_seconds=overhead, batch_size=size, tasks=len(batches))
             bar = _bar(len(g), len(g) - len(todo), progress and expected / backend.workers
@@ -248,6 +251,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     if st is not None:
         st.compact()
     stats.setdefault("backend", "Serial")     # every point ran here (calibration or resumed)
+    stats["restarts"] = getattr(backend, "restarts", 0)
     stats["seconds"] = time.perf_counter() - t_start
     table = assemble(g, chunks)
     table.attrs["sweep"]["stats"] = stats
@@ -267,7 +271,7 @@ def _accept(rec: Records, grid: Grid, fn: Callable[..., Any], on_error: str,
                 if backend is not None:
                     backend.cancel()
                 i = rec.point[j]
-                fn(**grid.points[i])     # recompute here: the genuine exception and traceback
+                fn(**grid.point(i))     # recompute here: the genuine exception and traceback
                 raise ContactlabError(f"point {i} failed on a worker but not here: "
                                       f"{error}: {rec.message[j]}")
     return rec
@@ -327,8 +331,14 @@ def run_tasks(fn: Callable[[Any], Any], items: Any, *, client: Any = None,
         backend = Pool(study, workers or _cpu_count(), run_calls)
     bar = None
     try:
-        size = (1 if backend is local else
-                _size(item_seconds, backend.roundtrip(), len(todo), backend.workers))
+        size = 1
+        if backend is not local:
+            overhead = backend.roundtrip()
+            if expected <= overhead:          # less work left than one round trip: here
+                backend.close()
+                backend = local
+            else:
+                size = _size(item_seconds, overhead, len(todo), backend.workers)
         backend.submit_all([Points(todo[k:k + size], ("item",),
                                    [[items[i] for i in todo[k:k + size]]])
                             for k in range(0, len(todo), size)])

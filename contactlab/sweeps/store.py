@@ -119,7 +119,7 @@ class Store:
     def _write(self, records: list[dict[str, Any]], name: str) -> None:
         rows = []
         for r in records:
-            row = {"point": r["point"], **self.grid.points[r["point"]]}
+            row = {"point": r["point"], **self.grid.point(r["point"])}
             row.update(r["outputs"])
             row.update(error=r["error"], message=r["message"], warnings=r["warnings"])
             row[_KEYS] = json.dumps(list(r["outputs"]))

@@ -10,11 +10,14 @@ from __future__ import annotations
 
 import copy
 import hashlib
+import itertools
 import math
 import time
 import warnings
 from collections.abc import Callable, Mapping
+from operator import itemgetter
 from pathlib import Path
+from types import FunctionType
 from typing import Any
 
 import numpy as np
@@ -224,6 +227,19 @@ class Points:
         return cls(list(indices), tuple(names),
                    [[points[i][k] for i in indices] for k in names])
 
+    @classmethod
+    def take(cls, grid: Any, indices: list[int]) -> Points:
+        """The points of ``grid`` (a :class:`~contactlab.sweeps.grid.Grid`) at ``indices``,
+        which must be increasing (a run of consecutive points is sliced, not gathered)."""
+        if not indices:
+            return cls([], grid.names, [[] for _ in grid.names])
+        a, b = indices[0], indices[-1] + 1
+        if b - a == len(indices):              # increasing and this long: consecutive
+            columns = [c[a:b] for c in grid.columns]
+        else:
+            columns = [[c[i] for i in indices] for c in grid.columns]
+        return cls(list(indices), grid.names, columns)
+
     def __len__(self) -> int:
         return len(self.index)
 
@@ -245,15 +261,13 @@ class Points:
 class Records:
     """Outcomes of points, one column per field (what a batch sends back).
 
-    ``point``, ``error``, ``message``, ``warnings``, ``seconds`` are lists with one entry per
-    point; ``outputs`` maps each output name (in the order the points first returned them) to a
-    list with the point's value, or None where that point did not return the name (a failed
-    point returns none; outputs are never None themselves: :func:`scalars` turns None into NaN).
-    ``seconds`` is the compute time where the points ran; it is not pickled (NaN after a trip
-    from a worker): a sweep times points in the calling process.
+    ``point``, ``error``, ``message``, ``warnings`` are lists with one entry per point;
+    ``outputs`` maps each output name (in the order the points first returned them) to a list
+    with the point's value, or None where that point did not return the name (a failed point
+    returns none; outputs are never None themselves: :func:`scalars` turns None into NaN).
     """
 
-    __slots__ = ("point", "outputs", "error", "message", "warnings", "seconds")
+    __slots__ = ("point", "outputs", "error", "message", "warnings")
 
     def __init__(self) -> None:
         self.point: list[int] = []
@@ -261,13 +275,12 @@ class Records:
         self.error: list[str | None] = []
         self.message: list[str | None] = []
         self.warnings: list[str | None] = []
-        self.seconds: list[float] = []
 
     def __len__(self) -> int:
         return len(self.point)
 
     def append(self, index: int, outputs: Mapping[str, Any], error: str | None,
-               message: str | None, warned: str | None, seconds: float) -> None:
+               message: str | None, warned: str | None) -> None:
         """Add one point's outcome."""
         cols = self.outputs
         if outputs.keys() == cols.keys():            # the usual case: the same names again
@@ -288,7 +301,6 @@ class Records:
         self.error.append(error)
         self.message.append(message)
         self.warnings.append(warned)
-        self.seconds.append(seconds)
 
     def extend(self, other: Records) -> None:
         """Append every point of ``other``."""
@@ -305,27 +317,24 @@ class Records:
         self.error.extend(other.error)
         self.message.extend(other.message)
         self.warnings.extend(other.warnings)
-        self.seconds.extend(other.seconds)
 
     def rows(self) -> list[dict[str, Any]]:
         """One dict per point: ``point``, ``outputs`` (the names it returned), ``error``,
-        ``message``, ``warnings``, ``seconds``."""
+        ``message``, ``warnings``."""
         names = list(self.outputs)
         out = []
         for j, i in enumerate(self.point):
             outs = {k: self.outputs[k][j] for k in names if self.outputs[k][j] is not None}
             out.append({"point": i, "outputs": outs, "error": self.error[j],
-                        "message": self.message[j], "warnings": self.warnings[j],
-                        "seconds": self.seconds[j]})
+                        "message": self.message[j], "warnings": self.warnings[j]})
         return out
 
     @classmethod
     def from_rows(cls, rows: Any) -> Records:
-        """The inverse of :meth:`rows` (``seconds`` optional)."""
+        """The inverse of :meth:`rows`."""
         rec = cls()
         for r in rows:
-            rec.append(r["point"], r["outputs"], r["error"], r["message"], r["warnings"],
-                       r.get("seconds", 0.0))
+            rec.append(r["point"], r["outputs"], r["error"], r["message"], r["warnings"])
         return rec
 
     def rename(self, name: Callable[[str], str]) -> None:
@@ -343,7 +352,6 @@ class Records:
         self.outputs = {k: _unpack(v, n) for k, v in outputs.items()}
         self.error, self.message = _unpack(error, n), _unpack(message, n)
         self.warnings = _unpack(warned, n)
-        self.seconds = [math.nan] * n        # timed where the points ran; not sent back
 
 
 # ---- compact pickles of columns: what a worker sends and receives -------------------------------
@@ -354,10 +362,10 @@ _FLOATS, _NONES = "f8", "none"
 
 
 def _pack(col: list[Any]) -> Any:
-    if col and all(type(v) is float for v in col):
-        return (_FLOATS, np.array(col, dtype=np.float64))
-    if all(v is None for v in col):
+    if col.count(None) == len(col):
         return (_NONES,)
+    if set(map(type, col)) == {float}:
+        return (_FLOATS, np.array(col, dtype=np.float64))
     return col
 
 
@@ -368,8 +376,8 @@ def _unpack(packed: Any, n: int) -> list[Any]:
 
 
 def _pack_index(index: list[int]) -> Any:
-    if index and index[-1] - index[0] == len(index) - 1 and all(
-            b - a == 1 for a, b in zip(index, index[1:])):
+    if index and index[-1] - index[0] == len(index) - 1 and index == list(
+            range(index[0], index[-1] + 1)):
         return (index[0], index[-1] + 1)
     return index
 
@@ -389,7 +397,101 @@ def evaluate(study: Callable[..., Any], index: int, point: Mapping[str, Any]) ->
         distinct warning raised, joined by newlines, or None) and ``seconds`` (compute time).
         Any :class:`Exception` is recorded; KeyboardInterrupt and SystemExit pass.
     """
-    return run_batch(study, [(index, point)]).rows()[0]
+    t0 = time.perf_counter()
+    row = run_batch(study, [(index, point)]).rows()[0]
+    row["seconds"] = time.perf_counter() - t0
+    return row
+
+
+_FAILED = object()       # run_batch's result of a point that raised
+#: run_batch converts the results of this many points at a time (bounds the memory they hold)
+CONVERT_EVERY = 4096
+
+
+def _leading(study: Any, names: tuple[str, ...]) -> list[int] | None:
+    """Where ``names`` sit among the leading parameters of a plain Python function.
+
+    Returns the order in which to pass the grid columns positionally (``study(*values)`` binds
+    exactly as ``study(**point)`` does, at half the cost of building and unpacking a dict), or
+    None when the study is not such a function (a scene, a callable object, a function taking
+    ``**kwargs`` or position-only parameters).
+    """
+    code = getattr(study, "__code__", None)
+    if type(study) is not FunctionType or code is None or code.co_posonlyargcount \
+            or len(names) > code.co_argcount:
+        return None
+    lead = code.co_varnames[:len(names)]
+    if set(lead) != set(names):
+        return None
+    return [names.index(v) for v in lead]
+
+
+def _calls(study: Any, batch: Any) -> tuple[list[int], Any, bool]:
+    """The indices of a batch, an iterator over the arguments of each point's call, and
+    whether they are positional (tuples) or keyword (dicts)."""
+    if type(batch) is Points:
+        order = _leading(study, batch.names)
+        if order is not None:
+            return batch.index, zip(*[batch.columns[k] for k in order]), True
+        return batch.index, map(dict, map(zip, itertools.repeat(batch.names),
+                                          zip(*batch.columns))), False
+    pairs = list(batch)
+    return [i for i, _ in pairs], iter([p for _, p in pairs]), False
+
+
+def _warning_text(caught: list[Any]) -> str:
+    seen: list[str] = []
+    for w in caught:
+        text = f"{w.category.__name__}: {w.message}"
+        if text not in seen:
+            seen.append(text)
+    return "\n".join(seen)
+
+
+def _convert(results: list[Any], errors: dict[int, tuple[str, str]], base: int,
+             into: Records) -> None:
+    """Append the outputs of ``results`` (raw study results of points ``base``, ``base + 1``,
+    ... of a batch; :data:`_FAILED` for a point that raised) to ``into.outputs``, as
+    :func:`scalars` makes them; an output that does not convert is an error of its point.
+
+    The usual case (every result a dict of floats under the same names) goes column by column;
+    anything else point by point, in order.
+    """
+    cols = into.outputs
+    n = len(results)
+    first = results[0] if n else None
+    if type(first) is dict and first and set(map(type, results)) == {dict} \
+            and set(map(len, results)) == {len(first)} and (not cols or cols.keys() == first.keys()):
+        try:
+            new = {k: list(map(itemgetter(k), results)) for k in first}
+        except KeyError:                      # another name somewhere
+            new = None
+        if new is not None and all(type(k) is str and set(map(type, c)) == {float}
+                                   for k, c in new.items()):
+            for k, c in new.items():
+                col = cols.get(k)
+                if col is None:
+                    cols[k] = c
+                else:
+                    col.extend(c)
+            return
+    done = len(into.point) - n                # points of this batch converted before these
+    for j, result in enumerate(results):
+        outputs: Mapping[str, Any] = {}
+        if result is not _FAILED:
+            try:
+                outputs = scalars(result)
+            except Exception as err:          # noqa: BLE001 - an invalid output
+                errors[base + j] = (type(err).__name__, str(err))
+        m = done + j
+        for key, value in outputs.items():
+            col = cols.get(key)
+            if col is None:
+                cols[key] = col = [None] * m
+            col.append(value)
+        for col in cols.values():
+            if len(col) <= m:
+                col.append(None)
 
 
 def run_batch(study: Callable[..., Any], batch: Any, out: Records | None = None) -> Records:
@@ -400,39 +502,73 @@ def run_batch(study: Callable[..., Any], batch: Any, out: Records | None = None)
     ``"always"`` filter (set once per batch and set again if a study changed the filters), and
     each point keeps the distinct ones it raised.
 
+    The loop does the least per point (the call, its warnings, its error if any); the results
+    are turned into columns :data:`CONVERT_EVERY` points at a time, in one go when they are
+    dicts of floats under the same names (the sweep's own cost per point is measured in
+    ``benchmarks/sweep_scaling.py``).
+
     Parameters
     ----------
     out : Records, optional
-        Fill this object point by point (a caller in this process keeps the points finished
-        before an interrupt); default a new one.
+        Receives the outcomes, also of the points finished before an exception such as
+        KeyboardInterrupt stopped the batch (a caller in this process keeps them); default a
+        new one.
     """
-    rec = Records() if out is None else out
-    clock = time.perf_counter
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        top = warnings.filters[0]
-        for index, point in batch:
-            if not warnings.filters or warnings.filters[0] is not top:
-                warnings.simplefilter("always")
-                top = warnings.filters[0]
-            start = len(caught)
-            t0 = clock()
-            try:
-                outputs, error, message = scalars(study(**point)), None, None
-            except Exception as err:          # noqa: BLE001 - recorded per point by design
-                outputs, error, message = {}, type(err).__name__, str(err)
-            seconds = clock() - t0
-            warned = None
-            if len(caught) > start:
-                seen: list[str] = []
-                for w in caught[start:]:
-                    text = f"{w.category.__name__}: {w.message}"
-                    if text not in seen:
-                        seen.append(text)
-                warned = "\n".join(seen)
-                del caught[start:]
-            rec.append(index, outputs, error, message, warned, seconds)
-    return rec
+    part = Records()
+    errors: dict[int, tuple[str, str]] = {}
+    warned: dict[int, str] = {}
+    results: list[Any] = []
+    keep = results.append
+    base = 0                                  # points converted so far
+    index, calls, positional = _calls(study, batch)
+    mod = warnings
+    try:
+        with mod.catch_warnings(record=True) as caught:
+            mod.simplefilter("always")
+            top = mod.filters[0]
+            while True:
+                for args in itertools.islice(calls, CONVERT_EVERY):
+                    wf = mod.filters
+                    if not wf or wf[0] is not top:
+                        mod.simplefilter("always")
+                        top = mod.filters[0]
+                    try:
+                        keep(study(*args) if positional else study(**args))
+                    except Exception as err:      # noqa: BLE001 - recorded per point by design
+                        errors[base + len(results)] = (type(err).__name__, str(err))
+                        keep(_FAILED)
+                    if caught:
+                        warned[base + len(results) - 1] = _warning_text(caught)
+                        del caught[:]
+                if len(results) < CONVERT_EVERY:
+                    break
+                part.point = index[:base + len(results)]
+                _convert(results, errors, base, part)
+                base += len(results)
+                results.clear()
+    finally:
+        n = base + len(results)
+        part.point = index[:n]
+        _convert(results, errors, base, part)
+        if type(batch) is not Points:
+            part.point = [int(i) for i in part.point]
+        part.error = [None] * n
+        part.message = [None] * n
+        part.warnings = [None] * n
+        for j, (error, message) in errors.items():
+            if j < n:
+                part.error[j], part.message[j] = error, message
+        for j, text in warned.items():
+            if j < n:
+                part.warnings[j] = text
+        if out is None:
+            out = part
+        elif len(out):
+            out.extend(part)
+        else:
+            for name in Records.__slots__:
+                setattr(out, name, getattr(part, name))
+    return out
 
 
 def run_calls(fn: Callable[..., Any], batch: Any, out: Records | None = None) -> Records:
@@ -440,9 +576,7 @@ def run_calls(fn: Callable[..., Any], batch: Any, out: Records | None = None) ->
     (output ``"value"``): the runner of :func:`~contactlab.sweeps.run.run_tasks`, whose tasks
     return arrays. An exception is not recorded: it ends the batch and reaches the caller."""
     rec = Records() if out is None else out
-    clock = time.perf_counter
     for index, point in batch:
-        t0 = clock()
         value = fn(**point)
-        rec.append(index, {"value": value}, None, None, None, clock() - t0)
+        rec.append(index, {"value": value}, None, None, None)
     return rec

@@ -4,6 +4,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from ..errors import ParameterError
 from .grid import RESERVED, Grid
 from .study import Records
@@ -25,6 +27,21 @@ def output_name(name: str, grid: Grid) -> str:
     return f"output.{name}" if name in grid.names or name in RESERVED else name
 
 
+def _array(col: list[Any]) -> Any:
+    """A column of Python floats as a float64 array (what pandas would make of it, made here in
+    one step); any other column as it is, for pandas to infer."""
+    if col and set(map(type, col)) == {float}:
+        return np.array(col, dtype=np.float64)
+    return col
+
+
+def _first_point(points: list[int], col: list[Any]) -> int | None:
+    """The lowest point whose entry of ``col`` is not None."""
+    if col.count(None) == 0:
+        return min(points)
+    return min((points[j] for j, v in enumerate(col) if v is not None), default=None)
+
+
 def assemble(grid: Grid, records: Records | list[Records]) -> Any:
     """One row per point, in point order: ``point``, the grid values, the outputs (in the order
     the lowest-numbered point returned them), ``error``, ``message``, ``warnings``.
@@ -34,32 +51,43 @@ def assemble(grid: Grid, records: Records | list[Records]) -> Any:
     """
     pd = _pandas()
     chunks = [records] if isinstance(records, Records) else list(records)
-    rec = Records()
-    for chunk in chunks:
-        rec.extend(chunk)
-    n = len(rec)
-    order = sorted(range(n), key=rec.point.__getitem__)
+    chunks = sorted((c for c in chunks if len(c)), key=lambda c: c.point[0])
     # an output's column position: the first point that returned it, then that point's own order
     rank: dict[str, tuple[int, int]] = {}
     for chunk in chunks:
         for pos, (key, col) in enumerate(chunk.outputs.items()):
-            first = min((chunk.point[j] for j, v in enumerate(col) if v is not None),
-                        default=None)
+            first = _first_point(chunk.point, col)
             if first is not None and (key not in rank or (first, pos) < rank[key]):
                 rank[key] = (first, pos)
     outputs = sorted(rank, key=rank.__getitem__)
-    points = [rec.point[j] for j in order]
-    data: dict[str, Any] = {"point": points}
-    for name in grid.names:
-        data[name] = [grid.points[i][name] for i in points]
+    if len(chunks) == 1:
+        rec = chunks[0]
+    else:
+        rec = Records()
+        for chunk in chunks:
+            rec.extend(chunk)
+    points = rec.point
+    n = len(points)
+    if points == sorted(points):                # batches arrive whole: usually nothing to do
+        def order(col: list[Any]) -> list[Any]:
+            return col
+    else:
+        perm = sorted(range(n), key=points.__getitem__)
+
+        def order(col: list[Any]) -> list[Any]:
+            return [col[j] for j in perm]
+        points = order(points)
+    data: dict[str, Any] = {"point": np.array(points, dtype=np.int64)}
+    every = n == len(grid) and (n == 0 or (points[0] == 0 and points[-1] == n - 1))
+    for name, col in zip(grid.names, grid.columns):
+        data[name] = _array(col if every else [col[i] for i in points])
     nan = math.nan
     for key in outputs:
-        col = rec.outputs[key]
-        data[key] = [nan if col[j] is None else col[j] for j in order]
+        col = order(rec.outputs[key])
+        data[key] = _array([nan if v is None else v for v in col] if col.count(None) else col)
     df = pd.DataFrame(data, columns=["point", *grid.names, *outputs])
     for col in ("error", "message", "warnings"):    # None (not NaN) where nothing happened
-        values = getattr(rec, col)
-        df[col] = pd.Series([values[j] for j in order], index=df.index, dtype=object)
+        df[col] = pd.Series(order(getattr(rec, col)), index=df.index, dtype=object)
     df.attrs["sweep"] = {"axes": grid.axes, "names": list(grid.names)}
     return df
 

@@ -185,7 +185,7 @@ def test_a_batch_records_each_points_own_warnings_like_single_points():
     batch = Points.of([{"x": float(x)} for x in range(4)], [0, 1, 2, 3], ("x",))
     rec = run_batch(_silences_then_warns, batch)
     alone = [evaluate(_silences_then_warns, i, p) for i, p in batch]
-    assert rec.rows() == [{**r, "seconds": rec.seconds[j]} for j, r in enumerate(alone)]
+    assert rec.rows() == _untimed(alone)
     w = "ValidityWarning: outside"
     assert rec.warnings == [w, None, w, w]        # point 1 silenced itself, not the next ones
     # a point that did not return a name has None in that column
@@ -201,8 +201,7 @@ def test_points_and_records_pickle_as_columns():
     rec.extend(run_batch(_warns_twice, Points([7], ("x",), [[1.5]])))
     assert rec.outputs == {"y": [None, 3.0]} and rec.error == ["ParameterError", None]
     again = pickle.loads(pickle.dumps(rec))
-    assert _untimed(again.rows()) == _untimed(rec.rows())
-    assert all(math.isnan(t) for t in again.seconds)       # timed where it ran, not sent back
+    assert again.rows() == rec.rows()
     assert Records.from_rows(rec.rows()).rows() == rec.rows()
 
 
@@ -229,8 +228,64 @@ def test_columns_travel_compactly_and_come_back_exactly():
     assert pickle.loads(pickle.dumps(scattered)).index == [3, 1, 7]
     rec = run_batch(_warns_twice, Points(list(range(5)), ("x",), [[0.5, 1.0, 1.5, 2.0, 2.5]]))
     again = pickle.loads(pickle.dumps(rec))
-    assert _untimed(again.rows()) == _untimed(rec.rows()) and again.error == [None] * 5
+    assert again.rows() == rec.rows() and again.error == [None] * 5
     assert [type(v) for v in again.outputs["y"]] == [float] * 5
     big = run_batch(_double, Points(list(range(3000)), ("x",), [[1.5] * 3000]))
     # y as float64 (8 bytes a value), the indices as a range, no error: one marker, no times
     assert len(pickle.dumps(big)) < 3000 * 8 + 1000
+
+
+_MIXED = [{"a": 1.0, "b": 2.0},                      # first point: converted, columns made
+          {"a": 3.0, "b": 4.0},                      # same names, floats: straight in
+          {"b": 6.0, "a": 5.0},                      # same names, another order
+          {"a": 7.0, "b": np.float64(8.0)},          # a numpy float after a float: converted
+          {"a": 9.0, "b": None},                     # None is NaN, not "not returned"
+          {"a": 10.0, "b": 3},                       # an int
+          {"a": 11.0, "b": np.array([1.0, 2.0])},    # an array: final value, _min, _max
+          {"a": 12.0, "b": object()},                # an invalid output: a recorded error
+          {"a": 13.0, "b": 14.0},
+          {"a": 15.0},                               # a name missing
+          {"a": 16.0, "b": 17.0, "c": "text"}]       # a new name
+
+
+def _mixed(x):
+    return _MIXED[int(x)]
+
+
+def test_a_batch_converts_every_point_as_a_single_point_would():
+    """The batch loop's shortcut for floats under known names agrees, point for point and
+    column for column, with each point evaluated alone (which always converts)."""
+    n = len(_MIXED)
+    rec = run_batch(_mixed, Points(list(range(n)), ("x",), [[float(i) for i in range(n)]]))
+    alone = [evaluate(_mixed, i, {"x": float(i)}) for i in range(n)]
+    got = rec.rows()
+    for mine, ref in zip(got, _untimed(alone)):
+        assert mine["point"] == ref["point"] and mine["error"] == ref["error"]
+        assert mine["outputs"].keys() == ref["outputs"].keys(), mine["point"]
+        for k, v in ref["outputs"].items():
+            assert repr(mine["outputs"][k]) == repr(v) and type(mine["outputs"][k]) is type(v)
+    assert list(rec.outputs) == ["a", "b", "b_min", "b_max", "c"]
+    assert rec.error[7] == "ParameterError" and rec.outputs["a"][7] is None
+    assert math.isnan(rec.outputs["b"][4]) and rec.outputs["b"][9] is None
+    assert all(len(col) == n for col in rec.outputs.values())
+
+
+class _Stop:
+    """Returns floats, raises KeyboardInterrupt at point ``at``."""
+
+    def __init__(self, at):
+        self.at = at
+
+    def __call__(self, x):
+        if x == self.at:
+            raise KeyboardInterrupt
+        return {"y": 2 * x}
+
+
+def test_an_interrupted_batch_keeps_the_points_before_the_interrupt():
+    out = Records()
+    with pytest.raises(KeyboardInterrupt):
+        run_batch(_Stop(3.0), Points(list(range(10, 16)), ("x",), [[0.0, 1.0, 2.0, 3.0, 4.0, 5.0]]),
+                  out)
+    assert out.point == [10, 11, 12] and out.outputs == {"y": [0.0, 2.0, 4.0]}
+    assert out.error == out.message == out.warnings == [None] * 3
