@@ -20,6 +20,7 @@ __all__ = [
     "ConvergenceError",
     "NotSupportedError",
     "EffectNotPlannedError",
+    "WorkerError",
     "ContactlabWarning",
     "ValidityWarning",
     "PluginWarning",
@@ -108,6 +109,11 @@ class NotSupportedError(ContactlabError, NotImplementedError):
 
 class EffectNotPlannedError(ContactlabError, AttributeError):
     """An output was asked for that the scene's plan did not include."""
+
+
+class WorkerError(ContactlabError, RuntimeError):
+    """A worker process of a sweep died (killed, out of memory, a native crash) more often than
+    the sweep restarts its workers; the points it finished are kept (and stored)."""
 
 
 class ContactlabWarning(UserWarning):

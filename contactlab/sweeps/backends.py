@@ -16,11 +16,11 @@ import time
 import weakref
 from collections import deque
 from collections.abc import Callable, Iterator
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
-from ..errors import ParameterError
+from ..errors import ParameterError, WorkerError
 from .study import Points, Records, run_batch
 
 __all__ = ["Serial", "Pool", "DaskClient", "noop"]
@@ -122,45 +122,121 @@ def start_method() -> str:
     return "forkserver" if "forkserver" in methods else "spawn"
 
 
+#: a local pool whose worker died is restarted this many times per sweep, its unfinished
+#: batches sent again, before the sweep gives up with a WorkerError
+POOL_RESTARTS = 2
+#: seconds before the n-th restart: n times this (a killed process server must be reaped first)
+RESTART_PAUSE = 0.2
+#: what submitting to a pool raises when it is broken or cannot start a worker process (the
+#: forkserver gone: its socket refuses, or its pipe ends early); never a study's own exception
+_SPAWN_FAILURES = (BrokenProcessPool, OSError, EOFError)
+
+
+def _span(batches: list[Batch]) -> str:
+    points = sorted(i for b in batches for i in b.index)
+    if not points:
+        return "no points"
+    return f"{len(points)} points ({points[0]}..{points[-1]})"
+
+
 class Pool:
-    """A local pool of ``workers`` processes (the default when no client is given)."""
+    """A local pool of ``workers`` processes (the default when no client is given).
+
+    A worker that dies (killed from outside, out of memory, a native crash in a study) breaks a
+    :class:`~concurrent.futures.ProcessPoolExecutor` as a whole: every batch still running or
+    waiting fails with ``BrokenProcessPool``. The pool is then started again and those batches
+    are sent again, up to :data:`POOL_RESTARTS` times; after that :class:`WorkerError` is raised
+    (the batches finished before were already delivered).
+    """
 
     def __init__(self, study: Callable[..., Any], workers: int,
                  runner: Callable[..., Records] = run_batch) -> None:
         self.workers = int(workers)
+        self._initargs = (_dumps(study), runner)
+        self._futures: dict[Any, Batch] = {}
+        self.restarts = 0
+        self._pool = self._start()
+
+    def _start(self) -> ProcessPoolExecutor:
         ctx = multiprocessing.get_context(start_method())
-        self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx,
-                                         initializer=_init_worker,
-                                         initargs=(_dumps(study), runner))
-        self._futures: set[Any] = set()
+        return ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx,
+                                   initializer=_init_worker, initargs=self._initargs)
+
+    def _restart(self, pending: list[Batch], err: BaseException) -> None:
+        """The pool broke: start a new one (or give up) and send ``pending`` to it."""
+        while True:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self.restarts += 1
+            if self.restarts > POOL_RESTARTS:
+                raise WorkerError(
+                    f"a sweep worker process died {self.restarts} time(s) ({err}); the pool was "
+                    f"restarted {POOL_RESTARTS} time(s) and {_span(pending)} are left undone. "
+                    "A study that crashes the interpreter (out of memory, a native crash, "
+                    "os._exit) kills its worker every time: run those points with workers=1 to "
+                    "see the crash. A script that runs a sweep on several processes must start "
+                    "it under `if __name__ == \"__main__\":` (worker processes import the main "
+                    "module); with store= the points finished so far are kept.") from err
+            time.sleep(RESTART_PAUSE * self.restarts)   # let a killed process server be reaped
+            self._pool = self._start()
+            sent: dict[Any, Batch] = {}
+            try:
+                for b in pending:
+                    sent[self._pool.submit(_pool_batch, b)] = b
+            except _SPAWN_FAILURES as e:        # no new worker could be started (yet)
+                err = e
+                continue
+            self._futures.update(sent)
+            return
 
     def roundtrip(self) -> float:
-        return _median_roundtrip(lambda: self._result(self._pool.submit(noop)))
-
-    @staticmethod
-    def _result(future: Any) -> Any:
-        try:
-            return future.result()
-        except BrokenProcessPool as err:
-            raise BrokenProcessPool(
-                f"a sweep worker process died ({err}). A script that runs a sweep on several "
-                "processes must start it under `if __name__ == \"__main__\":` (worker processes "
-                "import the main module); a study that crashes the interpreter (out of memory, a "
-                "native crash) kills its worker too.") from err
+        """Start every worker at once (they import in parallel), then time empty tasks."""
+        while True:
+            try:
+                for f in [self._pool.submit(noop) for _ in range(self.workers)]:
+                    f.result()
+                return _median_roundtrip(lambda: self._pool.submit(noop).result())
+            except _SPAWN_FAILURES as err:
+                self._restart([], err)
 
     def submit_all(self, batches: list[Batch]) -> None:
-        self._futures = {self._pool.submit(_pool_batch, b) for b in batches}
+        for b in batches:
+            try:
+                future = self._pool.submit(_pool_batch, b)
+            except _SPAWN_FAILURES as err:      # broken, or no worker could start: completed()
+                future = Future()               # restarts the pool and sends the batch again
+                future.set_exception(err if isinstance(err, BrokenProcessPool) else
+                                     BrokenProcessPool(f"a worker could not start: {err!r}"))
+            self._futures[future] = b
 
     def completed(self) -> Iterator[Records]:
         while self._futures:
-            done, self._futures = wait(self._futures, return_when=FIRST_COMPLETED)
+            done, _ = wait(self._futures, return_when=FIRST_COMPLETED)
+            broken: BaseException | None = None
             for f in done:
-                yield self._result(f)
+                batch = self._futures.pop(f)
+                err = f.exception()
+                if err is None:
+                    yield f.result()
+                elif isinstance(err, BrokenProcessPool):
+                    broken = err
+                    self._futures[f] = batch          # sent again below
+                else:
+                    raise err
+            if broken is not None:
+                self._pool.shutdown(wait=True, cancel_futures=True)   # every future settles
+                pending = []
+                for f, batch in list(self._futures.items()):
+                    if f.done() and not f.cancelled() and f.exception() is None:
+                        yield f.result()               # finished before the pool broke
+                    else:
+                        pending.append(batch)
+                self._futures = {}
+                self._restart(pending, broken)
 
     def cancel(self) -> None:
         for f in self._futures:
             f.cancel()
-        self._futures = set()
+        self._futures = {}
 
     def close(self) -> None:
         self.cancel()
@@ -215,8 +291,21 @@ class DaskClient:
                          for b in batches]
 
     def completed(self) -> Iterator[Records]:
+        try:
+            from distributed.scheduler import KilledWorker
+        except ImportError:                     # pragma: no cover - moved in some release
+            KilledWorker = ()                   # noqa: N806
         for f in self._as_completed(self._futures):
-            yield f.result()
+            try:
+                rec = f.result()
+            except KilledWorker as err:
+                raise WorkerError(
+                    f"a Dask worker died on every try of a sweep batch ({err}); the scheduler "
+                    "gave up on it (Dask's distributed.scheduler.allowed-failures). A study "
+                    "that crashes the interpreter (out of memory, a native crash) kills the "
+                    "worker each time: run those points with workers=1 to see the crash; with "
+                    "store= the points finished so far are kept.") from err
+            yield rec
         self._futures = []
 
     def cancel(self) -> None:

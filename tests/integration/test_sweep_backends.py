@@ -57,9 +57,16 @@ def test_serial_table_has_failures_and_warnings(serial):
     assert func["error"].tolist().count("ParameterError") == 3          # friction 0: invalid
 
 
+def _ran_on(table, backend):
+    assert table.attrs["sweep"]["stats"]["backend"] == backend
+    return table
+
+
 def test_local_process_pool_is_bit_identical(serial):
-    _same(contactlab.sweep(Scene(LOOPS), GRID, workers=2, batch_size=2), serial[0])
-    _same(contactlab.sweep(loop_energy, FUNCTION_GRID, workers=2, batch_size=1), serial[1])
+    _same(_ran_on(contactlab.sweep(Scene(LOOPS), GRID, workers=2, batch_size=2), "Pool"),
+          serial[0])
+    _same(_ran_on(contactlab.sweep(loop_energy, FUNCTION_GRID, workers=2, batch_size=1), "Pool"),
+          serial[1])
 
 
 @pytest.fixture(scope="module")
@@ -78,8 +85,23 @@ def dask_client():
 
 
 def test_dask_local_cluster_is_bit_identical(serial, dask_client):
-    _same(contactlab.sweep(Scene(LOOPS), GRID, client=dask_client, batch_size=3), serial[0])
-    _same(contactlab.sweep(loop_energy, FUNCTION_GRID, client=dask_client), serial[1])
+    _same(_ran_on(contactlab.sweep(Scene(LOOPS), GRID, client=dask_client, batch_size=3),
+                  "DaskClient"), serial[0])
+    _same(_ran_on(contactlab.sweep(loop_energy, FUNCTION_GRID, client=dask_client, batch_size=2),
+                  "DaskClient"), serial[1])
+
+
+def tiny(x):
+    return {"y": 2.0 * x}
+
+
+def test_a_sweep_smaller_than_a_round_trip_stays_here(dask_client):
+    """Less work left after the timing points than one round trip to the cluster: the cheapest
+    plan is to finish here (the table is the same wherever points run)."""
+    table = contactlab.sweep(tiny, {"x": [float(i) for i in range(40)]}, client=dask_client)
+    stats = table.attrs["sweep"]["stats"]
+    assert stats["backend"] == "Serial" and stats["roundtrip_seconds"] > 0
+    assert table["y"].tolist() == [2.0 * i for i in range(40)]
 
 
 def test_progress_bar_on_a_dask_cluster(serial, dask_client, capsys, monkeypatch):
