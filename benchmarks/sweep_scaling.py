@@ -11,10 +11,14 @@ Run from the repository root (needs the extras dist and data):
    the points took on the workers (summed per point) against the serial one;
 2. the scheduler's per-task overhead: 400 empty points, one point per task, on the 1-worker
    cluster and on a local process pool of 1;
-3. small tasks (one exact torsion point, milliseconds) and tiny ones (a closed-form Hertz point,
-   microseconds): one point per task versus the automatic batch size (Hertz: on 10x as many points),
-   on the 1-worker cluster (Dask defaults); overhead = cluster wall / serial wall - 1 (the serial
-   sweep evaluates and tabulates the same points in this process; best of three, alternating).
+3. the overhead of whole sweeps (wall and CPU time), from microsecond to millisecond points, serially in this process
+   and on the 1-worker cluster without ``MALLOC_TRIM_THRESHOLD_`` (so that the figure is the
+   sweep's own cost, not the allocator's): overhead = (workers x wall - C) / C, where C is the
+   compute of the points, the study called at every point in a plain loop here
+   (``[study(**p) for p in points]``); best of five, alternating. Each overhead is also given in
+   CPU time (this process, which runs the client and the scheduler, plus the worker), which the
+   load of other processes inflates far less than wall time. The torsion and design points are
+   also run one point per task, to show what batching saves.
 
 Clusters are started before the timings (their start-up is printed separately).
 """
@@ -73,6 +77,22 @@ def hertz_point(force):
     return {"radius": (3 * force * 0.01 / (4 * E_star)) ** (1 / 3)}
 
 
+def hertz_profile(force):
+    """Small numpy task (~10 us): the Hertz pressure at 64 radii, its mean and the radius."""
+    E_star = 210e9 / (2 * (1 - 0.3**2))
+    a = (3 * force * 0.01 / (4 * E_star)) ** (1 / 3)
+    p = 2 * E_star * a / (np.pi * 0.01) * np.sqrt(1 - np.linspace(0.0, 1.0, 64) ** 2)
+    return {"radius": a, "mean_pressure": float(p.mean())}
+
+
+def design_point(R, force):
+    """A design study's point (sub-millisecond): peak pressure and radius of a ball on a flat."""
+    contact = contactlab.Contact(contactlab.profiles.Paraboloid(R=R),
+                                 materials=(contactlab.Elastic(E=210e9, nu=0.3),) * 2)
+    state = contact.normal(force=force)
+    return {"peak_pressure": state.peak_pressure, "radius": state.radius}
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -86,13 +106,13 @@ def main() -> None:
     import dask
     from distributed import Client, LocalCluster
 
+    from contactlab.sweeps import make_grid
+
     print(machine())
     n_amp, n_mu = (10, 5) if args.quick else (20, 10)
     loops = {"amplitude": list(np.geomspace(2e-4, 4e-3, n_amp)),
              "friction": list(np.linspace(0.1, 0.5, n_mu))}
     n_loops = n_amp * n_mu
-    n_tiny = 1000 if args.quick else 3000
-    tiny = {"force": list(np.linspace(1.0, 1000.0, n_tiny))}
 
     t_serial, serial = timed(lambda: contactlab.sweep(timed_loop, loops, workers=1,
                                                       progress=False))
@@ -144,27 +164,55 @@ def main() -> None:
                                                       batch_size=1, progress=False, **kw))
             print(f"   {name:<26} {1e3 * t / n_empty:8.3f} ms per task")
 
-        print(f"\n3. small and tiny tasks on the 1-worker cluster, one point per task versus the "
-              "automatic batches;\n   overhead = cluster wall / serial wall (same points, this "
-              "process) - 1:")
+        print("\n3. whole sweeps: overhead = (workers x wall - C) / C, C = the study's own calls in "
+              "a plain loop here;\n   serial = workers=1 in this process, cluster = the 1-worker "
+              "LocalCluster without MALLOC_TRIM_THRESHOLD_:")
         q = args.quick
-        cases = (("torsion point", torsion_point, 300 if q else 1000, 300 if q else 1000),
-                 ("Hertz point", hertz_point, 1000 if q else 3000, 10000 if q else 30000))
-        for study_name, study, n_one, n_auto in cases:
-            for label, bs, m in (("1 point per task", 1, n_one), ("automatic batches", None, n_auto)):
-                grid = {"force": list(np.linspace(1.0, 1000.0, m))}
-                t_ser = t = np.inf
-                for _ in range(3):          # alternate, best of three: the load drifts
-                    t_ser = min(t_ser, timed(lambda: contactlab.sweep(
-                        study, grid, workers=1, progress=False))[0])
-                    dt, table = timed(lambda: contactlab.sweep(
-                        study, grid, client=client1, batch_size=bs, progress=False))
-                    t = min(t, dt)
-                st = table.attrs["sweep"]["stats"]
-                print(f"   {study_name:<14} {label:<18} {m:6d} points, {1e6 * t_ser / m:7.1f} us "
-                      f"each; {st.get('calibration_points', 0):5d} timed here, batch "
-                      f"{st.get('batch_size', 0):5d}, {st.get('tasks', 0):5d} tasks: {t:7.2f} s vs "
-                      f"{t_ser:6.2f} s serial, overhead {t / t_ser - 1:7.1%}")
+        force = lambda m: {"force": list(np.linspace(1.0, 1000.0, m))}          # noqa: E731
+        design = lambda m: {"R": list(np.geomspace(1e-3, 5e-2, 10)),            # noqa: E731
+                            "force": list(np.linspace(1.0, 1000.0, m // 10))}
+        cases = (("Hertz point", hertz_point, force(30000 if q else 30000), False),
+                 ("Hertz point", hertz_point, force(100000 if q else 300000), False),
+                 ("Hertz profile", hertz_profile, force(10000 if q else 30000), False),
+                 ("design point", design_point, design(500 if q else 2000), True),
+                 ("torsion point", torsion_point, force(100 if q else 400), True))
+        print("   each overhead as wall/CPU; CPU = this process (client, scheduler) + the worker, "
+              "which other sessions' load does not inflate")
+        print(f"   {'study':<14} {'points':>7} {'C/point':>9} {'serial':>14} {'cluster':>14} "
+              f"{'1/task':>14}   cluster plan")
+        reps = 3 if q else 5
+        for study_name, study, grid, one_per_task in cases:
+            g = make_grid(grid)
+            points = g.points
+            modes = {"C": lambda: [study(**p) for p in points],
+                     "serial": lambda: contactlab.sweep(study, grid, workers=1, progress=False),
+                     "cluster": lambda: contactlab.sweep(study, grid, client=client1n,
+                                                         progress=False)}
+            if one_per_task:
+                modes["1/task"] = lambda: contactlab.sweep(study, grid, client=client1n,
+                                                           batch_size=1, progress=False)
+            best = {k: np.inf for k in modes}
+            cpu = {k: np.inf for k in modes}
+            for _ in range(reps):           # alternate, best of several: the load drifts
+                for k, f in modes.items():
+                    on_cluster = k in ("cluster", "1/task")
+                    w0 = sum(client1n.run(time.process_time).values()) if on_cluster else 0.0
+                    c0 = time.process_time()
+                    dt, out = timed(f)
+                    c = time.process_time() - c0
+                    if on_cluster:
+                        c += sum(client1n.run(time.process_time).values()) - w0
+                    best[k], cpu[k] = min(best[k], dt), min(cpu[k], c)
+                    if k == "cluster":
+                        st = out.attrs["sweep"]["stats"]
+            C, n = best["C"], len(g)
+            over = {k: f"{best[k] / C - 1:+7.0%}/{cpu[k] / cpu['C'] - 1:+5.0%}"
+                    for k in modes if k != "C"}
+            print(f"   {study_name:<14} {n:7d} {1e6 * C / n:7.2f}us {over['serial']:>14} "
+                  f"{over['cluster']:>14} {over.get('1/task', '-'):>14}   {st['backend']}: "
+                  f"{st['calibration_points']} timed here, {st.get('tasks', 0)} task(s) of "
+                  f"{st.get('batch_size', 0)}, round trip {1e3 * st.get('roundtrip_seconds', 0):.1f}"
+                  f" ms; C = {1e3 * C:.0f} ms")
 
     print(f"\nload average at the end: {os.getloadavg()[0]:.2f}")
 

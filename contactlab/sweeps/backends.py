@@ -295,9 +295,14 @@ class DaskClient:
             from distributed.scheduler import KilledWorker
         except ImportError:                     # pragma: no cover - moved in some release
             KilledWorker = ()                   # noqa: N806
-        for f in self._as_completed(self._futures):
+        # results gathered by as_completed itself (in the client's event loop), not by one
+        # blocking result() call per task from this thread
+        done = iter(self._as_completed(self._futures, with_results=True))
+        while True:
             try:
-                rec = f.result()
+                _, rec = next(done)
+            except StopIteration:
+                break
             except KilledWorker as err:
                 raise WorkerError(
                     f"a Dask worker died on every try of a sweep batch ({err}); the scheduler "

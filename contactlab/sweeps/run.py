@@ -3,9 +3,9 @@
 The flow: the grid becomes points (:mod:`.grid`); a store, if given, supplies the points already
 finished (:mod:`.store`); the first points run here in growing batches (1, 2, 8, 32, ... until a
 batch takes :data:`CALIBRATION_SECONDS`), which warms this process and times a point; the backend
-is chosen (:mod:`.backends`) and its per-task round trip measured; the remaining points go out in
-batches large enough that this round trip costs under :data:`TARGET_OVERHEAD` of a batch's
-compute time (:func:`batch_size`). Batches travel as columns (:class:`~.study.Points` out,
+is chosen (:mod:`.backends`) and its per-task round trip measured; if the points left would take
+less than that round trip, they run here; else they go out in batches large enough that this
+round trip costs under :data:`TARGET_OVERHEAD` of a batch's compute time (:func:`batch_size`). Batches travel as columns (:class:`~.study.Points` out,
 :class:`~.study.Records` back), not as per-point dicts; records come back in any order and the
 table is assembled by point (:mod:`.table`), so it does not depend on the backend.
 """
@@ -116,7 +116,8 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     workers : int, optional
         Without a client: the size of the local process pool; 1 runs serially in this process;
         None (default) uses every core, or this process for a sweep expected to take under
-        :data:`SERIAL_BELOW_SECONDS`.
+        :data:`SERIAL_BELOW_SECONDS`. Wherever they run, points left after the timing points
+        that would take less than one round trip to the workers are finished here.
     progress : bool
         Show a progress bar (tqdm, if installed) for sweeps expected to take over
         :data:`PROGRESS_SECONDS`.
@@ -149,6 +150,10 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     ParameterError
         An invalid grid, a grid key that is no key of the scene, bad ``workers``/``on_error``,
         a store of another sweep.
+    WorkerError
+        A worker process died more often than the sweep restarts its workers (a local pool is
+        restarted twice, a Dask scheduler retries per its configuration); the points finished
+        before are in the store.
     ImportError
         pandas missing (``pip install 'contactlab[data]'``); pyarrow for ``store=``;
         dask.distributed for ``client=``.
@@ -306,6 +311,8 @@ def run_tasks(fn: Callable[[Any], Any], items: Any, *, client: Any = None,
     Exception
         The first exception an item raises (on a worker or here) is raised here; the rest of
         the work is cancelled.
+    WorkerError
+        A worker process died more often than the pool is restarted (see :func:`sweep`).
     """
     _check_workers(workers, client)
     items = list(items)

@@ -289,3 +289,30 @@ def test_an_interrupted_batch_keeps_the_points_before_the_interrupt():
                   out)
     assert out.point == [10, 11, 12] and out.outputs == {"y": [0.0, 2.0, 4.0]}
     assert out.error == out.message == out.warnings == [None] * 3
+
+
+def _ordered(b, a, c=10.0):
+    return {"v": 100 * a + b + c}
+
+
+def _kwonly(*, a, b):
+    return {"v": 100 * a + b}
+
+
+def _posonly(a, b, /):
+    return {"v": 100 * a + b}
+
+
+def test_plain_functions_are_called_positionally_with_the_same_binding():
+    """``study(*values)`` in parameter order binds as ``study(**point)`` does; anything that is
+    not a plain function taking the grid names as its leading parameters is called by keyword."""
+    from contactlab.sweeps.study import _leading
+    assert _leading(_ordered, ("a", "b")) == [1, 0]
+    assert _leading(_ordered, ("a", "c")) is None            # c is not a leading parameter
+    assert _leading(_kwonly, ("a", "b")) is None
+    assert _leading(_posonly, ("a", "b")) is None
+    assert _leading(lambda **kw: kw, ("a",)) is None
+    pts = Points(list(range(3)), ("a", "b"), [[1.0, 2.0, 3.0], [0.5, 0.25, 0.125]])
+    for fn in (_ordered, _kwonly):
+        assert run_batch(fn, pts).outputs["v"] == [fn(**p)["v"] for _, p in pts]
+    assert run_batch(_posonly, pts).error == ["TypeError"] * 3   # by keyword, as documented
