@@ -295,9 +295,12 @@ class DaskClient:
             from distributed.scheduler import KilledWorker
         except ImportError:                     # pragma: no cover - moved in some release
             KilledWorker = ()                   # noqa: N806
-        # results gathered by as_completed itself (in the client's event loop), not by one
-        # blocking result() call per task from this thread
-        done = iter(self._as_completed(self._futures, with_results=True))
+        # results gathered by as_completed itself, not by one blocking result() call per task
+        # from this thread; on this client's event loop: without loop=, as_completed tracks the
+        # futures on the loop of Dask's *default* client (the latest one made), which drives this
+        # client's connections from a second thread (seen as tornado assertions and "deque
+        # mutated during iteration" errors, and hung sweeps, with two clients in one process)
+        done = iter(self._as_completed(self._futures, loop=self.client.loop, with_results=True))
         while True:
             try:
                 _, rec = next(done)

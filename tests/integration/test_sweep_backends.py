@@ -130,3 +130,31 @@ def test_fretting_map_on_a_dask_cluster_is_the_local_map(dask_client, monkeypatc
     for f in ("regime", "energy_ratio", "energy", "stick_ratio", "peak", "boundary"):
         assert getattr(swept, f).tobytes() == getattr(local, f).tobytes(), f
     assert "12/12" in capsys.readouterr().err           # 8 map blocks + 4 boundary blocks
+
+
+def test_a_sweep_on_a_client_that_is_not_dasks_default(serial, dask_client, monkeypatch):
+    """With two clients in one process, Dask's as_completed follows the *default* (latest)
+    client's event loop unless told otherwise; the sweep tracks its futures on its own client's
+    loop (a second thread driving this client's connections broke tornado's write buffers and
+    hung the benchmark)."""
+    import distributed
+    from contactlab.sweeps import backends
+    loops = []
+
+    def spy(futures, **kw):
+        loops.append(kw.get("loop"))
+        return distributed.as_completed(futures, **kw)
+
+    with distributed.Client(n_workers=1, threads_per_worker=1, processes=False,
+                            dashboard_address=":0"):
+        assert distributed.client.default_client() is not dask_client
+        real_init = backends.DaskClient.__init__
+
+        def init(self, *a, **k):
+            real_init(self, *a, **k)
+            self._as_completed = spy
+
+        monkeypatch.setattr(backends.DaskClient, "__init__", init)
+        table = contactlab.sweep(loop_energy, FUNCTION_GRID, client=dask_client, batch_size=2)
+    _same(_ran_on(table, "DaskClient"), serial[1])
+    assert loops == [dask_client.loop]
