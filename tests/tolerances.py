@@ -474,3 +474,16 @@ QUADRATURE_EDGE_PUNCH = 1e-6
 # sphere, contact radius 87 µm: the table's error is O((Δr/a)²) ~ 3e-3 at most in the slip
 # annulus terms; measured 8.4e-6 (the loop's ∫g² differences average the chord error out)
 TABLE_200_SHIFT_LOOP = 1e-4
+
+# ---- pressure of a table at fixed ring radii (physics.ring_pressure, issue 12)
+#: against a closed form (linear table of a cone, cubic spline of a cubic polynomial: the
+#: interpolants are the profiles): Gauss rules of 30 points in u per table segment, rounding of
+#: the running sums over up to a few hundred segments; measured 2e-13, relative to |S| + g(a)/a
+RING_PRESSURE_CLOSED = 1e-11
+#: against the profile's per-(ring, node) tanh-sinh route (rtol 1e-10 each, summed over the
+#: nodes) on linear and cubic tables, uniform, random and clustered nodes; measured 4e-12
+RING_PRESSURE_SECOND = 1e-10
+#: exact ring solver on a table with the running-sum pressure against the per-step route: the
+#: pressures differ by < 1e-10 relative, the solver's active sets stay the same; measured 8e-13
+#: of the largest torque/energy
+RING_PRESSURE_PATH = 1e-9

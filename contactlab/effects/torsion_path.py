@@ -20,6 +20,7 @@ from ..foundation.rings import DEFAULT_N_RINGS, Rings
 from ..loadpath import LoadPath
 from ..params import check_count, check_memory, step_indices
 from ..physics import normal as _normal
+from ..physics import ring_pressure as _rp
 from ..physics import torsion_rings as _tr
 
 __all__ = ["simulate_exact", "ESTIMATED", "exact_memory"]
@@ -107,7 +108,7 @@ def _normal_states(contact, path, outputs, n_total):
 
 
 def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, align=True,
-         edge=True):
+         edge=True, ring_table=True):
     from .path import SERIES, PathResult, _progress, partial_path_failure
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
@@ -150,6 +151,10 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     r, H, g = rings.points, rings.H, rings.g
     mu = contact.friction
     prof, E = contact.profile, contact.moduli.normal
+    # tables: the pressure shape at the (fixed) ring radii as running sums over the table
+    # segments, set up once (physics.ring_pressure); other profiles: their own route per step
+    table = (_rp.fixed_radii_shape(prof, r, a_max, contact.rtol)
+             if ring_table and mu is not None else None)
     cur = dict.fromkeys(("depth", "force", "twist", "torque"), 0.0)
     ctrl = "twist"
     M_old, W_in, W_d = 0.0, 0.0, 0.0
@@ -183,9 +188,12 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                 if mu is None:
                     bound = np.where(r[None, :] < ac[:, None], np.inf, 0.0)
                     p = None
+                elif table is not None:
+                    p = _rp.pressure_at(prof, E, table, ac, dc, g_a[c0:c1])[0]
                 else:
                     p = _normal.pressure(prof, E, r[None, :], ac[:, None], dc[:, None],
                                          g_a[c0:c1, None], contact.rtol)[0]
+                if mu is not None:
                     bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
                 for j in range(c0, c1):
                     k = i + j

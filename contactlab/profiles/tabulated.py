@@ -735,6 +735,26 @@ class Tabulated(Profile):
         b0, c0, d0 = self._cubic_base
         return t * (0.5 * np.pi * b0 + t * (2.0 * c0 + 0.75 * np.pi * d0 * t))
 
+    def table_g_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(g'(x), rounding estimate)`` of the interpolant's transform (dimensionless), O(nodes
+        below x) per point, for ``x`` between the nodes (at a node of a linear table g' is
+        infinite).
+
+        Linear: the arcsine node sums (:meth:`_arcsine_sums`), estimate ``8 eps`` times the sum of
+        the node terms' magnitudes; cubic: the spline's closed-form node sums
+        (:meth:`_cubic_sums`), estimate the rounding estimate of ``g`` there divided by ``x``
+        (points whose sums cancel badly, nearly coincident nodes, carry a large estimate)."""
+        x = np.asarray(x, dtype=float)
+        eps = np.finfo(float).eps
+        if self._spline is not None:
+            g, err, slope = self._cubic_sums(x, "g", with_slope=True)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                est = np.where(x > 0, err / np.where(x > 0, x, 1.0), 0.0)
+            return slope, est + 8 * eps * np.abs(slope)
+        _, slope = self._arcsine_sums(x, with_slope=True)
+        return slope, 8 * eps * (np.abs(slope) + 0.5 * np.pi * float(np.max(np.abs(self._slopes)))
+                                 + np.abs(self._dslope).sum())
+
     def table_slopes(self) -> np.ndarray:
         """Slope of the interpolant on each table segment (linear interpolation)."""
         return self._slopes

@@ -83,3 +83,26 @@ def table_abel_outside_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -
                                e0, e1, epsabs=0, epsrel=1e-12, limit=200)[0]
                 for e0, e1 in zip(pts[:-1], pts[1:]))
     return 2 / np.pi * total
+
+
+def spline_pressure_shape_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
+    """S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx of the not-a-knot cubic spline of the table (scipy
+    ``CubicSpline``), by nested scipy quad: ``g'(x) = ∫_0^{π/2} [f'(t) + t f''(t)]_{t = x sinθ}
+    dθ`` (from g = x ∫_0^{π/2} f'(x sinθ) dθ), split at the nodes in θ, and S in ``u =
+    arccosh(x/r)``, split at the nodes."""
+    from scipy.interpolate import CubicSpline
+    sp = CubicSpline(r, f - f[0])
+    d1, d2 = sp.derivative(1), sp.derivative(2)
+
+    def g_prime(x: float) -> float:
+        cuts = [0.0] + [float(np.arcsin(b / x)) for b in r if 0 < b < x] + [np.pi / 2]
+
+        def h(t: float) -> float:
+            y = x * np.sin(t)
+            return float(d1(y) + y * d2(y))
+        return sum(integrate.quad(h, p0, p1, epsabs=0, epsrel=1e-13)[0]
+                   for p0, p1 in zip(cuts[:-1], cuts[1:]) if p1 > p0)
+
+    us = [0.0] + [float(np.arccosh(b / rr)) for b in r if rr < b < a] + [float(np.arccosh(a / rr))]
+    return sum(integrate.quad(lambda u: g_prime(rr * np.cosh(u)), u0, u1, epsabs=0,
+                              epsrel=1e-12)[0] for u0, u1 in zip(us[:-1], us[1:]))

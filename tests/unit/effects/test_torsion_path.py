@@ -255,3 +255,29 @@ def test_slip_limits_in_chunks_change_nothing(monkeypatch, mu):
     for i in ref.snapshots:
         for q in ref.snapshots[i]:
             assert np.array_equal(ref.snapshots[i][q], small.snapshots[i][q]), (i, q)
+
+
+@pytest.mark.parametrize("kind", ["linear", "cubic"])
+def test_table_ring_pressures_from_running_sums(monkeypatch, kind):
+    """On a table the ring pressures come from running sums over its segments, set up once
+    (physics.ring_pressure): the same series as the per-step route (the profile's pressure at
+    every ring and step) to RING_PRESSURE_PATH, and chunks of 3 steps give bit-identical series."""
+    from contactlab.effects import torsion_path
+    from contactlab.profiles import Tabulated
+    from tests.tolerances import RING_PRESSURE_PATH
+    r = np.linspace(0.0, 2e-3, 200)
+    c = cl.Contact(Tabulated(r, r**2 / (2 * R) + 2.0 * r**4, kind), materials=MAT, friction=MU)
+    a, s, M_full = scales(c)
+    t = np.arange(1, 41) / 40
+    path = (cl.LoadPath().ramp(force=0.7 * F, steps=2)
+            + cl.LoadPath.from_arrays(force=F * (1 + 0.3 * np.sin(2 * np.pi * t)),
+                                      twist=0.7 * s * np.sin(3 * np.pi * t)))
+    fast = c.simulate(path, n_rings=60)
+    slow = torsion_path._run(c, path, None, 60, "uniform", None, ring_table=False)
+    for k in ("torque", "dissipated_energy", "stick_radius"):
+        ref = np.asarray(slow.data[k])
+        assert np.max(np.abs(np.asarray(fast.data[k]) - ref)) <= RING_PRESSURE_PATH * np.max(np.abs(ref)), k
+    monkeypatch.setattr(torsion_path, "_BOUND_CHUNK", 3)
+    small = c.simulate(path, n_rings=60)
+    for k in fast.data:
+        assert np.array_equal(fast.data[k], small.data[k]), k
