@@ -10,13 +10,16 @@ the point of this file is that none of them raises :class:`~contactlab.errors.Co
 (or any other error) and none returns a non-finite number.
 
 Cost: 10 and 51 points, and 1000 points except the path simulations, run by default; the rest
-is marked ``slow`` (CI's slow job), except the 10^6-point tables and the exact ring solver on
-tables of 10^3 points and more, which are marked ``exhaustive`` (minutes to an hour each; run
-them with ``python -m pytest -m exhaustive tests/hard/test_table_audit.py``). The 10^6-point tables run the routes whose cost stays linear in the table
-size per evaluation point (normal, tangential, shift history, no-slip torsion, the spring
-foundation); the partial-slip torsion kernels (exact and MDR) integrate over the rule nodes of
-every table segment below the contact radius (8 per segment, each g costing O(N)), which is
-O(N²) and not run there.
+is marked ``slow`` (CI's slow job; the exact ring solver on 10^3 and 10^4 points takes 0.5-2.3 s
+since its ring pressures come from running sums over the table), except the 10^6-point tables,
+which are marked ``exhaustive`` (run them with
+``python -m pytest -m exhaustive tests/hard/test_table_audit.py``). The 10^6-point tables run the
+routes whose cost stays linear in the table size per evaluation point (normal, tangential, shift
+history, no-slip torsion, the spring foundation); the partial-slip torsion kernels (exact and
+MDR) integrate over the rule nodes of every table segment below the contact radius (8 per
+segment, each g costing O(N)), which is O(N²) and not run there. The spring foundation's
+validity check on a twisted path calls the same kernel, so ``simulate_mdr`` on 10^6 points is
+O(N²) too (see the module's exhaustive list).
 """
 from __future__ import annotations
 
@@ -144,9 +147,8 @@ def _cases():
                     if n == 1_000_000 and op not in LINEAR_COST:
                         continue
                     slow = n >= 10_000 or (n == 1000 and op.startswith("simulate"))
-                    # 10^6 points, and the exact ring solver on 10^3+ point tables (its table
-                    # pressures cost minutes per run): the exhaustive job, not CI
-                    huge = n == 1_000_000 or (op == "simulate_exact" and n >= 1000)
+                    # 10^6 points: the exhaustive job, not CI
+                    huge = n == 1_000_000
                     marks = ([pytest.mark.exhaustive] if huge else
                              [pytest.mark.slow] if slow else [])
                     yield pytest.param(kind, n, spacing, op, marks=marks,
