@@ -202,8 +202,7 @@ def fixed_radii_shape(profile, radii: np.ndarray, a_max: float, rtol: float
         fixed_err = np.zeros((n, K))
         # the bad piece's value, exactly: S(X_k) - S(X_{k-1}) (or S(X_{k_i}) for the own piece)
         piece = np.where(need_prev, ref - ref_prev, ref)
-        old_piece = np.where(need_prev, phi[ii, kk] - np.where(need_prev, phi[ii, np.maximum(prev, 0)], 0.0),
-                             phi[ii, kk])
+        old_piece = phi[ii, kk] - np.where(need_prev, phi[ii, np.maximum(prev, 0)], 0.0)
         fixed[ii, kk] = piece - old_piece
         fixed_err[ii, kk] = ref_err + ref_prev_err - piece_err[ii, kk]
         phi = phi + np.where(valid, np.cumsum(fixed, axis=1), 0.0)
