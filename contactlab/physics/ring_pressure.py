@@ -228,7 +228,7 @@ def shape_at(profile, table: FixedRadiiShape, a: np.ndarray, g_a: np.ndarray | N
     if not np.any(inside):
         return out, err
     k = np.searchsorted(X, a, side="right") - 1              # largest knot <= a (-1: none)
-    lo = np.where(k >= 0, X[np.maximum(k, 0)], 0.0)
+    lo = np.where(k >= 0, X[np.maximum(k, 0)], 0.0) if X.size else np.zeros(m)
     # rings below the knot: Φ plus the step's partial segment (g' shared by the rings)
     far = inside & (r[None, :] < lo[:, None])
     if np.any(far):
@@ -256,7 +256,7 @@ def shape_at(profile, table: FixedRadiiShape, a: np.ndarray, g_a: np.ndarray | N
     if g_a is None:
         g_a = _g(profile, a, rtol)
     scale = np.abs(np.asarray(g_a, float).ravel()) / np.where(a > 0, a, 1.0)
-    piece = err - np.where(far, table.phi_err[:, np.maximum(k, 0)].T, 0.0)
+    piece = err - np.where(far, table.phi_err[:, np.maximum(k, 0)].T, 0.0) if X.size else err
     bad = inside & ((piece > 0.1 * rtol * (np.abs(out) + scale[:, None])) | ~np.isfinite(out))
     if np.any(bad):
         si, ri = np.nonzero(bad)

@@ -150,3 +150,16 @@ def test_pressure_at_adds_the_edge_term():
     np.testing.assert_array_equal(p[~fin], ref[~fin])      # ±inf at r = a (edge term)
     assert np.sum(~fin) >= 2
     assert np.all(np.abs(p[fin] - ref[fin]) <= RING_PRESSURE_SECOND * sc[fin])
+
+
+def test_contact_inside_the_first_segment():
+    """No table node below the largest contact radius (a coarse table): every ring takes its own
+    piece from r to a, a cone's closed form on a linear table's first segment."""
+    r = np.linspace(0.0, 2e-3, 10)
+    prof = Tabulated(r, 0.05 * r)
+    rings, a = radii(4, 0.8 * r[1])
+    tab, (S, _) = shape(prof, rings, 0.8 * r[1], a)
+    assert tab.knots.size == 0
+    ref = np.array([[float(pressure_cone(ri, ai, np.pi, 0.05)) if ri < ai else 0.0 for ri in rings]
+                    for ai in a])
+    assert np.all(np.abs(S - ref) <= RING_PRESSURE_CLOSED * (np.abs(ref) + scale(prof, a)))
