@@ -466,6 +466,11 @@ TABLE_1000_DISSIPATION = 1e-3
 # path's largest sliding torque. The MDR model's own threshold is 1 % (MDR_ERROR_THRESHOLD);
 # measured up to 0.8 % at the limit (benchmarks/torsion_rings.py --map), 0.1 % in the test.
 MDR_PATH_WITHIN_VALIDITY = 1e-2
+# effects.path.warn_mdr_path, dissipated energy: the criterion's own threshold (1 % of the energy
+# per twist cycle, physics.fretting.MDR_VALID_STICK_RATIOS["energy"] at constant load). Measured
+# at constant force (Hertz, MDR default springs vs Jäger/Masing's closed form) 0.2 % at c/a = 0.99
+# and 2.5 % at 0.93; under a changing force 13-30 % (tests' paths, against the ring solver)
+MDR_PATH_ENERGY_THRESHOLD = 1e-2
 # Torque weights of the ring solver with the edge punch against 2π∫ r² p dr of a flat punch's
 # singular pressure 1/sqrt(a² − r²) (closed form π²a²/2): N^-2.5, measured 8.7e-8 at 200 rings.
 QUADRATURE_EDGE_PUNCH = 1e-6

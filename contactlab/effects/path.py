@@ -26,11 +26,13 @@ from ..foundation.base import (SPACINGS, families_needed, iter_path_normal_state
 from ..loadpath import LoadPath
 from ..loadpath.base import UNITS
 from ..params import check_count, check_flag, check_memory, name_list, step_indices
+from ..physics import fretting as _fr
 from ..physics.torsion import MDR_VALID_STICK_RATIO
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
-           "partial_path_failure", "mdr_path_validity", "warn_mdr_path"]
+           "partial_path_failure", "mdr_path_validity", "warn_mdr_path", "radius_variation",
+           "MDR_PATH_STICK_RATIOS", "MDR_PATH_HELD_RADIUS"]
 
 #: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
 #: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
@@ -419,7 +421,8 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
         raise partial_path_failure(err, path, res, outputs, track["done"], meta,
                                    snaps_done) from None
     if warn and "torsion" in needs and contact.friction is not None:
-        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], stacklevel=4)
+        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"],
+                      energy="dissipated_energy" in outputs, stacklevel=4)
     return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
 
 
@@ -452,78 +455,154 @@ def partial_path_failure(err: ContactlabError, path: LoadPath, res: dict, output
 #: MDR validity twist; the smallest of these limits is used
 _VALIDITY_RADII = 33
 
+#: the quantities :func:`mdr_path_validity` judges and the exact stick ratio ``c/a`` at constant
+#: load below which the MDR model errs by more than 1 % on each (torque: the criterion of
+#: ``contact.torsion(method="mdr")``; energy per twist cycle: the fretting error map's)
+MDR_PATH_STICK_RATIOS: dict[str, float] = {"torque": MDR_VALID_STICK_RATIO,
+                                           "energy": _fr.MDR_VALID_STICK_RATIOS["energy"]}
 
-def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray
-                      ) -> tuple[float, float, float]:
-    """How far a twisted path leaves the validity of the MDR torsion springs.
+#: largest relative range of the contact radius, ``(max a − min a)/max a`` over the twisted steps,
+#: at which :func:`warn_mdr_path` still judges the MDR dissipated energy by the constant-load
+#: criterion. Measured by ``benchmarks/torsion_rings.py --map`` (Hertz, sinusoidal force, 180
+#: steps, exact ring solver at 400 rings): at ±0.1 % force (radius range 6.7e-4) the MDR energy per
+#: twist cycle erred by 0.3-0.5 % within the constant-load energy limit, at ±0.3 % (2.0e-3) by
+#: 1.2 %, and at ±1 % to ±40 % by 1.4-68 % at every twist measured (the error grows as the twist
+#: shrinks against the load change: the moving contact edge dominates the dissipation)
+MDR_PATH_HELD_RADIUS = 1e-3
 
-    The constant-load criterion (:func:`contactlab.effects.torsion.mdr_validity_twist`: the exact
-    twist at which the stick radius falls to ``MDR_VALID_STICK_RATIO * a``) evaluated at the
-    contact radius where it is smallest (for Hertz the smallest radius of the path), compared with
-    the path's largest twist measured from the twist at first contact.
+
+def _twisted(twist: np.ndarray, radius: np.ndarray) -> int:
+    """Index of the first step at which the twist differs from the twist at first contact."""
+    a = np.asarray(radius, float)
+    return int(np.argmax(np.asarray(twist, float) != (float(twist[0]) if a[0] > 0 else 0.0)))
+
+
+def radius_variation(twist: np.ndarray, radius: np.ndarray) -> float:
+    """Relative range of the contact radius while the path is twisted,
+    ``(max a − min a)/max a`` from the step before the twist first changes (0 at constant normal
+    load while twisted, and without contact)."""
+    a = np.asarray(radius, float)
+    held = a[max(_twisted(twist, a) - 1, 0):]
+    top = float(np.max(held, initial=0.0))
+    return float(top - np.min(held)) / top if top > 0 else 0.0
+
+
+def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray,
+                      quantity: str = "torque") -> tuple[float, float, float, float]:
+    """How far a twisted path leaves the constant-load validity of the MDR torsion springs.
+
+    The constant-load criterion of ``quantity`` (the exact twist at which the stick radius falls
+    to :data:`MDR_PATH_STICK_RATIOS` ``[quantity]`` times the contact radius; for ``"torque"`` the
+    criterion of ``contact.torsion(method="mdr")``,
+    :func:`contactlab.effects.torsion.mdr_validity_twist`) evaluated at the contact radius where it
+    is smallest among the radii while the path is twisted (for Hertz the smallest of them),
+    compared with the path's largest twist measured from the twist at first contact. A profile with a wall (flat punch) has the
+    energy limit 0: its MDR energy errs by more than 1 % as soon as anything slips.
+
+    Parameters
+    ----------
+    contact : Contact
+    twist, radius, depth : ndarray
+        Per-step twist (rad), contact radius (m) and depth (m) of the path.
+    quantity : {"torque", "energy"}
 
     Returns
     -------
     ratio : float
-        Largest ``|twist|`` over the validity twist (1 at the limit; 0 without contact).
+        Largest ``|twist|`` over the validity twist (1 at the limit; 0 without contact or twist,
+        ``inf`` for a zero limit).
     twist, limit : float
         That twist and the validity twist, rad.
     radius : float
         The contact radius of the limit, m.
     """
+    if quantity not in MDR_PATH_STICK_RATIOS:
+        raise UnknownNameError(f"quantity={quantity!r} is invalid: allowed are "
+                               f"{tuple(MDR_PATH_STICK_RATIOS)}.")
     a = np.asarray(radius, float)
     live = a > 0
     if not np.any(live):
         return 0.0, 0.0, float("inf"), 0.0
-    from .torsion import mdr_validity_twist
     i0 = int(np.argmax(live))
     phi = np.asarray(twist, float)[live] - (float(twist[i0 - 1]) if i0 else 0.0)
     if not np.any(phi):
         return 0.0, 0.0, float("inf"), 0.0
-    radii, first = np.unique(a[live], return_index=True)
+    # the limit over the contact radii while twisted (from the step before the twist first
+    # changes: a force ramp before the twist does not count)
+    held = live & (np.arange(a.size) >= max(_twisted(twist, a) - 1, 0))
+    radii, first = np.unique(a[held], return_index=True)
     pick = np.unique(np.linspace(0, radii.size - 1, _VALIDITY_RADII).round().astype(int))
     ra = radii[pick]
-    rd = np.asarray(depth, float)[live][first[pick]]
+    rd = np.asarray(depth, float)[held][first[pick]]
     prof = contact.profile
     g_a = prof._g(ra)
     if np.isfinite(prof.wall_radius):
         g_a = np.where(ra >= prof.wall_radius, np.minimum(g_a, rd), g_a)
-    lim = mdr_validity_twist(contact, ra, rd, g_a)
+    if quantity == "torque":
+        from .torsion import mdr_validity_twist
+        lim = mdr_validity_twist(contact, ra, rd, g_a)
+    else:
+        lim = _fr.mdr_validity_twists(prof, contact.moduli.normal, contact.moduli.torsional,
+                                      contact.friction, ra, rd, g_a, (quantity,),
+                                      contact.rtol)[quantity]
     k = int(np.argmin(lim))
     big = float(np.max(np.abs(phi)))
-    return big / float(lim[k]), big, float(lim[k]), float(ra[k])
+    with np.errstate(divide="ignore"):
+        ratio = big / float(lim[k]) if lim[k] > 0 else float("inf")
+    return ratio, big, float(lim[k]), float(ra[k])
 
 
 def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray, *,
-                  stacklevel: int = 2) -> None:
-    """:class:`ValidityWarning` when a twisted path whose normal load changes while it is
-    twisted, run on the MDR springs, leaves their validity (:func:`mdr_path_validity` above 1).
-    Paths at constant normal load while twisted are not judged here (the exact
-    ``contact.twist_history`` serves them and warns on its ``method="mdr"``).
+                  energy: bool = True, stacklevel: int = 2) -> None:
+    """:class:`ValidityWarning` when a twisted path run on the MDR springs leaves their validity
+    for its torque or (``energy=True``, when the dissipated energy is an output) its dissipated
+    energy; the message states both judgements.
 
-    Grounded by ``benchmarks/torsion_rings.py --map`` (Hertz and cone, sinusoidal and gait-like
-    normal force, 180 steps, against the exact ring solver at 400 rings): the MDR torque erred by
-    at most 0.8 % of the path's largest sliding torque up to the limit, by 0.6-2.1 % at 1.06-1.7
-    times it, 9-12 % at 5.3-6.4 times it and 21-24 % at 14-17 times it. The criterion judges the
-    torque only: the MDR energy dissipated per twist cycle under a sinusoidal force was off by
-    12-31 % even within the limit (small twists, where the contact edge moving under the twisted
-    surface dominates the dissipation).
+    - Torque: :func:`mdr_path_validity` above 1, at constant or changing normal load (at constant
+      load the criterion of ``contact.torsion(method="mdr")`` and ``twist_history``).
+    - Energy: at a normal load held while twisted (contact radius range at most
+      :data:`MDR_PATH_HELD_RADIUS`) :func:`mdr_path_validity` with ``quantity="energy"`` above 1
+      (the constant-load criterion of the fretting functions); with a changing normal load
+      whenever the path is twisted, since no twist amplitude kept the MDR energy within 1 %.
+
+    Grounded by ``benchmarks/torsion_rings.py --map`` (Hertz and cone, constant, sinusoidal and
+    gait-like normal force, 180 steps, against the exact ring solver at 400 rings): the MDR torque
+    erred by at most 0.8 % of the path's largest sliding torque up to the torque limit, by
+    0.6-2.1 % at 1.06-1.7 times it, 9-12 % at 5.3-6.4 times it and 21-24 % at 14-17 times it.
+    The MDR energy dissipated per twist cycle under a changing force was off by 1.4-68 % at every
+    twist amplitude (force ±1 % to ±40 %), also well within the torque limit.
     """
-    a = np.asarray(radius, float)
-    j = int(np.argmax(np.asarray(twist, float) != (float(twist[0]) if a[0] > 0 else 0.0)))
-    held = a[max(j - 1, 0):]
-    if np.all(held == held[0]):         # constant normal load while twisted: not judged here
-        return
+    j = _twisted(twist, radius)
+    if j == 0 and float(np.asarray(twist, float)[0]) == 0.0:
+        return          # never twisted
     ratio, big, lim, a = mdr_path_validity(contact, twist, radius, depth)
-    if ratio > 1.0:
-        warnings.warn(
-            f"MDR torsion springs outside their validity on this path: twist {big:.4g} rad is "
-            f"{ratio:.3g} times {lim:.4g} rad, the twist at which the exact stick radius falls "
-            f"below c/a={MDR_VALID_STICK_RATIO} at the contact radius {a:.4g} m. Measured "
-            "MDR torque errors on twisted paths with a changing normal force, of the largest "
-            "sliding torque: up to 0.8 % within this limit, 0.6-2.1 % at 1.06-1.7 times it, "
-            "9-12 % at 5.3-6.4 times it, 21-24 % at 14-17 times it. Use method='exact'.",
-            ValidityWarning, stacklevel=stacklevel)
+    torque_bad = ratio > 1.0
+    parts = [f"torque: twist {big:.4g} rad is {ratio:.3g} times {lim:.4g} rad, the twist at "
+             f"which the exact stick radius falls below c/a={MDR_VALID_STICK_RATIO} at the contact "
+             f"radius {a:.4g} m (" + ("outside" if torque_bad else "within") + " the torque "
+             "limit; measured MDR torque errors of the largest sliding torque: up to 0.8 % within "
+             "it, 0.6-2.1 % at 1.06-1.7 times it, 9-12 % at 5.3-6.4 times it, 21-24 % at 14-17 "
+             "times it)"]
+    energy_bad = False
+    if energy:
+        var = radius_variation(twist, radius)
+        if var <= MDR_PATH_HELD_RADIUS:
+            e_ratio, _, e_lim, e_a = mdr_path_validity(contact, twist, radius, depth, "energy")
+            energy_bad = e_ratio > 1.0
+            parts.append(f"dissipated energy: {e_ratio:.3g} times {e_lim:.4g} rad, the twist at "
+                         "which the exact stick radius falls below c/a="
+                         f"{MDR_PATH_STICK_RATIOS['energy']} (beyond it the MDR energy per twist "
+                         "cycle errs by more than 1 %)")
+        else:
+            energy_bad = big > 0.0
+            parts.append(f"dissipated energy: outside, the contact radius changes by "
+                         f"{100 * var:.3g} % while twisted (measured MDR energy per twist cycle "
+                         "off by 1.4-68 % under a normal force changing by ±1 % to ±40 %, at "
+                         "every twist amplitude, also within the torque limit)")
+    if torque_bad or energy_bad:
+        warnings.warn("MDR torsion springs outside their validity on this path. "
+                      + "; ".join(parts) + ". Use method='exact'.",
+                      ValidityWarning, stacklevel=stacklevel)
 
 
 def _no_contact_controls(path, needs):
