@@ -31,8 +31,8 @@ from ..physics.torsion import MDR_VALID_STICK_RATIO
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
-           "partial_path_failure", "mdr_path_validity", "warn_mdr_path", "radius_variation",
-           "MDR_PATH_STICK_RATIOS", "MDR_PATH_HELD_RADIUS"]
+           "partial_path_failure", "mdr_path_validity", "warn_mdr_path", "force_variation",
+           "MDR_PATH_STICK_RATIOS", "MDR_PATH_HELD_FORCE"]
 
 #: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
 #: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
@@ -421,7 +421,7 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
         raise partial_path_failure(err, path, res, outputs, track["done"], meta,
                                    snaps_done) from None
     if warn and "torsion" in needs and contact.friction is not None:
-        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"],
+        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], res["force"],
                       energy="dissipated_energy" in outputs, stacklevel=4)
     return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
 
@@ -461,14 +461,14 @@ _VALIDITY_RADII = 33
 MDR_PATH_STICK_RATIOS: dict[str, float] = {"torque": MDR_VALID_STICK_RATIO,
                                            "energy": _fr.MDR_VALID_STICK_RATIOS["energy"]}
 
-#: largest relative range of the contact radius, ``(max a − min a)/max a`` over the twisted steps,
+#: largest relative range of the normal force, ``(max F − min F)/max F`` over the twisted steps,
 #: at which :func:`warn_mdr_path` still judges the MDR dissipated energy by the constant-load
 #: criterion. Measured by ``benchmarks/torsion_rings.py --map`` (Hertz, sinusoidal force, 180
-#: steps, exact ring solver at 400 rings): at ±0.1 % force (radius range 6.7e-4) the MDR energy per
-#: twist cycle erred by 0.3-0.5 % within the constant-load energy limit, at ±0.3 % (2.0e-3) by
+#: steps, exact ring solver at 400 rings): at ±0.1 % force (range 2e-3) the MDR energy per twist
+#: cycle erred by 0.3-0.5 % within the constant-load energy limit, at ±0.3 % (range 6e-3) by
 #: 1.2 %, and at ±1 % to ±40 % by 1.4-68 % at every twist measured (the error grows as the twist
 #: shrinks against the load change: the moving contact edge dominates the dissipation)
-MDR_PATH_HELD_RADIUS = 1e-3
+MDR_PATH_HELD_FORCE = 2e-3
 
 
 def _twisted(twist: np.ndarray, radius: np.ndarray) -> int:
@@ -477,14 +477,13 @@ def _twisted(twist: np.ndarray, radius: np.ndarray) -> int:
     return int(np.argmax(np.asarray(twist, float) != (float(twist[0]) if a[0] > 0 else 0.0)))
 
 
-def radius_variation(twist: np.ndarray, radius: np.ndarray) -> float:
-    """Relative range of the contact radius while the path is twisted,
-    ``(max a − min a)/max a`` from the step before the twist first changes (0 at constant normal
-    load while twisted, and without contact)."""
-    a = np.asarray(radius, float)
-    held = a[max(_twisted(twist, a) - 1, 0):]
-    top = float(np.max(held, initial=0.0))
-    return float(top - np.min(held)) / top if top > 0 else 0.0
+def force_variation(twist: np.ndarray, radius: np.ndarray, force: np.ndarray) -> float:
+    """Relative range of the normal force while the path is twisted,
+    ``(max F − min F)/max |F|`` from the step before the twist first changes (0 at constant normal
+    force while twisted, and without force)."""
+    f = np.asarray(force, float)[max(_twisted(twist, radius) - 1, 0):]
+    top = float(np.max(np.abs(f), initial=0.0))
+    return float(np.max(f) - np.min(f)) / top if top > 0 else 0.0
 
 
 def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray,
@@ -552,16 +551,16 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
     return ratio, big, float(lim[k]), float(ra[k])
 
 
-def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray, *,
-                  energy: bool = True, stacklevel: int = 2) -> None:
+def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray,
+                  force: np.ndarray, *, energy: bool = True, stacklevel: int = 2) -> None:
     """:class:`ValidityWarning` when a twisted path run on the MDR springs leaves their validity
     for its torque or (``energy=True``, when the dissipated energy is an output) its dissipated
     energy; the message states both judgements.
 
     - Torque: :func:`mdr_path_validity` above 1, at constant or changing normal load (at constant
       load the criterion of ``contact.torsion(method="mdr")`` and ``twist_history``).
-    - Energy: at a normal load held while twisted (contact radius range at most
-      :data:`MDR_PATH_HELD_RADIUS`) :func:`mdr_path_validity` with ``quantity="energy"`` above 1
+    - Energy: at a normal force held while twisted (relative range at most
+      :data:`MDR_PATH_HELD_FORCE`) :func:`mdr_path_validity` with ``quantity="energy"`` above 1
       (the constant-load criterion of the fretting functions); with a changing normal load
       whenever the path is twisted, since no twist amplitude kept the MDR energy within 1 %.
 
@@ -585,17 +584,18 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
              "times it)"]
     energy_bad = False
     if energy:
-        var = radius_variation(twist, radius)
-        if var <= MDR_PATH_HELD_RADIUS:
+        var = force_variation(twist, radius, force)
+        if var <= MDR_PATH_HELD_FORCE:
             e_ratio, _, e_lim, e_a = mdr_path_validity(contact, twist, radius, depth, "energy")
             energy_bad = e_ratio > 1.0
-            parts.append(f"dissipated energy: {e_ratio:.3g} times {e_lim:.4g} rad, the twist at "
+            parts.append("dissipated energy: " + ("outside" if energy_bad else "within")
+                         + f", the twist is {e_ratio:.3g} times {e_lim:.4g} rad, the twist at "
                          "which the exact stick radius falls below c/a="
                          f"{MDR_PATH_STICK_RATIOS['energy']} (beyond it the MDR energy per twist "
                          "cycle errs by more than 1 %)")
         else:
             energy_bad = big > 0.0
-            parts.append(f"dissipated energy: outside, the contact radius changes by "
+            parts.append(f"dissipated energy: outside, the normal force changes by "
                          f"{100 * var:.3g} % while twisted (measured MDR energy per twist cycle "
                          "off by 1.4-68 % under a normal force changing by ±1 % to ±40 %, at "
                          "every twist amplitude, also within the torque limit)")
