@@ -413,10 +413,19 @@ RINGS_CONSTANT_LOAD_FINE = 2e-5
 #: full sliding, torque weights against 2π∫μp r² dr (Hertz closed form): error falls as N^-2.5,
 #: measured 3.3e-7 at 200 rings
 RINGS_FULL_SLIDING = 1e-6
-#: no slip with a growing contact, incremental stiffness against (16/3) G_t a³: each increment
-#: is a flat punch of the current radius, whose singular edge traction the hats miss; with nodes
-#: at the contact radii measured 5.5e-3 at 200 rings (1.35e-2 with the edge between nodes)
+#: no slip with a growing contact, incremental stiffness against (16/3) G_t a³ (and with a
+#: shrinking one, M against (16/3) G_t a³ φ): each increment is a flat punch of the current
+#: radius, whose singular edge traction the hats miss (first order); with nodes and density jumps
+#: at the contact radii measured 4.2e-3 at 200 rings, both (5.5e-3 without the jumps, 1.35e-2
+#: with the edge between nodes)
 RINGS_NO_SLIP_GROWING = 1e-2
+#: full sliding at every step of a changing load (Hertz), torque against (3π/16) μ F a: the
+#: contact edge is an inner node, where the density jumps; measured 6.7e-7 at 200 rings (3.7e-4
+#: without the jump, the density's jump at the edge smeared over the next ring)
+RINGS_FULL_SLIDING_VARYING = 5e-6
+#: stick radius at constant load against twist_history, in ring widths of the default 200 rings
+#: (the boundary is placed inside its ring by the square-root approach of τ to μp): measured 0.54
+RINGS_STICK_RADIUS = 1.0
 #: flat punch (singular edge pressure), 200 rings with the edge punch against the exact
 #: twist_history (monotone, oscillating, irregular): measured 2.0e-6 of the sliding torque on a
 #: 120-step history (5e-2 without the edge punch)

@@ -108,7 +108,7 @@ def _normal_states(contact, path, outputs, n_total):
 
 
 def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, align=True,
-         edge=True, ring_table=True):
+         edge=True, jumps=True, ring_table=True):
     from .path import SERIES, PathResult, _progress, partial_path_failure
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
@@ -126,8 +126,10 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     n_rings = DEFAULT_N_RINGS if n_rings is None else check_count("n_rings", n_rings)
     n_total = path.n_steps
     longest = max((_longest_leaf(s) for s in path.segments), default=0)
-    # nodes at the contact radii add up to ALIGN_MAX_FACTOR - 1 times the rings, the edge punch 1
-    n_max = int(np.ceil(_tr.ALIGN_MAX_FACTOR * n_rings)) + 1 if align else n_rings + 1
+    # nodes at the contact radii add up to ALIGN_MAX_FACTOR - 1 times the rings, each with a jump
+    # point, the edge punch 1
+    n_max = (int(np.ceil((2 * _tr.ALIGN_MAX_FACTOR - 1) * n_rings)) + 1 if align
+             else n_rings + 1)
     check_memory("simulate(method='exact')", exact_memory(n_total, longest, n_max),
                  f"{n_total} steps, longest segment {longest} steps, {n_rings} rings "
                  f"(up to {n_max} with the nodes at the contact radii)")
@@ -141,7 +143,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     wall = contact.profile.wall_radius
     edge_punch = bool(edge and np.isfinite(wall) and a_max >= wall * (1.0 - 1e-12))
     rings = Rings(contact.profile, contact.moduli, contact.friction, a_max, n_springs=n_rings,
-                  spacing=spacing, rtol=contact.rtol, contact_radii=radii, edge_punch=edge_punch)
+                  spacing=spacing, rtol=contact.rtol, contact_radii=radii, edge_punch=edge_punch,
+                  jumps=jumps)
     res = {k: np.zeros(n_total) for k in SERIES if k != "gross_sliding"}
     res["gross_sliding"] = np.zeros(n_total, bool)
     work = np.zeros(n_total)
@@ -247,6 +250,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
             bar.close()
         meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_uniform,
                 "rings": rings.n_springs, "aligned": bool(align), "edge_punch": edge_punch,
+                "jump_nodes": int(rings.jumps.size),
                 "n_springs": None, "spacing": spacing, "foundation": repr(rings),
                 "approximate": False, "iterations": iters}
         raise partial_path_failure(err, path, res, outputs, done, meta,
@@ -255,6 +259,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
         bar.close()
     meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_uniform,
             "rings": rings.n_springs, "aligned": bool(align), "edge_punch": edge_punch,
+            "jump_nodes": int(rings.jumps.size),
             "n_springs": None, "spacing": spacing, "foundation": repr(rings),
             "approximate": False, "iterations": iters,
             "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},

@@ -26,6 +26,9 @@ DEFAULT_N_RINGS = 200
 #: with the edge punch (contact pinned at a wall): its collocation point sits this fraction of
 #: the last ring's width inside the edge (the ring's midpoint is the other point of that ring)
 EDGE_POINT = 0.1
+#: at a jump node (a contact radius inside the grid): the collocation point of its half-hat sits
+#: this fraction of the ring outside the node (the ring's midpoint is the other point)
+JUMP_POINT = 0.25
 
 
 @dataclass
@@ -57,13 +60,18 @@ class Rings(Foundation):
     the edge-refined spacing, whose fine cells sit at the largest radius only).
     ``contact_radii`` (m, optional): the contact radii of the path's steps; nodes are added at
     them (:func:`contactlab.physics.torsion_rings.aligned_grid`) so that the moving contact edge
-    sits on a node. ``n_uniform`` keeps the requested ring count, ``n_springs`` the actual one.
+    sits on a node; with ``jumps=True`` (default) the punch density may jump at those nodes
+    (:func:`contactlab.physics.torsion_rings.jump_traction`), as a sliding contact edge needs.
+    ``n_uniform`` keeps the requested ring count, ``n_springs`` the actual one; ``jumps`` holds
+    the jump node indices after the build. Collocation points are sorted by radius.
     """
 
     def __init__(self, profile, moduli, friction, radius, *, n_springs=None, spacing="uniform",
-                 needs=("torsion",), rtol=1e-10, contact_radii=None, edge_punch=False) -> None:
+                 needs=("torsion",), rtol=1e-10, contact_radii=None, edge_punch=False,
+                 jumps=True) -> None:
         self._contact_radii = None if contact_radii is None else np.asarray(contact_radii, float)
         self.edge_punch = bool(edge_punch)
+        self._with_jumps = bool(jumps)
         super().__init__(profile, moduli, friction, radius,
                          n_springs=DEFAULT_N_RINGS if n_springs is None else n_springs,
                          spacing=spacing, needs=needs, rtol=rtol)
@@ -74,10 +82,16 @@ class Rings(Foundation):
             self.boundaries = _tr.aligned_grid(self.boundaries, self._contact_radii)
             self.n_springs = self.boundaries.size - 1
         b = self.boundaries
-        self.points = 0.5 * (b[1:] + b[:-1])
+        self.jumps = (_tr.radius_nodes(b, self._contact_radii)
+                      if self._with_jumps and self._contact_radii is not None
+                      else np.zeros(0, np.int64))
+        h = np.diff(b)
+        pts = [0.5 * (b[1:] + b[:-1]), b[self.jumps] + JUMP_POINT * h[self.jumps]]
         if self.edge_punch:     # one more point, in the last ring, for the edge punch
-            self.points = np.append(self.points, b[-1] - EDGE_POINT * (b[-1] - b[-2]))
-        mats = _tr.influence(b, self.points, self.moduli.torsional, edge_punch=self.edge_punch)
+            pts.append([b[-1] - EDGE_POINT * h[-1]])
+        self.points = np.sort(np.concatenate(pts))
+        mats = _tr.influence(b, self.points, self.moduli.torsional, edge_punch=self.edge_punch,
+                             jumps=self.jumps)
         self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
         self.B, self.lu = mats["B"], mats["lu"]
 

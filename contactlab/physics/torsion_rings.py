@@ -35,7 +35,12 @@ Two additions to the basis keep the edge of the contact accurate: nodes at the p
 radii (:func:`aligned_grid`), so the traction of the last ring in contact ends at ``a(t)``, and
 for a contact pinned at a wall the rigid punch of the wall radius itself (``edge_punch=True``:
 ``w = δ(t − b_N)``, one more collocation point), which carries the square-root singular edge
-traction of a flat punch that continuous densities miss.
+traction of a flat punch that continuous densities miss. At the contact-radius nodes inside the
+grid the density may jump (``jumps``: a falling half-hat on the ring outside the node, one more
+collocation point a quarter into that ring): a sliding edge has ``τ = μp`` up to ``a`` and zero
+beyond, whose density ``w`` ends with a jump at ``a`` (``w(a⁻) = W(a) ≠ 0``), which a continuous
+density can only smear over the next ring (the outer node ``b_N`` had that freedom already: its
+hat only rises).
 
 All functions are pure: arrays in, arrays out.
 """
@@ -50,7 +55,7 @@ from ..errors import ConvergenceError
 
 __all__ = ["hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence",
            "box_step", "stick_radius", "slip_density", "aligned_grid", "edge_punch_traction",
-           "GAUSS_NODES",
+           "jump_traction", "jump_torque", "jump_psi", "radius_nodes", "GAUSS_NODES",
            "MAX_PIVOTS", "ALIGN_GAP", "ALIGN_MERGE", "ALIGN_MAX_FACTOR"]
 
 #: Gauss–Legendre nodes per ring for the energy matrix: ``x² Ψ_j Ψ_k`` is a polynomial of degree
@@ -179,12 +184,45 @@ def hat_psi(b: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.where(fall, 0.5 * (right - x) ** 2 / hr, v)
 
 
+def radius_nodes(b: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """Indices of the interior nodes of ``b`` (not 0, not the last) that are contact radii."""
+    idx = np.flatnonzero(np.isin(b, np.asarray(radii, float)))
+    return idx[(idx > 0) & (idx < b.size - 1)]
+
+
+def jump_traction(b: np.ndarray, r: np.ndarray, G_t: float, jumps: np.ndarray) -> np.ndarray:
+    """Traction (Pa per rad/m) at ``r`` of the falling half-hat ``w = (b_{j+1} − t)/h_j`` on the
+    ring outside each jump node ``b_j`` (``j`` in ``jumps``), shape (r, jumps)."""
+    T1, Tt = _ring_traction(b, r, G_t)
+    j = np.asarray(jumps, int)
+    return (b[1:][j] * T1[:, j] - Tt[:, j]) / np.diff(b)[j]
+
+
+def jump_torque(b: np.ndarray, G_t: float, jumps: np.ndarray) -> np.ndarray:
+    """Torque of each falling half-hat of :func:`jump_traction`, N·m per rad/m."""
+    j = np.asarray(jumps, int)
+    lo, hi = b[j], b[j + 1]
+    m1 = 4.0 / 3.0 * G_t * (hi ** 4 - lo ** 4)
+    mt = 16.0 / 15.0 * G_t * (hi ** 5 - lo ** 5)
+    return (hi * m1 - mt) / (hi - lo)
+
+
+def jump_psi(b: np.ndarray, x: np.ndarray, jumps: np.ndarray) -> np.ndarray:
+    """``Ψ(x) = ∫_x^∞ w dt`` of each falling half-hat at ``x``, shape (x, jumps)."""
+    j = np.asarray(jumps, int)
+    lo, hi = b[j][None, :], b[j + 1][None, :]
+    h = hi - lo
+    x = np.asarray(x, float)[:, None]
+    return np.where(x <= lo, 0.5 * h, np.where(x < hi, 0.5 * (hi - x) ** 2 / h, 0.0))
+
+
 def energy_matrix(b: np.ndarray, G_t: float, b_other: np.ndarray | None = None,
-                  edge_punch: bool = False) -> np.ndarray:
+                  edge_punch: bool = False, jumps: np.ndarray | None = None) -> np.ndarray:
     """``K_jk = 16 G_t ∫ x² Ψ_j Ψ_k dx`` (hats of ``b`` against hats of ``b_other``), exact Gauss.
 
-    ``edge_punch=True`` appends the rigid punch of radius ``b[-1]`` (``w = δ(t − b_N)``,
-    ``Ψ = 1`` on ``[0, b_N]``) as a last basis function (not with ``b_other``).
+    ``jumps`` (node indices) appends the falling half-hats of :func:`jump_traction`, then
+    ``edge_punch=True`` the rigid punch of radius ``b[-1]`` (``w = δ(t − b_N)``, ``Ψ = 1`` on
+    ``[0, b_N]``) as a last basis function (neither with ``b_other``).
     """
     nodes = b if b_other is None else np.union1d(b, b_other)
     h = np.diff(nodes)
@@ -192,6 +230,8 @@ def energy_matrix(b: np.ndarray, G_t: float, b_other: np.ndarray | None = None,
     X = (nodes[:-1, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]).ravel()
     W = (0.5 * wg[None, :] * h[:, None]).ravel() * X * X
     P = hat_psi(b, X)
+    if jumps is not None and len(jumps):
+        P = np.hstack([P, jump_psi(b, X, jumps)])
     if edge_punch:
         P = np.hstack([P, np.ones((X.size, 1))])
     Q = P if b_other is None else hat_psi(b_other, X)
@@ -208,13 +248,14 @@ def edge_punch_traction(b: np.ndarray, r: np.ndarray, G_t: float) -> np.ndarray:
                                                                           1e-300)), 0.0)
 
 
-def influence(b: np.ndarray, r: np.ndarray, G_t: float, edge_punch: bool = False
-              ) -> dict[str, np.ndarray]:
+def influence(b: np.ndarray, r: np.ndarray, G_t: float, edge_punch: bool = False,
+              jumps: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Matrices of the ring grid ``b`` (nodes, m) with collocation points ``r`` (one per ring).
 
-    ``edge_punch=True`` adds the rigid punch of radius ``b[-1]`` to the basis (``r`` then has one
-    point more than there are rings): it carries the square-root singular edge traction of a
-    contact pinned at a wall (flat punch), which the continuous hat densities cannot represent.
+    ``jumps`` (indices of interior nodes) lets the punch density jump at those nodes (a falling
+    half-hat per node, one more point each), ``edge_punch=True`` adds the rigid punch of radius
+    ``b[-1]`` to the basis (one more point): it carries the square-root singular edge traction of
+    a contact pinned at a wall (flat punch), which the continuous hat densities cannot represent.
 
     Returns
     -------
@@ -224,8 +265,11 @@ def influence(b: np.ndarray, r: np.ndarray, G_t: float, edge_punch: bool = False
         factors, to map point tractions back to punch densities).
     """
     B = hat_traction(b, r, G_t)
-    K = energy_matrix(b, G_t, edge_punch=edge_punch)
+    K = energy_matrix(b, G_t, edge_punch=edge_punch, jumps=jumps)
     m = hat_torque(b, G_t)
+    if jumps is not None and len(jumps):
+        B = np.hstack([B, jump_traction(b, r, G_t, jumps)])
+        m = np.append(m, jump_torque(b, G_t, jumps))
     if edge_punch:
         B = np.hstack([B, edge_punch_traction(b, r, G_t)[:, None]])
         m = np.append(m, 16.0 / 3.0 * G_t * float(b[-1]) ** 3)

@@ -3,12 +3,14 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.errors import NotSupportedError, ParameterError, UnknownNameError
+from contactlab.errors import (NotSupportedError, ParameterError, UnknownNameError,
+                               ValidityWarning)
 from tests.reference import hertz
 from tests.reference.torsion_rings_bruteforce import torque_history
 from tests.tolerances import (RINGS_CONSTANT_LOAD, RINGS_CONSTANT_LOAD_FINE,
                               RINGS_DISSIPATION_800_STEPS, RINGS_FULL_SLIDING,
-                              RINGS_FLAT_PUNCH, RINGS_NO_SLIP_GROWING, RINGS_VS_BRUTE_FORCE,
+                              RINGS_FULL_SLIDING_VARYING, RINGS_FLAT_PUNCH,
+                              RINGS_NO_SLIP_GROWING, RINGS_STICK_RADIUS, RINGS_VS_BRUTE_FORCE,
                               RINGS_WORK_BALANCE)
 
 R, MU, F = 0.01, 0.3, 10.0
@@ -149,7 +151,9 @@ def test_same_call_bit_identical_and_errors():
     shift = cl.LoadPath.from_arrays(force=[5.0, 6.0], displacement=[1e-7, 2e-7])
     with pytest.raises(NotSupportedError, match="method='mdr'"):
         c.simulate(shift, method="exact")
-    mdr = c.simulate(path, method="mdr")
+    # the force changes while twisted: the MDR springs' dissipated energy is outside validity
+    with pytest.warns(ValidityWarning, match="dissipated energy: outside"):
+        mdr = c.simulate(path, method="mdr")
     assert mdr.meta.get("method", "mdr") != "exact"
 
 
@@ -172,7 +176,8 @@ def test_spring_arguments_on_the_ring_solver_raise(arg):
     for method in (None, "exact"):      # the default of a twisted path is the ring solver
         with pytest.raises(ParameterError, match=rf"{name}={value!r} applies to method='mdr'"):
             c.simulate(path, method=method, **arg)
-    r = c.simulate(path, method="mdr", **arg)     # where they apply, they are used
+    with pytest.warns(ValidityWarning, match="dissipated energy: outside"):  # force changes
+        r = c.simulate(path, method="mdr", **arg)     # where they apply, they are used
     assert r.meta.get("method") != "exact"
     assert r.meta["spacing"] == arg.get("spacing", "edge")
     assert r.meta["n_springs"] == arg.get("n_springs", r.meta["n_springs"])
@@ -281,3 +286,50 @@ def test_table_ring_pressures_from_running_sums(monkeypatch, kind):
     small = c.simulate(path, n_rings=60)
     for k in fast.data:
         assert np.array_equal(fast.data[k], small.data[k]), k
+
+
+def test_no_slip_with_a_shrinking_contact_is_the_rigid_punch_of_the_current_radius():
+    """No slip, the twist starting at the largest contact: every point of the current contact has
+    turned rigidly with the twist since, so M = (16/3) G_t a³ φ at every step (the points leaving
+    the contact release their traction)."""
+    c = contact(mu=None)
+    force = np.linspace(10.0, 2.0, 30)
+    a = hertz.radius_of_force(force, R, E_STAR)
+    phi = np.linspace(1e-4, 3e-3, 30)
+    r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact")
+    ratio = r.torque / (16.0 / 3.0 * c.moduli.torsional * a ** 3 * phi)
+    assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP_GROWING
+
+
+def test_full_sliding_at_every_step_of_a_changing_load():
+    """Twist increments far beyond full sliding, with the force changing every step and the twist
+    reversing halfway: τ = ±μp at every point and M = ±(3π/16) μ F a (Hertz) at every step; the
+    contact edge is an inner node of the rings at most steps (the jump of the density there)."""
+    c = contact()
+    n = 20
+    t = np.arange(1, n + 1) / n
+    force = F * (1 + 0.4 * np.sin(2 * np.pi * t + 0.3))
+    a = hertz.radius_of_force(force, R, E_STAR)
+    s = MU * F / (c.moduli.torsional * a.min() ** 2)
+    phi = np.concatenate([50 * s * np.arange(1, 11), 50 * s * (10 - 2 * np.arange(1, 11))])
+    r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact",
+                   snapshots=list(range(n)))
+    sense = np.where(np.arange(n) < 10, 1.0, -1.0)
+    M_s = 3 * np.pi / 16 * MU * force * a
+    assert np.max(np.abs(r.torque / (sense * M_s) - 1)) < RINGS_FULL_SLIDING_VARYING
+    assert r.meta["jump_nodes"] > 0
+    for k in range(n):
+        snap = r.snapshots[k]
+        p0 = 3 * force[k] / (2 * np.pi * a[k] ** 2)
+        p = p0 * np.sqrt(np.clip(1 - (snap["r"] / a[k]) ** 2, 0, None))
+        assert np.allclose(snap["shear_torsion"], sense[k] * MU * p, rtol=0, atol=1e-9 * MU * p0)
+
+
+def test_stick_radius_follows_the_exact_twist_history():
+    """Stick radius at constant load against Jäger/Masing's (twist_history), within a ring."""
+    c = contact()
+    a, s, _ = scales(c)
+    for name, phi in histories(s).items():
+        ref = c.twist_history(twist=phi, force=F).stick_radius
+        r = c.simulate(at_constant_load(phi), method="exact")
+        assert np.max(np.abs(r.stick_radius[2:] - ref)) < RINGS_STICK_RADIUS * a / 200, name

@@ -97,3 +97,53 @@ def test_edge_punch_carries_the_singular_sliding_traction():
         assert np.all(g > 0)
         errs.append(abs(g @ (1 / np.sqrt(a * a - r * r)) / (np.pi ** 2 * a * a / 2) - 1))
     assert errs[1] < QUADRATURE_EDGE_PUNCH and errs[0] / errs[1] > 4.0 ** 2
+
+
+def half_hat(j, t):
+    """Falling half-hat outside node B[j] (w = (B[j+1] − t)/(B[j+1] − B[j]) on that ring)."""
+    lo, hi = B[j], B[j + 1]
+    return (hi - t) / (hi - lo) if lo <= t <= hi else 0.0
+
+
+@pytest.mark.parametrize("r", [0.1e-4, 0.42e-4, 0.79e-4])
+def test_jump_half_hat_traction_torque_and_energy_match_quadrature(r):
+    """The half-hats that let the density jump at a node: traction by the punch superposition,
+    torque as the moment of that traction, energy by the punch energy (16/3) G min(t, s)³."""
+    jumps = np.array([1, 2])
+    got = tr.jump_traction(B, np.array([r]), G, jumps)[0]
+    for col, j in zip(got, jumps):
+        f = lambda t: half_hat(j, t) / np.sqrt(t * t - r * r)
+        want = 4 * G / np.pi * r * (quad(f, max(B[j], r), B[j + 1], limit=200)[0]
+                                    if B[j + 1] > r else 0.0)
+        assert col == pytest.approx(want, rel=QUADRATURE * 10, abs=QUADRATURE * abs(want))
+    m = tr.jump_torque(B, G, jumps)
+    for mj, j in zip(m, jumps):
+        assert mj == pytest.approx(quad(lambda t: 16 / 3 * G * t ** 3 * half_hat(j, t),
+                                        B[j], B[j + 1])[0], rel=1e-12)
+    K = tr.energy_matrix(B, G, jumps=jumps)
+    n = B.size - 1
+    f = lambda s, t: half_hat(1, t) * hat(2, s) * 16 / 3 * G * min(t, s) ** 3
+    val = sum(dblquad(f, B[1], B[2], s0, s1, epsabs=0, epsrel=1e-11)[0]
+              for s0, s1 in zip(B[2:-1], B[3:]))
+    assert K[n, 2] == pytest.approx(val, rel=1e-8) and K[2, n] == pytest.approx(K[n, 2], rel=1e-14)
+
+
+def test_jump_at_an_inner_contact_edge_carries_the_sliding_traction():
+    """Full sliding of a Hertz contact whose edge a is an inner node of the grid (a changing
+    load): with the jump at a the torque weights reproduce 2π∫ r² p dr = π²a³/8 (p = sqrt(1 −
+    r²/a²)) at order > 2; a continuous density smears the jump of w at a over the next ring."""
+    a, errs, plain = 1e-3, [], []
+    for n in (50, 200):
+        b = np.linspace(0.0, a, n + 1)
+        b = np.union1d(b * 1.3, [a])                  # grid to 1.3 a, node at a
+        j = tr.radius_nodes(b, [a])
+        assert b[j[0]] == a and j.size == 1
+        mid = 0.5 * (b[1:] + b[:-1])
+        for jumps, out in ((j, errs), (None, plain)):
+            r = np.sort(np.append(mid, b[j] + 0.25 * (b[j + 1] - b[j]))) if jumps is not None \
+                else mid
+            g = tr.influence(b, r, G, jumps=jumps)["g"]
+            p = np.sqrt(np.clip(1 - (r / a) ** 2, 0, None))
+            out.append(abs(g @ p / (np.pi ** 2 * a ** 3 / 8) - 1))
+    assert errs[1] < QUADRATURE_EDGE_PUNCH and errs[0] / errs[1] > 4.0 ** 2
+    assert plain[1] > 10 * errs[1]
