@@ -7,14 +7,16 @@ the error of the MDR spring model when the normal force changes (issue 18).
    observed order.
 2. The 180-step varying-load path (Hertz, force 10 N ± 40 % at two cycles, twist oscillating in
    partial slip at three cycles): time and torque error of ``method="exact"`` at several ring
-   counts (nodes at the path's contact radii, and the uniform grid without them) and of
+   counts (nodes and density jumps at the path's contact radii; the nodes without the jumps; the
+   uniform grid without either) and of
    ``method="mdr"`` (2000 springs), all against an exact run at 1600 rings, side by side in one
    run.
 3. MDR-vs-exact error map under changing normal load (Hertz and cone; constant, sinusoidal and a
-   gait-like double-hump force): torque error (of the instantaneous sliding torque and of the
-   path's), dissipated energy of the last twist cycle, smallest stick radius, and the path's
-   largest twist over the MDR validity twist (``effects.path.mdr_path_validity``; the MDR run
-   warns above 1).
+   gait-like double-hump force; for Hertz also sinusoidal forces of ±0.1 % to ±20 %): torque
+   error (of the instantaneous sliding torque and of the path's), dissipated energy of the last
+   twist cycle, smallest stick radius, the path's largest twist over the MDR validity twists of
+   the torque and of the energy (``effects.path.mdr_path_validity``), the force's relative range
+   while twisted, and which judgements of the MDR run's warning fired.
 
 Writes ``benchmarks/results/torsion_rings.csv`` and prints the tables.
 Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3;
@@ -140,19 +142,24 @@ def speed():
     ref = c.simulate(path, method="exact", n_rings=1600).torque
     rows = []
     for method, n, align in (("exact", 100, True), ("exact", 150, True), ("exact", 200, True),
-                             ("exact", 400, True), ("exact", 800, True), ("exact", 100, False),
+                             ("exact", 400, True), ("exact", 800, True),
+                             ("exact", 100, "no jumps"), ("exact", 200, "no jumps"),
+                             ("exact", 400, "no jumps"), ("exact", 100, False),
                              ("exact", 200, False), ("exact", 400, False), ("mdr", None, None)):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             if method == "mdr":
                 tt, r = timed(lambda: c.simulate(path, method="mdr"))
-            elif align:
+            elif align is True:
                 tt, r = timed(lambda: c.simulate(path, method="exact", n_rings=n),
                               1 if n > 400 else 3)
+            elif align:     # nodes at the contact radii, the density continuous there
+                tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, jumps=False))
             else:       # the grid before issue 18's third part: contact edge between nodes
                 tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, align=False))
         rows.append({"part": "180-step varying load",
-                     "case": "hertz sinusoid" + ("" if align in (True, None) else " uniform grid"),
+                     "case": "hertz sinusoid" + ("" if align in (True, None) else
+                                                 " no jumps" if align else " uniform grid"),
                      "method": method, "n": n or 2000,
                      "rings": r.meta.get("rings", n or 2000), "steps": path.n_steps,
                      "time_s": tt, "time_per_step_s": tt / path.n_steps,
