@@ -564,12 +564,13 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
     - Energy: at a normal force held while twisted (relative range at most
       :data:`MDR_PATH_HELD_FORCE`) :func:`mdr_path_validity` with ``quantity="energy"`` above 1
       (the constant-load criterion of the fretting functions); with a changing normal load
-      whenever the path is twisted, since no twist amplitude kept the MDR energy within 1 %.
+      whenever the path is twisted (the MDR energy was off by more than 1 % on nearly every such
+      path measured, also at the smallest twists).
 
     Grounded by ``benchmarks/torsion_rings.py --map`` (Hertz and cone, constant, sinusoidal and
     gait-like normal force, 180 steps, against the exact ring solver at 400 rings): the MDR torque
     erred by at most 0.8 % of the path's largest sliding torque up to the torque limit, by
-    0.6-2.1 % at 1.06-1.7 times it, 9-12 % at 5.3-6.4 times it and 21-24 % at 14-17 times it.
+    0.5-2.1 % at 1.06-1.7 times it, 9-12 % at 4.5-6.4 times it and 21-24 % at 12-17 times it.
     The MDR energy dissipated per twist cycle followed the constant-load energy criterion at a
     held force (at most 0.65 % off inside it, at least 1.16 % beyond it); with the force changing
     by ±0.3 % to ±40 % it was off by more than 1 % on 49 of 52 paths (up to 68 %), also well
@@ -584,7 +585,7 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
              f"which the exact stick radius falls below c/a={MDR_VALID_STICK_RATIO} at the contact "
              f"radius {a:.4g} m (" + ("outside" if torque_bad else "within") + " the torque "
              "limit; measured MDR torque errors of the largest sliding torque: up to 0.8 % within "
-             "it, 0.6-2.1 % at 1.06-1.7 times it, 9-12 % at 5.3-6.4 times it, 21-24 % at 14-17 "
+             "it, 0.5-2.1 % at 1.06-1.7 times it, 9-12 % at 4.5-6.4 times it, 21-24 % at 12-17 "
              "times it)"]
     energy_bad = False
     if energy:

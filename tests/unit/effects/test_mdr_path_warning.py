@@ -46,7 +46,7 @@ def test_beyond_the_validity_twist_it_warns_and_is_wrong():
         mdr = contact().simulate(p, method="mdr")
     assert len(rec) == 1
     msg = str(rec[0].message)
-    assert "c/a=0.83" in msg and "9-12 % at 5.3-6.4 times it" in msg
+    assert "c/a=0.83" in msg and "9-12 % at 4.5-6.4 times it" in msg
     assert "outside the torque limit" in msg and "dissipated energy: outside" in msg
     assert mdr_error(p, M_s, mdr) > MDR_PATH_WITHIN_VALIDITY
 
