@@ -497,8 +497,9 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
     criterion of ``contact.torsion(method="mdr")``,
     :func:`contactlab.effects.torsion.mdr_validity_twist`) evaluated at the contact radius where it
     is smallest among the radii while the path is twisted (for Hertz the smallest of them),
-    compared with the path's largest twist measured from the twist at first contact. A profile with a wall (flat punch) has the
-    energy limit 0: its MDR energy errs by more than 1 % as soon as anything slips.
+    compared with the path's largest twist measured from the twist at first contact. A profile
+    with a wall (flat punch) has the energy limit 0: its MDR energy errs by more than 1 % as soon
+    as anything slips.
 
     Parameters
     ----------
@@ -548,8 +549,7 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
                                       contact.rtol)[quantity]
     k = int(np.argmin(lim))
     big = float(np.max(np.abs(phi)))
-    with np.errstate(divide="ignore"):
-        ratio = big / float(lim[k]) if lim[k] > 0 else float("inf")
+    ratio = big / float(lim[k]) if lim[k] > 0 else float("inf")
     return ratio, big, float(lim[k]), float(ra[k])
 
 
@@ -575,6 +575,16 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
     held force (at most 0.65 % off inside it, at least 1.16 % beyond it); with the force changing
     by ±0.3 % to ±40 % it was off by more than 1 % on 49 of 52 paths (up to 68 %), also well
     within the torque limit.
+
+    Parameters
+    ----------
+    contact : Contact
+    twist, radius, depth, force : ndarray
+        Per-step twist (rad), contact radius (m), depth (m) and normal force (N) of the run.
+    energy : bool
+        Judge the dissipated energy too (``False`` when it is not an output).
+    stacklevel : int
+        Passed to :func:`warnings.warn`.
     """
     j = _twisted(twist, radius)
     if j == 0 and float(np.asarray(twist, float)[0]) == 0.0:
@@ -591,7 +601,7 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
     if energy:
         var = force_variation(twist, radius, force)
         if var <= MDR_PATH_HELD_FORCE:
-            e_ratio, _, e_lim, e_a = mdr_path_validity(contact, twist, radius, depth, "energy")
+            e_ratio, _, e_lim, _ = mdr_path_validity(contact, twist, radius, depth, "energy")
             energy_bad = e_ratio > 1.0
             parts.append("dissipated energy: " + ("outside" if energy_bad else "within")
                          + f", the twist is {e_ratio:.3g} times {e_lim:.4g} rad, the twist at "
