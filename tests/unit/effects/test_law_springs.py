@@ -47,8 +47,12 @@ def test_changing_load_matches_simulate(chan, key, amp):
     n = 4
     contacts, par = _contacts(rng, n)
     F0 = rng.uniform(5, 50, n)
-    res = [c.simulate(_path(F0[i], chan, amp), n_springs=N, strategy="steps", method="mdr")
-           for i, c in enumerate(contacts)]
+    with warnings.catch_warnings():
+        # twisted while the force changes: simulate warns that the MDR springs' dissipated energy
+        # is outside their validity; this test compares two spring implementations
+        warnings.filterwarnings("ignore", "MDR torsion springs outside", ValidityWarning)
+        res = [c.simulate(_path(F0[i], chan, amp), n_springs=N, strategy="steps", method="mdr")
+               for i, c in enumerate(contacts)]
     dep = np.stack([r.depth for r in res], 1)
     x = np.stack([getattr(r, chan) for r in res], 1)
     a = np.stack([r.radius for r in res], 1)
