@@ -436,8 +436,9 @@ RINGS_WORK_BALANCE = 1e-10
 #: midpoint rule in time is second order): measured 6.2e-5
 RINGS_DISSIPATION_800_STEPS = 3e-4
 #: 120 rings against the independent brute-force (piecewise-constant punch density, BVLS,
-#: 300 rings) on a 16-step path with the force changing every step: both carry the edge error of
-#: a contact radius between ring nodes (order ~1.2); measured 6.8e-4 of the sliding torque
+#: 300 rings) on a 16-step path with the force changing every step: the brute force carries the
+#: edge error of a contact radius between ring nodes (order ~1.2); measured 3.1e-4 of the sliding
+#: torque with the density jumps at the contact radii (6.1e-4 without, 6.8e-4 before the nodes)
 RINGS_VS_BRUTE_FORCE = 3e-3
 #: simulate() with its long-path windows (normal solve, edge data, fused runs, turn search)
 #: shrunk to a few steps against the default windows: the same arithmetic per step, only the
