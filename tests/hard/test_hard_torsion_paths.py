@@ -256,7 +256,9 @@ def test_million_step_oscillating_twist_simulate():
     cycles, spc = 1000, 1000
     path = LoadPath().ramp(force=F, steps=4).sinusoid(twist=phi0, cycles=cycles,
                                                       steps_per_cycle=spc)
-    r = c.simulate(path, method="mdr")
+    # exact c/a ≈ 0.95 < 0.97: the MDR energy per cycle errs by more than 1 % (warned)
+    with pytest.warns(ValidityWarning, match="dissipated energy: outside"):
+        r = c.simulate(path, method="mdr")
     assert r.torque.shape == (4 + cycles * spc,)
     for arr in (r.torque, r.stick_radius, r.dissipated_energy, r.twist):
         assert np.all(np.isfinite(arr))
@@ -295,7 +297,9 @@ def test_steps_below_1e12_of_amplitude_simulate(rel_step):
     n = 50
     delta = rel_step * phi1
     path, twist = tiny_step_path(F, phi1, n, delta)
-    r = c.simulate(path, method="mdr")
+    # exact c/a ≈ 0.9 < 0.97: the MDR energy per cycle errs by more than 1 % (warned)
+    with pytest.warns(ValidityWarning, match="dissipated energy: outside"):
+        r = c.simulate(path, method="mdr")
     assert np.all(np.isfinite(r.torque)) and np.all(np.isfinite(r.dissipated_energy))
     M1 = r.torque[3]
     assert abs(M1 - mdr_hertz_torque(phi1, F, a, G_t)) < FOUNDATION_TORSION * M1
