@@ -126,10 +126,9 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     n_rings = DEFAULT_N_RINGS if n_rings is None else check_count("n_rings", n_rings)
     n_total = path.n_steps
     longest = max((_longest_leaf(s) for s in path.segments), default=0)
-    # nodes at the contact radii add up to ALIGN_MAX_FACTOR - 1 times the rings, each with a jump
-    # point, the edge punch 1
-    n_max = (int(np.ceil((2 * _tr.ALIGN_MAX_FACTOR - 1) * n_rings)) + 1 if align
-             else n_rings + 1)
+    # nodes at the contact radii: up to ALIGN_MAX_FACTOR times the rings, and a jump point per
+    # contact-radius node (at most one per ring); the edge punch 1
+    n_max = (int(np.ceil(2 * _tr.ALIGN_MAX_FACTOR * n_rings)) + 1 if align else n_rings + 1)
     check_memory("simulate(method='exact')", exact_memory(n_total, longest, n_max),
                  f"{n_total} steps, longest segment {longest} steps, {n_rings} rings "
                  f"(up to {n_max} with the nodes at the contact radii)")
