@@ -45,9 +45,9 @@ import os
 import numpy as np
 
 __all__ = ["jenkins_update", "jenkins_update_numpy", "backend", "set_backend", "available",
-           "fused_step"]
+           "fused_step", "edge_cells"]
 
-_state: dict = {"backend": None, "kernel": None, "fused": None}
+_state: dict = {"backend": None, "kernel": None, "fused": None, "edges": None}
 
 #: elements per chunk of the numpy Jenkins update on long vectors (loaded 2-core VM, N = 10^6:
 #: 12.3 -> 8.6 ns per update, bit-identical; no gain at 10^5)
@@ -111,12 +111,15 @@ def _numba_fused():
     jit = numba.njit(cache=False, fastmath=False, nogil=True)
 
     @jit
-    def bulk(i0, i1, d, c, X1, dH, K, invK, m, inc, update):     # pragma: no cover - compiled
+    def bulk(i0, i1, d, c, X1, dH, K, invK, m, inc, update, find):     # pragma: no cover
         """Cells ``i0 <= i < i1`` in contact before and after the step (weight 1): four
         interleaved partial sums in a fixed order (deterministic), so the loop is not
-        latency-bound."""
+        latency-bound. With ``find`` and ``update``, also the first cell whose updated element
+        sits at its limit (``-1`` if none): the stick-radius search in the same pass (the
+        same comparison ``|m_i| >= L_i`` as the separate search, on the same numbers)."""
         W0 = W1 = W2 = W3 = 0.0
         F0 = F1 = F2 = F3 = 0.0
+        first = -1
         nb = i1 - (i1 - i0) % 4 if i1 > i0 else i0
         if update:
             for i in range(i0, nb, 4):
@@ -144,6 +147,15 @@ def _numba_fused():
                 F1 += v1
                 F2 += v2
                 F3 += v3
+                if find and first < 0:
+                    if abs(v0) >= l0:
+                        first = i
+                    elif abs(v1) >= l1:
+                        first = i + 1
+                    elif abs(v2) >= l2:
+                        first = i + 2
+                    elif abs(v3) >= l3:
+                        first = i + 3
             for i in range(nb, i1):
                 li = c * (d * X1[i] - dH[i])
                 t = K[i] * inc + m[i]
@@ -151,6 +163,8 @@ def _numba_fused():
                 m[i] = v
                 W0 += (t - v) * v * invK[i]
                 F0 += v
+                if find and first < 0 and abs(v) >= li:
+                    first = i
         else:
             for i in range(i0, nb, 4):
                 F0 += m[i]
@@ -159,7 +173,22 @@ def _numba_fused():
                 F3 += m[i + 3]
             for i in range(nb, i1):
                 F0 += m[i]
-        return (W0 + W1) + (W2 + W3), (F0 + F1) + (F2 + F3)
+        return (W0 + W1) + (W2 + W3), (F0 + F1) + (F2 + F3), first
+
+    @jit
+    def first_at_limit(i0, n, kj, dj, c, X1, dH, Te, m):     # pragma: no cover - compiled
+        """The first cell from ``i0`` whose element sits at its limit (cells beyond the edge
+        cell ``kj`` have limit 0, so the search ends there), or -1."""
+        for i in range(i0, n):
+            if i < kj:
+                li = c * (dj * X1[i] - dH[i])
+            elif i == kj:
+                li = c * Te
+            else:
+                li = 0.0
+            if abs(m[i]) >= li:
+                return i
+        return -1
 
     @jit
     def edge_cells(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, dG, X1, dH, K,
@@ -226,7 +255,7 @@ def _numba_fused():
             if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
                 for i in range(lo, lo_prev):
                     iKeff[i] = invK[i]
-            W, F = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update)
+            W, F, st0 = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, want_stick)
             # the cells the edge crossed: weight = change of S over the step / (w dd)
             W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
                               T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
@@ -238,18 +267,9 @@ def _numba_fused():
                         m[i] = 0.0
                 nz = hi
             if want_stick:   # the first element at its limit, from the centre
-                st = a[j]
-                for i in range(n):
-                    if i < kj:
-                        li = c * (dj * X1[i] - dH[i])
-                    elif i == kj:
-                        li = c * T_edge[j]
-                    else:
-                        li = 0.0
-                    if abs(m[i]) >= li:
-                        st = bl[i]
-                        break
-                out_stick[j] = st
+                if st0 < 0:     # not in the bulk (found there during its update)
+                    st0 = first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
+                out_stick[j] = bl[st0] if st0 >= 0 else a[j]
             if inc != 0.0:
                 sgn = 1.0 if inc > 0 else -1.0
             release = False
@@ -288,7 +308,8 @@ def _numba_fused():
             if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
                 for i in range(lo, lo_prev):
                     iKeff[i] = invK[i]
-            W, F = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update)
+            find = want_stick and first[j] < 0
+            W, F, st0 = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, find)
             W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
                               T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
                               W, F)
@@ -297,17 +318,11 @@ def _numba_fused():
                     if m[i] != 0.0:
                         m[i] = 0.0
                 nz = hi
-            if want_stick and first[j] < 0:
-                for i in range(n):
-                    if i < kj:
-                        li = c * (dj * X1[i] - dH[i])
-                    elif i == kj:
-                        li = c * T_edge[j]
-                    else:
-                        li = 0.0
-                    if abs(m[i]) >= li:
-                        first[j] = i + off
-                        break
+            if find:
+                if st0 < 0:
+                    st0 = first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
+                if st0 >= 0:
+                    first[j] = st0 + off
             release = False
             x = target[j]
             F_step[j] = F
@@ -372,6 +387,62 @@ def _numba_fused():
     return winkler_steps
 
 
+def _numba_edges():
+    import numba
+
+    @numba.njit(cache=False, fastmath=False, nogil=True)
+    def edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragma: no cover
+        """Per step: the cell holding the contact edge ``a`` (``searchsorted(b, a) - 1``
+        clipped to the cells; the search starts from the previous step's cell) and its partial
+        integrals, the arithmetic of ``Winkler.edge_data`` in the same order."""
+        nb = b.size
+        n = nb - 1
+        idx = 0
+        for j in range(d.size):
+            aj = a[j]
+            # first boundary >= aj (np.searchsorted side="left"), tried at the last one first
+            if not ((idx == 0 or b[idx - 1] < aj) and (idx == nb or aj <= b[idx])):
+                lo = 0
+                hi = nb
+                while lo < hi:
+                    mid = (lo + hi) >> 1
+                    if b[mid] < aj:
+                        lo = mid + 1
+                    else:
+                        hi = mid
+                idx = lo
+            kj = min(max(idx - 1, 0), n - 1)
+            k[j] = kj
+            bl = b[kj]
+            dj = d[j]
+            if aj > bl:
+                s = dj * (aj - bl) - (Ga[j] - G_left[kj])
+            else:
+                s = 0.0
+            S[j] = s if s >= 0.0 else 0.0
+            if want_T:
+                if aj > bl:
+                    t = dj * (aj * aj - bl * bl) / 2.0 - (Ha[j] - H_left[kj])
+                else:
+                    t = 0.0
+                T[j] = t if t >= 0.0 else 0.0
+
+    return edge_cells_data
+
+
+def edge_cells():
+    """The compiled edge-cell locator of ``Winkler.edge_data`` (numba backend), or None with
+    numpy (the caller then runs the numpy reference): ``edge_cells(d, a, Ga, Ha, b, G_left,
+    H_left, k, S, T, want_T)`` fills ``k``, ``S`` (and ``T`` if ``want_T``) per step from the
+    depths ``d``, the edge radii ``a`` (clipped to the foundation), ``Ga = G(a)`` and
+    ``Ha = H(a)`` (the profile's integrals), bit-identical to the numpy calls."""
+    if backend() != "numba":
+        return None
+    if _state["edges"] is None:
+        _state["edges"] = _numba_edges()
+    return _state["edges"]
+
+
 def fused_step():
     """The compiled fused Winkler step (see the module docstring), or None with the numpy
     backend (the caller then runs the numpy reference calls)."""
@@ -397,7 +468,7 @@ def set_backend(name: str | None) -> None:
     if name is not None and name not in available():
         raise ParameterError(f"backend={name!r} is invalid: available here: "
                              f"{', '.join(available())} (numba comes with the extra 'fast').")
-    _state["backend"], _state["kernel"], _state["fused"] = name, None, None
+    _state.update(backend=name, kernel=None, fused=None, edges=None)
 
 
 def backend() -> str:

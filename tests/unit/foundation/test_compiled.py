@@ -165,3 +165,32 @@ def test_fused_step_is_deterministic(foundation_backend):
     r1, r2 = c.simulate(path, method="mdr"), c.simulate(path, method="mdr")
     for key in r1.data:
         assert np.array_equal(r1.data[key], r2.data[key]), key
+
+
+@pytest.mark.parametrize("needs", [("torsion",), ("tangential",)])
+@pytest.mark.parametrize("spacing", ["edge", "uniform"])
+def test_compiled_edge_data_is_bit_identical(needs, spacing):
+    """Winkler.edge_data with the numba backend (edge cell search and partial integrals in one
+    compiled pass) gives the numpy reference's cells and integrals bit for bit, for radii in
+    random order, on cell boundaries, at 0 and beyond the foundation's radius."""
+    if "numba" not in _compiled.available():
+        pytest.skip("numba is not installed (extra 'fast')")
+    from contactlab.foundation import Winkler
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
+                   friction=0.3)
+    fnd = Winkler(c.profile, c.moduli, c.friction, 1e-4, n_springs=37, spacing=spacing,
+                  needs=needs, rtol=c.rtol)
+    rng = np.random.default_rng(5)
+    a = np.concatenate((rng.uniform(0, 1.2e-4, 300), np.sort(rng.uniform(0, 1e-4, 300)),
+                        fnd.boundaries, [0.0, 1e-4, 2e-4]))
+    d = a * a / 0.01 * rng.uniform(0.9, 1.1, a.size)
+    out = {}
+    try:
+        for b in ("numpy", "numba"):
+            _compiled.set_backend(b)
+            out[b] = fnd.edge_data(d, a)
+    finally:
+        _compiled.set_backend(None)
+    assert out["numpy"].keys() == out["numba"].keys()
+    for key, x in out["numpy"].items():
+        assert x.dtype == out["numba"][key].dtype and np.array_equal(x, out["numba"][key]), key
