@@ -58,6 +58,7 @@ def test_small_windows_do_not_change_the_result(monkeypatch, name):
     with warns():
         ref = c.simulate(path, n_springs=200, method="mdr", snapshots=[57])
     monkeypatch.setattr(P, "_CHUNK", 5)
+    monkeypatch.setattr(P, "_FUSED_WINDOW", 6)
     monkeypatch.setattr(P, "_SOLVE_CHUNK", 7)
     monkeypatch.setattr(P, "_TURN_WINDOW", 3)
     with warns():
