@@ -2,7 +2,8 @@
 
 1. Time per step against the number of foundation elements, for a depth-controlled triangle
    history (Ting unloading) and a force-controlled creep history, generalized Maxwell material
-   with 1 and 4 arms.
+   with 1 and 4 arms; each backend of the foundation step side by side (numba: the compiled
+   trial step of the extra ``fast``; numpy: the reference) and their ratio.
 2. Accuracy against the time step: SLS creep under a step force on a paraboloid against the
    closed form a³(t) = 3RF0 J(t)/16 (theory §7), and SLS constant-rate indentation against the
    Lee-Radok hereditary integral; fitted order.
@@ -29,6 +30,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 from _harness import machine  # noqa: E402  (one machine description for every benchmark)
 from contactlab.materials.viscoelastic import GeneralizedMaxwell, StandardLinearSolid  # noqa: E402
 from contactlab.profiles import Paraboloid  # noqa: E402
+from contactlab.foundation import _compiled  # noqa: E402
 
 R = 0.01
 
@@ -38,32 +40,53 @@ def _contact(mat):
 
 
 def speed(outdir: str) -> None:
+    """Time per step of both foundation backends side by side (numba: the compiled trial step,
+    extra ``fast``; numpy: the reference), and their ratio."""
+    backends = _compiled.available()
     rows = []
     mats = {1: GeneralizedMaxwell(1e6, [2e6], [5e-3]),
             4: GeneralizedMaxwell(1e6, [2e6, 1e6, 5e5, 2e5], [1e-3, 5e-3, 2e-2, 1e-1])}
     steps = 400
     t = np.linspace(0.0, 0.04, steps)
     d = 1e-4 * np.where(t <= 0.02, t, 0.04 - t)
+    for b in backends:      # compile / warm
+        _compiled.set_backend(b)
+        _contact(mats[1]).viscoelastic_history(time=t[:5], depth=d[:5], n_springs=20)
+    print("time per step (best of 2), backends side by side:")
     for arms, mat in mats.items():
         c = _contact(mat)
         for n in (250, 1000, 4000, 16000):
-            t0 = time.perf_counter()
-            c.viscoelastic_history(time=t, depth=d, n_springs=n)
-            dep = (time.perf_counter() - t0) / steps
-            t0 = time.perf_counter()
-            c.viscoelastic_history(time=t[:100], force=np.full(100, 0.1), n_springs=n)
-            frc = (time.perf_counter() - t0) / 100
-            rows.append((arms, n, dep, frc))
-            print(f"arms={arms} n_springs={n:6d}: depth control {dep * 1e6:9.1f} us/step, "
-                  f"force control {frc * 1e6:9.1f} us/step")
+            per = {}
+            for b in backends:
+                _compiled.set_backend(b)
+                dep = frc = np.inf
+                for _ in range(2):
+                    t0 = time.perf_counter()
+                    c.viscoelastic_history(time=t, depth=d, n_springs=n)
+                    dep = min(dep, (time.perf_counter() - t0) / steps)
+                    t0 = time.perf_counter()
+                    c.viscoelastic_history(time=t[:100], force=np.full(100, 0.1), n_springs=n)
+                    frc = min(frc, (time.perf_counter() - t0) / 100)
+                per[b] = (dep, frc)
+                rows.append((b, arms, n, dep, frc))
+            line = "  ".join(f"{b}: depth {per[b][0] * 1e6:8.1f} us, force {per[b][1] * 1e6:8.1f} us"
+                             for b in backends)
+            if "numba" in per:
+                line += (f"  numpy/numba: depth {per['numpy'][0] / per['numba'][0]:.1f}x, "
+                         f"force {per['numpy'][1] / per['numba'][1]:.1f}x")
+            print(f"arms={arms} n_springs={n:6d}: {line}")
+    _compiled.set_backend(None)
     with open(os.path.join(outdir, "viscoelastic_speed.csv"), "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["arms", "n_springs", "depth_control_s_per_step", "force_control_s_per_step"])
+        w.writerow(["backend", "arms", "n_springs", "depth_control_s_per_step",
+                    "force_control_s_per_step"])
         w.writerows(rows)
-    base = {a: r[2] for r in rows for a in (r[0],) if r[1] == 250}
-    for arms, n, dep, frc in rows:
-        if n == 16000:
-            print(f"arms={arms}: 64x the elements costs {dep / base[arms]:.1f}x per depth step")
+    for b in backends:
+        base = {r[1]: r[3] for r in rows if r[0] == b and r[2] == 250}
+        for bb, arms, n, dep, frc in rows:
+            if bb == b and n == 16000:
+                print(f"{b}, arms={arms}: 64x the elements costs {dep / base[arms]:.1f}x per "
+                      "depth step")
 
 
 def accuracy(outdir: str) -> None:

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
+from . import _compiled_viscoelastic
 from ..numeric.roots import bracketed_root
 
 __all__ = ["Viscoelastic", "solve_history"]
@@ -60,6 +61,8 @@ class _Trial:
     stiffness: float = 0.0   # dq_sum/dd of the elements in contact (for Newton predictions)
     radius: float = 0.0      # contact edge, m (sub-element, see Viscoelastic.trial)
     total: float = 0.0       # normal force, N
+    n_contact: int = 0       # elements in contact
+    last: int = -1           # the outermost element in contact (-1: none)
 
 
 class Viscoelastic:
@@ -99,8 +102,12 @@ class Viscoelastic:
     def _coefficients(self, dt: float) -> tuple:
         if self._dt_cache[0] == dt:
             return self._dt_cache[1]
-        e = np.exp(-dt / self.tk)
-        Gb = self.Gk * _beta(np.full(self.tk.shape, dt), self.tk)
+        z = dt / self.tk
+        e = np.exp(-z)
+        beta = np.ones(z.shape)     # _beta without its error-state context (a step's cost)
+        pos = z > 0
+        beta[pos] = -np.expm1(-z[pos]) / z[pos]
+        Gb = self.Gk * beta
         if dt > 0:
             visc = self.eta / dt
         else:
@@ -110,10 +117,25 @@ class Viscoelastic:
         return coef
 
     def trial(self, d_new: float, d_old: float, dt: float) -> _Trial:
-        """End-of-step element forces for indenter depth ``d_new`` (state not modified)."""
+        """End-of-step element forces for indenter depth ``d_new`` (state not modified).
+
+        Compiled (numba, extra ``fast``) when available, else the numpy reference
+        (:mod:`contactlab.foundation._compiled_viscoelastic`; the backend switch is the one of
+        the Winkler kernels)."""
         m = max(self.touched, int(np.searchsorted(self.g, d_new, side="right")))
         m = min(m, self.g.size)
         e, Gb, Gb_sum, visc = self._coefficients(dt)
+        kernel = _compiled_viscoelastic.trial_step()
+        if kernel is not None:      # numba: the same step in one compiled pass
+            out = kernel(float(d_new), float(d_old), float(dt), m, self.g, self.u[:m],
+                         self.s[:m], self.contact[:m], self.ever, e, Gb, Gb_sum, float(visc),
+                         self.G_inf, self.Gk, self.tk, self.eta, self.dx)
+            return _Trial(m, *out)
+        return self._trial_numpy(d_new, d_old, dt, m, e, Gb, Gb_sum, visc)
+
+    def _trial_numpy(self, d_new: float, d_old: float, dt: float, m: int, e: np.ndarray,
+                     Gb: np.ndarray, Gb_sum: float, visc: float) -> _Trial:
+        """The reference numpy implementation of :meth:`trial`."""
         g = self.g[:m]
         u, s, was = self.u[:m], self.s[:m], self.contact[:m]
         u_c = d_new - g
@@ -169,11 +191,11 @@ class Viscoelastic:
         n_in = int(np.count_nonzero(contact))
         k = 4.0 * n_in * (self.G_inf + Gb_sum + (visc if np.isfinite(visc) else 0.0))
         q = 4.0 * q
-        a, F = self._edge_and_force(d_new, q, 4.0 * q_a, contact)
-        return _Trial(m, q, u_new, s_new, contact, k, a, F)
+        a, F, last = self._edge_and_force(d_new, q, 4.0 * q_a, contact)
+        return _Trial(m, q, u_new, s_new, contact, k, a, F, n_in, last)
 
     def _edge_and_force(self, d: float, q: np.ndarray, q_trial: np.ndarray,
-                        contact: np.ndarray) -> tuple[float, float]:
+                        contact: np.ndarray) -> tuple[float, float, int]:
         """Contact edge inside the outermost element's cell, and ``F = 2∫_0^a q dx``.
 
         Growth front (the next element never touched): the edge is where the indenter meets the
@@ -185,7 +207,7 @@ class Viscoelastic:
         """
         idx = np.flatnonzero(contact)
         if idx.size == 0:
-            return 0.0, 0.0
+            return 0.0, 0.0, -1
         dx = self.dx
         i = int(idx[-1])
         x_i = (i + 0.5) * dx
@@ -202,14 +224,14 @@ class Viscoelastic:
                     a = x_i + dx * q_i / (q_i - q_j)
         a = min(max(a, x_i), x_i + dx)
         F = 2.0 * (dx * float(q[idx].sum()) + (a - (i + 1) * dx) * float(q[i]))
-        return a, F
+        return a, F, i
 
     def commit(self, t: _Trial) -> None:
         m = t.m
         self.u[:m], self.s[:m], self.contact[:m] = t.u, t.s, t.contact
-        if np.any(t.contact):
-            self.touched = max(self.touched, int(np.flatnonzero(t.contact)[-1]) + 1)
-            self.ever[:m] |= t.contact
+        if t.last >= 0:
+            self.touched = max(self.touched, t.last + 1)
+            self.ever[:t.last + 1] |= t.contact[:t.last + 1]
 
     def force(self, t: _Trial) -> float:
         """``F = 2∫_0^a q dx`` (both halves of the 1D foundation), N."""
@@ -284,12 +306,11 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
                 d_new = _solve_force(fd, target, d_prev, dt, depth_scale, i, last_step)
                 trial = fd.trial(d_new, d_prev, dt)
         fd.commit(trial)
-        idx = np.flatnonzero(fd.contact)
         out_d[i] = d_new
         out_F[i] = fd.force(trial)
         out_a[i] = trial.radius
-        out_n[i] = idx.size
-        edge[i] = bool(idx.size) and idx[-1] == g_x.size - 1
+        out_n[i] = trial.n_contact      # elements beyond trial.m are virgin, out of contact
+        edge[i] = trial.last == g_x.size - 1
         last_step = d_new - d_prev
         t_prev, d_prev = float(time[i]), d_new
     return {"depth": out_d, "force": out_F, "radius": out_a, "n_contact": out_n,
