@@ -22,8 +22,8 @@ from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
 from ..profiles.base import ROUNDING, root_rtol
 
-__all__ = ["force", "pressure_shape", "abel_g", "pressure", "displacement", "elastic_energy",
-           "g_squared_integral", "force_of_radius", "radius_depth_of_force", "solve"]
+__all__ = ["force", "pressure_shape", "abel_g", "pressure", "pressure_from_shape", "displacement",
+           "elastic_energy", "g_squared_integral", "force_of_radius", "radius_depth_of_force", "solve"]
 
 
 _U_MIN = 1e-4
@@ -193,17 +193,29 @@ def pressure(profile, E_star: float, r: np.ndarray, a: np.ndarray, d: np.ndarray
     """Contact pressure ``p(r)``, Pa (0 outside the contact), with the edge term for ``d != g(a)``."""
     r, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, a, d, g_a)))
     shape, err = pressure_shape(profile, r, a, rtol)
-    out = np.zeros(r.shape)
+    return pressure_from_shape(E_star, shape, err, r, a, d, g_a)
+
+
+def pressure_from_shape(E_star: float, shape: np.ndarray, shape_err: np.ndarray, r: np.ndarray,
+                        a: np.ndarray, d: np.ndarray, g_a: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """Contact pressure (Pa) from its shape part: ``p = (E*/π) [S(r, a) + (d - g(a))/sqrt(a² - r²)]``.
+
+    ``shape`` is ``S(r, a)`` (1/m, with error estimate ``shape_err``), read only inside the
+    contact; all arrays broadcast together. Returns the pressure (0 outside the contact, ±inf at
+    the edge itself where the edge term of a flat punch or JKR contact is singular) and its error
+    estimate. Shared by :func:`pressure` and the fixed-radii tables of
+    :mod:`contactlab.physics.ring_pressure`, so both give bit-identical values.
+    """
     inside = r < a
     edge = d - g_a
-    with np.errstate(divide="ignore"):
-        edge_term = np.where(edge[inside] != 0,
-                             edge[inside] / np.sqrt((a[inside] - r[inside]) * (a[inside] + r[inside])), 0.0)
-    out[inside] = E_star / np.pi * (shape[inside] + edge_term)
-    # at the edge itself the edge term (flat punch, JKR) is singular: ±inf, as documented
+    with np.errstate(divide="ignore", invalid="ignore"):
+        edge_term = np.where(inside & (edge != 0),
+                             edge / np.sqrt(np.maximum((a - r) * (a + r), 0.0)), 0.0)
+    out = np.where(inside, E_star / np.pi * (shape + edge_term), 0.0)
     at_edge = (r == a) & (a > 0) & (edge != 0)
-    out[at_edge] = np.sign(edge[at_edge]) * np.inf
-    return out, E_star / np.pi * err
+    out = np.where(at_edge, np.copysign(np.inf, edge), out)
+    return out, E_star / np.pi * np.asarray(shape_err, float)
 
 
 def displacement(profile, r: np.ndarray, a: np.ndarray, d: np.ndarray,

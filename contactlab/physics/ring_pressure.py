@@ -274,15 +274,5 @@ def pressure_at(profile, E_star: float, table: FixedRadiiShape, a: np.ndarray, d
     d = np.asarray(d, float).ravel()
     g_a = np.asarray(g_a, float).ravel()
     S, err = shape_at(profile, table, a, g_a)
-    r = table.radii[None, :]
-    inside = r < a[:, None]
-    edge = (d - g_a)[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        edge_term = np.where(inside & (edge != 0),
-                             edge / np.sqrt(np.maximum((a[:, None] - r) * (a[:, None] + r), 0.0)),
-                             0.0)
-    out = np.where(inside, E_star / np.pi * (S + edge_term), 0.0)
-    # at the edge itself the edge term is singular: ±inf, as normal.pressure
-    at_edge = (r == a[:, None]) & (a[:, None] > 0) & (edge != 0)
-    out = np.where(at_edge, np.copysign(np.inf, edge), out)
-    return out, E_star / np.pi * err
+    return _normal.pressure_from_shape(E_star, S, err, table.radii[None, :], a[:, None],
+                                       d[:, None], g_a[:, None])
