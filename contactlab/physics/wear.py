@@ -26,7 +26,6 @@ monotonic loading to the amplitude. No function here validates input (hot path).
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ellipk
 
 __all__ = ["operators", "normal_depth", "contact_radius", "tangential_rate", "torsion_rate",
            "first_crossing", "tensile_fraction"]
@@ -86,6 +85,7 @@ def operators(radius: float, n: int) -> dict[str, np.ndarray]:
     A[0] = 0.0
     Bm[0] = 0.0
     # KP: slopes of u -> ∫_x^... u'(y) K(1 - x²/y²)/y dy (without -E*/π), x = nodes j >= 1
+    from scipy.special import ellipk    # on first use: importing scipy.special costs ~0.1 s
     u, w = _GL
     KP = np.zeros((n + 1, n))
     for j in range(1, n + 1):           # one row per node: O(n) work each, vectorised inside
