@@ -36,11 +36,14 @@ The numba version is used automatically when numba imports (``backend() == "numb
 the reference and the fallback (``CONTACTLAB_BACKEND=numpy`` or :func:`set_backend` forces it).
 The element updates are bit-identical between the two; the dissipated energy is a sum in another
 order (sequential against numpy's pairwise), equal to ~``N`` ulps, far below 1e-12 relative for
-the spring counts in use. numba compiles the kernel on its first call in a process (~1 s).
+the spring counts in use. numba compiles a kernel on its first call and keeps the machine code on disk
+(:mod:`contactlab.numeric.jit`): the first process on a machine compiles (seconds), later
+processes load it.
 """
 from __future__ import annotations
 
 import os
+import threading
 
 import numpy as np
 
@@ -88,346 +91,347 @@ def jenkins_update_numpy(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.n
     return float(tmp.sum())
 
 
-def _numba_kernel():
-    import numba
-
-    @numba.njit(cache=False, fastmath=False, nogil=True)
-    def jenkins_numba(m, K, invK, L, inc):     # pragma: no cover - compiled
-        w = 0.0
-        for i in range(m.size):
-            t = K[i] * inc + m[i]
-            v = min(t, L[i])
-            v = max(v, -L[i])
-            m[i] = v
-            w += (t - v) * v * invK[i]
-        return w
-
-    return jenkins_numba
+def _jenkins(m, K, invK, L, inc):     # pragma: no cover - compiled
+    w = 0.0
+    for i in range(m.size):
+        t = K[i] * inc + m[i]
+        v = min(t, L[i])
+        v = max(v, -L[i])
+        m[i] = v
+        w += (t - v) * v * invK[i]
+    return w
 
 
-def _numba_fused():
-    import numba
-
-    jit = numba.njit(cache=False, fastmath=False, nogil=True)
-
-    @jit
-    def bulk(i0, i1, d, c, X1, dH, K, invK, m, inc, update, find):     # pragma: no cover
-        """Cells ``i0 <= i < i1`` in contact before and after the step (weight 1): four
-        interleaved partial sums in a fixed order (deterministic), so the loop is not
-        latency-bound. With ``find`` and ``update``, also the first cell whose updated element
-        sits at its limit (``-1`` if none): the stick-radius search in the same pass (the
-        same comparison ``|m_i| >= L_i`` as the separate search, on the same numbers)."""
-        W0 = W1 = W2 = W3 = 0.0
-        F0 = F1 = F2 = F3 = 0.0
-        first = -1
-        nb = i1 - (i1 - i0) % 4 if i1 > i0 else i0
-        if update:
-            for i in range(i0, nb, 4):
-                l0 = c * (d * X1[i] - dH[i])
-                l1 = c * (d * X1[i + 1] - dH[i + 1])
-                l2 = c * (d * X1[i + 2] - dH[i + 2])
-                l3 = c * (d * X1[i + 3] - dH[i + 3])
-                t0 = K[i] * inc + m[i]
-                t1 = K[i + 1] * inc + m[i + 1]
-                t2 = K[i + 2] * inc + m[i + 2]
-                t3 = K[i + 3] * inc + m[i + 3]
-                v0 = max(min(t0, l0), -l0)
-                v1 = max(min(t1, l1), -l1)
-                v2 = max(min(t2, l2), -l2)
-                v3 = max(min(t3, l3), -l3)
-                m[i] = v0
-                m[i + 1] = v1
-                m[i + 2] = v2
-                m[i + 3] = v3
-                W0 += (t0 - v0) * v0 * invK[i]
-                W1 += (t1 - v1) * v1 * invK[i + 1]
-                W2 += (t2 - v2) * v2 * invK[i + 2]
-                W3 += (t3 - v3) * v3 * invK[i + 3]
-                F0 += v0
-                F1 += v1
-                F2 += v2
-                F3 += v3
-                if find and first < 0:
-                    if abs(v0) >= l0:
-                        first = i
-                    elif abs(v1) >= l1:
-                        first = i + 1
-                    elif abs(v2) >= l2:
-                        first = i + 2
-                    elif abs(v3) >= l3:
-                        first = i + 3
-            for i in range(nb, i1):
-                li = c * (d * X1[i] - dH[i])
-                t = K[i] * inc + m[i]
-                v = max(min(t, li), -li)
-                m[i] = v
-                W0 += (t - v) * v * invK[i]
-                F0 += v
-                if find and first < 0 and abs(v) >= li:
+def _bulk(i0, i1, d, c, X1, dH, K, invK, m, inc, update, find):     # pragma: no cover
+    """Cells ``i0 <= i < i1`` in contact before and after the step (weight 1): four
+    interleaved partial sums in a fixed order (deterministic), so the loop is not
+    latency-bound. With ``find`` and ``update``, also the first cell whose updated element
+    sits at its limit (``-1`` if none): the stick-radius search in the same pass (the
+    same comparison ``|m_i| >= L_i`` as the separate search, on the same numbers)."""
+    W0 = W1 = W2 = W3 = 0.0
+    F0 = F1 = F2 = F3 = 0.0
+    first = -1
+    nb = i1 - (i1 - i0) % 4 if i1 > i0 else i0
+    if update:
+        for i in range(i0, nb, 4):
+            l0 = c * (d * X1[i] - dH[i])
+            l1 = c * (d * X1[i + 1] - dH[i + 1])
+            l2 = c * (d * X1[i + 2] - dH[i + 2])
+            l3 = c * (d * X1[i + 3] - dH[i + 3])
+            t0 = K[i] * inc + m[i]
+            t1 = K[i + 1] * inc + m[i + 1]
+            t2 = K[i + 2] * inc + m[i + 2]
+            t3 = K[i + 3] * inc + m[i + 3]
+            v0 = max(min(t0, l0), -l0)
+            v1 = max(min(t1, l1), -l1)
+            v2 = max(min(t2, l2), -l2)
+            v3 = max(min(t3, l3), -l3)
+            m[i] = v0
+            m[i + 1] = v1
+            m[i + 2] = v2
+            m[i + 3] = v3
+            W0 += (t0 - v0) * v0 * invK[i]
+            W1 += (t1 - v1) * v1 * invK[i + 1]
+            W2 += (t2 - v2) * v2 * invK[i + 2]
+            W3 += (t3 - v3) * v3 * invK[i + 3]
+            F0 += v0
+            F1 += v1
+            F2 += v2
+            F3 += v3
+            if find and first < 0:
+                if abs(v0) >= l0:
                     first = i
+                elif abs(v1) >= l1:
+                    first = i + 1
+                elif abs(v2) >= l2:
+                    first = i + 2
+                elif abs(v3) >= l3:
+                    first = i + 3
+        for i in range(nb, i1):
+            li = c * (d * X1[i] - dH[i])
+            t = K[i] * inc + m[i]
+            v = max(min(t, li), -li)
+            m[i] = v
+            W0 += (t - v) * v * invK[i]
+            F0 += v
+            if find and first < 0 and abs(v) >= li:
+                first = i
+    else:
+        for i in range(i0, nb, 4):
+            F0 += m[i]
+            F1 += m[i + 1]
+            F2 += m[i + 2]
+            F3 += m[i + 3]
+        for i in range(nb, i1):
+            F0 += m[i]
+    return (W0 + W1) + (W2 + W3), (F0 + F1) + (F2 + F3), first
+
+
+def _first_at_limit(i0, n, kj, dj, c, X1, dH, Te, m):     # pragma: no cover - compiled
+    """The first cell from ``i0`` whose element sits at its limit (cells beyond the edge
+    cell ``kj`` have limit 0, so the search ends there), or -1."""
+    for i in range(i0, n):
+        if i < kj:
+            li = c * (dj * X1[i] - dH[i])
+        elif i == kj:
+            li = c * Te
         else:
-            for i in range(i0, nb, 4):
-                F0 += m[i]
-                F1 += m[i + 1]
-                F2 += m[i + 2]
-                F3 += m[i + 3]
-            for i in range(nb, i1):
-                F0 += m[i]
-        return (W0 + W1) + (W2 + W3), (F0 + F1) + (F2 + F3), first
-
-    @jit
-    def first_at_limit(i0, n, kj, dj, c, X1, dH, Te, m):     # pragma: no cover - compiled
-        """The first cell from ``i0`` whose element sits at its limit (cells beyond the edge
-        cell ``kj`` have limit 0, so the search ends there), or -1."""
-        for i in range(i0, n):
-            if i < kj:
-                li = c * (dj * X1[i] - dH[i])
-            elif i == kj:
-                li = c * Te
-            else:
-                li = 0.0
-            if abs(m[i]) >= li:
-                return i
-        return -1
-
-    @jit
-    def edge_cells(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, dG, X1, dH, K,
-                   invK, iKeff, S, m, inc, update, W, F):     # pragma: no cover - compiled
-        """The cells ``lo ... hi - 1`` the contact edge crossed in a step (edge cell ``kj``
-        now, ``k_prev`` before; ``first``: the run's first step, weights from ``S``): weight =
-        change of the cell's S over the step / (w dd), Jenkins update, energy and force added
-        to ``W``, ``F`` (one loop shared by ``steps_flat`` and ``steps_block``)."""
-        dd = dj - d_prev
-        for i in range(lo, hi):
-            if first:
-                s_old = S[i]
-            elif i < k_prev:
-                s_old = d_prev * w[i] - dG[i]
-            elif i == k_prev:
-                s_old = Se_prev
-            else:
-                s_old = 0.0
-            if i < kj:
-                si = dj * w[i] - dG[i]
-                ti = dj * X1[i] - dH[i]
-            elif i == kj:
-                si = Se
-                ti = Te
-            else:
-                si = 0.0
-                ti = 0.0
-            wt = (si - s_old) / (dd * w[i])
-            wt = min(max(wt, 0.0), 1.0)
-            li = c * ti
-            mi = m[i]
-            if update:
-                t = K[i] * wt * inc + mi
-                v = max(min(t, li), -li)
-                m[i] = v
-                if wt > 0:
-                    iKeff[i] = invK[i] / wt
-                W += (t - v) * v * iKeff[i]
-                mi = v
-            F += mi
-        return W, F
-
-    @jit
-    def steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
-                      K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick
-                      ):     # pragma: no cover - compiled
-        n = m.size
-        d_prev = d0
-        k_prev = k0
-        Se_prev = 0.0
-        x = x0
-        Wtot = W0
-        sgn = 0.0
-        lo_prev = 0
-        lo = 0
-        nz = n              # m is zero from nz on (unknown at first)
-        for j in range(d.size):
-            dj = d[j]
-            kj = k[j]
-            inc = target[j] - x
-            update = inc != 0.0 or dj < d_prev or release
-            lo = min(kj, k_prev)
-            hi = min(max(kj, k_prev) + 1, n)
-            if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
-                for i in range(lo, lo_prev):
-                    iKeff[i] = invK[i]
-            W, F, st0 = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, want_stick)
-            # the cells the edge crossed: weight = change of S over the step / (w dd)
-            W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
-                              T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
-                              W, F)
-            # outside: limit 0, so an update leaves no element force
-            if update:
-                for i in range(hi, nz):
-                    if m[i] != 0.0:
-                        m[i] = 0.0
-                nz = hi
-            if want_stick:   # the first element at its limit, from the centre
-                if st0 < 0:     # not in the bulk (found there during its update)
-                    st0 = first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
-                out_stick[j] = bl[st0] if st0 >= 0 else a[j]
-            if inc != 0.0:
-                sgn = 1.0 if inc > 0 else -1.0
-            release = False
-            x = target[j]
-            Wtot += W
-            out_F[j] = F
-            out_W[j] = Wtot
-            d_prev = dj
-            k_prev = kj
-            Se_prev = S_edge[j]
-            lo_prev = lo
-        return sgn, lo
-
-    @jit
-    def steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH, K,
-                    invK, iKeff, S, m, off, F_step, W_step, first,
-                    want_stick):     # pragma: no cover - compiled
-        """The springs ``off ... off + m.size - 1`` (arrays sliced to them; ``k``, ``k0``
-        global) through every step: ``steps_flat``'s arithmetic per element, the block's part
-        of each step's sums into ``F_step``, ``W_step`` and of the first element at its limit
-        (global index) into ``first`` where not found in an earlier block."""
-        n = m.size
-        d_prev = d0
-        k_prev = k0 - off
-        Se_prev = 0.0
-        x = x0
-        lo_prev = 0
-        nz = n              # m is zero from nz on (unknown at first)
-        for j in range(d.size):
-            dj = d[j]
-            kj = k[j] - off
-            inc = target[j] - x
-            update = inc != 0.0 or dj < d_prev or release
-            lo = min(max(min(kj, k_prev), 0), n)
-            hi = max(min(max(kj, k_prev) + 1, n), 0)
-            if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
-                for i in range(lo, lo_prev):
-                    iKeff[i] = invK[i]
-            find = want_stick and first[j] < 0
-            W, F, st0 = bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, find)
-            W, F = edge_cells(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
-                              T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
-                              W, F)
-            if update:
-                for i in range(hi, nz):
-                    if m[i] != 0.0:
-                        m[i] = 0.0
-                nz = hi
-            if find:
-                if st0 < 0:
-                    st0 = first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
-                if st0 >= 0:
-                    first[j] = st0 + off
-            release = False
-            x = target[j]
-            F_step[j] = F
-            W_step[j] = W
-            d_prev = dj
-            k_prev = kj
-            Se_prev = S_edge[j]
-            lo_prev = lo
-
-    @jit
-    def steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
-                      K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
-                      block):     # pragma: no cover - compiled
-        n = m.size
-        ns = d.size
-        Fb = np.empty(ns)
-        Wb = np.empty(ns)
-        Wst = np.zeros(ns)
-        first = np.full(ns, -1, np.int64)
-        # blocks of springs, each through every step while it sits in cache (the element
-        # updates do not couple springs; the per-step sums add the blocks in a fixed order)
-        for b0 in range(0, n, block):
-            b1 = min(n, b0 + block)
-            steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w[b0:b1],
-                        dG[b0:b1], X1[b0:b1], dH[b0:b1], K[b0:b1], invK[b0:b1], iKeff[b0:b1],
-                        S[b0:b1], m[b0:b1], b0, Fb, Wb, first, want_stick)
-            if b0 == 0:
-                out_F[:] = Fb
-                Wst[:] = Wb
-            else:
-                out_F += Fb
-                Wst += Wb
-        Wtot = W0
-        sgn = 0.0
-        x = x0
-        for j in range(ns):
-            Wtot += Wst[j]
-            out_W[j] = Wtot
-            if want_stick:
-                out_stick[j] = bl[first[j]] if first[j] >= 0 else a[j]
-            inc = target[j] - x
-            if inc != 0.0:
-                sgn = 1.0 if inc > 0 else -1.0
-            x = target[j]
-        k_prev = k0 if ns == 1 else k[ns - 2]
-        return sgn, min(k[ns - 1], k_prev)
-
-    @jit
-    def winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
-                      K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
-                      block, block_from):     # pragma: no cover - compiled
-        """Up to ``block_from`` springs: the springs through each step in turn; more: block by
-        block (each block through every step)."""
-        if m.size <= block_from:
-            return steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
-                              X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
-                              want_stick)
-        return steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
-                             X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
-                             want_stick, block)
-
-    return winkler_steps
+            li = 0.0
+        if abs(m[i]) >= li:
+            return i
+    return -1
 
 
-def _numba_edges():
-    import numba
+def _edge_update(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, dG, X1, dH, K,
+               invK, iKeff, S, m, inc, update, W, F):     # pragma: no cover - compiled
+    """The cells ``lo ... hi - 1`` the contact edge crossed in a step (edge cell ``kj``
+    now, ``k_prev`` before; ``first``: the run's first step, weights from ``S``): weight =
+    change of the cell's S over the step / (w dd), Jenkins update, energy and force added
+    to ``W``, ``F`` (one loop shared by ``steps_flat`` and ``steps_block``)."""
+    dd = dj - d_prev
+    for i in range(lo, hi):
+        if first:
+            s_old = S[i]
+        elif i < k_prev:
+            s_old = d_prev * w[i] - dG[i]
+        elif i == k_prev:
+            s_old = Se_prev
+        else:
+            s_old = 0.0
+        if i < kj:
+            si = dj * w[i] - dG[i]
+            ti = dj * X1[i] - dH[i]
+        elif i == kj:
+            si = Se
+            ti = Te
+        else:
+            si = 0.0
+            ti = 0.0
+        wt = (si - s_old) / (dd * w[i])
+        wt = min(max(wt, 0.0), 1.0)
+        li = c * ti
+        mi = m[i]
+        if update:
+            t = K[i] * wt * inc + mi
+            v = max(min(t, li), -li)
+            m[i] = v
+            if wt > 0:
+                iKeff[i] = invK[i] / wt
+            W += (t - v) * v * iKeff[i]
+            mi = v
+        F += mi
+    return W, F
 
-    @numba.njit(cache=False, fastmath=False, nogil=True)
-    def edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragma: no cover
-        """Per step: the cell holding the contact edge ``a`` (``searchsorted(b, a) - 1``
-        clipped to the cells; the search starts from the previous step's cell) and its partial
-        integrals, the arithmetic of ``Winkler.edge_data`` in the same order."""
-        nb = b.size
-        n = nb - 1
-        idx = 0
-        for j in range(d.size):
-            aj = a[j]
-            # first boundary >= aj (np.searchsorted side="left"), tried at the last one first
-            if not ((idx == 0 or b[idx - 1] < aj) and (idx == nb or aj <= b[idx])):
-                lo = 0
-                hi = nb
-                while lo < hi:
-                    mid = (lo + hi) >> 1
-                    if b[mid] < aj:
-                        lo = mid + 1
-                    else:
-                        hi = mid
-                idx = lo
-            kj = min(max(idx - 1, 0), n - 1)
-            k[j] = kj
-            bl = b[kj]
-            dj = d[j]
-            if aj > bl:
-                s = dj * (aj - bl) - (Ga[j] - G_left[kj])
-            else:
-                s = 0.0
-            S[j] = s if s >= 0.0 else 0.0
-            if want_T:
-                if aj > bl:
-                    t = dj * (aj * aj - bl * bl) / 2.0 - (Ha[j] - H_left[kj])
+
+def _steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
+                K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick
+                ):     # pragma: no cover - compiled
+    n = m.size
+    d_prev = d0
+    k_prev = k0
+    Se_prev = 0.0
+    x = x0
+    Wtot = W0
+    sgn = 0.0
+    lo_prev = 0
+    lo = 0
+    nz = n              # m is zero from nz on (unknown at first)
+    for j in range(d.size):
+        dj = d[j]
+        kj = k[j]
+        inc = target[j] - x
+        update = inc != 0.0 or dj < d_prev or release
+        lo = min(kj, k_prev)
+        hi = min(max(kj, k_prev) + 1, n)
+        if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
+            for i in range(lo, lo_prev):
+                iKeff[i] = invK[i]
+        W, F, st0 = _bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, want_stick)
+        # the cells the edge crossed: weight = change of S over the step / (w dd)
+        W, F = _edge_update(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
+                          T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
+                          W, F)
+        # outside: limit 0, so an update leaves no element force
+        if update:
+            for i in range(hi, nz):
+                if m[i] != 0.0:
+                    m[i] = 0.0
+            nz = hi
+        if want_stick:   # the first element at its limit, from the centre
+            if st0 < 0:     # not in the bulk (found there during its update)
+                st0 = _first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
+            out_stick[j] = bl[st0] if st0 >= 0 else a[j]
+        if inc != 0.0:
+            sgn = 1.0 if inc > 0 else -1.0
+        release = False
+        x = target[j]
+        Wtot += W
+        out_F[j] = F
+        out_W[j] = Wtot
+        d_prev = dj
+        k_prev = kj
+        Se_prev = S_edge[j]
+        lo_prev = lo
+    return sgn, lo
+
+
+def _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH, K,
+                invK, iKeff, S, m, off, F_step, W_step, first,
+                want_stick):     # pragma: no cover - compiled
+    """The springs ``off ... off + m.size - 1`` (arrays sliced to them; ``k``, ``k0``
+    global) through every step: ``steps_flat``'s arithmetic per element, the block's part
+    of each step's sums into ``F_step``, ``W_step`` and of the first element at its limit
+    (global index) into ``first`` where not found in an earlier block."""
+    n = m.size
+    d_prev = d0
+    k_prev = k0 - off
+    Se_prev = 0.0
+    x = x0
+    lo_prev = 0
+    nz = n              # m is zero from nz on (unknown at first)
+    for j in range(d.size):
+        dj = d[j]
+        kj = k[j] - off
+        inc = target[j] - x
+        update = inc != 0.0 or dj < d_prev or release
+        lo = min(max(min(kj, k_prev), 0), n)
+        hi = max(min(max(kj, k_prev) + 1, n), 0)
+        if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
+            for i in range(lo, lo_prev):
+                iKeff[i] = invK[i]
+        find = want_stick and first[j] < 0
+        W, F, st0 = _bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, find)
+        W, F = _edge_update(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
+                          T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
+                          W, F)
+        if update:
+            for i in range(hi, nz):
+                if m[i] != 0.0:
+                    m[i] = 0.0
+            nz = hi
+        if find:
+            if st0 < 0:
+                st0 = _first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
+            if st0 >= 0:
+                first[j] = st0 + off
+        release = False
+        x = target[j]
+        F_step[j] = F
+        W_step[j] = W
+        d_prev = dj
+        k_prev = kj
+        Se_prev = S_edge[j]
+        lo_prev = lo
+
+
+def _steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
+                   K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
+                   block):     # pragma: no cover - compiled
+    n = m.size
+    ns = d.size
+    Fb = np.empty(ns)
+    Wb = np.empty(ns)
+    Wst = np.zeros(ns)
+    first = np.full(ns, -1, np.int64)
+    # blocks of springs, each through every step while it sits in cache (the element
+    # updates do not couple springs; the per-step sums add the blocks in a fixed order)
+    for b0 in range(0, n, block):
+        b1 = min(n, b0 + block)
+        _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w[b0:b1],
+                     dG[b0:b1], X1[b0:b1], dH[b0:b1], K[b0:b1], invK[b0:b1], iKeff[b0:b1],
+                     S[b0:b1], m[b0:b1], b0, Fb, Wb, first, want_stick)
+        if b0 == 0:
+            out_F[:] = Fb
+            Wst[:] = Wb
+        else:
+            out_F += Fb
+            Wst += Wb
+    Wtot = W0
+    sgn = 0.0
+    x = x0
+    for j in range(ns):
+        Wtot += Wst[j]
+        out_W[j] = Wtot
+        if want_stick:
+            out_stick[j] = bl[first[j]] if first[j] >= 0 else a[j]
+        inc = target[j] - x
+        if inc != 0.0:
+            sgn = 1.0 if inc > 0 else -1.0
+        x = target[j]
+    k_prev = k0 if ns == 1 else k[ns - 2]
+    return sgn, min(k[ns - 1], k_prev)
+
+
+def _winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
+                   K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
+                   block, block_from):     # pragma: no cover - compiled
+    """Up to ``block_from`` springs: the springs through each step in turn; more: block by
+    block (each block through every step)."""
+    if m.size <= block_from:
+        return _steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
+                           X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
+                           want_stick)
+    return _steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
+                          X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
+                          want_stick, block)
+
+
+def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragma: no cover
+    """Per step: the cell holding the contact edge ``a`` (``searchsorted(b, a) - 1``
+    clipped to the cells; the search starts from the previous step's cell) and its partial
+    integrals, the arithmetic of ``Winkler.edge_data`` in the same order."""
+    nb = b.size
+    n = nb - 1
+    idx = 0
+    for j in range(d.size):
+        aj = a[j]
+        # first boundary >= aj (np.searchsorted side="left"), tried at the last one first
+        if not ((idx == 0 or b[idx - 1] < aj) and (idx == nb or aj <= b[idx])):
+            lo = 0
+            hi = nb
+            while lo < hi:
+                mid = (lo + hi) >> 1
+                if b[mid] < aj:
+                    lo = mid + 1
                 else:
-                    t = 0.0
-                T[j] = t if t >= 0.0 else 0.0
+                    hi = mid
+            idx = lo
+        kj = min(max(idx - 1, 0), n - 1)
+        k[j] = kj
+        bl = b[kj]
+        dj = d[j]
+        if aj > bl:
+            s = dj * (aj - bl) - (Ga[j] - G_left[kj])
+        else:
+            s = 0.0
+        S[j] = s if s >= 0.0 else 0.0
+        if want_T:
+            if aj > bl:
+                t = dj * (aj * aj - bl * bl) / 2.0 - (Ha[j] - H_left[kj])
+            else:
+                t = 0.0
+            T[j] = t if t >= 0.0 else 0.0
 
-    return edge_cells_data
+
+#: the numba kernels above (plain Python here; :func:`_build` compiles them)
+_KERNEL_NAMES = ("_jenkins", "_bulk", "_first_at_limit", "_edge_update", "_steps_flat",
+                 "_steps_block", "_steps_blocked", "_winkler_steps", "_edge_cells_data")
+_PY_KERNELS = {name: globals()[name] for name in _KERNEL_NAMES}
+_compiled_kernels: dict = {}
+_build_lock = threading.Lock()
+
+
+def _build() -> dict:
+    """The numba dispatchers of the kernels, by name (built once per process, compiled on their
+    first call, machine code cached on disk: :func:`contactlab.numeric.jit.njit`). The module
+    names are rebound to the dispatchers, so that a kernel calls the compiled callees."""
+    with _build_lock:
+        if not _compiled_kernels:
+            from ..numeric.jit import njit
+            built = {name: njit(fn, nogil=True) for name, fn in _PY_KERNELS.items()}
+            globals().update(built)
+            _compiled_kernels.update(built)
+    return _compiled_kernels
 
 
 def edge_cells():
@@ -439,7 +443,7 @@ def edge_cells():
     if backend() != "numba":
         return None
     if _state["edges"] is None:
-        _state["edges"] = _numba_edges()
+        _state["edges"] = _build()["_edge_cells_data"]
     return _state["edges"]
 
 
@@ -449,7 +453,7 @@ def fused_step():
     if backend() != "numba":
         return None
     if _state["fused"] is None:
-        _state["fused"] = _numba_fused()
+        _state["fused"] = _build()["_winkler_steps"]
     return _state["fused"]
 
 
@@ -487,7 +491,7 @@ def jenkins_update(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.ndarray
     """Advance Jenkins elements in place by ``inc``; return the dissipated energy, J (see module)."""
     kernel = _state["kernel"]
     if kernel is None:
-        kernel = _numba_kernel() if backend() == "numba" else jenkins_update_numpy
+        kernel = _build()["_jenkins"] if backend() == "numba" else jenkins_update_numpy
         _state["kernel"] = kernel
     if kernel is jenkins_update_numpy:
         return jenkins_update_numpy(m, K, invK, L, inc, tmp, nL)

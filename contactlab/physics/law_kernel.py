@@ -13,7 +13,11 @@ from __future__ import annotations
 
 import math
 
+import threading
+
 import numpy as np
+
+from ..numeric import jit as _jit
 
 __all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "TORSION",
            "TANGENTIAL"]
@@ -21,14 +25,13 @@ __all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "TORSION",
 TORSION = 0
 TANGENTIAL = 1
 
-try:                                    # optional dependency (extra "fast")
-    import numba
-    AVAILABLE = True
-    _prange = numba.prange
-except ImportError:                     # pragma: no cover - exercised without numba only
-    numba = None
-    AVAILABLE = False
-    _prange = range
+#: numba is installed (extra "fast"); found without importing it (numba takes ~0.2 s to import,
+#: so it is imported on the first compiled step, not with contactlab)
+AVAILABLE = _jit.available()
+
+# ``prange`` in the loops over contacts: ``range`` in plain Python and in the serial build, numba's
+# parallel range in the threaded build (numba's ``prange`` is ``range`` outside compiled code)
+_prange = range
 
 
 def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
@@ -377,16 +380,34 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
     return nonfinite
 
 
-if AVAILABLE:
-    _load = numba.njit(cache=False, nogil=True)(_load)
-    # serial (default) and threaded builds of the same loops; contacts are independent, so the
-    # threaded build gives bit-identical results (prange is range in the serial build)
-    _KERNELS = {par: tuple(numba.njit(cache=False, nogil=True, parallel=par)(f)
-                           for f in (_normal_pass, _fused_pass, _spring_pass))
-                for par in (False, True)}
-else:                                   # pragma: no cover - without numba
-    _KERNELS = {False: (_normal_pass, _fused_pass, _spring_pass),
-                True: (_normal_pass, _fused_pass, _spring_pass)}
+_PASSES = (_normal_pass, _fused_pass, _spring_pass)
+_KERNELS: dict = {}
+_build_lock = threading.Lock()
+
+
+def _kernels(parallel: bool) -> tuple:
+    """The compiled ``(normal, fused, spring)`` passes, serial or threaded (built on first use,
+    compiled on their first call, machine code cached on disk: :func:`contactlab.numeric.jit.njit`;
+    the plain Python functions without numba). Contacts are independent, so the threaded build
+    gives bit-identical results. The two builds are cached under two names (numba keys its cache
+    by function and argument types, not by the ``parallel`` option)."""
+    kernels = _KERNELS.get(parallel)
+    if kernels is None:
+        with _build_lock:
+            if parallel not in _KERNELS:
+                if AVAILABLE:
+                    global _load, _prange
+                    import numba
+                    if "load" not in _KERNELS:      # the callee, shared by both builds
+                        _KERNELS["load"] = _load = _jit.njit(_load, nogil=True)
+                        _prange = numba.prange
+                    _KERNELS[parallel] = tuple(
+                        _jit.njit(f, name=f.__name__ + ("_parallel" if parallel else ""),
+                                  nogil=True, parallel=parallel) for f in _PASSES)
+                else:                       # pragma: no cover - without numba
+                    _KERNELS[parallel] = _PASSES
+            kernels = _KERNELS[parallel]
+    return kernels
 
 
 _EMPTY = np.zeros(1)
@@ -402,7 +423,7 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     m = val.size
     d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
                      if out is None else out)
-    counts = _KERNELS[parallel][0](bool(by_force), val, _EMPTY if u is None else u,
+    counts = _kernels(parallel)[0](bool(by_force), val, _EMPTY if u is None else u,
                                    _EMPTY if phi is None else phi, u is not None,
                                    phi is not None, kc, E, float(n), flat, ref, float(rtol),
                                    d, a, F, flag)
@@ -420,7 +441,7 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     if out is None:
         out = (np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
                np.empty(m, bool))
-    nf = _KERNELS[parallel][1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
+    nf = _kernels(parallel)[1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
                           float(master.m0), None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
@@ -440,7 +461,7 @@ def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: 
     nn = float(n) if n != np.inf else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
     bH = beta ** (nn + 2.0) / (nn + 2.0)
-    return _KERNELS[parallel][2](idx, d, a, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
+    return _kernels(parallel)[2](idx, d, a, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, cover, kc, nn, beta, bG, bH, mu, E,
                           G, Gt, st["spr_S"], st["spr_k"], st["spr_depth"], st["spr_tan"],
                           st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"], *out)
