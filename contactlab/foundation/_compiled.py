@@ -459,11 +459,8 @@ def fused_step():
 
 def available() -> tuple[str, ...]:
     """Backends usable in this environment (``"numpy"`` always)."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return ("numpy",)
-    return ("numpy", "numba")
+    from ..numeric.jit import available as numba_available
+    return ("numpy", "numba") if numba_available() else ("numpy",)
 
 
 def set_backend(name: str | None) -> None:

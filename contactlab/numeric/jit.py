@@ -16,7 +16,7 @@ without a cache (the results are the same: a cache entry is the machine code of 
 Two processes compiling at once (sweep workers) take an advisory lock file in the cache
 directory, one at a time: the second then loads what the first compiled instead of compiling
 too (and numba's index of a function cannot lose an entry to the race). Importing this module
-does not import numba.
+does not import numba; :func:`available` and :func:`njit` do.
 """
 from __future__ import annotations
 
@@ -34,8 +34,18 @@ _lock_state: dict = {"depth": 0, "file": None}
 
 
 def available() -> bool:
-    """Whether numba is installed (found without importing it)."""
-    return importlib.util.find_spec("numba") is not None
+    """Whether numba is installed and imports (imported on this first question when installed;
+    a numba too old for the installed numpy refuses to import: then the numpy paths run)."""
+    ok = _lock_state.get("available")
+    if ok is None:
+        ok = importlib.util.find_spec("numba") is not None
+        if ok:
+            try:
+                import numba  # noqa: F401
+            except ImportError:
+                ok = False
+        _lock_state["available"] = ok
+    return ok
 
 
 def _locked(compile_: Callable, cache_path: str) -> Callable:

@@ -25,9 +25,6 @@ __all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "TORSION",
 TORSION = 0
 TANGENTIAL = 1
 
-#: numba is installed (extra "fast"); found without importing it (numba takes ~0.2 s to import,
-#: so it is imported on the first compiled step, not with contactlab)
-AVAILABLE = _jit.available()
 
 # ``prange`` in the loops over contacts: ``range`` in plain Python and in the serial build, numba's
 # parallel range in the threaded build (numba's ``prange`` is ``range`` outside compiled code)
@@ -385,6 +382,14 @@ _KERNELS: dict = {}
 _build_lock = threading.Lock()
 
 
+def __getattr__(name: str):
+    """``AVAILABLE``: numba is installed and imports (extra "fast"), answered on first access
+    (numba takes ~0.2 s to import: not with contactlab, at the first law that may use it)."""
+    if name == "AVAILABLE":
+        return _jit.available()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused, spring)`` passes, serial or threaded (built on first use,
     compiled on their first call, machine code cached on disk: :func:`contactlab.numeric.jit.njit`;
@@ -395,7 +400,7 @@ def _kernels(parallel: bool) -> tuple:
     if kernels is None:
         with _build_lock:
             if parallel not in _KERNELS:
-                if AVAILABLE:
+                if _jit.available():
                     global _load, _prange
                     import numba
                     if "load" not in _KERNELS:      # the callee, shared by both builds

@@ -125,3 +125,22 @@ def test_import_contactlab_does_not_import_numba():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env=_env(), cwd=ROOT)
     assert out.stdout.strip() == "False"
+
+
+def test_a_numba_that_does_not_import_means_numpy(tmp_path):
+    """numba installed but refusing to import (as a numba too old for the installed numpy does):
+    the foundations and the contact law choose their numpy paths instead of failing."""
+    (tmp_path / "numba").mkdir()
+    (tmp_path / "numba" / "__init__.py").write_text(
+        "raise ImportError('Numba needs NumPy 2.0 or less')\n")
+    code = ("import contactlab as cl\n"
+            "from contactlab.foundation import _compiled\n"
+            "law = cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, E_star=1e11, G_star=4e10,\n"
+            "                    G_torsion=4e10, friction=0.3)\n"
+            "print(_compiled.backend(), law.fast, cl.effects.law._kernel.AVAILABLE)")
+    env = _env()
+    env["PYTHONPATH"] = os.pathsep.join([str(tmp_path), str(ROOT)])
+    out = subprocess.run([sys.executable, "-W", "error", "-c", code], capture_output=True,
+                         text=True, env=env, cwd=ROOT)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["numpy", "False", "False"]
