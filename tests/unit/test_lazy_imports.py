@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 HEAVY = ("scipy.special", "scipy.integrate", "sympy", "matplotlib", "pandas", "pyarrow",
-         "xarray", "dask", "distributed", "tqdm")
+         "xarray", "dask", "distributed", "tqdm", "contactlab.sweeps", "multiprocessing",
+         "concurrent.futures")
 
 
 @pytest.fixture(scope="module")
@@ -28,6 +29,16 @@ def loaded_after_import() -> set[str]:
 @pytest.mark.parametrize("module", HEAVY)
 def test_heavy_module_not_imported_with_contactlab(loaded_after_import: set[str], module: str) -> None:
     assert module not in loaded_after_import, f"import contactlab loads {module}"
+
+
+def test_lazy_top_level_names_resolve() -> None:
+    import contactlab
+    from contactlab import sweeps
+    assert contactlab.sweep is sweeps.sweep
+    assert contactlab.fretting_map_sweep is sweeps.fretting_map_sweep
+    assert {"sweep", "fretting_map_sweep"} <= set(dir(contactlab))
+    with pytest.raises(AttributeError, match="no_such_name"):
+        contactlab.no_such_name
 
 
 def test_wear_operators_import_scipy_special_on_first_use() -> None:
