@@ -452,6 +452,10 @@ CUBIC_CLOSED_FORM = 1e-11
 # ... on 10^4 random nodes (some 2.5e-12 m apart): the spline's third-derivative jumps there are
 # ~1e15 m^-2 from data rounding alone and cancel in the node sums; measured 2.1e-8.
 CUBIC_CLOSED_FORM_CLUSTERED = 1e-7
+#: node sums of a randomly spaced cubic table (10^5-10^6 points, nearest nodes ~1e-15 of the
+#: radius apart, clustered pieces kept local) against the sampled profile's closed form: the
+#: remaining jumps' rounding, measured 4.6e-10 at 10^6 points (uniform tables: 4e-13)
+CUBIC_RANDOM_FINE = 2e-9
 # g' of the closed form against a central difference of g (step 1e-9 of a 1e-3 m table):
 # difference error ~h² g''' and rounding eps g / h ~ 1e-7; measured 3.5e-10 (uniform tables).
 CUBIC_SLOPE_FD = 1e-8
@@ -502,8 +506,3 @@ RING_PRESSURE_SECOND = 1e-10
 #: pressures differ by < 1e-10 relative, the solver's active sets stay the same; measured 8e-13
 #: of the largest torque/energy
 RING_PRESSURE_PATH = 1e-9
-#: the same exact ring run in chunks of 3 steps instead of 128 on a cubic table: the spline's
-#: node sums of one chunk contract over the nodes below the chunk's largest radius, so a point's
-#: sum may be grouped differently (one rounding, seen once: 2.7e-20 N m on a 1e-4 N m torque);
-#: linear tables and closed-form profiles stay bit-identical
-RING_CHUNKS_CUBIC = 1e-14

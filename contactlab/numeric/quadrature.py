@@ -158,7 +158,9 @@ def tanh_sinh(
             # is read off the two outermost nodes (e = 0 when either value is 0).
             tail[active] = (_tail(fx[:, 0], fx[:, 1], low[0], low[1])
                             + _tail(fx[:, -1], fx[:, -2], high[-1], high[-2])) * np.abs(d[:, 0])
-        sums[active] += fx @ w
+        # a plain row sum, not BLAS: an integral's rounding must not depend on which other
+        # integrals share the call (gemv groups rows by their position in the batch)
+        sums[active] += np.sum(fx * w, axis=1)
         h = _H0 / 2**level
         value[active] = half[active] * h * sums[active]
         if level >= 1:

@@ -131,3 +131,37 @@ def test_xg_integral_matches_independent_quadrature():
                         epsrel=1e-13)[0] for aa in a]
             tol = CUBIC_CLOSED_FORM if kind == "cubic" else TABLE_EXACT
             assert _rel(tab._xg_integral_closed_form(a), np.array(ref)) < tol
+
+
+def _random_fine_case(n: int) -> None:
+    """A randomly spaced cubic table of f = r²/(2R) + c r⁴ (nearest nodes ~1e-15 of the radius
+    apart at 10^6 points): its node sums (clustered pieces kept local) against the profile's
+    closed forms g = x²/R + (8/3) c x⁴, ∫g = a³/(3R) + (8/15) c a⁵, ∫x g = a⁴/(4R) + (4/9) c a⁶,
+    without falling back to the per-interval Gauss rule (the spline's own interpolation error
+    is ~1e-20 here: the difference is the sums' rounding)."""
+    from contactlab.profiles.tabulated import CUBIC_SUM_RTOL
+
+    from ...tolerances import CUBIC_RANDOM_FINE
+    R, c = 0.01, 2.0
+    r = 2e-3 * np.sort(np.r_[0.0, np.random.default_rng(n).random(n - 2), 1.0])
+    tab = Tabulated(r, r**2 / (2 * R) + c * r**4, "cubic")
+    assert tab._cubic_local_lo.size > 0
+    hi = tab._cubic_local_hi
+    x = np.r_[np.linspace(1e-5, 1.99e-3, 12), hi[::max(1, hi.size // 5)] + 1e-12]
+    closed = {"g": x**2 / R + 8.0 / 3.0 * c * x**4,
+              "int": x**3 / (3 * R) + 8.0 / 15.0 * c * x**5,
+              "xg": x**4 / (4 * R) + 4.0 / 9.0 * c * x**6}
+    for kind, ref in closed.items():
+        val, est, _ = tab._cubic_sums(x, kind)
+        assert np.all(est <= CUBIC_SUM_RTOL * np.abs(val)), kind      # no Gauss fallback
+        rel = np.max(np.abs(val / ref - 1))
+        assert rel < CUBIC_RANDOM_FINE, (kind, rel)
+
+
+def test_random_fine_table_node_sums_match_closed_form():
+    _random_fine_case(100_000)
+
+
+@pytest.mark.slow
+def test_random_million_point_table_node_sums_match_closed_form():
+    _random_fine_case(1_000_000)
