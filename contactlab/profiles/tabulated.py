@@ -10,10 +10,18 @@ transform is exact, a sum of truncated-cone transforms (theory §2):
 and ``∫_0^a g = Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr`` in closed form. Each evaluation
 costs O(N) for N table points; nothing is precomputed for all nodes, so tables of 10^6 points work.
 
-``interpolation="cubic"`` uses a C² cubic spline (scipy ``CubicSpline``, not-a-knot ends); its
-transform is a Gauss-Legendre rule per table interval in θ (12 nodes, error estimate from 8), which
-is converged to rounding because the spline slope is analytic inside each interval. (The exact
-antiderivatives are not used: their power-basis form cancels catastrophically for fine tables.)
+``interpolation="cubic"`` uses a C² cubic spline (scipy ``CubicSpline``, not-a-knot ends). Its
+transform is set up once as node sums: the spline's slope written as jumps at the nodes, each
+node contributing elementary terms (``Tabulated._cubic_sums``), O(nodes below x) per point.
+Pieces between nearly coincident nodes (random spacing: 1e-15 of the radius apart at 10^6
+points), whose cubic coefficient is data rounding divided by h³, are kept local: integrated over
+the piece only instead of extrapolated over the table, where their huge jumps would cancel
+(``Tabulated._setup_cubic_jumps``). Points whose sums still carry a rounding estimate above
+:data:`CUBIC_SUM_RTOL` fall back to a Gauss-Legendre rule per table interval in θ (12 nodes,
+error estimate from 8). Every sum over the nodes is grouped in fixed blocks
+(:mod:`contactlab.numeric.fixed_sums`), so a point's value does not depend on the other points
+of its call.
+
 The two interpolants of the same table differ at the level of the linear interpolation error:
 for a table sampled from a smooth profile the linear one is off by ~0.35 (Δr/a)² in force and
 ~2.4 (Δr/a)² in contact radius, the cubic one by ~1e-12 at 1000 points (tests/unit/profiles/test_transform.py).
