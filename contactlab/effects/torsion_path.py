@@ -21,6 +21,7 @@ from ..loadpath import LoadPath
 from ..params import check_count, check_memory, step_indices
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
+from ..physics import torsion_annulus as _ta
 from ..physics import torsion_rings as _tr
 
 __all__ = ["simulate_exact", "ESTIMATED", "exact_memory"]
@@ -68,6 +69,49 @@ def simulate_exact(contact, path: LoadPath, *, outputs: Any = None, n_rings: int
     return res
 
 
+def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active):
+    """One step on the punch density: the single-slip-annulus step of
+    :mod:`contactlab.physics.torsion_annulus` when its checks hold, else the ring solver's
+    box-constrained step from the point tractions of ``w`` (its result turned back into a
+    density). Returns the new density, the point tractions (or ``None``), the slip increments at
+    the points (m), the twist increment, gross sliding, the stick radius (``None``: from the
+    tractions), the active set, pivots and whether the annulus step was taken."""
+    r, b, jumps = rings.points, rings.boundaries, rings.jumps
+    slide = _ta.density(rings.lu, b, jumps, bound, radius)
+    if ctrl == "twist":
+        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound)
+    else:
+        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound)
+    if out["ok"]:
+        s, c, extra = out["sense"], out["c"], out["gross"]
+        gross = bool(np.isnan(extra))
+        w_new = out["w"]
+        ds = out["slip"]
+        if gross:                   # torque beyond the sliding torque: slides, twist held
+            return (w_new, None, ds, 0.0, True, 0.0,
+                    np.where(bound == 0, 2, int(s)).astype(int), 1, True)
+        dphi = target - twist if ctrl == "twist" else out["dpsi"]
+        act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
+        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, True)
+    H, g = rings.H, rings.g
+    z_old = _ta.traction(w, r, G_t)
+    if ctrl == "twist":
+        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
+                                        C=rings.C)
+    else:
+        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, torque=target, guess=active,
+                                        C=rings.C)
+    gross = not np.isfinite(dphi)
+    if gross:
+        z = np.sign(target) * bound
+        lam = np.zeros_like(z)
+        dphi = 0.0
+    lam = np.where(bound > 0, lam, 0.0)
+    act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
+    return (_ta.density(rings.lu, b, jumps, z, radius), z, _tr.slip_density(lam, r, g), dphi,
+            gross, None, act, it, False)
+
+
 #: steps whose ring slip limits are held at once (memory: chunk x rings floats)
 _BOUND_CHUNK = 128
 
@@ -108,7 +152,7 @@ def _normal_states(contact, path, outputs, n_total):
 
 
 def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, align=True,
-         edge=True, jumps=True, ring_table=True):
+         edge=True, jumps=True, ring_table=True, annulus=True):
     from .path import SERIES, PathResult, _progress, partial_path_failure
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
@@ -159,7 +203,15 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
              if ring_table and mu is not None else None)
     cur = dict.fromkeys(("depth", "force", "twist", "torque"), 0.0)
     ctrl = "twist"
-    M_old, W_in, W_d = 0.0, 0.0, 0.0
+    M_old, W_in, W_d, E_old = 0.0, 0.0, 0.0, 0.0
+    G_t = contact.moduli.torsional
+    # the punch density as the state, each step with one slip annulus (stick radius inside its
+    # ring) where that is the exact step; the flat punch's edge punch and no-slip runs keep the
+    # point tractions
+    use_annulus = bool(annulus and mu is not None and not edge_punch)
+    w = _ta.empty()
+    slip = np.zeros(r.size)
+    fallback = 0
     snap_data: dict[int, dict] = {}
     t0, i = 0.0, 0
     iters = 0
@@ -199,27 +251,48 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                     bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
                 for j in range(c0, c1):
                     k = i + j
-                    z_old, bj = st.z, bound[j - c0]
-                    if ctrl == "twist":
-                        z, lam, dphi, it = _tr.box_step(H, g, z_old, bj, dphi=target[j] - st.twist,
-                                                        guess=st.active, C=rings.C)
+                    bj, aj = bound[j - c0], float(a_arr[j])
+                    if use_annulus:
+                        out = _annulus_step(rings, w, bj, aj, G_t, ctrl, float(target[j]),
+                                            st.twist, st.active)
+                        w, z, lam_slip, dphi, gross, c_stick, st.active, it, taken = out
+                        fallback += not taken
+                        M = _ta.torque(w, G_t)
+                        E_st = _ta.stored_energy(w, G_t)
+                        W_in += 0.5 * (M_old + M) * dphi
+                        dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
+                        E_old = E_st
+                        slip += lam_slip
                     else:
-                        z, lam, dphi, it = _tr.box_step(H, g, z_old, bj, torque=float(target[j]),
-                                                        guess=st.active, C=rings.C)
+                        z_old = st.z
+                        if ctrl == "twist":
+                            z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
+                                                            dphi=target[j] - st.twist,
+                                                            guess=st.active, C=rings.C)
+                        else:
+                            z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
+                                                            torque=float(target[j]),
+                                                            guess=st.active, C=rings.C)
+                        gross = not np.isfinite(dphi)
+                        if gross:       # torque beyond full sliding: gross sliding
+                            z = np.sign(target[j]) * bj
+                            lam = np.zeros_like(z)
+                            dphi = 0.0
+                        M = float(g @ z)
+                        W_in += 0.5 * (M_old + M) * dphi
+                        dW = 0.5 * float((z_old + z) @ lam)
+                        E_st = 0.5 * float(z @ (H @ z))
+                        lam = np.where(bj > 0, lam, 0.0)
+                        st.S = st.S + lam
+                        slip += _tr.slip_density(lam, r, g)
+                        st.z = z
+                        st.active = np.where(bj == 0, 2, np.where(lam == 0, 0,
+                                                                  np.sign(z))).astype(int)
+                        c_stick = None
+                    res["gross_sliding"][k] = gross
                     iters += it
-                    if not np.isfinite(dphi):       # torque beyond full sliding: gross sliding
-                        res["gross_sliding"][k] = True
-                        z = np.sign(target[j]) * bj
-                        lam = np.zeros_like(z)
-                        dphi = 0.0
-                    M = float(g @ z)
-                    W_in += 0.5 * (M_old + M) * dphi
-                    dW = 0.5 * float((z_old + z) @ lam)
                     W_d += dW
                     st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
-                    st.S = st.S + np.where(bj > 0, lam, 0.0)
-                    st.z = z
-                    st.active = np.where(bj == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
                     M_old = M
                     if bar is not None:
                         bar.update(1)
@@ -227,18 +300,24 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                     res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
                                                                   res["gross_sliding"][k] else M)
                     res["dissipated_energy"][k] = W_d
-                    res["stick_radius"][k] = _tr.stick_radius(r, z, bj, float(a_arr[j]))
+                    if c_stick is None:
+                        if z is None:
+                            z = _ta.traction(w, r, G_t)
+                        c_stick = _tr.stick_radius(r, z, bj, aj)
+                    res["stick_radius"][k] = c_stick
                     work[k], step_diss[k] = W_in, dW
-                    stored[k] = 0.5 * float(z @ (H @ z))
+                    stored[k] = E_st
                     done = k + 1
                     if k in snaps:
+                        if z is None:
+                            z = _ta.traction(w, r, G_t)
                         snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
-                                        "radius": float(a_arr[j]), "shear_torsion": z.copy(),
+                                        "radius": aj, "shear_torsion": z.copy(),
                                         "pressure": (np.zeros(r.size) if p is None else
-                                                     np.where(r < a_arr[j], p[j - c0], 0.0)),
-                                        "slip": _tr.slip_density(st.S, r, g),
-                                        "slip_increment": _tr.slip_density(
-                                            np.where(bj > 0, lam, 0.0), r, g)}
+                                                     np.where(r < aj, p[j - c0], 0.0)),
+                                        "slip": slip.copy(),
+                                        "slip_increment": lam_slip.copy()
+                                        if use_annulus else _tr.slip_density(lam, r, g)}
             t0 = float(res["time"][i + n - 1]) if n else t0
             i += n
             cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
@@ -261,6 +340,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
             "jump_nodes": int(rings.jumps.size),
             "n_springs": None, "spacing": spacing, "foundation": repr(rings),
             "approximate": False, "iterations": iters,
+            "annulus": use_annulus, "fallback_steps": int(fallback),
             "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},
             "citations": sources_for("normal", "torsion:exact")}
     return PathResult({k: res[k] for k in outputs}, snap_data, meta)

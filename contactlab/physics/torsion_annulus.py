@@ -1,0 +1,347 @@
+"""Punch-density steps of the exact torsion solver with the stick radius inside its ring.
+
+The ring solver (:mod:`contactlab.physics.torsion_rings`) keeps the traction at collocation
+points; its stick–slip boundary can only switch a whole ring at a time, which limits it to
+``O(h²)`` with a large constant. This module carries the state as the punch density itself,
+``w(t)`` piecewise linear on *pieces* ``[lo_k, hi_k]`` (values ``wl_k``, ``wr_k`` at their ends,
+jumps allowed between pieces), and takes a step in Jäger's form whenever the slip zone of the
+step is one annulus ``c < r < a`` reaching the contact edge:
+
+* on the slip annulus the traction is ``s μ p`` (``s = ±1``), and since the traction at ``r``
+  depends on the density at ``t ≥ r`` only (``τ(r) = (4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt``),
+  the new density there is ``s W(t)``, the density of the full-sliding traction ``μ p`` of the
+  step, whatever ``c`` is;
+* inside ``c`` the density is unchanged: every punch of radius ``t > r`` turns the point ``r``
+  rigidly, so the stick zone turns by ``Ψ(0) = ∫ w dt`` and does not slip;
+* ``c`` solves one scalar equation, the twist ``Ψ_new(0) − Ψ_old(0) = Δφ`` (or the torque
+  ``(16/3) G_t ∫ t³ w dt`` = target), and is found inside its piece by a root solve.
+
+The step is the exact solution of the incremental problem when the traction stays within
+``μ p`` inside ``c`` and the slip on the annulus points the way of ``s`` (checked: :func:`step`
+returns ``ok=False`` otherwise, and the caller takes the step with the ring solver). The slip
+increment at ``r`` is ``Δs(r) = ∫_0^r Δw(t) K(r, t) dt`` with
+``K = (2/π)[r arccos(t/r) + t sqrt(1 − t²/r²)] ≥ 0`` (the rigid turn minus the Reissner–Sagoci
+displacement outside a punch), closed form on each piece.
+
+All functions are pure: arrays in, arrays out.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as _la
+from scipy.optimize import brentq
+
+__all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
+           "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
+           "difference", "step", "ROOT_XTOL", "CHECK_RTOL"]
+
+#: relative tolerance (of the contact radius) of the stick radius's root solve
+ROOT_XTOL = 1e-15
+#: relative slack of the checks of a step (traction within μp inside ``c``; slip direction)
+CHECK_RTOL = 1e-9
+
+#: a piecewise-linear density: (lo, hi, wl, wr), each an array over the pieces, sorted, abutting
+Pieces = tuple
+
+
+def empty() -> Pieces:
+    """The zero density (no pieces)."""
+    return tuple(np.zeros(0) for _ in range(4))
+
+
+def from_nodes(b: np.ndarray, left: np.ndarray, right: np.ndarray) -> Pieces:
+    """Pieces on the rings ``[b_j, b_{j+1}]`` with end values ``left[j]``, ``right[j]``."""
+    return (b[:-1].copy(), b[1:].copy(), np.asarray(left, float), np.asarray(right, float))
+
+
+def _lin(p: Pieces):
+    lo, hi, wl, wr = p
+    h = hi - lo
+    be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
+    return wl - be * lo, be
+
+
+def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
+    """``Ψ(x) = ∫_x^∞ w dt`` at ``x``, m per (rad/m) (running sums: ``O((n + m) log n)``)."""
+    lo, hi, _, _ = p
+    x = np.asarray(x, float)
+    if lo.size == 0:
+        return np.zeros(x.shape)
+    al, be = _lin(p)
+    whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
+    tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
+    k = np.clip(np.searchsorted(hi, x, "right"), 0, lo.size - 1)
+    t0 = np.clip(x, lo[k], hi[k])
+    part = al[k] * (hi[k] - t0) + 0.5 * be[k] * (hi[k] ** 2 - t0 * t0)
+    return np.where(x >= hi[-1], 0.0, np.where(x < lo[0], tail[0], part + tail[k + 1]))
+
+
+def torque(p: Pieces, G_t: float) -> float:
+    """Torque ``(16/3) G_t ∫ t³ w dt``, N·m."""
+    lo, hi, _, _ = p
+    al, be = _lin(p)
+    return float(16.0 / 3.0 * G_t * np.sum(al * (hi ** 4 - lo ** 4) / 4.0
+                                            + be * (hi ** 5 - lo ** 5) / 5.0))
+
+
+def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
+    """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece)."""
+    lo, hi, _, _ = p
+    al, be = _lin(p)
+    rr = np.asarray(r, float)[:, None]
+    t0 = np.maximum(lo[None, :], rr)
+    inside = (rr < hi[None, :]) & (rr > 0)
+    s1 = np.sqrt(np.maximum(hi * hi - rr * rr, 0.0))
+    s0 = np.sqrt(np.maximum(t0 * t0 - rr * rr, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        T1 = np.where(inside, np.log((hi + s1) / np.where(inside, t0 + s0, 1.0)), 0.0)
+    Tt = np.where(inside, s1 - s0, 0.0)
+    return 4.0 * G_t / np.pi * rr[:, 0] * (T1 @ al + Tt @ be)
+
+
+def _G0(x):
+    q = np.sqrt(np.maximum(1.0 - x * x, 0.0))
+    return x * np.arccos(x) - q - q ** 3 / 3.0
+
+
+def _G1(x):
+    q = np.sqrt(np.maximum(1.0 - x * x, 0.0))
+    asn = np.arcsin(x)
+    return (0.5 * x * x * np.arccos(x) - 0.25 * x * q + 0.25 * asn
+            + (x * (2.0 * x * x - 1.0) * q + asn) / 8.0)
+
+
+def slip_kernel_integral(p: Pieces, r: np.ndarray) -> np.ndarray:
+    """``v(r) = ∫_0^r w(t) K(r, t) dt`` (m): the lag of the surface at ``r`` behind the rigid turn
+    ``Ψ(0) r``; a step's slip increment is ``Δv`` (plus ``r`` times any gross-sliding turn)."""
+    lo, hi, _, _ = p
+    al, be = _lin(p)
+    rr = np.asarray(r, float)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x0 = np.where(rr > 0, np.clip(lo / rr, 0.0, 1.0), 1.0)
+        x1 = np.where(rr > 0, np.clip(hi / rr, 0.0, 1.0), 1.0)
+    I0 = rr * rr * (_G0(x1) - _G0(x0))
+    I1 = rr ** 3 * (_G1(x1) - _G1(x0))
+    return 2.0 / np.pi * (I0 @ al + I1 @ be)
+
+
+_GAUSS = np.polynomial.legendre.leggauss(4)
+
+
+def stored_energy(p: Pieces, G_t: float) -> float:
+    """Elastic energy ``8 G_t ∫ x² Ψ(x)² dx``, J (4-point Gauss per piece, exact; below the
+    first piece ``Ψ`` is constant). The pieces must abut."""
+    lo, hi, _, _ = p
+    if lo.size == 0:
+        return 0.0
+    xg, wg = _GAUSS
+    h = hi - lo
+    X = lo[:, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]
+    Ps = psi(p, X.ravel()).reshape(X.shape)
+    inner = float(psi(p, lo[:1])[0]) ** 2 * lo[0] ** 3 / 3.0
+    return float(8.0 * G_t * (np.sum(0.5 * wg[None, :] * h[:, None] * X * X * Ps * Ps) + inner))
+
+
+def _values(p: Pieces, x: np.ndarray, side: int) -> np.ndarray:
+    """``w(x⁻)`` (side −1) or ``w(x⁺)`` (side +1) at the sorted radii ``x`` (0 outside)."""
+    lo, hi, wl, wr = p
+    x = np.asarray(x, float)
+    k = (np.searchsorted(hi, x, "left") if side < 0 else np.searchsorted(lo, x, "right") - 1)
+    valid = (k >= 0) & (k < lo.size)
+    k = np.clip(k, 0, max(lo.size - 1, 0))
+    if lo.size == 0:
+        return np.zeros(x.shape)
+    h = hi[k] - lo[k]
+    f = np.where(h > 0, (x - lo[k]) / np.where(h > 0, h, 1.0), 0.0)
+    inside = valid & (((x > lo[k]) & (x <= hi[k])) if side < 0 else
+                      ((x >= lo[k]) & (x < hi[k])))
+    return np.where(inside, wl[k] + (wr[k] - wl[k]) * f, 0.0)
+
+
+def torque_below(p: Pieces, x: np.ndarray, G_t: float) -> np.ndarray:
+    """Torque of the density below each radius ``x``, N·m (running sums)."""
+    lo, hi, _, _ = p
+    x = np.asarray(x, float)
+    if lo.size == 0:
+        return np.zeros(x.shape)
+    al, be = _lin(p)
+    whole = al * (hi ** 4 - lo ** 4) / 4.0 + be * (hi ** 5 - lo ** 5) / 5.0
+    head = np.concatenate([[0.0], np.cumsum(whole)])              # ∫ over pieces < k
+    k = np.clip(np.searchsorted(hi, x, "right"), 0, lo.size - 1)
+    t1 = np.clip(x, lo[k], hi[k])
+    part = al[k] * (t1 ** 4 - lo[k] ** 4) / 4.0 + be[k] * (t1 ** 5 - lo[k] ** 5) / 5.0
+    return 16.0 / 3.0 * G_t * np.where(x >= hi[-1], head[-1], np.where(x < lo[0], 0.0,
+                                                                          head[k] + part))
+
+
+def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
+    """The part of ``p`` below (or above) ``x``, the piece holding ``x`` split there."""
+    lo, hi, wl, wr = p
+    if keep_below:
+        m = lo < x
+        lo, hi, wl, wr = lo[m], hi[m], wl[m], wr[m]
+        if lo.size and hi[-1] > x:
+            h = hi[-1] - lo[-1]
+            wr = wr.copy()
+            hi = hi.copy()
+            wr[-1] = wl[-1] + (wr[-1] - wl[-1]) * (x - lo[-1]) / h
+            hi[-1] = x
+    else:
+        m = hi > x
+        lo, hi, wl, wr = lo[m], hi[m], wl[m], wr[m]
+        if lo.size and lo[0] < x:
+            h = hi[0] - lo[0]
+            wl = wl.copy()
+            lo = lo.copy()
+            wl[0] = wl[0] + (wr[0] - wl[0]) * (x - lo[0]) / h
+            lo[0] = x
+    return lo, hi, wl, wr
+
+
+def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
+    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends)."""
+    xs = np.unique(np.concatenate([new[0], new[1], old[0], old[1], [start]]))
+    xs = xs[xs >= start]
+    if xs.size < 2:
+        return tuple(np.zeros(0) for _ in range(4))
+    lo, hi = xs[:-1], xs[1:]
+    wl = _values(new, lo, 1) - _values(old, lo, 1)
+    wr = _values(new, hi, -1) - _values(old, hi, -1)
+    return lo, hi, wl, wr
+
+
+def from_coefficients(b: np.ndarray, coef: np.ndarray, jumps: np.ndarray,
+                      radius: float | None = None) -> Pieces:
+    """Pieces of the ring solver's density: hat coefficients at ``b_1 .. b_N`` (``w(0) = 0``),
+    then one falling half-hat per node in ``jumps``; cut at ``radius`` when given."""
+    n = b.size - 1
+    hat = np.asarray(coef, float)[:n]
+    left = np.concatenate([[0.0], hat[:-1]])
+    right = hat.copy()
+    jumps = np.asarray(jumps, int)
+    if jumps.size:
+        left[jumps] += np.asarray(coef, float)[n:n + jumps.size]
+    p = from_nodes(b, left, right)
+    return p if radius is None else _cut(p, float(radius), True)
+
+
+def splice(old: Pieces, new: Pieces, c: float) -> Pieces:
+    """``old`` below ``c`` and ``new`` above it (zero-width pieces dropped)."""
+    a, b = _cut(old, c, True), _cut(new, c, False)
+    out = tuple(np.concatenate([u, v]) for u, v in zip(a, b))
+    keep = out[1] > out[0]
+    return tuple(u[keep] for u in out)
+
+
+def _local(d_lo: float, d_hi: float, x0: float, x1: float, kind: str, G_t: float):
+    """``∫_x^{x1} κ(t) d(t) dt`` as a function of ``x`` in ``[x0, x1]`` for the linear ``d``
+    with ends ``d_lo``, ``d_hi`` (``κ = 1`` for the twist, ``(16/3) G_t t³`` for the torque)."""
+    be = (d_hi - d_lo) / (x1 - x0)
+    al = d_lo - be * x0
+    if kind == "twist":
+        return lambda x: al * (x1 - x) + 0.5 * be * (x1 * x1 - x * x)
+    k = 16.0 / 3.0 * G_t
+    return lambda x: k * (al * (x1 ** 4 - x ** 4) / 4.0 + be * (x1 ** 5 - x ** 5) / 5.0)
+
+
+def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float | None = None,
+         target_torque: float | None = None, r: np.ndarray | None = None,
+         bound: np.ndarray | None = None) -> dict:
+    """One step with a single slip annulus ``c < r < radius``.
+
+    Parameters
+    ----------
+    old : Pieces
+        Density before the step, rad/m per m.
+    slide : Pieces
+        Density ``W`` of the full-sliding traction ``μ p`` of this step (zero beyond ``radius``).
+    radius : float
+        Contact radius of the step, m.
+    G_t : float
+        Torsional modulus, Pa.
+    dphi, target_torque : float
+        Twist increment (rad) or the torque to reach (N·m); exactly one.
+    r, bound : ndarray, optional
+        Check points (m) and ``μ p`` there (Pa, 0 outside the contact): the traction inside ``c``
+        is checked against ``μ p``, the slip increments on the annulus against the sense.
+
+    Returns
+    -------
+    dict
+        ``w`` (new pieces), ``c`` (stick radius, m), ``sense`` (``s``), ``dpsi`` (``Ψ_new(0) −
+        Ψ_old(0)``, rad), ``gross`` (twist turned beyond full sliding, rad; ``nan`` when a torque
+        target exceeds the sliding torque), ``slip`` (slip increments at ``r`` in contact, m;
+        ``None`` without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or
+        ``""``).
+    """
+    kind = "twist" if target_torque is None else "torque"
+    if kind == "twist":
+        def f(x, s):
+            return s * psi(slide, x) - psi(old, x)
+        target = float(dphi)
+    else:
+        M_sl = torque(slide, G_t)
+
+        def f(x, s):
+            return torque_below(old, x, G_t) + s * (M_sl - torque_below(slide, x, G_t))
+        target = float(target_torque)
+    base = float(f(np.array(radius), 1.0))
+    gross = 0.0
+    s = 1.0 if target >= base else -1.0
+    if target == base:
+        c = float(radius)
+    else:
+        # the piece ends of both densities below the radius, from the edge inwards: the first
+        # where the twist (torque) reaches the target brackets the stick radius, inside which
+        # both densities are linear (a polynomial root)
+        xs = np.unique(np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]]))
+        xs = xs[xs <= radius][::-1]
+        fx = f(xs, s)
+        vals = s * (fx - target)
+        hit = np.flatnonzero(vals >= 0)
+        if hit.size == 0:
+            c = 0.0
+            gross = target - float(fx[-1]) if kind == "twist" else float("nan")
+        else:
+            k = int(hit[0])
+            if vals[k] == 0 or k == 0:
+                c = float(xs[k])
+            else:
+                x0, x1 = float(xs[k]), float(xs[k - 1])
+                ends = np.array([x0, x1])
+                d_lo, d_hi = (s * _values(slide, ends, side) - _values(old, ends, side)
+                              for side in (1, -1))
+                loc = _local(float(d_lo[0]), float(d_hi[1]), x0, x1, kind, G_t)
+                f1 = float(fx[k - 1])
+                c = brentq(lambda x: s * (f1 + loc(x) - target), x0, x1,
+                           xtol=ROOT_XTOL * radius, rtol=4 * np.finfo(float).eps)
+    signed = (slide[0], slide[1], s * slide[2], s * slide[3])
+    w = splice(old, signed, c)
+    dpsi = float(psi(w, np.array(0.0)) - psi(old, np.array(0.0)))
+    why, ds = "", None
+    if r is not None:
+        # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus: the sense of s
+        ds = np.zeros(r.size)
+        on = (bound > 0) & (r > c)
+        if on.any() and not np.isnan(gross):
+            ds[on] = slip_kernel_integral(difference(w, old, c), r[on]) + gross * r[on]
+            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(target - base) \
+                if kind == "twist" else float(np.max(np.abs(ds[on])))
+            if np.any(s * ds[on] < -CHECK_RTOL * ref):
+                why = "slip against the traction on the annulus"
+        if not why and c > 0:
+            inside = r < c
+            if inside.any():
+                tau = traction(w, r[inside], G_t)
+                if np.any(np.abs(tau) > bound[inside] * (1 + CHECK_RTOL)):
+                    why = "traction beyond the friction limit inside the stick radius"
+    return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
+            "ok": not why, "why": why}
+
+
+def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:
+    """Pieces of the ring solver's density whose traction at its collocation points is
+    ``values`` (``lu``: the LU factors of the traction-per-basis matrix, hats then jumps), cut at
+    the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
+    coef = _la.lu_solve(lu, np.asarray(values, float), check_finite=False)
+    return from_coefficients(b, coef, jumps, radius)
