@@ -69,19 +69,23 @@ def simulate_exact(contact, path: LoadPath, *, outputs: Any = None, n_rings: int
     return res
 
 
-def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active):
+def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, slip=True,
+                  slide=None):
     """One step on the punch density: the single-slip-annulus step of
     :mod:`contactlab.physics.torsion_annulus` when its checks hold, else the ring solver's
     box-constrained step from the point tractions of ``w`` (its result turned back into a
     density). Returns the new density, the point tractions (or ``None``), the slip increments at
     the points (m), the twist increment, gross sliding, the stick radius (``None``: from the
-    tractions), the active set, pivots and whether the annulus step was taken."""
+    tractions), the active set, pivots and whether the annulus step was taken. ``slip=False``
+    skips the slip increments where the checks do not need them; ``slide`` is the step's
+    full-sliding density when known."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
-    slide = _ta.density(rings.lu, b, jumps, bound, radius)
+    if slide is None:
+        slide = _ta.density(rings.lu, b, jumps, bound, radius)
     if ctrl == "twist":
-        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound)
+        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip)
     else:
-        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound)
+        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound, slip=slip)
     if out["ok"]:
         s, c, extra = out["sense"], out["c"], out["gross"]
         gross = bool(np.isnan(extra))
@@ -93,6 +97,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active):
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
         act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
         return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, True)
+    # the ring solver's step is incremental: the increment of the point tractions is a hat
+    # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
     z_old = _ta.traction(w, r, G_t)
     if ctrl == "twist":
@@ -108,8 +114,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active):
         dphi = 0.0
     lam = np.where(bound > 0, lam, 0.0)
     act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
-    return (_ta.density(rings.lu, b, jumps, z, radius), z, _tr.slip_density(lam, r, g), dphi,
-            gross, None, act, it, False)
+    w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))
+    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it, False)
 
 
 #: steps whose ring slip limits are held at once (memory: chunk x rings floats)
@@ -212,6 +218,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     w = _ta.empty()
     slip = np.zeros(r.size)
     fallback = 0
+    slide_key = None        # (radius, μp) of the last full-sliding density computed
     snap_data: dict[int, dict] = {}
     t0, i = 0.0, 0
     iters = 0
@@ -253,12 +260,21 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                     k = i + j
                     bj, aj = bound[j - c0], float(a_arr[j])
                     if use_annulus:
-                        out = _annulus_step(rings, w, bj, aj, G_t, ctrl, float(target[j]),
-                                            st.twist, st.active)
+                        # the density ends at the node of the contact radius (a radius within
+                        # ALIGN_GAP ring widths of another shares its node)
+                        bnd = rings.boundaries
+                        edge_j = float(bnd[min(np.searchsorted(bnd, aj * (1 - 1e-12)),
+                                               bnd.size - 1)])
+                        if slide_key is None or not (slide_key[0] == edge_j and
+                                                     np.array_equal(slide_key[1], bj)):
+                            slide = _ta.density(rings.lu, bnd, rings.jumps, bj, edge_j)
+                            slide_key = (edge_j, bj)
+                        out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
+                                            st.twist, st.active, slip=bool(snaps), slide=slide)
                         w, z, lam_slip, dphi, gross, c_stick, st.active, it, taken = out
-                        fallback += not taken
                         M = _ta.torque(w, G_t)
                         E_st = _ta.stored_energy(w, G_t)
+                        fallback += not taken
                         W_in += 0.5 * (M_old + M) * dphi
                         dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
                         E_old = E_st

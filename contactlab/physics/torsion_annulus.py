@@ -210,6 +210,11 @@ def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
     return lo, hi, wl, wr
 
 
+def add(p: Pieces, q: Pieces) -> Pieces:
+    """The sum of two densities (on the union of their piece ends)."""
+    return difference(p, (q[0], q[1], -q[2], -q[3]), 0.0)
+
+
 def from_coefficients(b: np.ndarray, coef: np.ndarray, jumps: np.ndarray,
                       radius: float | None = None) -> Pieces:
     """Pieces of the ring solver's density: hat coefficients at ``b_1 .. b_N`` (``w(0) = 0``),
@@ -233,6 +238,10 @@ def splice(old: Pieces, new: Pieces, c: float) -> Pieces:
     return tuple(u[keep] for u in out)
 
 
+def _scale(p: Pieces) -> float:
+    return float(np.max(np.abs(p[2]), initial=0.0) + np.max(np.abs(p[3]), initial=0.0)) or 1.0
+
+
 def _local(d_lo: float, d_hi: float, x0: float, x1: float, kind: str, G_t: float):
     """``∫_x^{x1} κ(t) d(t) dt`` as a function of ``x`` in ``[x0, x1]`` for the linear ``d``
     with ends ``d_lo``, ``d_hi`` (``κ = 1`` for the twist, ``(16/3) G_t t³`` for the torque)."""
@@ -246,7 +255,7 @@ def _local(d_lo: float, d_hi: float, x0: float, x1: float, kind: str, G_t: float
 
 def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float | None = None,
          target_torque: float | None = None, r: np.ndarray | None = None,
-         bound: np.ndarray | None = None) -> dict:
+         bound: np.ndarray | None = None, slip: bool = True) -> dict:
     """One step with a single slip annulus ``c < r < radius``.
 
     Parameters
@@ -264,14 +273,16 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     r, bound : ndarray, optional
         Check points (m) and ``μ p`` there (Pa, 0 outside the contact): the traction inside ``c``
         is checked against ``μ p``, the slip increments on the annulus against the sense.
+    slip : bool
+        Compute the slip increments at ``r`` (else only where the check needs them; zeros).
 
     Returns
     -------
     dict
         ``w`` (new pieces), ``c`` (stick radius, m), ``sense`` (``s``), ``dpsi`` (``Ψ_new(0) −
         Ψ_old(0)``, rad), ``gross`` (twist turned beyond full sliding, rad; ``nan`` when a torque
-        target exceeds the sliding torque), ``slip`` (slip increments at ``r`` in contact, m;
-        ``None`` without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or
+        target exceeds the sliding torque), ``slip`` (slip increments at the points ``r`` in
+        contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or
         ``""``).
     """
     kind = "twist" if target_torque is None else "torque"
@@ -320,14 +331,21 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     dpsi = float(psi(w, np.array(0.0)) - psi(old, np.array(0.0)))
     why, ds = "", None
     if r is not None:
-        # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus: the sense of s
+        # points in contact at the start or the end of the step (a point leaving the contact
+        # slips while its traction is released)
+        reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
+        on = ((bound > 0) | (r < reach)) & (r > c)
         ds = np.zeros(r.size)
-        on = (bound > 0) & (r > c)
-        if on.any() and not np.isnan(gross):
-            ds[on] = slip_kernel_integral(difference(w, old, c), r[on]) + gross * r[on]
-            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(target - base) \
-                if kind == "twist" else float(np.max(np.abs(ds[on])))
-            if np.any(s * ds[on] < -CHECK_RTOL * ref):
+        # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus must point the way
+        # of s: since K >= 0, s Δw >= 0 on the annulus (and s × the gross turn >= 0) suffices;
+        # else (or when the increments are wanted) they are computed at the points
+        dw = difference(w, old, c)
+        sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= -CHECK_RTOL * _scale(slide)))
+                      and bool(np.all(s * dw[3] >= -CHECK_RTOL * _scale(slide))))
+        if on.any() and not np.isnan(gross) and (slip or not sufficient):
+            ds[on] = slip_kernel_integral(dw, r[on]) + gross * r[on]
+            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
+            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
         if not why and c > 0:
             inside = r < c

@@ -1,0 +1,137 @@
+"""Punch-density kernels of the exact torsion solver (physics.torsion_annulus) against direct
+quadratures of Jäger's punch superposition and the Reissner–Sagoci displacement, and one step
+from rest against the closed-form Hertz (Lubkin) solution."""
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import ellipe, ellipk
+
+from contactlab.physics import torsion_annulus as ta
+from contactlab.physics import torsion_rings as tr
+from tests.tolerances import QUADRATURE, RINGS_ANNULUS_STEP
+
+G = 80e9          # Pa; lengths in units of the outer radius (1)
+# a density with a jump inside (at 0.47) and a gap of zero density below the first piece
+P = (np.array([0.2, 0.47, 0.47, 0.8]), np.array([0.47, 0.47, 0.8, 1.0]),
+     np.array([3.0, 0.0, -1.5, 2.0]), np.array([5.0, 0.0, 0.5, 4.0]))
+P = tuple(np.asarray(v)[[0, 2, 3]] for v in P)          # drop the zero-width piece
+
+
+def w(t):
+    lo, hi, wl, wr = P
+    for a, b, u, v in zip(lo, hi, wl, wr):
+        if a <= t < b:
+            return u + (v - u) * (t - a) / (b - a)
+    return 0.0
+
+
+def ends():
+    return sorted(set(P[0]) | set(P[1]))
+
+
+def quad_pieces(f, lo, hi, epsrel=1e-12):
+    pts = [x for x in ends() if lo < x < hi]
+    edges = [lo] + pts + [hi]
+    return sum(quad(f, u, v, limit=200, epsabs=1e-15, epsrel=epsrel)[0]
+               for u, v in zip(edges, edges[1:]) if v > u)
+
+
+@pytest.mark.parametrize("r", [0.1, 0.3, 0.6, 0.95])
+def test_traction_matches_the_punch_superposition(r):
+    pts = [x for x in ends() if x > r]
+    first = quad(lambda t: w(t) / np.sqrt(t + r), r, pts[0], weight="alg", wvar=(-0.5, 0.0),
+                 epsabs=0, epsrel=1e-12)[0]          # (t − r)^(-1/2) weight at the lower end
+    want = 4 * G / np.pi * r * (first + quad_pieces(lambda t: w(t) / np.sqrt(t * t - r * r),
+                                                    pts[0], 1.0))
+    got = ta.traction(P, np.array([r]), G)[0]
+    assert got == pytest.approx(want, rel=QUADRATURE * 10)
+
+
+@pytest.mark.parametrize("r", [0.1, 0.3, 0.6, 0.95, 1.3])
+def test_slip_kernel_is_rigid_turn_minus_reissner_sagoci(r):
+    # displacement of a punch of radius t turned by 1 at r > t (Reissner–Sagoci), written out
+    # independently: u = (2/π)[r arcsin(t/r) − t sqrt(1 − t²/r²)]
+    def lag(t):
+        return r - 2 / np.pi * (r * np.arcsin(t / r) - t * np.sqrt(1 - t * t / (r * r)))
+    want = quad_pieces(lambda t: w(t) * lag(t), 0.0, min(r, 1.0))
+    got = ta.slip_kernel_integral(P, np.array([r]))[0]
+    assert got == pytest.approx(want, rel=QUADRATURE * 10, abs=1e-30)
+
+
+def test_psi_torque_and_energy_against_quadrature():
+    psi = lambda x: quad_pieces(w, x, 1.0)                      # noqa: E731
+    for x in (0.0, 0.1, 0.3, 0.47, 0.9):
+        assert ta.psi(P, np.array([x]))[0] == pytest.approx(psi(x), rel=QUADRATURE)
+    M = 16 / 3 * G * quad_pieces(lambda t: t ** 3 * w(t), 0.0, 1.0)
+    assert ta.torque(P, G) == pytest.approx(M, rel=QUADRATURE)
+    assert ta.torque_below(P, np.array([0.6]), G)[0] == pytest.approx(
+        16 / 3 * G * quad_pieces(lambda t: t ** 3 * w(t), 0.0, 0.6), rel=QUADRATURE)
+    E = 8 * G * quad_pieces(lambda x: x * x * psi(x) ** 2, 0.0, 1.0, epsrel=1e-9)
+    assert ta.stored_energy(P, G) == pytest.approx(E, rel=QUADRATURE * 10)
+
+
+def test_ring_density_round_trip_and_energy_of_the_ring_solver():
+    b = np.linspace(0, 1.0, 21)
+    jumps = np.array([12])
+    pts = np.sort(np.concatenate([0.5 * (b[1:] + b[:-1]), [b[12] + 0.25 * (b[13] - b[12])]]))
+    m = tr.influence(b, pts, G, jumps=jumps)
+    z = np.random.default_rng(3).normal(size=pts.size) * 1e6
+    p = ta.density(m["lu"], b, jumps, z, b[-1])
+    assert np.allclose(ta.traction(p, pts, G), z, rtol=0, atol=1e-9 * np.abs(z).max())
+    assert ta.torque(p, G) == pytest.approx(m["g"] @ z, rel=1e-12)
+    assert ta.stored_energy(p, G) == pytest.approx(0.5 * z @ m["H"] @ z, rel=1e-10)
+
+
+# ---- one monotone step from rest, Hertz (a = 1, G_t = 1, p0 = 1): Lubkin's closed form
+MU, F = 0.3, 2 * np.pi / 3
+
+
+def hertz_twist(c):
+    m = 1 - c * c
+    return 3 * MU * F / (4 * np.pi) * (ellipk(m) - ellipe(m))
+
+
+def hertz_torque(c):
+    return MU * F * (3 * np.pi / 16 - 4 / np.pi * quad(lambda s: s * s * ellipe(1 - s * s), 0, c,
+                                                       epsabs=0, epsrel=1e-13)[0])
+
+
+@pytest.mark.parametrize("c", [0.3123, 0.6789, 0.9512])
+@pytest.mark.parametrize("control", ["twist", "torque"])
+def test_step_from_rest_places_the_stick_radius_inside_its_ring(c, control):
+    n = 200
+    b = np.linspace(0, 1, n + 1)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    bound = MU * np.sqrt(np.clip(1 - r * r, 0, None))
+    slide = ta.density(m["lu"], b, np.zeros(0, int), bound, 1.0)
+    kw = ({"dphi": hertz_twist(c)} if control == "twist" else
+          {"target_torque": hertz_torque(c)})
+    out = ta.step(ta.empty(), slide, 1.0, 1.0, r=r, bound=bound, **kw)
+    M_full = 3 * np.pi / 16 * MU * F
+    assert out["ok"] and out["sense"] == 1.0 and out["gross"] == 0.0
+    assert abs(out["c"] - c) < RINGS_ANNULUS_STEP * 10      # a hundredth of a ring width
+    if control == "twist":
+        assert abs(ta.torque(out["w"], 1.0) - hertz_torque(c)) / M_full < RINGS_ANNULUS_STEP
+    else:
+        assert abs(out["dpsi"] - hertz_twist(c)) / hertz_twist(c) < RINGS_ANNULUS_STEP * 10
+    # slip only on the annulus, forwards; traction μp there, below inside
+    assert np.all(out["slip"][r < out["c"]] == 0) and np.all(out["slip"][r > out["c"]] > 0)
+    tau = ta.traction(out["w"], r, 1.0)
+    assert np.allclose(tau[r > out["c"]], bound[r > out["c"]], rtol=1e-9)
+    assert np.all(np.abs(tau[r < out["c"]]) < bound[r < out["c"]])
+
+
+def test_step_reports_a_failed_check():
+    # the twist held while the friction limit drops a hundredfold: no annulus reaching the edge
+    # is needed by the twist, but the old traction inside is far beyond the new limit
+    n = 50
+    b = np.linspace(0, 1, n + 1)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    bound = MU * np.sqrt(np.clip(1 - r * r, 0, None))
+    slide = ta.density(m["lu"], b, np.zeros(0, int), bound, 1.0)
+    old = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=hertz_twist(0.5), r=r, bound=bound)["w"]
+    weak = ta.density(m["lu"], b, np.zeros(0, int), bound / 100, 1.0)
+    out = ta.step(old, weak, 1.0, 1.0, dphi=0.0, r=r, bound=bound / 100)
+    assert not out["ok"] and "friction limit" in out["why"]
