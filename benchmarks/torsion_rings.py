@@ -9,8 +9,10 @@ the error of the MDR spring model when the normal force changes (issue 18).
    partial slip at three cycles): time and torque error of ``method="exact"`` at several ring
    counts (nodes and density jumps at the path's contact radii; the nodes without the jumps; the
    uniform grid without either) and of
-   ``method="mdr"`` (2000 springs), all against an exact run at 1600 rings, side by side in one
-   run.
+   ``method="mdr"`` (2000 springs), all against an exact run at ``REF_RINGS`` rings, side by
+   side in one run; "ring solver alone" is the point-traction solver without the punch-density
+   steps (``_run(..., annulus=False)``), "ring-solver steps" how many steps of a run fell back
+   to it.
 3. MDR-vs-exact error map under changing normal load (Hertz and cone; constant, sinusoidal and a
    gait-like double-hump force; for Hertz also sinusoidal forces of ±0.1 % to ±20 %): torque
    error (of the instantaneous sliding torque and of the path's), dissipated energy of the last
@@ -43,6 +45,9 @@ from _harness import machine  # noqa: E402
 
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 MU = 0.3
+#: rings of the reference run of part 2 (the punch-density steps converge at order ~2-3 at
+#: constant load; the ring solver alone needed 1600 rings and ~2.8 GiB)
+REF_RINGS = 800
 OUT = Path(__file__).resolve().parent / "results"
 
 
@@ -77,12 +82,18 @@ def front():
     path = (cl.LoadPath().ramp(force=F, steps=2)
             + cl.LoadPath.from_arrays(twist=hist, force=np.full(hist.size, F)))
     rows = []
-    for n in (25, 50, 100, 200, 400, 800):
-        t, r = timed(lambda: c.simulate(path, method="exact", n_rings=n), 1 if n > 200 else 3)
-        err = float(np.max(np.abs(r.torque[2:] - ref)) / M_full)
-        rows.append({"part": "constant load", "case": "hertz", "method": "exact", "n": n,
-                     "steps": path.n_steps, "time_s": t, "time_per_step_s": t / path.n_steps,
-                     "torque_error": err})
+    for annulus in (True, False):
+        for n in (25, 50, 100, 200, 400, 800):
+            if n > 400 and not annulus:
+                continue
+            t, r = timed(lambda: _run(c, path, None, n, "uniform", None, annulus=annulus),
+                         1 if n > 200 else 3)
+            err = float(np.max(np.abs(r.torque[2:] - ref)) / M_full)
+            rows.append({"part": "constant load",
+                         "case": "hertz" + ("" if annulus else " (ring solver alone)"),
+                         "method": "exact", "n": n, "steps": path.n_steps, "time_s": t,
+                         "time_per_step_s": t / path.n_steps, "torque_error": err,
+                         "fallback_steps": r.meta["fallback_steps"]})
     # flat punch (square-root singular edge pressure): with and without the edge punch
     c = cl.Contact(cl.profiles.FlatPunch(radius=1e-3), materials=MAT, friction=MU)
     F, a = 100.0, 1e-3
@@ -139,29 +150,25 @@ def speed():
     phi = 0.8 * s * np.sin(2 * np.pi * 3 * t) * np.minimum(1, 2 * t)
     path = cl.LoadPath.from_arrays(force=force, twist=phi)
     M_s = sliding(c, force)
-    ref = c.simulate(path, method="exact", n_rings=1600).torque
+    ref = c.simulate(path, method="exact", n_rings=REF_RINGS).torque
     rows = []
-    for method, n, align in (("exact", 100, True), ("exact", 150, True), ("exact", 200, True),
-                             ("exact", 400, True), ("exact", 800, True),
-                             ("exact", 100, "no jumps"), ("exact", 200, "no jumps"),
-                             ("exact", 400, "no jumps"), ("exact", 100, False),
-                             ("exact", 200, False), ("exact", 400, False), ("mdr", None, None)):
+    for method, n, annulus in (("exact", 50, True), ("exact", 100, True), ("exact", 200, True),
+                               ("exact", 400, True), ("exact", 100, False),
+                               ("exact", 200, False), ("exact", 400, False),
+                               ("mdr", None, None)):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             if method == "mdr":
                 tt, r = timed(lambda: c.simulate(path, method="mdr"))
-            elif align is True:
-                tt, r = timed(lambda: c.simulate(path, method="exact", n_rings=n),
-                              1 if n > 400 else 3)
-            elif align:     # nodes at the contact radii, the density continuous there
-                tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, jumps=False))
-            else:       # the grid before issue 18's third part: contact edge between nodes
-                tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, align=False))
+            else:
+                tt, r = timed(lambda: _run(c, path, None, n, "uniform", None, annulus=annulus),
+                              1 if n > 200 else 3)
         rows.append({"part": "180-step varying load",
-                     "case": "hertz sinusoid" + ("" if align in (True, None) else
-                                                 " no jumps" if align else " uniform grid"),
+                     "case": "hertz sinusoid" + ("" if annulus in (True, None) else
+                                                 " ring solver alone"),
                      "method": method, "n": n or 2000,
                      "rings": r.meta.get("rings", n or 2000), "steps": path.n_steps,
+                     "fallback_steps": r.meta.get("fallback_steps"),
                      "time_s": tt, "time_per_step_s": tt / path.n_steps,
                      "torque_error": float(np.max(np.abs(r.torque - ref)) / M_s.max())})
     return rows
@@ -248,8 +255,8 @@ def main_map():
 def main():
     if "--map" in sys.argv:
         return main_map()
-    # the reference run at 1600 rings (4801 unknowns with the nodes and jumps at the contact
-    # radii) needs ~2.8 GiB, above the default memory budget
+    # the reference run at 800 rings (~2400 unknowns with the nodes and jumps at the contact
+    # radii) may need more than the default memory budget
     cl.set_memory_budget("inf")
     print(machine())
     rows = front()
@@ -257,16 +264,18 @@ def main():
     print("\n1. constant load, error vs twist_history (of the sliding torque), time per step")
     for r in rows:
         o = od.get((r["case"], r["n"]))
-        print(f"  {r['case']:26s} N={r['n']:4d}  error {r['torque_error']:.2e}"
+        print(f"  {r['case']:36s} N={r['n']:4d}  error {r['torque_error']:.2e}"
               f"  {1e3 * r['time_per_step_s']:.2f} ms/step"
               + (f"  order {o:.2f}" if o is not None else ""))
     sp = speed()
     od = orders([r for r in sp if r["method"] == "exact"])
-    print("\n2. 180-step varying-load path (error of the max sliding torque vs exact N=1600)")
+    print(f"\n2. 180-step varying-load path (error of the max sliding torque vs exact "
+          f"N={REF_RINGS})")
     for r in sp:
         o = od.get((r["case"], r["n"]))
-        print(f"  {r['method']:5s} {r['case']:28s} N={r['n']:5d} rings {r['rings']:5d}"
+        print(f"  {r['method']:5s} {r['case']:32s} N={r['n']:5d} rings {r['rings']:5d}"
               f"  {r['time_s']:.3f} s  error {r['torque_error']:.2e}"
+              f"  ring-solver steps {r['fallback_steps']}"
               + (f"  order {o:.2f}" if o is not None else ""))
     rows += sp
     if "--quick" not in sys.argv:

@@ -13,8 +13,12 @@ stick and slip one whole ring at a time. This study takes one monotone twist ste
    and a collocation point on ``c``, the active set found by the solver;
 3. the same basis with the active set fixed at the exact one (points at or beyond ``c`` at μp).
 
+4. the solver's punch-density step (``physics.torsion_annulus.step``): the stick radius solved
+   inside its ring, the density jumping there, the full-sliding density from the hats.
+
 Row 3 is what placing the boundary inside its ring would buy; row 2 shows that the basis alone is
-not enough (the discrete boundary still lands a point or two off). Max error over ``c`` of the
+not enough (the discrete boundary still lands a point or two off); row 4 is what the solver does
+since (it needs no exact ``c``). Max error over ``c`` of the
 sliding torque per ring count. Run: ``python benchmarks/torsion_rings_boundary.py``.
 """
 from __future__ import annotations
@@ -28,6 +32,7 @@ from scipy.special import ellipe, ellipk
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from contactlab.physics import torsion_annulus as ta  # noqa: E402
 from contactlab.physics import torsion_rings as tr  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -55,6 +60,12 @@ def bound(r):
 
 def step(n, c, variant):
     b = np.linspace(0.0, 1.0, n + 1)
+    if variant == "annulus":
+        r = 0.5 * (b[1:] + b[:-1])
+        m = tr.influence(b, r, G)
+        slide = ta.density(m["lu"], b, np.zeros(0, int), bound(r), 1.0)
+        w = ta.step(ta.empty(), slide, 1.0, G, dphi=twist(c), r=r, bound=bound(r))["w"]
+        return abs(ta.torque(w, G) - torque(c)) / M_FULL
     if variant == "hats":
         r = 0.5 * (b[1:] + b[:-1])
         m = tr.influence(b, r, G)
@@ -75,10 +86,11 @@ def step(n, c, variant):
 def main():
     print(machine())
     print("one monotone step from rest, max torque error over c/a = 0.30..0.97 (of M_full)")
-    print(f"  {'rings':>5s}  {'hats':>9s}  {'jump at c':>9s}  {'jump at c, exact active set':>27s}")
+    print(f"  {'rings':>5s}  {'hats':>9s}  {'jump at c':>9s}  {'jump at c, exact active set':>27s}"
+          f"  {'punch-density step':>18s}")
     for n in (25, 50, 100, 200):
-        e = [max(step(n, c, v) for c in RATIOS) for v in ("hats", "jump", "fixed")]
-        print(f"  {n:5d}  {e[0]:9.2e}  {e[1]:9.2e}  {e[2]:27.2e}")
+        e = [max(step(n, c, v) for c in RATIOS) for v in ("hats", "jump", "fixed", "annulus")]
+        print(f"  {n:5d}  {e[0]:9.2e}  {e[1]:9.2e}  {e[2]:27.2e}  {e[3]:18.2e}")
 
 
 if __name__ == "__main__":

@@ -2,10 +2,14 @@
 behind ``contact.simulate(path, method="exact")``.
 
 The normal problem is solved exactly at every step (path independent); the torsional problem is
-solved on :class:`~contactlab.foundation.rings.Rings` with the half-space's exact torsional
-influence (flat-punch superposition), Coulomb's law at every ring and memory between steps (kernels
-in :mod:`contactlab.physics.torsion_rings`). The error falls with the number of rings; see
-``docs/torsion_varying_load.md``.
+solved with the half-space's exact torsional influence (flat-punch superposition), Coulomb's law
+and memory between steps. The state is the punch density itself; a step whose slip zone is one
+annulus reaching the contact edge is taken in closed form with its stick radius solved inside its
+ring (:mod:`contactlab.physics.torsion_annulus`), any other step by the box-constrained ring
+solver on :class:`~contactlab.foundation.rings.Rings` as an increment on that density
+(:mod:`contactlab.physics.torsion_rings`). Flat punches (edge punch at the wall) and contacts
+without a friction limit run on the ring solver alone. The error falls with the number of rings;
+see ``docs/torsion_varying_load.md``.
 """
 from __future__ import annotations
 
@@ -346,7 +350,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                 "rings": rings.n_springs, "aligned": bool(align), "edge_punch": edge_punch,
                 "jump_nodes": int(rings.jumps.size),
                 "n_springs": None, "spacing": spacing, "foundation": repr(rings),
-                "approximate": False, "iterations": iters}
+                "approximate": False, "iterations": iters, "annulus": use_annulus,
+                "fallback_steps": int(fallback)}
         raise partial_path_failure(err, path, res, outputs, done, meta,
                                    {s: v for s, v in snap_data.items() if s < done}) from None
     if bar is not None:

@@ -33,7 +33,7 @@ from scipy.optimize import brentq
 
 __all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
-           "difference", "step", "ROOT_XTOL", "CHECK_RTOL"]
+           "difference", "add", "step", "ROOT_XTOL", "CHECK_RTOL"]
 
 #: relative tolerance (of the contact radius) of the stick radius's root solve
 ROOT_XTOL = 1e-15
@@ -81,7 +81,7 @@ def torque(p: Pieces, G_t: float) -> float:
     lo, hi, _, _ = p
     al, be = _lin(p)
     return float(16.0 / 3.0 * G_t * np.sum(al * (hi ** 4 - lo ** 4) / 4.0
-                                            + be * (hi ** 5 - lo ** 5) / 5.0))
+                                           + be * (hi ** 5 - lo ** 5) / 5.0))
 
 
 def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
@@ -170,8 +170,8 @@ def torque_below(p: Pieces, x: np.ndarray, G_t: float) -> np.ndarray:
     k = np.clip(np.searchsorted(hi, x, "right"), 0, lo.size - 1)
     t1 = np.clip(x, lo[k], hi[k])
     part = al[k] * (t1 ** 4 - lo[k] ** 4) / 4.0 + be[k] * (t1 ** 5 - lo[k] ** 5) / 5.0
-    return 16.0 / 3.0 * G_t * np.where(x >= hi[-1], head[-1], np.where(x < lo[0], 0.0,
-                                                                          head[k] + part))
+    below = np.where(x < lo[0], 0.0, head[k] + part)
+    return 16.0 / 3.0 * G_t * np.where(x >= hi[-1], head[-1], below)
 
 
 def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
@@ -282,8 +282,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         ``w`` (new pieces), ``c`` (stick radius, m), ``sense`` (``s``), ``dpsi`` (``Ψ_new(0) −
         Ψ_old(0)``, rad), ``gross`` (twist turned beyond full sliding, rad; ``nan`` when a torque
         target exceeds the sliding torque), ``slip`` (slip increments at the points ``r`` in
-        contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or
-        ``""``).
+        contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the
+        checks held) and ``why`` (the failed check, or ``""``).
     """
     kind = "twist" if target_torque is None else "torque"
     if kind == "twist":

@@ -42,6 +42,10 @@ beyond, whose density ``w`` ends with a jump at ``a`` (``w(a⁻) = W(a) ≠ 0``)
 density can only smear over the next ring (the outer node ``b_N`` had that freedom already: its
 hat only rises).
 
+The exact solver of a load path keeps the punch density as its state and takes most steps in
+closed form (:mod:`contactlab.physics.torsion_annulus`, stick radius inside its ring); the
+box-constrained step here takes the others (two slip zones), flat punches and no-slip runs.
+
 All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations

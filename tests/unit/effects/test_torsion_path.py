@@ -77,11 +77,18 @@ def test_no_slip_stiffness_with_a_growing_contact():
     force = np.linspace(2.0, 10.0, 30)
     a = hertz.radius_of_force(force, R, E_STAR)
     phi = np.linspace(1e-4, 3e-3, 30)
-    r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact")
-    dM = np.diff(np.concatenate(([0.0], r.torque)))
     dphi = np.diff(np.concatenate(([0.0], phi)))
-    ratio = dM / dphi / (16.0 / 3.0 * c.moduli.torsional * a ** 3)
-    assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP_GROWING
+    err = {}
+    for n in (100, 200):
+        r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact",
+                       n_rings=n)
+        dM = np.diff(np.concatenate(([0.0], r.torque)))
+        err[n] = np.max(np.abs(dM / dphi / (16.0 / 3.0 * c.moduli.torsional * a ** 3) - 1))
+    assert err[200] < RINGS_NO_SLIP_GROWING
+    # first order: each increment is a rigid punch of the current radius, an inner node, whose
+    # r/sqrt(a² − r²) edge traction the continuous densities smear over the ring beyond it
+    # (measured 7.5e-3, 4.2e-3, 2.2e-3, 9.6e-4 at 100, 200, 400, 800 rings)
+    assert err[100] / err[200] > 1.5
     # without the traction-free entry (rings entering with the current rigid rotation) the
     # torque would follow (16/3) G_t a³ φ, far from this history
     assert abs(r.torque[-1] / (16 / 3 * c.moduli.torsional * a[-1] ** 3 * phi[-1]) - 1) > 0.1
