@@ -12,7 +12,7 @@ import pytest
 import contactlab as cl
 import contactlab.effects.path as path_driver
 import contactlab.foundation.winkler as winkler
-import contactlab.physics.torsion_rings as rings
+import contactlab.physics.torsion_annulus as annulus
 from contactlab.errors import ConvergenceError, OutsideTheoryError
 from contactlab.foundation import Winkler
 from tests.reference import hertz
@@ -83,18 +83,18 @@ def test_spring_route_block(monkeypatch):
 
 
 def test_exact_ring_route(monkeypatch):
-    """The ring solver's step (one box_step call per step) fails at step 39."""
+    """The exact solver's step (one punch-density step call per step) fails at step 39."""
     full = contact().simulate(PATH, snapshots=[5, 50])
     assert full.meta["method"] == "exact"
     calls = []
-    orig = rings.box_step
+    orig = annulus.step
 
     def box_step(*a, **k):
         calls.append(1)
         if len(calls) == 40:
             raise ConvergenceError("injected")
         return orig(*a, **k)
-    monkeypatch.setattr(rings, "box_step", box_step)
+    monkeypatch.setattr(annulus, "step", box_step)
     with pytest.raises(ConvergenceError) as e:
         contact().simulate(PATH, snapshots=[5, 50])
     check_partial(e.value, full, 39, 2)
