@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import contactlab.effects.path as path_driver
-import contactlab.physics.torsion_rings as rings
+import contactlab.physics.torsion_annulus as annulus
 from contactlab import Contact
 from contactlab.cli import main
 from contactlab.errors import ConvergenceError, OutsideTheoryError
@@ -77,14 +77,14 @@ def test_exact_ring_route_step_failure(monkeypatch):
     d = twist_scene({"ramp": {"force": "300 N", "twist": "1 mrad", "steps": 20}})
     full = Scene(d).run()
     calls = []
-    orig = rings.box_step
+    orig = annulus.step
 
-    def box_step(*a, **k):                   # the scene path has 31 steps, one call per step
+    def step(*a, **k):                       # the scene path has 31 steps, one call per step
         calls.append(1)
         if len(calls) == 16:
             raise ConvergenceError("injected")
         return orig(*a, **k)
-    monkeypatch.setattr(rings, "box_step", box_step)
+    monkeypatch.setattr(annulus, "step", step)
     with pytest.raises(ConvergenceError) as e:
         Scene(d).run()
     part = check(e.value, 15, 31, 1)
