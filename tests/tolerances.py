@@ -420,12 +420,16 @@ RINGS_CONSTANT_LOAD_FINE = 2e-7
 #: measured 3.3e-7 at 200 rings
 RINGS_FULL_SLIDING = 1e-6
 #: no slip with a growing contact, incremental stiffness against (16/3) G_t a³ (and with a
-#: shrinking one, M against (16/3) G_t a³ φ): each increment is a rigid punch of the current
-#: radius, whose singular edge traction r/sqrt(a² − r²) the continuous densities miss where the
-#: radius is an inner node (first order: 7.5e-3, 4.2e-3, 2.2e-3, 9.6e-4 at 100, 200, 400, 800
-#: rings, the same for growing and shrinking and already at the first step, a single punch);
+#: shrinking one, M against (16/3) G_t a³ φ), the ring solver alone: each increment is a rigid
+#: punch of the current radius, whose singular edge traction r/sqrt(a² − r²) the continuous
+#: densities miss where the radius is an inner node (first order: 7.5e-3, 4.2e-3, 2.2e-3,
+#: 9.6e-4 at 100, 200, 400, 800 rings, the same for growing and shrinking and already at the
+#: first step, a single punch);
 #: measured 4.2e-3 at 200 rings, both
 RINGS_NO_SLIP_GROWING = 6e-3
+#: the same with the exact solver (rigid punches at the contact radii, no friction limit): only
+#: rounding remains (measured 3e-15); also its dissipation, of the work (no slip: none)
+RINGS_NO_SLIP = 1e-12
 #: full sliding at every step of a changing load (Hertz), torque against (3π/16) μ F a: the
 #: contact edge is an inner node, where the density jumps; measured 6.7e-7 at 200 rings (3.7e-4
 #: without the jump, the density's jump at the edge smeared over the next ring)

@@ -216,9 +216,11 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     M_old, W_in, W_d, E_old = 0.0, 0.0, 0.0, 0.0
     G_t = contact.moduli.torsional
     # the punch density as the state, each step with one slip annulus (stick radius inside its
-    # ring) where that is the exact step; the flat punch's edge punch and no-slip runs keep the
-    # point tractions
+    # ring) where that is the exact step; without friction limit rigid punches at the contact
+    # radii; the flat punch's edge punch keeps the point tractions
     use_annulus = bool(annulus and mu is not None and not edge_punch)
+    use_punches = bool(annulus and mu is None and not edge_punch)
+    pt, pm = np.zeros(0), np.zeros(0)       # the rigid punches of a run without friction limit
     w = _ta.empty()
     slip = np.zeros(r.size)
     fallback = 0
@@ -283,6 +285,18 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                         dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
                         E_old = E_st
                         slip += lam_slip
+                    elif use_punches:
+                        # no friction limit: rigid punches at the contact radii, exact
+                        kw = ({"dphi": float(target[j]) - st.twist} if ctrl == "twist" else
+                              {"target_torque": float(target[j])})
+                        pt, pm, dphi = _ta.punch_step(pt, pm, aj, G_t, **kw)
+                        z, gross, it, c_stick = None, False, 1, aj
+                        lam_slip = np.zeros(r.size)
+                        M = _ta.punch_torque(pt, pm, G_t)
+                        E_st = _ta.punch_energy(pt, pm, G_t)
+                        W_in += 0.5 * (M_old + M) * dphi
+                        dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
+                        E_old = E_st
                     else:
                         z_old = st.z
                         if ctrl == "twist":
@@ -320,6 +334,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                     res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
                                                                   res["gross_sliding"][k] else M)
                     res["dissipated_energy"][k] = W_d
+                    if z is None and use_punches and k in snaps:
+                        z = _ta.punch_traction(pt, pm, r, G_t)
                     if c_stick is None:
                         if z is None:
                             z = _ta.traction(w, r, G_t)
@@ -337,7 +353,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                                                      np.where(r < aj, p[j - c0], 0.0)),
                                         "slip": slip.copy(),
                                         "slip_increment": lam_slip.copy()
-                                        if use_annulus else _tr.slip_density(lam, r, g)}
+                                        if use_annulus or use_punches
+                                        else _tr.slip_density(lam, r, g)}
             t0 = float(res["time"][i + n - 1]) if n else t0
             i += n
             cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
@@ -361,7 +378,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
             "jump_nodes": int(rings.jumps.size),
             "n_springs": None, "spacing": spacing, "foundation": repr(rings),
             "approximate": False, "iterations": iters,
-            "annulus": use_annulus, "fallback_steps": int(fallback),
+            "annulus": use_annulus, "punches": use_punches, "fallback_steps": int(fallback),
             "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},
             "citations": sources_for("normal", "torsion:exact")}
     return PathResult({k: res[k] for k in outputs}, snap_data, meta)

@@ -23,6 +23,9 @@ increment at ``r`` is ``Δs(r) = ∫_0^r Δw(t) K(r, t) dt`` with
 ``K = (2/π)[r arccos(t/r) + t sqrt(1 − t²/r²)] ≥ 0`` (the rigid turn minus the Reissner–Sagoci
 displacement outside a punch), closed form on each piece.
 
+A contact without a friction limit never slips: its density is a sum of rigid punches at the
+contact radii of its steps (:func:`punch_step`), exact.
+
 All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
@@ -33,7 +36,8 @@ from scipy.optimize import brentq
 
 __all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
-           "difference", "add", "step", "ROOT_XTOL", "CHECK_RTOL"]
+           "difference", "add", "step", "punch_step", "punch_torque", "punch_energy",
+           "punch_traction", "ROOT_XTOL", "CHECK_RTOL"]
 
 #: relative tolerance (of the contact radius) of the stick radius's root solve
 ROOT_XTOL = 1e-15
@@ -363,3 +367,68 @@ def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: fl
     the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
     coef = _la.lu_solve(lu, np.asarray(values, float), check_finite=False)
     return from_coefficients(b, coef, jumps, radius)
+
+
+# ---- no friction limit: the density is a sum of rigid punches (point masses) -------------------
+def punch_step(t: np.ndarray, m: np.ndarray, radius: float, G_t: float, *,
+               dphi: float | None = None, target_torque: float | None = None):
+    """One step of a contact without a friction limit (nothing slips), exact.
+
+    The density is ``Σ m_k δ(t − t_k)``: rigid punches of radii ``t_k`` turned by ``m_k``. With
+    no slip inside the new contact radius ``a`` the increment is a rigid punch of radius ``a``;
+    the punches beyond ``a`` leave (the points outside carry no traction) and the rigid turn they
+    gave the points inside is put back into the punch at ``a`` (points entering the contact start
+    traction-free: they keep the displacement they had).
+
+    Parameters
+    ----------
+    t, m : ndarray
+        Punch radii (m, sorted) and turns (rad) before the step.
+    radius : float
+        Contact radius of the step, m.
+    G_t : float
+        Torsional modulus, Pa.
+    dphi, target_torque : float
+        Twist increment (rad) or the torque to reach (N·m); exactly one.
+
+    Returns
+    -------
+    t, m : ndarray
+        Punches after the step.
+    dphi : float
+        The twist increment, rad.
+    """
+    keep = t < radius
+    gone = float(np.sum(m[~keep]))
+    t, m = t[keep], m[keep]
+    k = 16.0 / 3.0 * G_t
+    if target_torque is None:
+        add = float(dphi) + gone
+    else:
+        add = (float(target_torque) - k * float(np.sum(t ** 3 * m))) / (k * radius ** 3)
+        dphi = add - gone
+    return np.append(t, radius), np.append(m, add), float(dphi)
+
+
+def punch_torque(t: np.ndarray, m: np.ndarray, G_t: float) -> float:
+    """Torque ``(16/3) G_t Σ t_k³ m_k``, N·m."""
+    return float(16.0 / 3.0 * G_t * np.sum(t ** 3 * m))
+
+
+def punch_energy(t: np.ndarray, m: np.ndarray, G_t: float) -> float:
+    """Elastic energy ``8 G_t ∫ x² Ψ² dx`` with ``Ψ(x) = Σ_{t_k > x} m_k`` (a step function), J."""
+    if t.size == 0:
+        return 0.0
+    order = np.argsort(t, kind="stable")
+    ts, ms = t[order], m[order]
+    tail = np.cumsum(ms[::-1])[::-1]                    # Ψ on (t_{k-1}, t_k)
+    lo = np.concatenate([[0.0], ts[:-1]])
+    return float(8.0 * G_t * np.sum(tail ** 2 * (ts ** 3 - lo ** 3)) / 3.0)
+
+
+def punch_traction(t: np.ndarray, m: np.ndarray, r: np.ndarray, G_t: float) -> np.ndarray:
+    """Traction ``(4 G_t/π) Σ_{t_k > r} m_k r / sqrt(t_k² − r²)`` at ``r`` (Reissner–Sagoci), Pa."""
+    rr = np.asarray(r, float)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k = np.where(t[None, :] > rr, rr / np.sqrt(np.maximum(t * t - rr * rr, 1e-300)), 0.0)
+    return 4.0 * G_t / np.pi * (k @ m)

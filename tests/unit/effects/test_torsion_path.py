@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
+from contactlab.effects import torsion_path
 from contactlab.errors import (NotSupportedError, ParameterError, UnknownNameError,
                                ValidityWarning)
 from tests.reference import hertz
@@ -11,7 +12,7 @@ from tests.tolerances import (RINGS_CONSTANT_LOAD, RINGS_CONSTANT_LOAD_FINE,
                               RINGS_DISSIPATION_800_STEPS, RINGS_FULL_SLIDING,
                               RINGS_FULL_SLIDING_VARYING, RINGS_FLAT_PUNCH,
                               RINGS_NO_SLIP_GROWING, RINGS_STICK_RADIUS, RINGS_VS_BRUTE_FORCE,
-                              RINGS_WORK_BALANCE,
+                              RINGS_WORK_BALANCE, RINGS_NO_SLIP,
                               RINGS_DISSIPATION_QUADRATURE, RINGS_COMPLEMENTARITY)
 
 R, MU, F = 0.01, 0.3, 10.0
@@ -78,17 +79,30 @@ def test_no_slip_stiffness_with_a_growing_contact():
     a = hertz.radius_of_force(force, R, E_STAR)
     phi = np.linspace(1e-4, 3e-3, 30)
     dphi = np.diff(np.concatenate(([0.0], phi)))
+    path = cl.LoadPath.from_arrays(force=force, twist=phi)
+    r = c.simulate(path, method="exact", snapshots=[29])
+    assert r.meta["punches"]
+    dM = np.diff(np.concatenate(([0.0], r.torque)))
+    k = 16.0 / 3.0 * c.moduli.torsional
+    assert np.max(np.abs(dM / dphi / (k * a ** 3) - 1)) < RINGS_NO_SLIP
+    # nothing slips: the work (trapezoid in the twist) is all stored, 8 G_t ∫ x² Ψ² dx
+    en = r.meta["energy"]
+    assert np.max(np.abs(r.dissipated_energy)) < RINGS_NO_SLIP * en["work"][-1]
+    # the traction is the Reissner–Sagoci sum of the increments (each of its radius)
+    x = r.snapshots[29]["r"]
+    ref = np.array([4 * c.moduli.torsional / np.pi * xi *
+                    np.sum(dphi[a > xi] / np.sqrt(a[a > xi] ** 2 - xi ** 2)) for xi in x])
+    assert np.allclose(r.snapshots[29]["shear_torsion"], ref, rtol=1e-12, atol=0)
+    # the ring solver alone (point tractions on continuous densities) is first order here: each
+    # increment is a rigid punch of an inner-node radius, whose r/sqrt(a² − r²) edge traction
+    # the densities smear over the ring beyond it (measured 7.5e-3, 4.2e-3, 2.2e-3, 9.6e-4 at 100,
+    # 200, 400, 800 rings, the same for a shrinking contact and already at the first step)
     err = {}
     for n in (100, 200):
-        r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact",
-                       n_rings=n)
-        dM = np.diff(np.concatenate(([0.0], r.torque)))
-        err[n] = np.max(np.abs(dM / dphi / (16.0 / 3.0 * c.moduli.torsional * a ** 3) - 1))
-    assert err[200] < RINGS_NO_SLIP_GROWING
-    # first order: each increment is a rigid punch of the current radius, an inner node, whose
-    # r/sqrt(a² − r²) edge traction the continuous densities smear over the ring beyond it
-    # (measured 7.5e-3, 4.2e-3, 2.2e-3, 9.6e-4 at 100, 200, 400, 800 rings)
-    assert err[100] / err[200] > 1.5
+        q = torsion_path._run(c, path, None, n, "uniform", None, annulus=False)
+        dM = np.diff(np.concatenate(([0.0], q.torque)))
+        err[n] = np.max(np.abs(dM / dphi / (k * a ** 3) - 1))
+    assert err[200] < RINGS_NO_SLIP_GROWING and err[100] / err[200] > 1.5
     # without the traction-free entry (rings entering with the current rigid rotation) the
     # torque would follow (16/3) G_t a³ φ, far from this history
     assert abs(r.torque[-1] / (16 / 3 * c.moduli.torsional * a[-1] ** 3 * phi[-1]) - 1) > 0.1
@@ -305,8 +319,12 @@ def test_no_slip_with_a_shrinking_contact_is_the_rigid_punch_of_the_current_radi
     force = np.linspace(10.0, 2.0, 30)
     a = hertz.radius_of_force(force, R, E_STAR)
     phi = np.linspace(1e-4, 3e-3, 30)
-    r = c.simulate(cl.LoadPath.from_arrays(force=force, twist=phi), method="exact")
+    path = cl.LoadPath.from_arrays(force=force, twist=phi)
+    r = c.simulate(path, method="exact")
     ratio = r.torque / (16.0 / 3.0 * c.moduli.torsional * a ** 3 * phi)
+    assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP
+    q = torsion_path._run(c, path, None, 200, "uniform", None, annulus=False)
+    ratio = q.torque / (16.0 / 3.0 * c.moduli.torsional * a ** 3 * phi)
     assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP_GROWING
 
 

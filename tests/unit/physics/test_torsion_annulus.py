@@ -135,3 +135,21 @@ def test_step_reports_a_failed_check():
     weak = ta.density(m["lu"], b, np.zeros(0, int), bound / 100, 1.0)
     out = ta.step(old, weak, 1.0, 1.0, dphi=0.0, r=r, bound=bound / 100)
     assert not out["ok"] and "friction limit" in out["why"]
+
+
+def test_rigid_punches_energy_and_a_shrinking_contact():
+    t = np.array([0.3, 0.55, 0.8, 1.0])
+    m = np.array([2.0, -1.0, 0.5, 1.5])
+    psi = lambda x: float(np.sum(m[t > x]))                 # noqa: E731
+    edges = [0.0, *t]
+    E = 8 * G * sum(quad(lambda x: x * x * psi(x) ** 2, u, v, epsabs=0, epsrel=1e-13)[0]
+                    for u, v in zip(edges, edges[1:]))
+    assert ta.punch_energy(t, m, G) == pytest.approx(E, rel=1e-12)
+    # the contact shrinks to 0.6 with the twist held: the punches beyond leave, and the points
+    # inside keep their rigid turn Ψ(0) (no slip), now carried by a punch of radius 0.6
+    t2, m2, d = ta.punch_step(t, m, 0.6, G, dphi=0.0)
+    assert d == 0.0 and np.sum(m2) == pytest.approx(np.sum(m), rel=1e-15)
+    assert np.all(t2 <= 0.6) and ta.punch_traction(t2, m2, np.array([0.7]), G)[0] == 0.0
+    # a torque target instead: the same state back from its torque
+    t3, m3, d3 = ta.punch_step(t, m, 0.6, G, target_torque=ta.punch_torque(t2, m2, G))
+    assert d3 == pytest.approx(0.0, abs=1e-14) and np.allclose(m3, m2, rtol=1e-14)
