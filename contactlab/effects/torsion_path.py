@@ -7,8 +7,8 @@ and memory between steps. The state is the punch density itself; a step whose sl
 annulus reaching the contact edge is taken in closed form with its stick radius solved inside its
 ring (:mod:`contactlab.physics.torsion_annulus`), any other step by the box-constrained ring
 solver on :class:`~contactlab.foundation.rings.Rings` as an increment on that density
-(:mod:`contactlab.physics.torsion_rings`). Flat punches (edge punch at the wall) and contacts
-without a friction limit run on the ring solver alone. The error falls with the number of rings;
+(:mod:`contactlab.physics.torsion_rings`). Flat punches (edge punch at the wall) run on the ring
+solver alone; a contact without a friction limit carries rigid punches at its contact radii. The error falls with the number of rings;
 see ``docs/torsion_varying_load.md``.
 """
 from __future__ import annotations

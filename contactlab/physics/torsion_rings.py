@@ -44,7 +44,7 @@ hat only rises).
 
 The exact solver of a load path keeps the punch density as its state and takes most steps in
 closed form (:mod:`contactlab.physics.torsion_annulus`, stick radius inside its ring); the
-box-constrained step here takes the others (two slip zones), flat punches and no-slip runs.
+box-constrained step here takes the others (two slip zones) and flat punches.
 
 All functions are pure: arrays in, arrays out.
 """
