@@ -328,8 +328,16 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
                               for side in (1, -1))
                 loc = _local(float(d_lo[0]), float(d_hi[1]), x0, x1, kind, G_t)
                 f1 = float(fx[k - 1])
-                c = brentq(lambda x: s * (f1 + loc(x) - target), x0, x1,
-                           xtol=ROOT_XTOL * radius, rtol=4 * np.finfo(float).eps)
+
+                def resid(x):
+                    return s * (f1 + loc(x) - target)
+                if resid(x0) < 0:           # the bracket lost to rounding (values ~1e-21)
+                    c = x0
+                elif resid(x1) >= 0:
+                    c = x1
+                else:
+                    c = brentq(resid, x0, x1, xtol=ROOT_XTOL * radius,
+                               rtol=4 * np.finfo(float).eps)
     signed = (slide[0], slide[1], s * slide[2], s * slide[3])
     w = splice(old, signed, c)
     dpsi = float(psi(w, np.array(0.0)) - psi(old, np.array(0.0)))
