@@ -8,8 +8,8 @@ annulus reaching the contact edge is taken in closed form with its stick radius 
 ring (:mod:`contactlab.physics.torsion_annulus`), any other step by the box-constrained ring
 solver on :class:`~contactlab.foundation.rings.Rings` as an increment on that density
 (:mod:`contactlab.physics.torsion_rings`). Flat punches (edge punch at the wall) run on the ring
-solver alone; a contact without a friction limit carries rigid punches at its contact radii. The error falls with the number of rings;
-see ``docs/torsion_varying_load.md``.
+solver alone; a contact without a friction limit carries rigid punches at its contact radii. The
+error falls with the number of rings; see ``docs/torsion_varying_load.md``.
 """
 from __future__ import annotations
 
