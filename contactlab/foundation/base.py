@@ -117,14 +117,16 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
             c0 = 0
             try:
                 if chunk is None or x.size <= chunk:
-                    d, a, F, _ = _normal.solve(profile, E_star, kind, x, rtol)
+                    d, a, F, _ = _normal.solve(profile, E_star, kind, x, rtol,
+                                               error_estimate=False)
                 else:   # long leaf: solve a chunk at a time (bounded solver temporaries)
                     x = x.reshape(-1)
                     d, a, F = np.empty(x.size), np.empty(x.size), np.empty(x.size)
                     for c0 in range(0, x.size, chunk):
                         sl = slice(c0, c0 + chunk)
                         d[sl], a[sl], F[sl] = (np.asarray(v, float).reshape(-1) for v in
-                                               _normal.solve(profile, E_star, kind, x[sl], rtol)[:3])
+                                               _normal.solve(profile, E_star, kind, x[sl], rtol,
+                                                             error_estimate=False)[:3])
             except ContactlabError as err:
                 raise _normal_failure(err, profile, E_star, kind, x, rtol, c0, chunk, dt,
                                       None if c0 == 0 else (d, a, F), i0, li) from None
@@ -148,7 +150,8 @@ def _normal_failure(err, profile, E_star, kind, x, rtol, c0, chunk, dt, done, i0
 
     def solve(m):
         return [np.asarray(v, float).reshape(-1)
-                for v in _normal.solve(profile, E_star, kind, x[c0:c0 + m], rtol)[:3]]
+                for v in _normal.solve(profile, E_star, kind, x[c0:c0 + m], rtol,
+                                       error_estimate=False)[:3]]
 
     m, got = solved_prefix(solve, n)
     cols = [np.concatenate((done[j][:c0] if done is not None else np.zeros(0),

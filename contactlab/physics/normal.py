@@ -392,8 +392,9 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
     return a, d
 
 
-def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float
-          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, *,
+          error_estimate: bool = True
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """Non-adhesive normal contact for one control, with the force's relative error estimate.
 
     Parameters
@@ -407,13 +408,18 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float
         a punch with a wall), validated by the caller.
     rtol : float
         Tolerance of every numeric route.
+    error_estimate : bool
+        Compute ``force_rel_error`` (default). ``False`` skips its arithmetic and returns
+        ``None`` in its place (callers that discard it: the per-step normal states of a load
+        path); depth, radius and force are bit-identical either way.
 
     Returns
     -------
     depth, radius, force, force_rel_error : ndarray
-        Same shape as ``value``. The error sums the quadrature estimate of ``∫g``, the rounding
-        of ``a d - ∫g`` and, under force control, the residual against the requested force;
-        errors of ``a`` enter ``F`` only at second order (``dF/da = 2E*(d - g(a)) = 0``).
+        Same shape as ``value`` (``force_rel_error`` is ``None`` with ``error_estimate=False``).
+        The error sums the quadrature estimate of ``∫g``, the rounding of ``a d - ∫g`` and,
+        under force control, the residual against the requested force; errors of ``a`` enter
+        ``F`` only at second order (``dF/da = 2E*(d - g(a)) = 0``).
     """
     E = E_star
     if control == "depth":
@@ -434,6 +440,10 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float
     ad = a * d
     F = ad - g_int
     F *= 2.0 * E
+    if not error_estimate:
+        if not all_pos:
+            F = np.where(pos, F, 0.0)
+        return np.asarray(d, float), np.asarray(a, float), F, None
     F_err = np.abs(ad)
     F_err += np.abs(g_int)
     F_err *= ROUNDING
