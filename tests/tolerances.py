@@ -524,3 +524,15 @@ RING_PRESSURE_SECOND = 1e-10
 #: pressures differ by < 1e-10 relative, the solver's active sets stay the same; measured 8e-13
 #: of the largest torque/energy
 RING_PRESSURE_PATH = 1e-9
+
+# physics.torsion_validity: Jäger's slip function at c/a = 0.83 and 0.97 by the fixed 16-point
+# rule over [c, a] against the exact composite table rule (2500-point sphere tables, linear and
+# cubic, uniform and random spacing). The rule samples g at 16 points only, so the square-root
+# cusps of a linear table's g at its nodes limit it; measured up to 1.5e-5 (linear, random
+# spacing), 2.4e-6 (linear, uniform), 1e-10 (cubic); a validity limit needs two digits (c/a = 0.83
+# is known to them).
+TABLE_BOUNDED_SLIP = 1e-4
+# the same rule's validity twists on a 10^5-point table of a paraboloid against Jäger's closed
+# form for Hertz contact: the table's own error (Δr/a)² < 5e-6 at a = 30 µm plus the rule's;
+# measured 3.5e-8 (linear), 2.4e-13 (cubic)
+TABLE_BOUNDED_SLIP_HERTZ = 1e-6

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import torsion_exact as _exact
+from .torsion_validity import twist_at_stick_ratio
 
 __all__ = ["STICK", "PARTIAL_SLIP", "GROSS_SLIP", "REGIMES", "CRITERIA", "energy_ratio",
            "loop_branches", "classify", "criterion_value", "torsional_gross_slip",
@@ -107,7 +107,8 @@ def mdr_validity_twists(profile, E_star: float, G_t: float, mu: float, a: np.nda
     """Twist amplitude (rad) beyond which the MDR model errs by more than 1 % on each quantity.
 
     The exact twist at the stick ratio :data:`MDR_VALID_STICK_RATIOS` ``[q]`` (one evaluation of
-    Jäger's slip function per distinct normal state). A profile with a wall gets 0 for
+    Jäger's slip function per distinct normal state; bounded cost on large tables,
+    :mod:`contactlab.physics.torsion_validity`). A profile with a wall gets 0 for
     ``energy``, ``stick_radius`` and ``worn_volume`` (any slip is out of validity).
     """
     out = {}
@@ -119,10 +120,6 @@ def mdr_validity_twists(profile, E_star: float, G_t: float, mu: float, a: np.nda
         if wall and q != "torque":
             lim[live] = 0.0
         elif np.any(live):
-            keys, inv = np.unique(np.stack([a[live], d[live], g_a[live]], axis=1), axis=0,
-                                  return_inverse=True)
-            ka, kd, kg = keys.T
-            P, _ = _exact.slip_function(profile, E_star, ratio * ka, ka, kd, kg, rtol)
-            lim[live] = _exact.twist_of_stick(mu, G_t, P)[inv.ravel()]
+            lim = twist_at_stick_ratio(profile, E_star, G_t, mu, ratio, a, d, g_a, rtol)
         out[q] = lim
     return out

@@ -32,6 +32,7 @@ from ..profiles.base import ROUNDING
 from . import torsion_exact as _exact
 from . import torsion_mdr as _mdr
 from . import torsion_noslip as _noslip
+from .torsion_validity import twist_at_stick_ratio
 
 __all__ = ["TorsionModel", "NoSlip", "Exact", "MDR", "METHODS", "TorsionSolution",
            "ROOT_SAFETY", "ROOT_TERM_RTOL", "MDR_ERROR_THRESHOLD", "MDR_VALID_STICK_RATIO",
@@ -434,17 +435,9 @@ METHODS: dict[str, type[TorsionModel]] = {"no-slip": NoSlip, "exact": Exact, "md
 def mdr_validity_twist(profile, E_star: float, G_t: float, mu: float, a: np.ndarray,
                        d: np.ndarray, g_a: np.ndarray, rtol: float) -> np.ndarray:
     """Twist (rad) beyond which the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD`: the
-    exact twist at the stick radius ``MDR_VALID_STICK_RATIO * a`` (flat arrays)."""
-    out = np.full(a.shape, np.inf)
-    live = a > 0
-    if not np.any(live):
-        return out
-    keys, inv = np.unique(np.stack([a[live], d[live], g_a[live]], axis=1), axis=0,
-                          return_inverse=True)
-    ka, kd, kg = keys.T
-    P, _ = _exact.slip_function(profile, E_star, MDR_VALID_STICK_RATIO * ka, ka, kd, kg, rtol)
-    out[live] = _exact.twist_of_stick(mu, G_t, P)[inv.ravel()]
-    return out
+    exact twist at the stick radius ``MDR_VALID_STICK_RATIO * a`` (flat arrays; bounded cost on
+    large tables, :mod:`contactlab.physics.torsion_validity`)."""
+    return twist_at_stick_ratio(profile, E_star, G_t, mu, MDR_VALID_STICK_RATIO, a, d, g_a, rtol)
 
 
 def mdr_torque_error(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
