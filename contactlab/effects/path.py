@@ -28,6 +28,7 @@ from ..loadpath.base import UNITS
 from ..params import check_count, check_flag, check_memory, name_list, step_indices
 from ..physics import fretting as _fr
 from ..physics.torsion import MDR_VALID_STICK_RATIO
+from ..physics.torsion_validity import affordable_states
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
@@ -454,8 +455,10 @@ def partial_path_failure(err: ContactlabError, path: LoadPath, res: dict, output
     return err
 
 
-#: contact radii (spread over the path's range) at which :func:`warn_mdr_path` evaluates the
-#: MDR validity twist; the smallest of these limits is used
+#: contact radii (spread over the path's range by value, the smallest and largest included) at
+#: which :func:`warn_mdr_path` evaluates the MDR validity twist; the smallest of these limits is
+#: used (fewer on tables too large for the exact slip function:
+#: :func:`contactlab.physics.torsion_validity.affordable_states`)
 _VALIDITY_RADII = 33
 
 #: the quantities :func:`mdr_path_validity` judges and the exact stick ratio ``c/a`` at constant
@@ -491,6 +494,30 @@ def force_variation(twist: np.ndarray, radius: np.ndarray, force: np.ndarray) ->
     return float(np.max(f) - np.min(f)) / top if top > 0 else 0.0
 
 
+def _validity_states(a: np.ndarray, depth: np.ndarray, j0: int, held: np.ndarray | None,
+                     count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Up to ``count`` normal states (radius, depth) spread over the range of the contact radii
+    of steps ``j0 ...`` (``held``: those steps' indices where not all are in contact), in
+    O(steps): the radii are binned by value into ``count`` equal bins and each bin is
+    represented by its first step; the smallest and the largest radius (their first steps) are
+    always among them."""
+    ah = a[j0:] if held is None else a[held]
+    dh = depth[j0:] if held is None else depth[held]
+    i_lo, i_hi = int(np.argmin(ah)), int(np.argmax(ah))
+    lo, hi = float(ah[i_lo]), float(ah[i_hi])
+    if hi == lo:
+        return ah[i_lo:i_lo + 1].copy(), dh[i_lo:i_lo + 1].copy()
+    k = max(count, 2) - 1
+    b = ((ah - lo) / (hi - lo) * k).astype(np.intp)
+    np.minimum(b, k, out=b)
+    first = np.full(k + 1, -1, np.intp)
+    # repeated indices: the last assignment wins, so assigning in reverse keeps the first step
+    first[b[::-1]] = np.arange(ah.size - 1, -1, -1)
+    first[0], first[k] = i_lo, i_hi
+    first = np.unique(first[first >= 0])
+    return ah[first], dh[first]
+
+
 def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndarray,
                       quantity: str = "torque") -> tuple[float, float, float, float]:
     """How far a twisted path leaves the constant-load validity of the MDR torsion springs.
@@ -499,7 +526,8 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
     to :data:`MDR_PATH_STICK_RATIOS` ``[quantity]`` times the contact radius; for ``"torque"`` the
     criterion of ``contact.torsion(method="mdr")``,
     :func:`contactlab.effects.torsion.mdr_validity_twist`) evaluated at the contact radius where it
-    is smallest among the radii while the path is twisted (for Hertz the smallest of them),
+    is smallest among the radii while the path is twisted (for Hertz the smallest of them; up to
+    :data:`_VALIDITY_RADII` radii spread over their range, found in O(steps)),
     compared with the path's largest twist measured from the twist at first contact. A profile
     with a wall (flat punch) has the energy limit 0: its MDR energy errs by more than 1 % as soon
     as anything slips.
@@ -534,11 +562,12 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
         return 0.0, 0.0, float("inf"), 0.0
     # the limit over the contact radii while twisted (from the step before the twist first
     # changes: a force ramp before the twist does not count)
-    held = live & (np.arange(a.size) >= max(_twisted(twist, a) - 1, 0))
-    radii, first = np.unique(a[held], return_index=True)
-    pick = np.unique(np.linspace(0, radii.size - 1, _VALIDITY_RADII).round().astype(int))
-    ra = radii[pick]
-    rd = np.asarray(depth, float)[held][first[pick]]
+    j0 = max(_twisted(twist, a) - 1, 0)
+    ah = a[j0:]
+    held = np.flatnonzero(ah > 0) + j0 if not np.all(ah > 0) else None
+    ra, rd = _validity_states(a, np.asarray(depth, float), j0, held,
+                              affordable_states(contact.profile, float(np.max(a)),
+                                                _VALIDITY_RADII))
     prof = contact.profile
     g_a = prof._g(ra)
     if np.isfinite(prof.wall_radius):

@@ -174,3 +174,23 @@ def test_untwisted_path_never_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         c.simulate(p, method="mdr")
+
+
+@pytest.mark.parametrize("factor", [0.999, 1.001])
+def test_large_table_warns_exactly_where_its_paraboloid_does(factor):
+    """A 2·10^4-point table of the paraboloid takes the bounded validity rule
+    (physics.torsion_validity; the exact slip function costs O(N²) there): its torque limit is
+    the Hertz one to the table's resolution, so it warns on the same side of 1.001 and 0.999
+    times the Hertz limit (closed form) as the paraboloid."""
+    from contactlab.physics.torsion_validity import uses_bounded_rule
+    r = np.linspace(0.0, 3e-4, 20001)
+    tab = cl.Contact(cl.profiles.Tabulated(r, r * r / (2 * R)), materials=MAT, friction=MU)
+    phi_lim, a0 = twist_of(cl.effects.torsion.MDR_VALID_STICK_RATIO)
+    assert uses_bounded_rule(tab.profile, a0)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        tab.simulate(cycles(factor * phi_lim), method="mdr", outputs=NO_ENERGY, n_springs=200)
+    path_warns = [w for w in rec if issubclass(w.category, ValidityWarning)]
+    assert bool(path_warns) == (factor > 1)
+    if path_warns:
+        assert "outside the torque limit" in str(path_warns[0].message)
