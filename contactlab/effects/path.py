@@ -479,6 +479,11 @@ MDR_PATH_STICK_RATIOS: dict[str, float] = {"torque": MDR_VALID_STICK_RATIO,
 MDR_PATH_HELD_FORCE = 2e-3
 
 
+#: long paths: the radii binned by :func:`_validity_states` are those of about this many steps
+#: (evenly strided; the smallest and the largest radius are always kept)
+_VALIDITY_SAMPLE = 1 << 14
+
+
 def _twisted(twist: np.ndarray, radius: np.ndarray) -> int:
     """Index of the first step at which the twist differs from the twist at first contact."""
     a = np.asarray(radius, float)
@@ -489,18 +494,28 @@ def force_variation(twist: np.ndarray, radius: np.ndarray, force: np.ndarray) ->
     """Relative range of the normal force while the path is twisted,
     ``(max F − min F)/max |F|`` from the step before the twist first changes (0 at constant normal
     force while twisted, and without force)."""
-    f = np.asarray(force, float)[max(_twisted(twist, radius) - 1, 0):]
-    top = float(np.max(np.abs(f), initial=0.0))
-    return float(np.max(f) - np.min(f)) / top if top > 0 else 0.0
+    return _force_variation(np.asarray(force, float), _twisted(twist, radius))
+
+
+def _force_variation(force: np.ndarray, j: int) -> float:
+    """:func:`force_variation` with the first twisted step ``j`` known (two passes over the
+    force: max and min; ``max |F| = max(|max F|, |min F|)``)."""
+    f = force[max(j - 1, 0):]
+    if f.size == 0:
+        return 0.0
+    hi, lo = float(np.max(f)), float(np.min(f))
+    top = max(abs(hi), abs(lo))
+    return (hi - lo) / top if top > 0 else 0.0
 
 
 def _validity_states(a: np.ndarray, depth: np.ndarray, j0: int, held: np.ndarray | None,
                      count: int) -> tuple[np.ndarray, np.ndarray]:
     """Up to ``count`` normal states (radius, depth) spread over the range of the contact radii
     of steps ``j0 ...`` (``held``: those steps' indices where not all are in contact), in
-    O(steps): the radii are binned by value into ``count`` equal bins and each bin is
-    represented by its first step; the smallest and the largest radius (their first steps) are
-    always among them."""
+    O(steps): the radii (of every step, or of every ``steps // _VALIDITY_SAMPLE``-th on long
+    paths) are binned by value into ``count`` equal bins and each bin is represented by its
+    first such step; the smallest and the largest radius (their first steps) are always among
+    them."""
     ah = a[j0:] if held is None else a[held]
     dh = depth[j0:] if held is None else depth[held]
     i_lo, i_hi = int(np.argmin(ah)), int(np.argmax(ah))
@@ -508,11 +523,12 @@ def _validity_states(a: np.ndarray, depth: np.ndarray, j0: int, held: np.ndarray
     if hi == lo:
         return ah[i_lo:i_lo + 1].copy(), dh[i_lo:i_lo + 1].copy()
     k = max(count, 2) - 1
-    b = ((ah - lo) / (hi - lo) * k).astype(np.intp)
+    stride = max(1, ah.size // _VALIDITY_SAMPLE)
+    b = ((ah[::stride] - lo) / (hi - lo) * k).astype(np.intp)
     np.minimum(b, k, out=b)
     first = np.full(k + 1, -1, np.intp)
     # repeated indices: the last assignment wins, so assigning in reverse keeps the first step
-    first[b[::-1]] = np.arange(ah.size - 1, -1, -1)
+    first[b[::-1]] = np.arange(b.size - 1, -1, -1) * stride
     first[0], first[k] = i_lo, i_hi
     first = np.unique(first[first >= 0])
     return ah[first], dh[first]
@@ -552,20 +568,32 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
     if quantity not in MDR_PATH_STICK_RATIOS:
         raise UnknownNameError(f"quantity={quantity!r} is invalid: allowed are "
                                f"{tuple(MDR_PATH_STICK_RATIOS)}.")
-    a = np.asarray(radius, float)
-    live = a > 0
-    if not np.any(live):
+    return _path_validity(contact, np.asarray(twist, float), np.asarray(radius, float),
+                          np.asarray(depth, float), quantity, None)
+
+
+def _path_validity(contact, tw: np.ndarray, a: np.ndarray, depth: np.ndarray, quantity: str,
+                   j: int | None) -> tuple[float, float, float, float]:
+    """:func:`mdr_path_validity` (``j``: the first twisted step if known) in a few passes over
+    the steps (a gait of 10^6 steps: a few ms)."""
+    if a.size == 0:
         return 0.0, 0.0, float("inf"), 0.0
-    i0 = int(np.argmax(live))
-    phi = np.asarray(twist, float)[live] - (float(twist[i0 - 1]) if i0 else 0.0)
-    if not np.any(phi):
+    i0 = 0 if a[0] > 0 else int(np.argmax(a > 0))
+    if not a[i0] > 0:
+        return 0.0, 0.0, float("inf"), 0.0
+    ref = float(tw[i0 - 1]) if i0 else 0.0
+    # every step in contact from the first contact on (a gait): no masks
+    all_live = bool(a[i0 + int(np.argmin(a[i0:]))] > 0)
+    live_tw = tw[i0:] if all_live else tw[a > 0]
+    # max |twist - ref| (rounding is monotone: the same value as over every step)
+    big = max(float(np.max(live_tw)) - ref, ref - float(np.min(live_tw)))
+    if not big > 0:
         return 0.0, 0.0, float("inf"), 0.0
     # the limit over the contact radii while twisted (from the step before the twist first
     # changes: a force ramp before the twist does not count)
-    j0 = max(_twisted(twist, a) - 1, 0)
-    ah = a[j0:]
-    held = np.flatnonzero(ah > 0) + j0 if not np.all(ah > 0) else None
-    ra, rd = _validity_states(a, np.asarray(depth, float), j0, held,
+    j0 = max((_twisted(tw, a) if j is None else j) - 1, 0)
+    held = None if all_live and j0 >= i0 else np.flatnonzero(a[j0:] > 0) + j0
+    ra, rd = _validity_states(a, depth, j0, held,
                               affordable_states(contact.profile, float(np.max(a)),
                                                 _VALIDITY_RADII))
     prof = contact.profile
@@ -580,7 +608,6 @@ def mdr_path_validity(contact, twist: np.ndarray, radius: np.ndarray, depth: np.
                                       contact.friction, ra, rd, g_a, (quantity,),
                                       contact.rtol)[quantity]
     k = int(np.argmin(lim))
-    big = float(np.max(np.abs(phi)))
     ratio = big / float(lim[k]) if lim[k] > 0 else float("inf")
     return ratio, big, float(lim[k]), float(ra[k])
 
@@ -618,10 +645,11 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
     stacklevel : int
         Passed to :func:`warnings.warn`.
     """
+    twist, radius, depth = (np.asarray(v, float) for v in (twist, radius, depth))
     j = _twisted(twist, radius)
-    if j == 0 and float(np.asarray(twist, float)[0]) == 0.0:
+    if j == 0 and float(twist[0]) == 0.0:
         return          # never twisted
-    ratio, big, lim, a = mdr_path_validity(contact, twist, radius, depth)
+    ratio, big, lim, a = _path_validity(contact, twist, radius, depth, "torque", j)
     torque_bad = ratio > 1.0
     parts = [f"torque: twist {big:.4g} rad is {ratio:.3g} times {lim:.4g} rad, the twist at "
              f"which the exact stick radius falls below c/a={MDR_VALID_STICK_RATIO} at the contact "
@@ -631,9 +659,9 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
              "times it)"]
     energy_bad = False
     if energy:
-        var = force_variation(twist, radius, force)
+        var = _force_variation(np.asarray(force, float), j)
         if var <= MDR_PATH_HELD_FORCE:
-            e_ratio, _, e_lim, _ = mdr_path_validity(contact, twist, radius, depth, "energy")
+            e_ratio, _, e_lim, _ = _path_validity(contact, twist, radius, depth, "energy", j)
             energy_bad = e_ratio > 1.0
             parts.append("dissipated energy: " + ("outside" if energy_bad else "within")
                          + f", the twist is {e_ratio:.3g} times {e_lim:.4g} rad, the twist at "
