@@ -331,12 +331,23 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
     ConvergenceError
         The bracketed solve failed.
     """
+    E = E_star
+    terms = profile.power_terms()
+    if (terms is not None and len(terms) == 1 and not np.isfinite(profile.wall_radius)
+            and F.ndim and F.size and float(np.min(F)) > 0):
+        # every force positive on a single power term (a gait): the closed form below without
+        # the masks and scatters (the same values)
+        from ..symbolic.transform import kappa
+        c, n = terms[0]
+        a = (F * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+        d = profile._g(a, rtol)
+        profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
+        return a, d
     a = np.zeros(F.shape)
     d = np.zeros(F.shape)
     pos = F > 0
     if not np.any(pos):
         return a, d
-    E = E_star
     Fp = F[pos]
     ap = np.zeros(Fp.shape)
     solve = np.ones(Fp.shape, dtype=bool)

@@ -35,3 +35,16 @@ def test_without_error_estimate_bit_identical(prof, control):
     bare = N.solve(prof, E, control, pos, 1e-10, error_estimate=False)
     for u, v in zip(full[:3], bare[:3]):
         assert np.array_equal(u, v)
+
+
+@pytest.mark.parametrize("prof", [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0),
+                                  PowerLaw(2e-2, 0.7)], ids=repr)
+def test_all_positive_forces_shortcut_bit_identical(prof):
+    """Forces all > 0 on a single power term skip the masks of the general route: the same
+    radii and depths as that route (taken when one force is 0)."""
+    E = cl.Contact(prof, (STEEL, STEEL)).moduli.normal
+    F = np.linspace(1e-3, 300.0, 1001)
+    a, d = N.radius_depth_of_force(prof, E, F, 1e-10)
+    a0, d0 = N.radius_depth_of_force(prof, E, np.concatenate(([0.0], F)), 1e-10)
+    assert a0[0] == 0 and d0[0] == 0
+    assert np.array_equal(a, a0[1:]) and np.array_equal(d, d0[1:])
