@@ -46,6 +46,31 @@ def _gint(profile, x: np.ndarray) -> np.ndarray:
     return np.where(x > 0, profile._g_integral(np.maximum(x, 1e-300)), 0.0)
 
 
+def _edge_integrals(profile, a: np.ndarray, rtol: float, tor: bool
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """``(∫_0^a g, ∫_0^a x g)`` of the contact radii of a run of steps (the second only with
+    ``tor``, else the first again). A single power term ``c r^n`` (no wall) with every radius
+    > 0 (a gait) takes ``κ_n c a^(n+1)/(n+1)`` and ``κ_n c a^(n+2)/(n+2)`` in place: the same
+    operations as :func:`_gint` and :func:`xg_integral` (bit-identical), without their masks,
+    error estimates and temporaries."""
+    terms = profile.power_terms()
+    if (terms is not None and len(terms) == 1 and not np.isfinite(profile.wall_radius)
+            and a.size and float(np.min(a)) > 0):
+        c, n = terms[0]
+        k = profile._power_kappa(n) * c
+        Ga = a ** (n + 1)
+        Ga *= k
+        Ga /= n + 1
+        if not tor:
+            return Ga, Ga
+        Ha = a ** (n + 2)
+        Ha *= k
+        Ha /= n + 2
+        return Ga, Ha
+    Ga = _gint(profile, a)
+    return Ga, (xg_integral(profile, a, rtol) if tor else Ga)
+
+
 def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
     """``H(x) = ∫_0^x s g(s) ds``, m⁴ (closed form for power terms and tables, else tanh-sinh)."""
     x = np.asarray(x, float)
@@ -148,8 +173,7 @@ class Winkler(Foundation):
         tor = "torsion" in self.needs
         kernel = _compiled.edge_cells() if d.ndim == 1 and d.shape == a.shape else None
         if kernel is not None:   # compiled: the search and arithmetic below in one pass
-            Ga = _gint(self.profile, a)
-            Ha = xg_integral(self.profile, a, self.rtol) if tor else Ga
+            Ga, Ha = _edge_integrals(self.profile, a, self.rtol, tor)
             out = {"k": np.empty(d.size, np.int64), "S": np.empty(d.size)}
             out["T"] = np.empty(d.size) if tor else out["S"]
             kernel(d, a, Ga, Ha, self.boundaries, self.G_left, self.H_left if tor else self.G_left,
