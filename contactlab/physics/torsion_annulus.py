@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.linalg as _la
-from scipy.optimize import brentq
 
 __all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
@@ -74,9 +73,10 @@ def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
     al, be = _lin(p)
     whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
     tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
-    k = np.clip(np.searchsorted(hi, x, "right"), 0, lo.size - 1)
-    t0 = np.clip(x, lo[k], hi[k])
-    part = al[k] * (hi[k] - t0) + 0.5 * be[k] * (hi[k] ** 2 - t0 * t0)
+    k = np.minimum(np.searchsorted(hi, x, "right"), lo.size - 1)
+    lk, hk = lo[k], hi[k]
+    t0 = np.minimum(np.maximum(x, lk), hk)
+    part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
     return np.where(x >= hi[-1], 0.0, np.where(x < lo[0], tail[0], part + tail[k + 1]))
 
 
@@ -92,7 +92,23 @@ def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
     """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece)."""
     lo, hi, _, _ = p
     al, be = _lin(p)
-    rr = np.asarray(r, float)[:, None]
+    r = np.asarray(r, float)
+    rr = r[:, None]
+    if lo.size and np.array_equal(lo[1:], hi[:-1]):
+        # abutting pieces: the antiderivatives arccosh(t/r) and sqrt(t² − r²) once per node
+        # (t clipped to r: a piece below r gives 0, the piece holding r starts there)
+        nodes = np.append(lo, hi[-1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.where(rr > 0, np.maximum(nodes[None, :] / np.where(rr > 0, rr, 1.0), 1.0),
+                         1.0)
+        # the antiderivatives vanish at u = 1 (nodes below r): evaluated above r only
+        m = u > 1.0
+        A, S = np.zeros(u.shape), np.zeros(u.shape)
+        um = u[m]
+        A[m] = np.arccosh(um)
+        S[m] = np.sqrt((um - 1.0) * (um + 1.0))
+        S *= rr
+        return 4.0 * G_t / np.pi * r * (np.diff(A, axis=1) @ al + np.diff(S, axis=1) @ be)
     t0 = np.maximum(lo[None, :], rr)
     inside = (rr < hi[None, :]) & (rr > 0)
     s1 = np.sqrt(np.maximum(hi * hi - rr * rr, 0.0))
@@ -103,16 +119,14 @@ def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
     return 4.0 * G_t / np.pi * rr[:, 0] * (T1 @ al + Tt @ be)
 
 
-def _G0(x):
+def _G01(x):
+    """The antiderivatives ``G0``, ``G1`` of the slip kernel (per unit ``r²``, ``r³``) at ``x``."""
     q = np.sqrt(np.maximum(1.0 - x * x, 0.0))
-    return x * np.arccos(x) - q - q ** 3 / 3.0
-
-
-def _G1(x):
-    q = np.sqrt(np.maximum(1.0 - x * x, 0.0))
-    asn = np.arcsin(x)
-    return (0.5 * x * x * np.arccos(x) - 0.25 * x * q + 0.25 * asn
-            + (x * (2.0 * x * x - 1.0) * q + asn) / 8.0)
+    ac = np.arccos(x)
+    asn = 0.5 * np.pi - ac
+    g0 = x * ac - q - q ** 3 / 3.0
+    g1 = (0.5 * x * x * ac - 0.25 * x * q + 0.25 * asn + (x * (2.0 * x * x - 1.0) * q + asn) / 8.0)
+    return g0, g1
 
 
 def slip_kernel_integral(p: Pieces, r: np.ndarray) -> np.ndarray:
@@ -121,12 +135,22 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray) -> np.ndarray:
     lo, hi, _, _ = p
     al, be = _lin(p)
     rr = np.asarray(r, float)[:, None]
+    # abutting pieces share their ends: the antiderivatives once per node
+    shared = bool(lo.size) and np.array_equal(lo[1:], hi[:-1])
+    ends = np.append(lo, hi[-1]) if shared else np.concatenate([lo, hi])
     with np.errstate(divide="ignore", invalid="ignore"):
-        x0 = np.where(rr > 0, np.clip(lo / rr, 0.0, 1.0), 1.0)
-        x1 = np.where(rr > 0, np.clip(hi / rr, 0.0, 1.0), 1.0)
-    I0 = rr * rr * (_G0(x1) - _G0(x0))
-    I1 = rr ** 3 * (_G1(x1) - _G1(x0))
-    return 2.0 / np.pi * (I0 @ al + I1 @ be)
+        x = np.where(rr > 0, np.minimum(np.maximum(ends / rr, 0.0), 1.0), 1.0)
+    # nodes beyond r (x = 1) give the constants G0(1), G1(1): evaluated below r only
+    m = x < 1.0
+    g0, g1 = (np.full(x.shape, v) for v in _G01(np.ones(1)))
+    g0[m], g1[m] = _G01(x[m])
+    if shared:
+        d0, d1 = np.diff(g0, axis=1), np.diff(g1, axis=1)
+    else:
+        n = lo.size
+        d0, d1 = g0[:, n:] - g0[:, :n], g1[:, n:] - g1[:, :n]
+    r1 = rr[:, 0]
+    return 2.0 / np.pi * (r1 * r1 * (d0 @ al) + r1 ** 3 * (d1 @ be))
 
 
 _GAUSS = np.polynomial.legendre.leggauss(4)
@@ -141,8 +165,13 @@ def stored_energy(p: Pieces, G_t: float) -> float:
     xg, wg = _GAUSS
     h = hi - lo
     X = lo[:, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]
-    Ps = psi(p, X.ravel()).reshape(X.shape)
-    inner = float(psi(p, lo[:1])[0]) ** 2 * lo[0] ** 3 / 3.0
+    # Ψ inside piece k: the integral over the pieces above it plus the rest of piece k
+    al, be = _lin(p)
+    whole = al * h + 0.5 * be * (hi * hi - lo * lo)
+    tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)
+    Ps = (al[:, None] * (hi[:, None] - X) + 0.5 * be[:, None] * (hi[:, None] ** 2 - X * X)
+          + tail[1:, None])
+    inner = float(tail[0]) ** 2 * lo[0] ** 3 / 3.0
     return float(8.0 * G_t * (np.sum(0.5 * wg[None, :] * h[:, None] * X * X * Ps * Ps) + inner))
 
 
@@ -152,7 +181,7 @@ def _values(p: Pieces, x: np.ndarray, side: int) -> np.ndarray:
     x = np.asarray(x, float)
     k = (np.searchsorted(hi, x, "left") if side < 0 else np.searchsorted(lo, x, "right") - 1)
     valid = (k >= 0) & (k < lo.size)
-    k = np.clip(k, 0, max(lo.size - 1, 0))
+    k = np.minimum(np.maximum(k, 0), max(lo.size - 1, 0))
     if lo.size == 0:
         return np.zeros(x.shape)
     h = hi[k] - lo[k]
@@ -160,6 +189,22 @@ def _values(p: Pieces, x: np.ndarray, side: int) -> np.ndarray:
     inside = valid & (((x > lo[k]) & (x <= hi[k])) if side < 0 else
                       ((x >= lo[k]) & (x < hi[k])))
     return np.where(inside, wl[k] + (wr[k] - wl[k]) * f, 0.0)
+
+
+def _value(p: Pieces, x: float, side: int) -> float:
+    """``w(x⁻)`` (side −1) or ``w(x⁺)`` (side +1) at one radius (scalar :func:`_values`)."""
+    lo, hi, wl, wr = p
+    if lo.size == 0:
+        return 0.0
+    k = int(np.searchsorted(hi, x, "left") if side < 0 else np.searchsorted(lo, x, "right") - 1)
+    if k < 0 or k >= lo.size:
+        return 0.0
+    l0, h0 = float(lo[k]), float(hi[k])
+    if not ((l0 < x <= h0) if side < 0 else (l0 <= x < h0)):
+        return 0.0
+    h = h0 - l0
+    f = (x - l0) / h if h > 0 else 0.0
+    return float(wl[k] + (wr[k] - wl[k]) * f)
 
 
 def torque_below(p: Pieces, x: np.ndarray, G_t: float) -> np.ndarray:
@@ -171,8 +216,8 @@ def torque_below(p: Pieces, x: np.ndarray, G_t: float) -> np.ndarray:
     al, be = _lin(p)
     whole = al * (hi ** 4 - lo ** 4) / 4.0 + be * (hi ** 5 - lo ** 5) / 5.0
     head = np.concatenate([[0.0], np.cumsum(whole)])              # ∫ over pieces < k
-    k = np.clip(np.searchsorted(hi, x, "right"), 0, lo.size - 1)
-    t1 = np.clip(x, lo[k], hi[k])
+    k = np.minimum(np.searchsorted(hi, x, "right"), lo.size - 1)
+    t1 = np.minimum(np.maximum(x, lo[k]), hi[k])
     part = al[k] * (t1 ** 4 - lo[k] ** 4) / 4.0 + be[k] * (t1 ** 5 - lo[k] ** 5) / 5.0
     below = np.where(x < lo[0], 0.0, head[k] + part)
     return 16.0 / 3.0 * G_t * np.where(x >= hi[-1], head[-1], below)
@@ -246,15 +291,70 @@ def _scale(p: Pieces) -> float:
     return float(np.max(np.abs(p[2]), initial=0.0) + np.max(np.abs(p[3]), initial=0.0)) or 1.0
 
 
-def _local(d_lo: float, d_hi: float, x0: float, x1: float, kind: str, G_t: float):
-    """``∫_x^{x1} κ(t) d(t) dt`` as a function of ``x`` in ``[x0, x1]`` for the linear ``d``
-    with ends ``d_lo``, ``d_hi`` (``κ = 1`` for the twist, ``(16/3) G_t t³`` for the torque)."""
+def _total(p: Pieces) -> float:
+    """``Ψ(0) = ∫ w dt`` (rad)."""
+    lo, hi, _, _ = p
+    if lo.size == 0:
+        return 0.0
+    al, be = _lin(p)
+    return float(np.sum(al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)))
+
+
+_RTOL = 4 * np.finfo(float).eps
+
+
+def _root(d_lo: float, d_hi: float, x0: float, x1: float, f1: float, target: float, s: float,
+          kind: str, G_t: float, xtol: float) -> float:
+    """The stick radius inside ``[x0, x1]``: the root of ``s (f1 + ∫_x^{x1} κ d dt − target)``
+    for the linear difference ``d`` with ends ``d_lo``, ``d_hi`` (``κ = 1`` for the twist,
+    ``(16/3) G_t t³`` for the torque), a polynomial in ``x`` increasing from ``x1`` inwards.
+
+    Safeguarded Newton from the end nearer the linear interpolant's root, bisection whenever a
+    Newton step leaves the bracket, to ``xtol`` (m) or to rounding; the bracket's ends are
+    returned when the residual there already has the root's sign (a bracket lost to rounding,
+    values ~1e-21)."""
     be = (d_hi - d_lo) / (x1 - x0)
     al = d_lo - be * x0
     if kind == "twist":
-        return lambda x: al * (x1 - x) + 0.5 * be * (x1 * x1 - x * x)
-    k = 16.0 / 3.0 * G_t
-    return lambda x: k * (al * (x1 ** 4 - x ** 4) / 4.0 + be * (x1 ** 5 - x ** 5) / 5.0)
+        def res(x):
+            return s * (f1 + al * (x1 - x) + 0.5 * be * (x1 * x1 - x * x) - target)
+
+        def der(x):
+            return -s * (al + be * x)
+    else:
+        k = 16.0 / 3.0 * G_t
+        x14, x15 = x1 ** 4, x1 ** 5
+
+        def res(x):
+            x2 = x * x
+            return s * (f1 + k * (al * (x14 - x2 * x2) / 4.0 + be * (x15 - x2 * x2 * x) / 5.0)
+                        - target)
+
+        def der(x):
+            return -s * k * x ** 3 * (al + be * x)
+    r0, r1 = res(x0), res(x1)
+    if r0 < 0:
+        return x0
+    if r1 >= 0:
+        return x1
+    lo, hi = x0, x1               # res(lo) >= 0 > res(hi)
+    x = x1 - r1 * (x1 - x0) / (r1 - r0)
+    for _ in range(100):
+        fx = res(x)
+        if fx == 0:
+            return x
+        if fx > 0:
+            lo = x
+        else:
+            hi = x
+        d = der(x)
+        xn = x - fx / d if d != 0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= xtol + _RTOL * abs(x) or hi - lo <= xtol:
+            return xn
+        x = xn
+    return 0.5 * (lo + hi)
 
 
 def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float | None = None,
@@ -290,28 +390,27 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         checks held) and ``why`` (the failed check, or ``""``).
     """
     kind = "twist" if target_torque is None else "torque"
+    # the piece ends of both densities below the radius, from the edge inwards (the first is
+    # the radius itself): the twist (torque) of both densities there, once
+    xs = np.unique(np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]]))
+    xs = xs[xs <= radius][::-1]
     if kind == "twist":
-        def f(x, s):
-            return s * psi(slide, x) - psi(old, x)
+        f_sl, f_old = psi(slide, xs), psi(old, xs)
         target = float(dphi)
     else:
         M_sl = torque(slide, G_t)
-
-        def f(x, s):
-            return torque_below(old, x, G_t) + s * (M_sl - torque_below(slide, x, G_t))
+        f_sl = M_sl - torque_below(slide, xs, G_t)
+        f_old = -torque_below(old, xs, G_t)
         target = float(target_torque)
-    base = float(f(np.array(radius), 1.0))
+    base = float(f_sl[0] - f_old[0])
     gross = 0.0
     s = 1.0 if target >= base else -1.0
     if target == base:
         c = float(radius)
     else:
-        # the piece ends of both densities below the radius, from the edge inwards: the first
-        # where the twist (torque) reaches the target brackets the stick radius, inside which
-        # both densities are linear (a polynomial root)
-        xs = np.unique(np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]]))
-        xs = xs[xs <= radius][::-1]
-        fx = f(xs, s)
+        # the first piece end where the twist (torque) reaches the target brackets the stick
+        # radius, inside which both densities are linear (a polynomial root)
+        fx = s * f_sl - f_old
         vals = s * (fx - target)
         hit = np.flatnonzero(vals >= 0)
         if hit.size == 0:
@@ -323,24 +422,13 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
                 c = float(xs[k])
             else:
                 x0, x1 = float(xs[k]), float(xs[k - 1])
-                ends = np.array([x0, x1])
-                d_lo, d_hi = (s * _values(slide, ends, side) - _values(old, ends, side)
-                              for side in (1, -1))
-                loc = _local(float(d_lo[0]), float(d_hi[1]), x0, x1, kind, G_t)
-                f1 = float(fx[k - 1])
-
-                def resid(x):
-                    return s * (f1 + loc(x) - target)
-                if resid(x0) < 0:           # the bracket lost to rounding (values ~1e-21)
-                    c = x0
-                elif resid(x1) >= 0:
-                    c = x1
-                else:
-                    c = brentq(resid, x0, x1, xtol=ROOT_XTOL * radius,
-                               rtol=4 * np.finfo(float).eps)
+                d_lo = s * _value(slide, x0, 1) - _value(old, x0, 1)
+                d_hi = s * _value(slide, x1, -1) - _value(old, x1, -1)
+                c = _root(d_lo, d_hi, x0, x1, float(fx[k - 1]), target, s, kind, G_t,
+                          ROOT_XTOL * radius)
     signed = (slide[0], slide[1], s * slide[2], s * slide[3])
     w = splice(old, signed, c)
-    dpsi = float(psi(w, np.array(0.0)) - psi(old, np.array(0.0)))
+    dpsi = _total(w) - _total(old)
     why, ds = "", None
     if r is not None:
         # points in contact at the start or the end of the step (a point leaving the contact
@@ -352,8 +440,9 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         # of s: since K >= 0, s Δw >= 0 on the annulus (and s × the gross turn >= 0) suffices;
         # else (or when the increments are wanted) they are computed at the points
         dw = difference(w, old, c)
-        sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= -CHECK_RTOL * _scale(slide)))
-                      and bool(np.all(s * dw[3] >= -CHECK_RTOL * _scale(slide))))
+        slack = -CHECK_RTOL * _scale(slide)
+        sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= slack))
+                      and bool(np.all(s * dw[3] >= slack)))
         if on.any() and not np.isnan(gross) and (slip or not sufficient):
             ds[on] = slip_kernel_integral(dw, r[on]) + gross * r[on]
             ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
