@@ -450,6 +450,11 @@ RINGS_WORK_BALANCE = 1e-10
 RINGS_DISSIPATION_QUADRATURE = 2e-4
 #: Coulomb's law on the returned fields, of the largest μp: rounding of the tractions
 RINGS_COMPLEMENTARITY = 1e-9
+#: torque control inverted by twist control on a cone with a changing force (steps with two slip
+#: zones on the ring solver): the torque of the twist-controlled run against the prescribed one,
+#: of the largest torque; root solves and rounding (measured 3e-13; 4.5e-3 when the ring solver's
+#: step aimed at the target in its own torque measure g·z instead of the density's torque)
+RINGS_TORQUE_INVERSION = 1e-9
 #: dissipated energy against twist_history's exact integral, 800 steps of an oscillation (the
 #: midpoint rule in time is second order): measured 6.2e-5
 RINGS_DISSIPATION_800_STEPS = 3e-4
