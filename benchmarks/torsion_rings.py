@@ -20,10 +20,16 @@ the error of the MDR spring model when the normal force changes (issue 18).
    the torque and of the energy (``effects.path.mdr_path_validity``), the force's relative range
    while twisted, and which judgements of the MDR run's warning fired.
 
+4. Long paths (``--long`` only): time per step of ``method="exact"`` on 2002-step paths (Hertz
+   and cone; constant force and ±30 % at seven cycles; twist oscillating in partial slip at
+   twenty cycles) at 20 and 200 rings, next to the ring solver alone and ``method="mdr"`` on the
+   same paths, with the number of steps that fell back to the ring solver.
+
 Writes ``benchmarks/results/torsion_rings.csv`` and prints the tables.
 Run: ``python benchmarks/torsion_rings.py`` from the repository root (``--quick`` skips part 3;
 ``--map`` runs only part 3, about a minute with ``OPENBLAS_NUM_THREADS=1``, and writes
-``benchmarks/results/torsion_rings_map.csv``).
+``benchmarks/results/torsion_rings_map.csv``; ``--long`` runs only part 4, a few minutes, and
+writes ``benchmarks/results/torsion_rings_long.csv``).
 """
 from __future__ import annotations
 
@@ -252,9 +258,68 @@ def main_map():
         w.writerows(em)
 
 
+def long_path(c, n=2000, varying=False):
+    """A ramp to 10 N, then ``n`` steps of a twist oscillating in partial slip (20 cycles) under
+    a constant force or one of ±30 % at seven cycles."""
+    t = np.arange(1, n + 1) / n
+    force = (10.0 * (1 + 0.3 * np.sin(2 * np.pi * 7 * t + 0.3)) if varying
+             else np.full(n, 10.0))
+    a = float(c.normal(force=10.0)._radius)
+    s = MU * 10.0 / (c.moduli.torsional * a * a)
+    phi = 0.6 * s * np.sin(2 * np.pi * 20 * t) * np.minimum(1, 5 * t)
+    return (cl.LoadPath().ramp(force=10.0, steps=2)
+            + cl.LoadPath.from_arrays(force=force, twist=phi))
+
+
+def long_paths():
+    rows = []
+    profiles = {"hertz": cl.profiles.Paraboloid(R=0.01), "cone": cl.profiles.Cone(slope=0.02)}
+    for pname, prof in profiles.items():
+        c = cl.Contact(prof, materials=MAT, friction=MU)
+        for varying in (False, True):
+            path = long_path(c, varying=varying)
+            case = f"{pname} {'force ±30%' if varying else 'constant force'}"
+            for label, n, fn in (
+                    ("exact", 20, lambda: _run(c, path, None, 20, "uniform", None)),
+                    ("exact", 200, lambda: _run(c, path, None, 200, "uniform", None)),
+                    ("ring solver alone", 20,
+                     lambda: _run(c, path, None, 20, "uniform", None, annulus=False)),
+                    ("ring solver alone", 200,
+                     lambda: _run(c, path, None, 200, "uniform", None, annulus=False)),
+                    ("mdr", 2000, lambda: c.simulate(path, method="mdr"))):
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    tt, r = timed(fn, 1)
+                rows.append({"part": "long path", "case": case, "method": label, "n": n,
+                             "steps": path.n_steps, "time_s": tt,
+                             "time_per_step_s": tt / path.n_steps,
+                             "fallback_steps": r.meta.get("fallback_steps")})
+    return rows
+
+
+def main_long():
+    """Part 4 only (``--long``): writes ``benchmarks/results/torsion_rings_long.csv``."""
+    print(machine())
+    rows = long_paths()
+    print("\n4. long paths: time per step")
+    for r in rows:
+        fb = r["fallback_steps"]
+        print(f"  {r['case']:22s} {r['method']:18s} N={r['n']:5d}  {r['steps']} steps"
+              f"  {r['time_s']:.2f} s  {1e3 * r['time_per_step_s']:.3f} ms/step"
+              + (f"  ring-solver steps {fb}" if fb is not None else ""))
+    OUT.mkdir(exist_ok=True)
+    keys = sorted({k for r in rows for k in r})
+    with open(OUT / "torsion_rings_long.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def main():
     if "--map" in sys.argv:
         return main_map()
+    if "--long" in sys.argv:
+        return main_long()
     # the reference run at 800 rings (~2400 unknowns with the nodes and jumps at the contact
     # radii) may need more than the default memory budget
     cl.set_memory_budget("inf")
