@@ -19,10 +19,10 @@ __all__ = ["Rings", "RingState", "DEFAULT_N_RINGS"]
 
 #: default number of rings over the path's largest contact radius (before the nodes added at the
 #: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
-#: load the torque of the exact Jäger/Masing history is reproduced to 4.1e-5 of the sliding torque
-#: (Hertz; flat punch 2.0e-6), on a 180-step path whose normal force changes every step to 3.7e-5
-#: against 1600 rings (244 rings and 86 density jumps at the contact radii; 1.96x the time of
-#: the same rings without the jumps, 1.1e-4)
+#: load the torque of the exact Jäger/Masing history is reproduced to 2.7e-7 of the sliding torque
+#: (Hertz, punch-density steps with the stick radius solved inside its ring; order ~2.5), on a
+#: 180-step path whose normal force changes every step to 1.6e-5 against 800 rings (the steps
+#: with two slip zones, taken by the ring solver, dominate it)
 DEFAULT_N_RINGS = 200
 #: with the edge punch (contact pinned at a wall): its collocation point sits this fraction of
 #: the last ring's width inside the edge (the ring's midpoint is the other point of that ring)

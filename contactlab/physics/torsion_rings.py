@@ -50,8 +50,6 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
-from math import comb
-
 import numpy as np
 import scipy.linalg as _la
 
