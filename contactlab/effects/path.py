@@ -372,11 +372,9 @@ def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | 
     normal = []
     try:
         for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path,
-                                           contact.rtol, chunk=_SOLVE_CHUNK):
-            n = seg["depth"].size
+                                           contact.rtol, chunk=_SOLVE_CHUNK, out=res):
+            n = seg["depth"].size      # depth, force, radius: written into res by the solve
             res["time"][i0:i0 + n] = t0 + seg["dt"]
-            for k in ("depth", "force", "radius"):
-                res[k][i0:i0 + n] = seg[k]
             del seg
             normal.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
             t0 = float(res["time"][i0 + n - 1]) if n else t0
