@@ -943,7 +943,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
     for leaf, nrm in zip(path.leaves(), normal):
         if base:
             cur["depth"], cur["force"] = float(res["depth"][base - 1]), float(res["force"][base - 1])
-        _, vals = leaf.values(cur)
+        _, vals = getattr(leaf, "values_readonly", leaf.values)(cur)
         nsteps = leaf.n_steps
         d_arr, a_arr = nrm["depth"], nrm["radius"]
         d0, a0 = st.depth, st.radius
@@ -958,6 +958,12 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
             if pos in vals or frc in vals:
                 ch["ctrl"] = pos if pos in vals else frc
                 v = vals[ch["ctrl"]]
+                if ch["ctrl"] == pos:   # a prescribed position is its own series: the loop
+                    # reads the targets from it (writeable, unlike a table's own columns,
+                    # which the compiled run would take as another argument type)
+                    out = ch["out_pos"][base:base + nsteps]
+                    out[:] = v
+                    v = out
             else:
                 v = np.full(nsteps, cur[ch["ctrl"]])
             vs.append(v)

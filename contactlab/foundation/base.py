@@ -107,7 +107,7 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
     last = (np.zeros(1), np.zeros(1), np.zeros(1))
     i0 = 0
     for li, leaf in enumerate(path.leaves()):
-        dt, vals = leaf.values(cur)
+        dt, vals = getattr(leaf, "values_readonly", leaf.values)(cur)     # read only here
         n = leaf.n_steps
         if "depth" in vals or "force" in vals:
             kind = "depth" if "depth" in vals else "force"

@@ -86,6 +86,8 @@ class Segment(ABC):
        ``(dt, {quantity: array})`` (time increments from the segment start, and the
        prescribed values per step; ``start`` holds the current value of every quantity).
     2. Optional: ``leaves()`` for composite segments (default: itself).
+    3. Optional: ``values_readonly(start)``, :meth:`values` whose arrays may be read-only views
+       of the segment's own data (no copy; default: :meth:`values`), for callers that only read.
     """
 
     controls: frozenset
@@ -96,6 +98,12 @@ class Segment(ABC):
 
     @abstractmethod
     def values(self, start: dict[str, float]) -> tuple[np.ndarray, dict[str, np.ndarray]]: ...
+
+    def values_readonly(self, start: dict[str, float]
+                        ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """:meth:`values` for a caller that does not write into the arrays (they may be the
+        segment's own read-only data: no copy of a 10^6-step table's columns)."""
+        return self.values(start)
 
     def leaves(self) -> Iterator["Segment"]:
         yield self
