@@ -39,7 +39,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import OutsideTheoryError, ParameterError, TabulatedDataError
-from ..numeric.fixed_sums import block_extent, row_sums
+from ..numeric.fixed_sums import row_sums
 from ..params import Param, as_real
 from ..symbolic.form import SympyForm
 from .base import Profile
@@ -528,9 +528,9 @@ class Tabulated(Profile):
                 continue
             xv = xs[pos]
             xp = xv[:, None]
-            # the nodes below the chunk's largest point, in whole summation blocks: every point's
-            # sums are grouped the same whatever else is in its chunk (fixed_sums)
-            m = block_extent(int(np.searchsorted(nodes_all, xv.max(), side="left")), total)
+            # the nodes below the chunk's largest point; row_sums groups every point's sums the
+            # same whatever else is in its chunk (fixed_sums)
+            m = int(np.searchsorted(nodes_all, xv.max(), side="left"))
             nodes = nodes_all[:m][None, :]
             al, be, jmp = (jump_all[k, :m][None, :] for k in range(3))
             below = nodes < xp
@@ -620,8 +620,7 @@ class Tabulated(Profile):
         lo_all = self._cubic_local_lo
         total = lo_all.size
         zero = np.zeros(rows)
-        m = (block_extent(int(np.searchsorted(lo_all, xv.max(), side="left")), total)
-             if total else 0)
+        m = int(np.searchsorted(lo_all, xv.max(), side="left")) if total else 0
         if m == 0:
             return zero, zero, (zero if with_slope else None)
         eps = np.finfo(float).eps
@@ -750,8 +749,7 @@ class Tabulated(Profile):
             if not np.any(pos):
                 continue
             xp = xs[pos][:, None]
-            m = block_extent(int(np.searchsorted(nodes_all, xp.max(), side="right")),
-                             nodes_all.size)
+            m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
             nodes, ds = nodes_all[:m], ds_all[:m]
             below = nodes[None, :] <= xp
             # nodes above x give 1 (masked below); dividing by max(x, node) keeps a tiny x
@@ -846,8 +844,7 @@ class Tabulated(Profile):
             if not np.any(pos):
                 continue
             ap = aa[pos][:, None]
-            m = block_extent(int(np.searchsorted(nodes_all, ap.max(), side="right")),
-                             nodes_all.size)
+            m = int(np.searchsorted(nodes_all, ap.max(), side="right"))
             nodes, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
             below = nodes <= ap
             q = np.minimum(nodes / ap, 1.0)
@@ -888,8 +885,7 @@ class Tabulated(Profile):
             if not np.any(pos):
                 continue
             av = aa[pos]
-            m = block_extent(int(np.searchsorted(nodes_all, av.max(), side="left")),
-                             nodes_all.size)
+            m = int(np.searchsorted(nodes_all, av.max(), side="left"))
             ap = av[:, None]
             b, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
             P2 = self._node_moments(ap, b)[0]

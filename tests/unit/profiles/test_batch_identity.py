@@ -17,7 +17,9 @@ import numpy as np
 import pytest
 
 import contactlab.profiles.tabulated as tabulated
-from contactlab.numeric.fixed_sums import BLOCK, block_extent, row_sums
+from contactlab.numeric.fixed_sums import row_sums
+
+BLOCK = 256   # widths around powers of two probe the tree's odd carries
 from contactlab.profiles import Tabulated
 
 N = 2000        # several summation blocks
@@ -112,7 +114,7 @@ def test_bit_identical_with_one_or_default_blas_threads():
     assert results[0] == results[1]
 
 
-def test_row_sums_ignore_appended_zero_blocks_and_reject_ragged_extents():
+def test_row_sums_ignore_appended_zeros_at_any_width():
     rng = np.random.default_rng(2)
     total = 3 * BLOCK + 17
     terms = rng.standard_normal(2 * BLOCK) * 10.0 ** rng.integers(-8, 8, 2 * BLOCK)
@@ -123,6 +125,11 @@ def test_row_sums_ignore_appended_zero_blocks_and_reject_ragged_extents():
     # the sum itself is accurate (second method: exact rational summation via math.fsum)
     import math
     assert abs(one[0] - math.fsum(terms)) <= 1e-12 * np.sum(np.abs(terms))
-    assert block_extent(1, total) == BLOCK and block_extent(3 * BLOCK + 1, total) == total
+    # a row cut anywhere (its later terms zero) sums like the whole row: the partly filled
+    # block is padded, not summed at its own width (numpy's pairwise grouping depends on it)
+    for cut in (1, 7, BLOCK - 1, BLOCK + 1, 2 * BLOCK + 5, 3 * BLOCK + 3, total):
+        row = np.zeros(total)
+        row[:min(cut, terms.size)] = terms[:min(cut, terms.size)]
+        assert row_sums(row[None, :cut], total)[0] == row_sums(row[None, :], total)[0], cut
     with pytest.raises(ValueError):
-        row_sums(np.zeros((1, BLOCK + 1)), total)
+        row_sums(np.zeros((1, total + 1)), total)
