@@ -17,9 +17,7 @@ import numpy as np
 import pytest
 
 import contactlab.profiles.tabulated as tabulated
-from contactlab.numeric.fixed_sums import row_sums
-
-BLOCK = 256   # widths around powers of two probe the tree's odd carries
+from contactlab.numeric.fixed_sums import BLOCK, row_sums
 from contactlab.profiles import Tabulated
 
 N = 2000        # several summation blocks
@@ -126,7 +124,8 @@ def test_row_sums_ignore_appended_zeros_at_any_width():
     import math
     assert abs(one[0] - math.fsum(terms)) <= 1e-12 * np.sum(np.abs(terms))
     # a row cut anywhere (its later terms zero) sums like the whole row: the partly filled
-    # block is padded, not summed at its own width (numpy's pairwise grouping depends on it)
+    # block is padded with zeros, not summed at its own width (numpy's pairwise grouping
+    # depends on the width)
     for cut in (1, 7, BLOCK - 1, BLOCK + 1, 2 * BLOCK + 5, 3 * BLOCK + 3, total):
         row = np.zeros(total)
         row[:min(cut, terms.size)] = terms[:min(cut, terms.size)]
