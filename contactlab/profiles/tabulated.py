@@ -39,7 +39,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import OutsideTheoryError, ParameterError, TabulatedDataError
-from ..numeric.fixed_sums import row_sums
+from ..numeric.fixed_sums import row_sums, weighted_row_sums
 from ..params import Param, as_real
 from ..symbolic.form import SympyForm
 from .base import Profile
@@ -537,9 +537,6 @@ class Tabulated(Profile):
             root = np.sqrt(np.maximum((xp - nodes) * (xp + nodes), 0.0))
             theta = np.arctan2(root, nodes)                       # acos(r_j/x), accurate near x
 
-            def dot(terms: np.ndarray, col: np.ndarray) -> np.ndarray:
-                return row_sums(terms * col[:m], total)
-
             # each node term is a difference of parts that cancel as r_j -> x (the J term by
             # (root/x)^2 and more): its rounding is eps times the parts' magnitudes, not its value.
             # g and ∫g: the node terms are θ, root (and root³) times per-node coefficients and
@@ -547,9 +544,10 @@ class Tabulated(Profile):
             # coefficient columns set up once (θ = root = 0 at nodes >= x: no mask needed)
             if kind in ("g", "int"):
                 c_th, c_rt, c_r3 = self._cubic_columns(kind)
-                T = [dot(theta, c_th[k]) for k in range(4)]
-                S = [dot(root, c_rt[k]) if k < 2 or kind == "int" or with_slope else None
-                     for k in range(4)]
+                # one padded product buffer and one blocked sum per term array (weighted_row_sums)
+                T = weighted_row_sums(theta, c_th, total)
+                S = weighted_row_sums(root, c_rt if kind == "int" or with_slope else c_rt[:2],
+                                      total)
                 xv2 = xv * xv
             loc_val, loc_mag, loc_slope = self._cubic_local(xv, kind, with_slope)
             if kind == "g":
@@ -567,7 +565,7 @@ class Tabulated(Profile):
                         2.0 * c0 + 1.5 * np.pi * d0 * xv + dnodes + loc_slope)
                 continue
             if kind == "int":
-                R3 = [dot(root ** 3 / 3.0, c_r3[k]) for k in range(2)]
+                R3 = weighted_row_sums(root ** 3 / 3.0, c_r3, total)
                 c13 = 13.0 / 24.0 * xv2
                 out[start:start + chunk][pos] = (
                     0.25 * np.pi * b0 * xv2 + 2.0 / 3.0 * c0 * xv2 * xv

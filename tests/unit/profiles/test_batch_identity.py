@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import contactlab.profiles.tabulated as tabulated
-from contactlab.numeric.fixed_sums import BLOCK, row_sums
+from contactlab.numeric.fixed_sums import BLOCK, row_sums, weighted_row_sums
 from contactlab.profiles import Tabulated
 
 N = 2000        # several summation blocks
@@ -132,3 +132,26 @@ def test_row_sums_ignore_appended_zeros_at_any_width():
         assert row_sums(row[None, :cut], total)[0] == row_sums(row[None, :], total)[0], cut
     with pytest.raises(ValueError):
         row_sums(np.zeros((1, total + 1)), total)
+
+
+@pytest.mark.parametrize("m", [0, 1, 15, BLOCK, BLOCK + 1, 2 * BLOCK + 5, 3 * BLOCK + 17])
+def test_weighted_row_sums_equal_row_sums_of_the_products(m):
+    """One padded buffer for several coefficient columns sums each column bit for bit like
+    ``row_sums`` of its own products (the cubic transform relies on it), whatever the width."""
+    rng = np.random.default_rng(m)
+    total = 3 * BLOCK + 17
+    rows = 5
+    terms = rng.standard_normal((rows, m)) * 10.0 ** rng.integers(-6, 6, (rows, m))
+    columns = rng.standard_normal((3, total)) * 10.0 ** rng.integers(-6, 6, (3, total))
+    got = weighted_row_sums(terms, columns, total)
+    assert got.shape == (3, rows)
+    for k in range(3):
+        want = row_sums(terms * columns[k, :m], total)
+        assert got[k].tobytes() == want.tobytes(), k
+    # the sums themselves: exact rational summation as the second method
+    import math
+    for i in range(rows):
+        prods = terms[i] * columns[0, :m]
+        assert abs(got[0, i] - math.fsum(prods)) <= 1e-12 * (np.sum(np.abs(prods)) + 1e-300)
+    with pytest.raises(ValueError):
+        weighted_row_sums(np.zeros((1, total + 1)), np.zeros((1, total + 1)), total)
