@@ -238,7 +238,8 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     done = 0        # steps complete (the partial result of a failure)
     try:
         for leaf, nrm in zip(path.leaves(), normal):
-            _, vals = leaf.values(cur)
+            # read-only columns where the segment has them (a table's own, no copies)
+            _, vals = getattr(leaf, "values_readonly", leaf.values)(cur)
             n = leaf.n_steps
             d_arr, a_arr = nrm["depth"], nrm["radius"]
             res["time"][i:i + n] = t0 + nrm["dt"]
