@@ -204,6 +204,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     rings = Rings(contact.profile, contact.moduli, contact.friction, a_max, n_springs=n_rings,
                   spacing=spacing, rtol=contact.rtol, contact_radii=radii, edge_punch=edge_punch,
                   jumps=jumps)
+    del radii
     res = {k: np.zeros(n_total) for k in SERIES if k != "gross_sliding"}
     res["gross_sliding"] = np.zeros(n_total, bool)
     work = np.zeros(n_total)
@@ -237,15 +238,18 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
     bar = _progress(n_total, progress)
     done = 0        # steps complete (the partial result of a failure)
     try:
-        for leaf, nrm in zip(path.leaves(), normal):
+        for idx, leaf in enumerate(path.leaves()):
+            # each leaf's normal states are read from the result series once copied there, and
+            # released: a run holds one copy of them, not two
+            nrm, normal[idx] = normal[idx], None
             # read-only columns where the segment has them (a table's own, no copies)
             _, vals = getattr(leaf, "values_readonly", leaf.values)(cur)
             n = leaf.n_steps
-            d_arr, a_arr = nrm["depth"], nrm["radius"]
             res["time"][i:i + n] = t0 + nrm["dt"]
-            res["depth"][i:i + n] = d_arr
-            res["force"][i:i + n] = nrm["force"]
-            res["radius"][i:i + n] = a_arr
+            for key in ("depth", "force", "radius"):
+                res[key][i:i + n] = nrm[key]
+            del nrm
+            d_arr, a_arr = res["depth"][i:i + n], res["radius"][i:i + n]
             if "twist" in vals or "torque" in vals:
                 ctrl = "twist" if "twist" in vals else "torque"
                 target = np.asarray(vals[ctrl], float)
@@ -365,7 +369,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
             t0 = float(res["time"][i + n - 1]) if n else t0
             i += n
             cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
-                       force=float(nrm["force"][-1]) if n else cur["force"],
+                       force=float(res["force"][i - 1]) if n else cur["force"],
                        twist=st.twist, torque=M_old)
     except ContactlabError as err:
         if bar is not None:
