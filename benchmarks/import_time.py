@@ -7,7 +7,9 @@ round, so the three see the same machine load; each is timed in wall and CPU tim
 of the child). Reported: best and median of the rounds, contactlab's own share (contactlab minus
 numpy, which it cannot avoid), the verdict on the best wall time (CPU time is no better here:
 OpenBLAS's threads spin while numpy imports, so its CPU time exceeds its wall time), the optional heavy modules an import left loaded (none expected) and the
-ten modules with the largest own import time from one ``-X importtime`` run.
+ten modules with the largest own import time from one ``-X importtime`` run. Lazy imports move cost
+from the import to the first call, so the script also times, inside fresh interpreters, the first
+``Contact(...).normal(force=...)`` after ``import contactlab`` (best and median of the rounds).
 
 Children run with bytecode caching on (``PYTHONDONTWRITEBYTECODE`` removed from their
 environment) after one warm-up import, as after ``pip install``: without ``.pyc`` files every
@@ -33,6 +35,11 @@ CASES = {"bare python": "pass", "import numpy": "import numpy",
 HEAVY = ("scipy.special", "scipy.integrate", "scipy.optimize", "sympy", "matplotlib", "numba",
          "pandas", "dask", "multiprocessing", "concurrent.futures")
 
+#: the first call a user makes after the import, timed inside the child (s)
+FIRST_CALL = ("import time; import contactlab as cl; t0 = time.perf_counter(); "
+              "c = cl.Contact(cl.profiles.Paraboloid(R=0.01), "
+              "materials=(cl.Elastic(E=210e9, nu=0.3), cl.Rigid())); "
+              "c.normal(force=100.0).radius; print(time.perf_counter() - t0)")
 
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
@@ -77,6 +84,9 @@ def main(rounds: int) -> None:
              f"print(json.dumps([m for m in {list(HEAVY)!r} if m in sys.modules]))")
     loaded = json.loads(run("-c", probe).stdout)
     print(f"optional heavy modules loaded by the import: {loaded or 'none'}")
+    firsts = sorted(float(run("-c", FIRST_CALL).stdout) for _ in range(rounds))
+    print(f"first Contact(...).normal(force=) after the import: best {firsts[0] * 1e3:.1f} ms, "
+          f"median {statistics.median(firsts) * 1e3:.1f} ms")
     err = run("-X", "importtime", "-c", "import contactlab").stderr
     rows = []
     for line in err.splitlines()[1:]:
