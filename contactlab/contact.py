@@ -5,25 +5,11 @@ driver of its effect in :mod:`contactlab.effects` (which never imports this modu
 """
 from __future__ import annotations
 
+import importlib
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .effects import adhesion as _adhesion
-from .effects import fretting as _fretting
-from .effects import wear as _wear
-from .effects import normal as _normal
-from .effects import path as _path
-from .effects import tangential as _tangential
-from .effects import torsion as _torsion
-from .effects import viscoelastic as _viscoelastic
-from .effects.adhesion import AdhesionCycle
-from .effects.fretting import FrettingLoop, FrettingMap
-from .effects.wear import WearResult
-from .effects.normal import NormalState
-from .effects.path import PathResult
-from .effects.tangential import ShiftHistory, TangentialState
-from .effects.torsion import TorsionState, TwistHistory
-from .effects.viscoelastic import ViscoelasticHistory
+from . import effects
 from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
@@ -31,7 +17,52 @@ from .numeric.quadrature import DEFAULT_RTOL
 from .params import Param
 from .profiles import Profile
 
+if TYPE_CHECKING:   # result types of the annotations; the drivers load on first use (_Drivers)
+    from .effects.adhesion import AdhesionCycle
+    from .effects.fretting import FrettingLoop, FrettingMap
+    from .effects.normal import NormalState
+    from .effects.path import PathResult
+    from .effects.tangential import ShiftHistory, TangentialState
+    from .effects.torsion import TorsionState, TwistHistory
+    from .effects.viscoelastic import ViscoelasticHistory
+    from .effects.wear import WearResult
+
 __all__ = ["Contact"]
+
+#: result classes this module used to import eagerly, still importable from here
+_RESULTS = {"AdhesionCycle": "adhesion", "FrettingLoop": "fretting", "FrettingMap": "fretting",
+            "NormalState": "normal", "PathResult": "path", "ShiftHistory": "tangential",
+            "TangentialState": "tangential", "TorsionState": "torsion",
+            "TwistHistory": "torsion", "ViscoelasticHistory": "viscoelastic",
+            "WearResult": "wear"}
+
+
+class _Drivers:
+    """The effect drivers (modules of :mod:`contactlab.effects`), each imported on first use.
+
+    ``import contactlab`` loads none of them (together ~20 ms of start-up); once imported, a
+    driver is a plain instance attribute, so a call pays one attribute lookup, as it paid one
+    global lookup when the modules were imported at the top of this file.
+    """
+
+    _NAMES = frozenset({"adhesion", "fretting", "normal", "path", "tangential", "torsion",
+                        "viscoelastic", "wear"})
+
+    def __getattr__(self, name: str) -> Any:
+        if name not in self._NAMES:
+            raise AttributeError(f"contactlab.effects has no driver {name!r}")
+        module = importlib.import_module(f"{effects.__name__}.{name}")
+        setattr(self, name, module)
+        return module
+
+
+_drivers = _Drivers()
+
+
+def __getattr__(name: str) -> Any:
+    if name in _RESULTS:
+        return getattr(getattr(_drivers, _RESULTS[name]), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class Contact:
@@ -132,7 +163,7 @@ class Contact:
         ConvergenceError
             A bracketed solve failed (never silently).
         """
-        solve = _adhesion.adhesive_normal if self.is_adhesive else _normal.normal
+        solve = _drivers.adhesion.adhesive_normal if self.is_adhesive else _drivers.normal.normal
         return solve(self, depth=depth, force=force, radius=radius, branch=branch)
 
     # ---- adhesion (issue 6)
@@ -151,7 +182,7 @@ class Contact:
             ``.force`` (N), ``.radius`` (m), ``.depth`` (m) at detachment.
         """
         self._require_adhesion("pull_off")
-        return _adhesion.pull_off(self, control)
+        return _drivers.adhesion.pull_off(self, control)
 
     def adhesion_cycle(self, *, depth: Any = None, force: Any = None) -> AdhesionCycle:
         """Approach/retraction history with JKR jump-in and jump-off.
@@ -170,7 +201,7 @@ class Contact:
             :func:`contactlab.effects.adhesion.adhesion_cycle`.
         """
         self._require_adhesion("adhesion_cycle")
-        return _adhesion.adhesion_cycle(self, depth=depth, force=force)
+        return _drivers.adhesion.adhesion_cycle(self, depth=depth, force=force)
 
     def _require_adhesion(self, what: str) -> None:
         if not self.is_adhesive:
@@ -197,8 +228,8 @@ class Contact:
         ViscoelasticHistory
             See :func:`contactlab.effects.viscoelastic.viscoelastic_history`.
         """
-        return _viscoelastic.viscoelastic_history(self, time=time, depth=depth, force=force,
-                                    n_springs=n_springs, max_radius=max_radius)
+        return _drivers.viscoelastic.viscoelastic_history(self, time=time, depth=depth, force=force,
+                                                          n_springs=n_springs, max_radius=max_radius)
 
     # ---- tangential contact, load paths, simulation (issue 4)
     def tangential(self, *, depth: Any = None, force: Any = None, radius: Any = None,
@@ -216,8 +247,10 @@ class Contact:
         TangentialState
             ``.tangential_force .displacement .stick_radius .stiffness .shear(r)``.
         """
-        return _tangential.tangential(self, depth=depth, force=force, radius=radius, displacement=displacement,
-                          tangential_force=tangential_force, stick_radius=stick_radius)
+        return _drivers.tangential.tangential(self, depth=depth, force=force, radius=radius,
+                                              displacement=displacement,
+                                              tangential_force=tangential_force,
+                                              stick_radius=stick_radius)
 
     def shift_history(self, *, displacement: Any, depth: Any = None, force: Any = None
                       ) -> ShiftHistory:
@@ -239,7 +272,8 @@ class Contact:
             Per step: ``.displacement`` (m), ``.tangential_force`` (N), ``.stick_radius`` (m),
             ``.dissipated_energy`` (J, cumulative).
         """
-        return _tangential.shift_history(self, displacement=displacement, depth=depth, force=force)
+        return _drivers.tangential.shift_history(self, displacement=displacement, depth=depth,
+                                                 force=force)
 
     def simulate(self, path: Any, *, outputs: Any = None, n_springs: int | None = None,
                  spacing: str | None = None, snapshots: Any = None, progress: bool = False,
@@ -263,10 +297,10 @@ class Contact:
         PathResult
             Per-step series in SI units (the units are in the ``to_csv`` headers).
         """
-        return _path.simulate(self, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
-                        snapshots=snapshots, progress=progress, approximate=approximate,
-                        strategy=strategy, error_estimate=error_estimate, method=method,
-                        n_rings=n_rings)
+        return _drivers.path.simulate(self, path, outputs=outputs, n_springs=n_springs,
+                                      spacing=spacing, snapshots=snapshots, progress=progress,
+                                      approximate=approximate, strategy=strategy,
+                                      error_estimate=error_estimate, method=method, n_rings=n_rings)
 
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):
@@ -351,8 +385,9 @@ class Contact:
         >>> round(s.stick_radius / s.radius, 4)
         0.9875
         """
-        return _torsion.solve_torsion(self, depth=depth, force=force, radius=radius, twist=twist,
-                             torque=torque, stick_radius=stick_radius, method=method)
+        return _drivers.torsion.solve_torsion(self, depth=depth, force=force, radius=radius,
+                                              twist=twist, torque=torque, stick_radius=stick_radius,
+                                              method=method)
 
     def twist_history(self, *, twist: Any, depth: Any = None, force: Any = None,
                       method: str | None = None) -> TwistHistory:
@@ -378,7 +413,8 @@ class Contact:
         loading solution with doubled friction applies from the turning point; loops that close
         are forgotten. The loading curve is solved once, batched, for every step.
         """
-        return _torsion.twist_history(self, twist=twist, depth=depth, force=force, method=method)
+        return _drivers.torsion.twist_history(self, twist=twist, depth=depth, force=force,
+                                              method=method)
 
     # ---- fretting (issue 15)
     def fretting_loop(self, *, force: Any = None, depth: Any = None,
@@ -420,11 +456,11 @@ class Contact:
         >>> loop.regime, round(loop.energy_ratio, 3)
         ('gross_slip', 0.831)
         """
-        return _fretting.fretting_loop(self, force=force, depth=depth,
-                                       displacement_amplitude=displacement_amplitude,
-                                       twist_amplitude=twist_amplitude, method=method,
-                                       criterion=criterion, threshold=threshold,
-                                       n_points=n_points)
+        return _drivers.fretting.fretting_loop(self, force=force, depth=depth,
+                                               displacement_amplitude=displacement_amplitude,
+                                               twist_amplitude=twist_amplitude, method=method,
+                                               criterion=criterion, threshold=threshold,
+                                               n_points=n_points)
 
     def fretting_map(self, *, force: Any = None, depth: Any = None,
                      displacement_amplitude: Any = None, twist_amplitude: Any = None,
@@ -440,10 +476,11 @@ class Contact:
         points; ``contactlab.fretting_map_sweep`` runs the same blocks on every core or a Dask
         cluster and returns the same map.
         """
-        return _fretting.fretting_map(self, force=force, depth=depth,
-                                      displacement_amplitude=displacement_amplitude,
-                                      twist_amplitude=twist_amplitude, method=method,
-                                      criterion=criterion, threshold=threshold, boundary=boundary)
+        return _drivers.fretting.fretting_map(self, force=force, depth=depth,
+                                              displacement_amplitude=displacement_amplitude,
+                                              twist_amplitude=twist_amplitude, method=method,
+                                              criterion=criterion, threshold=threshold,
+                                              boundary=boundary)
 
     def wear(self, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
              wear_coefficient: Any, cycles: Any, method: str | None = None,
@@ -482,7 +519,7 @@ class Contact:
             ``.profile``, series ``.cycles .depth .radius .stick_radius .volume
             .max_wear_depth .dissipated_energy``, ``.plot()``; docs/fretting.md.
         """
-        return _wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
-                          twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
-                          cycles=cycles, method=method, checkpoints=checkpoints, n_grid=n_grid,
-                          max_radius=max_radius, jump_rtol=jump_rtol)
+        return _drivers.wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
+                                  twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
+                                  cycles=cycles, method=method, checkpoints=checkpoints,
+                                  n_grid=n_grid, max_radius=max_radius, jump_rtol=jump_rtol)

@@ -6,6 +6,7 @@ nothing this test session imported earlier can hide a regression.
 """
 from __future__ import annotations
 
+import importlib
 import json
 import subprocess
 import sys
@@ -18,17 +19,120 @@ HEAVY = ("scipy.special", "scipy.integrate", "sympy", "matplotlib", "pandas", "p
          "concurrent.futures")
 
 
+#: contactlab's own modules that ``import contactlab`` leaves for their first use (together
+#: ~0.03 s): the effect drivers, the physics kernels, foundations, load paths, citations and the
+#: viscoelastic materials (loaded when the registry registers its built-ins)
+LAZY_OWN = ("contactlab.effects.normal", "contactlab.effects.adhesion",
+            "contactlab.effects.tangential", "contactlab.effects.torsion",
+            "contactlab.effects.viscoelastic", "contactlab.effects.path",
+            "contactlab.effects.fretting", "contactlab.effects.wear", "contactlab.effects.law",
+            "contactlab.physics", "contactlab.foundation", "contactlab.loadpath",
+            "contactlab.citations", "contactlab.materials.viscoelastic")
+#: standard-library modules contactlab uses only on error paths or for one debug line; checked
+#: only where ``import numpy`` does not load them itself
+LAZY_STDLIB = ("logging", "difflib")
+
+
+def _loaded(code: str, modules: tuple[str, ...]) -> set[str]:
+    """Which of ``modules`` a fresh interpreter has loaded after running ``code``."""
+    probe = (f"import json, sys; {code}; "
+             f"print(json.dumps([m for m in {list(modules)!r} if m in sys.modules]))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    return set(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
 @pytest.fixture(scope="module")
 def loaded_after_import() -> set[str]:
-    code = ("import json, sys; import contactlab; "
-            f"print(json.dumps([m for m in {list(HEAVY)!r} if m in sys.modules]))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    return set(json.loads(out.stdout.strip().splitlines()[-1]))
+    return _loaded("import contactlab", HEAVY + LAZY_OWN + LAZY_STDLIB)
 
 
 @pytest.mark.parametrize("module", HEAVY)
 def test_heavy_module_not_imported_with_contactlab(loaded_after_import: set[str], module: str) -> None:
     assert module not in loaded_after_import, f"import contactlab loads {module}"
+
+
+@pytest.mark.parametrize("module", LAZY_OWN)
+def test_own_module_loaded_on_first_use_only(loaded_after_import: set[str], module: str) -> None:
+    assert module not in loaded_after_import, f"import contactlab loads {module}"
+
+
+@pytest.mark.parametrize("module", LAZY_STDLIB)
+def test_stdlib_module_not_imported_with_contactlab(loaded_after_import: set[str],
+                                                   module: str) -> None:
+    if module in _loaded("import numpy", (module,)):
+        pytest.skip(f"numpy itself imports {module}")
+    assert module not in loaded_after_import, f"import contactlab loads {module}"
+
+
+def test_first_normal_call_loads_its_driver_only() -> None:
+    """Each effect driver loads on its own first use: a normal solve brings no torsion/path."""
+    code = ("import contactlab as cl; c = cl.Contact(cl.profiles.Paraboloid(R=0.01), "
+            "materials=(cl.Elastic(E=210e9, nu=0.3), cl.Rigid())); "
+            "assert isinstance(c.normal(force=100.0), cl.NormalState)")
+    loaded = _loaded(code, LAZY_OWN)
+    assert "contactlab.effects.normal" in loaded
+    assert not loaded & {"contactlab.effects.torsion", "contactlab.effects.path",
+                         "contactlab.effects.fretting", "contactlab.foundation",
+                         "contactlab.loadpath"}
+
+
+#: every lazily resolved top-level name -> the module that defines it (as imported eagerly before)
+TOP_LEVEL_HOMES = {
+    "NormalState": "contactlab.effects.normal", "AdhesiveNormalState": "contactlab.effects.adhesion",
+    "AdhesionCycle": "contactlab.effects.adhesion",
+    "ViscoelasticHistory": "contactlab.effects.viscoelastic",
+    "TangentialState": "contactlab.effects.tangential",
+    "ShiftHistory": "contactlab.effects.tangential", "PathResult": "contactlab.effects.path",
+    "TorsionState": "contactlab.effects.torsion", "TwistHistory": "contactlab.effects.torsion",
+    "ContactLaw": "contactlab.effects.law", "LawStep": "contactlab.effects.law",
+    "LoadPath": "contactlab.loadpath.base", "cite": "contactlab.citations",
+    "sweep": "contactlab.sweeps.run", "fretting_map_sweep": "contactlab.sweeps.fretting",
+}
+TOP_LEVEL_SUBPACKAGES = ("citations", "foundation", "loadpath")
+
+
+@pytest.mark.parametrize("name", sorted(TOP_LEVEL_HOMES))
+def test_lazy_top_level_name_is_the_defining_modules_object(name: str) -> None:
+    import contactlab
+    home = importlib.import_module(TOP_LEVEL_HOMES[name])
+    assert getattr(contactlab, name) is getattr(home, name)
+    assert name in dir(contactlab) and name in contactlab.__all__
+
+
+@pytest.mark.parametrize("name", TOP_LEVEL_SUBPACKAGES)
+def test_lazy_subpackage_is_the_module(name: str) -> None:
+    import contactlab
+    assert getattr(contactlab, name) is importlib.import_module(f"contactlab.{name}")
+    assert name in dir(contactlab) and name in contactlab.__all__
+
+
+def test_every_public_name_resolves_in_a_fresh_interpreter() -> None:
+    """``from contactlab import *`` (every name of ``__all__``) works before anything else ran."""
+    code = ("import contactlab; from contactlab import *; "
+            "missing = [n for n in contactlab.__all__ if n not in globals()]; "
+            "assert not missing, missing; assert set(contactlab.__all__) <= set(dir(contactlab))")
+    subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
+
+
+def test_effects_package_names_are_the_defining_modules_objects() -> None:
+    from contactlab import effects
+    for name in effects.__all__:
+        value = getattr(effects, name)
+        assert value is getattr(importlib.import_module(value.__module__), name)
+        assert value.__module__.startswith("contactlab.effects.") and name in dir(effects)
+    with pytest.raises(AttributeError, match="no_such_name"):
+        effects.no_such_name
+
+
+def test_contact_module_still_exports_its_result_classes() -> None:
+    """Names ``contactlab.contact`` imported eagerly before stay importable from it."""
+    from contactlab import contact
+    from contactlab.effects.normal import NormalState
+    from contactlab.effects.wear import WearResult
+    assert contact.NormalState is NormalState and contact.WearResult is WearResult
+    from contactlab.contact import FrettingMap, TwistHistory    # noqa: F401 (import works)
+    with pytest.raises(AttributeError, match="no_such_name"):
+        contact.no_such_name
 
 
 def test_lazy_top_level_names_resolve() -> None:
