@@ -1,7 +1,8 @@
 """One registry of named types: profiles, materials (and later other kinds).
 
-Built-in types are registered through :meth:`Registry.register` when their subpackage is imported
-(so a source checkout works without installed metadata). Third-party types arrive through Python
+Built-in types are registered through :meth:`Registry.register` at the registry's first use of
+their kind (so a source checkout works without installed metadata, and ``import contactlab`` does
+not pay for checking them). Third-party types arrive through Python
 entry points, discovered lazily (at the first unknown name or :meth:`Registry.available`) and
 cached until :meth:`Registry.refresh`::
 
@@ -29,11 +30,11 @@ Paraboloid(R=0.01)
 """
 from __future__ import annotations
 
-import difflib
 import importlib
 import inspect
 import os
 import re
+import threading
 import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -94,6 +95,8 @@ class Registry:
         self._builtin: dict[str, dict[str, _Entry]] = {k: {} for k in self.kinds}
         self._session: dict[str, dict[str, _Entry]] = {k: {} for k in self.kinds}
         self._plugins: dict[str, dict[str, _Entry]] | None = None
+        self._builtins_done: set[str] = set()       # kinds whose built-ins are registered
+        self._builtins_lock = threading.RLock()
 
     # ------------------------------------------------------------------ kinds
     def add_kind(self, kind: str, spec: KindSpec) -> None:
@@ -106,6 +109,7 @@ class Registry:
 
     def _kind(self, kind: str) -> KindSpec:
         if kind not in self.kinds:
+            import difflib      # error paths only: ~2 ms of import
             close = difflib.get_close_matches(str(kind), list(self.kinds), n=3)
             hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
             raise UnknownNameError(f"kind={kind!r} is unknown.{hint} Known kinds: "
@@ -191,6 +195,7 @@ class Registry:
         name = self.validate(cls, kind, origin)
         table = self._builtin[kind] if builtin else self._session[kind]
         if not builtin:
+            self._ensure_builtins(kind)         # a session class must not shadow a built-in
             if name in self._builtin[kind]:
                 raise PluginError(
                     f"{origin} has name={name!r}, the name of the built-in "
@@ -278,13 +283,22 @@ class Registry:
 
     # ------------------------------------------------------------------ lookup
     def _ensure_builtins(self, kind: str) -> None:
-        self._kind(kind)
-        if self._builtin[kind]:
+        """Register the built-ins of ``kind`` (``KindSpec.builtins``) at the kind's first use.
+
+        Deferred from import time (the contract checks of ~15 classes cost ~3 ms of start-up);
+        under a lock, so that a concurrent first lookup never sees half of the table.
+        """
+        if kind in self._builtins_done:
             return
-        mod, _, func = self._kind(kind).builtins.partition(":")
-        module = importlib.import_module(mod)      # registers into the global registry
-        if not self._builtin[kind] and func:
-            getattr(module, func)(self)
+        spec = self._kind(kind)
+        with self._builtins_lock:
+            if kind in self._builtins_done:
+                return
+            mod, _, func = spec.builtins.partition(":")
+            module = importlib.import_module(mod)
+            if func:
+                getattr(module, func)(self)
+            self._builtins_done.add(kind)
 
     def _tables(self, kind: str, discover: bool) -> list[dict[str, _Entry]]:
         self._ensure_builtins(kind)
@@ -330,6 +344,7 @@ class Registry:
         if name in plugins:
             return plugins[name].cls
         srcs = self.sources(kind)
+        import difflib
         close = difflib.get_close_matches(str(name), list(srcs), n=3)
         hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
         listing = ", ".join(n if s in ("built-in", "session") else f"{n} [{s}]"
@@ -355,6 +370,7 @@ class Registry:
         accepted = [p for p in sig.parameters]
         unknown = [k for k in params if k not in sig.parameters]
         if unknown:
+            import difflib
             close = ([a for a in accepted if a.lower() == unknown[0].lower()]
                      or difflib.get_close_matches(unknown[0], accepted, n=1))
             hint = f" Did you mean {close[0]!r}?" if close else ""

@@ -7,7 +7,11 @@ __all__ = ["Material", "Elastic", "Rigid", "EffectiveModuli", "effective_moduli"
 
 
 def _register_builtins(registry=None) -> None:
-    """Register the built-in classes (into the global registry by default)."""
+    """Register the built-in classes (into the global registry by default).
+
+    The registry calls this at its first use of the kind ``material`` (not at import: the
+    contract checks cost start-up time that a session without registry lookups need not pay).
+    """
     if registry is None:
         from ..registry import registry
     from .viscoelastic import GeneralizedMaxwell, KelvinVoigt, Maxwell, StandardLinearSolid
@@ -15,6 +19,3 @@ def _register_builtins(registry=None) -> None:
     # any plugin; they live in their own module and are not top-level names
     for cls in (Elastic, Rigid, KelvinVoigt, Maxwell, StandardLinearSolid, GeneralizedMaxwell):
         registry.register(cls, "material", builtin=True)
-
-
-_register_builtins()

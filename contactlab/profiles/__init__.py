@@ -18,12 +18,13 @@ __all__ = [
 
 
 def _register_builtins(registry=None) -> None:
-    """Register the built-in classes (into the global registry by default)."""
+    """Register the built-in classes (into the global registry by default).
+
+    The registry calls this at its first use of the kind ``profile`` (not at import: the contract
+    checks cost start-up time that a session without registry lookups need not pay).
+    """
     if registry is None:
         from ..registry import registry
     for cls in (PowerLaw, Paraboloid, Cone, Polynomial, Sphere, FlatPunch, TruncatedParaboloid,
                 TruncatedCone, Tabulated):
         registry.register(cls, "profile", builtin=True)
-
-
-_register_builtins()

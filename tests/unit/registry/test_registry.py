@@ -65,6 +65,69 @@ def test_builtins_registered_by_name_and_class():
     assert registry.sources("profile")["paraboloid"] == "built-in"
 
 
+def test_builtins_registered_at_first_use_in_a_fresh_interpreter():
+    """``import contactlab`` registers nothing (start-up time); the first lookup of a kind does,
+    and a session class cannot take a built-in name even before any lookup."""
+    code = ("from typing import ClassVar\n"
+            "import contactlab\n"
+            "from contactlab.errors import PluginError\n"
+            "from contactlab.registry import register_profile, registry\n"
+            "assert not registry._builtin['profile'] and not registry._builtin['material']\n"
+            "class Mine(contactlab.profiles.Paraboloid):\n"
+            "    name: ClassVar[str] = 'paraboloid'\n"
+            "try:\n"
+            "    register_profile(Mine)\n"
+            "except PluginError as err:\n"
+            "    assert 'cannot be shadowed' in str(err)\n"
+            "else:\n"
+            "    raise AssertionError('a session class shadowed a built-in')\n"
+            "assert registry.get('material', 'kelvin_voigt').__name__ == 'KelvinVoigt'\n")
+    subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True)
+
+
+def test_fresh_registry_rejects_shadowing_before_any_lookup():
+    reg = fresh([])
+
+    class MyCone(Cone):
+        name: ClassVar[str] = "cone"
+
+    with pytest.raises(PluginError, match="cannot be shadowed"):
+        reg.register(MyCone, "profile")
+    assert reg.get("profile", "cone") is Cone
+
+
+def test_concurrent_first_lookup_sees_every_builtin(tmp_path, monkeypatch):
+    """The built-ins of a kind register under a lock: a lookup that starts while another thread
+    is registering them waits for the whole table instead of reading half of it."""
+    import threading
+    import time
+    from contactlab.registry import KindSpec
+    (tmp_path / "slow_builtins.py").write_text(
+        "import time\n"
+        "from typing import ClassVar\n"
+        "from contactlab.profiles import Paraboloid\n"
+        "class First(Paraboloid):\n"
+        "    name: ClassVar[str] = 'first'\n"
+        "class Second(Paraboloid):\n"
+        "    name: ClassVar[str] = 'second'\n"
+        "def register(reg):\n"
+        "    reg.register(First, 'extra', builtin=True)\n"
+        "    time.sleep(0.3)\n"
+        "    reg.register(Second, 'extra', builtin=True)\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    reg = fresh([])
+    reg.add_kind("extra", KindSpec("contactlab.profiles.base:Profile", "contactlab.extra",
+                                   "slow_builtins:register"))
+    first = threading.Thread(target=reg.get, args=("extra", "first"))
+    first.start()
+    time.sleep(0.1)                      # the first thread is inside the registration now
+    try:
+        assert reg.get("extra", "second").__name__ == "Second"
+    finally:
+        first.join()
+        sys.modules.pop("slow_builtins", None)
+
+
 def test_create_builds_and_validates():
     assert registry.create("profile", "paraboloid", R=0.01) == Paraboloid(R=0.01)
     assert registry.create("material", "elastic", E=1e9, nu=0.3) == cl.Elastic(E=1e9, nu=0.3)
