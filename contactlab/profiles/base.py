@@ -24,7 +24,6 @@ Comes free: ``height``, ``derivative`` (f'), ``g`` (with ``strategy=``), ``g_int
 """
 from __future__ import annotations
 
-import logging
 from abc import ABC
 from typing import Any, ClassVar
 
@@ -39,7 +38,6 @@ from ..symbolic.form import SympyForm, form_from_hooks
 
 __all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
 
-log = logging.getLogger("contactlab")
 
 #: Capabilities a profile may declare (``Profile.capabilities``) and the hook each one promises.
 CAPABILITIES = {
@@ -220,7 +218,8 @@ class Profile(ParamIdentity, ABC):
         if route is None:
             route = self.available_strategies()[0]
             self.__dict__["_g_route_cache"] = route
-            log.debug("%r: g(x) route %s", self, route)
+            import logging      # once per profile; the module costs ~2.5 ms of import
+            logging.getLogger("contactlab").debug("%r: g(x) route %s", self, route)
         return route
 
     def g(self, x: Any, strategy: str | None = None, rtol: float | None = None) -> np.ndarray:

@@ -22,7 +22,6 @@ V. L. Popov, M. Heß, Facta Univ. Mech. Eng. 12 (2014) 1-14 [H1]; docs/theory (t
 """
 from __future__ import annotations
 
-import difflib
 from collections.abc import Callable, Iterator, Mapping
 from functools import lru_cache
 from typing import Any
@@ -141,6 +140,7 @@ class FormulaSet(Mapping):
             raise NotSupportedError(f"formula {name!r} is not available for {self.owner}: "
                                     f"{self.unavailable[name]}")
         known = sorted(set(self._exprs) | set(self.unavailable))
+        import difflib      # error path only: ~2 ms of import
         close = difflib.get_close_matches(name, known, n=3)
         hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
         raise UnknownNameError(f"formula {name!r} is unknown.{hint} Available: "
