@@ -27,7 +27,8 @@ LAZY_OWN = ("contactlab.effects.normal", "contactlab.effects.adhesion",
             "contactlab.effects.viscoelastic", "contactlab.effects.path",
             "contactlab.effects.fretting", "contactlab.effects.wear", "contactlab.effects.law",
             "contactlab.physics", "contactlab.foundation", "contactlab.loadpath",
-            "contactlab.citations", "contactlab.materials.viscoelastic")
+            "contactlab.citations", "contactlab.materials.viscoelastic",
+            "contactlab.profiles.tabulated")
 #: standard-library modules contactlab uses only on error paths or for one debug line; checked
 #: only where ``import numpy`` does not load them itself
 LAZY_STDLIB = ("logging", "difflib")
@@ -112,6 +113,17 @@ def test_every_public_name_resolves_in_a_fresh_interpreter() -> None:
             "missing = [n for n in contactlab.__all__ if n not in globals()]; "
             "assert not missing, missing; assert set(contactlab.__all__) <= set(dir(contactlab))")
     subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
+
+
+def test_tabulated_profile_resolves_lazily() -> None:
+    from contactlab import profiles
+    from contactlab.profiles.tabulated import Tabulated
+    assert profiles.Tabulated is Tabulated and "Tabulated" in profiles.__all__
+    assert "Tabulated" in dir(profiles)
+    from contactlab.registry import registry
+    assert registry.get("profile", "tabulated") is Tabulated
+    with pytest.raises(AttributeError, match="no_such_name"):
+        profiles.no_such_name
 
 
 def test_effects_package_names_are_the_defining_modules_objects() -> None:
