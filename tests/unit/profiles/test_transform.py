@@ -209,3 +209,18 @@ def test_cubic_table_shift_loop_evaluates_tiny_radii_quietly():
     w_ball = ball.shift_history(displacement=u, force=10.0).dissipated_energy
     assert np.all(np.isfinite(w_tab))
     np.testing.assert_allclose(w_tab[-1], w_ball[-1], rtol=TOL.TABLE_200_SHIFT_LOOP)
+
+
+def test_kappa_in_double_precision_against_mpmath():
+    """κ_n without scipy: whole-number n correctly rounded (even n exactly the rational
+    4^k (k!)²/(2k)!), every other n within a few ulp of the 30-digit reference, also past the
+    gamma function's overflow (the asymptotic series for n >= 300)."""
+    from contactlab.symbolic import kappa
+    from tests.reference.kappa import kappa as kappa_mp
+    assert kappa(2.0) == 2.0 and kappa(4.0) == 8 / 3 and kappa(8.0) == 128 / 35
+    assert kappa(1.0) == np.pi / 2
+    for n in range(2, 601, 2):                       # even n: the exact rational, rounded once
+        assert kappa(float(n)) == float(kappa_mp(n)), n
+    ns = np.r_[np.arange(0.05, 40.0, 0.35), np.arange(40.0, 2000.0, 13.7), np.arange(1, 700, 7)]
+    worst = max(abs(kappa(float(n)) / float(kappa_mp(float(n))) - 1.0) for n in ns)
+    assert worst < TOL.KAPPA_DOUBLE, worst
