@@ -223,65 +223,15 @@ def _edge_update(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, d
     return W, F
 
 
-def _steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
-                K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick
-                ):     # pragma: no cover - compiled
-    n = m.size
-    d_prev = d0
-    k_prev = k0
-    Se_prev = 0.0
-    x = x0
-    Wtot = W0
-    sgn = 0.0
-    lo_prev = 0
-    lo = 0
-    nz = n              # m is zero from nz on (unknown at first)
-    for j in range(d.size):
-        dj = d[j]
-        kj = k[j]
-        inc = target[j] - x
-        update = inc != 0.0 or dj < d_prev or release
-        lo = min(kj, k_prev)
-        hi = min(max(kj, k_prev) + 1, n)
-        if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
-            for i in range(lo, lo_prev):
-                iKeff[i] = invK[i]
-        W, F, st0 = _bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, want_stick)
-        # the cells the edge crossed: weight = change of S over the step / (w dd)
-        W, F = _edge_update(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
-                          T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
-                          W, F)
-        # outside: limit 0, so an update leaves no element force
-        if update:
-            for i in range(hi, nz):
-                if m[i] != 0.0:
-                    m[i] = 0.0
-            nz = hi
-        if want_stick:   # the first element at its limit, from the centre
-            if st0 < 0:     # not in the bulk (found there during its update)
-                st0 = _first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
-            out_stick[j] = bl[st0] if st0 >= 0 else a[j]
-        if inc != 0.0:
-            sgn = 1.0 if inc > 0 else -1.0
-        release = False
-        x = target[j]
-        Wtot += W
-        out_F[j] = F
-        out_W[j] = Wtot
-        d_prev = dj
-        k_prev = kj
-        Se_prev = S_edge[j]
-        lo_prev = lo
-    return sgn, lo
-
-
 def _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH, K,
                 invK, iKeff, S, m, off, F_step, W_step, first,
                 want_stick):     # pragma: no cover - compiled
     """The springs ``off ... off + m.size - 1`` (arrays sliced to them; ``k``, ``k0``
-    global) through every step: ``steps_flat``'s arithmetic per element, the block's part
-    of each step's sums into ``F_step``, ``W_step`` and of the first element at its limit
-    (global index) into ``first`` where not found in an earlier block."""
+    global) through every step (the one step loop of the fused run, all springs as one
+    block or block by block): per step the bulk, the cells the edge crossed and the
+    outside, the block's part of the step's sums into ``F_step``, ``W_step`` and of the
+    first element at its limit (global index) into ``first`` where not found in an
+    earlier block."""
     n = m.size
     d_prev = d0
     k_prev = k0 - off
@@ -296,21 +246,23 @@ def _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1
         update = inc != 0.0 or dj < d_prev or release
         lo = min(max(min(kj, k_prev), 0), n)
         hi = max(min(max(kj, k_prev) + 1, n), 0)
-        if j > 0:   # 1/K_eff of the cells that were in the bulk (weight 1) until now
-            for i in range(lo, lo_prev):
-                iKeff[i] = invK[i]
+        # 1/K_eff of the cells that were in the bulk (weight 1) until now
+        for i in range(lo, lo_prev):
+            iKeff[i] = invK[i]
         find = want_stick and first[j] < 0
         W, F, st0 = _bulk(0, lo, dj, c, X1, dH, K, invK, m, inc, update, find)
+        # the cells the edge crossed: weight = change of S over the step / (w dd)
         W, F = _edge_update(lo, hi, j == 0, k_prev, kj, d_prev, dj, Se_prev, S_edge[j],
-                          T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
-                          W, F)
+                            T_edge[j], c, w, dG, X1, dH, K, invK, iKeff, S, m, inc, update,
+                            W, F)
+        # outside: limit 0, so an update leaves no element force
         if update:
             for i in range(hi, nz):
                 if m[i] != 0.0:
                     m[i] = 0.0
             nz = hi
-        if find:
-            if st0 < 0:
+        if find:    # the first element at its limit, from the centre
+            if st0 < 0:     # not in the bulk (found there during its update)
                 st0 = _first_at_limit(lo if update else 0, n, kj, dj, c, X1, dH, T_edge[j], m)
             if st0 >= 0:
                 first[j] = st0 + off
@@ -324,33 +276,39 @@ def _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1
         lo_prev = lo
 
 
-def _steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
+def _winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
                    K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
-                   block):     # pragma: no cover - compiled
+                   block, block_from):     # pragma: no cover - compiled
+    """Up to ``block_from`` springs: all springs as one block through the steps (each step's
+    sums straight into ``out_F``, ``out_W``); more: block by block (each block through every
+    step while it sits in cache; the element updates do not couple springs, the per-step sums
+    add the blocks in a fixed order)."""
     n = m.size
     ns = d.size
-    Fb = np.empty(ns)
-    Wb = np.empty(ns)
-    Wst = np.zeros(ns)
     first = np.full(ns, -1, np.int64)
-    # blocks of springs, each through every step while it sits in cache (the element
-    # updates do not couple springs; the per-step sums add the blocks in a fixed order)
-    for b0 in range(0, n, block):
-        b1 = min(n, b0 + block)
-        _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w[b0:b1],
-                     dG[b0:b1], X1[b0:b1], dH[b0:b1], K[b0:b1], invK[b0:b1], iKeff[b0:b1],
-                     S[b0:b1], m[b0:b1], b0, Fb, Wb, first, want_stick)
-        if b0 == 0:
-            out_F[:] = Fb
-            Wst[:] = Wb
-        else:
-            out_F += Fb
-            Wst += Wb
+    if n <= block_from:
+        _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH, K,
+                     invK, iKeff, S, m, 0, out_F, out_W, first, want_stick)
+    else:
+        Fb = np.empty(ns)
+        Wb = np.empty(ns)
+        for b0 in range(0, n, block):
+            b1 = min(n, b0 + block)
+            _steps_block(d, k, S_edge, T_edge, target, d0, k0, x0, release, c, w[b0:b1],
+                         dG[b0:b1], X1[b0:b1], dH[b0:b1], K[b0:b1], invK[b0:b1],
+                         iKeff[b0:b1], S[b0:b1], m[b0:b1], b0, Fb, Wb, first, want_stick)
+            if b0 == 0:
+                out_F[:] = Fb
+                out_W[:] = Wb
+            else:
+                out_F += Fb
+                out_W += Wb
+    # out_W holds each step's energy: the running total from W0; the stick radii
     Wtot = W0
     sgn = 0.0
     x = x0
     for j in range(ns):
-        Wtot += Wst[j]
+        Wtot += out_W[j]
         out_W[j] = Wtot
         if want_stick:
             out_stick[j] = bl[first[j]] if first[j] >= 0 else a[j]
@@ -360,20 +318,6 @@ def _steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, d
         x = target[j]
     k_prev = k0 if ns == 1 else k[ns - 2]
     return sgn, min(k[ns - 1], k_prev)
-
-
-def _winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG, X1, dH,
-                   K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick,
-                   block, block_from):     # pragma: no cover - compiled
-    """Up to ``block_from`` springs: the springs through each step in turn; more: block by
-    block (each block through every step)."""
-    if m.size <= block_from:
-        return _steps_flat(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
-                           X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
-                           want_stick)
-    return _steps_blocked(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, dG,
-                          X1, dH, K, invK, iKeff, S, m, bl, W0, out_F, out_W, out_stick,
-                          want_stick, block)
 
 
 def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragma: no cover
@@ -414,9 +358,13 @@ def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragm
 
 
 #: the numba kernels above (plain Python here; :func:`_build` compiles them)
-_KERNEL_NAMES = ("_jenkins", "_bulk", "_first_at_limit", "_edge_update", "_steps_flat",
-                 "_steps_block", "_steps_blocked", "_winkler_steps", "_edge_cells_data")
+_KERNEL_NAMES = ("_jenkins", "_bulk", "_first_at_limit", "_edge_update", "_steps_block",
+                 "_winkler_steps", "_edge_cells_data")
 _PY_KERNELS = {name: globals()[name] for name in _KERNEL_NAMES}
+#: numba options beyond ``nogil`` per kernel: the bulk loop inlined into the step loop in
+#: numba's IR (a gait at N = 100 springs: ~8 of ~113 ns per step of the compiled run; the
+#: other callees are inlined by LLVM, and inlining them in numba's IR measured slower)
+_KERNEL_OPTIONS = {"_bulk": {"inline": "always"}}
 _compiled_kernels: dict = {}
 _build_lock = threading.Lock()
 
@@ -428,7 +376,8 @@ def _build() -> dict:
     with _build_lock:
         if not _compiled_kernels:
             from ..numeric.jit import njit
-            built = {name: njit(fn, nogil=True) for name, fn in _PY_KERNELS.items()}
+            built = {name: njit(fn, nogil=True, **_KERNEL_OPTIONS.get(name, {}))
+                     for name, fn in _PY_KERNELS.items()}
             globals().update(built)
             _compiled_kernels.update(built)
     return _compiled_kernels
