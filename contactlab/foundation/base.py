@@ -107,7 +107,8 @@ def iter_path_normal_states(profile: Any, E_star: float, path: Any, rtol: float,
     last = (np.zeros(1), np.zeros(1), np.zeros(1))
     i0 = 0
     for li, leaf in enumerate(path.leaves()):
-        dt, vals = getattr(leaf, "values_readonly", leaf.values)(cur)     # read only here
+        # the normal controls only (the time loop computes the others), read only here
+        dt, vals = leaf.values_of(cur, ("depth", "force"))
         n = leaf.n_steps
         if "depth" in vals or "force" in vals:
             kind = "depth" if "depth" in vals else "force"

@@ -88,6 +88,9 @@ class Segment(ABC):
     2. Optional: ``leaves()`` for composite segments (default: itself).
     3. Optional: ``values_readonly(start)``, :meth:`values` whose arrays may be read-only views
        of the segment's own data (no copy; default: :meth:`values`), for callers that only read.
+    4. Optional: ``values_of(start, names, time=True)``, :meth:`values_readonly` of the
+       quantities ``names`` only (default: :meth:`values_readonly`, filtered), for callers that
+       read some of the controls: a segment that computes its values computes only those.
     """
 
     controls: frozenset
@@ -104,6 +107,16 @@ class Segment(ABC):
         """:meth:`values` for a caller that does not write into the arrays (they may be the
         segment's own read-only data: no copy of a 10^6-step table's columns)."""
         return self.values(start)
+
+    def values_of(self, start: dict[str, float], names: Any, *, time: bool = True
+                  ) -> tuple[np.ndarray | None, dict[str, np.ndarray]]:
+        """:meth:`values_readonly` restricted to the quantities in ``names`` (those of them the
+        segment controls; the same arrays) and, with ``time=False``, without the time increments
+        (``None`` in their place). ``Contact.simulate`` reads the depth or force of a segment in
+        its normal solve and the tangential and torsional controls in its time loop: each is
+        computed once (a ramp or sinusoid computes only the quantities asked for)."""
+        dt, vals = self.values_readonly(start)
+        return (dt if time else None), {k: v for k, v in vals.items() if k in names}
 
     def leaves(self) -> Iterator["Segment"]:
         yield self

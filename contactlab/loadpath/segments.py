@@ -45,9 +45,12 @@ class Ramp(Segment):
         return self.steps
 
     def values(self, start):
+        return self.values_of(start, self.controls)
+
+    def values_of(self, start, names, *, time=True):
         f = np.arange(1, self.steps + 1) / self.steps
-        return (f * self.duration,
-                {k: start[k] + (v - start[k]) * f for k, v in self.targets})
+        return (f * self.duration if time else None,
+                {k: start[k] + (v - start[k]) * f for k, v in self.targets if k in names})
 
 
 @dataclass(frozen=True)
@@ -119,16 +122,22 @@ class Sinusoid(Segment):
         return self.n_steps * self.period / self.steps_per_cycle
 
     def values(self, start):
+        return self.values_of(start, self.controls)
+
+    def values_of(self, start, names, *, time=True):
         n = self.steps_per_cycle
-        one = np.sin(2.0 * np.pi * np.arange(1, n + 1) / n)
-        one[-1] = 0.0
-        if n % 2 == 0:
-            one[n // 2 - 1] = 0.0
         m = self.n_steps
-        wave = np.tile(one, -(-m // n))[:m]
-        mean = dict(self.mean or ())
-        t = np.arange(1, m + 1) * self.period / n
-        return t, {k: mean.get(k, start[k]) + A * wave for k, A in self.amplitudes}
+        amplitudes = [(k, A) for k, A in self.amplitudes if k in names]
+        vals = {}
+        if amplitudes:
+            one = np.sin(2.0 * np.pi * np.arange(1, n + 1) / n)
+            one[-1] = 0.0
+            if n % 2 == 0:
+                one[n // 2 - 1] = 0.0
+            wave = np.tile(one, -(-m // n))[:m]
+            mean = dict(self.mean or ())
+            vals = {k: mean.get(k, start[k]) + A * wave for k, A in amplitudes}
+        return (np.arange(1, m + 1) * self.period / n if time else None), vals
 
 
 def _check_cycles(value: Any) -> float:
@@ -240,3 +249,7 @@ class Table(Segment):
 
     def values_readonly(self, start):
         return self.time - self.time[0], dict(self.columns)    # read-only since create()
+
+    def values_of(self, start, names, *, time=True):
+        return ((self.time - self.time[0]) if time else None,
+                {k: v for k, v in self.columns if k in names})  # read-only since create()

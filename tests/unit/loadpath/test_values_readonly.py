@@ -30,3 +30,49 @@ def test_other_segments_default_to_values():
         dt2, rw = leaf.values(start)
         assert np.array_equal(dt, dt2)
         assert all(np.array_equal(ro[k], rw[k]) for k in rw) and ro.keys() == rw.keys()
+
+
+def test_values_of_is_values_restricted_to_the_names():
+    """``values_of`` (what simulate's normal solve and time loop each read): the same arrays as
+    ``values`` for the quantities asked for, nothing else; no time with ``time=False``."""
+    t = np.linspace(0.0, 1.0, 40)
+    path = (cl.LoadPath().ramp(force=10.0, twist=2e-4, steps=7).hold(steps=3)
+            .sinusoid(force=3.0, twist=1e-4, cycles=2.5, steps_per_cycle=12, mean={"force": 5.0})
+            .then(cl.LoadPath.from_arrays(time=t, force=1 + t, twist=1e-4 * t).segments[0]))
+    start = {"depth": 0.0, "force": 2.0, "displacement": 0.0, "tangential_force": 0.0,
+             "twist": -1e-4, "torque": 0.0}
+    for leaf in path.leaves():
+        dt, full = leaf.values(start)
+        for names in (("depth", "force"), ("twist", "torque"), ("displacement",), ()):
+            dt2, part = leaf.values_of(start, names)
+            assert np.array_equal(dt2, dt)
+            assert sorted(part) == sorted(k for k in full if k in names)
+            for k in part:
+                assert np.array_equal(part[k], full[k])
+            none, part2 = leaf.values_of(start, names, time=False)
+            assert none is None and part2.keys() == part.keys()
+
+
+def test_values_of_default_filters_values():
+    """A segment that implements ``values`` only gets ``values_of`` from the base class."""
+    from dataclasses import dataclass
+
+    from contactlab.loadpath.base import Segment
+
+    @dataclass(frozen=True)
+    class Steps(Segment):
+        @property
+        def controls(self):
+            return frozenset({"force", "twist"})
+
+        @property
+        def n_steps(self):
+            return 3
+
+        def values(self, start):
+            return np.arange(1.0, 4.0), {"force": np.array([1.0, 2.0, 3.0]),
+                                         "twist": np.zeros(3)}
+
+    dt, part = Steps().values_of({}, ("force", "depth"))
+    assert np.array_equal(dt, [1.0, 2.0, 3.0]) and list(part) == ["force"]
+    assert Steps().values_of({}, ("twist",), time=False)[0] is None
