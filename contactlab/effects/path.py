@@ -734,14 +734,21 @@ def _turns(v0: float, v: np.ndarray) -> np.ndarray:
     for c0 in range(0, v.size, _TURN_WINDOW):
         w = v[c0:c0 + _TURN_WINDOW]
         sg = np.sign(np.diff(w, prepend=prev))
-        nz = np.flatnonzero(sg)
         prev = w[-1]
-        if nz.size == 0:
+        nnz = np.count_nonzero(sg)
+        if nnz == 0:
             continue
-        s = sg[nz]
-        flips = nz[1:][s[1:] != s[:-1]]
+        if nnz == sg.size:  # every step moves (a gait): no index gather
+            s = sg
+            flips = np.flatnonzero(s[1:] != s[:-1]) + 1
+            first = 0
+        else:
+            nz = np.flatnonzero(sg)
+            s = sg[nz]
+            flips = nz[1:][s[1:] != s[:-1]]
+            first = int(nz[0])
         if last != 0.0 and s[0] != last:
-            flips = np.concatenate((nz[:1], flips))
+            flips = np.concatenate(([first], flips))
         out.append(flips + c0)
         last = s[-1]
     return np.concatenate(out)
@@ -843,6 +850,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
                   release=False)
         ch["out_pos"], ch["out_frc"] = res[ch["pos"]], res[ch["frc"]]
     stick_ch = chans[0] if chans else None
+    loop_controls = tuple(q for ch in chans for q in (ch["pos"], ch["frc"]))
     tmp = np.empty(n)
     cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
                          "torque"), 0.0)
@@ -943,7 +951,8 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
     for leaf, nrm in zip(path.leaves(), normal):
         if base:
             cur["depth"], cur["force"] = float(res["depth"][base - 1]), float(res["force"][base - 1])
-        _, vals = getattr(leaf, "values_readonly", leaf.values)(cur)
+        # the spring families' controls only (the normal solve read the others)
+        _, vals = leaf.values_of(cur, loop_controls, time=False)
         nsteps = leaf.n_steps
         d_arr, a_arr = nrm["depth"], nrm["radius"]
         d0, a0 = st.depth, st.radius
@@ -970,7 +979,9 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
             breaks.append(_turns(cur[ch["ctrl"]], v))
         del vals
         # runs of steps whose normal state changes are run step by step: their ends are breaks
-        breaks += [_run_edges(changed), snap_idx - base + 1]
+        all_changed = bool(changed.all())   # e.g. a gait: no run edges, no gather
+        breaks += [np.array([0, nsteps]) if all_changed else _run_edges(changed),
+                   snap_idx - base + 1]
         brk = np.unique(np.concatenate(breaks))
         del breaks
         brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
@@ -980,7 +991,7 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
         def edges(c0, c1):
             """Edge cell data of steps c0..c1-1, computed where the normal state changes
             (zeros elsewhere: step() does not read them there)."""
-            if changed[c0:c1].all():    # e.g. a gait: no gather and scatter
+            if all_changed or changed[c0:c1].all():    # no gather and scatter
                 edc = fnd.edge_data(d_arr[c0:c1], a_arr[c0:c1])
                 return edc["k"], edc["S"], edc.get("T")
             ci = np.flatnonzero(changed[c0:c1])
@@ -1011,7 +1022,11 @@ def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_st
             for c0 in range(j0, j1, _FUSED_WINDOW):   # edge data a window at a time
                 c1 = min(c0 + _FUSED_WINDOW, j1)
                 prev = d_arr[c0 - 1] if c0 > 0 else d0
-                same = np.flatnonzero(d_arr[c0:c1] == np.concatenate(([prev], d_arr[c0:c1 - 1])))
+                # steps whose depth equals the one before (run step by step)
+                same = np.flatnonzero(d_arr[c0 + 1:c1] == d_arr[c0:c1 - 1])
+                same += 1
+                if d_arr[c0] == prev:
+                    same = np.concatenate(([0], same))
                 ek, eS, eT = edges(c0, c1)
                 eT = eT if tor_edge else eS
                 j = 0
