@@ -24,7 +24,7 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 __all__ = ["Knob", "Row", "measure", "write_csv", "time_to_reach", "pareto_plot", "machine",
-           "best_time", "honesty"]
+           "best_time", "honesty", "cpu_timed", "cpu_timed_iter"]
 
 
 @dataclass
@@ -88,6 +88,35 @@ def best_time(fn: Callable[[], Any], min_total: float = 0.05, max_runs: int = 50
         if total >= min_total:
             break
     return best, out
+
+
+def cpu_timed(fn: Callable, acc: dict, key: str) -> Callable:
+    """``fn`` that adds the CPU time (this process) of each call to ``acc[key]``: wrap a
+    library function in place to see where a whole run spends its time."""
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        c0 = time.process_time()
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            acc[key] += time.process_time() - c0
+    return wrapper
+
+
+def cpu_timed_iter(fn: Callable, acc: dict, key: str) -> Callable:
+    """:func:`cpu_timed` for a generator function: the CPU time of producing each item (not of
+    the caller's work between items)."""
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        it = fn(*args, **kwargs)
+        while True:
+            c0 = time.process_time()
+            try:
+                v = next(it)
+            except StopIteration:
+                acc[key] += time.process_time() - c0
+                return
+            acc[key] += time.process_time() - c0
+            yield v
+    return wrapper
 
 
 def _rel(value: float, ref: float) -> float:

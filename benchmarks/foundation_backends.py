@@ -39,7 +39,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import contactlab as cl  # noqa: E402
 from contactlab.foundation import _compiled  # noqa: E402
 from contactlab.loadpath import LoadPath  # noqa: E402
-from _harness import machine  # noqa: E402
+from _harness import cpu_timed, cpu_timed_iter, machine  # noqa: E402
 
 
 def dot_replica(m, K, invK, L, nL, inc, tmp):
@@ -156,36 +156,15 @@ def breakdown(n: int = 100, updates: float = 1e8) -> dict:
     from contactlab.foundation import winkler
     acc = dict.fromkeys(("compiled runs", "edge data", "normal solve", "validity check"), 0.0)
 
-    def timed(fn, key):
-        def wrapper(*a, **k):
-            c0 = time.process_time()
-            try:
-                return fn(*a, **k)
-            finally:
-                acc[key] += time.process_time() - c0
-        return wrapper
-
-    def timed_iter(fn, key):
-        def wrapper(*a, **k):
-            it = fn(*a, **k)
-            while True:
-                c0 = time.process_time()
-                try:
-                    v = next(it)
-                except StopIteration:
-                    acc[key] += time.process_time() - c0
-                    return
-                acc[key] += time.process_time() - c0
-                yield v
-        return wrapper
-
     saved = {(P, "iter_path_normal_states"): P.iter_path_normal_states,
              (P, "warn_mdr_path"): P.warn_mdr_path, (P, "_fused_step"): P._fused_step,
              (winkler.Winkler, "edge_data"): winkler.Winkler.edge_data}
-    P.iter_path_normal_states = timed_iter(saved[(P, "iter_path_normal_states")], "normal solve")
-    P.warn_mdr_path = timed(saved[(P, "warn_mdr_path")], "validity check")
-    winkler.Winkler.edge_data = timed(saved[(winkler.Winkler, "edge_data")], "edge data")
-    P._fused_step = lambda fnd, chans: (lambda k: None if k is None else timed(k, "compiled runs"))(
+    P.iter_path_normal_states = cpu_timed_iter(saved[(P, "iter_path_normal_states")], acc,
+                                               "normal solve")
+    P.warn_mdr_path = cpu_timed(saved[(P, "warn_mdr_path")], acc, "validity check")
+    winkler.Winkler.edge_data = cpu_timed(saved[(winkler.Winkler, "edge_data")], acc, "edge data")
+    P._fused_step = lambda fnd, chans: (
+        lambda k: None if k is None else cpu_timed(k, acc, "compiled runs"))(
         saved[(P, "_fused_step")](fnd, chans))
     try:
         _compiled.set_backend("numba")

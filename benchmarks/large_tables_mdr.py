@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import contactlab as cl  # noqa: E402
 from contactlab.effects import path as P  # noqa: E402
 from contactlab.physics import torsion_validity as V  # noqa: E402
-from _harness import machine  # noqa: E402
+from _harness import cpu_timed, machine  # noqa: E402
 from scipy.special import ellipe, ellipkm1  # noqa: E402
 
 R, MU = 0.01, 0.3
@@ -93,24 +93,11 @@ def whole_section(n: int) -> None:
         acc = dict.fromkeys(("normal states", "foundation build", "validity check"), 0.0)
         saved = (P.iter_path_normal_states, winkler.Winkler._build, P.warn_mdr_path)
 
-        def timed(fn, key):
-            def wrapper(*a, **k):
-                c0 = time.process_time()
-                try:
-                    return fn(*a, **k)
-                finally:
-                    acc[key] += time.process_time() - c0
-            return wrapper
-
-        def normal_states(*a, **k):
-            c0 = time.process_time()
-            out = list(saved[0](*a, **k))
-            acc["normal states"] += time.process_time() - c0
-            return iter(out)
-
-        P.iter_path_normal_states = normal_states
-        winkler.Winkler._build = timed(saved[1], "foundation build")
-        P.warn_mdr_path = timed(saved[2], "validity check")
+        # the whole normal solve at the call (a list), not leaf by leaf inside the time loop
+        P.iter_path_normal_states = cpu_timed(lambda *a, **k: iter(list(saved[0](*a, **k))),
+                                              acc, "normal states")
+        winkler.Winkler._build = cpu_timed(saved[1], acc, "foundation build")
+        P.warn_mdr_path = cpu_timed(saved[2], acc, "validity check")
         try:
             c0 = time.process_time()
             with warnings.catch_warnings():
