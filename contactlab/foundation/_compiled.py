@@ -30,7 +30,8 @@ iKeff, S, m, bl, W0, out_F, out_W, out_stick, want_stick, block, block_from)
     blocks of ``block`` (:data:`FUSED_BLOCK`) when there are more than ``block_from``
     (:data:`FUSED_BLOCK_FROM`): each block through every step while it sits in cache, so that
     10^6 springs are not bound by memory bandwidth (the per-step sums add the
-    blocks' partial sums in a fixed order).
+    blocks' partial sums in a fixed order); up to that, all springs form one block. One step
+    loop serves both (``_steps_block``).
 
 The numba version is used automatically when numba imports (``backend() == "numba"``); numpy is
 the reference and the fallback (``CONTACTLAB_BACKEND=numpy`` or :func:`set_backend` forces it).
@@ -187,7 +188,7 @@ def _edge_update(lo, hi, first, k_prev, kj, d_prev, dj, Se_prev, Se, Te, c, w, d
     """The cells ``lo ... hi - 1`` the contact edge crossed in a step (edge cell ``kj``
     now, ``k_prev`` before; ``first``: the run's first step, weights from ``S``): weight =
     change of the cell's S over the step / (w dd), Jenkins update, energy and force added
-    to ``W``, ``F`` (one loop shared by ``steps_flat`` and ``steps_block``)."""
+    to ``W``, ``F``."""
     dd = dj - d_prev
     for i in range(lo, hi):
         if first:
