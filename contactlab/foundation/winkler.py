@@ -18,6 +18,7 @@ only the displacement accumulated after they touched, and springs leaving contac
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,8 +136,8 @@ class Winkler(Foundation):
         prof = self.profile
         self.bl = b[:-1]
         self.w = np.diff(b)
-        self.inv_w = 1.0 / self.w
-        self._wbuf = np.zeros(self.n_springs)
+        # 1/w and the weight buffer of the step-by-step route are made on first use (a fused
+        # compiled run needs neither: at 10^6 springs two 8 MB arrays fewer per simulate)
         Gb = _gint(prof, b)
         self.dG = np.diff(Gb)
         self.G_left = Gb[:-1]
@@ -222,7 +223,9 @@ class Winkler(Foundation):
         weight = None
         if dd != 0.0:
             lo, hi = min(k, k_old), max(k, k_old) + 1
-            weight = self._wbuf
+            weight = self.__dict__.get("_wbuf")
+            if weight is None:
+                weight = self._wbuf = np.zeros(self.n_springs)
             weight[:lo] = 1.0
             weight[hi:] = 0.0
             ws = (S[lo:hi] - S_old[lo:hi]) / (dd * self.w[lo:hi])
@@ -240,6 +243,11 @@ class Winkler(Foundation):
             st.L_tor = np.where(T > 0, np.inf, 0.0) if inf_mu else self._c_tor * T
             st.nL_tor = -st.L_tor
         return weight
+
+    @functools.cached_property
+    def inv_w(self) -> np.ndarray:
+        """``1 / w`` per cell, 1/m."""
+        return 1.0 / self.w
 
     def fraction(self, a: float) -> np.ndarray:
         """Fraction of each cell inside the contact radius ``a``."""
