@@ -74,6 +74,15 @@ def jenkins_update_numpy(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.n
     tmp = np.empty_like(m) if tmp is None else tmp
     nL = -L if nL is None else nL
     n = m.size
+    if n <= 2 * NUMPY_CHUNK:        # one chunk: the same passes on the whole arrays, no views
+        np.multiply(K, inc, out=tmp)
+        tmp += m
+        np.minimum(tmp, L, out=m)
+        np.maximum(m, nL, out=m)
+        tmp -= m
+        tmp *= m
+        tmp *= invK
+        return float(tmp.sum())
     # long vectors: the element-wise passes a cache-sized chunk at a time (the same operations
     # per element, so bit-identical; 8 passes over 10^6-element arrays are memory-bound)
     step = NUMPY_CHUNK if n > 2 * NUMPY_CHUNK else max(n, 1)
