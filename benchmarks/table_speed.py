@@ -10,8 +10,9 @@ Targets, each printed with its verdict:
    2b. the same plus no-slip torsion on randomly spaced radii within ~2x of uniform ones;
 3. gait ``simulate`` (10^4 steps, force and twist vary every step) on a 200-point table: cubic
    within 2x of linear, each kind timed in fresh child processes (best of 3 runs in each of two
-   children, alternated; see :func:`gait_run` for why not in one process). Timed on the spring foundation (``method="mdr"``, 400 springs), the
-   route the target was set for; a twisted path runs the exact ring solver by default
+   children, alternated; see :func:`gait_run` for why not in one process). Timed on the
+   spring foundation (``method="mdr"``, 400 springs), the route the target was set for; a
+   twisted path runs the exact ring solver by default
    (``method="exact"``), which is timed too, on a shorter path (its per-step cost is dominated
    by the pressure at every ring, recomputed for every step of a changing normal load);
 4. a 200-point exact torque-twist curve on a 1000-point table in under 50 ms (linear and cubic);
@@ -172,7 +173,8 @@ def main(argv: list[str]) -> int:
             big[kind] = (time.perf_counter() - w0, time.process_time() - c0)
         print(f"2. 10^6 points, set-up + one force: cubic {big['cubic'][0]:.2f} s (cpu "
               f"{big['cubic'][1]:.2f}), linear {big['linear'][0]:.2f} s (cpu "
-              f"{big['linear'][1]:.2f})  " + verdict(big["cubic"][0] < 5, "(cubic < 5 s)", big["cubic"][1] < 5))
+              f"{big['linear'][1]:.2f})  "
+              + verdict(big["cubic"][0] < 5, "(cubic < 5 s)", big["cubic"][1] < 5))
         # randomly spaced radii (nearest nodes ~1e-15 of the radius apart): set-up + one force
         # + no-slip torsion, against the same on the uniform table, within ~2x
         rr = 2e-3 * np.sort(np.r_[0.0, np.random.default_rng(1).random(999_998), 1.0])
