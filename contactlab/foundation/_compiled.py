@@ -66,6 +66,19 @@ FUSED_BLOCK = 8192
 FUSED_BLOCK_FROM = 2**16
 
 
+def _jenkins_passes(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.ndarray,
+                    nL: np.ndarray, inc: float, t: np.ndarray) -> None:
+    """The element-wise passes of :func:`jenkins_update_numpy` on (views of) its arrays:
+    ``m ← clip(m + K inc, -L, L)`` and each element's dissipation into ``t``."""
+    np.multiply(K, inc, out=t)
+    t += m
+    np.minimum(t, L, out=m)
+    np.maximum(m, nL, out=m)
+    t -= m
+    t *= m
+    t *= invK
+
+
 def jenkins_update_numpy(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.ndarray,
                          inc: float, tmp: np.ndarray | None = None,
                          nL: np.ndarray | None = None) -> float:
@@ -74,28 +87,15 @@ def jenkins_update_numpy(m: np.ndarray, K: np.ndarray, invK: np.ndarray, L: np.n
     tmp = np.empty_like(m) if tmp is None else tmp
     nL = -L if nL is None else nL
     n = m.size
-    if n <= 2 * NUMPY_CHUNK:        # one chunk: the same passes on the whole arrays, no views
-        np.multiply(K, inc, out=tmp)
-        tmp += m
-        np.minimum(tmp, L, out=m)
-        np.maximum(m, nL, out=m)
-        tmp -= m
-        tmp *= m
-        tmp *= invK
-        return float(tmp.sum())
-    # long vectors: the element-wise passes a cache-sized chunk at a time (the same operations
-    # per element, so bit-identical; 8 passes over 10^6-element arrays are memory-bound)
-    step = NUMPY_CHUNK if n > 2 * NUMPY_CHUNK else max(n, 1)
-    for s in range(0, n, step):
-        e = min(n, s + step)
-        t, mm = tmp[s:e], m[s:e]
-        np.multiply(K[s:e], inc, out=t)
-        t += mm
-        np.minimum(t, L[s:e], out=mm)
-        np.maximum(mm, nL[s:e], out=mm)
-        t -= mm
-        t *= mm
-        t *= invK[s:e]
+    if n <= 2 * NUMPY_CHUNK:        # one chunk: the whole arrays, no views
+        _jenkins_passes(m, K, invK, L, nL, inc, tmp)
+    else:
+        # long vectors: the element-wise passes a cache-sized chunk at a time (the same
+        # operations per element, so bit-identical; 8 passes over 10^6-element arrays are
+        # memory-bound)
+        for s in range(0, n, NUMPY_CHUNK):
+            e = min(n, s + NUMPY_CHUNK)
+            _jenkins_passes(m[s:e], K[s:e], invK[s:e], L[s:e], nL[s:e], inc, tmp[s:e])
     # a plain (pairwise) sum, not np.dot: a BLAS dot runs multithreaded on long vectors and
     # costs 50x more at N = 10^5 on a loaded machine (and its result follows the thread count)
     return float(tmp.sum())
