@@ -165,6 +165,17 @@ def write_csv(rows: Sequence[Row], path: str | Path) -> Path:
     return path
 
 
+def write_dict_csv(rows: Sequence[dict], path: str | Path) -> Path:
+    """Write plain dict rows (columns: every key of any row, sorted; missing cells empty)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=sorted({k for r in rows for k in r}))
+        w.writeheader()
+        w.writerows(rows)
+    return path
+
+
 def time_to_reach(rows: Sequence[Row], targets: Sequence[float] = (1e-3, 1e-6, 1e-9)
                   ) -> dict[tuple[str, str, str], dict[float, float]]:
     """Cheapest measured time whose actual error is ``<= target``, per (knob, case, quantity).

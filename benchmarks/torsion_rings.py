@@ -33,7 +33,6 @@ writes ``benchmarks/results/torsion_rings_long.csv``).
 """
 from __future__ import annotations
 
-import csv
 import sys
 import time
 import warnings
@@ -47,7 +46,7 @@ import contactlab as cl  # noqa: E402
 from contactlab.effects.path import mdr_path_validity, force_variation  # noqa: E402
 from contactlab.effects.torsion_path import _run  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _harness import machine  # noqa: E402
+from _harness import machine, write_dict_csv  # noqa: E402
 
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 MU = 0.3
@@ -250,12 +249,7 @@ def main_map():
     print(machine())
     em = error_map()
     print_map(em)
-    OUT.mkdir(exist_ok=True)
-    keys = sorted({k for r in em for k in r})
-    with open(OUT / "torsion_rings_map.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(em)
+    write_dict_csv(em, OUT / "torsion_rings_map.csv")
 
 
 def long_path(c, n=2000, varying=False):
@@ -307,12 +301,7 @@ def main_long():
         print(f"  {r['case']:22s} {r['method']:18s} N={r['n']:5d}  {r['steps']} steps"
               f"  {r['time_s']:.2f} s  {1e3 * r['time_per_step_s']:.3f} ms/step"
               + (f"  ring-solver steps {fb}" if fb is not None else ""))
-    OUT.mkdir(exist_ok=True)
-    keys = sorted({k for r in rows for k in r})
-    with open(OUT / "torsion_rings_long.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    write_dict_csv(rows, OUT / "torsion_rings_long.csv")
 
 
 def main():
@@ -347,12 +336,7 @@ def main():
         em = error_map()
         print_map(em)
         rows += em
-    OUT.mkdir(exist_ok=True)
-    keys = sorted({k for r in rows for k in r})
-    with open(OUT / "torsion_rings.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    write_dict_csv(rows, OUT / "torsion_rings.csv")
 
 
 if __name__ == "__main__":
