@@ -96,15 +96,20 @@ def hertz_torque(c):
                                                        epsabs=0, epsrel=1e-13)[0])
 
 
-@pytest.mark.parametrize("c", [0.3123, 0.6789, 0.9512])
-@pytest.mark.parametrize("control", ["twist", "torque"])
-def test_step_from_rest_places_the_stick_radius_inside_its_ring(c, control):
-    n = 200
+def _hertz_rings(n):
+    """``n`` uniform rings on a unit Hertz contact: boundaries, midpoints, influence matrices,
+    the slip limit μp at the midpoints and its full-sliding density."""
     b = np.linspace(0, 1, n + 1)
     r = 0.5 * (b[1:] + b[:-1])
     m = tr.influence(b, r, 1.0)
     bound = MU * np.sqrt(np.clip(1 - r * r, 0, None))
-    slide = ta.density(m["lu"], b, np.zeros(0, int), bound, 1.0)
+    return b, r, m, bound, ta.density(m["lu"], b, np.zeros(0, int), bound, 1.0)
+
+
+@pytest.mark.parametrize("c", [0.3123, 0.6789, 0.9512])
+@pytest.mark.parametrize("control", ["twist", "torque"])
+def test_step_from_rest_places_the_stick_radius_inside_its_ring(c, control):
+    _, r, _, bound, slide = _hertz_rings(200)
     kw = ({"dphi": hertz_twist(c)} if control == "twist" else
           {"target_torque": hertz_torque(c)})
     out = ta.step(ta.empty(), slide, 1.0, 1.0, r=r, bound=bound, **kw)
@@ -125,12 +130,7 @@ def test_step_from_rest_places_the_stick_radius_inside_its_ring(c, control):
 def test_step_reports_a_failed_check():
     # the twist held while the friction limit drops a hundredfold: no annulus reaching the edge
     # is needed by the twist, but the old traction inside is far beyond the new limit
-    n = 50
-    b = np.linspace(0, 1, n + 1)
-    r = 0.5 * (b[1:] + b[:-1])
-    m = tr.influence(b, r, 1.0)
-    bound = MU * np.sqrt(np.clip(1 - r * r, 0, None))
-    slide = ta.density(m["lu"], b, np.zeros(0, int), bound, 1.0)
+    b, r, m, bound, slide = _hertz_rings(50)
     old = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=hertz_twist(0.5), r=r, bound=bound)["w"]
     weak = ta.density(m["lu"], b, np.zeros(0, int), bound / 100, 1.0)
     out = ta.step(old, weak, 1.0, 1.0, dphi=0.0, r=r, bound=bound / 100)
