@@ -26,6 +26,7 @@ import numpy as np
 from . import _compiled
 from ._compiled import jenkins_update
 
+from ..numeric.powers import power_integral
 from ..numeric.quadrature import tanh_sinh
 from .base import Foundation
 from ..errors import OutsideTheoryError
@@ -58,16 +59,9 @@ def _edge_integrals(profile, a: np.ndarray, rtol: float, tor: bool
     if (terms is not None and len(terms) == 1 and not np.isfinite(profile.wall_radius)
             and a.size and float(np.min(a)) > 0):
         c, n = terms[0]
-        k = profile._power_kappa(n) * c
-        Ga = a ** (n + 1)
-        Ga *= k
-        Ga /= n + 1
-        if not tor:
-            return Ga, Ga
-        Ha = a ** (n + 2)
-        Ha *= k
-        Ha /= n + 2
-        return Ga, Ha
+        kn = [(profile._power_kappa(n) * c, n)]
+        Ga = power_integral(a, kn, 1.0)
+        return Ga, (power_integral(a, kn, 2.0) if tor else Ga)
     Ga = _gint(profile, a)
     return Ga, (xg_integral(profile, a, rtol) if tor else Ga)
 
@@ -79,10 +73,7 @@ def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
         return np.where(x > 0, profile._xg_integral_closed_form(np.maximum(x, 0.0)), 0.0)
     terms = profile.power_terms()
     if terms is not None:
-        out = np.zeros(x.shape)
-        for c, n in terms:
-            out = out + profile._power_kappa(n) * c * x ** (n + 2) / (n + 2)
-        return out
+        return power_integral(x, [(profile._power_kappa(n) * c, n) for c, n in terms], 2.0)
 
     def integrand(s: np.ndarray, idx: np.ndarray) -> np.ndarray:
         return s * profile._g(np.maximum(s, 1e-300))

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
+from ..numeric.powers import root
 from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
 from ..profiles.base import ROUNDING, root_rtol
@@ -314,6 +315,18 @@ def force_of_radius(profile, E_star: float, a: np.ndarray, rtol: float) -> np.nd
     return 2.0 * E_star * (a * profile._g(a, rtol) - profile._g_integral(a, rtol))
 
 
+def _power_radius(profile, E_star: float, F: np.ndarray, term: tuple) -> np.ndarray:
+    """Contact radius of forces ``F > 0`` on one power term ``(c, n)``: ``F/(2E*) = κ c n
+    a^(n+1)/(n+1)`` inverted, in the operations of the scalar route
+    (:mod:`contactlab.physics.normal_scalar`), so that both give the same radius."""
+    c, n = term
+    n1 = n + 1.0
+    x = F / (2.0 * E_star)
+    x *= n1
+    x /= profile._power_kappa(n) * c * n
+    return root(x, n1)
+
+
 def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
                           ) -> tuple[np.ndarray, np.ndarray]:
     """Contact radius and depth (m) of non-adhesive normal forces ``F`` (N), any shape.
@@ -337,9 +350,7 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
             and F.ndim and F.size and float(np.min(F)) > 0):
         # every force positive on a single power term (a gait): the closed form below without
         # the masks and scatters (the same values)
-        from ..symbolic.transform import kappa
-        c, n = terms[0]
-        a = (F * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+        a = _power_radius(profile, E, F, terms[0])
         d = profile._g(a, rtol)
         profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
         return a, d
@@ -368,9 +379,7 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         fast = (profile._radius_of_reduced_force(Fs / (2 * E), rtol)
                 if profile.has("reduced_force_solver") else None)
         if terms is not None and len(terms) == 1 and not walled:
-            from ..symbolic.transform import kappa
-            c, n = terms[0]
-            ap[solve] = (Fs * (n + 1) / (2 * E * kappa(n) * c * n)) ** (1 / (n + 1))
+            ap[solve] = _power_radius(profile, E, Fs, terms[0])
         elif fast is not None:          # profile-specific solver (convex linear tables)
             ap[solve] = fast
         else:
@@ -447,7 +456,10 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         a, d = radius_depth_of_force(profile, E, value, rtol)
     pos = a > 0
     all_pos = bool(pos.all())
-    g_int, g_int_err = profile._g_integral_with_error(a, rtol)
+    if error_estimate:
+        g_int, g_int_err = profile._g_integral_with_error(a, rtol)
+    else:
+        g_int = profile._g_integral(a, rtol)
     ad = a * d
     F = ad - g_int
     F *= 2.0 * E

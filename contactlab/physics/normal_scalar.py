@@ -29,6 +29,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import OutsideTheoryError
+from ..numeric.powers import power_float, root_float
 from ..numeric.roots import scalar_root
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
@@ -145,13 +146,13 @@ def _build(profile: Profile) -> ScalarForms | None:
     if terms is not None and len(terms) == 1 and lo == 0.0:
         c, n = (float(v) for v in terms[0])
         kc = profile._power_kappa(n) * c
-        inv_n, inv_n1, n1 = 1.0 / n, 1.0 / (n + 1.0), n + 1.0
+        inv_n, n1 = 1.0 / n, n + 1.0
         return ScalarForms(
             g=lambda a: kc * a**n,
-            g_integral=lambda a: kc * a**n1 / n1,
+            g_integral=lambda a: power_float(a, n1) * kc / n1,
             g_inverse=lambda d: (d / kc) ** inv_n,
-            # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1)
-            radius_of_reduced_force=lambda fr: (fr * n1 / (kc * n)) ** inv_n1,
+            # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1); the array route's operations
+            radius_of_reduced_force=lambda fr: root_float(fr * n1 / (kc * n), n1),
             g_prime=lambda a: n * kc * a ** (n - 1.0),
             lo=lo, limit=limit, start=start)
     own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
@@ -169,7 +170,7 @@ def _build(profile: Profile) -> ScalarForms | None:
             return sum(k * a**n for k, n in kn)
 
         def g_int(a: float) -> float:
-            return sum(k * a ** (n + 1.0) / (n + 1.0) for k, n in kn)
+            return sum(power_float(a, n + 1.0) * k / (n + 1.0) for k, n in kn)
 
         def g_prime(a: float) -> float:
             return sum(n * k * a ** (n - 1.0) for k, n in kn)

@@ -475,7 +475,8 @@ def x_g_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     terms = profile.power_terms()
     if terms is not None and not np.isfinite(profile.wall_radius):
         from ..symbolic.transform import kappa
-        return sum(kappa(n) * cc * a ** (n + 2) / (n + 2) for cc, n in terms) * np.ones_like(a)
+        from ..numeric.powers import power_integral
+        return power_integral(a, [(kappa(n) * cc, n) for cc, n in terms], 2.0)
     flat = a.ravel()
     lo = np.minimum(np.full(flat.shape, profile.flat_radius), flat)
     cuts = [b for b in _cuts(profile) if b > profile.flat_radius]

@@ -347,18 +347,29 @@ class Profile(ParamIdentity, ABC):
         return self._g_integral(a)
 
     def _g_integral(self, a: np.ndarray, rtol: float | None = None) -> np.ndarray:
-        """``∫_0^a g dx`` (hot path); ``rtol`` applies to the quadrature route only."""
+        """``∫_0^a g dx`` (hot path); ``rtol`` applies to the quadrature route only. The exact
+        routes skip the error estimate's arithmetic (the same value)."""
+        if type(self)._g_integral_with_error is Profile._g_integral_with_error:
+            val = self._g_integral_exact(a)
+            if val is not None:
+                return val
         return self._g_integral_with_error(a, rtol)[0]
+
+    def _g_integral_exact(self, a: np.ndarray) -> np.ndarray | None:
+        """``∫_0^a g dx`` by a closed form or the power terms, or None (quadrature route)."""
+        if self._has("_g_integral_closed_form"):
+            return self._g_integral_closed_form(a)
+        if self.power_terms() is not None:
+            from ..numeric.powers import power_integral
+            return power_integral(a, [(self._power_kappa(n) * c, n) for c, n in self.power_terms()],
+                                  1.0)
+        return None
 
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
         """``(∫_0^a g dx, absolute error estimate)``; exact routes carry a rounding floor."""
-        if self._has("_g_integral_closed_form"):
-            val = self._g_integral_closed_form(a)
-        elif self.power_terms() is not None:
-            val = sum(self._power_kappa(n) * c * a ** (n + 1) / (n + 1)
-                      for c, n in self.power_terms())
-        else:
+        val = self._g_integral_exact(a)
+        if val is None:
             return self._g_integral_quadrature(a, rtol)
         return val, ROUNDING * np.abs(val)
 

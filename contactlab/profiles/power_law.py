@@ -13,6 +13,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..errors import ParameterError
+from ..numeric.powers import power_integral
 from ..params import Param
 from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
@@ -124,7 +125,7 @@ class _PowerSum(Profile):
         return sum(kappa(n) * c * x**n for c, n in self.power_terms()) * np.ones_like(x)
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
-        return sum(kappa(n) * c * a ** (n + 1) / (n + 1) for c, n in self.power_terms()) * np.ones_like(a)
+        return power_integral(a, [(kappa(n) * c, n) for c, n in self.power_terms()], 1.0)
 
     def _g_squared_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         terms = [(kappa(n) * c, n) for c, n in self.power_terms()]

@@ -17,7 +17,7 @@ UNPLANNED = ("torsion", "twist_history", "simulate", "tangential", "shift_histor
 
 def hertz(F, R, E_star):
     """Hertz (Johnson 1985, eqs. 4.22-4.23): contact radius and depth of force."""
-    a = (3.0 * F * R / (4.0 * E_star)) ** (1.0 / 3.0)
+    a = np.cbrt(3.0 * F * R / (4.0 * E_star))   # cube root within 0.53 ulp
     return a, a * a / R
 
 
@@ -62,7 +62,14 @@ def test_fields_match_hertz_pressure_and_displacement():
     assert r[-1] == pytest.approx(1.5 * a, rel=TOL.SHORT_ARITHMETIC)
     inside = r < a
     p = 2 * E_STEEL / (np.pi * 0.01) * np.sqrt(np.clip(a * a - r * r, 0, None))   # Hertz
-    np.testing.assert_allclose(res["pressure"], p, rtol=QUADRATURE, atol=QUADRATURE * p[0])
+    # a field point at the contact edge r = a (here point 20 of 30 out to 1.5 a): the pressure
+    # p0 sqrt(1 - r²/a²) has an infinite slope in a there, so a rounding of a by k ulp moves it
+    # by up to p0 sqrt(2 k eps); both radii are rounded cube roots (k <= 4 allowed)
+    edge = np.abs(r - a) <= 4 * np.spacing(a)
+    assert edge.sum() == 1
+    np.testing.assert_allclose(res["pressure"][~edge], p[~edge], rtol=QUADRATURE,
+                               atol=QUADRATURE * p[0])
+    assert abs(res["pressure"][edge][0] - p[edge][0]) <= p[0] * np.sqrt(8 * np.finfo(float).eps)
     R = 0.01
     out = ~inside
     uz_out = ((2 * a * a - r[out] ** 2) * np.arcsin(a / r[out])

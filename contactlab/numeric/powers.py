@@ -1,0 +1,95 @@
+"""Powers of float arrays by the cheapest exact-enough route (vectorised, deterministic).
+
+numpy's ``x ** p`` for a general exponent calls a vector ``pow`` (~2.7 ns per element on a
+2-core AMD EPYC VM against ~0.25 ns for a multiplication); the power-law closed forms of
+contactlab raise contact radii to ``n + 1`` and ``n + 2`` at every step of a load path, and for
+the common profiles (paraboloid ``n = 2``, cone ``n = 1``) those are small whole numbers.
+:func:`power` then multiplies (at most 2 roundings, ≤ 2 ulp against ≤ 1 ulp of ``pow``), and
+:func:`root` takes ``1/3`` by ``cbrt`` (correctly rounded in practice, where ``x ** (1/3)`` raises
+to the double nearest 1/3). Every caller of a closed form uses these, so routes that must agree
+bit for bit (a step's force and its edge-cell integrals, the numpy and the compiled foundation)
+still do.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["power", "root", "power_integral", "power_float", "root_float", "WHOLE_POWERS"]
+
+#: exponents raised by multiplication (larger ones by ``pow``: chains would add roundings)
+WHOLE_POWERS = (1.0, 2.0, 3.0, 4.0)
+
+
+def power(x: np.ndarray, p: float) -> np.ndarray:
+    """``x ** p`` as a new float array: whole ``p`` in :data:`WHOLE_POWERS` by multiplication
+    (``x·x·x``, ``(x·x)·(x·x)``), else numpy's power."""
+    p = float(p)
+    if p == 3.0:
+        out = np.multiply(x, x)
+        out *= x
+        return out
+    if p == 4.0:
+        out = np.multiply(x, x)
+        out *= out
+        return out
+    if p == 2.0:
+        return np.multiply(x, x)
+    if p == 1.0:
+        return np.array(x, dtype=float, copy=True)
+    return np.power(x, p)
+
+
+def root(x: np.ndarray, q: float) -> np.ndarray:
+    """``x ** (1/q)`` for ``x >= 0``: ``q = 2`` by ``sqrt``, ``q = 3`` by ``cbrt``, ``q = 1`` a
+    copy, else numpy's power of ``1/q``."""
+    q = float(q)
+    if q == 3.0:
+        return np.cbrt(x)
+    if q == 2.0:
+        return np.sqrt(x)
+    if q == 1.0:
+        return np.array(x, dtype=float, copy=True)
+    return np.power(x, 1.0 / q)
+
+
+def power_integral(a: np.ndarray, terms, shift: float) -> np.ndarray:
+    """``Σ k a**(n + shift) / (n + shift)`` over ``terms = [(k, n), ...]`` (a new float array of
+    ``a``'s shape): the closed-form integrals of power terms (``k = κ_n c``; ``shift = 1``:
+    ``∫_0^a g``, ``shift = 2``: ``∫_0^a x g``), each term as ``(power(a, p) · k) / p``."""
+    a = np.asarray(a, dtype=float)
+    total = None
+    for k, n in terms:
+        p = n + shift
+        v = np.asarray(power(a, p), dtype=float)
+        v *= k
+        v /= p
+        total = v if total is None else total + v
+    return np.zeros(a.shape) if total is None else total
+
+
+def power_float(x: float, p: float) -> float:
+    """:func:`power` of one float, bit-identical to its array elements."""
+    if p == 3.0:
+        return x * x * x
+    if p == 4.0:
+        y = x * x
+        return y * y
+    if p == 2.0:
+        return x * x
+    if p == 1.0:
+        return x
+    return float(np.power(x, p))
+
+
+def root_float(x: float, q: float) -> float:
+    """:func:`root` of one float ``x >= 0``, bit-identical to its array elements (numpy's
+    ``cbrt``: within 0.53 ulp where ``math.cbrt`` errs by up to ~3 ulp)."""
+    if q == 3.0:
+        return float(np.cbrt(x))
+    if q == 2.0:
+        return math.sqrt(x)
+    if q == 1.0:
+        return x
+    return float(np.power(x, 1.0 / q))
