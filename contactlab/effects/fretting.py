@@ -105,7 +105,8 @@ def loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: np
     with np.errstate(over="ignore", invalid="ignore"):
         res = _loops(contact, mode, method, a, d, F_N, amp, criterion, threshold)
     check_result_finite(f"fretting ({mode})", {"force": F_N, "amplitude": amp},
-                        peak=res["peak"], energy=res["energy"], energy_ratio=res["energy_ratio"])
+                        peak=res["peak"], energy=res["energy"], energy_ratio=res["energy_ratio"],
+                        sliding=res["sliding"], stick_radius=res["stick_radius"])
     return res
 
 
