@@ -330,15 +330,38 @@ def _winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, d
     return sgn, min(k[ns - 1], k_prev)
 
 
-def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragma: no cover
-    """Per step: the cell holding the contact edge ``a`` (``searchsorted(b, a) - 1``
-    clipped to the cells; the search starts from the previous step's cell) and its partial
-    integrals, the arithmetic of ``Winkler.edge_data`` in the same order."""
+def _whole_power(x, p):     # pragma: no cover - compiled
+    """``x ** p`` for whole ``p`` in 1...4: the multiplications of
+    :func:`contactlab.numeric.powers.power`, in its order."""
+    if p == 3.0:
+        return x * x * x
+    if p == 4.0:
+        y = x * x
+        return y * y
+    if p == 2.0:
+        return x * x
+    return x
+
+
+def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T, radius, kp, p1,
+                     p2):  # pragma: no cover
+    """Per step: the cell holding the contact edge ``min(a, radius)`` (``searchsorted(b, a) -
+    1`` clipped to the cells; the search starts from the previous step's cell) and its partial
+    integrals, the arithmetic of ``Winkler.edge_data`` in the same order. ``p1 > 0``: the
+    profile is one power term ``c r^n`` with whole ``p1 = n + 1``, ``p2 = n + 2`` and
+    ``kp = κ_n c``; ``G(a) = kp a^p1 / p1`` and ``H(a) = kp a^p2 / p2`` are computed here (as
+    :func:`contactlab.numeric.powers.power_integral` does) instead of read from ``Ga``, ``Ha``."""
     nb = b.size
     n = nb - 1
     idx = 0
     for j in range(d.size):
-        aj = a[j]
+        aj = min(a[j], radius)
+        if p1 > 0.0:
+            Gj = _whole_power(aj, p1) * kp / p1 if aj > 0.0 else 0.0
+            Hj = _whole_power(aj, p2) * kp / p2 if aj > 0.0 and want_T else 0.0
+        else:
+            Gj = Ga[j]
+            Hj = Ha[j]
         # first boundary >= aj (np.searchsorted side="left"), tried at the last one first
         if not ((idx == 0 or b[idx - 1] < aj) and (idx == nb or aj <= b[idx])):
             lo = 0
@@ -355,13 +378,13 @@ def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragm
         bl = b[kj]
         dj = d[j]
         if aj > bl:
-            s = dj * (aj - bl) - (Ga[j] - G_left[kj])
+            s = dj * (aj - bl) - (Gj - G_left[kj])
         else:
             s = 0.0
         S[j] = s if s >= 0.0 else 0.0
         if want_T:
             if aj > bl:
-                t = dj * (aj * aj - bl * bl) / 2.0 - (Ha[j] - H_left[kj])
+                t = dj * (aj * aj - bl * bl) / 2.0 - (Hj - H_left[kj])
             else:
                 t = 0.0
             T[j] = t if t >= 0.0 else 0.0
@@ -369,7 +392,7 @@ def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T):  # pragm
 
 #: the numba kernels above (plain Python here; :func:`_build` compiles them)
 _KERNEL_NAMES = ("_jenkins", "_bulk", "_first_at_limit", "_edge_update", "_steps_block",
-                 "_winkler_steps", "_edge_cells_data")
+                 "_winkler_steps", "_whole_power", "_edge_cells_data")
 _PY_KERNELS = {name: globals()[name] for name in _KERNEL_NAMES}
 #: numba options beyond ``nogil`` per kernel: the bulk loop inlined into the step loop in
 #: numba's IR (a gait at N = 100 springs: ~8 of ~113 ns per step of the compiled run; the
@@ -396,9 +419,11 @@ def _build() -> dict:
 def edge_cells():
     """The compiled edge-cell locator of ``Winkler.edge_data`` (numba backend), or None with
     numpy (the caller then runs the numpy reference): ``edge_cells(d, a, Ga, Ha, b, G_left,
-    H_left, k, S, T, want_T)`` fills ``k``, ``S`` (and ``T`` if ``want_T``) per step from the
-    depths ``d``, the edge radii ``a`` (clipped to the foundation), ``Ga = G(a)`` and
-    ``Ha = H(a)`` (the profile's integrals), bit-identical to the numpy calls."""
+    H_left, k, S, T, want_T, radius, kp, p1, p2)`` fills ``k``, ``S`` (and ``T`` if ``want_T``)
+    per step from the depths ``d``, the edge radii ``a`` (clipped here to the foundation's
+    ``radius``) and the profile's integrals ``G(a)``, ``H(a)``: read from ``Ga``, ``Ha``, or
+    for one power term with whole exponents (``p1 = n + 1 > 0``, ``p2``, ``kp = κ_n c``)
+    computed in the same pass; bit-identical to the numpy calls."""
     if backend() != "numba":
         return None
     if _state["edges"] is None:

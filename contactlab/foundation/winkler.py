@@ -26,7 +26,7 @@ import numpy as np
 from . import _compiled
 from ._compiled import jenkins_update
 
-from ..numeric.powers import power_integral
+from ..numeric.powers import WHOLE_POWERS, power_integral
 from ..numeric.quadrature import tanh_sinh
 from .base import Foundation
 from ..errors import OutsideTheoryError
@@ -64,6 +64,19 @@ def _edge_integrals(profile, a: np.ndarray, rtol: float, tor: bool
         return Ga, (power_integral(a, kn, 2.0) if tor else Ga)
     Ga = _gint(profile, a)
     return Ga, (xg_integral(profile, a, rtol) if tor else Ga)
+
+
+def _whole_power_term(profile, tor: bool) -> tuple[float, float, float] | None:
+    """``(κ_n c, n + 1, n + 2)`` when the profile is one power term ``c r^n`` (no wall) whose
+    edge integrals :func:`~contactlab.numeric.powers.power` takes by multiplication (``n + 1``
+    and, with torsion, ``n + 2`` whole, at most 4), else None."""
+    terms = profile.power_terms()
+    if terms is None or len(terms) != 1 or np.isfinite(profile.wall_radius):
+        return None
+    c, n = (float(v) for v in terms[0])
+    if n + 1.0 not in WHOLE_POWERS or (tor and n + 2.0 not in WHOLE_POWERS):
+        return None
+    return profile._power_kappa(n) * c, n + 1.0, n + 2.0
 
 
 def xg_integral(profile, x: np.ndarray, rtol: float) -> np.ndarray:
@@ -161,18 +174,25 @@ class Winkler(Foundation):
         """Vectorised over steps: index of the cell holding the contact edge and its exact
         partial integrals (``S`` and, with torsion, ``∫ x (d-g)``)."""
         d = np.asarray(d, float)
-        a = np.minimum(np.asarray(a, float), self.radius)
+        a = np.asarray(a, float)
         tor = "torsion" in self.needs
         kernel = _compiled.edge_cells() if d.ndim == 1 and d.shape == a.shape else None
         if kernel is not None:   # compiled: the search and arithmetic below in one pass
-            Ga, Ha = _edge_integrals(self.profile, a, self.rtol, tor)
+            spec = _whole_power_term(self.profile, tor)
+            if spec is None:
+                a = np.minimum(a, self.radius)
+                Ga, Ha = _edge_integrals(self.profile, a, self.rtol, tor)
+                spec = (0.0, 0.0, 0.0)
+            else:       # the integrals in the kernel's pass
+                Ga = Ha = a
             out = {"k": np.empty(d.size, np.int64), "S": np.empty(d.size)}
             out["T"] = np.empty(d.size) if tor else out["S"]
             kernel(d, a, Ga, Ha, self.boundaries, self.G_left, self.H_left if tor else self.G_left,
-                   out["k"], out["S"], out["T"], tor)
+                   out["k"], out["S"], out["T"], tor, float(self.radius), *spec)
             if not tor:
                 del out["T"]
             return out
+        a = np.minimum(a, self.radius)
         k = np.clip(np.searchsorted(self.boundaries, a, side="left") - 1, 0, self.n_springs - 1)
         bl = self.bl[k]
         S = np.where(a > bl, d * (a - bl) - (_gint(self.profile, a) - self.G_left[k]), 0.0)
