@@ -169,21 +169,27 @@ def test_fused_step_is_deterministic(foundation_backend):
 
 @pytest.mark.parametrize("needs", [("torsion",), ("tangential",)])
 @pytest.mark.parametrize("spacing", ["edge", "uniform"])
-def test_compiled_edge_data_is_bit_identical(needs, spacing):
+@pytest.mark.parametrize("profile", [
+    cl.profiles.Paraboloid(R=0.01),           # one power term, whole n+1, n+2: in the pass
+    cl.profiles.Cone(slope=0.01),             # n = 1: powers 2 and 3 in the pass
+    cl.profiles.PowerLaw(c=50.0, n=2.5),      # non-whole powers: integrals passed in
+    cl.profiles.Sphere(R=0.01),               # no power terms: integrals passed in
+], ids=["hertz", "cone", "n2.5", "sphere"])
+def test_compiled_edge_data_is_bit_identical(needs, spacing, profile):
     """Winkler.edge_data with the numba backend (edge cell search and partial integrals in one
-    compiled pass) gives the numpy reference's cells and integrals bit for bit, for radii in
-    random order, on cell boundaries, at 0 and beyond the foundation's radius."""
+    compiled pass; one power term's integrals computed there) gives the numpy reference's cells
+    and integrals bit for bit, for radii in random order, on cell boundaries, at 0 and beyond
+    the foundation's radius."""
     if "numba" not in _compiled.available():
         pytest.skip("numba is not installed (extra 'fast')")
     from contactlab.foundation import Winkler
-    c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (cl.Elastic(E=210e9, nu=0.3),) * 2,
-                   friction=0.3)
+    c = cl.Contact(profile, (cl.Elastic(E=210e9, nu=0.3),) * 2, friction=0.3)
     fnd = Winkler(c.profile, c.moduli, c.friction, 1e-4, n_springs=37, spacing=spacing,
                   needs=needs, rtol=c.rtol)
     rng = np.random.default_rng(5)
     a = np.concatenate((rng.uniform(0, 1.2e-4, 300), np.sort(rng.uniform(0, 1e-4, 300)),
                         fnd.boundaries, [0.0, 1e-4, 2e-4]))
-    d = a * a / 0.01 * rng.uniform(0.9, 1.1, a.size)
+    d = c.profile._g(np.minimum(a, 1e-4)) * rng.uniform(0.9, 1.1, a.size)
     out = {}
     try:
         for b in ("numpy", "numba"):

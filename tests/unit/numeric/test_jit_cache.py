@@ -117,9 +117,10 @@ def test_every_kernel_is_cached_under_its_own_name():
     if any(f.stats.cache_path is None for f in disp.values()):
         pytest.skip("no writable cache directory in this environment")
     index = [f._cache._cache_file._index_name for f in disp.values()]
-    # 7 Winkler kernels (one step loop for one block or many since issue 13), the viscoelastic
-    # step, 6 law passes (serial and threaded) and the law loader
-    assert len(set(index)) == len(index) == 15, index
+    # 8 Winkler kernels (one step loop for one block or many since issue 13; the whole-power
+    # helper of the edge-cell pass), the viscoelastic step, 6 law passes (serial and threaded)
+    # and the law loader
+    assert len(set(index)) == len(index) == 16, index
 
 
 def test_import_contactlab_does_not_import_numba():
