@@ -827,7 +827,9 @@ def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, 
         ch["dir"] = sgn
     ch["release"] = False
     ch["x"] = float(target[-1])
-    ch["out_pos"][sl] = target
+    dst = ch["out_pos"][sl]
+    if dst.ctypes.data != target.ctypes.data or dst.strides != target.strides:
+        dst[...] = target      # (the time loop passes the series' own view: nothing to copy)
 
 
 def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
