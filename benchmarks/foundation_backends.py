@@ -13,8 +13,9 @@ Run from the repository root: ``python benchmarks/foundation_backends.py [U_numb
       a minimal numpy replica using ``np.dot`` (what the kernel did before) for comparison;
    b. a whole gait ``simulate(method="mdr")`` per spring-update, steps scaled so that every run
       does about U spring-updates (default U = 10^8 with numba, 10^7 with numpy: N = 10^6 then
-      runs 100 / 10 steps, N = 10^2 10^6 / 10^5 steps), best of 3 in wall time and in CPU time
-      (the latter less disturbed by other processes on a loaded machine). This is the quantity
+      runs 100 / 10 steps, N = 10^2 10^6 / 10^5 steps), best of 5 (numba) / 3 (numpy) in wall
+      time and in CPU time (the latter less disturbed by other processes on a loaded machine).
+      This is the quantity
       a user feels; the kernel alone at N = 100 is mostly the cost of one call. The target
       applies to the numba rows (the product path with the extra ``fast``);
    c. where a whole run at N = 10^2 spends its CPU time per step (numba).
@@ -121,10 +122,17 @@ def kernel_sweep(backends) -> dict:
     return per
 
 
+#: runs per spring count of the whole-run sweep (best of them), per backend: a numba run of
+#: 10^8 spring-updates takes ~0.1-0.15 s, so five keep the N = 100 row (whose 10^6-step runs
+#: also pay the operating system for 64 MB of fresh result pages, 8-76 ms of system time per
+#: run measured) from reporting one disturbed run; the numpy rows take seconds per run
+WHOLE_RUN_REPEATS = {"numba": 5, "numpy": 3}
+
+
 def whole_run_sweep(backends, updates: dict) -> dict:
     """ns per spring-update of a whole gait simulate (method="mdr"), ~``updates[b]`` spring-updates
-    per run, best of 3 in wall time and in CPU time of this process (the first run of each
-    backend compiles)."""
+    per run, best of :data:`WHOLE_RUN_REPEATS` in wall time and in CPU time of this process (the
+    first run of each backend compiles)."""
     c = gait_contact()
     per = {}
     for b in backends:
@@ -135,7 +143,7 @@ def whole_run_sweep(backends, updates: dict) -> dict:
             steps = max(10, int(updates[b] // n))
             path = gait_path(steps)
             best = best_cpu = math.inf
-            for _ in range(3):
+            for _ in range(WHOLE_RUN_REPEATS[b]):
                 t0, c0 = time.perf_counter(), time.process_time()
                 c.simulate(path, n_springs=n, method="mdr")
                 best = min(best, time.perf_counter() - t0)
