@@ -16,9 +16,11 @@ float functions (:func:`forms_of`), so a scalar solve is a few float operations:
 
 Profiles without a closed-form (or symbolic) ``g``, rising before a wall, summed with a punch, or
 with a ring-contact check (tables) are not handled here (:func:`forms_of` returns ``None``): their
-callers use the array kernels. The results agree with the array route to the same tolerance (the same formulas, the
-same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they need not be bit-identical
-to it, but every call of this route is deterministic.
+callers use the array kernels. The results agree with the array route to the same tolerance
+(the same formulas, the same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they
+need not be bit-identical to it, but every call of this route is deterministic. On one power
+term with ``n`` = 1 or 2 (cone, paraboloid) the contact radius of a force is: both routes take
+the same square or cube root of the same operands (:mod:`contactlab.numeric.powers`).
 """
 from __future__ import annotations
 
