@@ -48,6 +48,10 @@ import threading
 
 import numpy as np
 
+# ``x ** p`` for whole ``p`` in 1...4 by the multiplications of numeric.powers.power, in its
+# order (compiled with the kernels below for the edge-cell pass)
+from ..numeric.powers import power_float as _whole_power
+
 __all__ = ["jenkins_update", "jenkins_update_numpy", "backend", "set_backend", "available",
            "fused_step", "edge_cells"]
 
@@ -328,19 +332,6 @@ def _winkler_steps(d, a, k, S_edge, T_edge, target, d0, k0, x0, release, c, w, d
         x = target[j]
     k_prev = k0 if ns == 1 else k[ns - 2]
     return sgn, min(k[ns - 1], k_prev)
-
-
-def _whole_power(x, p):     # pragma: no cover - compiled
-    """``x ** p`` for whole ``p`` in 1...4: the multiplications of
-    :func:`contactlab.numeric.powers.power`, in its order."""
-    if p == 3.0:
-        return x * x * x
-    if p == 4.0:
-        y = x * x
-        return y * y
-    if p == 2.0:
-        return x * x
-    return x
 
 
 def _edge_cells_data(d, a, Ga, Ha, b, G_left, H_left, k, S, T, want_T, radius, kp, p1,
