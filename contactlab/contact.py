@@ -295,7 +295,10 @@ class Contact:
         Returns
         -------
         PathResult
-            Per-step series in SI units (the units are in the ``to_csv`` headers).
+            Per-step series in SI units (the units are in the ``to_csv`` headers). On the
+            spring foundation (``method="mdr"``, and paths without twist or torque) the float
+            series asked for are rows of one array (one allocation, cheaper to fault in on long
+            paths): ``result.torque.copy()`` holds one series without the others.
         """
         return _drivers.path.simulate(self, path, outputs=outputs, n_springs=n_springs,
                                       spacing=spacing, snapshots=snapshots, progress=progress,
