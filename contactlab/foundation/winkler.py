@@ -108,8 +108,6 @@ class SpringState:
     ----------
     S : ndarray
         ``∫_cell (d - g)_+ dx`` per cell, m² (normal spring state).
-    frac : ndarray
-        Fraction of each cell in contact.
     tangential, torsion : ndarray or None
         Element force (N) / torque (N·m) per cell, or None when the family is not built.
     L_tan, L_tor : ndarray or None
@@ -118,7 +116,6 @@ class SpringState:
     """
 
     S: np.ndarray
-    frac: np.ndarray
     tangential: np.ndarray | None
     torsion: np.ndarray | None
     L_tan: np.ndarray | None
@@ -207,7 +204,7 @@ class Winkler(Foundation):
         n = self.n_springs
         tan = np.zeros(n) if "tangential" in self.needs else None
         tor = np.zeros(n) if "torsion" in self.needs else None
-        return SpringState(np.zeros(n), np.zeros(n), tan, tor,
+        return SpringState(np.zeros(n), tan, tor,
                            np.zeros(n) if tan is not None else None,
                            np.zeros(n) if tor is not None else None,
                            nL_tan=np.zeros(n) if tan is not None else None,
