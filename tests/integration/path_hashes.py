@@ -1,0 +1,343 @@
+"""SHA-256 hashes of every output array of the load-path routes: the guard of refactors that must
+keep results bit-identical (tests/integration/test_path_hashes.py compares against
+``path_hashes.json`` beside this file).
+
+The cases:
+
+* every example scene (``examples/**/*.toml``): the series and fields of ``Scene.run()``; for a
+  scene on the foundation route also ``contact.simulate`` of its load path with each method
+  (``"mdr"`` on each backend of the compiled spring kernels, ``"exact"``);
+* a generated set of :data:`N_PATHS` load paths (seeded: ramps, holds, sinusoids, tables; force
+  or depth control; twist, torque, shift or tangential force; a normal load held or varying;
+  several profiles, frictions and discretisation options) through ``contact.simulate`` with
+  ``method="mdr"`` on each backend and with ``method="exact"`` (a shifted path records the
+  error ``method="exact"`` raises).
+
+Each run records, per key ``case|backend|method|output``: the hash of each series, each snapshot
+entry and each array or number in ``meta`` (a failed run: its error type and the hashes of its
+partial result), and the ValidityWarning categories it emitted.
+
+Regenerate (after a change that is meant to alter results; review the diff of the JSON)::
+
+    python tests/integration/path_hashes.py --overwrite              # every case
+    python tests/integration/path_hashes.py --overwrite --match 'exact\\|.*dissipated_energy'
+
+``--match REGEX`` recomputes every case but rewrites only the stored keys the regular expression
+finds (``re.search``) and adds none; the other stored hashes are kept. ``--paths N`` limits the
+generated set to its first ``N`` paths (the default test run uses :data:`DEFAULT_PATHS`).
+"""
+from __future__ import annotations
+
+import argparse
+import glob
+import hashlib
+import json
+import re
+import sys
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+STORE = HERE / "path_hashes.json"
+#: generated paths in the store (the slow job checks all of them)
+N_PATHS = 200
+#: generated paths checked by the default test run (the first ones of the set)
+DEFAULT_PATHS = 40
+SEED = 20261128
+
+
+# ---------------------------------------------------------------------------------- hashing
+def digest(value: Any) -> str:
+    """Hash of an array or number (dtype, shape and bytes), or of a string/None."""
+    if value is None or isinstance(value, str):
+        return hashlib.sha256(repr(value).encode()).hexdigest()[:32]
+    arr = np.ascontiguousarray(np.asarray(value))
+    h = hashlib.sha256(f"{arr.dtype.str}{arr.shape}".encode())
+    h.update(arr.tobytes())
+    return h.hexdigest()[:32]
+
+
+def _flatten(prefix: str, obj: Any, out: dict[str, str]) -> None:
+    if isinstance(obj, dict):
+        for k in sorted(obj, key=str):
+            _flatten(f"{prefix}.{k}", obj[k], out)
+    elif isinstance(obj, (list, tuple)) and not all(isinstance(v, (int, float, np.number))
+                                                      for v in obj):
+        out[prefix] = digest(repr(obj))
+    elif isinstance(obj, (np.ndarray, int, float, bool, np.number, np.bool_, list, tuple)):
+        out[prefix] = digest(obj)
+    elif obj is None or isinstance(obj, str):
+        out[prefix] = digest(obj)
+
+
+def result_hashes(res: Any) -> dict[str, str]:
+    """Hashes of a PathResult: series, snapshots, numeric meta (the foundation's repr and the
+    citations excluded: text, not results)."""
+    out: dict[str, str] = {}
+    for k, v in res.data.items():
+        out[f"series.{k}"] = digest(v)
+    for s, snap in res.snapshots.items():
+        _flatten(f"snapshot.{s}", snap, out)
+    for k, v in res.meta.items():
+        if k in ("foundation", "citations", "error"):
+            continue
+        _flatten(f"meta.{k}", v, out)
+    return out
+
+
+def _run(fn) -> dict[str, str]:
+    """Hashes of ``fn()``'s result, or of its error (type, partial result); warning kinds."""
+    from contactlab.errors import ContactlabError
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            out = result_hashes(fn())
+        except ContactlabError as err:
+            out = {"error": type(err).__name__}
+            part = getattr(err, "partial", None)
+            if hasattr(part, "data"):
+                out.update({f"partial.{k}": v for k, v in result_hashes(part).items()})
+    kinds = sorted({w.category.__name__ for w in caught})
+    if kinds:
+        out["warnings"] = ",".join(kinds)
+    return out
+
+
+def _backends() -> list[str]:
+    from contactlab.foundation import _compiled
+    return list(_compiled.available())
+
+
+def _simulate_all(case: str, contact: Any, path: Any, kw_mdr: dict, kw_exact: dict,
+                  out: dict[str, str]) -> None:
+    """``contact.simulate`` with method "mdr" per backend and "exact"; hashes into ``out``."""
+    from contactlab.foundation import _compiled
+    try:
+        for b in _backends():
+            _compiled.set_backend(b)
+            for k, v in _run(lambda: contact.simulate(path, method="mdr", **kw_mdr)).items():
+                out[f"{case}|{b}|mdr|{k}"] = v
+    finally:
+        _compiled.set_backend(None)
+    for k, v in _run(lambda: contact.simulate(path, method="exact", **kw_exact)).items():
+        out[f"{case}|any|exact|{k}"] = v
+
+
+# ---------------------------------------------------------------------------------- scenes
+def example_scenes() -> list[Path]:
+    return sorted(Path(p) for p in glob.glob(str(ROOT / "examples" / "**" / "*.toml"),
+                                             recursive=True))
+
+
+def scene_case(f: Path) -> dict[str, str]:
+    """Hashes of the example scene ``f``."""
+    from contactlab.scene import Scene
+    out: dict[str, str] = {}
+    case = scene_name(f)
+    sc = Scene.from_toml(f)
+    for k, v in _run(lambda: _SceneAsResult(sc.run())).items():
+        out[f"{case}|any|run|{k}"] = v
+    if sc.plan().route == "foundation":
+        kw = ({"n_springs": sc.solver["n_springs"]} if "n_springs" in sc.solver else {})
+        _simulate_all(case, sc.contact(), sc.load_path, kw, {}, out)
+    return out
+
+
+def scene_name(f: Path) -> str:
+    return "scene:" + f.relative_to(ROOT / "examples").as_posix()
+
+
+class _SceneAsResult:
+    """A SceneResult seen as a PathResult for hashing (series, fields)."""
+
+    def __init__(self, r: Any) -> None:
+        self.data = dict(r.series)
+        self.snapshots = {"fields": dict(r.fields)} if r.fields else {}
+        self.meta = {}
+        if r.wear is not None:
+            self.meta["wear"] = {k: v for k, v in r.wear.to_dict().items()}
+        if r.fretting_map is not None:
+            self.meta["fretting_map"] = {k: v for k, v in r.fretting_map.to_dict().items()}
+
+
+# ---------------------------------------------------------------------------------- paths
+def _contacts() -> list[tuple[str, Any]]:
+    import contactlab as cl
+    from contactlab import profiles as P
+    steel = cl.Elastic(E=210e9, nu=0.3)
+    poly = cl.Elastic(E=1e9, nu=0.46)
+    r = np.linspace(0.0, 2e-3, 200)
+    return [
+        ("paraboloid", cl.Contact(P.Paraboloid(R=0.01), materials=(steel, steel), friction=0.3)),
+        ("paraboloid-nofriction", cl.Contact(P.Paraboloid(R=0.01), materials=(steel, steel))),
+        ("cone", cl.Contact(P.Cone(slope=0.02), materials=(steel, poly), friction=0.2)),
+        ("sphere", cl.Contact(P.Sphere(R=0.005), materials=(steel, steel), friction=0.1)),
+        ("table", cl.Contact(P.Tabulated(r=r, f=r**2 / 0.02 + 1e3 * r**3),
+                             materials=(steel, steel), friction=0.3)),
+        ("flat-punch", cl.Contact(P.FlatPunch(radius=2e-4), materials=(steel, steel),
+                                  friction=0.3)),
+        ("truncated-paraboloid", cl.Contact(P.TruncatedParaboloid(radius=1e-4, R=0.01),
+                                            materials=(steel, steel), friction=0.3)),
+    ]
+
+
+def _normal_scale(contact: Any, rng: np.random.Generator) -> tuple[float, float, float]:
+    """(force, depth, radius) of a moderate normal load of ``contact``."""
+    if contact.profile.wall_radius < np.inf:
+        d = float(rng.uniform(0.5e-6, 2e-6))
+        s = contact.normal(depth=d)
+        return float(s.force), d, float(s.radius)
+    F = float(rng.uniform(5.0, 60.0))
+    s = contact.normal(force=F)
+    return F, float(s.depth), float(s.radius)
+
+
+def make_path(i: int) -> tuple[str, Any, Any, dict, dict]:
+    """Generated path ``i``: (contact name, contact, LoadPath, mdr kwargs, exact kwargs)."""
+    import contactlab as cl
+    rng = np.random.default_rng([SEED, i])
+    contacts = _contacts()
+    name, contact = contacts[int(rng.integers(len(contacts)))]
+    F, d, a = _normal_scale(contact, rng)
+    mu = contact.friction if contact.friction is not None else 0.3
+    nctrl = "force" if rng.random() < 0.6 else "depth"
+    N = F if nctrl == "force" else d
+    kind = rng.choice(["twist", "torque", "displacement", "tangential_force", "both", "none"],
+                      p=[0.3, 0.2, 0.15, 0.15, 0.05, 0.15])
+    tw_scale = 1.5 * mu * d / a                    # about the sliding twist
+    sh_scale = 1.5 * mu * d                        # about the sliding shift
+    M_scale = 0.6 * mu * F * a                     # about the sliding torque
+    T_scale = mu * F                               # the sliding force
+    if kind == "twist":
+        axes = {"twist": tw_scale}
+    elif kind == "torque":
+        axes = {"torque": M_scale}
+    elif kind == "displacement":
+        axes = {"displacement": sh_scale}
+    elif kind == "tangential_force":
+        axes = {"tangential_force": T_scale}
+    elif kind == "both":
+        axes = {"twist": tw_scale, "displacement": sh_scale}
+    else:
+        axes = {}
+    force_ctrl = any(k in axes for k in ("torque", "tangential_force"))
+    path = cl.LoadPath().ramp(steps=int(rng.integers(3, 40)), **{nctrl: N})
+    level = {k: 0.0 for k in axes}
+    n_seg = int(rng.integers(1, 5))
+    for _ in range(n_seg):
+        seg = rng.choice(["ramp", "hold", "sinusoid", "table"], p=[0.35, 0.15, 0.3, 0.2])
+        vary = rng.random() < 0.6                 # the normal load changes in this segment
+        steps = int(rng.integers(5, 80))
+        if seg == "hold":
+            path = path.hold(steps=steps)
+        elif seg == "ramp":
+            tg = {k: float(s * rng.uniform(-1.1 if not force_ctrl else -0.95,
+                                           1.1 if not force_ctrl else 0.95))
+                  for k, s in axes.items()}
+            if vary:
+                tg[nctrl] = float(N * rng.uniform(0.4, 1.6))
+            if not tg:
+                tg[nctrl] = float(N * rng.uniform(0.4, 1.6))
+            level.update({k: v for k, v in tg.items() if k in level})
+            path = path.ramp(steps=steps, **tg)
+        elif seg == "sinusoid":
+            amp = {k: float(s * rng.uniform(0.1, 0.8)) for k, s in axes.items()}
+            if vary or not amp:
+                amp[nctrl] = float(N * rng.uniform(0.05, 0.5))
+            path = path.sinusoid(cycles=float(rng.choice([0.5, 1.0, 1.75, 3.0])),
+                                 steps_per_cycle=int(rng.integers(8, 60)), **amp)
+        else:
+            cols = {}
+            t = np.cumsum(rng.uniform(0.2, 1.0, steps))
+            for k, s in axes.items():
+                cols[k] = np.cumsum(rng.normal(0.0, 0.15 * s, steps)).clip(-0.95 * s, 0.95 * s)
+            if vary or not cols:
+                cols[nctrl] = N * (1.0 + np.cumsum(rng.normal(0.0, 0.05, steps))).clip(0.2, 1.8)
+            path = path + cl.LoadPath.from_arrays(time=t, **cols)
+    mdr: dict[str, Any] = {}
+    exact: dict[str, Any] = {}
+    u = rng.random(6)
+    mdr["n_springs"] = [None, 64, 301][int(rng.integers(3))]
+    exact["n_rings"] = [None, 24, 61][int(rng.integers(3))]
+    if u[0] < 0.2:
+        mdr["spacing"] = "uniform"
+    if u[1] < 0.2:
+        mdr["strategy"] = "steps"
+    if u[2] < 0.25:
+        n = path.n_steps
+        mdr["snapshots"] = exact["snapshots"] = [0, n // 2, -1]
+    if u[3] < 0.15:
+        mdr["error_estimate"] = exact["error_estimate"] = True
+    if u[4] < 0.15:
+        outs = ["force", "torque", "twist", "stick_radius"] if "twist" in axes or "torque" in axes \
+            else ["depth", "tangential_force", "dissipated_energy"]
+        mdr["outputs"] = exact["outputs"] = outs
+    if kind == "both":
+        mdr["approximate"] = True
+    return f"{name}:{kind}:{nctrl}", contact, path, mdr, exact
+
+
+def path_case(i: int) -> dict[str, str]:
+    """Hashes of generated path ``i``."""
+    out: dict[str, str] = {}
+    label, contact, path, kw_mdr, kw_exact = make_path(i)
+    _simulate_all(f"path{i:03d}:{label}", contact, path, kw_mdr, kw_exact, out)
+    return out
+
+
+def case_of(key: str) -> str:
+    return key.split("|", 1)[0]
+
+
+def path_index(key: str) -> int | None:
+    m = re.match(r"path(\d+):", key)
+    return int(m.group(1)) if m else None
+
+
+def compute(n_paths: int = N_PATHS) -> dict[str, str]:
+    """Every hash: the example scenes and the first ``n_paths`` generated paths."""
+    out: dict[str, str] = {}
+    for f in example_scenes():
+        out.update(scene_case(f))
+    for i in range(n_paths):
+        out.update(path_case(i))
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--overwrite", action="store_true",
+                    help=f"rewrite {STORE.name} (required when it exists)")
+    ap.add_argument("--match", default=None,
+                    help="rewrite only the stored keys this regular expression finds")
+    ap.add_argument("--paths", type=int, default=N_PATHS, help="generated paths (default all)")
+    args = ap.parse_args(argv)
+    if STORE.exists() and not args.overwrite:
+        print(f"{STORE} exists: pass --overwrite to rewrite it", file=sys.stderr)
+        return 2
+    new = compute(args.paths)
+    if args.match is not None and STORE.exists():
+        pat = re.compile(args.match)
+        stored = json.loads(STORE.read_text())["hashes"]
+        changed = 0
+        for k in stored:
+            if pat.search(k) and k in new and stored[k] != new[k]:
+                stored[k] = new[k]
+                changed += 1
+        new = stored
+        print(f"{changed} stored hashes rewritten")
+    doc = {"about": "sha256 (first 32 hex) of every output of the load-path routes; "
+                    "regenerate with: python tests/integration/path_hashes.py --overwrite",
+           "n_paths": args.paths, "seed": SEED, "hashes": dict(sorted(new.items()))}
+    STORE.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
+    print(f"{len(new)} hashes written to {STORE}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(ROOT))
+    sys.exit(main())
