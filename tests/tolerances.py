@@ -546,3 +546,8 @@ TABLE_BOUNDED_SLIP_HERTZ = 1e-6
 #: whole-number n exact rationals (times π for odd n), other n a math.gamma ratio (worst
 #: measured 22.5 ulp near n = 31) or, for n >= 300, an asymptotic series (< 1e-18 truncation)
 KAPPA_DOUBLE = 1e-14
+
+#: a path of the exact ring solver (no friction limit: rigid punches) opening with a step out of
+#: contact against the same path without it: the empty punch at radius 0 changes only the order of
+#: the sums of the twist and the released energy (measured 1.7e-16 and 5.9e-16 relative)
+ZERO_LOAD_START = 1e-14

@@ -44,7 +44,7 @@ _HOME = {
 
 #: the driver modules, attributes of the package once imported (``contactlab.effects.law``)
 _MODULES = ("adhesion", "fretting", "law", "law_source", "normal", "path", "tangential", "torsion",
-            "torsion_path", "viscoelastic", "wear")
+            "viscoelastic", "wear")
 
 
 def __getattr__(name: str) -> object:

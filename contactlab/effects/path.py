@@ -1,13 +1,12 @@
-"""Load paths through the MDR foundation: the driver behind :meth:`Contact.simulate` and its
-result :class:`PathResult`.
+"""Load paths through a discretised foundation: the driver behind :meth:`Contact.simulate` and
+its result :class:`PathResult`.
 
-The normal problem (non-adhesive) is path independent: it is solved first for every step,
-vectorised per segment, with the exact closed-form/bracketed normal solver of the contact. Then one
-loop over time steps advances the tangential and torsional Jenkins elements of the
-:class:`~contactlab.foundation.Winkler` foundation; every operation inside it is vectorised over
-the springs. Displacement/twist-controlled steps are explicit; force/torque-controlled steps are
-solved exactly (the element sum is piecewise linear and monotone in the increment); a target at or
-beyond full sliding gives gross sliding (flagged, not an error).
+The driver validates the call, picks the foundation of the method (:data:`METHODS`, resolved by
+:func:`resolve_path_method`, which the scene planner calls too), runs it
+(:func:`contactlab.foundation.base.run_path`: the normal problem of every step, then the
+foundation's own time loop) and wraps its arrays in a :class:`PathResult`. The time loops live
+with their foundations: the MDR springs in :mod:`contactlab.foundation.winkler_path`, the exact
+ring solver in :mod:`contactlab.foundation.rings`.
 """
 from __future__ import annotations
 
@@ -20,35 +19,38 @@ import numpy as np
 from ..citations import Cited, sources_for
 from ..errors import (ContactlabError, EffectNotPlannedError, NotSupportedError, ParameterError,
                       UnknownNameError, ValidityWarning, failed_part_way)
-from ..foundation import DEFAULT_N_SPRINGS, Winkler
-from ..foundation.base import (SPACINGS, families_needed, iter_path_normal_states,
-                               path_normal_states)
+from ..foundation.base import (SERIES, SPACINGS, PathArrays, path_normal_states, run_path)
+from ..foundation.rings import Rings
+from ..foundation.winkler import Winkler
+from ..foundation.winkler_path import memory as _spring_memory
 from ..loadpath import LoadPath
 from ..loadpath.base import UNITS
-from ..params import check_count, check_flag, check_memory, name_list, step_indices
+from ..params import check_flag, name_list, step_indices
 from ..physics import fretting as _fr
 from ..physics.torsion import MDR_VALID_STICK_RATIO
 from ..physics.torsion_validity import affordable_states
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
-           "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
+           "simulate_memory", "METHODS", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
            "partial_path_failure", "mdr_path_validity", "warn_mdr_path", "force_variation",
            "MDR_PATH_STICK_RATIOS", "MDR_PATH_HELD_FORCE"]
 
-#: float64 values held per step and per spring at the peak of a run (tracemalloc, rounded up:
-#: 42 per step for a sinusoid, 35 per spring, 8 per spring and stored snapshot)
-_PER_STEP, _PER_SPRING, _PER_SNAPSHOT_SPRING = 48, 48, 8
+#: the foundation of each method of :func:`simulate` (``method=``): a
+#: :class:`~contactlab.foundation.Foundation` subclass whose ``for_path`` and ``run`` take the load
+#: path (its options: the method's :data:`METHOD_ARGUMENTS`)
+METHODS = {"mdr": Winkler, "exact": Rings}
+#: torsion models of :func:`simulate` (``method=``)
+PATH_METHODS = tuple(sorted(METHODS))
+#: arguments of :func:`simulate` that only one method reads (its discretisation)
+METHOD_ARGUMENTS = {"mdr": ("n_springs", "spacing", "strategy"), "exact": ("n_rings",)}
 
 
 def simulate_memory(n_steps: int, n_springs: int, n_snapshots: int = 0) -> float:
-    """Estimated peak memory of :func:`simulate`, bytes (checked against the memory budget
-    before anything is allocated; see :func:`contactlab.set_memory_budget`)."""
-    return 8.0 * (_PER_STEP * float(n_steps) + _PER_SPRING * float(n_springs)
-                  + _PER_SNAPSHOT_SPRING * float(n_springs) * n_snapshots)
+    """Estimated peak memory of :func:`simulate` on the MDR springs, bytes (checked against the
+    memory budget before anything is allocated; see :func:`contactlab.set_memory_budget`)."""
+    return _spring_memory(n_steps, n_springs, n_snapshots)
 
-#: per-step series of a PathResult
-SERIES = ("time", "depth", "force", "radius", "displacement", "tangential_force", "twist",
-          "torque", "stick_radius", "dissipated_energy", "gross_sliding")
+
 _SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
                      gross_sliding="1")
 #: paths with at least this many steps show a progress bar when ``progress=True``
@@ -58,18 +60,6 @@ def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
     :func:`contactlab.foundation.base.path_normal_states`)."""
     return path_normal_states(contact.profile, contact.moduli.normal, path, contact.rtol)
 
-
-#: steps converted to plain floats at a time by the step-by-step loop (bounded temporaries)
-_CHUNK = 4096
-#: steps per window of the fused compiled runs (edge data a window at a time; larger than
-#: ``_CHUNK``: each window costs ~60 numpy calls, ~25 ns per step at 4096 steps)
-_FUSED_WINDOW = 1 << 15
-#: steps of a leaf's normal solve at a time (bounded solver temporaries on long paths)
-_SOLVE_CHUNK = 1 << 16
-#: steps per window of the direction-reversal search (bounded temporaries)
-_TURN_WINDOW = 1 << 16
-#: shortest run of steps advanced in closed form (shorter runs: step by step, which is cheaper)
-_MIN_BLOCK = 8
 
 
 @dataclass(frozen=True, eq=False)
@@ -172,39 +162,84 @@ def _progress(total: int, progress: bool):
     return tqdm(total=total, unit="step", desc="simulate")
 
 
-#: series whose discretisation error ``error_estimate=True`` reports (the normal ones are exact
-#: at any N, the cells integrating their springs exactly)
-_ESTIMATED = ("tangential_force", "torque", "stick_radius", "dissipated_energy")
-
-
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
              spacing: str | None = None, snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,
              error_estimate: bool = False, method: str | None = None,
              n_rings: int | None = None) -> PathResult:
-    """Run ``path`` through the MDR foundation; see :func:`_simulate` for the parameters.
+    """Run ``path`` through the foundation of ``method`` (:data:`METHODS`).
 
-    ``method`` picks the torsion model of a path with twist or torque (default
-    :data:`DEFAULT_TORSION_METHOD`): ``"exact"`` (exact normal solution per step, exact
-    half-space torsion on ``n_rings`` rings with Coulomb friction and memory,
-    :func:`contactlab.effects.torsion_path.simulate_exact`) or
-    ``"mdr"`` (the MDR spring foundation, exact only while the slip annulus is narrow). Paths
-    without twist always run through the MDR foundation (``"mdr"``). The discretisation
-    arguments belong to one method (:data:`METHOD_ARGUMENTS`): ``n_springs``, ``spacing`` and
-    ``strategy`` to ``"mdr"``, ``n_rings`` to ``"exact"``; given to the other method they raise
-    :class:`~contactlab.errors.ParameterError` instead of being ignored.
+    Parameters
+    ----------
+    contact : Contact
+        Non-adhesive; ``friction=None`` means no slip.
+    path : LoadPath
+    outputs : iterable of str, optional
+        Per-step series to keep (default all of :data:`SERIES`).
+    n_springs : int, optional
+        ``"mdr"``: cells over the path's largest contact radius (default
+        :data:`~contactlab.foundation.DEFAULT_N_SPRINGS`).
+    spacing : {"edge", "uniform"}
+        ``"mdr"``: cell spacing (edge-refined by default).
+    snapshots : iterable of int, optional
+        Steps (0-based; negative counts from the end) at which the states are stored.
+    progress : bool
+        Show a tqdm progress bar for paths of at least :data:`PROGRESS_THRESHOLD` steps
+        (library use is quiet by default).
+    approximate : bool
+        Allow combined shift and twist, run as independent spring families (warns).
+    strategy : {"segments", "steps"}, optional
+        ``"mdr"``: numerical route of the time loop, same results up to rounding.
+        ``"segments"`` (default) advances runs of steps with a held normal load and a monotone
+        control in closed form (sorted slip thresholds, ``O(log N)`` per step); ``"steps"``
+        updates every spring at every step.
+    error_estimate : bool
+        See below.
+    method : {"exact", "mdr"}, optional
+        The torsion model of a path with twist or torque (default
+        :data:`DEFAULT_TORSION_METHOD`; :func:`resolve_path_method`): ``"exact"`` (exact normal
+        solution per step, exact half-space torsion on ``n_rings`` rings with Coulomb friction
+        and memory, :class:`contactlab.foundation.rings.Rings`) or ``"mdr"`` (the MDR spring
+        foundation :class:`contactlab.foundation.Winkler`, exact only while the slip annulus is
+        narrow). Paths without twist always run through the MDR foundation (``"mdr"``).
+    n_rings : int, optional
+        ``"exact"``: rings over the path's largest contact radius (default
+        :data:`contactlab.foundation.rings.DEFAULT_N_RINGS`).
 
-    ``error_estimate=True`` runs the path a second time with half the springs and stores, in
-    ``result.meta["error_estimates"]``, ``max|s_N - s_{N/2}| / max|s_N|`` for each estimated series
-    (tangential force, torque, stick radius, dissipated energy). The spring error falls as 1/N²,
-    so this difference is about three times the error of the N-spring run: a conservative
-    estimate that costs about half a run more (issue 7; honesty tested in
-    tests/unit/effects/test_path_error_estimate.py).
+    Returns
+    -------
+    PathResult
+
+    Notes
+    -----
+    The discretisation arguments belong to one method (:data:`METHOD_ARGUMENTS`): ``n_springs``,
+    ``spacing`` and ``strategy`` to ``"mdr"``, ``n_rings`` to ``"exact"``; given to the other
+    method they raise :class:`~contactlab.errors.ParameterError` instead of being ignored.
+
+    ``error_estimate=True`` runs the path a second time with half the springs (rings) and
+    stores, in ``result.meta["error_estimates"]``, ``max|s_N - s_{N/2}| / max|s_N|`` for each
+    series the foundation estimates (its ``ESTIMATED``: springs: tangential force, torque,
+    stick radius, dissipated energy; rings: torque, twist, stick radius, dissipated energy).
+    The spring error falls as 1/N², so this difference is about three times the error of the
+    N-spring run; the ring error at least as ``N^-1``: a conservative estimate that costs about
+    half a run more (issue 7; honesty tested in tests/unit/effects/test_path_error_estimate.py).
 
     A step that fails (a normal solve, a spring or ring step) raises its error with its type,
     the message naming the step (index, time, path segment); ``err.partial`` is the
     :class:`PathResult` of the steps before it (``meta["status"] == "partial"``; only the normal
     series when the normal solve failed, before the time loop) and ``err.failed_at`` the place.
+
+    Raises
+    ------
+    OutsideTheoryError
+        Combined shift and twist without ``approximate=True``.
+    NotSupportedError
+        Adhesive contacts; ``method="exact"`` on a path with a shift.
+
+    Warns
+    -----
+    ValidityWarning
+        A twisted path beyond the validity of the MDR torsion springs (:func:`warn_mdr_path`).
     """
     approximate = check_flag("approximate", approximate)
     error_estimate = check_flag("error_estimate", error_estimate)
@@ -214,35 +249,92 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     if outputs is not None:
         outputs = name_list("outputs", outputs, SERIES)
     method = resolve_path_method(path, method, approximate)
-    _check_method_arguments(method, n_springs=n_springs, spacing=spacing, strategy=strategy,
-                            n_rings=n_rings)
-    spacing = "edge" if spacing is None else spacing
-    if method == "exact":
-        from .torsion_path import simulate_exact
-        return simulate_exact(contact, path, outputs=outputs, n_rings=n_rings,
-                              snapshots=snapshots, error_estimate=error_estimate,
-                              progress=progress)
-    res = _simulate(contact, path, outputs=outputs, n_springs=n_springs, spacing=spacing,
-                    snapshots=snapshots, progress=progress, approximate=approximate,
-                    strategy=strategy)
-    if error_estimate and res.meta.get("n_springs"):
-        half = _simulate(contact, path, outputs=outputs, n_springs=max(2, res.meta["n_springs"] // 2),
-                         spacing=spacing, progress=False, approximate=approximate,
-                         strategy=strategy, warn=False)
-        est = {}
-        for name in _ESTIMATED:
-            if name in res.data:
-                full, coarse = np.asarray(res.data[name]), np.asarray(half.data[name])
-                scale = float(np.max(np.abs(full), initial=0.0))
-                est[name] = float(np.max(np.abs(full - coarse), initial=0.0)) / scale if scale else 0.0
-        res.meta["error_estimates"] = est
+    given = {"n_springs": n_springs, "spacing": spacing, "strategy": strategy,
+             "n_rings": n_rings}
+    _check_method_arguments(method, **given)
+    options = {name: given[name] for name in METHOD_ARGUMENTS[method]}
+    options["approximate"] = approximate
+    fnd = METHODS[method]
+    res, options = _run(fnd, method, contact, path, outputs, snapshots, progress, options)
+    if error_estimate:
+        coarse_options = fnd.coarser(options, res.meta)
+        if coarse_options is not None:
+            half, _ = _run(fnd, method, contact, path, outputs, None, False, coarse_options,
+                           warn=False)
+            est = {}
+            for name in fnd.ESTIMATED:
+                if name in res.data:
+                    full, coarse = np.asarray(res.data[name]), np.asarray(half.data[name])
+                    scale = float(np.max(np.abs(full), initial=0.0))
+                    est[name] = (float(np.max(np.abs(full - coarse), initial=0.0)) / scale
+                                 if scale else 0.0)
+            res.meta["error_estimates"] = est
     return res
 
 
-#: torsion models of :func:`simulate` (``method=``)
-PATH_METHODS = ("exact", "mdr")
-#: arguments of :func:`simulate` that only one method reads (its discretisation)
-METHOD_ARGUMENTS = {"mdr": ("n_springs", "spacing", "strategy"), "exact": ("n_rings",)}
+#: how an error message names the call of each method
+_CALL = {"mdr": "simulate()", "exact": "simulate(method='exact')"}
+
+
+def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots: Any,
+         progress: bool, options: dict, warn: bool = True) -> tuple[PathResult, dict]:
+    """One run of ``path`` on the foundation class ``fnd``
+    (:func:`contactlab.foundation.base.run_path`) as a :class:`PathResult`; ``warn``: emit the
+    :class:`ValidityWarning` of :func:`warn_mdr_path` (off for the coarser run of an error
+    estimate). Returns the result and the run's options, completed with their defaults."""
+    if not isinstance(path, LoadPath):
+        raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
+    if contact.is_adhesive:
+        raise NotSupportedError(f"{_CALL[method]} supports non-adhesive contacts only "
+                                "(work_of_adhesion=None).")
+    outputs = SERIES if outputs is None else tuple(outputs)
+    n_total = path.n_steps
+    if n_total == 0:
+        raise ParameterError("path has no steps: add a segment, e.g. "
+                             "LoadPath().ramp(force=1.0, steps=10).")
+    snaps = step_indices("snapshots", snapshots, n_total)
+    options = fnd.check_path(path, snaps, **options)
+    from .normal import warn_outside_validity
+
+    def on_normal(a_max: float) -> None:
+        warn_outside_validity(contact.profile, a_max, stacklevel=6)
+
+    bar = _progress(n_total, progress)
+    try:
+        out = run_path(fnd, contact.profile, contact.moduli, contact.friction, path,
+                       contact.rtol, outputs=outputs, snapshots=snaps,
+                       progress=None if bar is None else bar.update, on_normal=on_normal,
+                       **options)
+    except ContactlabError as err:
+        part = err.partial
+        if not isinstance(part, PathArrays):
+            raise
+        outs = [o for o in outputs if o in part.series]
+        raise partial_path_failure(err, path, part.series, outs, part.done,
+                                   part.meta or {"method": method},
+                                   _with_pressure(contact, part.snapshots), time=part.time
+                                   ) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    res = out.series
+    if (warn and method == "mdr" and "torsion" in out.meta["built"]
+            and contact.friction is not None):
+        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], res["force"],
+                      energy="dissipated_energy" in outputs, stacklevel=4)
+    return PathResult({k: res[k] for k in outputs}, _with_pressure(contact, out.snapshots),
+                      out.meta), options
+
+
+def _with_pressure(contact, snapshots: dict) -> dict:
+    """The snapshots, each at cell midpoints ``x`` without a pressure given the exact 3D
+    pressure of the step's normal state there (0 out of contact), Pa."""
+    for snap in snapshots.values():
+        if "x" in snap and "pressure" not in snap:
+            x, d, a = snap["x"], snap["depth"], snap["radius"]
+            snap["pressure"] = (np.asarray(contact.normal(depth=d).pressure(x), float) if a > 0
+                                else np.zeros(x.size))
+    return snapshots
 
 
 def _check_method_arguments(method: str, **given: Any) -> None:
@@ -280,196 +372,6 @@ def resolve_path_method(path: LoadPath, method: str | None, approximate: bool = 
                                 "this path has " + (" and ".join(sorted(groups)) or "no twist")
                                 + ": use method='mdr'.")
     return method
-
-
-def _simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
-              spacing: str = "edge", snapshots: Any = None, progress: bool = False,
-              approximate: bool = False, strategy: str | None = None,
-              warn: bool = True) -> PathResult:
-    """Run ``path`` through the MDR foundation of ``contact``.
-
-    Parameters
-    ----------
-    contact : Contact
-        Non-adhesive; ``friction=None`` means no slip.
-    path : LoadPath
-    outputs : iterable of str, optional
-        Per-step series to keep (default all of :data:`SERIES`).
-    n_springs : int, optional
-        Cells over the path's largest contact radius (default
-        :data:`~contactlab.foundation.DEFAULT_N_SPRINGS`).
-    spacing : {"edge", "uniform"}
-        Cell spacing (edge-refined by default).
-    snapshots : iterable of int, optional
-        Steps (0-based; negative counts from the end) at which spring states are stored.
-    progress : bool
-        Show a tqdm progress bar for paths of at least :data:`PROGRESS_THRESHOLD` steps
-        (library use is quiet by default).
-    approximate : bool
-        Allow combined shift and twist, run as independent spring families (warns).
-    strategy : {"segments", "steps"}, optional
-        Numerical route of the time loop, same results up to rounding. ``"segments"`` (default)
-        advances runs of steps with a held normal load and a monotone control in closed form
-        (sorted slip thresholds, ``O(log N)`` per step); ``"steps"`` updates every spring at
-        every step.
-    warn : bool
-        Emit the :class:`ValidityWarning` of :func:`warn_mdr_path` (off for the half-spring run
-        of the error estimate).
-
-    Returns
-    -------
-    PathResult
-
-    Raises
-    ------
-    OutsideTheoryError
-        Combined shift and twist without ``approximate=True``.
-    NotSupportedError
-        Adhesive contacts.
-
-    Warns
-    -----
-    ValidityWarning
-        A twisted path beyond the validity of the MDR torsion springs (:func:`warn_mdr_path`).
-    """
-    if not isinstance(path, LoadPath):
-        raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
-    if contact.is_adhesive:
-        raise NotSupportedError("simulate() supports non-adhesive contacts only "
-                                "(work_of_adhesion=None).")
-    strategy = "segments" if strategy is None else strategy
-    if strategy not in ("segments", "steps"):
-        raise UnknownNameError(f"strategy={strategy!r} is invalid: allowed are "
-                               "('segments', 'steps').")
-    needs = families_needed(path, approximate=approximate)
-    if len(needs) == 2:
-        warnings.warn("combined shift and twist is run as two independent spring families "
-                      "(approximate=True): outside the MDR theory, the slip limits do not "
-                      "interact.", ValidityWarning, stacklevel=3)
-    if outputs is None:
-        outputs = SERIES
-    outputs = tuple(outputs)
-    for o in outputs:
-        if o not in SERIES:
-            raise UnknownNameError(f"outputs contains {o!r}: allowed are {SERIES}.")
-    n_total = path.n_steps
-    if n_total == 0:
-        raise ParameterError("path has no steps: add a segment, e.g. "
-                             "LoadPath().ramp(force=1.0, steps=10).")
-    n_springs = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs)
-    step_indices("snapshots", snapshots, n_total)             # a list of valid step indices
-    snapshots = [] if snapshots is None else list(snapshots)
-    check_memory("simulate()", simulate_memory(n_total, n_springs, len(snapshots)),
-                 f"{n_total} steps, {n_springs} springs, {len(snapshots)} snapshots")
-    snaps = step_indices("snapshots", snapshots, n_total)
-    # the normal series are written at every step (or the call raises before reading them):
-    # no zero fill (a 10^6-step series re-used from the heap is memset by np.zeros, ~2 ms each)
-    res = _series_block(n_total, [k for k in SERIES if k in outputs and (
-        k in _NORMAL or (needs and k in _run_writes(needs, outputs)))])
-    for k in _NORMAL:
-        if k not in res:        # read by the time loop, not returned: its own array
-            res[k] = np.empty(n_total)
-    # the normal states go straight into the series, one leaf at a time; the time loop reads
-    # them back as views (no second copy of the path's normal arrays)
-    t0 = 0.0
-    i0 = 0
-    normal = []
-    try:
-        for seg in iter_path_normal_states(contact.profile, contact.moduli.normal, path,
-                                           contact.rtol, chunk=_SOLVE_CHUNK, out=res):
-            n = seg["depth"].size      # depth, force, radius: written into res by the solve
-            res["time"][i0:i0 + n] = t0 + seg["dt"]
-            del seg
-            normal.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
-            t0 = float(res["time"][i0 + n - 1]) if n else t0
-            i0 += n
-    except ContactlabError as err:
-        pre = err.partial if isinstance(err.partial, dict) else None
-        k = i0 + (pre["depth"].size if pre is not None else 0)
-        if pre is not None:
-            res["time"][i0:k] = t0 + pre["dt"]
-            for name in ("depth", "force", "radius"):
-                res[name][i0:k] = pre[name]
-        # the time loop had not started: the partial result holds the normal series only
-        raise partial_path_failure(err, path, res, [o for o in outputs if o in _NORMAL], k,
-                                   {"method": "mdr"},
-                                   time=t0 + (err.failed_at or {}).get("dt", 0.0)) from None
-    a_max = float(np.max(res["radius"], initial=0.0))
-    from .normal import warn_outside_validity
-    warn_outside_validity(contact.profile, a_max, stacklevel=4)
-    meta = {"built": ["normal", *needs], "n_springs": None, "spacing": spacing,
-            "approximate": bool(approximate), "foundation": None,
-            "citations": sources_for("normal", "foundation",
-                                     *(("tangential",) if "tangential" in needs else ()),
-                                     *(("foundation:torsion",) if "torsion" in needs else ()))}
-    snapshot_data: dict[int, dict] = {}
-    runs = a_max > 0 and bool(needs)
-    for k in SERIES:
-        if k not in res:
-            res[k] = (np.empty(n_total) if runs and k in _run_writes(needs, outputs) else
-                      np.zeros(n_total, bool if k == "gross_sliding" else float))
-    if not runs:
-        # nothing but the (exact) normal problem: no tangential/torsional springs are built
-        res["stick_radius"][:] = res["radius"]
-        if needs:
-            _no_contact_controls(path, needs)
-        fnd = None
-        if snaps and a_max > 0:
-            fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max,
-                          n_springs=n_springs, spacing=spacing, needs=(), rtol=contact.rtol)
-            meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
-        for s in sorted(snaps):
-            snapshot_data[s] = _snapshot(contact, fnd, None, res, s)
-        return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
-    track: dict[str, Any] = {"done": 0}
-    try:
-        fnd = Winkler(contact.profile, contact.moduli, contact.friction, a_max,
-                      n_springs=n_springs, spacing=spacing, needs=needs, rtol=contact.rtol)
-        meta.update(n_springs=fnd.n_springs, foundation=repr(fnd))
-        _run(contact, fnd, path, normal, res, snaps, snapshot_data, "stick_radius" in outputs,
-             progress, strategy, track)
-    except ContactlabError as err:
-        snaps_done = {s: v for s, v in snapshot_data.items() if s < track["done"]}
-        raise partial_path_failure(err, path, res, outputs, track["done"], meta,
-                                   snaps_done) from None
-    if warn and "torsion" in needs and contact.friction is not None:
-        warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], res["force"],
-                      energy="dissipated_energy" in outputs, stacklevel=4)
-    return PathResult({k: res[k] for k in outputs}, snapshot_data, meta)
-
-
-_NORMAL = ("time", "depth", "force", "radius")
-#: the series of each spring family, written at every step by the time loop (:func:`_run`)
-_FAMILY_SERIES = {"tangential": ("displacement", "tangential_force"),
-                  "torsion": ("twist", "torque")}
-
-
-def _series_block(n: int, keys: list) -> dict[str, np.ndarray]:
-    """Float series of ``n`` steps for ``keys``, the rows of one ``(len(keys), n)`` block.
-
-    Each row is written at every step before it is read (the normal series by the solve, the
-    spring families' by the time loop, which runs whenever a family is loaded or the call
-    raises). One allocation instead of one per series: the operating system backs a long block
-    by whole huge pages (a 10^6-step gait run: ~3 300 page faults instead of ~7 200, ~9 ns per
-    step less of system time on a 2-core VM), and the rows are the returned series only, so
-    that a series computed but not asked for is freed on return as before.
-    """
-    if not keys:
-        return {}
-    block = np.empty((len(keys), n))
-    return dict(zip(keys, block))
-
-
-def _run_writes(needs: tuple, outputs: tuple) -> tuple:
-    """The series :func:`_run` writes at every step (each step's fused, closed-form or
-    step-by-step route): those need no zero fill. The others (a family the path does not
-    load, ``gross_sliding`` which steps OR into) start from zeros."""
-    out = ["dissipated_energy"]
-    if "stick_radius" in outputs:      # the loop skips the stick search otherwise
-        out.append("stick_radius")
-    for fam in needs:
-        out += _FAMILY_SERIES[fam]
-    return tuple(out)
 
 
 def partial_path_failure(err: ContactlabError, path: LoadPath, res: dict, outputs: Any, k: int,
@@ -717,374 +619,3 @@ def warn_mdr_path(contact, twist: np.ndarray, radius: np.ndarray, depth: np.ndar
         warnings.warn("MDR torsion springs outside their validity on this path. "
                       + "; ".join(parts) + ". Use method='exact'.",
                       ValidityWarning, stacklevel=stacklevel)
-
-
-def _no_contact_controls(path, needs):
-    """A shift/twist on a contact that never touches: only zero targets are meaningful."""
-    raise ParameterError("the path prescribes " + " and ".join(needs) + " but the normal load "
-                         "never brings the bodies into contact (contact radius 0 at every step).")
-
-
-def _snapshot(contact, fnd, st, res, i) -> dict:
-    d, a = float(res["depth"][i]), float(res["radius"][i])
-    snap = {"depth": d, "radius": a}
-    if fnd is not None:
-        x = fnd.positions
-        snap["x"] = x.copy()
-        S = np.maximum(d * fnd.w - fnd.dG, 0.0)
-        S[fnd.bl >= a] = 0.0
-        if st is not None:
-            from ..foundation.winkler import snapshot_shear
-            S = st.S.copy()
-            snap["tangential"] = None if st.tangential is None else st.tangential.copy()
-            snap["torsion"] = None if st.torsion is None else st.torsion.copy()
-            snap.update(snapshot_shear(fnd, st, x))
-        snap["normal"] = 2.0 * contact.moduli.normal * S
-        snap["pressure"] = (np.asarray(contact.normal(depth=d).pressure(x), float) if a > 0
-                            else np.zeros(x.size))
-    return snap
-
-
-def _turns(v0: float, v: np.ndarray) -> np.ndarray:
-    """Indices j where the increment v[j] - v[j-1] reverses the direction of the last non-zero
-    increment (v[-1] := v0): the starts of new monotone runs (a window of steps at a time:
-    bounded temporaries)."""
-    out = [np.zeros(0, np.int64)]
-    last, prev = 0.0, v0
-    for c0 in range(0, v.size, _TURN_WINDOW):
-        w = v[c0:c0 + _TURN_WINDOW]
-        sg = np.sign(np.diff(w, prepend=prev))
-        prev = w[-1]
-        nnz = np.count_nonzero(sg)
-        if nnz == 0:
-            continue
-        if nnz == sg.size:  # every step moves (a gait): no index gather
-            s = sg
-            flips = np.flatnonzero(s[1:] != s[:-1]) + 1
-            first = 0
-        else:
-            nz = np.flatnonzero(sg)
-            s = sg[nz]
-            flips = nz[1:][s[1:] != s[:-1]]
-            first = int(nz[0])
-        if last != 0.0 and s[0] != last:
-            flips = np.concatenate(([first], flips))
-        out.append(flips + c0)
-        last = s[-1]
-    return np.concatenate(out)
-
-
-def _run_edges(flags: np.ndarray) -> np.ndarray:
-    """Starts and ends (one past) of the runs of True in ``flags``."""
-    f = flags.view(np.int8)
-    return np.flatnonzero(np.diff(f, prepend=np.int8(0), append=np.int8(0)))
-
-
-def _next(sorted_idx: np.ndarray, j: int, default: int) -> int:
-    k = int(np.searchsorted(sorted_idx, j, side="right"))
-    return int(sorted_idx[k]) if k < sorted_idx.size else default
-
-
-def _set_keff(ch: dict, weight: np.ndarray) -> None:
-    """Stiffness of the elements for this step: full stiffness times the contact weight."""
-    np.multiply(ch["K"], weight, out=ch["Keff"])
-    # 1/K_eff where in contact; elsewhere the slip is 0 and any finite value will do
-    np.divide(ch["invK"], weight, out=ch["iKeff"], where=weight > 0)
-
-
-def _fused_step(fnd: Winkler, chans: list) -> Any:
-    """The compiled fused step (numba backend) for one spring family with friction, else None;
-    its arguments per family: the limit's cell integrals and friction factor."""
-    from ..foundation._compiled import fused_step
-    if len(chans) != 1 or fnd.friction is None:
-        return None
-    kernel = fused_step()
-    if kernel is None:
-        return None
-    tor = chans[0]["L"] == "L_tor"
-    chans[0]["fused"] = ((fnd.X1, fnd.dH, fnd._c_tor) if tor else (fnd.w, fnd.dG, fnd._c_tan))
-    return kernel
-
-
-def _fused_run(kernel, fnd, st, ch, i0, d, a, k, S_edge, T_edge, target, state, out_W,
-               out_stick):
-    """Steps ``i0 ...`` (each with a new depth, a prescribed displacement/twist) in one compiled
-    call (the same element arithmetic as ``set_normal`` + stiffness weighting + ``jenkins`` + sum
-    + stick radius per step), then the normal state and slip limits of the last step."""
-    from ..foundation import _compiled
-    X1, dH, c = ch["fused"]
-    n = d.size
-    sl = slice(i0, i0 + n)
-    stick = out_stick[sl] if out_stick is not None else np.empty(n)
-    W = out_W[sl]
-    sgn, lo = kernel(d, a, k, S_edge, T_edge, target, st.depth, st.k, ch["x"], ch["release"], c,
-                     fnd.w, fnd.dG, X1, dH, ch["K"], ch["invK"], ch["iKeff"], st.S, ch["m"],
-                     fnd.bl, state["W"], ch["out_frc"][sl], W, stick, out_stick is not None,
-                     _compiled.FUSED_BLOCK, _compiled.FUSED_BLOCK_FROM)
-    ch["iKeff"][:lo] = ch["invK"][:lo]   # the bulk of the last step (weight 1)
-    # the normal state and slip limits of the last step (what set_normal computes), written
-    # into the run's arrays: no full-length temporaries (10^6 springs: 4 fresh 8 MB arrays)
-    dl, kl = float(d[-1]), int(k[-1])
-    S = st.S   # read by the kernel at the first step only
-    np.multiply(fnd.w, dl, out=S)
-    S -= fnd.dG
-    S[kl + 1:] = 0.0
-    S[kl] = S_edge[-1]
-    name = ch["L"]
-    L, nL = getattr(st, name), getattr(st, "n" + name)
-    if name == "L_tor":
-        np.multiply(X1, dl, out=L)
-        L -= dH
-        L[kl + 1:] = 0.0
-        L[kl] = T_edge[-1]
-        L *= c
-    else:
-        np.multiply(S, c, out=L)
-    np.negative(L, out=nL)
-    st.depth, st.radius, st.k = dl, float(a[-1]), kl
-    state.update(first=False, keff_is_frac=False, W=float(W[-1]))
-    if sgn != 0.0:
-        ch["dir"] = sgn
-    ch["release"] = False
-    ch["x"] = float(target[-1])
-    dst = ch["out_pos"][sl]
-    if dst.ctypes.data != target.ctypes.data or dst.strides != target.strides:
-        dst[...] = target      # (the time loop passes the series' own view: nothing to copy)
-
-
-def _run(contact, fnd: Winkler, path, normal, res, snaps, snapshot_data, want_stick, progress,
-         strategy="segments", track=None):
-    """Time loop. ``strategy="segments"``: runs of steps with a held normal load and a monotone
-    control are advanced in closed form (:func:`~contactlab.foundation.winkler.monotone_block`),
-    other steps one by one; ``"steps"``: every step one by one (same results up to rounding)."""
-    from ..foundation.winkler import monotone_block
-    st = fnd.new_state()
-    n = fnd.n_springs
-    chans = []
-    if st.tangential is not None:
-        chans.append({"m": st.tangential, "K": fnd.K_tan, "invK": fnd.invK_tan, "L": "L_tan",
-                      "pos": "displacement", "frc": "tangential_force"})
-    if st.torsion is not None:
-        chans.append({"m": st.torsion, "K": fnd.K_tor, "invK": fnd.invK_tor, "L": "L_tor",
-                      "pos": "twist", "frc": "torque"})
-    for ch in chans:
-        ch.update(Keff=np.zeros(n), iKeff=np.zeros(n), ctrl=ch["pos"], x=0.0, dir=1.0,
-                  release=False)
-        ch["out_pos"], ch["out_frc"] = res[ch["pos"]], res[ch["frc"]]
-    stick_ch = chans[0] if chans else None
-    loop_controls = tuple(q for ch in chans for q in (ch["pos"], ch["frc"]))
-    tmp = np.empty(n)
-    cur = dict.fromkeys(("depth", "force", "displacement", "tangential_force", "twist",
-                         "torque"), 0.0)
-    out_W, out_stick, out_gross = res["dissipated_energy"], res["stick_radius"], res["gross_sliding"]
-    bar = _progress(res["time"].size, progress)
-    snap_idx = np.array(sorted(snaps), int)
-    state = track if track is not None else {}      # "done": steps complete (partial results)
-    state.update(W=0.0, first=True, keff_is_frac=False, done=0)
-    fused = _fused_step(fnd, chans)
-
-    def step(i, d, a, k_edge, S_edge, T_edge, targets):
-        W = state["W"]
-        if state["first"] or d != st.depth or a != st.radius:
-            state["first"] = False
-            release = d < st.depth  # slip limits only shrink when the depth decreases
-            weight = fnd.set_normal(st, d, a, k_edge, S_edge, T_edge)
-            state["keff_is_frac"] = weight is None
-            if weight is None:
-                weight = fnd.fraction(a)
-            for ch in chans:
-                _set_keff(ch, weight)
-                # springs beyond their new limit slide back to it (a prescribed displacement
-                # step does this in the same clip as its increment)
-                if release and ch["ctrl"] != ch["pos"]:
-                    W += fnd.jenkins(ch["m"], ch["Keff"], ch["iKeff"], getattr(st, ch["L"]),
-                                     getattr(st, "n" + ch["L"]), 0.0, tmp)
-                elif release:
-                    ch["release"] = True
-        elif not state["keff_is_frac"]:
-            frac = fnd.fraction(a)
-            for ch in chans:
-                _set_keff(ch, frac)
-            state["keff_is_frac"] = True
-        for ch, target in zip(chans, targets):
-            m = ch["m"]
-            L = getattr(st, ch["L"])
-            if ch["ctrl"] == ch["pos"]:
-                inc = target - ch["x"]
-            else:
-                inc, gross = fnd.solve(m, ch["Keff"], L, target)
-                out_gross[i] |= gross
-            if inc != 0.0 or ch["release"]:
-                if inc != 0.0:
-                    ch["dir"] = 1.0 if inc > 0 else -1.0
-                W += fnd.jenkins(m, ch["Keff"], ch["iKeff"], L, getattr(st, "n" + ch["L"]), inc,
-                                 tmp)
-                ch["x"] += inc
-                ch["release"] = False
-            if ch["ctrl"] == ch["pos"]:
-                ch["x"] = float(target)  # no round-off drift of a prescribed position
-            ch["out_pos"][i] = ch["x"]
-            ch["out_frc"][i] = m.sum()
-        out_W[i] = W
-        state["W"] = W
-        if want_stick:
-            out_stick[i] = (fnd.stick_radius(stick_ch["m"], getattr(st, stick_ch["L"]), fnd.bl, a)
-                            if stick_ch is not None else a)
-        state["done"] = i + 1
-
-    def block(i0, i1, values):
-        if not state["keff_is_frac"]:
-            frac = fnd.fraction(st.radius)
-            for ch in chans:
-                _set_keff(ch, frac)
-            state["keff_is_frac"] = True
-        sl = slice(i0, i1)
-        Wblock = np.zeros(i1 - i0)
-        for ch, v in zip(chans, values):
-            m = ch["m"]
-            L = getattr(st, ch["L"])
-            ref = ch["x"] if ch["ctrl"] == ch["pos"] else float(m.sum())
-            nzv = v[v != ref]
-            sgn = ch["dir"] if nzv.size == 0 else (1.0 if nzv[0] > ref else -1.0)
-            ch["dir"] = sgn
-            want = want_stick and ch is stick_ch
-            if ch["ctrl"] == ch["pos"]:
-                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, du=sgn * (v - ref),
-                                     want_stick=want)
-                ch["out_pos"][sl] = v
-                ch["x"] = float(v[-1])
-            else:
-                out = monotone_block(m, ch["Keff"], L, fnd.bl, st.radius, sgn, target=v,
-                                     want_stick=want)
-                ch["out_pos"][sl] = ch["x"] + sgn * out["x"]
-                ch["x"] = float(ch["out_pos"][i1 - 1])
-                out_gross[sl] |= out["gross"]
-            ch["out_frc"][sl] = out["force"]
-            Wblock += out["dissipation"]
-            if want:
-                out_stick[sl] = out["stick"]
-        out_W[sl] = state["W"] + Wblock
-        state["W"] += float(Wblock[-1])
-        if want_stick and stick_ch is None:
-            out_stick[sl] = st.radius
-        state["done"] = i1
-
-    base = 0
-    for leaf, nrm in zip(path.leaves(), normal):
-        if base:
-            cur["depth"], cur["force"] = float(res["depth"][base - 1]), float(res["force"][base - 1])
-        # the spring families' controls only (the normal solve read the others)
-        _, vals = leaf.values_of(cur, loop_controls, time=False)
-        nsteps = leaf.n_steps
-        d_arr, a_arr = nrm["depth"], nrm["radius"]
-        d0, a0 = st.depth, st.radius
-        changed = np.empty(nsteps, bool)
-        changed[0] = d_arr[0] != d0 or a_arr[0] != a0 or state["first"]
-        np.not_equal(d_arr[1:], d_arr[:-1], out=changed[1:])
-        changed[1:] |= a_arr[1:] != a_arr[:-1]
-        breaks = [np.array([0, nsteps])]
-        vs = []
-        for ch in chans:
-            pos, frc = ch["pos"], ch["frc"]
-            if pos in vals or frc in vals:
-                ch["ctrl"] = pos if pos in vals else frc
-                v = vals[ch["ctrl"]]
-                if ch["ctrl"] == pos:   # a prescribed position is its own series: the loop
-                    # reads the targets from it (writeable, unlike a table's own columns,
-                    # which the compiled run would take as another argument type)
-                    out = ch["out_pos"][base:base + nsteps]
-                    out[:] = v
-                    v = out
-            else:
-                v = np.full(nsteps, cur[ch["ctrl"]])
-            vs.append(v)
-            breaks.append(_turns(cur[ch["ctrl"]], v))
-        del vals
-        # runs of steps whose normal state changes are run step by step: their ends are breaks
-        all_changed = bool(changed.all())   # e.g. a gait: no run edges, no gather
-        breaks += [np.array([0, nsteps]) if all_changed else _run_edges(changed),
-                   snap_idx - base + 1]
-        brk = np.unique(np.concatenate(breaks))
-        del breaks
-        brk = brk[(brk >= 0) & (brk <= nsteps)].tolist()
-        fusing = fused is not None and chans[0]["ctrl"] == chans[0]["pos"]
-        tor_edge = bool(chans) and chans[0]["L"] == "L_tor"
-
-        def edges(c0, c1):
-            """Edge cell data of steps c0..c1-1, computed where the normal state changes
-            (zeros elsewhere: step() does not read them there)."""
-            if all_changed or changed[c0:c1].all():    # no gather and scatter
-                edc = fnd.edge_data(d_arr[c0:c1], a_arr[c0:c1])
-                return edc["k"], edc["S"], edc.get("T")
-            ci = np.flatnonzero(changed[c0:c1])
-            ek, eS = np.zeros(c1 - c0, np.int64), np.zeros(c1 - c0)
-            eT = np.zeros(c1 - c0) if "torsion" in fnd.needs else None
-            if ci.size:
-                edc = fnd.edge_data(d_arr[c0:c1][ci], a_arr[c0:c1][ci])
-                ek[ci], eS[ci] = edc["k"], edc["S"]
-                if eT is not None:
-                    eT[ci] = edc["T"]
-            return ek, eS, eT
-
-        def one_by_one(j0, j1):
-            for c0 in range(j0, j1, _CHUNK):   # plain floats, converted a chunk at a time
-                c1 = min(c0 + _CHUNK, j1)
-                dl, al = d_arr[c0:c1].tolist(), a_arr[c0:c1].tolist()
-                ek, eS, eT = edges(c0, c1)
-                ek, eS = ek.tolist(), eS.tolist()
-                eT = eT.tolist() if eT is not None else [None] * (c1 - c0)
-                vl = [v[c0:c1].tolist() for v in vs]
-                for o in range(c1 - c0):
-                    step(base + c0 + o, dl[o], al[o], ek[o], eS[o], eT[o], [v[o] for v in vl])
-
-        def steps(j0, j1):
-            if not fusing:
-                one_by_one(j0, j1)
-                return
-            for c0 in range(j0, j1, _FUSED_WINDOW):   # edge data a window at a time
-                c1 = min(c0 + _FUSED_WINDOW, j1)
-                prev = d_arr[c0 - 1] if c0 > 0 else d0
-                # steps whose depth equals the one before (run step by step)
-                same = np.flatnonzero(d_arr[c0 + 1:c1] == d_arr[c0:c1 - 1])
-                same += 1
-                if d_arr[c0] == prev:
-                    same = np.concatenate(([0], same))
-                ek, eS, eT = edges(c0, c1)
-                eT = eT if tor_edge else eS
-                j = 0
-                while j < c1 - c0:   # runs of steps with a new depth each: one compiled call
-                    r = _next(same, j - 1, c1 - c0)
-                    if r > j:
-                        _fused_run(fused, fnd, st, chans[0], base + c0 + j, d_arr[c0 + j:c0 + r],
-                                   a_arr[c0 + j:c0 + r], ek[j:r], eS[j:r], eT[j:r],
-                                   vs[0][c0 + j:c0 + r], state, out_W,
-                                   out_stick if want_stick else None)
-                        state["done"] = base + c0 + r
-                        j = r
-                    else:
-                        one_by_one(c0 + j, c0 + j + 1)
-                        j += 1
-
-        pending = None   # first step of a stretch of step-by-step intervals not yet run
-        for j0, j1 in zip(brk[:-1], brk[1:]):
-            if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not changed[j0]:
-                if pending is not None:
-                    steps(pending, j0)
-                    pending = None
-                block(base + j0, base + j1, [v[j0:j1] for v in vs])
-            elif pending is None:
-                pending = j0
-            if base + j1 - 1 in snaps:
-                if pending is not None:
-                    steps(pending, j1)
-                    pending = None
-                snapshot_data[base + j1 - 1] = _snapshot(contact, fnd, st, res, base + j1 - 1)
-        if pending is not None:
-            steps(pending, nsteps)
-        base += nsteps
-        for ch in chans:
-            cur[ch["pos"]], cur[ch["frc"]] = ch["out_pos"][base - 1], ch["out_frc"][base - 1]
-        if bar is not None:
-            bar.update(nsteps)
-    if bar is not None:
-        bar.close()

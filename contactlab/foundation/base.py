@@ -15,6 +15,7 @@ to a solver run (``new_state()``), so one foundation can serve several runs.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -25,8 +26,9 @@ from ..numeric.prefix import solved_prefix
 from ..params import as_float_array
 from ..physics import normal as _normal
 
-__all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "cell_boundaries", "families_needed",
-           "path_normal_states", "iter_path_normal_states"]
+__all__ = ["Foundation", "DEFAULT_N_SPRINGS", "SPACINGS", "SERIES", "NORMAL_SERIES", "PathArrays",
+           "cell_boundaries", "families_needed", "path_normal_states", "iter_path_normal_states",
+           "path_normal_series", "series_block", "PathNormal", "run_path"]
 
 #: default number of springs (cells) over the path's maximum contact radius. The error is second
 #: order in 1/N (only the cell holding a stick–slip boundary is lumped); with the edge-refined
@@ -40,6 +42,171 @@ DEFAULT_N_SPRINGS = 2000
 #: the maximum contact radius, where the stick–slip boundary starts)
 SPACINGS = ("uniform", "edge")
 FAMILIES = ("normal", "tangential", "torsion")
+#: per-step series of a foundation run (:class:`PathArrays`, :class:`contactlab.PathResult`)
+SERIES = ("time", "depth", "force", "radius", "displacement", "tangential_force", "twist",
+          "torque", "stick_radius", "dissipated_energy", "gross_sliding")
+#: the series of the normal problem, solved for every step before a run
+NORMAL_SERIES = ("time", "depth", "force", "radius")
+#: steps of a leaf's normal solve at a time (bounded solver temporaries on long paths)
+SOLVE_CHUNK = 1 << 16
+
+
+@dataclass(eq=False)
+class PathArrays:
+    """The arrays of a foundation run along a load path (:meth:`Foundation.run`).
+
+    A failed run raises its error with the arrays of the steps before it as ``err.partial``
+    (``done`` steps complete; ``time``: the time of the failing step where the series do not
+    hold it).
+
+    Attributes
+    ----------
+    series : dict of ndarray
+        Per-step series (:data:`SERIES`), SI units.
+    snapshots : dict
+        ``{step: {name: value}}`` states at the requested steps.
+    meta : dict
+        What the run built and how (discretisation, counts, energies).
+    done : int
+        Steps complete.
+    time : float or None
+    """
+
+    series: dict
+    snapshots: dict = field(default_factory=dict)
+    meta: dict = field(default_factory=dict)
+    done: int = 0
+    time: float | None = None
+
+
+def series_block(n: int, keys: list) -> dict[str, np.ndarray]:
+    """Float series of ``n`` steps for ``keys``, the rows of one ``(len(keys), n)`` block.
+
+    Each row must be written at every step before it is read (the normal series by the solve,
+    a run's by its time loop). One allocation instead of one per series: the operating system
+    backs a long block by whole huge pages (a 10^6-step gait run: ~3 300 page faults instead of
+    ~7 200, ~9 ns per step less of system time on a 2-core VM), and the rows are the returned
+    series only, so that a series computed but not asked for is freed on return.
+    """
+    if not keys:
+        return {}
+    block = np.empty((len(keys), n))
+    return dict(zip(keys, block))
+
+
+@dataclass(eq=False)
+class PathNormal:
+    """The normal problem of every step of a load path (:func:`path_normal_series`).
+
+    Attributes
+    ----------
+    series : dict of ndarray
+        ``time`` (s), ``depth`` (m), ``force`` (N), ``radius`` (m) per step, and the rows
+        allocated for the run (written by it).
+    leaves : list of dict
+        Per leaf segment: ``depth`` and ``radius``, views of the series.
+    """
+
+    series: dict
+    leaves: list
+
+    @property
+    def max_radius(self) -> float:
+        """The largest contact radius of the path, m."""
+        return float(np.max(self.series["radius"], initial=0.0))
+
+
+def path_normal_series(profile: Any, E_star: float, path: Any, rtol: float,
+                       rows: Any = ()) -> PathNormal:
+    """The normal series of every step of ``path`` (:data:`NORMAL_SERIES`) and each leaf's
+    normal state.
+
+    The states go straight into the series, one leaf at a time (no second copy of the path's
+    normal arrays); ``rows`` are the series allocated as rows of one block
+    (:func:`series_block`): the normal ones among them are filled here, the others left for the
+    run to write at every step.
+
+    Returns
+    -------
+    PathNormal
+
+    Raises
+    ------
+    ContactlabError
+        The normal solve of a step failed: ``err.partial`` is the :class:`PathArrays` of the
+        normal series of the steps before it (``done``, ``time`` of the failing step).
+    """
+    n_total = path.n_steps
+    res = series_block(n_total, list(rows))
+    for k in NORMAL_SERIES:
+        if k not in res:        # read by the run, not returned: its own array
+            res[k] = np.empty(n_total)
+    t0 = 0.0
+    i0 = 0
+    leaves = []
+    try:
+        for seg in iter_path_normal_states(profile, E_star, path, rtol, chunk=SOLVE_CHUNK,
+                                           out=res):
+            n = seg["depth"].size      # depth, force, radius: written into res by the solve
+            res["time"][i0:i0 + n] = t0 + seg["dt"]
+            del seg
+            leaves.append({k: res[k][i0:i0 + n] for k in ("depth", "radius")})
+            t0 = float(res["time"][i0 + n - 1]) if n else t0
+            i0 += n
+    except ContactlabError as err:
+        pre = err.partial if isinstance(err.partial, dict) else None
+        k = i0 + (pre["depth"].size if pre is not None else 0)
+        if pre is not None:
+            res["time"][i0:k] = t0 + pre["dt"]
+            for name in ("depth", "force", "radius"):
+                res[name][i0:k] = pre[name]
+        err.partial = PathArrays({name: res[name] for name in NORMAL_SERIES}, done=k,
+                                 time=t0 + (err.failed_at or {}).get("dt", 0.0))
+        raise
+    return PathNormal(res, leaves)
+
+
+def run_path(cls: Any, profile: Any, moduli: Any, friction: float | None, path: Any,
+             rtol: float, *, outputs: Any = SERIES, snapshots: Any = (), progress: Any = None,
+             on_normal: Any = None, **options: Any) -> PathArrays:
+    """Run ``path`` through the foundation class ``cls``: its checks
+    (:meth:`Foundation.check_path`), the normal problem of every step
+    (:func:`path_normal_series`), the foundation the path needs (:meth:`Foundation.for_path`)
+    and its time loop (:meth:`Foundation.run`).
+
+    Parameters
+    ----------
+    cls : type
+        A :class:`Foundation` subclass (``contactlab.effects.path.METHODS``).
+    profile, moduli, friction, rtol
+        The contact's parts (``friction=None``: no slip limit).
+    path : LoadPath
+    outputs : tuple of str
+        The series the caller keeps (:data:`SERIES`).
+    snapshots : set of int
+        Steps (valid indices) whose state is stored.
+    progress : callable, optional
+        ``progress(n)`` after ``n`` more steps.
+    on_normal : callable, optional
+        ``on_normal(max_radius)`` once the normal problem is solved, before the time loop.
+    **options
+        The discretisation of ``cls`` (see its :meth:`~Foundation.check_path`).
+
+    Raises
+    ------
+    ContactlabError
+        A failed step: ``err.partial`` is the :class:`PathArrays` of the steps before it.
+    """
+    outputs = tuple(outputs)
+    options = cls.check_path(path, snapshots, **options)
+    writes = cls.writes(path, outputs, **options)
+    normal = path_normal_series(profile, moduli.normal, path, rtol,
+                                [k for k in SERIES if k in outputs and (k in NORMAL_SERIES
+                                                                         or k in writes)])
+    if on_normal is not None:
+        on_normal(normal.max_radius)
+    fnd = cls.for_path(profile, moduli, friction, path, normal=normal, rtol=rtol, **options)
+    return fnd.run(path.leaves(), normal, outputs, snapshots, progress=progress)
 
 
 def cell_boundaries(radius: float, n_springs: int, spacing: str) -> np.ndarray:
@@ -225,18 +392,52 @@ class Foundation(ABC):
         self.boundaries = cell_boundaries(self.radius, self.n_springs, spacing)
         self._build()
 
+    #: series whose discretisation error an error estimate reports (:meth:`coarser`)
+    ESTIMATED: tuple[str, ...] = ()
+
     @classmethod
-    def for_path(cls, profile: Any, path: Any, *, moduli: Any, friction: float | None = None,
-                 n_springs: int | None = None, spacing: str = "edge", rtol: float = 1e-10,
-                 approximate: bool = False) -> "Foundation":
+    def check_path(cls, path: Any, snapshots: Any = (), *, n_springs: int | None = None,
+                   spacing: str = "edge", approximate: bool = False) -> dict[str, Any]:
+        """Check the discretisation options of a run along ``path`` (and its memory, before
+        anything is allocated); returns them completed with their defaults.
+
+        Raises
+        ------
+        ParameterError, UnknownNameError, OutsideTheoryError, MemoryBudgetError
+        """
+        from ..params import check_count
+        n = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs)
+        if spacing not in SPACINGS:
+            raise UnknownNameError(f"spacing={spacing!r} is invalid: allowed are {SPACINGS}.")
+        families_needed(path, approximate=approximate)
+        return {"n_springs": n, "spacing": spacing, "approximate": approximate}
+
+    @classmethod
+    def writes(cls, path: Any, outputs: Any, **options: Any) -> tuple[str, ...]:
+        """The series a run along ``path`` writes at every step (allocated without a zero fill,
+        as rows of one block with the normal series)."""
+        return ()
+
+    @classmethod
+    def coarser(cls, options: dict, meta: dict) -> dict | None:
+        """The options of the coarser run an error estimate compares with (``None``: none)."""
+        return None
+
+    @classmethod
+    def for_path(cls, profile: Any, moduli: Any, friction: float | None, path: Any, *,
+                 normal: PathNormal | None = None, n_springs: int | None = None,
+                 spacing: str = "edge", rtol: float = 1e-10, approximate: bool = False,
+                 **options: Any) -> "Foundation":
         """Build the foundation a load path needs.
 
         The cells cover the largest contact radius the path reaches (a normal-only pass over the
-        path, exact because non-adhesive normal contact is path independent); only the spring
-        families the path controls are built (no torsional springs without twist/torque).
-        ``moduli`` (E*, G*, G_t) is needed besides the profile because a force-controlled path
-        reaches its radius through E*. Called on :class:`Foundation` it builds a
-        :class:`~contactlab.foundation.Winkler`.
+        path, exact because non-adhesive normal contact is path independent; ``normal``: that
+        pass done already, :func:`path_normal_series`); only the spring families the path
+        controls are built (no torsional springs without twist/torque). ``moduli`` (E*, G*,
+        G_t) is needed besides the profile because a force-controlled path reaches its radius
+        through E*. Called on :class:`Foundation` it builds a
+        :class:`~contactlab.foundation.Winkler`. ``options``: those of the subclass
+        (:meth:`check_path`).
 
         Examples
         --------
@@ -244,18 +445,38 @@ class Foundation(ABC):
         >>> from contactlab.foundation import Foundation
         >>> c = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=210e9, nu=0.3),
         ...                cl.Rigid()), friction=0.3)
-        >>> f = Foundation.for_path(c.profile, cl.LoadPath().ramp(force=10.0, steps=5),
-        ...                         moduli=c.moduli, friction=0.3, n_springs=100)
+        >>> f = Foundation.for_path(c.profile, c.moduli, 0.3,
+        ...                         cl.LoadPath().ramp(force=10.0, steps=5), n_springs=100)
         >>> f.built
         ['normal']
         """
-        from .winkler import Winkler
-        impl = Winkler if cls is Foundation else cls
+        if cls is Foundation:
+            from .winkler import Winkler
+            return Winkler.for_path(profile, moduli, friction, path, normal=normal,
+                                    n_springs=n_springs, spacing=spacing, rtol=rtol,
+                                    approximate=approximate, **options)
         needs = families_needed(path, approximate=approximate)
-        normal = path_normal_states(profile, moduli.normal, path, rtol)
-        radius = max(float(np.max(seg["radius"], initial=0.0)) for seg in normal)
-        return impl(profile, moduli, friction, radius, n_springs=n_springs, spacing=spacing,
-                    needs=needs, rtol=rtol)
+        if normal is None:
+            normal = path_normal_series(profile, moduli.normal, path, rtol)
+        return cls(profile, moduli, friction, normal.max_radius, n_springs=n_springs,
+                   spacing=spacing, needs=needs, rtol=rtol, **options)
+
+    def run(self, leaves: Any, normal: PathNormal, outputs: Any, snapshots: Any,
+            progress: Any = None) -> PathArrays:
+        """Run the load path's steps (its leaf segments ``leaves``, their normal problem
+        ``normal``) through the foundation: the per-step series (``outputs`` at least), the
+        states at the steps ``snapshots`` and the meta data. ``progress(n)`` is called after
+        ``n`` more steps.
+
+        Raises
+        ------
+        ContactlabError
+            A failed step, with ``err.partial`` the :class:`PathArrays` of the steps before it.
+        NotSupportedError
+            A foundation without a time loop.
+        """
+        from ..errors import NotSupportedError
+        raise NotSupportedError(f"{type(self).__name__} has no time loop along a load path.")
 
     @property
     def built(self) -> list[str]:

@@ -1,21 +1,40 @@
-"""The ring discretisation of the exact torsion solver (:mod:`contactlab.physics.torsion_rings`).
+"""The ring discretisation of the exact torsion solver (:mod:`contactlab.physics.torsion_rings`)
+and its time loop along a load path (normal force and twist/torque changing together).
 
 :class:`Rings` covers ``0 <= r <= radius`` (the largest contact radius of the path) with rings
 ``[b_j, b_{j+1}]``, one collocation point per ring (its midpoint), and holds the matrices of the
 half-space's torsional influence in the point tractions: ``H`` (complementary energy) and ``g``
 (torque weights). The geometry and matrices are immutable; the traction/slip state belongs to a
 solver run (:meth:`Rings.new_state`).
+
+Along a load path (:meth:`Rings.for_path`, :meth:`Rings.run`) the normal problem is solved
+exactly at every step (path independent) before the loop; the torsional problem is solved with
+the half-space's exact torsional influence (flat-punch superposition), Coulomb's law and memory
+between steps. The state is the punch density itself; a step whose slip zone is one annulus
+reaching the contact edge is taken in closed form with its stick radius solved inside its ring
+(:mod:`contactlab.physics.torsion_annulus`), any other step by the box-constrained ring solver as
+an increment on that density (:mod:`contactlab.physics.torsion_rings`). Flat punches (edge punch
+at the wall) run on the ring solver alone; a contact without a friction limit carries rigid
+punches at its contact radii. The error falls with the number of rings; see
+``docs/torsion_varying_load.md``.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
+from ..citations import sources_for
+from ..errors import ContactlabError, NotSupportedError, ParameterError
+from ..params import check_count, check_memory
+from ..physics import normal as _normal
+from ..physics import ring_pressure as _rp
+from ..physics import torsion_annulus as _ta
 from ..physics import torsion_rings as _tr
-from .base import Foundation
+from .base import SERIES, Foundation, PathArrays, PathNormal
 
-__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS"]
+__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory"]
 
 #: default number of rings over the path's largest contact radius (before the nodes added at the
 #: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
@@ -30,6 +49,22 @@ EDGE_POINT = 0.1
 #: at a jump node (a contact radius inside the grid): the collocation point of its half-hat sits
 #: this fraction of the ring outside the node (the ring's midpoint is the other point)
 JUMP_POINT = 0.25
+#: series whose writes every step of a run (allocated without a zero fill)
+_WRITES = ("twist", "torque", "stick_radius", "dissipated_energy")
+
+#: float64 values held at the peak of an exact run (tracemalloc, rounded up; measured 7.7 per
+#: ring and step of the longest leaf, 12-14 per ring squared, 390 per step on short paths)
+_PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 16, 64
+
+
+def memory(n_steps: int, longest_leaf: int, n_rings: int) -> float:
+    """Estimated peak memory of a ring-solver run (``simulate(method="exact")``), bytes: per-step series, the
+    ring arrays of a chunk of steps (the longest leaf's steps up to :data:`_BOUND_CHUNK`, x
+    rings) and the dense ring matrices; checked against the memory budget before anything is
+    allocated."""
+    chunk = min(float(longest_leaf), float(_BOUND_CHUNK))
+    return 8.0 * (_PER_STEP * float(n_steps) + _PER_LEAF_STEP_RING * chunk
+                  * float(n_rings) + _PER_RING2 * float(n_rings) * float(n_rings))
 
 
 @dataclass
@@ -99,3 +134,342 @@ class Rings(Foundation):
     def new_state(self) -> RingState:
         n = self.points.size
         return RingState(np.zeros(n), np.zeros(n), np.zeros(n, int))
+
+    # ------------------------------------------------------------------ along a load path
+    #: series whose discretisation error an error estimate reports
+    ESTIMATED = ("torque", "twist", "stick_radius", "dissipated_energy")
+    #: the ablation switches of a run (all on by default; tests and benchmarks turn them off):
+    #: nodes at the contact radii, the edge punch at a wall, jumps of the punch density at those
+    #: nodes, the tables' pressure at the fixed ring radii, the single-slip-annulus step
+    SWITCHES = ("align", "edge", "jumps", "ring_table", "annulus")
+
+    @classmethod
+    def check_path(cls, path: Any, snapshots: Any = (), *, n_rings: int | None = None,
+                   spacing: str = "uniform", approximate: bool = False,
+                   **switches: bool) -> dict[str, Any]:
+        """Check a run along ``path``: twist or torque without shift, ``n_rings`` (default
+        :data:`DEFAULT_N_RINGS`), the memory budget. ``approximate`` has no meaning here (one
+        family) and is ignored; ``switches``: :data:`SWITCHES`."""
+        if "tangential" in path.groups:
+            raise NotSupportedError("method='exact' solves torsion paths (twist/torque); this "
+                                    "path drives a tangential shift: use method='mdr'.")
+        bad = sorted(set(switches) - set(cls.SWITCHES))
+        if bad:
+            raise ParameterError(f"{bad[0]}= is not an option of the ring solver: allowed are "
+                                 f"{cls.SWITCHES}.")
+        sw = {k: bool(switches.get(k, True)) for k in cls.SWITCHES}
+        n_rings = DEFAULT_N_RINGS if n_rings is None else check_count("n_rings", n_rings)
+        n_total = path.n_steps
+        longest = max((_longest_leaf(s) for s in path.segments), default=0)
+        # nodes at the contact radii: up to ALIGN_MAX_FACTOR times the rings, and a jump point
+        # per contact-radius node (at most one per ring); the edge punch 1
+        n_max = (int(np.ceil(2 * _tr.ALIGN_MAX_FACTOR * n_rings)) + 1 if sw["align"]
+                 else n_rings + 1)
+        check_memory("simulate(method='exact')", memory(n_total, longest, n_max),
+                     f"{n_total} steps, longest segment {longest} steps, {n_rings} rings "
+                     f"(up to {n_max} with the nodes at the contact radii)")
+        return {"n_rings": n_rings, "spacing": spacing, **sw}
+
+    @classmethod
+    def writes(cls, path: Any, outputs: Any, **options: Any) -> tuple[str, ...]:
+        return _WRITES
+
+    @classmethod
+    def coarser(cls, options: dict, meta: dict) -> dict | None:
+        """Half the rings (the torque error falls at least as fast as ``N^-1`` on varying-load
+        paths, so the difference bounds the error of the ``N``-ring run from above)."""
+        return dict(options, n_rings=max(4, meta["n_rings"] // 2))
+
+    @classmethod
+    def for_path(cls, profile: Any, moduli: Any, friction: float | None, path: Any, *,
+                 normal: PathNormal | None = None, n_springs: int | None = None,
+                 spacing: str = "uniform", rtol: float = 1e-10, approximate: bool = False,
+                 n_rings: int | None = None, **switches: bool) -> "Rings":
+        """The rings of a twist/torque path: over its largest contact radius, with nodes at its
+        contact radii (``align``) and the edge punch where the contact reaches a wall
+        (``edge``); ``n_rings`` (or ``n_springs``) rings before those nodes.
+
+        Raises
+        ------
+        ParameterError
+            The normal load never brings the bodies into contact.
+        """
+        sw = {k: bool(switches.get(k, True)) for k in cls.SWITCHES}
+        if normal is None:
+            from .base import path_normal_series
+            normal = path_normal_series(profile, moduli.normal, path, rtol)
+        a_max = normal.max_radius
+        if a_max <= 0:
+            raise ParameterError("the path prescribes a twist or torque but the normal load "
+                                 "never brings the bodies into contact (contact radius 0 at "
+                                 "every step).")
+        radii = normal.series["radius"] if sw["align"] else None
+        wall = profile.wall_radius
+        edge_punch = bool(sw["edge"] and np.isfinite(wall) and a_max >= wall * (1.0 - 1e-12))
+        fnd = cls(profile, moduli, friction, a_max,
+                  n_springs=n_rings if n_rings is not None else n_springs, spacing=spacing,
+                  rtol=rtol, contact_radii=radii, edge_punch=edge_punch, jumps=sw["jumps"])
+        fnd.switches = sw
+        return fnd
+
+    def run(self, leaves: Any, normal: PathNormal, outputs: Any, snapshots: Any,
+            progress: Any = None) -> PathArrays:
+        """The exact torsion steps along the path (see the module docstring). The snapshots
+        hold ``r`` (the collocation points), ``depth``, ``radius``, ``shear_torsion``,
+        ``pressure`` (Pa), ``slip`` and ``slip_increment`` (m); ``meta``: the ring counts, the
+        switches, ``iterations``, ``fallback_steps`` (steps not taken by the annulus step),
+        ``energy`` (``work``, ``stored``, ``dissipated_per_step`` per step, J)."""
+        sw = getattr(self, "switches", None) or dict.fromkeys(self.SWITCHES, True)
+        align, ring_table, annulus = sw["align"], sw["ring_table"], sw["annulus"]
+        rings, edge_punch, spacing = self, self.edge_punch, self.spacing
+        res = normal.series
+        n_total = res["time"].size
+        for k in SERIES:
+            if k not in res:
+                res[k] = np.zeros(n_total, bool if k == "gross_sliding" else float)
+        snaps = set(snapshots)
+        work = np.zeros(n_total)
+        stored = np.zeros(n_total)
+        step_diss = np.zeros(n_total)
+        st = self.new_state()
+        r, H, g = self.points, self.H, self.g
+        mu = self.friction
+        prof, E = self.profile, self.moduli.normal
+        # tables: the pressure shape at the (fixed) ring radii as running sums over the table
+        # segments, set up once (physics.ring_pressure); other profiles: their own route per step
+        table = (_rp.fixed_radii_shape(prof, r, self.radius, self.rtol)
+                 if ring_table and mu is not None else None)
+        cur = dict.fromkeys(("depth", "force", "twist", "torque"), 0.0)
+        ctrl = "twist"
+        M_old, W_in, W_d, E_old = 0.0, 0.0, 0.0, 0.0
+        G_t = self.moduli.torsional
+        # the punch density as the state, each step with one slip annulus (stick radius inside
+        # its ring) where that is the exact step; without friction limit rigid punches at the
+        # contact radii; the flat punch's edge punch keeps the point tractions
+        use_annulus = bool(annulus and mu is not None and not edge_punch)
+        use_punches = bool(annulus and mu is None and not edge_punch)
+        pt, pm = np.zeros(0), np.zeros(0)   # the rigid punches of a run without friction limit
+        w = _ta.empty()
+        slip = np.zeros(r.size)
+        fallback = 0
+        slide_key = None        # (radius, μp) of the last full-sliding density computed
+        snap_data: dict[int, dict] = {}
+        i = 0
+        iters = 0
+        done = 0        # steps complete (the partial result of a failure)
+        try:
+            for leaf in leaves:
+                # read-only columns where the segment has them (a table's own, no copies)
+                _, vals = getattr(leaf, "values_readonly", leaf.values)(cur)
+                n = leaf.n_steps
+                d_arr, a_arr = res["depth"][i:i + n], res["radius"][i:i + n]
+                if "twist" in vals or "torque" in vals:
+                    ctrl = "twist" if "twist" in vals else "torque"
+                    target = np.asarray(vals[ctrl], float)
+                else:
+                    target = np.full(n, cur[ctrl])
+                g_a = np.where(a_arr > 0, prof._g(np.maximum(a_arr, 1e-300)), 0.0)
+                if np.isfinite(prof.wall_radius):
+                    g_a = np.where(a_arr >= prof.wall_radius, np.minimum(g_a, d_arr), g_a)
+                for c0 in range(0, n, _BOUND_CHUNK):
+                    # slip limits of the rings a chunk of steps at a time (a steps x rings array for a
+                    # whole leaf would outgrow the result series many times over)
+                    c1 = min(n, c0 + _BOUND_CHUNK)
+                    ac, dc = a_arr[c0:c1], d_arr[c0:c1]
+                    if mu is None:
+                        bound = np.where(r[None, :] < ac[:, None], np.inf, 0.0)
+                        p = None
+                    elif table is not None:
+                        p = _rp.pressure_at(prof, E, table, ac, dc, g_a[c0:c1])[0]
+                    else:
+                        p = _normal.pressure(prof, E, r[None, :], ac[:, None], dc[:, None],
+                                             g_a[c0:c1, None], self.rtol)[0]
+                    if mu is not None:
+                        bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
+                    for j in range(c0, c1):
+                        k = i + j
+                        bj, aj = bound[j - c0], float(a_arr[j])
+                        if use_annulus:
+                            # the density ends at the node of the contact radius (a radius within
+                            # ALIGN_GAP ring widths of another shares its node)
+                            bnd = rings.boundaries
+                            edge_j = float(bnd[min(np.searchsorted(bnd, aj * (1 - 1e-12)),
+                                                   bnd.size - 1)])
+                            if slide_key is None or not (slide_key[0] == edge_j and
+                                                         np.array_equal(slide_key[1], bj)):
+                                slide = _ta.density(rings.lu, bnd, rings.jumps, bj, edge_j)
+                                slide_key = (edge_j, bj)
+                            out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
+                                                st.twist, st.active, slip=bool(snaps), slide=slide)
+                            w, z, lam_slip, dphi, gross, c_stick, st.active, it, taken = out
+                            M = _ta.torque(w, G_t)
+                            E_st = _ta.stored_energy(w, G_t)
+                            fallback += not taken
+                            W_in += 0.5 * (M_old + M) * dphi
+                            dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
+                            E_old = E_st
+                            slip += lam_slip
+                        elif use_punches:
+                            # no friction limit: rigid punches at the contact radii, exact
+                            # out of contact no punch carries a torque: a torque target holds
+                            # the twist (gross sliding unless the target is 0)
+                            kw = ({"dphi": float(target[j]) - st.twist} if ctrl == "twist" else
+                                  {"target_torque": float(target[j])} if aj > 0 else
+                                  {"dphi": 0.0})
+                            pt, pm, dphi = _ta.punch_step(pt, pm, aj, G_t, **kw)
+                            gross = bool(ctrl == "torque" and aj == 0 and float(target[j]) != 0)
+                            z, it, c_stick = None, 1, aj
+                            lam_slip = np.zeros(r.size)
+                            M = _ta.punch_torque(pt, pm, G_t)
+                            E_st = _ta.punch_energy(pt, pm, G_t)
+                            W_in += 0.5 * (M_old + M) * dphi
+                            dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
+                            E_old = E_st
+                        else:
+                            z_old = st.z
+                            if ctrl == "twist":
+                                z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
+                                                                dphi=target[j] - st.twist,
+                                                                guess=st.active, C=rings.C)
+                            else:
+                                z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
+                                                                torque=float(target[j]),
+                                                                guess=st.active, C=rings.C)
+                            gross = not np.isfinite(dphi)
+                            if gross:       # torque beyond full sliding: gross sliding
+                                z = np.sign(target[j]) * bj
+                                lam = np.zeros_like(z)
+                                dphi = 0.0
+                            M = float(g @ z)
+                            W_in += 0.5 * (M_old + M) * dphi
+                            dW = 0.5 * float((z_old + z) @ lam)
+                            E_st = 0.5 * float(z @ (H @ z))
+                            lam = np.where(bj > 0, lam, 0.0)
+                            st.S = st.S + lam
+                            slip += _tr.slip_density(lam, r, g)
+                            st.z = z
+                            st.active = np.where(bj == 0, 2, np.where(lam == 0, 0,
+                                                                      np.sign(z))).astype(int)
+                            c_stick = None
+                        res["gross_sliding"][k] = gross
+                        iters += it
+                        W_d += dW
+                        st.twist = float(target[j]) if ctrl == "twist" else st.twist + dphi
+                        M_old = M
+                        if progress is not None:
+                            progress(1)
+                        res["twist"][k] = st.twist
+                        res["torque"][k] = M if ctrl == "twist" else (float(target[j]) if not
+                                                                      res["gross_sliding"][k] else M)
+                        res["dissipated_energy"][k] = W_d
+                        if z is None and use_punches and k in snaps:
+                            z = _ta.punch_traction(pt, pm, r, G_t)
+                        if c_stick is None:
+                            if z is None:
+                                z = _ta.traction(w, r, G_t)
+                            c_stick = _tr.stick_radius(r, z, bj, aj)
+                        res["stick_radius"][k] = c_stick
+                        work[k], step_diss[k] = W_in, dW
+                        stored[k] = E_st
+                        done = k + 1
+                        if k in snaps:
+                            if z is None:
+                                z = _ta.traction(w, r, G_t)
+                            snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
+                                            "radius": aj, "shear_torsion": z.copy(),
+                                            "pressure": (np.zeros(r.size) if p is None else
+                                                         np.where(r < aj, p[j - c0], 0.0)),
+                                            "slip": slip.copy(),
+                                            "slip_increment": lam_slip.copy()
+                                            if use_annulus or use_punches
+                                            else _tr.slip_density(lam, r, g)}
+                i += n
+                cur.update(depth=float(d_arr[-1]) if n else cur["depth"],
+                           force=float(res["force"][i - 1]) if n else cur["force"],
+                           twist=st.twist, torque=M_old)
+        except ContactlabError as err:
+            meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_uniform,
+                    "rings": rings.n_springs, "aligned": bool(align), "edge_punch": edge_punch,
+                    "jump_nodes": int(rings.jumps.size),
+                    "n_springs": None, "spacing": spacing, "foundation": repr(rings),
+                    "approximate": False, "iterations": iters, "annulus": use_annulus,
+                    "fallback_steps": int(fallback)}
+            err.partial = PathArrays(res, {s: v for s, v in snap_data.items() if s < done}, meta,
+                                     done)
+            raise
+        meta = {"built": ["normal", "torsion"], "method": "exact", "n_rings": rings.n_uniform,
+                "rings": rings.n_springs, "aligned": bool(align), "edge_punch": edge_punch,
+                "jump_nodes": int(rings.jumps.size),
+                "n_springs": None, "spacing": spacing, "foundation": repr(rings),
+                "approximate": False, "iterations": iters,
+                "annulus": use_annulus, "punches": use_punches, "fallback_steps": int(fallback),
+                "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},
+                "citations": sources_for("normal", "torsion:exact")}
+        return PathArrays(res, snap_data, meta, n_total)
+
+
+#: steps whose ring slip limits are held at once (memory: chunk x rings floats)
+_BOUND_CHUNK = 128
+
+
+def _longest_leaf(seg) -> int:
+    """Steps of the longest leaf segment (a repeat's leaves are its own segments' leaves)."""
+    inner = getattr(seg, "segments", None)
+    if inner is None:
+        return int(seg.n_steps)
+    return max((_longest_leaf(s) for s in inner), default=0)
+
+
+def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, slip=True,
+                  slide=None):
+    """One step on the punch density: the single-slip-annulus step of
+    :mod:`contactlab.physics.torsion_annulus` when its checks hold, else the ring solver's
+    box-constrained step from the point tractions of ``w`` (its result turned back into a
+    density). Returns the new density, the point tractions (or ``None``), the slip increments at
+    the points (m), the twist increment, gross sliding, the stick radius (``None``: from the
+    tractions), the active set, pivots and whether the annulus step was taken. ``slip=False``
+    skips the slip increments where the checks do not need them; ``slide`` is the step's
+    full-sliding density when known."""
+    r, b, jumps = rings.points, rings.boundaries, rings.jumps
+    if slide is None:
+        slide = _ta.density(rings.lu, b, jumps, bound, radius)
+    if ctrl == "twist":
+        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip)
+    else:
+        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound, slip=slip)
+    if out["ok"]:
+        s, c, extra = out["sense"], out["c"], out["gross"]
+        gross = bool(np.isnan(extra))
+        w_new = out["w"]
+        ds = out["slip"]
+        if gross:                   # torque beyond the sliding torque: slides, twist held
+            return (w_new, None, ds, 0.0, True, 0.0,
+                    np.where(bound == 0, 2, int(s)).astype(int), 1, True)
+        dphi = target - twist if ctrl == "twist" else out["dpsi"]
+        act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
+        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, True)
+    # the ring solver's step is incremental: the increment of the point tractions is a hat
+    # density added to the exact old density (its jumps at earlier stick radii kept)
+    H, g = rings.H, rings.g
+    z_old = _ta.traction(w, r, G_t)
+    if ctrl == "twist":
+        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
+                                        C=rings.C)
+    else:
+        # the ring solver's torque g·z of the old tractions differs from the density's exact
+        # torque by its discretisation error: aim its step at the increment of the torque, not
+        # at the target in its own measure (near full sliding the difference turns into a
+        # large twist error)
+        M_w = _ta.torque(w, G_t)
+        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound,
+                                        torque=target + float(g @ z_old) - M_w, guess=active,
+                                        C=rings.C)
+    gross = not np.isfinite(dphi)
+    if gross:
+        z = np.sign(target) * bound
+        lam = np.zeros_like(z)
+        dphi = 0.0
+    lam = np.where(bound > 0, lam, 0.0)
+    act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
+    w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))
+    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it, False)

@@ -19,17 +19,24 @@ only the displacement accumulated after they touched, and springs leaving contac
 from __future__ import annotations
 
 import functools
+import warnings
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from . import _compiled
+from . import winkler_path as _loop
 from ._compiled import jenkins_update
 
+from ..citations import sources_for
+from ..errors import (ContactlabError, OutsideTheoryError, ParameterError, UnknownNameError,
+                      ValidityWarning)
 from ..numeric.powers import WHOLE_POWERS, power_integral
 from ..numeric.quadrature import tanh_sinh
-from .base import Foundation
-from ..errors import OutsideTheoryError
+from ..params import check_count, check_memory
+from .base import (DEFAULT_N_SPRINGS, SERIES, SPACINGS, Foundation, PathArrays, PathNormal,
+                   families_needed)
 
 
 def _check_stiffness(K: np.ndarray, radius: float) -> None:
@@ -127,8 +134,140 @@ class SpringState:
     k: int = 0
 
 
+#: the routes of the time loop (``strategy=``; :func:`contactlab.foundation.winkler_path.time_loop`)
+STRATEGIES = ("segments", "steps")
+
+
 class Winkler(Foundation):
-    """Independent springs with stick/slip memory (see the module docstring)."""
+    """Independent springs with stick/slip memory (see the module docstring).
+
+    Along a load path (:meth:`for_path`, :meth:`run`; the time loop is
+    :func:`contactlab.foundation.winkler_path.time_loop`) its options are ``n_springs``,
+    ``spacing``, ``strategy`` (``"segments"``: runs of steps at a held normal load and a
+    monotone control in closed form, the default; ``"steps"``: every step one by one, the same
+    results up to rounding) and ``approximate`` (combined shift and twist as two independent
+    spring families, with a :class:`~contactlab.errors.ValidityWarning`).
+    """
+
+    #: series whose discretisation error an error estimate reports (the normal ones are exact
+    #: at any N, the cells integrating their springs exactly)
+    ESTIMATED = ("tangential_force", "torque", "stick_radius", "dissipated_energy")
+    #: the time loop's route (set by :meth:`for_path`)
+    strategy = "segments"
+    approximate = False
+
+    @classmethod
+    def check_path(cls, path: Any, snapshots: Any = (), *, n_springs: int | None = None,
+                   spacing: str | None = None, strategy: str | None = None,
+                   approximate: bool = False) -> dict[str, Any]:
+        strategy = "segments" if strategy is None else strategy
+        if strategy not in STRATEGIES:
+            raise UnknownNameError(f"strategy={strategy!r} is invalid: allowed are "
+                                   f"{STRATEGIES}.")
+        spacing = "edge" if spacing is None else spacing
+        if spacing not in SPACINGS:
+            raise UnknownNameError(f"spacing={spacing!r} is invalid: allowed are {SPACINGS}.")
+        needs = families_needed(path, approximate=approximate)
+        if len(needs) == 2:
+            warnings.warn("combined shift and twist is run as two independent spring families "
+                          "(approximate=True): outside the MDR theory, the slip limits do not "
+                          "interact.", ValidityWarning, stacklevel=5)
+        n_total = path.n_steps
+        n_springs = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs)
+        n_snap = len(snapshots)
+        check_memory("simulate()", _loop.memory(n_total, n_springs, n_snap),
+                     f"{n_total} steps, {n_springs} springs, {n_snap} snapshots")
+        return {"n_springs": n_springs, "spacing": spacing, "strategy": strategy,
+                "approximate": bool(approximate)}
+
+    @classmethod
+    def writes(cls, path: Any, outputs: Any, *, approximate: bool = False,
+               **options: Any) -> tuple:
+        needs = families_needed(path, approximate=approximate)
+        return _loop.run_writes(needs, tuple(outputs)) if needs else ()
+
+    @classmethod
+    def coarser(cls, options: dict, meta: dict) -> dict | None:
+        """Half the springs (the spring error falls as 1/N², so the difference is about three
+        times the error of the N-spring run); none for a run that built no springs."""
+        if not meta.get("n_springs"):
+            return None
+        return dict(options, n_springs=max(2, meta["n_springs"] // 2))
+
+    @classmethod
+    def for_path(cls, profile: Any, moduli: Any, friction: float | None, path: Any, *,
+                 normal: PathNormal | None = None, n_springs: int | None = None,
+                 spacing: str = "edge", rtol: float = 1e-10, approximate: bool = False,
+                 strategy: str = "segments", **options: Any) -> "Winkler":
+        """The springs of ``path`` (see :meth:`Foundation.for_path`): over the largest contact
+        radius, the families the path loads. A path that never brings the bodies into contact
+        gets a foundation without cells (nothing to discretise), or raises
+        :class:`~contactlab.errors.ParameterError` when it prescribes a shift or twist."""
+        needs = families_needed(path, approximate=approximate)
+        if normal is None:
+            from .base import path_normal_series
+            normal = path_normal_series(profile, moduli.normal, path, rtol)
+        a_max = normal.max_radius
+        if a_max > 0:
+            fnd = cls(profile, moduli, friction, a_max, n_springs=n_springs, spacing=spacing,
+                      needs=needs, rtol=rtol, **options)
+        elif needs:
+            raise ParameterError("the path prescribes " + " and ".join(needs) + " but the normal "
+                                 "load never brings the bodies into contact (contact radius 0 "
+                                 "at every step).")
+        else:           # never in contact: no cells
+            fnd = cls.__new__(cls)
+            fnd.profile, fnd.moduli, fnd.friction, fnd.rtol = profile, moduli, friction, rtol
+            fnd.radius, fnd.n_springs, fnd.spacing, fnd.needs = 0.0, 0, spacing, ()
+        fnd.strategy, fnd.approximate = strategy, bool(approximate)
+        return fnd
+
+    def run(self, leaves: Any, normal: PathNormal, outputs: Any, snapshots: Any,
+            progress: Any = None) -> PathArrays:
+        """The time loop along the path (:func:`~contactlab.foundation.winkler_path.time_loop`).
+        The snapshots hold ``depth``, ``radius``, the cell midpoints ``x`` and the spring states
+        ``normal``, ``tangential``, ``torsion`` (N, N·m) and the tractions
+        ``shear_tangential``, ``shear_torsion`` (Pa); the 3D pressure is left to the caller.
+        ``meta``: ``built``, ``n_springs`` (``None`` when no springs were needed), ``spacing``,
+        ``approximate``, ``foundation``, ``citations``."""
+        res = normal.series
+        needs = self.needs
+        n_total = res["time"].size
+        outputs = tuple(outputs)
+        snaps = set(snapshots)
+        meta = {"built": ["normal", *needs], "n_springs": None, "spacing": self.spacing,
+                "approximate": self.approximate, "foundation": None,
+                "citations": sources_for("normal", "foundation",
+                                         *(("tangential",) if "tangential" in needs else ()),
+                                         *(("foundation:torsion",) if "torsion" in needs
+                                           else ()))}
+        runs = self.radius > 0 and bool(needs)
+        written = _loop.run_writes(needs, outputs) if runs else ()
+        for k in SERIES:
+            if k not in res:
+                res[k] = (np.empty(n_total) if k in written else
+                          np.zeros(n_total, bool if k == "gross_sliding" else float))
+        snapshot_data: dict[int, dict] = {}
+        if not runs:
+            # nothing but the (exact) normal problem: no tangential/torsional springs
+            res["stick_radius"][:] = res["radius"]
+            fnd = self if snaps and self.radius > 0 else None
+            if fnd is not None:
+                meta.update(n_springs=self.n_springs, foundation=repr(self))
+            for s in sorted(snaps):
+                snapshot_data[s] = _loop.snapshot(fnd, None, res, s)
+            return PathArrays(res, snapshot_data, meta, n_total)
+        meta.update(n_springs=self.n_springs, foundation=repr(self))
+        track: dict[str, Any] = {"done": 0}
+        try:
+            _loop.time_loop(self, leaves, normal.leaves, res, snaps, snapshot_data,
+                            "stick_radius" in outputs, progress, self.strategy, track)
+        except ContactlabError as err:
+            done = track["done"]
+            err.partial = PathArrays(res, {s: v for s, v in snapshot_data.items() if s < done},
+                                     meta, done)
+            raise
+        return PathArrays(res, snapshot_data, meta, n_total)
 
     def _build(self) -> None:
         # few full-length passes and temporaries: at 10^6 springs building costs as much as ~40
@@ -315,140 +454,3 @@ class Winkler(Foundation):
         slip = np.abs(m) >= L
         i = int(np.argmax(slip))
         return float(bl[i]) if slip[i] else radius
-
-
-def monotone_block(m: np.ndarray, K: np.ndarray, L: np.ndarray, bl: np.ndarray, radius: float,
-                   s: float, du: np.ndarray | None = None, target: np.ndarray | None = None,
-                   want_stick: bool = True) -> dict[str, np.ndarray]:
-    """Advance Jenkins elements over a run of steps with fixed ``K``, ``L`` and monotone input.
-
-    Exact closed form of ``T`` successive updates ``m ← clip(m + K Δ, -L, L)`` when every
-    increment has the sign ``s``: element ``i`` sticks until the accumulated displacement
-    ``x`` reaches its room ``r_i = (L_i - s m_i)/K_i`` and slides after that. With the rooms
-    sorted, the force ``Σ clip(m + s K x, -L, L)``, the dissipation ``Σ_{r_i < x} L_i (x - r_i)``
-    and the stick radius (first element, from the centre, whose room is reached) follow from
-    cumulative sums and a binary search per step: ``O(N log N + T log N)`` instead of ``O(N T)``.
-
-    Parameters
-    ----------
-    m : ndarray
-        Element forces, updated in place to the state after the last step.
-    K, L : ndarray
-        Stiffness and slip limit of each element (``K = 0``: out of contact).
-    bl : ndarray
-        Left cell boundaries (for the stick radius); ``radius`` is the contact radius.
-    s : {+1, -1}
-        Direction of the run.
-    du : ndarray, optional
-        Accumulated displacement ``x_t >= 0`` (``s``-directed) at each step of the run, or
-    target : ndarray, optional
-        Total force at each step (force control); ``x_t`` is solved exactly.
-
-    Returns
-    -------
-    dict
-        ``force`` (total per step), ``dissipation`` (cumulative within the run), ``x``
-        (accumulated displacement), ``gross`` (target at/over full sliding) and, if asked,
-        ``stick``.
-    """
-    act = K > 0
-    sm = s * m
-    F0 = float(m.sum())
-    Ka = K[act]
-    room = (L[act] - sm[act]) / Ka
-    order = np.argsort(room, kind="stable")
-    r = room[order]
-    k = Ka[order]
-    lim = L[act][order]
-    fin = np.isfinite(r)
-    kr = np.where(fin, k * r, 0.0)
-    ckr = np.concatenate(([0.0], np.cumsum(kr)))
-    ck = np.concatenate(([0.0], np.cumsum(k)))
-    Ktot = ck[-1]
-    gross = None
-    if target is not None:
-        G = s * (np.asarray(target, float) - F0)
-        gb = ckr[:-1] + np.where(fin, r, np.inf) * (Ktot - ck[:-1])
-        j = np.searchsorted(gb, G, side="left")
-        over = j >= r.size
-        jj = np.minimum(j, max(r.size - 1, 0))
-        slope = Ktot - ck[jj]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x = np.where(over, r[-1] if r.size else 0.0, (G - ckr[jj]) / slope)
-        x = np.maximum(x, 0.0)
-        gross = over
-    else:
-        x = np.asarray(du, float)
-    idx = np.searchsorted(r, x, side="right")  # elements whose room is used up
-    gain = ckr[idx] + x * (Ktot - ck[idx])
-    force = F0 + s * gain
-    if gross is not None:
-        force = np.where(gross, s * float(L[act].sum()), force)
-    lr = np.where(fin, lim * r, 0.0)
-    cl = np.concatenate(([0.0], np.cumsum(np.where(fin, lim, 0.0))))
-    clr = np.concatenate(([0.0], np.cumsum(lr)))
-    diss = x * cl[idx] - clr[idx]
-    out = {"force": force, "dissipation": np.maximum(diss, 0.0), "x": x,
-           "gross": np.zeros(x.size, bool) if gross is None else gross}
-    if want_stick:
-        rs = np.zeros(m.size)
-        rs[act] = room
-        pm = np.minimum.accumulate(rs)
-        first = np.searchsorted(-pm, -x, side="left")
-        out["stick"] = np.where(first < m.size, bl[np.minimum(first, m.size - 1)], radius)
-    xe = float(x[-1])
-    np.minimum(sm + K * xe, L, out=sm)
-    np.multiply(sm, s, out=m)
-    return out
-
-
-def abel_traction(x: np.ndarray, q: np.ndarray, a: float, q_edge: float,
-                  r: np.ndarray) -> np.ndarray:
-    """``-(1/π) ∫_r^a q'(x)/sqrt(x² - r²) dx + q_edge/(π sqrt(a² - r²))`` for ``r < a``.
-
-    ``q`` is the piecewise-linear interpolant through ``(x_i, q_i)``, constant on ``[0, x_0]`` and
-    linear from the last node to ``(a, q_edge)``; ``q_edge`` is the value at ``a⁻`` (a jump to 0
-    at ``a`` gives the edge term). MDR inverse of a line load [H1; theory §3]. Returns 0 for
-    ``r >= a``.
-    """
-    r = np.asarray(r, float)
-    xn = np.concatenate((x, [a]))
-    qn = np.concatenate((q, [q_edge]))
-    x0, x1 = xn[:-1], xn[1:]
-    slope = np.diff(qn) / np.diff(xn)
-    rr = np.maximum(r, 1e-300)[..., None]
-    lo = np.maximum(x0, rr)
-    hi = np.maximum(x1, rr)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        seg = np.arccosh(hi / rr) - np.arccosh(lo / rr)
-        tau = -(slope * seg).sum(axis=-1) / np.pi
-        tau = tau + np.where(r < a, q_edge / (np.pi * np.sqrt(np.maximum(a * a - r * r, 0))), 0.0)
-    return np.where(r < a, tau, 0.0)
-
-
-def snapshot_shear(fnd: "Winkler", st: SpringState, r: np.ndarray) -> dict[str, np.ndarray]:
-    """3D tractions from the spring states at radii ``r`` (MDR inverse of the line loads).
-
-    Tangential: line load ``q_x = f_i/(2 w_i)`` (both sides lumped in ``f_i``),
-    ``τ_x = -(1/π)∫ q_x'/sqrt(x²-r²)``. Torsion: cell rotation ``ψ_i = m_i/K_i`` (``u_y = xψ``),
-    ``τ = (4G_t r/π)[-∫ ψ'/sqrt(x²-r²) + ψ(a)/sqrt(a²-r²)]`` (theory §8, item 1).
-    A cell at its slip limit next to the edge means ``u(a) = 0``; otherwise the edge cell's value
-    holds up to ``a`` (no slip).
-    """
-    a = st.radius
-    inside = fnd.bl < a
-    x = fnd.positions[inside]
-    out = {}
-    if x.size == 0:
-        return out
-    last = int(np.flatnonzero(inside)[-1])
-    if st.tangential is not None:
-        q = st.tangential[inside] / (2.0 * fnd.w[inside])
-        slipping = np.abs(st.tangential[last]) >= st.L_tan[last]
-        out["shear_tangential"] = abel_traction(x, q, a, 0.0 if slipping else q[-1], r)
-    if st.torsion is not None:
-        psi = st.torsion[inside] / fnd.K_tor[inside]
-        slipping = np.abs(st.torsion[last]) >= st.L_tor[last]
-        out["shear_torsion"] = 4.0 * fnd.moduli.torsional * np.asarray(r, float) * abel_traction(
-            x, psi, a, 0.0 if slipping else psi[-1], r)
-    return out

@@ -149,6 +149,10 @@ def _fmt(v: float) -> str:
     return f"{v:.6g}"
 
 
+#: outputs.method of a twisted scene on the foundation route -> method of contact.simulate
+_SIMULATE_METHOD = {"exact": "exact", "mdr": "mdr", "no-slip": "mdr"}
+
+
 def make_plan(scene: "Scene") -> Plan:
     """Plan the effects of a validated scene (pure: computes no physics).
 
@@ -225,6 +229,18 @@ def make_plan(scene: "Scene") -> Plan:
                "outside the implemented theory (without interface.friction it runs, no slip)")
         issues.append(("interface.work_of_adhesion", wa, f"0 for this load path: {why}"))
 
+    # the model of contact.simulate: the resolver simulate itself calls (one owner of the
+    # route). outputs.method of a twisted path with friction in simulate's terms ("no-slip" has
+    # no foundation implementation: the MDR springs); without it, without friction (no slip
+    # whatever the method) and for a shift: simulate's default
+    path_method = None
+    if foundation and not visco and not (torsion and tangential):
+        from ..effects.path import resolve_path_method
+        asked = (_SIMULATE_METHOD.get(outs.get("method")) if torsion and friction is not None
+                 else None)
+        path_method = resolve_path_method(scene.load_path, asked)
+    exact_path = path_method == "exact"
+
     rows: dict[str, Effect] = {}
     calls: list[str] = []
     n = h.n_steps
@@ -284,13 +300,18 @@ def make_plan(scene: "Scene") -> Plan:
                     else "no call: zero shift gives zero force, stick radius = contact radius")
         elif foundation:
             impl = "contact.simulate (MDR " + ("torsional" if torsion else "tangential") + " springs)"
-            if torsion and method == "exact" and friction is not None and not visco:
+            if exact_path and friction is not None:
                 impl = "contact.simulate(method='exact') (exact ring solver)"
                 reasons.append("the normal load changes while twisted: exact pressure per step, "
                                "the half-space's torsional influence on rings, Coulomb friction "
                                "with memory (the default of contact.simulate for twisted paths; "
                                "the MDR springs err by up to 24 % of the sliding torque on such "
                                "paths, benchmarks/results/torsion_rings_map.csv)")
+            elif exact_path:
+                impl = "contact.simulate(method='exact') (exact ring solver)"
+                reasons.append("the normal load changes while twisted, no friction limit: rigid "
+                               "punches at the contact radii, exact (the default of "
+                               "contact.simulate for twisted paths)")
             elif torsion and method == "no-slip" and friction is not None:
                 reasons.append(f"method {method!r} has no foundation implementation: the MDR "
                                "spring model is used")
@@ -311,8 +332,6 @@ def make_plan(scene: "Scene") -> Plan:
         rows[eff] = Effect(eff, impl, "; ".join(reasons))
         if impl_call:
             calls.append(impl_call)
-    exact_path = bool(foundation and torsion and method == "exact" and friction is not None
-                      and not visco)
     label = _route_label(route, exact_path, calls)
     avail = deliverable_series(route, axis)
     issues += [(p, v, f"{a}; this scene runs the {label}") for p, v, a in pending]
@@ -390,7 +409,7 @@ def make_plan(scene: "Scene") -> Plan:
     return Plan(ordered, route, tuple(calls), series, fields, tuple(out_rows),
                 method if (torsion or tangential) else None, n,
                 {"axis": axis, "start": start, "monotone": monotone, "coupled_at": coupled_at,
-                 "exact_torsion_path": exact_path,
+                 "exact_torsion_path": exact_path, "path_method": path_method,
                  **{name: det for name, (_, det) in extra.items()}})
 
 

@@ -434,10 +434,9 @@ def run_scene(scene: "Scene") -> SceneResult:
                 out[k] = _get(res, k, n)
     elif plan.route == "foundation":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
-        if plan.details.get("exact_torsion_path", False):
-            kw = {"method": "exact"}       # the exact ring solver (issue 18)
-        else:                              # the plan chose the MDR springs
-            kw["method"] = "mdr"
+        # the model the plan resolved (effects.path.resolve_path_method, as simulate does)
+        method = plan.details.get("path_method") or "mdr"
+        kw = {"method": "exact"} if method == "exact" else {**kw, "method": method}
         try:
             res = contact.simulate(scene.load_path, **kw)
         except ContactlabError as err:

@@ -156,7 +156,7 @@ def test_exact_simulate_memory_guard(path, kw, match):
 
 def test_exact_simulate_memory_estimate_covers_a_measured_run():
     import tracemalloc
-    from contactlab.effects.torsion_path import exact_memory
+    from contactlab.foundation.rings import memory as exact_memory
     path = cl.LoadPath().ramp(force=10.0, steps=2000).ramp(twist=1e-4, steps=5)
     tracemalloc.start()
     try:

@@ -10,8 +10,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-import contactlab.effects.path as path_driver
-import contactlab.foundation.winkler as winkler
+import contactlab.foundation.winkler_path as winkler_path
 import contactlab.physics.torsion_annulus as annulus
 from contactlab.errors import ConvergenceError, OutsideTheoryError
 from contactlab.foundation import Winkler
@@ -45,7 +44,7 @@ def check_partial(err, full, k, segment):
 @pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 def test_spring_route_step_by_step(monkeypatch):
     """A step of the MDR springs (numpy step-by-step route) fails at step 17."""
-    monkeypatch.setattr(path_driver, "_fused_step", lambda fnd, chans: None)
+    monkeypatch.setattr(winkler_path, "_fused_step", lambda fnd, chans: None)
     full = contact().simulate(PATH, method="mdr")
     d_fail = full.depth[17]
     orig = Winkler.set_normal
@@ -66,14 +65,14 @@ def test_spring_route_block(monkeypatch):
     """The closed-form block of a held-load twist run fails: the steps before the block stay."""
     full = contact().simulate(PATH, method="mdr")
     calls = []
-    orig = winkler.monotone_block
+    orig = winkler_path.monotone_block
 
     def block(*a, **k):
         calls.append(1)
         if len(calls) == 2:
             raise ConvergenceError("injected")
         return orig(*a, **k)
-    monkeypatch.setattr(winkler, "monotone_block", block)
+    monkeypatch.setattr(winkler_path, "monotone_block", block)
     with pytest.raises(ConvergenceError) as e:
         contact().simulate(PATH, method="mdr")
     k = e.value.failed_at["step"]

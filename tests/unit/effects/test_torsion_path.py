@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.effects import torsion_path
+from contactlab.foundation import rings as ring_module
 from contactlab.physics.torsion import METHODS
 from contactlab.errors import (NotSupportedError, ParameterError, UnknownNameError,
                                ValidityWarning)
@@ -20,6 +20,15 @@ from tests.tolerances import (RINGS_CONSTANT_LOAD, RINGS_CONSTANT_LOAD_FINE,
 R, MU, F = 0.01, 0.3, 10.0
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 E_STAR = hertz.effective_modulus(210e9, 0.3)
+
+
+def ring_run(c, path, n_rings, **switches):
+    """The ring solver with its ablation switches off (``Rings.SWITCHES``; ``simulate`` does not
+    expose them), as a PathResult."""
+    from contactlab.effects import path as driver
+    res, _ = driver._run(driver.METHODS["exact"], "exact", c, path, None, None, False,
+                         {"n_rings": n_rings, **switches})
+    return res
 
 
 def contact(mu=MU):
@@ -101,7 +110,7 @@ def test_no_slip_stiffness_with_a_growing_contact():
     # 200, 400, 800 rings, the same for a shrinking contact and already at the first step)
     err = {}
     for n in (100, 200):
-        q = torsion_path._run(c, path, None, n, "uniform", None, annulus=False)
+        q = ring_run(c, path, n, annulus=False)
         dM = np.diff(np.concatenate(([0.0], q.torque)))
         err[n] = np.max(np.abs(dM / dphi / (k * a ** 3) - 1))
     assert err[200] < RINGS_NO_SLIP_GROWING and err[100] / err[200] > 1.5
@@ -245,7 +254,6 @@ def test_contact_edge_on_a_node_under_a_changing_load():
     """Nodes at the path's contact radii: 3-4x below the uniform grid's error at 200 rings against
     a fine run (measured 1.4e-4 vs 4.4e-4 of the sliding torque on this path against 800 rings,
     9.8e-5 vs 4.5e-4 on its 180-step version)."""
-    from contactlab.effects.torsion_path import _run
     c = contact()
     n = 90
     t = np.arange(1, n + 1) / n
@@ -255,7 +263,7 @@ def test_contact_edge_on_a_node_under_a_changing_load():
                                    * np.minimum(1, 2 * t))
     ref = c.simulate(path, n_rings=400).torque
     aligned = c.simulate(path)
-    uniform = _run(c, path, None, 200, "uniform", None, align=False)
+    uniform = ring_run(c, path, 200, align=False)
     assert aligned.meta["aligned"] and 200 < aligned.meta["rings"] <= 300
     err_a = np.max(np.abs(aligned.torque - ref)) / M_s
     err_u = np.max(np.abs(uniform.torque - ref)) / M_s
@@ -266,7 +274,6 @@ def test_contact_edge_on_a_node_under_a_changing_load():
 def test_slip_limits_in_chunks_change_nothing(monkeypatch, mu):
     """The rings' slip limits are computed a chunk of steps at a time (memory); chunks of 3 steps
     give bit-identical series, snapshots and energies (twist, then torque control, then a hold)."""
-    from contactlab.effects import torsion_path
     c = contact(mu)
     a, s, M_full = scales(c)
     t = np.arange(1, 17) / 16
@@ -274,8 +281,8 @@ def test_slip_limits_in_chunks_change_nothing(monkeypatch, mu):
                                     twist=0.7 * s * np.sin(3 * np.pi * t))
             .ramp(torque=0.2 * M_full, steps=7).hold(steps=4))
     runs = []
-    for chunk in (torsion_path._BOUND_CHUNK, 3):
-        monkeypatch.setattr(torsion_path, "_BOUND_CHUNK", chunk)
+    for chunk in (ring_module._BOUND_CHUNK, 3):
+        monkeypatch.setattr(ring_module, "_BOUND_CHUNK", chunk)
         runs.append(c.simulate(path, method="exact", n_rings=40, snapshots=[0, 5, 17, -1]))
     ref, small = runs
     for k in ref.data:
@@ -292,7 +299,6 @@ def test_table_ring_pressures_from_running_sums(monkeypatch, kind):
     """On a table the ring pressures come from running sums over its segments, set up once
     (physics.ring_pressure): the same series as the per-step route (the profile's pressure at
     every ring and step) to RING_PRESSURE_PATH, and chunks of 3 steps give bit-identical series."""
-    from contactlab.effects import torsion_path
     from contactlab.profiles import Tabulated
     from tests.tolerances import RING_PRESSURE_PATH
     r = np.linspace(0.0, 2e-3, 200)
@@ -303,11 +309,11 @@ def test_table_ring_pressures_from_running_sums(monkeypatch, kind):
             + cl.LoadPath.from_arrays(force=F * (1 + 0.3 * np.sin(2 * np.pi * t)),
                                       twist=0.7 * s * np.sin(3 * np.pi * t)))
     fast = c.simulate(path, n_rings=60)
-    slow = torsion_path._run(c, path, None, 60, "uniform", None, ring_table=False)
+    slow = ring_run(c, path, 60, ring_table=False)
     for k in ("torque", "dissipated_energy", "stick_radius"):
         ref = np.asarray(slow.data[k])
         assert np.max(np.abs(np.asarray(fast.data[k]) - ref)) <= RING_PRESSURE_PATH * np.max(np.abs(ref)), k
-    monkeypatch.setattr(torsion_path, "_BOUND_CHUNK", 3)
+    monkeypatch.setattr(ring_module, "_BOUND_CHUNK", 3)
     small = c.simulate(path, n_rings=60)
     for k in fast.data:       # node sums grouped in fixed blocks: no chunk-dependent rounding
         assert np.array_equal(fast.data[k], small.data[k]), k
@@ -325,7 +331,7 @@ def test_no_slip_with_a_shrinking_contact_is_the_rigid_punch_of_the_current_radi
     r = c.simulate(path, method="exact")
     ratio = r.torque / (16.0 / 3.0 * c.moduli.torsional * a ** 3 * phi)
     assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP
-    q = torsion_path._run(c, path, None, 200, "uniform", None, annulus=False)
+    q = ring_run(c, path, 200, annulus=False)
     ratio = q.torque / (16.0 / 3.0 * c.moduli.torsional * a ** 3 * phi)
     assert np.max(np.abs(ratio - 1)) < RINGS_NO_SLIP_GROWING
 
@@ -435,3 +441,25 @@ def test_torque_control_fallback_steps_reach_the_torque():
     tw = c.simulate(cl.LoadPath.from_arrays(force=force, twist=tq.twist), method="exact",
                     n_rings=100)
     assert np.max(np.abs(tw.torque - torque)) / np.max(np.abs(torque)) < RINGS_TORQUE_INVERSION
+
+
+def test_torque_control_out_of_contact_without_friction_limit():
+    """A frictionless torque-controlled path opening at zero load (as a scene's path does: its
+    start step) ran into a division by the contact radius 0 (ZeroDivisionError). Out of contact
+    no punch carries a torque: the twist is held, and a torque target other than 0 is gross
+    sliding. The rest of the path is that of the path without the start step."""
+    from tests.tolerances import ZERO_LOAD_START
+    c = contact(mu=None)
+    t = np.arange(1, 41) / 40
+    rest = (cl.LoadPath().ramp(force=F, steps=4)
+            + cl.LoadPath.from_arrays(force=F * (1 + 0.3 * np.sin(2 * np.pi * t)),
+                                      torque=2e-4 * np.sin(3 * np.pi * t)))
+    ref = c.simulate(rest)
+    got = c.simulate(cl.LoadPath.from_arrays(force=[0.0], torque=[0.0]) + rest)
+    assert got.meta["method"] == "exact" and got.meta["punches"]
+    assert got.torque[0] == 0.0 and got.twist[0] == 0.0 and not got.gross_sliding.any()
+    for k in ("torque", "twist", "stick_radius", "dissipated_energy"):
+        a, b = getattr(got, k)[1:], getattr(ref, k)
+        assert np.max(np.abs(a - b)) <= ZERO_LOAD_START * np.max(np.abs(b)), k
+    pushed = c.simulate(cl.LoadPath.from_arrays(force=[0.0], torque=[1e-4]) + rest)
+    assert pushed.gross_sliding[0] and pushed.twist[0] == 0.0 and pushed.torque[0] == 0.0

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.effects import path as P
+from contactlab.foundation import base as B
+from contactlab.foundation import winkler_path as P
 from contactlab.errors import OutsideTheoryError, ValidityWarning
 from tests.tolerances import WINDOWED_PATH
 
@@ -59,7 +60,7 @@ def test_small_windows_do_not_change_the_result(monkeypatch, name):
         ref = c.simulate(path, n_springs=200, method="mdr", snapshots=[57])
     monkeypatch.setattr(P, "_CHUNK", 5)
     monkeypatch.setattr(P, "_FUSED_WINDOW", 6)
-    monkeypatch.setattr(P, "_SOLVE_CHUNK", 7)
+    monkeypatch.setattr(B, "SOLVE_CHUNK", 7)
     monkeypatch.setattr(P, "_TURN_WINDOW", 3)
     with warns():
         got = c.simulate(path, n_springs=200, method="mdr", snapshots=[57])

@@ -288,8 +288,8 @@ def test_only_needed_foundations_are_built():
     twist = c.simulate(cl.LoadPath().ramp(force=F, steps=2).ramp(twist=1e-6, steps=2),
                        n_springs=20, method="mdr")
     assert twist.meta["built"] == ["normal", "torsion"]
-    f = Winkler.for_path(c.profile, cl.LoadPath().ramp(force=F, steps=3), moduli=c.moduli,
-                         friction=MU, n_springs=10)
+    f = Winkler.for_path(c.profile, c.moduli, MU, cl.LoadPath().ramp(force=F, steps=3),
+                         n_springs=10)
     assert f.built == ["normal"] and not hasattr(f, "K_tor") and not hasattr(f, "K_tan")
     assert f.radius == pytest.approx(c.normal(force=F).radius, rel=TOL.SHORT_ARITHMETIC)
 

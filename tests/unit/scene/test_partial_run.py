@@ -9,7 +9,7 @@ import json
 import numpy as np
 import pytest
 
-import contactlab.effects.path as path_driver
+import contactlab.foundation.winkler_path as winkler_path
 import contactlab.physics.torsion_annulus as annulus
 from contactlab import Contact
 from contactlab.cli import main
@@ -95,7 +95,7 @@ def test_exact_ring_route_step_failure(monkeypatch):
 # the MDR springs warn beyond their validity twist: not the subject here
 @pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 def test_spring_route_step_failure(monkeypatch):
-    monkeypatch.setattr(path_driver, "_fused_step", lambda fnd, chans: None)
+    monkeypatch.setattr(winkler_path, "_fused_step", lambda fnd, chans: None)
     d = twist_scene({"ramp": {"force": "300 N", "twist": "1 mrad", "steps": 20}},
                     outputs={"method": "mdr"})
     full = Scene(d).run()
