@@ -44,9 +44,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import contactlab as cl  # noqa: E402
 from contactlab.effects.path import mdr_path_validity, force_variation  # noqa: E402
-from contactlab.effects.torsion_path import _run  # noqa: E402
+from contactlab.effects import path as _path  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _harness import machine, write_dict_csv  # noqa: E402
+
+
+def _run(c, path, outputs, n_rings, spacing, snapshots, **switches):
+    """The exact ring solver with its ablation switches (``Rings.SWITCHES``), as a PathResult."""
+    res, _ = _path._run(_path.METHODS["exact"], "exact", c, path, outputs, snapshots, False,
+                        {"n_rings": n_rings, "spacing": spacing, **switches})
+    return res
 
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 MU = 0.3

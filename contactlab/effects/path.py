@@ -281,7 +281,7 @@ def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots
     """One run of ``path`` on the foundation class ``fnd``
     (:func:`contactlab.foundation.base.run_path`) as a :class:`PathResult`; ``warn``: emit the
     :class:`ValidityWarning` of :func:`warn_mdr_path` (off for the coarser run of an error
-    estimate). Returns the result and the run's options, completed with their defaults."""
+    estimate). Returns the result and the options of the run."""
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
     if contact.is_adhesive:
@@ -293,7 +293,6 @@ def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots
         raise ParameterError("path has no steps: add a segment, e.g. "
                              "LoadPath().ramp(force=1.0, steps=10).")
     snaps = step_indices("snapshots", snapshots, n_total)
-    options = fnd.check_path(path, snaps, **options)
     from .normal import warn_outside_validity
 
     def on_normal(a_max: float) -> None:

@@ -2,7 +2,7 @@
 and its result :class:`ViscoelasticHistory`.
 
 The time stepping is that of the MDR viscoelastic foundation,
-:class:`contactlab.foundation.viscoelastic.Viscoelastic` (theory §7).
+:class:`contactlab.foundation.viscoelastic.ViscoelasticElements` (theory §7).
 """
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ import numpy as np
 from ..citations import Cited, sources_for
 from ..errors import ConvergenceError, NotSupportedError, ParameterError
 from ..foundation import viscoelastic as _ve
+from ..foundation.base import DEFAULT_N_SPRINGS    # elements over the largest contact radius
 from ..materials import Elastic, Rigid, effective_moduli
 from ..materials.pair import viscoelastic_body
 from ..params import FieldsEqual, as_float_array, check_count, check_memory, exactly_one
@@ -22,8 +23,6 @@ from ..physics.normal import radius_depth_of_force
 
 __all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS", "history_memory"]
 
-#: default number of foundation elements over the largest contact radius
-DEFAULT_N_SPRINGS = 2000
 
 
 def history_memory(n_steps: int, n_springs: int, n_terms: int) -> float:

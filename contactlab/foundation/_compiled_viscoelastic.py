@@ -2,8 +2,8 @@
 
 ``trial(d_new, d_old, dt, m, g, u, s, contact, ever, e, Gb, Gb_sum, visc, G_inf, Gk, tk, eta,
 dx) -> (q, u_new, s_new, contact_new, stiffness, radius, force, n_contact, last)``
-    The end-of-step element forces of :meth:`Viscoelastic.trial
-    <contactlab.foundation.viscoelastic.Viscoelastic.trial>` for the elements ``[0, m)`` (state
+    The end-of-step element forces of :meth:`ViscoelasticElements.trial
+    <contactlab.foundation.viscoelastic.ViscoelasticElements.trial>` for the elements ``[0, m)`` (state
     not modified): the three contact rules (in contact and compressive, entering within the
     step, force-free), the contact edge inside the outermost element's cell and the force,
     in one pass over the elements instead of ~40 numpy calls (half of a 1000-element step was
@@ -120,7 +120,7 @@ def _trial(d_new, d_old, dt, m, g, u, s, was, ever, e, Gb, Gb_sum, visc, G_inf, 
             F_sum += q[i]
     if last < 0:
         return q, u_new, s_new, con, stiff, 0.0, 0.0, 0, -1
-    # the contact edge inside the outermost element's cell (see Viscoelastic._edge_and_force)
+    # the contact edge inside the outermost element's cell (see ViscoelasticElements._edge_and_force)
     i = last
     x_i = (i + 0.5) * dx
     j = i + 1

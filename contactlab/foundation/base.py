@@ -2,15 +2,20 @@
 
 To implement a subclass
 -----------------------
-1. Required: ``_build(self)`` (precompute per-cell constants from ``self.boundaries``),
-   ``new_state(self)`` (fresh spring state arrays for one solver run), ``set_normal(...)``,
-   ``step(...)`` and ``solve(...)`` (see :class:`~contactlab.foundation.Winkler`).
-2. Optional: nothing else.
+1. Required: ``_build(self)`` (precompute per-cell constants from ``self.boundaries``) and
+   ``new_state(self)`` (fresh state arrays for one solver run).
+2. To run load paths (an entry of ``contactlab.effects.path.METHODS``): :meth:`run` (the time
+   loop, returning :class:`PathArrays`), :meth:`check_path` (the options and the memory budget),
+   ``ESTIMATED`` and :meth:`coarser` (the error estimate); :meth:`for_path` and :meth:`writes`
+   when the defaults do not fit (see :class:`~contactlab.foundation.Winkler` and
+   :class:`~contactlab.foundation.rings.Rings`).
 3. Free: :meth:`for_path` (spacing from the path's maximum contact radius), :attr:`positions`,
-   :attr:`widths`, :attr:`built` (which spring families exist).
+   :attr:`widths`, :attr:`built` (which spring families exist), :func:`run_path` (checks, the
+   normal problem of every step, ``for_path``, ``run``).
 
 A foundation object is immutable geometry plus material constants; spring *state* arrays belong
-to a solver run (``new_state()``), so one foundation can serve several runs.
+to a solver run (``new_state()``), so one foundation can serve several runs. A run takes the
+profile, moduli, friction and tolerance, never a ``Contact``.
 """
 from __future__ import annotations
 

@@ -8,7 +8,7 @@ copy of the material's element with every parameter scaled by ``4Δx``. For the 
     q_i = 4 [G_∞ u_i + Σ_k s_ik + η du_i/dt],    ds_ik/dt + s_ik/τ_k = G_k du_i/dt,
 
 with ``u_i`` its surface displacement (``d - g(x_i)`` while in contact). ``F = 2∫_0^a q dx``, with
-the edge ``a`` interpolated inside the outermost element's cell (see :meth:`Viscoelastic.trial`).
+the edge ``a`` interpolated inside the outermost element's cell (see :meth:`ViscoelasticElements.trial`).
 
 Time integration (exact for displacements linear within a step): the arm stresses advance by
 the exponential integrator
@@ -40,7 +40,7 @@ from ..errors import ConvergenceError, ParameterError
 from . import _compiled_viscoelastic
 from ..numeric.roots import bracketed_root
 
-__all__ = ["Viscoelastic", "solve_history"]
+__all__ = ["ViscoelasticElements", "solve_history"]
 
 
 def _beta(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -59,13 +59,13 @@ class _Trial:
     s: np.ndarray
     contact: np.ndarray
     stiffness: float = 0.0   # dq_sum/dd of the elements in contact (for Newton predictions)
-    radius: float = 0.0      # contact edge, m (sub-element, see Viscoelastic.trial)
+    radius: float = 0.0      # contact edge, m (sub-element, see ViscoelasticElements.trial)
     total: float = 0.0       # normal force, N
     n_contact: int = 0       # elements in contact
     last: int = -1           # the outermost element in contact (-1: none)
 
 
-class Viscoelastic:
+class ViscoelasticElements:
     """The MDR viscoelastic foundation: element state and the per-step update (half line x > 0).
 
     Parameters
@@ -272,7 +272,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
         ``edge_reached`` (contact touched the last element) arrays per step.
     """
     G_inf, Gk, tk, eta = prony
-    fd = Viscoelastic(g_x, dx, G_inf, Gk, tk, eta)
+    fd = ViscoelasticElements(g_x, dx, G_inf, Gk, tk, eta)
     n = time.size
     out_d = np.zeros(n)
     out_F = np.zeros(n)
@@ -317,7 +317,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
             "edge_reached": edge}
 
 
-def _release_depth(fd: Viscoelastic, d_old: float, dt: float, scale: float, step: int) -> float:
+def _release_depth(fd: ViscoelasticElements, d_old: float, dt: float, scale: float, step: int) -> float:
     """Largest end-of-step depth at which no element carries force (bisection on F > 0)."""
 
     def F(d: float) -> float:
@@ -346,7 +346,7 @@ def _release_depth(fd: Viscoelastic, d_old: float, dt: float, scale: float, step
     return lo
 
 
-def _solve_force(fd: Viscoelastic, target: float, d_old: float, dt: float, scale: float,
+def _solve_force(fd: ViscoelasticElements, target: float, d_old: float, dt: float, scale: float,
                  step: int, guess_step: float = 0.0) -> float:
     """Depth at the end of a step such that the foundation force equals ``target``."""
 

@@ -171,7 +171,7 @@ class Winkler(Foundation):
         if len(needs) == 2:
             warnings.warn("combined shift and twist is run as two independent spring families "
                           "(approximate=True): outside the MDR theory, the slip limits do not "
-                          "interact.", ValidityWarning, stacklevel=5)
+                          "interact.", ValidityWarning, stacklevel=6)
         n_total = path.n_steps
         n_springs = DEFAULT_N_SPRINGS if n_springs is None else check_count("n_springs", n_springs)
         n_snap = len(snapshots)

@@ -229,3 +229,12 @@ def test_a_violation_is_caught(tmp_path):
             test_imports_run_downward_only()
     finally:
         ROOT = old
+
+
+def test_no_import_circle_inside_effects():
+    """The drivers import each other downward only: effects.torsion_path imported private helpers
+    back from effects.path (the one circle in effects/ until issue 27 moved the time loops into
+    foundation/)."""
+    circles = [comp for comp in _sccs(_graph()) if len(comp) > 1
+               and any(m.startswith("contactlab.effects.") for m in comp)]
+    assert not circles, f"import circles through effects/: {circles}"

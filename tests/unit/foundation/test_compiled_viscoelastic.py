@@ -6,7 +6,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.foundation import _compiled
-from contactlab.foundation.viscoelastic import Viscoelastic
+from contactlab.foundation.viscoelastic import ViscoelasticElements
 from contactlab.materials.viscoelastic import (GeneralizedMaxwell, KelvinVoigt, Maxwell,
                                                StandardLinearSolid)
 from contactlab.profiles import Paraboloid
@@ -77,7 +77,7 @@ def test_trial_steps_agree_between_backends(mat):
     g = ((np.arange(n) + 0.5) * dx) ** 2 / R
     rng = np.random.default_rng(11)
     for case in range(12):
-        fd = Viscoelastic(g, dx, G_inf, Gk, tk, eta)
+        fd = ViscoelasticElements(g, dx, G_inf, Gk, tk, eta)
         touched = int(rng.integers(1, n))
         fd.touched = touched
         d_old = float(g[touched - 1]) * rng.uniform(0.5, 1.5)
