@@ -51,9 +51,8 @@ from _harness import machine, write_dict_csv  # noqa: E402
 
 def _run(c, path, outputs, n_rings, spacing, snapshots, **switches):
     """The exact ring solver with its ablation switches (``Rings.SWITCHES``), as a PathResult."""
-    res, _ = _path._run(_path.METHODS["exact"], "exact", c, path, outputs, snapshots, False,
-                        {"n_rings": n_rings, "spacing": spacing, **switches})
-    return res
+    return _path._run(_path.METHODS["exact"], "exact", c, path, outputs, snapshots, False,
+                      {"n_rings": n_rings, "spacing": spacing, **switches})
 
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 MU = 0.3

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..citations import Cited, sources_for
+from ..citations import Cited
 from ..errors import (ContactlabError, EffectNotPlannedError, NotSupportedError, ParameterError,
                       UnknownNameError, ValidityWarning, failed_part_way)
 from ..foundation.base import (SERIES, SPACINGS, PathArrays, path_normal_states, run_path)
@@ -255,12 +255,12 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     options = {name: given[name] for name in METHOD_ARGUMENTS[method]}
     options["approximate"] = approximate
     fnd = METHODS[method]
-    res, options = _run(fnd, method, contact, path, outputs, snapshots, progress, options)
+    res = _run(fnd, method, contact, path, outputs, snapshots, progress, options)
     if error_estimate:
         coarse_options = fnd.coarser(options, res.meta)
         if coarse_options is not None:
-            half, _ = _run(fnd, method, contact, path, outputs, None, False, coarse_options,
-                           warn=False)
+            half = _run(fnd, method, contact, path, outputs, None, False, coarse_options,
+                        warn=False)
             est = {}
             for name in fnd.ESTIMATED:
                 if name in res.data:
@@ -277,11 +277,11 @@ _CALL = {"mdr": "simulate()", "exact": "simulate(method='exact')"}
 
 
 def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots: Any,
-         progress: bool, options: dict, warn: bool = True) -> tuple[PathResult, dict]:
+         progress: bool, options: dict, warn: bool = True) -> PathResult:
     """One run of ``path`` on the foundation class ``fnd``
     (:func:`contactlab.foundation.base.run_path`) as a :class:`PathResult`; ``warn``: emit the
     :class:`ValidityWarning` of :func:`warn_mdr_path` (off for the coarser run of an error
-    estimate). Returns the result and the options of the run."""
+    estimate); ``options``: the discretisation of ``fnd`` (its ``check_path``)."""
     if not isinstance(path, LoadPath):
         raise ParameterError(f"path={path!r} is invalid: expected a contactlab.LoadPath.")
     if contact.is_adhesive:
@@ -322,7 +322,7 @@ def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots
         warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], res["force"],
                       energy="dissipated_energy" in outputs, stacklevel=4)
     return PathResult({k: res[k] for k in outputs}, _with_pressure(contact, out.snapshots),
-                      out.meta), options
+                      out.meta)
 
 
 def _with_pressure(contact, snapshots: dict) -> dict:

@@ -320,9 +320,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{STORE} exists: pass --overwrite to rewrite it", file=sys.stderr)
         return 2
     new = compute(args.paths)
+    n_paths = args.paths
     if args.match is not None and STORE.exists():
         pat = re.compile(args.match)
-        stored = json.loads(STORE.read_text())["hashes"]
+        old = json.loads(STORE.read_text())
+        stored, n_paths = old["hashes"], old["n_paths"]
         changed = 0
         for k in stored:
             if pat.search(k) and k in new and stored[k] != new[k]:
@@ -332,7 +334,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{changed} stored hashes rewritten")
     doc = {"about": "sha256 (first 32 hex) of every output of the load-path routes; "
                     "regenerate with: python tests/integration/path_hashes.py --overwrite",
-           "n_paths": args.paths, "seed": SEED, "hashes": dict(sorted(new.items()))}
+           "n_paths": n_paths, "seed": SEED, "hashes": dict(sorted(new.items()))}
     STORE.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
     print(f"{len(new)} hashes written to {STORE}")
     return 0

@@ -26,9 +26,8 @@ def ring_run(c, path, n_rings, **switches):
     """The ring solver with its ablation switches off (``Rings.SWITCHES``; ``simulate`` does not
     expose them), as a PathResult."""
     from contactlab.effects import path as driver
-    res, _ = driver._run(driver.METHODS["exact"], "exact", c, path, None, None, False,
-                         {"n_rings": n_rings, **switches})
-    return res
+    return driver._run(driver.METHODS["exact"], "exact", c, path, None, None, False,
+                       {"n_rings": n_rings, **switches})
 
 
 def contact(mu=MU):
