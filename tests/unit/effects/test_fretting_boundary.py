@@ -186,3 +186,15 @@ def test_no_slip_fretting_sticks_and_has_no_boundary():
     assert loop.regime == "stick" and loop.energy == 0.0 and np.isinf(loop.sliding)
     m = c.fretting_map(force=FORCES, twist_amplitude=[1e-4, 1e-2], method="no-slip")
     assert np.all(m.regime == 0) and np.all(np.isinf(m.boundary))
+
+
+def test_loose_rtol_boundary_certified_on_the_loop_route():
+    # at rtol=1e-4 the loading-curve root and the loop route differ by ~1e-4; the certification
+    # widens its search with the contact's tolerance instead of failing
+    c = cl.Contact(PROFILES["hertz"], materials=(STEEL, STEEL), friction=MU, rtol=1e-4)
+    m = c.fretting_map(force=FORCES, twist_amplitude=[1e-4])
+    a = radius_of_force(FORCES, R, c.moduli.normal)
+    expect = ref.hertz_torsion_boundary("energy_ratio", 0.2)[0] * MU * FORCES / (
+        c.moduli.torsional * a**2)
+    np.testing.assert_allclose(m.boundary, expect, rtol=1e-3)
+    _check_map_against_loops(c, FORCES, m.boundary[:, None] * AROUND, m.boundary, "torsion")
