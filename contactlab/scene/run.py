@@ -435,7 +435,10 @@ def run_scene(scene: "Scene") -> SceneResult:
     elif plan.route == "foundation":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
         if plan.details.get("exact_torsion_path", False):
-            kw = {"method": "exact"}       # the exact ring solver (issue 18)
+            # the exact ring solver (issue 18): it reads n_rings, not n_springs
+            kw = {"method": "exact"}
+            if "n_rings" in scene.solver:
+                kw["n_rings"] = scene.solver["n_rings"]
         else:                              # the plan chose the MDR springs
             kw["method"] = "mdr"
         try:
