@@ -171,12 +171,23 @@ FRETTING_CLOSED = 1e-9
 #: trapezoid area of the returned loop (n points per branch) against W: error ~ W'' δ²/(12 n²);
 #: measured 2e-6 at n = 2000
 LOOP_TRAPEZOID = 1e-5
-#: torsional boundary (regula falsi in c/a, 3 refinements after a 48-point grid) against the
-#: closed form φ(c) of the Lubkin problem: stick_ratio is one direct evaluation (quadrature)
+#: torsional stick-ratio boundary (one direct evaluation of φ(c = threshold a), a quadrature at
+#: rtol 1e-10) against the closed form φ(c) of the Lubkin problem
 TORSION_BOUNDARY = 1e-8
-#: torsional energy/torque-ratio boundary: root of the criterion in c/a after 3 regula-falsi steps;
-#: measured criterion residual <= 1e-6
-TORSION_BOUNDARY_ROOT = 1e-5
+#: criterion at the torsional energy/torque-ratio boundary (issue 26): the boundary is certified
+#: to 1e-10 relative in the twist on the loop's own route, so the loop there misses the threshold
+#: by |dv/d ln φ| x 1e-10 (|dv/d ln φ| <= 1) plus the quadrature tolerance 1e-10 of W, M*, φ*;
+#: measured <= 1e-10. (It was 1e-5 while the boundary was three regula-falsi steps.)
+TORSION_BOUNDARY_ROOT = 1e-8
+#: torsional energy/torque-ratio boundary against the Hertz root of the Lubkin / Jäger closed
+#: forms in 20-digit arithmetic (issue 26): bracket 1e-10 relative in the twist plus the
+#: quadrature tolerance of the criterion divided by |d v/d ln φ| (>= 0.1 for thresholds <= 0.9);
+#: measured <= 6e-11 (benchmarks/fretting_boundary.py)
+TORSION_BOUNDARY_CONVERGED = 1e-9
+#: a torsional boundary against brentq on fretting_loop's own criterion (the twist-given route,
+#: a second method): both roots to 1e-12 / 1e-10 in the twist, each criterion evaluated with
+#: quadrature tolerance 1e-10
+TORSION_BOUNDARY_LOOP_ROUTE = 1e-9
 
 # ---- adversarial review (issue 11)
 #: surface displacement within 1000 rounding steps outside the contact edge against a 40-digit

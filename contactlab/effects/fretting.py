@@ -16,7 +16,8 @@ from typing import Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
+from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
+                      ValidityWarning)
 from ..params import (FieldsEqual, as_float_array, as_real, check_count, check_memory,
                      check_result_finite, exactly_one)
 from ..physics import fretting as _fr
@@ -104,9 +105,11 @@ def loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: np
     """
     with np.errstate(over="ignore", invalid="ignore"):
         res = _loops(contact, mode, method, a, d, F_N, amp, criterion, threshold)
+    # the no-slip model never slides: its sliding torque is inf by definition, not an overflow
+    sliding = {} if method == "no-slip" else {"sliding": res["sliding"]}
     check_result_finite(f"fretting ({mode})", {"force": F_N, "amplitude": amp},
                         peak=res["peak"], energy=res["energy"], energy_ratio=res["energy_ratio"],
-                        sliding=res["sliding"], stick_radius=res["stick_radius"])
+                        stick_radius=res["stick_radius"], **sliding)
     return res
 
 
@@ -416,56 +419,90 @@ class FrettingMap(FieldsEqual, Cited):
 
 
 def torsional_boundary(contact, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,
-                       criterion: str, threshold: float, n_grid: int = 48,
-                       n_refine: int = 3) -> np.ndarray:
+                       criterion: str, threshold: float) -> np.ndarray:
     """Twist amplitude at which the torsional gross-slip criterion is met, per normal state.
 
-    ``stick_ratio``: the twist at ``c = threshold·a`` (one evaluation). The others: the criterion
-    is monotone in ``c``; it is evaluated on ``n_grid`` stick ratios per state, the crossing
-    bracketed and refined by ``n_refine`` regula-falsi steps in ``c/a`` (batched over states).
+    The root of the criterion along the loading curve, certified to
+    ``rtol = min(BOUNDARY_RTOL, contact.rtol)`` relative in the twist
+    (:func:`contactlab.physics.fretting.torsional_boundary`), then certified once more on the
+    route the map's points take (:func:`loops`, twist given): the returned amplitude is gross slip
+    there and ``(1 - rtol)`` times it is not (:func:`_certify_boundary`). ``inf`` where the
+    criterion is never met.
     """
-    model = torsion_model(contact, method)
-    g_a = _fresh_g(contact, a, d)
     if method == "no-slip":
         return np.full(a.shape, np.inf)
+    rtol = min(_fr.BOUNDARY_RTOL, contact.rtol)
+    phi = _fr.torsional_boundary(torsion_model(contact, method), a, d, _fresh_g(contact, a, d),
+                                 criterion, threshold, rtol)
+    return _certify_boundary(contact, method, a, d, F_N, criterion, threshold, phi, rtol)
 
-    def at_ratio(s: np.ndarray, idx: np.ndarray):
-        A_, D_, G_ = a[idx], d[idx], g_a[idx]
-        sol = model.of_stick_radius(s * A_, A_, D_, G_)
-        phi = sol.twist
-        W = 4.0 * model.dissipation(phi, sol.stick_radius, A_, D_, G_)
-        Ar = _fr.energy_ratio(W, phi, sol.torque)
-        v = _fr.criterion_value(criterion, Ar, sol.stick_radius, A_,
-                                sol.torque, model.sliding_torque(A_, D_))
-        return phi, v
 
-    n = a.size
-    if criterion == "stick_ratio":
-        return at_ratio(np.full(n, threshold), np.arange(n))[0]
-    s_grid = 1.0 - np.geomspace(1e-4, 0.999, n_grid)          # c/a from near 1 to 0.001
-    S = np.tile(s_grid, n)
-    idx = np.repeat(np.arange(n), n_grid)
-    _, v = at_ratio(S, idx)
-    v = v.reshape(n, n_grid)
-    f = v - threshold                    # energy/torque ratio increase as c/a decreases
-    hit = f >= 0
-    j = np.where(hit.any(axis=1), np.argmax(hit, axis=1), -1)
-    out = np.full(n, np.inf)
-    ok = j > 0
-    if not np.any(ok):
+#: Widest relative offset :func:`_certify_boundary` searches, in units of the contact's ``rtol``
+#: (the two routes agree to about the quadrature tolerance; measured <= 2e-10 at the default
+#: 1e-10), and never below :data:`_CERTIFY_FLOOR`
+_CERTIFY_SPAN = 1e3
+_CERTIFY_FLOOR = 1e-6
+
+
+def _certify_boundary(contact, method: str, a: np.ndarray, d: np.ndarray, F_N: np.ndarray,
+                      criterion: str, threshold: float, phi: np.ndarray, rtol: float
+                      ) -> np.ndarray:
+    """Move each finite boundary ``phi`` onto the classification of :func:`loops`.
+
+    The loading-curve root and a loop at that twist evaluate the criterion by different routes
+    (stick radius given, twist given), which agree to about the quadrature tolerance. A bracket
+    ``[lo, hi]`` with ``hi`` gross slip and ``lo`` not, on the loops' own route, is found around
+    ``phi`` (widened 4x per step where needed) and bisected to ``hi/lo - 1 <= rtol``; ``hi`` is
+    returned. So a map point at or beyond the drawn line is gross slip and a point more than
+    ``rtol`` below it is not, as :meth:`Contact.fretting_loop` reports.
+
+    Raises
+    ------
+    ConvergenceError
+        The two routes disagree by more than ``max(1e3 contact.rtol, 1e-6)`` relative (never
+        seen; a defect, not an input).
+    """
+    out = phi.copy()
+    idx = np.flatnonzero(np.isfinite(phi) & (phi > 0))
+    if idx.size == 0:
         return out
-    rows = np.flatnonzero(ok)
-    lo_s, hi_s = s_grid[j[ok] - 1], s_grid[j[ok]]            # f(lo) < 0 <= f(hi)
-    f_lo, f_hi = f[rows, j[ok] - 1], f[rows, j[ok]]
-    for _ in range(n_refine):
-        s_new = lo_s + (hi_s - lo_s) * (-f_lo) / (f_hi - f_lo)
-        _, v_new = at_ratio(s_new, rows)
-        f_new = v_new - threshold
-        up = f_new >= 0
-        hi_s, f_hi = np.where(up, s_new, hi_s), np.where(up, f_new, f_hi)
-        lo_s, f_lo = np.where(up, lo_s, s_new), np.where(up, f_lo, f_new)
-    s_fin = lo_s + (hi_s - lo_s) * (-f_lo) / (f_hi - f_lo)
-    out[rows] = at_ratio(s_fin, rows)[0]
+    p0 = phi[idx]
+    span = max(_CERTIFY_SPAN * contact.rtol, _CERTIFY_FLOOR)
+
+    def gross(x: np.ndarray, k: np.ndarray) -> np.ndarray:
+        i = idx[k]
+        r = loops(contact, "torsion", method, a[i], d[i], F_N[i], x, criterion, threshold)
+        return r["regime"] == _fr.GROSS_SLIP
+
+    all_k = np.arange(idx.size)
+    lo, hi = p0 * (1.0 - rtol), p0.copy()
+    g = gross(np.concatenate([hi, lo]), np.concatenate([all_k, all_k]))
+    ok_hi, ok_lo = g[:idx.size], ~g[idx.size:]
+    off = rtol
+    while True:
+        up = np.flatnonzero(~ok_hi)                      # hi not gross: the root lies above
+        down = np.flatnonzero(ok_hi & ~ok_lo)            # lo gross already: the root lies below
+        if up.size + down.size == 0:
+            break
+        off *= 4.0
+        if off > span:
+            raise ConvergenceError(
+                f"torsional gross-slip boundary: the loop at the loading-curve root and the "
+                f"root itself disagree on the {criterion} criterion by more than {span:.2g} "
+                "relative.")
+        lo[up], hi[down] = hi[up], lo[down]              # the old end is on the right side
+        ok_lo[up], ok_hi[down] = True, True
+        hi[up], lo[down] = p0[up] * (1.0 + off), p0[down] * (1.0 - off)
+        g = gross(np.concatenate([hi[up], lo[down]]), np.concatenate([up, down]))
+        ok_hi[up], ok_lo[down] = g[:up.size], ~g[up.size:]
+    wide = np.flatnonzero(hi > lo * (1.0 + rtol))
+    while wide.size:
+        mid = 0.5 * (lo[wide] + hi[wide])
+        g = gross(mid, wide)
+        hi[wide] = np.where(g, mid, hi[wide])
+        lo[wide] = np.where(g, lo[wide], mid)
+        wide = wide[hi[wide] > lo[wide] * (1.0 + rtol)]
+    out[idx] = hi
     return out
 
 

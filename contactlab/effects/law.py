@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Citations, sources_for
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
 from ..params import as_checked_array, as_float_array, as_real, check_memory, exactly_one
@@ -78,6 +79,22 @@ class LawStep:
     torsion_stick_radius: np.ndarray
     dissipated_energy: np.ndarray
     exact: np.ndarray
+
+    @property
+    def citations(self) -> Citations:
+        """The sources of this step (``contactlab.cite(step)``): the law's closed forms, and the
+        MDR springs when some contact was not exact (its normal load changed)."""
+        return Citations(law_sources(springs=not bool(np.all(self.exact))))
+
+
+def law_sources(springs: bool = True) -> tuple[str, ...]:
+    """Source tags of :class:`ContactLaw`: closed-form normal contact, Cattaneo–Mindlin and
+    exact (Jäger) torsion with Masing's rule; ``springs``: also the MDR springs that carry a
+    contact whose normal load changes."""
+    tags = sources_for("normal", "tangential", "masing:tangential", "torsion:exact",
+                       "masing:torsion")
+    return tags + tuple(t for t in sources_for("foundation", "foundation:torsion")
+                        if springs and t not in tags)
 
 
 def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
@@ -341,6 +358,12 @@ class ContactLaw:
             new[k] = arr.astype(v.dtype, copy=True)
         for k, v in new.items():                # in place: channel fields are views
             ref[k][...] = v
+
+    @property
+    def citations(self) -> Citations:
+        """The sources the law uses (``contactlab.cite(law)``): closed-form normal contact,
+        Cattaneo–Mindlin, exact torsion, Masing's rule and the MDR springs for varying loads."""
+        return Citations(law_sources())
 
     def reset(self, mask: Any = None) -> None:
         """Clear the memory of the contacts in ``mask`` (bool array or indices; all if None)."""

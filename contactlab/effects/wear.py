@@ -23,13 +23,14 @@ from typing import Any
 
 import numpy as np
 
+from ..citations import Cited, sources_for
 from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
 from ..params import (FieldsEqual, as_float_array, as_real, check_memory,
                      check_positive)
 from ..physics import wear as _wear
 from ..profiles import Tabulated
-from .fretting import _mode_and_amplitude, check_contact, loops, warn_mdr
+from .fretting import _mode_and_amplitude, check_contact, fretting_sources, loops, warn_mdr
 from .torsion import resolve_method
 
 __all__ = ["WearResult", "wear", "SERIES_UNITS", "DEFAULT_GRID", "DEFAULT_JUMP_RTOL"]
@@ -57,7 +58,7 @@ SERIES_UNITS = {"cycles": "1", "depth": "m", "radius": "m", "scar_radius": "m",
 
 
 @dataclass(frozen=True, eq=False)
-class WearResult(FieldsEqual):
+class WearResult(FieldsEqual, Cited):
     """Fretting-wear run: worn profiles at checkpoints and series per wear step.
 
     Attributes
@@ -85,7 +86,8 @@ class WearResult(FieldsEqual):
         ``jump_rtol``, ``steps``, ``rejected``, ``rates`` (evaluations),
         ``mdr_valid_cycles`` (last cycle count at which the worn profile was still a simply
         connected MDR contact; inf when it stayed one, otherwise wear() warned) and
-        ``tensile_fraction`` (largest tensile share of the MDR pressure over the run).
+        ``tensile_fraction`` (largest tensile share of the MDR pressure over the run),
+        ``citations`` (the sources: ``contactlab.cite(result)``).
     """
 
     mode: str
@@ -368,7 +370,8 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             "grid_radius": R, "jump_rtol": jump_rtol, "steps": steps, "rejected": rejected,
             "rates": evals + 1, "fresh_energy_per_cycle": float(fresh["energy"][0]),
             "friction": mu, "fresh_grid_energy_error": grid_error,
-            "mdr_valid_cycles": float(valid_until), "tensile_fraction": float(max(tensile))}
+            "mdr_valid_cycles": float(valid_until), "tensile_fraction": float(max(tensile)),
+            "citations": fretting_sources(mode, method) + sources_for("wear")}
     if np.isfinite(valid_until):
         warnings.warn(f"wear(): after {valid_until:.4g} cycles the worn profile left the MDR: its "
                       "1D profile dips (a proud unworn stick zone with a steep edge: torsion at "

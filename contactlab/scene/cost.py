@@ -7,8 +7,11 @@ setting:
 ``rtol``
     Relative tolerance of quadratures and root solves (every scene).
 ``n_springs``
-    Cells of the MDR foundation (scenes whose plan runs the foundation or the viscoelastic
+    Cells of the MDR foundation (scenes whose plan runs the MDR springs or the viscoelastic
     history).
+``n_rings``
+    Rings of the exact torsion solver (scenes whose plan runs it: a twist under a varying normal
+    load); it does not read ``n_springs``.
 ``steps``
     Refinement factor of every load-path segment's ``steps`` (``steps_per_cycle`` for a
     sinusoid), durations and periods held (foundation and viscoelastic scenes; a measured table
@@ -22,6 +25,10 @@ setting:
     per doubling).
 ``jump_rtol``
     Local error of one wear step (cycle jump) of a ``[wear]`` table.
+
+A knob that no rung moves beyond rounding (every rung's error at most :data:`INERT_FLOOR`) is
+not read by the scene's route (``rtol`` of a closed-form scene): it is reported in
+``CostReport.inert``, gets no recommended setting and no share of the target.
 
 The error of a rung is ``max over outputs of max|s - s_ref| / max|s_ref|``, every series and
 field of the scene's outputs compared with the same knob's tightest rung (the last of its ladder,
@@ -57,11 +64,15 @@ __all__ = ["CostReport", "Rung", "scene_cost", "knobs_of", "default_ladders", "w
            "output_error", "KNOBS"]
 
 #: every knob :func:`scene_cost` knows, in report order
-KNOBS = ("rtol", "n_springs", "steps", "interpolation", "n_grid", "jump_rtol")
+KNOBS = ("rtol", "n_springs", "n_rings", "steps", "interpolation", "n_grid", "jump_rtol")
 #: default rtol ladder (loosest first; the last is the reference)
 RTOL_LADDER = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 #: n_springs ladder as multiples of the scene's value (the last is the reference)
 SPRING_FACTORS = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0)
+#: n_rings ladder as multiples of the scene's value: the ring solver's cost per step grows about
+#: as the square of the rings (hip cup, 271 steps: 3.1 s at 200 rings, 17 s at 400, 78 s at
+#: 800), so the reference is twice the scene's value
+RING_FACTORS = (0.25, 0.5, 1.0, 2.0)
 #: steps ladder: refinement factors of every segment (the last is the reference)
 STEP_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
 #: n_grid ladder (wear) as multiples of the scene's value, the scene's own grid the reference: a
@@ -77,6 +88,11 @@ JUMP_LADDER = (1e-2, 1e-3, 1e-4)
 WEAR_NOT_COMPARED = ("radius",)
 #: the share of the target one knob may use is target / (SAFETY * number of knobs)
 SAFETY = 2.0
+#: a knob none of whose rungs differs from its reference by more than this (relative) changes
+#: nothing beyond rounding: its route does not read it (measured: rtol of closed-form scenes 0
+#: to 1.3e-15; the smallest real effect among the examples, rtol of the tabulated hip cup,
+#: 5e-12)
+INERT_FLOOR = 1e-13
 #: runs shorter than this are repeated (up to three times) and the best time kept, s
 _REPEAT_BELOW = 0.05
 
@@ -131,7 +147,12 @@ class CostReport:
     certified : dict
         Knob -> whether a rung below the reference met its share of the target.
     budget : float
-        The error each knob's rung had to meet (``target / (2 k)``).
+        The error each knob's rung had to meet (``target / (2 k)``, ``k`` knobs that change the
+        results).
+    inert : dict
+        Knob -> largest rung error, for knobs laddered but changing nothing beyond rounding
+        (:data:`INERT_FLOOR`): the scene's route does not read them; they have no rungs here
+        and no recommended setting.
     """
 
     title: str
@@ -141,6 +162,7 @@ class CostReport:
     certified: dict[str, bool]
     budget: float
     defaults: dict[str, Any] = field(default_factory=dict)
+    inert: dict[str, float] = field(default_factory=dict)
 
     @property
     def knobs(self) -> tuple[str, ...]:
@@ -155,7 +177,8 @@ class CostReport:
         """JSON-ready form (``contactlab cost --json``)."""
         return {"title": self.title, "target": self.target, "budget_per_knob": self.budget,
                 "knobs": list(self.knobs), "defaults": self.defaults, "choice": self.choice,
-                "certified": self.certified, "rungs": [r.to_dict() for r in self.rungs]}
+                "certified": self.certified, "inert": self.inert,
+                "rungs": [r.to_dict() for r in self.rungs]}
 
     def __str__(self) -> str:
         lines = [f"cost of accuracy: {self.title} (target {self.target:.3g}, each of "
@@ -167,10 +190,13 @@ class CostReport:
             marks = [m for m, on in (("default", r.default), ("chosen", r.chosen)) if on]
             lines.append(f"  {r.knob:<14} {r.label:<22} {r.seconds:10.4f} {err:>10}  "
                          + ", ".join(marks))
-        lines.append("recommended: " + ", ".join(
+        lines.append("recommended: " + (", ".join(
             f"{k} = {_fmt(self.choice[k])}" + ("" if self.certified[k] else
                                                 " (reference: target not certified)")
-            for k in self.knobs))
+            for k in self.knobs) or "nothing to set"))
+        for k, e in self.inert.items():
+            lines.append(f"not read: {k} (no rung changes the results by more than "
+                         f"{INERT_FLOOR:g}; largest {e:.2g}): this scene's route does not use it")
         return "\n".join(lines)
 
     def plot(self, path: str | Path | None = None, *, ax: Any = None) -> Any:
@@ -235,10 +261,13 @@ def _fmt(v: Any) -> str:
 # ---- which knobs, which ladders ----------------------------------------------------------------
 def knobs_of(scene: "Scene") -> tuple[str, ...]:
     """The numeric knobs that change the results of ``scene`` (see the module docstring)."""
-    route = scene.plan().route
+    plan = scene.plan()
+    route = plan.route
     out = ["rtol"]
     if route in ("foundation", "viscoelastic"):
-        out.append("n_springs")
+        # the exact ring solver (twist under a varying load) reads rings, not springs
+        exact = route == "foundation" and plan.details.get("exact_torsion_path", False)
+        out.append("n_rings" if exact else "n_springs")
         if not any("table" in seg for seg in scene.to_dict()["load_path"]):
             out.append("steps")
     data = scene.to_dict()
@@ -253,12 +282,14 @@ def _defaults(scene: "Scene") -> dict[str, Any]:
     from ..effects.viscoelastic import DEFAULT_N_SPRINGS as VISCO_N
     from ..effects.wear import DEFAULT_GRID, DEFAULT_JUMP_RTOL
     from ..foundation import DEFAULT_N_SPRINGS
+    from ..foundation.rings import DEFAULT_N_RINGS
     data = scene.to_dict()
     wear = data.get("wear", {})
     sol = data.get("solver", {})
     n_def = VISCO_N if scene.plan().route == "viscoelastic" else DEFAULT_N_SPRINGS
     return {"rtol": float(sol.get("rtol", DEFAULT_RTOL)),
-            "n_springs": int(sol.get("n_springs", n_def)), "steps": 1.0,
+            "n_springs": int(sol.get("n_springs", n_def)),
+            "n_rings": int(sol.get("n_rings", DEFAULT_N_RINGS)), "steps": 1.0,
             "interpolation": data["profile"].get("interpolation", "linear"),
             "n_grid": int(wear.get("n_grid", DEFAULT_GRID)),
             "jump_rtol": float(wear.get("jump_rtol", DEFAULT_JUMP_RTOL))}
@@ -272,9 +303,10 @@ def default_ladders(scene: "Scene") -> dict[str, list[Any]]:
     for knob in knobs_of(scene):
         if knob == "rtol":
             vals = sorted(set(RTOL_LADDER) | {dflt["rtol"]}, reverse=True)
-        elif knob == "n_springs":
-            n0 = dflt["n_springs"]
-            vals = sorted({max(2, int(round(n0 * f))) for f in SPRING_FACTORS})
+        elif knob in ("n_springs", "n_rings"):
+            n0 = dflt[knob]
+            factors = SPRING_FACTORS if knob == "n_springs" else RING_FACTORS
+            vals = sorted({max(2, int(round(n0 * f))) for f in factors})
         elif knob == "steps":
             vals = [f for f in STEP_FACTORS if _refined(scene.to_dict(), f) is not None]
         elif knob == "n_grid":
@@ -324,8 +356,8 @@ def with_setting(scene: "Scene", knob: str, value: Any) -> "Scene":
     data = scene.to_dict()
     if knob == "rtol":
         data.setdefault("solver", {})["rtol"] = float(value)
-    elif knob == "n_springs":
-        data.setdefault("solver", {})["n_springs"] = int(value)
+    elif knob in ("n_springs", "n_rings"):
+        data.setdefault("solver", {})[knob] = int(value)
     elif knob == "steps":
         refined = _refined(data, float(value))
         if refined is None:
@@ -476,11 +508,8 @@ def scene_cost(scene: "Scene", *, target: float = 1e-6,
             raise ParameterError(f"ladders[{k!r}]={vals!r} is invalid: give at least two values "
                                  "(loosest first, the reference last).")
         lad[k] = vals
-    budget = float(target) / (SAFETY * len(knobs))
     scene.run()   # warm-up, untimed: first-call costs (imports, compiled kernels) are no rung's
-    rungs: list[Rung] = []
-    choice: dict[str, Any] = {}
-    certified: dict[str, bool] = {}
+    runs: dict[str, list[list[Any]]] = {}
     for knob in knobs:
         vals = _ordered(knob, list(lad[knob]) + [dflt[knob]])
         ref_val = vals[-1]
@@ -493,6 +522,18 @@ def scene_cost(scene: "Scene", *, target: float = 1e-6,
             idx = _step_map(sc, ref_scene) if knob == "steps" else None
             rows.append([v, t, output_error(res, ref_res, idx), sc])
         rows.append([ref_val, ref_t, None, ref_scene])
+        runs[knob] = rows
+    # a knob no rung moves beyond rounding is not read by this route: no share of the target
+    inert = {k: max(r[2] for r in rows[:-1]) for k, rows in runs.items()
+             if all(r[2] <= INERT_FLOOR for r in rows[:-1])}
+    live = [k for k in knobs if k not in inert]
+    budget = float(target) / (SAFETY * max(len(live), 1))
+    rungs: list[Rung] = []
+    choice: dict[str, Any] = {}
+    certified: dict[str, bool] = {}
+    for knob in live:
+        rows = runs[knob]
+        ref_val = rows[-1][0]
         ok = [r for r in rows[:-1] if r[2] <= budget]
         pick = ok[0][0] if ok else ref_val
         choice[knob] = pick
@@ -501,7 +542,7 @@ def scene_cost(scene: "Scene", *, target: float = 1e-6,
             rungs.append(Rung(knob, v, _label(knob, v, sc), t, e, default=v == dflt[knob],
                               reference=e is None, chosen=v == pick))
     return CostReport(scene.title, float(target), tuple(rungs), choice, certified, budget,
-                      {k: dflt[k] for k in knobs})
+                      {k: dflt[k] for k in live}, inert)
 
 
 def _ordered(knob: str, vals: list[Any]) -> list[Any]:

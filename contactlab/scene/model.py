@@ -145,8 +145,9 @@ class Scene:
         (``body1``, ``body2``), ``interface`` (``friction``, ``work_of_adhesion``), ``load_path``
         (list of segments ``ramp``/``hold``/``sinusoid``/``table``), ``outputs`` (``series``,
         ``fields``, ``field_points``, ``method``, ``effects``), ``solver`` (``rtol``,
-        ``n_springs``), ``scene`` (``title``, ``description``). Quantities are SI numbers or
-        strings with a unit (``"10 um"``).
+        ``n_springs`` of the MDR springs, ``n_rings`` of the exact ring solver), ``scene``
+        (``title``, ``description``). Quantities are SI numbers or strings with a unit
+        (``"10 um"``).
     base_dir : path, optional
         Directory that relative CSV file names refer to (the scene file's directory).
 

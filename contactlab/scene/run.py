@@ -436,7 +436,13 @@ def run_scene(scene: "Scene") -> SceneResult:
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
         # the model the plan resolved (effects.path.resolve_path_method, as simulate does)
         method = plan.details.get("path_method") or "mdr"
-        kw = {"method": "exact"} if method == "exact" else {**kw, "method": method}
+        if method == "exact":
+            # the exact ring solver: it reads n_rings, not n_springs
+            kw = {"method": "exact"}
+            if "n_rings" in scene.solver:
+                kw["n_rings"] = scene.solver["n_rings"]
+        else:                              # the plan chose the MDR springs
+            kw = {**kw, "method": method}
         try:
             res = contact.simulate(scene.load_path, **kw)
         except ContactlabError as err:

@@ -716,7 +716,7 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
     if "solver" in top:
         sol = ck.table("solver", top["solver"])
         if sol is not None:
-            ck.unknown_keys("solver", sol, ("rtol", "n_springs"))
+            ck.unknown_keys("solver", sol, ("rtol", "n_springs", "n_rings"))
             s: dict[str, Any] = {}
             if "rtol" in sol:
                 v = ck.quantity("solver.rtol", sol["rtol"], "dimensionless", "positive")
@@ -728,6 +728,10 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
                 v = ck.integer("solver.n_springs", sol["n_springs"], 2, 10_000_000)
                 if v is not None:
                     s["n_springs"] = v
+            if "n_rings" in sol:        # rings of the exact torsion solver (varying-load twist)
+                v = ck.integer("solver.n_rings", sol["n_rings"], 2, 10_000_000)
+                if v is not None:
+                    s["n_rings"] = v
             data["solver"] = s
 
     if "wear" in top:

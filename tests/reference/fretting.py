@@ -167,3 +167,51 @@ def hertz_stick_radius_of_twist(phi, F, mu, a, G_t):
     from scipy.optimize import brentq
     return a * brentq(lambda s: hertz_twist_of_stick_ratio(s, F, mu, a, G_t) - phi, 1e-12,
                       1 - 1e-12, xtol=1e-15)
+
+
+# ---------------------------------------------------------------- torsional gross-slip boundary
+def hertz_torsion_boundary(criterion, threshold, digits=20):
+    """Dimensionless torsional gross-slip amplitude ``φ̂ = φ_t G_t a²/(μF)`` of a Hertz contact
+    (exact Jäger / Lubkin solution), in ``digits``-digit arithmetic (mpmath), and the stick ratio
+    ``s = c/a`` there. Returns ``(φ̂, s)`` as floats.
+
+    With ``m = 1 - s²`` (mpmath's K and E take the parameter m = k²):
+      φ̂(s) = (3/(4π)) [K(m) - E(m)]                                   (physics §6.3)
+      M̂(s) = M/(μFa) = 3π/16 - (4/π) ∫_0^s t² E(1 - t²) dt, so dM̂ = -(4/π) s² E(1 - s²) ds
+      sliding torque M̂_full = 3π/16
+    The Masing energy per cycle (§6.5) W = 4φ*M* - 8∫_0^{M*} φ dM, taken along the loading curve
+    in s: ∫_0^{M*} φ̂ dM̂ = (4/π) ∫_{s0}^1 φ̂(t) t² E(1 - t²) dt (one quadrature of closed forms,
+    no nested integral), and Fouvry's ratio A = W/(4φ*M*) = 1 - 2∫φ̂dM̂/(φ̂0 M̂0).
+    Criteria: ``energy_ratio`` A = threshold; ``torque_ratio`` M̂/M̂_full = threshold;
+    ``stick_ratio`` s = threshold. The root in ``y = ln s`` is found by mpmath's Anderson–Björck
+    solver from a bracket (every criterion is monotone in s).
+    """
+    import mpmath as mp
+    with mp.workdps(digits):
+        thr = mp.mpf(threshold)
+
+        def phi_hat(s):
+            m = 1 - s * s
+            return 3 / (4 * mp.pi) * (mp.ellipk(m) - mp.ellipe(m))
+
+        def torque_hat(s):
+            return 3 * mp.pi / 16 - 4 / mp.pi * mp.quad(lambda t: t * t * mp.ellipe(1 - t * t),
+                                                          [0, s])
+
+        def energy_ratio(s):
+            inner = 4 / mp.pi * mp.quad(lambda t: phi_hat(t) * t * t * mp.ellipe(1 - t * t),
+                                        [s, (1 + s) / 2, 1])
+            return 1 - 2 * inner / (phi_hat(s) * torque_hat(s))
+
+        if criterion == "stick_ratio":
+            s = thr
+        else:
+            f = {"energy_ratio": energy_ratio,
+                 "torque_ratio": lambda s: torque_hat(s) / (3 * mp.pi / 16)}[criterion]
+            g = lambda y: f(mp.exp(y)) - thr             # decreasing in y = ln s
+            lo, hi = mp.mpf(-1), mp.mpf(-1e-6)
+            while g(lo) < 0:                              # widen until the bracket holds the root
+                lo *= 2
+            y = mp.findroot(g, (lo, hi), solver="anderson", tol=mp.mpf(10) ** (4 - digits))
+            s = mp.exp(y)
+        return float(phi_hat(s)), float(s)

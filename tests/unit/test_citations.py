@@ -102,6 +102,90 @@ def test_scene():
     assert {"J95"} | MDR <= _tags(res) or {"S"} | MDR <= _tags(res)
 
 
+def _every_result():
+    """One instance of every public result type, with the sources its computation follows
+    (written from the literature, see the module docstring)."""
+    from contactlab.materials.viscoelastic import KelvinVoigt
+    from contactlab.scene import Scene
+    c = _contact(friction=0.5)
+    adh = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(cl.Elastic(E=1.5e6, nu=0.5),
+                     cl.Rigid()), work_of_adhesion=0.05)
+    visco = cl.Contact(cl.profiles.Paraboloid(R=0.01),
+                       materials=(KelvinVoigt(G=1e6, eta=1e3), cl.Rigid()))
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=[0.01, 0.02], E_star=1e11, G_star=8e10,
+                        G_torsion=4e10, friction=0.3)
+    law.step(depth=[1e-7, 1e-7])
+    step = law.step(depth=[1e-7, 1e-7], twist=[1e-6, 1e-6])
+    path = cl.LoadPath().ramp(force=10.0, steps=5).sinusoid(twist=1e-5, cycles=1,
+                                                           steps_per_cycle=8)
+    hertz, cm, jaeger = {"Sn65"} | MDR, {"Cat38", "Min49"}, {"J95"}
+    fretting, masing_t = {"VS88", "F96"}, {"D54", "MD53"}
+    return {
+        "NormalState": (c.normal(force=10.0), hertz),
+        "AdhesiveNormalState": (adh.normal(depth=1e-6), {"Heß11", "JKR71"}),
+        "AdhesionCycle": (adh.adhesion_cycle(depth=np.linspace(-1e-6, 1e-6, 5)),
+                          {"Heß11", "JKR71"}),
+        "ViscoelasticHistory": (visco.viscoelastic_history(time=np.linspace(0, 1, 5),
+                                                           depth=np.linspace(0, 1e-5, 5)),
+                                {"H3", "LR60", "T66"}),
+        "TangentialState": (c.tangential(force=10.0, displacement=1e-7), cm | hertz),
+        "ShiftHistory": (c.shift_history(force=10.0, displacement=[0, 1e-7, -1e-7]),
+                         cm | {"MD53"}),
+        "TorsionState": (c.torsion(force=10.0, twist=1e-5), jaeger | hertz),
+        "TwistHistory": (c.twist_history(force=10.0, twist=[0, 1e-5, -1e-5]),
+                         jaeger | {"D54"}),
+        "PathResult": (c.simulate(path, method="exact"), jaeger | MDR),
+        "ContactLaw": (law, hertz | cm | jaeger | masing_t),
+        "LawStep": (step, hertz | cm | jaeger | masing_t),
+        "FrettingLoop": (c.fretting_loop(force=100.0, twist_amplitude=1e-4, n_points=4),
+                         fretting | jaeger | {"D54"}),
+        "FrettingMap": (c.fretting_map(force=[100.0], displacement_amplitude=[1e-7, 1e-5]),
+                        fretting | cm | {"MD53"}),
+        "WearResult": (c.wear(force=100.0, displacement_amplitude=1e-6, wear_coefficient=1e-15,
+                              cycles=1e3, n_grid=40),
+                       {"D14"} | fretting | cm | {"MD53"}),
+        "SceneResult": (Scene.from_toml(ROOT / "examples" / "steel_ball_twist.toml").run(),
+                        MDR),
+    }
+
+
+#: public dataclasses that are not results of a computation (nothing to cite): inputs, plans,
+#: the cost tool's report on numeric knobs
+NOT_RESULTS = {"LoadPath", "MapPlan", "Scene", "History", "Effect", "Plan", "CostReport", "Grid"}
+
+
+@pytest.mark.filterwarnings(r"ignore:wear\(\). the grid of:contactlab.errors.ValidityWarning")
+def test_every_result_type_cites_what_it_used():
+    """cite(result) works for every public result type (issue 26: it raised ParameterError for a
+    WearResult), and the sources are those of the computation."""
+    import dataclasses
+    import importlib
+    import inspect
+    results = _every_result()
+    mods = ["contactlab", "contactlab.scene", "contactlab.sweeps"] + [
+        f"contactlab.effects.{m}" for m in ("adhesion", "fretting", "law", "normal", "path",
+                                            "tangential", "torsion", "viscoelastic", "wear")]
+    public = set()
+    for m in mods:
+        mod = importlib.import_module(m)
+        for name in getattr(mod, "__all__", ()):
+            obj = getattr(mod, name, None)
+            if inspect.isclass(obj) and (dataclasses.is_dataclass(obj) or hasattr(obj, "to_dict")
+                                         or hasattr(obj, "step")):
+                public.add(name)
+    assert public - NOT_RESULTS <= set(results), public - NOT_RESULTS - set(results)
+    for name, (obj, expected) in results.items():
+        assert type(obj).__name__ == name
+        out = cl.cite(obj, file=None)
+        assert out.startswith("This computation relied on:"), name
+        assert expected <= _tags(obj), (name, _tags(obj))
+    # the law's springs are cited only for a step in which some contact left the closed forms
+    law = results["ContactLaw"][0]
+    assert np.all(results["LawStep"][0].exact) and "S" not in _tags(results["LawStep"][0])
+    varied = law.step(depth=[2e-7, 1e-7], twist=[2e-6, 2e-6])      # contact 0: load changed
+    assert not np.all(varied.exact) and "S" in _tags(varied)
+
+
 def test_cite_prints_text_and_bibtex():
     s = _contact(friction=0.3).torsion(force=10.0, twist=1e-5)
     buf = io.StringIO()

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from contactlab import Contact
-from contactlab.errors import ConvergenceError, EffectNotPlannedError
+from contactlab.errors import ConvergenceError, EffectNotPlannedError, SceneError
 from contactlab.scene import Scene
 
 from tests import tolerances as TOL
@@ -150,6 +150,11 @@ def test_foundation_route_passes_the_typed_path(monkeypatch):
     # the default (exact) torsion method routes a changing load to the exact ring solver
     Scene(twist_scene(seg, solver={"n_springs": 64})).run()
     assert seen["kw"] == {"method": "exact"}
+    # the ring solver reads solver.n_rings (issue 26: the cost report laddered n_springs)
+    Scene(twist_scene(seg, solver={"n_springs": 64, "n_rings": 90})).run()
+    assert seen["kw"] == {"method": "exact", "n_rings": 90}
+    with pytest.raises(SceneError, match="n_rings"):
+        Scene(twist_scene(seg, solver={"n_rings": 1}))
     d = twist_scene(seg, solver={"n_springs": 64}, outputs={"method": "mdr"})
     s = Scene(d)
     res = s.run()
