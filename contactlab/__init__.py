@@ -8,6 +8,7 @@ import importlib as _importlib
 import typing as _typing
 
 from . import errors, materials, profiles, registry
+from ._version import __version__
 from .contact import Contact
 from .materials import Elastic, Rigid, effective_moduli
 from .params import memory_budget, set_memory_budget
@@ -23,7 +24,6 @@ if _typing.TYPE_CHECKING:   # resolved on first use by the module __getattr__ be
     from .loadpath import LoadPath
     from .sweeps import fretting_map_sweep, sweep
 
-__version__ = "0.1.0"
 
 __all__ = [
     "Contact", "Elastic", "Rigid", "effective_moduli", "LoadPath",

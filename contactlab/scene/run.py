@@ -382,7 +382,7 @@ def _step_failure(scene: "Scene", plan: "Plan", h: Any, err: ContactlabError, k:
 
 def _partial_result(scene: "Scene", plan: "Plan", series: dict, fields: dict, computed: list,
                     info: dict, **results: Any) -> SceneResult:
-    from .. import __version__
+    from .._version import __version__
     meta = {"computed": list(computed), "route": plan.route, "version": __version__,
             "title": scene.title, "status": "partial", "failed_at": dict(info),
             "citations": _sources(computed, plan.method, scene.contact())}
@@ -405,7 +405,7 @@ def run_scene(scene: "Scene") -> SceneResult:
     ConvergenceError
         A series came out NaN (never returned silently).
     """
-    from .. import __version__
+    from .._version import __version__
     plan = scene.plan()
     h = scene.history()
     contact = scene.contact()
