@@ -32,7 +32,6 @@ table (``max_radius`` = last radius).
 """
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 from typing import Any, ClassVar
 

@@ -341,7 +341,7 @@ def make_plan(scene: "Scene") -> Plan:
         rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
                               + (" and outputs.method = " + repr(method) if "method" in outs else ""))
 
-    extra = _fretting_rows(scene, h, method, issues)
+    extra = _fretting_rows(scene, h, issues)
     for name, (row, det) in extra.items():
         rows[name] = row
         calls.append(name)
@@ -411,8 +411,7 @@ def _fretting_method(table: dict, outs: dict, mode: str) -> str | None:
     return m if m in ("exact", "mdr") else "exact"
 
 
-def _fretting_rows(scene: "Scene", h: Any, path_method: str | None,
-                   issues: list) -> dict[str, tuple[Effect, dict[str, Any]]]:
+def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effect, dict[str, Any]]]:
     """Plan rows (and run details) for the [wear] and [fretting_map] tables."""
     data = scene.to_dict()
     outs = scene.outputs

@@ -987,7 +987,3 @@ def _summary(issues: list[Issue]) -> str:
 def _short(value: Any) -> str:
     s = repr(value)
     return s if len(s) <= 80 else s[:77] + "..."
-
-
-def is_finite_number(v: Any) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
