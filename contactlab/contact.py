@@ -14,7 +14,7 @@ from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
 from .numeric.quadrature import DEFAULT_RTOL
-from .params import Param
+from .params import Param, with_units
 from .profiles import Profile
 
 if TYPE_CHECKING:   # result types of the annotations; the drivers load on first use (_Drivers)
@@ -134,6 +134,7 @@ class Contact:
         return bool(self.work_of_adhesion)
 
     # ------------------------------------------------------------------ normal contact
+    @with_units
     def normal(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                branch: str = "stable") -> NormalState:
         """Frictionless (non-adhesive) normal contact for given depth, force or contact radius.
@@ -184,6 +185,7 @@ class Contact:
         self._require_adhesion("pull_off")
         return _drivers.adhesion.pull_off(self, control)
 
+    @with_units
     def adhesion_cycle(self, *, depth: Any = None, force: Any = None) -> AdhesionCycle:
         """Approach/retraction history with JKR jump-in and jump-off.
 
@@ -209,6 +211,7 @@ class Contact:
                                  f"work_of_adhesion={self.work_of_adhesion!r}.")
 
     # ---- viscoelastic materials (issue 6)
+    @with_units
     def viscoelastic_history(self, *, time: Any, depth: Any = None, force: Any = None,
                              n_springs: int | None = None, max_radius: float | None = None
                              ) -> ViscoelasticHistory:
@@ -232,6 +235,7 @@ class Contact:
                                                           n_springs=n_springs, max_radius=max_radius)
 
     # ---- tangential contact, load paths, simulation (issue 4)
+    @with_units
     def tangential(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                    displacement: Any = None, tangential_force: Any = None,
                    stick_radius: Any = None) -> TangentialState:
@@ -252,6 +256,7 @@ class Contact:
                                               tangential_force=tangential_force,
                                               stick_radius=stick_radius)
 
+    @with_units
     def shift_history(self, *, displacement: Any, depth: Any = None, force: Any = None
                       ) -> ShiftHistory:
         """Tangential force for an arbitrary displacement history at constant normal load.
@@ -334,6 +339,7 @@ class Contact:
                                 work_of_adhesion=self.work_of_adhesion, substitute=substitute)
 
     # ---- torsion (issue 3)
+    @with_units
     def torsion(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                 twist: Any = None, torque: Any = None, stick_radius: Any = None,
                 method: str | None = None) -> TorsionState:
@@ -392,6 +398,7 @@ class Contact:
                                               twist=twist, torque=torque, stick_radius=stick_radius,
                                               method=method)
 
+    @with_units
     def twist_history(self, *, twist: Any, depth: Any = None, force: Any = None,
                       method: str | None = None) -> TwistHistory:
         """Torque response to an arbitrary twist history at constant normal load.
@@ -420,6 +427,7 @@ class Contact:
                                               method=method)
 
     # ---- fretting (issue 15)
+    @with_units
     def fretting_loop(self, *, force: Any = None, depth: Any = None,
                       displacement_amplitude: Any = None, twist_amplitude: Any = None,
                       method: str | None = None, criterion: str = "energy_ratio",
@@ -465,6 +473,7 @@ class Contact:
                                                criterion=criterion, threshold=threshold,
                                                n_points=n_points)
 
+    @with_units
     def fretting_map(self, *, force: Any = None, depth: Any = None,
                      displacement_amplitude: Any = None, twist_amplitude: Any = None,
                      method: str | None = None, criterion: str = "energy_ratio",
@@ -485,6 +494,7 @@ class Contact:
                                               criterion=criterion, threshold=threshold,
                                               boundary=boundary)
 
+    @with_units
     def wear(self, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
              wear_coefficient: Any, cycles: Any, method: str | None = None,
              checkpoints: Any = None, n_grid: int = 400, max_radius: Any = None,

@@ -24,7 +24,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ContactlabError, ParameterError, SceneError, UnknownNameError
-from ..loadpath.base import canonical_unit
+from ..loadpath.base import GROUPS, QUANTITIES, canonical_unit
+from ..loadpath.base import UNITS as PATH_UNITS
 from .units import DIMENSION_OF_SI_UNIT, parse_quantity, split_header, unit_factor
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
@@ -47,10 +48,9 @@ FIELDS = {"pressure": "normal", "surface_displacement": "normal", "shear": "tors
 #: effects in dependency order
 EFFECTS = ("normal", "adhesion", "viscoelastic", "tangential", "torsion", "slip")
 METHODS = ("no-slip", "exact", "mdr")
-#: load-path control -> (axis, dimension)
-CONTROLS = {"depth": ("normal", "length"), "force": ("normal", "force"),
-            "displacement": ("shift", "length"), "tangential_force": ("shift", "force"),
-            "twist": ("twist", "angle"), "torque": ("twist", "torque")}
+#: load-path control -> (axis, dimension): the load path's own groups (normal, tangential,
+#: torsion) and units, so a scene and a typed LoadPath name the axes alike
+CONTROLS = {q: (GROUPS[q], DIMENSION_OF_SI_UNIT[PATH_UNITS[q]]) for q in QUANTITIES}
 #: segment kind -> {option: (dimension or "int"/"count", required)}
 SEGMENTS: dict[str, dict[str, tuple[str, bool]]] = {
     "ramp": {"steps": ("int", True), "duration": ("time", False)},

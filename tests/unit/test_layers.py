@@ -25,7 +25,7 @@ ALLOWED: dict[str, set[str]] = {
     **{leaf: set() for leaf in LEAVES},
     "citations": {"errors"},
     "plotting": {"errors"},
-    "params": {"errors"},
+    "params": {"errors", "numeric"},       # numeric.units: the unit grammar
     "numeric": {"errors"},
     "registry": {"errors", "params"},
     "symbolic": _LOW,

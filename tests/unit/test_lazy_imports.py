@@ -16,7 +16,7 @@ import pytest
 
 HEAVY = ("scipy.special", "scipy.integrate", "sympy", "matplotlib", "pandas", "pyarrow",
          "xarray", "dask", "distributed", "tqdm", "contactlab.sweeps", "multiprocessing",
-         "concurrent.futures")
+         "concurrent.futures", "pint", "contactlab.numeric.units")
 
 
 #: contactlab's own modules that ``import contactlab`` leaves for their first use (together
