@@ -10,6 +10,7 @@ from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 from . import effects
+from ._lazy import attach
 from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
@@ -59,10 +60,9 @@ class _Drivers:
 _drivers = _Drivers()
 
 
-def __getattr__(name: str) -> Any:
-    if name in _RESULTS:
-        return getattr(getattr(_drivers, _RESULTS[name]), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__, __dir__, _LAZY = attach(__name__, package=effects.__name__,
+                                     submod_attrs={mod: [n for n, m in _RESULTS.items() if m == mod]
+                                                   for mod in set(_RESULTS.values())})
 
 
 class Contact:

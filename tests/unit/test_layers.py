@@ -15,8 +15,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2] / "contactlab"
 
-#: leaf modules (import nothing of contactlab) that every layer may read: the version string
-LEAVES = {"_version"}
+#: leaf modules (import nothing of contactlab) that every layer may use: the version string and
+#: the lazy-attribute helper
+LEAVES = {"_version", "_lazy"}
 _BASE = {"errors", "citations", "plotting"}
 _LOW = _BASE | {"params", "numeric"}
 #: package -> packages it may import (besides itself); see docs/architecture.md
@@ -53,7 +54,7 @@ for _pkg, _may in ALLOWED.items():
 PENDING: set[tuple[str, str]] = set()
 
 #: the only modules allowed at the top level of the package
-TOP_LEVEL = {"__init__", "__main__", "_version", "citations", "cli", "contact", "errors", "params",
+TOP_LEVEL = {"__init__", "__main__", "_lazy", "_version", "citations", "cli", "contact", "errors", "params",
              "plotting", "registry"}
 
 
