@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import importlib
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from . import effects
 from ._lazy import attach
@@ -91,6 +91,14 @@ class Contact:
     186.626
     """
 
+    #: the contact's own parameters (scene files take them from their [interface] and
+    #: [solver] tables)
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("friction", "mu", "1", "positive", "friction coefficient"),
+        Param("work_of_adhesion", "Delta_gamma", "J/m^2", "nonnegative", "work of adhesion"),
+        Param("rtol", "rtol", "1", "positive", "relative tolerance"),
+    )
+
     def __init__(self, profile: Profile, materials: tuple[Material, Material], *,
                  friction: float | None = None, work_of_adhesion: float | None = None,
                  rtol: float | None = None) -> None:
@@ -104,19 +112,17 @@ class Contact:
                                  "e.g. (Elastic(E=..., nu=...), Rigid()).") from err
         self.profile = profile
         self.materials = (m1, m2)
-        self.friction = None if friction is None else Param(
-            "friction", "mu", "1", "positive", "friction coefficient").check(friction)
-        self.work_of_adhesion = None if work_of_adhesion is None else Param(
-            "work_of_adhesion", "Delta_gamma", "J/m^2", "nonnegative",
-            "work of adhesion").check(work_of_adhesion)
-        self.rtol = DEFAULT_RTOL if rtol is None else Param(
-            "rtol", "rtol", "1", "positive", "relative tolerance").check(rtol)
+        p_friction, p_adhesion, p_rtol = self.params
+        self.friction = None if friction is None else p_friction.check(friction)
+        self.work_of_adhesion = (None if work_of_adhesion is None
+                                 else p_adhesion.check(work_of_adhesion))
+        self.rtol = DEFAULT_RTOL if rtol is None else p_rtol.check(rtol)
         if self.rtol >= 1:
             raise ParameterError(f"rtol={rtol!r} is invalid: it must satisfy 0 < rtol < 1.")
         if any(getattr(m, "is_viscoelastic", False) for m in self.materials):
             viscoelastic_body(m1, m2)  # only (viscoelastic, rigid) is covered
         else:
-            self.moduli  # validate the pair now
+            _ = self.moduli  # validate the pair now (and cache it)
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),

@@ -18,12 +18,12 @@ import numpy as np
 
 from .errors import MemoryBudgetError, ParameterError, UnitError
 
-__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
-           "as_real", "as_checked_array", "broadcast_inputs", "check_count", "check_result_finite", "exactly_one", "scalar_or_array",
-           "step_indices", "check_flag", "name_list",
-           "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
-           "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual", "QUANTITY_UNITS", "to_si",
-           "with_units"]
+__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range",
+           "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
+           "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
+           "name_list", "memory_budget", "set_memory_budget", "check_memory",
+           "DEFAULT_MEMORY_BUDGET", "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual",
+           "QUANTITY_UNITS", "to_si", "with_units"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),

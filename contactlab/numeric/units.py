@@ -1,4 +1,5 @@
-"""The unit grammar of contactlab (scenes and data files). Quantities with explicit unit suffixes: ``"10 um"``, ``"210 GPa"``, ``"5 deg"``, ``"1e-3 m"``.
+"""The unit grammar of contactlab (scene files, data files and Python arguments): quantities
+with explicit unit suffixes, ``"10 um"``, ``"210 GPa"``, ``"5 deg"``, ``"1e-3 m"``.
 
 Scene files hold SI numbers or strings ``"<number> <unit>"``. The number follows the full float
 grammar (sign, decimals, exponent: ``"-2.5e-3 mrad"``); the unit must belong to the dimension the

@@ -253,12 +253,14 @@ class Cone(PowerLaw):
     params: ClassVar[tuple[Param, ...]] = (
         Param("slope", "s", "1", "positive", "cone slope tan(beta)", (1e-4, 1e2)),
     )
+    #: a scene's [profile] table gives one of the two
+    scene_one_of: ClassVar[tuple[tuple[str, ...], ...]] = (("slope",), ("half_angle",))
 
     def __init__(self, slope: float | None = None, *, half_angle: float | None = None) -> None:
         key, value = exactly_one("Cone()", {"slope": slope, "half_angle": half_angle})
         if key == "half_angle":
             alpha = check_in_range("half_angle", value, 0.0, np.pi / 2, low_open=True,
-                                   high_open=True, what="the cone's half angle at the apex",
+                                   high_open=True, what="the cone's half angle at the apex (rad)",
                                    unit="rad")
             value = 1.0 / np.tan(alpha)
         self.slope = self.params[0].check(value)
@@ -303,6 +305,8 @@ class Polynomial(_PowerSum):
     params: ClassVar[tuple[Param, ...]] = (
         Param("terms", "c_i, n_i", "m^(1-n_i)", "positive", "polynomial terms (c, n)"),
     )
+    #: a scene gives the terms as a list of [c, n] pairs of plain numbers (SI)
+    scene_keys: ClassVar[dict[str, str]] = {"terms": "terms"}
 
     def __init__(self, terms: Mapping[float, float] | Iterable[tuple[float, float]]) -> None:
         pairs = ([(c, n) for n, c in terms.items()] if isinstance(terms, Mapping)
