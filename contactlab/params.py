@@ -12,7 +12,7 @@ import os
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -81,7 +81,7 @@ class ParamIdentity:
     """Mixin: ``repr``, ``==`` and ``hash`` from the declared ``params`` (class + values), so two
     objects built with the same parameters are interchangeable (and usable as cache keys)."""
 
-    params: tuple[Param, ...] = ()
+    params: ClassVar[tuple[Param, ...]] = ()
 
     def _param_values(self) -> tuple[Any, ...]:
         return tuple(getattr(self, p.name) for p in self.params)
@@ -91,8 +91,8 @@ class ParamIdentity:
         return f"{type(self).__name__}({args})"
 
     def __eq__(self, other: object) -> bool:
-        return (type(self) is type(other)
-                and self._param_values() == other._param_values())  # type: ignore[attr-defined]
+        return (type(self) is type(other) and isinstance(other, ParamIdentity)
+                and self._param_values() == other._param_values())
 
     def __hash__(self) -> int:
         return hash((type(self), self._param_values()))
@@ -271,7 +271,7 @@ def _string_hint(name: str, value: object, unit: str | None) -> str:
 
 def _has_bool_or_str(seq: object) -> bool:
     """Whether a (nested) list/tuple holds a bool or a string anywhere."""
-    stack = [seq]
+    stack: list[Any] = [seq]
     while stack:
         for v in stack.pop():
             if isinstance(v, (list, tuple)):

@@ -154,7 +154,7 @@ class Registry:
                               f"(rule: a {kind} must subclass {spec.base.replace(':', '.')}).")
         if inspect.isabstract(cls):
             raise PluginError(f"{label}{where} is abstract: it leaves "
-                              f"{', '.join(sorted(cls.__abstractmethods__))} unimplemented "
+                              f"{', '.join(sorted(getattr(cls, '__abstractmethods__', ())))} unimplemented "
                               "(rule: contract of the base class).")
         name = getattr(cls, "name", None)
         if not isinstance(name, str) or not NAME_PATTERN.match(name):
@@ -360,7 +360,7 @@ class Registry:
 
     def name_of(self, cls_or_obj: Any, kind: str | None = None) -> str:
         """Registry name of a class or instance (checked to be registered)."""
-        cls = cls_or_obj if isinstance(cls_or_obj, type) else type(cls_or_obj)
+        cls: Any = cls_or_obj if isinstance(cls_or_obj, type) else type(cls_or_obj)
         kind = kind or self._kind_of(cls)
         self.get(kind, cls)
         return cls.name
@@ -372,7 +372,7 @@ class Registry:
         close matches) and missing ones raise :class:`~contactlab.errors.ParameterError`; values
         are checked by the class itself.
         """
-        cls = self.get(kind, name)
+        cls: Any = self.get(kind, name)
         sig = inspect.signature(cls)
         accepted = [p for p in sig.parameters]
         unknown = [k for k in params if k not in sig.parameters]

@@ -8,7 +8,7 @@ and the Abel integral of g outside the contact
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from typing import ClassVar
+from typing import ClassVar, cast
 
 import numpy as np
 
@@ -133,10 +133,10 @@ class _PowerSum(Profile):
                    for k1, n1 in terms for k2, n2 in terms) * np.ones_like(a)
 
     def _pressure_shape_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-        return sum(_power_pressure_shape(c, n, r, a) for c, n in self.power_terms())
+        return cast(np.ndarray, sum(_power_pressure_shape(c, n, r, a) for c, n in self.power_terms()))
 
     def _abel_g_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-        return sum(_power_abel(c, n, r, a) for c, n in self.power_terms())
+        return cast(np.ndarray, sum(_power_abel(c, n, r, a) for c, n in self.power_terms()))
 
 
 class PowerLaw(_PowerSum):

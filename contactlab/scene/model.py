@@ -189,7 +189,7 @@ class Scene:
         self._load_path: LoadPath | None = None
         self._history: History | None = None
         self._plan = None
-        self._contact = None
+        self._contact: Any = None
         self._plan = self.plan()   # plan-level issues (conflicts) are validation errors too
 
     # ---- construction ---------------------------------------------------------------------------

@@ -84,7 +84,7 @@ def material_class(name: str) -> type:
 
 def make_profile(type_: str, params: Mapping[str, Any], base_dir: Path | None = None) -> Any:
     """Build a profile from its scene table (SI values): the one constructor call for scenes."""
-    cls = profile_class(type_)
+    cls: Any = profile_class(type_)
     p = dict(params)
     if type_ == "tabulated" and "file" in p:
         path = resolve_file(p["file"], base_dir)
@@ -100,14 +100,14 @@ _make_profile = make_profile   # the name the scene issue asked for
 
 def make_material(type_: str, params: Mapping[str, Any]) -> Any:
     """Build a material from its scene table (SI values)."""
-    cls = material_class(type_)
+    cls: Any = material_class(type_)
     p = dict(params)
     if type_ == "elastic" and "G" in p:
         return cls.from_shear_modulus(p["G"], p.get("nu"))
     return cls(**p)
 
 
-def object_keys(cls: type) -> tuple[dict[str, Key], set[str], tuple[tuple[str, ...], ...]]:
+def object_keys(cls: Any) -> tuple[dict[str, Key], set[str], tuple[tuple[str, ...], ...]]:
     """The keys of a profile's or material's scene table, the required ones, and the groups of
     which it gives exactly one.
 
@@ -288,6 +288,7 @@ def _segment(ck: Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]])
     if kind in ("ramp", "sinusoid") and not controls:
         ck.add(sp, dict(body), f"at least one control from {sorted(CONTROLS)}")
     for k in controls:
+        val: Any
         axis, dim = CONTROLS[k]
         if kind == "table":
             val = ck.array(f"{sp}.{k}", body[k], dim)
@@ -460,7 +461,7 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
             ck.add("load_path", lp, "a non-empty list of segments ([[load_path]] tables)")
         else:
             axes: dict[str, tuple[str, str]] = {}
-            segs = [_segment(ck, f"load_path[{i}]", s, axes) for i, s in enumerate(lp)]
+            segs: list[Any] = [_segment(ck, f"load_path[{i}]", s, axes) for i, s in enumerate(lp)]
             if all(s is not None for s in segs):
                 data["load_path"] = segs
                 n = _total_steps(segs, [ck.file_steps.get(f"load_path[{i}]", 0)

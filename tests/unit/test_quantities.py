@@ -130,5 +130,5 @@ def test_pint_quantities():
     np.testing.assert_array_equal(got, c.normal(depth=np.array([1.0, 2.0]) * 1e-6).force)
     with pytest.raises(UnitError, match=r"E=.*wrong dimension: E is a pressure in Pa"):
         cl.Elastic(E=u.Quantity(3, "m"), nu=0.3)
-    with pytest.raises(UnitError, match="force=.*wrong dimension"):
+    with pytest.raises(UnitError, match=r"force=.*wrong dimension"):
         c.normal(force=u.Quantity(3, "mm"))
