@@ -15,7 +15,7 @@ from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
 from .numeric.quadrature import DEFAULT_RTOL
-from .params import Param, with_units
+from .params import PLAIN_TYPES, Param, to_si_values
 from .profiles import Profile
 
 if TYPE_CHECKING:   # result types of the annotations; the drivers load on first use (_Drivers)
@@ -140,7 +140,6 @@ class Contact:
         return bool(self.work_of_adhesion)
 
     # ------------------------------------------------------------------ normal contact
-    @with_units
     def normal(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                branch: str = "stable") -> NormalState:
         """Frictionless (non-adhesive) normal contact for given depth, force or contact radius.
@@ -170,6 +169,9 @@ class Contact:
         ConvergenceError
             A bracketed solve failed (never silently).
         """
+        if not (type(force) in PLAIN_TYPES and type(depth) in PLAIN_TYPES
+                and type(radius) in PLAIN_TYPES):       # a value with a unit ("100 N")
+            depth, force, radius = to_si_values(depth=depth, force=force, radius=radius)
         solve = _drivers.adhesion.adhesive_normal if self.is_adhesive else _drivers.normal.normal
         return solve(self, depth=depth, force=force, radius=radius, branch=branch)
 
@@ -191,7 +193,6 @@ class Contact:
         self._require_adhesion("pull_off")
         return _drivers.adhesion.pull_off(self, control)
 
-    @with_units
     def adhesion_cycle(self, *, depth: Any = None, force: Any = None) -> AdhesionCycle:
         """Approach/retraction history with JKR jump-in and jump-off.
 
@@ -209,6 +210,7 @@ class Contact:
             :func:`contactlab.effects.adhesion.adhesion_cycle`.
         """
         self._require_adhesion("adhesion_cycle")
+        depth, force = to_si_values(depth=depth, force=force)
         return _drivers.adhesion.adhesion_cycle(self, depth=depth, force=force)
 
     def _require_adhesion(self, what: str) -> None:
@@ -217,7 +219,6 @@ class Contact:
                                  f"work_of_adhesion={self.work_of_adhesion!r}.")
 
     # ---- viscoelastic materials (issue 6)
-    @with_units
     def viscoelastic_history(self, *, time: Any, depth: Any = None, force: Any = None,
                              n_springs: int | None = None, max_radius: float | None = None
                              ) -> ViscoelasticHistory:
@@ -237,11 +238,12 @@ class Contact:
         ViscoelasticHistory
             See :func:`contactlab.effects.viscoelastic.viscoelastic_history`.
         """
+        time, depth, force, max_radius = to_si_values(time=time, depth=depth, force=force,
+                                                      max_radius=max_radius)
         return _drivers.viscoelastic.viscoelastic_history(self, time=time, depth=depth, force=force,
                                                           n_springs=n_springs, max_radius=max_radius)
 
     # ---- tangential contact, load paths, simulation (issue 4)
-    @with_units
     def tangential(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                    displacement: Any = None, tangential_force: Any = None,
                    stick_radius: Any = None) -> TangentialState:
@@ -257,12 +259,14 @@ class Contact:
         TangentialState
             ``.tangential_force .displacement .stick_radius .stiffness .shear(r)``.
         """
+        depth, force, radius, displacement, tangential_force, stick_radius = to_si_values(
+            depth=depth, force=force, radius=radius, displacement=displacement,
+            tangential_force=tangential_force, stick_radius=stick_radius)
         return _drivers.tangential.tangential(self, depth=depth, force=force, radius=radius,
                                               displacement=displacement,
                                               tangential_force=tangential_force,
                                               stick_radius=stick_radius)
 
-    @with_units
     def shift_history(self, *, displacement: Any, depth: Any = None, force: Any = None
                       ) -> ShiftHistory:
         """Tangential force for an arbitrary displacement history at constant normal load.
@@ -283,6 +287,8 @@ class Contact:
             Per step: ``.displacement`` (m), ``.tangential_force`` (N), ``.stick_radius`` (m),
             ``.dissipated_energy`` (J, cumulative).
         """
+        displacement, depth, force = to_si_values(displacement=displacement, depth=depth,
+                                                  force=force)
         return _drivers.tangential.shift_history(self, displacement=displacement, depth=depth,
                                                  force=force)
 
@@ -345,7 +351,6 @@ class Contact:
                                 work_of_adhesion=self.work_of_adhesion, substitute=substitute)
 
     # ---- torsion (issue 3)
-    @with_units
     def torsion(self, *, depth: Any = None, force: Any = None, radius: Any = None,
                 twist: Any = None, torque: Any = None, stick_radius: Any = None,
                 method: str | None = None) -> TorsionState:
@@ -400,11 +405,13 @@ class Contact:
         >>> round(s.stick_radius / s.radius, 4)
         0.9875
         """
+        depth, force, radius, twist, torque, stick_radius = to_si_values(
+            depth=depth, force=force, radius=radius, twist=twist, torque=torque,
+            stick_radius=stick_radius)
         return _drivers.torsion.solve_torsion(self, depth=depth, force=force, radius=radius,
                                               twist=twist, torque=torque, stick_radius=stick_radius,
                                               method=method)
 
-    @with_units
     def twist_history(self, *, twist: Any, depth: Any = None, force: Any = None,
                       method: str | None = None) -> TwistHistory:
         """Torque response to an arbitrary twist history at constant normal load.
@@ -429,11 +436,11 @@ class Contact:
         loading solution with doubled friction applies from the turning point; loops that close
         are forgotten. The loading curve is solved once, batched, for every step.
         """
+        twist, depth, force = to_si_values(twist=twist, depth=depth, force=force)
         return _drivers.torsion.twist_history(self, twist=twist, depth=depth, force=force,
                                               method=method)
 
     # ---- fretting (issue 15)
-    @with_units
     def fretting_loop(self, *, force: Any = None, depth: Any = None,
                       displacement_amplitude: Any = None, twist_amplitude: Any = None,
                       method: str | None = None, criterion: str = "energy_ratio",
@@ -473,13 +480,15 @@ class Contact:
         >>> loop.regime, round(loop.energy_ratio, 3)
         ('gross_slip', 0.831)
         """
+        force, depth, displacement_amplitude, twist_amplitude = to_si_values(
+            force=force, depth=depth, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude)
         return _drivers.fretting.fretting_loop(self, force=force, depth=depth,
                                                displacement_amplitude=displacement_amplitude,
                                                twist_amplitude=twist_amplitude, method=method,
                                                criterion=criterion, threshold=threshold,
                                                n_points=n_points)
 
-    @with_units
     def fretting_map(self, *, force: Any = None, depth: Any = None,
                      displacement_amplitude: Any = None, twist_amplitude: Any = None,
                      method: str | None = None, criterion: str = "energy_ratio",
@@ -494,13 +503,15 @@ class Contact:
         points; ``contactlab.fretting_map_sweep`` runs the same blocks on every core or a Dask
         cluster and returns the same map.
         """
+        force, depth, displacement_amplitude, twist_amplitude = to_si_values(
+            force=force, depth=depth, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude)
         return _drivers.fretting.fretting_map(self, force=force, depth=depth,
                                               displacement_amplitude=displacement_amplitude,
                                               twist_amplitude=twist_amplitude, method=method,
                                               criterion=criterion, threshold=threshold,
                                               boundary=boundary)
 
-    @with_units
     def wear(self, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
              wear_coefficient: Any, cycles: Any, method: str | None = None,
              checkpoints: Any = None, n_grid: int = 400, max_radius: Any = None,
@@ -538,6 +549,10 @@ class Contact:
             ``.profile``, series ``.cycles .depth .radius .stick_radius .volume
             .max_wear_depth .dissipated_energy``, ``.plot()``; docs/fretting.md.
         """
+        force, displacement_amplitude, twist_amplitude, wear_coefficient, max_radius = to_si_values(
+            force=force, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
+            max_radius=max_radius)
         return _drivers.wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
                                   twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
                                   cycles=cycles, method=method, checkpoints=checkpoints,

@@ -6,11 +6,9 @@ A :class:`Param` says what a parameter is (name, symbol, unit, domain, a typical
 """
 from __future__ import annotations
 
-import functools
 import math
 import os
 import threading
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -23,7 +21,7 @@ __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in
            "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
            "name_list", "memory_budget", "set_memory_budget", "check_memory",
            "DEFAULT_MEMORY_BUDGET", "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual",
-           "QUANTITY_UNITS", "to_si", "with_units"]
+           "QUANTITY_UNITS", "to_si", "to_si_values", "PLAIN_TYPES"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -106,7 +104,7 @@ class ParamIdentity:
 QUANTITY_UNITS: dict[str, str] = {
     "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N", "twist": "rad",
     "torque": "N*m", "time": "s", "r": "m", "radius": "m", "max_radius": "m", "noise": "m",
-    "twist_amplitude": "rad", "displacement_amplitude": "m", "half_angle": "rad",
+    "stick_radius": "m", "twist_amplitude": "rad", "displacement_amplitude": "m", "half_angle": "rad",
     "work_of_adhesion": "J/m^2", "wear_coefficient": "1/Pa", "duration": "s", "period": "s",
 }
 #: units that mean "not declared" (no conversion, plain numbers only)
@@ -175,23 +173,22 @@ def to_si(name: str, value: Any, unit: str | None = None) -> Any:
     return float(magnitude) if np.ndim(magnitude) == 0 else np.asarray(magnitude)
 
 
-#: argument types that never carry a unit (skipped without a further look)
-_PLAIN_TYPES = frozenset({float, int, np.ndarray, np.float64, list, tuple, type(None)})
+#: argument types that never carry a unit (passed on without a further look)
+PLAIN_TYPES = frozenset({float, int, np.ndarray, np.float64, list, tuple, type(None)})
 
 
-def with_units(method: Callable[..., Any]) -> Callable[..., Any]:
-    """Method decorator: keyword arguments named in :data:`QUANTITY_UNITS` that carry a unit
-    (``force="2 kN"``, a pint quantity) reach ``method`` as SI numbers (:func:`to_si`).
+def to_si_values(**values: Any) -> tuple[Any, ...]:
+    """The keyword values in their order, each converted by :func:`to_si` under its own name
+    (``force="2 kN"`` -> ``2000.0``); plain numbers and arrays pass untouched.
 
-    Plain numbers and arrays pass untouched (bit-identical, one type lookup each).
+    The first line of the :class:`~contactlab.Contact` methods: a value with a unit reaches the
+    drivers as SI numbers. (A call, not a decorator: a wrapper would add a frame between the
+    caller and the drivers, whose warnings point at the caller's line.)
+
+    >>> to_si_values(depth=None, force="2 kN")
+    (None, 2000.0)
     """
-    @functools.wraps(method)
-    def converting(*args: Any, **kwargs: Any) -> Any:
-        for k, v in kwargs.items():
-            if type(v) not in _PLAIN_TYPES:
-                kwargs[k] = to_si(k, v)
-        return method(*args, **kwargs)
-    return converting
+    return tuple(v if type(v) in PLAIN_TYPES else to_si(k, v) for k, v in values.items())
 
 
 def check_positive(name: str, value: object, what: str = "", unit: str = "") -> float:
