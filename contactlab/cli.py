@@ -357,7 +357,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
-    from . import __version__
+    from ._version import __version__
     p = _Parser(prog="contactlab", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"contactlab {__version__}")
     sub = p.add_subparsers(dest="command")

@@ -7,14 +7,15 @@ from __future__ import annotations
 
 import importlib
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from . import effects
+from ._lazy import attach
 from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
 from .numeric.quadrature import DEFAULT_RTOL
-from .params import Param
+from .params import PLAIN_TYPES, Param, to_si_values
 from .profiles import Profile
 
 if TYPE_CHECKING:   # result types of the annotations; the drivers load on first use (_Drivers)
@@ -59,10 +60,9 @@ class _Drivers:
 _drivers = _Drivers()
 
 
-def __getattr__(name: str) -> Any:
-    if name in _RESULTS:
-        return getattr(getattr(_drivers, _RESULTS[name]), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__, __dir__, _LAZY = attach(__name__, package=effects.__name__,
+                                     submod_attrs={mod: [n for n, m in _RESULTS.items() if m == mod]
+                                                   for mod in set(_RESULTS.values())})
 
 
 class Contact:
@@ -91,6 +91,14 @@ class Contact:
     186.626
     """
 
+    #: the contact's own parameters (scene files take them from their [interface] and
+    #: [solver] tables)
+    params: ClassVar[tuple[Param, ...]] = (
+        Param("friction", "mu", "1", "positive", "friction coefficient"),
+        Param("work_of_adhesion", "Delta_gamma", "J/m^2", "nonnegative", "work of adhesion"),
+        Param("rtol", "rtol", "1", "positive", "relative tolerance"),
+    )
+
     def __init__(self, profile: Profile, materials: tuple[Material, Material], *,
                  friction: float | None = None, work_of_adhesion: float | None = None,
                  rtol: float | None = None) -> None:
@@ -104,19 +112,17 @@ class Contact:
                                  "e.g. (Elastic(E=..., nu=...), Rigid()).") from err
         self.profile = profile
         self.materials = (m1, m2)
-        self.friction = None if friction is None else Param(
-            "friction", "mu", "1", "positive", "friction coefficient").check(friction)
-        self.work_of_adhesion = None if work_of_adhesion is None else Param(
-            "work_of_adhesion", "Delta_gamma", "J/m^2", "nonnegative",
-            "work of adhesion").check(work_of_adhesion)
-        self.rtol = DEFAULT_RTOL if rtol is None else Param(
-            "rtol", "rtol", "1", "positive", "relative tolerance").check(rtol)
+        p_friction, p_adhesion, p_rtol = self.params
+        self.friction = None if friction is None else p_friction.check(friction)
+        self.work_of_adhesion = (None if work_of_adhesion is None
+                                 else p_adhesion.check(work_of_adhesion))
+        self.rtol = DEFAULT_RTOL if rtol is None else p_rtol.check(rtol)
         if self.rtol >= 1:
             raise ParameterError(f"rtol={rtol!r} is invalid: it must satisfy 0 < rtol < 1.")
         if any(getattr(m, "is_viscoelastic", False) for m in self.materials):
             viscoelastic_body(m1, m2)  # only (viscoelastic, rigid) is covered
         else:
-            self.moduli  # validate the pair now
+            _ = self.moduli  # validate the pair now (and cache it)
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),
@@ -163,6 +169,9 @@ class Contact:
         ConvergenceError
             A bracketed solve failed (never silently).
         """
+        if not (type(force) in PLAIN_TYPES and type(depth) in PLAIN_TYPES
+                and type(radius) in PLAIN_TYPES):       # a value with a unit ("100 N")
+            depth, force, radius = to_si_values(depth=depth, force=force, radius=radius)
         solve = _drivers.adhesion.adhesive_normal if self.is_adhesive else _drivers.normal.normal
         return solve(self, depth=depth, force=force, radius=radius, branch=branch)
 
@@ -201,6 +210,7 @@ class Contact:
             :func:`contactlab.effects.adhesion.adhesion_cycle`.
         """
         self._require_adhesion("adhesion_cycle")
+        depth, force = to_si_values(depth=depth, force=force)
         return _drivers.adhesion.adhesion_cycle(self, depth=depth, force=force)
 
     def _require_adhesion(self, what: str) -> None:
@@ -228,6 +238,8 @@ class Contact:
         ViscoelasticHistory
             See :func:`contactlab.effects.viscoelastic.viscoelastic_history`.
         """
+        time, depth, force, max_radius = to_si_values(time=time, depth=depth, force=force,
+                                                      max_radius=max_radius)
         return _drivers.viscoelastic.viscoelastic_history(self, time=time, depth=depth, force=force,
                                                           n_springs=n_springs, max_radius=max_radius)
 
@@ -247,6 +259,9 @@ class Contact:
         TangentialState
             ``.tangential_force .displacement .stick_radius .stiffness .shear(r)``.
         """
+        depth, force, radius, displacement, tangential_force, stick_radius = to_si_values(
+            depth=depth, force=force, radius=radius, displacement=displacement,
+            tangential_force=tangential_force, stick_radius=stick_radius)
         return _drivers.tangential.tangential(self, depth=depth, force=force, radius=radius,
                                               displacement=displacement,
                                               tangential_force=tangential_force,
@@ -272,6 +287,8 @@ class Contact:
             Per step: ``.displacement`` (m), ``.tangential_force`` (N), ``.stick_radius`` (m),
             ``.dissipated_energy`` (J, cumulative).
         """
+        displacement, depth, force = to_si_values(displacement=displacement, depth=depth,
+                                                  force=force)
         return _drivers.tangential.shift_history(self, displacement=displacement, depth=depth,
                                                  force=force)
 
@@ -388,6 +405,9 @@ class Contact:
         >>> round(s.stick_radius / s.radius, 4)
         0.9875
         """
+        depth, force, radius, twist, torque, stick_radius = to_si_values(
+            depth=depth, force=force, radius=radius, twist=twist, torque=torque,
+            stick_radius=stick_radius)
         return _drivers.torsion.solve_torsion(self, depth=depth, force=force, radius=radius,
                                               twist=twist, torque=torque, stick_radius=stick_radius,
                                               method=method)
@@ -416,6 +436,7 @@ class Contact:
         loading solution with doubled friction applies from the turning point; loops that close
         are forgotten. The loading curve is solved once, batched, for every step.
         """
+        twist, depth, force = to_si_values(twist=twist, depth=depth, force=force)
         return _drivers.torsion.twist_history(self, twist=twist, depth=depth, force=force,
                                               method=method)
 
@@ -459,6 +480,9 @@ class Contact:
         >>> loop.regime, round(loop.energy_ratio, 3)
         ('gross_slip', 0.831)
         """
+        force, depth, displacement_amplitude, twist_amplitude = to_si_values(
+            force=force, depth=depth, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude)
         return _drivers.fretting.fretting_loop(self, force=force, depth=depth,
                                                displacement_amplitude=displacement_amplitude,
                                                twist_amplitude=twist_amplitude, method=method,
@@ -479,6 +503,9 @@ class Contact:
         points; ``contactlab.fretting_map_sweep`` runs the same blocks on every core or a Dask
         cluster and returns the same map.
         """
+        force, depth, displacement_amplitude, twist_amplitude = to_si_values(
+            force=force, depth=depth, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude)
         return _drivers.fretting.fretting_map(self, force=force, depth=depth,
                                               displacement_amplitude=displacement_amplitude,
                                               twist_amplitude=twist_amplitude, method=method,
@@ -522,6 +549,10 @@ class Contact:
             ``.profile``, series ``.cycles .depth .radius .stick_radius .volume
             .max_wear_depth .dissipated_energy``, ``.plot()``; docs/fretting.md.
         """
+        force, displacement_amplitude, twist_amplitude, wear_coefficient, max_radius = to_si_values(
+            force=force, displacement_amplitude=displacement_amplitude,
+            twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
+            max_radius=max_radius)
         return _drivers.wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
                                   twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
                                   cycles=cycles, method=method, checkpoints=checkpoints,

@@ -87,8 +87,12 @@ class SceneError(ContactlabError, ValueError):
         self.issues = list(issues or [])
 
 
-class UnitError(SceneError):
-    """A quantity carries a unit that is unknown or of the wrong dimension."""
+class UnitError(SceneError, ParameterError):
+    """A quantity carries a unit that is unknown or of the wrong dimension.
+
+    Raised for scene files and for Python arguments alike (``Elastic(E="5 deg")``), so it is
+    both a :class:`SceneError` (with ``issues``) and a :class:`ParameterError`.
+    """
 
 
 class StrategyUnavailableError(ContactlabError, ValueError):

@@ -7,21 +7,21 @@ A :class:`Param` says what a parameter is (name, symbol, unit, domain, a typical
 from __future__ import annotations
 
 import math
+import os
+import threading
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
-import os
-import threading
+from .errors import MemoryBudgetError, ParameterError, UnitError
 
-from .errors import MemoryBudgetError, ParameterError
-
-__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range", "as_float_array",
-           "as_real", "as_checked_array", "broadcast_inputs", "check_count", "check_result_finite", "exactly_one", "scalar_or_array",
-           "step_indices", "check_flag", "name_list",
-           "memory_budget", "set_memory_budget", "check_memory", "DEFAULT_MEMORY_BUDGET",
-           "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual"]
+__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range",
+           "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
+           "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
+           "name_list", "memory_budget", "set_memory_budget", "check_memory",
+           "DEFAULT_MEMORY_BUDGET", "MEMORY_BUDGET_ENV", "values_equal", "FieldsEqual",
+           "QUANTITY_UNITS", "to_si", "to_si_values", "PLAIN_TYPES"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -58,10 +58,15 @@ class Param:
     typical: tuple[float, float] = (1e-3, 1.0)
 
     def check(self, value: object) -> float:
-        """Return ``value`` as a float after checking it lies in the domain."""
+        """Return ``value`` as a float after checking it lies in the domain.
+
+        ``value`` may carry a unit (``"210 GPa"``, a pint quantity): it is converted to
+        :attr:`unit` first (:func:`to_si`).
+        """
         allowed, ok = _DOMAINS[self.domain]
         v = as_real(self.name, value, f"{self.description or self.name} must be a real number "
-                                      f"{allowed} (unit {self.unit})")
+                                      f"{allowed} (unit {self.unit})",
+                    unit=None if self.unit in _NO_UNIT else self.unit)
         if not math.isfinite(v) or not ok(v):
             raise ParameterError(
                 f"{self.name}={value!r} is invalid: {self.description or self.name} must be finite "
@@ -74,7 +79,7 @@ class ParamIdentity:
     """Mixin: ``repr``, ``==`` and ``hash`` from the declared ``params`` (class + values), so two
     objects built with the same parameters are interchangeable (and usable as cache keys)."""
 
-    params: tuple[Param, ...] = ()
+    params: ClassVar[tuple[Param, ...]] = ()
 
     def _param_values(self) -> tuple[Any, ...]:
         return tuple(getattr(self, p.name) for p in self.params)
@@ -84,11 +89,106 @@ class ParamIdentity:
         return f"{type(self).__name__}({args})"
 
     def __eq__(self, other: object) -> bool:
-        return (type(self) is type(other)
-                and self._param_values() == other._param_values())  # type: ignore[attr-defined]
+        return (type(self) is type(other) and isinstance(other, ParamIdentity)
+                and self._param_values() == other._param_values())
 
     def __hash__(self) -> int:
         return hash((type(self), self._param_values()))
+
+
+# ---------------------------------------------------------------------------- units
+#: SI unit of each public keyword that is not a declared :class:`Param` (driver arguments,
+#: load-path controls): a string with a unit (``force="2 kN"``) or a pint quantity given for one
+#: of these names is converted to this unit at the boundary (:func:`as_real`,
+#: :func:`as_float_array`); every other name takes plain numbers only
+QUANTITY_UNITS: dict[str, str] = {
+    "depth": "m", "force": "N", "displacement": "m", "tangential_force": "N", "twist": "rad",
+    "torque": "N*m", "time": "s", "r": "m", "radius": "m", "max_radius": "m", "noise": "m",
+    "stick_radius": "m", "twist_amplitude": "rad", "displacement_amplitude": "m", "half_angle": "rad",
+    "work_of_adhesion": "J/m^2", "wear_coefficient": "1/Pa", "duration": "s", "period": "s",
+}
+#: units that mean "not declared" (no conversion, plain numbers only)
+_NO_UNIT = ("", "-")
+
+
+def _is_quantity(value: object) -> bool:
+    """A pint ``Quantity`` (recognised without importing pint: pint stays a lazy extra)."""
+    return (type(value).__module__.partition(".")[0] == "pint"
+            and hasattr(value, "to") and hasattr(value, "magnitude"))
+
+
+def to_si(name: str, value: Any, unit: str | None = None) -> Any:
+    """``value`` in the SI unit ``unit`` when it carries a unit of its own; else unchanged.
+
+    The one place where a unit given by the caller is converted. A string ``"<number> <unit>"``
+    is read by the unit grammar of scene files (:func:`contactlab.numeric.units.parse_quantity`:
+    ``"210 GPa"``, ``"10 um"``, ``"5 deg"``, ``"1e-3 N*m"``); a pint ``Quantity`` (scalar or
+    array) is converted by pint. A string without a unit (``"1e9"``) is not converted: a
+    number is given as a number. Values of any other type are returned unchanged.
+
+    Parameters
+    ----------
+    name : str
+        The parameter, for messages.
+    value : object
+        The caller's value.
+    unit : str, optional
+        SI unit of the parameter (``"Pa"``, ``"m"``, ``"N*m"``, ``"1"``); default
+        :data:`QUANTITY_UNITS` ``[name]``. ``"-"`` or an unknown name: no conversion.
+
+    Raises
+    ------
+    UnitError
+        The unit is unknown or of another dimension (the message names the parameter, the
+        value and the units it accepts). Also a :class:`ParameterError`.
+
+    Examples
+    --------
+    >>> to_si("E", "210 GPa", "Pa"), to_si("force", "2 kN"), to_si("R", 0.01, "m")
+    (210000000000.0, 2000.0, 0.01)
+    """
+    is_str = isinstance(value, str)
+    if not is_str and not _is_quantity(value):
+        return value
+    unit = QUANTITY_UNITS.get(name, "-") if unit is None else unit
+    if unit in _NO_UNIT:
+        return value
+    from .numeric.units import DIMENSION_OF_SI_UNIT, canonical_unit, parse_quantity, split_number
+    dim = DIMENSION_OF_SI_UNIT.get(canonical_unit(unit))
+    if dim is None:         # a unit outside the grammar (m^(1-n)): plain numbers only
+        return value
+    if is_str:
+        number, given = split_number(value)
+        if number is None or not given:
+            return value    # not "<number> <unit>": refused as not a number by the caller
+        return parse_quantity(value, dim, name)
+    si = "dimensionless" if dim == "dimensionless" else canonical_unit(unit).replace("^", "**")
+    try:
+        magnitude = value.to(si).magnitude
+    except Exception as err:    # pint's DimensionalityError (pint is not imported here)
+        raise UnitError(f"{name}={_short(value)} has the wrong dimension: {name} is a "
+                        f"{dim.replace('_', ' ')} in {unit}; give it in {unit} or a "
+                        f"compatible unit.", issues=[(name, value, f"a {dim} ({unit})")]
+                        ) from err
+    return float(magnitude) if np.ndim(magnitude) == 0 else np.asarray(magnitude)
+
+
+#: argument types that never carry a unit (passed on without a further look)
+PLAIN_TYPES = frozenset({float, int, np.ndarray, np.float64, list, tuple, type(None)})
+
+
+def to_si_values(**values: Any) -> tuple[Any, ...]:
+    """The keyword values in their order, each converted by :func:`to_si` under its own name
+    (``force="2 kN"`` -> ``2000.0``); plain numbers and arrays pass untouched.
+
+    The first line of the :class:`~contactlab.Contact` methods: a value with a unit reaches the
+    drivers as SI numbers. (A call, not a decorator: a wrapper would add a frame between the
+    caller and the drivers, whose warnings point at the caller's line.)
+
+    >>> to_si_values(depth=None, force="2 kN")
+    (None, 2000.0)
+    """
+    return tuple(v if type(v) in PLAIN_TYPES else to_si(k, v) for k, v in values.items())
 
 
 def check_positive(name: str, value: object, what: str = "", unit: str = "") -> float:
@@ -102,12 +202,13 @@ def check_finite(name: str, value: object, what: str = "", unit: str = "") -> fl
 
 
 def check_in_range(name: str, value: object, low: float, high: float, *, low_open: bool,
-                   high_open: bool, what: str) -> float:
-    """Check ``low <(=) value <(=) high`` and return the value as float."""
+                   high_open: bool, what: str, unit: str | None = None) -> float:
+    """Check ``low <(=) value <(=) high`` and return the value as float (``unit``: SI unit of
+    the bounds, for a value given with a unit; see :func:`to_si`)."""
     lo_s = "<" if low_open else "<="
     hi_s = "<" if high_open else "<="
     v = as_real(name, value, f"{what} must be a real number with {low:g} {lo_s} {name} {hi_s} "
-                             f"{high:g}")
+                             f"{high:g}", unit=unit)
     lo_ok = v > low if low_open else v >= low
     hi_ok = v < high if high_open else v <= high
     if not (lo_ok and hi_ok):   # also catches NaN
@@ -127,31 +228,47 @@ def _is_bool(value: object) -> bool:
     return isinstance(value, (bool, np.bool_))
 
 
-def as_real(name: str, value: object, allowed: str = "expected a real number") -> float:
+def as_real(name: str, value: object, allowed: str = "expected a real number",
+            unit: str | None = None) -> float:
     """``value`` as a Python float, the one scalar entry point of every check.
 
-    Rejects what ``float()`` would silently accept although it is not a number: ``bool``
-    (``True`` is not 1.0 Pa), strings (``"1e9"``; scene files parse their own strings) and
-    0-d arrays holding either. Does not check finiteness or a domain.
+    A value with a unit (``"210 GPa"``, a pint quantity) is first converted to the SI unit
+    ``unit`` (default :data:`QUANTITY_UNITS` ``[name]``; :func:`to_si`). Rejects what
+    ``float()`` would silently accept although it is not a number: ``bool`` (``True`` is not
+    1.0 Pa), strings without a unit (``"1e9"``) and 0-d arrays holding either. Does not check
+    finiteness or a domain.
 
     Raises
     ------
     ParameterError
         ``value`` is not a real number; the message names ``name``, the value and ``allowed``.
+    UnitError
+        ``value`` has a unit of another dimension (a :class:`ParameterError` too).
     """
+    if not isinstance(value, float):
+        value = to_si(name, value, unit)
     arr = value if isinstance(value, np.ndarray) else None
     if (_is_bool(value) or isinstance(value, (str, bytes))
             or (arr is not None and (arr.ndim != 0 or arr.dtype.kind not in "iuf"))):
-        raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}.")
+        raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}"
+                             f"{_string_hint(name, value, unit)}.")
     try:
         return float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError) as err:
         raise ParameterError(f"{name}={_short(value)} is invalid: {allowed}.") from err
 
 
+def _string_hint(name: str, value: object, unit: str | None) -> str:
+    """For a string refused as a number: how to give the quantity with a unit, if it has one."""
+    unit = QUANTITY_UNITS.get(name, "-") if unit is None else unit
+    if not isinstance(value, str) or unit in _NO_UNIT or unit == "1" or "(" in unit:
+        return ""
+    return f"; give a number in {unit} or a string with a unit ('<number> <unit>')"
+
+
 def _has_bool_or_str(seq: object) -> bool:
     """Whether a (nested) list/tuple holds a bool or a string anywhere."""
-    stack = [seq]
+    stack: list[Any] = [seq]
     while stack:
         for v in stack.pop():
             if isinstance(v, (list, tuple)):
@@ -162,17 +279,22 @@ def _has_bool_or_str(seq: object) -> bool:
 
 
 def as_float_array(name: str, value: object, *, allow_nan: bool = False,
-                   allow_empty: bool = False) -> np.ndarray:
+                   allow_empty: bool = False, unit: str | None = None) -> np.ndarray:
     """Convert ``value`` to a float ndarray, the one array entry point of every driver.
 
-    Rejects non-numeric input, booleans (``[True, False]`` is not ``[1.0, 0.0]``), strings,
-    empty arrays (unless ``allow_empty``) and, unless ``allow_nan``, non-finite values.
+    A value with a unit (``"2 kN"``, a pint quantity, scalar or array) is first converted to
+    the SI unit ``unit`` (default :data:`QUANTITY_UNITS` ``[name]``; :func:`to_si`). Rejects
+    non-numeric input, booleans (``[True, False]`` is not ``[1.0, 0.0]``), strings without a
+    unit, empty arrays (unless ``allow_empty``) and, unless ``allow_nan``, non-finite values.
 
     Raises
     ------
     ParameterError
-        Naming ``name``, the offending value and what is allowed.
+        Naming ``name``, the offending value and what is allowed (:class:`UnitError` for a
+        unit of another dimension).
     """
+    if not isinstance(value, (np.ndarray, float)):
+        value = to_si(name, value, unit)
     if (_is_bool(value) or isinstance(value, (str, bytes))
             or (isinstance(value, (list, tuple)) and _has_bool_or_str(value))):
         raise ParameterError(f"{name}={_short(value)} is invalid: expected real numbers "
@@ -234,7 +356,8 @@ def as_checked_array(name: str, value: object, *, domain: str = "real", unit: st
     array([0.01, 0.02])
     """
     allowed, ok = _ARRAY_DOMAINS[domain]
-    arr = as_float_array(name, value, allow_nan=True, allow_empty=allow_empty)
+    arr = as_float_array(name, value, allow_nan=True, allow_empty=allow_empty,
+                         unit=None if unit in _NO_UNIT else unit)
     if size is not None and (arr.ndim > 1 or (arr.ndim == 1 and arr.size != size)):
         raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
                              f"item (1D, {size} values; unit {unit}).")

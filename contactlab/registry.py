@@ -27,6 +27,13 @@ Examples
 'Paraboloid'
 >>> registry.create("profile", "paraboloid", R=0.01)
 Paraboloid(R=0.01)
+
+The module offers the same calls on the process-wide registry (``contactlab.registry`` is this
+module):
+
+>>> import contactlab as cl
+>>> cl.registry.create("profile", "paraboloid", R="10 mm")
+Paraboloid(R=0.01)
 """
 from __future__ import annotations
 
@@ -46,7 +53,7 @@ if TYPE_CHECKING:   # importlib.metadata costs ~15 ms at import: loaded on first
 from .errors import ParameterError, PluginError, PluginWarning, UnknownNameError
 
 __all__ = ["Registry", "KindSpec", "registry", "register_profile", "register_material",
-           "NAME_PATTERN", "DISABLE_ENV"]
+           "NAME_PATTERN", "DISABLE_ENV", "available", "get", "create"]
 
 #: registry keys: lowercase snake case
 NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*\Z")
@@ -147,7 +154,7 @@ class Registry:
                               f"(rule: a {kind} must subclass {spec.base.replace(':', '.')}).")
         if inspect.isabstract(cls):
             raise PluginError(f"{label}{where} is abstract: it leaves "
-                              f"{', '.join(sorted(cls.__abstractmethods__))} unimplemented "
+                              f"{', '.join(sorted(getattr(cls, '__abstractmethods__', ())))} unimplemented "
                               "(rule: contract of the base class).")
         name = getattr(cls, "name", None)
         if not isinstance(name, str) or not NAME_PATTERN.match(name):
@@ -353,7 +360,7 @@ class Registry:
 
     def name_of(self, cls_or_obj: Any, kind: str | None = None) -> str:
         """Registry name of a class or instance (checked to be registered)."""
-        cls = cls_or_obj if isinstance(cls_or_obj, type) else type(cls_or_obj)
+        cls: Any = cls_or_obj if isinstance(cls_or_obj, type) else type(cls_or_obj)
         kind = kind or self._kind_of(cls)
         self.get(kind, cls)
         return cls.name
@@ -365,7 +372,7 @@ class Registry:
         close matches) and missing ones raise :class:`~contactlab.errors.ParameterError`; values
         are checked by the class itself.
         """
-        cls = self.get(kind, name)
+        cls: Any = self.get(kind, name)
         sig = inspect.signature(cls)
         accepted = [p for p in sig.parameters]
         unknown = [k for k in params if k not in sig.parameters]
@@ -386,6 +393,31 @@ class Registry:
 
 #: the process-wide registry
 registry = Registry()
+
+
+# module-level shortcuts to the process-wide registry: ``contactlab.registry.create(...)``
+def available(kind: str) -> tuple[str, ...]:
+    """Names registered for ``kind`` (built-ins, session and plugins): :meth:`Registry.available`
+    of the process-wide :data:`registry`."""
+    return registry.available(kind)
+
+
+def get(kind: str, name: str | type) -> type:
+    """The class registered for ``kind`` as ``name``: :meth:`Registry.get` of :data:`registry`."""
+    return registry.get(kind, name)
+
+
+def create(kind: str, name: str | type, /, **params: Any) -> Any:
+    """Build the ``kind`` registered as ``name``: :meth:`Registry.create` of :data:`registry`.
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> cl.registry.create("profile", "cone", half_angle="70 deg") == cl.profiles.Cone(
+    ...     half_angle="70 deg")
+    True
+    """
+    return registry.create(kind, name, **params)
 
 
 def register_profile(cls: type) -> type:

@@ -15,49 +15,24 @@ immutable result:
 * :mod:`~contactlab.effects.law`: :class:`ContactLaw`, :class:`LawStep` (many contacts, for DEM
   codes; takes plain per-contact arrays instead of a contact).
 """
-import importlib as _importlib
-import typing as _typing
-
-if _typing.TYPE_CHECKING:   # the names below resolve on first use (module ``__getattr__``)
-    from .adhesion import AdhesionCycle, AdhesiveNormalState
-    from .fretting import FrettingLoop, FrettingMap
-    from .law import ContactLaw, LawStep
-    from .normal import NormalState
-    from .path import PathResult
-    from .tangential import ShiftHistory, TangentialState
-    from .torsion import TorsionState, TwistHistory
-    from .viscoelastic import ViscoelasticHistory
+from .._lazy import attach as _attach
 
 __all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
            "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult",
            "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep"]
 
-#: result name -> module of this package that defines it. Imported on first use: the drivers
-#: together cost ~20 ms of import (start-up time), and a session needs only the ones it calls
-_HOME = {
-    "NormalState": "normal", "AdhesiveNormalState": "adhesion", "AdhesionCycle": "adhesion",
-    "TangentialState": "tangential", "ShiftHistory": "tangential", "TorsionState": "torsion",
-    "TwistHistory": "torsion", "ViscoelasticHistory": "viscoelastic", "PathResult": "path",
-    "FrettingLoop": "fretting", "FrettingMap": "fretting", "ContactLaw": "law", "LawStep": "law",
-}
-
-
-#: the driver modules, attributes of the package once imported (``contactlab.effects.law``)
-_MODULES = ("adhesion", "fretting", "law", "law_source", "normal", "path", "tangential", "torsion",
-            "viscoelastic", "wear")
-
-
-def __getattr__(name: str) -> object:
-    if name in _MODULES:            # importing a submodule binds it as a package attribute
-        return _importlib.import_module(f"{__name__}.{name}")
-    try:
-        home = _HOME[name]
-    except KeyError:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
-    value = getattr(_importlib.import_module(f"{__name__}.{home}"), name)
-    globals()[name] = value         # later lookups are plain module attributes
-    return value
-
-
-def __dir__() -> "list[str]":
-    return sorted(set(globals()) | set(_HOME) | set(_MODULES))
+# Every name resolves on first use (listed for type checkers in __init__.pyi): the drivers
+# together cost ~20 ms of import (start-up time), and a session needs only the ones it calls.
+# The driver modules become attributes of the package once imported (contactlab.effects.law).
+__getattr__, __dir__, _LAZY = _attach(
+    __name__,
+    submodules=["adhesion", "fretting", "law", "law_source", "normal", "path", "tangential",
+                "torsion", "viscoelastic", "wear"],
+    submod_attrs={
+        "normal": ["NormalState"], "adhesion": ["AdhesiveNormalState", "AdhesionCycle"],
+        "tangential": ["TangentialState", "ShiftHistory"],
+        "torsion": ["TorsionState", "TwistHistory"], "viscoelastic": ["ViscoelasticHistory"],
+        "path": ["PathResult"], "fretting": ["FrettingLoop", "FrettingMap"],
+        "law": ["ContactLaw", "LawStep"],
+    },
+)

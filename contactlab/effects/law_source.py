@@ -207,7 +207,7 @@ def _kernel_sources() -> str:
 def law_source(law: Any) -> str:
     """Python source (numpy only) of ``law``'s family at constant normal load; see
     :meth:`contactlab.effects.law.ContactLaw.to_source`."""
-    from .. import __version__
+    from .._version import __version__
     from ..profiles import Paraboloid
     from ..symbolic.transform import kappa
     gname = next(iter(law.geometry))

@@ -31,6 +31,10 @@ class Elastic(Material):
         Param("E", "E", "Pa", "positive", "Young's modulus E", (1e3, 1e12)),
         Param("nu", "nu", "1", "real", "Poisson's ratio", (0.0, 0.5)),
     )
+    #: a scene's [materials] table may give the shear modulus G instead of E
+    #: (:meth:`from_shear_modulus`)
+    scene_keys: ClassVar[dict[str, str]] = {"G": "quantity:pressure"}
+    scene_one_of: ClassVar[tuple[tuple[str, ...], ...]] = (("E",), ("G",))
 
     def __init__(self, E: float, nu: float) -> None:
         self.E = self.params[0].check(E)

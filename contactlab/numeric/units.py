@@ -1,4 +1,5 @@
-"""The unit grammar of contactlab (scenes and data files). Quantities with explicit unit suffixes: ``"10 um"``, ``"210 GPa"``, ``"5 deg"``, ``"1e-3 m"``.
+"""The unit grammar of contactlab (scene files, data files and Python arguments): quantities
+with explicit unit suffixes, ``"10 um"``, ``"210 GPa"``, ``"5 deg"``, ``"1e-3 m"``.
 
 Scene files hold SI numbers or strings ``"<number> <unit>"``. The number follows the full float
 grammar (sign, decimals, exponent: ``"-2.5e-3 mrad"``); the unit must belong to the dimension the
@@ -14,7 +15,7 @@ import re
 from ..errors import UnitError
 
 __all__ = ["UNITS", "DIMENSION_OF_SI_UNIT", "SI_UNIT", "parse_quantity", "format_quantity",
-           "dimension_of_unit", "canonical_unit", "unit_factor", "split_header"]
+           "dimension_of_unit", "canonical_unit", "unit_factor", "split_header", "split_number"]
 
 _PRODUCT = re.compile(r"\s*[*·]\s*|\s+")
 
@@ -82,6 +83,19 @@ SI_UNIT = {"length": "m", "force": "N", "pressure": "Pa", "angle": "rad", "torqu
 
 _NUMBER = r"[+-]?(?:\d+(?:_\d+)*(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
 _QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
+
+
+def split_number(text: str) -> tuple[float | None, str]:
+    """``"210 GPa"`` -> ``(210.0, "GPa")``: the number and the (normalised) unit of a quantity
+    string; ``(None, "")`` when ``text`` does not start with a number.
+
+    >>> split_number("210 GPa"), split_number("1e9"), split_number("GPa")
+    ((210.0, 'GPa'), (1000000000.0, ''), (None, ''))
+    """
+    m = _QUANTITY.match(text)
+    if not m:
+        return None, ""
+    return float(m.group(1).replace("_", "")), _normalise_unit(m.group(2))
 
 
 def dimension_of_unit(unit: str) -> str | None:

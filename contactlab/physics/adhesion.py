@@ -36,7 +36,6 @@ Pure kernels: profile, moduli and arrays in, arrays out. The drivers that build
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 

@@ -4,17 +4,12 @@ Built-ins: :class:`PowerLaw`, :class:`Paraboloid`, :class:`Cone`, :class:`Polyno
 :class:`Sphere`, :class:`FlatPunch`, :class:`TruncatedParaboloid`, :class:`TruncatedCone`,
 :class:`Tabulated`, and the composites :class:`Sum` and :class:`Scaled` (``p1 + p2``, ``2 * p``).
 """
-import importlib as _importlib
-import typing as _typing
-
+from .._lazy import attach as _attach
 from .base import G_STRATEGIES, Profile
 from .compound import Scaled, Sum
 from .flat_punch import FlatPunch, TruncatedCone, TruncatedParaboloid
 from .power_law import Cone, Paraboloid, Polynomial, PowerLaw
 from .sphere import Sphere
-
-if _typing.TYPE_CHECKING:
-    from .tabulated import Tabulated
 
 __all__ = [
     "Profile", "G_STRATEGIES", "PowerLaw", "Paraboloid", "Cone", "Polynomial", "Sphere",
@@ -36,20 +31,8 @@ def _register_builtins(registry=None) -> None:
         registry.register(cls, "profile", builtin=True)
 
 
-#: modules imported on first use (start-up time): ``Tabulated`` with its csv, pathlib and
-#: quadrature tables costs ~5 ms of ``import contactlab``; ``smoothing`` is its helper
-_LAZY_MODULES = ("tabulated", "smoothing")
-
-
-def __getattr__(name: str) -> object:
-    if name == "Tabulated":
-        from .tabulated import Tabulated
-        globals()[name] = Tabulated         # later lookups are plain module attributes
-        return Tabulated
-    if name in _LAZY_MODULES:               # importing a submodule binds it as an attribute
-        return _importlib.import_module(f"{__name__}.{name}")
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> "list[str]":
-    return sorted(set(globals()) | {"Tabulated", *_LAZY_MODULES})
+# imported on first use (start-up time; listed for type checkers in __init__.pyi): ``Tabulated``
+# with its csv, pathlib and quadrature tables costs ~5 ms of ``import contactlab``;
+# ``smoothing`` is its helper
+__getattr__, __dir__, _LAZY = _attach(__name__, submodules=["tabulated", "smoothing"],
+                                      submod_attrs={"tabulated": ["Tabulated"]})

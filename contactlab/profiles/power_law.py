@@ -8,13 +8,13 @@ and the Abel integral of g outside the contact
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from typing import ClassVar
+from typing import ClassVar, cast
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..numeric.powers import power_integral
-from ..params import Param
+from ..params import Param, check_in_range, exactly_one
 from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
 from .base import Profile
@@ -133,10 +133,10 @@ class _PowerSum(Profile):
                    for k1, n1 in terms for k2, n2 in terms) * np.ones_like(a)
 
     def _pressure_shape_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-        return sum(_power_pressure_shape(c, n, r, a) for c, n in self.power_terms())
+        return cast(np.ndarray, sum(_power_pressure_shape(c, n, r, a) for c, n in self.power_terms()))
 
     def _abel_g_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
-        return sum(_power_abel(c, n, r, a) for c, n in self.power_terms())
+        return cast(np.ndarray, sum(_power_abel(c, n, r, a) for c, n in self.power_terms()))
 
 
 class PowerLaw(_PowerSum):
@@ -226,11 +226,23 @@ class Paraboloid(PowerLaw):
 class Cone(PowerLaw):
     """Cone ``f(r) = slope * r``.
 
+    Give exactly one of ``slope`` and ``half_angle``.
+
     Parameters
     ----------
-    slope : float
+    slope : float, optional
         ``tan β`` with β the surface inclination (= ``cot α`` for the half angle α at the apex),
         dimensionless, > 0.
+    half_angle : float or str, optional
+        Half angle α at the apex, rad (``"70 deg"`` with a unit), 0 < α < π/2; the cone
+        then has ``slope = 1/tan α``.
+
+    Examples
+    --------
+    >>> Cone(half_angle=np.pi / 4)
+    Cone(slope=1.0000000000000002)
+    >>> Cone(half_angle="45 deg") == Cone(half_angle=np.pi / 4)
+    True
 
     See Also
     --------
@@ -241,9 +253,17 @@ class Cone(PowerLaw):
     params: ClassVar[tuple[Param, ...]] = (
         Param("slope", "s", "1", "positive", "cone slope tan(beta)", (1e-4, 1e2)),
     )
+    #: a scene's [profile] table gives one of the two
+    scene_one_of: ClassVar[tuple[tuple[str, ...], ...]] = (("slope",), ("half_angle",))
 
-    def __init__(self, slope: float) -> None:
-        self.slope = self.params[0].check(slope)
+    def __init__(self, slope: float | None = None, *, half_angle: float | None = None) -> None:
+        key, value = exactly_one("Cone()", {"slope": slope, "half_angle": half_angle})
+        if key == "half_angle":
+            alpha = check_in_range("half_angle", value, 0.0, np.pi / 2, low_open=True,
+                                   high_open=True, what="the cone's half angle at the apex (rad)",
+                                   unit="rad")
+            value = 1.0 / np.tan(alpha)
+        self.slope = self.params[0].check(value)
         self.c = self.slope
         self.n = 1.0
 
@@ -254,11 +274,9 @@ class Cone(PowerLaw):
 
     @classmethod
     def from_half_angle(cls, half_angle: float) -> "Cone":
-        """Cone with apex half angle ``half_angle`` (rad, 0 < α < π/2): slope = cot α."""
-        from ..params import check_in_range
-        alpha = check_in_range("half_angle", half_angle, 0.0, np.pi / 2, low_open=True,
-                               high_open=True, what="the cone's half angle at the apex (rad)")
-        return cls(slope=1.0 / np.tan(alpha))
+        """Cone with apex half angle ``half_angle`` (rad, 0 < α < π/2): slope = cot α; the
+        same as ``Cone(half_angle=half_angle)``."""
+        return cls(half_angle=half_angle)
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
         return 0.5 * np.pi * self.slope * x
@@ -287,6 +305,8 @@ class Polynomial(_PowerSum):
     params: ClassVar[tuple[Param, ...]] = (
         Param("terms", "c_i, n_i", "m^(1-n_i)", "positive", "polynomial terms (c, n)"),
     )
+    #: a scene gives the terms as a list of [c, n] pairs of plain numbers (SI)
+    scene_keys: ClassVar[dict[str, str]] = {"terms": "terms"}
 
     def __init__(self, terms: Mapping[float, float] | Iterable[tuple[float, float]]) -> None:
         pairs = ([(c, n) for n, c in terms.items()] if isinstance(terms, Mapping)

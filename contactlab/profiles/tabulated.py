@@ -32,7 +32,6 @@ table (``max_radius`` = last radius).
 """
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -119,6 +118,15 @@ class Tabulated(Profile):
         Param("f", "f_i", "m", "real", "table heights"),
         Param("interpolation", "-", "-", "real", "interpolation"),
     )
+    #: a scene's [profile] table of this type: keys besides the constructor's parameters, as
+    #: ``"kind[:dimension[:domain]][|names]"`` (contactlab.scene.schema.key_from_text), and the
+    #: key groups of which it gives exactly one (a CSV file, or the two columns inline)
+    scene_keys: ClassVar[dict[str, str]] = {
+        "file": "file", "r": "array:length", "f": "array:length",
+        "interpolation": "choice|linear,cubic", "r_unit": "unit:length", "f_unit": "unit:length",
+        "smoothing": "quantity:dimensionless:nonnegative|auto", "noise": "quantity:length",
+        "admissible": "choice|nearest"}
+    scene_one_of: ClassVar[tuple[tuple[str, ...], ...]] = (("file",), ("r", "f"))
 
     def __init__(self, r: Any, f: Any, interpolation: str = "linear", *,
                  smoothing: Any = None, noise: float | None = None,

@@ -375,12 +375,6 @@ def with_setting(scene: "Scene", knob: str, value: Any) -> "Scene":
     return Scene.from_dict(data, scene.base_dir)
 
 
-def _settings(scene: "Scene", setting: Mapping[str, Any]) -> "Scene":
-    for knob, value in setting.items():
-        scene = with_setting(scene, knob, value)
-    return scene
-
-
 # ---- running and comparing ----------------------------------------------------------------------
 def _timed_run(scene: "Scene") -> tuple[Any, float]:
     t0 = time.perf_counter()

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, UnknownNameError
 from ..loadpath import Hold, LoadPath, Ramp, Sinusoid
 from . import toml_io
 from .validate import CONTROLS, read_table, resolve_file, validate
@@ -35,8 +35,9 @@ class History:
     time : ndarray
         Time of each step, s (step 0 is the unloaded start unless a table says otherwise).
     controls : dict
-        Axis (``"normal"``, ``"twist"``, ``"shift"``) -> ``(control name, values)``; e.g.
-        ``{"normal": ("force", array), "twist": ("twist", array)}``. Axes the path never
+        Axis (``"normal"``, ``"tangential"``, ``"torsion"``: the groups of
+        :data:`contactlab.loadpath.base.GROUPS`) -> ``(control name, values)``; e.g.
+        ``{"normal": ("force", array), "torsion": ("twist", array)}``. Axes the path never
         drives are absent.
     segment : ndarray of int
         Index of the load-path segment each step belongs to (-1 for the start).
@@ -52,11 +53,24 @@ class History:
 
     def kind(self, axis: str) -> str | None:
         """Control name driving ``axis`` or None."""
+        _check_axis(axis)
         return self.controls[axis][0] if axis in self.controls else None
 
     def values(self, axis: str) -> np.ndarray:
         """Per-step values of ``axis`` (zeros when the path does not drive it)."""
+        _check_axis(axis)
         return self.controls[axis][1] if axis in self.controls else np.zeros(self.time.shape)
+
+
+#: the axes of a history: the load path's groups
+AXES = ("normal", "tangential", "torsion")
+
+
+def _check_axis(axis: str) -> None:
+    """An unknown axis would read as "not driven" (zeros): refuse it instead."""
+    if axis not in AXES:
+        raise UnknownNameError(f"axis={axis!r} is unknown: the axes of a load history are "
+                               f"{AXES}.")
 
 
 def _table_columns(body: Mapping[str, Any], base_dir: Path | None) -> dict[str, Any]:
@@ -176,7 +190,7 @@ class Scene:
         self._load_path: LoadPath | None = None
         self._history: History | None = None
         self._plan = None
-        self._contact = None
+        self._contact: Any = None
         self._plan = self.plan()   # plan-level issues (conflicts) are validation errors too
 
     # ---- construction ---------------------------------------------------------------------------

@@ -121,11 +121,11 @@ _ROUTE_SERIES = {"viscoelastic": ("time", "depth", "force", "radius")}
 
 def deliverable_series(route: str, axis: str | None = None) -> tuple[str, ...]:
     """Series a run on ``route`` (``"closed_form"``, ``"foundation"``, ``"viscoelastic"``) can
-    fill, for a path driving ``axis`` (``"twist"``, ``"shift"`` or None): requested series
+    fill, for a path driving ``axis`` (``"torsion"``, ``"tangential"`` or None): requested series
     outside it are rejected when the scene is planned, not after the run."""
     if route == "foundation":
         from ..effects.path import SERIES as PATH_SERIES   # what contact.simulate returns
-        other = {"twist": ("tangential",), "shift": ("torsion",)}.get(axis or "", ())
+        other = {"torsion": ("tangential",), "tangential": ("torsion",)}.get(axis or "", ())
         return tuple(s for s in SERIES if s in PATH_SERIES and SERIES[s] not in other)
     return _ROUTE_SERIES.get(route, tuple(SERIES))
 
@@ -172,9 +172,9 @@ def make_plan(scene: "Scene") -> Plan:
 
     n_kind = h.kind("normal")
     normal = h.values("normal")
-    tw_kind, sh_kind = h.kind("twist"), h.kind("shift")
-    twist_on = tw_kind is not None and bool(np.any(h.values("twist") != 0))
-    shift_on = sh_kind is not None and bool(np.any(h.values("shift") != 0))
+    tw_kind, sh_kind = h.kind("torsion"), h.kind("tangential")
+    twist_on = tw_kind is not None and bool(np.any(h.values("torsion") != 0))
+    shift_on = sh_kind is not None and bool(np.any(h.values("tangential") != 0))
     s_req = list(series_req or [])
     want_torsion = ("torsion" in requested or any(SERIES[s] == "torsion" for s in s_req)
                     or "shear" in fields)
@@ -206,8 +206,8 @@ def make_plan(scene: "Scene") -> Plan:
         pending.append(("outputs.series", "dissipated_energy", "'dissipated_energy' with partial "
                         "slip (a twist or shift and interface.friction)"))
 
-    axis = "twist" if torsion else "shift" if tangential else None
-    drive_kind = tw_kind if axis == "twist" else sh_kind if axis == "shift" else None
+    axis = "torsion" if torsion else "tangential" if tangential else None
+    drive_kind = tw_kind if axis == "torsion" else sh_kind if axis == "tangential" else None
     drive = h.values(axis) if axis else None
     coupled_at = None
     start = 0
@@ -255,7 +255,7 @@ def make_plan(scene: "Scene") -> Plan:
             owners = leaf_segments(scene.to_dict()["load_path"])
             leaf = int(h.segment[coupled_at])
             seg = owners[leaf][0] if 0 <= leaf < len(owners) else leaf
-            why = (f"normal load varies while {'twisted' if axis == 'twist' else 'shifted'} "
+            why = (f"normal load varies while {'twisted' if axis == 'torsion' else 'shifted'} "
                    f"(step {coupled_at}, load_path[{seg}]): no closed form, foundation with memory")
         else:
             why = (f"{drive_kind}-controlled non-monotone history: no closed-form history API, "
@@ -360,7 +360,7 @@ def make_plan(scene: "Scene") -> Plan:
         rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
                               + (" and outputs.method = " + repr(method) if "method" in outs else ""))
 
-    extra = _fretting_rows(scene, h, method, issues)
+    extra = _fretting_rows(scene, h, issues)
     for name, (row, det) in extra.items():
         rows[name] = row
         calls.append(name)
@@ -430,8 +430,7 @@ def _fretting_method(table: dict, outs: dict, mode: str) -> str | None:
     return m if m in ("exact", "mdr") else "exact"
 
 
-def _fretting_rows(scene: "Scene", h: Any, path_method: str | None,
-                   issues: list) -> dict[str, tuple[Effect, dict[str, Any]]]:
+def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effect, dict[str, Any]]]:
     """Plan rows (and run details) for the [wear] and [fretting_map] tables."""
     data = scene.to_dict()
     outs = scene.outputs

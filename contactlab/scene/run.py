@@ -332,7 +332,7 @@ def _closed_form(contact: Any, plan: "Plan", h: Any, m: int
     start = min(plan.details["start"], m)
     radius = np.asarray(normal_state.radius, float).reshape(-1)
     if call is not None and m > start:
-        ctrl = h.kind(axis) or ("twist" if axis == "twist" else "displacement")
+        ctrl = h.kind(axis) or ("twist" if axis == "torsion" else "displacement")
         drive = h.values(axis)[:m]
         kw = {n_kind: float(N[start]), ctrl: drive[start:]}
         if call in ("torsion", "twist_history"):
@@ -382,7 +382,7 @@ def _step_failure(scene: "Scene", plan: "Plan", h: Any, err: ContactlabError, k:
 
 def _partial_result(scene: "Scene", plan: "Plan", series: dict, fields: dict, computed: list,
                     info: dict, **results: Any) -> SceneResult:
-    from .. import __version__
+    from .._version import __version__
     meta = {"computed": list(computed), "route": plan.route, "version": __version__,
             "title": scene.title, "status": "partial", "failed_at": dict(info),
             "citations": _sources(computed, plan.method, scene.contact())}
@@ -405,7 +405,7 @@ def run_scene(scene: "Scene") -> SceneResult:
     ConvergenceError
         A series came out NaN (never returned silently).
     """
-    from .. import __version__
+    from .._version import __version__
     plan = scene.plan()
     h = scene.history()
     contact = scene.contact()
@@ -498,9 +498,9 @@ def run_scene(scene: "Scene") -> SceneResult:
                     fields[f] = np.asarray(last.displacement(r), float)
                 elif f == "shear":   # the exact torsion state at the final (monotone) twist
                     start = plan.details["start"]
-                    ctrl = h.kind("twist") or "twist"
+                    ctrl = h.kind("torsion") or "twist"
                     ts = contact.torsion(**{n_kind: float(N[start]),
-                                            ctrl: float(h.values("twist")[-1]),
+                                            ctrl: float(h.values("torsion")[-1]),
                                             "method": plan.method})
                     fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
             for k, v in fields.items():

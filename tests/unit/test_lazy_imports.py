@@ -16,7 +16,7 @@ import pytest
 
 HEAVY = ("scipy.special", "scipy.integrate", "sympy", "matplotlib", "pandas", "pyarrow",
          "xarray", "dask", "distributed", "tqdm", "contactlab.sweeps", "multiprocessing",
-         "concurrent.futures")
+         "concurrent.futures", "pint", "contactlab.numeric.units")
 
 
 #: contactlab's own modules that ``import contactlab`` leaves for their first use (together
@@ -165,3 +165,39 @@ def test_wear_operators_import_scipy_special_on_first_use() -> None:
     from contactlab.physics import wear
     ops = wear.operators(1e-3, 8)
     assert ops and all(np.all(np.isfinite(np.asarray(v, float))) for v in ops.values())
+
+
+#: package faces that resolve names lazily and ship a ``.pyi`` stub listing them
+STUBBED = ("contactlab", "contactlab.effects", "contactlab.profiles")
+
+
+def _stub_names(module: str) -> tuple[set[str], list[str]]:
+    """Names a package's ``__init__.pyi`` binds (imports, defs) and its ``__all__``."""
+    import ast
+    from pathlib import Path
+    mod = importlib.import_module(module)
+    tree = ast.parse((Path(mod.__file__).parent / "__init__.pyi").read_text(encoding="utf-8"))
+    bound: set[str] = set()
+    all_: list[str] = []
+    for node in tree.body:
+        if isinstance(node, ast.ImportFrom):
+            bound |= {a.asname or a.name for a in node.names}
+        elif isinstance(node, ast.FunctionDef):
+            bound.add(node.name)
+        elif isinstance(node, ast.Assign) and node.targets[0].id == "__all__":  # type: ignore[attr-defined]
+            all_ = ast.literal_eval(node.value)
+    return bound, all_
+
+
+@pytest.mark.parametrize("module", STUBBED)
+def test_stub_lists_the_runtime_names(module: str) -> None:
+    """The ``.pyi`` stub (what type checkers and IDEs see) and the lazy runtime agree: the same
+    ``__all__``, every name the stub binds resolves at run time, and every lazily resolved name
+    is in the stub."""
+    mod = importlib.import_module(module)
+    bound, all_ = _stub_names(module)
+    assert all_ == list(mod.__all__)
+    assert set(mod.__all__) <= bound
+    assert set(mod._LAZY) <= bound, sorted(set(mod._LAZY) - bound)
+    for name in sorted(bound):
+        assert getattr(mod, name) is not None, name

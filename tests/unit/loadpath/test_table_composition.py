@@ -52,4 +52,4 @@ def test_table_composes_in_scenes(tmp_path):
     assert h.n_steps == 1 + 3 + 12
     np.testing.assert_allclose(h.values("normal")[4:], np.tile([300.0, 3000.0, 300.0, 1500.0], 3),
                                rtol=1e-15)
-    np.testing.assert_allclose(h.values("twist")[4:8], np.radians([0, 1, 0, -1]), rtol=1e-15)
+    np.testing.assert_allclose(h.values("torsion")[4:8], np.radians([0, 1, 0, -1]), rtol=1e-15)

@@ -91,9 +91,9 @@ def test_history_ramp_hold_sinusoid():
     assert h.n_steps == 1 + 10 + 2 + 4
     np.testing.assert_allclose(h.values("normal")[:11], np.linspace(0, 100, 11), rtol=TOL.ULPS)
     np.testing.assert_allclose(h.values("normal")[11:], 100.0)
-    np.testing.assert_allclose(h.values("twist"), [0] * 13 + [1e-3, 0, -1e-3, 0], atol=TOL.ABS_ZERO_TWIST)
+    np.testing.assert_allclose(h.values("torsion"), [0] * 13 + [1e-3, 0, -1e-3, 0], atol=TOL.ABS_ZERO_TWIST)
     np.testing.assert_allclose(h.time[:13], [*range(11), 12, 14])
-    assert h.kind("normal") == "force" and h.kind("twist") == "twist" and h.kind("shift") is None
+    assert h.kind("normal") == "force" and h.kind("torsion") == "twist" and h.kind("tangential") is None
     assert list(h.segment[:2]) == [-1, 0] and h.segment[-1] == 2
 
 
@@ -115,4 +115,23 @@ def test_from_objects_with_a_loadpath():
     h = s.history()
     assert h.n_steps == path.n_steps + 1          # the scene history includes the unloaded start
     wave = 1e-3 * np.sin(2 * np.pi * np.arange(1, 9) / 8)
-    np.testing.assert_allclose(h.values("twist")[-8:], wave, atol=TOL.ABS_ZERO_TWIST)
+    np.testing.assert_allclose(h.values("torsion")[-8:], wave, atol=TOL.ABS_ZERO_TWIST)
+
+
+def test_history_axes_are_the_load_path_groups():
+    """A scene's history names its axes like the load path (normal, tangential, torsion); an
+    unknown axis (the old spellings "twist"/"shift") is refused, not read as an undriven zero."""
+    from contactlab.errors import UnknownNameError
+    from contactlab.loadpath.base import GROUPS
+    from contactlab.scene.model import AXES
+    assert set(AXES) == set(GROUPS.values())
+    d = {"profile": {"type": "paraboloid", "R": 0.01},
+         "materials": {"body1": {"type": "elastic", "E": 2e11, "nu": 0.3},
+                       "body2": {"type": "rigid"}},
+         "load_path": [{"ramp": {"force": 10.0, "steps": 2}},
+                       {"ramp": {"twist": 1e-3, "steps": 2}}]}
+    h = Scene(d).history()
+    assert h.kind("torsion") == "twist" and h.values("torsion")[-1] == 1e-3
+    for old in ("twist", "shift"):
+        with pytest.raises(UnknownNameError, match=f"axis='{old}'"):
+            h.values(old)

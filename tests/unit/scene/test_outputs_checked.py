@@ -98,8 +98,8 @@ def test_unavailable_output_rejected_before_any_computation(case, no_physics):
 
 
 @pytest.mark.parametrize("route,axis,series", [
-    ("foundation", "twist", {"peak_pressure", "stiffness", "displacement", "tangential_force"}),
-    ("foundation", "shift", {"peak_pressure", "stiffness", "twist", "torque"}),
+    ("foundation", "torsion", {"peak_pressure", "stiffness", "displacement", "tangential_force"}),
+    ("foundation", "tangential", {"peak_pressure", "stiffness", "twist", "torque"}),
     ("viscoelastic", None, {"peak_pressure", "stiffness", "torque", "stick_radius"})])
 def test_deliverable_series_excludes(route, axis, series):
     assert not series & set(deliverable_series(route, axis))
@@ -110,7 +110,7 @@ def test_deliverable_series_excludes(route, axis, series):
 @pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 def test_what_the_foundation_route_says_it_delivers_it_delivers():
     """The list is not a promise on paper: a run asking for all of it fills all of it."""
-    avail = deliverable_series("foundation", "twist")
+    avail = deliverable_series("foundation", "torsion")
     res = Scene(twist_scene(COUPLED, outputs={"series": list(avail), "method": "mdr"})).run()
     assert list(res.series) == list(avail) and res.meta["computed"] == ["simulate"]
 

@@ -121,7 +121,7 @@ def test_oscillating_twist_calls_history_once_at_constant_load(monkeypatch):
     assert res.meta["computed"] == ["normal", "twist_history"]
     (args, kw), = rec.calls
     assert kw["force"] == 100.0 and kw["method"] == "exact"
-    np.testing.assert_array_equal(kw["twist"], s.history().values("twist")[10:])
+    np.testing.assert_array_equal(kw["twist"], s.history().values("torsion")[10:])
     assert np.all(res["torque"][:10] == 0)
     np.testing.assert_array_equal(res["stick_radius"][:10], res["radius"][:10])
     np.testing.assert_array_equal(res["torque"][10:], 3.0 * kw["twist"])
@@ -164,7 +164,7 @@ def test_foundation_route_passes_the_typed_path(monkeypatch):
     assert seen["path"] is s.load_path and seen["kw"] == {"n_springs": 64, "method": "mdr"}
     kinds = [type(seg).__name__ for seg in seen["path"].segments]
     assert kinds == ["Table", "Ramp", "Sinusoid"]      # the unloaded start, then the scene's
-    np.testing.assert_array_equal(res["twist"], s.history().values("twist"))
+    np.testing.assert_array_equal(res["twist"], s.history().values("torsion"))
 
 
 def test_nan_from_a_solver_is_a_convergence_error(monkeypatch):
