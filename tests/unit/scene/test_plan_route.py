@@ -51,7 +51,7 @@ def _check(scene: Scene) -> None:
     # outputs.method of a twisted scene with friction in simulate's terms (the scene's
     # "no-slip" has no foundation implementation: the MDR springs); else simulate's default
     asked = None
-    if plan.details["axis"] == "twist" and scene.friction is not None:
+    if plan.details["axis"] == "torsion" and scene.friction is not None:
         asked = {"exact": "exact", "mdr": "mdr", "no-slip": "mdr"}.get(scene.outputs.get("method"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
