@@ -13,10 +13,10 @@ import contactlab.effects.path as path_driver
 import contactlab.physics.torsion_annulus as annulus
 from contactlab import Contact
 from contactlab.cli import main
-from contactlab.scene.run import MANIFEST
 from contactlab.errors import ConvergenceError, OutsideTheoryError
 from contactlab.foundation import Winkler
 from contactlab.scene import Scene
+from contactlab.scene.run import MANIFEST
 
 from tests.unit.scene.helpers import base, twist_scene
 
