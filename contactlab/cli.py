@@ -360,11 +360,16 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from .sweeps.command import sweep_command
+    if args.output is not None:          # the scene's own files are never an output
+        d = Path(args.output)
+        _check_targets(f"-o {args.output!r}", [d / "sweep.csv", d / "sweep.parquet"],
+                       _scene_inputs(args, _load(args)), True)
     try:
         payload, text = sweep_command(args.scene, args.grid, args.output, scheduler=args.scheduler,
                                       workers=args.workers, progress=not args.json,
                                       on_error=args.on_error,
-                                      allow_outside=args.allow_outside)
+                                      allow_outside=args.allow_outside,
+                                      overwrite=args.overwrite)
     except ImportError as err:           # a missing optional extra (pandas, pyarrow, dask)
         _emit(args, {"ok": False, "exit": 1, "error": str(err), "kind": "ImportError"}, "")
         if not args.json:
@@ -510,6 +515,8 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--workers", type=int, metavar="N", help="local processes (1: serial)")
     sw.add_argument("--on-error", choices=("record", "raise"), default="record",
                     help="record failed points (default) or stop at the first")
+    sw.add_argument("--overwrite", action="store_true",
+                    help="replace an existing DIR/sweep.csv (never a scene's input)")
     p_form = sub.add_parser("formulas", help="print the closed-form formulas of a profile/contact",
                             description="Closed-form MDR formulas (normal, torsion, JKR) of a "
                             "registered profile, as text, a LaTeX document or Python source.")
@@ -535,6 +542,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactlab`` console script; returns the exit code."""
     try:
         return _main(argv)
+    except KeyboardInterrupt:    # a second Ctrl-C while the first was handled
+        print("contactlab: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:      # `contactlab ... | head`: the reader left; no traceback
         import os
         try:
@@ -598,6 +608,8 @@ def _main(argv: Sequence[str] | None) -> int:
         else:
             print(f"contactlab: {msg}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:   # Ctrl-C: one line, exit 130 (128 + SIGINT), as shells do
+        return _interrupted(args, as_json)
     except Exception as err:    # a bug: still one line, never a traceback
         msg = (f"internal error ({type(err).__name__}): {_one_line(err)}; please report it with "
                "the command line that caused it")
@@ -607,6 +619,25 @@ def _main(argv: Sequence[str] | None) -> int:
         else:
             print(f"contactlab: {msg}", file=sys.stderr)
         return 1
+
+
+def _interrupted(args: Any, as_json: bool) -> int:
+    """Ctrl-C: one line on stderr (or a JSON object) saying what was kept; exit 130."""
+    msg = "interrupted"
+    if getattr(args, "command", None) == "sweep" and getattr(args, "output", None):
+        store = Path(args.output) / "sweep.parquet"
+        if store.is_dir():
+            msg += (f"; the points finished so far are kept in {store}: run the same command "
+                    "again to resume")
+    if as_json:
+        try:
+            print(json.dumps({"ok": False, "exit": 130, "error": msg,
+                              "kind": "KeyboardInterrupt"}, indent=1))
+        except (OSError, ValueError):
+            pass
+    else:
+        print(f"contactlab: {msg}", file=sys.stderr)
+    return 130
 
 
 def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None,

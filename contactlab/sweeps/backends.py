@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import multiprocessing
 import pickle
+import signal
 import statistics
 import time
 import weakref
@@ -91,7 +92,11 @@ _WORKER_RUNNER: Callable[..., Records] = run_batch
 
 
 def _init_worker(blob: bytes, runner: Callable[..., Records] = run_batch) -> None:
+    """Set up a pool worker. Ctrl-C reaches every process of the terminal's group: a worker
+    ignores it (the parent stops the sweep and keeps what finished), so no worker prints a
+    traceback of its own."""
     global _WORKER_STUDY, _WORKER_RUNNER
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _WORKER_STUDY = pickle.loads(blob)
     _WORKER_RUNNER = runner
 
@@ -105,15 +110,17 @@ def _dumps(study: Any) -> bytes:
     pickle (module-level functions and objects)."""
     try:
         import cloudpickle
-        return cloudpickle.dumps(study)
+        dumps = cloudpickle.dumps
+        hint = "Make it (and what it refers to) picklable, or run with workers=1."
     except ImportError:
-        pass
+        dumps = pickle.dumps
+        hint = ("Define it at module level, or install cloudpickle (pip install "
+                "'contactlab[dist]'), or run with workers=1.")
     try:
-        return pickle.dumps(study)
-    except (pickle.PicklingError, AttributeError, TypeError) as err:
-        raise ParameterError(f"study={study!r} cannot be sent to worker processes: {err}. Define "
-                             "it at module level, or install cloudpickle (pip install "
-                             "'contactlab[dist]'), or run with workers=1.") from err
+        return dumps(study)
+    except (pickle.PicklingError, AttributeError, TypeError, ValueError, RecursionError) as err:
+        raise ParameterError(f"study={study!r} cannot be sent to worker processes "
+                             f"({type(err).__name__}: {err}). {hint}") from err
 
 
 def start_method() -> str:
@@ -238,8 +245,13 @@ class Pool:
             f.cancel()
         self._futures = {}
 
-    def close(self) -> None:
+    def close(self, *, kill: bool = False) -> None:
+        """Shut the pool down; ``kill=True`` (an interrupted sweep) ends the workers at once
+        instead of letting them finish the batches they are running."""
         self.cancel()
+        if kill:
+            for proc in list((getattr(self._pool, "_processes", None) or {}).values()):
+                proc.terminate()
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
