@@ -280,14 +280,13 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         result = scene.run()
     files: list[Path] = []
     made = outdir is None
-    if made:
-        outdir = _new_folder(DEMO_FOLDER)
+    folder = _new_folder(DEMO_FOLDER) if outdir is None else outdir
     try:
-        files.append(result.plot(outdir / "contactlab_demo.png"))
+        files.append(result.plot(folder / "contactlab_demo.png"))
     except ImportError as err:
         note = (note + "\n" if note else "") + f"note: no plot written ({err})"
         if made:
-            outdir.rmdir()                 # the folder made for the plot: empty, not kept
+            folder.rmdir()                 # the folder made for the plot: empty, not kept
     if args.json:
         payload = result.to_dict()
         payload.update({"ok": True, "files": [str(f) for f in files], "notes": note})

@@ -175,10 +175,11 @@ def make_grid(grid: Any) -> Grid:
             raise ParameterError("grid={} is empty: give at least one key with a list of values.")
         names = tuple(_check_name(k) for k in grid)
         sizes = [_size(grid[k]) for k in names]      # the product's size before any list is made
-        if None not in sizes:
-            n = math.prod(sizes)
+        known = [m for m in sizes if m is not None]
+        if len(known) == len(sizes):
+            n = math.prod(known)
             check_memory("sweep grid", float(n) * POINT_BYTES,
-                         f"{n} points = " + " x ".join(map(str, sizes)))
+                         f"{n} points = " + " x ".join(map(str, known)))
         axes = {k: _values(k, grid[k]) for k in names}
         n = math.prod(len(v) for v in axes.values())
         check_memory("sweep grid", float(n) * POINT_BYTES,
