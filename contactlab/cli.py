@@ -360,9 +360,17 @@ def _cmd_list(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from .sweeps.command import sweep_command
     if args.output is not None:          # the scene's own files are never an output
+        from .scene.validate import resolve_file
+        from .sweeps.grid import parse_axis
         d = Path(args.output)
-        _check_targets(f"-o {args.output!r}", [d / "sweep.csv", d / "sweep.parquet"],
-                       _scene_inputs(args, _load(args)), True)
+        scene = _load(args)
+        inputs = _scene_inputs(args, scene)
+        for spec in args.grid:           # files a grid axis swaps in are read too
+            key, values = parse_axis(spec)
+            if key.rsplit(".", 1)[-1] == "file":
+                inputs += [resolve_file(str(v), scene.base_dir) for v in values]
+        _check_targets(f"-o {args.output!r}", [d / "sweep.csv", d / "sweep.parquet"], inputs,
+                       True)
     try:
         payload, text = sweep_command(args.scene, args.grid, args.output, scheduler=args.scheduler,
                                       workers=args.workers, progress=not args.json,

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ContactlabError, ParameterError
-from .backends import DaskClient, Pool, Serial, _dumps
+from .backends import DaskClient, DeferredInterrupt, Pool, Serial, _dumps
 from .grid import Grid, make_grid
 from .store import Store
 from .study import Points, Records, SceneStudy, as_study, run_calls, study_id
@@ -199,7 +199,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
         if bar is not None:
             bar.update(len(chunk))
 
-    interrupted = False
+    interrupt = DeferredInterrupt()
     try:
         # ---- calibration: growing batches run here, warm this process and time a point -------
         point_seconds, size, timed = 0.0, 1, 0
@@ -227,12 +227,15 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
                                                        or _cpu_count() == 1)):
                 backend = local
             else:
+                interrupt.start()            # Ctrl-C from here on: raised between batches
                 backend = Pool(fn, workers or _cpu_count())
+                backend.interrupted = interrupt
             overhead = backend.roundtrip()
             if backend is not local and batch_size is None and expected <= overhead:
                 # the rest takes less here than one round trip to the workers: keep it here
                 backend.close()
                 backend = local
+                interrupt.stop()
             if batch_size is not None:
                 size = batch_size
             elif backend is local:
@@ -247,19 +250,16 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
             backend.submit_all(batches)
             for chunk in backend.completed():
                 keep(chunk, backend)
-    except KeyboardInterrupt:
-        interrupted = True
-        raise
+                if interrupt():
+                    raise KeyboardInterrupt
     finally:
+        interrupt.stop()
         if bar is not None:
             bar.close()
         if local.partial is not None and st is not None:      # points done before an interrupt
             st.add(_accept(local.partial, g, fn, "record"))
         if backend is not None and backend is not local:
-            if interrupted and isinstance(backend, Pool):
-                backend.close(kill=True)
-            else:
-                backend.close()
+            backend.close()
         if st is not None:
             st.flush()
     if st is not None:
