@@ -127,3 +127,15 @@ def test_demo_writes_into_a_new_folder(tmp_path, capsys, monkeypatch):
         assert doc["files"] == ["contactlab-demo-2/contactlab_demo.png"]
         assert main(["demo"]) == 0
         assert "wrote contactlab-demo-3/contactlab_demo.png" in capsys.readouterr().out
+
+
+def test_a_plot_the_run_wrote_is_recorded_and_removed_later(tmp_path, capsys):
+    """run --plot records plot.png; a later --overwrite run without --plot removes it (an
+    earlier run's file, unchanged)."""
+    pytest.importorskip("matplotlib")
+    scene = scene_reading(tmp_path, "history.csv")
+    out = tmp_path / "out"
+    assert main(["run", str(scene), "-o", str(out), "--plot"]) == 0
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"series.csv", "plot.png"}
+    assert main(["run", str(scene), "-o", str(out), "--overwrite"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "series.csv"]
