@@ -92,6 +92,57 @@ def _output_dir(value: str | None, overwrite: bool) -> Path | None:
     return d
 
 
+def _scene_inputs(args: argparse.Namespace, scene: Any) -> list[Path]:
+    """Every file a scene reads: the scene file itself and each ``file = ...`` it names (tabulated
+    profiles, CSV load histories), resolved against the scene's folder."""
+    from .scene.validate import resolve_file
+    found = [Path(args.scene)] if getattr(args, "scene", None) else []
+
+    def walk(node: Any) -> None:
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key == "file" and isinstance(value, (str, Path)):
+                    found.append(resolve_file(value, scene.base_dir))
+                else:
+                    walk(value)
+        elif isinstance(node, (list, tuple)):
+            for value in node:
+                walk(value)
+    walk(scene.to_dict())
+    return found
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    import os
+    try:
+        return os.path.samefile(a, b)
+    except OSError:                      # one of them missing: compare where they would be
+        return a.resolve() == b.resolve()
+
+
+def _check_targets(option: str, targets: Sequence[Path], inputs: Sequence[Path],
+                   overwrite: bool) -> None:
+    """Refuse, before any work, to write over a scene's input (always) or over an existing file
+    (without ``--overwrite``).
+
+    Raises
+    ------
+    ParameterError
+        A target is one of ``inputs``, or exists and ``overwrite`` is False (exit 2).
+    """
+    from .errors import ParameterError
+    for t in targets:
+        for i in inputs:
+            if _same_file(t, i):
+                raise ParameterError(
+                    f"{option} is invalid: it would replace or remove {str(t)!r}, which the scene "
+                    f"reads ({str(i)!r}); write the outputs to another folder or file (--overwrite "
+                    "never replaces a scene's own input).")
+        if not overwrite and (t.exists() or t.is_symlink()):
+            raise ParameterError(f"{option} is invalid: {str(t)!r} exists; choose another name "
+                                 "or pass --overwrite to replace it.")
+
+
 def _cmd_validate(args: argparse.Namespace) -> int:
     scene = _load(args)
     _emit(args, {"ok": True, "scene": str(args.scene), "steps": scene.history().n_steps},
@@ -106,6 +157,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
 
 
 def _write_outputs(args: argparse.Namespace, result: Any, outdir: Path | None) -> tuple[list, str]:
+    from .scene.run import record_outputs
     files: list[Path] = []
     notes = ""
     if outdir is not None:
@@ -113,9 +165,27 @@ def _write_outputs(args: argparse.Namespace, result: Any, outdir: Path | None) -
     if args.plot:
         try:
             files.append(result.plot((outdir or Path(".")) / "plot.png"))
+            if outdir is not None:
+                record_outputs(outdir, files[-1:])
         except ImportError as err:
             notes = f"note: no plot written ({err})"
     return files, notes
+
+
+def _run_targets(args: argparse.Namespace, scene: Any) -> Path | None:
+    """The output folder of ``run`` (checked), after refusing any output that would replace a
+    scene input, or an existing ``plot.png`` in the current folder without ``--overwrite``."""
+    from .scene.run import MANIFEST, OUTPUT_FILES
+    inputs = _scene_inputs(args, scene)
+    if args.output is not None:
+        d = Path(args.output)
+        if d.is_dir():
+            _check_targets(f"-o {args.output!r}", [d / n for n in (*OUTPUT_FILES, MANIFEST)],
+                           inputs, True)
+        return _output_dir(args.output, args.overwrite)
+    if args.plot:
+        _check_targets("--plot", [Path("plot.png")], inputs, args.overwrite)
+    return None
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
@@ -124,7 +194,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     plan = scene.plan()
     if args.plan:
         return _cmd_plan(args)
-    outdir = _output_dir(args.output, args.overwrite)    # before the (maybe long) run
+    outdir = _run_targets(args, scene)    # before the (maybe long) run
     try:
         result = scene.run()
     except ContactlabError as err:
@@ -170,10 +240,32 @@ def _partial_run(args: argparse.Namespace, err: Any, outdir: Path | None) -> int
     return 1
 
 
+#: the folder ``contactlab demo`` writes its picture into when no ``-o`` is given: a new folder
+#: under the current one (``contactlab-demo``, else ``contactlab-demo-2``, ...), never an
+#: existing one
+DEMO_FOLDER = "contactlab-demo"
+
+
+def _new_folder(stem: str, tries: int = 1000) -> Path:
+    """A folder created now under the current one: ``stem``, else ``stem-2``, ``stem-3``, ..."""
+    from .errors import ParameterError
+    for k in range(1, tries + 1):
+        d = Path(stem if k == 1 else f"{stem}-{k}")
+        try:
+            d.mkdir()
+            return d
+        except FileExistsError:
+            continue
+        except OSError as err:
+            raise ParameterError(f"the demo's output folder {str(d)!r} cannot be created "
+                                 f"({err.strerror or type(err).__name__}); give -o DIR.") from None
+    raise ParameterError(f"{stem}, {stem}-2, ... {stem}-{tries} all exist: give -o DIR.")
+
+
 def _cmd_demo(args: argparse.Namespace) -> int:
     from .errors import NotSupportedError
     from .scene import Scene
-    outdir = _output_dir(args.output, args.overwrite) or Path(".")
+    outdir = _output_dir(args.output, args.overwrite)
     scene = Scene.loads(DEMO_SCENE)
     note = ""
     try:
@@ -187,10 +279,14 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         scene = Scene.from_dict(data)
         result = scene.run()
     files: list[Path] = []
+    made = outdir is None
+    folder = _new_folder(DEMO_FOLDER) if outdir is None else outdir
     try:
-        files.append(result.plot(outdir / "contactlab_demo.png"))
+        files.append(result.plot(folder / "contactlab_demo.png"))
     except ImportError as err:
         note = (note + "\n" if note else "") + f"note: no plot written ({err})"
+        if made:
+            folder.rmdir()                 # the folder made for the plot: empty, not kept
     if args.json:
         payload = result.to_dict()
         payload.update({"ok": True, "files": [str(f) for f in files], "notes": note})
@@ -233,7 +329,11 @@ def _demo_tables(scene: Any, result: Any) -> str:
 
 def _cmd_cost(args: argparse.Namespace) -> int:
     from .scene.cost import scene_cost
-    report = scene_cost(_load(args), target=args.target)
+    scene = _load(args)
+    if args.plot:                          # before the (long) ladders
+        _check_targets(f"--plot {args.plot!r}", [Path(args.plot)], _scene_inputs(args, scene),
+                       args.overwrite)
+    report = scene_cost(scene, target=args.target)
     notes = ""
     if args.plot:
         try:
@@ -259,11 +359,24 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from .sweeps.command import sweep_command
+    if args.output is not None:          # the scene's own files are never an output
+        from .scene.validate import resolve_file
+        from .sweeps.grid import parse_axis
+        d = Path(args.output)
+        scene = _load(args)
+        inputs = _scene_inputs(args, scene)
+        for spec in args.grid:           # files a grid axis swaps in are read too
+            key, values = parse_axis(spec)
+            if key.rsplit(".", 1)[-1] == "file":
+                inputs += [resolve_file(str(v), scene.base_dir) for v in values]
+        _check_targets(f"-o {args.output!r}", [d / "sweep.csv", d / "sweep.parquet"], inputs,
+                       True)
     try:
         payload, text = sweep_command(args.scene, args.grid, args.output, scheduler=args.scheduler,
                                       workers=args.workers, progress=not args.json,
                                       on_error=args.on_error,
-                                      allow_outside=args.allow_outside)
+                                      allow_outside=args.allow_outside,
+                                      overwrite=args.overwrite)
     except ImportError as err:           # a missing optional extra (pandas, pyarrow, dask)
         _emit(args, {"ok": False, "exit": 1, "error": str(err), "kind": "ImportError"}, "")
         if not args.json:
@@ -379,11 +492,13 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--plot", action="store_true", help="write plot.png (needs matplotlib)")
     r.add_argument("--plan", action="store_true", help="show the plan, do not run")
     r.add_argument("--overwrite", action="store_true",
-                   help="write into a non-empty output folder (replacing an earlier run's files)")
+                   help="write into a non-empty output folder, replacing the files this run "
+                   "writes (never a scene's input); without -o, replace ./plot.png")
     add("validate", _cmd_validate, "check a scene, report every problem")
     add("plan", _cmd_plan, "show which effects a scene computes, how and why")
     d = add("demo", _cmd_demo, "run the embedded demo scene", scene=False)
-    d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot")
+    d.add_argument("-o", "--output", metavar="DIR", help="directory for the demo plot "
+                   f"(default: a new folder {DEMO_FOLDER}[-N] in the current one)")
     d.add_argument("--overwrite", action="store_true", help="write into a non-empty DIR")
     co = add("cost", _cmd_cost, "what accuracy costs: each numeric knob over a ladder, error "
              "against wall time, the cheapest setting meeting --target")
@@ -391,6 +506,7 @@ def _parser() -> argparse.ArgumentParser:
                     "(default 1e-6)")
     co.add_argument("--plot", metavar="FILE", help="write error against time to FILE "
                     "(needs matplotlib)")
+    co.add_argument("--overwrite", action="store_true", help="replace FILE if it exists")
     ls = add("list", _cmd_list, "registered profiles and materials, the effects; with units",
              scene=False)
     ls.add_argument("what", nargs="?", default="all",
@@ -406,6 +522,8 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--workers", type=int, metavar="N", help="local processes (1: serial)")
     sw.add_argument("--on-error", choices=("record", "raise"), default="record",
                     help="record failed points (default) or stop at the first")
+    sw.add_argument("--overwrite", action="store_true",
+                    help="replace an existing DIR/sweep.csv (never a scene's input)")
     p_form = sub.add_parser("formulas", help="print the closed-form formulas of a profile/contact",
                             description="Closed-form MDR formulas (normal, torsion, JKR) of a "
                             "registered profile, as text, a LaTeX document or Python source.")
@@ -431,6 +549,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactlab`` console script; returns the exit code."""
     try:
         return _main(argv)
+    except KeyboardInterrupt:    # a second Ctrl-C while the first was handled
+        print("contactlab: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:      # `contactlab ... | head`: the reader left; no traceback
         import os
         try:
@@ -494,6 +615,8 @@ def _main(argv: Sequence[str] | None) -> int:
         else:
             print(f"contactlab: {msg}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:   # Ctrl-C: one line, exit 130 (128 + SIGINT), as shells do
+        return _interrupted(args, as_json)
     except Exception as err:    # a bug: still one line, never a traceback
         msg = (f"internal error ({type(err).__name__}): {_one_line(err)}; please report it with "
                "the command line that caused it")
@@ -503,6 +626,25 @@ def _main(argv: Sequence[str] | None) -> int:
         else:
             print(f"contactlab: {msg}", file=sys.stderr)
         return 1
+
+
+def _interrupted(args: Any, as_json: bool) -> int:
+    """Ctrl-C: one line on stderr (or a JSON object) saying what was kept; exit 130."""
+    msg = "interrupted"
+    if getattr(args, "command", None) == "sweep" and getattr(args, "output", None):
+        store = Path(args.output) / "sweep.parquet"
+        if store.is_dir():
+            msg += (f"; the points finished so far are kept in {store}: run the same command "
+                    "again to resume")
+    if as_json:
+        try:
+            print(json.dumps({"ok": False, "exit": 130, "error": msg,
+                              "kind": "KeyboardInterrupt"}, indent=1))
+        except (OSError, ValueError):
+            pass
+    else:
+        print(f"contactlab: {msg}", file=sys.stderr)
+    return 130
 
 
 def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None,

@@ -17,7 +17,8 @@ import numpy as np
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError
 from ..numeric.roots import bracketed_root
-from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
+from ..params import (as_float_array, broadcast_inputs, check_memory, exactly_one,
+                      scalar_or_array)
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
 
@@ -211,6 +212,12 @@ class ShiftHistory(Cited):
                           y_unit="N", units=units, axes=axes, title="shift history")
 
 
+#: peak memory of a shift history, bytes per step (turning-point bookkeeping, the loading curve
+#: at every step's argument, the dissipation): 801 B measured with tracemalloc for random walks
+#: of 10^5 steps on three profiles, rounded up; checked before the history is walked
+HISTORY_BYTES_PER_STEP = 1024
+
+
 def shift_history(contact, *, displacement: Any, depth: Any = None,
                   force: Any = None) -> ShiftHistory:
     """Exact tangential response to a displacement history at constant normal load.
@@ -225,6 +232,8 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     if ns.shape != ():
         raise ParameterError(f"{nkey} must be a scalar for shift_history() (constant normal load).")
     u = as_float_array("displacement", displacement).ravel()
+    check_memory("shift_history()", float(u.size) * HISTORY_BYTES_PER_STEP,
+                 f"displacement: {u.size} steps x {HISTORY_BYTES_PER_STEP} B")
     prof, E, Gs, mu = (contact.profile, contact.moduli.normal, contact.moduli.tangential,
                        contact.friction)
     a, d = float(ns._radius), float(ns._depth)

@@ -33,7 +33,8 @@ from ..profiles import Tabulated
 from .fretting import _mode_and_amplitude, check_contact, fretting_sources, loops, warn_mdr
 from .torsion import resolve_method
 
-__all__ = ["WearResult", "wear", "SERIES_UNITS", "DEFAULT_GRID", "DEFAULT_JUMP_RTOL"]
+__all__ = ["WearResult", "wear", "SERIES_UNITS", "DEFAULT_GRID", "DEFAULT_JUMP_RTOL",
+           "MAX_CHECKPOINTS", "MIN_JUMP_RTOL"]
 
 #: Grid intervals of the worn-profile table (docs/fretting.md: convergence under halving).
 DEFAULT_GRID = 400
@@ -173,6 +174,39 @@ class WearResult(FieldsEqual, Cited):
 #: with tracemalloc for n_grid = 200..800, shift and twist; rounded up
 GRID_FLOATS = 24
 
+#: most checkpoints a run takes: each costs at least one wear step (two rate evaluations on the
+#: dense grid) and a stored profile, so their count sets the run time whatever the tolerance
+MAX_CHECKPOINTS = 10_000
+#: memory per checkpoint per grid node, floats: the wear depth kept for ``wear_depth`` and the
+#: stored profile table (radii, heights and its lazily built transform), rounded up
+CHECKPOINT_FLOATS = 8
+#: smallest ``jump_rtol``: the number of wear steps grows as ``jump_rtol**-0.5`` (28 steps at
+#: 1e-3, 3540 at 1e-8 measured on a Hertz shift), while the jump error it controls is already
+#: 1e-4 relative at the default and far below the grid's discretisation error (4e-2 at
+#: n_grid = 100, docs/fretting.md); below this the steps run into millions for nothing, and at
+#: 1e-300 the step floor (1e-9 of the cycle count) makes them unbounded
+MIN_JUMP_RTOL = 1e-10
+
+
+def _checkpoint_sizes(checkpoints: Any, n_grid: int, jump_rtol: float) -> None:
+    """Work and memory a run's checkpoints and step tolerance imply, checked before any work."""
+    if isinstance(checkpoints, (int, np.integer)) and not isinstance(checkpoints, bool):
+        n_ck, shown = int(checkpoints), f"{checkpoints!r}"
+    else:
+        n_ck = 1 if checkpoints is None else int(np.size(checkpoints))
+        shown = f"<{n_ck} cycle numbers>"
+    if n_ck > MAX_CHECKPOINTS:
+        raise ParameterError(f"checkpoints={shown} is invalid: at most {MAX_CHECKPOINTS} "
+                             "checkpoints (each is at least one wear step on the dense grid and a "
+                             "stored profile); give fewer, e.g. checkpoints=20.")
+    check_memory("wear()", 8.0 * CHECKPOINT_FLOATS * (int(n_grid) + 1) * n_ck,
+                 f"checkpoints: {n_ck} stored profiles x {int(n_grid) + 1} grid nodes")
+    if jump_rtol < MIN_JUMP_RTOL:
+        raise ParameterError(f"jump_rtol={jump_rtol!r} is invalid: the wear-step tolerance must be "
+                             f">= {MIN_JUMP_RTOL:g} (the steps grow as jump_rtol**-0.5 while the "
+                             "grid's error stays); e.g. jump_rtol=1e-6.")
+
+
 def _checkpoints(cycles: float, checkpoints: Any) -> np.ndarray:
     if checkpoints is None:
         return np.array([cycles])
@@ -243,6 +277,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
         raise ParameterError(f"n_grid={n_grid!r} is invalid: give an integer >= {MIN_GRID}.")
     check_memory("wear()", GRID_FLOATS * 8.0 * (int(n_grid) + 1) ** 2,
                  f"n_grid={int(n_grid)}: dense (n_grid+1)^2 grid operators")
+    _checkpoint_sizes(checkpoints, int(n_grid), jump_rtol)
     if np.isfinite(contact.profile.wall_radius):
         raise NotSupportedError(f"wear() of {contact.profile!r}: a profile with a wall (flat "
                                 "punch) cannot be worn into a table; use a rounded punch "

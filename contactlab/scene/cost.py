@@ -248,10 +248,14 @@ class CostReport:
             ax.legend(fontsize=8)
         if path is None:
             return ax
+        import io
+
+        from .run import atomic_write
         path = Path(path)
-        pl.save(fig, path)
+        buf = io.BytesIO()                 # written whole through a rename: never through a link
+        pl.save(fig, buf, format=path.suffix.lstrip(".") or "png")
         plt.close(fig)
-        return path
+        return atomic_write(path, buf.getvalue())
 
 
 def _fmt(v: Any) -> str:

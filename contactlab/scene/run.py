@@ -31,7 +31,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .plan import Plan
 
 __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS", "OUTPUT_FILES",
-           "atomic_write"]
+           "MANIFEST", "atomic_write", "record_outputs"]
 
 #: every file a run may write into its output folder (series/fields CSV, JSON, plot; wear series,
 #: worn profiles and the final worn profile; fretting map and its gross-slip boundary; the status
@@ -39,6 +39,10 @@ __all__ = ["SceneResult", "run_scene", "SERIES_UNITS", "FIELD_UNITS", "OUTPUT_FI
 OUTPUT_FILES = ("series.csv", "fields.csv", "result.json", "plot.png", "wear.csv",
                 "wear_profiles.csv", "worn_profile.csv", "fretting_map.csv",
                 "fretting_boundary.csv", "status.json")
+#: the record, in an output folder, of the files the last run wrote there (name -> SHA-256 of
+#: the contents): a later run removes an earlier run's file only if this record lists it and the
+#: file is unchanged, so a file the user put there (or edited) is never removed
+MANIFEST = ".contactlab-outputs.json"
 
 
 def atomic_write(path: str | Path, data: bytes) -> Path:
@@ -61,6 +65,60 @@ def atomic_write(path: str | Path, data: bytes) -> Path:
             pass
         raise
     return path
+
+
+def _digest(path: Path) -> str | None:
+    """SHA-256 of a regular file's contents (None for a link, a folder or a missing file)."""
+    import hashlib
+    try:
+        if path.is_symlink() or not path.is_file():
+            return None
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    except OSError:
+        return None
+
+
+def _manifest(directory: Path) -> dict[str, str]:
+    """The files :data:`MANIFEST` in ``directory`` records (empty when missing or unreadable)."""
+    try:
+        data = json.loads((directory / MANIFEST).read_text())
+        files = data["files"]
+        return {str(k): str(v) for k, v in files.items() if k in OUTPUT_FILES}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return {}
+
+
+def record_outputs(directory: str | Path, paths: list[Path], *, keep: bool = True) -> None:
+    """Record ``paths`` (files just written into ``directory``) in its :data:`MANIFEST`.
+
+    ``keep=True`` adds them to what the record lists already (a plot written after the data
+    files); ``keep=False`` replaces the record.
+    """
+    d = Path(directory)
+    files = _manifest(d) if keep else {}
+    for p in paths:
+        digest = _digest(Path(p))
+        if digest is not None and Path(p).name in OUTPUT_FILES:
+            files[Path(p).name] = digest
+    atomic_write(d / MANIFEST, json.dumps({"format": 1, "files": files}, indent=1).encode())
+
+
+def remove_earlier_outputs(directory: str | Path, keep: list[Path]) -> list[Path]:
+    """Remove the files an earlier run wrote into ``directory`` that are not in ``keep``.
+
+    Only files its :data:`MANIFEST` lists, and only while their contents are what that run wrote
+    (same SHA-256): any other file, a scene's own input included, is left alone. Returns the
+    removed paths.
+    """
+    d = Path(directory)
+    names = {Path(p).name for p in keep}
+    removed = []
+    for name, digest in _manifest(d).items():
+        path = d / name
+        if name not in names and _digest(path) == digest:
+            path.unlink()
+            removed.append(path)
+    return removed
 
 #: unit of each series: the load-path quantities' units plus the response quantities
 SERIES_UNITS = {**UNITS, "radius": "m", "stiffness": "N/m", "peak_pressure": "Pa",
@@ -152,9 +210,11 @@ class SceneResult(FieldsEqual, Cited):
         part-way) writes the steps it holds and, beside the CSV files, ``status.json`` (status,
         where it failed, the error); ``result.json`` carries the same in ``meta``.
 
-        Every file is written atomically (:func:`atomic_write`); output files of an earlier run
-        that this run does not write (``series.csv`` beside a new ``result.json``, an old
-        ``plot.png``, ...) are removed, so the folder holds one consistent result.
+        Every file is written atomically (:func:`atomic_write`) and recorded in the folder's
+        :data:`MANIFEST`. Files an earlier run wrote that this run does not write (``series.csv``
+        beside a new ``result.json``, an old ``plot.png``, ...) are removed, so the folder holds
+        one consistent result; only files that record lists, unchanged since that run wrote
+        them, are removed: a file this package did not write is never removed.
         """
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
@@ -171,10 +231,8 @@ class SceneResult(FieldsEqual, Cited):
                                                         "computed", "route", "version")}
                 paths.append(atomic_write(d / "status.json",
                                           json.dumps(status, indent=1).encode()))
-        for name in OUTPUT_FILES:
-            stale = d / name
-            if stale not in paths and (stale.exists() or stale.is_symlink()):
-                stale.unlink()
+        remove_earlier_outputs(d, paths)
+        record_outputs(d, paths, keep=False)
         return paths
 
     def _write_fretting(self, d: Path) -> list[Path]:

@@ -11,7 +11,9 @@ from __future__ import annotations
 import math
 import multiprocessing
 import pickle
+import signal
 import statistics
+import threading
 import time
 import weakref
 from collections import deque
@@ -23,7 +25,7 @@ from typing import Any
 from ..errors import ParameterError, WorkerError
 from .study import Points, Records, run_batch
 
-__all__ = ["Serial", "Pool", "DaskClient", "noop"]
+__all__ = ["Serial", "Pool", "DaskClient", "noop", "DeferredInterrupt"]
 
 Batch = Points
 
@@ -85,13 +87,55 @@ class Serial:
         self.cancel()
 
 
+class DeferredInterrupt:
+    """Ctrl-C recorded, not raised, while a local pool runs; the pool raises it where it is safe.
+
+    A KeyboardInterrupt raised wherever the main thread happens to be can land inside
+    ``concurrent.futures``' own lock handling (``wait`` takes every future's lock in turn) and
+    leave a future's lock held; shutting the pool down then waits forever for its manager
+    thread, which needs that lock. Between :meth:`start` and :meth:`stop` SIGINT only sets a
+    flag (:meth:`__call__`), which :meth:`Pool.completed` polls every :data:`POLL_SECONDS`
+    and turns into a KeyboardInterrupt between batches. Nothing changes outside the main thread
+    or when SIGINT has a handler other than Python's default.
+    """
+
+    def __init__(self) -> None:
+        self.hit = False
+        self._previous: Any = None
+
+    def __call__(self) -> bool:
+        return self.hit
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        self.hit = True
+
+    def start(self) -> DeferredInterrupt:
+        if (self._previous is None and threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            self._previous = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def stop(self) -> None:
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
+            self._previous = None
+
+
+#: seconds between two looks at a deferred Ctrl-C while a pool's batches run
+POLL_SECONDS = 0.2
+
+
 # ---- local process pool ------------------------------------------------------------------------
 _WORKER_STUDY: Any = None
 _WORKER_RUNNER: Callable[..., Records] = run_batch
 
 
 def _init_worker(blob: bytes, runner: Callable[..., Records] = run_batch) -> None:
+    """Set up a pool worker. Ctrl-C reaches every process of the terminal's group: a worker
+    ignores it and finishes the batch it is running (the parent stops the sweep, sends no more
+    batches and keeps what finished), so no worker prints a traceback of its own."""
     global _WORKER_STUDY, _WORKER_RUNNER
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _WORKER_STUDY = pickle.loads(blob)
     _WORKER_RUNNER = runner
 
@@ -105,15 +149,17 @@ def _dumps(study: Any) -> bytes:
     pickle (module-level functions and objects)."""
     try:
         import cloudpickle
-        return cloudpickle.dumps(study)
+        dumps = cloudpickle.dumps
+        hint = "Make it (and what it refers to) picklable, or run with workers=1."
     except ImportError:
-        pass
+        dumps = pickle.dumps
+        hint = ("Define it at module level, or install cloudpickle (pip install "
+                "'contactlab[dist]'), or run with workers=1.")
     try:
-        return pickle.dumps(study)
-    except (pickle.PicklingError, AttributeError, TypeError) as err:
-        raise ParameterError(f"study={study!r} cannot be sent to worker processes: {err}. Define "
-                             "it at module level, or install cloudpickle (pip install "
-                             "'contactlab[dist]'), or run with workers=1.") from err
+        return dumps(study)
+    except (pickle.PicklingError, AttributeError, TypeError, ValueError, RecursionError) as err:
+        raise ParameterError(f"study={study!r} cannot be sent to worker processes "
+                             f"({type(err).__name__}: {err}). {hint}") from err
 
 
 def start_method() -> str:
@@ -154,6 +200,8 @@ class Pool:
         self.workers = int(workers)
         self._initargs = (_dumps(study), runner)
         self._futures: dict[Any, Batch] = {}
+        #: a deferred Ctrl-C (:class:`DeferredInterrupt`) that :meth:`completed` polls
+        self.interrupted: Callable[[], bool] = lambda: False
         self.restarts = 0
         self._pool = self._start()
 
@@ -210,7 +258,9 @@ class Pool:
 
     def completed(self) -> Iterator[Records]:
         while self._futures:
-            done, _ = wait(self._futures, return_when=FIRST_COMPLETED)
+            done, _ = wait(self._futures, timeout=POLL_SECONDS, return_when=FIRST_COMPLETED)
+            if self.interrupted():
+                raise KeyboardInterrupt
             broken: BaseException | None = None
             for f in done:
                 batch = self._futures.pop(f)
@@ -239,6 +289,12 @@ class Pool:
         self._futures = {}
 
     def close(self) -> None:
+        """Cancel the batches not started and shut the pool down once the running ones finish.
+
+        Also after Ctrl-C (the workers ignore it): a worker ended from outside while it sends a
+        result leaves a partial message in the result pipe, on which the executor's manager
+        thread would wait forever, so workers are never terminated here.
+        """
         self.cancel()
         self._pool.shutdown(wait=True, cancel_futures=True)
 

@@ -5,6 +5,7 @@ pyarrow is installed, so the same command run again resumes a killed sweep.
 """
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -29,6 +30,29 @@ def _grid(specs: Sequence[str]) -> dict[str, list[Any]]:
     return grid
 
 
+#: a Dask scheduler address: ``[protocol://]host[:port]`` (``tcp://10.0.0.5:8786``, ``localhost:8786``)
+_ADDRESS = re.compile(r"^(?:[a-z][a-z0-9+.-]*://)?[^\s/:?#]+(?::\d{1,5})?/?$", re.IGNORECASE)
+
+
+def _client(scheduler: str) -> Any:
+    """A ``dask.distributed.Client`` of ``--scheduler``; an address that is no address, or a
+    scheduler that cannot be reached, raises :class:`ParameterError` naming it."""
+    if not _ADDRESS.match(scheduler.strip()):
+        raise ParameterError(f"--scheduler {scheduler!r} is invalid: give a Dask scheduler "
+                             "address [protocol://]host[:port], e.g. tcp://10.0.0.5:8786.")
+    try:
+        from distributed import Client
+    except ImportError as err:
+        raise ImportError("--scheduler needs dask.distributed: pip install "
+                          "'contactlab[dist]'") from err
+    try:
+        return Client(scheduler.strip(), timeout="30s")
+    except (OSError, ValueError, TypeError) as err:     # TimeoutError is an OSError
+        raise ParameterError(f"--scheduler {scheduler!r}: no Dask scheduler could be reached "
+                             f"there ({type(err).__name__}: {' '.join(str(err).split())}); check "
+                             "the address, or run without --scheduler.") from None
+
+
 def _has_pyarrow() -> bool:
     try:
         import pyarrow  # noqa: F401
@@ -40,27 +64,35 @@ def _has_pyarrow() -> bool:
 def sweep_command(scene: str | Path, specs: Sequence[str], output: str | Path | None = None, *,
                   scheduler: str | None = None, workers: int | None = None,
                   progress: bool = True, on_error: str = "record",
-                  allow_outside: bool = False) -> tuple[dict[str, Any], str]:
-    """Run the sweep of the command line; returns (JSON payload, text for humans)."""
+                  allow_outside: bool = False, overwrite: bool = False
+                  ) -> tuple[dict[str, Any], str]:
+    """Run the sweep of the command line; returns (JSON payload, text for humans).
+
+    ``DIR/sweep.csv`` is written at the end; an existing one is replaced only with
+    ``overwrite=True`` (checked before any point runs). ``DIR/sweep.parquet`` is the checkpoint
+    store: the same command run again on a killed sweep resumes from it.
+    """
     grid = _grid(specs)
     outdir = Path(output) if output is not None else None
     store = None
     notes = []
     if outdir is not None:
-        outdir.mkdir(parents=True, exist_ok=True)
+        target = outdir / "sweep.csv"
+        if not overwrite and (target.exists() or target.is_symlink()):
+            raise ParameterError(f"-o {str(output)!r} is invalid: {str(target)!r} exists; choose "
+                                 "another folder or pass --overwrite to replace it (a killed "
+                                 "sweep resumes from sweep.parquet without it).")
+        try:
+            outdir.mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            raise ParameterError(f"-o {str(output)!r} is invalid: the folder cannot be created "
+                                 f"({err.strerror or type(err).__name__}).") from None
         if _has_pyarrow():
             store = outdir / "sweep.parquet"
         else:
             notes.append("note: no checkpoint kept (pyarrow missing: pip install "
                          "'contactlab[data]'); a killed sweep starts over.")
-    client = None
-    if scheduler is not None:
-        try:
-            from distributed import Client
-        except ImportError as err:
-            raise ImportError("--scheduler needs dask.distributed: pip install "
-                              "'contactlab[dist]'") from err
-        client = Client(scheduler, timeout="30s")
+    client = _client(scheduler) if scheduler is not None else None
     try:
         table = sweep(scene, grid, client=client, workers=workers, progress=progress,
                       on_error=on_error, store=store, allow_outside=allow_outside)
@@ -69,8 +101,8 @@ def sweep_command(scene: str | Path, specs: Sequence[str], output: str | Path | 
             client.close()
     files = []
     if outdir is not None:
-        files.append(outdir / "sweep.csv")
-        table.to_csv(files[0], index=False)
+        from ..scene.run import atomic_write
+        files.append(atomic_write(outdir / "sweep.csv", table.to_csv(index=False).encode()))
         if store is not None:
             files.append(store)
     stats = table.attrs["sweep"]["stats"]

@@ -109,6 +109,21 @@ def _column(values: Any, where: Callable[[int], str]) -> list[Any]:
     return [_plain(v, where(i)) for i, v in enumerate(values)]
 
 
+def _size(values: Any) -> int | None:
+    """The number of values of a grid axis without listing them (None when unknown)."""
+    if isinstance(values, (str, bytes)):
+        return None
+    try:
+        return len(values)
+    except TypeError:                   # a generator: its values are listed, then checked
+        return None
+    except OverflowError:               # range(10**20): len() cannot say, the range can
+        if isinstance(values, range):
+            return max(0, (values.stop - values.start + values.step
+                           - (1 if values.step > 0 else -1)) // values.step)
+        return None
+
+
 def _values(key: str, values: Any) -> list[Any]:
     if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) \
             and not hasattr(values, "__iter__"):
@@ -159,6 +174,12 @@ def make_grid(grid: Any) -> Grid:
         if not grid:
             raise ParameterError("grid={} is empty: give at least one key with a list of values.")
         names = tuple(_check_name(k) for k in grid)
+        sizes = [_size(grid[k]) for k in names]      # the product's size before any list is made
+        known = [m for m in sizes if m is not None]
+        if len(known) == len(sizes):
+            n = math.prod(known)
+            check_memory("sweep grid", float(n) * POINT_BYTES,
+                         f"{n} points = " + " x ".join(map(str, known)))
         axes = {k: _values(k, grid[k]) for k in names}
         n = math.prod(len(v) for v in axes.values())
         check_memory("sweep grid", float(n) * POINT_BYTES,
@@ -241,6 +262,8 @@ def parse_axis(spec: str) -> tuple[str, list[Any]]:
                              "integer, e.g. 0.1:0.5:9.") from err
     if n < 1 or not (math.isfinite(a) and math.isfinite(b)):
         raise ParameterError(f"--grid {spec!r} is invalid: N={n} must be >= 1 and A, B finite.")
+    check_memory(f"--grid {spec!r}", float(n) * POINT_BYTES,      # before the values are made
+                 f"N={n} points x {POINT_BYTES} B")
     if log:
         if a <= 0 or b <= 0:
             raise ParameterError(f"--grid {spec!r} is invalid: a log axis needs A > 0 and B > 0.")

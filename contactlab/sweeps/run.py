@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ContactlabError, ParameterError
-from .backends import DaskClient, Pool, Serial
+from .backends import DaskClient, DeferredInterrupt, Pool, Serial, _dumps
 from .grid import Grid, make_grid
 from .store import Store
 from .study import Points, Records, SceneStudy, as_study, run_calls, study_id
@@ -178,6 +178,8 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
     fn = as_study(study, allow_outside)
     if isinstance(fn, SceneStudy):
         fn.check(g.point(0))
+    if client is None and workers is not None and workers > 1:
+        _dumps(fn)                         # an unpicklable study: refused before any point runs
     st = Store(store, g, study_id(fn)) if store is not None else None
     chunks: list[Records] = [st.load()] if st is not None else []
     resumed = len(chunks[0]) if chunks else 0
@@ -197,6 +199,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
         if bar is not None:
             bar.update(len(chunk))
 
+    interrupt = DeferredInterrupt()
     try:
         # ---- calibration: growing batches run here, warm this process and time a point -------
         point_seconds, size, timed = 0.0, 1, 0
@@ -224,12 +227,15 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
                                                        or _cpu_count() == 1)):
                 backend = local
             else:
+                interrupt.start()            # Ctrl-C from here on: raised between batches
                 backend = Pool(fn, workers or _cpu_count())
+                backend.interrupted = interrupt
             overhead = backend.roundtrip()
             if backend is not local and batch_size is None and expected <= overhead:
                 # the rest takes less here than one round trip to the workers: keep it here
                 backend.close()
                 backend = local
+                interrupt.stop()
             if batch_size is not None:
                 size = batch_size
             elif backend is local:
@@ -244,7 +250,10 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
             backend.submit_all(batches)
             for chunk in backend.completed():
                 keep(chunk, backend)
+                if interrupt():
+                    raise KeyboardInterrupt
     finally:
+        interrupt.stop()
         if bar is not None:
             bar.close()
         if local.partial is not None and st is not None:      # points done before an interrupt

@@ -77,17 +77,30 @@ class Store:
                      "points": len(grid), "grid": grid.fingerprint()}
         meta_file = self.path / "_sweep.json"
         if meta_file.exists():
-            old = json.loads(meta_file.read_text())
+            try:
+                old = json.loads(meta_file.read_text())
+                if not isinstance(old, dict):
+                    raise ValueError(f"a JSON {type(old).__name__}, not an object")
+            except (OSError, ValueError) as err:     # JSONDecodeError and UnicodeError included
+                raise ParameterError(
+                    f"store={str(path)!r} is damaged: its _sweep.json cannot be read "
+                    f"({type(err).__name__}: {err}); delete the folder to start the sweep "
+                    "over.") from None
             diff = [k for k in self.meta if old.get(k) != self.meta[k]]
             if diff:
                 raise ParameterError(f"store={str(path)!r} holds another sweep (its "
                                      f"{', '.join(diff)} differ): give a new store or delete "
                                      "this one to start over.")
         else:
-            self.path.mkdir(parents=True, exist_ok=True)
-            tmp = meta_file.with_suffix(".tmp")
-            tmp.write_text(json.dumps(self.meta, indent=1))
-            os.replace(tmp, meta_file)
+            try:
+                self.path.mkdir(parents=True, exist_ok=True)
+                tmp = meta_file.with_suffix(".tmp")
+                tmp.write_text(json.dumps(self.meta, indent=1))
+                os.replace(tmp, meta_file)
+            except OSError as err:
+                raise ParameterError(
+                    f"store={str(path)!r} is invalid: the folder cannot be created or written "
+                    f"({err.strerror or type(err).__name__}); give a writable folder.") from None
         self._buffer: list[dict[str, Any]] = []
         self._last = time.monotonic()
 
@@ -98,16 +111,21 @@ class Store:
         """Records of the points already finished, in point order."""
         out: dict[int, dict[str, Any]] = {}
         for part in self._parts():
-            df = self.pd.read_parquet(part)
-            for row in df.to_dict("records"):
-                i = int(row["point"])
-                if not 0 <= i < len(self.grid):
-                    raise ParameterError(f"store={str(self.path)!r}: {part.name} holds point {i}, "
-                                         f"outside this grid of {len(self.grid)} points.")
-                keys = json.loads(row[_KEYS])
-                out[i] = {"point": i, "outputs": {k: _value(row[k]) for k in keys},
-                          "error": _text(row["error"]), "message": _text(row["message"]),
-                          "warnings": _text(row["warnings"])}
+            df = _read_part(self.pd, self.path, part)
+            try:
+                for row in df.to_dict("records"):
+                    i = int(row["point"])
+                    if not 0 <= i < len(self.grid):
+                        raise ParameterError(f"store={str(self.path)!r}: {part.name} holds point "
+                                             f"{i}, outside this grid of {len(self.grid)} points.")
+                    keys = json.loads(row[_KEYS])
+                    out[i] = {"point": i, "outputs": {k: _value(row[k]) for k in keys},
+                              "error": _text(row["error"]), "message": _text(row["message"]),
+                              "warnings": _text(row["warnings"])}
+            except (KeyError, TypeError, ValueError, OverflowError) as err:
+                if isinstance(err, ParameterError):
+                    raise
+                raise _damaged(self.path, part, err) from None
         return Records.from_rows(out[i] for i in sorted(out))
 
     def add(self, records: Records) -> None:
@@ -152,6 +170,26 @@ class Store:
                 p.unlink()
 
 
+def _damaged(store: Path, part: Path, err: BaseException) -> ParameterError:
+    return ParameterError(
+        f"store={str(store)!r} is damaged: {part.name} cannot be read ({type(err).__name__}: "
+        f"{' '.join(str(err).split())[:200]}); delete that file (its points are computed again) "
+        "or the whole folder to start over.")
+
+
+def _read_part(pd: Any, store: Path, part: Path) -> Any:
+    """One part as a DataFrame; a file that is not a whole Parquet table of a sweep (cut short,
+    overwritten) raises :class:`ParameterError` naming it, never pyarrow's own error."""
+    try:
+        df = pd.read_parquet(part)
+    except Exception as err:         # pyarrow raises ArrowInvalid, OSError, ... for bad bytes
+        raise _damaged(store, part, err) from None
+    missing = [c for c in ("point", "error", "message", "warnings", _KEYS) if c not in df.columns]
+    if missing:
+        raise _damaged(store, part, KeyError(f"no column(s) {missing}"))
+    return df
+
+
 def read_store(path: str | Path) -> Any:
     """The rows a store holds so far, as a DataFrame sorted by point (a quick look at a sweep
     that is still running or was killed)."""
@@ -159,5 +197,5 @@ def read_store(path: str | Path) -> Any:
     parts = sorted(Path(path).glob("part-*.parquet"))
     if not parts:
         raise ParameterError(f"store={str(path)!r} holds no results (no part-*.parquet files).")
-    df = pd.concat([pd.read_parquet(p) for p in parts], ignore_index=True)
+    df = pd.concat([_read_part(pd, Path(path), p) for p in parts], ignore_index=True)
     return df.drop(columns=[_KEYS]).sort_values("point").reset_index(drop=True)

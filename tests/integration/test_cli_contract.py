@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from contactlab.cli import main
+from contactlab.scene.run import MANIFEST
 
 SCENE = """
 [profile]
@@ -103,7 +104,7 @@ def test_non_empty_folder_needs_overwrite_and_json_leaves_no_stale_csv(scene, tm
     line, _ = failure(["run", str(scene), "-o", str(out), "--format", "json"], capsys, 2)
     assert "--overwrite" in line
     assert main(["run", str(scene), "-o", str(out), "--format", "json", "--overwrite"]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["result.json"]     # no stale series.csv
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "result.json"]   # no stale csv
 
 
 def test_planted_symlink_is_replaced_not_followed(scene, tmp_path):

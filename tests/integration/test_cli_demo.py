@@ -8,7 +8,7 @@ from tests import tolerances as TOL
 
 
 def test_demo_prints_hertz_table(capsys, tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)        # `demo` without -o writes its plot into the cwd
+    monkeypatch.chdir(tmp_path)        # `demo` without -o makes a new folder in the cwd
     assert main(["demo"]) == 0
     out = capsys.readouterr().out
     E_star = 210e9 / (2 * (1 - 0.3**2))

@@ -9,6 +9,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from contactlab.cli import main
 from contactlab.scene import Scene
+from contactlab.scene.run import MANIFEST
 
 from tests import tolerances as TOL
 from tests.reference import fretting as ref
@@ -137,4 +138,4 @@ def test_run_json_holds_wear_and_map(tmp_path, capsys):
                  "json"]) == 0
     doc = json.loads((out / "result.json").read_text())
     assert len(doc["fretting_map"]["points"]["regime"]) == 9 * 31
-    assert sorted(p.name for p in out.iterdir()) == ["result.json"]
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "result.json"]

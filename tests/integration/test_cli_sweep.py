@@ -36,7 +36,9 @@ def test_sweep_writes_the_table_and_a_rerun_resumes(tmp_path, capsys):
     assert table["point"].tolist() == list(range(9))
     np.testing.assert_array_equal(table["torque"].to_numpy(), api["torque"].to_numpy())
     assert table["error"].fillna("").tolist() == ["SceneError"] * 3 + [""] * 6
-    assert main(["sweep", str(SCENE), *GRID, "-o", str(out), "--json"]) == 0
+    assert main(["sweep", str(SCENE), *GRID, "-o", str(out), "--json"]) == 2   # sweep.csv there
+    assert "--overwrite" in json.loads(capsys.readouterr().out)["error"]
+    assert main(["sweep", str(SCENE), *GRID, "-o", str(out), "--json", "--overwrite"]) == 0
     payload = json.loads(capsys.readouterr().out)
     assert payload["stats"]["resumed"] == 9 and payload["stats"]["computed"] == 0
     assert payload["failed"] == 3

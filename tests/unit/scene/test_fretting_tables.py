@@ -7,6 +7,7 @@ import pytest
 
 from contactlab.errors import SceneError, ValidityWarning
 from contactlab.scene import Scene
+from contactlab.scene.run import MANIFEST
 
 from tests import tolerances as TOL
 from tests.unit.scene.helpers import base, twist_scene
@@ -146,5 +147,5 @@ def test_tangential_wear_scene(tmp_path):
     assert head.startswith("cycles [1],depth [m],radius [m]")
     # a later run without wear removes the stale wear files
     Scene(twist_scene()).run().write(tmp_path)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["series.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST, "series.csv"]
     assert "wear (tangential, mdr) after 100000 cycles" in res.table()

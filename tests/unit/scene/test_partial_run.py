@@ -16,6 +16,7 @@ from contactlab.cli import main
 from contactlab.errors import ConvergenceError, OutsideTheoryError
 from contactlab.foundation import Winkler
 from contactlab.scene import Scene
+from contactlab.scene.run import MANIFEST
 
 from tests.unit.scene.helpers import base, twist_scene
 
@@ -180,7 +181,7 @@ def test_cli_writes_the_computed_steps_and_one_line(failing_scene, tmp_path, cap
     status = json.loads((out / "status.json").read_text())
     assert status["status"] == "partial" and status["failed_at"]["step"] == FAIL_AT
     assert status["error"].startswith("OutsideTheoryError: step 13 of 31 failed")
-    assert not [p for p in out.iterdir() if p.name.startswith(".")]   # no temporary files left
+    assert not [p for p in out.iterdir() if p.name.endswith(".tmp")]   # no temporary files left
 
     assert main(["run", str(failing_scene), "--json"]) == 1
     doc = json.loads(capsys.readouterr().out)
@@ -193,7 +194,7 @@ def test_cli_writes_the_computed_steps_and_one_line(failing_scene, tmp_path, cap
                  "json", "--json"]) == 1
     doc = json.loads(capsys.readouterr().out)
     assert doc["files"] == [str(out / "result.json")]
-    assert sorted(p.name for p in out.iterdir()) == ["result.json"]   # stale CSV files gone
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "result.json"]   # stale CSV gone
     res = json.loads((out / "result.json").read_text())
     assert res["meta"]["status"] == "partial" and len(res["series"]["time"]) == FAIL_AT
 
@@ -206,4 +207,4 @@ def test_a_complete_run_removes_the_status_file(failing_scene, tmp_path, capsys)
         'ramp = { force = "300 N", twist = "1 mrad", steps = 20 }',
         'ramp = { force = "110 N", steps = 20 }'))
     assert main(["run", str(failing_scene), "-o", str(out), "--overwrite"]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["series.csv"]
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "series.csv"]
