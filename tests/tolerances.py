@@ -546,3 +546,26 @@ TABLE_BOUNDED_SLIP_HERTZ = 1e-6
 #: whole-number n exact rationals (times π for odd n), other n a math.gamma ratio (worst
 #: measured 22.5 ulp near n = 31) or, for n >= 300, an asymptotic series (< 1e-18 truncation)
 KAPPA_DOUBLE = 1e-14
+
+# Energy of the exact torsion solver (physics.torsion_energy; issue 26 item 1).
+#: a step's dissipation is a sum of products over Gauss points that vanish (Φ = 0 in the stick
+#: zone, a released density of zero): rounding of those sums, of the running total of the path
+#: (measured down to -1.4e-16, hip-cup scene)
+ENERGY_STEP_ROUNDING = 1e-12
+#: work in = elastic energy + dissipation, each its own sum of exact Gauss integrals, of the
+#: largest work or elastic energy of the path: rounding (measured 1.6e-15)
+ENERGY_BALANCE = 1e-12
+#: a step after a force rise at held twist whose stick radius stays outside the old contact
+#: dissipates what a fresh contact does (superposition), per step of the post-rise running
+#: total: the two runs' stick-radius roots differ in rounding (measured 3.9e-11 of one step's
+#: own dissipation, 8.9e-14 of the running total)
+ENERGY_SUPERPOSITION = 1e-10
+#: work and dissipation of a held-force twist path in coarse steps against the same path in
+#: finer steps (the booked work is ∫ M dφ along each step, additive): rounding of the root solves
+#: (measured 3.2e-14 of the largest work)
+ENERGY_REFINEMENT = 1e-10
+#: booked work of a twist from rest at constant force against ∫ M dφ of the closed-form exact
+#: torque (Jäger, contact.torsion) by scipy quad: the collocated full-sliding density of the
+#: rings (measured 4.0e-8 at 200 rings, for 1, 3 and 10 steps; the trapezoid rule of the old
+#: booking was off by 18 %, 2 %, 0.2 %)
+ENERGY_WORK_CLOSED_FORM = 1e-6

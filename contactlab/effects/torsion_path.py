@@ -26,6 +26,7 @@ from ..params import check_count, check_memory, step_indices
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
 from ..physics import torsion_annulus as _ta
+from ..physics import torsion_energy as _te
 from ..physics import torsion_rings as _tr
 
 __all__ = ["simulate_exact", "ESTIMATED", "exact_memory"]
@@ -80,7 +81,9 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     box-constrained step from the point tractions of ``w`` (its result turned back into a
     density). Returns the new density, the point tractions (or ``None``), the slip increments at
     the points (m), the twist increment, gross sliding, the stick radius (``None``: from the
-    tractions), the active set, pivots and whether the annulus step was taken. ``slip=False``
+    tractions), the active set, pivots and what the step's energy needs: the sense of the
+    annulus step and the turn of its density (``sense``, ``turn``), or where the ring solver took
+    the step its dissipation (``ring``). ``slip=False``
     skips the slip increments where the checks do not need them; ``slide`` is the step's
     full-sliding density when known."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
@@ -95,12 +98,15 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         gross = bool(np.isnan(extra))
         w_new = out["w"]
         ds = out["slip"]
+        # the energy of the step from the twist its density carries (plus a gross turn), not
+        # the target (they differ by the root's rounding)
+        book = {"sense": s, "turn": out["dpsi"] + (0.0 if gross else float(extra))}
         if gross:                   # torque beyond the sliding torque: slides, twist held
             return (w_new, None, ds, 0.0, True, 0.0,
-                    np.where(bound == 0, 2, int(s)).astype(int), 1, True)
+                    np.where(bound == 0, 2, int(s)).astype(int), 1, book)
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
         act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
-        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, True)
+        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, book)
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
@@ -125,7 +131,9 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     lam = np.where(bound > 0, lam, 0.0)
     act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
     w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))
-    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it, False)
+    # its dissipation in its own measure: the sliding traction times the slip, >= 0
+    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it,
+            {"ring": _te.ring_dissipation(H, z_old, z, lam, held=dphi == 0.0)})
 
 
 #: steps whose ring slip limits are held at once (memory: chunk x rings floats)
@@ -288,13 +296,18 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                             slide_key = (edge_j, bj)
                         out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
                                             st.twist, st.active, slip=bool(snaps), slide=slide)
-                        w, z, lam_slip, dphi, gross, c_stick, st.active, it, taken = out
+                        w_o = w
+                        w, z, lam_slip, dphi, gross, c_stick, st.active, it, book = out
                         M = _ta.torque(w, G_t)
-                        E_st = _ta.stored_energy(w, G_t)
-                        fallback += not taken
-                        W_in += 0.5 * (M_old + M) * dphi
-                        dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
-                        E_old = E_st
+                        # the step's work, elastic energy and dissipation (physics.torsion_energy)
+                        if "ring" in book:
+                            fallback += 1
+                            en = _te.ring_step_energy(w_o, w, G_t, book["ring"])
+                        else:
+                            en = _te.annulus_energy(w_o, w, slide, edge_j, book["sense"], G_t,
+                                                    book["turn"])
+                        E_st, dW = en["stored"], en["dissipated"]
+                        W_in += en["work"]
                         slip += lam_slip
                     elif use_punches:
                         # no friction limit: rigid punches at the contact radii, exact
