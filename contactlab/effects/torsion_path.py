@@ -100,7 +100,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         ds = out["slip"]
         # the energy of the step from the twist its density carries (plus a gross turn), not
         # the target (they differ by the root's rounding)
-        book = {"sense": s, "turn": out["dpsi"] + (0.0 if gross else float(extra))}
+        book = {"sense": s, "turn": out["dpsi"] + (0.0 if gross else float(extra)),
+                "gross": 0.0 if gross else float(extra)}
         if gross:                   # torque beyond the sliding torque: slides, twist held
             return (w_new, None, ds, 0.0, True, 0.0,
                     np.where(bound == 0, 2, int(s)).astype(int), 1, book)
@@ -305,7 +306,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                             en = _te.ring_step_energy(w_o, w, G_t, book["ring"])
                         else:
                             en = _te.annulus_energy(w_o, w, slide, edge_j, book["sense"], G_t,
-                                                    book["turn"])
+                                                    book["turn"], book["gross"])
                         E_st, dW = en["stored"], en["dissipated"]
                         W_in += en["work"]
                         slip += lam_slip

@@ -74,31 +74,38 @@ def energy(w: tuple, G_t: float) -> float:
     return float(8.0 * G_t * (W @ (P * P)))
 
 
-def _stages(chain: list, G_t: float) -> dict:
-    """Work and dissipation of a chain of stages ``[(w_0,), (w_1, Δφ_1), (w_2, Δφ_2), ...]``
-    (``Δφ = None``: a held stage), plus the elastic energies of its ends."""
+def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
+    """Work and dissipation of a chain of stages ``[(w_0, None), (w_1, f_1), (w_2, f_2), ...]``
+    (``f``: ``True`` a family stage, ``None`` a held stage), plus the elastic energies of its
+    ends. A family stage turns by the twist its density increment carries, ``ΔΨ(0)``, plus the
+    gross turn ``gross`` of a contact sliding as a whole (on the last family stage)."""
     dens = [c[0] for c in chain]
     X, W = _nodes(*dens)
     k = 8.0 * G_t
     work = diss = 0.0
-    P_end = _ta.psi(dens[-1], X)
-    for (a, _), (b, dphi) in itertools.pairwise(chain):
-        Pb = P_end if b is dens[-1] else _ta.psi(b, X)
-        # the increment's Ψ from the difference density: exactly 0 where the stage leaves the
-        # density alone (not a difference of two large Ψ)
-        dP = _ta.psi(_ta.difference(b, a, 0.0), X)
+    zero = np.zeros(1)
+    P0 = Pa = _ta.psi(dens[0], X)
+    for (a, _), (b, family) in itertools.pairwise(chain):
+        # the increment's Ψ from the difference density: exactly ΔΨ(0) where the stage leaves
+        # the density alone (not a difference of two large Ψ), so Φ vanishes there; Ψ_b as
+        # Ψ_a + ΔΨ keeps the balance exact to rounding even on pieces narrower than the
+        # spacing of the floats around them
+        diff = _ta.difference(b, a, 0.0)
+        dP = _ta.psi(diff, X)
+        Pb = Pa + dP
         E_d = k * float(W @ (dP * dP))
-        if dphi is None:
+        if family is None:
             diss += -2.0 * k * float(W @ (Pb * dP)) + E_d
         else:
+            dphi = float(_ta.psi(diff, zero)[0]) + gross
             work += 2.0 * k * float(W @ Pb) * dphi - E_d
             diss += 2.0 * k * float(W @ (Pb * (dphi - dP)))
-    P0 = _ta.psi(dens[0], X)
-    return {"work": work, "stored": k * float(W @ (P_end * P_end)),
+        Pa = Pb
+    return {"work": work, "stored": k * float(W @ (Pa * Pa)),
             "stored_old": k * float(W @ (P0 * P0)), "dissipated": diss}
 
 
-def step_energy(old: tuple, new: tuple, G_t: float, dphi: float | None) -> dict:
+def step_energy(old: tuple, new: tuple, G_t: float, gross: float | None = 0.0) -> dict:
     """Work, elastic energy and dissipation of the family stage ``old → new``.
 
     Parameters
@@ -107,37 +114,41 @@ def step_energy(old: tuple, new: tuple, G_t: float, dphi: float | None) -> dict:
         Punch densities before and after the step, rad/m per m.
     G_t : float
         Torsional modulus, Pa.
-    dphi : float or None
-        Twist increment of the step, rad; ``None``: a release at the held twist (no work).
+    gross : float or None
+        Turn of the contact sliding as a whole beyond the twist of the density increment, rad
+        (0 unless the stick radius is 0); ``None``: a release at the held twist (no work).
 
     Returns
     -------
     dict
         ``work`` (J), ``stored`` (``E_n``, J), ``stored_old`` (``E_o``, J) and ``dissipated``
-        (J); ``work = stored − stored_old + dissipated`` up to rounding.
+        (J); ``work = stored − stored_old + dissipated`` up to rounding. The twist increment of
+        the step is ``ΔΨ(0) + gross``.
     """
     if old[0].size == 0 and new[0].size == 0:
         return {"work": 0.0, "stored": 0.0, "stored_old": 0.0, "dissipated": 0.0}
-    return _stages([(old, None), (new, dphi)], G_t)
+    if gross is None:
+        return _stages([(old, None), (new, None)], G_t)
+    return _stages([(old, None), (new, True)], G_t, float(gross))
 
 
 def annulus_energy(old: tuple, new: tuple, slide: tuple, radius: float, sense: float,
-                   G_t: float, dphi: float) -> dict:
+                   G_t: float, dphi: float, gross: float = 0.0) -> dict:
     """Energy of a single-slip-annulus step (:func:`contactlab.physics.torsion_annulus.step`
     with sense ``sense`` onto the full-sliding density ``slide`` of the contact radius
-    ``radius``, twist increment ``dphi``): the family, or for a shrinking contact the two
-    stages of the module docstring; keys of :func:`step_energy`."""
+    ``radius``, twist increment ``dphi``, gross turn ``gross``): the family, or for a shrinking
+    contact the two stages of the module docstring; keys of :func:`step_energy`."""
     top = float(old[1][-1]) if old[1].size else 0.0
     if top > radius:
         G = float(_ta.psi(old, np.array([radius]))[0])
         if sense * G > 0:
             if sense * dphi >= 0:
                 mid = _ta.step(old, slide, radius, G_t, dphi=0.0)["w"]
-                return _stages([(old, None), (mid, None), (new, float(dphi))], G_t)
+                return _stages([(old, None), (mid, None), (new, True)], G_t, gross)
             # the outer density released down to Ψ_o(c₁) = −Δφ (a step onto no density)
             q = _ta.step(old, _ta.empty(), top, G_t, dphi=float(dphi))["w"]
-            return _stages([(old, None), (q, float(dphi)), (new, None)], G_t)
-    return step_energy(old, new, G_t, dphi)
+            return _stages([(old, None), (q, True), (new, None)], G_t)
+    return step_energy(old, new, G_t, gross)
 
 
 def ring_dissipation(H: np.ndarray, z_old: np.ndarray, z: np.ndarray, lam: np.ndarray,
