@@ -20,6 +20,7 @@ constant force: no step dissipates a negative energy.
 """
 from __future__ import annotations
 
+import itertools
 import warnings
 
 import numpy as np
@@ -48,10 +49,14 @@ def contact(i: int = 0) -> cl.Contact:
 
 
 #: a history: segments (steps, force factor of F0 at the end, twist factor of PHI at the end,
-#: what is held: 0 nothing, 1 the force, 2 the twist)
+#: what is held: 0 nothing, 1 the force, 2 the twist). The factors are drawn on a grid of 1 %:
+#: a twist step below the float spacing at the contact edge (Δφ below ~W(a) ulp(a), 1e-17 rad
+#: here: twists of 1e-190 rad, or two ends one ulp apart, which free floats draw) needs a slip
+#: annulus narrower than one ulp, which the punch-density step cannot resolve (its torque is
+#: then off by ~1e-18 N m, the rounding of this contact's torques, and its energy with it)
 segments = st.lists(st.tuples(st.integers(min_value=1, max_value=8),
-                              st.floats(min_value=0.2, max_value=4.0),
-                              st.floats(min_value=-1.5, max_value=1.5),
+                              st.integers(min_value=20, max_value=400).map(lambda k: k / 100),
+                              st.integers(min_value=-150, max_value=150).map(lambda k: k / 100),
                               st.integers(min_value=0, max_value=2)),
                     min_size=1, max_size=6)
 
@@ -91,6 +96,13 @@ def check_exact_path_energy(i, segs):
     assert np.max(np.abs(e["work"] - e["stored"] - D)) <= ENERGY_BALANCE * scale
 
 
+#: the superposition paths: the twist before the rise (of PHI, on the 1 % grid of ``segments``),
+#: the force factor of the rise, the twist after it (of the limit twist)
+PRE = st.integers(min_value=-100, max_value=100).map(lambda k: k / 100)
+RISE = st.floats(min_value=1.5, max_value=4.0)
+FRAC = st.floats(min_value=0.05, max_value=1.0)
+
+
 def check_superposition(i, pre, rise, frac, sense, n):
     """Twist ``pre`` PHI at F0, force up by ``rise`` at held twist, then n twist steps of total
     ``frac`` of the twist at which a fresh contact's stick radius reaches the old contact
@@ -109,8 +121,9 @@ def check_superposition(i, pre, rise, frac, sense, n):
     r, r0 = run(c, f, tw), run(c, f, tw0)
     if r.meta["fallback_steps"] or r0.meta["fallback_steps"]:
         return      # a step with two slip zones: the ring solver's own measure
-    d = np.diff(np.asarray(r.dissipated_energy))[-n:]
-    d0 = np.diff(np.asarray(r0.dissipated_energy))[-n:]
+    # the per-step values (a difference of the cumulative series rounds at its running total)
+    d = r.meta["energy"]["dissipated_per_step"][-n:]
+    d0 = r0.meta["energy"]["dissipated_per_step"][-n:]
     ref = np.cumsum(d0)
     assert np.all(np.abs(d - d0) <= ENERGY_SUPERPOSITION * ref)
     # and the stick radius of the fresh contact stays outside the old contact (the premise)
@@ -124,8 +137,7 @@ def test_exact_path_steps_non_negative_and_work_balance(i, segs):
 
 
 @SETTINGS
-@given(i=st.integers(min_value=0, max_value=1), pre=st.floats(min_value=-1.0, max_value=1.0),
-       rise=st.floats(min_value=1.5, max_value=4.0), frac=st.floats(min_value=0.05, max_value=1.0),
+@given(i=st.integers(min_value=0, max_value=1), pre=PRE, rise=RISE, frac=FRAC,
        sense=st.sampled_from([-1.0, 1.0]), n=st.integers(min_value=1, max_value=12))
 def test_superposition_after_a_force_rise_at_held_twist(i, pre, rise, frac, sense, n):
     check_superposition(i, pre, rise, frac, sense, n)
@@ -139,8 +151,7 @@ def check_mdr_path(i, segs):
 def check_histories(i, points, n):
     c = contact(i)
     pts = np.concatenate([[0.0], points])
-    x = np.concatenate([[0.0]] + [np.linspace(p, q, n + 1)[1:] for p, q in zip(pts[:-1],
-                                                                               pts[1:])])
+    x = np.concatenate([[0.0]] + [np.linspace(p, q, n + 1)[1:] for p, q in itertools.pairwise(pts)])
     for method in ("exact", "mdr"):
         with warnings.catch_warnings():
             # the MDR model outside its validity at these twists (tested elsewhere)

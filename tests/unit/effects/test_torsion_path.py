@@ -126,10 +126,13 @@ def test_work_balance_and_dissipation_per_step():
     assert r.dissipated_energy[-1] > 0
 
 
-def test_dissipated_energy_converges_to_the_exact_history():
+@pytest.mark.parametrize("steps", [50, 800])
+def test_dissipated_energy_converges_to_the_exact_history(steps):
+    """Against Masing/Jäger's exact dissipation (twist_history): each step's work is ∫ M dφ
+    along the step, so the step count does not matter (the trapezoid was 1.6e-2 off at 50)."""
     c = contact()
     a, s, M_full = scales(c)
-    phi = 0.6 * s * np.sin(np.linspace(0, 4 * np.pi, 801)[1:])
+    phi = 0.6 * s * np.sin(np.linspace(0, 4 * np.pi, steps + 1)[1:])
     ref = c.twist_history(twist=phi, force=F)
     r = c.simulate(at_constant_load(phi), method="exact", n_rings=100)
     err = np.max(np.abs(r.dissipated_energy[2:] - ref.dissipated_energy))

@@ -4,6 +4,8 @@ balance of work, elastic energy and dissipation, the work as ``∫ M dφ`` along
 of states, and the booking of a shrinking contact (no work at held twist, continuous)."""
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -39,7 +41,7 @@ def psi_ref(spec, x):
 def energy_ref(spec):
     ends = sorted({0.0, *(p[0] for p in spec), *(p[1] for p in spec)})
     return 8 * G * sum(quad(lambda x: x * x * psi_ref(spec, x) ** 2, u, v,
-                            epsabs=0, epsrel=1e-12)[0] for u, v in zip(ends[:-1], ends[1:]))
+                            epsabs=0, epsrel=1e-12)[0] for u, v in itertools.pairwise(ends))
 
 
 GAPPED = [(0.0, 1e-4, 1.0, 0.5), (1e-4, 2e-4, 0.5, 0.2), (3e-4, 4e-4, 2.0, 1.0),
@@ -76,7 +78,7 @@ def test_step_energy_balances_and_dissipation_is_the_slip_integral(seed):
     dphi = psi_ref(sn, 0.0) - psi_ref(so, 0.0) + gross
     D = 16 * G * sum(quad(lambda x: x * x * psi_ref(sn, x) * (dphi - psi_ref(sn, x)
                                                             + psi_ref(so, x)),
-                          u, v, epsabs=0, epsrel=1e-12)[0] for u, v in zip(ends[:-1], ends[1:]))
+                          u, v, epsabs=0, epsrel=1e-12)[0] for u, v in itertools.pairwise(ends))
     assert out["dissipated"] == pytest.approx(D, rel=QUAD, abs=QUAD * scale)
     assert out["stored"] == pytest.approx(energy_ref(sn), rel=QUAD)
 
