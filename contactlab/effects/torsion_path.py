@@ -229,7 +229,7 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
              if ring_table and mu is not None else None)
     cur = dict.fromkeys(("depth", "force", "twist", "torque"), 0.0)
     ctrl = "twist"
-    M_old, W_in, W_d, E_old = 0.0, 0.0, 0.0, 0.0
+    M_old, W_in, W_d = 0.0, 0.0, 0.0
     G_t = contact.moduli.torsional
     # the punch density as the state, each step with one slip annulus (stick radius inside its
     # ring) where that is the exact step; without friction limit rigid punches at the contact
@@ -314,14 +314,15 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                         # no friction limit: rigid punches at the contact radii, exact
                         kw = ({"dphi": float(target[j]) - st.twist} if ctrl == "twist" else
                               {"target_torque": float(target[j])})
+                        pt_o, pm_o = pt, pm
                         pt, pm, dphi = _ta.punch_step(pt, pm, aj, G_t, **kw)
                         z, gross, it, c_stick = None, False, 1, aj
                         lam_slip = np.zeros(r.size)
                         M = _ta.punch_torque(pt, pm, G_t)
-                        E_st = _ta.punch_energy(pt, pm, G_t)
-                        W_in += 0.5 * (M_old + M) * dphi
-                        dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
-                        E_old = E_st
+                        # a release at the held twist, then a rigid punch (physics.torsion_energy)
+                        en = _te.punch_step_energy(pt_o, pm_o, pt, pm, aj, G_t, dphi)
+                        E_st, dW = en["stored"], en["dissipated"]
+                        W_in += en["work"]
                     else:
                         z_old = st.z
                         if ctrl == "twist":
@@ -338,9 +339,11 @@ def _run(contact, path, outputs, n_rings, spacing, snapshots, progress=False, al
                             lam = np.zeros_like(z)
                             dphi = 0.0
                         M = float(g @ z)
-                        W_in += 0.5 * (M_old + M) * dphi
-                        dW = 0.5 * float((z_old + z) @ lam)
+                        # the end traction times the slip (+ the release at a held twist), in
+                        # the ring solver's energy; the work balances it (physics.torsion_energy)
+                        dW = _te.ring_dissipation(H, z_old, z, lam, held=dphi == 0.0)
                         E_st = 0.5 * float(z @ (H @ z))
+                        W_in += E_st - 0.5 * float(z_old @ (H @ z_old)) + dW
                         lam = np.where(bj > 0, lam, 0.0)
                         st.S = st.S + lam
                         slip += _tr.slip_density(lam, r, g)

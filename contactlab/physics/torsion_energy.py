@@ -35,6 +35,13 @@ that end at the same density:
   ``c₁`` with ``Ψ_o(c₁) = −Δφ`` (``w_q``: the twist reaches ``Δφ`` monotonically), then a release
   at the held twist ``w_q → w_n``.
 
+A contact without a friction limit carries rigid punches (point masses of the density,
+:func:`contactlab.physics.torsion_annulus.punch_step`): its step is a release at the held twist
+(the punches beyond the new contact radius leave, their turn goes to the punch at the radius:
+dissipation ``8 G_t ∫_{a_n}^∞ x² Ψ_o² dx``, the energy of the released band) and then a rigid
+punch of the radius turned by ``Δφ`` (elastic: work ``½ (M_m + M_n) Δφ``, no dissipation), see
+:func:`punch_step_energy`.
+
 A *held* stage ``a → b`` does no work and dissipates ``E_a − E_b = 16 G_t ∫ x² Ψ_b (Ψ_a − Ψ_b)
 dx + E(b − a)`` (both ``>= 0`` for the held-twist step). The booking is continuous across
 the cases (at ``Δφ = 0`` and at ``Δφ = −G``), and a held twist does no work.
@@ -49,7 +56,8 @@ import numpy as np
 
 from . import torsion_annulus as _ta
 
-__all__ = ["annulus_energy", "energy", "ring_dissipation", "ring_step_energy", "step_energy"]
+__all__ = ["annulus_energy", "energy", "punch_step_energy", "ring_dissipation", "ring_step_energy",
+           "step_energy"]
 
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
@@ -176,3 +184,28 @@ def ring_step_energy(old: tuple, new: tuple, G_t: float, ring: float) -> dict:
     E_o, E_n = energy(old, G_t), energy(new, G_t)
     D = float(ring)
     return {"work": E_n - E_o + D, "stored": E_n, "stored_old": E_o, "dissipated": D}
+
+
+def punch_step_energy(t: np.ndarray, m: np.ndarray, t_new: np.ndarray, m_new: np.ndarray,
+                      radius: float, G_t: float, dphi: float) -> dict:
+    """Energy of a step of a contact without a friction limit (rigid punches of radii ``t``,
+    turns ``m`` to ``t_new``, ``m_new``; :func:`contactlab.physics.torsion_annulus.punch_step`
+    with the contact radius ``radius`` and the twist increment ``dphi``).
+
+    The release at the held twist dissipates the energy of the band beyond ``radius``,
+    ``8 G_t ∫_radius^∞ x² Ψ_o² dx`` (``Ψ_o`` the turn of the punches beyond ``x``: a step
+    function), summed from its non-negative terms; the rigid punch of the radius then does the
+    elastic work ``½ (M_m + M_n) Δφ``; keys of :func:`step_energy`.
+    """
+    t, m = np.asarray(t, float), np.asarray(m, float)
+    out = t >= radius
+    order = np.argsort(t[out], kind="stable")
+    tb, mb = t[out][order], m[out][order]
+    tail = np.cumsum(mb[::-1])[::-1]                        # Ψ_o on (t_{k-1}, t_k) beyond
+    lo = np.concatenate([[radius], tb[:-1]])
+    D = float(8.0 * G_t * np.sum(tail ** 2 * (tb ** 3 - lo ** 3)) / 3.0)
+    k = 16.0 / 3.0 * G_t
+    M_m = float(k * (np.sum(t[~out] ** 3 * m[~out]) + radius ** 3 * np.sum(mb)))
+    M_n = _ta.punch_torque(t_new, m_new, G_t)
+    return {"work": 0.5 * (M_m + M_n) * float(dphi), "stored": _ta.punch_energy(t_new, m_new, G_t),
+            "stored_old": _ta.punch_energy(t, m, G_t), "dissipated": D}

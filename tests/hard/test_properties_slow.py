@@ -265,6 +265,12 @@ def test_energy_exact_path_steps_non_negative_and_work_balance(i, segs):
 
 
 @SLOW
+@given(i=st.integers(min_value=0, max_value=1), segs=_en.segments)
+def test_energy_exact_path_without_friction_limit(i, segs):
+    _en.check_exact_path_energy(i, segs, mu=None)
+
+
+@SLOW
 @given(i=st.integers(min_value=0, max_value=1), pre=_en.PRE, rise=_en.RISE, frac=_en.FRAC,
        sense=st.sampled_from([-1.0, 1.0]), n=st.integers(min_value=1, max_value=12))
 def test_energy_superposition_after_a_force_rise_at_held_twist(i, pre, rise, frac, sense, n):

@@ -12,7 +12,7 @@ from scipy.integrate import quad
 
 import contactlab as cl
 from contactlab import LoadPath
-from contactlab.profiles import Paraboloid
+from contactlab.profiles import FlatPunch, Paraboloid
 from tests.tolerances import (
     ENERGY_BALANCE,
     ENERGY_REFINEMENT,
@@ -90,15 +90,18 @@ def test_falling_force_at_held_twist_dissipates_the_released_energy():
 
 
 @pytest.mark.parametrize("n", [1, 3])
-def test_work_of_a_twist_from_rest_is_the_integral_of_the_exact_torque(n):
-    """Twist 0 -> 1.5 mrad at 10 N in n steps: the booked work against ∫ M dφ of Jäger's
+@pytest.mark.parametrize("flat", [False, True], ids=["paraboloid", "flat_punch"])
+def test_work_of_a_twist_from_rest_is_the_integral_of_the_exact_torque(n, flat):
+    """Twist from rest at 10 N in n steps: the booked work against ∫ M dφ of Jäger's
     closed-form torque (contact.torsion, method="exact") by scipy quad, whatever n (the old
-    trapezoid was 18 % low at n = 1)."""
-    c = contact()
-    phi = 1.5e-3
+    trapezoid was 18 % low at n = 1 on the paraboloid, 31 % on the flat punch, whose steps the
+    ring solver alone takes)."""
+    c = (cl.Contact(FlatPunch(1e-4), materials=(STEEL, STEEL), friction=0.3) if flat else
+         contact())
+    phi = 2e-3 if flat else 1.5e-3
     tw = np.concatenate([np.zeros(5), np.linspace(0, phi, n + 1)[1:]])
     f = np.concatenate([RAMP, np.full(n, 10.0)])
-    r = run(f, tw)
+    r = c.simulate(LoadPath.from_arrays(force=f, twist=tw), method="exact")
     ref = quad(lambda p: float(c.torsion(force=10.0, twist=p, method="exact").torque), 0, phi,
                epsabs=0, epsrel=1e-12, limit=200)[0]
     assert r.meta["energy"]["work"][-1] == pytest.approx(ref, rel=ENERGY_WORK_CLOSED_FORM)
@@ -134,3 +137,29 @@ def test_varying_load_steps_non_negative_and_balanced():
     assert np.all(e["dissipated_per_step"] >= -ENERGY_STEP_ROUNDING * D)
     scale = max(np.max(np.abs(e["work"])), np.max(e["stored"]))
     assert np.max(np.abs(e["work"] - e["stored"] - D)) <= ENERGY_BALANCE * scale
+
+
+def test_without_friction_limit_a_shrinking_contact_dissipates_its_released_band():
+    """No friction limit (rigid punches at the contact radii): 10 N twisted to 1 mrad, the force
+    down to 5 N with the twist moving on. Growing steps dissipate nothing; a shrinking step
+    dissipates the energy the band beyond the new radius held, 8 G_t ∫_a^a_old x² Ψ² dx with
+    Ψ the old turn of the band (one punch per step: Ψ is the twist minus the turn inside); the
+    old trapezoid booking gave negative steps here."""
+    c = cl.Contact(Paraboloid(0.01), materials=(STEEL, STEEL), friction=None)
+    f = np.concatenate([RAMP, np.full(4, 10.0), np.linspace(10, 5, 5)[1:]])
+    tw = np.concatenate([np.zeros(5), np.linspace(0, 1e-3, 5)[1:], 1e-3 + np.linspace(0, 4e-4, 5)
+                         [1:]])
+    r = c.simulate(LoadPath.from_arrays(force=f, twist=tw), method="exact")
+    e = r.meta["energy"]
+    d = e["dissipated_per_step"]
+    assert np.all(d[:9] == 0.0)
+    assert np.all(d[9:] > 0)
+    # step 9: before it the density is punches at a(10 N) (the twist steps at 10 N) and below;
+    # the band (a(8.75 N), a(10 N)) held the twist of the punches at a(10 N): Ψ = their turn,
+    # the twist 1 mrad minus the turn of the ramp's punches (there was none: twist 0 on the ramp)
+    a_old, a_new = float(r.radius[8]), float(r.radius[9])
+    G_t = c.moduli.torsional
+    ref = 8 * G_t * 1e-3 ** 2 * (a_old ** 3 - a_new ** 3) / 3
+    assert d[9] == pytest.approx(ref, rel=1e-12)
+    D = np.cumsum(d)
+    assert np.max(np.abs(e["work"] - e["stored"] - D)) <= ENERGY_BALANCE * np.max(e["stored"])
