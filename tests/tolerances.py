@@ -466,9 +466,11 @@ RINGS_COMPLEMENTARITY = 1e-9
 #: of the largest torque; root solves and rounding (measured 3e-13; 4.5e-3 when the ring solver's
 #: step aimed at the target in its own torque measure g·z instead of the density's torque)
 RINGS_TORQUE_INVERSION = 1e-9
-#: dissipated energy against twist_history's exact integral, 800 steps of an oscillation (the
-#: midpoint rule in time is second order): measured 6.2e-5
-RINGS_DISSIPATION_800_STEPS = 3e-4
+#: dissipated energy against twist_history's exact integral, an oscillation in 50 and in 800 steps
+#: at 100 rings: each step's work is ∫ M dφ along the step (exact in time at constant force), the
+#: rings remain: measured 6.9e-8 for both (the trapezoid booking before issue 26: 1.6e-2 and
+#: 6.3e-5, second order in the step)
+RINGS_DISSIPATION_800_STEPS = 1e-6
 #: 120 rings against the independent brute-force (piecewise-constant punch density, BVLS,
 #: 300 rings) on a 16-step path with the force changing every step: the brute force carries the
 #: edge error of a contact radius between ring nodes (order ~1.2); measured 3.1e-4 of the sliding
@@ -562,3 +564,25 @@ KAPPA_DOUBLE = 1e-14
 #: contact against the same path without it: the empty punch at radius 0 changes only the order of
 #: the sums of the twist and the released energy (measured 1.7e-16 and 5.9e-16 relative)
 ZERO_LOAD_START = 1e-14
+# Energy of the exact torsion solver (physics.torsion_energy; issue 26 item 1).
+#: a step's dissipation is a sum of products over Gauss points that vanish (Φ = 0 in the stick
+#: zone, a released density of zero): rounding of those sums, of the running total of the path
+#: (measured down to -1.4e-16, hip-cup scene)
+ENERGY_STEP_ROUNDING = 1e-12
+#: work in = elastic energy + dissipation, each its own sum of exact Gauss integrals, of the
+#: largest work or elastic energy of the path: rounding (measured 1.6e-15)
+ENERGY_BALANCE = 1e-12
+#: a step after a force rise at held twist whose stick radius stays outside the old contact
+#: dissipates what a fresh contact does (superposition), per step of the post-rise running
+#: total: rounding of the two runs' sums (measured 1.0e-12 of one step's own dissipation, 6.9e-14
+#: of the running total)
+ENERGY_SUPERPOSITION = 1e-10
+#: work and dissipation of a held-force twist path in coarse steps against the same path in
+#: finer steps (the booked work is ∫ M dφ along each step, additive): rounding of the root solves
+#: (measured 3.2e-14 of the largest work)
+ENERGY_REFINEMENT = 1e-10
+#: booked work of a twist from rest at constant force against ∫ M dφ of the closed-form exact
+#: torque (Jäger, contact.torsion) by scipy quad: the collocated full-sliding density of the
+#: rings (measured 4.0e-8 at 200 rings, for 1, 3 and 10 steps; the trapezoid rule of the old
+#: booking was off by 18 %, 2 %, 0.2 %)
+ENERGY_WORK_CLOSED_FORM = 1e-6

@@ -31,6 +31,7 @@ from ..params import check_count, check_memory
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
 from ..physics import torsion_annulus as _ta
+from ..physics import torsion_energy as _te
 from ..physics import torsion_rings as _tr
 from .base import SERIES, Foundation, PathArrays, PathNormal
 
@@ -241,7 +242,7 @@ class Rings(Foundation):
                  if ring_table and mu is not None else None)
         cur = dict.fromkeys(("depth", "force", "twist", "torque"), 0.0)
         ctrl = "twist"
-        M_old, W_in, W_d, E_old = 0.0, 0.0, 0.0, 0.0
+        M_old, W_in, W_d = 0.0, 0.0, 0.0
         G_t = self.moduli.torsional
         # the punch density as the state, each step with one slip annulus (stick radius inside
         # its ring) where that is the exact step; without friction limit rigid punches at the
@@ -301,13 +302,19 @@ class Rings(Foundation):
                                 slide_key = (edge_j, bj)
                             out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
                                                 st.twist, st.active, slip=bool(snaps), slide=slide)
-                            w, z, lam_slip, dphi, gross, c_stick, st.active, it, taken = out
+                            w_o = w
+                            w, z, lam_slip, dphi, gross, c_stick, st.active, it, book = out
                             M = _ta.torque(w, G_t)
-                            E_st = _ta.stored_energy(w, G_t)
-                            fallback += not taken
-                            W_in += 0.5 * (M_old + M) * dphi
-                            dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
-                            E_old = E_st
+                            # the step's work, elastic energy and dissipation
+                            # (physics.torsion_energy)
+                            if "ring" in book:
+                                fallback += 1
+                                en = _te.ring_step_energy(w_o, w, G_t, book["ring"])
+                            else:
+                                en = _te.annulus_energy(w_o, w, slide, edge_j, book["sense"], G_t,
+                                                        book["turn"], book["gross"])
+                            E_st, dW = en["stored"], en["dissipated"]
+                            W_in += en["work"]
                             slip += lam_slip
                         elif use_punches:
                             # no friction limit: rigid punches at the contact radii, exact
@@ -316,15 +323,17 @@ class Rings(Foundation):
                             kw = ({"dphi": float(target[j]) - st.twist} if ctrl == "twist" else
                                   {"target_torque": float(target[j])} if aj > 0 else
                                   {"dphi": 0.0})
+                            pt_o, pm_o = pt, pm
                             pt, pm, dphi = _ta.punch_step(pt, pm, aj, G_t, **kw)
                             gross = bool(ctrl == "torque" and aj == 0 and float(target[j]) != 0)
                             z, it, c_stick = None, 1, aj
                             lam_slip = np.zeros(r.size)
                             M = _ta.punch_torque(pt, pm, G_t)
-                            E_st = _ta.punch_energy(pt, pm, G_t)
-                            W_in += 0.5 * (M_old + M) * dphi
-                            dW = (0.5 * (M_old + M) * dphi) - (E_st - E_old)
-                            E_old = E_st
+                            # a release at the held twist, then a rigid punch
+                            # (physics.torsion_energy)
+                            en = _te.punch_step_energy(pt_o, pm_o, pt, pm, aj, G_t, dphi)
+                            E_st, dW = en["stored"], en["dissipated"]
+                            W_in += en["work"]
                         else:
                             z_old = st.z
                             if ctrl == "twist":
@@ -341,9 +350,12 @@ class Rings(Foundation):
                                 lam = np.zeros_like(z)
                                 dphi = 0.0
                             M = float(g @ z)
-                            W_in += 0.5 * (M_old + M) * dphi
-                            dW = 0.5 * float((z_old + z) @ lam)
+                            # the end traction times the slip (+ the release at a held twist),
+                            # in the ring solver's energy; the work balances it
+                            # (physics.torsion_energy)
+                            dW = _te.ring_dissipation(H, z_old, z, lam, held=dphi == 0.0)
                             E_st = 0.5 * float(z @ (H @ z))
+                            W_in += E_st - 0.5 * float(z_old @ (H @ z_old)) + dW
                             lam = np.where(bj > 0, lam, 0.0)
                             st.S = st.S + lam
                             slip += _tr.slip_density(lam, r, g)
@@ -427,7 +439,9 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     box-constrained step from the point tractions of ``w`` (its result turned back into a
     density). Returns the new density, the point tractions (or ``None``), the slip increments at
     the points (m), the twist increment, gross sliding, the stick radius (``None``: from the
-    tractions), the active set, pivots and whether the annulus step was taken. ``slip=False``
+    tractions), the active set, pivots and what the step's energy needs: the sense of the
+    annulus step and the turn of its density (``sense``, ``turn``), or where the ring solver took
+    the step its dissipation (``ring``). ``slip=False``
     skips the slip increments where the checks do not need them; ``slide`` is the step's
     full-sliding density when known."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
@@ -442,12 +456,16 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         gross = bool(np.isnan(extra))
         w_new = out["w"]
         ds = out["slip"]
+        # the energy of the step from the twist its density carries (plus a gross turn), not
+        # the target (they differ by the root's rounding)
+        book = {"sense": s, "turn": out["dpsi"] + (0.0 if gross else float(extra)),
+                "gross": 0.0 if gross else float(extra)}
         if gross:                   # torque beyond the sliding torque: slides, twist held
             return (w_new, None, ds, 0.0, True, 0.0,
-                    np.where(bound == 0, 2, int(s)).astype(int), 1, True)
+                    np.where(bound == 0, 2, int(s)).astype(int), 1, book)
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
         act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
-        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, True)
+        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, book)
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
@@ -472,4 +490,6 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     lam = np.where(bound > 0, lam, 0.0)
     act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
     w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))
-    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it, False)
+    # its dissipation in its own measure: the sliding traction times the slip, >= 0
+    return (w_new, z, _tr.slip_density(lam, r, g), dphi, gross, None, act, it,
+            {"ring": _te.ring_dissipation(H, z_old, z, lam, held=dphi == 0.0)})

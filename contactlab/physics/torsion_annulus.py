@@ -157,8 +157,12 @@ _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
 def stored_energy(p: Pieces, G_t: float) -> float:
-    """Elastic energy ``8 G_t ∫ x² Ψ(x)² dx``, J (4-point Gauss per piece, exact; below the
-    first piece ``Ψ`` is constant). The pieces must abut."""
+    """Elastic energy ``8 G_t ∫ x² Ψ(x)² dx``, J (4-point Gauss per piece, exact).
+
+    ``Ψ`` is constant wherever the density is zero: below the first piece and on every gap
+    between two pieces (a density spliced above an earlier, smaller contact: the old density
+    ends at the old contact radius ``a₀``, the new one starts at the stick radius ``c > a₀``).
+    Those intervals are integrated in closed form, ``Ψ² (x₁³ − x₀³)/3``."""
     lo, hi, _, _ = p
     if lo.size == 0:
         return 0.0
@@ -171,8 +175,11 @@ def stored_energy(p: Pieces, G_t: float) -> float:
     tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)
     Ps = (al[:, None] * (hi[:, None] - X) + 0.5 * be[:, None] * (hi[:, None] ** 2 - X * X)
           + tail[1:, None])
-    inner = float(tail[0]) ** 2 * lo[0] ** 3 / 3.0
-    return float(8.0 * G_t * (np.sum(0.5 * wg[None, :] * h[:, None] * X * X * Ps * Ps) + inner))
+    # the zero-density intervals [0, lo_0] and [hi_{k-1}, lo_k] (empty where pieces abut), on
+    # each of which Ψ is the integral over the pieces above: tail[k]
+    below = np.concatenate([[0.0], hi[:-1]])
+    gaps = np.sum(tail[:-1] ** 2 * (lo ** 3 - below ** 3)) / 3.0
+    return float(8.0 * G_t * (np.sum(0.5 * wg[None, :] * h[:, None] * X * X * Ps * Ps) + gaps))
 
 
 def _values(p: Pieces, x: np.ndarray, side: int) -> np.ndarray:

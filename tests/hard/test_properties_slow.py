@@ -8,7 +8,11 @@ default run). Invariants, each independent of the package's own numbers:
   (π/2) μ E* n κ_n c a^(n+2)/(n+2)) and 0 <= c <= a, M monotone in the twist;
 * tangential shift: 0 <= c <= a, |F_x| <= μ F_N, F_x monotone in the displacement;
 * cyclic shift: dissipated energy non-decreasing, the same in every closed cycle;
-* scene fuzzing: any mapping either raises a ContactlabError or runs to finite numbers.
+* scene fuzzing: any mapping either raises a ContactlabError or runs to finite numbers;
+* energy of torsion paths under a changing force (issue 26; the properties of
+  ``tests/hard/test_properties_energy.py``): no negative step, work = elastic energy +
+  dissipation, superposition after a force rise at held twist (exact route); no negative step
+  on the MDR route and in twist/shift histories.
 
 * cubic-spline tables of f = A r² + C r³ (the not-a-knot spline reproduces a cubic exactly, so
   the closed forms of the power-law sum are the reference): force against F(a) =
@@ -30,6 +34,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab.errors import ContactlabError, ContactlabWarning
 from contactlab.profiles import Cone, Paraboloid, PowerLaw, Tabulated
+from tests.hard import test_properties_energy as _en
 from tests.reference.kappa import kappa_float
 from tests.tolerances import DISSIPATION_CANCELLATION
 
@@ -248,3 +253,39 @@ def test_scene_fuzzing_only_contactlab_errors_and_finite_results(data):
     for name, v in result.series.items():
         v = np.asarray(v, float)
         assert not np.any(np.isnan(v)), name
+
+
+# ---- energy of torsion paths (issue 26 item 1): the properties of test_properties_energy.py
+
+
+@SLOW
+@given(i=st.integers(min_value=0, max_value=1), segs=_en.segments)
+def test_energy_exact_path_steps_non_negative_and_work_balance(i, segs):
+    _en.check_exact_path_energy(i, segs)
+
+
+@SLOW
+@given(i=st.integers(min_value=0, max_value=1), segs=_en.segments)
+def test_energy_exact_path_without_friction_limit(i, segs):
+    _en.check_exact_path_energy(i, segs, mu=None)
+
+
+@SLOW
+@given(i=st.integers(min_value=0, max_value=1), pre=_en.PRE, rise=_en.RISE, frac=_en.FRAC,
+       sense=st.sampled_from([-1.0, 1.0]), n=st.integers(min_value=1, max_value=12))
+def test_energy_superposition_after_a_force_rise_at_held_twist(i, pre, rise, frac, sense, n):
+    _en.check_superposition(i, pre, rise, frac, sense, n)
+
+
+@SLOW
+@given(i=st.integers(min_value=0, max_value=1), segs=_en.segments)
+def test_energy_mdr_path_steps_non_negative(i, segs):
+    _en.check_mdr_path(i, segs)
+
+
+@SLOW
+@given(i=st.integers(min_value=0, max_value=1),
+       points=st.lists(st.floats(min_value=-2.0, max_value=2.0), min_size=1, max_size=7),
+       n=st.integers(min_value=1, max_value=12))
+def test_energy_histories_steps_non_negative(i, points, n):
+    _en.check_histories(i, points, n)

@@ -15,7 +15,7 @@ from tests.tolerances import (RINGS_CONSTANT_LOAD, RINGS_CONSTANT_LOAD_FINE,
                               RINGS_NO_SLIP_GROWING, RINGS_STICK_RADIUS, RINGS_VS_BRUTE_FORCE,
                               RINGS_WORK_BALANCE, RINGS_NO_SLIP,
                               RINGS_DISSIPATION_QUADRATURE, RINGS_COMPLEMENTARITY,
-                              RINGS_TORQUE_INVERSION)
+                              RINGS_TORQUE_INVERSION, ENERGY_STEP_ROUNDING)
 
 R, MU, F = 0.01, 0.3, 10.0
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
@@ -134,10 +134,13 @@ def test_work_balance_and_dissipation_per_step():
     assert r.dissipated_energy[-1] > 0
 
 
-def test_dissipated_energy_converges_to_the_exact_history():
+@pytest.mark.parametrize("steps", [50, 800])
+def test_dissipated_energy_converges_to_the_exact_history(steps):
+    """Against Masing/Jäger's exact dissipation (twist_history): each step's work is ∫ M dφ
+    along the step, so the step count does not matter (the trapezoid was 1.6e-2 off at 50)."""
     c = contact()
     a, s, M_full = scales(c)
-    phi = 0.6 * s * np.sin(np.linspace(0, 4 * np.pi, 801)[1:])
+    phi = 0.6 * s * np.sin(np.linspace(0, 4 * np.pi, steps + 1)[1:])
     ref = c.twist_history(twist=phi, force=F)
     r = c.simulate(at_constant_load(phi), method="exact", n_rings=100)
     err = np.max(np.abs(r.dissipated_energy[2:] - ref.dissipated_energy))
@@ -380,10 +383,12 @@ def varying_load_with_snapshots(n_rings):
 
 
 def test_dissipation_from_the_returned_fields_by_independent_quadrature():
-    """Per step, ∫ 2πr ½(τ_old + τ_new) Δs dr from the returned fields (point tractions and slip
-    increments at the snapshots), integrated by scipy's adaptive quadrature on a monotone cubic
-    interpolant, against the solver's dissipation (work − change of stored energy on the
-    punch-density steps; τ × slip of the ring solver on the others)."""
+    """Per step, ∫ 2πr τ_new Δs dr from the returned fields (point tractions and slip
+    increments at the snapshots: the end traction times the slip, the dissipation of a step),
+    integrated by scipy's adaptive quadrature on a monotone cubic interpolant, against the
+    solver's dissipation, on the steps whose contact does not shrink (a shrinking contact's
+    step also releases the outer density, booked as a release at the held twist: see
+    ``docs/torsion_varying_load.md``, how energy is booked)."""
     from scipy.integrate import quad
     from scipy.interpolate import PchipInterpolator
     _, r = varying_load_with_snapshots(100)
@@ -391,18 +396,20 @@ def test_dissipation_from_the_returned_fields_by_independent_quadrature():
     total = per_step.sum()
     q = np.zeros(per_step.size)
     rest = {"radius": 0.0, "shear_torsion": 0.0}
+    grows = np.zeros(per_step.size, bool)
     for k in range(per_step.size):
         old, new = r.snapshots[k - 1] if k else rest, r.snapshots[k]
+        grows[k] = new["radius"] >= old["radius"]
         x = new["r"]
-        reach = max(old["radius"], new["radius"])      # points leaving slip as they release
-        f = 2 * np.pi * x * 0.5 * (old["shear_torsion"] + new["shear_torsion"]) * \
-            new["slip_increment"]
+        reach = max(old["radius"], new["radius"])
+        f = 2 * np.pi * x * new["shear_torsion"] * new["slip_increment"]
         m = x < reach
         xx = np.concatenate([[0.0], x[m], [reach]])
         ff = np.concatenate([[0.0], f[m], [0.0]])
         q[k] = quad(PchipInterpolator(xx, ff), 0.0, reach, points=xx[1:-1], limit=4000)[0]
-    assert np.max(np.abs(q - per_step)) < RINGS_DISSIPATION_QUADRATURE * total
-    assert abs(q.sum() - total) < RINGS_DISSIPATION_QUADRATURE * total
+    assert grows.sum() >= per_step.size // 3
+    assert np.max(np.abs(q - per_step)[grows]) < RINGS_DISSIPATION_QUADRATURE * total
+    assert np.all(per_step >= -ENERGY_STEP_ROUNDING * np.cumsum(per_step))
     assert r.dissipated_energy[-1] == pytest.approx(total, rel=1e-12)
 
 

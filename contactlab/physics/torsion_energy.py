@@ -1,0 +1,211 @@
+"""Energy of one step of the exact torsion solver: work in, elastic energy and dissipation.
+
+The state is a punch density ``w`` (:mod:`contactlab.physics.torsion_annulus`) with
+``Ψ(x) = ∫_x^∞ w dt``; its elastic energy is ``E = 8 G_t ∫ x² Ψ² dx`` and its torque
+``M = 16 G_t ∫ x² Ψ dx`` (integration by parts of ``(16/3) G_t ∫ t³ w dt``). All integrands
+below are polynomials on the intervals between the piece ends of the densities involved, so
+4-point Gauss–Legendre per interval is exact (gaps between pieces, where ``Ψ`` is constant,
+included).
+
+**A step as a process.** The single-slip-annulus step ``w_n = splice(w_o, s W_n, c)`` (``W_n``
+the density of the full-sliding traction ``μ p_n``) is the end of the continuous family
+``w(c') = splice(w_o, s W_n, c')``, ``c'`` running inwards from the outer end of both densities
+to ``c``: every point outside ``c'`` carries ``s μ p_n`` and the points inside ``c'`` turn
+rigidly, so ``dM/dφ = (16/3) G_t c'³`` along it. Its work ``∫ M dφ`` and dissipation
+``∫ τ ds dA`` are exactly (a *family* stage ``a → b`` with twist increment ``Δφ``)
+
+    W = M_b Δφ − E(Δw),      D = 16 G_t ∫ x² Ψ_b(x) Φ(x) dx,      W = E_b − E_a + D,
+
+``Δw = b − a`` and ``Φ(x) = Δφ − ΔΨ(x)`` the slip of a punch of radius ``x`` (the rigid turn minus
+the turn of the punches outside ``x``; the gross turn of a contact sliding as a whole where
+``Δφ ≠ ΔΨ(0)``). ``D`` is ``∫ τ_n Δs dA`` (the end traction times the slip of the step) and is
+summed from this product, not as ``W − ΔE``: on the annulus ``Ψ_b`` and ``Φ`` both have the sign
+of the slip and ``Φ = 0`` inside ``c``, so it has no cancellation and is ``>= 0`` whenever the
+slip points the way of the traction (which the step checks).
+
+**A shrinking contact.** Where ``w_o`` reaches beyond the new contact radius ``a_n`` the family
+first releases that outer density (traction-free: no dissipation) and turns the contact by
+``−G``, ``G = Ψ_o(a_n)``, before the annulus slides the other way (``s G > 0``) or further
+(``s G < 0``). Only the latter is a monotone twist; otherwise the step is booked as two stages
+that end at the same density:
+
+* ``s Δφ >= 0``: a release at the held twist to ``w_m`` (the step with ``Δφ = 0``), then the
+  family ``w_m → w_n``;
+* ``s Δφ < 0`` (``|Δφ| < |G|``): the family releases the outer density down to the radius
+  ``c₁`` with ``Ψ_o(c₁) = −Δφ`` (``w_q``: the twist reaches ``Δφ`` monotonically), then a release
+  at the held twist ``w_q → w_n``.
+
+A contact without a friction limit carries rigid punches (point masses of the density,
+:func:`contactlab.physics.torsion_annulus.punch_step`): its step is a release at the held twist
+(the punches beyond the new contact radius leave, their turn goes to the punch at the radius:
+dissipation ``8 G_t ∫_{a_n}^∞ x² Ψ_o² dx``, the energy of the released band) and then a rigid
+punch of the radius turned by ``Δφ`` (elastic: work ``½ (M_m + M_n) Δφ``, no dissipation), see
+:func:`punch_step_energy`.
+
+A *held* stage ``a → b`` does no work and dissipates ``E_a − E_b = 16 G_t ∫ x² Ψ_b (Ψ_a − Ψ_b)
+dx + E(b − a)`` (both ``>= 0`` for the held-twist step). The booking is continuous across
+the cases (at ``Δφ = 0`` and at ``Δφ = −G``), and a held twist does no work.
+
+All functions are pure: arrays in, arrays out.
+"""
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from . import torsion_annulus as _ta
+
+__all__ = ["annulus_energy", "energy", "punch_step_energy", "ring_dissipation", "ring_step_energy",
+           "step_energy"]
+
+_GAUSS = np.polynomial.legendre.leggauss(4)
+
+
+def _nodes(*dens: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss points and weights ``x² w`` on the intervals between all piece ends (and 0)."""
+    ends = np.unique(np.concatenate([np.zeros(1)] + [np.concatenate([d[0], d[1]])
+                                                     for d in dens]))
+    h = np.diff(ends)
+    xg, wg = _GAUSS
+    X = (ends[:-1, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]).ravel()
+    W = (0.5 * wg[None, :] * h[:, None]).ravel() * X * X
+    return X, W
+
+
+def energy(w: tuple, G_t: float) -> float:
+    """Elastic energy ``8 G_t ∫ x² Ψ² dx`` of a density, J (gaps between its pieces included)."""
+    if w[0].size == 0:
+        return 0.0
+    X, W = _nodes(w)
+    P = _ta.psi(w, X)
+    return float(8.0 * G_t * (W @ (P * P)))
+
+
+def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
+    """Work and dissipation of a chain of stages ``[(w_0, None), (w_1, f_1), (w_2, f_2), ...]``
+    (``f``: ``True`` a family stage, ``None`` a held stage), plus the elastic energies of its
+    ends. A family stage turns by the twist its density increment carries, ``ΔΨ(0)``, plus the
+    gross turn ``gross`` of a contact sliding as a whole (on the last family stage)."""
+    dens = [c[0] for c in chain]
+    X, W = _nodes(*dens)
+    k = 8.0 * G_t
+    work = diss = 0.0
+    zero = np.zeros(1)
+    P0 = Pa = _ta.psi(dens[0], X)
+    for (a, _), (b, family) in itertools.pairwise(chain):
+        # the increment's Ψ from the difference density: exactly ΔΨ(0) where the stage leaves
+        # the density alone (not a difference of two large Ψ), so Φ vanishes there; Ψ_b as
+        # Ψ_a + ΔΨ keeps the balance exact to rounding even on pieces narrower than the
+        # spacing of the floats around them
+        diff = _ta.difference(b, a, 0.0)
+        dP = _ta.psi(diff, X)
+        Pb = Pa + dP
+        E_d = k * float(W @ (dP * dP))
+        if family is None:
+            diss += -2.0 * k * float(W @ (Pb * dP)) + E_d
+        else:
+            dphi = float(_ta.psi(diff, zero)[0]) + gross
+            work += 2.0 * k * float(W @ Pb) * dphi - E_d
+            diss += 2.0 * k * float(W @ (Pb * (dphi - dP)))
+        Pa = Pb
+    return {"work": work, "stored": k * float(W @ (Pa * Pa)),
+            "stored_old": k * float(W @ (P0 * P0)), "dissipated": diss}
+
+
+def step_energy(old: tuple, new: tuple, G_t: float, gross: float | None = 0.0) -> dict:
+    """Work, elastic energy and dissipation of the family stage ``old → new``.
+
+    Parameters
+    ----------
+    old, new : Pieces
+        Punch densities before and after the step, rad/m per m.
+    G_t : float
+        Torsional modulus, Pa.
+    gross : float or None
+        Turn of the contact sliding as a whole beyond the twist of the density increment, rad
+        (0 unless the stick radius is 0); ``None``: a release at the held twist (no work).
+
+    Returns
+    -------
+    dict
+        ``work`` (J), ``stored`` (``E_n``, J), ``stored_old`` (``E_o``, J) and ``dissipated``
+        (J); ``work = stored − stored_old + dissipated`` up to rounding. The twist increment of
+        the step is ``ΔΨ(0) + gross``.
+    """
+    if old[0].size == 0 and new[0].size == 0:
+        return {"work": 0.0, "stored": 0.0, "stored_old": 0.0, "dissipated": 0.0}
+    if gross is None:
+        return _stages([(old, None), (new, None)], G_t)
+    return _stages([(old, None), (new, True)], G_t, float(gross))
+
+
+def annulus_energy(old: tuple, new: tuple, slide: tuple, radius: float, sense: float,
+                   G_t: float, dphi: float, gross: float = 0.0) -> dict:
+    """Energy of a single-slip-annulus step (:func:`contactlab.physics.torsion_annulus.step`
+    with sense ``sense`` onto the full-sliding density ``slide`` of the contact radius
+    ``radius``, twist increment ``dphi``, gross turn ``gross``): the family, or for a shrinking
+    contact the two stages of the module docstring; keys of :func:`step_energy`."""
+    top = float(old[1][-1]) if old[1].size else 0.0
+    if top > radius:
+        G = float(_ta.psi(old, np.array([radius]))[0])
+        if sense * G > 0:
+            if sense * dphi >= 0:
+                mid = _ta.step(old, slide, radius, G_t, dphi=0.0)["w"]
+                return _stages([(old, None), (mid, None), (new, True)], G_t, gross)
+            # the outer density released down to Ψ_o(c₁) = −Δφ (a step onto no density)
+            q = _ta.step(old, _ta.empty(), top, G_t, dphi=float(dphi))["w"]
+            return _stages([(old, None), (q, True), (new, None)], G_t)
+    return step_energy(old, new, G_t, gross)
+
+
+def ring_dissipation(H: np.ndarray, z_old: np.ndarray, z: np.ndarray, lam: np.ndarray,
+                     held: bool) -> float:
+    """Dissipation of a box-constrained ring step
+    (:func:`contactlab.physics.torsion_rings.box_step`) in its own energy measure, J.
+
+    ``z·λ``, the end traction times the area-weighted slip of the step (the rule of the family
+    stage; ``>= 0`` term by term: a point slides only at its limit and in the sense of its
+    traction), plus, at a held twist, the energy of the increment ``½ Δzᵀ H Δz`` (the rule of a
+    held stage: the step releases ``−ΔE`` and does no work).
+    """
+    D = float(z @ lam)
+    if held:
+        dz = z - z_old
+        D += 0.5 * float(dz @ (H @ dz))
+    return D
+
+
+def ring_step_energy(old: tuple, new: tuple, G_t: float, ring: float) -> dict:
+    """Energy of a step taken by the ring solver (two slip zones): its dissipation in its own
+    measure (:func:`ring_dissipation`), the elastic energies of the densities, and the work that
+    balances them (``E_n − E_o + D``; it differs from ``∫ M dφ`` by the ring discretisation:
+    the ring step's energy measure is not the density's); keys of :func:`step_energy`."""
+    E_o, E_n = energy(old, G_t), energy(new, G_t)
+    D = float(ring)
+    return {"work": E_n - E_o + D, "stored": E_n, "stored_old": E_o, "dissipated": D}
+
+
+def punch_step_energy(t: np.ndarray, m: np.ndarray, t_new: np.ndarray, m_new: np.ndarray,
+                      radius: float, G_t: float, dphi: float) -> dict:
+    """Energy of a step of a contact without a friction limit (rigid punches of radii ``t``,
+    turns ``m`` to ``t_new``, ``m_new``; :func:`contactlab.physics.torsion_annulus.punch_step`
+    with the contact radius ``radius`` and the twist increment ``dphi``).
+
+    The release at the held twist dissipates the energy of the band beyond ``radius``,
+    ``8 G_t ∫_radius^∞ x² Ψ_o² dx`` (``Ψ_o`` the turn of the punches beyond ``x``: a step
+    function), summed from its non-negative terms; the rigid punch of the radius then does the
+    elastic work ``½ (M_m + M_n) Δφ``; keys of :func:`step_energy`.
+    """
+    t, m = np.asarray(t, float), np.asarray(m, float)
+    out = t >= radius
+    order = np.argsort(t[out], kind="stable")
+    tb, mb = t[out][order], m[out][order]
+    tail = np.cumsum(mb[::-1])[::-1]                        # Ψ_o on (t_{k-1}, t_k) beyond
+    lo = np.concatenate([[radius], tb[:-1]])
+    D = float(8.0 * G_t * np.sum(tail ** 2 * (tb ** 3 - lo ** 3)) / 3.0)
+    k = 16.0 / 3.0 * G_t
+    M_m = float(k * (np.sum(t[~out] ** 3 * m[~out]) + radius ** 3 * np.sum(mb)))
+    M_n = _ta.punch_torque(t_new, m_new, G_t)
+    return {"work": 0.5 * (M_m + M_n) * float(dphi), "stored": _ta.punch_energy(t_new, m_new, G_t),
+            "stored_old": _ta.punch_energy(t, m, G_t), "dissipated": D}
