@@ -309,6 +309,30 @@ class NormalState(Cited):
         return _scalar_or_array(_normal.elastic_energy(self.contact.moduli.normal, a, self._depth,
                                                        g_int, g2))
 
+    @cached_property
+    def _edge_g(self) -> np.ndarray:
+        """The ``g(a)`` the pressure's edge term ``(d - g(a))/sqrt(a² - r²)`` is judged against.
+
+        A non-adhesive contact has no edge term (``d = g(a)`` defines its radius): the depth
+        itself is returned, so the term is exactly 0 and not the difference of a root solve's
+        two ends (which left ``±inf`` at the edge and in :attr:`peak_pressure`). Only a contact
+        pinned at a punch wall carries one, ``d - g(b) > 0``, counted where it exceeds the
+        rounding of the depth solve and the error of ``g(b)``.
+        """
+        prof = self.contact.profile
+        d = np.asarray(self._depth, dtype=float)
+        if not np.isfinite(prof.wall_radius):
+            return d
+        a = np.asarray(self._radius, dtype=float)
+        at_wall = (a > 0) & (a >= prof.wall_radius)
+        if not np.any(at_wall):
+            return d
+        from ..profiles.base import ROUNDING
+        g = self._g_at_radius
+        _, g_err = prof._g_with_error(np.where(at_wall, a, prof.wall_radius), self.contact.rtol)
+        tol = 8 * ROUNDING * (np.abs(d) + np.abs(g)) + np.abs(g_err)
+        return np.where(at_wall & (np.abs(d - g) > tol), g, d)
+
     def _field_args(self, r: Any) -> tuple[np.ndarray, ...]:
         r = as_float_array("r", r)
         if np.any(r < 0):
@@ -316,7 +340,7 @@ class NormalState(Cited):
         sh = self.shape
         a = self._radius.reshape(sh + (1,) * r.ndim)
         d = self._depth.reshape(sh + (1,) * r.ndim)
-        ga = self._g_at_radius.reshape(sh + (1,) * r.ndim)
+        ga = np.asarray(self._edge_g).reshape(sh + (1,) * r.ndim)
         return r, a, d, ga
 
     def pressure(self, r: Any, return_error: bool = False) -> Any:
@@ -432,9 +456,9 @@ class NormalState(Cited):
         """
         rho = np.linspace(0.0, 1.0, 1025)[:-1]
         a = self._radius[..., None]
+        g_edge = np.asarray(self._edge_g)
         val, _ = _normal.pressure(self.contact.profile, self.contact.moduli.normal, rho * a, a,
-                                  self._depth[..., None], self._g_at_radius[..., None],
-                                  self.contact.rtol)
-        flat_edge = (self._radius > 0) & (self._depth != self._g_at_radius)
+                                  self._depth[..., None], g_edge[..., None], self.contact.rtol)
+        flat_edge = (self._radius > 0) & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         return _scalar_or_array(peak)

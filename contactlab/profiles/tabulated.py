@@ -990,9 +990,11 @@ class Tabulated(Profile):
         self._guard(a[inside], "a")
         rr, aa = r[inside], a[inside]
         s0 = self._slopes[0]
-        with np.errstate(divide="ignore"):
-            val = np.where(s0 != 0, s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0)),
-                           0.0)
+        if s0 != 0:             # (a flat first segment has no tip term, also on the axis)
+            with np.errstate(divide="ignore"):
+                val = s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0))
+        else:
+            val = np.zeros(rr.shape)
         er = np.zeros(rr.shape)
         keep = self._dslope != 0
         nodes, ds = self.r[1:-1][keep], self._dslope[keep]
