@@ -21,7 +21,7 @@ from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
 
-__all__ = ["NormalState", "normal", "warn_outside_validity"]
+__all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip"]
 
 
 def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
@@ -32,6 +32,21 @@ def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
                       f"{limit!r} m, the range of the half-space theory for this profile; the "
                       "result is the half-space solution, not that of the real body.",
                       ValidityWarning, stacklevel=stacklevel)
+
+def warn_cone_tip(profile, value: np.ndarray, stacklevel: int = 3) -> None:
+    """:class:`ValidityWarning` when an infinite pressure comes from the cone tip of a linear
+    table (first segment not flat): real for that geometry, so it is said, with the smooth
+    alternative."""
+    if (profile.has("linear_table") and hasattr(profile, "table_axis_slope")
+            and profile.table_axis_slope() != 0 and np.any(np.isposinf(value))):
+        warnings.warn(
+            f"{profile!r}: the linear interpolant's first segment is not flat (slope "
+            f"{profile.table_axis_slope():.6g} on the axis), a cone tip whose pressure is "
+            "logarithmically infinite at r = 0, so the peak pressure is inf. For the surface "
+            "a smooth measured body has there, f'(0) = 0, use interpolation='cubic' (and "
+            "smoothing='auto' for noisy data); or read pressure(r) at r > 0.",
+            ValidityWarning, stacklevel=stacklevel)
+
 
 _SCALARS = (float, int, np.float64)
 #: sources of a normal-contact result (see :mod:`contactlab.citations`)
@@ -372,6 +387,8 @@ class NormalState(Cited):
         E = self.contact.moduli.normal
         rtol = self.contact.rtol
         val, err = _normal.pressure(prof, E, r, a, d, ga, rtol)
+        if np.any(r == 0):
+            warn_cone_tip(prof, np.where(r == 0, val, 0.0))
         if not return_error:
             return _scalar_or_array(val)
         from ..profiles.base import ROUNDING
@@ -452,7 +469,11 @@ class NormalState(Cited):
     def peak_pressure(self) -> Any:
         """Maximum pressure over the contact, Pa (sampled on 1024 radii from the centre).
 
-        ``inf`` where the pressure is singular (flat-punch edge, cone tip, ``n < 1``).
+        ``inf`` where the pressure is singular (flat-punch edge, cone tip, ``n < 1``). A linear
+        table whose first segment is not flat is a cone tip: ``inf``, with a
+        :class:`~contactlab.errors.ValidityWarning` naming the smooth alternative
+        (``interpolation="cubic"``, whose axis slope is 0). Tables take per-segment rules
+        cached per table (:mod:`contactlab.physics.table_pressure`).
         """
         rho = np.linspace(0.0, 1.0, 1025)[:-1]
         a = self._radius[..., None]
@@ -461,4 +482,5 @@ class NormalState(Cited):
                                   self._depth[..., None], g_edge[..., None], self.contact.rtol)
         flat_edge = (self._radius > 0) & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
+        warn_cone_tip(self.contact.profile, val[..., 0])
         return _scalar_or_array(peak)

@@ -85,7 +85,7 @@ _PROFILE_ALTERNATES: dict[str, dict[str, str]] = {
     "cone": {"half_angle": "angle"},
     "tabulated": {"file": "path", "r": "array", "f": "array", "interpolation": "choice",
                   "r_unit": "unit:length", "f_unit": "unit:length", "smoothing": "smoothing",
-                  "noise": "length", "admissible": "admissible"},
+                  "noise": "length", "admissible": "admissible", "axis": "axis"},
     "polynomial": {"terms": "terms"},
 }
 _MATERIAL_ALTERNATES: dict[str, dict[str, str]] = {"elastic": {"G": "pressure"}}
@@ -346,6 +346,8 @@ def _typed_object(ck: _Checker, path: str, raw: Any, kind: str) -> dict | None:
                    else ck.choice(kp, v, ("auto",)))
         elif dim == "admissible":
             val = ck.choice(kp, v, ("nearest",))
+        elif dim == "axis":
+            val = ck.choice(kp, v, ("even", "free"))
         elif dim == "terms":
             val = _terms(ck, kp, v)
         elif isinstance(v, list):    # sequence parameters (e.g. Prony-series moduli)
