@@ -546,3 +546,14 @@ TABLE_BOUNDED_SLIP_HERTZ = 1e-6
 #: whole-number n exact rationals (times π for odd n), other n a math.gamma ratio (worst
 #: measured 22.5 ulp near n = 31) or, for n >= 300, an asymptotic series (< 1e-18 truncation)
 KAPPA_DOUBLE = 1e-14
+#: pressure of a 300-point cubic table of a paraboloid against Hertz: the spline's interpolation
+#: error (~(h/a)^4 ~ 1e-9 at h/a = 6e-3; measured 1.8e-14 of p0 on a uniform table, f'' exact
+#: on parabolas away from the ends) plus the per-segment rules (~1e-12)
+TABLE_PRESSURE_CUBIC = 1e-8
+#: linear table of a paraboloid against Hertz, in units of (h/a) p0: the interpolant's slope
+#: jumps give log singularities at the nodes of strength ~ (h/R) E*, first order in h/a
+#: (measured 0.35 between the nodes on uniform 300-point tables)
+TABLE_PRESSURE_LINEAR = 2.0
+#: per-segment rules of physics.table_pressure against the profile's own per-node quadratures
+#: (both at rtol 1e-10; measured 1e-12 of the largest shape on uniform and random tables)
+TABLE_PRESSURE_SECOND = 1e-9

@@ -11,8 +11,19 @@ import pytest
 
 import contactlab as cl
 from contactlab.errors import ValidityWarning
-from contactlab.profiles import (Cone, FlatPunch, Paraboloid, Polynomial, PowerLaw, Scaled,
-                                 Sphere, Sum, Tabulated, TruncatedCone, TruncatedParaboloid)
+from contactlab.profiles import (
+    Cone,
+    FlatPunch,
+    Paraboloid,
+    Polynomial,
+    PowerLaw,
+    Scaled,
+    Sphere,
+    Sum,
+    Tabulated,
+    TruncatedCone,
+    TruncatedParaboloid,
+)
 from tests.tolerances import CLOSED_FORM
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
