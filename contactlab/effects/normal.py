@@ -362,7 +362,8 @@ class NormalState(Cited):
         """Contact pressure ``p(r)``, Pa, at radii ``r`` (m); 0 outside the contact.
 
         Singular points return ``inf`` (the flat-punch edge, the centre of a cone or of a power
-        law with ``n < 1``).
+        law with ``n < 1``, the axis of a linear table whose first segment is not flat, and
+        each node of a linear table where its slope jumps).
 
         Parameters
         ----------
@@ -387,8 +388,6 @@ class NormalState(Cited):
         E = self.contact.moduli.normal
         rtol = self.contact.rtol
         val, err = _normal.pressure(prof, E, r, a, d, ga, rtol)
-        if np.any(r == 0):
-            warn_cone_tip(prof, np.where(r == 0, val, 0.0))
         if not return_error:
             return _scalar_or_array(val)
         from ..profiles.base import ROUNDING
