@@ -586,3 +586,14 @@ ENERGY_REFINEMENT = 1e-10
 #: rings (measured 4.0e-8 at 200 rings, for 1, 3 and 10 steps; the trapezoid rule of the old
 #: booking was off by 18 %, 2 %, 0.2 %)
 ENERGY_WORK_CLOSED_FORM = 1e-6
+#: pressure of a 300-point cubic table of a paraboloid against Hertz: the spline's interpolation
+#: error (~(h/a)^4 ~ 1e-9 at h/a = 6e-3; measured 1.8e-14 of p0 on a uniform table, f'' exact
+#: on parabolas away from the ends) plus the per-segment rules (~1e-12)
+TABLE_PRESSURE_CUBIC = 1e-8
+#: linear table of a paraboloid against Hertz, in units of (h/a) p0: the interpolant's slope
+#: jumps give log singularities at the nodes of strength ~ (h/R) E*, first order in h/a
+#: (measured 0.35 between the nodes on uniform 300-point tables)
+TABLE_PRESSURE_LINEAR = 2.0
+#: per-segment rules of physics.table_pressure against the profile's own per-node quadratures
+#: (both at rtol 1e-10; measured 1e-12 of the largest shape on uniform and random tables)
+TABLE_PRESSURE_SECOND = 1e-9

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -63,6 +64,11 @@ class AdhesiveNormalState(NormalState):
     def surface_energy(self) -> Any:
         """Adhesion energy of the contact area, ``-π a² Δγ``, J."""
         return _scalar_or_array(-np.pi * self._radius**2 * self.contact.work_of_adhesion)
+
+    @cached_property
+    def _edge_g(self) -> np.ndarray:
+        """``g(a)`` itself: the adhesive edge term ``d - g(a) = -Δl`` is the physics here."""
+        return self._g_at_radius
 
     @property
     def peak_pressure(self) -> Any:

@@ -21,7 +21,7 @@ from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
 
-__all__ = ["NormalState", "normal", "warn_outside_validity"]
+__all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip"]
 
 
 def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
@@ -32,6 +32,21 @@ def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
                       f"{limit!r} m, the range of the half-space theory for this profile; the "
                       "result is the half-space solution, not that of the real body.",
                       ValidityWarning, stacklevel=stacklevel)
+
+def warn_cone_tip(profile, value: np.ndarray, stacklevel: int = 3) -> None:
+    """:class:`ValidityWarning` when an infinite pressure comes from the cone tip of a linear
+    table (first segment not flat): real for that geometry, so it is said, with the smooth
+    alternative."""
+    if (profile.has("linear_table") and hasattr(profile, "table_axis_slope")
+            and profile.table_axis_slope() != 0 and np.any(np.isposinf(value))):
+        warnings.warn(
+            f"{profile!r}: the linear interpolant's first segment is not flat (slope "
+            f"{profile.table_axis_slope():.6g} on the axis), a cone tip whose pressure is "
+            "logarithmically infinite at r = 0, so the peak pressure is inf. For the surface "
+            "a smooth measured body has there, f'(0) = 0, use interpolation='cubic' (and "
+            "smoothing='auto' for noisy data); or read pressure(r) at r > 0.",
+            ValidityWarning, stacklevel=stacklevel)
+
 
 _SCALARS = (float, int, np.float64)
 #: sources of a normal-contact result (see :mod:`contactlab.citations`)
@@ -309,6 +324,30 @@ class NormalState(Cited):
         return _scalar_or_array(_normal.elastic_energy(self.contact.moduli.normal, a, self._depth,
                                                        g_int, g2))
 
+    @cached_property
+    def _edge_g(self) -> np.ndarray:
+        """The ``g(a)`` the pressure's edge term ``(d - g(a))/sqrt(a² - r²)`` is judged against.
+
+        A non-adhesive contact has no edge term (``d = g(a)`` defines its radius): the depth
+        itself is returned, so the term is exactly 0 and not the difference of a root solve's
+        two ends (which left ``±inf`` at the edge and in :attr:`peak_pressure`). Only a contact
+        pinned at a punch wall carries one, ``d - g(b) > 0``, counted where it exceeds the
+        rounding of the depth solve and the error of ``g(b)``.
+        """
+        prof = self.contact.profile
+        d = np.asarray(self._depth, dtype=float)
+        if not np.isfinite(prof.wall_radius):
+            return d
+        a = np.asarray(self._radius, dtype=float)
+        at_wall = (a > 0) & (a >= prof.wall_radius)
+        if not np.any(at_wall):
+            return d
+        from ..profiles.base import ROUNDING
+        g = self._g_at_radius
+        _, g_err = prof._g_with_error(np.where(at_wall, a, prof.wall_radius), self.contact.rtol)
+        tol = 8 * ROUNDING * (np.abs(d) + np.abs(g)) + np.abs(g_err)
+        return np.where(at_wall & (np.abs(d - g) > tol), g, d)
+
     def _field_args(self, r: Any) -> tuple[np.ndarray, ...]:
         r = as_float_array("r", r)
         if np.any(r < 0):
@@ -316,14 +355,15 @@ class NormalState(Cited):
         sh = self.shape
         a = self._radius.reshape(sh + (1,) * r.ndim)
         d = self._depth.reshape(sh + (1,) * r.ndim)
-        ga = self._g_at_radius.reshape(sh + (1,) * r.ndim)
+        ga = np.asarray(self._edge_g).reshape(sh + (1,) * r.ndim)
         return r, a, d, ga
 
     def pressure(self, r: Any, return_error: bool = False) -> Any:
         """Contact pressure ``p(r)``, Pa, at radii ``r`` (m); 0 outside the contact.
 
         Singular points return ``inf`` (the flat-punch edge, the centre of a cone or of a power
-        law with ``n < 1``).
+        law with ``n < 1``, the axis of a linear table whose first segment is not flat, and
+        each node of a linear table where its slope jumps).
 
         Parameters
         ----------
@@ -428,13 +468,18 @@ class NormalState(Cited):
     def peak_pressure(self) -> Any:
         """Maximum pressure over the contact, Pa (sampled on 1024 radii from the centre).
 
-        ``inf`` where the pressure is singular (flat-punch edge, cone tip, ``n < 1``).
+        ``inf`` where the pressure is singular (flat-punch edge, cone tip, ``n < 1``). A linear
+        table whose first segment is not flat is a cone tip: ``inf``, with a
+        :class:`~contactlab.errors.ValidityWarning` naming the smooth alternative
+        (``interpolation="cubic"``, whose axis slope is 0). Tables take per-segment rules
+        cached per table (:mod:`contactlab.physics.table_pressure`).
         """
         rho = np.linspace(0.0, 1.0, 1025)[:-1]
         a = self._radius[..., None]
+        g_edge = np.asarray(self._edge_g)
         val, _ = _normal.pressure(self.contact.profile, self.contact.moduli.normal, rho * a, a,
-                                  self._depth[..., None], self._g_at_radius[..., None],
-                                  self.contact.rtol)
-        flat_edge = (self._radius > 0) & (self._depth != self._g_at_radius)
+                                  self._depth[..., None], g_edge[..., None], self.contact.rtol)
+        flat_edge = (self._radius > 0) & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
+        warn_cone_tip(self.contact.profile, val[..., 0])
         return _scalar_or_array(peak)

@@ -2,8 +2,9 @@
 
 Format: a header row naming the columns ``time`` (optional) and quantities (``depth`` or
 ``force``, ``displacement`` or ``tangential_force``, ``twist`` or ``torque``), each optionally
-with a unit in brackets in the grammar of scene files (``time [ms]``, ``force [kN]``,
-``twist [deg]``, ``torque [N m]``); then one row per step. A column without a unit is SI; a
+with a unit in the grammar of scene files (``time [ms]``, ``force (kN)``, ``twist/deg``,
+``torque_N*m``); then one row per step, separated by commas, semicolons, tabs or whitespace
+(detected; a UTF-8 byte-order mark is skipped). A column without a unit is SI; a
 unit that is unknown or of another dimension is an error, never ignored. Written files use the
 same ``name [unit]`` header style with SI units.
 """
@@ -37,7 +38,7 @@ def read_history(path: Any, *, units: dict[str, str] | None = None,
     units : dict, optional
         Column name -> unit for columns whose header has none (``{"force": "kN"}``).
     delimiter : str, optional
-        Column separator (default: detected, ``,`` or ``;``).
+        Column separator (default: detected: ``,``, ``;``, a tab or whitespace).
     check_names : bool
         Reject unknown column names (a scene validator reports them itself).
 
@@ -49,7 +50,7 @@ def read_history(path: Any, *, units: dict[str, str] | None = None,
         An unknown unit or one of the wrong dimension.
     """
     names, cols = read_columns(path, dimension=lambda n: DIMENSIONS.get(n), units=units,
-                               delimiter=delimiter)
+                               delimiter=delimiter, known_names=tuple(DIMENSIONS))
     if any(n.startswith("column ") for n in names):
         raise TabulatedDataError(
             f"file={str(path)!r} has no header row: a load-path CSV starts with column names "

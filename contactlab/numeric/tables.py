@@ -11,27 +11,54 @@ from __future__ import annotations
 import csv
 import math
 import os
+import re
 from collections.abc import Mapping
 from typing import Any, Callable
 
 import numpy as np
 
 from ..errors import ParameterError, TabulatedDataError, UnitError
-from .units import split_header, unit_factor
+from .units import (_allowed, canonical_unit, dimension_of_unit, split_header,
+                    underscore_unit, unit_factor)
 
 __all__ = ["read_columns", "write_columns"]
 
 
+#: column separators a file may use (whitespace: runs of spaces or tabs, detected last)
+_DELIMITERS = (",", ";", "\t")
+#: a whitespace-separated header cell: a name with an optional bracketed unit (``r [mm]``)
+_WS_CELL = re.compile(r"[^\s\[(]+(?:\s*[\[(][^\])]*[\])])?|[\[(][^\])]*[\])]")
+
+
+def _detect(lines: list[str]) -> str | None:
+    """The separator of the non-comment ``lines``: ``;`` if they hold more of them than commas
+    (decimal commas), else ``,`` if any; a tab if every line has one; else None (whitespace)."""
+    text = "\n".join(lines)
+    if ";" in text and text.count(";") > text.count(","):
+        return ";"
+    if "," in text:
+        return ","
+    if lines and all("\t" in ln for ln in lines):
+        return "\t"
+    return None
+
+
 def _rows(path: Any, delimiter: str | None) -> list[list[str]]:
     try:
-        with open(os.fspath(path), newline="") as fh:
+        # utf-8-sig: a byte-order mark (spreadsheet exports) is not part of the first header
+        with open(os.fspath(path), newline="", encoding="utf-8-sig") as fh:
             text = fh.read()
     except (OSError, TypeError, ValueError) as err:
         raise TabulatedDataError(f"file={str(path)!r} cannot be read: "
                                  f"{getattr(err, 'strerror', None) or err}.") from err
-    delim = delimiter or (";" if text.count(";") > text.count(",") else ",")
-    return [[c.strip() for c in row] for row in csv.reader(text.splitlines(), delimiter=delim)
-            if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
+    lines = [ln for ln in text.splitlines()
+             if ln.strip() and not ln.lstrip().startswith("#")]
+    delim = delimiter or _detect(lines)
+    if delim is None or delim == " ":
+        # whitespace-separated: a header cell keeps its bracketed unit ("r [mm]  f [um]")
+        return [_WS_CELL.findall(ln) if i == 0 else ln.split() for i, ln in enumerate(lines)]
+    return [[c.strip() for c in row] for row in csv.reader(lines, delimiter=delim)
+            if row and any(c.strip() for c in row)]
 
 
 def _check_arguments(units: Any, delimiter: Any) -> None:
@@ -67,6 +94,7 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
                  dimension: Callable[[str], str | None] | tuple[str | None, ...],
                  units: dict[str, str | None] | None = None,
                  delimiter: str | None = None, min_columns: int = 1, quote: bool = True,
+                 known_names: tuple[str, ...] | None = None,
                  ) -> tuple[list[str], dict[str, np.ndarray]]:
     """Read a CSV table and convert every column to SI.
 
@@ -85,13 +113,19 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         Column name or position -> unit given by the caller (``{"force": "kN"}``, ``{0: "mm"}``);
         it must agree with a unit in the header, if there is one.
     delimiter : str, optional
-        Column separator; default: ``;`` if the file holds more of them than commas, else ``,``.
+        Column separator; default: detected, ``;`` if the file holds more of them than commas,
+        else ``,`` if it holds any, else a tab if every line has one, else runs of whitespace
+        (a header cell ``r [mm]`` keeps its unit). A UTF-8 byte-order mark is skipped.
     min_columns : int
         Columns every row must have.
     quote : bool
         Quote the file in error messages (a cell that is not a number, the header's names and
         units). False names rows and columns by position only: scene files use it, so that a
         file named by mistake (or on purpose) is never shown.
+    known_names : tuple of str, optional
+        Column names the caller knows: ``force_lbf`` then reads as ``force`` in the unknown unit
+        ``lbf`` (an error), and ``tangential_force`` stays a name. Headers give units as
+        ``r [mm]``, ``r (mm)``, ``r/mm`` or ``r_mm`` (:func:`~contactlab.numeric.units.split_header`).
 
     Returns
     -------
@@ -125,7 +159,7 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         raise TabulatedDataError(f"{where} holds no data rows (expected a header row, then one "
                                  "row of numbers per point).")
     if header is not None:
-        parsed = [split_header(h) for h in header]
+        parsed = [split_header(h, known_names) for h in header]
         col_names = [n for n, _ in parsed]
         header_units = {n: u for n, u in parsed}
     else:
@@ -179,13 +213,23 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
                                 [(f"{name} [unit]", unit_h, "no unit")] if quote else [])
             out[name] = col
             continue
+        if unit_h is None and header is not None and isinstance(dimension, tuple):
+            # positional columns of a dimension (a profile's r, f): 'r_furlong' is a unit
+            # spelling we do not know, never a column in metres
+            unit_h = underscore_unit(name)
         try:
             factor_h = None if unit_h is None else unit_factor(unit_h, dim, f"{name} [unit]")
-        except UnitError:
-            if quote:
-                raise
-            raise UnitError(f"{where}: the unit in the header of column {j + 1} is unknown or "
-                            f"not a unit of {dim}.") from None
+        except UnitError as err:
+            if not quote:
+                raise UnitError(f"{where}: the unit in the header of column {j + 1} is unknown "
+                                f"or not a unit of {dim}.") from None
+            other = dimension_of_unit(canonical_unit(unit_h))
+            why = (f"of dimension {other}, not {dim}" if other is not None
+                   else f"not a unit contactlab knows (units of {dim}: {_allowed(dim)})")
+            base = name[:-len(unit_h) - 1] if name.endswith("_" + unit_h) else name
+            raise UnitError(f"{where}: column {name!r} has unit {unit_h!r}, {why}; write it "
+                            f"as '{base} [<unit>]' with a unit of {dim}.",
+                            issues=err.issues) from None
         factor_a = None if unit_a is None else unit_factor(unit_a, dim, f"unit of {name}")
         if factor_h is not None and factor_a is not None and not math.isclose(factor_h, factor_a):
             raise TabulatedDataError(

@@ -15,7 +15,8 @@ import re
 from ..errors import UnitError
 
 __all__ = ["UNITS", "DIMENSION_OF_SI_UNIT", "SI_UNIT", "parse_quantity", "format_quantity",
-           "dimension_of_unit", "canonical_unit", "unit_factor", "split_header", "split_number"]
+           "dimension_of_unit", "canonical_unit", "unit_factor", "split_header", "split_number",
+           "underscore_unit"]
 
 _PRODUCT = re.compile(r"\s*[*·]\s*|\s+")
 
@@ -234,14 +235,43 @@ def unit_factor(unit: str, dimension: str, key: str = "unit") -> float:
     return parse_quantity(f"1 {unit}", dimension, key)
 
 
-def split_header(name: str) -> tuple[str, str | None]:
-    """``"r [mm]"`` -> ``("r", "mm")``; ``"force"`` -> ``("force", None)``.
+def split_header(name: str, known_names: tuple[str, ...] | frozenset[str] | None = None
+                 ) -> tuple[str, str | None]:
+    """A CSV column header -> ``(name, unit or None)``.
 
-    >>> split_header(" twist [deg] "), split_header("time")
-    (('twist', 'deg'), ('time', None))
+    Accepted spellings: ``r [mm]``, ``r (mm)``, ``r/mm`` and ``r_mm``. The ``_`` form is read as
+    a unit only when the part after the last ``_`` is a known unit spelling, or when the part
+    before it is one of ``known_names`` (then an unknown unit is reported, not read as part of
+    the name); a header that is itself one of ``known_names`` (``tangential_force``) is a name.
+
+    >>> split_header(" twist [deg] "), split_header("time"), split_header("r/mm")
+    (('twist', 'deg'), ('time', None), ('r', 'mm'))
+    >>> split_header("f_um"), split_header("force_lbf", ("force",)), split_header("f_i")
+    (('f', 'um'), ('force', 'lbf'), ('f_i', None))
     """
     name = name.strip()
     m = re.match(r"^(.*?)\s*[\[(]\s*(.*?)\s*[\])]\s*$", name)
-    if m is None:
+    if m is not None:
+        return m.group(1).strip(), m.group(2)
+    if known_names is not None and name in known_names:
         return name, None
-    return m.group(1).strip(), m.group(2)
+    if "/" in name:
+        base, unit = (part.strip() for part in name.split("/", 1))
+        if base and unit:
+            return base, unit
+    if "_" in name:
+        base, suffix = name.rsplit("_", 1)
+        if base and suffix and (dimension_of_unit(_normalise_unit(suffix)) is not None
+                                or (known_names is not None and base in known_names)):
+            return base, suffix
+    return name, None
+
+
+def underscore_unit(name: str) -> str | None:
+    """The part after the last ``_`` of a header that :func:`split_header` left whole
+    (``"r_furlong"`` -> ``"furlong"``), or None: readers of columns with a dimension refuse it
+    as an unknown unit rather than take the column as SI."""
+    if "_" not in name:
+        return None
+    base, suffix = name.rsplit("_", 1)
+    return suffix if base and re.fullmatch(r"[^\W\d_][\w^°µμÅ]*", suffix) else None

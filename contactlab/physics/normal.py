@@ -35,11 +35,21 @@ def force(E_star: float, a: np.ndarray, d: np.ndarray, g_integral: np.ndarray) -
     return 2.0 * E_star * (a * d - g_integral)
 
 
-def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
-    """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` (0 for ``r >= a``); returns (value, error estimate)."""
+def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
+                   table_rules: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` (0 for ``r >= a``); returns (value, error estimate).
+
+    Tables (``"node_table"``) take the per-segment rules of
+    :mod:`contactlab.physics.table_pressure` (``table_rules=False``: the profile's own route,
+    which those rules fall back on where they cannot resolve a radius)."""
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     if profile._has("_pressure_shape_closed_form"):
         return profile._pressure_shape_closed_form(r, a), np.zeros(r.shape)
+    if table_rules and profile.has("node_table"):
+        from .table_pressure import pressure_shape as table_shape
+        res = table_shape(profile, r, a, rtol)
+        if res is not None:
+            return res
     if profile.has("semi_analytic_pressure_shape"):   # with an error estimate, or None: decline
         res = profile._pressure_shape_semi_analytic(r, a, rtol)
         if res is not None:

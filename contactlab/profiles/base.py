@@ -48,7 +48,8 @@ CAPABILITIES = {
     "node_table": "``table_nodes()``: table whose g is analytic between the returned nodes (m) "
                   "(square-root cusps or weaker kinks at them, none elsewhere); "
                   "``table_g_first(t)``: g on the first segment ``[0, r_1]`` in closed form; "
-                  "``table_g_slope(x)``: ``(g'(x), rounding estimate)`` between the nodes",
+                  "``table_g_slope(x)``: ``(g'(x), rounding estimate)`` between the nodes; "
+                  "``table_axis_slope()``: ``f'(0+)``",
     "semi_analytic_pressure_shape": "``_pressure_shape_semi_analytic(r, a, rtol)`` -> (value, "
                                     "error) or None to decline",
     "semi_analytic_abel_g": "``_abel_g_semi_analytic(r, a, rtol)`` -> (value, error) or None",

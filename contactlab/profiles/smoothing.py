@@ -17,9 +17,12 @@ is
   are excluded, GCV's spurious minimum at interpolation), with ``tr S_λ`` exact up to 1000 points and estimated from 32 fixed
   Rademacher probes (Hutchinson) beyond, so the choice is the same on every run.
 
-(Mirroring the table about the axis, ``f(-r) = f(r)``, would force a zero slope on the axis but
-rounds a cone's tip: on noisy cone tables it tripled the force error, so the ends stay natural
-and a slightly negative slope at the axis is left to the admissibility projection below.)
+On the axis the spline is even (``axis="even"``, the default): the table is mirrored,
+``f(-r) = f(r)``, and the smoother acts on the mirrored table, so the smoothed surface has
+``f'(0) = 0`` like every body of revolution that is smooth on its axis. Natural ends there left
+a slope of the noise's size on the axis, a cone tip whose pressure is infinite. A measured cone
+(a real tip) is smoothed with ``axis="free"``: natural ends at both ends, a tip rounded by the
+mirroring would triple a noisy cone's force error.
 
 The uncertainty the smoothing leaves is estimated once: the noise level ``σ`` (given, or from the
 residuals, ``RSS / (N - tr S)``), the spread of the smoothed table over 16 re-smoothed copies
@@ -88,11 +91,14 @@ class _Smoother:
     band matrices are built once; each λ costs one banded Cholesky solve, O(N), for any number
     of columns. This is the minimiser scipy's ``make_smoothing_spline`` computes (same λ)."""
 
-    def __init__(self, r: np.ndarray, f: np.ndarray) -> None:
+    def __init__(self, r: np.ndarray, f: np.ndarray, even: bool = False) -> None:
         from scipy import sparse
         self.r, self.f = r, f
-        self.x = r / r[-1]
         self.n = r.size
+        # even: the smoother of the mirrored table (the axis node once), restricted to r >= 0
+        self._skip = (1 if r[0] == 0 else 0) if even else None
+        full = np.concatenate([-r[::-1][:r.size - self._skip], r]) if even else r
+        self.x = full / r[-1]
         h = np.diff(self.x)
         m = self.x.size
         k = np.arange(m - 2)
@@ -115,8 +121,11 @@ class _Smoother:
 
     def _solve(self, y: np.ndarray, lam: float) -> np.ndarray:
         from scipy.linalg import solveh_banded
+        if self._skip is not None:          # mirror, smooth, keep the half r >= 0
+            y = np.concatenate([y[::-1][:self.n - self._skip], y])
         gamma = solveh_banded(self._R + lam * self._QQ, self.Q.T @ y)
-        return y - lam * (self.Q @ gamma)
+        out = y - lam * (self.Q @ gamma)
+        return out[-self.n:] if self._skip is not None else out
 
     def apply(self, values: np.ndarray, lam: float) -> np.ndarray:
         """The smoother ``S_λ`` applied to table values (1-D or columns)."""
@@ -164,9 +173,13 @@ def _golden(fun, lo: float, hi: float, iters: int = 30) -> float:
     return 0.5 * (a + b)
 
 
-def smooth_table(r: np.ndarray, f: np.ndarray, smoothing: object, noise: float | None
+def smooth_table(r: np.ndarray, f: np.ndarray, smoothing: object, noise: float | None,
+                 axis: str = "even"
                  ) -> tuple[np.ndarray, SmoothingReport, dict[str, np.ndarray]]:
     """Smoothed heights at the table radii, the report, and the error ingredients.
+
+    ``axis="even"`` smooths the table mirrored about the axis (``f'(0) = 0``), ``"free"``
+    with natural ends at both ends (see the module docstring).
 
     Returns
     -------
@@ -178,7 +191,7 @@ def smooth_table(r: np.ndarray, f: np.ndarray, smoothing: object, noise: float |
     """
     if r.size < 5:
         raise TabulatedDataError(f"r has {r.size} points: smoothing needs at least 5.")
-    sm = _Smoother(r, f)
+    sm = _Smoother(r, f, even=axis == "even")
     if isinstance(smoothing, str):
         if smoothing != "auto":
             raise ParameterError(f"smoothing={smoothing!r} is invalid: use None, 'auto' or a "

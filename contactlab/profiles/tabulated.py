@@ -89,6 +89,15 @@ class Tabulated(Profile):
     noise : float, optional
         Standard deviation of the measurement noise of ``f``, m (used by ``smoothing="auto"``
         and by the error estimate).
+    axis : {"even", "free"}
+        The surface on the axis. ``"even"`` (default): smooth there, ``f'(0) = 0`` (the table's
+        even extension ``f(-r) = f(r)``): the smoothing spline of ``smoothing=`` and the cubic
+        spline of ``interpolation="cubic"`` are made even, so their pressure is finite on the
+        axis. ``"free"``: keep the slope the data give on the axis (a measured cone or
+        pointed tip; smoothing then has natural ends, the cubic spline not-a-knot ends). The
+        linear interpolant keeps its first segment either way: if that segment is not flat the
+        table is a cone tip, whose pressure is logarithmically infinite on the axis (said by a
+        :class:`~contactlab.errors.ValidityWarning` when a peak pressure meets it).
     admissible : None or "nearest"
         ``"nearest"`` replaces the (smoothed) table by the nearest one whose linear
         interpolant has ``r f'(r)`` non-decreasing (slopes >= 0 and non-decreasing), so ``g`` is
@@ -125,15 +134,20 @@ class Tabulated(Profile):
         "file": "file", "r": "array:length", "f": "array:length",
         "interpolation": "choice|linear,cubic", "r_unit": "unit:length", "f_unit": "unit:length",
         "smoothing": "quantity:dimensionless:nonnegative|auto", "noise": "quantity:length",
-        "admissible": "choice|nearest"}
+        "admissible": "choice|nearest", "axis": "choice|even,free"}
     scene_one_of: ClassVar[tuple[tuple[str, ...], ...]] = (("file",), ("r", "f"))
 
     def __init__(self, r: Any, f: Any, interpolation: str = "linear", *,
                  smoothing: Any = None, noise: float | None = None,
-                 admissible: str | None = None) -> None:
+                 admissible: str | None = None, axis: str = "even") -> None:
         if interpolation not in ("linear", "cubic"):
             raise ParameterError(f"interpolation={interpolation!r} is invalid: use 'linear' "
                                  "(exact transform) or 'cubic' (smooth spline).")
+        if axis not in ("even", "free"):
+            raise ParameterError(f"axis={axis!r} is invalid: use 'even' (a surface smooth on "
+                                 "its axis, f'(0) = 0) or 'free' (keep the slope the data give "
+                                 "there, e.g. a cone tip).")
+        self.axis = axis
         if admissible not in (None, "nearest"):
             raise ParameterError(f"admissible={admissible!r} is invalid: use None (report a "
                                  "non-monotone g when a load reaches it) or 'nearest'.")
@@ -166,7 +180,7 @@ class Tabulated(Profile):
         self.smoothing_report = None
         self._band = None
         if smoothing is not None or admissible is not None:
-            f_arr = self._smooth(r_arr, f_arr, smoothing, noise, admissible)
+            f_arr = self._smooth(r_arr, f_arr, smoothing, noise, admissible, axis)
         f_rel = f_arr - f_arr[0]
         if r_arr[0] > 0:        # flat extension to the axis
             r_arr = np.concatenate([[0.0], r_arr])
@@ -193,7 +207,10 @@ class Tabulated(Profile):
         self._spline = None
         if interpolation == "cubic":
             from scipy.interpolate import CubicSpline
-            self._spline = CubicSpline(r_arr, f_rel)
+            # even: clamped f'(0) = 0 on the axis (the even extension of the table), so the
+            # surface has no cone tip there; free: not-a-knot at both ends
+            self._spline = CubicSpline(r_arr, f_rel, bc_type=(((1, 0.0), "not-a-knot")
+                                                              if axis == "even" else "not-a-knot"))
             self._spline_d = self._spline.derivative()
             probe = np.linspace(0, r_arr[-1], 8 * r_arr.size)
             fp = self._spline_d(probe)
@@ -280,14 +297,14 @@ class Tabulated(Profile):
         return 4096.0 * np.finfo(float).eps * f_scale / h[k]
 
     def _smooth(self, r: np.ndarray, f: np.ndarray, smoothing: Any, noise: float | None,
-                admissible: str | None) -> np.ndarray:
+                admissible: str | None, axis: str = "even") -> np.ndarray:
         """Smoothed and/or projected heights; sets :attr:`smoothing_report` and the error band."""
         from dataclasses import replace
 
         from .smoothing import SmoothingReport, nearest_admissible, slope_violations, smooth_table
         parts = None
         if smoothing is not None:
-            f_new, report, parts = smooth_table(r, f, smoothing, noise)
+            f_new, report, parts = smooth_table(r, f, smoothing, noise, axis)
         else:
             f_new = f.copy()
             report = SmoothingReport("admissible", 0.0, 0.0, 0.0, float(noise or 0.0), r.size)
@@ -357,15 +374,17 @@ class Tabulated(Profile):
                  r_unit: str | None = None, f_unit: str | None = None,
                  delimiter: str | None = None, smoothing: Any = None,
                  noise: float | None = None, admissible: str | None = None,
-                 quote_contents: bool = True) -> "Tabulated":
+                 axis: str = "even", quote_contents: bool = True) -> "Tabulated":
         """Read a table: two columns r, f (further columns are ignored).
 
         Parameters
         ----------
         path : path-like
-            CSV file. An optional header names the columns with their units in brackets, in the
-            unit grammar of scene files: ``r [mm],f [um]``. Lines starting with ``#`` are
-            comments; ``;`` separates columns if the file holds more of them than commas.
+            CSV file. An optional header names the columns with their units, in the unit
+            grammar of scene files: ``r [mm],f [um]`` (also ``r (mm)``, ``r_mm``, ``r/mm``; an
+            unknown unit is an error). Lines starting with ``#`` are comments; columns are
+            separated by ``,``, ``;`` (if the file holds more of them than commas), tabs or
+            whitespace; a UTF-8 byte-order mark is skipped.
         interpolation : {"linear", "cubic"}
             See :class:`Tabulated`.
         r_unit, f_unit : str, optional
@@ -373,7 +392,7 @@ class Tabulated(Profile):
             default m. A unit in the header and a different one here is an error.
         delimiter : str, optional
             Column separator (default: detected).
-        smoothing, noise, admissible
+        smoothing, noise, admissible, axis
             See :class:`Tabulated` (``noise`` in m, whatever the file's units).
         quote_contents : bool
             Quote the file in error messages (the bad cell, the header). False names rows and
@@ -404,7 +423,7 @@ class Tabulated(Profile):
             cols.pop(extra, None)
         r_name, f_name = names[0], names[1]
         return cls(cols[r_name], cols[f_name], interpolation=interpolation, smoothing=smoothing,
-                   noise=noise, admissible=admissible)
+                   noise=noise, admissible=admissible, axis=axis)
 
     @staticmethod
     def _table_array(name: str, values: Any) -> np.ndarray:
@@ -422,7 +441,9 @@ class Tabulated(Profile):
 
     # identity: arrays compare by value
     def _param_values(self) -> tuple[Any, ...]:
-        return (self.r.tobytes(), self.f.tobytes(), self.interpolation)
+        # (the axis condition changes the cubic spline only)
+        return (self.r.tobytes(), self.f.tobytes(), self.interpolation,
+                *((self.axis,) if self.interpolation == "cubic" else ()))
 
     def __repr__(self) -> str:
         return (f"Tabulated(<{self.r.size} points, r in [0, {self.r[-1]:.4g}] m>, "
@@ -966,6 +987,12 @@ class Tabulated(Profile):
         return slope, 8 * eps * (np.abs(slope) + 0.5 * np.pi * float(np.max(np.abs(self._slopes)))
                                  + np.abs(self._dslope).sum())
 
+    def table_axis_slope(self) -> float:
+        """Slope of the interpolant on the axis, ``f'(0+)`` (1): the first segment's slope
+        (linear) or the spline's (cubic; exactly 0 with ``axis="even"``). Nonzero means a cone
+        tip, whose pressure is logarithmically infinite on the axis."""
+        return float(self._slopes[0] if self._spline is None else self._cubic_base[0])
+
     def table_slopes(self) -> np.ndarray:
         """Slope of the interpolant on each table segment (linear interpolation)."""
         return self._slopes
@@ -998,9 +1025,11 @@ class Tabulated(Profile):
         self._guard(a[inside], "a")
         rr, aa = r[inside], a[inside]
         s0 = self._slopes[0]
-        with np.errstate(divide="ignore"):
-            val = np.where(s0 != 0, s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0)),
-                           0.0)
+        if s0 != 0:             # (a flat first segment has no tip term, also on the axis)
+            with np.errstate(divide="ignore"):
+                val = s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0))
+        else:
+            val = np.zeros(rr.shape)
         er = np.zeros(rr.shape)
         keep = self._dslope != 0
         nodes, ds = self.r[1:-1][keep], self._dslope[keep]

@@ -379,8 +379,11 @@ def _object_table(obj: Any, path: str) -> dict[str, Any]:
     if name == "polynomial":
         return {"type": name, "terms": [[float(c), float(n)] for c, n in obj.terms]}
     if name == "tabulated":
-        return {"type": name, "r": [float(v) for v in obj.r], "f": [float(v) for v in obj.f],
-                "interpolation": obj.interpolation}
+        out_t = {"type": name, "r": [float(v) for v in obj.r], "f": [float(v) for v in obj.f],
+                 "interpolation": obj.interpolation}
+        if obj.axis != "even":
+            out_t["axis"] = obj.axis
+        return out_t
     out: dict[str, Any] = {"type": name}
     for p in getattr(type(obj), "params", ()):
         v = getattr(obj, p.name)

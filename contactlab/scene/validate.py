@@ -19,7 +19,6 @@ Profiles and materials are looked up by name in the plugin registry (:func:`prof
 """
 from __future__ import annotations
 
-import csv
 import difflib
 import inspect
 import re
@@ -36,7 +35,6 @@ from .fretting_tables import axis_values, check_fretting_map, check_wear, fretti
 from .schema import (CONTROLS, CRITERIA, EFFECTS, FIELDS, FRETTING_MAP_KEYS, INTERFACE_KEYS,
                      MAX_MAP_POINTS, MAX_STEPS, METHODS, OUTPUT_KEYS, SCENE_KEYS, SECTIONS,
                      SEGMENTS, SERIES, SOLVER_KEYS, WEAR_KEYS, Key, dimension_of, key_from_text)
-from .units import split_header, unit_factor
 
 __all__ = ["validate", "profile_class", "material_class", "make_profile", "make_material",
            "object_keys", "SECTIONS", "SERIES", "FIELDS", "EFFECTS", "METHODS", "CONTROLS",
@@ -225,42 +223,22 @@ def _terms(ck: Checker, path: str, value: Any) -> list | None:
 
 def read_table(path: Path) -> dict[str, np.ndarray]:
     """Read a load-history CSV: a header row of column names with optional units in the grammar
-    of scene files (``time [ms],force [kN],twist [deg]``), then numbers; returns SI columns."""
-    text = Path(path).read_text()
-    rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
-    if len(rows) < 2:
-        raise ValueError("needs a header row and at least one data row")
-    names = [h.strip() for h in rows[0]]
-    if not all(re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*( *\[[^\]]*\])?", n) for n in names):
+    of scene files (``time [ms],force [kN],twist [deg]``), then numbers; returns SI columns.
+
+    The reader of :func:`contactlab.loadpath.io.read_history` (same units, delimiters and
+    byte-order marks), never quoting the file: columns of unknown names are returned as read,
+    for the validator to report."""
+    from ..loadpath.io import DIMENSIONS
+    from ..numeric.tables import read_columns
+    names, cols = read_columns(path, dimension=lambda n: DIMENSIONS.get(n, "ignore"),
+                               quote=False, known_names=tuple(DIMENSIONS))
+    if any(n.startswith("column ") for n in names):
         # (the header is not echoed: a mistaken file name must not print another file's lines)
         raise ValueError("the header row must name the columns (time, force, depth, ...)")
-    if len(rows) - 1 > MAX_STEPS:
-        raise ValueError(f"{len(rows) - 1} rows exceed the limit of {MAX_STEPS} steps")
-    try:
-        data = np.array([[float(v) for v in r] for r in rows[1:]], dtype=float)
-    except ValueError:
-        bad = next(i for i, r in enumerate(rows[1:], 2) if not _all_numbers(r))
-        raise ValueError(f"row {bad} holds a value that is not a number") from None
-    if data.ndim != 2 or data.shape[1] != len(names):
-        raise ValueError(f"every row needs {len(names)} numbers ({', '.join(names)})")
-    from ..loadpath.io import DIMENSIONS
-    out: dict[str, np.ndarray] = {}
-    for i, header in enumerate(names):
-        name, unit = split_header(header)
-        col = data[:, i]
-        if unit is not None and name in DIMENSIONS:
-            col = col * unit_factor(unit, DIMENSIONS[name], f"column {name}")
-        out[name] = col
-    return out
-
-
-def _all_numbers(row: Sequence[str]) -> bool:
-    try:
-        [float(v) for v in row]
-    except ValueError:
-        return False
-    return True
-
+    n_rows = max((len(v) for v in cols.values()), default=0)
+    if n_rows > MAX_STEPS:
+        raise ValueError(f"{n_rows} rows exceed the limit of {MAX_STEPS} steps")
+    return cols
 
 
 def _segment(ck: Checker, path: str, raw: Any, axes: dict[str, tuple[str, str]]) -> dict | None:

@@ -85,13 +85,16 @@ def table_abel_outside_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -
     return 2 / np.pi * total
 
 
-def spline_pressure_shape_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float) -> float:
-    """S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx of the not-a-knot cubic spline of the table (scipy
-    ``CubicSpline``), by nested scipy quad: ``g'(x) = ∫_0^{π/2} [f'(t) + t f''(t)]_{t = x sinθ}
+def spline_pressure_shape_quad(r: np.ndarray, f: np.ndarray, rr: float, a: float,
+                               axis: str = "even") -> float:
+    """S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx of the cubic spline of the table (scipy
+    ``CubicSpline``; ``axis="even"``: f'(0) = 0 on the axis and not-a-knot at the outer end, as
+    ``Tabulated``'s default; ``"free"``: not-a-knot at both ends), by nested scipy quad: ``g'(x) = ∫_0^{π/2} [f'(t) + t f''(t)]_{t = x sinθ}
     dθ`` (from g = x ∫_0^{π/2} f'(x sinθ) dθ), split at the nodes in θ, and S in ``u =
     arccosh(x/r)``, split at the nodes."""
     from scipy.interpolate import CubicSpline
-    sp = CubicSpline(r, f - f[0])
+    sp = CubicSpline(r, f - f[0], bc_type=((1, 0.0), "not-a-knot") if axis == "even"
+                     else "not-a-knot")
     d1, d2 = sp.derivative(1), sp.derivative(2)
 
     def g_prime(x: float) -> float:

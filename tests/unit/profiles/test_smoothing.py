@@ -7,6 +7,9 @@
 - the reported error estimates (which include the smoothing) cover the true error in at least
   95 % of a ladder of seeds;
 - the smoothing report says what smoothing did, and matches a given noise level;
+- the even default (issue 26): the smoothed surface has f'(0) = 0 (the even extension), the
+  same as smoothing the mirrored table by scipy's make_smoothing_spline; a cone keeps its tip
+  with axis="free";
 - the Reinsch smoother is the minimiser scipy's make_smoothing_spline computes (second method);
 - a table that stays non-monotone is diagnosed with radius and depth, and
   ``admissible="nearest"`` gives the nearest table with non-decreasing slopes (isotonic
@@ -42,7 +45,9 @@ def test_auto_smoothing_recovers_the_closed_form_and_its_error_estimate_covers(k
     covered = []
     for seed in range(5):
         r, f, prof = noisy(kind, n, frac, seed)
-        c = cl.Contact(Tabulated(r, f, smoothing="auto"), materials=(E, E))
+        # a measured cone is a real tip: the opt-out of the even axis (issue 26)
+        axis = "free" if kind == "cone" else "even"
+        c = cl.Contact(Tabulated(r, f, smoothing="auto", axis=axis), materials=(E, E))
         ref = cl.Contact(prof, materials=(E, E))
         d = ref.normal(radius=0.5 * R_MAX).depth
         s, s0 = c.normal(depth=d), ref.normal(depth=d)
@@ -78,8 +83,38 @@ def test_reinsch_smoother_matches_scipy():
                                    rtol=0, atol=SMOOTHER_SECOND_METHOD * np.max(np.abs(f)))
 
 
+@pytest.mark.parametrize("start", [0.0, 2e-5])
+def test_even_smoother_is_scipys_on_the_mirrored_table(start):
+    from scipy.interpolate import make_smoothing_spline
+    r, f, _ = noisy("paraboloid", 300, 1e-2, 4)
+    r = start + r
+    full_r = np.concatenate([-r[::-1][:r.size - (1 if start == 0 else 0)], r])
+    full_f = np.concatenate([f[::-1][:r.size - (1 if start == 0 else 0)], f])
+    x = full_r / r[-1]
+    for lam in (1e-7, 1e-4):
+        ours = _Smoother(r, f, even=True).apply(f, lam)
+        spline = make_smoothing_spline(x, full_f, lam=lam)
+        np.testing.assert_allclose(ours, spline(r / r[-1]), rtol=0,
+                                   atol=SMOOTHER_SECOND_METHOD * np.max(np.abs(f)))
+        # the even extension's spline is flat on the axis (to rounding of its coefficients)
+        assert abs(spline.derivative()(0.0)) <= SMOOTHER_SECOND_METHOD * np.max(np.abs(f))
+
+
+def test_axis_even_is_the_default_and_free_keeps_the_data_slope():
+    r, f, _ = noisy("paraboloid", 200, 2e-2, 0)
+    even = Tabulated(r, f, "cubic", smoothing="auto")
+    free = Tabulated(r, f, "cubic", smoothing="auto", axis="free")
+    assert even.axis == "even" and even.table_axis_slope() == 0.0
+    # natural ends leave the noise's slope on the axis: a cone tip of the smoothed data
+    assert free.table_axis_slope() != 0.0
+    assert even != free
+    lin = Tabulated(r, f)
+    assert lin.table_axis_slope() == (lin.f[1] - lin.f[0]) / lin.r[1]
+
+
 @pytest.mark.parametrize("bad", [{"smoothing": "gcv"}, {"smoothing": -1.0},
-                                 {"noise": -1e-9}, {"admissible": "closest"}])
+                                 {"noise": -1e-9}, {"admissible": "closest"},
+                                 {"axis": "odd"}])
 def test_invalid_options(bad):
     with pytest.raises(ParameterError, match=next(iter(bad))):
         Tabulated(np.linspace(0, 1e-3, 20), np.linspace(0, 1e-3, 20) ** 2, **bad)
