@@ -31,8 +31,10 @@ from typing import Callable
 import numpy as np
 
 from ..errors import OutsideTheoryError
-from ..numeric.powers import power_float, root_float
-from ..numeric.roots import scalar_root
+from ..numeric.powers import root_of_ratio_float, times_power_float
+
+_TINY = float(np.finfo(float).tiny)
+from ..numeric.roots import scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
 __all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
@@ -63,6 +65,7 @@ class ScalarForms:
     wall: float = math.inf
     validity: float = math.inf
     route: str = ""
+    radius_depth_of_reduced_force: Callable[[float], tuple[float, float]] | None = None
 
 
 def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], float]:
@@ -150,12 +153,13 @@ def _build(profile: Profile) -> ScalarForms | None:
         kc = profile._power_kappa(n) * c
         inv_n, n1 = 1.0 / n, n + 1.0
         return ScalarForms(
-            g=lambda a: kc * a**n,
-            g_integral=lambda a: power_float(a, n1) * kc / n1,
-            g_inverse=lambda d: (d / kc) ** inv_n,
+            g=lambda a: times_power_float(kc, a, n),
+            g_integral=lambda a: times_power_float(kc, a, n1, whole=True) / n1,
+            g_inverse=lambda d: ((d / kc) ** inv_n if _TINY <= d / kc < math.inf
+                                 else root_of_ratio_float(d, kc, n)),
             # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1); the array route's operations
-            radius_of_reduced_force=lambda fr: root_float(fr * n1 / (kc * n), n1),
-            g_prime=lambda a: n * kc * a ** (n - 1.0),
+            radius_of_reduced_force=lambda fr: root_of_ratio_float(fr * n1, kc * n, n1),
+            g_prime=lambda a: times_power_float(n * kc, a, n - 1.0),
             lo=lo, limit=limit, start=start)
     own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
     g = _on_scalar(profile._g) if not profile._has("_g_closed_form") else _on_scalar(
@@ -169,17 +173,18 @@ def _build(profile: Profile) -> ScalarForms | None:
         kn = [(profile._power_kappa(float(n)) * float(c), float(n)) for c, n in terms]
 
         def g(a: float) -> float:
-            return sum(k * a**n for k, n in kn)
+            return sum(times_power_float(k, a, n) for k, n in kn)
 
         def g_int(a: float) -> float:
-            return sum(power_float(a, n + 1.0) * k / (n + 1.0) for k, n in kn)
+            return sum(times_power_float(k, a, n + 1.0, whole=True) / (n + 1.0) for k, n in kn)
 
         def g_prime(a: float) -> float:
-            return sum(n * k * a ** (n - 1.0) for k, n in kn)
+            return sum(times_power_float(n * k, a, n - 1.0) for k, n in kn)
     g, g_int = own.get("g", g), own.get("g_integral", g_int)
     g_inv, g_prime = own.get("g_inverse", g_inv), own.get("g_prime", g_prime)
     return ScalarForms(g=g, g_integral=g_int, g_inverse=g_inv, radius_of_reduced_force=None,
-                       g_prime=g_prime, lo=lo, limit=limit, start=start)
+                       g_prime=g_prime, lo=lo, limit=limit, start=start,
+                       radius_depth_of_reduced_force=own.get("radius_depth_of_reduced_force"))
 
 
 def _with_validity(profile: Profile, forms: ScalarForms | None) -> ScalarForms | None:
@@ -220,7 +225,8 @@ def _upper(forms: ScalarForms, h: Callable[[float], float], target: float, what:
         hi_c = min(hi, cap)
         h_hi = h(hi_c)
         if h_hi >= target:
-            return lo, hi_c, h_hi
+            # a root far below the first bracket (forces of 1e-100 N): tightened from above
+            return shrink_bracket_scalar(h, target, lo, hi_c, h_hi)
         if hi_c >= cap:
             raise _too_deep(what, value, forms.limit, profile)
         lo, hi = hi_c, 4.0 * hi
@@ -249,6 +255,11 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
     if math.isfinite(forms.wall):       # flat punch: F = 2E*(b d - ∫_0^b g)
         b = forms.wall
         return b, (fr + forms.g_integral(b)) / b
+    if forms.radius_depth_of_reduced_force is not None:
+        a, d = forms.radius_depth_of_reduced_force(fr)
+        if a >= forms.limit:
+            raise _too_deep("force", F, forms.limit, profile)
+        return a, d
     if forms.radius_of_reduced_force is not None:
         a = forms.radius_of_reduced_force(fr)
     else:

@@ -184,7 +184,34 @@ class TruncatedParaboloid(_FlatCentred):
             q = (x - b) * (x + b)
             return (2 * x * x - b * b) / (R * math.sqrt(q)) if q > 0 else math.inf
 
-        return {"g": g, "g_integral": g_integral, "g_prime": g_prime}
+        def radius_depth(fr: float) -> tuple[float, float]:
+            s = math.sqrt(2.0) * b * math.sinh(math.asinh(1.5 * math.sqrt(2.0) * R * fr
+                                                          / (b * b * b)) / 3.0)
+            a = math.hypot(b, s)
+            return a, a * s / R
+
+        return {"g": g, "g_integral": g_integral, "g_prime": g_prime,
+                "radius_depth_of_reduced_force": radius_depth}
+
+    @property
+    def capabilities(self) -> frozenset[str]:
+        return frozenset({"reduced_force_state"})
+
+    def _radius_depth_of_reduced_force(self, fr: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Contact radius and depth (m) of reduced forces ``F/(2E*) > 0`` (m²) in closed form.
+
+        With ``s = sqrt(a² - b²)``: ``F/(2E*) = a g(a) - ∫_0^a g = (b² s + (2/3) s³)/R``, a
+        cubic in ``s`` with one real root, ``s = √2 b sinh(asinh(3√2 R F/(4E* b³))/3)``
+        (no cancellation for small forces); then ``a = hypot(b, s)`` and ``d = a s/R``. Next to
+        the rim the radius rounds onto ``b`` while ``s`` (and the depth) keep every digit:
+        a root solve in ``a`` lost them and reported the state as an overflow.
+        """
+        b, R = self.radius, self.R
+        fr = np.asarray(fr, dtype=float)
+        s = math.sqrt(2.0) * b * np.sinh(np.arcsinh(1.5 * math.sqrt(2.0) * R * fr / (b * b * b))
+                                         / 3.0)
+        a = np.hypot(b, s)
+        return a, a * s / R
 
 
 class TruncatedCone(_FlatCentred):
