@@ -213,6 +213,12 @@ SCALAR_VS_ARRAY = 1e-14
 #: then sees at ~2e-13
 SMALL_SLIP_FORCE = 1e-12
 
+#: normal solves at the edges of the float range (powers and roots in logarithms where the
+#: power alone leaves it: relative error ~eps |ln(result)| <= 2e-13; roots of 1e-200 against a
+#: bracket tightened from 1e-3: a few ulps) and the torsion field integrated by QUADPACK against
+#: the torque: measured <= 2e-13
+EXTREME_SCALE = 1e-12
+
 # ---- contact law (issue 14)
 #: ContactLaw (master curves + vectorised Masing) against Contact.twist_history/shift_history:
 #: the histories' own stick-radius root and quadratures are good to ~1e-12; margin for the
