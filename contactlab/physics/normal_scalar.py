@@ -18,9 +18,12 @@ Profiles without a closed-form (or symbolic) ``g``, rising before a wall, summed
 with a ring-contact check (tables) are not handled here (:func:`forms_of` returns ``None``): their
 callers use the array kernels. The results agree with the array route to the same tolerance
 (the same formulas, the same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they
-need not be bit-identical to it, but every call of this route is deterministic. On one power
-term with ``n`` = 1 or 2 (cone, paraboloid) the contact radius of a force is: both routes take
-the same square or cube root of the same operands (:mod:`contactlab.numeric.powers`).
+need not be bit-identical to it, but every call of this route is deterministic. Cones,
+paraboloids and flat punches are: both routes perform the same operations (the same square or
+cube root of the same operands, :mod:`contactlab.numeric.powers`; a paraboloid's own ``x²/R``
+and ``sqrt(R d)``). Elsewhere a root solve (Newton here, Chandrupatla on arrays) or a
+non-whole power (the C library's ``pow`` against numpy's) may move the last bits (measured
+<= 2.1e-15 relative; docs/robustness.md).
 """
 from __future__ import annotations
 
@@ -152,11 +155,15 @@ def _build(profile: Profile) -> ScalarForms | None:
         c, n = (float(v) for v in terms[0])
         kc = profile._power_kappa(n) * c
         inv_n, n1 = 1.0 / n, n + 1.0
+        # a profile's own float forms (the operations of its array closed forms: a paraboloid's
+        # x²/R and sqrt(R d), bit-identical to the array route) replace the generic κ c x^n
+        own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
         return ScalarForms(
-            g=lambda a: times_power_float(kc, a, n),
+            g=own.get("g", lambda a: times_power_float(kc, a, n)),
             g_integral=lambda a: times_power_float(kc, a, n1, whole=True) / n1,
-            g_inverse=lambda d: ((d / kc) ** inv_n if _TINY <= d / kc < math.inf
-                                 else root_of_ratio_float(d, kc, n)),
+            g_inverse=own.get("g_inverse", lambda d: ((d / kc) ** inv_n
+                                                      if _TINY <= d / kc < math.inf
+                                                      else root_of_ratio_float(d, kc, n))),
             # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1); the array route's operations
             radius_of_reduced_force=lambda fr: root_of_ratio_float(fr * n1, kc * n, n1),
             g_prime=lambda a: times_power_float(n * kc, a, n - 1.0),

@@ -7,6 +7,7 @@ and the Abel integral of g outside the contact
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from typing import ClassVar
 
@@ -229,6 +230,19 @@ class Paraboloid(PowerLaw):
 
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         return np.sqrt(self.R * d)
+
+    def _scalar_closed_forms(self) -> dict:
+        """Plain-float ``g`` and its inverse for the scalar normal solve: the operations of
+        :meth:`_g_closed_form` and :meth:`_g_inverse_closed_form` (bit-identical results)."""
+        R = self.R
+
+        def g(x: float) -> float:
+            return x * x / R
+
+        def g_inverse(d: float) -> float:
+            return math.sqrt(R * d)
+
+        return {"g": g, "g_inverse": g_inverse}
 
     def _length_scale(self) -> float:
         return self.R
