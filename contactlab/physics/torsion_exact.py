@@ -34,6 +34,7 @@ import numpy as np
 
 from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
+from .torsion_split import Summed, per_element, split_at_cuts
 
 __all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral",
            "x_g_integral", "sliding_torque", "twist_of_stick", "torque_of_stick",
@@ -580,7 +581,7 @@ def stick_shear(psi, psi_l: np.ndarray, G_t: float, r: np.ndarray, ell: np.ndarr
     ``psi(t, idx)`` is vectorised over nodes ``t`` (m, k) of elements ``idx``. The bounded form
     handles the flat-punch jump of Φ at ``t = a``. Flat arrays of equal size, ``r < a``.
     """
-    lo, hi, owner = _split_at_cuts(psi, ell, a)
+    lo, hi, owner = split_at_cuts(psi, ell, a)
 
     def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
         el = owner[idx]
@@ -594,54 +595,10 @@ def stick_shear(psi, psi_l: np.ndarray, G_t: float, r: np.ndarray, ell: np.ndarr
     # t = ℓ by (t²-r²)^{-3/2} when r is close to ℓ: the outer tolerance allows for it
     res = tanh_sinh(integrand, lo, hi, rtol=rtol, atol=10 * rtol * scale[owner] + 1e-300,
                     raise_on_failure=False)
-    value = _per_element(res.value, owner, ell.size)
-    error = _per_element(res.error, owner, ell.size)
-    _check_field(_Summed(value, error), rtol, scale, "stick-zone traction")
+    value = per_element(res.value, owner, ell.size)
+    error = per_element(res.error, owner, ell.size)
+    _check_field(Summed(value, error), rtol, scale, "stick-zone traction")
     return 4.0 * G_t * r / np.pi * (psi_l / root - value)
-
-
-class _Summed:
-    """``(value, error)`` of an integral summed over its segments (for :func:`_check_field`)."""
-
-    def __init__(self, value: np.ndarray, error: np.ndarray) -> None:
-        self.value, self.error = value, error
-
-
-def _split_at_cuts(psi, lo: np.ndarray, hi: np.ndarray
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Segments of ``[lo, hi]`` (per element) split at ``psi.cuts`` (the profile's breakpoints,
-    where the lag ψ has a kink or a square-root cusp, e.g. the rim of a flat part or a table
-    node: tanh-sinh across one converges too slowly to certify its tolerance). Returns
-    ``(seg_lo, seg_hi, owner)``: flat segment ends and the element of each segment; elements
-    without a cut inside keep one segment, in their own order first."""
-    cuts = np.asarray(getattr(psi, "cuts", ()), dtype=float)
-    n = lo.size
-    if cuts.size == 0:
-        return lo, hi, np.arange(n)
-    inner = (cuts[None, :] > lo[:, None]) & (cuts[None, :] < hi[:, None])
-    if not np.any(inner):
-        return lo, hi, np.arange(n)
-    el, j = np.nonzero(inner)
-    pts = cuts[j]
-    # each element's segments: [lo, c1], [c1, c2], ..., [ck, hi]; the first kept at position i
-    first_hi = hi.copy()
-    k = np.zeros(n, np.int64)
-    np.add.at(k, el, 1)
-    start = np.concatenate([[0], np.cumsum(k)[:-1]])
-    rank = np.arange(el.size) - start[el]
-    first_hi[el[rank == 0]] = pts[rank == 0]
-    nxt = np.where(rank + 1 < k[el], np.roll(pts, -1), hi[el])
-    return (np.concatenate([lo, pts]), np.concatenate([first_hi, nxt]),
-            np.concatenate([np.arange(n), el]))
-
-
-def _per_element(values: np.ndarray, owner: np.ndarray, n: int) -> np.ndarray:
-    """Sum of the segments' ``values`` per element."""
-    if owner.size == n:
-        return values
-    out = np.zeros(n)
-    np.add.at(out, owner, values)
-    return out
 
 
 def _check_field(res, rtol: float, scale: np.ndarray, what: str) -> None:
@@ -670,7 +627,7 @@ def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndar
     W = rr * np.arcsin(q) - cc * np.sqrt((1 - q) * (1 + q))
     hi = np.minimum(rr, aa)
 
-    lo, up, owner = _split_at_cuts(psi, cc, hi)
+    lo, up, owner = split_at_cuts(psi, cc, hi)
 
     def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
         el = owner[idx]
@@ -680,8 +637,8 @@ def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndar
     scale = np.abs(ph) * rr
     res = tanh_sinh(integrand, lo, up, rtol=rtol, atol=10 * rtol * scale[owner] + 1e-300,
                     raise_on_failure=False)
-    value = _per_element(res.value, owner, cc.size)
-    _check_field(_Summed(value, _per_element(res.error, owner, cc.size)), rtol, scale,
+    value = per_element(res.value, owner, cc.size)
+    _check_field(Summed(value, per_element(res.error, owner, cc.size)), rtol, scale,
                  "circumferential displacement")
     out[todo] = 2.0 / np.pi * (ph * W + value)
     return out
