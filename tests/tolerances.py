@@ -216,6 +216,20 @@ MERGED_ARGUMENTS = 1e-12
 #: tolerance 1e-15: a few ulps apart
 SCALAR_VS_ARRAY = 1e-14
 
+#: Cattaneo–Mindlin force at small displacement (down to u/u* = 1e-19) against a 40-digit
+#: evaluation of the MDR force from the same radius and depth: the slip term integrated on
+#: [c, a] (error ε d (a - c), a few ε of the force) and the stick radius entering only to second
+#: order (dF/dc = 0 at the exact c); measured <= 1e-13: at u/u* = 1e-19 the stick radius is
+#: within ulps of a, and the normal state's d = g(a) holds only to rounding, which the force
+#: then sees at ~2e-13
+SMALL_SLIP_FORCE = 1e-12
+
+#: normal solves at the edges of the float range (powers and roots in logarithms where the
+#: power alone leaves it: relative error ~eps |ln(result)| <= 2e-13; roots of 1e-200 against a
+#: bracket tightened from 1e-3: a few ulps) and the torsion field integrated by QUADPACK against
+#: the torque: measured <= 2e-13
+EXTREME_SCALE = 1e-12
+
 # ---- contact law (issue 14)
 #: ContactLaw (master curves + vectorised Masing) against Contact.twist_history/shift_history:
 #: the histories' own stick-radius root and quadratures are good to ~1e-12; margin for the

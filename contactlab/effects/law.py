@@ -16,6 +16,7 @@ the depth stays within ``load_rtol`` of the depth at which the contact's memory 
 from __future__ import annotations
 
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -67,7 +68,8 @@ class LawStep:
     dissipated_energy : ndarray
         Energy dissipated by friction in this step, J (both channels).
     exact : ndarray of bool
-        True where the result is exact (constant normal load).
+        True where the result is exact: constant normal load, and the contact's turning-point
+        memory never overflowed (see ``memory`` of :class:`ContactLaw`).
     """
 
     depth: np.ndarray
@@ -95,6 +97,12 @@ def law_sources(springs: bool = True) -> tuple[str, ...]:
                        "masing:torsion")
     return tags + tuple(t for t in sources_for("foundation", "foundation:torsion")
                         if springs and t not in tags)
+
+
+def _short(value: Any) -> str:
+    """``repr(value)``, cut to 60 characters (for error messages)."""
+    r = repr(value)
+    return r if len(r) <= 60 else r[:57] + "..."
 
 
 def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
@@ -155,8 +163,10 @@ class ContactLaw:
     torsion : {"exact"}
         Torsion model at constant load (Jäger's exact partial slip).
     memory : int
-        Turning points stored per contact and channel (see
-        :mod:`contactlab.physics.masing_stack` for what happens beyond).
+        Turning points stored per contact and channel. A reversal that finds a contact's stack
+        full forgets the innermost open loop (see :mod:`contactlab.physics.masing_stack`): the
+        contact's results are approximate from then on, ``exact`` is False for it until its
+        memory is reset, and the step emits one :class:`~contactlab.errors.ValidityWarning`.
     load_rtol : float
         Relative change of the depth, from the depth at which a contact's memory started, up to
         which the normal load counts as constant.
@@ -342,6 +352,10 @@ class ContactLaw:
 
     @state.setter
     def state(self, value: dict) -> None:
+        # every entry is checked before any is written: a refused state leaves the law as it was
+        if not isinstance(value, Mapping):
+            raise ParameterError(f"state={_short(value)} is invalid: give the dict of arrays "
+                                 "returned by law.state (e.g. dict(np.load(file))).")
         ref = self._st
         missing = sorted(set(ref) - set(value))
         extra = sorted(set(value) - set(ref))
@@ -349,13 +363,7 @@ class ContactLaw:
             raise ParameterError(f"state is invalid: missing keys {missing}, unknown keys "
                                  f"{extra} (it must come from law.state of a law of the same "
                                  "size and memory).")
-        new = {}
-        for k, v in ref.items():
-            arr = np.asarray(value[k])
-            if arr.shape != v.shape:
-                raise ParameterError(f"state[{k!r}] has shape {arr.shape}; this law needs "
-                                     f"{v.shape}.")
-            new[k] = arr.astype(v.dtype, copy=True)
+        new = {k: self._checked_state_entry(k, value[k], v) for k, v in ref.items()}
         for k, v in new.items():                # in place: channel fields are views
             ref[k][...] = v
 
@@ -365,18 +373,70 @@ class ContactLaw:
         Cattaneo–Mindlin, exact torsion, Masing's rule and the MDR springs for varying loads."""
         return Citations(law_sources())
 
+    def _checked_state_entry(self, key: str, value: Any, like: np.ndarray) -> np.ndarray:
+        """One entry of a state being restored, as ``like``'s dtype, or ParameterError naming
+        the key, the first offending entry and what is allowed (never NaN or a stray flag:
+        a NaN reference depth would disable the constant-load check and report a wrong torque
+        as exact)."""
+        try:
+            arr = np.asarray(value)
+        except Exception as err:                # ragged lists and the like
+            raise ParameterError(f"state[{key!r}] is invalid: it must be an array of shape "
+                                 f"{like.shape}.") from err
+        if arr.shape != like.shape:
+            raise ParameterError(f"state[{key!r}] has shape {arr.shape}; this law needs "
+                                 f"{like.shape}.")
+        if arr.dtype.kind not in "biuf":
+            raise ParameterError(f"state[{key!r}] has dtype {arr.dtype}: it must be numeric "
+                                 f"({like.dtype}).")
+        kind = like.dtype.kind
+        if kind == "f":
+            ok, allowed = np.isfinite(arr), "finite"
+            if key in ("depth_ref", "spr_cover"):
+                ok, allowed = ok & (arr >= 0), "finite and >= 0 m"
+        else:
+            whole = np.isfinite(arr) & (arr == np.round(arr)) if arr.dtype.kind == "f" else True
+            if kind == "b":
+                ok, allowed = whole & ((arr == 0) | (arr == 1)), "a flag (False/True)"
+            elif key.endswith("_last"):
+                ok, allowed = whole & (np.abs(arr) <= 1), "-1, 0 or 1 (last direction)"
+            elif key.endswith("_depth"):
+                ok = whole & (arr >= 0) & (arr <= self.memory)
+                allowed = f"an integer count of turning points in [0, memory={self.memory}]"
+            else:                               # spr_k: the cell holding the contact edge
+                ok = whole & (arr >= 0) & (arr < max(self.springs, 1))
+                allowed = f"an integer cell index in [0, springs={self.springs})"
+        ok = np.broadcast_to(ok, arr.shape)
+        if not np.all(ok):
+            i = np.unravel_index(int(np.argmin(ok)), arr.shape)
+            at = ", ".join(str(int(j)) for j in i)
+            raise ParameterError(f"state[{key!r}][{at}]={arr[i].item()!r} is invalid: it must "
+                                 f"be {allowed} (restore a state saved from law.state of a law "
+                                 "of the same size, memory and springs).")
+        return arr.astype(like.dtype, copy=True)
+
     def reset(self, mask: Any = None) -> None:
         """Clear the memory of the contacts in ``mask`` (bool array or indices; all if None)."""
         if mask is None:
             self._st = self._fresh(self.size)
             return
-        m = np.asarray(mask)
+        try:
+            m = np.asarray(mask)
+        except Exception as err:                # ragged lists and the like
+            raise ParameterError(f"mask={_short(mask)} is invalid: give a boolean array of one "
+                                 f"value per contact ({self.size},) or integer indices.") from err
         if m.dtype == bool:
             if m.shape != (self.size,):
                 raise ParameterError(f"mask has shape {m.shape}: a boolean mask needs one value "
                                      f"per contact ({self.size},).")
             idx = np.flatnonzero(m)
         else:
+            # integer indices (an empty list comes as float64: whole floats are indices too)
+            if m.dtype.kind not in "iuf" or (m.dtype.kind == "f" and not np.all(
+                    np.isfinite(m) & (m == np.round(m)))):
+                raise ParameterError(f"mask={_short(mask)} is invalid: give a boolean array of "
+                                     f"one value per contact ({self.size},) or integer "
+                                     "indices.")
             idx = m.astype(np.int64).ravel()
             bad = (idx < 0) | (idx >= self.size)
             if np.any(bad):
@@ -521,6 +581,7 @@ class ContactLaw:
                           "(outside the theory: the slip conditions couple).", ValidityWarning,
                           stacklevel=2)
         zero = np.zeros(size)
+        was = st["tan_overflow"] | st["tor_overflow"]
         dW = zero.copy()
         Ft, ct = zero.copy(), a.copy()
         M, cm = zero.copy(), a.copy()
@@ -533,7 +594,11 @@ class ContactLaw:
         if phi is not None:
             M, cm, w = self._torsion(phi, safe_a, safe_d)
             dW += w
-        exact = live.copy()
+        over = st["tan_overflow"] | st["tor_overflow"]
+        exact = live & ~over
+        if self.springs:                        # their (unused) stacks are not counted
+            over &= ~st["spr_on"]
+        n_over = int(np.count_nonzero(over & ~was & live))
         if self.springs and np.any(st["spr_on"]):
             idx = np.flatnonzero(st["spr_on"] & live)
             r = self._spring_step(idx, d[idx], a[idx], None if u is None else u[idx],
@@ -547,7 +612,19 @@ class ContactLaw:
                 arr[dead] = 0.0
             self._clear(np.flatnonzero(dead))
         self._check_finite(live, d, a, F, Ft, M, ct, cm, dW)
+        if n_over:
+            self._warn_overflow(n_over)
         return LawStep(d, a, F, Ft, M, ct, cm, dW, exact)
+
+    def _warn_overflow(self, count: int) -> None:
+        """One ValidityWarning for the contacts whose turning-point stack overflowed in this
+        step (their results are approximate from now on: ``out.exact`` is False)."""
+        warnings.warn(f"ContactLaw: the turning-point memory (memory={self.memory}) of {count} "
+                      "contact(s) overflowed in this step (more nested reversals than it holds): "
+                      "the innermost open loop was forgotten and their results are approximate "
+                      "from now on (out.exact is False, law.state['tan_overflow'] / "
+                      "['tor_overflow'] flag them) until their memory is reset. Raise memory= "
+                      "to keep them exact.", ValidityWarning, stacklevel=4)
 
     def _check_finite(self, live: np.ndarray, *outputs: np.ndarray) -> None:
         """Refuse a step whose response overflows float64 (inputs far outside any physical
@@ -630,7 +707,7 @@ class ContactLaw:
             spr = np.flatnonzero(st["spr_on"] & (flag != 1))
             flag[spr] = 3                               # the fused pass leaves them out
         mc = self._master
-        Ft, ct, M, cm, dW, exact, nf = _kernel.fused_pass(
+        Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
             u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
             self.G_torsion, self.n, mc, self._chan, self.parallel,
             None if out is None else (out.tangential_force, out.stick_radius, out.torque,
@@ -644,6 +721,8 @@ class ContactLaw:
                                       self.G_torsion, st, (Ft, ct, M, cm, dW), self.parallel)
         if nonfinite or nf:                             # overflow: refused, contacts reset
             self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
+        if n_over:
+            self._warn_overflow(n_over)
         return out if out is not None else LawStep(d, a, F, Ft, M, ct, cm, dW, exact)
 
     # ------------------------------------------------------------------ changing load: springs

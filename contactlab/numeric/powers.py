@@ -17,7 +17,8 @@ import math
 
 import numpy as np
 
-__all__ = ["power", "root", "power_integral", "power_float", "root_float", "WHOLE_POWERS"]
+__all__ = ["power", "root", "power_integral", "power_float", "root_float", "WHOLE_POWERS",
+           "times_power", "times_power_float", "root_of_ratio", "root_of_ratio_float"]
 
 #: exponents raised by multiplication (larger ones by ``pow``: chains would add roundings)
 WHOLE_POWERS = (1.0, 2.0, 3.0, 4.0)
@@ -55,6 +56,70 @@ def root(x: np.ndarray, q: float) -> np.ndarray:
     return np.power(x, 1.0 / q)
 
 
+_TINY = float(np.finfo(float).tiny)
+
+
+def times_power(k: float, x: np.ndarray, p: float, whole: bool = False) -> np.ndarray:
+    """``k * x**p`` (a new float array) also where ``x**p`` alone leaves the float range.
+
+    ``x**p`` by the ``**`` operator (``whole``: by :func:`power`), times ``k``: bit-identical to
+    that expression wherever the power is a normal float. Where it underflows (below the
+    smallest normal float: zero or subnormal) or overflows while ``k x**p`` need not
+    (``PowerLaw(c=1e294, n=100)`` at ``x = 5e-4``: ``x**100 = 8e-331``, ``k x**100 = 7e-37``),
+    the product is taken in logarithms, ``exp(log k + p log x)`` (relative error ~``ε |log|``
+    of the result, <= 2e-13).
+    """
+    x = np.asarray(x, dtype=float)
+    with np.errstate(over="ignore", under="ignore"):
+        pw = power(x, p) if whole else x ** p
+        out = np.asarray(k * pw, dtype=float)
+        bad = ((pw < _TINY) | ~np.isfinite(pw)) & (x > 0) & np.isfinite(x)
+        if np.any(bad) and k > 0:
+            out = np.array(out, dtype=float, ndmin=1).reshape(x.shape) if out.ndim == 0 else out
+            xb = x[bad] if x.ndim else x
+            out[bad] = np.exp(math.log(k) + p * np.log(xb))
+    return out
+
+
+def times_power_float(k: float, x: float, p: float, whole: bool = False) -> float:
+    """:func:`times_power` of one float (``x**p`` by :func:`power_float` when ``whole``)."""
+    try:
+        pw = power_float(x, p) if whole else x ** p
+    except OverflowError:
+        pw = math.inf
+    if (pw < _TINY or pw == math.inf) and 0.0 < x < math.inf and k > 0:
+        return math.exp(math.log(k) + p * math.log(x))
+    return k * pw
+
+
+def root_of_ratio(num: np.ndarray, den: float, q: float) -> np.ndarray:
+    """``(num/den)**(1/q)`` by :func:`root` (bit-identical to it where the quotient is a normal
+    float), in logarithms where the quotient alone underflows or overflows but its root need
+    not (``PowerLaw(c=1e294, n=100)`` at a depth of 1e-35 m: ``d/(κc) = 8e-331``, its 100th
+    root 5e-4). ``num >= 0`` (a new float array)."""
+    num = np.asarray(num, dtype=float)
+    with np.errstate(over="ignore", under="ignore"):
+        x = num / den
+        out = np.asarray(root(x, q), dtype=float)
+        bad = ((x < _TINY) | ~np.isfinite(x)) & (num > 0) & np.isfinite(num)
+        if np.any(bad) and den > 0:
+            out = np.array(out, dtype=float, ndmin=1).reshape(num.shape) if out.ndim == 0 else out
+            nb = num[bad] if num.ndim else num
+            out[bad] = np.exp((np.log(nb) - math.log(den)) / q)
+    return out
+
+
+def root_of_ratio_float(num: float, den: float, q: float) -> float:
+    """:func:`root_of_ratio` of one float (the quotient's root by :func:`root_float`)."""
+    try:
+        x = num / den
+    except OverflowError:       # pragma: no cover - float division gives inf, not an error
+        x = math.inf
+    if (x < _TINY or x == math.inf) and 0.0 < num < math.inf and den > 0:
+        return math.exp((math.log(num) - math.log(den)) / q)
+    return root_float(x, q)
+
+
 def power_integral(a: np.ndarray, terms, shift: float) -> np.ndarray:
     """``Σ k a**(n + shift) / (n + shift)`` over ``terms = [(k, n), ...]`` (a new float array of
     ``a``'s shape): the closed-form integrals of power terms (``k = κ_n c``; ``shift = 1``:
@@ -63,8 +128,12 @@ def power_integral(a: np.ndarray, terms, shift: float) -> np.ndarray:
     total = None
     for k, n in terms:
         p = n + shift
-        v = np.asarray(power(a, p), dtype=float)
-        v *= k
+        with np.errstate(over="ignore", under="ignore"):
+            v = np.asarray(power(a, p), dtype=float)
+        if np.any((v < _TINY) & (a > 0)) or not np.all(np.isfinite(v)):
+            v = times_power(k, a, p, whole=True)    # the power alone left the float range
+        else:
+            v *= k
         v /= p
         total = v if total is None else total + v
     return np.zeros(a.shape) if total is None else total

@@ -14,7 +14,8 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["bracketed_root", "scalar_root", "DEFAULT_XTOL"]
+__all__ = ["bracketed_root", "scalar_root", "shrink_bracket", "shrink_bracket_scalar",
+           "DEFAULT_XTOL", "SHRINK_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
 DEFAULT_XTOL = 4 * np.finfo(float).eps
@@ -124,7 +125,67 @@ def bracketed_root(
         tl = np.clip(tl, 4 * np.finfo(float).eps, 0.5)
         step[act] = np.clip(tn, tl, 1 - tl)
         act = act[~conv]
+    if act.size:
+        i = int(act[0])
+        raise ConvergenceError(
+            f"{what}: bracketed solve did not converge in {maxiter} steps (bracket "
+            f"[{min(x1[i], x2[i]):.17g}, {max(x1[i], x2[i]):.17g}], target {t[i]:.6g}).")
     return x.reshape(shape)
+
+
+#: :func:`shrink_bracket` tightens a bracket whose upper value exceeds the target by more than
+#: this factor (a root many orders of magnitude below the first bracket: forces of 1e-100 N);
+#: below it the bracket is left as it is (and results as they were)
+SHRINK_RATIO = 1e12
+#: each shrinking step divides the upper end by this factor (16**270 spans the float range)
+_SHRINK_FACTOR = 16.0
+
+
+def shrink_bracket(func: Callable[[np.ndarray, np.ndarray], np.ndarray], target: np.ndarray,
+                   lo: np.ndarray, hi: np.ndarray, f_hi: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Tighten brackets ``[lo, hi]`` of a non-decreasing ``func`` from above where
+    ``func(hi) > SHRINK_RATIO * target > 0``: ``hi`` is divided by 16 while ``func`` there
+    stays ``>= target`` (and above ``lo``), the last point below becomes ``lo``.
+
+    Without it a root tens of orders of magnitude below the first bracket (``[0, R/2]`` of a
+    sphere at a force of 1e-100 N) is approached by halving or by Newton steps that shrink by a
+    constant factor, and runs out of iterations. Returns new ``(lo, hi, f_hi)`` arrays (1D,
+    ``func(x, idx)`` as for :func:`bracketed_root`).
+    """
+    t = np.asarray(target, float).ravel()
+    lo = np.array(lo, float).ravel()
+    hi = np.array(hi, float).ravel()
+    f_hi = np.array(f_hi, float).ravel()
+    act = np.flatnonzero((t > 0) & (f_hi > SHRINK_RATIO * t))
+    while act.size:
+        trial = hi[act] / _SHRINK_FACTOR
+        inside = trial > lo[act]
+        act, trial = act[inside], trial[inside]
+        if act.size == 0:
+            break
+        f_t = np.asarray(func(trial, act), float)
+        above = f_t >= t[act]
+        lo[act[~above]] = trial[~above]
+        hi[act[above]] = trial[above]
+        f_hi[act[above]] = f_t[above]
+        act = act[above]
+    return lo, hi, f_hi
+
+
+def shrink_bracket_scalar(func: Callable[[float], float], target: float, lo: float, hi: float,
+                          f_hi: float) -> tuple[float, float, float]:
+    """:func:`shrink_bracket` for one bracket in plain floats (the same steps)."""
+    if not (target > 0 and f_hi > SHRINK_RATIO * target):
+        return lo, hi, f_hi
+    while True:
+        trial = hi / _SHRINK_FACTOR
+        if not trial > lo:
+            return lo, hi, f_hi
+        f_t = func(trial)
+        if f_t < target:
+            return trial, hi, f_hi
+        hi, f_hi = trial, f_t
 
 
 def scalar_root(func: Callable[[float], float], target: float, lo: float, hi: float, *,

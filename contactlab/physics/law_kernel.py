@@ -161,6 +161,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
     cM = math.pi * n / (2.0 * (n + 2.0)) if n != math.inf else 0.5 * math.pi
     K = X.shape[2]
     nonfinite = 0
+    n_over = 0
     for i in _prange(a.size):
         ai = a[i]
         if flag[i] == 3:                        # on springs: the spring pass writes
@@ -177,7 +178,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
         di = d[i]
         if ref[i] == 0.0:
             ref[i] = di
-        exact[i] = True
+        was = over[0, i] or over[1, i]
         mEd = mu[i] * E[i] * di
         wsum = 0.0
         for c in range(2):
@@ -255,10 +256,14 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                 cm[i] = ax
             wsum += e
         dW[i] = wsum
+        now = over[0, i] or over[1, i]
+        exact[i] = not now                      # an overflowed stack is approximate
+        if now and not was:
+            n_over += 1
         if not (math.isfinite(wsum) and math.isfinite(Ft[i]) and math.isfinite(M[i])
                 and math.isfinite(ct[i]) and math.isfinite(cm[i])):
             nonfinite += 1
-    return nonfinite
+    return nonfinite, n_over
 
 
 def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G, Gt,
@@ -441,18 +446,21 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     :class:`~contactlab.physics.master.MasterCurve`; ``chan``: the fields of
     :func:`~contactlab.physics.masing_stack.new_stack` stacked over a leading channel axis, 0
     tangential and 1 torsion, updated in place; ``ref`` set where it is 0). Returns
-    ``(Ft, ct, M, cm, dW, exact)`` (written into ``out`` when given)."""
+    ``(Ft, ct, M, cm, dW, exact, nonfinite, n_over)``: the outputs (written into ``out`` when
+    given), the number of contacts with a non-finite output and the number of contacts whose
+    turning-point stack overflowed for the first time in this step (``exact`` is False for
+    every overflowed contact)."""
     m = a.size
     if out is None:
         out = (np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
                np.empty(m, bool))
-    nf = _kernels(parallel)[1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
+    nf, n_over = _kernels(parallel)[1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
                           float(master.m0), None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
                           chan["last"], chan["depth"], chan["X"], chan["Y"], chan["overflow"],
                           *out)
-    return out + (nf,)
+    return out + (nf, n_over)
 
 
 def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: dict,

@@ -32,7 +32,8 @@ and keeps its hysteresis, but when the history later passes the forgotten loop's
 it follows the branch of the new turning point instead of the forgotten one, and at the next
 closure the response may jump by the difference (of the order of the forgotten loop). Results of
 a flagged contact are approximate from the overflow on; ``K = 8`` holds eight nested reversals
-(a ring-down of four full cycles without any loop closing).
+(a ring-down of four full cycles without any loop closing). Callers report it: the contact law
+sets ``exact`` False for flagged contacts and warns in the step of the overflow.
 """
 from __future__ import annotations
 

@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
-from ..numeric.powers import root
+from ..numeric.powers import root_of_ratio
 from ..numeric.quadrature import tanh_sinh
-from ..numeric.roots import bracketed_root
+from ..numeric.roots import bracketed_root, shrink_bracket
 from ..profiles.base import ROUNDING, root_rtol
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "pressure_from_shape", "displacement",
@@ -333,8 +333,8 @@ def _power_radius(profile, E_star: float, F: np.ndarray, term: tuple) -> np.ndar
     n1 = n + 1.0
     x = F / (2.0 * E_star)
     x *= n1
-    x /= profile._power_kappa(n) * c * n
-    return root(x, n1)
+    # (x / (κ c n))**(1/(n+1)), in logarithms where the quotient leaves the float range
+    return root_of_ratio(x, profile._power_kappa(n) * c * n, n1)
 
 
 def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
@@ -390,6 +390,8 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
                 if profile.has("reduced_force_solver") else None)
         if terms is not None and len(terms) == 1 and not walled:
             ap[solve] = _power_radius(profile, E, Fs, terms[0])
+        elif profile.has("reduced_force_state") and not walled:
+            pass                        # radius and depth below, in closed form
         elif fast is not None:          # profile-specific solver (convex linear tables)
             ap[solve] = fast
         else:
@@ -397,9 +399,13 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
             hi = np.full(Fs.shape, profile._initial_bracket())
             for _ in range(400):
                 hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
-                short = force_of_radius(profile, E, hi_c, rtol) < Fs
+                F_hi = force_of_radius(profile, E, hi_c, rtol)
+                short = F_hi < Fs
                 if not np.any(short):
                     hi = hi_c
+                    # a root far below the first bracket (forces of 1e-100 N): tightened
+                    lo, hi, _ = shrink_bracket(
+                        lambda x, idx: force_of_radius(profile, E, x, rtol), Fs, lo, hi, F_hi)
                     break
                 at_limit = short & (hi_c >= limit * (1 - 1e-15))
                 if np.any(at_limit) and not walled:
@@ -414,6 +420,10 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
     if walled:
         dp = np.where(ap >= profile.wall_radius,
                       (Fp / (2 * E) + profile._g_integral(ap, rtol)) / ap, profile._g(ap, rtol))
+    elif profile.has("reduced_force_state"):
+        # radius and depth together in closed form: next to the rim of a flat part the radius
+        # rounds onto the rim and g(radius) would lose the depth (and the force) entirely
+        ap, dp = profile._radius_depth_of_reduced_force(Fp / (2 * E))
     else:
         dp = profile._g(ap, rtol)
     a[pos] = ap

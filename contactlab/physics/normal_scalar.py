@@ -18,9 +18,12 @@ Profiles without a closed-form (or symbolic) ``g``, rising before a wall, summed
 with a ring-contact check (tables) are not handled here (:func:`forms_of` returns ``None``): their
 callers use the array kernels. The results agree with the array route to the same tolerance
 (the same formulas, the same bracket tolerance :func:`contactlab.profiles.base.root_rtol`); they
-need not be bit-identical to it, but every call of this route is deterministic. On one power
-term with ``n`` = 1 or 2 (cone, paraboloid) the contact radius of a force is: both routes take
-the same square or cube root of the same operands (:mod:`contactlab.numeric.powers`).
+need not be bit-identical to it, but every call of this route is deterministic. Cones,
+paraboloids and flat punches are: both routes perform the same operations (the same square or
+cube root of the same operands, :mod:`contactlab.numeric.powers`; a paraboloid's own ``x²/R``
+and ``sqrt(R d)``). Elsewhere a root solve (Newton here, Chandrupatla on arrays) or a
+non-whole power (the C library's ``pow`` against numpy's) may move the last bits (measured
+<= 2.1e-15 relative; docs/robustness.md).
 """
 from __future__ import annotations
 
@@ -31,8 +34,10 @@ from typing import Callable
 import numpy as np
 
 from ..errors import OutsideTheoryError
-from ..numeric.powers import power_float, root_float
-from ..numeric.roots import scalar_root
+from ..numeric.powers import root_of_ratio_float, times_power_float
+
+_TINY = float(np.finfo(float).tiny)
+from ..numeric.roots import scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
 __all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
@@ -63,6 +68,7 @@ class ScalarForms:
     wall: float = math.inf
     validity: float = math.inf
     route: str = ""
+    radius_depth_of_reduced_force: Callable[[float], tuple[float, float]] | None = None
 
 
 def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], float]:
@@ -149,13 +155,18 @@ def _build(profile: Profile) -> ScalarForms | None:
         c, n = (float(v) for v in terms[0])
         kc = profile._power_kappa(n) * c
         inv_n, n1 = 1.0 / n, n + 1.0
+        # a profile's own float forms (the operations of its array closed forms: a paraboloid's
+        # x²/R and sqrt(R d), bit-identical to the array route) replace the generic κ c x^n
+        own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
         return ScalarForms(
-            g=lambda a: kc * a**n,
-            g_integral=lambda a: power_float(a, n1) * kc / n1,
-            g_inverse=lambda d: (d / kc) ** inv_n,
+            g=own.get("g", lambda a: times_power_float(kc, a, n)),
+            g_integral=lambda a: times_power_float(kc, a, n1, whole=True) / n1,
+            g_inverse=own.get("g_inverse", lambda d: ((d / kc) ** inv_n
+                                                      if _TINY <= d / kc < math.inf
+                                                      else root_of_ratio_float(d, kc, n))),
             # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1); the array route's operations
-            radius_of_reduced_force=lambda fr: root_float(fr * n1 / (kc * n), n1),
-            g_prime=lambda a: n * kc * a ** (n - 1.0),
+            radius_of_reduced_force=lambda fr: root_of_ratio_float(fr * n1, kc * n, n1),
+            g_prime=lambda a: times_power_float(n * kc, a, n - 1.0),
             lo=lo, limit=limit, start=start)
     own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
     g = _on_scalar(profile._g) if not profile._has("_g_closed_form") else _on_scalar(
@@ -169,17 +180,18 @@ def _build(profile: Profile) -> ScalarForms | None:
         kn = [(profile._power_kappa(float(n)) * float(c), float(n)) for c, n in terms]
 
         def g(a: float) -> float:
-            return sum(k * a**n for k, n in kn)
+            return sum(times_power_float(k, a, n) for k, n in kn)
 
         def g_int(a: float) -> float:
-            return sum(power_float(a, n + 1.0) * k / (n + 1.0) for k, n in kn)
+            return sum(times_power_float(k, a, n + 1.0, whole=True) / (n + 1.0) for k, n in kn)
 
         def g_prime(a: float) -> float:
-            return sum(n * k * a ** (n - 1.0) for k, n in kn)
+            return sum(times_power_float(n * k, a, n - 1.0) for k, n in kn)
     g, g_int = own.get("g", g), own.get("g_integral", g_int)
     g_inv, g_prime = own.get("g_inverse", g_inv), own.get("g_prime", g_prime)
     return ScalarForms(g=g, g_integral=g_int, g_inverse=g_inv, radius_of_reduced_force=None,
-                       g_prime=g_prime, lo=lo, limit=limit, start=start)
+                       g_prime=g_prime, lo=lo, limit=limit, start=start,
+                       radius_depth_of_reduced_force=own.get("radius_depth_of_reduced_force"))
 
 
 def _with_validity(profile: Profile, forms: ScalarForms | None) -> ScalarForms | None:
@@ -220,7 +232,8 @@ def _upper(forms: ScalarForms, h: Callable[[float], float], target: float, what:
         hi_c = min(hi, cap)
         h_hi = h(hi_c)
         if h_hi >= target:
-            return lo, hi_c, h_hi
+            # a root far below the first bracket (forces of 1e-100 N): tightened from above
+            return shrink_bracket_scalar(h, target, lo, hi_c, h_hi)
         if hi_c >= cap:
             raise _too_deep(what, value, forms.limit, profile)
         lo, hi = hi_c, 4.0 * hi
@@ -249,6 +262,11 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
     if math.isfinite(forms.wall):       # flat punch: F = 2E*(b d - ∫_0^b g)
         b = forms.wall
         return b, (fr + forms.g_integral(b)) / b
+    if forms.radius_depth_of_reduced_force is not None:
+        a, d = forms.radius_depth_of_reduced_force(fr)
+        if a >= forms.limit:
+            raise _too_deep("force", F, forms.limit, profile)
+        return a, d
     if forms.radius_of_reduced_force is not None:
         a = forms.radius_of_reduced_force(fr)
     else:

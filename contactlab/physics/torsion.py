@@ -328,6 +328,7 @@ class Exact(TorsionModel):
             P, _ = _exact.slip_function(self.prof, self.E, t, a[idx][:, None], d[idx][:, None],
                                         g_a[idx][:, None], self.rtol)
             return self.mu / (2 * self.G) * P
+        psi.cuts = _exact._cuts(self.prof)      # kinks of ψ: field quadratures split there
         return psi
 
     def dissipation(self, phi, c, a, d, g_a):

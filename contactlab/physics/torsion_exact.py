@@ -34,6 +34,7 @@ import numpy as np
 
 from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root
+from .torsion_split import Summed, per_element, split_at_cuts
 
 __all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral",
            "x_g_integral", "sliding_torque", "twist_of_stick", "torque_of_stick",
@@ -580,19 +581,24 @@ def stick_shear(psi, psi_l: np.ndarray, G_t: float, r: np.ndarray, ell: np.ndarr
     ``psi(t, idx)`` is vectorised over nodes ``t`` (m, k) of elements ``idx``. The bounded form
     handles the flat-punch jump of Φ at ``t = a``. Flat arrays of equal size, ``r < a``.
     """
+    lo, hi, owner = split_at_cuts(psi, ell, a)
+
     def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        rr = r[idx][:, None]
-        dpsi = psi(t, idx) - psi_l[idx][:, None]
+        el = owner[idx]
+        rr = r[el][:, None]
+        dpsi = psi(t, el) - psi_l[el][:, None]
         return dpsi * t / ((t - rr) * (t + rr)) ** 1.5
 
     root = np.sqrt((a - r) * (a + r))
     scale = np.abs(psi_l) / root
     # ψ(t) - ψ(ℓ) carries the relative noise (~rtol) of the inner quadrature, amplified near
     # t = ℓ by (t²-r²)^{-3/2} when r is close to ℓ: the outer tolerance allows for it
-    res = tanh_sinh(integrand, ell, a, rtol=rtol, atol=10 * rtol * scale + 1e-300,
+    res = tanh_sinh(integrand, lo, hi, rtol=rtol, atol=10 * rtol * scale[owner] + 1e-300,
                     raise_on_failure=False)
-    _check_field(res, rtol, scale, "stick-zone traction")
-    return 4.0 * G_t * r / np.pi * (psi_l / root - res.value)
+    value = per_element(res.value, owner, ell.size)
+    error = per_element(res.error, owner, ell.size)
+    _check_field(Summed(value, error), rtol, scale, "stick-zone traction")
+    return 4.0 * G_t * r / np.pi * (psi_l / root - value)
 
 
 def _check_field(res, rtol: float, scale: np.ndarray, what: str) -> None:
@@ -621,15 +627,20 @@ def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndar
     W = rr * np.arcsin(q) - cc * np.sqrt((1 - q) * (1 + q))
     hi = np.minimum(rr, aa)
 
+    lo, up, owner = split_at_cuts(psi, cc, hi)
+
     def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        rv = rr[idx][:, None]
-        return psi(t, todo[idx]) * 2 * t * t / (rv * np.sqrt((rv - t) * (rv + t)))
+        el = owner[idx]
+        rv = rr[el][:, None]
+        return psi(t, todo[el]) * 2 * t * t / (rv * np.sqrt((rv - t) * (rv + t)))
 
     scale = np.abs(ph) * rr
-    res = tanh_sinh(integrand, cc, hi, rtol=rtol, atol=10 * rtol * scale + 1e-300,
+    res = tanh_sinh(integrand, lo, up, rtol=rtol, atol=10 * rtol * scale[owner] + 1e-300,
                     raise_on_failure=False)
-    _check_field(res, rtol, scale, "circumferential displacement")
-    out[todo] = 2.0 / np.pi * (ph * W + res.value)
+    value = per_element(res.value, owner, cc.size)
+    _check_field(Summed(value, per_element(res.error, owner, cc.size)), rtol, scale,
+                 "circumferential displacement")
+    out[todo] = 2.0 / np.pi * (ph * W + value)
     return out
 
 

@@ -32,7 +32,7 @@ import numpy as np
 from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
 from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
-from ..numeric.roots import bracketed_root
+from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
 
@@ -55,6 +55,9 @@ CAPABILITIES = {
     "semi_analytic_abel_g": "``_abel_g_semi_analytic(r, a, rtol)`` -> (value, error) or None",
     "reduced_force_solver": "``_radius_of_reduced_force(F/(2E*), rtol)`` -> contact radii or None "
                             "to decline",
+    "reduced_force_state": "``_radius_depth_of_reduced_force(F/(2E*))`` -> (contact radii, "
+                           "depths) in closed form, the depth not taken as g(radius) (a contact "
+                           "radius that rounds onto a kink of g, as at a flat part's rim)",
 }
 
 #: Numerical routes to g(x), in order of preference.
@@ -450,6 +453,10 @@ class Profile(ParamIdentity, ABC):
             short = g_hi < d
             if not np.any(short):
                 hi = hi_c
+                # a root far below the first bracket (depths of 1e-200 m): tightened
+                lo, hi, _ = shrink_bracket(lambda x, idx: self._g(x, rtol), d.ravel(),
+                                           lo.ravel(), hi.ravel(), np.ravel(g_hi))
+                lo, hi = lo.reshape(d.shape), hi.reshape(d.shape)
                 break
             if np.isfinite(limit) and np.any(short & (hi >= limit * (1 - 1e-15))):
                 i = int(np.argmax(short & (hi >= limit * (1 - 1e-15))))

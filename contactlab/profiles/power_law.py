@@ -7,13 +7,14 @@ and the Abel integral of g outside the contact
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from typing import ClassVar, cast
 
 import numpy as np
 
 from ..errors import ParameterError
-from ..numeric.powers import power_integral
+from ..numeric.powers import power_integral, times_power
 from ..params import Param, check_in_range, exactly_one
 from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
@@ -52,10 +53,11 @@ def _power_pressure_shape(c: float, n: float, r: np.ndarray, a: np.ndarray) -> n
         if np.any(edge):
             ze, ae = z[edge], aa[edge]
             from scipy.special import hyp2f1   # lazy: scipy.special costs ~0.1 s at import
-            val[edge] = n * k * c * ae ** (n - 1) * np.sqrt(ze) * hyp2f1(1 - 0.5 * n, 1.0, 1.5, ze)
+            val[edge] = times_power(n * k * c, ae, n - 1) * np.sqrt(ze) * hyp2f1(1 - 0.5 * n, 1.0,
+                                                                                 1.5, ze)
         axis = rr == 0
         if np.any(axis):
-            val[axis] = np.inf if n <= 1 else n * k * c * aa[axis] ** (n - 1) / (n - 1)
+            val[axis] = np.inf if n <= 1 else times_power(n * k * c, aa[axis], n - 1) / (n - 1)
         core = ~edge & ~axis
         if np.any(core):
             from ..numeric.quadrature import tanh_sinh
@@ -82,7 +84,7 @@ def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
     ``1 - q = (r-a)(r+a)/r²`` free of cancellation.
     """
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
-    out = np.array(c * np.minimum(r, a) ** n, dtype=float, ndmin=1).reshape(r.shape)
+    out = np.array(times_power(c, np.minimum(r, a), n), dtype=float, ndmin=1).reshape(r.shape)
     outside = r > a
     if np.any(outside):
         from scipy.special import hyp2f1
@@ -94,12 +96,12 @@ def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
         k2 = 2 * kappa(n) * c / np.pi
         if np.any(far):
             rf, af = rr[far], aa[far]
-            val[far] = k2 * af ** (n + 1) / (rf * (n + 1)) * hyp2f1(0.5, 0.5 * (n + 1),
-                                                                   0.5 * (n + 3), q[far])
+            val[far] = times_power(k2, af, n + 1) / (rf * (n + 1)) * hyp2f1(
+                0.5, 0.5 * (n + 1), 0.5 * (n + 3), q[far])
         near = ~far
         if np.any(near):
             rn, an, wn = rr[near], aa[near], w[near]
-            val[near] = c * rn ** n - k2 * an ** (n + 1) / rn * np.sqrt(wn) * hyp2f1(
+            val[near] = times_power(c, rn, n) - times_power(k2, an, n + 1) / rn * np.sqrt(wn) * hyp2f1(
                 0.5 * n + 1, 1.0, 1.5, wn)
         out[outside] = val
     return out
@@ -112,24 +114,25 @@ class _PowerSum(Profile):
         raise NotImplementedError
 
     def _height(self, r: np.ndarray) -> np.ndarray:
-        return sum(c * r**n for c, n in self.power_terms()) * np.ones_like(r)
+        return sum(times_power(c, r, n) for c, n in self.power_terms()) * np.ones_like(r)
 
     def _slope(self, r: np.ndarray) -> np.ndarray:
         out = np.zeros_like(r)
         for c, n in self.power_terms():
             with np.errstate(divide="ignore"):
-                out = out + np.where(r > 0, c * n * r ** (n - 1), c if n == 1 else (np.inf if n < 1 else 0.0))
+                out = out + np.where(r > 0, times_power(c * n, r, n - 1),
+                                     c if n == 1 else (np.inf if n < 1 else 0.0))
         return out
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
-        return sum(kappa(n) * c * x**n for c, n in self.power_terms()) * np.ones_like(x)
+        return sum(times_power(kappa(n) * c, x, n) for c, n in self.power_terms()) * np.ones_like(x)
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         return power_integral(a, [(kappa(n) * c, n) for c, n in self.power_terms()], 1.0)
 
     def _g_squared_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         terms = [(kappa(n) * c, n) for c, n in self.power_terms()]
-        return sum(k1 * k2 * a ** (n1 + n2 + 1) / (n1 + n2 + 1)
+        return sum(times_power(k1 * k2, a, n1 + n2 + 1) / (n1 + n2 + 1)
                    for k1, n1 in terms for k2, n2 in terms) * np.ones_like(a)
 
     def _pressure_shape_closed_form(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
@@ -180,7 +183,16 @@ class PowerLaw(_PowerSum):
         return power_form([(c, rational(self.n))], {c: self.c})
 
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
-        return (d / (kappa(self.n) * self.c)) ** (1.0 / self.n)
+        k = kappa(self.n) * self.c
+        with np.errstate(over="ignore", under="ignore"):
+            x = d / k
+            out = np.asarray(x ** (1.0 / self.n), dtype=float)
+            # the quotient alone may leave the float range (c = 1e294, n = 100): logarithms
+            bad = ((x < np.finfo(float).tiny) | ~np.isfinite(x)) & (d > 0) & np.isfinite(d)
+            if np.any(bad):
+                out = np.array(out, dtype=float, ndmin=1).reshape(np.shape(d))
+                out[bad] = np.exp((np.log(np.asarray(d, float)[bad]) - np.log(k)) / self.n)
+        return out
 
 
 class Paraboloid(PowerLaw):
@@ -218,6 +230,19 @@ class Paraboloid(PowerLaw):
 
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         return np.sqrt(self.R * d)
+
+    def _scalar_closed_forms(self) -> dict:
+        """Plain-float ``g`` and its inverse for the scalar normal solve: the operations of
+        :meth:`_g_closed_form` and :meth:`_g_inverse_closed_form` (bit-identical results)."""
+        R = self.R
+
+        def g(x: float) -> float:
+            return x * x / R
+
+        def g_inverse(d: float) -> float:
+            return math.sqrt(R * d)
+
+        return {"g": g, "g_inverse": g_inverse}
 
     def _length_scale(self) -> float:
         return self.R

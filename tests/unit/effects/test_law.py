@@ -229,7 +229,8 @@ def test_overflow_flag():
     ring = 4e-4 * np.sin(np.linspace(0, 6 * np.pi, 301)) * np.exp(-np.linspace(0, 1, 301))
     hist = np.concatenate([ring, np.linspace(ring[-1], 6e-4, 101)[1:]])
     M_big, big = _run(_hertz_law(memory=64), hist)
-    M_small, small = _run(_hertz_law(memory=2), hist)
+    with pytest.warns(ValidityWarning, match="memory=2"):
+        M_small, small = _run(_hertz_law(memory=2), hist)
     assert small.state["tor_overflow"][0] and not big.state["tor_overflow"][0]
     diff = np.flatnonzero(np.abs(M_small - M_big) > 1e-12 * np.max(np.abs(M_big)))
     assert diff.size and diff[0] >= ring.size
