@@ -29,6 +29,7 @@ from ..params import check_count, check_flag, check_memory, name_list, step_indi
 from ..physics import fretting as _fr
 from ..physics.torsion import MDR_VALID_STICK_RATIO
 from ..physics.torsion_validity import affordable_states
+from ._protocol import Result, reporting
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
@@ -51,6 +52,13 @@ SERIES = ("time", "depth", "force", "radius", "displacement", "tangential_force"
           "torque", "stick_radius", "dissipated_energy", "gross_sliding")
 _SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
                      gross_sliding="1")
+#: rings of the coarse exact check of an MDR torsion path under a changing normal force
+PATH_CHECK_RINGS = 64
+#: longest path (steps) whose MDR torsion run gets the coarse exact check
+PATH_CHECK_STEPS = 2000
+#: model error reported for longer such paths: the largest MDR energy error measured on
+#: varying-load paths (benchmarks/torsion_rings.py --map: up to 68 %), not a bound
+PATH_MEASURED_ERROR = 0.68
 #: paths with at least this many steps show a progress bar when ``progress=True``
 PROGRESS_THRESHOLD = 1000
 def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
@@ -73,7 +81,7 @@ _MIN_BLOCK = 8
 
 
 @dataclass(frozen=True, eq=False)
-class PathResult(Cited):
+class PathResult(Result, Cited):
     """Per-step result of :meth:`Contact.simulate`.
 
     Attributes
@@ -91,12 +99,19 @@ class PathResult(Cited):
         pressure and tractions (Pa) at the cell midpoints ``x``, at the requested steps. The
         tractions are the MDR inverse of the spring line loads (piecewise-linear between cells).
     meta : dict
-        ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``, ``approximate``.
+        ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``,
+        ``approximate``, ``notes`` (warnings raised), ``model_errors`` and
+        ``model_error_basis`` (runs on the MDR torsion springs, see :meth:`_assess`).
+    model_error : float
+        Largest relative model error of the torsion outputs of a run on the MDR torsion springs
+        (0.0 for exact routes: the ring solver, normal and tangential springs).
     """
 
     data: dict
     snapshots: dict = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
+
+    units = _SERIES_UNITS
 
     def __getattr__(self, name: str) -> Any:
         if name in SERIES:
@@ -114,18 +129,80 @@ class PathResult(Cited):
         """Copies of the per-step series, keyed by name."""
         return {k: np.array(v) for k, v in self.data.items()}
 
-    def to_csv(self, path: Any) -> None:
-        """Write the per-step series to CSV (``name [unit]`` headers)."""
-        from ..loadpath.io import write_csv
-        write_csv(path, self.data, units=_SERIES_UNITS)
+    def _assess(self, notes: list, contact: Any, path: Any) -> list[str]:
+        """The model error of a run on the MDR torsion springs into ``meta`` (``model_errors``
+        per torsion output, ``model_error_basis``); returns a warning text when it exceeds 1 %
+        and no validity warning of the run says so yet. Exact routes (the ring solver; normal
+        and tangential springs, exact in the MDR) carry no model error.
 
-    def to_dataframe(self):
-        """The per-step series as a :class:`pandas.DataFrame` (needs pandas)."""
-        try:
-            import pandas as pd
-        except ImportError as err:
-            raise ImportError("to_dataframe() needs pandas: pip install pandas") from err
-        return pd.DataFrame(self.to_dict())
+        - Normal force held while twisted (relative range at most :data:`MDR_PATH_HELD_FORCE`):
+          the measured MDR-vs-exact maps (:mod:`contactlab.physics.model_error`) at the exact
+          stick ratio of the path's largest twist at the contact radius where the slip annulus
+          is widest (:func:`mdr_path_validity`).
+        - Changing normal force: a coarse exact check, the same path on the exact ring solver
+          with :data:`PATH_CHECK_RINGS` rings (paths of at most :data:`PATH_CHECK_STEPS` steps);
+          longer paths report the largest error measured on varying-load paths,
+          :data:`PATH_MEASURED_ERROR` (not a bound).
+        - Shift and twist together (``approximate=True``): no bound (``inf``).
+        """
+        from ._protocol import MODEL_ERROR_WARN
+        meta, data = self.meta, self.data
+        built = meta.get("built", ())
+        wanted = [q for q in ("torque", "dissipated_energy") if q in data]
+        if (meta.get("method") == "exact" or "torsion" not in built or contact.friction is None
+                or not wanted or meta.get("status") == "partial"):
+            return []
+        if "tangential" in built:
+            errs = {q: float("inf") for q in wanted}
+            basis = ("combined shift and twist run as independent spring families (outside the "
+                     "MDR theory): no error bound is known")
+        elif not all(k in data for k in ("twist", "radius", "depth", "force")):
+            errs = {q: float("inf") for q in wanted}
+            basis = ("not estimated: the series twist, radius, depth and force are needed "
+                     "(add them to outputs=)")
+        elif force_variation(data["twist"], data["radius"], data["force"]) <= MDR_PATH_HELD_FORCE:
+            from .torsion import MDR_MAP_BASIS, mdr_map_errors
+            tw, a, d = (np.asarray(data[k], float) for k in ("twist", "radius", "depth"))
+            _, big, _, a_lim = mdr_path_validity(contact, tw, a, d, "torque")
+            i = int(np.argmax(a == a_lim))
+            prof = contact.profile
+            g = float(prof._g(np.array([a_lim]))[0]) if a_lim > 0 else 0.0
+            if np.isfinite(prof.wall_radius) and a_lim >= prof.wall_radius:
+                g = min(g, float(d[i]))
+            m = mdr_map_errors(contact, np.array([big]), np.array([a_lim]), np.array([d[i]]),
+                               np.array([g]), ("torque", "energy"))
+            errs = {q: float(m["energy" if q == "dissipated_energy" else q][0]) for q in wanted}
+            basis = MDR_MAP_BASIS + " (normal force held while twisted)"
+        elif path is not None and path.n_steps <= PATH_CHECK_STEPS:
+            from .torsion_path import simulate_exact
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                ex = simulate_exact(contact, path, outputs=tuple(wanted),
+                                    n_rings=PATH_CHECK_RINGS)
+            errs = {}
+            for q in wanted:
+                ref, got = np.asarray(ex.data[q], float), np.asarray(data[q], float)
+                scale = (float(np.max(np.abs(ref), initial=0.0)) if q == "torque"
+                         else abs(float(ref[-1])))
+                diff = (float(np.max(np.abs(got - ref), initial=0.0)) if q == "torque"
+                        else abs(float(got[-1] - ref[-1])))
+                errs[q] = diff / scale if scale > 0 else 0.0
+            basis = (f"coarse exact check: the same path on the exact ring solver with "
+                     f"{PATH_CHECK_RINGS} rings (torque: largest difference over the steps "
+                     "relative to the largest exact torque; energy: final dissipated energy)")
+        else:
+            errs = {q: PATH_MEASURED_ERROR for q in wanted}
+            basis = (f"path longer than {PATH_CHECK_STEPS} steps, not checked: the largest MDR "
+                     "error measured on varying-load paths (energy per twist cycle, "
+                     "benchmarks/torsion_rings.py --map), not a bound")
+        meta["model_errors"] = errs
+        meta["model_error_basis"] = basis
+        worst = max(errs.values())
+        if worst > MODEL_ERROR_WARN and not any("MDR torsion springs" in n for n in notes):
+            return [f"MDR torsion springs: model error {worst:.3g} of this run "
+                    f"({', '.join(f'{k} {v:.3g}' for k, v in errs.items())}; {basis}). "
+                    "Use method='exact'."]
+        return []
 
     def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None,
              units: str = "si"):
@@ -177,6 +254,7 @@ def _progress(total: int, progress: bool):
 _ESTIMATED = ("tangential_force", "torque", "stick_radius", "dissipated_energy")
 
 
+@reporting(lambda res, notes, contact, path=None, *a, **k: res._assess(notes, contact, path))
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
              spacing: str | None = None, snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,
