@@ -20,8 +20,13 @@ from ..numeric.roots import bracketed_root
 from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
+from ._protocol import Result, reporting
 
-__all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history"]
+__all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history", "STATE_UNITS"]
+
+#: units of the columns of a tangential state and of a shift history (CSV headers)
+STATE_UNITS = {"displacement": "m", "tangential_force": "N", "stick_radius": "m",
+               "gross_sliding": "1", "dissipated_energy": "J"}
 
 
 def _out(v: np.ndarray) -> Any:
@@ -33,7 +38,7 @@ def _one(name_values: dict[str, Any], what: str) -> tuple[str, Any]:
 
 
 @dataclass(frozen=True, eq=False)
-class TangentialState(Cited):
+class TangentialState(Result, Cited):
     """Cattaneo–Mindlin state (one load or an array of loads) at constant normal load.
 
     Attributes
@@ -58,6 +63,16 @@ class TangentialState(Cited):
     _c: np.ndarray = field(repr=False)
     _sliding: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                         "gross_sliding")}
+
+    def to_dict(self) -> dict[str, Any]:
+        """``displacement``, ``tangential_force``, ``stick_radius``, ``gross_sliding`` (scalars or
+        arrays of the state's shape). The model error is 0.0: Cattaneo–Mindlin through the MDR
+        is exact."""
+        return {"displacement": self.displacement, "tangential_force": self.tangential_force,
+                "stick_radius": self.stick_radius, "gross_sliding": self.gross_sliding}
 
     @property
     def displacement(self) -> Any:
@@ -101,6 +116,7 @@ class TangentialState(Cited):
         return _out(sign * tau)
 
 
+@reporting()
 def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
                displacement: Any = None, tangential_force: Any = None,
                stick_radius: Any = None) -> TangentialState:
@@ -183,7 +199,7 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
 
 
 @dataclass(frozen=True, eq=False)
-class ShiftHistory(Cited):
+class ShiftHistory(Result, Cited):
     """Result of :meth:`Contact.shift_history`: per-step arrays at constant normal load.
 
     Attributes
@@ -201,6 +217,15 @@ class ShiftHistory(Cited):
     dissipated_energy: np.ndarray
     meta: dict = field(default_factory=dict, repr=False)
 
+    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                         "dissipated_energy")}
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Per-step arrays by name (``displacement``, ``tangential_force``, ``stick_radius``,
+        ``dissipated_energy``). The model error is 0.0 (exact, Masing)."""
+        return {"displacement": self.displacement, "tangential_force": self.tangential_force,
+                "stick_radius": self.stick_radius, "dissipated_energy": self.dissipated_energy}
+
     def plot(self, axes: Any = None, *, units: str = "si"):
         """Force–displacement loop and stick radius per step (needs matplotlib); returns the two
         axes. ``units="engineering"`` labels µm (see :mod:`contactlab.plotting`).
@@ -211,6 +236,7 @@ class ShiftHistory(Cited):
                           y_unit="N", units=units, axes=axes, title="shift history")
 
 
+@reporting()
 def shift_history(contact, *, displacement: Any, depth: Any = None,
                   force: Any = None) -> ShiftHistory:
     """Exact tangential response to a displacement history at constant normal load.
