@@ -546,3 +546,14 @@ TABLE_BOUNDED_SLIP_HERTZ = 1e-6
 #: whole-number n exact rationals (times π for odd n), other n a math.gamma ratio (worst
 #: measured 22.5 ulp near n = 31) or, for n >= 300, an asymptotic series (< 1e-18 truncation)
 KAPPA_DOUBLE = 1e-14
+
+# ---- model errors of approximate routes (issue 26)
+#: the map's model error against the actual MDR error: a stick ratio that lands on a ladder
+#: point of the map is bracketed by rounding on either side (the error there is the actual one)
+MODEL_ERROR_ROUNDING = 1e-3
+#: how far the map overstates the actual error for a mapped family (paraboloid, cone) at
+#: 0.35 <= c/a <= 0.98: the conservative bracket takes the next ladder point (measured 1.34x)
+MODEL_ERROR_MAP_SHARPNESS = 1.4
+#: coarse exact check of a varying-load MDR path (64 rings) against the exact ring solver at 400
+#: rings: the check's own ring discretisation (energy ~0.3 %, torque ~0.2 % measured)
+MODEL_ERROR_PATH_CHECK = 5e-3
