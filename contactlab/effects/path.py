@@ -157,9 +157,11 @@ class PathResult(Result, Cited):
             basis = ("combined shift and twist run as independent spring families (outside the "
                      "MDR theory): no error bound is known")
         elif not all(k in data for k in ("twist", "radius", "depth", "force")):
-            errs = {q: float("inf") for q in wanted}
-            basis = ("not estimated: the series twist, radius, depth and force are needed "
-                     "(add them to outputs=)")
+            meta["model_errors"] = {q: float("inf") for q in wanted}
+            meta["model_error_basis"] = ("not estimated, no bound known: the series twist, "
+                                         "radius, depth and force are needed (add them to "
+                                         "outputs=)")
+            return []           # unknown is not a measured excess: the validity warning judges
         elif force_variation(data["twist"], data["radius"], data["force"]) <= MDR_PATH_HELD_FORCE:
             from .torsion import MDR_MAP_BASIS, mdr_map_errors
             tw, a, d = (np.asarray(data[k], float) for k in ("twist", "radius", "depth"))
