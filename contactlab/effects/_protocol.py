@@ -28,7 +28,8 @@ To implement it for a new result class:
 2. Implement ``to_dict()``; override ``_columns()`` when the CSV columns differ from it (scalars,
    2D fields).
 3. Optionally implement ``_model_errors()`` (per-quantity relative errors of an approximate
-   route; computed on first access of :attr:`Result.model_error`) or store ``model_errors`` and
+   route; computed on first access of :attr:`Result.model_error`) or store ``model_errors``
+   (or ``_model_errors_pending``, a picklable callable returning them on first access) and
    ``model_error_basis`` in ``meta``; put warnings into ``meta["notes"]`` or let the driver carry
    :func:`reporting`, which records them.
 4. Add the class to :data:`contactlab.testing.RESULT_TYPES`; :class:`contactlab.testing.ResultChecks`
@@ -160,6 +161,9 @@ class Result:
         route): the measured distance of the model from the exact solution (see
         :attr:`model_error_basis`), computed on first access."""
         meta = self._meta()
+        pending = meta.pop("_model_errors_pending", None)
+        if pending is not None:         # a driver deferred it: computed on first access
+            meta["model_errors"] = pending()
         got = meta.get("model_errors")
         if got is None:
             got = self._model_errors()

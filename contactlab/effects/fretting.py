@@ -26,7 +26,7 @@ from .torsion import MDR_MAP_BASIS, mdr_map_errors, resolve_method, torsion_mode
 
 __all__ = ["FrettingLoop", "FrettingMap", "fretting_loop", "fretting_map", "MODES",
            "SERIES_UNITS", "MapPlan", "plan_map", "map_block", "finish_map", "MAP_BLOCK",
-           "BOUNDARY_BLOCK"]
+           "BOUNDARY_BLOCK", "map_model_errors"]
 
 #: Fretting modes and the name of their amplitude keyword.
 MODES = {"tangential": "displacement_amplitude", "torsion": "twist_amplitude"}
@@ -603,17 +603,26 @@ def finish_map(contact, plan: MapPlan, results: list[dict[str, np.ndarray]],
     if note is not None:
         meta["notes"] = (" ".join(note.split()),)
     if plan.mode == "torsion" and plan.method == "mdr":
-        a, d = np.repeat(plan.radius, nA), np.repeat(plan.depth, nA)
-        e = mdr_map_errors(contact, np.tile(plan.amplitude, nF), a, d, _fresh_g(contact, a, d),
-                           ("torque", "energy"))
-        meta.update(model_errors={"peak": e["torque"].reshape(shp),
-                                  "energy": e["energy"].reshape(shp)},
+        from functools import partial
+        meta.update(_model_errors_pending=partial(map_model_errors, contact, plan.amplitude,
+                                                  plan.radius, plan.depth),
                     model_error_basis=MDR_MAP_BASIS)
     return FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
                        plan.amplitude.copy(), res["regime"].reshape(shp),
                        res["energy_ratio"].reshape(shp), res["energy"].reshape(shp),
                        res["stick_ratio"].reshape(shp), res["peak"].reshape(shp),
                        np.asarray(bnd, float), meta)
+
+
+def map_model_errors(contact, amplitude: np.ndarray, radius: np.ndarray, depth: np.ndarray
+                     ) -> dict[str, np.ndarray]:
+    """``model_errors`` of an MDR torsional fretting map, shape (forces, amplitudes): loop
+    maximum and energy per cycle from the measured maps (computed on first access)."""
+    nF, nA = radius.size, amplitude.size
+    a, d = np.repeat(radius, nA), np.repeat(depth, nA)
+    e = mdr_map_errors(contact, np.tile(amplitude, nF), a, d, _fresh_g(contact, a, d),
+                       ("torque", "energy"))
+    return {"peak": e["torque"].reshape(nF, nA), "energy": e["energy"].reshape(nF, nA)}
 
 
 @reporting()

@@ -130,81 +130,96 @@ class PathResult(Result, Cited):
         return {k: np.array(v) for k, v in self.data.items()}
 
     def _assess(self, notes: list, contact: Any, path: Any) -> list[str]:
-        """The model error of a run on the MDR torsion springs into ``meta`` (``model_errors``
-        per torsion output, ``model_error_basis``); returns a warning text when it exceeds 1 %
-        and no validity warning of the run says so yet. Exact routes (the ring solver; normal
-        and tangential springs, exact in the MDR) carry no model error.
+        """Where the model error of a run on the MDR torsion springs comes from, into ``meta``
+        (``model_error_basis``; ``model_errors`` per torsion output, computed on first access
+        of :attr:`model_error`). The run's validity warnings (:func:`warn_mdr_path`) judge it
+        at run time, at the thresholds of the same measurements; nothing more is raised here.
+        Exact routes (the ring solver; normal and tangential springs, exact in the MDR) carry
+        no model error.
 
         - Normal force held while twisted (relative range at most :data:`MDR_PATH_HELD_FORCE`):
           the measured MDR-vs-exact maps (:mod:`contactlab.physics.model_error`) at the exact
           stick ratio of the path's largest twist at the contact radius where the slip annulus
           is widest (:func:`mdr_path_validity`).
         - Changing normal force: a coarse exact check, the same path on the exact ring solver
-          with :data:`PATH_CHECK_RINGS` rings (paths of at most :data:`PATH_CHECK_STEPS` steps);
-          longer paths report the largest error measured on varying-load paths,
-          :data:`PATH_MEASURED_ERROR` (not a bound).
+          with :data:`PATH_CHECK_RINGS` rings (paths of at most :data:`PATH_CHECK_STEPS` steps;
+          ~2 ms per step on first access); longer paths report the largest error measured on
+          varying-load paths, :data:`PATH_MEASURED_ERROR` (not a bound).
         - Shift and twist together (``approximate=True``): no bound (``inf``).
         """
-        from ._protocol import MODEL_ERROR_WARN
+        from functools import partial
         meta, data = self.meta, self.data
         built = meta.get("built", ())
-        wanted = [q for q in ("torque", "dissipated_energy") if q in data]
+        wanted = tuple(q for q in ("torque", "dissipated_energy") if q in data)
         if (meta.get("method") == "exact" or "torsion" not in built or contact.friction is None
                 or not wanted or meta.get("status") == "partial"):
             return []
         if "tangential" in built:
-            errs = {q: float("inf") for q in wanted}
-            basis = ("combined shift and twist run as independent spring families (outside the "
-                     "MDR theory): no error bound is known")
+            meta["model_errors"] = {q: float("inf") for q in wanted}
+            meta["model_error_basis"] = ("combined shift and twist run as independent spring "
+                                         "families (outside the MDR theory): no error bound is "
+                                         "known")
         elif not all(k in data for k in ("twist", "radius", "depth", "force")):
             meta["model_errors"] = {q: float("inf") for q in wanted}
             meta["model_error_basis"] = ("not estimated, no bound known: the series twist, "
                                          "radius, depth and force are needed (add them to "
                                          "outputs=)")
-            return []           # unknown is not a measured excess: the validity warning judges
         elif force_variation(data["twist"], data["radius"], data["force"]) <= MDR_PATH_HELD_FORCE:
-            from .torsion import MDR_MAP_BASIS, mdr_map_errors
-            tw, a, d = (np.asarray(data[k], float) for k in ("twist", "radius", "depth"))
-            _, big, _, a_lim = mdr_path_validity(contact, tw, a, d, "torque")
-            i = int(np.argmax(a == a_lim))
-            prof = contact.profile
-            g = float(prof._g(np.array([a_lim]))[0]) if a_lim > 0 else 0.0
-            if np.isfinite(prof.wall_radius) and a_lim >= prof.wall_radius:
-                g = min(g, float(d[i]))
-            m = mdr_map_errors(contact, np.array([big]), np.array([a_lim]), np.array([d[i]]),
-                               np.array([g]), ("torque", "energy"))
-            errs = {q: float(m["energy" if q == "dissipated_energy" else q][0]) for q in wanted}
-            basis = MDR_MAP_BASIS + " (normal force held while twisted)"
+            from .torsion import MDR_MAP_BASIS
+            meta["_model_errors_pending"] = partial(PathResult._held_force_errors, contact,
+                                                    wanted, *(data[k] for k in ("twist",
+                                                                                "radius",
+                                                                                "depth")))
+            meta["model_error_basis"] = MDR_MAP_BASIS + " (normal force held while twisted)"
         elif path is not None and path.n_steps <= PATH_CHECK_STEPS:
-            from .torsion_path import simulate_exact
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                ex = simulate_exact(contact, path, outputs=tuple(wanted),
-                                    n_rings=PATH_CHECK_RINGS)
-            errs = {}
-            for q in wanted:
-                ref, got = np.asarray(ex.data[q], float), np.asarray(data[q], float)
-                scale = (float(np.max(np.abs(ref), initial=0.0)) if q == "torque"
-                         else abs(float(ref[-1])))
-                diff = (float(np.max(np.abs(got - ref), initial=0.0)) if q == "torque"
-                        else abs(float(got[-1] - ref[-1])))
-                errs[q] = diff / scale if scale > 0 else 0.0
-            basis = (f"coarse exact check: the same path on the exact ring solver with "
-                     f"{PATH_CHECK_RINGS} rings (torque: largest difference over the steps "
-                     "relative to the largest exact torque; energy: final dissipated energy)")
+            meta["_model_errors_pending"] = partial(PathResult._checked_errors, contact, path,
+                                                    {q: data[q] for q in wanted})
+            meta["model_error_basis"] = (
+                f"coarse exact check: the same path on the exact ring solver with "
+                f"{PATH_CHECK_RINGS} rings (torque: largest difference over the steps relative "
+                "to the largest exact torque; energy: final dissipated energy)")
         else:
-            errs = {q: PATH_MEASURED_ERROR for q in wanted}
-            basis = (f"path longer than {PATH_CHECK_STEPS} steps, not checked: the largest MDR "
-                     "error measured on varying-load paths (energy per twist cycle, "
-                     "benchmarks/torsion_rings.py --map), not a bound")
-        meta["model_errors"] = errs
-        meta["model_error_basis"] = basis
-        worst = max(errs.values())
-        if worst > MODEL_ERROR_WARN and not any("MDR torsion springs" in n for n in notes):
-            return [f"MDR torsion springs: model error {worst:.3g} of this run "
-                    f"({', '.join(f'{k} {v:.3g}' for k, v in errs.items())}; {basis}). "
-                    "Use method='exact'."]
+            meta["model_errors"] = {q: PATH_MEASURED_ERROR for q in wanted}
+            meta["model_error_basis"] = (f"path longer than {PATH_CHECK_STEPS} steps, not "
+                                         "checked: the largest MDR error measured on "
+                                         "varying-load paths (energy per twist cycle, "
+                                         "benchmarks/torsion_rings.py --map), not a bound")
         return []
+
+    @staticmethod
+    def _held_force_errors(contact: Any, wanted: tuple, twist: np.ndarray, radius: np.ndarray,
+                           depth: np.ndarray) -> dict[str, float]:
+        """Model errors of an MDR torsion run at a held normal force, from the measured maps."""
+        from .torsion import mdr_map_errors
+        tw, a, d = (np.asarray(v, float) for v in (twist, radius, depth))
+        _, big, _, a_lim = mdr_path_validity(contact, tw, a, d, "torque")
+        i = int(np.argmax(a == a_lim))
+        prof = contact.profile
+        g = float(prof._g(np.array([a_lim]))[0]) if a_lim > 0 else 0.0
+        if np.isfinite(prof.wall_radius) and a_lim >= prof.wall_radius:
+            g = min(g, float(d[i]))
+        m = mdr_map_errors(contact, np.array([big]), np.array([a_lim]), np.array([d[i]]),
+                           np.array([g]), ("torque", "energy"))
+        return {q: float(m["energy" if q == "dissipated_energy" else q][0]) for q in wanted}
+
+    @staticmethod
+    def _checked_errors(contact: Any, path: Any, series: dict) -> dict[str, float]:
+        """Model errors of an MDR torsion run against the exact ring solver at
+        :data:`PATH_CHECK_RINGS` rings (the coarse exact check)."""
+        from .torsion_path import simulate_exact
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ex = simulate_exact(contact, path, outputs=tuple(series), n_rings=PATH_CHECK_RINGS)
+        errs = {}
+        for q, got in series.items():
+            ref, got = np.asarray(ex.data[q], float), np.asarray(got, float)
+            if q == "torque":
+                scale = float(np.max(np.abs(ref), initial=0.0))
+                diff = float(np.max(np.abs(got - ref), initial=0.0))
+            else:
+                scale, diff = abs(float(ref[-1])), abs(float(got[-1] - ref[-1]))
+            errs[q] = diff / scale if scale > 0 else 0.0
+        return errs
 
     def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None,
              units: str = "si"):
