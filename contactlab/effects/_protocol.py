@@ -28,9 +28,8 @@ To implement it for a new result class:
 2. Implement ``to_dict()``; override ``_columns()`` when the CSV columns differ from it (scalars,
    2D fields).
 3. Optionally implement ``_model_errors()`` (per-quantity relative errors of an approximate
-   route; computed on first access of :attr:`Result.model_error`) or store ``model_errors``
-   (or ``_model_errors_pending``, a picklable callable returning them on first access) and
-   ``model_error_basis`` in ``meta``; put warnings into ``meta["notes"]`` or let the driver carry
+   route; computed on first access of :attr:`Result.model_error`), store ``model_errors`` and
+   ``model_error_basis`` in ``meta``, or defer them with ``result._defer_model_errors(fn)``; put warnings into ``meta["notes"]`` or let the driver carry
    :func:`reporting`, which records them.
 4. Add the class to :data:`contactlab.testing.RESULT_TYPES`; :class:`contactlab.testing.ResultChecks`
    then checks it.
@@ -160,16 +159,21 @@ class Result:
         """Relative model error of each quantity of an approximate route (``{}`` for an exact
         route): the measured distance of the model from the exact solution (see
         :attr:`model_error_basis`), computed on first access."""
-        meta = self._meta()
-        pending = meta.pop("_model_errors_pending", None)
-        if pending is not None:         # a driver deferred it: computed on first access
-            meta["model_errors"] = pending()
-        got = meta.get("model_errors")
+        # computed once, kept beside the fields (not in ``meta``: a result equals its recomputed
+        # copy whether or not its model error was read)
+        got = self.__dict__.get("_model_errors_cache")
         if got is None:
-            got = self._model_errors()
-            if got:
-                meta["model_errors"] = got
+            pending = self.__dict__.get("_model_errors_fn")
+            got = pending() if pending is not None else self._meta().get("model_errors")
+            if got is None:
+                got = self._model_errors()
+            object.__setattr__(self, "_model_errors_cache", got)
         return dict(got)
+
+    def _defer_model_errors(self, fn: Callable[[], dict[str, Any]]) -> None:
+        """Compute :attr:`model_errors` by ``fn()`` on first access (a picklable callable)."""
+        object.__setattr__(self, "_model_errors_fn", fn)
+        self.__dict__.pop("_model_errors_cache", None)
 
     @property
     def model_error(self) -> Any:

@@ -602,16 +602,19 @@ def finish_map(contact, plan: MapPlan, results: list[dict[str, np.ndarray]],
             "citations": fretting_sources(plan.mode, plan.method)}
     if note is not None:
         meta["notes"] = (" ".join(note.split()),)
-    if plan.mode == "torsion" and plan.method == "mdr":
-        from functools import partial
-        meta.update(_model_errors_pending=partial(map_model_errors, contact, plan.amplitude,
-                                                  plan.radius, plan.depth),
-                    model_error_basis=MDR_MAP_BASIS)
-    return FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
+    mdr = plan.mode == "torsion" and plan.method == "mdr"
+    if mdr:
+        meta["model_error_basis"] = MDR_MAP_BASIS
+    fmap = FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
                        plan.amplitude.copy(), res["regime"].reshape(shp),
                        res["energy_ratio"].reshape(shp), res["energy"].reshape(shp),
                        res["stick_ratio"].reshape(shp), res["peak"].reshape(shp),
                        np.asarray(bnd, float), meta)
+    if mdr:
+        from functools import partial
+        fmap._defer_model_errors(partial(map_model_errors, contact, plan.amplitude.copy(),
+                                         plan.radius.copy(), plan.depth.copy()))
+    return fmap
 
 
 def map_model_errors(contact, amplitude: np.ndarray, radius: np.ndarray, depth: np.ndarray

@@ -495,7 +495,7 @@ class ContactLaw:
     def _stamp(self, res: LawStep) -> LawStep:
         """The law's springs and sources into the step's ``meta`` (its model error needs them);
         a reused ``out`` forgets the model errors of its previous step."""
-        res.meta.pop("model_errors", None)
+        res.__dict__.pop("_model_errors_cache", None)
         res.meta.update(springs=self.springs, citations=_LAW_SOURCES)
         return res
 

@@ -166,14 +166,12 @@ class PathResult(Result, Cited):
                                          "outputs=)")
         elif force_variation(data["twist"], data["radius"], data["force"]) <= MDR_PATH_HELD_FORCE:
             from .torsion import MDR_MAP_BASIS
-            meta["_model_errors_pending"] = partial(PathResult._held_force_errors, contact,
-                                                    wanted, *(data[k] for k in ("twist",
-                                                                                "radius",
-                                                                                "depth")))
+            self._defer_model_errors(partial(PathResult._held_force_errors, contact, wanted,
+                                             *(data[k] for k in ("twist", "radius", "depth"))))
             meta["model_error_basis"] = MDR_MAP_BASIS + " (normal force held while twisted)"
         elif path is not None and path.n_steps <= PATH_CHECK_STEPS:
-            meta["_model_errors_pending"] = partial(PathResult._checked_errors, contact, path,
-                                                    {q: data[q] for q in wanted})
+            self._defer_model_errors(partial(PathResult._checked_errors, contact, path,
+                                             {q: data[q] for q in wanted}))
             meta["model_error_basis"] = (
                 f"coarse exact check: the same path on the exact ring solver with "
                 f"{PATH_CHECK_RINGS} rings (torque: largest difference over the steps relative "

@@ -28,7 +28,7 @@ from ..physics.masing import masing_dissipation, masing_program, masing_response
 from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHODS, ROOT_SAFETY)
 from ..physics import model_error as _maps
 from ..profiles.base import ROUNDING
-from ._protocol import MODEL_ERROR_WARN, Result, reporting
+from ._protocol import Result, reporting
 
 __all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
            "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
@@ -472,15 +472,20 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
     meta = {"rtol": contact.rtol, "load": load_key, "method": method,
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal},
             "citations": sources_for("normal", f"torsion:{method}", "masing:torsion")}
+    deferred = None
     if method == "mdr":
         _warn_mdr(contact, u_arg, A, Dd, GA)
-        _mdr_history_errors(contact, meta, float(np.max(u_arg, initial=0.0)), a, d, g_a)
+        deferred = _mdr_history_errors(contact, meta, float(np.max(u_arg, initial=0.0)), a, d,
+                                       g_a)
     # error bookkeeping for torque_error (computed on first access): the loading curve's
     # absolute errors at the distinct arguments, its deferred root term, and the recursion
     errors = (sol.torque_error + shift, sol.torque_error_deferred,
               inv, origin, factor, float(normal.meta.get("error_estimate", 0.0)))
-    return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
+    hist = TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
                         errors)
+    if deferred is not None:
+        hist._defer_model_errors(deferred)
+    return hist
 
 
 def history_model_errors(contact, arg: float, a: float, d: float, g_a: float
@@ -493,15 +498,14 @@ def history_model_errors(contact, arg: float, a: float, d: float, g_a: float
     return {"torque": float(errs["torque"][0]), "dissipated_energy": float(errs["energy"][0])}
 
 
-def _mdr_history_errors(contact, meta: dict, arg: float, a: float, d: float, g_a: float) -> None:
+def _mdr_history_errors(contact, meta: dict, arg: float, a: float, d: float, g_a: float):
     """Defer the ``model_errors`` of an MDR twist history (:func:`history_model_errors`, on first
-    access) into ``meta``; warn now when the largest twist passes the energy validity limit,
+    access; returns the callable); warn now when the largest twist passes the energy validity limit,
     the exact twist at ``c/a = 0.97`` (beyond it the MDR energy errs by more than 1 %; one slip
     function, the criterion of the fretting functions)."""
     from functools import partial
 
     from ..physics.fretting import MDR_VALID_STICK_RATIOS, mdr_validity_twists
-    meta["_model_errors_pending"] = partial(history_model_errors, contact, arg, a, d, g_a)
     meta["model_error_basis"] = MDR_MAP_BASIS
     lim = float(mdr_validity_twists(contact.profile, contact.moduli.normal,
                                     contact.moduli.torsional, contact.friction, np.array([a]),
@@ -515,6 +519,7 @@ def _mdr_history_errors(contact, meta: dict, arg: float, a: float, d: float, g_a
             f"{MDR_VALID_STICK_RATIOS['energy']} (the energy is the most sensitive quantity; "
             "result.model_errors gives the measured bound). Use method='exact'.",
             ValidityWarning, stacklevel=4)
+    return partial(history_model_errors, contact, arg, a, d, g_a)
 
 
 @dataclass(frozen=True, eq=False)

@@ -161,3 +161,16 @@ def test_mdr_wear_beyond_the_mdr_has_no_bound():
                    cycles=1e5, n_grid=160)
     assert w.model_error == float("inf") and "no error bound" in w.model_error_basis
     assert any("left the MDR" in n for n in w.notes)
+
+
+def test_reading_the_model_error_does_not_change_equality():
+    """Model errors are computed on first access and kept beside the fields: a map whose model
+    error was read still equals its recomputed copy (and pickles)."""
+    import pickle
+    c, _ = _contact("paraboloid")
+    kw = dict(force=[10.0, 50.0], twist_amplitude=[1e-4, 2e-3], method="mdr", boundary=False)
+    m1, m2 = _quiet(c.fretting_map, **kw), _quiet(c.fretting_map, **kw)
+    assert np.max(m1.model_error) > 0.01
+    assert m1 == m2
+    back = pickle.loads(pickle.dumps(m2))
+    assert back == m1 and np.array_equal(back.model_error, m1.model_error)
