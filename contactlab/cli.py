@@ -201,7 +201,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         if getattr(err, "partial", None) is None:
             raise
         return _partial_run(args, err, outdir)
-    files, notes = _write_outputs(args, result, outdir)
+    files, plot_note = _write_outputs(args, result, outdir)
+    # the run's warnings (validity, model errors) as text, then the note of a missing plot
+    notes = "\n".join([*result.meta.get("notes", ()), *([plot_note] if plot_note else [])])
     if args.json:
         payload = {"ok": True, "files": [str(f) for f in files], "notes": notes}
         payload.update(result.to_dict() if outdir is None else
@@ -214,8 +216,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
     print(result.table())
     for f in files:
         print(f"wrote {f}")
-    if notes:
-        print(notes, file=sys.stderr)
+    if plot_note:               # the warnings were shown as they were raised
+        print(plot_note, file=sys.stderr)
     return 0
 
 

@@ -611,3 +611,13 @@ TABLE_PRESSURE_LINEAR = 2.0
 #: per-segment rules of physics.table_pressure against the profile's own per-node quadratures
 #: (both at rtol 1e-10; measured 1e-12 of the largest shape on uniform and random tables)
 TABLE_PRESSURE_SECOND = 1e-9
+# ---- model errors of approximate routes (issue 26)
+#: the map's model error against the actual MDR error: a stick ratio that lands on a ladder
+#: point of the map is bracketed by rounding on either side (the error there is the actual one)
+MODEL_ERROR_ROUNDING = 1e-3
+#: how far the map overstates the actual error for a mapped family (paraboloid, cone) at
+#: 0.35 <= c/a <= 0.98: the conservative bracket takes the next ladder point (measured 1.34x)
+MODEL_ERROR_MAP_SHARPNESS = 1.4
+#: coarse exact check of a varying-load MDR path (64 rings) against the exact ring solver at 400
+#: rings: the check's own ring discretisation (energy ~0.3 %, torque ~0.2 % measured)
+MODEL_ERROR_PATH_CHECK = 5e-3

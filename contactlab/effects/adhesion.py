@@ -20,10 +20,14 @@ from ..params import FieldsEqual, as_float_array, exactly_one
 from ..physics import normal as _normal
 from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_of_radius,
                                 force_of_radius, phi, solve_depth, solve_force)
+from ._protocol import Result, reporting
 from .normal import NormalState, _scalar_or_array, warn_outside_validity
 
 __all__ = ["AdhesiveNormalState", "AdhesionCycle", "adhesive_normal", "pull_off", "adhesion_cycle",
-           "contact_branches"]
+           "contact_branches", "CYCLE_UNITS"]
+
+#: units of the columns of an adhesion cycle (CSV headers)
+CYCLE_UNITS = {"depth": "m", "force": "N", "radius": "m", "in_contact": "1"}
 
 
 def contact_branches(contact) -> Branches:
@@ -87,7 +91,7 @@ class AdhesiveNormalState(NormalState):
 
 
 @dataclass(frozen=True, eq=False)
-class AdhesionCycle(FieldsEqual, Cited):
+class AdhesionCycle(FieldsEqual, Result, Cited):
     """An approach/retraction history of an adhesive contact (JKR hysteresis).
 
     Attributes
@@ -103,6 +107,8 @@ class AdhesionCycle(FieldsEqual, Cited):
         Steps at which contact was made or lost (the state changes discontinuously there).
     pull_off_value : float
         Depth (m) or force (N) below which contact is lost.
+    model_error : float
+        0.0: exact in the JKR limit [Heß11] (large Tabor parameter).
     """
 
     control: str
@@ -114,12 +120,37 @@ class AdhesionCycle(FieldsEqual, Cited):
     pull_off_value: float
     meta: dict = field(default_factory=dict, repr=False)
 
-
+    units = CYCLE_UNITS
 
     def to_dict(self) -> dict[str, Any]:
         """Per-step arrays as a dict (for pandas/CSV)."""
         return {"depth": self.depth, "force": self.force, "radius": self.radius,
                 "in_contact": self.in_contact}
+
+    def plot(self, axes: Any = None, *, units: str = "si"):
+        """Force against depth (the JKR hysteresis, jumps marked) and the contact radius per
+        step (needs matplotlib); returns the two axes. ``units="engineering"`` labels µm and mN
+        (see :mod:`contactlab.plotting`)."""
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
+        with pl.style():
+            if axes is None:
+                fig, axes = pl.subplots(1, 2, figsize=(9.0, 3.6))
+                fig.suptitle(f"adhesion cycle ({self.control} control)")
+            ax1, ax2 = axes
+            ax1.plot(pl.scaled(self.depth, "m", units), pl.scaled(self.force, "N", units))
+            if self.jumps.size:
+                ax1.plot(pl.scaled(self.depth[self.jumps], "m", units),
+                         pl.scaled(self.force[self.jumps], "N", units), "o", label="jumps")
+                ax1.legend()
+            ax1.set_xlabel(pl.axis_label("depth", "m", units))
+            ax1.set_ylabel(pl.axis_label("force", "N", units))
+            ax2.plot(np.arange(self.radius.size), pl.scaled(self.radius, "m", units))
+            ax2.set_xlabel("step")
+            ax2.set_ylabel(pl.axis_label("contact radius", "m", units))
+            ax2.set_ylim(bottom=0.0)
+        return axes
 
 
 # ---------------------------------------------------------------------------- drivers
@@ -220,6 +251,7 @@ def adhesive_normal(contact, *, depth: Any = None, force: Any = None, radius: An
     return _state(contact, d, a, pinned, "force", branch, np.where(a > 0, arr, 0.0))
 
 
+@reporting()
 def pull_off(contact, control: str = "force"):
     """State at detachment: minimum of ``F(a)`` (force control) or of ``d(a)`` (fixed grips).
 
@@ -273,6 +305,7 @@ def pull_off(contact, control: str = "force"):
     return _state(contact, d, a, pinned, f"pull_off:{control}", "stable")
 
 
+@reporting()
 def adhesion_cycle(contact, *, depth: Any = None, force: Any = None):
     """Walk an approach/retraction history with JKR jump-in and jump-off (hysteresis).
 

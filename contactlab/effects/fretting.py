@@ -22,11 +22,12 @@ from ..params import (FieldsEqual, as_float_array, as_real, check_count, check_m
                      check_result_finite, exactly_one)
 from ..physics import fretting as _fr
 from ..physics import tangential as _tan
-from .torsion import resolve_method, torsion_model
+from ._protocol import Result, reporting
+from .torsion import MDR_MAP_BASIS, mdr_map_errors, resolve_method, torsion_model
 
 __all__ = ["FrettingLoop", "FrettingMap", "fretting_loop", "fretting_map", "MODES",
            "SERIES_UNITS", "MapPlan", "plan_map", "map_block", "finish_map", "MAP_BLOCK",
-           "BOUNDARY_BLOCK"]
+           "BOUNDARY_BLOCK", "map_model_errors"]
 
 #: Fretting modes and the name of their amplitude keyword.
 MODES = {"tangential": "displacement_amplitude", "torsion": "twist_amplitude"}
@@ -146,8 +147,9 @@ def _loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: n
 
 
 def warn_mdr(contact, amp: np.ndarray, a: np.ndarray, d: np.ndarray, quantities,
-             stacklevel: int = 4) -> None:
-    """ValidityWarning when the MDR torsion model errs by > 1 % on a requested quantity."""
+             stacklevel: int = 4) -> str | None:
+    """ValidityWarning when the MDR torsion model errs by > 1 % on a requested quantity;
+    returns its text (None when it does not warn)."""
     g_a = _fresh_g(contact, a, d)
     limits = _fr.mdr_validity_twists(contact.profile, contact.moduli.normal,
                                      contact.moduli.torsional, contact.friction, a, d, g_a,
@@ -157,12 +159,15 @@ def warn_mdr(contact, amp: np.ndarray, a: np.ndarray, d: np.ndarray, quantities,
         q, lim = bad[0]
         i = int(np.argmax(amp - lim))
         names = ", ".join(q for q, _ in bad)
-        warnings.warn(
+        text = (
             f"MDR torsion model outside its validity for {names}: twist amplitude "
             f"{float(amp[i]):.4g} rad exceeds {float(lim[i]):.4g} rad, beyond which the MDR "
             f"{q.replace('_', ' ')} errs by more than 1 % against the exact solution (the exact "
             f"stick ratio falls below c/a = {_fr.MDR_VALID_STICK_RATIOS[q]}; docs/fretting.md). "
-            "Use method='exact'.", ValidityWarning, stacklevel=stacklevel)
+            "Use method='exact'.")
+        warnings.warn(text, ValidityWarning, stacklevel=stacklevel)
+        return text
+    return None
 
 
 def _normal_states(contact, what: str, force: Any, depth: Any):
@@ -173,7 +178,7 @@ def _normal_states(contact, what: str, force: Any, depth: Any):
 
 # ---------------------------------------------------------------------------- single loop
 @dataclass(frozen=True, eq=False)
-class FrettingLoop(Cited):
+class FrettingLoop(Result, Cited):
     """The steady fretting loop at constant normal load.
 
     Attributes
@@ -201,6 +206,10 @@ class FrettingLoop(Cited):
     normal : NormalState
     meta : dict
         ``criterion``, ``threshold`` (torsion), ``gross_slip_amplitude`` (tangential: ``δ_t``).
+    model_error : float
+        Torsion with ``method="mdr"``: the larger relative error of the loop maximum and of the
+        energy per cycle against the exact solution (:attr:`model_errors`), from the measured
+        MDR-vs-exact maps at the exact stick ratio of the amplitude; 0.0 otherwise (exact).
     """
 
     mode: str
@@ -217,6 +226,25 @@ class FrettingLoop(Cited):
     y: np.ndarray = field(repr=False)
     normal: Any = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    units = {"displacement": "m", "tangential_force": "N", "twist": "rad", "torque": "N*m"}
+    _basis = MDR_MAP_BASIS
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        """The closed loop: ``displacement``/``tangential_force`` or ``twist``/``torque``."""
+        xn, yn = (("displacement", "tangential_force") if self.mode == "tangential"
+                  else ("twist", "torque"))
+        return {xn: np.asarray(self.x, float), yn: np.asarray(self.y, float)}
+
+    def _model_errors(self) -> dict[str, Any]:
+        if self.mode != "torsion" or self.method != "mdr":
+            return {}
+        ct = self.normal.contact
+        a = np.array([self.radius])
+        d = np.array([float(self.normal._depth)])
+        e = mdr_map_errors(ct, np.array([self.amplitude]), a, d, _fresh_g(ct, a, d),
+                           ("torque", "energy"))
+        return {"peak": float(e["torque"][0]), "energy": float(e["energy"][0])}
 
     def to_dict(self) -> dict[str, Any]:
         """Scalars and loop arrays by name."""
@@ -246,6 +274,7 @@ class FrettingLoop(Cited):
         return ax
 
 
+@reporting()
 def fretting_loop(contact, *, force: Any = None, depth: Any = None,
                   displacement_amplitude: Any = None, twist_amplitude: Any = None,
                   method: str | None = None, criterion: str = "energy_ratio",
@@ -308,7 +337,7 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
 
 # ---------------------------------------------------------------------------- maps
 @dataclass(frozen=True, eq=False)
-class FrettingMap(FieldsEqual, Cited):
+class FrettingMap(FieldsEqual, Result, Cited):
     """Running-condition map over normal forces x amplitudes.
 
     Attributes
@@ -327,6 +356,10 @@ class FrettingMap(FieldsEqual, Cited):
         Gross-slip amplitude per force: tangential ``δ_t = μE*d/G*`` (exact); torsion the
         amplitude where the criterion is met (root on the loading curve, see
         :func:`torsional_boundary`).
+    model_error : ndarray or float
+        Torsion with ``method="mdr"``: per grid point, shape (nF, nA), the larger relative error
+        of the loop maximum and of the energy per cycle against the exact solution, from the
+        measured MDR-vs-exact maps (:attr:`model_errors`); 0.0 otherwise (exact).
     """
 
     mode: str
@@ -344,7 +377,8 @@ class FrettingMap(FieldsEqual, Cited):
     meta: dict = field(default_factory=dict, repr=False)
 
     regime_names = _fr.REGIMES
-
+    units = SERIES_UNITS
+    _basis = MDR_MAP_BASIS
 
     @property
     def amplitude_name(self) -> str:
@@ -360,20 +394,11 @@ class FrettingMap(FieldsEqual, Cited):
                 "stick_ratio": self.stick_ratio.ravel(), peak: self.peak.ravel()}
 
     def to_dataframe(self):
-        """The grid as a :class:`pandas.DataFrame` (needs pandas), regimes as names."""
-        try:
-            import pandas as pd
-        except ImportError as err:
-            raise ImportError("to_dataframe() needs pandas: pip install pandas "
-                              "(or pip install 'contactlab[data]')") from err
-        df = pd.DataFrame(self.to_dict())
+        """The grid as a :class:`pandas.DataFrame` (needs pandas), regimes as names; units,
+        notes and errors in ``df.attrs`` (see :class:`~contactlab.effects._protocol.Result`)."""
+        df = Result.to_dataframe(self)
         df["regime"] = [self.regime_names[int(r)] for r in self.regime.ravel()]
         return df
-
-    def to_csv(self, path: Any) -> None:
-        """Write the grid (one row per point, ``name [unit]`` headers; regime as its code)."""
-        from ..loadpath.io import write_csv
-        write_csv(path, self.to_dict(), units=SERIES_UNITS)
 
     def plot(self, ax: Any = None, *, boundary: bool = True, units: str = "si"):
         """The running-condition map: regimes over amplitude (x) and normal force (y), with the
@@ -608,9 +633,11 @@ def finish_map(contact, plan: MapPlan, results: list[dict[str, np.ndarray]],
     nF, nA = plan.loads.size, plan.amplitude.size
     parts = [r for r in results if "boundary" not in r]
     res = {f: np.concatenate([r[f] for r in parts]) for f in _MAP_FIELDS}
+    note = None
     if plan.mode == "torsion" and plan.method == "mdr":
-        warn_mdr(contact, np.tile(plan.amplitude, nF), np.repeat(plan.radius, nA),
-                 np.repeat(plan.depth, nA), ("torque", "energy", "stick_radius"), stacklevel=stacklevel)
+        note = warn_mdr(contact, np.tile(plan.amplitude, nF), np.repeat(plan.radius, nA),
+                        np.repeat(plan.depth, nA), ("torque", "energy", "stick_radius"),
+                        stacklevel=stacklevel)
     if plan.mode == "tangential":
         bnd = _tan.full_slip_displacement(contact.moduli.normal, contact.moduli.tangential,
                                           contact.friction, plan.depth)
@@ -619,15 +646,37 @@ def finish_map(contact, plan: MapPlan, results: list[dict[str, np.ndarray]],
     else:
         bnd = np.full(nF, np.nan)
     shp = (nF, nA)
-    return FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
+    meta = {"rtol": contact.rtol, "load": plan.load_key,
+            "citations": fretting_sources(plan.mode, plan.method)}
+    if note is not None:
+        meta["notes"] = (" ".join(note.split()),)
+    mdr = plan.mode == "torsion" and plan.method == "mdr"
+    if mdr:
+        meta["model_error_basis"] = MDR_MAP_BASIS
+    fmap = FrettingMap(plan.mode, plan.method, plan.criterion, plan.threshold, plan.loads.copy(),
                        plan.amplitude.copy(), res["regime"].reshape(shp),
                        res["energy_ratio"].reshape(shp), res["energy"].reshape(shp),
                        res["stick_ratio"].reshape(shp), res["peak"].reshape(shp),
-                       np.asarray(bnd, float),
-                       {"rtol": contact.rtol, "load": plan.load_key,
-                        "citations": fretting_sources(plan.mode, plan.method)})
+                       np.asarray(bnd, float), meta)
+    if mdr:
+        from functools import partial
+        fmap._defer_model_errors(partial(map_model_errors, contact, plan.amplitude.copy(),
+                                         plan.radius.copy(), plan.depth.copy()))
+    return fmap
 
 
+def map_model_errors(contact, amplitude: np.ndarray, radius: np.ndarray, depth: np.ndarray
+                     ) -> dict[str, np.ndarray]:
+    """``model_errors`` of an MDR torsional fretting map, shape (forces, amplitudes): loop
+    maximum and energy per cycle from the measured maps (computed on first access)."""
+    nF, nA = radius.size, amplitude.size
+    a, d = np.repeat(radius, nA), np.repeat(depth, nA)
+    e = mdr_map_errors(contact, np.tile(amplitude, nF), a, d, _fresh_g(contact, a, d),
+                       ("torque", "energy"))
+    return {"peak": e["torque"].reshape(nF, nA), "energy": e["energy"].reshape(nF, nA)}
+
+
+@reporting()
 def fretting_map(contact, *, force: Any = None, depth: Any = None,
                  displacement_amplitude: Any = None, twist_amplitude: Any = None,
                  method: str | None = None, criterion: str = "energy_ratio",

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -32,9 +32,10 @@ from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
+from ._protocol import Result
 
 __all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
-           "DEFAULT_SPRING_COVER"]
+           "DEFAULT_SPRING_COVER", "STEP_UNITS", "LAW_BASIS"]
 
 #: turning points stored per contact and channel (four nested loops)
 DEFAULT_MEMORY = 8
@@ -46,14 +47,29 @@ DEFAULT_SPRINGS = 16
 DEFAULT_SPRING_COVER = 1.5
 
 _NO_FLAT = np.zeros(1)
+#: sources of a law step (exact normal, Cattaneo–Mindlin and Jäger torsion with Masing memory,
+#: the MDR springs under a changing load)
+_LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
 _OUT_FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
                "torsion_stick_radius", "dissipated_energy", "exact")
 _UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
           "G_torsion": "Pa", "friction": "1"}
 
 
+#: units of the columns of a law step (CSV headers)
+STEP_UNITS = {"depth": "m", "radius": "m", "force": "N", "tangential_force": "N", "torque": "N*m",
+              "stick_radius": "m", "torsion_stick_radius": "m", "dissipated_energy": "J",
+              "exact": "1"}
+#: where a law step's ``model_error`` comes from
+LAW_BASIS = ("contacts on springs (exact False): the measured spring-discretisation error of the "
+             "law at its springs per contact against the 2000-spring foundation (docs/dem.md), "
+             "plus for twisted contacts the measured MDR-vs-exact torque map at the springs' own "
+             "stick ratio (a constant-load map: under a changing load the MDR torsion error was "
+             "measured larger, docs/torsion_varying_load.md); 0 where exact")
+
+
 @dataclass(frozen=True, eq=False)
-class LawStep:
+class LawStep(Result):
     """Result of one :meth:`ContactLaw.step`: one value per contact (SI units).
 
     Attributes
@@ -70,6 +86,11 @@ class LawStep:
     exact : ndarray of bool
         True where the result is exact: constant normal load, and the contact's turning-point
         memory never overflowed (see ``memory`` of :class:`ContactLaw`).
+    meta : dict
+        ``springs`` (springs per contact of the law), ``citations``.
+    model_error : ndarray
+        Per contact: 0 where exact, else the measured error of the spring model
+        (:data:`LAW_BASIS`), computed on first access.
     """
 
     depth: np.ndarray
@@ -81,6 +102,27 @@ class LawStep:
     torsion_stick_radius: np.ndarray
     dissipated_energy: np.ndarray
     exact: np.ndarray
+    meta: dict = field(default_factory=dict, repr=False)
+
+    units = STEP_UNITS
+    _basis = LAW_BASIS
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """One array per quantity, one value per contact."""
+        return {k: getattr(self, k) for k in _OUT_FIELDS}
+
+    def _model_errors(self) -> dict[str, Any]:
+        from ..physics import model_error as _maps
+        off = ~np.asarray(self.exact, bool) & (np.asarray(self.radius) > 0)
+        if not np.any(off):
+            return {}
+        spring = _maps.law_spring_error(self.meta.get("springs", DEFAULT_SPRINGS))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(off, self.torsion_stick_radius / np.where(off, self.radius, 1.0), 1.0)
+        twisted = off & (self.torque != 0)
+        mdr = np.where(twisted, _maps.mdr_ratio_error(None, "torque", ratio), 0.0)
+        return {"tangential_force": np.where(off, spring, 0.0),
+                "torque": np.where(off, spring + mdr, 0.0)}
 
     @property
     def citations(self) -> Citations:
@@ -525,13 +567,20 @@ class ContactLaw:
         if out is not None:
             self._check_out(out)
         if self.fast:
-            return self._step_fast(depth, force, displacement, twist, out)
+            return self._stamp(self._step_fast(depth, force, displacement, twist, out))
         res = self._step_numpy(depth, force, displacement, twist)
         if out is None:
-            return res
+            return self._stamp(res)
         for f in _OUT_FIELDS:
             getattr(out, f)[...] = getattr(res, f)
-        return out
+        return self._stamp(out)
+
+    def _stamp(self, res: LawStep) -> LawStep:
+        """The law's springs and sources into the step's ``meta`` (its model error needs them);
+        a reused ``out`` forgets the model errors of its previous step."""
+        res.__dict__.pop("_model_errors_cache", None)
+        res.meta.update(springs=self.springs, citations=_LAW_SOURCES)
+        return res
 
     def _check_out(self, out: Any) -> None:
         ok = isinstance(out, LawStep)

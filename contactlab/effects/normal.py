@@ -20,18 +20,30 @@ from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, Vali
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
+from ._protocol import Result
 
-__all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip"]
+__all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip",
+           "outside_validity_note", "STATE_UNITS"]
+
+#: units of the columns of a normal state (CSV headers)
+STATE_UNITS = {"depth": "m", "radius": "m", "force": "N", "stiffness": "N/m"}
+
+
+def outside_validity_note(profile, a: Any) -> str | None:
+    """The text of :func:`warn_outside_validity` for contact radii ``a`` (None within range)."""
+    limit = profile.validity_radius
+    if np.isfinite(limit) and np.any(np.asarray(a) > limit):
+        return (f"contact radius {float(np.max(a))!r} m of {profile!r} exceeds "
+                f"{limit!r} m, the range of the half-space theory for this profile; the "
+                "result is the half-space solution, not that of the real body.")
+    return None
 
 
 def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
     """:class:`ValidityWarning` if a contact radius exceeds ``profile.validity_radius``."""
-    limit = profile.validity_radius
-    if np.isfinite(limit) and np.any(np.asarray(a) > limit):
-        warnings.warn(f"contact radius {float(np.max(a))!r} m of {profile!r} exceeds "
-                      f"{limit!r} m, the range of the half-space theory for this profile; the "
-                      "result is the half-space solution, not that of the real body.",
-                      ValidityWarning, stacklevel=stacklevel)
+    note = outside_validity_note(profile, a)
+    if note is not None:
+        warnings.warn(note, ValidityWarning, stacklevel=stacklevel)
 
 def warn_cone_tip(profile, value: np.ndarray, stacklevel: int = 3) -> None:
     """:class:`ValidityWarning` when an infinite pressure comes from the cone tip of a linear
@@ -260,7 +272,7 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
 
 
 @dataclass(frozen=True, eq=False)
-class NormalState(Cited):
+class NormalState(Result, Cited):
     """State of a normal contact (one load or an array of loads).
 
     Attributes
@@ -275,6 +287,10 @@ class NormalState(Cited):
         Incremental normal stiffness ``dF/dd = 2E* a``, N/m.
     meta : dict
         ``routes`` (numerical route per quantity), ``rtol``, ``error_estimate`` (relative, force).
+    model_error : float
+        0.0: the MDR normal solution is exact [Sn65].
+    notes : tuple of str
+        The validity warning of a contact radius beyond the profile's half-space range, if any.
 
     Notes
     -----
@@ -287,6 +303,21 @@ class NormalState(Cited):
     _radius: np.ndarray = field(repr=False)
     _force: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    units = STATE_UNITS
+
+    def to_dict(self) -> dict[str, Any]:
+        """``depth``, ``radius``, ``force`` and ``stiffness`` (scalars or arrays of the state's
+        shape)."""
+        return {"depth": self.depth, "radius": self.radius, "force": self.force,
+                "stiffness": self.stiffness}
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        """Warnings of this state (the half-space range of the profile), as text."""
+        base = tuple(self.meta.get("notes", ())) if isinstance(self.meta, dict) else ()
+        note = outside_validity_note(self.contact.profile, self._radius)
+        return base + ((note,) if note is not None and note not in base else ())
 
     @property
     def shape(self) -> tuple[int, ...]:

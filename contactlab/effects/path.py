@@ -29,6 +29,7 @@ from ..params import check_flag, name_list, step_indices
 from ..physics import fretting as _fr
 from ..physics.torsion import MDR_VALID_STICK_RATIO
 from ..physics.torsion_validity import affordable_states
+from ._protocol import Result, reporting
 
 __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_normal",
            "simulate_memory", "METHODS", "PATH_METHODS", "resolve_path_method", "METHOD_ARGUMENTS",
@@ -53,6 +54,13 @@ def simulate_memory(n_steps: int, n_springs: int, n_snapshots: int = 0) -> float
 
 _SERIES_UNITS = dict(UNITS, radius="m", stick_radius="m", dissipated_energy="J",
                      gross_sliding="1")
+#: rings of the coarse exact check of an MDR torsion path under a changing normal force
+PATH_CHECK_RINGS = 64
+#: longest path (steps) whose MDR torsion run gets the coarse exact check
+PATH_CHECK_STEPS = 2000
+#: model error reported for longer such paths: the largest MDR energy error measured on
+#: varying-load paths (benchmarks/torsion_rings.py --map: up to 68 %), not a bound
+PATH_MEASURED_ERROR = 0.68
 #: paths with at least this many steps show a progress bar when ``progress=True``
 PROGRESS_THRESHOLD = 1000
 def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
@@ -63,7 +71,7 @@ def compile_normal(contact, path: LoadPath) -> list[dict[str, np.ndarray]]:
 
 
 @dataclass(frozen=True, eq=False)
-class PathResult(Cited):
+class PathResult(Result, Cited):
     """Per-step result of :meth:`Contact.simulate`.
 
     Attributes
@@ -81,12 +89,19 @@ class PathResult(Cited):
         pressure and tractions (Pa) at the cell midpoints ``x``, at the requested steps. The
         tractions are the MDR inverse of the spring line loads (piecewise-linear between cells).
     meta : dict
-        ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``, ``approximate``.
+        ``built`` (spring families built), ``n_springs``, ``spacing``, ``foundation``,
+        ``approximate``, ``notes`` (warnings raised), ``model_errors`` and
+        ``model_error_basis`` (runs on the MDR torsion springs, see :meth:`_assess`).
+    model_error : float
+        Largest relative model error of the torsion outputs of a run on the MDR torsion springs
+        (0.0 for exact routes: the ring solver, normal and tangential springs).
     """
 
     data: dict
     snapshots: dict = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
+
+    units = _SERIES_UNITS
 
     def __getattr__(self, name: str) -> Any:
         if name in SERIES:
@@ -104,18 +119,95 @@ class PathResult(Cited):
         """Copies of the per-step series, keyed by name."""
         return {k: np.array(v) for k, v in self.data.items()}
 
-    def to_csv(self, path: Any) -> None:
-        """Write the per-step series to CSV (``name [unit]`` headers)."""
-        from ..loadpath.io import write_csv
-        write_csv(path, self.data, units=_SERIES_UNITS)
+    def _assess(self, notes: list, contact: Any, path: Any) -> list[str]:
+        """Where the model error of a run on the MDR torsion springs comes from, into ``meta``
+        (``model_error_basis``; ``model_errors`` per torsion output, computed on first access
+        of :attr:`model_error`). The run's validity warnings (:func:`warn_mdr_path`) judge it
+        at run time, at the thresholds of the same measurements; nothing more is raised here.
+        Exact routes (the ring solver; normal and tangential springs, exact in the MDR) carry
+        no model error.
 
-    def to_dataframe(self):
-        """The per-step series as a :class:`pandas.DataFrame` (needs pandas)."""
-        try:
-            import pandas as pd
-        except ImportError as err:
-            raise ImportError("to_dataframe() needs pandas: pip install pandas") from err
-        return pd.DataFrame(self.to_dict())
+        - Normal force held while twisted (relative range at most :data:`MDR_PATH_HELD_FORCE`):
+          the measured MDR-vs-exact maps (:mod:`contactlab.physics.model_error`) at the exact
+          stick ratio of the path's largest twist at the contact radius where the slip annulus
+          is widest (:func:`mdr_path_validity`).
+        - Changing normal force: a coarse exact check, the same path on the exact ring solver
+          with :data:`PATH_CHECK_RINGS` rings (paths of at most :data:`PATH_CHECK_STEPS` steps;
+          ~2 ms per step on first access); longer paths report the largest error measured on
+          varying-load paths, :data:`PATH_MEASURED_ERROR` (not a bound).
+        - Shift and twist together (``approximate=True``): no bound (``inf``).
+        """
+        from functools import partial
+        meta, data = self.meta, self.data
+        built = meta.get("built", ())
+        wanted = tuple(q for q in ("torque", "dissipated_energy") if q in data)
+        if (meta.get("method") == "exact" or "torsion" not in built or contact.friction is None
+                or not wanted or meta.get("status") == "partial"):
+            return []
+        if "tangential" in built:
+            meta["model_errors"] = {q: float("inf") for q in wanted}
+            meta["model_error_basis"] = ("combined shift and twist run as independent spring "
+                                         "families (outside the MDR theory): no error bound is "
+                                         "known")
+        elif not all(k in data for k in ("twist", "radius", "depth", "force")):
+            meta["model_errors"] = {q: float("inf") for q in wanted}
+            meta["model_error_basis"] = ("not estimated, no bound known: the series twist, "
+                                         "radius, depth and force are needed (add them to "
+                                         "outputs=)")
+        elif force_variation(data["twist"], data["radius"], data["force"]) <= MDR_PATH_HELD_FORCE:
+            from .torsion import MDR_MAP_BASIS
+            self._defer_model_errors(partial(PathResult._held_force_errors, contact, wanted,
+                                             *(data[k] for k in ("twist", "radius", "depth"))))
+            meta["model_error_basis"] = MDR_MAP_BASIS + " (normal force held while twisted)"
+        elif path is not None and path.n_steps <= PATH_CHECK_STEPS:
+            self._defer_model_errors(partial(PathResult._checked_errors, contact, path,
+                                             {q: data[q] for q in wanted}))
+            meta["model_error_basis"] = (
+                f"coarse exact check: the same path on the exact ring solver with "
+                f"{PATH_CHECK_RINGS} rings (torque: largest difference over the steps relative "
+                "to the largest exact torque; energy: final dissipated energy)")
+        else:
+            meta["model_errors"] = {q: PATH_MEASURED_ERROR for q in wanted}
+            meta["model_error_basis"] = (f"path longer than {PATH_CHECK_STEPS} steps, not "
+                                         "checked: the largest MDR error measured on "
+                                         "varying-load paths (energy per twist cycle, "
+                                         "benchmarks/torsion_rings.py --map), not a bound")
+        return []
+
+    @staticmethod
+    def _held_force_errors(contact: Any, wanted: tuple, twist: np.ndarray, radius: np.ndarray,
+                           depth: np.ndarray) -> dict[str, float]:
+        """Model errors of an MDR torsion run at a held normal force, from the measured maps."""
+        from .torsion import mdr_map_errors
+        tw, a, d = (np.asarray(v, float) for v in (twist, radius, depth))
+        _, big, _, a_lim = mdr_path_validity(contact, tw, a, d, "torque")
+        i = int(np.argmax(a == a_lim))
+        prof = contact.profile
+        g = float(prof._g(np.array([a_lim]))[0]) if a_lim > 0 else 0.0
+        if np.isfinite(prof.wall_radius) and a_lim >= prof.wall_radius:
+            g = min(g, float(d[i]))
+        m = mdr_map_errors(contact, np.array([big]), np.array([a_lim]), np.array([d[i]]),
+                           np.array([g]), ("torque", "energy"))
+        return {q: float(m["energy" if q == "dissipated_energy" else q][0]) for q in wanted}
+
+    @staticmethod
+    def _checked_errors(contact: Any, path: Any, series: dict) -> dict[str, float]:
+        """Model errors of an MDR torsion run against the exact ring solver at
+        :data:`PATH_CHECK_RINGS` rings (the coarse exact check)."""
+        from .torsion_path import simulate_exact
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ex = simulate_exact(contact, path, outputs=tuple(series), n_rings=PATH_CHECK_RINGS)
+        errs = {}
+        for q, got in series.items():
+            ref, got = np.asarray(ex.data[q], float), np.asarray(got, float)
+            if q == "torque":
+                scale = float(np.max(np.abs(ref), initial=0.0))
+                diff = float(np.max(np.abs(got - ref), initial=0.0))
+            else:
+                scale, diff = abs(float(ref[-1])), abs(float(got[-1] - ref[-1]))
+            errs[q] = diff / scale if scale > 0 else 0.0
+        return errs
 
     def plot(self, quantities: Any = None, *, x: str = "time", ax: Any = None,
              units: str = "si"):
@@ -162,6 +254,7 @@ def _progress(total: int, progress: bool):
     return tqdm(total=total, unit="step", desc="simulate")
 
 
+@reporting(lambda res, notes, contact, path=None, *a, **k: res._assess(notes, contact, path))
 def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | None = None,
              spacing: str | None = None, snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,

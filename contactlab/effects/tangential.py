@@ -21,8 +21,13 @@ from ..params import (as_float_array, broadcast_inputs, check_memory, exactly_on
                       scalar_or_array)
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
+from ._protocol import Result, reporting
 
-__all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history"]
+__all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history", "STATE_UNITS"]
+
+#: units of the columns of a tangential state and of a shift history (CSV headers)
+STATE_UNITS = {"displacement": "m", "tangential_force": "N", "stick_radius": "m",
+               "gross_sliding": "1", "dissipated_energy": "J"}
 
 
 def _out(v: np.ndarray) -> Any:
@@ -34,7 +39,7 @@ def _one(name_values: dict[str, Any], what: str) -> tuple[str, Any]:
 
 
 @dataclass(frozen=True, eq=False)
-class TangentialState(Cited):
+class TangentialState(Result, Cited):
     """Cattaneo–Mindlin state (one load or an array of loads) at constant normal load.
 
     Attributes
@@ -59,6 +64,16 @@ class TangentialState(Cited):
     _c: np.ndarray = field(repr=False)
     _sliding: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                         "gross_sliding")}
+
+    def to_dict(self) -> dict[str, Any]:
+        """``displacement``, ``tangential_force``, ``stick_radius``, ``gross_sliding`` (scalars or
+        arrays of the state's shape). The model error is 0.0: Cattaneo–Mindlin through the MDR
+        is exact."""
+        return {"displacement": self.displacement, "tangential_force": self.tangential_force,
+                "stick_radius": self.stick_radius, "gross_sliding": self.gross_sliding}
 
     @property
     def displacement(self) -> Any:
@@ -102,6 +117,7 @@ class TangentialState(Cited):
         return _out(sign * tau)
 
 
+@reporting()
 def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
                displacement: Any = None, tangential_force: Any = None,
                stick_radius: Any = None) -> TangentialState:
@@ -184,7 +200,7 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
 
 
 @dataclass(frozen=True, eq=False)
-class ShiftHistory(Cited):
+class ShiftHistory(Result, Cited):
     """Result of :meth:`Contact.shift_history`: per-step arrays at constant normal load.
 
     Attributes
@@ -202,6 +218,15 @@ class ShiftHistory(Cited):
     dissipated_energy: np.ndarray
     meta: dict = field(default_factory=dict, repr=False)
 
+    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                         "dissipated_energy")}
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Per-step arrays by name (``displacement``, ``tangential_force``, ``stick_radius``,
+        ``dissipated_energy``). The model error is 0.0 (exact, Masing)."""
+        return {"displacement": self.displacement, "tangential_force": self.tangential_force,
+                "stick_radius": self.stick_radius, "dissipated_energy": self.dissipated_energy}
+
     def plot(self, axes: Any = None, *, units: str = "si"):
         """Force–displacement loop and stick radius per step (needs matplotlib); returns the two
         axes. ``units="engineering"`` labels µm (see :mod:`contactlab.plotting`).
@@ -218,6 +243,7 @@ class ShiftHistory(Cited):
 HISTORY_BYTES_PER_STEP = 1024
 
 
+@reporting()
 def shift_history(contact, *, displacement: Any, depth: Any = None,
                   force: Any = None) -> ShiftHistory:
     """Exact tangential response to a displacement history at constant normal load.

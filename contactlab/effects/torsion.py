@@ -27,11 +27,14 @@ from ..physics import torsion_exact as _exact
 from ..physics import torsion_noslip as _noslip
 from ..physics.masing import masing_dissipation, masing_program, masing_response, merge_close, merge_step
 from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHODS, ROOT_SAFETY)
+from ..physics import model_error as _maps
 from ..profiles.base import ROUNDING
+from ._protocol import Result, reporting
 
 __all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
            "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
-           "mdr_validity_twist", "torsion_model", "resolve_method"]
+           "mdr_validity_twist", "torsion_model", "resolve_method", "mdr_map_errors",
+           "STATE_UNITS", "MDR_MAP_BASIS", "history_model_errors"]
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
@@ -61,7 +64,31 @@ def resolve_method(contact, method: str | None) -> str:
     return method
 
 
+#: units of the columns of a torsion state and of a twist history (CSV headers)
+STATE_UNITS = {"twist": "rad", "torque": "N*m", "stick_radius": "m", "radius": "m", "slip": "1",
+               "dissipated_energy": "J"}
+#: where the MDR torsion model's ``model_error`` comes from
+MDR_MAP_BASIS = ("measured MDR-vs-exact map (docs/torsion.md, "
+                 "contactlab.physics.model_error): the largest error of the profile's family "
+                 "from c/a = 1 down to the ladder point below the exact stick ratio of the "
+                 "largest twist")
+
+
+def mdr_map_errors(contact, twist: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
+                   quantities: tuple[str, ...] = ("torque",)) -> dict[str, np.ndarray]:
+    """Conservative relative errors of the MDR torsion model at twist magnitudes ``twist`` (rad)
+    of normal states ``(a, d, g_a)`` (flat arrays), from the measured maps of
+    :mod:`contactlab.physics.model_error` (0 without contact or twist)."""
+    twist, a, d, g_a = (np.asarray(v, float).ravel() for v in (twist, a, d, g_a))
+    k = _maps.ladder_index(contact.profile, contact.moduli.normal, contact.moduli.torsional,
+                           contact.friction, twist, a, d, g_a, contact.rtol)
+    live = (a > 0) & (twist != 0)
+    return {q: np.where(live, _maps.error_at_index(contact.profile, q, k), 0.0)
+            for q in quantities}
+
+
 # ====================================================================== monotonic torsion
+@reporting()
 def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
                   twist: Any = None, torque: Any = None, stick_radius: Any = None,
                   method: str | None = None) -> "TorsionState":
@@ -154,7 +181,7 @@ def torsion_model(contact, method: str) -> _models.TorsionModel:
 
 
 @dataclass(frozen=True, eq=False)
-class TorsionState(Cited):
+class TorsionState(Result, Cited):
     """State of a twisted contact at constant normal load (one or an array of states).
 
     Attributes
@@ -175,7 +202,11 @@ class TorsionState(Cited):
         ``rtol``, ``control``, ``load``, ``routes``, ``moduli``, ``error_estimate`` (relative,
         torque; under twist control at ``rtol > 1e-9`` it is ``None`` until
         :attr:`error_estimate` is first read, which pays one extra batched quadrature),
-        ``twist_error_estimate`` (relative).
+        ``twist_error_estimate`` (relative), ``notes`` (warnings raised).
+    model_error : float or ndarray
+        ``method="mdr"``: relative torque error of the MDR model against the exact solution at
+        the same twist, from the measured map (:attr:`model_error_basis`; one slip function per
+        ladder point and normal state, on first access); 0.0 for the exact and no-slip models.
 
     Notes
     -----
@@ -195,6 +226,21 @@ class TorsionState(Cited):
     _d: np.ndarray = field(repr=False)
     _g_a: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+
+    units = {k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "radius", "slip")}
+    _basis = MDR_MAP_BASIS
+
+    def to_dict(self) -> dict[str, Any]:
+        """The state's quantities by name (``twist``, ``torque``, ``stick_radius``, ``radius``,
+        ``slip``; scalars or arrays of the state's shape)."""
+        return {"twist": self.twist, "torque": self.torque, "stick_radius": self.stick_radius,
+                "radius": self.radius, "slip": self.slip}
+
+    def _model_errors(self) -> dict[str, Any]:
+        if self.method != "mdr":
+            return {}
+        err = mdr_map_errors(self.contact, self._twist, self._a, self._d, self._g_a)
+        return {"torque": _scalar_or_array(err["torque"].reshape(self.shape))}
 
     @property
     def twist(self) -> Any:
@@ -390,6 +436,7 @@ HISTORY_BYTES_PER_STEP = 512
 SOLVE_BYTES_PER_ARGUMENT = {"exact": 20 * 1024, "mdr": 4 * 1024, "no-slip": 512}
 
 
+@reporting()
 def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
                   method: str | None = None) -> "TwistHistory":
     """Implementation of :meth:`contactlab.Contact.twist_history` (see there)."""
@@ -440,21 +487,61 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
         M_load = M_load + k_t * np.where(np.isfinite(c), c, 0.0) ** 3 * dphi
         shift = shift * (k_t * a**3)
     torque = masing_response(phi, origin, factor, M_load)
-    if method == "mdr":
-        _warn_mdr(contact, u_arg, A, Dd, GA)
     meta = {"rtol": contact.rtol, "load": load_key, "method": method,
             "moduli": {"G_t": contact.moduli.torsional, "E_star": contact.moduli.normal},
             "citations": sources_for("normal", f"torsion:{method}", "masing:torsion")}
+    deferred = None
+    if method == "mdr":
+        _warn_mdr(contact, u_arg, A, Dd, GA)
+        deferred = _mdr_history_errors(contact, meta, float(np.max(u_arg, initial=0.0)), a, d,
+                                       g_a)
     # error bookkeeping for torque_error (computed on first access): the loading curve's
     # absolute errors at the distinct arguments, its deferred root term, and the recursion
     errors = (sol.torque_error + shift, sol.torque_error_deferred,
               inv, origin, factor, float(normal.meta.get("error_estimate", 0.0)))
-    return TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
+    hist = TwistHistory(contact, normal, method, phi.copy(), torque, c, (a, d, g_a), segs, meta,
                         errors)
+    if deferred is not None:
+        hist._defer_model_errors(deferred)
+    return hist
+
+
+def history_model_errors(contact, arg: float, a: float, d: float, g_a: float
+                         ) -> dict[str, float]:
+    """``model_errors`` of an MDR twist history: torque and dissipated energy from the measured
+    maps at the largest loading-curve argument ``arg`` (rad; every step of a Masing history is
+    a loading-curve value at an argument up to it) of the normal state ``(a, d, g_a)``."""
+    errs = mdr_map_errors(contact, np.array([arg]), np.array([a]), np.array([d]),
+                          np.array([g_a]), ("torque", "energy"))
+    return {"torque": float(errs["torque"][0]), "dissipated_energy": float(errs["energy"][0])}
+
+
+def _mdr_history_errors(contact, meta: dict, arg: float, a: float, d: float, g_a: float):
+    """Defer the ``model_errors`` of an MDR twist history (:func:`history_model_errors`, on first
+    access; returns the callable); warn now when the largest twist passes the energy validity limit,
+    the exact twist at ``c/a = 0.97`` (beyond it the MDR energy errs by more than 1 %; one slip
+    function, the criterion of the fretting functions)."""
+    from functools import partial
+
+    from ..physics.fretting import MDR_VALID_STICK_RATIOS, mdr_validity_twists
+    meta["model_error_basis"] = MDR_MAP_BASIS
+    lim = float(mdr_validity_twists(contact.profile, contact.moduli.normal,
+                                    contact.moduli.torsional, contact.friction, np.array([a]),
+                                    np.array([d]), np.array([g_a]), ("energy",),
+                                    contact.rtol)["energy"][0])
+    if a > 0 and arg > lim:
+        warnings.warn(
+            f"MDR torsion model: the dissipated energy of this twist history errs by more than "
+            f"1 % against the exact solution: the largest twist {arg:.4g} rad exceeds "
+            f"{lim:.4g} rad, where the exact stick ratio falls below c/a = "
+            f"{MDR_VALID_STICK_RATIOS['energy']} (the energy is the most sensitive quantity; "
+            "result.model_errors gives the measured bound). Use method='exact'.",
+            ValidityWarning, stacklevel=4)
+    return partial(history_model_errors, contact, arg, a, d, g_a)
 
 
 @dataclass(frozen=True, eq=False)
-class TwistHistory(Cited):
+class TwistHistory(Result, Cited):
     """Response to a twist history at constant normal load (Masing rule with turning-point memory).
 
     Attributes
@@ -474,6 +561,11 @@ class TwistHistory(Cited):
         ``"exact"``, ``"mdr"`` or ``"no-slip"``.
     normal : NormalState
         The constant normal preload.
+    model_error : float
+        ``method="mdr"``: the larger relative error of the torque and the dissipated energy
+        against the exact solution (:attr:`model_errors`), from the measured MDR-vs-exact maps
+        at the exact stick ratio of the largest twist of the history; 0.0 for the exact and
+        no-slip models.
 
     Notes
     -----
@@ -495,6 +587,9 @@ class TwistHistory(Cited):
     _segments: tuple = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
     _errors: tuple = field(default=(), repr=False)
+
+    units = {k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "dissipated_energy")}
+    _basis = MDR_MAP_BASIS
 
     @cached_property
     def torque_error(self) -> np.ndarray:

@@ -6,7 +6,6 @@ The time stepping is that of the MDR viscoelastic foundation,
 """
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -20,8 +19,13 @@ from ..materials import Elastic, Rigid, effective_moduli
 from ..materials.pair import viscoelastic_body
 from ..params import FieldsEqual, as_float_array, check_count, check_memory, exactly_one
 from ..physics.normal import radius_depth_of_force
+from ._protocol import Result, reporting
 
-__all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS", "history_memory"]
+__all__ = ["ViscoelasticHistory", "viscoelastic_history", "DEFAULT_N_SPRINGS", "history_memory",
+           "HISTORY_UNITS"]
+
+#: units of the columns of a viscoelastic history (CSV headers)
+HISTORY_UNITS = {"time": "s", "depth": "m", "force": "N", "radius": "m"}
 
 
 
@@ -32,7 +36,7 @@ def history_memory(n_steps: int, n_springs: int, n_terms: int) -> float:
 
 
 @dataclass(frozen=True, eq=False)
-class ViscoelasticHistory(FieldsEqual, Cited):
+class ViscoelasticHistory(FieldsEqual, Result, Cited):
     """Per-step result of a viscoelastic normal-contact history.
 
     Attributes
@@ -49,6 +53,9 @@ class ViscoelasticHistory(FieldsEqual, Cited):
         ``d = g(a)``; shrinking contact: zero element force).
     meta : dict
         ``control``, ``n_springs``, ``spacing`` (m), ``material``, ``foundation_radius`` (m).
+    model_error : float
+        0.0: the MDR rules of viscoelastic contact are exact [H3]; the discretisation in space
+        and time is numerical error.
     """
 
     time: np.ndarray
@@ -57,22 +64,35 @@ class ViscoelasticHistory(FieldsEqual, Cited):
     radius: np.ndarray
     meta: dict = field(default_factory=dict)
 
-
+    units = HISTORY_UNITS
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step arrays (``time``, ``depth``, ``force``, ``radius``)."""
         return {"time": self.time, "depth": self.depth, "force": self.force,
                 "radius": self.radius}
 
-    def to_csv(self, path: str) -> None:
-        """Write the per-step arrays to a CSV file (SI units in the header)."""
-        with open(path, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(["time_s", "depth_m", "force_N", "radius_m"])
-            for row in zip(self.time, self.depth, self.force, self.radius):
-                w.writerow([repr(float(v)) for v in row])
+    def plot(self, axes: Any = None, *, units: str = "si"):
+        """Force against depth and the contact radius against time (needs matplotlib); returns
+        the two axes. ``units="engineering"`` labels µm and mN (see :mod:`contactlab.plotting`)."""
+        from .. import plotting as pl
+        pl.check_units(units)
+        pl.pyplot()
+        with pl.style():
+            if axes is None:
+                fig, axes = pl.subplots(1, 2, figsize=(9.0, 3.6))
+                fig.suptitle("viscoelastic history")
+            ax1, ax2 = axes
+            ax1.plot(pl.scaled(self.depth, "m", units), pl.scaled(self.force, "N", units))
+            ax1.set_xlabel(pl.axis_label("depth", "m", units))
+            ax1.set_ylabel(pl.axis_label("force", "N", units))
+            ax2.plot(self.time, pl.scaled(self.radius, "m", units))
+            ax2.set_xlabel("time [s]")
+            ax2.set_ylabel(pl.axis_label("contact radius", "m", units))
+            ax2.set_ylim(bottom=0.0)
+        return axes
 
 
+@reporting()
 def viscoelastic_history(contact, *, time: Any, depth: Any = None, force: Any = None,
                          n_springs: int | None = None, max_radius: float | None = None
                          ) -> ViscoelasticHistory:

@@ -30,8 +30,10 @@ from ..params import (FieldsEqual, as_float_array, as_real, check_memory,
                      check_positive)
 from ..physics import wear as _wear
 from ..profiles import Tabulated
-from .fretting import _mode_and_amplitude, check_contact, fretting_sources, loops, warn_mdr
-from .torsion import resolve_method
+from ._protocol import Result, reporting
+from .fretting import (_fresh_g, _mode_and_amplitude, check_contact, fretting_sources, loops,
+                       warn_mdr)
+from .torsion import MDR_MAP_BASIS, mdr_map_errors, resolve_method
 
 __all__ = ["WearResult", "wear", "SERIES_UNITS", "DEFAULT_GRID", "DEFAULT_JUMP_RTOL",
            "MAX_CHECKPOINTS", "MIN_JUMP_RTOL"]
@@ -59,7 +61,7 @@ SERIES_UNITS = {"cycles": "1", "depth": "m", "radius": "m", "scar_radius": "m",
 
 
 @dataclass(frozen=True, eq=False)
-class WearResult(FieldsEqual, Cited):
+class WearResult(FieldsEqual, Cited, Result):
     """Fretting-wear run: worn profiles at checkpoints and series per wear step.
 
     Attributes
@@ -89,6 +91,12 @@ class WearResult(FieldsEqual, Cited):
         connected MDR contact; inf when it stayed one, otherwise wear() warned) and
         ``tensile_fraction`` (largest tensile share of the MDR pressure over the run),
         ``citations`` (the sources: ``contactlab.cite(result)``).
+    model_error : float
+        Largest relative model error of the run (:attr:`model_errors`): a twist with
+        ``method="mdr"`` carries the measured MDR-vs-exact error of the energy per cycle at the
+        fresh contact's exact stick ratio (the worn volume is the energy times k/μ); a run whose
+        worn profile left the MDR (``meta["mdr_valid_cycles"]`` finite) has no error bound
+        (``inf``). 0.0 otherwise (a shift, or the exact torsion, on a simply connected contact).
     """
 
     mode: str
@@ -108,6 +116,8 @@ class WearResult(FieldsEqual, Cited):
     r: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
+    units = SERIES_UNITS
+    _basis = MDR_MAP_BASIS
 
     @property
     def profile(self) -> Tabulated:
@@ -117,20 +127,6 @@ class WearResult(FieldsEqual, Cited):
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step series by name."""
         return {k: getattr(self, k) for k in SERIES_UNITS}
-
-    def to_csv(self, path: Any) -> None:
-        """Write the per-step series (``name [unit]`` headers)."""
-        from ..loadpath.io import write_csv
-        write_csv(path, self.to_dict(), units=SERIES_UNITS)
-
-    def to_dataframe(self):
-        """The per-step series as a :class:`pandas.DataFrame` (needs pandas)."""
-        try:
-            import pandas as pd
-        except ImportError as err:
-            raise ImportError("to_dataframe() needs pandas: pip install pandas "
-                              "(or pip install 'contactlab[data]')") from err
-        return pd.DataFrame(self.to_dict())
 
     def plot(self, axes: Any = None, *, units: str = "si"):
         """Profile evolution, scar radius and worn volume against cycles (needs matplotlib).
@@ -255,6 +251,7 @@ def _grid_radius(contact, mode: str, F: float, amp: float, k: float, cycles: flo
     return 1.3 * max(hi, 1.25 * a0)
 
 
+@reporting()
 def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
          wear_coefficient: Any, cycles: Any, method: str | None = None, checkpoints: Any = None,
          n_grid: int = DEFAULT_GRID, max_radius: Any = None,
@@ -415,6 +412,18 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
                       f"pressure turns tensile ({max(tensile):.2g} of the load). Results beyond "
                       "that cycle count are not reliable (meta['mdr_valid_cycles']).",
                       ValidityWarning, stacklevel=3)
+    errs = {}
+    if mode == "torsion" and method == "mdr":
+        e = mdr_map_errors(contact, one(amp), one(a0), one(d0), _fresh_g(contact, one(a0),
+                                                                         one(d0)), ("energy",))
+        errs = {"volume": float(e["energy"][0]), "dissipated_energy": float(e["energy"][0])}
+        meta["model_error_basis"] = MDR_MAP_BASIS + " (energy per cycle of the fresh contact)"
+    if np.isfinite(valid_until):
+        errs = {k: float("inf") for k in ("volume", "dissipated_energy", "max_wear_depth")}
+        meta["model_error_basis"] = (f"the worn profile left the MDR after {valid_until:.4g} "
+                                     "cycles (meta['mdr_valid_cycles']): no error bound beyond")
+    if errs:
+        meta["model_errors"] = errs
     arr = {kk: np.asarray(vv, float) for kk, vv in series.items()}
     return WearResult(mode, method, arr["cycles"], arr["depth"], arr["radius"],
                       arr["scar_radius"], arr["stick_radius"], arr["volume"], arr["max_wear_depth"],

@@ -5,7 +5,6 @@ check that an effect the plan left out was never computed.
 """
 from __future__ import annotations
 
-import csv
 import io
 import json
 import os
@@ -22,6 +21,7 @@ from ..errors import (ConvergenceError, ContactlabError, EffectNotPlannedError,
 from ..numeric.prefix import solved_prefix
 from ..params import FieldsEqual
 from ..loadpath import UNITS
+from ..effects._protocol import Result, csv_text
 from ..effects.fretting import SERIES_UNITS as MAP_UNITS
 from ..effects.wear import SERIES_UNITS as WEAR_UNITS
 from .validate import SERIES
@@ -141,8 +141,36 @@ def _sources(computed: list[str], method: str | None, contact: Any) -> tuple[str
     return sources_for(*(n for c in computed for n in names.get(c, ())))
 
 
+def _collect(meta: dict[str, Any], calls: list[tuple[str, Any]]) -> None:
+    """Notes and model errors of the results a scene computed, into its ``meta``: ``notes``
+    (the warnings, in order, each once), ``model_errors`` (``"<call>.<quantity>"``: largest
+    relative error), ``model_error`` (their largest, 0.0 when every route was exact) and
+    ``model_error_basis``."""
+    notes: list[str] = []
+    errs: dict[str, float] = {}
+    bases: list[str] = []
+    for name, res in calls:
+        if res is None:
+            continue
+        notes += [n for n in getattr(res, "notes", ()) if n not in notes]
+        if isinstance(res, Result):
+            for q, v in res.model_errors.items():
+                errs[f"{name}.{q}"] = float(np.max(np.asarray(v, float)))
+            if res.model_errors and res.model_error_basis not in bases:
+                bases.append(res.model_error_basis)
+    meta["notes"] = notes
+    meta["model_errors"] = {k: _finite(v) for k, v in errs.items()}
+    meta["model_error"] = _finite(max(errs.values(), default=0.0))
+    meta["model_error_basis"] = "; ".join(bases) if bases else "exact routes (no model error)"
+
+
+def _finite(v: float) -> Any:
+    """A float for JSON: ``inf`` as the string ``"inf"`` (no bound known)."""
+    return v if np.isfinite(v) else "inf"
+
+
 @dataclass(eq=False)
-class SceneResult(FieldsEqual, Cited):
+class SceneResult(FieldsEqual, Result, Cited):
     """Outputs of a scene run.
 
     Attributes
@@ -154,7 +182,11 @@ class SceneResult(FieldsEqual, Cited):
     plan : Plan
     meta : dict
         ``computed`` (Contact methods called, in order), ``route``, ``version``, ``title``;
-        ``wear`` and ``fretting_map`` headline numbers when those tables were planned.
+        ``wear`` and ``fretting_map`` headline numbers when those tables were planned;
+        ``notes`` (the warnings of the run, as text), ``model_errors``, ``model_error`` and
+        ``model_error_basis`` (of the approximate routes the run took; 0.0 when all were exact).
+        The notes and the model error are also the ``# notes: ...`` and ``# model_error: ...``
+        comment lines at the top of every CSV file :meth:`write` writes (when there are any).
     wear : WearResult or None
         The fretting-wear run of a ``[wear]`` table (:meth:`contactlab.Contact.wear`).
     fretting_map : FrettingMap or None
@@ -168,7 +200,20 @@ class SceneResult(FieldsEqual, Cited):
     wear: Any = None
     fretting_map: Any = None
 
+    units = SERIES_UNITS
 
+    def _columns(self) -> dict[str, np.ndarray]:
+        return dict(self.series)
+
+    def _model_errors(self) -> dict[str, Any]:
+        return {k: (float("inf") if v == "inf" else v)
+                for k, v in self.meta.get("model_errors", {}).items()}
+
+    def metadata(self) -> dict[str, Any]:
+        out = Result.metadata(self)
+        if self.meta.get("model_error_basis"):
+            out["model_error_basis"] = self.meta["model_error_basis"]
+        return out
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name in self.series:
@@ -222,9 +267,11 @@ class SceneResult(FieldsEqual, Cited):
             paths = [atomic_write(d / "result.json",
                                   json.dumps(self.to_dict(), indent=1).encode())]
         else:
-            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series, SERIES_UNITS))]
+            info = self.metadata()
+            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series, SERIES_UNITS, info))]
             if self.fields:
-                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields, FIELD_UNITS)))
+                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields, FIELD_UNITS,
+                                                                       info)))
             paths += self._write_fretting(d)
             if self.meta.get("status") == "partial":     # the CSV files cannot say so
                 status = {k: self.meta.get(k) for k in ("status", "failed_at", "error", "title",
@@ -238,23 +285,25 @@ class SceneResult(FieldsEqual, Cited):
     def _write_fretting(self, d: Path) -> list[Path]:
         """CSV files of the wear run and the fretting map (``name [unit]`` headers)."""
         paths = []
+        info = self.metadata()
         if self.wear is not None:
             w = self.wear
-            paths.append(atomic_write(d / "wear.csv", _csv_bytes(w.to_dict(), WEAR_UNITS)))
+            paths.append(atomic_write(d / "wear.csv", _csv_bytes(w.to_dict(), WEAR_UNITS, info)))
             cols = {"r": w.r}
             for N, prof in zip(w.checkpoints, w.profiles):
                 cols[f"profile@{N:.6g}"] = prof.f
             units = {k: "m" for k in cols}
-            paths.append(atomic_write(d / "wear_profiles.csv", _csv_bytes(cols, units)))
+            paths.append(atomic_write(d / "wear_profiles.csv", _csv_bytes(cols, units, info)))
             paths.append(atomic_write(d / "worn_profile.csv",
-                                      _csv_bytes({"r": w.r, "f": w.profile.f}, units={"r": "m",
-                                                                                       "f": "m"})))
+                                      _csv_bytes({"r": w.r, "f": w.profile.f},
+                                                 {"r": "m", "f": "m"}, info)))
         if self.fretting_map is not None:
             m = self.fretting_map
-            paths.append(atomic_write(d / "fretting_map.csv", _csv_bytes(m.to_dict(), MAP_UNITS)))
+            paths.append(atomic_write(d / "fretting_map.csv", _csv_bytes(m.to_dict(), MAP_UNITS,
+                                                                         info)))
             amp = m.amplitude_name
             paths.append(atomic_write(d / "fretting_boundary.csv", _csv_bytes(
-                {"force": m.force, amp: m.boundary}, MAP_UNITS)))
+                {"force": m.force, amp: m.boundary}, MAP_UNITS, info)))
         return paths
 
     def figure(self, *, units: str = "si") -> Any:
@@ -353,17 +402,12 @@ def _jsonable(v: np.ndarray) -> list:
         if np.any(~np.isfinite(v)) else np.asarray(v, float).tolist()
 
 
-def _csv_bytes(cols: dict[str, np.ndarray], units: dict[str, str] | None = None) -> bytes:
-    """CSV of equal-length columns; with ``units``, ``name [unit]`` headers."""
-    names = list(cols)
-    data = np.column_stack([np.asarray(cols[k], float) for k in names])
-    fh = io.StringIO(newline="")
-    w = csv.writer(fh)
-    w.writerow(names if units is None else
-               [f"{k} [{units[k]}]" if k in units else k for k in names])
-    for row in data:
-        w.writerow([repr(float(x)) for x in row])
-    return fh.getvalue().encode()
+def _csv_bytes(cols: dict[str, np.ndarray], units: dict[str, str],
+               meta: dict[str, Any] | None = None) -> bytes:
+    """CSV of equal-length columns in the result protocol's style
+    (:func:`contactlab.effects._protocol.csv_text`): ``# notes: ...`` metadata lines when there
+    are notes or a model error, ``name [unit]`` headers."""
+    return csv_text(cols, units, meta).encode()
 
 
 def _get(obj: Any, name: str, n: int) -> np.ndarray:
@@ -373,9 +417,10 @@ def _get(obj: Any, name: str, n: int) -> np.ndarray:
     return np.broadcast_to(v, (n,)).copy() if v.ndim == 0 else v.reshape(-1)
 
 
-def _closed_form(contact: Any, plan: "Plan", h: Any, m: int
+def _closed_form(contact: Any, plan: "Plan", h: Any, m: int, results: list | None = None
                  ) -> tuple[dict[str, np.ndarray], Any, list[str]]:
-    """Series of the closed-form route for the first ``m`` steps (``m = n``: the whole path)."""
+    """Series of the closed-form route for the first ``m`` steps (``m = n``: the whole path);
+    the result objects computed are appended to ``results`` as (call, result)."""
     n_kind = h.kind("normal")
     N = h.values("normal")[:m]
     out: dict[str, np.ndarray] = {"time": h.time[:m].copy()}
@@ -397,6 +442,8 @@ def _closed_form(contact: Any, plan: "Plan", h: Any, m: int
             kw["method"] = plan.method
         res = getattr(contact, call)(**kw)
         computed.append(call)
+        if results is not None:
+            results.append((call, res))
         pre = {"twist": 0.0, "torque": 0.0, "displacement": 0.0, "tangential_force": 0.0,
                "dissipated_energy": 0.0}
         for k in ("twist", "torque", "displacement", "tangential_force", "stick_radius",
@@ -473,6 +520,7 @@ def run_scene(scene: "Scene") -> SceneResult:
     N = h.values("normal")
     out: dict[str, np.ndarray] = {"time": h.time.copy()}
     normal_state = None
+    results: list[tuple[str, Any]] = []
 
     if plan.route == "viscoelastic":
         kw = {"n_springs": scene.solver["n_springs"]} if "n_springs" in scene.solver else {}
@@ -487,6 +535,7 @@ def run_scene(scene: "Scene") -> SceneResult:
                 k: (h.time[:m] if k == "time" else _get(got, k, m)) for k in plan.series},
                 ["viscoelastic_history"] if got is not None else []) from None
         computed.append("viscoelastic_history")
+        results.append(("viscoelastic_history", res))
         for k in plan.series:
             if k != "time":
                 out[k] = _get(res, k, n)
@@ -511,12 +560,14 @@ def run_scene(scene: "Scene") -> SceneResult:
                                 {k: part.data[k] for k in plan.series if k in part.data},
                                 ["simulate"]) from None
         computed.append("simulate")
+        results.append(("simulate", res))
         for k in plan.series:
             if k != "time":
                 out[k] = _get(res, k, n)
     else:
         try:
-            out, normal_state, computed = _closed_form(contact, plan, h, n)
+            out, normal_state, computed = _closed_form(contact, plan, h, n, results)
+            results.insert(0, ("normal", normal_state))
         except ContactlabError as err:
             m, got = solved_prefix(lambda m: _closed_form(contact, plan, h, m), n)
             raise _step_failure(scene, plan, h, err, m, got[0] if got else {},
@@ -561,6 +612,7 @@ def run_scene(scene: "Scene") -> SceneResult:
                                             ctrl: float(h.values("torsion")[-1]),
                                             "method": plan.method})
                     fields[f] = np.asarray(ts.shear(r), float).reshape(-1)
+                    results.append(("torsion", ts))
             for k, v in fields.items():
                 if np.any(np.isnan(v)):
                     raise ConvergenceError(f"field {k}[{int(np.argmax(np.isnan(v)))}] is NaN "
@@ -569,6 +621,7 @@ def run_scene(scene: "Scene") -> SceneResult:
             stage = "wear"
             wear_res = contact.wear(**plan.details["wear"]["kwargs"])
             computed.append("wear")
+            results.append(("wear", wear_res))
             meta_extra["wear"] = {**{k: float(v[-1]) for k, v in wear_res.to_dict().items()},
                                   "steps": int(wear_res.meta["steps"]),
                                   "mode": wear_res.mode, "method": wear_res.method}
@@ -576,6 +629,7 @@ def run_scene(scene: "Scene") -> SceneResult:
             stage = "fretting_map"
             fmap = contact.fretting_map(**plan.details["fretting_map"]["kwargs"])
             computed.append("fretting_map")
+            results.append(("fretting_map", fmap))
             meta_extra["fretting_map"] = {
                 "points": int(fmap.regime.size),
                 "regimes": {name: int(np.sum(fmap.regime == i))
@@ -593,4 +647,5 @@ def run_scene(scene: "Scene") -> SceneResult:
     meta = {"computed": computed, "route": plan.route, "version": __version__,
             "title": scene.title, "citations": _sources(computed, plan.method, contact),
             **meta_extra}
+    _collect(meta, results)
     return SceneResult(series, fields, plan, meta, wear_res, fmap)

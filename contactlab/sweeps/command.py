@@ -1,6 +1,7 @@
 """``contactlab sweep SCENE --grid KEY=A:B:N[:log] ... -o DIR``: the command behind the CLI.
 
-Writes ``DIR/sweep.csv`` (the table) and keeps ``DIR/sweep.parquet`` as the checkpoint store when
+Writes ``DIR/sweep.csv`` (the table; units in the headers, ``force [N]``, and the points'
+warnings as ``# notes: ...`` lines first, read it with ``pandas.read_csv(path, comment="#")``) and keeps ``DIR/sweep.parquet`` as the checkpoint store when
 pyarrow is installed, so the same command run again resumes a killed sweep.
 """
 from __future__ import annotations
@@ -13,6 +14,7 @@ from typing import Any
 from ..errors import ParameterError
 from .grid import parse_axis
 from .run import sweep
+from .table import table_csv_text
 
 __all__ = ["sweep_command"]
 
@@ -102,7 +104,7 @@ def sweep_command(scene: str | Path, specs: Sequence[str], output: str | Path | 
     files = []
     if outdir is not None:
         from ..scene.run import atomic_write
-        files.append(atomic_write(outdir / "sweep.csv", table.to_csv(index=False).encode()))
+        files.append(atomic_write(outdir / "sweep.csv", table_csv_text(table).encode()))
         if store is not None:
             files.append(store)
     stats = table.attrs["sweep"]["stats"]

@@ -10,7 +10,50 @@ from ..errors import ParameterError
 from .grid import RESERVED, Grid
 from .study import Records
 
-__all__ = ["assemble", "to_dataset", "output_name"]
+__all__ = ["assemble", "to_dataset", "output_name", "column_units", "write_table",
+           "table_csv_text"]
+
+
+def column_units(columns: list[str]) -> dict[str, str]:
+    """SI unit of each column of a sweep table whose name (without ``output.``, ``_min`` or
+    ``_max``) is a scene series (:data:`contactlab.scene.run.SERIES_UNITS`); other columns
+    (grid keys, ``point``, ``error``, ...) have none (``""``)."""
+    from ..scene.run import SERIES_UNITS
+    out = {}
+    for c in columns:
+        base = str(c).removeprefix("output.")
+        for tail in ("_min", "_max"):
+            if base.endswith(tail) and base[: -len(tail)] in SERIES_UNITS:
+                base = base[: -len(tail)]
+        out[c] = SERIES_UNITS.get(base, "")
+    return out
+
+
+def table_notes(table: Any) -> list[str]:
+    """The distinct warnings recorded by the points of a sweep table, in point order."""
+    notes: list[str] = []
+    for w in table["warnings"] if "warnings" in table else ():
+        if isinstance(w, str) and w and w not in notes:
+            notes.append(w)
+    return notes
+
+
+def table_csv_text(table: Any) -> str:
+    """A sweep table as CSV text in the result protocol's style: ``# notes: ...`` lines (the
+    distinct warnings of the points) when there are any, ``name [unit]`` headers for the
+    columns with a unit (:func:`column_units`). Read it back with
+    ``pandas.read_csv(path, comment="#")``."""
+    from ..effects._protocol import metadata_lines
+    units = table.attrs.get("units") or column_units(list(table.columns))
+    named = table.rename(columns={c: f"{c} [{u}]" for c, u in units.items() if u})
+    lines = metadata_lines({"notes": table_notes(table)})
+    return "".join(line + "\n" for line in lines) + named.to_csv(index=False)
+
+
+def write_table(table: Any, path: Any) -> None:
+    """Write a sweep table as CSV (:func:`table_csv_text`)."""
+    with open(path, "w", newline="") as fh:
+        fh.write(table_csv_text(table))
 
 
 def _pandas() -> Any:
@@ -89,6 +132,8 @@ def assemble(grid: Grid, records: Records | list[Records]) -> Any:
     for col in ("error", "message", "warnings"):    # None (not NaN) where nothing happened
         df[col] = pd.Series(order(getattr(rec, col)), index=df.index, dtype=object)
     df.attrs["sweep"] = {"axes": grid.axes, "names": list(grid.names)}
+    df.attrs["units"] = column_units(list(df.columns))
+    df.attrs["notes"] = table_notes(df)
     return df
 
 

@@ -1,4 +1,5 @@
-"""Conformance checks that every profile and material, built-in or plugin, can run.
+"""Conformance checks that every profile and material, built-in or plugin, can run, and that
+every result type follows the result protocol (:class:`ResultChecks`).
 
 Subclass a mixin in a test module, give it an instance, and pytest collects its ``test_*``
 methods (the pattern of astropy's model tests and PyBaMM's submodel tests)::
@@ -18,7 +19,8 @@ can be overridden per subclass.
 """
 from .materials import MaterialChecks, bad_values
 from .profiles import ProfileChecks, independent_transform
+from .results import RESULT_MODULES, ResultChecks, result_types
 from .typical import typical_instance
 
-__all__ = ["ProfileChecks", "MaterialChecks", "independent_transform", "typical_instance",
-           "bad_values"]
+__all__ = ["ProfileChecks", "MaterialChecks", "ResultChecks", "independent_transform",
+           "typical_instance", "bad_values", "result_types", "RESULT_MODULES"]

@@ -321,6 +321,9 @@ def test_steps_below_1e12_of_amplitude_simulate(rel_step):
 
 
 @pytest.mark.parametrize("method", ["exact", "mdr"])
+# c/a = 0.9: the MDR torque is valid, its dissipated energy (2.4 % off) is not and says so
+@pytest.mark.filterwarnings("ignore:MDR torsion model. the dissipated energy"
+                            ":contactlab.errors.ValidityWarning")
 def test_tiny_steps_twist_history(method):
     """twist_history with steps of 1e-13 of the amplitude after a reversal: Masing branch starts
     with the full-stick stiffness (16/3)G_t a³ (§6.5), increments match it to the rounding of M."""

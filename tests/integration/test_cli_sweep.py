@@ -28,7 +28,10 @@ def test_sweep_writes_the_table_and_a_rerun_resumes(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["sweep", str(SCENE), *GRID, "-o", str(out), "--workers", "1"]) == 0
     assert "9 points (3 failed" in capsys.readouterr().out
-    table = pd.read_csv(out / "sweep.csv")
+    table = pd.read_csv(out / "sweep.csv", comment="#")
+    # units in the headers, the same style as every result's CSV (issue 27)
+    assert "torque [N*m]" in table.columns and "torque_max [N*m]" in table.columns
+    table = table.rename(columns=lambda c: c.split(" [")[0])
     twists = list(dict.fromkeys(table["load_path[1].ramp.twist"]))
     np.testing.assert_allclose(twists, [1e-3, np.sqrt(1e-5), 1e-2], rtol=1e-15)
     api = contactlab.sweep(SCENE, {"interface.friction": [-0.1, 0.1, 0.3],

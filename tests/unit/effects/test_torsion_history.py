@@ -144,7 +144,12 @@ def test_mdr_history_against_jenkins_springs(hertz):
     keep = np.arange(0, len(fine), 50)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
+        # the torque stays valid; the dissipated energy, the most sensitive quantity, is past
+        # its 1 % limit at this twist (c/a ~ 0.89: ~2.5 % against the exact solution), which
+        # twist_history now says (issue 26); here the MDR is compared with MDR springs
+        warnings.filterwarnings("ignore", message=".*dissipated energy", category=ValidityWarning)
         h = hertz.twist_history(twist=phi_hist, force=F_HERTZ, method="mdr")
+    assert "dissipated_energy" in h.model_errors and h.model_errors["torque"] < 0.01
     scale = np.max(np.abs(h.torque))
     np.testing.assert_allclose(h.torque, np.array(M_el)[keep], rtol=0, atol=TOL.JENKINS_4000 * scale)
     np.testing.assert_allclose(h.dissipated_energy, np.array(D_el)[keep], rtol=TOL.JENKINS_DISSIPATION,

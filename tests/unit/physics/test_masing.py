@@ -39,6 +39,9 @@ def _jittered(n_cycles):
 
 
 @pytest.mark.parametrize("method", ["exact", "mdr"])
+# c/a > 0.83: the MDR torque is valid; its dissipated energy (1.9 % off) is not and says so
+@pytest.mark.filterwarnings("ignore:MDR torsion model. the dissipated energy"
+                            ":contactlab.errors.ValidityWarning")
 def test_jittered_history_solves_per_amplitude_not_per_rounding(method, monkeypatch):
     c = cl.Contact(cl.profiles.Paraboloid(R=0.01), (STEEL, STEEL), friction=0.3)
     twist = 3e-4 * _jittered(500)      # partial slip, c/a > 0.83 (inside the MDR's validity)
