@@ -168,6 +168,7 @@ def check_histories(i, points, n):
         with warnings.catch_warnings():
             # the MDR model outside its validity at these twists (tested elsewhere)
             warnings.filterwarnings("ignore", "MDR torsion model outside its validity")
+            warnings.filterwarnings("ignore", "MDR torsion model: the dissipated energy")
             h = c.twist_history(twist=x * PHI, force=F0, method=method)
         check_steps_non_negative(np.asarray(h.dissipated_energy))
     a = float(c.normal(force=F0).radius)
