@@ -170,6 +170,15 @@ class Result:
             object.__setattr__(self, "_model_errors_cache", got)
         return dict(got)
 
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled state: a deferred model error is computed first, so that the pickle does not
+        carry the contact it was deferred with (which may hold unpicklable callables)."""
+        state = dict(self.__dict__)
+        fn = state.pop("_model_errors_fn", None)
+        if fn is not None and "_model_errors_cache" not in state:
+            state["_model_errors_cache"] = fn()
+        return state
+
     def _defer_model_errors(self, fn: Callable[[], dict[str, Any]]) -> None:
         """Compute :attr:`model_errors` by ``fn()`` on first access (a picklable callable)."""
         object.__setattr__(self, "_model_errors_fn", fn)
