@@ -359,25 +359,31 @@ class NormalState(Result, Cited):
     def _edge_g(self) -> np.ndarray:
         """The ``g(a)`` the pressure's edge term ``(d - g(a))/sqrt(a² - r²)`` is judged against.
 
-        A non-adhesive contact has no edge term (``d = g(a)`` defines its radius): the depth
-        itself is returned, so the term is exactly 0 and not the difference of a root solve's
-        two ends (which left ``±inf`` at the edge and in :attr:`peak_pressure`). Only a contact
-        pinned at a punch wall carries one, ``d - g(b) > 0``, counted where it exceeds the
-        rounding of the depth solve and the error of ``g(b)``.
+        A non-adhesive contact has no edge term where ``d = g(a)`` up to rounding (``d = g(a)``
+        defines its radius): the depth itself is returned there, so the term is exactly 0 and
+        not the difference of a root solve's two ends (which left ``±inf`` at the edge and in
+        :attr:`peak_pressure`). The term is kept where ``d - g(a)`` exceeds the rounding of the
+        depth solve and the error of ``g(a)``: a contact pinned at a punch wall (``d - g(b) >
+        0``, physics), and a radius the float cannot place finely enough where ``g`` is steep
+        (next to the rim of a truncated profile, ``g(a)`` then errs while the depth is accurate:
+        the term carries the difference, as the superposition of flat punches does).
         """
         prof = self.contact.profile
         d = np.asarray(self._depth, dtype=float)
-        if not np.isfinite(prof.wall_radius):
-            return d
         a = np.asarray(self._radius, dtype=float)
-        at_wall = (a > 0) & (a >= prof.wall_radius)
-        if not np.any(at_wall):
+        if not np.any(a > 0):
             return d
         from ..profiles.base import ROUNDING
-        g = self._g_at_radius
-        _, g_err = prof._g_with_error(np.where(at_wall, a, prof.wall_radius), self.contact.rtol)
+        g = np.asarray(self._g_at_radius, dtype=float)
+        _, g_err = prof._g_with_error(np.where(a > 0, a, 1.0), self.contact.rtol)
         tol = 8 * ROUNDING * (np.abs(d) + np.abs(g)) + np.abs(g_err)
-        return np.where(at_wall & (np.abs(d - g) > tol), g, d)
+        return np.where((a > 0) & (np.abs(d - g) > tol), g, d)
+
+    @property
+    def _edge_at_wall(self) -> np.ndarray:
+        """Where the contact edge sits at a punch wall (its edge term a real singularity)."""
+        a = np.asarray(self._radius, dtype=float)
+        return (a > 0) & (a >= self.contact.profile.wall_radius)
 
     def _field_args(self, r: Any) -> tuple[np.ndarray, ...]:
         r = as_float_array("r", r)
@@ -510,7 +516,7 @@ class NormalState(Result, Cited):
         g_edge = np.asarray(self._edge_g)
         val, _ = _normal.pressure(self.contact.profile, self.contact.moduli.normal, rho * a, a,
                                   self._depth[..., None], g_edge[..., None], self.contact.rtol)
-        flat_edge = (self._radius > 0) & (self._depth != g_edge)
+        flat_edge = self._edge_at_wall & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         warn_cone_tip(self.contact.profile, val[..., 0])
         return _scalar_or_array(peak)

@@ -194,10 +194,10 @@ class PathResult(Result, Cited):
     def _checked_errors(contact: Any, path: Any, series: dict) -> dict[str, float]:
         """Model errors of an MDR torsion run against the exact ring solver at
         :data:`PATH_CHECK_RINGS` rings (the coarse exact check)."""
-        from .torsion_path import simulate_exact
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ex = simulate_exact(contact, path, outputs=tuple(series), n_rings=PATH_CHECK_RINGS)
+            ex = simulate(contact, path, outputs=tuple(series), method="exact",
+                          n_rings=PATH_CHECK_RINGS)
         errs = {}
         for q, got in series.items():
             ref, got = np.asarray(ex.data[q], float), np.asarray(got, float)
