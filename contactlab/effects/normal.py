@@ -438,3 +438,24 @@ class NormalState(Cited):
         flat_edge = (self._radius > 0) & (self._depth != self._g_at_radius)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         return _scalar_or_array(peak)
+
+    # ---- subsurface stresses (contactlab.effects.stress does the work)
+    def stress(self, r: Any, z: Any, body: int = 1) -> Any:
+        """Subsurface stress field at radii ``r`` and depths ``z >= 0`` (m, broadcast) in body 1
+        or 2: a :class:`~contactlab.effects.stress.StressField` (cylindrical components, Pa,
+        tension positive; von Mises, maximum shear, Tresca, principal stresses). See
+        docs/stress.md."""
+        from .stress import normal_stress
+        return normal_stress(self, r, z, body)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` (``"von_mises"``, ``"max_shear"``, ``"tresca"``, ``"max_principal"``,
+        ``"min_principal"``) in body 1 or 2 and its location (a ``StressMaximum``)."""
+        from .stress import normal_max_stress
+        return normal_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1) -> Any:
+        """Stress field on a 2D grid ``(r_values, z_values)`` (default 200 x 100 points over
+        ``2a`` by ``1.5a``) for plots: ``state.stress_field().plot("von_mises")``."""
+        from .stress import normal_stress_field
+        return normal_stress_field(self, grid, body)
