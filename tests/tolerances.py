@@ -546,3 +546,28 @@ TABLE_BOUNDED_SLIP_HERTZ = 1e-6
 #: whole-number n exact rationals (times π for odd n), other n a math.gamma ratio (worst
 #: measured 22.5 ulp near n = 31) or, for n >= 300, an asymptotic series (< 1e-18 truncation)
 KAPPA_DOUBLE = 1e-14
+
+# ---- subsurface stresses (issue 31)
+#: Huber's closed Hertz field (the library's route) against Johnson's axis and surface forms and
+#: Huber's field written independently in tests/reference/stress.py: both are closed forms in
+#: double precision, evaluated with different algebra; measured <= 1.1e-15 relative to p0
+STRESS_CLOSED_FORM = 1e-10
+#: the flat-punch kernel against Boussinesq's point load integrated numerically (240 x 240
+#: Gauss points, ρ = a sin t at the rim) at depths >= 0.1a: the 2D quadrature limits it;
+#: measured <= 5e-13 relative to the mean pressure
+STRESS_BOUSSINESQ_PUNCH = 1e-10
+#: Hertz field by the numerical Boussinesq integration at depths >= 0.1a: the split 240 x 240 rule
+#: on the smooth Hertz pressure; measured <= 6e-9 relative to p0
+STRESS_BOUSSINESQ_HERTZ = 1e-7
+#: the punch superposition (Gauss-Kronrod 15 per segment) for smooth g' against a closed form:
+#: measured <= 5e-8 of p0 at depths 1e-6 a .. 2a and 2e-9 at z >= 0.1a; every point within its
+#: own error estimate (tested separately)
+STRESS_SUPERPOSITION = 1e-6
+#: equilibrium ∫σ_zz dA = -F at a depth, by a 2 x 400-point Gauss rule in the polar angle
+#: (r = z tan θ): the rule's own error; measured 7e-14 (Hertz), 9e-10 (cone, superposition, whose
+#: axis log-singular pressure gives the slowest convergence at z = 0.1a)
+STRESS_EQUILIBRIUM = 1e-8
+#: location of the maximum shear below Hertz contact: the maximum is flat (quadratic), so its
+#: depth is fixed only to ~ sqrt(rounding) by any maximiser; measured 1.7e-8 of a between our
+#: Nelder-Mead and the reference's bounded scalar minimiser
+STRESS_MAX_LOCATION = 1e-6

@@ -208,7 +208,10 @@ def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray
 
 def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarray,
                      g_prime: Callable[[np.ndarray], np.ndarray], E_star: float, nu: float,
-                     cuts: tuple[float, ...] = ()) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+                     cuts: tuple[float, ...] = (),
+                     g_prime_error: Callable[[np.ndarray], np.ndarray] | None = None,
+                     g_values: Callable[[np.ndarray], np.ndarray] | None = None
+                     ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     """``(E*/π)[∫_0^a g'(x) K(r, z; x) dx + edge K(r, z; a)]`` at flat arrays of points.
 
     Parameters
@@ -222,6 +225,16 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         Effective modulus (Pa) and the body's Poisson ratio.
     cuts : tuple of float
         Radii where ``g'`` is singular or jumps (the profile's breakpoints).
+    g_prime_error : callable, optional
+        An absolute error estimate of ``g'`` (an interpolated ``g'``); its effect on the field,
+        ``(E*/π) ∫ |δg'| |K| dx``, is added to the estimate.
+    g_values : callable, optional
+        ``g(x)`` itself. When given, each node's ``g'(x_j) w_j`` is replaced by the increment of
+        ``g`` over the node's cell (the cells tile the segment with the rule's weights), a
+        Riemann-Stieltjes sum: second order only, but it carries the exact increments of a
+        ``g`` whose slope oscillates faster than the rule resolves (a linear table's ``g'`` has
+        an inverse-square-root spike after every node, which point samples alias). The
+        estimate is then the difference of the Kronrod and Gauss cell sums.
 
     Returns
     -------
@@ -237,6 +250,9 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
     :data:`CHUNK`; nothing loops over points or nodes in Python.
     """
     t, wk, wg = kronrod_rule()
+    bk = np.concatenate([[0.0], np.cumsum(wk)])            # Kronrod cells tiling [0, 1]
+    bg = np.concatenate([[0.0], np.cumsum(wg[1::2])])      # Gauss cells
+    bk[-1] = bg[-1] = 1.0
     out = [np.zeros(r.shape) for _ in range(4)]
     err = np.zeros(r.shape)
     k = E_star / np.pi
@@ -246,9 +262,19 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         ends = _segments(rr, zz, aa, cuts)                 # (P, S + 1)
         lo, hi = ends[:, :-1, None], ends[:, 1:, None]     # (P, S, 1)
         x, jac = _nodes(rr[:, None, None], lo, hi, t)      # (P, S, 15)
+        if g_values is not None:
+            xk, _ = _nodes(rr[:, None, None], lo, hi, bk)
+            xg, _ = _nodes(rr[:, None, None], lo, hi, bg)
+            with np.errstate(invalid="ignore"):
+                # increments oriented along +x (a mirrored log map runs right to left)
+                dgk = np.diff(g_values(xk), axis=-1) * np.sign(np.diff(xk, axis=-1))
+                dgg = np.diff(g_values(xg), axis=-1) * np.sign(np.diff(xg, axis=-1))
         live = jac > 0
-        gp = np.where(live, g_prime(np.where(live, x, 1.0)), 0.0) * jac
-        comps = punch_kernel(rr[:, None, None], zz[:, None, None], np.where(live, x, 1.0), nu)
+        xs = np.where(live, x, aa[:, None, None])          # dead nodes: a harmless radius
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gp = np.where(live, g_prime(xs), 0.0) * jac
+            dgp = None if g_prime_error is None else np.where(live, g_prime_error(xs), 0.0) * jac
+        comps = punch_kernel(rr[:, None, None], zz[:, None, None], xs, nu)
         has_edge = bool(np.any(ee != 0))
         if has_edge:
             edge_c = punch_kernel(rr, zz, aa, nu)
@@ -256,13 +282,23 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         for i, c in enumerate(comps):
             with np.errstate(invalid="ignore"):
                 f = np.where(live, c * gp, 0.0)
-            kr = f @ wk                                    # (P, S)
-            ga = f @ wg
-            mag = np.abs(f) @ wk
+            if g_values is None:
+                kr = f @ wk                                    # (P, S)
+                ga = f @ wg
+                mag = np.abs(f) @ wk
+            else:
+                cl = np.where(live, c, 0.0)
+                kr = np.sum(cl * dgk, axis=-1)
+                ga = np.sum(cl[..., 1::2] * dgg, axis=-1)
+                mag = np.sum(np.abs(cl * dgk), axis=-1)
             diff = np.abs(kr - ga)
             with np.errstate(divide="ignore", invalid="ignore"):
                 qp = np.where(mag > 0, mag * np.minimum(1.0, (200.0 * diff / mag) ** 1.5), 0.0)
             val = np.sum(kr, axis=-1)
+            if dgp is not None:
+                with np.errstate(invalid="ignore"):
+                    diff = diff + np.where(live, np.abs(c * dgp), 0.0) @ wk
+                    qp = qp + np.where(live, np.abs(c * dgp), 0.0) @ wk
             if has_edge:
                 val = val + ee * edge_c[i]
             out[i][sl] = k * val
