@@ -16,7 +16,12 @@ from typing import Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, ValidityWarning
+from ..errors import (
+    NotSupportedError,
+    OutsideTheoryError,
+    ParameterError,
+    ValidityWarning,
+)
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
@@ -126,7 +131,7 @@ _new_state = object.__new__
 _f64 = np.float64
 
 
-def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
+def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     """One finite depth or force on a profile with scalar forms: plain floats, no arrays.
 
     ``None`` when the profile has no scalar route (the array route then runs). The force's error
@@ -179,7 +184,7 @@ _FORCE_SANITY = 1e-6
 
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
-           branch: str = "stable") -> "NormalState":
+           branch: str = "stable") -> NormalState:
     """Driver of :meth:`contactlab.Contact.normal` for non-adhesive contacts (see there for the
     parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`).
 
@@ -217,7 +222,7 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
             "of the profile parameters, moduli and loads; SI: m, Pa, N).") from err
 
 
-def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> "NormalState":
+def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> NormalState:
     """The array route of :func:`normal` (validation, the kernel, the state)."""
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
     if branch != "stable":
@@ -421,7 +426,7 @@ class NormalState(Cited):
     def displacement(self, r: Any) -> Any:
         """Normal surface displacement ``u_z(r)``, m, inside (``d - f(r)``) and outside the contact."""
         r, a, d, _ = self._field_args(r)
-        val, err = _normal.displacement(self.contact.profile, r, a, d, self.contact.rtol)
+        val, _err = _normal.displacement(self.contact.profile, r, a, d, self.contact.rtol)
         return _scalar_or_array(val)
 
     @property

@@ -24,8 +24,16 @@ from ..errors import NotSupportedError, ParameterError, ValidityWarning
 from ..params import as_float_array
 from ..physics import stress as _st
 
-__all__ = ["StressField", "StressMaximum", "KINDS", "normal_stress", "normal_max_stress",
-           "normal_stress_field", "body_poisson_ratio", "g_prime_of"]
+__all__ = [
+    "KINDS",
+    "StressField",
+    "StressMaximum",
+    "body_poisson_ratio",
+    "g_prime_of",
+    "normal_max_stress",
+    "normal_stress",
+    "normal_stress_field",
+]
 
 #: derived scalar fields :meth:`StressField` offers (names of its properties)
 KINDS = ("von_mises", "max_shear", "tresca", "max_principal", "min_principal")

@@ -28,12 +28,20 @@ and return arrays; they never see a contact or a state.
 """
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["punch_kernel", "hertz_field", "superposed_field", "kronrod_rule", "CHUNK",
-           "principal_axisymmetric", "principal_general", "von_mises"]
+__all__ = [
+    "CHUNK",
+    "hertz_field",
+    "kronrod_rule",
+    "principal_axisymmetric",
+    "principal_general",
+    "punch_kernel",
+    "superposed_field",
+    "von_mises",
+]
 
 #: grid points evaluated together in the superposition (bounds the (points x nodes) arrays:
 #: 4096 points x 96 nodes x 8 bytes x ~12 temporaries ~ 40 MB)

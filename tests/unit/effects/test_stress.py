@@ -205,7 +205,7 @@ def test_derived_quantities():
 
 
 def test_stress_field_grid():
-    st, a, p0 = hertz_state()
+    st, a, _p0 = hertz_state()
     f = st.stress_field()
     assert f.shape == (100, 200)
     assert f.r.max() == 2 * a and f.z.max() == 1.5 * a
@@ -223,7 +223,7 @@ def test_stress_field_grid():
     ({"r": [0.0, 1.0], "z": [0.0, 1.0, 2.0]}, ParameterError, "broadcast"),
 ])
 def test_bad_input(kw, exc, match):
-    st, a, p0 = hertz_state()
+    st, _a, _p0 = hertz_state()
     with pytest.raises(exc, match=match):
         st.stress(**kw)
     assert issubclass(exc, ContactlabError)
