@@ -24,7 +24,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-import contactlab as cl  # noqa: E402
+import contactlab as cl
 
 STEEL = cl.Elastic(E=210e9, nu=0.3)
 R = 0.01
@@ -69,7 +69,7 @@ def main() -> None:
     for kind in ("cubic", "linear"):
         st = cl.Contact(cl.profiles.Tabulated(rt, rt**2 / (2 * R), interpolation=kind),
                         materials=(STEEL, STEEL)).normal(force=F)
-        w, c, ft = best(lambda: field(st, rr, zz), 3)
+        w, c, ft = best(lambda st=st: field(st, rr, zz), 3)
         dev = max(np.max(np.abs(getattr(ft, k) - getattr(fh, k))) for k in ("srr", "stt", "szz",
                                                                            "srz")) / p0
         deep = zz >= 0.05 * a

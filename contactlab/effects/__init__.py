@@ -13,7 +13,9 @@ immutable result:
 * :mod:`~contactlab.effects.path`: :class:`PathResult` (``contact.simulate``);
 * :mod:`~contactlab.effects.fretting`: :class:`FrettingLoop`, :class:`FrettingMap`;
 * :mod:`~contactlab.effects.law`: :class:`ContactLaw`, :class:`LawStep` (many contacts, for DEM
-  codes; takes plain per-contact arrays instead of a contact).
+  codes; takes plain per-contact arrays instead of a contact);
+* :mod:`~contactlab.effects.stress`: :class:`StressField`, :class:`StressMaximum` (subsurface
+  stresses of a state: ``state.stress(r, z)``).
 """
 import importlib as _importlib
 import typing as _typing
@@ -24,13 +26,14 @@ if _typing.TYPE_CHECKING:   # the names below resolve on first use (module ``__g
     from .law import ContactLaw, LawStep
     from .normal import NormalState
     from .path import PathResult
+    from .stress import StressField, StressMaximum
     from .tangential import ShiftHistory, TangentialState
     from .torsion import TorsionState, TwistHistory
     from .viscoelastic import ViscoelasticHistory
 
 __all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
            "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult",
-           "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep"]
+           "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep", "StressField", "StressMaximum"]
 
 #: result name -> module of this package that defines it. Imported on first use: the drivers
 #: together cost ~20 ms of import (start-up time), and a session needs only the ones it calls
@@ -39,12 +42,13 @@ _HOME = {
     "TangentialState": "tangential", "ShiftHistory": "tangential", "TorsionState": "torsion",
     "TwistHistory": "torsion", "ViscoelasticHistory": "viscoelastic", "PathResult": "path",
     "FrettingLoop": "fretting", "FrettingMap": "fretting", "ContactLaw": "law", "LawStep": "law",
+    "StressField": "stress", "StressMaximum": "stress",
 }
 
 
 #: the driver modules, attributes of the package once imported (``contactlab.effects.law``)
-_MODULES = ("adhesion", "fretting", "law", "law_source", "normal", "path", "tangential", "torsion",
-            "torsion_path", "viscoelastic", "wear")
+_MODULES = ("adhesion", "fretting", "law", "law_source", "normal", "path", "stress", "tangential",
+            "torsion", "torsion_path", "viscoelastic", "wear")
 
 
 def __getattr__(name: str) -> object:
