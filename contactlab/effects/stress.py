@@ -403,3 +403,142 @@ def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         return normal_stress(state, R, Z, body)
+
+
+# ====================================================================== torsion
+#: Chebyshev points for the twist density Φ' = -ψ'(x) on the slip annulus (and half as many for
+#: its error estimate); the lag ψ is interpolated in ln x, where the logarithmic growth of
+#: Jäger's slip function towards small radii is smooth
+TWIST_DENSITY_POINTS = 48
+
+
+def _twist_density(lag, c: float, a: float):
+    """``Φ'(x) = -dψ/dx`` on ``[c, a]`` from the lag ``ψ(x) = φ - Φ(x)`` (a callable on arrays):
+    Chebyshev interpolation of ``ψ`` in ``s = ln x`` at :data:`TWIST_DENSITY_POINTS` points,
+    differentiated; returns ``(density, error)`` callables (the error: the difference to the
+    interpolant on half as many points)."""
+    from numpy.polynomial import chebyshev as C
+    lo, hi = np.log(c), np.log(a)
+
+    def fit(n: int) -> np.ndarray:
+        k = np.arange(n)
+        u = np.cos(np.pi * (k + 0.5) / n)                       # first-kind points
+        x = np.exp(lo + (hi - lo) * 0.5 * (u + 1.0))
+        return C.chebder(C.chebfit(u, lag(x), n - 1)) * (2.0 / (hi - lo))
+
+    d_full, d_half = fit(TWIST_DENSITY_POINTS), fit(TWIST_DENSITY_POINTS // 2)
+
+    def at(coef: np.ndarray, x: np.ndarray) -> np.ndarray:
+        inside = (x > c) & (x < a)
+        u = np.clip(2.0 * (np.log(np.where(inside, x, c)) - lo) / (hi - lo) - 1.0, -1.0, 1.0)
+        return np.where(inside, -C.chebval(u, coef) / np.where(inside, x, 1.0), 0.0)
+
+    return (lambda x: at(d_full, x)), (lambda x: np.abs(at(d_full, x) - at(d_half, x)))
+
+
+def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total") -> StressField:
+    """Field of a torsion state (implementation of ``TorsionState.stress``)."""
+    if part not in ("total", "friction"):
+        raise ParameterError(f"part={part!r} is invalid: choose 'total' (normal preload "
+                             "included) or 'friction' (the torsional part alone).")
+    nu = body_poisson_ratio(state.contact, body)
+    r, z = _points(r, z)
+    if state.shape != ():
+        raise NotSupportedError(f"stress() needs a single state, this one has shape "
+                                f"{state.shape}: index the twists or call torsion() per load.")
+    ct = state.contact
+    G = ct.moduli.torsional
+    phi = float(state._twist)
+    a, c = float(state._a), float(state._stick)
+    sign = (1.0 if body == 1 else -1.0) * np.sign(phi)
+    phi = abs(phi)
+    R, Z = r.ravel(), z.ravel()
+    k = 4.0 * G / np.pi
+    zero = np.zeros(R.shape)
+    if not np.isfinite(phi):
+        raise NotSupportedError("stress() at full sliding (infinite twist) is not implemented: "
+                                "prescribe a finite twist or torque below the sliding torque.")
+    if a <= 0 or phi == 0:
+        stz, srt, err = zero, zero, zero
+        route = "torsion: none"
+    elif state.method == "no-slip" or c >= a:
+        stz, srt = (k * phi * v for v in _st.twist_kernel(R, Z, a))
+        err = 4e-15 * (np.abs(stz) + np.abs(srt))
+        route = "torsion: twisted punch"
+    else:
+        model = __import__("contactlab.effects.torsion", fromlist=["torsion_model"]).torsion_model(
+            ct, state.method)
+        psi = model.psi(np.array([a]), np.array([float(state._d)]), np.array([float(state._g_a)]))
+        idx = np.array([0])
+
+        def lag(x: np.ndarray) -> np.ndarray:
+            return psi(np.asarray(x, float)[None, :], idx)[0]
+
+        dens, dens_err = _twist_density(lag, c, a)
+        (stz, srt), err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, dens, 0.0, nu,
+                                               (c,), dens_err, None, _st.twist_kernel, k)
+        edge = float(lag(np.array([a * (1 - 1e-15)]))[0])
+        if edge != 0.0:      # a lag left at the rim (flat punch, MDR): a twisted punch of radius a
+            e_tz, e_rt = _st.twist_kernel(R, Z, a)
+            stz, srt = stz + k * edge * e_tz, srt + k * edge * e_rt
+        route = f"torsion: superposition ({state.method})"
+    stz, srt = sign * stz, sign * srt
+    if part == "total":
+        base = normal_stress(state.normal if state.normal.shape == () else _one_normal(state),
+                             r, z, body)
+        comps = (base.srr, base.stt, base.szz, base.srz)
+        err = np.asarray(err).reshape(r.shape) + base.error
+        route = f"{base.meta['route']} + {route}"
+    else:
+        comps = (np.zeros(r.shape),) * 4
+        err = np.asarray(err).reshape(r.shape)
+    stz, srt = stz.reshape(r.shape), srt.reshape(r.shape)
+    singular = ~(np.isfinite(stz) & np.isfinite(srt))
+    err = np.where(singular, np.inf, err)
+    mags = np.abs(np.stack([*comps, stz, srt]))
+    fin = np.all(np.isfinite(mags), axis=0)
+    top = np.max(mags[:, fin], initial=0.0)
+    rel = float(np.max(err[fin], initial=0.0) / top) if top > 0 else 0.0
+    return StressField(r, z, *comps, stz, srt, err,
+                       {"route": route, "body": body, "nu": nu, "error_estimate": rel,
+                        "part": part})
+
+
+def _one_normal(state):
+    """The normal preload of a single torsion state as a single NormalState."""
+    n = state.normal
+    from .normal import NormalState
+    return NormalState(n.contact, np.float64(state._d), np.float64(state._a),
+                       np.float64(np.ravel(n._force)[0]), dict(n.meta))
+
+
+def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
+    """Implementation of ``TorsionState.max_stress`` (the whole state's field)."""
+    if kind not in KINDS:
+        raise ParameterError(f"kind={kind!r} is invalid: choose one of "
+                             f"{', '.join(repr(k) for k in KINDS)}.")
+    body_poisson_ratio(state.contact, body)
+    if state.shape != ():
+        raise NotSupportedError("max_stress() needs a single state.")
+    a = float(state._a)
+    if a <= 0:
+        return StressMaximum(0.0, 0.0, 0.0, kind)
+    return _maximise(lambda r, z: torsion_stress(state, r, z, body), kind, a)
+
+
+def torsion_stress_field(state, grid: Any = None, body: Any = 1, part: str = "total"
+                         ) -> StressField:
+    """Implementation of ``TorsionState.stress_field`` (see :func:`normal_stress_field`)."""
+    a = float(state._a) if state.shape == () else 0.0
+    if grid is None:
+        if a <= 0:
+            raise ParameterError("stress_field() without grid= needs a contact (radius > 0).")
+        rv, zv = np.linspace(0.0, 2.0 * a, 200), np.linspace(0.0, 1.5 * a, 100)
+    else:
+        try:
+            rv, zv = grid
+        except (TypeError, ValueError) as err:
+            raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
+        rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
+    R, Z = np.meshgrid(rv, zv, indexing="xy")
+    return torsion_stress(state, R, Z, body, part)

@@ -376,6 +376,25 @@ class TorsionState(Cited):
                                     "prescribe a finite twist.")
         return _scalar_or_array((sgn * out).reshape(full))
 
+    # ---- subsurface stresses (contactlab.effects.stress does the work)
+    def stress(self, r: Any, z: Any, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field (a ``StressField``) at radii ``r`` and depths ``z`` (m): the
+        normal preload's field plus the torsional ``σ_θz, σ_rθ`` (``part="friction"``: the
+        torsional part alone). Body 1 receives the traction :meth:`shear` reports; body 2 its
+        opposite. See docs/stress.md."""
+        from .stress import torsion_stress
+        return torsion_stress(self, r, z, body, part)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` of the whole field in body 1 or 2 and its location."""
+        from .stress import torsion_max_stress
+        return torsion_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1, part: str = "total") -> Any:
+        """Stress field on a 2D grid ``(r_values, z_values)`` for plots (default 200 x 100)."""
+        from .stress import torsion_stress_field
+        return torsion_stress_field(self, grid, body, part)
+
 
 # ====================================================================== twist histories
 def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,

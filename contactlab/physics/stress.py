@@ -116,6 +116,40 @@ def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray, nu: float
     return srr, stt, szz, srz
 
 
+def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Field ``(σ_θz, σ_rθ)`` of a rigid flat punch of radius ``x`` twisted by a unit angle on a
+    half-space of unit shear modulus, divided by ``4/π`` [RS44] (in the twisted body: on the
+    surface under the punch ``σ_θz = r/sqrt(x² - r²)``, the traction the punch receives).
+
+    With ``u_θ = (2/π)[r arcsin(x/l2) - r x n/l2²]`` the punch's displacement (it reduces to
+    ``r`` under the punch and to the surface formula of theory §6.1 outside), ``σ_θz = -∂u/∂z``
+    and ``σ_rθ = -(∂u/∂r - u/r)`` give ``σ_θz = r x² m/(l2² Q)``, ``σ_rθ = r² x³ n/(l2⁴ Q)``
+    (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim.
+    """
+    r, z, x = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float),
+                                  np.asarray(x, float))
+    x2 = x * x
+    A = r * r + z * z - x2
+    Q = np.hypot(A, 2.0 * x * z)
+    pos = A >= 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        big = np.abs(A) + Q
+        small = np.where(Q > 0, 2.0 * x2 * z * z / big, 0.0)
+        m = np.sqrt(np.where(pos, small, 0.5 * big))
+        n2 = np.where(pos, 0.5 * big, small)
+        n = np.sqrt(n2)
+        l22 = x2 + n2
+        stz = r * x2 * m / (l22 * Q)
+        srt = r * r * x2 * x * n / (l22 * l22 * Q)
+    rim = Q == 0
+    if np.any(rim):
+        val = np.where(x > 0, np.inf, 0.0)
+        stz = np.where(rim, val, stz)
+        srt = np.where(rim, val, srt)
+    return stz, srt
+
+
 def hertz_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, p0: np.ndarray, nu: float
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Huber's closed form of the Hertz field ``(σ_rr, σ_θθ, σ_zz, σ_rz)``, Pa.
@@ -218,7 +252,9 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
                      g_prime: Callable[[np.ndarray], np.ndarray], E_star: float, nu: float,
                      cuts: tuple[float, ...] = (),
                      g_prime_error: Callable[[np.ndarray], np.ndarray] | None = None,
-                     g_values: Callable[[np.ndarray], np.ndarray] | None = None
+                     g_values: Callable[[np.ndarray], np.ndarray] | None = None,
+                     kernel: Callable[..., tuple[np.ndarray, ...]] | None = None,
+                     scale: float | None = None
                      ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     """``(E*/π)[∫_0^a g'(x) K(r, z; x) dx + edge K(r, z; a)]`` at flat arrays of points.
 
@@ -243,6 +279,10 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         ``g`` whose slope oscillates faster than the rule resolves (a linear table's ``g'`` has
         an inverse-square-root spike after every node, which point samples alias). The
         estimate is then the difference of the Kronrod and Gauss cell sums.
+    kernel, scale : callable and float, optional
+        Another elementary field ``kernel(r, z, x) -> components`` and its prefactor in place
+        of the pressed punch and ``E*/π`` (the twisted punch: :func:`twist_kernel`, ``4G_t/π``,
+        with ``g'`` the twist density ``Φ'``).
 
     Returns
     -------
@@ -261,9 +301,13 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
     bk = np.concatenate([[0.0], np.cumsum(wk)])            # Kronrod cells tiling [0, 1]
     bg = np.concatenate([[0.0], np.cumsum(wg[1::2])])      # Gauss cells
     bk[-1] = bg[-1] = 1.0
-    out = [np.zeros(r.shape) for _ in range(4)]
+    if kernel is None:
+        def kernel(rr, zz, xx):
+            return punch_kernel(rr, zz, xx, nu)
+    ncomp = len(kernel(np.zeros(1), np.ones(1), np.ones(1)))
+    out = [np.zeros(r.shape) for _ in range(ncomp)]
     err = np.zeros(r.shape)
-    k = E_star / np.pi
+    k = E_star / np.pi if scale is None else scale
     for lo_i in range(0, r.size, CHUNK):
         sl = slice(lo_i, lo_i + CHUNK)
         rr, zz, aa, ee = r[sl], z[sl], a[sl], edge[sl]
@@ -282,10 +326,10 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         with np.errstate(invalid="ignore", divide="ignore"):
             gp = np.where(live, g_prime(xs), 0.0) * jac
             dgp = None if g_prime_error is None else np.where(live, g_prime_error(xs), 0.0) * jac
-        comps = punch_kernel(rr[:, None, None], zz[:, None, None], xs, nu)
+        comps = kernel(rr[:, None, None], zz[:, None, None], xs)
         has_edge = bool(np.any(ee != 0))
         if has_edge:
-            edge_c = punch_kernel(rr, zz, aa, nu)
+            edge_c = kernel(rr, zz, aa)
         e = np.zeros(rr.shape)
         for i, c in enumerate(comps):
             with np.errstate(invalid="ignore"):
