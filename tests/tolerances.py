@@ -571,3 +571,12 @@ STRESS_EQUILIBRIUM = 1e-8
 #: depth is fixed only to ~ sqrt(rounding) by any maximiser; measured 1.7e-8 of a between our
 #: Nelder-Mead and the reference's bounded scalar minimiser
 STRESS_MAX_LOCATION = 1e-6
+#: the twisted-punch kernel against Reissner-Sagoci's Hankel integral (scipy quad, epsrel 1e-12)
+#: at depths >= 0.1a; measured 1.6e-14 of 4Gφ/π
+STRESS_TWIST_HANKEL = 1e-10
+#: surface σ_θz of a partial-slip torsion field (Jäger's twist density, Chebyshev-differentiated
+#: in ln x, superposed by the Gauss-Kronrod rule) against the library's own surface traction
+#: TorsionState.shear (a different algorithm: the stick-zone integral of theory §6.2 item 5);
+#: measured 2.4e-13 (exact) and 1.6e-8 (MDR, whose lag is not smooth at the slip boundary) of
+#: the peak traction
+STRESS_TORSION_SURFACE = 1e-7

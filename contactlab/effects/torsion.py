@@ -18,19 +18,45 @@ from typing import Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
+from ..errors import (
+    NotSupportedError,
+    ParameterError,
+    UnknownNameError,
+    ValidityWarning,
+)
 from ..params import as_float_array, broadcast_inputs, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import torsion as _models
 from ..physics import torsion_exact as _exact
 from ..physics import torsion_noslip as _noslip
-from ..physics.masing import masing_dissipation, masing_program, masing_response, merge_close, merge_step
-from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHODS, ROOT_SAFETY)
+from ..physics.masing import (
+    masing_dissipation,
+    masing_program,
+    masing_response,
+    merge_close,
+    merge_step,
+)
+from ..physics.torsion import (
+    MDR_ERROR_THRESHOLD,
+    MDR_VALID_STICK_RATIO,
+    METHODS,
+    ROOT_SAFETY,
+)
 from ..profiles.base import ROUNDING
 
-__all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
-           "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
-           "mdr_validity_twist", "torsion_model", "resolve_method"]
+__all__ = [
+    "MDR_ERROR_THRESHOLD",
+    "MDR_VALID_STICK_RATIO",
+    "METHODS",
+    "TorsionState",
+    "TwistHistory",
+    "mdr_torque_error",
+    "mdr_validity_twist",
+    "resolve_method",
+    "solve_torsion",
+    "torsion_model",
+    "twist_history",
+]
 
 
 def _scalar_or_array(v: np.ndarray) -> Any:
@@ -63,7 +89,7 @@ def resolve_method(contact, method: str | None) -> str:
 # ====================================================================== monotonic torsion
 def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
                   twist: Any = None, torque: Any = None, stick_radius: Any = None,
-                  method: str | None = None) -> "TorsionState":
+                  method: str | None = None) -> TorsionState:
     """Implementation of :meth:`contactlab.Contact.torsion` (see there)."""
     method = resolve_method(contact, method)
     load_key, load_val = exactly_one("torsion()", {"depth": depth, "force": force,
@@ -398,7 +424,7 @@ class TorsionState(Cited):
 
 # ====================================================================== twist histories
 def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
-                  method: str | None = None) -> "TwistHistory":
+                  method: str | None = None) -> TwistHistory:
     """Implementation of :meth:`contactlab.Contact.twist_history` (see there)."""
     method = resolve_method(contact, method)
     load_key, load_val = exactly_one("twist_history()", {"depth": depth, "force": force})
@@ -532,7 +558,7 @@ class TwistHistory(Cited):
     @cached_property
     def dissipated_energy(self) -> np.ndarray:
         a, d, g_a = self._state
-        step, po, f, p_from, p_to = self._segments
+        step, _po, _f, _p_from, _p_to = self._segments
         n = self.twist.size
         if self.method == "no-slip" or step.size == 0 or a <= 0:
             return np.zeros(n)

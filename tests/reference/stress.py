@@ -115,3 +115,20 @@ def hertz_max_shear(nu, a=1.0, p0=1.0):
     res = minimize_scalar(neg, bounds=(0.05 * a, 2 * a), method="bounded",
                           options={"xatol": 1e-12})
     return -res.fun / p0, res.x / a
+
+
+def twisted_punch_hankel(r, z, a, order):
+    """Reissner & Sagoci's twisted rigid punch by its Hankel integral, per unit ``4Gφ/π``:
+    ``σ_θz`` (``order=1``) and ``σ_rθ`` (``order=2``) at ``(r, z)``, ``z > 0``.
+
+    The surface traction ``(4Gφ/π) r/sqrt(a² - r²)`` has the order-1 Hankel transform
+    ``(4Gφ/π)(sin ξa - ξa cos ξa)/ξ²``; the circumferential displacement field
+    ``u = ∫ B(ξ) e^(-ξz) J1(ξr) dξ`` solves the torsion equation, so
+    ``σ_θz = ∫ ξ τ̄(ξ) e^(-ξz) J1(ξr) dξ`` and ``σ_rθ`` the same with ``J2``."""
+    from scipy.integrate import quad
+    from scipy.special import jv
+
+    def f(xi):
+        return (np.sin(xi * a) - xi * a * np.cos(xi * a)) / xi * np.exp(-xi * z) * jv(order, xi * r)
+
+    return quad(f, 0, np.inf, limit=4000, epsabs=1e-14, epsrel=1e-12)[0]
