@@ -347,8 +347,8 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
 def _maximise(evaluate, kind: str, a: float) -> StressMaximum:
     """Grid search over ``0 <= r, z <= 2a`` then a Nelder-Mead polish (``|r|, |z|`` mirrored)."""
     from scipy.optimize import minimize
-    rg = np.linspace(0.0, 2.0 * a, 81)
-    zg = np.linspace(0.0, 2.0 * a, 81)
+    rg = np.linspace(0.0, 2.0 * a, 41)
+    zg = np.linspace(0.0, 2.0 * a, 41)
     RG, ZG = np.meshgrid(rg, zg, indexing="ij")
     vals = evaluate(RG, ZG).get(kind)
     if not np.all(np.isfinite(vals)):
@@ -436,8 +436,25 @@ def _twist_density(lag, c: float, a: float):
     return (lambda x: at(d_full, x)), (lambda x: np.abs(at(d_full, x) - at(d_half, x)))
 
 
-def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total") -> StressField:
-    """Field of a torsion state (implementation of ``TorsionState.stress``)."""
+def _torsion_density(state):
+    """``(lag, density, density_error)`` of a single partial-slip torsion state."""
+    from .torsion import torsion_model
+    ct = state.contact
+    model = torsion_model(ct, state.method)
+    psi = model.psi(np.array([float(state._a)]), np.array([float(state._d)]),
+                    np.array([float(state._g_a)]))
+    idx = np.array([0])
+
+    def lag(x: np.ndarray) -> np.ndarray:
+        return psi(np.asarray(x, float)[None, :], idx)[0]
+
+    return (lag, *_twist_density(lag, float(state._stick), float(state._a)))
+
+
+def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
+                   _density: Any = None) -> StressField:
+    """Field of a torsion state (implementation of ``TorsionState.stress``; ``_density`` is the
+    cached :func:`_torsion_density` of the state)."""
     if part not in ("total", "friction"):
         raise ParameterError(f"part={part!r} is invalid: choose 'total' (normal preload "
                              "included) or 'friction' (the torsional part alone).")
@@ -466,15 +483,7 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total") ->
         err = 4e-15 * (np.abs(stz) + np.abs(srt))
         route = "torsion: twisted punch"
     else:
-        model = __import__("contactlab.effects.torsion", fromlist=["torsion_model"]).torsion_model(
-            ct, state.method)
-        psi = model.psi(np.array([a]), np.array([float(state._d)]), np.array([float(state._g_a)]))
-        idx = np.array([0])
-
-        def lag(x: np.ndarray) -> np.ndarray:
-            return psi(np.asarray(x, float)[None, :], idx)[0]
-
-        dens, dens_err = _twist_density(lag, c, a)
+        lag, dens, dens_err = _density if _density is not None else _torsion_density(state)
         (stz, srt), err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, dens, 0.0, nu,
                                                (c,), dens_err, None, _st.twist_kernel, k)
         edge = float(lag(np.array([a * (1 - 1e-15)]))[0])
@@ -525,7 +534,10 @@ def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressM
     a = float(state._a)
     if a <= 0:
         return StressMaximum(0.0, 0.0, 0.0, kind)
-    return _maximise(lambda r, z: torsion_stress(state, r, z, body), kind, a)
+    partial = (state.method != "no-slip" and 0 < float(state._stick) < a
+               and np.isfinite(float(state._twist)) and float(state._twist) != 0)
+    dens = _torsion_density(state) if partial else None
+    return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a)
 
 
 def torsion_stress_field(state, grid: Any = None, body: Any = 1, part: str = "total"
