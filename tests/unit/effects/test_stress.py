@@ -238,3 +238,29 @@ def test_rigid_body_and_bad_kind():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         st.stress(0.0, 1e-6, body=1)
+
+
+def test_adhesive_state_adds_the_tensile_edge_punch():
+    # JKR: Hertz plus a flat punch of radius a pulled by the edge depth d - g(a) < 0
+    rubber = cl.Elastic(E=1e9, nu=0.5)
+    c = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(rubber, cl.Rigid()),
+                   work_of_adhesion=0.05)
+    st = c.normal(force=1e-3)
+    a = st.radius
+    r = np.array([0.1, 0.5, 0.9, 0.99]) * a
+    f = st.stress(r, 0.0)
+    p = st.pressure(r)
+    assert p[-1] < 0                                      # tensile near the edge
+    np.testing.assert_allclose(f.szz, -p, rtol=1e-12)
+    assert f.meta["edge_depth"] < 0
+    t, w = np.polynomial.legendre.leggauss(400)
+    z = 0.5 * a
+    th_a = np.arctan(a / z)
+    parts = [(0.0, th_a), (th_a, 0.5 * np.pi * (1 - 1e-12))]
+    th = np.concatenate([lo + (hi - lo) * (t + 1) / 2 for lo, hi in parts])
+    wt = np.concatenate([(hi - lo) / 2 * w for lo, hi in parts])
+    rr = z * np.tan(th)
+    total = np.sum(2 * np.pi * rr * st.stress(rr, z).szz * z / np.cos(th) ** 2 * wt)
+    # F is small against the compressive and tensile parts: compare with their scale
+    assert abs(total + st.force) <= tol.STRESS_EQUILIBRIUM * (4 / 3 * c.moduli.normal * a**3 / R)
+    assert not np.isfinite(st.stress(a, 0.0).szz)          # the JKR edge is singular
