@@ -621,3 +621,37 @@ MODEL_ERROR_MAP_SHARPNESS = 1.4
 #: coarse exact check of a varying-load MDR path (64 rings) against the exact ring solver at 400
 #: rings: the check's own ring discretisation (energy ~0.3 %, torque ~0.2 % measured)
 MODEL_ERROR_PATH_CHECK = 5e-3
+# ---- subsurface stresses (issue 31)
+#: Huber's closed Hertz field (the library's route) against Johnson's axis and surface forms and
+#: Huber's field written independently in tests/reference/stress.py: both are closed forms in
+#: double precision, evaluated with different algebra; measured <= 1.1e-15 relative to p0
+STRESS_CLOSED_FORM = 1e-10
+#: the flat-punch kernel against Boussinesq's point load integrated numerically (240 x 240
+#: Gauss points, ρ = a sin t at the rim) at depths >= 0.1a: the 2D quadrature limits it;
+#: measured <= 5e-13 relative to the mean pressure
+STRESS_BOUSSINESQ_PUNCH = 1e-10
+#: Hertz field by the numerical Boussinesq integration at depths >= 0.1a: the split 240 x 240 rule
+#: on the smooth Hertz pressure; measured <= 6e-9 relative to p0
+STRESS_BOUSSINESQ_HERTZ = 1e-7
+#: the punch superposition (Gauss-Kronrod 15 per segment) for smooth g' against a closed form,
+#: measured on 801 radii over [0, 2a]: <= 2.1e-7 of p0 at depths 1e-6 a .. 2a (<= 7.5e-9 at
+#: z >= 0.1a), 2.3e-6 on the surface and 4.5e-6 at z = 1e-9 a (the kernel's peak at x = r is
+#: then narrower than the rule resolves); every point within its own error estimate (tested)
+STRESS_SUPERPOSITION = 1e-5
+#: equilibrium ∫σ_zz dA = -F at a depth, by a 2 x 400-point Gauss rule in the polar angle
+#: (r = z tan θ): the rule's own error; measured 7e-14 (Hertz), 9e-10 (cone, superposition, whose
+#: axis log-singular pressure gives the slowest convergence at z = 0.1a)
+STRESS_EQUILIBRIUM = 1e-8
+#: location of the maximum shear below Hertz contact: the maximum is flat (quadratic), so its
+#: depth is fixed only to ~ sqrt(rounding) by any maximiser; measured 1.7e-8 of a between our
+#: Nelder-Mead and the reference's bounded scalar minimiser
+STRESS_MAX_LOCATION = 1e-6
+#: the twisted-punch kernel against Reissner-Sagoci's Hankel integral (scipy quad, epsrel 1e-12)
+#: at depths >= 0.1a; measured 1.6e-14 of 4Gφ/π
+STRESS_TWIST_HANKEL = 1e-10
+#: surface σ_θz of a partial-slip torsion field (Jäger's twist density, Chebyshev-differentiated
+#: in ln x, superposed by the Gauss-Kronrod rule) against the library's own surface traction
+#: TorsionState.shear (a different algorithm: the stick-zone integral of theory §6.2 item 5);
+#: measured 2.4e-13 (exact) and 1.6e-8 (MDR, whose lag is not smooth at the slip boundary) of
+#: the peak traction
+STRESS_TORSION_SURFACE = 1e-7

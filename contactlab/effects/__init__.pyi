@@ -6,6 +6,7 @@ from . import law as law
 from . import law_source as law_source
 from . import normal as normal
 from . import path as path
+from . import stress as stress
 from . import tangential as tangential
 from . import torsion as torsion
 from . import viscoelastic as viscoelastic
@@ -18,6 +19,8 @@ from .law import ContactLaw as ContactLaw
 from .law import LawStep as LawStep
 from .normal import NormalState as NormalState
 from .path import PathResult as PathResult
+from .stress import StressField as StressField
+from .stress import StressMaximum as StressMaximum
 from .tangential import ShiftHistory as ShiftHistory
 from .tangential import TangentialState as TangentialState
 from .torsion import TorsionState as TorsionState
@@ -26,4 +29,4 @@ from .viscoelastic import ViscoelasticHistory as ViscoelasticHistory
 
 __all__ = ["NormalState", "AdhesiveNormalState", "AdhesionCycle", "TangentialState",
            "ShiftHistory", "TorsionState", "TwistHistory", "ViscoelasticHistory", "PathResult",
-           "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep"]
+           "FrettingLoop", "FrettingMap", "ContactLaw", "LawStep", "StressField", "StressMaximum"]

@@ -16,7 +16,12 @@ from typing import Any
 import numpy as np
 
 from ..citations import Cited, sources_for
-from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, ValidityWarning
+from ..errors import (
+    NotSupportedError,
+    OutsideTheoryError,
+    ParameterError,
+    ValidityWarning,
+)
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
@@ -153,7 +158,7 @@ _new_state = object.__new__
 _f64 = np.float64
 
 
-def _fast_normal(contact, key: str, value: Any) -> "NormalState | None":
+def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     """One finite depth or force on a profile with scalar forms: plain floats, no arrays.
 
     ``None`` when the profile has no scalar route (the array route then runs). The force's error
@@ -206,7 +211,7 @@ _FORCE_SANITY = 1e-6
 
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
-           branch: str = "stable") -> "NormalState":
+           branch: str = "stable") -> NormalState:
     """Driver of :meth:`contactlab.Contact.normal` for non-adhesive contacts (see there for the
     parameters; adhesive contacts go to :func:`contactlab.effects.adhesion.adhesive_normal`).
 
@@ -244,7 +249,7 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
             "of the profile parameters, moduli and loads; SI: m, Pa, N).") from err
 
 
-def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> "NormalState":
+def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> NormalState:
     """The array route of :func:`normal` (validation, the kernel, the state)."""
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
     if branch != "stable":
@@ -498,7 +503,7 @@ class NormalState(Result, Cited):
     def displacement(self, r: Any) -> Any:
         """Normal surface displacement ``u_z(r)``, m, inside (``d - f(r)``) and outside the contact."""
         r, a, d, _ = self._field_args(r)
-        val, err = _normal.displacement(self.contact.profile, r, a, d, self.contact.rtol)
+        val, _err = _normal.displacement(self.contact.profile, r, a, d, self.contact.rtol)
         return _scalar_or_array(val)
 
     @property
@@ -520,3 +525,24 @@ class NormalState(Result, Cited):
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         warn_cone_tip(self.contact.profile, val[..., 0])
         return _scalar_or_array(peak)
+
+    # ---- subsurface stresses (contactlab.effects.stress does the work)
+    def stress(self, r: Any, z: Any, body: int = 1) -> Any:
+        """Subsurface stress field at radii ``r`` and depths ``z >= 0`` (m, broadcast) in body 1
+        or 2: a :class:`~contactlab.effects.stress.StressField` (cylindrical components, Pa,
+        tension positive; von Mises, maximum shear, Tresca, principal stresses). See
+        docs/stress.md."""
+        from .stress import normal_stress
+        return normal_stress(self, r, z, body)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` (``"von_mises"``, ``"max_shear"``, ``"tresca"``, ``"max_principal"``,
+        ``"min_principal"``) in body 1 or 2 and its location (a ``StressMaximum``)."""
+        from .stress import normal_max_stress
+        return normal_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1) -> Any:
+        """Stress field on a 2D grid ``(r_values, z_values)`` (default 200 x 100 points over
+        ``2a`` by ``1.5a``) for plots: ``state.stress_field().plot("von_mises")``."""
+        from .stress import normal_stress_field
+        return normal_stress_field(self, grid, body)

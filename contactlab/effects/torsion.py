@@ -91,7 +91,7 @@ def mdr_map_errors(contact, twist: np.ndarray, a: np.ndarray, d: np.ndarray, g_a
 @reporting()
 def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
                   twist: Any = None, torque: Any = None, stick_radius: Any = None,
-                  method: str | None = None) -> "TorsionState":
+                  method: str | None = None) -> TorsionState:
     """Implementation of :meth:`contactlab.Contact.torsion` (see there)."""
     method = resolve_method(contact, method)
     load_key, load_val = exactly_one("torsion()", {"depth": depth, "force": force,
@@ -423,6 +423,25 @@ class TorsionState(Result, Cited):
                                     "prescribe a finite twist.")
         return _scalar_or_array((sgn * out).reshape(full))
 
+    # ---- subsurface stresses (contactlab.effects.stress does the work)
+    def stress(self, r: Any, z: Any, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field (a ``StressField``) at radii ``r`` and depths ``z`` (m): the
+        normal preload's field plus the torsional ``σ_θz, σ_rθ`` (``part="friction"``: the
+        torsional part alone). Body 1 receives the traction :meth:`shear` reports; body 2 its
+        opposite. See docs/stress.md."""
+        from .stress import torsion_stress
+        return torsion_stress(self, r, z, body, part)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` of the whole field in body 1 or 2 and its location."""
+        from .stress import torsion_max_stress
+        return torsion_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1, part: str = "total") -> Any:
+        """Stress field on a 2D grid ``(r_values, z_values)`` for plots (default 200 x 100)."""
+        from .stress import torsion_stress_field
+        return torsion_stress_field(self, grid, body, part)
+
 
 # ====================================================================== twist histories
 #: peak memory of the turning-point bookkeeping and the per-step arrays of a history, bytes per
@@ -438,7 +457,7 @@ SOLVE_BYTES_PER_ARGUMENT = {"exact": 20 * 1024, "mdr": 4 * 1024, "no-slip": 512}
 
 @reporting()
 def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
-                  method: str | None = None) -> "TwistHistory":
+                  method: str | None = None) -> TwistHistory:
     """Implementation of :meth:`contactlab.Contact.twist_history` (see there)."""
     method = resolve_method(contact, method)
     load_key, load_val = exactly_one("twist_history()", {"depth": depth, "force": force})
@@ -626,7 +645,7 @@ class TwistHistory(Result, Cited):
     @cached_property
     def dissipated_energy(self) -> np.ndarray:
         a, d, g_a = self._state
-        step, po, f, p_from, p_to = self._segments
+        step, _po, _f, _p_from, _p_to = self._segments
         n = self.twist.size
         if self.method == "no-slip" or step.size == 0 or a <= 0:
             return np.zeros(n)

@@ -1,0 +1,558 @@
+"""Subsurface stress fields of contact states: :class:`StressField` and the drivers behind
+``NormalState.stress``, ``NormalState.max_stress`` and ``NormalState.stress_field``.
+
+The kernels are in :mod:`contactlab.physics.stress` (flat-punch superposition, Huber's Hertz
+field). This module validates the points and the body, picks the route per profile
+(``"hertz"``: closed form for a paraboloid; ``"flat_punch"``: the punch's closed form;
+``"superposition"``: the 1D integral over punch radii for any other profile, with an error
+estimate) and wraps the arrays in an immutable result.
+
+Conventions: tension positive; ``z >= 0`` is the depth below the surface of the chosen body
+(1 or 2 of ``Contact(materials=(body1, body2))``), whose Poisson ratio enters the field; the
+normal field is the same formula in both bodies except for ``ν``.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from ..errors import NotSupportedError, ParameterError, ValidityWarning
+from ..params import as_float_array
+from ..physics import stress as _st
+
+__all__ = [
+    "KINDS",
+    "StressField",
+    "StressMaximum",
+    "body_poisson_ratio",
+    "g_prime_of",
+    "normal_max_stress",
+    "normal_stress",
+    "normal_stress_field",
+]
+
+#: derived scalar fields :meth:`StressField` offers (names of its properties)
+KINDS = ("von_mises", "max_shear", "tresca", "max_principal", "min_principal")
+
+_CYL = ("srr", "stt", "szz", "srz", "stz", "srt")
+
+
+@dataclass(frozen=True, eq=False)
+class StressField:
+    """Stress field at a set of points (immutable; arrays of the broadcast shape of the points).
+
+    Attributes
+    ----------
+    r, z : ndarray
+        Radius and depth of each point, m.
+    srr, stt, szz, srz, stz, srt : ndarray
+        Cylindrical stress components ``σ_rr, σ_θθ, σ_zz, σ_rz, σ_θz, σ_rθ``, Pa (tension
+        positive).
+    error : ndarray
+        Estimated absolute error of the components, Pa (0 for the closed forms up to rounding;
+        ``inf`` at singular points).
+    meta : dict
+        ``route`` (``"hertz"``, ``"flat_punch"`` or ``"superposition"``), ``body``, ``nu``,
+        ``error_estimate`` (largest error relative to the largest stress magnitude).
+
+    Notes
+    -----
+    Derived fields are computed on first access: :attr:`principal` (descending, last axis),
+    :attr:`von_mises`, :attr:`max_shear` ``(σ1 - σ3)/2``, :attr:`tresca` ``σ1 - σ3``.
+    """
+
+    r: np.ndarray
+    z: np.ndarray
+    srr: np.ndarray
+    stt: np.ndarray
+    szz: np.ndarray
+    srz: np.ndarray
+    stz: np.ndarray
+    srt: np.ndarray
+    error: np.ndarray = field(repr=False)
+    meta: dict = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        for name in ("r", "z", *_CYL, "error"):
+            arr = np.asarray(getattr(self, name), dtype=float)
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Shape of the point arrays."""
+        return self.srr.shape
+
+    @cached_property
+    def principal(self) -> np.ndarray:
+        """Principal stresses, Pa, descending along the last axis (``shape + (3,)``)."""
+        if not (np.any(self.stz) or np.any(self.srt)):
+            out = _st.principal_axisymmetric(self.srr, self.stt, self.szz, self.srz)
+        else:
+            out = _st.principal_general(self.srr, self.stt, self.szz, self.srt, self.srz,
+                                        self.stz)
+        out.setflags(write=False)
+        return out
+
+    @cached_property
+    def von_mises(self) -> np.ndarray:
+        """Von Mises equivalent stress, Pa."""
+        return _st.von_mises(self.srr, self.stt, self.szz, self.srt, self.srz, self.stz)
+
+    @cached_property
+    def max_shear(self) -> np.ndarray:
+        """Maximum shear stress ``(σ1 - σ3)/2``, Pa."""
+        p = self.principal
+        return 0.5 * (p[..., 0] - p[..., 2])
+
+    @property
+    def tresca(self) -> np.ndarray:
+        """Tresca equivalent stress ``σ1 - σ3``, Pa."""
+        return 2.0 * self.max_shear
+
+    @property
+    def max_principal(self) -> np.ndarray:
+        """Largest principal stress ``σ1``, Pa (the tensile driver of crack initiation)."""
+        return self.principal[..., 0]
+
+    @property
+    def min_principal(self) -> np.ndarray:
+        """Smallest principal stress ``σ3``, Pa."""
+        return self.principal[..., 2]
+
+    def get(self, kind: str) -> np.ndarray:
+        """A component or derived field by name (one of :data:`KINDS` or a component)."""
+        if kind not in KINDS + _CYL:
+            raise ParameterError(f"kind={kind!r} is invalid: choose one of "
+                                 f"{', '.join(repr(k) for k in KINDS + _CYL)}.")
+        return np.asarray(getattr(self, kind))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Coordinates, components, derived fields and the error estimate as arrays (SI units)."""
+        out: dict[str, Any] = {"r": self.r, "z": self.z}
+        out.update({k: getattr(self, k) for k in _CYL})
+        out.update({k: getattr(self, k) for k in ("von_mises", "max_shear", "tresca")})
+        out["error"] = self.error
+        return out
+
+    def plot(self, kind: str = "von_mises", ax: Any = None, *, levels: int = 30):
+        """Filled contour plot of ``kind`` over a 2D grid of ``(r, z)`` (needs matplotlib);
+        returns the axes. Depth is drawn downward."""
+        from .. import plotting as pl
+        plt = pl.pyplot()
+        if self.r.ndim != 2:
+            raise ParameterError("plot() needs a 2D grid of points (use state.stress_field()).")
+        if ax is None:
+            _, ax = plt.subplots()
+        vals = self.get(kind)
+        cs = ax.contourf(self.r, -self.z, np.where(np.isfinite(vals), vals, np.nan), levels=levels)
+        ax.figure.colorbar(cs, ax=ax, label=f"{kind} (Pa)")
+        ax.set_xlabel("r (m)")
+        ax.set_ylabel("-z (m)")
+        ax.set_aspect("equal")
+        return ax
+
+
+@dataclass(frozen=True)
+class StressMaximum:
+    """Largest value of a stress measure in a body and where it occurs.
+
+    Attributes
+    ----------
+    value : float
+        The maximum, Pa (``inf`` where the field is singular, e.g. at a flat punch's rim).
+    r, z : float
+        Its radius and depth, m.
+    kind : str
+        The measure (one of :data:`KINDS`).
+    """
+
+    value: float
+    r: float
+    z: float
+    kind: str
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"value": self.value, "r": self.r, "z": self.z, "kind": self.kind}
+
+
+def body_poisson_ratio(contact, body: Any) -> float:
+    """Poisson ratio of body ``1`` or ``2`` of ``contact``; errors for other values or a rigid
+    body (no strain, so the elastic field inside it is not defined by this theory)."""
+    if isinstance(body, bool) or body not in (1, 2):
+        raise ParameterError(f"body={body!r} is invalid: a contact has body 1 and body 2 "
+                             "(the order of Contact(materials=...)).")
+    mat = contact.materials[body - 1]
+    nu = getattr(mat, "nu", None)
+    if nu is None:
+        raise NotSupportedError(f"body={body} is {mat!r}, which has no Poisson ratio (a rigid "
+                                "body does not deform); ask for the stresses in the other body.")
+    return float(nu)
+
+
+def _points(r: Any, z: Any) -> tuple[np.ndarray, np.ndarray]:
+    r = as_float_array("r", r)
+    z = as_float_array("z", z)
+    for name, v in (("r", r), ("z", z)):
+        if np.any(v < 0):
+            raise ParameterError(f"{name} contains {float(v[v < 0].ravel()[0])!r}: "
+                                 f"{'radii' if name == 'r' else 'depths below the surface'} "
+                                 "must be >= 0 m.")
+    try:
+        r, z = np.broadcast_arrays(r, z)
+    except ValueError as err:
+        raise ParameterError(f"r with shape {r.shape} and z with shape {z.shape} do not "
+                             "broadcast.") from err
+    return r, z
+
+
+def g_prime_of(profile, rtol: float):
+    """``g'(x)`` of a profile as a callable on arrays: the profile's closed form, its power
+    terms, a table's node sums, the terms of a sum, or (last) a central difference of ``g``."""
+    if profile._has("_g_prime_closed_form"):
+        return profile._g_prime_closed_form
+    terms = profile.power_terms()
+    if terms is not None:
+        ks = [(profile._power_kappa(n) * c * n, n) for c, n in terms]
+
+        def power(x: np.ndarray) -> np.ndarray:
+            return sum(k * x ** (n - 1.0) for k, n in ks)
+        return power
+    if profile.has("node_table"):
+        return lambda x: profile.table_g_slope(x.ravel())[0].reshape(x.shape)
+    if profile.has("terms"):
+        parts = [g_prime_of(t, rtol) for t in profile.terms]
+        return lambda x: sum(p(x) for p in parts)
+    flat = profile.flat_radius
+
+    def difference(x: np.ndarray) -> np.ndarray:
+        h = 1e-5 * np.maximum(x, 1e-300)
+        lo = np.maximum(x - h, 0.0)
+        hi = x + h
+        out = (profile._g(hi, rtol) - profile._g(lo, rtol)) / (hi - lo)
+        return np.where(x <= flat, 0.0, out)
+    return difference
+
+
+#: samples of a table's g' over [0, a] for the interpolated slope (cost O(samples x nodes) once)
+TABLE_SLOPE_SAMPLES = 4096
+
+
+def table_slope(profile, a: float):
+    """A table's ``g'`` on ``[0, a]`` as ``(value, error)`` callables.
+
+    The exact node sums cost O(nodes) per point, too much for every quadrature node of a grid,
+    and a linear table's ``g'`` has an inverse-square-root spike after every node (its slope
+    jumps), which point samples cannot represent. So ``g`` itself (closed form) is sampled at
+    :data:`TABLE_SLOPE_SAMPLES` + 1 equidistant radii and ``g'`` is the cell slope
+    ``(g_{k+1} - g_k)/Δ`` at the cell midpoints, linearly interpolated: every cell carries the
+    exact increment of ``g``, spikes included. The error callable is the difference to the same
+    construction on cells twice as wide (not divided by 3, as second order would allow: below the
+    first midpoint the interpolant is constant, and there the difference is the error), plus the
+    rounding of the slopes."""
+    n = TABLE_SLOPE_SAMPLES
+    xs = np.linspace(0.0, a, n + 1)
+    g = profile._g(xs)
+    dx = a / n
+    mids = 0.5 * (xs[1:] + xs[:-1])
+    slopes = np.diff(g) / dx
+    mids2 = 0.5 * (xs[2::2] + xs[:-2:2])
+    slopes2 = (g[2::2] - g[:-2:2]) / (2.0 * dx)
+    coarse = np.interp(mids, mids2, slopes2)
+    diff = np.abs(slopes - coarse) + 8 * np.finfo(float).eps * np.max(np.abs(g)) / dx
+
+    def value(x: np.ndarray) -> np.ndarray:
+        return np.interp(x, mids, slopes)
+
+    def error(x: np.ndarray) -> np.ndarray:
+        return np.interp(x, mids, diff)
+
+    def values(x: np.ndarray) -> np.ndarray:
+        return np.interp(x, xs, g)
+    return value, error, values
+
+
+def _route(profile, a: float) -> str:
+    terms = profile.power_terms()
+    if terms is not None and len(terms) == 1 and terms[0][1] == 2.0:
+        return "hertz"
+    if profile.flat_radius >= a:
+        return "flat_punch"
+    return "superposition"
+
+
+def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
+    """Field of a normal state (implementation of ``NormalState.stress``)."""
+    nu = body_poisson_ratio(state.contact, body)
+    r, z = _points(r, z)
+    sh = state.shape
+    if sh != ():
+        raise NotSupportedError(f"stress() needs a single state, this one has shape {sh}: index "
+                                "the loads or call contact.normal() per load.")
+    ct = state.contact
+    prof = ct.profile
+    E = ct.moduli.normal
+    a = float(state._radius)
+    d = float(state._depth)
+    ga = float(state._g_at_radius)
+    edge = d - ga if a > 0 else 0.0
+    R, Z = r.ravel(), z.ravel()
+    zero = np.zeros(R.shape)
+    route = _route(prof, a) if a > 0 else "flat_punch"
+    if a <= 0:
+        comps, err = (zero, zero, zero, zero), zero
+    elif route == "hertz":
+        c = prof.power_terms()[0][0]
+        p0 = 4.0 * E * c * a / np.pi            # g = 2c x²: p0 = 2E* a/(πR), R = 1/(2c)
+        comps = _st.hertz_field(R, Z, a, p0, nu)
+        err = 4e-15 * np.maximum.reduce([np.abs(v) for v in comps]) + 1e-16 * p0
+    else:
+        comps, err = (zero,) * 4, zero
+        if route == "superposition":
+            cuts = tuple(b for b in (*prof.breakpoints, prof.flat_radius) if 0 < b < a)
+            if prof.has("node_table"):
+                gp, gp_err, g_vals = table_slope(prof, a)
+                cuts = ()       # the interpolated slope is continuous; node cuts cost O(nodes)
+                if prof.interpolation != "linear":
+                    g_vals = None   # a spline's g' is smooth: the Gauss-Kronrod sums on g'
+                else:
+                    gp_err = None   # the cell sums carry the exact increments of g
+                route = "superposition (table)"
+            else:
+                gp, gp_err, g_vals = g_prime_of(prof, ct.rtol), None, None
+            comps, err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, gp, E, nu, cuts,
+                                              gp_err, g_vals)
+    if a > 0 and edge != 0:
+        k = E * edge / np.pi
+        extra = _st.punch_kernel(R, Z, a, nu)
+        comps = tuple(c + k * e for c, e in zip(comps, extra))
+        err = err + 4e-15 * np.maximum.reduce([np.abs(k * e) for e in extra])
+    comps = tuple(np.asarray(c, float).reshape(r.shape) for c in comps)
+    err = np.asarray(err, float).reshape(r.shape)
+    singular = ~np.all(np.isfinite(np.stack(comps)), axis=0)
+    err = np.where(singular, np.inf, err)
+    finite_mag = np.max(np.abs(np.stack(comps))[:, ~singular], initial=0.0)
+    rel = float(np.max(err[~singular], initial=0.0) / finite_mag) if finite_mag > 0 else 0.0
+    srr, stt, szz, srz = comps
+    zero = np.zeros(r.shape)
+    return StressField(r, z, srr, stt, szz, srz, zero, zero, err,
+                       {"route": route, "body": body, "nu": nu, "error_estimate": rel,
+                        "edge_depth": edge})
+
+
+def _maximise(evaluate, kind: str, a: float) -> StressMaximum:
+    """Grid search over ``0 <= r, z <= 2a`` then a Nelder-Mead polish (``|r|, |z|`` mirrored)."""
+    from scipy.optimize import minimize
+    rg = np.linspace(0.0, 2.0 * a, 41)
+    zg = np.linspace(0.0, 2.0 * a, 41)
+    RG, ZG = np.meshgrid(rg, zg, indexing="ij")
+    vals = evaluate(RG, ZG).get(kind)
+    if not np.all(np.isfinite(vals)):
+        i = np.unravel_index(np.argmax(~np.isfinite(vals)), vals.shape)
+        return StressMaximum(float("inf"), float(RG[i]), float(ZG[i]), kind)
+    i = np.unravel_index(np.argmax(vals), vals.shape)
+
+    def neg(p: np.ndarray) -> float:
+        v = evaluate(np.abs(p[0:1]) * a, np.abs(p[1:2]) * a).get(kind)
+        return -float(v[0])
+
+    res = minimize(neg, np.array([RG[i] / a, ZG[i] / a]), method="Nelder-Mead",
+                   options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 4000,
+                            "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
+                                                         [RG[i] / a + 0.02, ZG[i] / a],
+                                                         [RG[i] / a, ZG[i] / a + 0.02]])})
+    return StressMaximum(-float(res.fun), float(abs(res.x[0]) * a), float(abs(res.x[1]) * a), kind)
+
+
+def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
+    """Implementation of ``NormalState.max_stress``."""
+    if kind not in KINDS:
+        raise ParameterError(f"kind={kind!r} is invalid: choose one of "
+                             f"{', '.join(repr(k) for k in KINDS)}.")
+    body_poisson_ratio(state.contact, body)
+    a = float(np.asarray(state._radius))
+    if state.shape != ():
+        raise NotSupportedError("max_stress() needs a single state.")
+    if a <= 0:
+        return StressMaximum(0.0, 0.0, 0.0, kind)
+    return _maximise(lambda r, z: normal_stress(state, r, z, body), kind, a)
+
+
+def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
+    """Implementation of ``NormalState.stress_field``: the field on a 2D ``(r, z)`` grid.
+
+    ``grid`` is ``(r_values, z_values)`` (1D arrays, m) or ``None`` for 200 radii over
+    ``[0, 2a]`` by 100 depths over ``[0, 1.5a]``.
+    """
+    a = float(np.asarray(state._radius)) if state.shape == () else 0.0
+    if grid is None:
+        if a <= 0:
+            raise ParameterError("stress_field() without grid= needs a contact (radius > 0).")
+        rv, zv = np.linspace(0.0, 2.0 * a, 200), np.linspace(0.0, 1.5 * a, 100)
+    else:
+        try:
+            rv, zv = grid
+        except (TypeError, ValueError) as err:
+            raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
+        rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
+    R, Z = np.meshgrid(rv, zv, indexing="xy")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        return normal_stress(state, R, Z, body)
+
+
+# ====================================================================== torsion
+#: Chebyshev points for the twist density Φ' = -ψ'(x) on the slip annulus (and half as many for
+#: its error estimate); the lag ψ is interpolated in ln x, where the logarithmic growth of
+#: Jäger's slip function towards small radii is smooth
+TWIST_DENSITY_POINTS = 48
+
+
+def _twist_density(lag, c: float, a: float):
+    """``Φ'(x) = -dψ/dx`` on ``[c, a]`` from the lag ``ψ(x) = φ - Φ(x)`` (a callable on arrays):
+    Chebyshev interpolation of ``ψ`` in ``s = ln x`` at :data:`TWIST_DENSITY_POINTS` points,
+    differentiated; returns ``(density, error)`` callables (the error: the difference to the
+    interpolant on half as many points)."""
+    from numpy.polynomial import chebyshev as C
+    lo, hi = np.log(c), np.log(a)
+
+    def fit(n: int) -> np.ndarray:
+        k = np.arange(n)
+        u = np.cos(np.pi * (k + 0.5) / n)                       # first-kind points
+        x = np.exp(lo + (hi - lo) * 0.5 * (u + 1.0))
+        return C.chebder(C.chebfit(u, lag(x), n - 1)) * (2.0 / (hi - lo))
+
+    d_full, d_half = fit(TWIST_DENSITY_POINTS), fit(TWIST_DENSITY_POINTS // 2)
+
+    def at(coef: np.ndarray, x: np.ndarray) -> np.ndarray:
+        inside = (x > c) & (x < a)
+        u = np.clip(2.0 * (np.log(np.where(inside, x, c)) - lo) / (hi - lo) - 1.0, -1.0, 1.0)
+        return np.where(inside, -C.chebval(u, coef) / np.where(inside, x, 1.0), 0.0)
+
+    return (lambda x: at(d_full, x)), (lambda x: np.abs(at(d_full, x) - at(d_half, x)))
+
+
+def _torsion_density(state):
+    """``(lag, density, density_error)`` of a single partial-slip torsion state."""
+    from .torsion import torsion_model
+    ct = state.contact
+    model = torsion_model(ct, state.method)
+    psi = model.psi(np.array([float(state._a)]), np.array([float(state._d)]),
+                    np.array([float(state._g_a)]))
+    idx = np.array([0])
+
+    def lag(x: np.ndarray) -> np.ndarray:
+        return psi(np.asarray(x, float)[None, :], idx)[0]
+
+    return (lag, *_twist_density(lag, float(state._stick), float(state._a)))
+
+
+def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
+                   _density: Any = None) -> StressField:
+    """Field of a torsion state (implementation of ``TorsionState.stress``; ``_density`` is the
+    cached :func:`_torsion_density` of the state)."""
+    if part not in ("total", "friction"):
+        raise ParameterError(f"part={part!r} is invalid: choose 'total' (normal preload "
+                             "included) or 'friction' (the torsional part alone).")
+    nu = body_poisson_ratio(state.contact, body)
+    r, z = _points(r, z)
+    if state.shape != ():
+        raise NotSupportedError(f"stress() needs a single state, this one has shape "
+                                f"{state.shape}: index the twists or call torsion() per load.")
+    ct = state.contact
+    G = ct.moduli.torsional
+    phi = float(state._twist)
+    a, c = float(state._a), float(state._stick)
+    sign = (1.0 if body == 1 else -1.0) * np.sign(phi)
+    phi = abs(phi)
+    R, Z = r.ravel(), z.ravel()
+    k = 4.0 * G / np.pi
+    zero = np.zeros(R.shape)
+    if not np.isfinite(phi):
+        raise NotSupportedError("stress() at full sliding (infinite twist) is not implemented: "
+                                "prescribe a finite twist or torque below the sliding torque.")
+    if a <= 0 or phi == 0:
+        stz, srt, err = zero, zero, zero
+        route = "torsion: none"
+    elif state.method == "no-slip" or c >= a:
+        stz, srt = (k * phi * v for v in _st.twist_kernel(R, Z, a))
+        err = 4e-15 * (np.abs(stz) + np.abs(srt))
+        route = "torsion: twisted punch"
+    else:
+        lag, dens, dens_err = _density if _density is not None else _torsion_density(state)
+        (stz, srt), err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, dens, 0.0, nu,
+                                               (c,), dens_err, None, _st.twist_kernel, k)
+        edge = float(lag(np.array([a * (1 - 1e-15)]))[0])
+        # a lag left at the rim (flat punch; MDR with d != g(a)) is a twisted punch of radius a;
+        # a smooth non-adhesive profile's lag vanishes there (to rounding: not an edge term)
+        if abs(edge) > 1e-9 * phi:
+            e_tz, e_rt = _st.twist_kernel(R, Z, a)
+            stz, srt = stz + k * edge * e_tz, srt + k * edge * e_rt
+        route = f"torsion: superposition ({state.method})"
+    stz, srt = sign * stz, sign * srt
+    if part == "total":
+        base = normal_stress(state.normal if state.normal.shape == () else _one_normal(state),
+                             r, z, body)
+        comps = (base.srr, base.stt, base.szz, base.srz)
+        err = np.asarray(err).reshape(r.shape) + base.error
+        route = f"{base.meta['route']} + {route}"
+    else:
+        comps = (np.zeros(r.shape),) * 4
+        err = np.asarray(err).reshape(r.shape)
+    stz, srt = stz.reshape(r.shape), srt.reshape(r.shape)
+    singular = ~(np.isfinite(stz) & np.isfinite(srt))
+    err = np.where(singular, np.inf, err)
+    mags = np.abs(np.stack([*comps, stz, srt]))
+    fin = np.all(np.isfinite(mags), axis=0)
+    top = np.max(mags[:, fin], initial=0.0)
+    rel = float(np.max(err[fin], initial=0.0) / top) if top > 0 else 0.0
+    return StressField(r, z, *comps, stz, srt, err,
+                       {"route": route, "body": body, "nu": nu, "error_estimate": rel,
+                        "part": part})
+
+
+def _one_normal(state):
+    """The normal preload of a single torsion state as a single NormalState."""
+    n = state.normal
+    from .normal import NormalState
+    return NormalState(n.contact, np.float64(state._d), np.float64(state._a),
+                       np.float64(np.ravel(n._force)[0]), dict(n.meta))
+
+
+def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
+    """Implementation of ``TorsionState.max_stress`` (the whole state's field)."""
+    if kind not in KINDS:
+        raise ParameterError(f"kind={kind!r} is invalid: choose one of "
+                             f"{', '.join(repr(k) for k in KINDS)}.")
+    body_poisson_ratio(state.contact, body)
+    if state.shape != ():
+        raise NotSupportedError("max_stress() needs a single state.")
+    a = float(state._a)
+    if a <= 0:
+        return StressMaximum(0.0, 0.0, 0.0, kind)
+    partial = (state.method != "no-slip" and 0 < float(state._stick) < a
+               and np.isfinite(float(state._twist)) and float(state._twist) != 0)
+    dens = _torsion_density(state) if partial else None
+    return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a)
+
+
+def torsion_stress_field(state, grid: Any = None, body: Any = 1, part: str = "total"
+                         ) -> StressField:
+    """Implementation of ``TorsionState.stress_field`` (see :func:`normal_stress_field`)."""
+    a = float(state._a) if state.shape == () else 0.0
+    if grid is None:
+        if a <= 0:
+            raise ParameterError("stress_field() without grid= needs a contact (radius > 0).")
+        rv, zv = np.linspace(0.0, 2.0 * a, 200), np.linspace(0.0, 1.5 * a, 100)
+    else:
+        try:
+            rv, zv = grid
+        except (TypeError, ValueError) as err:
+            raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
+        rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
+    R, Z = np.meshgrid(rv, zv, indexing="xy")
+    return torsion_stress(state, R, Z, body, part)

@@ -1,0 +1,266 @@
+"""Subsurface stress fields of normal states (issue 31, part A).
+
+References: tests/reference/stress.py (Johnson eqs. 3.44-3.45, Huber's field, Boussinesq's point
+load integrated numerically) and checks that need no formula (equilibrium at every depth, the
+surface values equal the surface pressure the library already computes).
+"""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import ContactlabError, NotSupportedError, ParameterError
+from contactlab.physics import stress as kern
+from tests import tolerances as tol
+from tests.reference import stress as ref
+
+STEEL = cl.Elastic(E=210e9, nu=0.3)
+ALU = cl.Elastic(E=70e9, nu=0.33)
+R = 0.01
+F = 100.0
+
+
+def hertz_state(materials=(STEEL, STEEL)):
+    st = cl.Contact(cl.profiles.Paraboloid(R=R), materials=materials).normal(force=F)
+    a = st.radius
+    return st, a, 3 * F / (2 * np.pi * a**2)
+
+
+def test_hertz_axis_against_johnson_345():
+    st, a, p0 = hertz_state()
+    z = np.array([1e-6, 0.01, 0.1, 0.48, 1.0, 3.0, 10.0]) * a
+    f = st.stress(0.0, z)
+    sr, sz = ref.hertz_axis(z, a, p0, 0.3)
+    assert f.meta["route"] == "hertz"
+    np.testing.assert_allclose(f.szz, sz, rtol=0, atol=tol.STRESS_CLOSED_FORM * p0)
+    np.testing.assert_allclose(f.srr, sr, rtol=0, atol=tol.STRESS_CLOSED_FORM * p0)
+    np.testing.assert_allclose(f.stt, sr, rtol=0, atol=tol.STRESS_CLOSED_FORM * p0)
+    assert np.all(f.srz == 0)
+
+
+def test_hertz_surface_against_johnson_344_and_edge_radial_stress():
+    st, a, p0 = hertz_state()
+    r = np.array([0.01, 0.3, 0.7, 0.99, 1.0, 1.01, 1.5, 4.0]) * a
+    f = st.stress(r, 0.0)
+    sr, stt, sz = ref.hertz_surface(r, a, p0, 0.3)
+    for got, want in ((f.srr, sr), (f.stt, stt), (f.szz, sz)):
+        np.testing.assert_allclose(got, want, rtol=0, atol=tol.STRESS_CLOSED_FORM * p0)
+    edge = st.stress(a, 0.0)
+    assert abs(float(edge.srr) - (1 - 2 * 0.3) * p0 / 3) <= tol.STRESS_CLOSED_FORM * p0
+
+
+def test_hertz_off_axis_against_huber_and_boussinesq():
+    st, a, p0 = hertz_state()
+    pts = [(0.3, 0.2), (0.9, 0.5), (1.2, 0.1), (0.5, 1.3), (2.0, 0.7)]
+    for X, Z in pts:
+        f = st.stress(X * a, Z * a)
+        want = ref.hertz_huber(X * a, Z * a, a, p0, 0.3)
+        got = (f.srr, f.stt, f.szz, f.srz)
+        for g, w in zip(got, want):
+            assert abs(float(g) - float(w)) <= tol.STRESS_CLOSED_FORM * p0
+        bous = ref.boussinesq_field(lambda s: p0 * np.sqrt(1 - s**2 / a**2), a, X * a, Z * a, 0.3)
+        for g, w in zip(got, bous):
+            assert abs(float(g) - float(w)) <= tol.STRESS_BOUSSINESQ_HERTZ * p0
+
+
+def test_hertz_maximum_shear_031_p0_at_048_a():
+    st, a, p0 = hertz_state()
+    val, depth = ref.hertz_max_shear(0.3)
+    m = st.max_stress("max_shear")
+    assert abs(m.value / p0 - val) <= tol.STRESS_CLOSED_FORM
+    assert abs(m.z / a - depth) <= tol.STRESS_MAX_LOCATION
+    assert m.r / a <= tol.STRESS_MAX_LOCATION
+    assert round(val, 2) == 0.31 and round(depth, 2) == 0.48       # the textbook numbers
+
+
+def test_superposition_route_reproduces_hertz_within_its_estimate():
+    # the general route on the paraboloid's g' = 2x/R, against Huber's closed form
+    a, p0 = 1.0, 2.0 / np.pi          # E* = 1, R = 1
+    rr, zz = np.meshgrid(np.linspace(0, 2, 41), np.array([0, 1e-6, 1e-3, 0.05, 0.3, 1, 2]))
+    r, z = rr.ravel(), zz.ravel()
+    got, err = kern.superposed_field(r, z, np.full(r.shape, a), np.zeros(r.shape),
+                                     lambda x: 2 * x, 1.0, 0.3)
+    want = kern.hertz_field(r, z, a, p0, 0.3)
+    for g, w in zip(got, want):
+        d = np.abs(g - w)
+        assert np.max(d) <= tol.STRESS_SUPERPOSITION * p0
+        assert np.all(d <= err)
+
+
+def test_flat_punch_against_boussinesq_and_surface_pressure():
+    prof = cl.profiles.FlatPunch(radius=1e-3)
+    st = cl.Contact(prof, materials=(STEEL, STEEL)).normal(depth=1e-6)
+    a, pm = st.radius, st.force / (np.pi * st.radius**2)
+    E = st.contact.moduli.normal
+    d = st.depth
+    for X, Z in [(0.3, 0.2), (0.9, 0.5), (1.2, 0.1), (0.5, 1.3)]:
+        f = st.stress(X * a, Z * a)
+        assert f.meta["route"] == "flat_punch"
+        bous = ref.boussinesq_field(lambda s: E * d / (np.pi * np.sqrt(a**2 - s**2)), a, X * a,
+                                    Z * a, 0.3, flat=True)
+        for g, w in zip((f.srr, f.stt, f.szz, f.srz), bous):
+            assert abs(float(g) - float(w)) <= tol.STRESS_BOUSSINESQ_PUNCH * pm
+    r = np.array([0.0, 0.2, 0.6, 0.95]) * a
+    np.testing.assert_allclose(st.stress(r, 0.0).szz, -st.pressure(r), rtol=1e-13)
+    # the rim is singular: the field says so instead of returning a number
+    rim = st.stress(a, 0.0)
+    assert not np.isfinite(rim.szz) and rim.error == np.inf
+    assert st.max_stress("von_mises").value == np.inf
+
+
+@pytest.mark.parametrize("make", [
+    lambda: cl.profiles.Paraboloid(R=R),
+    lambda: cl.profiles.Cone(slope=0.05),
+    lambda: cl.profiles.FlatPunch(radius=1e-4),
+    lambda: cl.profiles.PowerLaw(c=1e6, n=4.0),
+])
+def test_equilibrium_at_every_depth(make):
+    st = cl.Contact(make(), materials=(STEEL, STEEL)).normal(force=F)
+    a = st.radius
+    t, w = np.polynomial.legendre.leggauss(400)
+    for zr in (0.1, 0.5, 2.0):
+        z = zr * a
+        th_a = np.arctan(a / z)
+        parts = [(0.0, th_a), (th_a, 0.5 * np.pi * (1 - 1e-9))]
+        th = np.concatenate([lo + (hi - lo) * (t + 1) / 2 for lo, hi in parts])
+        wt = np.concatenate([(hi - lo) / 2 * w for lo, hi in parts])
+        r = z * np.tan(th)
+        dr = z / np.cos(th) ** 2 * wt
+        f = st.stress(r, z)
+        total = np.sum(2 * np.pi * r * f.szz * dr)
+        # the far tail beyond θ_max is F z³... negligible: (1 - θ_max) ~ 1e-9
+        assert abs(total / F + 1) <= tol.STRESS_EQUILIBRIUM
+
+
+def test_surface_values_equal_the_pressure_for_any_profile():
+    for prof in (cl.profiles.Cone(slope=0.05), cl.profiles.Sphere(R=R),
+                 cl.profiles.PowerLaw(c=1e6, n=4.0)):
+        st = cl.Contact(prof, materials=(STEEL, STEEL)).normal(force=F)
+        r = np.array([0.1, 0.4, 0.8, 0.97]) * st.radius
+        f = st.stress(r, 0.0)
+        p = st.pressure(r)
+        assert f.meta["route"].startswith("superposition")
+        np.testing.assert_allclose(f.szz, -p, rtol=tol.STRESS_SUPERPOSITION)
+        assert np.all(np.abs(f.srz) <= 1e-12 * p)
+
+
+def test_cone_field_against_boussinesq():
+    st = cl.Contact(cl.profiles.Cone(slope=0.05), materials=(STEEL, STEEL)).normal(force=F)
+    a = st.radius
+    E = st.contact.moduli.normal
+    pm = F / (np.pi * a**2)
+    for X, Z in [(0.3, 0.3), (1.1, 0.5), (0.0, 1.0)]:
+        f = st.stress(X * a, Z * a)
+        bous = ref.boussinesq_field(lambda s: E * 0.05 / 2 * np.arccosh(a / s), a,
+                                    X * a, Z * a, 0.3, n_r=400, n_t=240)
+        for g, w in zip((f.srr, f.stt, f.szz, f.srz), bous):
+            assert abs(float(g) - float(w)) <= tol.STRESS_BOUSSINESQ_HERTZ * pm
+
+
+def test_measured_paraboloid_reproduces_hertz_within_its_error():
+    st_h, a, p0 = hertz_state()
+    rt = np.linspace(0, 3 * a, 400)
+    table = cl.profiles.Tabulated(rt, rt**2 / (2 * R), interpolation="cubic")
+    st = cl.Contact(table, materials=(STEEL, STEEL)).normal(force=F)
+    rr, zz = np.meshgrid(np.linspace(0, 2 * a, 60), np.linspace(0, 1.5 * a, 30))
+    ft, fh = st.stress(rr, zz), st_h.stress(rr, zz)
+    # the table's own contact radius differs from Hertz by its interpolation error
+    da = abs(st.radius / a - 1)
+    for k in ("srr", "stt", "szz", "srz"):
+        d = np.abs(getattr(ft, k) - getattr(fh, k))
+        assert np.all(d <= ft.error + 4 * da * p0), k
+    assert ft.meta["error_estimate"] < 5e-3          # measured 1.4e-3 (surface points)
+
+
+def test_body_two_uses_its_own_poisson_ratio():
+    st, a, p0 = hertz_state((STEEL, ALU))
+    f1 = st.stress(0.4 * a, 0.3 * a, body=1)
+    f2 = st.stress(0.4 * a, 0.3 * a, body=2)
+    w2 = ref.hertz_huber(0.4 * a, 0.3 * a, a, p0, 0.33)
+    assert abs(float(f2.srr) - float(w2[0])) <= tol.STRESS_CLOSED_FORM * p0
+    assert float(f1.szz) == float(f2.szz) and float(f1.srr) != float(f2.srr)
+
+
+def test_derived_quantities():
+    st, a, p0 = hertz_state()
+    f = st.stress(np.linspace(0, 2 * a, 7)[:, None], np.linspace(0, a, 5)[None, :])
+    assert f.shape == (7, 5)
+    p = f.principal
+    assert np.all(p[..., 0] >= p[..., 1]) and np.all(p[..., 1] >= p[..., 2])
+    np.testing.assert_allclose(p.sum(-1), f.srr + f.stt + f.szz, rtol=1e-12, atol=1e-6 * p0)
+    np.testing.assert_allclose(f.tresca, 2 * f.max_shear)
+    vm = np.sqrt(0.5 * ((p[..., 0] - p[..., 1])**2 + (p[..., 1] - p[..., 2])**2
+                        + (p[..., 2] - p[..., 0])**2))
+    np.testing.assert_allclose(f.von_mises, vm, rtol=1e-10, atol=1e-9 * p0)
+    with pytest.raises(ValueError):
+        f.srr[0, 0] = 1.0                                  # immutable arrays
+    d = f.to_dict()
+    assert set(d) >= {"r", "z", "srr", "stt", "szz", "srz", "stz", "srt", "von_mises",
+                      "max_shear", "tresca", "error"}
+    g = st.stress(np.linspace(0, 2 * a, 7)[:, None], np.linspace(0, a, 5)[None, :])
+    assert np.array_equal(f.von_mises, g.von_mises)       # bit-identical on repeat
+
+
+def test_stress_field_grid():
+    st, a, _p0 = hertz_state()
+    f = st.stress_field()
+    assert f.shape == (100, 200)
+    assert f.r.max() == 2 * a and f.z.max() == 1.5 * a
+    g = st.stress_field((np.linspace(0, a, 5), np.linspace(0, a, 3)))
+    assert g.shape == (3, 5)
+
+
+@pytest.mark.parametrize("kw, exc, match", [
+    ({"r": 0.0, "z": -1e-6}, ParameterError, "z contains"),
+    ({"r": -1e-6, "z": 0.0}, ParameterError, "r contains"),
+    ({"r": np.nan, "z": 0.0}, ParameterError, "r"),
+    ({"r": 0.0, "z": np.nan}, ParameterError, "z"),
+    ({"r": 0.0, "z": 0.0, "body": 3}, ParameterError, "body=3"),
+    ({"r": 0.0, "z": 0.0, "body": True}, ParameterError, "body=True"),
+    ({"r": [0.0, 1.0], "z": [0.0, 1.0, 2.0]}, ParameterError, "broadcast"),
+])
+def test_bad_input(kw, exc, match):
+    st, _a, _p0 = hertz_state()
+    with pytest.raises(exc, match=match):
+        st.stress(**kw)
+    assert issubclass(exc, ContactlabError)
+
+
+def test_rigid_body_and_bad_kind():
+    st = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, cl.Rigid())).normal(force=F)
+    with pytest.raises(NotSupportedError, match="body=2"):
+        st.stress(0.0, 0.0, body=2)
+    with pytest.raises(ParameterError, match="kind="):
+        st.max_stress("nonsense")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        st.stress(0.0, 1e-6, body=1)
+
+
+def test_adhesive_state_adds_the_tensile_edge_punch():
+    # JKR: Hertz plus a flat punch of radius a pulled by the edge depth d - g(a) < 0
+    rubber = cl.Elastic(E=1e9, nu=0.5)
+    c = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(rubber, cl.Rigid()),
+                   work_of_adhesion=0.05)
+    st = c.normal(force=1e-3)
+    a = st.radius
+    r = np.array([0.1, 0.5, 0.9, 0.99]) * a
+    f = st.stress(r, 0.0)
+    p = st.pressure(r)
+    assert p[-1] < 0                                      # tensile near the edge
+    np.testing.assert_allclose(f.szz, -p, rtol=1e-12)
+    assert f.meta["edge_depth"] < 0
+    t, w = np.polynomial.legendre.leggauss(400)
+    z = 0.5 * a
+    th_a = np.arctan(a / z)
+    parts = [(0.0, th_a), (th_a, 0.5 * np.pi * (1 - 1e-12))]
+    th = np.concatenate([lo + (hi - lo) * (t + 1) / 2 for lo, hi in parts])
+    wt = np.concatenate([(hi - lo) / 2 * w for lo, hi in parts])
+    rr = z * np.tan(th)
+    total = np.sum(2 * np.pi * rr * st.stress(rr, z).szz * z / np.cos(th) ** 2 * wt)
+    # F is small against the compressive and tensile parts: compare with their scale
+    assert abs(total + st.force) <= tol.STRESS_EQUILIBRIUM * (4 / 3 * c.moduli.normal * a**3 / R)
+    assert not np.isfinite(st.stress(a, 0.0).szz)          # the JKR edge is singular
