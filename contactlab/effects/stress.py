@@ -438,9 +438,10 @@ def _twist_density(lag, c: float, a: float):
 
 def _torsion_density(state):
     """``(lag, density, density_error)`` of a single partial-slip torsion state."""
-    from .torsion import torsion_model
+    from ..physics.torsion import METHODS
     ct = state.contact
-    model = torsion_model(ct, state.method)
+    model = METHODS[state.method](ct.profile, ct.moduli.normal, ct.moduli.torsional,
+                                  ct.friction, ct.rtol)
     psi = model.psi(np.array([float(state._a)]), np.array([float(state._d)]),
                     np.array([float(state._g_a)]))
     idx = np.array([0])
@@ -518,8 +519,7 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
 def _one_normal(state):
     """The normal preload of a single torsion state as a single NormalState."""
     n = state.normal
-    from .normal import NormalState
-    return NormalState(n.contact, np.float64(state._d), np.float64(state._a),
+    return type(n)(n.contact, np.float64(state._d), np.float64(state._a),
                        np.float64(np.ravel(n._force)[0]), dict(n.meta))
 
 
