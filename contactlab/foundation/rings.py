@@ -27,6 +27,7 @@ import numpy as np
 
 from ..citations import sources_for
 from ..errors import ContactlabError, NotSupportedError, ParameterError
+from ..numeric.blas import serial_blas
 from ..params import check_count, check_memory
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
@@ -126,8 +127,9 @@ class Rings(Foundation):
         if self.edge_punch:     # one more point, in the last ring, for the edge punch
             pts.append([b[-1] - EDGE_POINT * h[-1]])
         self.points = np.sort(np.concatenate(pts))
-        mats = _tr.influence(b, self.points, self.moduli.torsional, edge_punch=self.edge_punch,
-                             jumps=self.jumps)
+        with serial_blas():     # bit-identical for any BLAS thread count (numeric.blas)
+            mats = _tr.influence(b, self.points, self.moduli.torsional,
+                                 edge_punch=self.edge_punch, jumps=self.jumps)
         self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
         self.B, self.lu = mats["B"], mats["lu"]
 
@@ -218,7 +220,15 @@ class Rings(Foundation):
         hold ``r`` (the collocation points), ``depth``, ``radius``, ``shear_torsion``,
         ``pressure`` (Pa), ``slip`` and ``slip_increment`` (m); ``meta``: the ring counts, the
         switches, ``iterations``, ``fallback_steps`` (steps not taken by the annulus step),
-        ``energy`` (``work``, ``stored``, ``dissipated_per_step`` per step, J)."""
+        ``energy`` (``work``, ``stored``, ``dissipated_per_step`` per step, J). The steps'
+        small dense solves run on one BLAS thread (:func:`contactlab.numeric.blas.serial_blas`):
+        the same result for any thread setting, and no thread start-up per solve."""
+        with serial_blas():
+            return self._run(leaves, normal, outputs, snapshots, progress)
+
+    def _run(self, leaves: Any, normal: PathNormal, outputs: Any, snapshots: Any,
+             progress: Any = None) -> PathArrays:
+        """:meth:`run` inside :func:`~contactlab.numeric.blas.serial_blas`."""
         sw = getattr(self, "switches", None) or dict.fromkeys(self.SWITCHES, True)
         align, ring_table, annulus = sw["align"], sw["ring_table"], sw["annulus"]
         rings, edge_punch, spacing = self, self.edge_punch, self.spacing
