@@ -49,3 +49,32 @@ def test_exact_path_is_bit_identical_for_one_and_two_blas_threads():
     # the path takes both routes: annulus steps and ring-solver fallback steps
     assert int(one.split()[1]) > 0
     assert one == two
+
+
+def test_influence_matrices_are_factored_once_per_ring_set():
+    """A second run on the same ring set reuses the factored matrices (read-only) and gives the
+    bit-identical result; another ring set gets its own."""
+    import numpy as np
+
+    import contactlab as cl
+    from contactlab.foundation import rings as fr
+
+    c = cl.Contact(cl.profiles.Paraboloid(R=0.01),
+                   materials=(cl.Elastic(E=210e9, nu=0.3), cl.Rigid()), friction=0.3)
+    t = np.arange(1, 41) / 40
+    path = cl.LoadPath.from_arrays(force=10.0 * (1 + 0.3 * np.sin(4 * np.pi * t)),
+                                   twist=2e-4 * np.sin(6 * np.pi * t))
+    fr._CACHE.clear()
+    r1 = c.simulate(path, method="exact", n_rings=30)
+    assert len(fr._CACHE) == 1
+    mats = next(iter(fr._CACHE.values()))
+    assert not mats["H"].flags.writeable and not mats["lu"][0].flags.writeable
+    r2 = c.simulate(path, method="exact", n_rings=30)
+    assert len(fr._CACHE) == 1 and next(iter(fr._CACHE.values())) is mats
+    for k in ("torque", "dissipated_energy", "stick_radius"):
+        assert np.array_equal(getattr(r1, k), getattr(r2, k))
+    fr._CACHE.clear()
+    r3 = c.simulate(path, method="exact", n_rings=30)     # built afresh: the same numbers
+    assert np.array_equal(r1.torque, r3.torque)
+    c.simulate(path, method="exact", n_rings=31)
+    assert len(fr._CACHE) == 2
