@@ -20,6 +20,8 @@ punches at its contact radii. The error falls with the number of rings; see
 """
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
@@ -27,6 +29,7 @@ import numpy as np
 
 from ..citations import sources_for
 from ..errors import ContactlabError, NotSupportedError, ParameterError
+from ..numeric.blas import serial_blas
 from ..params import check_count, check_memory
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
@@ -127,8 +130,7 @@ class Rings(Foundation):
         if self.edge_punch:     # one more point, in the last ring, for the edge punch
             pts.append([b[-1] - EDGE_POINT * h[-1]])
         self.points = np.sort(np.concatenate(pts))
-        mats = _tr.influence(b, self.points, self.moduli.torsional, edge_punch=self.edge_punch,
-                             jumps=self.jumps)
+        mats = _influence(b, self.points, self.moduli.torsional, self.edge_punch, self.jumps)
         self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
         self.B, self.lu = mats["B"], mats["lu"]
 
@@ -219,7 +221,15 @@ class Rings(Foundation):
         hold ``r`` (the collocation points), ``depth``, ``radius``, ``shear_torsion``,
         ``pressure`` (Pa), ``slip`` and ``slip_increment`` (m); ``meta``: the ring counts, the
         switches, ``iterations``, ``fallback_steps`` (steps not taken by the annulus step),
-        ``energy`` (``work``, ``stored``, ``dissipated_per_step`` per step, J)."""
+        ``energy`` (``work``, ``stored``, ``dissipated_per_step`` per step, J). The steps'
+        small dense solves run on one BLAS thread (:func:`contactlab.numeric.blas.serial_blas`):
+        the same result for any thread setting, and no thread start-up per solve."""
+        with serial_blas():
+            return self._run(leaves, normal, outputs, snapshots, progress)
+
+    def _run(self, leaves: Any, normal: PathNormal, outputs: Any, snapshots: Any,
+             progress: Any = None) -> PathArrays:
+        """:meth:`run` inside :func:`~contactlab.numeric.blas.serial_blas`."""
         sw = getattr(self, "switches", None) or dict.fromkeys(self.SWITCHES, True)
         align, ring_table, annulus = sw["align"], sw["ring_table"], sw["annulus"]
         rings, edge_punch, spacing = self, self.edge_punch, self.spacing
@@ -418,6 +428,40 @@ class Rings(Foundation):
                 "energy": {"work": work, "stored": stored, "dissipated_per_step": step_diss},
                 "citations": sources_for("normal", "torsion:exact")}
         return PathArrays(res, snap_data, meta, n_total)
+
+
+#: influence matrices kept for reuse (:func:`_influence`): at most this many ring sets, and
+#: none whose matrices take more than :data:`_CACHE_MAX_BYTES`
+_CACHE_SIZE, _CACHE_MAX_BYTES = 4, 32 * 2 ** 20
+_CACHE: OrderedDict[tuple, dict[str, Any]] = OrderedDict()
+_CACHE_LOCK = threading.Lock()
+
+
+def _influence(b: np.ndarray, points: np.ndarray, G_t: float, edge_punch: bool,
+               jumps: np.ndarray) -> dict[str, Any]:
+    """:func:`contactlab.physics.torsion_rings.influence` of one ring set, factored once: the
+    matrices depend on the nodes, the points, ``G_t``, the edge punch and the jump nodes only,
+    so a run along the same path (or any path with the same contact radii) reuses them (arrays
+    read-only; least recently used of :data:`_CACHE_SIZE` sets dropped). Built on one BLAS
+    thread: bit-identical for any thread setting."""
+    key = (b.tobytes(), points.tobytes(), float(G_t), bool(edge_punch),
+           np.asarray(jumps, np.int64).tobytes())
+    with _CACHE_LOCK:
+        hit = _CACHE.get(key)
+        if hit is not None:
+            _CACHE.move_to_end(key)
+            return hit
+    with serial_blas():
+        mats = _tr.influence(b, points, G_t, edge_punch=edge_punch, jumps=jumps)
+    arrays = [mats["H"], mats["C"], mats["g"], mats["B"], *mats["lu"]]
+    for a in arrays:
+        a.flags.writeable = False
+    if sum(a.nbytes for a in arrays) <= _CACHE_MAX_BYTES:
+        with _CACHE_LOCK:
+            _CACHE[key] = mats
+            while len(_CACHE) > _CACHE_SIZE:
+                _CACHE.popitem(last=False)
+    return mats
 
 
 #: steps whose ring slip limits are held at once (memory: chunk x rings floats)

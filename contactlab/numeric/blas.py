@@ -1,0 +1,63 @@
+"""One BLAS thread around small dense kernels: bit-identical results for any thread setting.
+
+The ring solver's matrices are a few hundred rows; a threaded BLAS splits their products and
+solves into parts whose sums it adds in an order that depends on the thread count (results differ
+in the last bits between ``OPENBLAS_NUM_THREADS=1`` and ``=2``), and the threads' start-up costs
+more than the work they share (a 180-step exact path took 3x longer with two threads than with
+one). :func:`serial_blas` limits every loaded BLAS to one thread for the duration of a block and
+restores the previous setting when the last block that holds it ends (blocks may nest and run in
+several Python threads at once: the limit is process-wide, so it is taken by the first block and
+given back by the last); entering it costs ~10 µs (the libraries are looked up once per process).
+
+Limitation: OpenBLAS (0.3.30) ignores a thread count set from a Python thread other than the main
+one once the main thread has set one; a block entered first in such a worker thread then runs
+with the process's setting (still correct, but its last bits follow that setting).
+"""
+from __future__ import annotations
+
+import contextlib
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+__all__ = ["serial_blas"]
+
+_CONTROLLER: list[Any] = []
+_LOCK = threading.Lock()
+#: blocks inside :func:`serial_blas` now, and the limiter the first of them entered
+_HELD: dict[str, Any] = {"count": 0, "limiter": None}
+
+
+def _controller() -> Any:
+    """The process's thread-pool controller (built once, after scipy's BLAS is loaded)."""
+    if not _CONTROLLER:
+        import scipy.linalg  # noqa: F401  (loads scipy's own BLAS before the look-up)
+        from threadpoolctl import ThreadpoolController
+        _CONTROLLER.append(ThreadpoolController())
+    return _CONTROLLER[0]
+
+
+@contextlib.contextmanager
+def serial_blas() -> Iterator[None]:
+    """Run the block with one BLAS thread (every BLAS library loaded in the process).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> with serial_blas():
+    ...     x = np.linalg.solve(np.eye(3), np.ones(3))
+    >>> x.tolist()
+    [1.0, 1.0, 1.0]
+    """
+    with _LOCK:
+        if _HELD["count"] == 0:
+            _HELD["limiter"] = _controller().limit(limits=1, user_api="blas")
+        _HELD["count"] += 1
+    try:
+        yield
+    finally:
+        with _LOCK:
+            _HELD["count"] -= 1
+            if _HELD["count"] == 0:
+                _HELD["limiter"].restore_original_limits()
+                _HELD["limiter"] = None
