@@ -9,6 +9,10 @@ restores the previous setting when the last block that holds it ends (blocks may
 several Python threads at once: the limit is process-wide, so it is taken by the first block and
 given back by the last); entering it costs ~10 µs (the libraries are looked up once per process).
 
+threadpoolctl comes with the extra ``fast``; without it the block runs with the process's BLAS
+setting (correct, but the last bits then follow the thread count and a threaded BLAS is slower
+on these small systems).
+
 Limitation: OpenBLAS (0.3.30) ignores a thread count set from a Python thread other than the main
 one once the main thread has set one; a block entered first in such a worker thread then runs
 with the process's setting (still correct, but its last bits follow that setting).
@@ -29,11 +33,16 @@ _HELD: dict[str, Any] = {"count": 0, "limiter": None}
 
 
 def _controller() -> Any:
-    """The process's thread-pool controller (built once, after scipy's BLAS is loaded)."""
+    """The process's thread-pool controller (built once, after scipy's BLAS is loaded), or
+    None without threadpoolctl (extra ``fast``)."""
     if not _CONTROLLER:
         import scipy.linalg  # noqa: F401  (loads scipy's own BLAS before the look-up)
-        from threadpoolctl import ThreadpoolController
-        _CONTROLLER.append(ThreadpoolController())
+        try:
+            from threadpoolctl import ThreadpoolController
+        except ImportError:
+            _CONTROLLER.append(None)
+        else:
+            _CONTROLLER.append(ThreadpoolController())
     return _CONTROLLER[0]
 
 
@@ -51,13 +60,14 @@ def serial_blas() -> Iterator[None]:
     """
     with _LOCK:
         if _HELD["count"] == 0:
-            _HELD["limiter"] = _controller().limit(limits=1, user_api="blas")
+            ctl = _controller()
+            _HELD["limiter"] = None if ctl is None else ctl.limit(limits=1, user_api="blas")
         _HELD["count"] += 1
     try:
         yield
     finally:
         with _LOCK:
             _HELD["count"] -= 1
-            if _HELD["count"] == 0:
+            if _HELD["count"] == 0 and _HELD["limiter"] is not None:
                 _HELD["limiter"].restore_original_limits()
                 _HELD["limiter"] = None
