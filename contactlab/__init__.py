@@ -14,7 +14,7 @@ from .params import memory_budget, set_memory_budget
 from .registry import register_material, register_profile
 
 if _typing.TYPE_CHECKING:   # resolved on first use by the module __getattr__ below
-    from . import citations, foundation, loadpath
+    from . import citations, fit, foundation, loadpath
     from .citations import cite
     from .effects import (AdhesionCycle, AdhesiveNormalState, NormalState, PathResult,
                           ShiftHistory, TangentialState, TorsionState, TwistHistory,
@@ -30,7 +30,7 @@ __all__ = [
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "ContactLaw", "LawStep",
-    "profiles", "materials", "errors", "foundation", "loadpath", "registry",
+    "profiles", "materials", "errors", "fit", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
     "fretting_map_sweep",
     "cite", "citations",
@@ -41,7 +41,7 @@ __all__ = [
 #: None, name -> the module defining it. The sweep machinery alone pulls in multiprocessing and
 #: concurrent.futures (~0.03 s); the effect drivers, foundations and load paths ~0.03 s together
 _LAZY: "dict[str, str | None]" = {
-    "citations": None, "foundation": None, "loadpath": None, "physics": None,
+    "citations": None, "fit": None, "foundation": None, "loadpath": None, "physics": None,
     "cite": ".citations", "LoadPath": ".loadpath",
     "NormalState": ".effects", "AdhesiveNormalState": ".effects", "AdhesionCycle": ".effects",
     "ViscoelasticHistory": ".effects", "TangentialState": ".effects", "ShiftHistory": ".effects",

@@ -557,3 +557,11 @@ MODEL_ERROR_MAP_SHARPNESS = 1.4
 #: coarse exact check of a varying-load MDR path (64 rings) against the exact ring solver at 400
 #: rings: the check's own ring discretisation (energy ~0.3 %, torque ~0.2 % measured)
 MODEL_ERROR_PATH_CHECK = 5e-3
+
+# ---- fitting (issue 30)
+#: parameters recovered from noise-free curves made from independent closed forms: the solver
+#: converges to rounding (measured <= 2e-15 for E and the contact point)
+FIT_RECOVERY = 1e-8
+#: analytic slope dΦ/dδ = 2a of the fit's tip models against a central finite difference with
+#: step 1e-6 δ (truncation ~1e-12, rounding ~1e-10 relative)
+FIT_JACOBIAN_FD = 1e-7

@@ -1,0 +1,327 @@
+"""Fit of an elastic indentation curve: Young's modulus, contact point and force offset.
+
+The model (non-adhesive, any axisymmetric profile without a wall, through the MDR):
+
+``F(z) = E* Φ(z - z0) + F0`` for ``z > z0`` and ``F0`` before contact, with ``Φ(δ)`` the
+force at unit modulus (:mod:`contactlab.fit._tip`) and ``1/E* = (1 - ν²)/E + c_tip``.
+
+Exact Jacobian (no finite differences): ``∂F/∂E = Φ · E*² (1 - ν²)/E²``,
+``∂F/∂z0 = -E* Φ'(δ) = -2E* a(δ)``, ``∂F/∂F0 = 1``. The solver is scipy's trust-region
+``least_squares`` with bounds, in scaled variables.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..errors import (
+    ConvergenceError,
+    NotSupportedError,
+    OutsideTheoryError,
+    ParameterError,
+    UnknownNameError,
+)
+from ..materials import Elastic, Rigid
+from ..materials.base import Material
+from ..profiles.base import Profile
+from .result import FitResult
+
+__all__ = ["FREE_NAMES", "indentation"]
+
+#: parameters ``fit.indentation`` can fit besides the sample's constructor arguments
+FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
+#: fraction of the curve (in depth order) taken as the baseline for the starting values
+_BASELINE = 0.1
+#: candidate contact points of the start search
+_START_CANDIDATES = 8
+
+
+def _array(name: str, value: Any) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: give a 1D array of numbers.") from err
+    if arr.ndim != 1:
+        raise ParameterError(f"{name} has shape {arr.shape}: give a 1D array.")
+    bad = ~np.isfinite(arr)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be finite "
+                             "(remove NaN and inf points before fitting).")
+    return arr
+
+
+def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any
+                  ) -> tuple[np.ndarray, np.ndarray, tuple[str, ...], Material]:
+    z = _array("depth", depth)
+    F = _array("force", force)
+    if z.size != F.size:
+        raise ParameterError(f"depth has {z.size} points and force has {F.size}: give curves "
+                             "of equal length.")
+    if not isinstance(profile, Profile):
+        raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab Profile "
+                             "(e.g. contactlab.profiles.Sphere(R=1e-5)).")
+    if not isinstance(sample, Elastic):
+        if isinstance(sample, Material) and sample.is_viscoelastic:
+            raise NotSupportedError(f"sample={sample!r}: fitting viscoelastic materials "
+                                    "(time=...) is not available yet; give an Elastic template.")
+        raise ParameterError(f"sample={sample!r} is invalid: give an Elastic material template "
+                             "(its E is the starting value when 'E' is free, else fixed).")
+    tip_m = Rigid() if tip is None else tip
+    if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
+        raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
+                             "Elastic material.")
+    names = (free,) if isinstance(free, str) else tuple(free)
+    allowed = tuple(p.name for p in type(sample).params) + FREE_NAMES
+    for n in names:
+        if n not in allowed:
+            raise UnknownNameError(f"free={n!r} is unknown: choose from {allowed}.")
+    if len(set(names)) != len(names):
+        raise ParameterError(f"free={names!r} names a parameter twice.")
+    if "nu" in names:
+        raise ParameterError("free='nu' is invalid: a normal indentation curve determines only "
+                             "E/(1 - nu²); fix nu in the sample template and fit 'E'.")
+    if "work_of_adhesion" in names:
+        raise NotSupportedError("free='work_of_adhesion' needs adhesion='jkr' or 'dmt', which "
+                                "fit.indentation does not provide yet.")
+    if not names:
+        raise ParameterError("free=() is invalid: name at least one parameter to fit.")
+    if z.size <= len(names):
+        raise ParameterError(f"depth has {z.size} points: a fit of {len(names)} parameters "
+                             f"needs more than {len(names)}.")
+    return z, F, names, tip_m
+
+
+def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
+                tip: Material | None = None, free: Any = ("E", "contact_point"),
+                adhesion: str | None = None, time: Any = None,
+                start: dict | None = None, rtol: float = 1e-12) -> FitResult:
+    """Fit an elastic indentation curve: the sample's Young's modulus, the contact point and
+    the force offset, with exact derivatives.
+
+    Parameters
+    ----------
+    depth : array_like
+        Indenter position, m (increasing into the sample); the contact point is unknown unless
+        ``"contact_point"`` is not free (then ``depth`` is the indentation itself).
+    force : array_like
+        Measured normal force, N, same length.
+    profile : Profile
+        The tip's shape: closed forms, the exact ``Sphere``, ``Cone``, a measured
+        ``Tabulated`` tip, sums; no punch wall.
+    sample : Elastic
+        Material template of the sample: its ``nu`` is used, its ``E`` is the fixed value (or
+        the fallback start when ``"E"`` is free; the start is computed from the data).
+    tip : Material or None
+        The tip's material (``None``: rigid).
+    free : sequence of str
+        Names to fit: ``"E"``, ``"contact_point"``, ``"force_offset"``. The others are fixed
+        (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
+    adhesion : None
+        Reserved for ``"jkr"``/``"dmt"`` (not available yet).
+    time : None
+        Reserved for viscoelastic fits (not available yet).
+    start : dict, optional
+        Starting values by name (override the automatic ones).
+    rtol : float
+        Tolerance of the profile's routes when a tip table is built.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ParameterError
+        Non-finite values, unequal lengths, too few points, a curve that never reaches contact,
+        a non-elastic sample.
+    UnknownNameError
+        An unknown name in ``free``.
+    NotSupportedError
+        ``adhesion``, ``time``, a profile with a wall.
+    ConvergenceError
+        The solver did not converge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactlab import Elastic, fit
+    >>> from contactlab.profiles import Paraboloid
+    >>> z = np.linspace(-50e-9, 200e-9, 300)
+    >>> d = np.maximum(z - 10e-9, 0.0)
+    >>> F = 4/3 * 2e6/(1 - 0.25) * np.sqrt(5e-6) * d**1.5
+    >>> res = fit.indentation(z, F, Paraboloid(R=5e-6), sample=Elastic(E=1e6, nu=0.5))
+    >>> round(res.params["E"] / 2e6, 9), round(res.params["contact_point"] * 1e9, 6)
+    (1.0, 10.0)
+    """
+    if adhesion is not None:
+        raise NotSupportedError(f"adhesion={adhesion!r}: adhesive fits (JKR, DMT) are not "
+                                "available yet; give adhesion=None.")
+    if time is not None:
+        raise NotSupportedError("time=...: viscoelastic fits are not available yet.")
+    z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free)
+    from ..materials.pair import effective_moduli
+    c_tip = tip_m._compliances()[0]
+    k_nu = 1.0 - sample.nu ** 2
+    order = np.argsort(z, kind="stable")
+    zs, Fs = z[order], F[order]
+    span = float(zs[-1] - zs[0])
+    fit_cp = "contact_point" in names
+    fit_off = "force_offset" in names
+    # ---- the tip model over every indentation the bounds allow
+    if fit_cp:
+        if span <= 0:
+            raise ParameterError("depth has a single value: a contact point cannot be fitted.")
+        cp_lo = float(zs[0]) - span
+        delta_max = (float(zs[-1]) - cp_lo) * 1.0001
+    else:
+        cp_lo = 0.0
+        delta_max = float(zs[-1]) * 1.0001
+        if delta_max <= 0:
+            raise ParameterError(f"depth <= 0 everywhere (max {delta_max!r} m) with the contact "
+                                 "point fixed at 0: the curve never reaches contact.")
+    if np.isfinite(profile.max_radius):     # a finite tip (a table, the sphere): its reach
+        reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
+        if delta_max > reach:
+            delta_max = reach
+            cp_lo = float(zs[-1]) - reach
+            if not fit_cp:
+                raise OutsideTheoryError(
+                    f"depth={float(zs[-1])!r} m exceeds the depth {reach!r} m that {profile!r} "
+                    "reaches at its max_radius; use a larger tip or drop the deep points.")
+    from ._tip import TipModel
+    tipm = TipModel(profile, delta_max, rtol)
+    # ---- starting values
+    start = dict(start or {})
+    n_base = max(2, int(_BASELINE * zs.size))
+    base = Fs[:n_base]
+    off0 = float(np.median(base)) if fit_off else 0.0
+    rise = Fs - off0
+    top = float(np.max(rise))
+    noise = float(np.median(np.abs(base - np.median(base)))) * 1.4826 if fit_off else 0.0
+    thr = max(5.0 * noise, 0.02 * top)
+    if top <= 0 or not np.any(rise > thr):
+        raise ParameterError(
+            f"force never rises above its baseline (largest rise {top!r} N over an offset of "
+            f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
+    if fit_cp and "contact_point" not in start:
+        z_thr = float(zs[int(np.argmax(rise > thr))])
+        cands = np.linspace(max(cp_lo, z_thr - 0.5 * (float(zs[-1]) - z_thr)), z_thr,
+                            _START_CANDIDATES)
+        best = (np.inf, z_thr)
+        n_f = float(Fs.size)
+        sF, sFF = float(Fs.sum()), float(Fs @ Fs)
+        for c in cands:                 # the linear parameters projected out at each candidate
+            phi, _ = tipm(zs - c)
+            sp, spp, spF = float(phi.sum()), float(phi @ phi), float(phi @ Fs)
+            if fit_off:                 # 2x2 normal equations of F = e·phi + o
+                det = n_f * spp - sp * sp
+                if det <= 0:
+                    continue
+                e = (n_f * spF - sp * sF) / det
+                o = (sF - e * sp) / n_f
+                rss = sFF - e * spF - o * sF
+            else:
+                e = spF / spp if spp > 0 else 0.0
+                rss = sFF - e * spF
+            if rss < best[0] and e > 0:
+                best = (rss, float(c))
+        start["contact_point"] = best[1]
+    cp0 = float(start.get("contact_point", 0.0))
+    phi0, _ = tipm(zs - cp0)
+    if fit_off and "force_offset" not in start:
+        A = np.stack([phi0, np.ones_like(phi0)], axis=1)
+        coef, *_ = np.linalg.lstsq(A, Fs, rcond=None)
+        start["force_offset"] = float(coef[1])
+    off0 = float(start.get("force_offset", 0.0))
+    if "E" in names and "E" not in start:
+        es = float(phi0 @ (Fs - off0)) / max(float(phi0 @ phi0), 1e-300)
+        if not es > 0:
+            es = float(sample.E) / k_nu
+        inv = 1.0 / es - c_tip
+        start["E"] = k_nu / inv if inv > 0 else float(sample.E)
+    fixed = {"E": float(sample.E), "contact_point": 0.0, "force_offset": 0.0}
+    # ---- scaled problem
+    scales = {"E": float(start.get("E", sample.E)), "contact_point": max(span, 1e-300),
+              "force_offset": max(top, 1e-300)}
+    idx = {n: i for i, n in enumerate(names)}
+
+    def unpack(x: np.ndarray) -> dict[str, float]:
+        vals = dict(fixed)
+        for n, i in idx.items():     # E as exp(x) · scale: positive without bounds
+            vals[n] = (float(np.exp(x[i])) if n == "E" else float(x[i])) * scales[n]
+        return vals
+
+    def estar(E: float) -> float:
+        return 1.0 / (k_nu / E + c_tip)
+
+    cache: dict = {}
+
+    def evaluate(x: np.ndarray) -> tuple:
+        key = x.tobytes()
+        if key not in cache:
+            cache.clear()
+            v = unpack(x)
+            phi, dphi = tipm(z - v["contact_point"])
+            cache[key] = (v, phi, dphi)
+        return cache[key]
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        v, phi, _ = evaluate(x)
+        return estar(v["E"]) * phi + v["force_offset"] - F
+
+    def jacobian(x: np.ndarray) -> np.ndarray:
+        v, phi, dphi = evaluate(x)
+        Es = estar(v["E"])
+        J = np.empty((z.size, len(names)))
+        for n, i in idx.items():
+            if n == "E":
+                J[:, i] = phi * (Es * Es * k_nu / v["E"])          # ∂F/∂ln E
+            elif n == "contact_point":
+                J[:, i] = -Es * dphi * scales[n]
+            else:
+                J[:, i] = scales[n]
+        return J
+
+    x0 = np.empty(len(names))
+    for n, i in idx.items():
+        v0 = float(start.get(n, fixed[n])) / scales[n]
+        x0[i] = np.log(v0) if n == "E" else v0
+    from scipy.optimize import least_squares
+    # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip model is
+    # defined for every contact point) and its gradient test is scale-free
+    sol = least_squares(residual, x0, jac=jacobian, method="lm", x_scale=1.0,
+                        ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=500)
+    if sol.status <= 0:
+        raise ConvergenceError(f"fit.indentation did not converge: {sol.message}")
+    vals = unpack(sol.x)
+    if fit_cp and not cp_lo <= vals["contact_point"] < float(zs[-1]):
+        raise ConvergenceError(
+            f"fit.indentation: the contact point went to {vals['contact_point']!r} m, outside "
+            f"[{cp_lo!r}, {float(zs[-1])!r}) m (one depth span before the data to its end); "
+            "give start={'contact_point': ...} or check the curve.")
+    r = residual(sol.x)
+    J = jacobian(sol.x) / np.array([vals["E"] if n == "E" else scales[n] for n in names])
+    dof = z.size - len(names)
+    s2 = float(r @ r) / dof
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    keep = sv > sv[0] * 1e-14 if sv.size and sv[0] > 0 else np.zeros(sv.shape, bool)
+    inv_sv2 = np.where(keep, 1.0 / np.where(keep, sv, 1.0) ** 2, np.inf)
+    cov = (vt.T * inv_sv2) @ vt * s2 if np.all(keep) else np.full((len(names),) * 2, np.inf)
+    stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    from ..contact import Contact
+    fitted = Elastic(E=vals["E"], nu=sample.nu)
+    contact = Contact(profile, (tip_m, fitted))
+    effective_moduli(tip_m, fitted)
+    meta: dict = {"citations": ("PH", "H1", "Sn65"), "x_name": "depth", "y_name": "force",
+                  "tip_route": tipm.route}
+    if tipm.route == "table":
+        meta["tip_model_errors"] = {"force": tipm.error}
+        meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
+                                     "measured at the interval midpoints")
+    params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
+    params["nu"] = float(sample.nu)
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
+                     model=r + F, residuals=r, contact=contact, dof=dof, nfev=int(sol.nfev),
+                     meta=meta)
