@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..effects._protocol import reporting
 from ..errors import (
     ConvergenceError,
     NotSupportedError,
@@ -52,7 +53,8 @@ def _array(name: str, value: Any) -> np.ndarray:
     return arr
 
 
-def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any
+def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
+                  adhesion: str | None = None
                   ) -> tuple[np.ndarray, np.ndarray, tuple[str, ...], Material]:
     z = _array("depth", depth)
     F = _array("force", force)
@@ -82,9 +84,9 @@ def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, f
     if "nu" in names:
         raise ParameterError("free='nu' is invalid: a normal indentation curve determines only "
                              "E/(1 - nu²); fix nu in the sample template and fit 'E'.")
-    if "work_of_adhesion" in names:
-        raise NotSupportedError("free='work_of_adhesion' needs adhesion='jkr' or 'dmt', which "
-                                "fit.indentation does not provide yet.")
+    if "work_of_adhesion" in names and adhesion is None:
+        raise ParameterError("free='work_of_adhesion' needs an adhesive model: give "
+                             "adhesion='jkr'.")
     if not names:
         raise ParameterError("free=() is invalid: name at least one parameter to fit.")
     if z.size <= len(names):
@@ -93,9 +95,34 @@ def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, f
     return z, F, names, tip_m
 
 
+def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
+               work_of_adhesion: float | None) -> Any:
+    """The JKR model of a single power-law tip, or None without adhesion."""
+    if adhesion is None:
+        return None
+    terms = profile.power_terms()
+    if (terms is None or len(terms) != 1 or terms[0][1] < 1.0 or profile.flat_radius != 0.0
+            or np.isfinite(profile.wall_radius)):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: JKR fits cover single power-law tips "
+            "c r^n with n >= 1 (Paraboloid, Cone, PowerLaw); give one of these.")
+    if "work_of_adhesion" not in names:
+        if work_of_adhesion is None:
+            raise ParameterError("adhesion='jkr' needs the work of adhesion: add "
+                                 "'work_of_adhesion' to free or give work_of_adhesion=... J/m².")
+        if not (np.isfinite(work_of_adhesion) and work_of_adhesion > 0):
+            raise ParameterError(f"work_of_adhesion={work_of_adhesion!r} is invalid: give a "
+                                 "positive value, J/m².")
+    from ._jkr import JKRPower
+    c, n = terms[0]
+    return JKRPower(profile._power_kappa(n) * c, n)
+
+
+@reporting()
 def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 tip: Material | None = None, free: Any = ("E", "contact_point"),
-                adhesion: str | None = None, time: Any = None,
+                adhesion: str | None = None, work_of_adhesion: float | None = None,
+                equilibrium_distance: float | None = None, time: Any = None,
                 start: dict | None = None, rtol: float = 1e-12) -> FitResult:
     """Fit an elastic indentation curve: the sample's Young's modulus, the contact point and
     the force offset, with exact derivatives.
@@ -116,10 +143,20 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     tip : Material or None
         The tip's material (``None``: rigid).
     free : sequence of str
-        Names to fit: ``"E"``, ``"contact_point"``, ``"force_offset"``. The others are fixed
+        Names to fit: ``"E"``, ``"contact_point"``, ``"force_offset"`` and, with
+        ``adhesion="jkr"``, ``"work_of_adhesion"``. The others are fixed
         (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
-    adhesion : None
-        Reserved for ``"jkr"``/``"dmt"`` (not available yet).
+    adhesion : None or "jkr"
+        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
+        power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
+        branch under fixed grips (zero force once the surfaces have come apart).
+        ``"dmt"`` is not available yet.
+    work_of_adhesion : float, optional
+        ``Δγ``, J/m²: the fixed value when ``"work_of_adhesion"`` is not free.
+    equilibrium_distance : float, optional
+        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m (paraboloid tips):
+        the fit reports ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when
+        ``μ_T < 5`` (outside the JKR limit).
     time : None
         Reserved for viscoelastic fits (not available yet).
     start : dict, optional
@@ -155,13 +192,15 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     >>> round(res.params["E"] / 2e6, 9), round(res.params["contact_point"] * 1e9, 6)
     (1.0, 10.0)
     """
-    if adhesion is not None:
-        raise NotSupportedError(f"adhesion={adhesion!r}: adhesive fits (JKR, DMT) are not "
-                                "available yet; give adhesion=None.")
+    if adhesion not in (None, "jkr"):
+        if adhesion == "dmt":
+            raise NotSupportedError("adhesion='dmt': DMT fits are not available yet; use "
+                                    "adhesion='jkr' (large Tabor parameter) or None.")
+        raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None or 'jkr'.")
     if time is not None:
         raise NotSupportedError("time=...: viscoelastic fits are not available yet.")
-    z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free)
-    from ..materials.pair import effective_moduli
+    z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
+    jkr = _jkr_model(profile, adhesion, names, work_of_adhesion)
     c_tip = tip_m._compliances()[0]
     k_nu = 1.0 - sample.nu ** 2
     order = np.argsort(z, kind="stable")
@@ -193,7 +232,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     from ._tip import TipModel
     tipm = TipModel(profile, delta_max, rtol)
     # ---- starting values
-    start = dict(start or {})
+    user_start = dict(start or {})
+    start = dict(user_start)
     n_base = max(2, int(_BASELINE * zs.size))
     base = Fs[:n_base]
     off0 = float(np.median(base)) if fit_off else 0.0
@@ -205,17 +245,21 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         raise ParameterError(
             f"force never rises above its baseline (largest rise {top!r} N over an offset of "
             f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
+    zc, Fc, proj_off = zs, Fs, fit_off
+    if jkr is not None:             # the start from the part above the baseline after pull-off
+        keep = (np.arange(zs.size) > int(np.argmin(rise))) & (rise > 0)
+        zc, Fc, proj_off = zs[keep], rise[keep], False
     if fit_cp and "contact_point" not in start:
         z_thr = float(zs[int(np.argmax(rise > thr))])
         cands = np.linspace(max(cp_lo, z_thr - 0.5 * (float(zs[-1]) - z_thr)), z_thr,
                             _START_CANDIDATES)
         best = (np.inf, z_thr)
-        n_f = float(Fs.size)
-        sF, sFF = float(Fs.sum()), float(Fs @ Fs)
+        n_f = float(Fc.size)
+        sF, sFF = float(Fc.sum()), float(Fc @ Fc)
         for c in cands:                 # the linear parameters projected out at each candidate
-            phi, _ = tipm(zs - c)
-            sp, spp, spF = float(phi.sum()), float(phi @ phi), float(phi @ Fs)
-            if fit_off:                 # 2x2 normal equations of F = e·phi + o
+            phi, _ = tipm(zc - c)
+            sp, spp, spF = float(phi.sum()), float(phi @ phi), float(phi @ Fc)
+            if proj_off:                # 2x2 normal equations of F = e·phi + o
                 det = n_f * spp - sp * sp
                 if det <= 0:
                     continue
@@ -229,32 +273,45 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 best = (rss, float(c))
         start["contact_point"] = best[1]
     cp0 = float(start.get("contact_point", 0.0))
-    phi0, _ = tipm(zs - cp0)
+    phi0, _ = tipm(zc - cp0)
+    if jkr is not None and fit_off and "force_offset" not in start:
+        start["force_offset"] = off0
     if fit_off and "force_offset" not in start:
         A = np.stack([phi0, np.ones_like(phi0)], axis=1)
         coef, *_ = np.linalg.lstsq(A, Fs, rcond=None)
         start["force_offset"] = float(coef[1])
     off0 = float(start.get("force_offset", 0.0))
     if "E" in names and "E" not in start:
-        es = float(phi0 @ (Fs - off0)) / max(float(phi0 @ phi0), 1e-300)
+        es = float(phi0 @ (Fc - (0.0 if jkr is not None else off0))) / max(
+            float(phi0 @ phi0), 1e-300)
         if not es > 0:
             es = float(sample.E) / k_nu
         inv = 1.0 / es - c_tip
         start["E"] = k_nu / inv if inv > 0 else float(sample.E)
-    fixed = {"E": float(sample.E), "contact_point": 0.0, "force_offset": 0.0}
-    # ---- scaled problem
+    def estar(E: float) -> float:
+        return 1.0 / (k_nu / E + c_tip)
+
+    fixed = {"E": float(sample.E), "contact_point": 0.0, "force_offset": 0.0,
+             "work_of_adhesion": float(work_of_adhesion or 0.0)}
+    if jkr is not None:
+        es0 = _jkr_start(jkr, start, names, estar(float(start.get("E", sample.E))), zs, rise,
+                         fixed["work_of_adhesion"], set(user_start))
+        if "E" in names and "E" not in user_start:
+            inv = 1.0 / es0 - c_tip
+            start["E"] = k_nu / inv if inv > 0 else float(sample.E)
+    # ---- scaled problem (E and the work of adhesion through their logarithms)
     scales = {"E": float(start.get("E", sample.E)), "contact_point": max(span, 1e-300),
-              "force_offset": max(top, 1e-300)}
+              "force_offset": max(top, 1e-300),
+              "work_of_adhesion": float(start.get("work_of_adhesion", 1.0))}
+    logs = ("E", "work_of_adhesion")
     idx = {n: i for i, n in enumerate(names)}
 
     def unpack(x: np.ndarray) -> dict[str, float]:
         vals = dict(fixed)
+        vals.update({n: float(start[n]) for n in names if n not in idx and n in start})
         for n, i in idx.items():     # E as exp(x) · scale: positive without bounds
-            vals[n] = (float(np.exp(x[i])) if n == "E" else float(x[i])) * scales[n]
+            vals[n] = (float(np.exp(x[i])) if n in logs else float(x[i])) * scales[n]
         return vals
-
-    def estar(E: float) -> float:
-        return 1.0 / (k_nu / E + c_tip)
 
     cache: dict = {}
 
@@ -263,38 +320,55 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         if key not in cache:
             cache.clear()
             v = unpack(x)
-            phi, dphi = tipm(z - v["contact_point"])
-            cache[key] = (v, phi, dphi)
+            Es = estar(v["E"])
+            if jkr is None:             # F = E*Φ: ∂F/∂E* = Φ, ∂F/∂δ = E*Φ' = 2E*a
+                phi, dphi = tipm(z - v["contact_point"])
+                f, f_d, f_e, f_w = Es * phi, Es * dphi, phi, None
+            else:
+                f, f_d, f_e, f_w = jkr.force(z - v["contact_point"], Es, v["work_of_adhesion"])
+            cache[key] = (v, Es, f, f_d, f_e, f_w)
         return cache[key]
 
     def residual(x: np.ndarray) -> np.ndarray:
-        v, phi, _ = evaluate(x)
-        return estar(v["E"]) * phi + v["force_offset"] - F
+        v, _, f, *_ = evaluate(x)
+        return f + v["force_offset"] - F
 
     def jacobian(x: np.ndarray) -> np.ndarray:
-        v, phi, dphi = evaluate(x)
-        Es = estar(v["E"])
-        J = np.empty((z.size, len(names)))
+        v, Es, _, f_d, f_e, f_w = evaluate(x)
+        J = np.empty((z.size, len(idx)))
         for n, i in idx.items():
-            if n == "E":
-                J[:, i] = phi * (Es * Es * k_nu / v["E"])          # ∂F/∂ln E
+            if n == "E":                # ∂F/∂ln E = ∂F/∂E* · E*²(1 - ν²)/E
+                J[:, i] = f_e * (Es * Es * k_nu / v["E"])
             elif n == "contact_point":
-                J[:, i] = -Es * dphi * scales[n]
+                J[:, i] = -f_d * scales[n]
+            elif n == "work_of_adhesion":
+                J[:, i] = f_w * v[n]
             else:
                 J[:, i] = scales[n]
         return J
 
-    x0 = np.empty(len(names))
-    for n, i in idx.items():
-        v0 = float(start.get(n, fixed[n])) / scales[n]
-        x0[i] = np.log(v0) if n == "E" else v0
     from scipy.optimize import least_squares
-    # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip model is
-    # defined for every contact point) and its gradient test is scale-free
-    sol = least_squares(residual, x0, jac=jacobian, method="lm", x_scale=1.0,
-                        ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=500)
-    if sol.status <= 0:
-        raise ConvergenceError(f"fit.indentation did not converge: {sol.message}")
+    stages = [names]
+    if jkr is not None and fit_off and len(names) > 1:
+        # the offset shifts the detached points and the branch end together: fitted last,
+        # from the solution with the baseline's offset (Levenberg-Marquardt otherwise wanders
+        # along the discontinuity at the branch end)
+        stages.insert(0, tuple(n for n in names if n != "force_offset"))
+    for stage in stages:
+        idx.clear()
+        idx.update({n: i for i, n in enumerate(stage)})
+        cache.clear()
+        x0 = np.empty(len(stage))
+        for n, i in idx.items():
+            v0 = float(start.get(n, fixed[n])) / scales[n]
+            x0[i] = np.log(v0) if n in logs else v0
+        # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
+        # model is defined for every contact point) and its gradient test is scale-free
+        sol = least_squares(residual, x0, jac=jacobian, method="lm", x_scale=1.0,
+                            ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=500)
+        if sol.status <= 0:
+            raise ConvergenceError(f"fit.indentation did not converge: {sol.message}")
+        start.update({n: v for n, v in unpack(sol.x).items() if n in idx})
     vals = unpack(sol.x)
     if fit_cp and not cp_lo <= vals["contact_point"] < float(zs[-1]):
         raise ConvergenceError(
@@ -302,7 +376,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             f"[{cp_lo!r}, {float(zs[-1])!r}) m (one depth span before the data to its end); "
             "give start={'contact_point': ...} or check the curve.")
     r = residual(sol.x)
-    J = jacobian(sol.x) / np.array([vals["E"] if n == "E" else scales[n] for n in names])
+    J = jacobian(sol.x) / np.array([vals[n] if n in logs else scales[n] for n in names])
     dof = z.size - len(names)
     s2 = float(r @ r) / dof
     _, sv, vt = np.linalg.svd(J, full_matrices=False)
@@ -312,16 +386,87 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
     from ..contact import Contact
     fitted = Elastic(E=vals["E"], nu=sample.nu)
-    contact = Contact(profile, (tip_m, fitted))
-    effective_moduli(tip_m, fitted)
-    meta: dict = {"citations": ("PH", "H1", "Sn65"), "x_name": "depth", "y_name": "force",
-                  "tip_route": tipm.route}
+    w_fit = vals["work_of_adhesion"] if jkr is not None else None
+    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit)
+    meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ()),
+                  "x_name": "depth", "y_name": "force",
+                  "tip_route": "jkr" if jkr is not None else tipm.route}
+    if jkr is not None and equilibrium_distance is not None:
+        meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
+                                         equilibrium_distance)
     if tipm.route == "table":
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
                                      "measured at the interval midpoints")
     params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
+    if jkr is not None:
+        params["work_of_adhesion"] = vals["work_of_adhesion"]
     params["nu"] = float(sample.nu)
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
                      model=r + F, residuals=r, contact=contact, dof=dof, nfev=int(sol.nfev),
                      meta=meta)
+
+
+def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs: np.ndarray,
+               rise: np.ndarray, w_fixed: float, given: set) -> float:
+    """Starting values of a JKR fit; returns the starting ``E*``.
+
+    Under fixed grips the last attached point is the end of the branch, at the smallest force:
+    for each candidate ``E*`` (a factor 1/3..3 around the non-adhesive estimate ``E_star0``)
+    the work of adhesion follows from that force (the branch-end force ``F(a_c)`` matched by
+    bisection in ``ln Δγ``) and the contact point from its depth (``z_pull - δ_c``); the
+    candidate with the smallest residual of the data wins."""
+    K, n = jkr.K, jkr.n
+    i_pull = int(np.argmin(rise))
+    f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
+
+    def branch_end(E_star: float, w: float) -> tuple[float, float]:
+        a_c, d_c = jkr.critical(E_star, w)
+        return 2.0 * E_star * (a_c * d_c - K * a_c ** (n + 1.0) / (n + 1.0)), d_c
+
+    def work(E_star: float) -> float:
+        if "work_of_adhesion" not in names or "work_of_adhesion" in given:
+            return float(start.get("work_of_adhesion", w_fixed))
+        lo, hi = -40.0, 10.0
+        target = min(f_pull, -1e-300)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if branch_end(E_star, float(np.exp(mid)))[0] > target:
+                lo = mid
+            else:
+                hi = mid
+        return float(np.exp(0.5 * (lo + hi)))
+
+    best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
+    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 15):
+        w = work(es)
+        cp = (z_pull - branch_end(es, w)[1] if "contact_point" not in given
+              and "contact_point" in names else float(start.get("contact_point", 0.0)))
+        f = jkr.force(zs - cp, es, w)[0]
+        rss = float(np.sum((f - rise) ** 2))
+        if rss < best[0]:
+            best = (rss, float(es), w, cp)
+    start["work_of_adhesion"] = best[2]
+    if "contact_point" in names:
+        start["contact_point"] = best[3]
+    return best[1]
+
+
+def _tabor(profile: Profile, w: float, E_star: float, z0: float) -> float:
+    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` of a paraboloid; warns below 5."""
+    import warnings
+
+    from ..errors import ValidityWarning
+    c, n = profile.power_terms()[0]
+    if n != 2.0:
+        raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined for "
+                                "paraboloid tips (a tip radius); drop it for other tips.")
+    if not (np.isfinite(z0) and z0 > 0):
+        raise ParameterError(f"equilibrium_distance={z0!r} is invalid: give a positive "
+                             "distance, m (typically 0.2-0.5e-9).")
+    mu = float((1.0 / (2.0 * c) * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
+    if mu < 5.0:
+        warnings.warn(f"Tabor parameter {mu:.3g} < 5: the contact is outside the JKR limit "
+                      "(short-range adhesion, compliant bodies); the fitted work of adhesion "
+                      "is biased (DMT applies below ~0.1).", ValidityWarning, stacklevel=3)
+    return mu
