@@ -20,7 +20,7 @@ class FitResult(Result):
     ----------
     params : dict
         Fitted (free) and fixed parameters by name, SI units (``E`` Pa, ``contact_point`` m,
-        ``force_offset`` N, ``work_of_adhesion`` J/m²).
+        ``force_offset`` N, ``work_of_adhesion`` J/m², ``friction``, ``shear_modulus`` Pa).
     free : tuple of str
         The names that were fitted, in the order of :attr:`covariance`.
     stderr : dict
@@ -28,7 +28,8 @@ class FitResult(Result):
     covariance : ndarray
         ``s² (JᵀJ)⁻¹`` at the solution, ``s²`` the residual variance ``Σr²/(n - p)``.
     x, y : ndarray
-        The data: the control (``depth``, m) and the measured response (``force``, N).
+        The data: the control (``depth`` m, ``displacement`` m or ``twist`` rad) and the
+        measured response (``force`` N, ``tangential_force`` N or ``torque`` N·m).
     model : ndarray
         The fitted model at ``x``.
     residuals : ndarray
@@ -56,7 +57,11 @@ class FitResult(Result):
     nfev: int
     meta: dict = field(default_factory=dict)
 
-    units: ClassVar[dict[str, str]] = {"depth": "m", "force": "N", "fit": "N", "residual": "N"}
+    units: ClassVar[dict[str, str]] = {
+        "depth": "m", "force": "N", "force_fit": "N", "force_residual": "N",
+        "displacement": "m", "tangential_force": "N", "tangential_force_fit": "N",
+        "tangential_force_residual": "N",
+        "twist": "rad", "torque": "N*m", "torque_fit": "N*m", "torque_residual": "N*m"}
 
     @property
     def citations(self) -> Any:
@@ -64,8 +69,11 @@ class FitResult(Result):
         return self.meta.get("citations", ("PH", "H1"))
 
     def to_dict(self) -> dict[str, Any]:
-        """The data, the fitted model and the residuals by column (SI)."""
-        return {"depth": self.x, "force": self.y, "fit": self.model, "residual": self.residuals}
+        """The data, the fitted model and the residuals by column (SI): ``<x>``, ``<y>``,
+        ``<y>_fit``, ``<y>_residual`` (``depth``/``force``, ``displacement``/
+        ``tangential_force``, ``twist``/``torque``)."""
+        xn, yn = self.meta.get("x_name", "depth"), self.meta.get("y_name", "force")
+        return {xn: self.x, yn: self.y, f"{yn}_fit": self.model, f"{yn}_residual": self.residuals}
 
     def confidence(self, level: float = 0.95) -> dict[str, tuple[float, float]]:
         """Confidence interval of each free parameter, ``value ± t·stderr`` with Student's t of
@@ -101,13 +109,15 @@ class FitResult(Result):
         else:
             fig = ax.figure
             axr = ax.twinx()
+        xn, yn = self.meta.get("x_name", "depth"), self.meta.get("y_name", "force")
+        xu, yu = self.units.get(xn, ""), self.units.get(yn, "")
         ax.plot(self.x, self.y, ".", ms=2, label="data")
         ax.plot(self.x, self.model, "-", label="fit")
-        ax.set_ylabel("force [N]")
+        ax.set_ylabel(f"{yn} [{yu}]")
         ax.legend()
         axr.plot(self.x, self.residuals, ".", ms=2)
-        axr.set_ylabel("residual [N]")
-        axr.set_xlabel("depth [m]")
+        axr.set_ylabel(f"residual [{yu}]")
+        axr.set_xlabel(f"{xn} [{xu}]")
         return fig
 
     def __repr__(self) -> str:

@@ -208,6 +208,16 @@ class TestFitResultTable(ResultChecks):
         return cl.fit.indentation(z, F, tip, sample=cl.Elastic(E=1e6, nu=0.5))
 
 
+class TestFitResultLoop(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        u = np.concatenate([np.linspace(1e-7, -1e-7, 40), np.linspace(-1e-7, 1e-7, 40)[1:]])
+        F = 5.0 * np.tanh(u * 1e7)
+        return cl.fit.tangential_loop(u, F, 100.0, cl.profiles.Paraboloid(R=0.01),
+                                      sample=STEEL)
+
+
 def _checked_types() -> set[type]:
     import warnings
     out = set()
