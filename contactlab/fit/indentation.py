@@ -6,8 +6,8 @@ The model (non-adhesive, any axisymmetric profile without a wall, through the MD
 force at unit modulus (:mod:`contactlab.fit._tip`) and ``1/E* = (1 - ν²)/E + c_tip``.
 
 Exact Jacobian (no finite differences): ``∂F/∂E = Φ · E*² (1 - ν²)/E²``,
-``∂F/∂z0 = -E* Φ'(δ) = -2E* a(δ)``, ``∂F/∂F0 = 1``. The solver is scipy's trust-region
-``least_squares`` with bounds, in scaled variables.
+``∂F/∂z0 = -E* Φ'(δ) = -2E* a(δ)``, ``∂F/∂F0 = 1``. The solver is scipy's
+Levenberg-Marquardt (MINPACK, as in ``least_squares(method="lm")``), in scaled variables.
 """
 from __future__ import annotations
 
@@ -347,7 +347,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 J[:, i] = scales[n]
         return J
 
-    from scipy.optimize import least_squares
+    from ._tip import levenberg_marquardt
     stages = [names]
     if jkr is not None and fit_off and len(names) > 1:
         # the offset shifts the detached points and the branch end together: fitted last,
@@ -364,19 +364,18 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             x0[i] = np.log(v0) if n in logs else v0
         # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
         # model is defined for every contact point) and its gradient test is scale-free
-        sol = least_squares(residual, x0, jac=jacobian, method="lm", x_scale=1.0,
-                            ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=500)
-        if sol.status <= 0:
-            raise ConvergenceError(f"fit.indentation did not converge: {sol.message}")
-        start.update({n: v for n, v in unpack(sol.x).items() if n in idx})
-    vals = unpack(sol.x)
+        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+        if not ok:
+            raise ConvergenceError(f"fit.indentation did not converge: {msg}")
+        start.update({n: v for n, v in unpack(x_sol).items() if n in idx})
+    vals = unpack(x_sol)
     if fit_cp and not cp_lo <= vals["contact_point"] < float(zs[-1]):
         raise ConvergenceError(
             f"fit.indentation: the contact point went to {vals['contact_point']!r} m, outside "
             f"[{cp_lo!r}, {float(zs[-1])!r}) m (one depth span before the data to its end); "
             "give start={'contact_point': ...} or check the curve.")
-    r = residual(sol.x)
-    J = jacobian(sol.x) / np.array([vals[n] if n in logs else scales[n] for n in names])
+    r = residual(x_sol)
+    J = jacobian(x_sol) / np.array([vals[n] if n in logs else scales[n] for n in names])
     dof = z.size - len(names)
     s2 = float(r @ r) / dof
     _, sv, vt = np.linalg.svd(J, full_matrices=False)
@@ -403,7 +402,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         params["work_of_adhesion"] = vals["work_of_adhesion"]
     params["nu"] = float(sample.nu)
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
-                     model=r + F, residuals=r, contact=contact, dof=dof, nfev=int(sol.nfev),
+                     model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev,
                      meta=meta)
 
 

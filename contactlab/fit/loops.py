@@ -126,12 +126,11 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
         _, _, d = parts(p)
         return np.stack([d[n] for n in names], axis=1)
 
-    from scipy.optimize import least_squares
-    sol = least_squares(residual, np.zeros(len(names)), jac=jacobian, method="lm",
-                        ftol=1e-15, xtol=1e-15, gtol=1e-15, max_nfev=500)
-    if sol.status <= 0:
-        raise ConvergenceError(f"the loop fit did not converge: {sol.message}")
-    q, model, d = parts(sol.x)
+    from ._tip import levenberg_marquardt
+    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, np.zeros(len(names)))
+    if not ok:
+        raise ConvergenceError(f"the loop fit did not converge: {msg}")
+    q, model, d = parts(x_sol)
     r = model - y
     J = np.stack([d[n] / q[n] for n in names], axis=1)
     dof = x.size - len(names)
@@ -142,7 +141,7 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
     else:
         cov = np.full((len(names),) * 2, np.inf)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
-    return q, model, r, cov, stderr, dof, int(sol.nfev)
+    return q, model, r, cov, stderr, dof, nfev
 
 
 def _starts(y: np.ndarray, x: np.ndarray, centre: float, amp: float, FN: float, slope0: float,
