@@ -39,6 +39,7 @@ class JKRPower:
 
     def __init__(self, kc: float, n: float) -> None:
         self.K, self.n = float(kc), float(n)
+        self._last: np.ndarray | None = None    # radii of the previous call (warm start)
 
     def critical(self, E_star: float, w: float) -> tuple[float, float]:
         """Contact radius ``a_c`` (m) and indentation ``δ_c`` (m) where the branch ends."""
@@ -59,6 +60,13 @@ class JKRPower:
         a = (2.0 * dp / K) ** (1.0 / n) + a_c
         if beta > 0:
             a += (2.0 * beta / K) ** (1.0 / (n - 0.5))
+        last = self._last
+        if last is not None and last.shape == a.shape:
+            # the previous call's radii (a fit moves its parameters little between calls): on
+            # the convex, increasing h one Newton step from either side lands right of the
+            # root, and the iteration is monotone from there
+            warm = np.isfinite(last) & (last > a_c)
+            a = np.where(warm, last, a)
         for _ in range(_NEWTON):
             sa = np.sqrt(a)
             an = a * a if n == 2.0 else a ** n
@@ -68,7 +76,9 @@ class JKRPower:
             a = np.maximum(a - step, a_c)
             if not np.any(np.abs(step) > 1e-13 * a):
                 break
-        return np.where(on, a, np.nan)
+        out = np.where(on, a, np.nan)
+        self._last = out
+        return out
 
     def force(self, delta: np.ndarray, E_star: float, w: float
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -437,7 +437,7 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
         return float(np.exp(0.5 * (lo + hi)))
 
     best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
-    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 15):
+    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):
         w = work(es)
         cp = (z_pull - branch_end(es, w)[1] if "contact_point" not in given
               and "contact_point" in names else float(start.get("contact_point", 0.0)))
