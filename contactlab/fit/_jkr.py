@@ -74,7 +74,7 @@ class JKRPower:
             ha = n * K * an / a - beta / (2.0 * sa)
             step = np.where(on & (ha > 0), h / np.where(ha > 0, ha, 1.0), 0.0)
             a = np.maximum(a - step, a_c)
-            if not np.any(np.abs(step) > 1e-13 * a):
+            if not np.any(np.abs(step) > 4e-16 * a):
                 break
         out = np.where(on, a, np.nan)
         self._last = out

@@ -117,3 +117,35 @@ def test_unsupported_tips():
         indentation(z, F, Sphere(R=R), sample=SAMPLE, adhesion="jkr", work_of_adhesion=W)
     with pytest.raises(errors.ParameterError, match="work_of_adhesion=-1"):
         indentation(z, F, Paraboloid(R=R), sample=SAMPLE, adhesion="jkr", work_of_adhesion=-1.0)
+
+
+@pytest.mark.parametrize("adhesive", [False, True])
+def test_solver_jacobian_against_finite_differences(monkeypatch, adhesive):
+    """The residual and Jacobian handed to the solver (all four parameters, an elastic tip)
+    agree with central finite differences at a point away from the solution."""
+    import contactlab.fit._tip as tipmod
+    seen = {}
+    real = tipmod.levenberg_marquardt
+
+    def spy(residual, jacobian, x0, max_nfev=500):
+        seen.setdefault("fun", (residual, jacobian, np.array(x0, float)))
+        return real(residual, jacobian, x0, max_nfev)
+
+    monkeypatch.setattr(tipmod, "levenberg_marquardt", spy)
+    z, F = paraboloid_curve(n=300, detached=40)
+    kw = ({"adhesion": "jkr", "free": ("E", "contact_point", "work_of_adhesion")} if adhesive
+          else {"free": ("E", "contact_point", "force_offset")})
+    indentation(z, F + 1e-9, Paraboloid(R=R), sample=SAMPLE, tip=Elastic(E=5e6, nu=0.3), **kw)
+    residual, jacobian, x0 = seen["fun"]
+    x = x0 + np.array([0.05, 0.01, 0.02])[:x0.size]
+    J = jacobian(x)
+    h = 1e-7        # the branch end's curvature makes the truncation error large at 1e-6
+    for i in range(x.size):
+        e = np.zeros(x.size)
+        e[i] = h
+        fd = (residual(x + e) - residual(x - e)) / (2 * h)
+        # points next to the branch end switch between attached and detached: compare where
+        # the step does not move the branch end across a data point
+        smooth = np.abs(residual(x + e) - residual(x - e)) < 1e3 * np.abs(J[:, i]).max() * h
+        np.testing.assert_allclose(J[smooth, i], fd[smooth], rtol=0,
+                                   atol=JKR_FD * np.max(np.abs(fd[smooth])))
