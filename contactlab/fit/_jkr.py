@@ -67,6 +67,7 @@ class JKRPower:
             # root, and the iteration is monotone from there
             warm = np.isfinite(last) & (last > a_c)
             a = np.where(warm, last, a)
+        last_step = False
         for _ in range(_NEWTON):
             sa = np.sqrt(a)
             an = a * a if n == 2.0 else a ** n
@@ -74,8 +75,10 @@ class JKRPower:
             ha = n * K * an / a - beta / (2.0 * sa)
             step = np.where(on & (ha > 0), h / np.where(ha > 0, ha, 1.0), 0.0)
             a = np.maximum(a - step, a_c)
-            if not np.any(np.abs(step) > 4e-16 * a):
+            if last_step:
                 break
+            # quadratic convergence: one more step after 1e-10 reaches rounding
+            last_step = not np.any(np.abs(step) > 1e-10 * a)
         out = np.where(on, a, np.nan)
         self._last = out
         return out

@@ -176,3 +176,19 @@ def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500)
     x, _, info, msg, ier = leastsq(residual, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
                                    xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
     return np.atleast_1d(x), int(info["nfev"]), ier in (1, 2, 3, 4), msg
+
+
+def covariance(J: np.ndarray, s2: float) -> np.ndarray:
+    """``s² (JᵀJ)⁻¹`` through the columns normalised to unit length (so parameters of very
+    different scales do not spoil the conditioning) and the eigen-decomposition of the small
+    ``p × p`` matrix; ``inf`` everywhere when the normalised matrix is singular (parameters
+    that the data cannot tell apart)."""
+    norms = np.sqrt(np.einsum("ij,ij->j", J, J))
+    p = J.shape[1]
+    if not np.all(norms > 0):
+        return np.full((p, p), np.inf)
+    Jn = J / norms
+    w, V = np.linalg.eigh(Jn.T @ Jn)
+    if not w[0] > 1e-13 * w[-1]:
+        return np.full((p, p), np.inf)
+    return (V / w) @ V.T * s2 / np.outer(norms, norms)

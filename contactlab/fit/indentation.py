@@ -347,7 +347,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 J[:, i] = scales[n]
         return J
 
-    from ._tip import levenberg_marquardt
+    from ._tip import covariance, levenberg_marquardt
     stages = [names]
     if jkr is not None and fit_off and len(names) > 1:
         # the offset shifts the detached points and the branch end together: fitted last,
@@ -378,10 +378,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     J = jacobian(x_sol) / np.array([vals[n] if n in logs else scales[n] for n in names])
     dof = z.size - len(names)
     s2 = float(r @ r) / dof
-    _, sv, vt = np.linalg.svd(J, full_matrices=False)
-    keep = sv > sv[0] * 1e-14 if sv.size and sv[0] > 0 else np.zeros(sv.shape, bool)
-    inv_sv2 = np.where(keep, 1.0 / np.where(keep, sv, 1.0) ** 2, np.inf)
-    cov = (vt.T * inv_sv2) @ vt * s2 if np.all(keep) else np.full((len(names),) * 2, np.inf)
+    cov = covariance(J, s2)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
     from ..contact import Contact
     fitted = Elastic(E=vals["E"], nu=sample.nu)

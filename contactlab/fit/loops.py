@@ -126,7 +126,7 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
         _, _, d = parts(p)
         return np.stack([d[n] for n in names], axis=1)
 
-    from ._tip import levenberg_marquardt
+    from ._tip import covariance, levenberg_marquardt
     x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, np.zeros(len(names)))
     if not ok:
         raise ConvergenceError(f"the loop fit did not converge: {msg}")
@@ -135,11 +135,7 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
     J = np.stack([d[n] / q[n] for n in names], axis=1)
     dof = x.size - len(names)
     s2 = float(r @ r) / dof
-    _, sv, vt = np.linalg.svd(J, full_matrices=False)
-    if sv.size and sv[-1] > sv[0] * 1e-14:
-        cov = (vt.T / sv ** 2) @ vt * s2
-    else:
-        cov = np.full((len(names),) * 2, np.inf)
+    cov = covariance(J, s2)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
     return q, model, r, cov, stderr, dof, nfev
 
