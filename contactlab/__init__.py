@@ -17,7 +17,7 @@ __all__ = [
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "ContactLaw", "LawStep",
-    "profiles", "materials", "errors", "foundation", "loadpath", "registry",
+    "profiles", "materials", "errors", "fit", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
     "fretting_map_sweep",
     "cite", "citations",
@@ -29,7 +29,7 @@ __all__ = [
 # and concurrent.futures (~0.03 s); the effect drivers, foundations and load paths ~0.03 s together
 __getattr__, __dir__, _LAZY = _attach(
     __name__,
-    submodules=["citations", "foundation", "loadpath", "physics"],
+    submodules=["citations", "fit", "foundation", "loadpath", "physics"],
     submod_attrs={
         "citations": ["cite"],
         "loadpath": ["LoadPath"],

@@ -3,6 +3,7 @@
 # ones it imports at once. tests/unit/test_lazy_imports.py checks that this list and __all__ agree.
 from . import citations as citations
 from . import errors as errors
+from . import fit as fit
 from . import foundation as foundation
 from . import loadpath as loadpath
 from . import materials as materials

@@ -403,6 +403,57 @@ def _parse_assignments(items: Sequence[str], what: str) -> dict[str, float]:
     return out
 
 
+def _cmd_fit(args: argparse.Namespace) -> int:
+    """``contactlab fit CURVE.csv``: fit an indentation curve (depth, force) and report the
+    parameters with their standard errors and 95 % intervals."""
+    import numpy as np
+
+    from . import fit
+    from .errors import ParameterError
+    from .numeric.tables import read_columns
+    from .registry import registry
+    profile = registry.create("profile", args.profile, **_parse_assignments(args.param, "--param"))
+
+    def material(spec: str) -> Any:
+        name, _, rest = spec.partition(":")
+        return registry.create("material", name.strip(),
+                               **_parse_assignments([rest] if rest else [], "--material"))
+
+    sample = material(args.sample)
+    tip = material(args.tip) if args.tip else None
+    _, cols = read_columns(args.curve, names=("depth", "force"), dimension=("length", "force"),
+                           min_columns=2)
+    depth, force = (cols[k] for k in list(cols)[:2])
+    free = tuple(n.strip() for n in args.free.split(",") if n.strip())
+    res = fit.indentation(depth, force, profile, sample=sample, tip=tip, free=free,
+                          adhesion=args.adhesion, work_of_adhesion=args.work_of_adhesion)
+    if args.output:
+        res.to_csv(args.output, overwrite=args.overwrite)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        target = Path(args.plot)
+        if target.exists() and not args.overwrite:
+            raise ParameterError(f"--plot {args.plot!r} exists: pass --overwrite or choose "
+                                 "another name.")
+        res.plot().savefig(target)
+    ci = res.confidence(0.95)
+    if args.json:
+        print(json.dumps({"ok": True, "params": res.params, "stderr": res.stderr,
+                          "confidence_95": {k: list(v) for k, v in ci.items()},
+                          "free": list(res.free), "dof": res.dof, "notes": list(res.notes),
+                          "model_error": float(res.model_error)}, indent=1))
+        return 0
+    units = {"E": "Pa", "contact_point": "m", "force_offset": "N", "work_of_adhesion": "J/m^2"}
+    for k in res.free:
+        lo, hi = ci[k]
+        print(f"{k} = {res.params[k]:.10g} {units.get(k, '')}  (stderr {res.stderr[k]:.3g}; "
+              f"95 %: {lo:.8g} .. {hi:.8g})")
+    print(f"residual rms = {float(np.sqrt(np.mean(res.residuals ** 2))):.3g} N "
+          f"({res.x.size} points, {res.dof} degrees of freedom)")
+    return 0
+
+
 def _formulas(args: argparse.Namespace) -> int:
     from .errors import ParameterError
     from .registry import registry
@@ -526,6 +577,24 @@ def _parser() -> argparse.ArgumentParser:
                     help="record failed points (default) or stop at the first")
     sw.add_argument("--overwrite", action="store_true",
                     help="replace an existing DIR/sweep.csv (never a scene's input)")
+    ft = add("fit", _cmd_fit, "fit an indentation curve (depth, force): modulus, contact point, "
+             "offset, work of adhesion, with standard errors", scene=False)
+    ft.add_argument("curve", help="CSV file: depth and force columns (units in the header, e.g. "
+                    "'depth [nm], force [nN]'; SI without)")
+    ft.add_argument("--profile", required=True, help="registered profile name, e.g. sphere")
+    ft.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                    help="profile parameter (repeatable), e.g. R=5e-6")
+    ft.add_argument("--sample", required=True, metavar="NAME:K=V,...",
+                    help="sample material template, e.g. elastic:E=1e6,nu=0.5 (E: the start)")
+    ft.add_argument("--tip", metavar="NAME:K=V,...", help="tip material (default rigid)")
+    ft.add_argument("--free", default="E,contact_point",
+                    help="comma-separated names to fit (default E,contact_point)")
+    ft.add_argument("--adhesion", choices=("jkr",), default=None, help="adhesive model")
+    ft.add_argument("--work-of-adhesion", type=float, default=None,
+                    help="fixed work of adhesion, J/m^2 (with --adhesion jkr)")
+    ft.add_argument("-o", "--output", metavar="FILE", help="write data, fit and residuals (CSV)")
+    ft.add_argument("--plot", metavar="FILE", help="write data, fit and residuals as a picture")
+    ft.add_argument("--overwrite", action="store_true", help="replace existing output files")
     p_form = sub.add_parser("formulas", help="print the closed-form formulas of a profile/contact",
                             description="Closed-form MDR formulas (normal, torsion, JKR) of a "
                             "registered profile, as text, a LaTeX document or Python source.")

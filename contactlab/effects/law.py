@@ -33,6 +33,7 @@ from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 from ._protocol import Result
+from .law_tangent import tangent as _tangent
 
 __all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
            "DEFAULT_SPRING_COVER", "STEP_UNITS", "LAW_BASIS"]
@@ -103,6 +104,7 @@ class LawStep(Result):
     dissipated_energy: np.ndarray
     exact: np.ndarray
     meta: dict = field(default_factory=dict, repr=False)
+    tangent: dict | None = field(default=None, repr=False)   # step(..., tangent=True)
 
     units = STEP_UNITS
     _basis = LAW_BASIS
@@ -537,7 +539,8 @@ class ContactLaw:
 
     # ------------------------------------------------------------------ the step
     def step(self, *, depth: Any = None, force: Any = None, displacement: Any = None,
-             twist: Any = None, out: LawStep | None = None) -> LawStep:
+             twist: Any = None, out: LawStep | None = None, tangent: bool = False
+             ) -> LawStep:
         """Advance every contact by one step.
 
         Parameters
@@ -553,6 +556,9 @@ class ContactLaw:
             A result of an earlier step of this law whose arrays are overwritten with this
             step's results (and returned): a time loop that does not keep old results saves
             allocating (and page-faulting) nine fresh arrays per step.
+        tangent : bool
+            Also give the consistent tangent stiffness per contact in ``result.tangent``
+            (:func:`contactlab.effects.law_tangent.tangent`).
 
         Returns
         -------
@@ -563,17 +569,21 @@ class ContactLaw:
         OutsideTheoryError
             A contact's depth left ``load_rtol`` of the depth at which its memory started (this
             law is exact at constant normal load; :meth:`reset` restarts the memory).
+        NotSupportedError
+            ``tangent=True`` while a contact is on springs.
         """
         if out is not None:
             self._check_out(out)
         if self.fast:
-            return self._stamp(self._step_fast(depth, force, displacement, twist, out))
-        res = self._step_numpy(depth, force, displacement, twist)
-        if out is None:
-            return self._stamp(res)
-        for f in _OUT_FIELDS:
-            getattr(out, f)[...] = getattr(res, f)
-        return self._stamp(out)
+            res = self._step_fast(depth, force, displacement, twist, out)
+        else:
+            res = self._step_numpy(depth, force, displacement, twist)
+            if out is not None:
+                for f in _OUT_FIELDS:
+                    getattr(out, f)[...] = getattr(res, f)
+                res = out
+        object.__setattr__(res, "tangent", _tangent(self, res, displacement, twist, tangent))
+        return self._stamp(res)
 
     def _stamp(self, res: LawStep) -> LawStep:
         """The law's springs and sources into the step's ``meta`` (its model error needs them);

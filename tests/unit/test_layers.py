@@ -38,8 +38,10 @@ ALLOWED: dict[str, set[str]] = {
     "effects": _LOW | {"symbolic", "profiles", "materials", "loadpath", "physics", "foundation"},
     "contact": _LOW | {"symbolic", "profiles", "materials", "loadpath", "physics", "foundation",
                        "effects"},
+    "fit": _LOW | {"symbolic", "profiles", "materials", "loadpath", "physics", "foundation",
+                   "effects", "contact"},
     "scene": _LOW | {"registry", "symbolic", "profiles", "materials", "loadpath", "physics",
-                     "foundation", "effects", "contact"},
+                     "foundation", "effects", "contact", "fit"},
 }
 ALLOWED["sweeps"] = ALLOWED["scene"] | {"scene"}
 ALLOWED["testing"] = set().union(*ALLOWED.values()) | set(ALLOWED) - {"testing"}

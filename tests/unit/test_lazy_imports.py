@@ -28,7 +28,7 @@ LAZY_OWN = ("contactlab.effects.normal", "contactlab.effects.adhesion",
             "contactlab.effects.fretting", "contactlab.effects.wear", "contactlab.effects.law",
             "contactlab.physics", "contactlab.foundation", "contactlab.loadpath",
             "contactlab.citations", "contactlab.materials.viscoelastic",
-            "contactlab.profiles.tabulated")
+            "contactlab.profiles.tabulated", "contactlab.fit")
 #: standard-library modules contactlab uses only on error paths or for one debug line; checked
 #: only where ``import numpy`` does not load them itself
 LAZY_STDLIB = ("logging", "difflib")

@@ -183,6 +183,41 @@ class TestSceneResult(ResultChecks):
         return _scene()
 
 
+def _hertz_curve():
+    z = np.linspace(-20e-9, 100e-9, 200)
+    d = np.maximum(z - 5e-9, 0.0)
+    return z, 4.0 / 3.0 * 2e6 / 0.75 * np.sqrt(5e-6) * d ** 1.5
+
+
+class TestFitResult(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        z, F = _hertz_curve()
+        return cl.fit.indentation(z, F + 1e-11 * np.sin(z * 1e9), cl.profiles.Paraboloid(R=5e-6),
+                                  sample=cl.Elastic(E=1e6, nu=0.5))
+
+
+class TestFitResultTable(ResultChecks):
+    exact, plots = False, False
+
+    def make_result(self):
+        z, F = _hertz_curve()
+        r = np.linspace(0.0, 2e-6, 101)
+        tip = cl.profiles.Tabulated(r, r * r / 1e-5)
+        return cl.fit.indentation(z, F, tip, sample=cl.Elastic(E=1e6, nu=0.5))
+
+
+class TestFitResultLoop(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        u = np.concatenate([np.linspace(1e-7, -1e-7, 40), np.linspace(-1e-7, 1e-7, 40)[1:]])
+        F = 5.0 * np.tanh(u * 1e7)
+        return cl.fit.tangential_loop(u, F, 100.0, cl.profiles.Paraboloid(R=0.01),
+                                      sample=STEEL)
+
+
 def _checked_types() -> set[type]:
     import warnings
     out = set()

@@ -1,0 +1,75 @@
+"""Speed of contactlab.fit.indentation against scipy's curve_fit (ratios from one run).
+
+* a 2000-point elastic fit of E and the contact point on a paraboloid, against
+  ``scipy.optimize.curve_fit`` on the plain closed-form Hertz function with an analytic
+  Jacobian (target: within 2x);
+* the same curve on a measured (tabulated) sphere tip, table cached (target: <= 10 ms per fit);
+* a JKR fit (E, contact point, work of adhesion) of 2000 points (target: <= 5 ms).
+
+Run: ``python benchmarks/fit_speed.py``.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+
+def _best(f, repeat: int = 5, number: int = 20) -> float:
+    out = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        for _ in range(number):
+            f()
+        out.append((time.perf_counter() - t) / number)
+    return min(out)
+
+
+def main() -> None:
+    from scipy.optimize import curve_fit
+
+    from contactlab import Elastic, fit
+    from contactlab.profiles import Paraboloid, Tabulated
+    E, nu, R, z0 = 2e6, 0.5, 5e-6, 10e-9
+    k = 1.0 - nu * nu
+    z = np.linspace(-50e-9, 200e-9, 2000)
+    d = np.maximum(z - z0, 0.0)
+    F = 4.0 / 3.0 * E / k * np.sqrt(R) * d ** 1.5
+    sample = Elastic(E=1e6, nu=nu)
+    prof = Paraboloid(R=R)
+
+    def hertz(x, e, c):
+        dd = np.maximum(x - c, 0.0)
+        return 4.0 / 3.0 * e / k * np.sqrt(R) * dd ** 1.5
+
+    def hertz_jac(x, e, c):
+        dd = np.maximum(x - c, 0.0)
+        return np.stack([4.0 / 3.0 / k * np.sqrt(R) * dd ** 1.5, -2.0 * e / k * np.sqrt(R * dd)], 1)
+
+    t_ours = _best(lambda: fit.indentation(z, F, prof, sample=sample))
+    t_cf = _best(lambda: curve_fit(hertz, z, F, p0=(1e6, 0.0), jac=hertz_jac))
+    print(f"paraboloid, 2000 points: fit.indentation {t_ours * 1e3:.2f} ms, curve_fit "
+          f"{t_cf * 1e3:.2f} ms, ratio {t_ours / t_cf:.2f} (target <= 2)")
+    r = np.linspace(0.0, 4e-6, 2001)
+    tab = Tabulated(r, R - np.sqrt(R * R - r * r))
+    t0 = time.perf_counter()
+    fit.indentation(z, F, tab, sample=sample)
+    print(f"tabulated sphere tip, first fit (builds the table): {(time.perf_counter() - t0) * 1e3:.0f} ms")
+    t_tab = _best(lambda: fit.indentation(z, F, tab, sample=sample), repeat=3, number=5)
+    print(f"tabulated sphere tip, later fits: {t_tab * 1e3:.2f} ms (target <= 10 ms)")
+    w = 0.05                                    # JKR paraboloid, fixed grips, 2000 points
+    es = E / k
+    a_c = (np.pi * w * R * R / (8 * es)) ** (1 / 3)
+    a = np.linspace(1.01 * a_c, 3e-6, 1700)
+    dj = a * a / R - np.sqrt(2 * np.pi * a * w / es)
+    Fj = 4 * es * a ** 3 / (3 * R) - np.sqrt(8 * np.pi * a ** 3 * es * w)
+    before = np.linspace(dj[0] - 0.3 * (dj[-1] - dj[0]), dj[0], 300, endpoint=False)
+    zj, Fj = np.concatenate([before, dj]) + z0, np.concatenate([np.zeros(300), Fj])
+    t_jkr = _best(lambda: fit.indentation(zj, Fj, prof, sample=sample, adhesion="jkr",
+                                          free=("E", "contact_point", "work_of_adhesion")),
+                  repeat=3, number=5)
+    print(f"JKR paraboloid, 2000 points: {t_jkr * 1e3:.2f} ms (target <= 5 ms)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,194 @@
+"""The force of a tip at unit modulus and its slope, fast, for fitting.
+
+Non-adhesive normal contact through the MDR gives ``F(δ) = E* Φ(δ)`` with the force at unit
+modulus ``Φ(δ) = 2(a δ - ∫_0^a g)`` and ``d = g(a)``, and ``dΦ/dδ = 2a(δ)`` for every profile.
+A fit evaluates ``Φ`` and ``2a`` at thousands of indentations many times, so each profile gets
+the cheapest exact-enough route, chosen once:
+
+* ``"power"``: one power term ``f = c r^n``: ``a = (δ/(κ_n c))^(1/n)``,
+  ``Φ = 2κ_n c n a^(n+1)/(n+1)`` (closed form, exact);
+* ``"newton"``: a closed-form ``g`` and ``∫g`` that are cheap (the exact sphere, sums of powers):
+  ``a`` from a start in a table and secant steps on ``g(a) = δ``, then
+  ``Φ`` from the closed forms (exact to rounding);
+* ``"table"``: any other profile (measured tables): a cubic Hermite interpolant of ``Φ(δ)`` on
+  nodes ``δ_i = g(a_i)`` with the exact slopes ``Φ'_i = 2a_i``, built once per profile and depth
+  range (cached on the profile). Its error (measured at the interval midpoints against the
+  profile's own routes) is reported as the model error; the slope used in the Jacobian is the
+  interpolant's own derivative, so the Jacobian is exact for the model being fitted.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import NotSupportedError
+
+__all__ = ["TABLE_NODES", "TipModel"]
+
+#: Hermite nodes of the ``"table"`` route (graded towards zero in the contact radius)
+TABLE_NODES = 1025
+#: nodes of the start table of the ``"newton"`` route
+_START_NODES = 257
+#: secant steps of the ``"newton"`` route after one step with the start table's slope (the
+#: error falls superlinearly; four reach rounding from a start table of 257 nodes)
+_SECANT_STEPS = 4
+
+
+def _hermite(x: np.ndarray, xn: np.ndarray, yn: np.ndarray, mn: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Cubic Hermite interpolant through ``(xn, yn)`` with slopes ``mn``: value and derivative
+    at ``x`` (inside ``[xn[0], xn[-1]]``)."""
+    k = np.clip(np.searchsorted(xn, x, side="right") - 1, 0, xn.size - 2)
+    x0 = xn[k]
+    h = xn[k + 1] - x0
+    t = (x - x0) / h
+    y0, y1, m0, m1 = yn[k], yn[k + 1], mn[k], mn[k + 1]
+    t2 = t * t
+    t3 = t2 * t
+    val = ((2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * m0
+           + (3 * t2 - 2 * t3) * y1 + (t3 - t2) * h * m1)
+    der = ((6 * t2 - 6 * t) / h * (y0 - y1) + (3 * t2 - 4 * t + 1) * m0
+           + (3 * t2 - 2 * t) * m1)
+    return val, der
+
+
+class TipModel:
+    """``Φ(δ)`` (m², force at unit modulus) and ``dΦ/dδ = 2a`` (m) of a profile for
+    ``0 <= δ <= delta_max``.
+
+    Parameters
+    ----------
+    profile : Profile
+        Any axisymmetric profile without a punch wall.
+    delta_max : float
+        Largest indentation the fit may need, m (> 0).
+    rtol : float
+        Tolerance of the profile's own routes when a table is built.
+
+    Raises
+    ------
+    NotSupportedError
+        A flat punch with a wall (its force is not a function of the indentation alone).
+    """
+
+    def __init__(self, profile, delta_max: float, rtol: float = 1e-12) -> None:
+        if np.isfinite(profile.wall_radius):
+            raise NotSupportedError(
+                f"profile={profile!r} has a punch wall: its contact radius does not follow from "
+                "the indentation, so fit.indentation does not cover it; fit a profile without a "
+                "wall.")
+        self.profile = profile
+        self.rtol = rtol
+        terms = profile.power_terms()
+        self.error = 0.0
+        if terms is not None and len(terms) == 1 and profile.flat_radius == 0.0:
+            c, n = terms[0]
+            self.route = "power"
+            self._kc = profile._power_kappa(n) * c
+            self._n = n
+            self.delta_max = float(delta_max)
+            return
+        cheap = (profile.g_route == "closed_form" and not profile.has("linear_table")
+                 and not profile.has("node_table")
+                 and profile._g_integral_exact(np.array([0.0])) is not None)
+        self.route = "newton" if cheap else "table"
+        nodes = _START_NODES if cheap else TABLE_NODES
+        self._build(float(delta_max), nodes)
+
+    # ------------------------------------------------------------------ table
+    def _build(self, delta_max: float, nodes: int) -> None:
+        p = self.profile
+        key = (self.route, nodes, delta_max, self.rtol)
+        cache = p.__dict__.setdefault("_fit_tip_tables", {})
+        if key not in cache:
+            b = p.flat_radius
+            a_top = float(p._radius_of_depth(np.array([delta_max]), self.rtol)[0])
+            a = b + (a_top - b) * np.linspace(0.0, 1.0, nodes) ** 2   # graded towards δ = 0
+            g = p._g(a, self.rtol)
+            g[0] = 0.0
+            g_int = p._g_integral(a, self.rtol)
+            phi = 2.0 * (a * g - g_int)
+            phi[0] = 0.0
+            ok = np.diff(g) > 0
+            if not np.all(ok):
+                raise NotSupportedError(
+                    f"profile={p!r}: its transform g is not increasing below the contact radius "
+                    f"{a_top!r} m (a ring contact), which fit.indentation does not cover.")
+            err = 0.0
+            if self.route == "table":       # measured error of the interpolant at the midpoints
+                am = 0.5 * (a[1:] + a[:-1])
+                dm = p._g(am, self.rtol)
+                phim = 2.0 * (am * dm - p._g_integral(am, self.rtol))
+                val, _ = _hermite(dm, g, phi, 2.0 * a)
+                scale = np.maximum(np.abs(phim), 1e-300)
+                inner = phim > 1e-6 * phi[-1]   # forces below 1e-6 of the largest: absolute
+                err = float(np.max(np.abs(val - phim)[inner] / scale[inner], initial=0.0))
+            cache[key] = (a, g, phi, err, a_top)
+        self._a, self._g, self._phi, self.error, self._a_top = cache[key]
+        self.delta_max = delta_max
+
+    # ------------------------------------------------------------------ evaluation
+    def __call__(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``Φ(δ)`` and ``dΦ/dδ`` at indentations ``δ`` (m, array); 0 where ``δ <= 0``."""
+        d = np.maximum(np.asarray(delta, float), 0.0)
+        if self.route == "power":
+            n = self._n
+            if n == 2.0:                    # the paraboloid without general powers (speed)
+                a = np.sqrt(d * (1.0 / self._kc))
+                phi = a * a
+                phi *= a
+            elif n == 1.0:
+                a = d * (1.0 / self._kc)
+                phi = a * a
+            else:
+                a = (d / self._kc) ** (1.0 / n)
+                phi = a ** (n + 1.0)
+            phi *= 2.0 * self._kc * n / (n + 1.0)
+            return phi, 2.0 * a
+        d = np.minimum(d, self._g[-1])
+        if self.route == "table":
+            phi, der = _hermite(d, self._g, self._phi, 2.0 * self._a)
+            pos = d > 0
+            return np.where(pos, phi, 0.0), np.where(pos, der, 0.0)
+        p = self.profile
+        k = np.clip(np.searchsorted(self._g, d, side="right") - 1, 0, self._g.size - 2)
+        a0 = np.interp(d, self._g, self._a)
+        g0 = p._g(a0, self.rtol)
+        a1 = np.clip(a0 + (d - g0) * (self._a[k + 1] - self._a[k]) / (self._g[k + 1] - self._g[k]),
+                     p.flat_radius, self._a_top)
+        for _ in range(_SECANT_STEPS):      # secant steps on g(a) = d
+            g1 = p._g(a1, self.rtol)
+            dg = g1 - g0
+            moving = dg != 0
+            step = np.where(moving, (d - g1) * (a1 - a0) / np.where(moving, dg, 1.0), 0.0)
+            a0, g0 = a1, g1
+            a1 = np.clip(a1 + step, p.flat_radius, self._a_top)
+        a = a1
+        phi = 2.0 * (a * d - p._g_integral(a, self.rtol))
+        pos = d > 0
+        return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
+
+
+def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500) -> tuple:
+    """MINPACK's Levenberg-Marquardt (``scipy.optimize.leastsq``, the routine behind
+    ``least_squares(method="lm")`` and ``curve_fit``) with the exact Jacobian, without the
+    wrapper's per-call overhead: returns ``(x, nfev, ok, message)``."""
+    from scipy.optimize import leastsq
+    x, _, info, msg, ier = leastsq(residual, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
+                                   xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
+    return np.atleast_1d(x), int(info["nfev"]), ier in (1, 2, 3, 4), msg
+
+
+def covariance(J: np.ndarray, s2: float) -> np.ndarray:
+    """``s² (JᵀJ)⁻¹`` through the columns normalised to unit length (so parameters of very
+    different scales do not spoil the conditioning) and the eigen-decomposition of the small
+    ``p × p`` matrix; ``inf`` everywhere when the normalised matrix is singular (parameters
+    that the data cannot tell apart)."""
+    norms = np.sqrt(np.einsum("ij,ij->j", J, J))
+    p = J.shape[1]
+    if not np.all(norms > 0):
+        return np.full((p, p), np.inf)
+    Jn = J / norms
+    w, V = np.linalg.eigh(Jn.T @ Jn)
+    if not w[0] > 1e-13 * w[-1]:
+        return np.full((p, p), np.inf)
+    return (V / w) @ V.T * s2 / np.outer(norms, norms)

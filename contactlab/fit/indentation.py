@@ -1,0 +1,466 @@
+"""Fit of an elastic indentation curve: Young's modulus, contact point and force offset.
+
+The model (non-adhesive, any axisymmetric profile without a wall, through the MDR):
+
+``F(z) = E* Φ(z - z0) + F0`` for ``z > z0`` and ``F0`` before contact, with ``Φ(δ)`` the
+force at unit modulus (:mod:`contactlab.fit._tip`) and ``1/E* = (1 - ν²)/E + c_tip``.
+
+Exact Jacobian (no finite differences): ``∂F/∂E = Φ · E*² (1 - ν²)/E²``,
+``∂F/∂z0 = -E* Φ'(δ) = -2E* a(δ)``, ``∂F/∂F0 = 1``. The solver is scipy's
+Levenberg-Marquardt (MINPACK, as in ``least_squares(method="lm")``), in scaled variables.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..effects._protocol import reporting
+from ..errors import (
+    ConvergenceError,
+    NotSupportedError,
+    OutsideTheoryError,
+    ParameterError,
+    UnknownNameError,
+)
+from ..materials import Elastic, Rigid
+from ..materials.base import Material
+from ..profiles.base import Profile
+from .result import FitResult
+
+__all__ = ["FREE_NAMES", "indentation"]
+
+#: parameters ``fit.indentation`` can fit besides the sample's constructor arguments
+FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
+#: fraction of the curve (in depth order) taken as the baseline for the starting values
+_BASELINE = 0.1
+#: candidate contact points of the start search
+_START_CANDIDATES = 8
+
+
+def _array(name: str, value: Any) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={value!r} is invalid: give a 1D array of numbers.") from err
+    if arr.ndim != 1:
+        raise ParameterError(f"{name} has shape {arr.shape}: give a 1D array.")
+    bad = ~np.isfinite(arr)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be finite "
+                             "(remove NaN and inf points before fitting).")
+    return arr
+
+
+def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
+                  adhesion: str | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, tuple[str, ...], Material]:
+    z = _array("depth", depth)
+    F = _array("force", force)
+    if z.size != F.size:
+        raise ParameterError(f"depth has {z.size} points and force has {F.size}: give curves "
+                             "of equal length.")
+    if not isinstance(profile, Profile):
+        raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab Profile "
+                             "(e.g. contactlab.profiles.Sphere(R=1e-5)).")
+    if not isinstance(sample, Elastic):
+        if isinstance(sample, Material) and sample.is_viscoelastic:
+            raise NotSupportedError(f"sample={sample!r}: fitting viscoelastic materials "
+                                    "(time=...) is not available yet; give an Elastic template.")
+        raise ParameterError(f"sample={sample!r} is invalid: give an Elastic material template "
+                             "(its E is the starting value when 'E' is free, else fixed).")
+    tip_m = Rigid() if tip is None else tip
+    if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
+        raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
+                             "Elastic material.")
+    names = (free,) if isinstance(free, str) else tuple(free)
+    allowed = tuple(p.name for p in type(sample).params) + FREE_NAMES
+    for n in names:
+        if n not in allowed:
+            raise UnknownNameError(f"free={n!r} is unknown: choose from {allowed}.")
+    if len(set(names)) != len(names):
+        raise ParameterError(f"free={names!r} names a parameter twice.")
+    if "nu" in names:
+        raise ParameterError("free='nu' is invalid: a normal indentation curve determines only "
+                             "E/(1 - nu²); fix nu in the sample template and fit 'E'.")
+    if "work_of_adhesion" in names and adhesion is None:
+        raise ParameterError("free='work_of_adhesion' needs an adhesive model: give "
+                             "adhesion='jkr'.")
+    if not names:
+        raise ParameterError("free=() is invalid: name at least one parameter to fit.")
+    if z.size <= len(names):
+        raise ParameterError(f"depth has {z.size} points: a fit of {len(names)} parameters "
+                             f"needs more than {len(names)}.")
+    return z, F, names, tip_m
+
+
+def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
+               work_of_adhesion: float | None) -> Any:
+    """The JKR model of a single power-law tip, or None without adhesion."""
+    if adhesion is None:
+        return None
+    terms = profile.power_terms()
+    if (terms is None or len(terms) != 1 or terms[0][1] < 1.0 or profile.flat_radius != 0.0
+            or np.isfinite(profile.wall_radius)):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: JKR fits cover single power-law tips "
+            "c r^n with n >= 1 (Paraboloid, Cone, PowerLaw); give one of these.")
+    if "work_of_adhesion" not in names:
+        if work_of_adhesion is None:
+            raise ParameterError("adhesion='jkr' needs the work of adhesion: add "
+                                 "'work_of_adhesion' to free or give work_of_adhesion=... J/m².")
+        if not (np.isfinite(work_of_adhesion) and work_of_adhesion > 0):
+            raise ParameterError(f"work_of_adhesion={work_of_adhesion!r} is invalid: give a "
+                                 "positive value, J/m².")
+    from ._jkr import JKRPower
+    c, n = terms[0]
+    return JKRPower(profile._power_kappa(n) * c, n)
+
+
+@reporting()
+def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
+                tip: Material | None = None, free: Any = ("E", "contact_point"),
+                adhesion: str | None = None, work_of_adhesion: float | None = None,
+                equilibrium_distance: float | None = None, time: Any = None,
+                start: dict | None = None, rtol: float = 1e-12) -> FitResult:
+    """Fit an elastic indentation curve: the sample's Young's modulus, the contact point and
+    the force offset, with exact derivatives.
+
+    Parameters
+    ----------
+    depth : array_like
+        Indenter position, m (increasing into the sample); the contact point is unknown unless
+        ``"contact_point"`` is not free (then ``depth`` is the indentation itself).
+    force : array_like
+        Measured normal force, N, same length.
+    profile : Profile
+        The tip's shape: closed forms, the exact ``Sphere``, ``Cone``, a measured
+        ``Tabulated`` tip, sums; no punch wall.
+    sample : Elastic
+        Material template of the sample: its ``nu`` is used, its ``E`` is the fixed value (or
+        the fallback start when ``"E"`` is free; the start is computed from the data).
+    tip : Material or None
+        The tip's material (``None``: rigid).
+    free : sequence of str
+        Names to fit: ``"E"``, ``"contact_point"``, ``"force_offset"`` and, with
+        ``adhesion="jkr"``, ``"work_of_adhesion"``. The others are fixed
+        (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
+    adhesion : None or "jkr"
+        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
+        power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
+        branch under fixed grips (zero force once the surfaces have come apart).
+        ``"dmt"`` is not available yet.
+    work_of_adhesion : float, optional
+        ``Δγ``, J/m²: the fixed value when ``"work_of_adhesion"`` is not free.
+    equilibrium_distance : float, optional
+        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m (paraboloid tips):
+        the fit reports ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when
+        ``μ_T < 5`` (outside the JKR limit).
+    time : None
+        Reserved for viscoelastic fits (not available yet).
+    start : dict, optional
+        Starting values by name (override the automatic ones).
+    rtol : float
+        Tolerance of the profile's routes when a tip table is built.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ParameterError
+        Non-finite values, unequal lengths, too few points, a curve that never reaches contact,
+        a non-elastic sample.
+    UnknownNameError
+        An unknown name in ``free``.
+    NotSupportedError
+        ``adhesion``, ``time``, a profile with a wall.
+    ConvergenceError
+        The solver did not converge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactlab import Elastic, fit
+    >>> from contactlab.profiles import Paraboloid
+    >>> z = np.linspace(-50e-9, 200e-9, 300)
+    >>> d = np.maximum(z - 10e-9, 0.0)
+    >>> F = 4/3 * 2e6/(1 - 0.25) * np.sqrt(5e-6) * d**1.5
+    >>> res = fit.indentation(z, F, Paraboloid(R=5e-6), sample=Elastic(E=1e6, nu=0.5))
+    >>> round(res.params["E"] / 2e6, 9), round(res.params["contact_point"] * 1e9, 6)
+    (1.0, 10.0)
+    """
+    if adhesion not in (None, "jkr"):
+        if adhesion == "dmt":
+            raise NotSupportedError("adhesion='dmt': DMT fits are not available yet; use "
+                                    "adhesion='jkr' (large Tabor parameter) or None.")
+        raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None or 'jkr'.")
+    if time is not None:
+        raise NotSupportedError("time=...: viscoelastic fits are not available yet.")
+    z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
+    jkr = _jkr_model(profile, adhesion, names, work_of_adhesion)
+    c_tip = tip_m._compliances()[0]
+    k_nu = 1.0 - sample.nu ** 2
+    order = np.argsort(z, kind="stable")
+    zs, Fs = z[order], F[order]
+    span = float(zs[-1] - zs[0])
+    fit_cp = "contact_point" in names
+    fit_off = "force_offset" in names
+    # ---- the tip model over every indentation the bounds allow
+    if fit_cp:
+        if span <= 0:
+            raise ParameterError("depth has a single value: a contact point cannot be fitted.")
+        cp_lo = float(zs[0]) - span
+        delta_max = (float(zs[-1]) - cp_lo) * 1.0001
+    else:
+        cp_lo = 0.0
+        delta_max = float(zs[-1]) * 1.0001
+        if delta_max <= 0:
+            raise ParameterError(f"depth <= 0 everywhere (max {delta_max!r} m) with the contact "
+                                 "point fixed at 0: the curve never reaches contact.")
+    if np.isfinite(profile.max_radius):     # a finite tip (a table, the sphere): its reach
+        reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
+        if delta_max > reach:
+            delta_max = reach
+            cp_lo = float(zs[-1]) - reach
+            if not fit_cp:
+                raise OutsideTheoryError(
+                    f"depth={float(zs[-1])!r} m exceeds the depth {reach!r} m that {profile!r} "
+                    "reaches at its max_radius; use a larger tip or drop the deep points.")
+    from ._tip import TipModel
+    tipm = TipModel(profile, delta_max, rtol)
+    # ---- starting values
+    user_start = dict(start or {})
+    start = dict(user_start)
+    n_base = max(2, int(_BASELINE * zs.size))
+    base = Fs[:n_base]
+    off0 = float(np.median(base)) if fit_off else 0.0
+    rise = Fs - off0
+    top = float(np.max(rise))
+    noise = float(np.median(np.abs(base - np.median(base)))) * 1.4826 if fit_off else 0.0
+    thr = max(5.0 * noise, 0.02 * top)
+    if top <= 0 or not np.any(rise > thr):
+        raise ParameterError(
+            f"force never rises above its baseline (largest rise {top!r} N over an offset of "
+            f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
+    zc, Fc, proj_off = zs, Fs, fit_off
+    if jkr is not None:             # the start from the part above the baseline after pull-off
+        keep = (np.arange(zs.size) > int(np.argmin(rise))) & (rise > 0)
+        zc, Fc, proj_off = zs[keep], rise[keep], False
+    if fit_cp and "contact_point" not in start:
+        z_thr = float(zs[int(np.argmax(rise > thr))])
+        cands = np.linspace(max(cp_lo, z_thr - 0.5 * (float(zs[-1]) - z_thr)), z_thr,
+                            _START_CANDIDATES)
+        best = (np.inf, z_thr)
+        n_f = float(Fc.size)
+        sF, sFF = float(Fc.sum()), float(Fc @ Fc)
+        for c in cands:                 # the linear parameters projected out at each candidate
+            phi, _ = tipm(zc - c)
+            sp, spp, spF = float(phi.sum()), float(phi @ phi), float(phi @ Fc)
+            if proj_off:                # 2x2 normal equations of F = e·phi + o
+                det = n_f * spp - sp * sp
+                if det <= 0:
+                    continue
+                e = (n_f * spF - sp * sF) / det
+                o = (sF - e * sp) / n_f
+                rss = sFF - e * spF - o * sF
+            else:
+                e = spF / spp if spp > 0 else 0.0
+                rss = sFF - e * spF
+            if rss < best[0] and e > 0:
+                best = (rss, float(c))
+        start["contact_point"] = best[1]
+    cp0 = float(start.get("contact_point", 0.0))
+    phi0, _ = tipm(zc - cp0)
+    if jkr is not None and fit_off and "force_offset" not in start:
+        start["force_offset"] = off0
+    if fit_off and "force_offset" not in start:
+        A = np.stack([phi0, np.ones_like(phi0)], axis=1)
+        coef, *_ = np.linalg.lstsq(A, Fs, rcond=None)
+        start["force_offset"] = float(coef[1])
+    off0 = float(start.get("force_offset", 0.0))
+    if "E" in names and "E" not in start:
+        es = float(phi0 @ (Fc - (0.0 if jkr is not None else off0))) / max(
+            float(phi0 @ phi0), 1e-300)
+        if not es > 0:
+            es = float(sample.E) / k_nu
+        inv = 1.0 / es - c_tip
+        start["E"] = k_nu / inv if inv > 0 else float(sample.E)
+    def estar(E: float) -> float:
+        return 1.0 / (k_nu / E + c_tip)
+
+    fixed = {"E": float(sample.E), "contact_point": 0.0, "force_offset": 0.0,
+             "work_of_adhesion": float(work_of_adhesion or 0.0)}
+    if jkr is not None:
+        es0 = _jkr_start(jkr, start, names, estar(float(start.get("E", sample.E))), zs, rise,
+                         fixed["work_of_adhesion"], set(user_start))
+        if "E" in names and "E" not in user_start:
+            inv = 1.0 / es0 - c_tip
+            start["E"] = k_nu / inv if inv > 0 else float(sample.E)
+    # ---- scaled problem (E and the work of adhesion through their logarithms)
+    scales = {"E": float(start.get("E", sample.E)), "contact_point": max(span, 1e-300),
+              "force_offset": max(top, 1e-300),
+              "work_of_adhesion": float(start.get("work_of_adhesion", 1.0))}
+    logs = ("E", "work_of_adhesion")
+    idx = {n: i for i, n in enumerate(names)}
+
+    def unpack(x: np.ndarray) -> dict[str, float]:
+        vals = dict(fixed)
+        vals.update({n: float(start[n]) for n in names if n not in idx and n in start})
+        for n, i in idx.items():     # E as exp(x) · scale: positive without bounds
+            vals[n] = (float(np.exp(x[i])) if n in logs else float(x[i])) * scales[n]
+        return vals
+
+    cache: dict = {}
+
+    def evaluate(x: np.ndarray) -> tuple:
+        key = x.tobytes()
+        if key not in cache:
+            cache.clear()
+            v = unpack(x)
+            Es = estar(v["E"])
+            if jkr is None:             # F = E*Φ: ∂F/∂E* = Φ, ∂F/∂δ = E*Φ' = 2E*a
+                phi, dphi = tipm(z - v["contact_point"])
+                f, f_d, f_e, f_w = Es * phi, Es * dphi, phi, None
+            else:
+                f, f_d, f_e, f_w = jkr.force(z - v["contact_point"], Es, v["work_of_adhesion"])
+            cache[key] = (v, Es, f, f_d, f_e, f_w)
+        return cache[key]
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        v, _, f, *_ = evaluate(x)
+        return f + v["force_offset"] - F
+
+    def jacobian(x: np.ndarray) -> np.ndarray:
+        v, Es, _, f_d, f_e, f_w = evaluate(x)
+        J = np.empty((z.size, len(idx)))
+        for n, i in idx.items():
+            if n == "E":                # ∂F/∂ln E = ∂F/∂E* · E*²(1 - ν²)/E
+                J[:, i] = f_e * (Es * Es * k_nu / v["E"])
+            elif n == "contact_point":
+                J[:, i] = -f_d * scales[n]
+            elif n == "work_of_adhesion":
+                J[:, i] = f_w * v[n]
+            else:
+                J[:, i] = scales[n]
+        return J
+
+    from ._tip import covariance, levenberg_marquardt
+    stages = [names]
+    if jkr is not None and fit_off and len(names) > 1:
+        # the offset shifts the detached points and the branch end together: fitted last,
+        # from the solution with the baseline's offset (Levenberg-Marquardt otherwise wanders
+        # along the discontinuity at the branch end)
+        stages.insert(0, tuple(n for n in names if n != "force_offset"))
+    for stage in stages:
+        idx.clear()
+        idx.update({n: i for i, n in enumerate(stage)})
+        cache.clear()
+        x0 = np.empty(len(stage))
+        for n, i in idx.items():
+            v0 = float(start.get(n, fixed[n])) / scales[n]
+            x0[i] = np.log(v0) if n in logs else v0
+        # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
+        # model is defined for every contact point) and its gradient test is scale-free
+        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+        if not ok:
+            raise ConvergenceError(f"fit.indentation did not converge: {msg}")
+        start.update({n: v for n, v in unpack(x_sol).items() if n in idx})
+    vals = unpack(x_sol)
+    if fit_cp and not cp_lo <= vals["contact_point"] < float(zs[-1]):
+        raise ConvergenceError(
+            f"fit.indentation: the contact point went to {vals['contact_point']!r} m, outside "
+            f"[{cp_lo!r}, {float(zs[-1])!r}) m (one depth span before the data to its end); "
+            "give start={'contact_point': ...} or check the curve.")
+    r = residual(x_sol)
+    J = jacobian(x_sol) / np.array([vals[n] if n in logs else scales[n] for n in names])
+    dof = z.size - len(names)
+    s2 = float(r @ r) / dof
+    cov = covariance(J, s2)
+    stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    from ..contact import Contact
+    fitted = Elastic(E=vals["E"], nu=sample.nu)
+    w_fit = vals["work_of_adhesion"] if jkr is not None else None
+    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit)
+    meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ()),
+                  "x_name": "depth", "y_name": "force",
+                  "tip_route": "jkr" if jkr is not None else tipm.route}
+    if jkr is not None and equilibrium_distance is not None:
+        meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
+                                         equilibrium_distance)
+    if tipm.route == "table":
+        meta["tip_model_errors"] = {"force": tipm.error}
+        meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
+                                     "measured at the interval midpoints")
+    params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
+    if jkr is not None:
+        params["work_of_adhesion"] = vals["work_of_adhesion"]
+    params["nu"] = float(sample.nu)
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
+                     model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev,
+                     meta=meta)
+
+
+def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs: np.ndarray,
+               rise: np.ndarray, w_fixed: float, given: set) -> float:
+    """Starting values of a JKR fit; returns the starting ``E*``.
+
+    Under fixed grips the last attached point is the end of the branch, at the smallest force:
+    for each candidate ``E*`` (a factor 1/3..3 around the non-adhesive estimate ``E_star0``)
+    the work of adhesion follows from that force (the branch-end force is a power of ``Δγ``)
+    and the contact point from its depth (``z_pull - δ_c``); the candidate with the smallest
+    residual of (a subsample of) the data wins."""
+    K, n = jkr.K, jkr.n
+    i_pull = int(np.argmin(rise))
+    f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
+    step = max(1, zs.size // 256)           # the candidates are judged on a subsample
+    zs, rise = zs[::step], rise[::step]
+
+    def branch_end(E_star: float, w: float) -> tuple[float, float]:
+        a_c, d_c = jkr.critical(E_star, w)
+        return 2.0 * E_star * (a_c * d_c - K * a_c ** (n + 1.0) / (n + 1.0)), d_c
+
+    def work(E_star: float) -> float:
+        if "work_of_adhesion" not in names or "work_of_adhesion" in given:
+            return float(start.get("work_of_adhesion", w_fixed))
+        if not f_pull < 0:
+            return 1e-9 * E_star * float(np.max(np.abs(zs)))
+        # the branch-end force -2E*K a_c^(n+1) n(2n+1)/(n+1) grows as Δγ^((n+1)/(2n-1))
+        f_ref = branch_end(E_star, 1.0)[0]
+        return float((f_pull / f_ref) ** ((2.0 * n - 1.0) / (n + 1.0)))
+
+    best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
+    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):
+        w = work(es)
+        cp = (z_pull - branch_end(es, w)[1] if "contact_point" not in given
+              and "contact_point" in names else float(start.get("contact_point", 0.0)))
+        f = jkr.force(zs - cp, es, w)[0]
+        rss = float(np.sum((f - rise) ** 2))
+        if rss < best[0]:
+            best = (rss, float(es), w, cp)
+    start["work_of_adhesion"] = best[2]
+    if "contact_point" in names:
+        start["contact_point"] = best[3]
+    return best[1]
+
+
+def _tabor(profile: Profile, w: float, E_star: float, z0: float) -> float:
+    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` of a paraboloid; warns below 5."""
+    import warnings
+
+    from ..errors import ValidityWarning
+    c, n = profile.power_terms()[0]
+    if n != 2.0:
+        raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined for "
+                                "paraboloid tips (a tip radius); drop it for other tips.")
+    if not (np.isfinite(z0) and z0 > 0):
+        raise ParameterError(f"equilibrium_distance={z0!r} is invalid: give a positive "
+                             "distance, m (typically 0.2-0.5e-9).")
+    mu = float((1.0 / (2.0 * c) * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
+    if mu < 5.0:
+        warnings.warn(f"Tabor parameter {mu:.3g} < 5: the contact is outside the JKR limit "
+                      "(short-range adhesion, compliant bodies); the fitted work of adhesion "
+                      "is biased (DMT applies below ~0.1).", ValidityWarning, stacklevel=3)
+    return mu

@@ -1,0 +1,323 @@
+"""Fits of steady friction hysteresis loops at a known normal force: friction coefficient and
+shear modulus.
+
+Both loops are built by Masing's rule from the virgin (first-loading) curve ``L(x)`` of the
+contact at constant normal force: on a steady loop of amplitude ``x0`` (about its centre) the
+branch travelled downwards is ``X = L(x0) - 2L((x0 - x)/2)`` and the branch travelled upwards
+``X = -L(x0) + 2L((x0 + x)/2)``.
+
+* Tangential (Cattaneo-Mindlin through the MDR, exact for any profile):
+  ``L(u) = μ [F_N - E* Φ(d - G* u/(μ E*))]`` with ``Φ`` the force at unit modulus
+  (:mod:`contactlab.fit._tip`) and ``d`` the depth at the normal force; ``L'(u) = 2G* c``.
+* Torsion (Jäger's exact partial slip, power-law tips): ``L(φ) = M_full m(φ/φ_s)`` with the
+  certified master curve ``m`` of :mod:`contactlab.physics.master`, ``M_full ∝ μ``,
+  ``φ_s ∝ μ/G_t``; ``L'(φ) = (16/3) G_t c³``.
+
+Both have the form ``L = μ ℓ(x G/μ)``, so the derivatives are exact in closed form from the
+slope: ``∂L/∂G = L'(x) x/G`` and ``∂L/∂μ = L/μ - L'(x) x/μ``. The sample's shear modulus
+``G`` enters through ``1/G* = (2 - ν)/(4G) + (tip)`` (tangential) or ``1/G_t = 1/G + (tip)``
+(torsion). The normal problem (``a``, ``d`` at the normal force) uses the sample template's
+Young's modulus; the fitted shear modulus is the one the loop measures.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ..effects._protocol import reporting
+from ..errors import ConvergenceError, ParameterError, UnknownNameError
+from ..materials import Elastic, Rigid
+from ..materials.base import Material
+from ..profiles.base import Profile
+from .indentation import _array
+from .result import FitResult
+
+__all__ = ["tangential_loop", "torsion_loop"]
+
+_LOOP_NAMES = ("friction", "shear_modulus")
+
+
+def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
+             x_name: str, y_name: str) -> tuple:
+    xs = _array(x_name, x)
+    ys = _array(y_name, y)
+    if xs.size != ys.size:
+        raise ParameterError(f"{x_name} has {xs.size} points and {y_name} has {ys.size}: give "
+                             "curves of equal length.")
+    FN = float(np.asarray(force, float)) if np.ndim(force) == 0 else np.nan
+    if not (np.isfinite(FN) and FN > 0):
+        raise ParameterError(f"force={force!r} is invalid: give the loop's constant normal force "
+                             "as one positive number, N.")
+    if not isinstance(profile, Profile):
+        raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab Profile.")
+    if not isinstance(sample, Elastic):
+        raise ParameterError(f"sample={sample!r} is invalid: give an Elastic material template.")
+    tip_m = Rigid() if tip is None else tip
+    if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
+        raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
+                             "Elastic material.")
+    names = (free,) if isinstance(free, str) else tuple(free)
+    for n in names:
+        if n not in _LOOP_NAMES:
+            raise UnknownNameError(f"free={n!r} is unknown: choose from {_LOOP_NAMES}.")
+    if not names or len(set(names)) != len(names):
+        raise ParameterError(f"free={names!r} is invalid: name each of {_LOOP_NAMES} at most "
+                             "once, at least one.")
+    if xs.size <= len(names):
+        raise ParameterError(f"{x_name} has {xs.size} points: too few for {len(names)} "
+                             "parameters.")
+    lo, hi = float(np.min(xs)), float(np.max(xs))
+    if not hi > lo:
+        raise ParameterError(f"{x_name} never moves: a loop needs a varying {x_name}.")
+    return xs, ys, FN, tip_m, names, 0.5 * (hi + lo), 0.5 * (hi - lo)
+
+
+def _branches(x: np.ndarray) -> np.ndarray:
+    """+1 where ``x`` travels downwards (the branch from the upper turning point), -1 upwards."""
+    dx = np.gradient(x)
+    s = -np.sign(dx)
+    if not np.any(s != 0):
+        return np.ones_like(x)
+    idx = np.where(s != 0, np.arange(x.size), -1)          # turning points: nearest direction
+    last = np.maximum.accumulate(idx)
+    first = last.copy()
+    first[last < 0] = int(np.argmax(s != 0))
+    return s[first]
+
+
+def _loop_model(x: np.ndarray, names: tuple[str, ...], centre: float, amp: float,
+                load: Callable, G_of: Callable, start: dict, fixed: dict) -> Callable:
+    """``parts(p) -> (values, model, {name: ∂model/∂ln(name)})`` of the Masing loop of
+    ``load(x, mu, G_eff) -> (L, L')`` at ``x``; ``p`` holds ``ln(value/start)`` of ``names``."""
+    xr = x - centre
+    s = _branches(xr)
+    v = 0.5 * (amp - s * xr)
+    idx = {n: i for i, n in enumerate(names)}
+
+    def parts(p: np.ndarray) -> tuple:
+        q = dict(fixed)
+        for n, i in idx.items():
+            q[n] = float(np.exp(p[i])) * start[n]
+        mu, G = q["friction"], q["shear_modulus"]
+        Ge, dGe = G_of(G)
+        L0, dL0 = load(np.array([amp]), mu, Ge)
+        Lv, dLv = load(v, mu, Ge)
+        model = s * (L0[0] - 2.0 * Lv)
+        # L = mu l(x Ge/mu): dL/dGe = L' x/Ge, dL/dmu = L/mu - L' x/mu
+        d_mu = s * ((L0[0] - dL0[0] * amp) / mu - 2.0 * (Lv - dLv * v) / mu)
+        d_G = s * (dL0[0] * amp - 2.0 * dLv * v) / Ge * dGe
+        return q, model, {"friction": d_mu * mu, "shear_modulus": d_G * G}
+
+    return parts
+
+
+def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: float, amp: float,
+              load: Callable, G_of: Callable, start: dict, fixed: dict) -> tuple:
+    """Least squares of the Masing loop of ``load(x, mu, G_eff) -> (L, L')``."""
+    parts = _loop_model(x, names, centre, amp, load, G_of, start, fixed)
+    idx = {n: i for i, n in enumerate(names)}
+
+    def residual(p: np.ndarray) -> np.ndarray:
+        return parts(p)[1] - y
+
+    def jacobian(p: np.ndarray) -> np.ndarray:
+        _, _, d = parts(p)
+        return np.stack([d[n] for n in names], axis=1)
+
+    from ._tip import covariance, levenberg_marquardt
+    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, np.zeros(len(names)))
+    if not ok:
+        raise ConvergenceError(f"the loop fit did not converge: {msg}")
+    q, model, d = parts(x_sol)
+    r = model - y
+    J = np.stack([d[n] / q[n] for n in names], axis=1)
+    dof = x.size - len(names)
+    s2 = float(r @ r) / dof
+    cov = covariance(J, s2)
+    stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    return q, model, r, cov, stderr, dof, nfev
+
+
+def _starts(y: np.ndarray, x: np.ndarray, centre: float, amp: float, FN: float, slope0: float,
+            names: tuple[str, ...], start: dict | None, sample: Elastic, G_of: Callable,
+            scale: float) -> dict:
+    """Starting values: the friction from the loop's largest value over its full-slip value
+    (``scale`` = the full-slip value at friction 1), the modulus from the slope at the
+    turning points (the loop starts each branch with the no-slip stiffness)."""
+    out = dict(start or {})
+    if "friction" not in out:
+        out["friction"] = max(float(np.max(np.abs(y))) / scale, 1e-6) * 1.05
+    if "shear_modulus" not in out:
+        xr = x - centre
+        top = np.abs(np.abs(xr) - amp) < 0.1 * amp
+        k = 0.0
+        if np.count_nonzero(top) > 2:
+            k = abs(float(np.polyfit(xr[top], y[top], 1)[0]))
+        G0 = float(sample.G)
+        if k > 0 and slope0 > 0:
+            # no-slip stiffness slope0 * G_eff: invert G_eff(G) by one secant on the template
+            ge0, _ = G_of(G0)
+            G0 = G0 * (k / slope0) / ge0 * 1.0
+        out["shear_modulus"] = max(G0, 1e-6 * float(sample.G))
+    return out
+
+
+@reporting()
+def tangential_loop(displacement: Any, tangential_force: Any, force: float, profile: Profile, *,
+                    sample: Elastic, tip: Material | None = None,
+                    free: Any = ("friction", "shear_modulus"), friction: float | None = None,
+                    start: dict | None = None, rtol: float = 1e-12) -> FitResult:
+    """Fit a steady tangential (fretting) loop at a known normal force: friction coefficient
+    and the sample's shear modulus (Cattaneo-Mindlin with Masing's rule, exact through the MDR
+    for any wall-free profile).
+
+    Parameters
+    ----------
+    displacement : array_like
+        Tangential displacement, m (a steady loop, in time order; its centre is removed).
+    tangential_force : array_like
+        Tangential force, N, same length.
+    force : float
+        The constant normal force, N (> 0).
+    profile : Profile
+        The tip's shape (no punch wall).
+    sample : Elastic
+        The sample template: its ``E`` and ``nu`` set the normal problem, its ``G`` is the
+        fallback start (or fixed value) of ``"shear_modulus"``.
+    tip : Material or None
+        The tip (None: rigid).
+    free : sequence of str
+        ``"friction"``, ``"shear_modulus"``.
+    friction : float, optional
+        Fixed friction coefficient when ``"friction"`` is not free.
+    start : dict, optional
+        Starting values by name.
+    rtol : float
+        Tolerance of the profile's routes.
+
+    Returns
+    -------
+    FitResult
+        ``params``: ``friction``, ``shear_modulus`` (Pa), ``G_star`` (Pa).
+
+    Raises
+    ------
+    ParameterError, UnknownNameError, ConvergenceError
+    """
+    x, y, FN, tip_m, names, centre, amp = _prepare(
+        displacement, tangential_force, force, profile, sample, tip, free, "displacement",
+        "tangential_force")
+    from ..contact import Contact
+    from ._tip import TipModel
+    contact = Contact(profile, (tip_m, sample), friction=friction)
+    E_star = contact.moduli.normal
+    st = contact.normal(force=FN)
+    d, a = float(st.depth), float(st.radius)
+    tipm = TipModel(profile, d * 1.0001, rtol)
+    c_tip = tip_m._compliances()[1]
+    k_nu = (2.0 - sample.nu) / 4.0
+
+    def G_of(G: float) -> tuple[float, float]:
+        ge = 1.0 / (k_nu / G + c_tip)
+        return ge, ge * ge * k_nu / (G * G)
+
+    def load(u: np.ndarray, mu: float, Ge: float) -> tuple[np.ndarray, np.ndarray]:
+        phi, dphi = tipm(d - Ge * u / (mu * E_star))
+        return mu * (FN - E_star * phi), Ge * dphi
+
+    fixed = {"friction": float(friction or 0.0), "shear_modulus": float(sample.G)}
+    if "friction" not in names and friction is None:
+        raise ParameterError("friction is fixed (not in free): give friction=... .")
+    st0 = _starts(y, x, centre, amp, FN, 2.0 * a, names, start, sample, G_of, FN)
+    st0.update({n: fixed[n] for n in _LOOP_NAMES if n not in names})
+    q, model, r, cov, stderr, dof, nfev = _fit_loop(x, y, names, centre, amp, load, G_of,
+                                                      st0, fixed)
+    params = {"friction": q["friction"], "shear_modulus": q["shear_modulus"],
+              "G_star": G_of(q["shear_modulus"])[0]}
+    meta = {"citations": ("PH", "H1", "MD53"), "x_name": "displacement",
+            "y_name": "tangential_force", "tip_route": tipm.route}
+    if tipm.route == "table":
+        meta["tip_model_errors"] = {"tangential_force": tipm.error}
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=x, y=y,
+                     model=model, residuals=r, contact=Contact(profile, (tip_m, sample),
+                                                               friction=q["friction"]),
+                     dof=dof, nfev=nfev, meta=meta)
+
+
+@reporting()
+def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sample: Elastic,
+                 tip: Material | None = None, free: Any = ("friction", "shear_modulus"),
+                 friction: float | None = None, start: dict | None = None) -> FitResult:
+    """Fit a steady torsion loop at a known normal force: friction coefficient and the sample's
+    shear modulus (Jäger's exact partial slip with Masing's rule; power-law tips).
+
+    Parameters
+    ----------
+    twist : array_like
+        Twist angle, rad (a steady loop, in time order; its centre is removed).
+    torque : array_like
+        Torque, N·m, same length.
+    force : float
+        The constant normal force, N (> 0).
+    profile : Profile
+        A single power-law tip ``c r^n`` (Paraboloid, Cone, PowerLaw).
+    sample, tip, free, friction, start
+        As for :func:`tangential_loop`; the shear modulus enters through ``1/G_t = 1/G + 1/G_tip``.
+
+    Returns
+    -------
+    FitResult
+        ``params``: ``friction``, ``shear_modulus`` (Pa), ``G_torsion`` (Pa). The master curve
+        is certified to ``model_error`` (relative to the full-sliding torque).
+
+    Raises
+    ------
+    ParameterError, UnknownNameError, NotSupportedError, ConvergenceError
+    """
+    from ..errors import NotSupportedError
+    x, y, FN, tip_m, names, centre, amp = _prepare(twist, torque, force, profile, sample, tip,
+                                                   free, "twist", "torque")
+    terms = profile.power_terms()
+    if terms is None or len(terms) != 1 or np.isfinite(profile.wall_radius):
+        raise NotSupportedError(f"torsion_loop with profile={profile!r}: power-law tips c r^n "
+                                "only (Paraboloid, Cone, PowerLaw).")
+    n = float(terms[0][1])
+    from ..contact import Contact
+    from ..physics import master as _master
+    contact = Contact(profile, (tip_m, sample), friction=friction)
+    E_star = contact.moduli.normal
+    st = contact.normal(force=FN)
+    d, a = float(st.depth), float(st.radius)
+    mc = _master.torsion_master(n)
+    c_tip = tip_m._compliances()[2]
+
+    def G_of(G: float) -> tuple[float, float]:
+        ge = 1.0 / (1.0 / G + c_tip)
+        return ge, ge * ge / (G * G)
+
+    def load(phi: np.ndarray, mu: float, Gt: float) -> tuple[np.ndarray, np.ndarray]:
+        phi_s, M_full = _master.torsion_scales(n, E_star, Gt, mu, a, d)
+        t, m, _ = mc(phi / phi_s)
+        c = a * t
+        return M_full * m, 16.0 / 3.0 * Gt * c ** 3
+
+    fixed = {"friction": float(friction or 0.0), "shear_modulus": float(sample.G)}
+    if "friction" not in names and friction is None:
+        raise ParameterError("friction is fixed (not in free): give friction=... .")
+    M_unit = _master.torsion_scales(n, E_star, 1.0, 1.0, a, d)[1]
+    st0 = _starts(y, x, centre, amp, FN, 16.0 / 3.0 * a ** 3, names, start, sample, G_of,
+                  M_unit)
+    st0.update({k: fixed[k] for k in _LOOP_NAMES if k not in names})
+    q, model, r, cov, stderr, dof, nfev = _fit_loop(x, y, names, centre, amp, load, G_of,
+                                                      st0, fixed)
+    params = {"friction": q["friction"], "shear_modulus": q["shear_modulus"],
+              "G_torsion": G_of(q["shear_modulus"])[0]}
+    meta = {"citations": ("PH", "J95"), "x_name": "twist", "y_name": "torque",
+            "tip_model_errors": {"torque": float(mc.certified_error)},
+            "model_error_basis": "certified error of the exact torsion master curve"}
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=x, y=y,
+                     model=model, residuals=r, contact=Contact(profile, (tip_m, sample),
+                                                               friction=q["friction"]),
+                     dof=dof, nfev=nfev, meta=meta)
