@@ -40,7 +40,7 @@ __all__ = [
     "NormalState", "AdhesiveNormalState", "AdhesionCycle", "ViscoelasticHistory",
     "TangentialState", "ShiftHistory", "PathResult", "TorsionState", "TwistHistory",
     "ContactLaw", "LawStep",
-    "profiles", "materials", "errors", "foundation", "loadpath", "registry",
+    "profiles", "materials", "errors", "fit", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
     "fretting_map_sweep",
     "cite", "citations",
