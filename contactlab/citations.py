@@ -20,12 +20,13 @@ Examples
 ('PH', 'H1', 'Sn65', 'J95', 'RS44')
 >>> print(cl.cite(s, format="text", file=None).splitlines()[4])
 [J95] J. Jäger, "Axi-symmetric bodies of equal material in contact under torsion or shift", Archive of Applied Mechanics 65 (1995) 478-487.
-"""
+"""  # noqa: E501 - a doctest's expected output line
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import IO, Any, Iterable
+from typing import IO, Any
 
 from .errors import ParameterError, UnknownNameError
 

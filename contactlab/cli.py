@@ -513,7 +513,7 @@ def _formulas(args: argparse.Namespace) -> int:
 class _Parser(argparse.ArgumentParser):
     """argparse with the CLI's error contract: one line on stderr (or a JSON object), exit 2."""
 
-    def error(self, message: str) -> Any:  # type: ignore[override]
+    def error(self, message: str) -> Any:
         if "--json" in sys.argv[1:] or getattr(self, "_as_json", False):
             print(json.dumps({"ok": False, "exit": 2, "error": message, "kind": "UsageError"},
                              indent=1))
@@ -688,7 +688,7 @@ def _main(argv: Sequence[str] | None) -> int:
         return 2
     except KeyboardInterrupt:   # Ctrl-C: one line, exit 130 (128 + SIGINT), as shells do
         return _interrupted(args, as_json)
-    except Exception as err:    # a bug: still one line, never a traceback
+    except Exception as err:    # noqa: BLE001 - a bug: still one line, never a traceback
         msg = (f"internal error ({type(err).__name__}): {_one_line(err)}; please report it with "
                "the command line that caused it")
         if as_json:

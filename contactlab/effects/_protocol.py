@@ -29,8 +29,8 @@ To implement it for a new result class:
    2D fields).
 3. Optionally implement ``_model_errors()`` (per-quantity relative errors of an approximate
    route; computed on first access of :attr:`Result.model_error`), store ``model_errors`` and
-   ``model_error_basis`` in ``meta``, or defer them with ``result._defer_model_errors(fn)``; put warnings into ``meta["notes"]`` or let the driver carry
-   :func:`reporting`, which records them.
+   ``model_error_basis`` in ``meta``, or defer them with ``result._defer_model_errors(fn)``; put
+   warnings into ``meta["notes"]`` or let the driver carry :func:`reporting`, which records them.
 4. Add the class to :data:`contactlab.testing.RESULT_TYPES`; :class:`contactlab.testing.ResultChecks`
    then checks it.
 """
@@ -42,8 +42,9 @@ import io
 import os
 import sys
 import warnings
+from collections.abc import Callable
 from pathlib import Path
-from typing import IO, Any, Callable, ClassVar
+from typing import IO, Any, ClassVar
 
 import numpy as np
 
@@ -215,7 +216,7 @@ class Result:
         try:
             from ..citations import _citations_of
             tags = list(_citations_of(self).tags)
-        except Exception:           # a result whose citations are not recorded
+        except Exception:           # noqa: BLE001 - a result whose citations are not recorded
             tags = []
         return {"type": type(self).__name__, "notes": list(self.notes),
                 "model_error": _json_float(_scalar_max(self.model_error)),

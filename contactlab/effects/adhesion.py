@@ -353,7 +353,8 @@ def adhesion_cycle(contact, *, depth: Any = None, force: Any = None):
     depth_out = arr.copy() if key == "depth" else np.zeros(arr.shape)
     force_out = np.zeros(arr.shape) if key == "depth" else np.where(in_contact, arr, 0.0)
     if np.any(in_contact):
-        s = adhesive_normal(contact, **{key: arr[in_contact]})
+        given: dict[str, Any] = {key: arr[in_contact]}
+        s = adhesive_normal(contact, **given)
         radius[in_contact] = s._radius
         depth_out[in_contact] = s._depth
         force_out[in_contact] = s._force

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -227,7 +227,8 @@ class FrettingLoop(Result, Cited):
     normal: Any = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
-    units = {"displacement": "m", "tangential_force": "N", "twist": "rad", "torque": "N*m"}
+    units: ClassVar[dict[str, str]] = {"displacement": "m", "tangential_force": "N", "twist": "rad",
+                                       "torque": "N*m"}
     _basis = MDR_MAP_BASIS
 
     def _columns(self) -> dict[str, np.ndarray]:
@@ -311,18 +312,18 @@ def fretting_loop(contact, *, force: Any = None, depth: Any = None,
     if mode == "tangential":
         Gs = contact.moduli.tangential
 
-        def curve(u: np.ndarray) -> np.ndarray:
-            return _tan.force_of_displacement(prof, E, Gs, mu, a[0], d[0], u)[0]
-        meta = {"gross_slip_amplitude": float(_tan.full_slip_displacement(E, Gs, mu, d[0]))}
+        def curve(x: np.ndarray) -> np.ndarray:
+            return _tan.force_of_displacement(prof, E, Gs, mu, a[0], d[0], x)[0]
+        meta: dict[str, Any] = {"gross_slip_amplitude": float(_tan.full_slip_displacement(E, Gs, mu, d[0]))}
     else:
         model = torsion_model(contact, method)
         g_a = _fresh_g(contact, a, d)
 
-        def curve(p: np.ndarray) -> np.ndarray:
-            n = p.size
+        def curve(x: np.ndarray) -> np.ndarray:
+            n = x.size
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)
-                return model.of_twist(p, np.full(n, a[0]), np.full(n, d[0]),
+                return model.of_twist(x, np.full(n, a[0]), np.full(n, d[0]),
                                       np.full(n, g_a[0])).torque
         meta = {"criterion": criterion, "threshold": threshold}
     peak = float(res["peak"][0])

@@ -35,8 +35,8 @@ from ..symbolic.transform import kappa
 from ._protocol import Result
 from .law_tangent import tangent as _tangent
 
-__all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY", "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS",
-           "DEFAULT_SPRING_COVER", "STEP_UNITS", "LAW_BASIS"]
+__all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY",
+           "DEFAULT_LOAD_RTOL", "DEFAULT_SPRINGS", "DEFAULT_SPRING_COVER", "STEP_UNITS", "LAW_BASIS"]
 
 #: turning points stored per contact and channel (four nested loops)
 DEFAULT_MEMORY = 8
@@ -53,8 +53,8 @@ _NO_FLAT = np.zeros(1)
 _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
 _OUT_FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
                "torsion_stick_radius", "dissipated_energy", "exact")
-_UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa", "G_star": "Pa",
-          "G_torsion": "Pa", "friction": "1"}
+_UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
+          "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
 
 
 #: units of the columns of a law step (CSV headers)
@@ -329,9 +329,9 @@ class ContactLaw:
             raise ParameterError("per-contact arrays have different lengths: "
                                  + ", ".join(f"{k} has {v}" for k, v in sizes.items())
                                  + "; give scalars or one value per contact.")
-        sizes = set(sizes.values())
+        lengths = set(sizes.values())
         if size is None:
-            size = max(sizes) if sizes else 1
+            size = max(lengths) if lengths else 1
         check_memory("ContactLaw()", law_memory(size, memory, springs),
                      f"{size} contacts, memory={memory}, springs={springs}")
         arrs = {k: np.broadcast_to(_per_contact(k, v, size), (size,)).copy()
@@ -366,7 +366,7 @@ class ContactLaw:
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
-        self._flag = None
+        self._flag: np.ndarray | None = None
         self._warned = False
         self._st = self._fresh(self.size)
 
@@ -376,7 +376,7 @@ class ContactLaw:
         # both channels' stacks in one array per field (leading axis: tangential, torsion) for
         # the compiled kernel; the state names views of it
         one = new_stack(n, self.memory)
-        self._chan = {k: np.zeros((2,) + v.shape, v.dtype) for k, v in one.items()}
+        self._chan = {k: np.zeros((2, *v.shape), v.dtype) for k, v in one.items()}
         for c, ch in enumerate(("tan", "tor")):
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]
@@ -491,7 +491,7 @@ class ContactLaw:
     def _clear(self, idx: np.ndarray) -> None:
         if idx.size == 0:
             return
-        for k, v in self._st.items():
+        for v in self._st.values():
             v[idx] = 0
 
     def to_source(self) -> str:
@@ -707,7 +707,7 @@ class ContactLaw:
         over both Masing channels, and the compiled spring pass for contacts on springs."""
         key, val = exactly_one("ContactLaw.step()", {"depth": depth, "force": force})
         size = self.size
-        arrs = []
+        arrs: list[np.ndarray | None] = []
         for name, v, unit in ((key, val, "m" if key == "depth" else "N"),
                               ("displacement", displacement, "m"), ("twist", twist, "rad")):
             if v is None:

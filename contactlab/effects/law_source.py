@@ -232,8 +232,8 @@ def law_source(law: Any) -> str:
                           version=__version__, cert=mc.certified_error, memory=law.memory,
                           gname=gname, kc_factor=kc_factor, g_doc=g_doc,
                           y_scale=float(mc.y_scale), y0=float(mc.y0), m0=float(mc.m0),
-                          scaled=bool(mc.scaled), power=int(mc.power), load_rtol=law.load_rtol, coef=flat_coef,
-                          shape=coef.shape, fields=tuple(_ms.STACK_FIELDS))
+                          scaled=bool(mc.scaled), power=int(mc.power), load_rtol=law.load_rtol,
+                          coef=flat_coef, shape=coef.shape, fields=tuple(_ms.STACK_FIELDS))
     body = _LAW.format(gname=gname, kc_expr=kc_expr, normal_geo=normal_geo,
                        normal_geo_doc=geo_doc, normal_body=normal)
     return head + "from typing import Callable\n\n\n" + _kernel_sources() + "\n" + body

@@ -44,7 +44,7 @@ def outside_validity_note(profile, a: Any) -> str | None:
     return None
 
 
-def warn_outside_validity(profile, a: np.ndarray, stacklevel: int = 3) -> None:
+def warn_outside_validity(profile, a: float | np.ndarray, stacklevel: int = 3) -> None:
     """:class:`ValidityWarning` if a contact radius exceeds ``profile.validity_radius``."""
     note = outside_validity_note(profile, a)
     if note is not None:
@@ -95,7 +95,7 @@ class LazyMeta(dict):
 
     def __init__(self, base: dict, pending: Any, *args: Any) -> None:
         dict.__init__(self, base)
-        self._pending = (pending, args)
+        self._pending: tuple[Any, tuple[Any, ...]] | None = (pending, args)
 
     def _resolve(self) -> None:
         pending = self._pending
@@ -131,7 +131,7 @@ class LazyMeta(dict):
         self._resolve()
         return dict.__eq__(self, other)
 
-    __hash__ = None  # type: ignore[assignment]
+    __hash__ = None
 
     def keys(self):
         self._resolve()
@@ -269,6 +269,7 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
             raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay "
                                      f"below max_radius={prof.max_radius!r} m of {prof!r}.")
     d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol)
+    assert rel is not None                  # error_estimate=True (solve's default)
     warn_outside_validity(prof, a, stacklevel=4)
     meta = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
             "error_estimate": float(rel) if rel.ndim == 0 else rel,

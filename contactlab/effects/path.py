@@ -20,6 +20,7 @@ from ..citations import Cited
 from ..errors import (ContactlabError, EffectNotPlannedError, NotSupportedError, ParameterError,
                       UnknownNameError, ValidityWarning, failed_part_way)
 from ..foundation.base import (SERIES, SPACINGS, PathArrays, path_normal_states, run_path)
+from ..foundation.base import Foundation
 from ..foundation.rings import Rings
 from ..foundation.winkler import Winkler
 from ..foundation.winkler_path import memory as _spring_memory
@@ -39,7 +40,7 @@ __all__ = ["PathResult", "simulate", "SERIES", "PROGRESS_THRESHOLD", "compile_no
 #: the foundation of each method of :func:`simulate` (``method=``): a
 #: :class:`~contactlab.foundation.Foundation` subclass whose ``for_path`` and ``run`` take the load
 #: path (its options: the method's :data:`METHOD_ARGUMENTS`)
-METHODS = {"mdr": Winkler, "exact": Rings}
+METHODS: dict[str, type[Foundation]] = {"mdr": Winkler, "exact": Rings}
 #: torsion models of :func:`simulate` (``method=``)
 PATH_METHODS = tuple(sorted(METHODS))
 #: arguments of :func:`simulate` that only one method reads (its discretisation)

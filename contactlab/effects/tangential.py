@@ -10,7 +10,7 @@ elements and for the 3D theory). The kernels are in :mod:`contactlab.physics.tan
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -65,8 +65,9 @@ class TangentialState(Result, Cited):
     _sliding: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
-    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
-                                         "gross_sliding")}
+    units: ClassVar[dict[str, str]] = {
+        k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                    "gross_sliding")}
 
     def to_dict(self) -> dict[str, Any]:
         """``displacement``, ``tangential_force``, ``stick_radius``, ``gross_sliding`` (scalars or
@@ -218,8 +219,9 @@ class ShiftHistory(Result, Cited):
     dissipated_energy: np.ndarray
     meta: dict = field(default_factory=dict, repr=False)
 
-    units = {k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
-                                         "dissipated_energy")}
+    units: ClassVar[dict[str, str]] = {
+        k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
+                                    "dissipated_energy")}
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Per-step arrays by name (``displacement``, ``tangential_force``, ``stick_radius``,

@@ -13,7 +13,7 @@ import difflib
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -140,8 +140,10 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
 
         meta["error_estimate"] = None          # filled on first access of .error_estimate
         meta["_error_estimate_pending"] = add_root_term
-    return TorsionState(contact, normal, method, shape,
-                        *(v.reshape(shape) for v in (phi, M, c, slip, a, d, g_a)), meta=meta)
+    twist_s, torque_s, stick_s, slip_s, a_s, d_s, g_s = (
+        v.reshape(shape) for v in (phi, M, c, slip, a, d, g_a))
+    return TorsionState(contact, normal, method, shape, twist_s, torque_s, stick_s, slip_s, a_s,
+                        d_s, g_s, meta=meta)
 
 
 def mdr_torque_error(contact, phi: np.ndarray, M_mdr: np.ndarray, a: np.ndarray,
@@ -227,7 +229,8 @@ class TorsionState(Result, Cited):
     _g_a: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
-    units = {k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "radius", "slip")}
+    units: ClassVar[dict[str, str]] = {
+        k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "radius", "slip")}
     _basis = MDR_MAP_BASIS
 
     def to_dict(self) -> dict[str, Any]:
@@ -607,7 +610,8 @@ class TwistHistory(Result, Cited):
     meta: dict = field(default_factory=dict, repr=False)
     _errors: tuple = field(default=(), repr=False)
 
-    units = {k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "dissipated_energy")}
+    units: ClassVar[dict[str, str]] = {
+        k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "dissipated_energy")}
     _basis = MDR_MAP_BASIS
 
     @cached_property

@@ -339,7 +339,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     h = np.zeros(r.shape)
     N = 0.0
     energy = 0.0
-    series = {kk: [] for kk in SERIES_UNITS}
+    series: dict[str, list[Any]] = {kk: [] for kk in SERIES_UNITS}
 
     def record(N, d, a, c, h, energy, q):
         series["cycles"].append(N)

@@ -19,8 +19,9 @@ from __future__ import annotations
 
 import difflib
 from abc import ABC, abstractmethod
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -93,7 +94,10 @@ class Segment(ABC):
        read some of the controls: a segment that computes its values computes only those.
     """
 
-    controls: frozenset
+    if TYPE_CHECKING:
+        # the quantities the segment prescribes; a read-only property in every segment
+        @property
+        def controls(self) -> frozenset: ...
 
     @property
     @abstractmethod
@@ -169,7 +173,7 @@ class LoadPath:
     # ------------------------------------------------------------------ builder
     def then(self, segment: Segment) -> "LoadPath":
         """Return a new path with ``segment`` appended."""
-        return LoadPath(self.segments + (segment,))
+        return LoadPath(self.segments + (segment,))  # noqa: RUF005 - kept: tuple + tuple
 
     def __add__(self, other: "LoadPath") -> "LoadPath":
         if not isinstance(other, LoadPath):
@@ -209,7 +213,7 @@ class LoadPath:
         if k > len(self.segments) or k == 0:
             raise ParameterError(f"last={last!r} is invalid: the path has {len(self.segments)} "
                                  "segment(s); give 1 <= last <= that.")
-        return LoadPath(self.segments[:-k] + (Repeat(self.segments[-k:], times),))
+        return LoadPath(self.segments[:-k] + (Repeat(self.segments[-k:], times),))  # noqa: RUF005 - kept: tuple + tuple
 
     @classmethod
     def from_arrays(cls, *, time: Any = None, **values: Any) -> "LoadPath":

@@ -11,7 +11,7 @@ same ``name [unit]`` header style with SI units.
 from __future__ import annotations
 
 import difflib
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -49,7 +49,8 @@ def read_history(path: Any, *, units: dict[str, str] | None = None,
     UnitError
         An unknown unit or one of the wrong dimension.
     """
-    names, cols = read_columns(path, dimension=lambda n: DIMENSIONS.get(n), units=units,
+    names, cols = read_columns(path, dimension=lambda n: DIMENSIONS.get(n),
+                               units=cast("dict[str, str | None] | None", units),
                                delimiter=delimiter, known_names=tuple(DIMENSIONS))
     if any(n.startswith("column ") for n in names):
         raise TabulatedDataError(

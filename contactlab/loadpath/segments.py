@@ -3,8 +3,9 @@
 construction."""
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any, Iterator
+from typing import Any, cast
 
 import numpy as np
 
@@ -49,7 +50,7 @@ class Ramp(Segment):
 
     def values_of(self, start, names, *, time=True):
         f = np.arange(1, self.steps + 1) / self.steps
-        return (f * self.duration if time else None,
+        return (f * cast(float, self.duration) if time else None,   # a float after __post_init__
                 {k: start[k] + (v - start[k]) * f for k, v in self.targets if k in names})
 
 
@@ -73,7 +74,7 @@ class Hold(Segment):
         return self.steps
 
     def values(self, start):
-        return np.arange(1, self.steps + 1) / self.steps * self.duration, {}
+        return np.arange(1, self.steps + 1) / self.steps * cast(float, self.duration), {}
 
 
 @dataclass(frozen=True)
@@ -115,11 +116,11 @@ class Sinusoid(Segment):
 
     @property
     def n_steps(self) -> int:
-        return max(1, int(round(self.cycles * self.steps_per_cycle)))
+        return max(1, round(self.cycles * self.steps_per_cycle))
 
     @property
     def duration(self) -> float:
-        return self.n_steps * self.period / self.steps_per_cycle
+        return self.n_steps * cast(float, self.period) / self.steps_per_cycle
 
     def values(self, start):
         return self.values_of(start, self.controls)
@@ -219,6 +220,7 @@ class Table(Segment):
             arr = arr.copy()
             arr.flags.writeable = False
             cols.append((k, arr))
+        assert n is not None                    # values is not empty
         if time is None:
             t = np.arange(1, n + 1, dtype=float)
         else:

@@ -34,7 +34,8 @@ The error of a rung is ``max over outputs of max|s - s_ref| / max|s_ref|``, ever
 field of the scene's outputs compared with the same knob's tightest rung (the last of its ladder,
 the reference; a coarser ``steps`` rung is compared at its own steps, which the reference also
 samples). A wear run is compared at its checkpoints (every series of the run, and the wear
-depth interpolated onto the reference's grid), since its steps adapt to each setting. The wall time is the best of up to three runs.
+depth interpolated onto the reference's grid), since its steps adapt to each setting. The wall
+time is the best of up to three runs.
 
 Choosing. With ``k`` knobs, a rung meets the target when its error is at most ``target / (2k)``:
 the errors of independent knobs add to first order (so ``k`` shares of the budget), and a ladder
@@ -50,7 +51,7 @@ import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -230,7 +231,7 @@ class CostReport:
                 if not rs:
                     continue
                 t = [r.seconds for r in rs]
-                e = [max(r.error, floor) for r in rs]
+                e = [max(cast(float, r.error), floor) for r in rs]   # not None: rs
                 line, = ax.loglog(t, e, "o-", label=knob)
                 for r, ti, ei in zip(rs, t, e):
                     if r.default:
@@ -310,12 +311,12 @@ def default_ladders(scene: "Scene") -> dict[str, list[Any]]:
         elif knob in ("n_springs", "n_rings"):
             n0 = dflt[knob]
             factors = SPRING_FACTORS if knob == "n_springs" else RING_FACTORS
-            vals = sorted({max(2, int(round(n0 * f))) for f in factors})
+            vals = sorted({max(2, round(n0 * f)) for f in factors})      # int * float
         elif knob == "steps":
             vals = [f for f in STEP_FACTORS if _refined(scene.to_dict(), f) is not None]
         elif knob == "n_grid":
             from ..effects.wear import MIN_GRID
-            vals = sorted({max(MIN_GRID, int(round(dflt["n_grid"] * f))) for f in GRID_FACTORS})
+            vals = sorted({max(MIN_GRID, round(dflt["n_grid"] * f)) for f in GRID_FACTORS})
         elif knob == "jump_rtol":
             vals = sorted(set(JUMP_LADDER) | {dflt["jump_rtol"]}, reverse=True)
         else:
@@ -338,7 +339,7 @@ def _refined(data: dict[str, Any], factor: float) -> dict[str, Any] | None:
             if n < 1 or abs(n - round(n)) > 1e-9:
                 return None
             body.setdefault("duration", float(body["steps"]))
-            body["steps"] = int(round(n))
+            body["steps"] = int(round(n))      # noqa: RUF046 - n may be a numpy scalar
             total += body["steps"]
         elif kind == "sinusoid":
             from .model import DEFAULT_STEPS_PER_CYCLE
@@ -347,8 +348,8 @@ def _refined(data: dict[str, Any], factor: float) -> dict[str, Any] | None:
             if n < 4 or abs(n - round(n)) > 1e-9:
                 return None
             body.setdefault("period", float(spc))
-            body["steps_per_cycle"] = int(round(n))
-            total += int(round(body["cycles"] * body["steps_per_cycle"]))
+            body["steps_per_cycle"] = int(round(n))    # noqa: RUF046 - as above
+            total += int(round(body["cycles"] * body["steps_per_cycle"]))  # noqa: RUF046
         else:
             return None
     return data if total <= MAX_STEPS else None
@@ -509,7 +510,7 @@ def scene_cost(scene: "Scene", *, target: float = 1e-6,
     scene.run()   # warm-up, untimed: first-call costs (imports, compiled kernels) are no rung's
     runs: dict[str, list[list[Any]]] = {}
     for knob in knobs:
-        vals = _ordered(knob, list(lad[knob]) + [dflt[knob]])
+        vals = _ordered(knob, [*lad[knob], dflt[knob]])
         ref_val = vals[-1]
         ref_scene = with_setting(scene, knob, ref_val)
         ref_res, ref_t = _timed_run(ref_scene)

@@ -17,7 +17,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -150,7 +150,7 @@ def _fmt(v: float) -> str:
 
 
 #: outputs.method of a twisted scene on the foundation route -> method of contact.simulate
-_SIMULATE_METHOD = {"exact": "exact", "mdr": "mdr", "no-slip": "mdr"}
+_SIMULATE_METHOD: dict[Any, str] = {"exact": "exact", "mdr": "mdr", "no-slip": "mdr"}
 
 
 def make_plan(scene: "Scene") -> Plan:
@@ -343,25 +343,27 @@ def make_plan(scene: "Scene") -> Plan:
                                  "twist or shift (closed-form route)"}.get(name, "")
             issues.append(("outputs.series", name, f"a series the {label} delivers "
                            f"({', '.join(avail)}){hint}"))
-    if slip and exact_path:
-        rows["slip"] = Effect("slip", "exact Coulomb friction per ring with memory (ring solver)",
-                              f"interface.friction = {_fmt(friction)}; foundation route")
-    elif slip and foundation:
-        model = ("MDR torsional springs, Coulomb per spring (narrow-slip model)" if torsion else
-                 "MDR tangential springs, Coulomb per spring (exact Cattaneo-Mindlin)")
-        if torsion:
-            method = "mdr"
-        rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}; "
-                              "foundation route")
-    elif slip:
-        model = {"exact": "exact partial slip (Jäger superposition)" if torsion else
-                 "Cattaneo-Mindlin partial slip (exact)",
-                 "mdr": "MDR narrow-slip approximation (springs, mu* = 2 mu)"}.get(method, method)
-        rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
-                              + (" and outputs.method = " + repr(method) if "method" in outs else ""))
+    if slip:
+        assert friction is not None     # slip needs a friction coefficient (method above)
+        if exact_path:
+            rows["slip"] = Effect("slip", "exact Coulomb friction per ring with memory (ring solver)",
+                                  f"interface.friction = {_fmt(friction)}; foundation route")
+        elif foundation:
+            model = ("MDR torsional springs, Coulomb per spring (narrow-slip model)" if torsion else
+                     "MDR tangential springs, Coulomb per spring (exact Cattaneo-Mindlin)")
+            if torsion:
+                method = "mdr"
+            rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}; "
+                                  "foundation route")
+        else:
+            model = {"exact": "exact partial slip (Jäger superposition)" if torsion else
+                     "Cattaneo-Mindlin partial slip (exact)",
+                     "mdr": "MDR narrow-slip approximation (springs, mu* = 2 mu)"}.get(method, method)
+            rows["slip"] = Effect("slip", model, f"interface.friction = {_fmt(friction)}"
+                                  + (" and outputs.method = " + repr(method) if "method" in outs else ""))
 
     extra = _fretting_rows(scene, h, issues)
-    for name, (row, det) in extra.items():
+    for name, (row, _det) in extra.items():
         rows[name] = row
         calls.append(name)
 
@@ -397,14 +399,14 @@ def make_plan(scene: "Scene") -> Plan:
     if series_req:
         series = tuple(series_req)
     else:
-        series = list(_NORMAL_SERIES)
+        default_series = list(_NORMAL_SERIES)
         if torsion:
-            series += ["twist", "torque", "stick_radius"]
+            default_series += ["twist", "torque", "stick_radius"]
         if tangential:
-            series += ["displacement", "tangential_force", "stick_radius"]
+            default_series += ["displacement", "tangential_force", "stick_radius"]
         if slip and (foundation or impl_call in ("twist_history", "shift_history")):
-            series.append("dissipated_energy")
-        series = tuple(series)
+            default_series.append("dissipated_energy")
+        series = tuple(default_series)
     ordered = tuple(rows[e] for e in EFFECTS + FRETTING_EFFECTS if e in rows)
     return Plan(ordered, route, tuple(calls), series, fields, tuple(out_rows),
                 method if (torsion or tangential) else None, n,
@@ -437,7 +439,8 @@ def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effe
     out: dict[str, tuple[Effect, dict[str, Any]]] = {}
     if "wear" in data:
         w = data["wear"]
-        i, ctrl, amp = fretting_segment(data["load_path"])   # validated: exists
+        i, ctrl, amp = cast("tuple[int, str, float]",
+                            fretting_segment(data["load_path"]))   # validated: exists
         from .model import leaf_segments     # History.segment counts leaves (repeats expanded)
         leaves = [j for j, (seg, rep, _) in enumerate(leaf_segments(data["load_path"]))
                   if seg == i and rep == 0]
@@ -451,8 +454,9 @@ def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effe
             key = "twist_amplitude" if mode == "torsion" else "displacement_amplitude"
             unit = "rad" if mode == "torsion" else "m"
             method = _fretting_method(w, outs, mode)
-            kw = {"force": force, key: amp, "wear_coefficient": w["wear_coefficient"],
-                  "cycles": w["cycles"], "method": method}
+            kw: dict[str, Any] = {"force": force, key: amp,
+                                  "wear_coefficient": w["wear_coefficient"],
+                                  "cycles": w["cycles"], "method": method}
             for k in ("checkpoints", "n_grid", "jump_rtol", "max_radius"):
                 if k in w:
                     kw[k] = w[k]
@@ -471,7 +475,7 @@ def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effe
         mode = "torsion" if key == "twist_amplitude" else "tangential"
         forces, amps = axis_values(m["force"]), axis_values(m[key])
         method = _fretting_method(m, outs, mode)
-        kw: dict[str, Any] = {"force": forces, key: amps}
+        kw = {"force": forces, key: amps}
         if method:
             kw["method"] = method
         for k in ("criterion", "threshold"):

@@ -11,7 +11,7 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -516,7 +516,7 @@ def run_scene(scene: "Scene") -> SceneResult:
     contact = scene.contact()
     computed: list[str] = []
     n = h.n_steps
-    n_kind = h.kind("normal")
+    n_kind = cast(str, h.kind("normal"))       # a validated scene's path drives the normal axis
     N = h.values("normal")
     out: dict[str, np.ndarray] = {"time": h.time.copy()}
     normal_state = None
@@ -578,9 +578,9 @@ def run_scene(scene: "Scene") -> SceneResult:
     if nan_at:
         k = min(nan_at)
         name = next(key for key, v in series.items() if np.isnan(v[k]))
-        err = ConvergenceError(f"{name}[{k}] is NaN: the computation failed at that step "
-                               f"({scene.title!r}).")
-        raise _step_failure(scene, plan, h, err, k, {key: v[:k] for key, v in series.items()},
+        nan_err = ConvergenceError(f"{name}[{k}] is NaN: the computation failed at that step "
+                                   f"({scene.title!r}).")
+        raise _step_failure(scene, plan, h, nan_err, k, {key: v[:k] for key, v in series.items()},
                             computed)
 
     fields: dict[str, np.ndarray] = {}

@@ -8,20 +8,12 @@ from __future__ import annotations
 
 import math
 import re
-import sys
+import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from ..errors import SceneError
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10 needs the tomli backport
-    try:
-        import tomli as tomllib
-    except ImportError as err:
-        raise ImportError("reading scene files on Python 3.10 needs tomli: pip install tomli") from err
 
 __all__ = ["load", "loads", "dumps"]
 

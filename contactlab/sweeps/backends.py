@@ -347,10 +347,12 @@ class DaskClient:
                          for b in batches]
 
     def completed(self) -> Iterator[Records]:
+        killed: tuple[type[BaseException], ...]
         try:
             from distributed.scheduler import KilledWorker
+            killed = (KilledWorker,)
         except ImportError:                     # pragma: no cover - moved in some release
-            KilledWorker = ()                   # noqa: N806
+            killed = ()
         # results gathered by as_completed itself, not by one blocking result() call per task
         # from this thread; on this client's event loop: without loop=, as_completed tracks the
         # futures on the loop of Dask's *default* client (the latest one made), which drives this
@@ -362,7 +364,7 @@ class DaskClient:
                 _, rec = next(done)
             except StopIteration:
                 break
-            except KilledWorker as err:
+            except killed as err:
                 raise WorkerError(
                     f"a Dask worker died on every try of a sweep batch ({err}); the scheduler "
                     "gave up on it (Dask's distributed.scheduler.allowed-failures). A study "

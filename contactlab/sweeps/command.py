@@ -1,8 +1,9 @@
 """``contactlab sweep SCENE --grid KEY=A:B:N[:log] ... -o DIR``: the command behind the CLI.
 
 Writes ``DIR/sweep.csv`` (the table; units in the headers, ``force [N]``, and the points'
-warnings as ``# notes: ...`` lines first, read it with ``pandas.read_csv(path, comment="#")``) and keeps ``DIR/sweep.parquet`` as the checkpoint store when
-pyarrow is installed, so the same command run again resumes a killed sweep.
+warnings as ``# notes: ...`` lines first, read it with
+``pandas.read_csv(path, comment="#")``) and keeps ``DIR/sweep.parquet`` as the checkpoint store
+when pyarrow is installed, so the same command run again resumes a killed sweep.
 """
 from __future__ import annotations
 

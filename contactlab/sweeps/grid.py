@@ -94,7 +94,7 @@ def _column(values: Any, where: Callable[[int], str]) -> list[Any]:
     :func:`_plain` (``where(i)`` names entry ``i`` in a message). Whole columns of floats, of
     ints or of strings are converted and checked at once; anything else value by value."""
     if isinstance(values, np.ndarray):
-        if values.dtype.kind == "f" and np.isfinite(values).all() or values.dtype.kind in "iuU":
+        if (values.dtype.kind == "f" and np.isfinite(values).all()) or values.dtype.kind in "iuU":
             return values.tolist()                     # exact: float64 -> float, int64 -> int
         values = list(values)
     elif not isinstance(values, list):
@@ -125,8 +125,8 @@ def _size(values: Any) -> int | None:
 
 
 def _values(key: str, values: Any) -> list[Any]:
-    if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) \
-            and not hasattr(values, "__iter__"):
+    if isinstance(values, (str, bytes)) or (not isinstance(values, (Sequence, np.ndarray)) \
+            and not hasattr(values, "__iter__")):
         raise ParameterError(f"grid[{key!r}]={values!r} is invalid: give a list of values, "
                              f"e.g. [{values!r}].")
     if isinstance(values, np.ndarray) and values.ndim > 1:
@@ -193,8 +193,7 @@ def make_grid(grid: Any) -> Grid:
         names = tuple(_check_name(k) for k in grid.columns)
         if not len(grid) or not names:
             raise ParameterError("grid has no rows: give at least one point.")
-        return Grid(names, tuple(_column(grid[k].to_numpy(), lambda i, k=k: f"grid row {i} "
-                                         f"[{k!r}]") for k in names), None)
+        return Grid(names, tuple(_column(grid[k].to_numpy(), _row_entry(k)) for k in names), None)
     if isinstance(grid, Sequence) and not isinstance(grid, (str, bytes)):
         rows = list(grid)
         if rows and not all(isinstance(r, Mapping) for r in rows):
@@ -211,8 +210,12 @@ def make_grid(grid: Any) -> Grid:
         if row.keys() != keys:
             raise ParameterError(f"grid row {i} has keys {sorted(row)}: every row needs exactly "
                                  f"the keys of row 0, {sorted(names)}.")
-    return Grid(names, tuple(_column([r[k] for r in rows], lambda i, k=k: f"grid row {i} "
-                                     f"[{k!r}]") for k in names), None)
+    return Grid(names, tuple(_column([r[k] for r in rows], _row_entry(k)) for k in names), None)
+
+
+def _row_entry(key: str) -> Callable[[int], str]:
+    """Names entry ``key`` of row ``i`` in a message: ``grid row 3 ['interface.friction']``."""
+    return lambda i: f"grid row {i} [{key!r}]"
 
 
 def _number_or_text(text: str) -> Any:

@@ -5,9 +5,10 @@ finished (:mod:`.store`); the first points run here in growing batches (1, 2, 8,
 batch takes :data:`CALIBRATION_SECONDS`), which warms this process and times a point; the backend
 is chosen (:mod:`.backends`) and its per-task round trip measured; if the points left would take
 less than that round trip, they run here; else they go out in batches large enough that this
-round trip costs under :data:`TARGET_OVERHEAD` of a batch's compute time (:func:`batch_size`). Batches travel as columns (:class:`~.study.Points` out,
-:class:`~.study.Records` back), not as per-point dicts; records come back in any order and the
-table is assembled by point (:mod:`.table`), so it does not depend on the backend.
+round trip costs under :data:`TARGET_OVERHEAD` of a batch's compute time (:func:`batch_size`).
+Batches travel as columns (:class:`~.study.Points` out, :class:`~.study.Records` back), not as
+per-point dicts; records come back in any order and the table is assembled by point
+(:mod:`.table`), so it does not depend on the backend.
 """
 from __future__ import annotations
 

@@ -182,7 +182,7 @@ def _read_part(pd: Any, store: Path, part: Path) -> Any:
     overwritten) raises :class:`ParameterError` naming it, never pyarrow's own error."""
     try:
         df = pd.read_parquet(part)
-    except Exception as err:         # pyarrow raises ArrowInvalid, OSError, ... for bad bytes
+    except Exception as err:         # noqa: BLE001 - pyarrow raises ArrowInvalid, OSError, ...
         raise _damaged(store, part, err) from None
     missing = [c for c in ("point", "error", "message", "warnings", _KEYS) if c not in df.columns]
     if missing:

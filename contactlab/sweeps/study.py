@@ -97,7 +97,7 @@ class SceneStudy:
         try:
             self.scene(**point)
         except SceneError as err:
-            for path, value, allowed in err.issues:
+            for path, _value, allowed in err.issues:
                 if path in point and str(allowed).startswith("a key from"):
                     raise ParameterError(f"grid key {path!r} is not a scene key: expected "
                                          f"{allowed}") from err
@@ -189,7 +189,7 @@ def scalars(result: Any) -> dict[str, float | str]:
                 arr = np.asarray(value, dtype=float).ravel()
             except (TypeError, ValueError):
                 if strict:
-                    raise ParameterError(f"study output {key!r} is not an array of numbers.")
+                    raise ParameterError(f"study output {key!r} is not an array of numbers.") from None
                 continue
             if arr.size == 1:
                 out[key] = float(arr[0])
@@ -214,7 +214,7 @@ class Points:
     argument instead of thousands of nested containers.
     """
 
-    __slots__ = ("index", "names", "columns")
+    __slots__ = ("columns", "index", "names")
 
     def __init__(self, index: list[int], names: tuple[str, ...], columns: list[list[Any]]) -> None:
         self.index = index
@@ -267,7 +267,7 @@ class Records:
     returns none; outputs are never None themselves: :func:`scalars` turns None into NaN).
     """
 
-    __slots__ = ("point", "outputs", "error", "message", "warnings")
+    __slots__ = ("error", "message", "outputs", "point", "warnings")
 
     def __init__(self) -> None:
         self.point: list[int] = []

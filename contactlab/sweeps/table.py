@@ -129,8 +129,8 @@ def assemble(grid: Grid, records: Records | list[Records]) -> Any:
         col = order(rec.outputs[key])
         data[key] = _array([nan if v is None else v for v in col] if col.count(None) else col)
     df = pd.DataFrame(data, columns=["point", *grid.names, *outputs])
-    for col in ("error", "message", "warnings"):    # None (not NaN) where nothing happened
-        df[col] = pd.Series(order(getattr(rec, col)), index=df.index, dtype=object)
+    for field in ("error", "message", "warnings"):  # None (not NaN) where nothing happened
+        df[field] = pd.Series(order(getattr(rec, field)), index=df.index, dtype=object)
     df.attrs["sweep"] = {"axes": grid.axes, "names": list(grid.names)}
     df.attrs["units"] = column_units(list(df.columns))
     df.attrs["notes"] = table_notes(df)

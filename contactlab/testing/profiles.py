@@ -1,6 +1,7 @@
 """Conformance checks for profiles: :class:`ProfileChecks` and the independent transform."""
 from __future__ import annotations
 
+import itertools
 from typing import Any, ClassVar
 
 import numpy as np
@@ -54,7 +55,7 @@ def independent_transform(profile: Any, x: float, epsrel: float = 1e-12) -> floa
         return float(profile.derivative(x * np.sin(theta)))
 
     total = 0.0
-    for t0, t1 in zip(cuts[:-1], cuts[1:]):
+    for t0, t1 in itertools.pairwise(cuts):
         if t1 > t0:
             total += integrate.quad(fprime, t0, t1, epsabs=0.0, epsrel=epsrel, limit=200)[0]
     return x * total

@@ -83,6 +83,9 @@ class ResultChecks:
     result: ClassVar[Any] = None
     plots: ClassVar[bool] = False
     exact: ClassVar[bool | None] = None
+    # the made result, per test class (set on first use: declared only, so that a subclass
+    # never sees its parent's in its own __dict__)
+    _cached: ClassVar[Any]
 
     def make_result(self) -> Any:
         """The result under test (default: the class attribute ``result``)."""
@@ -172,7 +175,7 @@ class ResultChecks:
         r = self._result()
         try:
             want = cite(r, format="text", file=None)
-        except Exception as err:      # a result whose sources are not recorded: same error
+        except Exception as err:      # noqa: BLE001 - a result whose sources are not recorded
             try:
                 r.cite(format="text", file=None)
             except type(err):

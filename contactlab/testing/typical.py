@@ -7,7 +7,7 @@ from typing import Any
 __all__ = ["typical_instance"]
 
 
-def typical_instance(cls: type) -> Any:
+def typical_instance(cls: type[Any]) -> Any:
     """Instantiate ``cls`` with the centre of each parameter's typical range.
 
     Parameters
