@@ -23,7 +23,8 @@ from __future__ import annotations
 import importlib.util
 import os
 import types
-from typing import Any, Callable
+from typing import Any
+from collections.abc import Callable
 
 __all__ = ["available", "njit", "LOCK_NAME"]
 

@@ -13,7 +13,8 @@ import math
 import os
 import re
 from collections.abc import Mapping
-from typing import Any, Callable
+from typing import Any
+from collections.abc import Callable
 
 import numpy as np
 

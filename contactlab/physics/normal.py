@@ -75,7 +75,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
         cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
         U = np.arccosh(ap / rp)
         us = [np.clip(np.arccosh(np.maximum(b / rp, 1.0)), 0.0, U) for b in cuts]
-        edges = np.stack([np.zeros_like(rp)] + us + [U])
+        edges = np.stack([np.zeros_like(rp), *us, U])
         # exact x-limits of each segment: x is clipped into them, so rounding of arccosh/cosh
         # never moves a node across a breakpoint (where g' may be singular or jump)
         x_edges = np.stack([rp] + [np.clip(np.full_like(rp, b), rp, ap) for b in cuts] + [ap])
@@ -116,7 +116,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
         if profile._has("_g_prime_closed_form") and not cuts:
             # (with breakpoints the by-parts form is kept: g is bounded at a slope jump where g'
             # is singular, so node rounding near the breakpoint does not matter)
-            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:  # noqa: F811
+            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
                 x, interior = node_x(u, idx)
                 with np.errstate(divide="ignore", invalid="ignore"):
                     val = profile._g_prime_closed_form(x)
@@ -186,7 +186,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
         theta_max = np.arctan2(ao, np.sqrt((ro - ao) * (ro + ao)))   # asin(a/r), exact near r = a
         cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
         ts = [np.clip(np.arcsin(np.minimum(b / ro, 1.0)), 0.0, theta_max) for b in cuts]
-        edges = np.stack([np.zeros_like(ro)] + ts + [theta_max])
+        edges = np.stack([np.zeros_like(ro), *ts, theta_max])
         lo, hi = edges[:-1], edges[1:]
         r_b = np.broadcast_to(ro, lo.shape).ravel()
 

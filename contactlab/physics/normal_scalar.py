@@ -29,16 +29,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
 from ..errors import OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-
-_TINY = float(np.finfo(float).tiny)
 from ..numeric.roots import scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
+
+_TINY = float(np.finfo(float).tiny)
 
 __all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
 

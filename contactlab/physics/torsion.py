@@ -23,7 +23,8 @@ parameter holders; every call returns its results and keeps nothing.
 """
 from __future__ import annotations
 
-from typing import Callable, ClassVar, NamedTuple
+from typing import ClassVar, NamedTuple
+from collections.abc import Callable
 
 import numpy as np
 

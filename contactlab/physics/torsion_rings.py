@@ -295,7 +295,7 @@ def _solve_active(C, rhs_cols, A, zA):
     ``C_AA λ_A = (C rhs)_A − z_A``; cheaper than the free-set solve when few points are active."""
     Cr = C @ rhs_cols
     if not A.any():
-        return Cr, np.zeros((0,) + rhs_cols.shape[1:])
+        return Cr, np.zeros((0, *rhs_cols.shape[1:]))
     rhs_A = Cr[A] - (zA if rhs_cols.ndim == 1 else np.stack([zA, np.zeros_like(zA)], axis=1))
     lamA = _la.solve(C[np.ix_(A, A)], rhs_A, assume_a="pos", check_finite=False)
     return Cr - C[:, A] @ lamA, lamA

@@ -303,7 +303,7 @@ class Profile(ParamIdentity, ABC):
         with np.errstate(divide="ignore", invalid="ignore"):
             thetas = [np.where(flat > b, np.arcsin(np.minimum(b / flat, 1.0)), 0.5 * np.pi)
                       for b in cuts]
-        edges = np.stack([np.zeros_like(flat)] + thetas + [np.full_like(flat, 0.5 * np.pi)])
+        edges = np.stack([np.zeros_like(flat), *thetas, np.full_like(flat, 0.5 * np.pi)])
         lo, hi = edges[:-1], edges[1:]
         return lo, hi, np.broadcast_to(flat, lo.shape)
 

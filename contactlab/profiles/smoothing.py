@@ -14,8 +14,9 @@ is
   (``smoothing="auto", noise=σ``; the discrepancy principle), or
 * chosen by generalised cross-validation, ``GCV(λ) = N RSS / (N - tr S_λ)²``
   (``smoothing="auto"``; λ that keep more than 80 % of the points' degrees of freedom
-  are excluded, GCV's spurious minimum at interpolation), with ``tr S_λ`` exact up to 1000 points and estimated from 32 fixed
-  Rademacher probes (Hutchinson) beyond, so the choice is the same on every run.
+  are excluded, GCV's spurious minimum at interpolation), with ``tr S_λ`` exact up to 1000
+  points and estimated from 32 fixed Rademacher probes (Hutchinson) beyond, so the choice is
+  the same on every run.
 
 On the axis the spline is even (``axis="even"``, the default): the table is mirrored,
 ``f(-r) = f(r)``, and the smoother acts on the mirrored table, so the smoothed surface has

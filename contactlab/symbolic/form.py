@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 from .transform import kappa_sympy
@@ -104,7 +104,7 @@ def symbol(name: str):
     return _symbol(name)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _symbol(name: str):
     import sympy as sp
     return sp.Symbol(name, positive=True)

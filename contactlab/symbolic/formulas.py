@@ -347,7 +347,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
     import sympy as sp
     form = _form_of(profile)
     exprs, missing = _profile_exprs(form)
-    x, r, a, d, F, phi, cs = (symbol(v) for v in VARIABLES)
+    _x, r, a, d, F, phi, cs = (symbol(v) for v in VARIABLES)
     E, Gt, mu, dg = symbol("E_star"), symbol("G_t"), symbol("mu"), symbol("Delta_gamma")
     values = dict(form.values)
     if moduli is not None:
