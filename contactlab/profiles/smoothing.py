@@ -98,7 +98,8 @@ class _Smoother:
         self.n = r.size
         # even: the smoother of the mirrored table (the axis node once), restricted to r >= 0
         self._skip = (1 if r[0] == 0 else 0) if even else None
-        full = np.concatenate([-r[::-1][:r.size - self._skip], r]) if even else r
+        # (_skip is None exactly when not even)
+        full = np.concatenate([-r[::-1][:r.size - self._skip], r]) if self._skip is not None else r
         self.x = full / r[-1]
         h = np.diff(self.x)
         m = self.x.size
