@@ -70,7 +70,8 @@ def _origin(st, idx):
 
 
 def masing_step(st: dict, x: np.ndarray,
-                load: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+                load: Callable[[np.ndarray, np.ndarray | None],
+                               tuple[np.ndarray, np.ndarray, np.ndarray]]
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Advance every contact to the control ``x``; update ``st`` in place.
 

@@ -15,6 +15,8 @@ otherwise S is evaluated by parts so only g is needed:
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
@@ -56,7 +58,9 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
             return res
     if profile.has("terms"):       # Sum: the MDR is linear, each term takes its own route
         parts = [pressure_shape(t, r, a, rtol) for t in profile.terms]
-        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+        # (at least two terms: the sums are arrays)
+        return (cast(np.ndarray, sum(p[0] for p in parts)),
+                cast(np.ndarray, sum(p[1] for p in parts)))
     out = np.zeros(r.shape)
     err = np.zeros(r.shape)
     inside = r < a
@@ -125,9 +129,9 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
             tail = np.zeros_like(tail)
             noise = 0.0
         atol = np.broadcast_to(rtol * (np.abs(tail) + scale) + noise, lo.shape)
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=atol.ravel())
-        val[pos] = tail + res.value.reshape(lo.shape).sum(axis=0)
-        er[pos] = res.error.reshape(lo.shape).sum(axis=0)
+        quad = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=atol.ravel())
+        val[pos] = tail + quad.value.reshape(lo.shape).sum(axis=0)
+        er[pos] = quad.error.reshape(lo.shape).sum(axis=0)
     if np.any(axis):
         # S(0, a) = g(a)/a + ∫_0^a g(x)/x² dx  (g(0) = 0), split at the breakpoints
         a0 = aa[axis]
@@ -266,7 +270,7 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     cuts = sorted({b for b in profile.breakpoints if b > 0})
     edges = np.stack([lo] + [np.clip(np.full(a.shape, b), lo, a) for b in cuts] + [a])
     table = profile.has("node_table") and not cuts
-    atol = 0.0
+    atol: float | np.ndarray = 0.0
     if table and profile.has("linear_table"):
         # the square-root kinks of g at thousands of nodes keep the rule from converging to
         # rtol: without a floor it ran to its last level (9217 nodes per integral, each g

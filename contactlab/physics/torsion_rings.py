@@ -50,6 +50,8 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 import scipy.linalg as _la
 
@@ -393,7 +395,7 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         bad = bad_hi | bad_lo | bad_up | bad_dn
         if not bad.any():
             lam[F] = 0.0
-            return z, lam, float(d), it
+            return z, lam, float(cast(float, d)), it   # d: the given or the solved twist
         if it > MAX_PIVOTS:
             single = True
         if single:  # one pivot at a time (Murty): the largest index among the violators
