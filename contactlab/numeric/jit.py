@@ -55,6 +55,7 @@ def _locked(compile_: Callable, cache_path: str) -> Callable:
     the cache load, compile and save of one process at a time."""
     from numba.core.compiler_lock import global_compiler_lock
 
+    fcntl: Any
     try:
         import fcntl
     except ImportError:                      # pragma: no cover - Windows: no lock
