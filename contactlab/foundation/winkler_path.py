@@ -97,7 +97,7 @@ def snapshot(fnd: Any, st: Any, res: dict, i: int) -> dict:
     element forces (N, N·m) and the 3D tractions of :func:`snapshot_shear` (Pa). The 3D pressure
     is the normal solution's: the caller adds it (``"pressure"``)."""
     d, a = float(res["depth"][i]), float(res["radius"][i])
-    snap = {"depth": d, "radius": a}
+    snap: dict[str, Any] = {"depth": d, "radius": a}
     if fnd is not None:
         x = fnd.positions
         snap["x"] = x.copy()
@@ -579,7 +579,7 @@ def snapshot_shear(fnd: Any, st: Any, r: np.ndarray) -> dict[str, np.ndarray]:
     a = st.radius
     inside = fnd.bl < a
     x = fnd.positions[inside]
-    out = {}
+    out: dict[str, np.ndarray] = {}
     if x.size == 0:
         return out
     last = int(np.flatnonzero(inside)[-1])
