@@ -160,12 +160,12 @@ def path_normal_series(profile: Any, E_star: float, path: Any, rtol: float,
             i0 += n
     except ContactlabError as err:
         pre = err.partial if isinstance(err.partial, dict) else None
-        k = i0 + (pre["depth"].size if pre is not None else 0)
+        done = i0 + (pre["depth"].size if pre is not None else 0)
         if pre is not None:
-            res["time"][i0:k] = t0 + pre["dt"]
+            res["time"][i0:done] = t0 + pre["dt"]
             for name in ("depth", "force", "radius"):
-                res[name][i0:k] = pre[name]
-        err.partial = PathArrays({name: res[name] for name in NORMAL_SERIES}, done=k,
+                res[name][i0:done] = pre[name]
+        err.partial = PathArrays({name: res[name] for name in NORMAL_SERIES}, done=done,
                                  time=t0 + (err.failed_at or {}).get("dt", 0.0))
         raise
     return PathNormal(res, leaves)

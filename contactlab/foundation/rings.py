@@ -23,7 +23,7 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -146,8 +146,14 @@ class Rings(Foundation):
     #: nodes, the tables' pressure at the fixed ring radii, the single-slip-annulus step
     SWITCHES = ("align", "edge", "jumps", "ring_table", "annulus")
 
+    if TYPE_CHECKING:
+        # set on the instances a run builds (declared for type checkers only: no field)
+        switches: dict[str, bool]
+
     @classmethod
-    def check_path(cls, path: Any, snapshots: Any = (), *, n_rings: int | None = None,
+    # a ring model counts rings: its keyword is n_rings where the base class has n_springs
+    def check_path(cls, path: Any, snapshots: Any = (), *,  # type: ignore[override]
+                   n_rings: int | None = None,
                    spacing: str = "uniform", approximate: bool = False,
                    **switches: bool) -> dict[str, Any]:
         """Check a run along ``path``: twist or torque without shift, ``n_rings`` (default
@@ -235,9 +241,9 @@ class Rings(Foundation):
         rings, edge_punch, spacing = self, self.edge_punch, self.spacing
         res = normal.series
         n_total = res["time"].size
-        for k in SERIES:
-            if k not in res:
-                res[k] = np.zeros(n_total, bool if k == "gross_sliding" else float)
+        for key in SERIES:
+            if key not in res:
+                res[key] = np.zeros(n_total, bool if key == "gross_sliding" else float)
         snaps = set(snapshots)
         work = np.zeros(n_total)
         stored = np.zeros(n_total)
@@ -296,6 +302,7 @@ class Rings(Foundation):
                         p = _normal.pressure(prof, E, r[None, :], ac[:, None], dc[:, None],
                                              g_a[c0:c1, None], self.rtol)[0]
                     if mu is not None:
+                        assert p is not None   # a pressure is computed whenever mu is given
                         bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
                     for j in range(c0, c1):
                         k = i + j
@@ -304,7 +311,7 @@ class Rings(Foundation):
                             # the density ends at the node of the contact radius (a radius within
                             # ALIGN_GAP ring widths of another shares its node)
                             bnd = rings.boundaries
-                            edge_j = float(bnd[min(np.searchsorted(bnd, aj * (1 - 1e-12)),
+                            edge_j = float(bnd[min(int(np.searchsorted(bnd, aj * (1 - 1e-12))),
                                                    bnd.size - 1)])
                             if slide_key is None or not (slide_key[0] == edge_j and
                                                          np.array_equal(slide_key[1], bj)):

@@ -159,6 +159,7 @@ class ViscoelasticElements:
                 theta = np.zeros(cand.size)
             h = (1.0 - theta) * dt                  # loading part of the step
             duc = du[cand]
+            rate: float | np.ndarray
             if self.eta > 0:
                 if np.any(h <= 0):
                     rate = np.full(cand.size, np.inf)
@@ -292,6 +293,7 @@ def solve_history(g_x: np.ndarray, dx: float, prony: tuple, time: np.ndarray,
                     "dashpot cannot follow a jump. Start the history at depth 0 and ramp it.")
             trial = fd.trial(d_new, d_prev, dt)
         else:
+            assert force is not None   # exactly one of depth, force is given
             target = float(force[i])
             if target <= 0:
                 # pulled off (no adhesion): the largest depth at which no element carries force
@@ -357,7 +359,8 @@ def _solve_force(fd: ViscoelasticElements, target: float, d_old: float, dt: floa
     # changes), keeping the evaluated points as a bracket; bracketed solve if they stall
     tol = 1e-13 * abs(target)
     d = d_old + guess_step
-    lo_pts, hi_pts = [], []
+    lo_pts: list[float] = []
+    hi_pts: list[float] = []
     for _ in range(6):
         tr = fd.trial(d, d_old, dt)
         Fd = fd.force(tr)

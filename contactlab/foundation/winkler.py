@@ -235,7 +235,7 @@ class Winkler(Foundation):
         n_total = res["time"].size
         outputs = tuple(outputs)
         snaps = set(snapshots)
-        meta = {"built": ["normal", *needs], "n_springs": None, "spacing": self.spacing,
+        meta: dict[str, Any] = {"built": ["normal", *needs], "n_springs": None, "spacing": self.spacing,
                 "approximate": self.approximate, "foundation": None,
                 "citations": sources_for("normal", "foundation",
                                          *(("tangential",) if "tangential" in needs else ()),

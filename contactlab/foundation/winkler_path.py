@@ -12,6 +12,7 @@ new depth each go through one compiled call (:mod:`contactlab.foundation._compil
 """
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -96,7 +97,7 @@ def snapshot(fnd: Any, st: Any, res: dict, i: int) -> dict:
     element forces (N, N·m) and the 3D tractions of :func:`snapshot_shear` (Pa). The 3D pressure
     is the normal solution's: the caller adds it (``"pressure"``)."""
     d, a = float(res["depth"][i]), float(res["radius"][i])
-    snap = {"depth": d, "radius": a}
+    snap: dict[str, Any] = {"depth": d, "radius": a}
     if fnd is not None:
         x = fnd.positions
         snap["x"] = x.copy()
@@ -375,7 +376,10 @@ def time_loop(fnd: Any, leaves: Any, normal: list, res: dict, snaps: set, snapsh
         fusing = fused is not None and chans[0].ctrl == chans[0].pos
         tor_edge = bool(chans) and chans[0].L == "L_tor"
 
-        def edges(c0, c1):
+        # the helpers below run only within this iteration: the loop's values are bound as
+        # keyword defaults (the same objects the closures would read) so that no helper can
+        # see a later iteration's values
+        def edges(c0, c1, *, all_changed=all_changed, changed=changed, d_arr=d_arr, a_arr=a_arr):
             """Edge cell data of steps c0..c1-1, computed where the normal state changes
             (zeros elsewhere: step() does not read them there)."""
             if all_changed or changed[c0:c1].all():    # no gather and scatter
@@ -391,7 +395,7 @@ def time_loop(fnd: Any, leaves: Any, normal: list, res: dict, snaps: set, snapsh
                     eT[ci] = edc["T"]
             return ek, eS, eT
 
-        def one_by_one(j0, j1):
+        def one_by_one(j0, j1, *, d_arr=d_arr, a_arr=a_arr, vs=vs, base=base, edges=edges):
             for c0 in range(j0, j1, _CHUNK):   # plain floats, converted a chunk at a time
                 c1 = min(c0 + _CHUNK, j1)
                 dl, al = d_arr[c0:c1].tolist(), a_arr[c0:c1].tolist()
@@ -402,7 +406,8 @@ def time_loop(fnd: Any, leaves: Any, normal: list, res: dict, snaps: set, snapsh
                 for o in range(c1 - c0):
                     step(base + c0 + o, dl[o], al[o], ek[o], eS[o], eT[o], [v[o] for v in vl])
 
-        def steps(j0, j1):
+        def steps(j0, j1, *, fusing=fusing, d_arr=d_arr, a_arr=a_arr, d0=d0, tor_edge=tor_edge,
+                  base=base, vs=vs, edges=edges, one_by_one=one_by_one):
             if not fusing:
                 one_by_one(j0, j1)
                 return
@@ -431,7 +436,7 @@ def time_loop(fnd: Any, leaves: Any, normal: list, res: dict, snaps: set, snapsh
                         j += 1
 
         pending = None   # first step of a stretch of step-by-step intervals not yet run
-        for j0, j1 in zip(brk[:-1], brk[1:]):
+        for j0, j1 in itertools.pairwise(brk):
             if strategy == "segments" and j1 - j0 >= _MIN_BLOCK and not changed[j0]:
                 if pending is not None:
                     steps(pending, j0)
@@ -574,7 +579,7 @@ def snapshot_shear(fnd: Any, st: Any, r: np.ndarray) -> dict[str, np.ndarray]:
     a = st.radius
     inside = fnd.bl < a
     x = fnd.positions[inside]
-    out = {}
+    out: dict[str, np.ndarray] = {}
     if x.size == 0:
         return out
     last = int(np.flatnonzero(inside)[-1])

@@ -23,7 +23,8 @@ from __future__ import annotations
 import importlib.util
 import os
 import types
-from typing import Any, Callable
+from typing import Any
+from collections.abc import Callable
 
 __all__ = ["available", "njit", "LOCK_NAME"]
 
@@ -54,6 +55,7 @@ def _locked(compile_: Callable, cache_path: str) -> Callable:
     the cache load, compile and save of one process at a time."""
     from numba.core.compiler_lock import global_compiler_lock
 
+    fcntl: Any
     try:
         import fcntl
     except ImportError:                      # pragma: no cover - Windows: no lock

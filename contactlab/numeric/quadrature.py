@@ -15,8 +15,8 @@ Publ. RIMS 9 (1974) 721-741.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
-from typing import Callable
+from functools import cache
+from collections.abc import Callable
 
 import numpy as np
 
@@ -55,7 +55,7 @@ class QuadratureResult:
     evaluations: int
 
 
-@lru_cache(maxsize=None)
+@cache
 def _level_nodes(level: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Nodes new at ``level``: (lower-end fraction, upper-end fraction, weight without h).
 

@@ -8,7 +8,7 @@ change, so the answer is always inside the bracket; non-convergence raises.
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 

@@ -13,7 +13,8 @@ import math
 import os
 import re
 from collections.abc import Mapping
-from typing import Any, Callable
+from typing import Any
+from collections.abc import Callable
 
 import numpy as np
 
@@ -188,7 +189,7 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
                 raise TabulatedDataError(
                     f"{where}: data row {i + 1}, column {cname(j, col_names[j])} holds "
                     f"{q(cells[j])}, which is not a number.") from None
-    given = dict(units or {})
+    given: dict[Any, str | None] = dict(units or {})   # keys: column names or positions
     for key in given:
         if key not in col_names and not (isinstance(key, int) and 0 <= key < len(col_names)):
             raise ParameterError(f"units names column {key!r}, which {where} does not have "
@@ -220,6 +221,7 @@ def read_columns(path: Any, *, names: tuple[str, ...] | None = None,
         try:
             factor_h = None if unit_h is None else unit_factor(unit_h, dim, f"{name} [unit]")
         except UnitError as err:
+            assert unit_h is not None   # only a unit that is there can be refused
             if not quote:
                 raise UnitError(f"{where}: the unit in the header of column {j + 1} is unknown "
                                 f"or not a unit of {dim}.") from None

@@ -36,6 +36,7 @@ Pure kernels: profile, moduli and arrays in, arrays out. The drivers that build
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -85,7 +86,7 @@ def g_prime(profile, x: np.ndarray) -> np.ndarray:
         from ..symbolic.transform import kappa
         return sum(kappa(n) * c * n * x ** (n - 1.0) for c, n in terms) * np.ones_like(x)
     if profile.has("terms"):
-        return sum(g_prime(t, x) for t in profile.terms)
+        return cast(np.ndarray, sum(g_prime(t, x) for t in profile.terms))
     # central differences (error ~ h⁴ g⁽⁵⁾ + eps g/h ≈ 1e-12 relative for smooth g), with the
     # step shrunk so that the stencil never crosses a slope jump, flat rim or wall of the profile
     # (there g' jumps; the one-sided value on x's own side is the one wanted).

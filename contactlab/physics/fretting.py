@@ -62,7 +62,7 @@ def loop_branches(amplitude: float, peak: float, load_curve, n: int
     return x, y
 
 
-def criterion_value(criterion: str, A: np.ndarray, c: np.ndarray, a: np.ndarray,
+def criterion_value(criterion: str, A: np.ndarray | None, c: np.ndarray, a: np.ndarray,
                     peak: np.ndarray, sliding: np.ndarray) -> np.ndarray:
     """The quantity a gross-slip criterion compares with its threshold."""
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -383,6 +383,8 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
 
 
 _PASSES = (_normal_pass, _fused_pass, _spring_pass)
+
+AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}
 _build_lock = threading.Lock()
 
@@ -457,10 +459,11 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     nf, n_over = _kernels(parallel)[1](_EMPTY if u is None else u, _EMPTY if phi is None else phi,
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
-                          float(master.m0), None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
-                          chan["last"], chan["depth"], chan["X"], chan["Y"], chan["overflow"],
+                          float(master.m0), None if master.power == 1 else int(master.power),
+                          chan["x"], chan["y"], chan["w"], chan["last"], chan["depth"], chan["X"],
+                          chan["Y"], chan["overflow"],
                           *out)
-    return out + (nf, n_over)
+    return (*out, nf, n_over)
 
 
 def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: dict,

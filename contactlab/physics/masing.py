@@ -8,7 +8,7 @@ the caller at the arguments returned here.
 """
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -58,8 +58,9 @@ def masing_program(phi: np.ndarray):
     """Turning-point bookkeeping of Masing's rule (O(1) amortised work per step).
 
     ``phi`` is the prescribed history of the controlling quantity (twist, tangential
-    displacement), starting from the virgin state at 0. Returns per step: ``origin`` (step index of the branch's turning point, -1 for the virgin
-    curve), ``factor`` (1 virgin, 2 after a reversal), ``arg`` = ``|φ - φ_o|/factor``, and the list of
+    displacement), starting from the virgin state at 0. Returns per step: ``origin`` (step
+    index of the branch's turning point, -1 for the virgin curve), ``factor`` (1 virgin, 2
+    after a reversal), ``arg`` = ``|φ - φ_o|/factor``, and the list of
     branch segments ``(step, φ_o, factor, φ_from, φ_to)`` traversed between consecutive steps (a
     step may close several loops, each closure switching to an older branch).
     """

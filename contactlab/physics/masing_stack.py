@@ -37,7 +37,7 @@ sets ``exact`` False for flagged contacts and warns in the step of the overflow.
 """
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -70,7 +70,8 @@ def _origin(st, idx):
 
 
 def masing_step(st: dict, x: np.ndarray,
-                load: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+                load: Callable[[np.ndarray, np.ndarray | None],
+                               tuple[np.ndarray, np.ndarray, np.ndarray]]
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Advance every contact to the control ``x``; update ``st`` in place.
 
@@ -82,8 +83,8 @@ def masing_step(st: dict, x: np.ndarray,
         New control values.
     load : callable
         ``load(arg, idx) -> (y_load, aux, D_load)``: the virgin (loading) curve of contacts
-        ``idx`` (``None``: all contacts) at arguments ``arg >= 0``: response, an auxiliary quantity of the branch (the
-        stick radius) and the energy dissipated by monotonic loading to ``arg``.
+        ``idx`` (``None``: all contacts) at arguments ``arg >= 0``: response, an auxiliary
+        quantity of the branch (the stick radius) and the energy dissipated by monotonic loading to ``arg``.
 
     Returns
     -------

@@ -25,6 +25,7 @@ envelope of a table overstates the error up to ~4 times.
 """
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -181,7 +182,7 @@ def family(profile) -> list[str] | None:
             return ["cone"]
         if n >= 20.0:
             return ["power_law_n20"]
-        for (lo, a), (hi, b) in zip(_EXPONENTS, _EXPONENTS[1:]):
+        for (lo, a), (hi, b) in itertools.pairwise(_EXPONENTS):
             if n == lo:
                 return [a]
             if lo < n < hi:

@@ -15,6 +15,8 @@ otherwise S is evaluated by parts so only g is needed:
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
@@ -56,7 +58,9 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
             return res
     if profile.has("terms"):       # Sum: the MDR is linear, each term takes its own route
         parts = [pressure_shape(t, r, a, rtol) for t in profile.terms]
-        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+        # (at least two terms: the sums are arrays)
+        return (cast(np.ndarray, sum(p[0] for p in parts)),
+                cast(np.ndarray, sum(p[1] for p in parts)))
     out = np.zeros(r.shape)
     err = np.zeros(r.shape)
     inside = r < a
@@ -75,7 +79,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
         cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
         U = np.arccosh(ap / rp)
         us = [np.clip(np.arccosh(np.maximum(b / rp, 1.0)), 0.0, U) for b in cuts]
-        edges = np.stack([np.zeros_like(rp)] + us + [U])
+        edges = np.stack([np.zeros_like(rp), *us, U])
         # exact x-limits of each segment: x is clipped into them, so rounding of arccosh/cosh
         # never moves a node across a breakpoint (where g' may be singular or jump)
         x_edges = np.stack([rp] + [np.clip(np.full_like(rp, b), rp, ap) for b in cuts] + [ap])
@@ -116,7 +120,7 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
         if profile._has("_g_prime_closed_form") and not cuts:
             # (with breakpoints the by-parts form is kept: g is bounded at a slope jump where g'
             # is singular, so node rounding near the breakpoint does not matter)
-            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:  # noqa: F811
+            def integrand(u: np.ndarray, idx: np.ndarray) -> np.ndarray:
                 x, interior = node_x(u, idx)
                 with np.errstate(divide="ignore", invalid="ignore"):
                     val = profile._g_prime_closed_form(x)
@@ -125,9 +129,9 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float, *,
             tail = np.zeros_like(tail)
             noise = 0.0
         atol = np.broadcast_to(rtol * (np.abs(tail) + scale) + noise, lo.shape)
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=atol.ravel())
-        val[pos] = tail + res.value.reshape(lo.shape).sum(axis=0)
-        er[pos] = res.error.reshape(lo.shape).sum(axis=0)
+        quad = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, atol=atol.ravel())
+        val[pos] = tail + quad.value.reshape(lo.shape).sum(axis=0)
+        er[pos] = quad.error.reshape(lo.shape).sum(axis=0)
     if np.any(axis):
         # S(0, a) = g(a)/a + ∫_0^a g(x)/x² dx  (g(0) = 0), split at the breakpoints
         a0 = aa[axis]
@@ -186,7 +190,7 @@ def abel_g(profile, r: np.ndarray, a: np.ndarray, rtol: float) -> tuple[np.ndarr
         theta_max = np.arctan2(ao, np.sqrt((ro - ao) * (ro + ao)))   # asin(a/r), exact near r = a
         cuts = sorted({b for b in (*profile.breakpoints, profile.flat_radius) if b > 0})
         ts = [np.clip(np.arcsin(np.minimum(b / ro, 1.0)), 0.0, theta_max) for b in cuts]
-        edges = np.stack([np.zeros_like(ro)] + ts + [theta_max])
+        edges = np.stack([np.zeros_like(ro), *ts, theta_max])
         lo, hi = edges[:-1], edges[1:]
         r_b = np.broadcast_to(ro, lo.shape).ravel()
 
@@ -266,7 +270,7 @@ def g_squared_integral(profile, a: np.ndarray, rtol: float) -> np.ndarray:
     cuts = sorted({b for b in profile.breakpoints if b > 0})
     edges = np.stack([lo] + [np.clip(np.full(a.shape, b), lo, a) for b in cuts] + [a])
     table = profile.has("node_table") and not cuts
-    atol = 0.0
+    atol: float | np.ndarray = 0.0
     if table and profile.has("linear_table"):
         # the square-root kinks of g at thousands of nodes keep the rule from converging to
         # rtol: without a floor it ran to its last level (9217 nodes per integral, each g

@@ -29,16 +29,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
+from typing import TYPE_CHECKING, cast
+from collections.abc import Callable
 
 import numpy as np
 
 from ..errors import OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-
-_TINY = float(np.finfo(float).tiny)
 from ..numeric.roots import scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
+
+if TYPE_CHECKING:
+    from ..profiles.compound import Scaled, Sum
+
+_TINY = float(np.finfo(float).tiny)
 
 __all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
 
@@ -87,15 +91,18 @@ def _at_wall(fn: Callable[[float], float], wall: float) -> Callable[[float], flo
     return call
 
 
-def _sum_forms(profile: Profile) -> ScalarForms | None:
+def _sum_forms(profile: Sum) -> ScalarForms | None:
     """A sum of profiles: g, ∫g and g' are sums of the terms' scalar forms (the MDR transform is
     linear in the profile); ``None`` when a term has no scalar forms or a wall."""
     parts = [forms_of(t) for t in profile.terms]
     if any(f is None or math.isfinite(f.wall) for f in parts):
         return None
-    gs = tuple(f.g for f in parts)
-    gis = tuple(f.g_integral for f in parts)
-    gps = tuple(f.g_prime for f in parts)
+    forms = cast("list[ScalarForms]", parts)   # none is None past the test above
+    gs = tuple(f.g for f in forms)
+    gis = tuple(f.g_integral for f in forms)
+    gps = tuple(f.g_prime for f in forms)
+    # read by g_prime only, which is used only when no term lacks g'
+    gps_all = cast("tuple[Callable[[float], float], ...]", gps)
 
     def g(a: float) -> float:
         return sum(f(a) for f in gs)
@@ -104,14 +111,14 @@ def _sum_forms(profile: Profile) -> ScalarForms | None:
         return sum(f(a) for f in gis)
 
     def g_prime(a: float) -> float:
-        return sum(f(a) for f in gps)
+        return sum(f(a) for f in gps_all)
     return ScalarForms(g=g, g_integral=g_int, g_inverse=None, radius_of_reduced_force=None,
                        g_prime=None if None in gps else g_prime,
                        lo=float(profile.flat_radius), limit=float(profile.max_radius),
                        start=float(profile._initial_bracket()))
 
 
-def _scaled_forms(profile: Profile) -> ScalarForms | None:
+def _scaled_forms(profile: Scaled) -> ScalarForms | None:
     """``k f``: g, ∫g, g' scale by k; the inverses take the depth or reduced force over k."""
     base = forms_of(profile.base)
     if base is None:

@@ -286,10 +286,10 @@ def pressure_shape(profile, r: np.ndarray, a: np.ndarray, rtol: float
     # exactly on a node where a linear table's slope jumps: logarithmically infinite
     on = np.zeros(rr.shape, dtype=bool)
     if profile.has("linear_table"):
-        j = np.searchsorted(b, rr)
-        on = (j > 0) & (j < nseg) & (b[np.minimum(j, nseg)] == rr)
+        jn = np.searchsorted(b, rr)   # (j is the segment loop's int above)
+        on = (jn > 0) & (jn < nseg) & (b[np.minimum(jn, nseg)] == rr)
         ds = np.diff(profile.table_slopes())
-        jump = np.where(on, ds[np.clip(j - 1, 0, ds.size - 1)], 0.0)
+        jump = np.where(on, ds[np.clip(jn - 1, 0, ds.size - 1)], 0.0)
         on &= jump != 0
         val[on] = np.sign(jump[on]) * np.inf
         er[on] = 0.0

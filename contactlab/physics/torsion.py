@@ -23,7 +23,8 @@ parameter holders; every call returns its results and keeps nothing.
 """
 from __future__ import annotations
 
-from typing import Callable, ClassVar, NamedTuple
+from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple, cast
+from collections.abc import Callable
 
 import numpy as np
 
@@ -109,6 +110,15 @@ class TorsionModel:
 
     name: ClassVar[str] = ""
 
+    if TYPE_CHECKING:
+        # the required hooks of item 1, declared for type checkers only (subclasses give them)
+        def _of_twist(self, phi: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]: ...
+        def _of_torque(self, M: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
+        def _of_stick_radius(self, c: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray
+                             ) -> TorsionSolution: ...
+
     def __init__(self, profile, E_star: float, G_t: float, mu: float | None, rtol: float) -> None:
         self.prof = profile
         self.E = E_star
@@ -165,7 +175,8 @@ class TorsionModel:
                      ) -> np.ndarray:
         """Absolute error estimate of the full-sliding torque: rounding of ``d a²/2 - ∫x g`` and,
         for a quadrature ``∫x g``, its tolerance."""
-        err = 4 * ROUNDING * pref * self.mu * self.E * 0.5 * d * a * a
+        # a shared term of the partial-slip models, which always have a friction coefficient
+        err = 4 * ROUNDING * pref * cast(float, self.mu) * self.E * 0.5 * d * a * a
         if self.prof.power_terms() is None:
             err = err + self.rtol * np.abs(M_full)
         return err
@@ -226,6 +237,7 @@ class Exact(TorsionModel):
     """Jäger's exact partial-slip solution for any profile (torsion_exact kernels)."""
 
     name = "exact"
+    mu: float   # a partial-slip model always has a friction coefficient (declaration only)
 
     def sliding_torque(self, a, d):
         return _exact.sliding_torque(self.prof, self.E, self.mu, a, d, self.rtol)
@@ -350,6 +362,7 @@ class MDR(TorsionModel):
     """The MDR narrow-slip spring model (springs ``8G_tΔx``, ``μ* = 2μ``; torsion_mdr kernels)."""
 
     name = "mdr"
+    mu: float   # a partial-slip model always has a friction coefficient (declaration only)
 
     def sliding_torque(self, a, d):
         return _mdr.sliding_torque(self.prof, self.E, self.mu, a, d, self.rtol)

@@ -30,6 +30,8 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 import scipy.linalg as _la
 
@@ -401,9 +403,9 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     # the radius itself): the twist (torque) of both densities there, once
     xs = np.unique(np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]]))
     xs = xs[xs <= radius][::-1]
-    if kind == "twist":
+    if target_torque is None:   # kind == "twist": the twist increment is given
         f_sl, f_old = psi(slide, xs), psi(old, xs)
-        target = float(dphi)
+        target = float(cast(float, dphi))
     else:
         M_sl = torque(slide, G_t)
         f_sl = M_sl - torque_below(slide, xs, G_t)
@@ -438,6 +440,7 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     dpsi = _total(w) - _total(old)
     why, ds = "", None
     if r is not None:
+        assert bound is not None   # r and bound come together (Parameters)
         # points in contact at the start or the end of the step (a point leaving the contact
         # slips while its traction is released)
         reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
@@ -506,12 +509,12 @@ def punch_step(t: np.ndarray, m: np.ndarray, radius: float, G_t: float, *,
     gone = float(np.sum(m[~keep]))
     t, m = t[keep], m[keep]
     k = 16.0 / 3.0 * G_t
-    if target_torque is None:
-        add = float(dphi) + gone
+    if target_torque is None:   # exactly one of dphi, target_torque is given
+        add = float(cast(float, dphi)) + gone
     else:
         add = (float(target_torque) - k * float(np.sum(t ** 3 * m))) / (k * radius ** 3)
         dphi = add - gone
-    return np.append(t, radius), np.append(m, add), float(dphi)
+    return np.append(t, radius), np.append(m, add), float(cast(float, dphi))
 
 
 def punch_torque(t: np.ndarray, m: np.ndarray, G_t: float) -> float:

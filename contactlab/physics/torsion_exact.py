@@ -779,8 +779,8 @@ def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: n
             continue
         ids = np.flatnonzero(mask)
 
-        def sub(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return func(y, ids[idx])
+        def sub(y: np.ndarray, idx: np.ndarray, *, ids: np.ndarray = ids) -> np.ndarray:
+            return func(y, ids[idx])   # ids bound now: the closure runs in this iteration only
 
         out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=ftol,
                                   what=what, f_lo=f_lo[ids] if use else None,

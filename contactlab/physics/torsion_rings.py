@@ -50,6 +50,8 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 import scipy.linalg as _la
 
@@ -295,7 +297,7 @@ def _solve_active(C, rhs_cols, A, zA):
     ``C_AA λ_A = (C rhs)_A − z_A``; cheaper than the free-set solve when few points are active."""
     Cr = C @ rhs_cols
     if not A.any():
-        return Cr, np.zeros((0,) + rhs_cols.shape[1:])
+        return Cr, np.zeros((0, *rhs_cols.shape[1:]))
     rhs_A = Cr[A] - (zA if rhs_cols.ndim == 1 else np.stack([zA, np.zeros_like(zA)], axis=1))
     lamA = _la.solve(C[np.ix_(A, A)], rhs_A, assume_a="pos", check_finite=False)
     return Cr - C[:, A] @ lamA, lamA
@@ -393,7 +395,7 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         bad = bad_hi | bad_lo | bad_up | bad_dn
         if not bad.any():
             lam[F] = 0.0
-            return z, lam, float(d), it
+            return z, lam, float(cast(float, d)), it   # d: the given or the solved twist
         if it > MAX_PIVOTS:
             single = True
         if single:  # one pivot at a time (Murty): the largest index among the violators

@@ -25,7 +25,7 @@ Comes free: ``height``, ``derivative`` (f'), ``g`` (with ``strategy=``), ``g_int
 from __future__ import annotations
 
 from abc import ABC
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -35,6 +35,9 @@ from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
+
+if TYPE_CHECKING:
+    from ..symbolic.formulas import FormulaSet
 
 __all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
 
@@ -95,6 +98,17 @@ class Profile(ParamIdentity, ABC):
     params: ClassVar[tuple[Param, ...]] = ()
     #: default relative tolerance of the numeric routes
     rtol: float = DEFAULT_RTOL
+
+    if TYPE_CHECKING:
+        # the optional hooks of the module docstring (items 2 and 3), declared for type checkers
+        # only: at run time Profile has none of them, and _has() tells whether a subclass does
+        def _height(self, r: np.ndarray) -> np.ndarray: ...
+        def _slope(self, r: np.ndarray) -> np.ndarray: ...
+        def _g_closed_form(self, x: np.ndarray) -> np.ndarray: ...
+        def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
+        def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray: ...
+        def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray: ...
+        def _scalar_closed_forms(self) -> dict: ...
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -281,7 +295,9 @@ class Profile(ParamIdentity, ABC):
 
     def _g_symbolic(self, xa: np.ndarray) -> np.ndarray:
         from ..symbolic.transform import g_callable
-        return g_callable(tuple(self.power_terms()))(xa)
+        terms = self.power_terms()
+        assert terms is not None   # the symbolic route is offered for power terms only
+        return g_callable(tuple(terms))(xa)
 
     def _g_quadrature(self, xa: np.ndarray, rtol: float | None = None
                       ) -> tuple[np.ndarray, np.ndarray]:
@@ -303,7 +319,7 @@ class Profile(ParamIdentity, ABC):
         with np.errstate(divide="ignore", invalid="ignore"):
             thetas = [np.where(flat > b, np.arcsin(np.minimum(b / flat, 1.0)), 0.5 * np.pi)
                       for b in cuts]
-        edges = np.stack([np.zeros_like(flat)] + thetas + [np.full_like(flat, 0.5 * np.pi)])
+        edges = np.stack([np.zeros_like(flat), *thetas, np.full_like(flat, 0.5 * np.pi)])
         lo, hi = edges[:-1], edges[1:]
         return lo, hi, np.broadcast_to(flat, lo.shape)
 
@@ -363,10 +379,10 @@ class Profile(ParamIdentity, ABC):
         """``∫_0^a g dx`` by a closed form or the power terms, or None (quadrature route)."""
         if self._has("_g_integral_closed_form"):
             return self._g_integral_closed_form(a)
-        if self.power_terms() is not None:
+        terms = self.power_terms()
+        if terms is not None:
             from ..numeric.powers import power_integral
-            return power_integral(a, [(self._power_kappa(n) * c, n) for c, n in self.power_terms()],
-                                  1.0)
+            return power_integral(a, [(self._power_kappa(n) * c, n) for c, n in terms], 1.0)
         return None
 
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
@@ -507,7 +523,7 @@ class Profile(ParamIdentity, ABC):
             g_integral_sympy=getattr(self, "_g_integral_sympy", None),
             power_terms=self.power_terms, owner=type(self).__name__)
 
-    def formulas(self) -> dict[str, Any]:
+    def formulas(self) -> FormulaSet:
         """Named sympy expressions for this profile (``height``, ``g``, …); see ``symbolic``."""
         from ..symbolic.formulas import profile_formulas
         return profile_formulas(self)

@@ -1,7 +1,8 @@
 """Composite profiles: sums of profiles and scaled profiles (the MDR transform is linear)."""
 from __future__ import annotations
 
-from typing import Any, ClassVar
+from collections.abc import Iterable
+from typing import Any, ClassVar, cast
 
 import numpy as np
 
@@ -11,6 +12,11 @@ from ..symbolic.form import SympyForm, scaled_form, sum_form
 from .base import Profile
 
 __all__ = ["Sum", "Scaled"]
+
+
+def _total(parts: Iterable[np.ndarray]) -> np.ndarray:
+    """The builtin ``sum`` of a Sum's term arrays, in order (at least two terms: an array)."""
+    return cast(np.ndarray, sum(parts))
 
 
 class Sum(Profile):
@@ -33,7 +39,7 @@ class Sum(Profile):
             flat.extend(t.terms if isinstance(t, Sum) else (t,))
         if len(flat) < 2:
             raise ParameterError("a Sum needs at least two profiles.")
-        self.terms = tuple(flat)
+        self.terms: tuple[Profile, ...] = tuple(flat)
 
     def _param_values(self) -> tuple[Any, ...]:
         return self.terms
@@ -64,37 +70,39 @@ class Sum(Profile):
 
     def power_terms(self) -> list[tuple[float, float]] | None:
         parts = [t.power_terms() for t in self.terms]
-        return None if any(p is None for p in parts) else [ct for p in parts for ct in p]
+        if any(p is None for p in parts):
+            return None
+        return [ct for p in parts for ct in cast("list[tuple[float, float]]", p)]
 
     def _sympy_form(self) -> SympyForm:
         # the MDR is linear: every term brings its own form
         return sum_form([t._sympy_form() for t in self.terms])
 
     def _height(self, r: np.ndarray) -> np.ndarray:
-        return sum(t._height(r) for t in self.terms)
+        return _total(t._height(r) for t in self.terms)
 
     def _slope(self, r: np.ndarray) -> np.ndarray:
-        return sum(t._slope_any(r) for t in self.terms)
+        return _total(t._slope_any(r) for t in self.terms)
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
-        return sum(t._g(x) for t in self.terms)
+        return _total(t._g(x) for t in self.terms)
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
-        return sum(t._g_integral(a) for t in self.terms)
+        return _total(t._g_integral(a) for t in self.terms)
 
     # every term takes its own route at the caller's tolerance; errors add
     def _g(self, xa: np.ndarray, rtol: float | None = None) -> np.ndarray:
-        return sum(t._g(xa, rtol) for t in self.terms)
+        return _total(t._g(xa, rtol) for t in self.terms)
 
     def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
                       ) -> tuple[np.ndarray, np.ndarray]:
         parts = [t._g_with_error(xa, rtol) for t in self.terms]
-        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+        return _total(p[0] for p in parts), _total(p[1] for p in parts)
 
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
         parts = [t._g_integral_with_error(a, rtol) for t in self.terms]
-        return sum(p[0] for p in parts), sum(p[1] for p in parts)
+        return _total(p[0] for p in parts), _total(p[1] for p in parts)
 
     def _length_scale(self) -> float:
         return min(t._length_scale() for t in self.terms)

@@ -14,8 +14,9 @@ is
   (``smoothing="auto", noise=σ``; the discrepancy principle), or
 * chosen by generalised cross-validation, ``GCV(λ) = N RSS / (N - tr S_λ)²``
   (``smoothing="auto"``; λ that keep more than 80 % of the points' degrees of freedom
-  are excluded, GCV's spurious minimum at interpolation), with ``tr S_λ`` exact up to 1000 points and estimated from 32 fixed
-  Rademacher probes (Hutchinson) beyond, so the choice is the same on every run.
+  are excluded, GCV's spurious minimum at interpolation), with ``tr S_λ`` exact up to 1000
+  points and estimated from 32 fixed Rademacher probes (Hutchinson) beyond, so the choice is
+  the same on every run.
 
 On the axis the spline is even (``axis="even"``, the default): the table is mirrored,
 ``f(-r) = f(r)``, and the smoother acts on the mirrored table, so the smoothed surface has
@@ -97,7 +98,8 @@ class _Smoother:
         self.n = r.size
         # even: the smoother of the mirrored table (the axis node once), restricted to r >= 0
         self._skip = (1 if r[0] == 0 else 0) if even else None
-        full = np.concatenate([-r[::-1][:r.size - self._skip], r]) if even else r
+        # (_skip is None exactly when not even)
+        full = np.concatenate([-r[::-1][:r.size - self._skip], r]) if self._skip is not None else r
         self.x = full / r[-1]
         h = np.diff(self.x)
         m = self.x.size

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
-from typing import Any
+from functools import cache
+from typing import Any, cast
 
 from .transform import kappa_sympy
 
@@ -96,7 +96,7 @@ class SympyForm:
                          if self.flat_radius is not None else None),
             power_terms=(None if self.power_terms is None
                          else [(c.xreplace(sub), n) for c, n in self.power_terms]),
-            **{name: wrap(getattr(self, name)) for name in CALLABLE_FIELDS})
+            **cast("dict[str, Any]", {name: wrap(getattr(self, name)) for name in CALLABLE_FIELDS}))
 
 
 def symbol(name: str):
@@ -104,7 +104,7 @@ def symbol(name: str):
     return _symbol(name)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _symbol(name: str):
     import sympy as sp
     return sp.Symbol(name, positive=True)
@@ -179,10 +179,11 @@ def sum_form(forms: list[SympyForm]) -> SympyForm:
         fns = [getattr(f, attr) or (getattr(f, fallback) if fallback else None) for f in forms]
         if any(fn is None for fn in fns):
             return None
-        return lambda *args: sp.Add(*[fn(*args) for fn in fns])
+        found = cast("list[Callable]", fns)   # none is None past the test above
+        return lambda *args: sp.Add(*[fn(*args) for fn in found])
 
     if all(f.power_terms is not None for f in forms):
-        return power_form([t for f in forms for t in f.power_terms], values)
+        return power_form([t for f in forms for t in cast(list, f.power_terms)], values)
     has_flat = any(f.flat_radius is not None for f in forms)
     # the reasons in term order (a set would order them by string hash, differently per process)
     reasons = list(dict.fromkeys(f.reason for f in forms if f.reason))
@@ -205,7 +206,7 @@ def scaled_form(base: SympyForm, factor: float) -> SympyForm:
     def wrap(fn: Callable | None) -> Callable | None:
         return None if fn is None else (lambda *args: k * fn(*args))
 
-    callables = {name: wrap(getattr(base, name)) for name in CALLABLE_FIELDS}
+    callables: dict[str, Any] = {name: wrap(getattr(base, name)) for name in CALLABLE_FIELDS}
     callables["radius_of_depth"] = None
     return SympyForm(values={**base.values, k: factor},
                      reason=base.reason or "the inverse of a scaled profile is not derived",

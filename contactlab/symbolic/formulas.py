@@ -258,8 +258,9 @@ def _profile_exprs(form: SympyForm) -> tuple[dict, dict]:
     out: dict = {}
     missing: dict = {}
     why = form.reason or "not known in closed form"
-    if form.height_piecewise or form.height:
-        out["height"] = (form.height_piecewise or form.height)(r)
+    height = form.height_piecewise or form.height
+    if height:
+        out["height"] = height(r)
     else:
         missing["height"] = why
     if form.wall_radius is not None:
@@ -347,7 +348,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
     import sympy as sp
     form = _form_of(profile)
     exprs, missing = _profile_exprs(form)
-    x, r, a, d, F, phi, cs = (symbol(v) for v in VARIABLES)
+    _x, r, a, d, F, phi, cs = (symbol(v) for v in VARIABLES)
     E, Gt, mu, dg = symbol("E_star"), symbol("G_t"), symbol("mu"), symbol("Delta_gamma")
     values = dict(form.values)
     if moduli is not None:
@@ -439,6 +440,7 @@ def _contact_formulas_cached(profile: Any, moduli: Any, friction: float | None,
 
     # ---- JKR through the MDR (theory §4)
     if "force_of_radius" in exprs:
+        assert form.g is not None   # force_of_radius is derived from g (normal contact above)
         exprs["jkr_depth_of_radius"] = form.g(a) - sp.sqrt(2 * pi * a * dg / E)
         exprs["jkr_force_of_radius"] = exprs["force_of_radius"] - sp.sqrt(8 * pi * a**3 * E * dg)
         one = form.power_terms if form.power_terms is not None and len(form.power_terms) == 1 else None
