@@ -303,6 +303,7 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
     R, Z = r.ravel(), z.ravel()
     zero = np.zeros(R.shape)
     route = _route(prof, a) if a > 0 else "flat_punch"
+    comps: tuple[np.ndarray, ...]
     if a <= 0:
         comps, err = (zero, zero, zero, zero), zero
     elif route == "hertz":

@@ -388,6 +388,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                   "x_name": "depth", "y_name": "force",
                   "tip_route": "jkr" if jkr is not None else tipm.route}
     if jkr is not None and equilibrium_distance is not None:
+        assert w_fit is not None        # fitted or fixed with adhesion="jkr"
         meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
                                          equilibrium_distance)
     if tipm.route == "table":
@@ -451,7 +452,8 @@ def _tabor(profile: Profile, w: float, E_star: float, z0: float) -> float:
     import warnings
 
     from ..errors import ValidityWarning
-    c, n = profile.power_terms()[0]
+    terms = profile.power_terms()
+    c, n = terms[0] if terms else (0.0, 0.0)
     if n != 2.0:
         raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined for "
                                 "paraboloid tips (a tip radius); drop it for other tips.")

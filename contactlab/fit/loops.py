@@ -236,7 +236,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
                                                       st0, fixed)
     params = {"friction": q["friction"], "shear_modulus": q["shear_modulus"],
               "G_star": G_of(q["shear_modulus"])[0]}
-    meta = {"citations": ("PH", "H1", "MD53"), "x_name": "displacement",
+    meta: dict[str, Any] = {"citations": ("PH", "H1", "MD53"), "x_name": "displacement",
             "y_name": "tangential_force", "tip_route": tipm.route}
     if tipm.route == "table":
         meta["tip_model_errors"] = {"tangential_force": tipm.error}

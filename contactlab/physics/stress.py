@@ -73,7 +73,7 @@ def kronrod_rule() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * wk, 0.5 * wg
 
 
-def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray, nu: float
+def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Field ``(σ_rr, σ_θθ, σ_zz, σ_rz)`` of a flat punch of radius ``x`` whose surface pressure
     is ``1/sqrt(x² - r²)`` (tension positive, ``z >= 0`` the depth), Pa per unit amplitude.
@@ -116,7 +116,7 @@ def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray, nu: float
     return srr, stt, szz, srz
 
 
-def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray
+def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
                  ) -> tuple[np.ndarray, np.ndarray]:
     """Field ``(σ_θz, σ_rθ)`` of a rigid flat punch of radius ``x`` twisted by a unit angle on a
     half-space of unit shear modulus, divided by ``4/π`` [RS44] (in the twisted body: on the
@@ -150,7 +150,8 @@ def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray
     return stz, srt
 
 
-def hertz_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, p0: np.ndarray, nu: float
+def hertz_field(r: np.ndarray, z: np.ndarray, a: np.ndarray | float, p0: np.ndarray | float,
+                nu: float
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Huber's closed form of the Hertz field ``(σ_rr, σ_θθ, σ_zz, σ_rz)``, Pa.
 

@@ -156,8 +156,9 @@ def stick_radius_of_force(normal_force_inverse, mu: float, F_normal: np.ndarray,
     return normal_force_inverse(np.asarray(F_normal, float) - np.abs(np.asarray(T, float)) / mu)
 
 
-def virgin_dissipation(profile, E_star: float, G_star: float, mu: float, a: np.ndarray,
-                       d: np.ndarray, u: np.ndarray, rtol: float) -> np.ndarray:
+def virgin_dissipation(profile, E_star: float, G_star: float, mu: float,
+                       a: np.ndarray | float, d: np.ndarray | float, u: np.ndarray,
+                       rtol: float) -> np.ndarray:
     """Energy dissipated on the virgin curve from 0 to ``|u|``, J.
 
     ``D = 2∫_c^a h(|u| - h/G*) dx`` with ``h = μE*(d - g)``; uses ``∫g`` and ``∫g²``.
