@@ -24,7 +24,8 @@ of its call.
 
 The two interpolants of the same table differ at the level of the linear interpolation error:
 for a table sampled from a smooth profile the linear one is off by ~0.35 (Δr/a)² in force and
-~2.4 (Δr/a)² in contact radius, the cubic one by ~1e-12 at 1000 points (tests/unit/profiles/test_transform.py).
+~2.4 (Δr/a)² in contact radius, the cubic one by ~1e-12 at 1000 points
+(tests/unit/profiles/test_transform.py).
 
 Heights are taken relative to the table's first value (the datum of a measurement is arbitrary),
 and a table starting at ``r0 > 0`` is extended flat to the axis. Contact radii must stay inside the

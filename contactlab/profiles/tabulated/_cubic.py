@@ -8,6 +8,8 @@ too large are recomputed by a Gauss-Legendre rule per table interval in θ (see
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums, weighted_row_sums
@@ -108,7 +110,8 @@ class _CubicTransform(_TableBase):
         bad = err > CUBIC_SUM_RTOL * np.abs(val)
         if np.any(bad):
             xb = np.asarray(x, dtype=float)[bad]
-            weight, p = {"g": (0, 1), "int": (2, 2), "xg": ("xg", 3)}[kind]
+            rules: dict[str, tuple[int | str, int]] = {"g": (0, 1), "int": (2, 2), "xg": ("xg", 3)}
+            weight, p = rules[kind]
             v, e = self._spline_theta_sum(xb, weight)
             val[bad], err[bad] = v * xb**p, e * xb**p
         return val, err, slope
@@ -184,14 +187,14 @@ class _CubicTransform(_TableBase):
                 size = abs(head[0]) + np.abs(head[1]) + np.abs(head[2]) + mag_nodes
                 out[start:start + chunk][pos] = xv * total_g
                 err[start:start + chunk][pos] = 8 * eps * xv * size + xv * loc_mag
-                if with_slope:
+                if slope is not None:
                     # (the rounding-level α term, a cusp, is left out of the Newton slope)
                     dnodes = (S[2] - S[3]) / xv + xv * T[1]
                     slope[start:start + chunk][pos] = total_g + xv * (
                         2.0 * c0 + 1.5 * np.pi * d0 * xv + dnodes + loc_slope)
                 continue
             if kind == "int":
-                R3 = weighted_row_sums(root ** 3 / 3.0, c_r3, total)
+                R3 = weighted_row_sums(root ** 3 / 3.0, cast(np.ndarray, c_r3), total)
                 c13 = 13.0 / 24.0 * xv2
                 out[start:start + chunk][pos] = (
                     0.25 * np.pi * b0 * xv2 + 2.0 / 3.0 * c0 * xv2 * xv

@@ -51,7 +51,7 @@ class _LinearTransform(_TableBase):
             asin_sum = row_sums(np.where(below, ds[None, :] * np.arcsin(q), 0.0), nodes_all.size)
             base = 0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]] - asin_sum
             out[start:start + chunk][pos] = xs[pos] * base
-            if with_slope:
+            if slope is not None:
                 with np.errstate(divide="ignore", invalid="ignore"):
                     cusp = np.where(below, ds[None, :] * nodes[None, :]
                                     / np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :])), 0.0)
@@ -172,7 +172,8 @@ class _LinearTransform(_TableBase):
                               np.arccosh(ap / b))
             hi = np.where(hit, 0.0, hi)
 
-            def integrand(t: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            def integrand(t: np.ndarray, idx: np.ndarray, rp: np.ndarray = rp,
+                          b: np.ndarray = b, above: np.ndarray = above) -> np.ndarray:
                 rv, bv = rp[idx][:, None], b[idx][:, None]
                 up = above[idx][:, None]
                 ch, sh = np.cosh(t), np.sinh(t)
@@ -235,7 +236,8 @@ class _LinearTransform(_TableBase):
             rp, b, w = rc[ip], nodes[jn], ds[jn]
             lo = np.arcsin(b / rp)
 
-            def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            def integrand(th: np.ndarray, idx: np.ndarray, rp: np.ndarray = rp,
+                          b: np.ndarray = b) -> np.ndarray:
                 x = rp[idx][:, None] * np.sin(th)
                 bv = b[idx][:, None]
                 root = np.sqrt(np.maximum((x - bv) * (x + bv), 0.0))

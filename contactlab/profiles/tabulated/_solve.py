@@ -8,6 +8,8 @@ dispatches here.
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ...errors import OutsideTheoryError
@@ -63,16 +65,17 @@ class _TableSolver(_TableBase):
         rtol = self.rtol if rtol is None else rtol
         flat = np.asarray(d, dtype=float).ravel()
         coarse = self._coarse_nodes()               # includes the last node
-        g_end = float(self._node_g[-1])
+        node_g = cast(np.ndarray, self._node_g)     # (set by _coarse_nodes)
+        g_end = float(node_g[-1])
         if np.any(flat > g_end):
             i = int(np.argmax(flat > g_end))
             raise OutsideTheoryError(
                 f"depth={flat[i]!r} m needs a contact radius >= max_radius={limit!r} m of "
                 f"{self!r}; reduce the depth/force.")
         # bracket from the cached coarse node grid (65 nodes, computed once per table)
-        j = np.clip(np.searchsorted(self._node_g[coarse], flat, side="left"), 1, coarse.size - 1)
+        j = np.clip(np.searchsorted(node_g[coarse], flat, side="left"), 1, coarse.size - 1)
         lo, hi = coarse[j - 1], coarse[j]
-        g_lo, g_hi = self._node_g[lo].copy(), self._node_g[hi].copy()
+        g_lo, g_hi = node_g[lo].copy(), node_g[hi].copy()
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
         return self._newton_on_node_interval(
             flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),

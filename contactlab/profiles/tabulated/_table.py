@@ -8,7 +8,7 @@ dispatching to them. Overview and formulas: :mod:`contactlab.profiles.tabulated`
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
@@ -18,6 +18,9 @@ from ...symbolic.form import SympyForm
 from ._cubic import _CubicTransform
 from ._linear import _LinearTransform
 from ._solve import _TableSolver
+
+if TYPE_CHECKING:
+    from ..smoothing import SmoothingReport
 
 __all__ = ["Tabulated", "BREAKPOINT_LIMIT"]
 
@@ -134,8 +137,8 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
             raise TabulatedDataError(
                 f"r[{i + 1}]={float(r_arr[i + 1])!r} < r[{i}]={float(r_arr[i])!r}: radii must be "
                 "strictly increasing (sort the table).")
-        self.smoothing_report = None
-        self._band = None
+        self.smoothing_report: SmoothingReport | None = None
+        self._band: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         if smoothing is not None or admissible is not None:
             f_arr = self._smooth(r_arr, f_arr, smoothing, noise, admissible, axis)
         f_rel = f_arr - f_arr[0]
@@ -198,7 +201,7 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         from dataclasses import replace
 
         from ..smoothing import SmoothingReport, nearest_admissible, slope_violations, smooth_table
-        parts = None
+        parts: Any = None
         if smoothing is not None:
             f_new, report, parts = smooth_table(r, f, smoothing, noise, axis)
         else:
@@ -311,7 +314,9 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         array([  0.,  25., 100.])
         """
         from ...numeric.tables import read_columns
-        units = {k: v for k, v in ((0, r_unit), (1, f_unit)) if v is not None}
+        # (columns named by position: read_columns takes int keys as well as names)
+        units: dict[Any, str | None] = {k: v for k, v in ((0, r_unit), (1, f_unit))
+                                        if v is not None}
         names, cols = read_columns(path, names=("r", "f"), units=units, delimiter=delimiter,
                                    min_columns=2, quote=bool(quote_contents),
                                    dimension=("length", "length"))
@@ -385,8 +390,9 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         """``(g, g')`` of the interpolant in one pass over the nodes."""
         if self._spline is not None:
             g, _, gp = self._cubic_value(x, "g", with_slope=True)
-            return g, gp
-        return self._arcsine_sums(x, with_slope=True)
+            return g, cast(np.ndarray, gp)
+        g, gp = self._arcsine_sums(x, with_slope=True)
+        return g, cast(np.ndarray, gp)
 
     def _g_quadrature(self, xa: np.ndarray, rtol: float | None = None
                       ) -> tuple[np.ndarray, np.ndarray]:
@@ -465,11 +471,12 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         x = np.asarray(x, dtype=float)
         eps = np.finfo(float).eps
         if self._spline is not None:
-            g, err, slope = self._cubic_sums(x, "g", with_slope=True)
+            _, err, c_slope = self._cubic_sums(x, "g", with_slope=True)
+            slope = cast(np.ndarray, c_slope)
             with np.errstate(divide="ignore", invalid="ignore"):
                 est = np.where(x > 0, err / np.where(x > 0, x, 1.0), 0.0)
             return slope, est + 8 * eps * np.abs(slope)
-        _, slope = self._arcsine_sums(x, with_slope=True)
+        slope = cast(np.ndarray, self._arcsine_sums(x, with_slope=True)[1])
         return slope, 8 * eps * (np.abs(slope) + 0.5 * np.pi * float(np.max(np.abs(self._slopes)))
                                  + np.abs(self._dslope).sum())
 
