@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import contactlab.profiles.tabulated as tabulated
+import contactlab.profiles.tabulated._cubic as tabulated_cubic
+import contactlab.profiles.tabulated._linear as tabulated_linear
 from contactlab.numeric.fixed_sums import BLOCK, row_sums, weighted_row_sums
 from contactlab.profiles import Tabulated
 
@@ -54,7 +55,9 @@ def test_point_alone_and_in_any_batch_bit_identical(kind, spacing, monkeypatch):
     shuffled = _evaluate(tab, x[order])
     # a batch whose largest point reaches the table's end (more node columns for every point)
     wide = _evaluate(tab, np.r_[x, 2e-3])
-    monkeypatch.setattr(tabulated, "_CHUNK", 3 * N)        # chunks of ~3 points
+    # chunks of ~3 points (each transform module reads its own binding of the block size)
+    monkeypatch.setattr(tabulated_linear, "_CHUNK", 3 * N)
+    monkeypatch.setattr(tabulated_cubic, "_CHUNK", 3 * N)
     chunked = _evaluate(tab, x)
     for q, v in batch.items():
         assert np.all(np.isfinite(v)), q

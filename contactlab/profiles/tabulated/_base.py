@@ -1,0 +1,75 @@
+"""Shared state of a :class:`~contactlab.profiles.tabulated.Tabulated` table.
+
+The attributes every part of the table reads (set by ``Tabulated.__init__``), the guard that keeps
+radii inside the table, and the closed-form node integrals the linear and the cubic transforms
+share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ...errors import OutsideTheoryError
+from ..base import Profile
+
+#: elements per dense (x, node) block of the node sums
+_CHUNK = 2_000_000
+
+
+class _TableBase(Profile):
+    """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
+
+    r: np.ndarray
+    f: np.ndarray
+    interpolation: str
+    axis: str
+    _slopes: np.ndarray
+    _dslope: np.ndarray
+    _monotone_f: bool | None
+    _verified_upto: float
+    _spline: Any
+    _spline_d: Any
+    _node_g: np.ndarray | None
+    _cubic_base: tuple[float, float, float]
+    _cubic_nodes: np.ndarray
+    _cubic_jumps: np.ndarray
+    _cubic_local_lo: np.ndarray
+    _cubic_local_hi: np.ndarray
+    _cubic_local_d: np.ndarray
+    _cubic_local_mom: np.ndarray
+
+    if TYPE_CHECKING:
+        # the dispatching hooks of Tabulated, which the parts call (declared for type checkers)
+        def _g_and_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
+
+        def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
+
+        def _height(self, r: np.ndarray) -> np.ndarray: ...
+
+    def _guard(self, r: np.ndarray, name: str) -> None:
+        if np.any(r > self.r[-1]):
+            raise OutsideTheoryError(
+                f"{name}={float(np.max(r))!r} m lies beyond the table (last radius {self.r[-1]!r} m): "
+                "extend the measured profile or reduce the load.")
+
+    @staticmethod
+    def _node_moments(ap: np.ndarray, b: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
+        """``(P2, Q2, P4, magnitudes)`` of :meth:`_xg_integral_closed_form` for ``b < a``
+        (entries with ``b >= a`` are 0); ``magnitudes`` are the sums of the absolute values of
+        each formula's parts (before they cancel), for rounding estimates."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = np.sqrt(np.maximum((ap - b) * (ap + b), 0.0))
+            theta = np.arctan2(s, b)
+            L = np.where(s > 0, np.arcsinh(s / np.where(b > 0, b, 1.0)), 0.0)
+        a2, a3, b2 = ap * ap, ap * ap * ap, b * b
+        ks = b / 6.0 * (ap * s + b2 * L)
+        P2 = a3 * theta / 3.0 - ks
+        q1, q2 = ap * (2.0 * a2 - b2) * s / 8.0, b2 * b2 * L / 8.0
+        Q2 = q1 - q2
+        p4a = a3 * a2 * theta / 5.0
+        p4b = b / 5.0 * (a3 * s / 4.0 + 3.0 * b2 / 8.0 * (ap * s + b2 * L))
+        P4 = p4a - p4b
+        mags = (a3 * theta / 3.0 + ks, np.abs(q1) + q2, p4a + p4b)
+        return P2, Q2, P4, mags

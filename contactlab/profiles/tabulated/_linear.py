@@ -1,0 +1,255 @@
+"""Linear interpolation of a table: its exact MDR transform as sums over the slope jumps.
+
+The piecewise-linear interpolant is a cone plus truncated cones at the interior nodes, so g, its
+slope, ``∫g``, ``∫x g``, the pressure shape and the Abel transform are sums of elementary terms
+over the nodes below each point (see :mod:`contactlab.profiles.tabulated`). Private: the public
+class is :class:`~contactlab.profiles.tabulated.Tabulated`, which dispatches here.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ...numeric.fixed_sums import row_sums
+from ._base import _CHUNK, _TableBase
+
+
+class _LinearTransform(_TableBase):
+    """Transform kernels of the linear interpolant (private helpers only)."""
+
+    def _arcsine_sums(self, x: np.ndarray, with_slope: bool
+                      ) -> tuple[np.ndarray, np.ndarray | None]:
+        """g(x) and, if asked, g'(x) of the linear interpolant in one pass over the nodes.
+
+        ``g = x [s_k π/2 − Σ Δs_j asin(r_j/x)]`` and
+        ``g' = s_k π/2 − Σ Δs_j [asin(r_j/x) − r_j/sqrt(x² − r_j²)]`` (nodes r_j <= x; g' is
+        infinite exactly at a node with a slope jump, the square-root cusp).
+        """
+        self._guard(x, "x")
+        x = np.asarray(x, dtype=float)
+        flat = x.ravel()
+        out = np.zeros(flat.size)
+        slope = np.zeros(flat.size) if with_slope else None
+        # only nodes with a slope jump contribute, and only those below the largest x
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
+        for start in range(0, flat.size, chunk):
+            xs = flat[start:start + chunk]
+            pos = xs > 0
+            if not np.any(pos):
+                continue
+            xp = xs[pos][:, None]
+            m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
+            nodes, ds = nodes_all[:m], ds_all[:m]
+            below = nodes[None, :] <= xp
+            # nodes above x give 1 (masked below); dividing by max(x, node) keeps a tiny x
+            # (radius floors of 1e-300) from overflowing node / x
+            q = nodes[None, :] / np.maximum(xp, nodes[None, :])
+            # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
+            asin_sum = row_sums(np.where(below, ds[None, :] * np.arcsin(q), 0.0), nodes_all.size)
+            base = 0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]] - asin_sum
+            out[start:start + chunk][pos] = xs[pos] * base
+            if slope is not None:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    cusp = np.where(below, ds[None, :] * nodes[None, :]
+                                    / np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :])), 0.0)
+                slope[start:start + chunk][pos] = base + row_sums(cusp, nodes_all.size)
+        return out.reshape(x.shape), None if slope is None else slope.reshape(x.shape)
+
+    def _linear_g_integral(self, a: np.ndarray) -> np.ndarray:
+        self._guard(a, "a")
+        a = np.asarray(a, dtype=float)
+        flat = a.ravel()
+        out = np.zeros(flat.size)
+        # summation by parts of Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr: with
+        # P_a(r) = (r sqrt(a²-r²) + a² asin(r/a))/2 and P_a(a) = πa²/4,
+        # ∫_0^a g = s_k πa²/4 − Σ_{r_j <= a} Δs_j P_a(r_j) (only nodes with a slope jump)
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        for start in range(0, flat.size, chunk):
+            aa = flat[start:start + chunk]
+            pos = aa > 0
+            if not np.any(pos):
+                continue
+            ap = aa[pos][:, None]
+            m = int(np.searchsorted(nodes_all, ap.max(), side="right"))
+            nodes, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
+            below = nodes <= ap
+            q = np.minimum(nodes / ap, 1.0)
+            P = 0.5 * (nodes * np.sqrt(np.maximum((ap - nodes) * (ap + nodes), 0.0))
+                       + ap**2 * np.arcsin(q))
+            out[start:start + chunk][pos] = (
+                self._slopes[k_all[start:start + chunk][pos]] * 0.25 * np.pi * aa[pos] ** 2
+                - row_sums(np.where(below, ds * P, 0.0), nodes_all.size))
+        return out.reshape(a.shape)
+
+    def _linear_xg_integral(self, a: np.ndarray) -> np.ndarray:
+        """``∫_0^a x g(x) dx`` (m³) of the interpolant in closed form, O(nodes below a) per point.
+
+        With ``g = x [s_0 π/2 + Σ_{r_j<x} Δs_j acos(r_j/x)]`` (linear; the spline's node terms
+        likewise, see :meth:`_cubic_sums`) every node contributes elementary integrals
+        (``b = r_j``, ``s = sqrt(a² - b²)``, ``θ = acos(b/a)``, ``L = asinh(s/b)``):
+
+        * ``P2 = ∫_b^a x² acos(b/x) dx = a³θ/3 - (b/6)(a s + b² L)``,
+        * ``Q2 = ∫_b^a x² sqrt(x² - b²) dx = a(2a² - b²) s/8 - b⁴ L/8``,
+        * ``P4 = ∫_b^a x⁴ acos(b/x) dx = a⁵θ/5 - (b/5)(a³ s/4 + 3b² (a s + b² L)/8)``.
+
+        The quadratures this replaces (torsion's sliding torque, the spring foundation's
+        ``∫_0^x s g(s) ds``) could not converge across thousands of square-root cusps.
+        """
+        a = np.asarray(a, dtype=float)
+        flat = a.ravel()
+        out = np.zeros(flat.size)
+        jump = self._dslope != 0
+        nodes_all = self.r[1:-1][jump]
+        ds_all = self._dslope[jump]
+        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        for start in range(0, flat.size, chunk):
+            aa = flat[start:start + chunk]
+            pos = aa > 0
+            if not np.any(pos):
+                continue
+            av = aa[pos]
+            m = int(np.searchsorted(nodes_all, av.max(), side="left"))
+            ap = av[:, None]
+            b, ds = nodes_all[:m][None, :], ds_all[:m][None, :]
+            P2 = self._node_moments(ap, b)[0]
+            out[start:start + chunk][pos] = (np.pi / 6.0 * self._slopes[0] * av**3
+                                             + row_sums(np.where(b < ap, ds * P2, 0.0),
+                                                        nodes_all.size))
+        return out.reshape(a.shape)
+
+    def _linear_pressure_shape(self, r: np.ndarray, a: np.ndarray, rtol: float
+                                      ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``S(r, a) = ∫_r^a g'(x)/sqrt(x²-r²) dx`` of the linear interpolant, term by term.
+
+        The interpolant is a cone of slope ``s_0`` plus truncated cones ``Δs_j (r - r_j)_+`` at the
+        interior nodes, so ``S = s_0 (π/2) arccosh(a/r) + Σ_j Δs_j S_j`` with
+        ``h_j'(x) = arccos(r_j/x) + r_j/sqrt(x²-r_j²)`` and
+
+        * ``r > r_j``: ``S_j = ∫_0^{arccosh(a/r)} h_j'(r cosh u) du``,
+        * ``r < r_j``: ``S_j = ∫_0^{arccosh(a/r_j)} r_j (1 + sinh v gd(v)) / sqrt(r_j² cosh²v - r²) dv``,
+
+        both with bounded, smooth integrands (one batched tanh-sinh quadrature). At a node
+        (``r = r_j``, a slope jump) the pressure is logarithmically infinite: ``±inf``. Cost
+        O(number of nodes below ``a``) per radius. Returns ``None`` for the cubic spline (which
+        takes the generic route).
+        """
+        from ...numeric.quadrature import tanh_sinh
+        r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+        out = np.zeros(r.shape)
+        err = np.zeros(r.shape)
+        inside = r < a
+        if not np.any(inside):
+            return out, err
+        self._guard(a[inside], "a")
+        rr, aa = r[inside], a[inside]
+        s0 = self._slopes[0]
+        if s0 != 0:             # (a flat first segment has no tip term, also on the axis)
+            with np.errstate(divide="ignore"):
+                val = s0 * 0.5 * np.pi * np.arccosh(aa / np.where(rr > 0, rr, 0.0))
+        else:
+            val = np.zeros(rr.shape)
+        er = np.zeros(rr.shape)
+        keep = self._dslope != 0
+        nodes, ds = self.r[1:-1][keep], self._dslope[keep]
+        chunk = max(1, 200_000 // max(nodes.size, 1))
+        for start in range(0, rr.size, chunk):
+            rc, ac = rr[start:start + chunk], aa[start:start + chunk]
+            ip, jn = np.nonzero(nodes[None, :] < ac[:, None])
+            if ip.size == 0:
+                continue
+            rp, ap, b, w = rc[ip], ac[ip], nodes[jn], ds[jn]
+            hit = rp == b
+            above = rp > b
+            with np.errstate(divide="ignore", invalid="ignore"):
+                hi = np.where(above, np.arccosh(ap / np.where(above, rp, 1.0)),
+                              np.arccosh(ap / b))
+            hi = np.where(hit, 0.0, hi)
+
+            def integrand(t: np.ndarray, idx: np.ndarray, rp: np.ndarray = rp,
+                          b: np.ndarray = b, above: np.ndarray = above) -> np.ndarray:
+                rv, bv = rp[idx][:, None], b[idx][:, None]
+                up = above[idx][:, None]
+                ch, sh = np.cosh(t), np.sinh(t)
+                x = rv * ch
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    root = np.sqrt(np.maximum((x - bv) * (x + bv), 0.0))
+                    f_above = np.arctan2(root, bv) + bv / root
+                    q = np.sqrt(np.maximum((bv * ch - rv) * (bv * ch + rv), 0.0))
+                    f_below = bv * (1.0 + sh * np.arctan(sh)) / q
+                return np.where(up, f_above, f_below)
+
+            res = tanh_sinh(integrand, np.zeros_like(hi), hi, rtol=rtol, raise_on_failure=False)
+            terms = w * res.value
+            terms = np.where(hit, np.sign(w) * np.inf, terms)
+            part = np.zeros(rc.size)
+            np.add.at(part, ip, terms)
+            e = np.zeros(rc.size)
+            np.add.at(e, ip, np.abs(w) * res.error)
+            val[start:start + chunk] += part
+            er[start:start + chunk] += e
+        out[inside] = val
+        err[inside] = er
+        return out, err
+
+    def _linear_abel_g(self, r: np.ndarray, a: np.ndarray, rtol: float
+                              ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``A(r, a) = (2/π) ∫_0^{asin(min(1,a/r))} g(r sinθ) dθ`` of the linear interpolant.
+
+        Inside the contact ``A = f(r)``. Outside, term by term over the cone plus truncated cones
+        (``h_j(x) = x arccos(r_j/x)`` for ``x > r_j``), with ``θ_a = asin(a/r)``:
+        ``A = s_0 r (1 - cos θ_a) + (2/π) Σ_j Δs_j ∫_{θ_j}^{θ_a} r sinθ arccos(r_j/(r sinθ)) dθ``,
+        ``θ_j = asin(r_j/r)``. Each integrand is smooth inside its interval (the kink of ``h_j``
+        sits at the lower end): one batched tanh-sinh quadrature. Returns ``None`` for the cubic
+        spline.
+        """
+        from ...numeric.quadrature import tanh_sinh
+        r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+        out = np.zeros(r.shape)
+        err = np.zeros(r.shape)
+        inside = (r <= a) & (r > 0)
+        if np.any(inside):
+            out[inside] = self._height(r[inside])
+        outside = r > a
+        if not np.any(outside):
+            return out, err
+        self._guard(a[outside], "a")
+        ro, ao = r[outside], a[outside]
+        th_a = np.arcsin(ao / ro)
+        cone = self._slopes[0] * ro * (1.0 - np.cos(th_a))
+        val = np.zeros(ro.shape)
+        er = np.zeros(ro.shape)
+        keep = self._dslope != 0
+        nodes, ds = self.r[1:-1][keep], self._dslope[keep]
+        chunk = max(1, 200_000 // max(nodes.size, 1))
+        for start in range(0, ro.size, chunk):
+            rc, ac, tc = ro[start:start + chunk], ao[start:start + chunk], th_a[start:start + chunk]
+            ip, jn = np.nonzero(nodes[None, :] < ac[:, None])
+            if ip.size == 0:
+                continue
+            rp, b, w = rc[ip], nodes[jn], ds[jn]
+            lo = np.arcsin(b / rp)
+
+            def integrand(th: np.ndarray, idx: np.ndarray, rp: np.ndarray = rp,
+                          b: np.ndarray = b) -> np.ndarray:
+                x = rp[idx][:, None] * np.sin(th)
+                bv = b[idx][:, None]
+                root = np.sqrt(np.maximum((x - bv) * (x + bv), 0.0))
+                return x * np.arctan2(root, bv)
+
+            res = tanh_sinh(integrand, lo, tc[ip], rtol=rtol, raise_on_failure=False)
+            part = np.zeros(rc.size)
+            np.add.at(part, ip, w * res.value)
+            e = np.zeros(rc.size)
+            np.add.at(e, ip, np.abs(w) * res.error)
+            val[start:start + chunk] += part
+            er[start:start + chunk] += e
+        out[outside] = cone + 2.0 / np.pi * val
+        err[outside] = 2.0 / np.pi * er
+        return out, err

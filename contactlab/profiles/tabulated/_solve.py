@@ -1,0 +1,258 @@
+"""Solving a table for its contact radius: node search, then Newton across one node interval.
+
+Depth (``g(a) = d``) and force (``a g(a) - ∫_0^a g = F/(2E*)``) are solved on the memoised node
+values first, then inside the node interval in a variable that removes the square-root cusp of
+g; tables whose g may decrease are solved for the first crossing and checked for annular
+contacts. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
+dispatches here.
+"""
+from __future__ import annotations
+
+from typing import cast
+
+import numpy as np
+
+from ...errors import OutsideTheoryError
+from ._base import _TableBase
+
+
+class _TableSolver(_TableBase):
+    """Contact-radius solvers of a table (private helpers only)."""
+
+    def _grid_g(self) -> tuple[np.ndarray, np.ndarray]:
+        """g on the nodes and interval midpoints (cached; O(N²), built only for tables whose
+        interpolant is not monotone, where the first crossing g = d must be located)."""
+        cached = self.__dict__.get("_grid_cache")
+        if cached is None:
+            grid = np.sort(np.concatenate([self.r, 0.5 * (self.r[1:] + self.r[:-1])]))
+            cached = (grid, self._g(grid))
+            self.__dict__["_grid_cache"] = cached
+        return cached
+
+    def _solve_radius_first_crossing(self, d: np.ndarray, rtol: float) -> np.ndarray:
+        """Smallest ``a`` with ``g(a) = d`` for tables whose g may decrease somewhere: bisection
+        could land beyond a dip that lies outside the true contact, so the first crossing is
+        located on the cached node/midpoint grid (the one the ring-contact check needs anyway)."""
+        from ..base import root_rtol
+        grid, g = self._grid_g()
+        running = np.maximum.accumulate(g)
+        i = np.searchsorted(running, d, side="left")
+        if np.any(i >= grid.size):
+            k = int(np.argmax(i >= grid.size))
+            raise OutsideTheoryError(
+                f"depth={float(d.ravel()[k])!r} m needs a contact radius beyond the table (last "
+                f"radius {self.r[-1]!r} m); extend the measured profile or reduce the load.")
+        i = np.maximum(i, 1)
+        from ...numeric.roots import bracketed_root
+        return bracketed_root(lambda x, idx: self._g(x), d, grid[i - 1], grid[i],
+                              rtol=root_rtol(rtol), what="contact radius")
+
+    def _solve_table_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
+        """g(a) = d for the linear interpolant: a search over the nodes, then a smooth solve.
+
+        The node interval holding ``a`` is found by safeguarded interpolation search (g is nearly
+        linear across many nodes; each step tests the two nodes around the guess in one call and
+        alternates with bisection when the bracket does not halve), typically 2-3 calls instead
+        of ``log2(N)`` bisections. Between two nodes g is analytic except for the
+        ``sqrt(x - r_k)`` kink at the left node, which ``x = r_k + (r_{k+1} - r_k) u²`` removes,
+        so the bracketed solve in ``u`` (started with the memoised node values) converges
+        superlinearly. The cubic spline takes the generic route.
+        """
+        if not self._monotone_f:
+            return self._solve_radius_first_crossing(d, self.rtol if rtol is None else rtol)
+        from ...errors import OutsideTheoryError
+        from ..base import root_rtol
+        rtol = self.rtol if rtol is None else rtol
+        flat = np.asarray(d, dtype=float).ravel()
+        coarse = self._coarse_nodes()               # includes the last node
+        node_g = cast(np.ndarray, self._node_g)     # (set by _coarse_nodes)
+        g_end = float(node_g[-1])
+        if np.any(flat > g_end):
+            i = int(np.argmax(flat > g_end))
+            raise OutsideTheoryError(
+                f"depth={flat[i]!r} m needs a contact radius >= max_radius={limit!r} m of "
+                f"{self!r}; reduce the depth/force.")
+        # bracket from the cached coarse node grid (65 nodes, computed once per table)
+        j = np.clip(np.searchsorted(node_g[coarse], flat, side="left"), 1, coarse.size - 1)
+        lo, hi = coarse[j - 1], coarse[j]
+        g_lo, g_hi = node_g[lo].copy(), node_g[hi].copy()
+        lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
+        return self._newton_on_node_interval(
+            flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),
+            self._g_and_slope, self._g).reshape(np.shape(d))
+
+    @staticmethod
+    def _node_search(at_nodes, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                     v_lo: np.ndarray, v_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Narrow node brackets ``[lo, hi]`` of an increasing node function to adjacent nodes.
+
+        Safeguarded interpolation search: guess the node from the bracket values, test the two
+        nodes around the guess in one call of ``at_nodes`` (memoised), alternate with a bisection
+        step whenever the bracket did not halve.
+        """
+        interpolate = True
+        while True:
+            open_ = np.flatnonzero(hi - lo > 1)
+            if open_.size == 0:
+                break
+            lo_o, hi_o = lo[open_], hi[open_]
+            if interpolate:
+                # the function is nearly linear across a coarse bracket: guess the node interval
+                # from the bracket values and test both of its nodes in one call
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    frac = (target[open_] - v_lo[open_]) / (v_hi[open_] - v_lo[open_])
+                frac = np.where(np.isfinite(frac), frac, 0.5)
+                k = lo_o + np.floor(frac * (hi_o - lo_o)).astype(np.intp)
+                k = np.clip(k, lo_o, hi_o - 1)
+                pair = at_nodes(np.concatenate([k, k + 1])).reshape(2, -1)
+                below_k = pair[0] < target[open_]
+                below_k1 = pair[1] < target[open_]
+                # keep the tighter of the two tested nodes on each side of the target
+                new_lo = np.where(below_k1, k + 1, np.where(below_k, k, lo_o))
+                new_hi = np.where(~below_k, k, np.where(~below_k1, k + 1, hi_o))
+                v_lo[open_] = np.where(below_k1, pair[1], np.where(below_k, pair[0], v_lo[open_]))
+                v_hi[open_] = np.where(~below_k, pair[0], np.where(~below_k1, pair[1], v_hi[open_]))
+                shrunk = (new_hi - new_lo) <= 0.5 * (hi_o - lo_o)
+                lo[open_], hi[open_] = new_lo, new_hi
+                interpolate = bool(np.all(shrunk))   # else alternate with a bisection step
+            else:
+                mid = (lo_o + hi_o) // 2
+                v_mid = at_nodes(mid)
+                below = v_mid < target[open_]
+                lo[open_] = np.where(below, mid, lo_o)
+                hi[open_] = np.where(below, hi_o, mid)
+                v_lo[open_] = np.where(below, v_mid, v_lo[open_])
+                v_hi[open_] = np.where(below, v_hi[open_], v_mid)
+                interpolate = True
+        return lo, hi
+
+    def _reduced_force_at_nodes(self, idx: np.ndarray) -> np.ndarray:
+        """``H = a g(a) - ∫_0^a g`` (force / 2E*) at table nodes, memoised like g."""
+        cache = self.__dict__.get("_node_H")
+        if cache is None:
+            cache = np.full(self.r.size, np.nan)
+            self.__dict__["_node_H"] = cache
+        vals = cache[idx]
+        missing = np.isnan(vals)
+        if np.any(missing):
+            new = np.unique(idx[missing])
+            x = self.r[new]
+            cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
+            vals = cache[idx]
+        return vals
+
+    def _table_radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
+        """Contact radius with ``a g(a) - ∫_0^a g = target`` (= F/(2E*)), or None (generic route).
+
+        The same scheme as :meth:`_solve_radius`: node search on the memoised values, then Newton
+        in ``u`` with ``dH/da = a g'(a)``; used for convex linear tables only.
+        """
+        if not self._monotone_f:
+            return None
+        from ...errors import OutsideTheoryError
+        from ..base import root_rtol
+        r = self.r
+        flat = np.asarray(target, dtype=float).ravel()
+        coarse = self._coarse_nodes()
+        H_c = self._reduced_force_at_nodes(coarse)
+        if np.any(flat > H_c[-1]):
+            i = int(np.argmax(flat > H_c[-1]))
+            raise OutsideTheoryError(
+                f"force/E* = {2 * float(flat[i]):.6g} m² needs a contact radius beyond the table "
+                f"(last radius {float(r[-1])!r} m, which carries force/E* = "
+                f"{2 * float(H_c[-1]):.6g} m²); extend the measured profile or reduce the force.")
+        j = np.clip(np.searchsorted(H_c, flat, side="left"), 1, coarse.size - 1)
+        lo, hi = coarse[j - 1], coarse[j]
+        lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
+                                   H_c[j - 1].copy(), H_c[j].copy())
+
+        def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            g, gp = self._g_and_slope(x)
+            return x * g - self._g_integral_closed_form(x), x * gp      # dH/da = a g'(a)
+
+        return self._newton_on_node_interval(
+            flat, lo, hi, self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi),
+            0.5 * root_rtol(rtol), value_and_slope,
+            lambda x: x * self._g(x) - self._g_integral_closed_form(x)).reshape(np.shape(target))
+
+    def _newton_on_node_interval(self, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                                 v0: np.ndarray, v1: np.ndarray, tol: float, value_and_slope,
+                                 value) -> np.ndarray:
+        """Solve ``v(x) = target`` inside node intervals ``[r[lo], r[hi]]`` (``v`` increasing).
+
+        Newton in ``u`` with ``x = r_lo + h u²`` (removes the square-root cusp of g at the left
+        node), started from linear interpolation of ``v`` in ``x`` (dense tables: the smooth part
+        dominates); each step costs one pass over the nodes for ``v`` and ``dv/dx`` together, and
+        three to four steps reach ``tol``. Elements that leave ``[0, 1]`` or do not converge go to
+        the bracketed solver on the same interval (``value`` only, end values known).
+        """
+        from ...numeric.roots import bracketed_root
+        x0, h = self.r[lo], self.r[hi] - self.r[lo]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.sqrt(np.clip(np.where(v1 > v0, (target - v0) / (v1 - v0), 0.25), 1e-12, 1.0))
+        done = np.zeros(target.size, dtype=bool)
+        for _ in range(6):
+            act = np.flatnonzero(~done)
+            if act.size == 0:
+                break
+            x = x0[act] + h[act] * u[act] ** 2
+            v, dv = value_and_slope(x)
+            step = (v - target[act]) / (dv * 2 * h[act] * u[act])
+            u_new = u[act] - step
+            ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
+            u[act] = np.where(ok, u_new, u[act])
+            conv = ok & (np.abs(step) * 2 * h[act] * u[act]
+                         <= tol * (x0[act] + h[act] * u[act] ** 2))
+            done[act[conv]] = True
+        rest = np.flatnonzero(~done)
+        if rest.size:
+            def func(uu: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                return value(x0[rest][idx] + h[rest][idx] * uu * uu)
+
+            u[rest] = bracketed_root(func, target[rest], np.zeros(rest.size), np.ones(rest.size),
+                                     rtol=tol, what="contact radius", f_lo=v0[rest],
+                                     f_hi=v1[rest])
+        return x0 + h * u * u
+
+    def _coarse_nodes(self) -> np.ndarray:
+        """Indices of 65 evenly spaced nodes whose g is memoised once (the search's first bracket)."""
+        idx = self.__dict__.get("_coarse_idx")
+        if idx is None:
+            idx = np.unique(np.linspace(0, self.r.size - 1, 65).round().astype(np.intp))
+            self._g_at_nodes(idx)
+            self.__dict__["_coarse_idx"] = idx
+        return idx
+
+    def _g_at_nodes(self, idx: np.ndarray) -> np.ndarray:
+        """g at table nodes ``r[idx]``, memoised per node (the bisection revisits the same
+        nodes for every depth; the table is immutable, so the cache never goes stale)."""
+        if self._node_g is None:
+            self._node_g = np.full(self.r.size, np.nan)
+        vals = self._node_g[idx]
+        missing = np.isnan(vals)
+        if np.any(missing):
+            new = np.unique(idx[missing])
+            self._node_g[new] = self._g(self.r[new])
+            vals = self._node_g[idx]
+        return vals
+
+    def _check_table_monotone(self, a_max: float, d_for_message: float) -> None:
+        if self._monotone_f or a_max <= self._verified_upto:
+            return
+        grid, g = self._grid_g()
+        upto = grid < a_max
+        gg = np.append(g[upto], float(self._g(np.array(a_max))))
+        xx = np.append(grid[upto], a_max)
+        dg = np.diff(gg)
+        scale = max(float(np.max(np.abs(gg))), 1e-300)
+        bad = np.flatnonzero(dg < -1e-12 * scale)
+        if not bad.size:
+            self._verified_upto = a_max
+        if bad.size:
+            i = int(bad[0])
+            raise OutsideTheoryError(
+                f"depth={d_for_message!r} m: the transformed profile g(x) decreases at x="
+                f"{xx[i]:.6g} m (g={gg[i]:.6g} m, then {gg[i + 1]:.6g} m), so beyond depth "
+                f"{gg[i]:.6g} m the contact is an annulus, outside the MDR. Smooth the measured "
+                "profile (Tabulated(..., smoothing='auto')), take the nearest admissible table "
+                "(admissible='nearest', slopes made non-decreasing) or limit the load.")
