@@ -17,22 +17,22 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..citations import Citations, sources_for
+from ..citations import Citations
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
-from ..params import as_checked_array, as_float_array, as_real, check_memory, exactly_one
+from ..params import as_float_array, as_real, check_memory, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
 from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
-from ._protocol import Result
+from .law_checks import _per_contact, _per_step, _short, checked_state_entry
+from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
 from .law_tangent import tangent as _tangent
 
 __all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY",
@@ -51,121 +51,6 @@ _NO_FLAT = np.zeros(1)
 #: sources of a law step (exact normal, Cattaneo–Mindlin and Jäger torsion with Masing memory,
 #: the MDR springs under a changing load)
 _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
-_OUT_FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
-               "torsion_stick_radius", "dissipated_energy", "exact")
-_UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
-          "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
-
-
-#: units of the columns of a law step (CSV headers)
-STEP_UNITS = {"depth": "m", "radius": "m", "force": "N", "tangential_force": "N", "torque": "N*m",
-              "stick_radius": "m", "torsion_stick_radius": "m", "dissipated_energy": "J",
-              "exact": "1"}
-#: where a law step's ``model_error`` comes from
-LAW_BASIS = ("contacts on springs (exact False): the measured spring-discretisation error of the "
-             "law at its springs per contact against the 2000-spring foundation (docs/dem.md), "
-             "plus for twisted contacts the measured MDR-vs-exact torque map at the springs' own "
-             "stick ratio (a constant-load map: under a changing load the MDR torsion error was "
-             "measured larger, docs/torsion_varying_load.md); 0 where exact")
-
-
-@dataclass(frozen=True, eq=False)
-class LawStep(Result):
-    """Result of one :meth:`ContactLaw.step`: one value per contact (SI units).
-
-    Attributes
-    ----------
-    depth, radius, force : ndarray
-        Indentation depth (m), contact radius (m), normal force (N).
-    tangential_force, torque : ndarray
-        Tangential force (N) along the given displacement, torque (N·m) about the normal.
-    stick_radius, torsion_stick_radius : ndarray
-        Stick radius of the tangential (Cattaneo–Mindlin) and of the torsional slip problem, m
-        (the contact radius without slip; of the active Masing branch).
-    dissipated_energy : ndarray
-        Energy dissipated by friction in this step, J (both channels).
-    exact : ndarray of bool
-        True where the result is exact: constant normal load, and the contact's turning-point
-        memory never overflowed (see ``memory`` of :class:`ContactLaw`).
-    meta : dict
-        ``springs`` (springs per contact of the law), ``citations``.
-    model_error : ndarray
-        Per contact: 0 where exact, else the measured error of the spring model
-        (:data:`LAW_BASIS`), computed on first access.
-    """
-
-    depth: np.ndarray
-    radius: np.ndarray
-    force: np.ndarray
-    tangential_force: np.ndarray
-    torque: np.ndarray
-    stick_radius: np.ndarray
-    torsion_stick_radius: np.ndarray
-    dissipated_energy: np.ndarray
-    exact: np.ndarray
-    meta: dict = field(default_factory=dict, repr=False)
-    tangent: dict | None = field(default=None, repr=False)   # step(..., tangent=True)
-
-    units = STEP_UNITS
-    _basis = LAW_BASIS
-
-    def to_dict(self) -> dict[str, np.ndarray]:
-        """One array per quantity, one value per contact."""
-        return {k: getattr(self, k) for k in _OUT_FIELDS}
-
-    def _model_errors(self) -> dict[str, Any]:
-        from ..physics import model_error as _maps
-        off = ~np.asarray(self.exact, bool) & (np.asarray(self.radius) > 0)
-        if not np.any(off):
-            return {}
-        spring = _maps.law_spring_error(self.meta.get("springs", DEFAULT_SPRINGS))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(off, self.torsion_stick_radius / np.where(off, self.radius, 1.0), 1.0)
-        twisted = off & (self.torque != 0)
-        mdr = np.where(twisted, _maps.mdr_ratio_error(None, "torque", ratio), 0.0)
-        return {"tangential_force": np.where(off, spring, 0.0),
-                "torque": np.where(off, spring + mdr, 0.0)}
-
-    @property
-    def citations(self) -> Citations:
-        """The sources of this step (``contactlab.cite(step)``): the law's closed forms, and the
-        MDR springs when some contact was not exact (its normal load changed)."""
-        return Citations(law_sources(springs=not bool(np.all(self.exact))))
-
-
-def law_sources(springs: bool = True) -> tuple[str, ...]:
-    """Source tags of :class:`ContactLaw`: closed-form normal contact, Cattaneo–Mindlin and
-    exact (Jäger) torsion with Masing's rule; ``springs``: also the MDR springs that carry a
-    contact whose normal load changes."""
-    tags = sources_for("normal", "tangential", "masing:tangential", "torsion:exact",
-                       "masing:torsion")
-    return tags + tuple(t for t in sources_for("foundation", "foundation:torsion")
-                        if springs and t not in tags)
-
-
-def _short(value: Any) -> str:
-    """``repr(value)``, cut to 60 characters (for error messages)."""
-    r = repr(value)
-    return r if len(r) <= 60 else r[:57] + "..."
-
-
-def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
-    """A positive finite per-contact array (scalar or 1D), errors naming the index."""
-    arr = as_checked_array(name, value, domain="positive", unit=_UNITS.get(name, "-"))
-    if arr.ndim > 1:
-        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
-                             "contact (1D).")
-    if arr.ndim == 1 and size is not None and arr.size != size:
-        raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
-                             "give a scalar or one value per contact.")
-    return arr
-
-
-def _per_step(name: str, value: Any, size: int, unit: str, nonneg: bool = False) -> np.ndarray:
-    """A finite (``nonneg``: and >= 0) scalar or one value per contact, broadcast to ``size``."""
-    arr = as_checked_array(name, value, domain="nonnegative" if nonneg else "real", unit=unit,
-                           size=size)
-    return np.broadcast_to(arr, (size,))
 
 
 #: float64 values per contact held by a law (tracemalloc, rounded up: 22 + 4 per memory level
@@ -407,7 +292,7 @@ class ContactLaw:
             raise ParameterError(f"state is invalid: missing keys {missing}, unknown keys "
                                  f"{extra} (it must come from law.state of a law of the same "
                                  "size and memory).")
-        new = {k: self._checked_state_entry(k, value[k], v) for k, v in ref.items()}
+        new = {k: checked_state_entry(k, value[k], v, self.memory, self.springs) for k, v in ref.items()}
         for k, v in new.items():                # in place: channel fields are views
             ref[k][...] = v
 
@@ -416,48 +301,6 @@ class ContactLaw:
         """The sources the law uses (``contactlab.cite(law)``): closed-form normal contact,
         Cattaneo–Mindlin, exact torsion, Masing's rule and the MDR springs for varying loads."""
         return Citations(law_sources())
-
-    def _checked_state_entry(self, key: str, value: Any, like: np.ndarray) -> np.ndarray:
-        """One entry of a state being restored, as ``like``'s dtype, or ParameterError naming
-        the key, the first offending entry and what is allowed (never NaN or a stray flag:
-        a NaN reference depth would disable the constant-load check and report a wrong torque
-        as exact)."""
-        try:
-            arr = np.asarray(value)
-        except Exception as err:                # ragged lists and the like
-            raise ParameterError(f"state[{key!r}] is invalid: it must be an array of shape "
-                                 f"{like.shape}.") from err
-        if arr.shape != like.shape:
-            raise ParameterError(f"state[{key!r}] has shape {arr.shape}; this law needs "
-                                 f"{like.shape}.")
-        if arr.dtype.kind not in "biuf":
-            raise ParameterError(f"state[{key!r}] has dtype {arr.dtype}: it must be numeric "
-                                 f"({like.dtype}).")
-        kind = like.dtype.kind
-        if kind == "f":
-            ok, allowed = np.isfinite(arr), "finite"
-            if key in ("depth_ref", "spr_cover"):
-                ok, allowed = ok & (arr >= 0), "finite and >= 0 m"
-        else:
-            whole = np.isfinite(arr) & (arr == np.round(arr)) if arr.dtype.kind == "f" else True
-            if kind == "b":
-                ok, allowed = whole & ((arr == 0) | (arr == 1)), "a flag (False/True)"
-            elif key.endswith("_last"):
-                ok, allowed = whole & (np.abs(arr) <= 1), "-1, 0 or 1 (last direction)"
-            elif key.endswith("_depth"):
-                ok = whole & (arr >= 0) & (arr <= self.memory)
-                allowed = f"an integer count of turning points in [0, memory={self.memory}]"
-            else:                               # spr_k: the cell holding the contact edge
-                ok = whole & (arr >= 0) & (arr < max(self.springs, 1))
-                allowed = f"an integer cell index in [0, springs={self.springs})"
-        ok = np.broadcast_to(ok, arr.shape)
-        if not np.all(ok):
-            i = np.unravel_index(int(np.argmin(ok)), arr.shape)
-            at = ", ".join(str(int(j)) for j in i)
-            raise ParameterError(f"state[{key!r}][{at}]={arr[i].item()!r} is invalid: it must "
-                                 f"be {allowed} (restore a state saved from law.state of a law "
-                                 "of the same size, memory and springs).")
-        return arr.astype(like.dtype, copy=True)
 
     def reset(self, mask: Any = None) -> None:
         """Clear the memory of the contacts in ``mask`` (bool array or indices; all if None)."""

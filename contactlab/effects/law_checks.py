@@ -1,0 +1,84 @@
+"""Input checks of :class:`contactlab.effects.law.ContactLaw`: per-contact and per-step arrays
+and the entries of a restored state, each refused with a ParameterError naming what is wrong."""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import as_checked_array
+
+__all__ = ["checked_state_entry"]
+
+_UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
+          "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
+
+
+def _short(value: Any) -> str:
+    """``repr(value)``, cut to 60 characters (for error messages)."""
+    r = repr(value)
+    return r if len(r) <= 60 else r[:57] + "..."
+
+
+def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
+    """A positive finite per-contact array (scalar or 1D), errors naming the index."""
+    arr = as_checked_array(name, value, domain="positive", unit=_UNITS.get(name, "-"))
+    if arr.ndim > 1:
+        raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
+                             "contact (1D).")
+    if arr.ndim == 1 and size is not None and arr.size != size:
+        raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
+                             "give a scalar or one value per contact.")
+    return arr
+
+
+def _per_step(name: str, value: Any, size: int, unit: str, nonneg: bool = False) -> np.ndarray:
+    """A finite (``nonneg``: and >= 0) scalar or one value per contact, broadcast to ``size``."""
+    arr = as_checked_array(name, value, domain="nonnegative" if nonneg else "real", unit=unit,
+                           size=size)
+    return np.broadcast_to(arr, (size,))
+
+
+def checked_state_entry(key: str, value: Any, like: np.ndarray, memory: int,
+                        springs: int) -> np.ndarray:
+    """One entry of a state being restored, as ``like``'s dtype, or ParameterError naming
+    the key, the first offending entry and what is allowed (never NaN or a stray flag:
+    a NaN reference depth would disable the constant-load check and report a wrong torque
+    as exact)."""
+    try:
+        arr = np.asarray(value)
+    except Exception as err:                # ragged lists and the like
+        raise ParameterError(f"state[{key!r}] is invalid: it must be an array of shape "
+                             f"{like.shape}.") from err
+    if arr.shape != like.shape:
+        raise ParameterError(f"state[{key!r}] has shape {arr.shape}; this law needs "
+                             f"{like.shape}.")
+    if arr.dtype.kind not in "biuf":
+        raise ParameterError(f"state[{key!r}] has dtype {arr.dtype}: it must be numeric "
+                             f"({like.dtype}).")
+    kind = like.dtype.kind
+    if kind == "f":
+        ok, allowed = np.isfinite(arr), "finite"
+        if key in ("depth_ref", "spr_cover"):
+            ok, allowed = ok & (arr >= 0), "finite and >= 0 m"
+    else:
+        whole = np.isfinite(arr) & (arr == np.round(arr)) if arr.dtype.kind == "f" else True
+        if kind == "b":
+            ok, allowed = whole & ((arr == 0) | (arr == 1)), "a flag (False/True)"
+        elif key.endswith("_last"):
+            ok, allowed = whole & (np.abs(arr) <= 1), "-1, 0 or 1 (last direction)"
+        elif key.endswith("_depth"):
+            ok = whole & (arr >= 0) & (arr <= memory)
+            allowed = f"an integer count of turning points in [0, memory={memory}]"
+        else:                               # spr_k: the cell holding the contact edge
+            ok = whole & (arr >= 0) & (arr < max(springs, 1))
+            allowed = f"an integer cell index in [0, springs={springs})"
+    ok = np.broadcast_to(ok, arr.shape)
+    if not np.all(ok):
+        i = np.unravel_index(int(np.argmin(ok)), arr.shape)
+        at = ", ".join(str(int(j)) for j in i)
+        raise ParameterError(f"state[{key!r}][{at}]={arr[i].item()!r} is invalid: it must "
+                             f"be {allowed} (restore a state saved from law.state of a law "
+                             "of the same size, memory and springs).")
+    return arr.astype(like.dtype, copy=True)

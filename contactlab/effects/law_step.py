@@ -1,0 +1,106 @@
+"""The result of one :meth:`contactlab.effects.law.ContactLaw.step`: :class:`LawStep`, its
+units, sources and model error (the law's time stepping lives in :mod:`contactlab.effects.law`)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..citations import Citations, sources_for
+from ._protocol import Result
+
+__all__ = ["LawStep", "STEP_UNITS", "LAW_BASIS", "law_sources"]
+
+#: springs per contact of a law when its meta does not say (:data:`contactlab.effects.law.DEFAULT_SPRINGS`)
+_DEFAULT_SPRINGS = 16
+_OUT_FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
+               "torsion_stick_radius", "dissipated_energy", "exact")
+
+
+#: units of the columns of a law step (CSV headers)
+STEP_UNITS = {"depth": "m", "radius": "m", "force": "N", "tangential_force": "N", "torque": "N*m",
+              "stick_radius": "m", "torsion_stick_radius": "m", "dissipated_energy": "J",
+              "exact": "1"}
+#: where a law step's ``model_error`` comes from
+LAW_BASIS = ("contacts on springs (exact False): the measured spring-discretisation error of the "
+             "law at its springs per contact against the 2000-spring foundation (docs/dem.md), "
+             "plus for twisted contacts the measured MDR-vs-exact torque map at the springs' own "
+             "stick ratio (a constant-load map: under a changing load the MDR torsion error was "
+             "measured larger, docs/torsion_varying_load.md); 0 where exact")
+
+
+@dataclass(frozen=True, eq=False)
+class LawStep(Result):
+    """Result of one :meth:`ContactLaw.step`: one value per contact (SI units).
+
+    Attributes
+    ----------
+    depth, radius, force : ndarray
+        Indentation depth (m), contact radius (m), normal force (N).
+    tangential_force, torque : ndarray
+        Tangential force (N) along the given displacement, torque (N·m) about the normal.
+    stick_radius, torsion_stick_radius : ndarray
+        Stick radius of the tangential (Cattaneo–Mindlin) and of the torsional slip problem, m
+        (the contact radius without slip; of the active Masing branch).
+    dissipated_energy : ndarray
+        Energy dissipated by friction in this step, J (both channels).
+    exact : ndarray of bool
+        True where the result is exact: constant normal load, and the contact's turning-point
+        memory never overflowed (see ``memory`` of :class:`ContactLaw`).
+    meta : dict
+        ``springs`` (springs per contact of the law), ``citations``.
+    model_error : ndarray
+        Per contact: 0 where exact, else the measured error of the spring model
+        (:data:`LAW_BASIS`), computed on first access.
+    """
+
+    depth: np.ndarray
+    radius: np.ndarray
+    force: np.ndarray
+    tangential_force: np.ndarray
+    torque: np.ndarray
+    stick_radius: np.ndarray
+    torsion_stick_radius: np.ndarray
+    dissipated_energy: np.ndarray
+    exact: np.ndarray
+    meta: dict = field(default_factory=dict, repr=False)
+    tangent: dict | None = field(default=None, repr=False)   # step(..., tangent=True)
+
+    units = STEP_UNITS
+    _basis = LAW_BASIS
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """One array per quantity, one value per contact."""
+        return {k: getattr(self, k) for k in _OUT_FIELDS}
+
+    def _model_errors(self) -> dict[str, Any]:
+        from ..physics import model_error as _maps
+        off = ~np.asarray(self.exact, bool) & (np.asarray(self.radius) > 0)
+        if not np.any(off):
+            return {}
+        spring = _maps.law_spring_error(self.meta.get("springs", _DEFAULT_SPRINGS))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(off, self.torsion_stick_radius / np.where(off, self.radius, 1.0), 1.0)
+        twisted = off & (self.torque != 0)
+        mdr = np.where(twisted, _maps.mdr_ratio_error(None, "torque", ratio), 0.0)
+        return {"tangential_force": np.where(off, spring, 0.0),
+                "torque": np.where(off, spring + mdr, 0.0)}
+
+    @property
+    def citations(self) -> Citations:
+        """The sources of this step (``contactlab.cite(step)``): the law's closed forms, and the
+        MDR springs when some contact was not exact (its normal load changed)."""
+        return Citations(law_sources(springs=not bool(np.all(self.exact))))
+
+
+def law_sources(springs: bool = True) -> tuple[str, ...]:
+    """Source tags of :class:`ContactLaw`: closed-form normal contact, Cattaneo–Mindlin and
+    exact (Jäger) torsion with Masing's rule; ``springs``: also the MDR springs that carry a
+    contact whose normal load changes."""
+    tags = sources_for("normal", "tangential", "masing:tangential", "torsion:exact",
+                       "masing:torsion")
+    return tags + tuple(t for t in sources_for("foundation", "foundation:torsion")
+                        if springs and t not in tags)
+
+
