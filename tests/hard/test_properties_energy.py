@@ -197,3 +197,13 @@ def test_unload_to_a_smaller_contact_and_reload(i):
     need not draw this order)."""
     check_exact_path_energy(i, [(6, 1.0, 1.0, 1), (6, 0.3, 0.0, 2), (6, 0.3, -0.5, 1),
                                 (6, 2.0, 0.0, 2), (6, 2.0, 1.0, 1), (6, 0.5, 1.3, 0)])
+
+
+@pytest.mark.xfail(strict=True, reason="known defect, issue 26 item 1: the last step of this path "
+                   "books -6.1e-14 J against a running total of 8.1e-13 J (the contact shrank "
+                   "at held twist and regrows after a tiny twist); found by the 10^4-example "
+                   "property in the slow job")
+def test_negative_step_after_shrink_and_regrowth_at_a_tiny_twist():
+    check_exact_path_energy(1, [(1, 0.2, 0.01, 1), (1, 3.09, 0.0, 2), (5, 0.25, 0.0, 0),
+                                (1, 1.47, 0.0, 0)])
+
