@@ -383,13 +383,9 @@ def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMa
     return _maximise(lambda r, z: normal_stress(state, r, z, body), kind, a)
 
 
-def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
-    """Implementation of ``NormalState.stress_field``: the field on a 2D ``(r, z)`` grid.
-
-    ``grid`` is ``(r_values, z_values)`` (1D arrays, m) or ``None`` for 200 radii over
-    ``[0, 2a]`` by 100 depths over ``[0, 1.5a]``.
-    """
-    a = float(np.asarray(state._radius)) if state.shape == () else 0.0
+def _field_grid(grid: Any, a: float) -> tuple[np.ndarray, np.ndarray]:
+    """The ``(R, Z)`` mesh of ``stress_field``: ``grid = (r_values, z_values)`` or, for None, 200
+    radii over ``[0, 2a]`` by 100 depths over ``[0, 1.5a]``."""
     if grid is None:
         if a <= 0:
             raise ParameterError("stress_field() without grid= needs a contact (radius > 0).")
@@ -401,6 +397,17 @@ def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
             raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
         rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
     R, Z = np.meshgrid(rv, zv, indexing="xy")
+    return R, Z
+
+
+def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
+    """Implementation of ``NormalState.stress_field``: the field on a 2D ``(r, z)`` grid.
+
+    ``grid`` is ``(r_values, z_values)`` (1D arrays, m) or ``None`` for 200 radii over
+    ``[0, 2a]`` by 100 depths over ``[0, 1.5a]``.
+    """
+    a = float(np.asarray(state._radius)) if state.shape == () else 0.0
+    R, Z = _field_grid(grid, a)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         return normal_stress(state, R, Z, body)
@@ -545,15 +552,5 @@ def torsion_stress_field(state, grid: Any = None, body: Any = 1, part: str = "to
                          ) -> StressField:
     """Implementation of ``TorsionState.stress_field`` (see :func:`normal_stress_field`)."""
     a = float(state._a) if state.shape == () else 0.0
-    if grid is None:
-        if a <= 0:
-            raise ParameterError("stress_field() without grid= needs a contact (radius > 0).")
-        rv, zv = np.linspace(0.0, 2.0 * a, 200), np.linspace(0.0, 1.5 * a, 100)
-    else:
-        try:
-            rv, zv = grid
-        except (TypeError, ValueError) as err:
-            raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
-        rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
-    R, Z = np.meshgrid(rv, zv, indexing="xy")
+    R, Z = _field_grid(grid, a)
     return torsion_stress(state, R, Z, body, part)
