@@ -592,12 +592,13 @@ class ContactLaw:
                     f"{self.load_rtol!r}: this law is exact at constant normal load. Call "
                     "law.reset(mask) to restart the memory of contacts whose load changed, or "
                     "raise load_rtol.")
-            new = offm & ~st["spr_on"]
-            if np.any(new):
-                n_spr = int(np.count_nonzero(st["spr_on"] | offm))
-                check_memory("ContactLaw.step()", law_spring_memory(n_spr, self.springs),
-                             f"{n_spr} contacts on {self.springs} springs each")
-            self._to_springs(np.flatnonzero(new), d, a)
+            # compiled switch onto the springs: no temporaries per contact (the state it
+            # writes was allocated with the law), so no memory check here
+            new = np.flatnonzero(offm & ~st["spr_on"])
+            if new.size:
+                _kernel.switch_pass(new, a, self._flat, self.spring_cover, self.kc, self.n,
+                                    self._beta, self.friction, self.E_star, self.G_star,
+                                    self.G_torsion, self._chan, st, self.parallel)
         if both and not self._warned:
             self._warned = True
             warnings.warn("ContactLaw: displacement and twist together are treated as two "

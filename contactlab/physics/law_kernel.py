@@ -19,7 +19,7 @@ import numpy as np
 
 from ..numeric import jit as _jit
 
-__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "TORSION",
+__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "switch_pass", "TORSION",
            "TANGENTIAL"]
 
 TORSION = 0
@@ -91,11 +91,13 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
     return ys * f, aux * t, Ds * w
 
 
-def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rtol,
+def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rtol, pre,
                  d_out, a_out, F_out, flag):
     """Depth, radius and force of every contact; flag: 0 constant load, 1 separated (a <= 0),
     2 depth left rtol of the reference depth. Returns counts (bad inputs, separated, off,
-    contacts moved in both channels, non-finite results)."""
+    contacts moved in both channels, non-finite results). ``pre``: the powers of the power-law
+    family are given (numpy's vectorised ``power``, the reference's arithmetic to the bit):
+    ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``."""
     bad = 0
     dead = 0
     off = 0
@@ -123,12 +125,21 @@ def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rto
                 di = v
                 Fi = 2.0 * E[i] * dp * flat[i]
         elif by_force:
-            ai = (v * (n + 1.0) / (2.0 * n * E[i] * kc[i])) ** (1.0 / (n + 1.0))
-            di = kc[i] * ai * ai if n == 2.0 else kc[i] * ai ** n
+            if pre:
+                ai = a_out[i]
+                di = kc[i] * ai * ai if n == 2.0 else d_out[i]
+            else:
+                ai = (v * (n + 1.0) / (2.0 * n * E[i] * kc[i])) ** (1.0 / (n + 1.0))
+                di = kc[i] * ai * ai if n == 2.0 else kc[i] * ai ** n
             Fi = v
         else:
             dp = max(v, 0.0)
-            ai = math.sqrt(dp / kc[i]) if n == 2.0 else (dp / kc[i]) ** (1.0 / n)
+            if n == 2.0:
+                ai = math.sqrt(dp / kc[i])
+            elif pre:
+                ai = a_out[i]
+            else:
+                ai = (dp / kc[i]) ** (1.0 / n)
             di = v
             Fi = c2 * E[i] * dp * ai
         d_out[i] = di
@@ -382,7 +393,85 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
     return nonfinite
 
 
-_PASSES = (_normal_pass, _fused_pass, _spring_pass)
+def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
+                 X, depth, x, cover, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, on):
+    """Switch the contacts ``idx`` from the exact constant-load law to their MDR springs (the
+    arithmetic of ``ContactLaw._to_springs`` with the cell integrals of :func:`_spring_pass`,
+    one contact at a time, no temporaries): cover, normal cells at the held depth ``ref`` the
+    contact leaves, and each channel's Masing turning points ``X[ch, c, :depth]`` then its
+    current control ``x[ch, c]`` replayed through the elements at that load (channel 0
+    tangential, 1 torsion)."""
+    N = beta.size - 1
+    n1 = n + 1.0
+    n2 = n + 2.0
+    for j in _prange(idx.size):
+        c = idx[j]
+        d0 = ref[c]
+        kcc = kc[c]
+        if is_flat:
+            a0 = flat[c] if d0 > 0.0 else 0.0
+        elif n == 2.0:
+            a0 = math.sqrt(d0 / kcc)
+        else:
+            a0 = (d0 / kcc) ** (1.0 / n)
+        cov = cover_factor[c] * max(a0, a[c])
+        cover[c] = cov
+        if n == 2.0:
+            cp1 = kcc * cov * cov * cov
+            Ga = kcc * a0 * a0 * a0 / n1
+            Ha = kcc * a0 * a0 * a0 * a0 / n2
+        else:
+            cp1 = kcc * cov ** n1
+            Ga = kcc * a0 ** n1 / n1
+            Ha = kcc * a0 ** n2 / n2
+        cp2 = cp1 * cov
+        k = 0
+        while k < N - 1 and cov * beta[k + 1] < a0:
+            k += 1
+        mu_E = mu[c] * E[c]
+        # the elements at the held load: the history 0 -> X[0] -> ... -> X[depth-1] -> x,
+        # element by element (each element's path is independent of the others)
+        for i in range(N):
+            bl = cov * beta[i]
+            br = cov * beta[i + 1]
+            w = br - bl
+            if i < k:
+                S = d0 * w - (cp1 * bG[i + 1] - cp1 * bG[i])
+                T = d0 * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
+            elif i == k and a0 > bl:
+                S = max(d0 * (a0 - bl) - (Ga - cp1 * bG[i]), 0.0)
+                T = max(d0 * (a0 * a0 - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+            else:
+                S = 0.0
+                T = 0.0
+            S_old[c, i] = S
+            frac = min(max((a0 - bl) / w, 0.0), 1.0)
+            for ch in range(2):
+                if ch == 0:
+                    Kc = 2.0 * G[c] * w * frac
+                    L = 2.0 * mu_E * S
+                else:
+                    Kc = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * frac
+                    L = 4.0 * mu_E * T
+                m = 0.0
+                prev = 0.0
+                for p in range(depth[ch, c]):
+                    tgt = X[ch, c, p]
+                    m = min(max(m + Kc * (tgt - prev), -L), L)
+                    prev = tgt
+                m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
+                if ch == 0:
+                    m_tan[c, i] = m
+                else:
+                    m_tor[c, i] = m
+        x_tan[c] = x[0, c]
+        x_tor[c] = x[1, c]
+        k_old[c] = k
+        d_old[c] = d0
+        on[c] = True
+
+
+_PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass)
 
 AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}
@@ -435,11 +524,41 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     m = val.size
     d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
                      if out is None else out)
+    pre = _powers(by_force, val, kc, E, float(n), d, a)
     counts = _kernels(parallel)[0](bool(by_force), val, _EMPTY if u is None else u,
                                    _EMPTY if phi is None else phi, u is not None,
-                                   phi is not None, kc, E, float(n), flat, ref, float(rtol),
+                                   phi is not None, kc, E, float(n), flat, ref, float(rtol), pre,
                                    d, a, F, flag)
     return d, a, F, flag, counts
+
+
+def _powers(by_force: bool, val, kc, E, n: float, d, a) -> bool:
+    """The fractional powers of the normal contact (the radius from a force, or from a depth
+    when ``n`` is not 2; the depth ``kc a^n`` from a force when ``n`` is not 2) by numpy's
+    vectorised ``power`` into ``a`` and ``d``, in the numpy reference's order of operations
+    (:meth:`ContactLaw.normal`), so the compiled step matches it to the bit (a scalar ``pow``
+    in the kernel may differ from numpy's SIMD power by an ulp, and is slower); ``d`` is the
+    only scratch. Returns whether they were computed (not for ``n = 2`` from a depth: a square
+    root, correctly rounded everywhere; not for the flat punch). Entries of bad inputs are
+    garbage here; the kernel counts them and the step is refused."""
+    if n == np.inf or (n == 2.0 and not by_force):
+        return False
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        if by_force:        # a = (F (n+1) / (2 n E kc))^(1/(n+1)), d = kc a^n
+            np.multiply(E, 2.0 * n, out=d)
+            d *= kc
+            np.multiply(val, n + 1.0, out=a)
+            a /= d
+            a **= 1.0 / (n + 1.0)       # ``**=``: numpy's scalar fast paths, as ``**``
+            if n != 2.0:
+                d[...] = a
+                d **= n
+                d *= kc
+        else:               # a = (max(d, 0) / kc)^(1/n)
+            np.maximum(val, 0.0, out=a)
+            a /= kc
+            a **= 1.0 / n
+    return True
 
 
 def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan: dict,
@@ -481,3 +600,21 @@ def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: 
                           u is not None, phi is not None, cover, kc, nn, beta, bG, bH, mu, E,
                           G, Gt, st["spr_S"], st["spr_k"], st["spr_depth"], st["spr_tan"],
                           st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"], *out)
+
+
+def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, chan: dict,
+                st: dict, parallel: bool = False) -> None:
+    """Compiled switch of the contacts ``idx`` (int64) from their Masing stacks (``chan``: the
+    fields of :func:`~contactlab.physics.masing_stack.new_stack` over a leading channel axis)
+    to their MDR springs (``st``: the law's ``depth_ref`` and ``spr_*`` arrays, written at
+    ``idx``); ``a``: the contacts' radii in this step (the cover spans the larger of it and the
+    held radius), ``cover_factor``: ``spring_cover`` per contact. No temporaries per contact."""
+    is_flat = n == np.inf
+    nn = float(n) if not is_flat else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    _kernels(parallel)[3](idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta,
+                          bG, bH, mu, E, G, Gt, chan["X"], chan["depth"], chan["x"],
+                          st["spr_cover"], st["spr_S"], st["spr_k"], st["spr_depth"],
+                          st["spr_tan"], st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"],
+                          st["spr_on"])
