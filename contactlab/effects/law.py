@@ -53,20 +53,32 @@ _NO_FLAT = np.zeros(1)
 _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
 
 
-#: float64 values per contact held by a law (tracemalloc, rounded up: 22 + 4 per memory level
-#: + 3 per spring measured) and per contact on springs during a step (20-21 per spring measured)
-_PER_CONTACT, _PER_LEVEL, _PER_SPRING, _PER_SPRING_STEP = 32, 4, 4, 24
+#: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
+#: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
+#: per turning point of memory 2 channels x (X, Y); with springs 5 scalars + a flag, and per
+#: spring 3 floats (S, both channels' elements); plus a step's 8 float and 2 flag bytes of
+#: results (the arrays a step returns, or ``out``) and 3 scalar inputs broadcast per contact
+_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_SPRING, _PER_STEP = 132, 32, 41, 24, 90
+#: float64 values per contact on springs in a step of the numpy path (temporaries; measured
+#: 20-21 per spring): the compiled step has none
+_NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
 
 
 def law_memory(size: int, memory: int, springs: int) -> float:
-    """Estimated memory of a :class:`ContactLaw`'s state, bytes (checked against the memory
-    budget, :func:`contactlab.set_memory_budget`, before it is allocated)."""
-    return 8.0 * float(size) * (_PER_CONTACT + _PER_LEVEL * memory + _PER_SPRING * springs)
+    """Memory of a :class:`ContactLaw`'s state and of one step's results, bytes (checked
+    against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
+    ``size × (132 + 32 memory + [springs > 0] (41 + 24 springs) + 90)``, 903 B per contact at
+    the defaults."""
+    per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
+    if springs:
+        per += _PER_SPRINGS + _PER_SPRING * springs
+    return float(size) * per
 
 
 def law_spring_memory(n_contacts: int, springs: int) -> float:
-    """Estimated peak temporaries of a step with ``n_contacts`` contacts on springs, bytes."""
-    return 8.0 * float(n_contacts) * (_PER_CONTACT + _PER_SPRING_STEP * springs)
+    """Estimated peak temporaries of a numpy step with ``n_contacts`` contacts on springs,
+    bytes (the compiled step allocates none)."""
+    return 8.0 * float(n_contacts) * (_NUMPY_CONTACT + _NUMPY_SPRING_STEP * springs)
 
 
 class ContactLaw:
@@ -110,8 +122,10 @@ class ContactLaw:
     size : int, optional
         Number of contacts when every parameter is a scalar.
     fast : bool, optional
-        Use the compiled kernel (numba, extra ``fast``); default: when numba is installed.
-        ``False`` runs the numpy reference path (same results to rounding).
+        Use the compiled kernel (numba, extra ``fast``); default: when numba is installed and
+        the environment does not force numpy (``CONTACTLAB_BACKEND=numpy``). ``False`` runs the
+        numpy reference path: bit-identical at constant load; contacts on springs agree to
+        ~1e-12 of the largest value (the cell integrals are summed in another order).
     parallel : bool
         Run the compiled kernel on numba's threads (over contacts; bit-identical to the serial
         kernel). Off by default: a threading layer inside forked worker processes can hang.
@@ -247,7 +261,11 @@ class ContactLaw:
         self.torsion = torsion
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
-        self.fast = _kernel.AVAILABLE if fast is None else bool(fast)
+        if fast is None:        # numba when it imports, unless CONTACTLAB_BACKEND=numpy (or
+            # set_backend("numpy")) forces the numpy reference, as for the foundations
+            from ..foundation import _compiled
+            fast = _kernel.AVAILABLE and _compiled.backend() == "numba"
+        self.fast = bool(fast)
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
@@ -260,8 +278,8 @@ class ContactLaw:
         st = {"depth_ref": np.zeros(n)}
         # both channels' stacks in one array per field (leading axis: tangential, torsion) for
         # the compiled kernel; the state names views of it
-        one = new_stack(n, self.memory)
-        self._chan = {k: np.zeros((2, *v.shape), v.dtype) for k, v in one.items()}
+        one = new_stack(0, self.memory)         # the fields' dtypes and trailing shapes
+        self._chan = {k: np.zeros((2, n, *v.shape[1:]), v.dtype) for k, v in one.items()}
         for c, ch in enumerate(("tan", "tor")):
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]

@@ -256,12 +256,30 @@ def test_law_memory_estimate_covers_a_measured_law():
 
 
 def test_law_spring_memory_guard_on_a_load_change():
+    """The numpy step's spring temporaries are checked against the budget."""
     previous = cl.set_memory_budget(2e6)           # state of 1000 contacts fits, springs do not
     try:
-        lw = law(R=np.full(1000, 0.01))
+        lw = law(R=np.full(1000, 0.01), fast=False)
         lw.step(force=1.0, displacement=1e-7)
         with pytest.raises(MemoryBudgetError, match=r"ContactLaw.step\(\).*1000 contacts on 16"):
             lw.step(force=2.0, displacement=1e-7)
+    finally:
+        cl.set_memory_budget(previous)
+
+
+@pytest.mark.skipif(not cl.effects.law._kernel.AVAILABLE, reason="numba (extra 'fast') not installed")
+def test_compiled_law_goes_onto_its_springs_within_the_budget_of_its_state():
+    """Issue 29: the compiled step has no spring temporaries, so a budget that admits the law
+    (its state counted per contact) admits every contact switching onto its springs (it was
+    refused: 10^6 contacts under the default 2 GiB)."""
+    from contactlab.effects.law import law_memory
+    n = 1000
+    previous = cl.set_memory_budget(1.05 * law_memory(n, 8, 16))
+    try:
+        lw = law(R=np.full(n, 0.01), fast=True)
+        lw.step(force=1.0, displacement=1e-7)
+        out = lw.step(force=2.0, displacement=1e-7)
+        assert lw.state["spr_on"].all() and not out.exact.any()
     finally:
         cl.set_memory_budget(previous)
 
