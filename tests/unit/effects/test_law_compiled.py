@@ -1,0 +1,219 @@
+"""The compiled ContactLaw step (numba, extra ``fast``) against the numpy reference (issue 29):
+bit-identical at constant load on random histories of every family (reversals, loop closures,
+overflowing turning-point stacks, separation), by depth and by force; the changing-load run
+(the compiled switch onto the springs) within COMPILED_VS_NUMPY_SPRINGS, and bit-identical to itself
+across a state saved and restored in the middle; the numpy fallback without numba."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import ValidityWarning
+from tests.tolerances import COMPILED_VS_NUMPY, COMPILED_VS_NUMPY_SPRINGS
+
+ROOT = Path(__file__).resolve().parents[3]
+HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
+needs_numba = pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
+          "torsion_stick_radius", "dissipated_energy", "exact")
+
+#: (family, geometry keyword, per-contact geometry range, extra keywords)
+FAMILIES = [(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}),
+            (cl.profiles.Cone, "slope", (0.05, 0.3), {}),
+            (cl.profiles.PowerLaw, "c", (1e2, 1e3), {"n": 1.5}),
+            (cl.profiles.FlatPunch, "radius", (1e-4, 1e-3), {})]
+
+
+def _pair(family, gname, lo_hi, extra, seed, n, **kw):
+    rng = np.random.default_rng(seed)
+    par = dict({gname: rng.uniform(*lo_hi, n)}, E_star=1.15e11, G_star=4.4e10,
+               G_torsion=4.0e10, friction=rng.uniform(0.1, 0.5, n), **extra, **kw)
+    return (cl.ContactLaw(family, fast=True, **par), cl.ContactLaw(family, fast=False, **par),
+            rng)
+
+
+def _history(rng, steps, n, u_scale, phi_scale):
+    """Random walks (reversals at random, loops closing) with a few large excursions."""
+    u = np.cumsum(rng.standard_normal((steps, n)), axis=0) * u_scale
+    phi = np.cumsum(rng.standard_normal((steps, n)), axis=0) * phi_scale
+    return u, phi
+
+
+def _same(a, b, bits):
+    """Every output equal to the bit (``bits``), else to COMPILED_VS_NUMPY of its largest
+    value (the per-step dissipation is compared by the caller, against the cumulative one).
+    Returns the largest difference of the per-step dissipation."""
+    for f in FIELDS[:-2] + FIELDS[-1:]:
+        x, y = getattr(a, f), getattr(b, f)
+        if bits or f == "exact":
+            np.testing.assert_array_equal(x, y, err_msg=f)
+        else:
+            scale = np.max(np.abs(y))
+            np.testing.assert_allclose(x, y, rtol=0, atol=COMPILED_VS_NUMPY * scale, err_msg=f)
+    dw = np.max(np.abs(a.dissipated_energy - b.dissipated_energy))
+    assert dw == 0 or not bits
+    return dw
+
+
+@needs_numba
+@pytest.mark.parametrize("by", ["force", "depth"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_constant_load_bit_identical_on_random_histories(family, gname, lo_hi, extra, by):
+    """Every output and every state entry equal to the bit, step by step, memory=3 so that
+    stacks overflow; some contacts separate and come back (fresh memory). A general exponent
+    (PowerLaw, n = 1.5) to COMPILED_VS_NUMPY: its Cattaneo–Mindlin curve takes ``expm1`` and
+    ``log1p``, where numpy's vectorised functions and the kernel's libm differ by an ulp at
+    some arguments (seen at 1 of 120 contacts)."""
+    n, steps = 120, 60
+    fast, slow, rng = _pair(family, gname, lo_hi, extra, 29, n, memory=3)
+    bits = family is not cl.profiles.PowerLaw
+    F = rng.uniform(1.0, 100.0, n)
+    load = F if by == "force" else slow.normal(force=F)[0]
+    u, phi = _history(rng, steps, n, 3e-8, 1e-4)
+    W = np.zeros(n)
+    dw = 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)    # overflow; shift + twist together
+        for k in range(steps):
+            L = load.copy()
+            if 20 <= k < 25:
+                L[:10] = 0.0                                # separated, then back
+            a = fast.step(**{by: L}, displacement=u[k], twist=phi[k])
+            b = slow.step(**{by: L}, displacement=u[k], twist=phi[k])
+            W += b.dissipated_energy
+            dw = max(dw, _same(a, b, bits))
+    assert dw <= COMPILED_VS_NUMPY_SPRINGS * W.max()
+    assert fast.state["tor_overflow"].any() and fast.state["tan_overflow"].any()
+    for key, v in fast.state.items():
+        ref = slow.state[key]
+        if bits or v.dtype != float:
+            np.testing.assert_array_equal(v, ref, err_msg=key)
+        else:
+            np.testing.assert_allclose(v, ref, rtol=0, err_msg=key,
+                                       atol=COMPILED_VS_NUMPY * np.max(np.abs(ref)))
+
+
+def _changing_run(law, rng_seed, steps, n, restore_at=None, tmp_path=None, make=None):
+    """A history where contacts 0..n/2 change their load from step 8 on (onto the springs);
+    ``restore_at``: the state is saved to an .npz there and restored into a fresh law."""
+    rng = np.random.default_rng(rng_seed)
+    F = rng.uniform(1.0, 100.0, n)
+    u, phi = _history(rng, steps, n, 3e-8, 1e-4)
+    outs = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            if k == restore_at:
+                np.savez(tmp_path / "law.npz", **law.state)
+                law = make()
+                with np.load(tmp_path / "law.npz") as f:
+                    law.state = dict(f)
+            L = F.copy()
+            if k >= 8:
+                L[: n // 2] *= 1.0 + 0.03 * np.sin(0.4 * k + np.arange(n // 2))
+            r = law.step(force=L, displacement=u[k], twist=phi[k])
+            outs.append({f: getattr(r, f).copy() for f in FIELDS})
+    return law, outs
+
+
+@pytest.mark.parametrize("fast", [False, True] if HAS_NUMBA else [False])
+def test_state_saved_and_restored_in_a_changing_load_run(fast, tmp_path):
+    """A law restored from law.state (through an .npz file) in the middle of a changing-load
+    run continues to the bit as the law that ran through."""
+    n, steps = 60, 30
+    par = dict(R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+               friction=0.3, memory=4, fast=fast)
+
+    def make():
+        return cl.ContactLaw(cl.profiles.Paraboloid, **par)
+
+    through, a = _changing_run(make(), 3, steps, n)
+    restored, b = _changing_run(make(), 3, steps, n, restore_at=17, tmp_path=tmp_path,
+                                make=make)
+    assert through.state["spr_on"][: n // 2].all()
+    for k in range(steps):
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[k][f], b[k][f], err_msg=f"step {k}: {f}")
+    for key, v in through.state.items():
+        np.testing.assert_array_equal(v, restored.state[key], err_msg=key)
+
+
+@needs_numba
+def test_changing_load_compiled_switch_against_numpy():
+    """The compiled switch onto the springs (turning points replayed in the kernel) and the
+    spring steps after it against the numpy law: contacts at constant load bit-identical,
+    contacts on springs to COMPILED_VS_NUMPY_SPRINGS of the largest value (the cell integrals
+    are formed in another order); the spring state likewise."""
+    n, steps = 60, 30
+    par = dict(R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+               friction=0.3, memory=6)
+    fast, a = _changing_run(cl.ContactLaw(cl.profiles.Paraboloid, fast=True, **par), 4, steps, n)
+    slow, b = _changing_run(cl.ContactLaw(cl.profiles.Paraboloid, fast=False, **par), 4, steps,
+                            n)
+    assert fast.state["spr_on"][: n // 2].all() and not fast.state["spr_on"][n // 2:].any()
+    W = np.cumsum([o["dissipated_energy"] for o in b], axis=0)
+    for k in range(steps):
+        np.testing.assert_array_equal(a[k]["exact"], b[k]["exact"])
+        ex = b[k]["exact"]
+        for f in FIELDS[:-1]:
+            np.testing.assert_array_equal(a[k][f][ex], b[k][f][ex], err_msg=f"step {k}: {f}")
+            scale = W[k].max() if f == "dissipated_energy" else np.max(np.abs(b[k][f]))
+            np.testing.assert_allclose(a[k][f], b[k][f], rtol=0, err_msg=f"step {k}: {f}",
+                                       atol=COMPILED_VS_NUMPY_SPRINGS * scale)
+    sf, ss = fast.state, slow.state
+    for key in ("spr_cover", "spr_depth", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
+        np.testing.assert_array_equal(sf[key], ss[key], err_msg=key)
+    for key in ("spr_S", "spr_tan", "spr_tor"):
+        np.testing.assert_allclose(sf[key], ss[key], rtol=0,
+                                   atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(ss[key])),
+                                   err_msg=key)
+
+
+def test_backend_numpy_forces_the_numpy_law():
+    """CONTACTLAB_BACKEND=numpy / set_backend("numpy") chooses the numpy law by default, as
+    it does for the foundations; an explicit fast= wins."""
+    from contactlab.foundation import _compiled
+    kw = dict(R=0.01, E_star=1e11, G_star=4e10, G_torsion=4e10, friction=0.3)
+    _compiled.set_backend("numpy")
+    try:
+        assert cl.ContactLaw(cl.profiles.Paraboloid, **kw).fast is False
+    finally:
+        _compiled.set_backend(None)
+    assert cl.ContactLaw(cl.profiles.Paraboloid, **kw).fast is HAS_NUMBA
+    assert cl.ContactLaw(cl.profiles.Paraboloid, fast=False, **kw).fast is False
+
+
+def test_numpy_fallback_without_numba(tmp_path):
+    """numba absent (here: a numba that refuses to import): the law runs its numpy path, and
+    a changing-load history there equals the numpy law of this process to the bit."""
+    (tmp_path / "numba").mkdir()
+    (tmp_path / "numba" / "__init__.py").write_text("raise ImportError('no numba here')\n")
+    code = ("import sys, numpy as np, contactlab as cl\n"
+            "from tests.unit.effects.test_law_compiled import _changing_run, FIELDS\n"
+            "law = cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, 40),\n"
+            "                    E_star=1.15e11, G_star=4.4e10, G_torsion=4e10, friction=0.3)\n"
+            "assert law.fast is False and not cl.effects.law._kernel.AVAILABLE\n"
+            "law, outs = _changing_run(law, 5, 20, 40)\n"
+            "assert 'numba' not in sys.modules or not hasattr(sys.modules['numba'], 'njit')\n"
+            "np.savez(sys.argv[1], **{f'{k}_{f}': o[f] for k, o in enumerate(outs)\n"
+            "                         for f in FIELDS})\n")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("NUMBA_", "CONTACTLAB_"))}
+    env["PYTHONPATH"] = os.pathsep.join([str(tmp_path), str(ROOT)])
+    res = subprocess.run([sys.executable, "-W", "error", "-c", code, str(tmp_path / "o.npz")],
+                         capture_output=True, text=True, env=env, cwd=ROOT)
+    assert res.returncode == 0, res.stderr
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, 40), E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4e10, friction=0.3, fast=False)
+    _, outs = _changing_run(law, 5, 20, 40)
+    with np.load(tmp_path / "o.npz") as got:
+        for k, o in enumerate(outs):
+            for f in FIELDS:
+                np.testing.assert_array_equal(got[f"{k}_{f}"], o[f], err_msg=f"{k} {f}")
