@@ -147,25 +147,28 @@ def test_state_saved_and_restored_in_a_changing_load_run(fast, tmp_path):
 
 
 @needs_numba
-def test_changing_load_compiled_switch_against_numpy():
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_changing_load_compiled_switch_against_numpy(family, gname, lo_hi, extra):
     """The compiled switch onto the springs (turning points replayed in the kernel) and the
     spring steps after it against the numpy law: contacts at constant load bit-identical,
     contacts on springs to COMPILED_VS_NUMPY_SPRINGS of the largest value (the cell integrals
     are formed in another order); the spring state likewise."""
     n, steps = 60, 30
-    par = dict(R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
-               friction=0.3, memory=6)
-    fast, a = _changing_run(cl.ContactLaw(cl.profiles.Paraboloid, fast=True, **par), 4, steps, n)
-    slow, b = _changing_run(cl.ContactLaw(cl.profiles.Paraboloid, fast=False, **par), 4, steps,
-                            n)
+    par = dict({gname: np.linspace(*lo_hi, n)}, E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+               friction=0.3, memory=6, **extra)
+    fast, a = _changing_run(cl.ContactLaw(family, fast=True, **par), 4, steps, n)
+    slow, b = _changing_run(cl.ContactLaw(family, fast=False, **par), 4, steps, n)
     assert fast.state["spr_on"][: n // 2].all() and not fast.state["spr_on"][n // 2:].any()
     W = np.cumsum([o["dissipated_energy"] for o in b], axis=0)
     for k in range(steps):
         np.testing.assert_array_equal(a[k]["exact"], b[k]["exact"])
         ex = b[k]["exact"]
         for f in FIELDS[:-1]:
-            np.testing.assert_array_equal(a[k][f][ex], b[k][f][ex], err_msg=f"step {k}: {f}")
-            scale = W[k].max() if f == "dissipated_energy" else np.max(np.abs(b[k][f]))
+            if family is not cl.profiles.PowerLaw:     # see the constant-load test
+                np.testing.assert_array_equal(a[k][f][ex], b[k][f][ex],
+                                              err_msg=f"step {k}: {f}")
+            scale = W[-1].max() if f == "dissipated_energy" else np.max(np.abs(b[k][f]))
             np.testing.assert_allclose(a[k][f], b[k][f], rtol=0, err_msg=f"step {k}: {f}",
                                        atol=COMPILED_VS_NUMPY_SPRINGS * scale)
     sf, ss = fast.state, slow.state
