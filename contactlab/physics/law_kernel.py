@@ -6,8 +6,12 @@ passes; the numpy path stays the reference and the tests compare the two. A step
 two passes over the contacts: :func:`normal_pass` (inputs checked, depth/radius/force, which
 contacts separate or leave the constant-load regime; no state written) and :func:`fused_pass`
 (scale factors, tangential and torsional Masing steps and the outputs of every contact in one
-loop, no temporary arrays). :func:`channel_step` runs one channel alone. :data:`AVAILABLE` is
-False when numba is not installed.
+loop, no temporary arrays). Contacts whose load changes go onto their MDR springs through
+:func:`switch_pass` (once per contact, in the arrays the law allocated) and then
+:func:`spring_pass` every step. Under force control (and by depth for ``n != 2``) the
+fractional powers of the normal contact come from numpy's vectorised ``power``, so that the
+compiled step matches the numpy law to the bit. :data:`AVAILABLE` is False when numba is not
+installed.
 """
 from __future__ import annotations
 
