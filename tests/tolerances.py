@@ -663,3 +663,7 @@ FIT_RECOVERY = 1e-8
 #: analytic slope dΦ/dδ = 2a of the fit's tip models against a central finite difference with
 #: step 1e-6 δ (truncation ~1e-12, rounding ~1e-10 relative)
 FIT_JACOBIAN_FD = 1e-7
+#: exact-sphere contact radius by Newton from above (issue 29) against a 30-digit mpmath
+#: reference: rounding of q artanh q (depth) and of the reduced force, whose closed form cancels
+#: by ~75x at q = a/R = 0.1 where the series takes over (measured 4.4e-15 radius, 2.6e-14 force)
+SPHERE_NEWTON_RADIUS = 1e-13

@@ -375,6 +375,12 @@ class Profile(ParamIdentity, ABC):
                 return val
         return self._g_integral_with_error(a, rtol)[0]
 
+    def _g_integral_is_exact(self) -> bool:
+        """Whether :meth:`_g_integral_with_error` is this base class's exact route (a closed form
+        or power terms), whose error estimate is ``ROUNDING · |∫g|`` of the value itself."""
+        return (type(self)._g_integral_with_error is Profile._g_integral_with_error
+                and (self._has("_g_integral_closed_form") or self.power_terms() is not None))
+
     def _g_integral_exact(self, a: np.ndarray) -> np.ndarray | None:
         """``∫_0^a g dx`` by a closed form or the power terms, or None (quadrature route)."""
         if self._has("_g_integral_closed_form"):
@@ -448,7 +454,8 @@ class Profile(ParamIdentity, ABC):
         else:
             out = np.zeros(d.shape)
             out[pos] = a
-        self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
+        if self._has("_check_monotone_upto"):     # (the base hook checks nothing)
+            self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
         return out
 
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
