@@ -287,36 +287,40 @@ def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what) -> float:
     raise ConvergenceError(f"{what}: bracketed solve did not converge in {maxiter} steps.")
 
 
-def convex_newton(residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]],
+def convex_newton(residual: Callable[[np.ndarray, np.ndarray],
+                                     tuple[np.ndarray, np.ndarray, np.ndarray]],
                   x0: np.ndarray, *, rtol: float, maxiter: int = 200, what: str = "root"
                   ) -> np.ndarray:
     """Roots of increasing convex functions by Newton's method from above, element-wise.
 
-    ``residual(x)`` returns ``(r, r', noise)``: the residual ``φ(x) - target``, its derivative
-    (> 0) and the rounding level of ``r`` (absolute). Every start ``x0`` must lie at or above its
-    root: on an increasing convex function Newton's steps then fall monotonically onto the root
-    and never overshoot, so no bracket is needed. An element stops after a step no larger than
-    ``rtol · x`` (the error left is of the order of that step squared) or once its residual is
-    within its rounding noise; it is then frozen, so its value does not depend on the other
-    elements of the batch.
+    ``residual(x, index)`` returns ``(r, r', noise)`` for the elements ``index`` (flat positions
+    in ``x0``) still iterating: the residual ``φ(x) - target``, its derivative (> 0) and the
+    rounding level of ``r`` (absolute). Every start ``x0`` must lie at or above its root: on an
+    increasing convex function Newton's steps then fall monotonically onto the root and never
+    overshoot, so no bracket is needed. An element stops after a step no larger than
+    ``rtol · x`` (the error left is of the order of that step squared) or, without that step,
+    once its residual is within its rounding noise; only the elements still iterating are
+    evaluated, and an element's value does not depend on the other elements of the batch.
 
     Raises
     ------
     ConvergenceError
         If some element has not stopped after ``maxiter`` steps.
     """
-    x = np.array(x0, dtype=float, copy=True)
-    active = np.ones(x.shape, dtype=bool)
+    x = np.array(x0, dtype=float, copy=True).ravel()
+    idx = np.arange(x.size)
+    xa = x.copy()
     for _ in range(maxiter):
-        r, dr, noise = residual(x)
+        r, dr, noise = residual(xa, idx)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = r / dr
-        new = x - step
-        done = (np.abs(step) <= rtol * np.abs(new)) | (np.abs(r) <= noise)
-        x = np.where(active & ~(np.abs(r) <= noise), new, x)
-        active &= ~done
-        if not active.any():
-            return x
-    i = int(np.argmax(active))
+        new = xa - step
+        quiet = np.abs(r) <= noise
+        done = quiet | (np.abs(step) <= rtol * np.abs(new))
+        x[idx] = np.where(quiet, xa, new)
+        if done.all():
+            return x.reshape(np.shape(x0))
+        keep = ~done
+        idx, xa = idx[keep], new[keep]
     raise ConvergenceError(f"{what}: Newton's method did not converge in {maxiter} steps "
-                           f"(at {x.ravel()[i]!r}).")
+                           f"(at {xa[0]!r}).")

@@ -160,9 +160,12 @@ class Sphere(Profile):
                             "depth/force")
         q0 = np.minimum(q0, q_cap)
 
-        def residual(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        flat = delta.ravel()
+
+        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             at = np.arctanh(q)
-            return q * at - delta, at + q / ((1 - q) * (1 + q)), _NOISE * delta
+            dl = flat[idx] if idx.size < flat.size else flat
+            return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
 
         return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
 
@@ -187,12 +190,15 @@ class Sphere(Profile):
             return None     # a radius beyond R: declined, the bracketed solve names the force
         q0 = np.minimum(q0, q_cap)
 
-        def residual(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        flat = eta.ravel()
+
+        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             at = np.arctanh(q)
             h = _reduced_force(q, at)
+            el = flat[idx] if idx.size < flat.size else flat
             # rounding: of the series (~η) below q = 0.1, of the cancelling terms (~q) above
-            noise = _NOISE * np.where(q < 0.1, eta, 0.5 * ((q * q + 1) * at + q))
-            return h - eta, q * (at + q / ((1 - q) * (1 + q))), noise
+            noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
+            return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
 
         return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
 
