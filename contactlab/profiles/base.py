@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
-from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
+from ..numeric.quadrature import DEFAULT_RTOL, min_level_for, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
@@ -342,7 +342,8 @@ class Profile(ParamIdentity, ABC):
         def integrand(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return weight(xr[idx][:, None], theta)
 
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, raise_on_failure=False)
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, raise_on_failure=False,
+                        min_level=min_level_for(rtol))
         val[nz] = res.value.reshape(lo.shape).sum(axis=0)
         err[nz] = res.error.reshape(lo.shape).sum(axis=0)
         missed = err > rtol * np.abs(val) + self._quadrature_floor(flat, val)
@@ -470,6 +471,17 @@ class Profile(ParamIdentity, ABC):
         rtol = self.rtol if rtol is None else rtol
         lo = np.full(d.shape, self.flat_radius)
         hi = np.full(d.shape, self._initial_bracket())
+        if self.g_route == "quadrature" and self._has("_height"):
+            # each g costs a quadrature, f almost nothing: grow the bracket on f first. Where
+            # f' >= 0, g(a) = a ∫_0^a f'(r)/sqrt(a²-r²) dr >= ∫_0^a f' = f(a), so the first
+            # radius with f >= d is at or above the root (the loop below still checks g there)
+            cap = limit * (1 - 1e-15) if np.isfinite(limit) else np.inf
+            for _ in range(400):
+                hc = np.minimum(hi, cap)
+                short = (self._height(hc) < d) & (hc < cap)
+                if not np.any(short):
+                    break
+                hi = np.where(short, hi * 4.0, hi)
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
             g_hi = self._g(hi_c, rtol)
