@@ -316,11 +316,17 @@ def convex_newton(residual: Callable[[np.ndarray, np.ndarray],
             step = r / dr
         new = xa - step
         quiet = np.abs(r) <= noise
-        done = quiet | (np.abs(step) <= rtol * np.abs(new))
-        x[idx] = np.where(quiet, xa, new)
+        np.copyto(new, xa, where=quiet)                 # (a quiet element keeps its value)
+        done = np.abs(step) <= rtol * np.abs(new)
+        done |= quiet
         if done.all():
+            x[idx] = new
             return x.reshape(np.shape(x0))
-        keep = ~done
-        idx, xa = idx[keep], new[keep]
+        if done.any():
+            x[idx[done]] = new[done]
+            keep = ~done
+            idx, xa = idx[keep], new[keep]
+        else:
+            xa = new
     raise ConvergenceError(f"{what}: Newton's method did not converge in {maxiter} steps "
                            f"(at {xa[0]!r}).")

@@ -151,11 +151,15 @@ class Sphere(Profile):
         R = self.R
         delta = np.asarray(d, dtype=float) / R
         q_cap = limit * (1 - 1e-15) / R
-        q0 = np.sqrt(delta)
-        deep = q0 > 0.5                 # (the second bound only where it can be the smaller)
+        # start: q² = δ - δ²/3 + δ³/45 + O(δ⁴) inverts δ = q artanh q = q² + q⁴/3 + q⁶/5 + ...
+        # (relative error ~δ³ of q: one or two steps below δ = 0.01); if it falls below the root,
+        # the first step lands above it (convexity) and the steps then fall onto it
+        ds = np.minimum(delta, 0.25)        # (the series is used below 0.25 only)
+        q0 = np.sqrt(delta * (1.0 - ds * (1.0 / 3.0 - ds / 45.0)))
+        deep = delta > 0.25             # Hertz / the tanh bound there, both above the root
         if np.any(deep):
             dd = delta[deep]
-            q0[deep] = np.minimum(q0[deep], np.tanh(dd / np.tanh(dd)))
+            q0[deep] = np.minimum(np.sqrt(dd), np.tanh(dd / np.tanh(dd)))
         self._refuse_beyond(q0, q_cap, lambda q: q * np.arctanh(q), delta, d, "depth", "m",
                             "depth/force")
         q0 = np.minimum(q0, q_cap)
@@ -178,12 +182,16 @@ class Sphere(Profile):
         R = self.R
         eta = np.asarray(target, dtype=float) / (R * R)
         q_cap = self.max_radius * (1 - 1e-15) / R
-        q0 = np.cbrt(1.5 * eta)
-        deep = q0 > 0.5                 # (the second bound only where it can be the smaller)
+        # start: η = (2/3) q³ (1 + 2q²/5 + 9q⁴/35 + ...), the bracket evaluated at the Hertz
+        # radius q_H = cbrt(3η/2) (relative error ~q⁴ of q; see _solve_radius for a start below)
+        qh = np.cbrt(1.5 * eta)
+        qh2 = qh * qh
+        q0 = qh / np.cbrt(1.0 + qh2 * (0.4 + qh2 * (9.0 / 35.0)))
+        deep = qh > 0.5                 # Hertz / the tanh bound there, both above the root
         if np.any(deep):
             ed = eta[deep]
             ql = np.tanh(ed)
-            q0[deep] = np.minimum(q0[deep], np.tanh((2 * ed + 1) / (ql * ql + 1)))
+            q0[deep] = np.minimum(qh[deep], np.tanh((2 * ed + 1) / (ql * ql + 1)))
         over = q0 >= q_cap
         if np.any(over) and np.any(_reduced_force(np.full(int(np.count_nonzero(over)), q_cap))
                                    < eta[over]):
