@@ -475,12 +475,17 @@ class Profile(ParamIdentity, ABC):
             # each g costs a quadrature, f almost nothing: grow the bracket on f first. Where
             # f' >= 0, g(a) = a ∫_0^a f'(r)/sqrt(a²-r²) dr >= ∫_0^a f' = f(a), so the first
             # radius with f >= d is at or above the root (the loop below still checks g there)
+            # (f that stops rising, saturating or falling, stops the growth: g takes over there)
             cap = limit * (1 - 1e-15) if np.isfinite(limit) else np.inf
-            for _ in range(400):
+            f_prev = np.full(d.shape, -np.inf)
+            for _ in range(200):
                 hc = np.minimum(hi, cap)
-                short = (self._height(hc) < d) & (hc < cap)
+                with np.errstate(over="ignore", invalid="ignore"):
+                    f_hc = self._height(hc)
+                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev)
                 if not np.any(short):
                     break
+                f_prev = f_hc
                 hi = np.where(short, hi * 4.0, hi)
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
