@@ -672,3 +672,7 @@ FIT_JACOBIAN_FD = 1e-7
 #: vectorised expm1/log1p against libm's in the Cattaneo-Mindlin curve, amplified as 1/x at
 #: small slip: 1.8e-12 of the cumulative dissipation measured over 120 contacts x 60 steps)
 COMPILED_VS_NUMPY_SPRINGS = 1e-11
+#: exact-sphere contact radius by Newton from above (issue 29) against a 30-digit mpmath
+#: reference: rounding of q artanh q (depth) and of the reduced force, whose closed form cancels
+#: by ~75x at q = a/R = 0.1 where the series takes over (measured 4.4e-15 radius, 2.6e-14 force)
+SPHERE_NEWTON_RADIUS = 1e-13

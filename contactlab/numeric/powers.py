@@ -59,6 +59,28 @@ def root(x: np.ndarray, q: float) -> np.ndarray:
 _TINY = float(np.finfo(float).tiny)
 
 
+def _all_normal(v: np.ndarray) -> bool:
+    """Whether every element of ``v`` is a normal float in ``[tiny, inf)``: two reductions (a
+    NaN fails both), instead of the boolean masks of the careful branch that follows where this
+    says no. Callers take their result unchanged when it says yes (the same values)."""
+    if v.size == 0:
+        return True
+    lo = v.min()
+    return bool(lo >= _TINY) and bool(v.max() < np.inf)
+
+
+def _root_in_place(x: np.ndarray, q: float) -> np.ndarray:
+    """:func:`root` of ``x`` written into ``x`` (the same values; no new array)."""
+    q = float(q)
+    if q == 3.0:
+        return np.cbrt(x, out=x)
+    if q == 2.0:
+        return np.sqrt(x, out=x)
+    if q == 1.0:
+        return x
+    return np.power(x, 1.0 / q, out=x)
+
+
 def times_power(k: float, x: np.ndarray, p: float, whole: bool = False) -> np.ndarray:
     """``k * x**p`` (a new float array) also where ``x**p`` alone leaves the float range.
 
@@ -73,6 +95,8 @@ def times_power(k: float, x: np.ndarray, p: float, whole: bool = False) -> np.nd
     with np.errstate(over="ignore", under="ignore"):
         pw = power(x, p) if whole else x ** p
         out = np.asarray(k * pw, dtype=float)
+        if _all_normal(pw):
+            return out
         bad = ((pw < _TINY) | ~np.isfinite(pw)) & (x > 0) & np.isfinite(x)
         if np.any(bad) and k > 0:
             out = np.array(out, dtype=float, ndmin=1).reshape(x.shape) if out.ndim == 0 else out
@@ -92,14 +116,27 @@ def times_power_float(k: float, x: float, p: float, whole: bool = False) -> floa
     return k * pw
 
 
-def root_of_ratio(num: np.ndarray, den: float, q: float) -> np.ndarray:
+def root_of_ratio(num: np.ndarray, den: float, q: float, *, overwrite: bool = False
+                  ) -> np.ndarray:
     """``(num/den)**(1/q)`` by :func:`root` (bit-identical to it where the quotient is a normal
     float), in logarithms where the quotient alone underflows or overflows but its root need
     not (``PowerLaw(c=1e294, n=100)`` at a depth of 1e-35 m: ``d/(κc) = 8e-331``, its 100th
-    root 5e-4). ``num >= 0`` (a new float array)."""
+    root 5e-4). ``num >= 0`` (a new float array; with ``overwrite``, a float64 ``num`` of the
+    caller's own may be returned holding the result, the same values)."""
     num = np.asarray(num, dtype=float)
+    if (overwrite and num.ndim and num.size and den > 0 and num.dtype == np.float64
+            and num.flags.writeable):
+        # the quotient's extremes are those of num divided (division by a positive constant is
+        # monotone, rounding included): when they are normal floats, so is every quotient
+        lo, hi = float(num.min()) / den, float(num.max()) / den
+        if lo >= _TINY and hi < math.inf:
+            np.divide(num, den, out=num)
+            return _root_in_place(num, q)
     with np.errstate(over="ignore", under="ignore"):
         x = num / den
+        if _all_normal(x):
+            # the common case, in place: the quotient's own buffer takes its root
+            return _root_in_place(x, q) if x.ndim else np.asarray(root(x, q), dtype=float)
         out = np.asarray(root(x, q), dtype=float)
         bad = ((x < _TINY) | ~np.isfinite(x)) & (num > 0) & np.isfinite(num)
         if np.any(bad) and den > 0:
@@ -130,7 +167,7 @@ def power_integral(a: np.ndarray, terms, shift: float) -> np.ndarray:
         p = n + shift
         with np.errstate(over="ignore", under="ignore"):
             v = np.asarray(power(a, p), dtype=float)
-        if np.any((v < _TINY) & (a > 0)) or not np.all(np.isfinite(v)):
+        if not _all_normal(v) and (np.any((v < _TINY) & (a > 0)) or not np.all(np.isfinite(v))):
             v = times_power(k, a, p, whole=True)    # the power alone left the float range
         else:
             v *= k

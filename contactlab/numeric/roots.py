@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import ConvergenceError
 
 __all__ = ["bracketed_root", "scalar_root", "shrink_bracket", "shrink_bracket_scalar",
-           "DEFAULT_XTOL", "SHRINK_RATIO"]
+           "convex_newton", "DEFAULT_XTOL", "SHRINK_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
 DEFAULT_XTOL = 4 * np.finfo(float).eps
@@ -285,3 +285,48 @@ def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what) -> float:
                 tn = tq
         t = min(max(tn, tl), 1 - tl)
     raise ConvergenceError(f"{what}: bracketed solve did not converge in {maxiter} steps.")
+
+
+def convex_newton(residual: Callable[[np.ndarray, np.ndarray],
+                                     tuple[np.ndarray, np.ndarray, np.ndarray]],
+                  x0: np.ndarray, *, rtol: float, maxiter: int = 200, what: str = "root"
+                  ) -> np.ndarray:
+    """Roots of increasing convex functions by Newton's method from above, element-wise.
+
+    ``residual(x, index)`` returns ``(r, r', noise)`` for the elements ``index`` (flat positions
+    in ``x0``) still iterating: the residual ``φ(x) - target``, its derivative (> 0) and the
+    rounding level of ``r`` (absolute). Every start ``x0`` must lie at or above its root: on an
+    increasing convex function Newton's steps then fall monotonically onto the root and never
+    overshoot, so no bracket is needed. An element stops after a step no larger than
+    ``rtol · x`` (the error left is of the order of that step squared) or, without that step,
+    once its residual is within its rounding noise; only the elements still iterating are
+    evaluated, and an element's value does not depend on the other elements of the batch.
+
+    Raises
+    ------
+    ConvergenceError
+        If some element has not stopped after ``maxiter`` steps.
+    """
+    x = np.array(x0, dtype=float, copy=True).ravel()
+    idx = np.arange(x.size)
+    xa = x.copy()
+    for _ in range(maxiter):
+        r, dr, noise = residual(xa, idx)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = r / dr
+        new = xa - step
+        quiet = np.abs(r) <= noise
+        np.copyto(new, xa, where=quiet)                 # (a quiet element keeps its value)
+        done = np.abs(step) <= rtol * np.abs(new)
+        done |= quiet
+        if done.all():
+            x[idx] = new
+            return x.reshape(np.shape(x0))
+        if done.any():
+            x[idx[done]] = new[done]
+            keep = ~done
+            idx, xa = idx[keep], new[keep]
+        else:
+            xa = new
+    raise ConvergenceError(f"{what}: Newton's method did not converge in {maxiter} steps "
+                           f"(at {xa[0]!r}).")

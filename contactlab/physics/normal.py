@@ -15,7 +15,7 @@ otherwise S is evaluated by parts so only g is needed:
 """
 from __future__ import annotations
 
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
@@ -337,8 +337,9 @@ def _power_radius(profile, E_star: float, F: np.ndarray, term: tuple) -> np.ndar
     n1 = n + 1.0
     x = F / (2.0 * E_star)
     x *= n1
-    # (x / (κ c n))**(1/(n+1)), in logarithms where the quotient leaves the float range
-    return root_of_ratio(x, profile._power_kappa(n) * c * n, n1)
+    # (x / (κ c n))**(1/(n+1)), in logarithms where the quotient leaves the float range; x is
+    # this function's own array, so the quotient and its root may take its buffer
+    return root_of_ratio(x, profile._power_kappa(n) * c * n, n1, overwrite=True)
 
 
 def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
@@ -366,7 +367,8 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         # the masks and scatters (the same values)
         a = _power_radius(profile, E, F, terms[0])
         d = profile._g(a, rtol)
-        profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
+        if profile._has("_check_monotone_upto"):    # (the base hook checks nothing)
+            profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
         return a, d
     a = np.zeros(F.shape)
     d = np.zeros(F.shape)
@@ -432,13 +434,14 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         dp = profile._g(ap, rtol)
     a[pos] = ap
     d[pos] = dp
-    profile._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))
+    if profile._has("_check_monotone_upto"):
+        profile._check_monotone_upto(float(np.max(ap)), float(np.max(dp)))
     return a, d
 
 
 def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, *,
-          error_estimate: bool = True
-          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+          error_estimate: bool | str = True
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
     """Non-adhesive normal contact for one control, with the force's relative error estimate.
 
     Parameters
@@ -452,10 +455,14 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         a punch with a wall), validated by the caller.
     rtol : float
         Tolerance of every numeric route.
-    error_estimate : bool
+    error_estimate : bool or "lazy"
         Compute ``force_rel_error`` (default). ``False`` skips its arithmetic and returns
         ``None`` in its place (callers that discard it: the per-step normal states of a load
-        path); depth, radius and force are bit-identical either way.
+        path). ``"lazy"``: where ``∫g`` is exact (a closed form, whose error is its rounding
+        floor) a callable of no arguments that computes the estimate when called (the same
+        values, bit for bit, as ``True`` gives: a batched state pays for it only when it is read);
+        the array itself on the quadrature routes. Depth, radius and force are bit-identical
+        whichever is asked.
 
     Returns
     -------
@@ -466,6 +473,7 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         ``F`` only at second order (``dF/da = 2E*(d - g(a)) = 0``).
     """
     E = E_star
+    g_a_err: np.ndarray | None = None
     if control == "depth":
         d = value
         a = profile._radius_of_depth(d, rtol)
@@ -478,33 +486,75 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         profile._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
     else:
         a, d = radius_depth_of_force(profile, E, value, rtol)
-    pos = a > 0
-    all_pos = bool(pos.all())
-    if error_estimate:
+    all_pos = a.size == 0 or bool(a.min() > 0)     # (one reduction, no mask)
+    lazy = error_estimate == "lazy" and profile._g_integral_is_exact()
+    if error_estimate and not lazy:
         g_int, g_int_err = profile._g_integral_with_error(a, rtol)
     else:
         g_int = profile._g_integral(a, rtol)
-    ad = a * d
-    F = ad - g_int
-    F *= 2.0 * E
+    if lazy:
+        # F in one new array; a·d is recomputed (the same product) when the estimate is read
+        F = np.multiply(a, d)
+        if isinstance(F, np.ndarray):
+            F -= g_int
+            F *= 2.0 * E
+        else:
+            F = (F - g_int) * (2.0 * E)
+        ad = F       # (unused below: recomputed by pending)
+    else:
+        ad = a * d
+        F = ad - g_int
+        F *= 2.0 * E
+    if not all_pos:
+        F = np.where(a > 0, F, 0.0)
     if not error_estimate:
-        if not all_pos:
-            F = np.where(pos, F, 0.0)
         return np.asarray(d, float), np.asarray(a, float), F, None
+    if lazy:
+        # the exact routes' ∫g error is its rounding floor (Profile._g_integral_with_error):
+        # recomputed from ∫g itself when the estimate is read; a force request is copied (the
+        # caller's array may change before then)
+        req = value.copy() if control == "force" and not all_pos else None
+        resid = None
+        if control == "force" and all_pos:
+            # every force requested is positive: the residual |F - F_req| is the whole
+            # force-control term, kept (the caller reads it too: pending.residual)
+            resid = np.subtract(F, value)
+            np.abs(resid, out=resid)
+
+        def pending() -> np.ndarray:
+            return _force_rel_error(E, control, a, a * d, g_int, ROUNDING * np.abs(g_int), F,
+                                    all_pos, req, g_a_err, resid)
+        pending.residual = resid            # type: ignore[attr-defined]
+        return np.asarray(d, float), np.asarray(a, float), F, pending
+    return (np.asarray(d, float), np.asarray(a, float), F,
+            _force_rel_error(E, control, a, ad, g_int, g_int_err, F, all_pos, value,
+                             g_a_err))
+
+
+def _force_rel_error(E: float, control: str, a: np.ndarray, ad: np.ndarray, g_int: np.ndarray,
+                     g_int_err: np.ndarray, F: np.ndarray, all_pos: bool,
+                     value: np.ndarray | None, g_a_err: np.ndarray | None,
+                     residual: np.ndarray | None = None) -> np.ndarray:
+    """The relative force error of :func:`solve` (see there) from its parts (``residual``:
+    ``|F - value|`` when every requested force is positive, the same values as from
+    ``value``)."""
     F_err = np.abs(ad)
     F_err += np.abs(g_int)
     F_err *= ROUNDING
     F_err += np.abs(g_int_err)
     F_err *= 2.0 * E
     if not all_pos:
-        F = np.where(pos, F, 0.0)
-        F_err = np.where(pos, F_err, 0.0)
-    if control == "force":
+        F_err = np.where(a > 0, F_err, 0.0)
+    if control == "force" and residual is not None:
+        F_err = F_err + residual
+    elif control == "force":
+        assert value is not None
         F_err = F_err + np.where(value > 0, np.abs(F - value), 0.0)
     elif control == "radius":       # the depth g(a) itself carries the error of g
+        assert g_a_err is not None
         F_err = F_err + np.where(a > 0, 2.0 * E * a * np.abs(g_a_err), 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = F_err / F
     if not all_pos or rel.ndim == 0:
         rel = np.where(F > 0, rel, 0.0)
-    return np.asarray(d, float), np.asarray(a, float), F, rel
+    return rel

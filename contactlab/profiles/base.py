@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
-from ..numeric.quadrature import DEFAULT_RTOL, tanh_sinh
+from ..numeric.quadrature import DEFAULT_RTOL, min_level_for, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
@@ -342,7 +342,8 @@ class Profile(ParamIdentity, ABC):
         def integrand(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return weight(xr[idx][:, None], theta)
 
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, raise_on_failure=False)
+        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, raise_on_failure=False,
+                        min_level=min_level_for(rtol))
         val[nz] = res.value.reshape(lo.shape).sum(axis=0)
         err[nz] = res.error.reshape(lo.shape).sum(axis=0)
         missed = err > rtol * np.abs(val) + self._quadrature_floor(flat, val)
@@ -374,6 +375,12 @@ class Profile(ParamIdentity, ABC):
             if val is not None:
                 return val
         return self._g_integral_with_error(a, rtol)[0]
+
+    def _g_integral_is_exact(self) -> bool:
+        """Whether :meth:`_g_integral_with_error` is this base class's exact route (a closed form
+        or power terms), whose error estimate is ``ROUNDING · |∫g|`` of the value itself."""
+        return (type(self)._g_integral_with_error is Profile._g_integral_with_error
+                and (self._has("_g_integral_closed_form") or self.power_terms() is not None))
 
     def _g_integral_exact(self, a: np.ndarray) -> np.ndarray | None:
         """``∫_0^a g dx`` by a closed form or the power terms, or None (quadrature route)."""
@@ -448,7 +455,8 @@ class Profile(ParamIdentity, ABC):
         else:
             out = np.zeros(d.shape)
             out[pos] = a
-        self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
+        if self._has("_check_monotone_upto"):     # (the base hook checks nothing)
+            self._check_monotone_upto(np.max(a), d_for_message=float(np.max(dp)))
         return out
 
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
@@ -463,6 +471,22 @@ class Profile(ParamIdentity, ABC):
         rtol = self.rtol if rtol is None else rtol
         lo = np.full(d.shape, self.flat_radius)
         hi = np.full(d.shape, self._initial_bracket())
+        if self.g_route == "quadrature" and self._has("_height"):
+            # each g costs a quadrature, f almost nothing: grow the bracket on f first. Where
+            # f' >= 0, g(a) = a ∫_0^a f'(r)/sqrt(a²-r²) dr >= ∫_0^a f' = f(a), so the first
+            # radius with f >= d is at or above the root (the loop below still checks g there)
+            # (f that stops rising, saturating or falling, stops the growth: g takes over there)
+            cap = limit * (1 - 1e-15) if np.isfinite(limit) else np.inf
+            f_prev = np.full(d.shape, -np.inf)
+            for _ in range(200):
+                hc = np.minimum(hi, cap)
+                with np.errstate(over="ignore", invalid="ignore"):
+                    f_hc = self._height(hc)
+                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev)
+                if not np.any(short):
+                    break
+                f_prev = f_hc
+                hi = np.where(short, hi * 4.0, hi)
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
             g_hi = self._g(hi_c, rtol)

@@ -226,7 +226,12 @@ class Paraboloid(PowerLaw):
         return power_form([(1 / (2 * R), sp.Integer(2))], {R: self.R})
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
-        return x**2 / self.R
+        # x**2 / R, in one new array (numpy squares by x·x: the same values)
+        out = np.multiply(x, x)
+        if isinstance(out, np.ndarray):
+            out /= self.R
+            return out
+        return out / self.R
 
     def _g_inverse_closed_form(self, d: np.ndarray) -> np.ndarray:
         return np.sqrt(self.R * d)

@@ -8,16 +8,40 @@ stay below R (``g → ∞`` as ``a → R``); half-space theory needs ``a ≪ R``
 from __future__ import annotations
 
 import math
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
 from ..errors import OutsideTheoryError
+from ..numeric.roots import convex_newton
 from ..params import Param
 from ..symbolic.form import SympyForm, symbol
-from .base import Profile
+from .base import Profile, root_rtol
 
 __all__ = ["Sphere", "VALIDITY_RATIO"]
+
+#: rounding level of a Newton residual relative to the size of its terms
+_NOISE = 8 * float(np.finfo(float).eps)
+#: series coefficients of h(q)/(R² q³) in q², 2m/((2m-1)(2m+1)), m = 1..9 (q < 0.1: the tenth
+#: term is below 1e-18 of the first)
+_H_SERIES = tuple(2 * m / ((2 * m - 1) * (2 * m + 1)) for m in range(1, 10))
+
+
+def _reduced_force(q: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
+    """``h(q)/R² = [(q² + 1) artanh q - q]/2`` (series in ``q²`` below ``q = 0.1``)."""
+    if at is None:
+        at = np.arctanh(q)
+    out = 0.5 * ((q * q + 1) * at - q)
+    small = q < 0.1
+    if np.any(small):
+        qs = q[small]
+        x = qs * qs
+        acc = np.full(qs.shape, _H_SERIES[-1])
+        for c in _H_SERIES[-2::-1]:          # Horner in q²
+            acc *= x
+            acc += c
+        out[small] = acc * (x * qs)
+    return out
 
 #: a/R above which a sphere contact leaves the half-space theory (ValidityWarning): the theory
 #: linearises the boundary conditions in the surface slope, here a/sqrt(R²-a²) = 0.58 (30°) at
@@ -113,6 +137,91 @@ class Sphere(Profile):
                          xg_integral=xg_integral,
                          reason="the exact sphere has no closed-form inverse of d = a artanh(a/R) "
                                 "and no closed-form pressure (theory §3: quadrature)")
+
+    @property
+    def capabilities(self) -> frozenset[str]:
+        return frozenset({"reduced_force_solver"})
+
+    def _solve_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
+        """Contact radii of depths ``d > 0``: Newton on ``q artanh q = d/R`` (``q = a/R``) from
+        the Hertz radius ``sqrt(R d)`` (or, for deep contacts, ``tanh(δ/tanh δ)``), both above
+        the root of this increasing convex function (``artanh q >= q``), so the steps fall onto
+        it without a bracket (:func:`~contactlab.numeric.roots.convex_newton`)."""
+        rtol = self.rtol if rtol is None else rtol
+        R = self.R
+        delta = np.asarray(d, dtype=float) / R
+        q_cap = limit * (1 - 1e-15) / R
+        # start: q² = δ - δ²/3 + δ³/45 + O(δ⁴) inverts δ = q artanh q = q² + q⁴/3 + q⁶/5 + ...
+        # (relative error ~δ³ of q: one or two steps below δ = 0.01); if it falls below the root,
+        # the first step lands above it (convexity) and the steps then fall onto it
+        ds = np.minimum(delta, 0.25)        # (the series is used below 0.25 only)
+        q0 = np.sqrt(delta * (1.0 - ds * (1.0 / 3.0 - ds / 45.0)))
+        deep = delta > 0.25             # Hertz / the tanh bound there, both above the root
+        if np.any(deep):
+            dd = delta[deep]
+            q0[deep] = np.minimum(np.sqrt(dd), np.tanh(dd / np.tanh(dd)))
+        self._refuse_beyond(q0, q_cap, lambda q: q * np.arctanh(q), delta, d, "depth", "m",
+                            "depth/force")
+        q0 = np.minimum(q0, q_cap)
+
+        flat = delta.ravel()
+
+        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            at = np.arctanh(q)
+            dl = flat[idx] if idx.size < flat.size else flat
+            return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
+
+        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+
+    def _radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
+        """Contact radii of reduced forces ``F/(2E*) > 0``: Newton on
+        ``h(q) = a g(a) - ∫_0^a g = R² [(q² + 1) artanh q - q]/2`` (``q = a/R``; below
+        ``q = 0.1``, where that form cancels, its series ``R² Σ 2m q^(2m+1)/((2m-1)(2m+1))``)
+        from the Hertz radius (``h >= 2R² q³/3``), above the root of this increasing convex
+        function (``h'' = g' + a g'' > 0``)."""
+        R = self.R
+        eta = np.asarray(target, dtype=float) / (R * R)
+        q_cap = self.max_radius * (1 - 1e-15) / R
+        # start: η = (2/3) q³ (1 + 2q²/5 + 9q⁴/35 + ...), the bracket evaluated at the Hertz
+        # radius q_H = cbrt(3η/2) (relative error ~q⁴ of q; see _solve_radius for a start below)
+        qh = np.cbrt(1.5 * eta)
+        qh2 = qh * qh
+        q0 = qh / np.cbrt(1.0 + qh2 * (0.4 + qh2 * (9.0 / 35.0)))
+        deep = qh > 0.5                 # Hertz / the tanh bound there, both above the root
+        if np.any(deep):
+            ed = eta[deep]
+            ql = np.tanh(ed)
+            q0[deep] = np.minimum(qh[deep], np.tanh((2 * ed + 1) / (ql * ql + 1)))
+        over = q0 >= q_cap
+        if np.any(over) and np.any(_reduced_force(np.full(int(np.count_nonzero(over)), q_cap))
+                                   < eta[over]):
+            return None     # a radius beyond R: declined, the bracketed solve names the force
+        q0 = np.minimum(q0, q_cap)
+
+        flat = eta.ravel()
+
+        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            at = np.arctanh(q)
+            h = _reduced_force(q, at)
+            el = flat[idx] if idx.size < flat.size else flat
+            # rounding: of the series (~η) below q = 0.1, of the cancelling terms (~q) above
+            noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
+            return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
+
+        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+
+    def _refuse_beyond(self, q0: np.ndarray, q_cap: float, phi: Any, goal: np.ndarray,
+                       value: np.ndarray, what: str, unit: str, fix: str) -> None:
+        """OutsideTheoryError where a root of ``phi(q) = goal`` lies beyond ``q_cap``
+        (``phi(q_cap) < goal``): the same refusal as the bracketed solve's."""
+        over = q0 >= q_cap
+        if np.any(over):
+            short = phi(np.full(int(np.count_nonzero(over)), q_cap)) < goal[over]
+            if np.any(short):
+                v = float(np.asarray(value)[over][np.argmax(short)])
+                raise OutsideTheoryError(
+                    f"{what}={v!r} {unit} needs a contact radius >= max_radius="
+                    f"{self.max_radius!r} m of {self!r}; reduce the {fix}.")
 
     def _g_prime_closed_form(self, x: np.ndarray) -> np.ndarray:
         self._guard(x, "x")

@@ -1,0 +1,122 @@
+"""The quadrature route chooses its rule from rtol and its estimate still covers the truth
+(issue 29).
+
+A profile known only by f and f' (``QuadratureOnly``) goes through tanh-sinh quadrature for g,
+∫g and the contact radius. Over a ladder of profiles (paraboloid, cone, n = 4, n = 1.5 and the
+endpoint-singular n = 0.5), loads (contact radii 1e-3, 0.1 and 10 m) and tolerances (1e-2 …
+1e-10), under depth and force control, the force's and the radius's error estimates must cover
+the true error, computed against 30-digit mpmath values, on at least 95 % of the cases; and the
+work of a g evaluation (integrand nodes) must fall as rtol loosens.
+"""
+from __future__ import annotations
+
+from typing import ClassVar
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.numeric import quadrature
+from contactlab.profiles import Cone, Paraboloid, PowerLaw, Profile
+
+MATERIALS = (cl.Elastic(E=1.0, nu=0.0), cl.Rigid())          # E* = 1 Pa
+RTOLS = (1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10)
+RADII = (1e-3, 0.1, 10.0)
+#: the share of the ladder on which an estimate must cover the true error (issue 29)
+COVERAGE = 0.95
+
+
+class QuadratureOnly(Profile):
+    """Only f and f' of another profile: g, ∫g and the radius go by quadrature."""
+
+    name: ClassVar[str] = "quadrature_only_test29"
+    params: ClassVar[tuple] = ()
+
+    def __init__(self, base: Profile) -> None:
+        self.base = base
+
+    def _param_values(self):
+        return (self.base,)
+
+    def __repr__(self) -> str:
+        return f"QuadratureOnly({self.base!r})"
+
+    def _length_scale(self):
+        return self.base._length_scale()
+
+    def _height(self, r):
+        return self.base._height(r)
+
+    def _slope(self, r):
+        return self.base._slope_any(r)
+
+
+def _kappa(n: mp.mpf) -> mp.mpf:
+    return mp.sqrt(mp.pi) * mp.gamma(n / 2 + 1) / mp.gamma(n / 2 + mp.mpf(1) / 2)
+
+
+def _reference(c: float, n: float, a: float) -> tuple[float, float]:
+    """(depth, force) at contact radius ``a`` of ``f = c r^n``, E* = 1, in 30 digits."""
+    with mp.workdps(30):
+        cm, nm, am = mp.mpf(c), mp.mpf(n), mp.mpf(a)
+        k = _kappa(nm) * cm
+        return float(k * am**nm), float(2 * k * nm * am ** (nm + 1) / (nm + 1))
+
+
+CASES = [(Paraboloid(1.0), 0.5, 2.0), (Cone(0.5), 0.5, 1.0), (PowerLaw(10.0, 4.0), 10.0, 4.0),
+         (PowerLaw(2.0, 1.5), 2.0, 1.5), (PowerLaw(1.0, 0.5), 1.0, 0.5)]
+
+
+def _ladder():
+    for prof, c, n in CASES:
+        q = QuadratureOnly(prof)
+        for a in RADII:
+            d, F = _reference(c, n, a)
+            for rtol in RTOLS:
+                yield q, a, d, F, rtol
+
+
+def test_estimates_cover_the_true_error_on_the_ladder():
+    covered = total = 0
+    misses = []
+    for q, a, d, F, rtol in _ladder():
+        contact = cl.Contact(q, MATERIALS, rtol=rtol)
+        for control, value in (("depth", d), ("force", F)):
+            s = contact.normal(**{control: value})
+            checks = [("force", abs(s.force - F) / F, s.error_estimate),
+                      ("radius", abs(s.radius - a) / a, s.error_estimates["radius"])]
+            if control == "force":
+                checks.append(("depth", abs(s.depth - d) / d, s.error_estimates["depth"]))
+            for what, err, est in checks:
+                total += 1
+                ok = err <= max(est, 4e-16)      # an exact answer needs no estimate
+                covered += ok
+                if not ok:
+                    misses.append((repr(q), a, rtol, control, what, err, est))
+            # and every answer reaches its rtol
+            assert abs(s.force - F) <= rtol * F, (q, a, rtol, control)
+    assert covered >= COVERAGE * total, misses
+
+
+def test_g_work_falls_as_rtol_loosens(monkeypatch):
+    evaluations = {}
+    real = quadrature.tanh_sinh
+
+    def counting(*args, **kw):
+        res = real(*args, **kw)
+        evaluations[kw["rtol"]] = evaluations.get(kw["rtol"], 0) + res.evaluations
+        return res
+
+    import contactlab.profiles.base as base
+    monkeypatch.setattr(base, "tanh_sinh", counting)
+    q = QuadratureOnly(PowerLaw(10.0, 4.0))
+    x = np.array([0.05, 0.1, 0.2])
+    for rtol in (1e-2, 1e-6, 1e-10):
+        q._g(x, rtol)
+    assert evaluations[1e-2] < evaluations[1e-6] <= evaluations[1e-10]
+
+
+@pytest.mark.parametrize("rtol, level", [(1e-2, 1), (1e-3, 1), (9.9e-4, 2), (1e-10, 2)])
+def test_rule_from_rtol(rtol, level):
+    assert quadrature.min_level_for(rtol) == level
