@@ -663,3 +663,12 @@ FIT_RECOVERY = 1e-8
 #: analytic slope dΦ/dδ = 2a of the fit's tip models against a central finite difference with
 #: step 1e-6 δ (truncation ~1e-12, rounding ~1e-10 relative)
 FIT_JACOBIAN_FD = 1e-7
+
+# ---- exact ring solver speed (issue 28)
+#: the punch-density traction and slip lag summed with a NodeTable (antiderivatives at fixed
+#: points and ring ends, times the density's jumps of offset and slope per node) against the
+#: piece-by-piece differences they replace: the same terms added in another order; measured
+#: 9.6e-13 of the largest |traction| over the 185 checks of the 180-step benchmark path (the
+#: arccosh terms of neighbouring nodes cancel) and 3e-14 on the test densities. Only the
+#: annulus step's checks use them (slack CHECK_RTOL = 1e-9), so the series stay bit-identical
+RINGS_NODE_TABLE = 1e-11
