@@ -62,7 +62,10 @@ def from_nodes(b: np.ndarray, left: np.ndarray, right: np.ndarray) -> Pieces:
 def _lin(p: Pieces):
     lo, hi, wl, wr = p
     h = hi - lo
-    be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
+    if h.size and h.min() > 0:      # no zero-width piece (the usual case): the same values
+        be = (wr - wl) / h
+    else:
+        be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
     return wl - be * lo, be
 
 
