@@ -292,6 +292,8 @@ class Exact(TorsionModel):
         with np.errstate(divide="ignore", invalid="ignore"):
             y = np.where(live, 2.0 * self.G * phi / (self.mu * np.where(live, p0, 1.0)), 0.0)
         t = _hertz.stick_ratio(y)
+        # stick radii below C_MIN_REL a count as full sliding, as on the quadrature route
+        t = np.where(t < _exact.C_MIN_REL, 0.0, t)
         c = np.where(live, t * a, a)
         scale = self.mu * p0 * a**3
         M1 = np.where(c > 0, 16.0 / 3.0 * self.G * np.where(c > 0, phi, 0.0) * c**3, 0.0)

@@ -90,3 +90,16 @@ def test_adhesive_states_and_other_profiles_keep_the_quadrature_route():
     # a power law with n = 2 is a paraboloid: same route, p0 = 4cE*a/π
     p0 = _torsion._hertz_p0(PowerLaw(c=1 / (2 * R), n=2.0), E_STAR, a, d, g)
     assert p0 == pytest.approx(2 * E_STAR * a / (np.pi * R), rel=1e-15)
+
+
+def test_stick_radii_below_the_sliding_floor_are_full_sliding_as_on_the_quadrature_route():
+    # y = 2G_tφ/(μp0) = 400 gives t = 4 exp(-401) ~ 1e-174 < C_MIN_REL: full sliding (c = 0),
+    # as the quadrature route reports it (its kernels are not evaluated below C_MIN_REL a)
+    model = _model()
+    a, d, g = _states(np.array([1e-4, 1e-4]))
+    p0 = 2 * E_STAR * a / (np.pi * R)
+    phi = np.array([400.0, 200.0]) * MU * p0 / (2 * G_T)
+    sol = model.of_twist(phi, a, d, g)
+    assert sol.stick_radius[0] == 0.0 and sol.torque[0] == model.sliding_torque(a[:1], d[:1])[0]
+    assert sol.stick_radius[1] == pytest.approx(4 * np.exp(-201.0) * a[1], rel=1e-12)
+    assert _exact.C_MIN_REL * a[1] < sol.stick_radius[1]
