@@ -157,8 +157,12 @@ def scaling(steps: list[int], rounds: int) -> None:
         print(f"{n:7d} {best[n] / n * 1e3:8.3f} {info[n][0]:6d} {info[n][1]:6d} {info[n][2]:18d}")
     x, y = np.log(np.array(steps, float)), np.log(np.array([best[n] for n in steps]))
     k = float(np.polyfit(x, y, 1)[0])
-    print(f"exponent of time against steps {steps[0]}..{steps[-1]}: {k:.3f} (goal <= 1.05: "
-          + ("met" if k <= 1.05 else "NOT met") + ")")
+    # the shortest path also pays the ring set's build (cold), which flattens a fit over all
+    # lengths: the verdict is on the exponent between the two longest paths
+    tail = float((y[-1] - y[-2]) / (x[-1] - x[-2]))
+    print(f"exponent of time against steps, fit {steps[0]}..{steps[-1]}: {k:.3f}; between "
+          f"{steps[-2]} and {steps[-1]}: {tail:.3f} (goal <= 1.05: "
+          + ("met" if tail <= 1.05 else "NOT met") + ")")
 
 
 def main() -> int:
