@@ -1,19 +1,21 @@
 """Speed of the exact torsion routes against their floors or the other route (issue 28).
 
-Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N]``.
+Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N] [--long]``.
 
 Every row is measured interleaved in this one run (round-robin, best of ``--rounds``) and reported
-as a ratio to a route of the same work, so the machine's load mostly cancels; the machine and its
-load average are printed. Rows and goals:
+as a ratio to its floor (a route of the same work), with a verdict on the row's goal, so the
+machine's load mostly cancels; the machine and its load average are printed. Rows and goals:
 
 1. the 180-step varying-load twisted Hertz path, ``simulate(path, method="exact")`` (default
    rings): with BLAS set to two threads vs one (goal: within 1.2x, bit-identical), cold (ring
    matrices built) and warm (reused), against ``method="mdr"`` on the same path; goal <= 50 ms;
-2. ``Contact.torsion(method="mdr")`` on 10^5 forces, against ``method="no-slip"`` on the same
+2. the ring solver's cost per step against the path length: the same path shape with 10^2 and
+   10^3 steps (and 10^4 with ``--long``), the fitted exponent of time against steps; goal <= 1.05;
+3. ``Contact.torsion(method="mdr")`` on 10^5 forces, against ``method="no-slip"`` on the same
    forces; goal <= 0.1 s;
-3. the exact torque-twist curve (200 twists, Hertz) against the MDR curve of the same twists;
-   goal <= 2 ms;
-4. the exact curve (200 twists) on a 1000-point table, against its MDR curve; goal <= 50 ms.
+4. the exact torque-twist curve (200 twists, Hertz) against its floor, the closed form of the same
+   curve written out with numpy (200 stick radii, no contact set-up); goal <= 2 ms;
+5. the exact curve (200 twists) on a 1000-point table, against its MDR curve; goal <= 50 ms.
 """
 from __future__ import annotations
 
@@ -89,26 +91,84 @@ def cases() -> dict:
         "torsion mdr, 1e5 forces": lambda: c.torsion(force=F, twist=2e-4, method="mdr"),
         "torsion no-slip, 1e5 forces": lambda: c.torsion(force=F, twist=2e-4, method="no-slip"),
         "curve exact, Hertz 200": lambda: c.torsion(force=10.0, twist=twists, method="exact"),
+        "curve closed form (numpy), Hertz 200": lambda: hertz_floor(a10, 10.0),
         "curve mdr, Hertz 200": lambda: c.torsion(force=10.0, twist=twists, method="mdr"),
         "curve exact, table 1000": lambda: tab.torsion(force=10.0, twist=twists, method="exact"),
         "curve mdr, table 1000": lambda: tab.torsion(force=10.0, twist=twists, method="mdr"),
     }
 
 
-#: (row, reference row, goal on the row's time in s or None)
+_GL = np.polynomial.legendre.leggauss(32)
+
+
+def hertz_floor(a: float, force: float, n: int = 200):
+    """The floor of the Hertz curve: Lubkin's closed form at ``n`` stick radii written out with
+    numpy/scipy (twist ``3μF/(4πG_t a²) (K − E)``, torque ``μFa (4/π) ∫_t^1 s² E ds`` by one
+    32-point Gauss rule), no contact, normal solve or error estimate."""
+    from scipy.special import ellipe, ellipk
+    G_t = _hertz().moduli.torsional
+    t = np.linspace(1e-3, 1.0, n)
+    m = 1.0 - t * t
+    phi = 3 * MU * force / (4 * np.pi * G_t * a * a) * (ellipk(m) - ellipe(m))
+    s = t[:, None] + (1.0 - t[:, None]) * 0.5 * (_GL[0][None, :] + 1.0)
+    M = MU * force * a * 4 / np.pi * (1.0 - t) * 0.5 * ((s * s * ellipe(1.0 - s * s)) @ _GL[1])
+    return phi, M
+
+
+#: (row, floor row, goal on the row's time in s or None, goal on the ratio or None)
 ROWS = [
-    ("path exact, BLAS 2 threads", "path exact, BLAS 1 thread", None),
-    ("path exact, BLAS 1 thread", "path mdr", 0.05),
-    ("path exact, cold (matrices built)", "path exact, BLAS 1 thread", None),
-    ("torsion mdr, 1e5 forces", "torsion no-slip, 1e5 forces", 0.1),
-    ("curve exact, Hertz 200", "curve mdr, Hertz 200", 0.002),
-    ("curve exact, table 1000", "curve mdr, table 1000", 0.05),
+    ("path exact, BLAS 2 threads", "path exact, BLAS 1 thread", None, 1.2),
+    ("path exact, BLAS 1 thread", "path mdr", 0.05, None),
+    ("path exact, cold (matrices built)", "path exact, BLAS 1 thread", None, None),
+    ("torsion mdr, 1e5 forces", "torsion no-slip, 1e5 forces", 0.1, None),
+    ("curve exact, Hertz 200", "curve closed form (numpy), Hertz 200", 0.002, None),
+    ("curve exact, table 1000", "curve mdr, table 1000", 0.05, None),
 ]
+
+
+def verdict(t: float, ratio: float, goal_t: float | None, goal_r: float | None) -> str:
+    """The row's goals and whether this run met them."""
+    parts = []
+    if goal_t is not None:
+        parts.append(f"time <= {goal_t * 1e3:g} ms " + ("met" if t <= goal_t else "NOT met"))
+    if goal_r is not None:
+        parts.append(f"ratio <= {goal_r:g} " + ("met" if ratio <= goal_r else "NOT met"))
+    return "; ".join(parts) or "(reported)"
+
+
+def scaling(steps: list[int], rounds: int) -> None:
+    """Ring-solver time per step against the path length (same path shape, CPU time, best of
+    ``rounds``), the fitted exponent of time against steps (goal <= 1.05), and what grows with
+    the length: rings (nodes added at the contact radii met), jump nodes, ring-solver steps."""
+    c = _hertz()
+    paths = {n: varying_path(c, n) for n in steps}
+    best = dict.fromkeys(steps, np.inf)
+    info = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(rounds):
+            for n in steps:
+                t0 = time.process_time()
+                r = c.simulate(paths[n], method="exact")
+                best[n] = min(best[n], time.process_time() - t0)
+                info[n] = (r.meta["rings"], r.meta["jump_nodes"], r.meta["fallback_steps"])
+    print(f"\n{'steps':>7s} {'ms/step':>8s} {'rings':>6s} {'jumps':>6s} {'ring-solver steps':>18s}")
+    for n in steps:
+        print(f"{n:7d} {best[n] / n * 1e3:8.3f} {info[n][0]:6d} {info[n][1]:6d} {info[n][2]:18d}")
+    x, y = np.log(np.array(steps, float)), np.log(np.array([best[n] for n in steps]))
+    k = float(np.polyfit(x, y, 1)[0])
+    # the shortest path also pays the ring set's build (cold), which flattens a fit over all
+    # lengths: the verdict is on the exponent between the two longest paths
+    tail = float((y[-1] - y[-2]) / (x[-1] - x[-2]))
+    print(f"exponent of time against steps, fit {steps[0]}..{steps[-1]}: {k:.3f}; between "
+          f"{steps[-2]} and {steps[-1]}: {tail:.3f} (goal <= 1.05: "
+          + ("met" if tail <= 1.05 else "NOT met") + ")")
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--long", action="store_true", help="scaling up to 10^4 steps (~1 min)")
     args = ap.parse_args()
     print("Machine:", machine())
     print("load average (1, 5, 15 min):", os.getloadavg())
@@ -123,13 +183,14 @@ def main() -> int:
                 keep[name] = fn()
                 best[name] = min(best[name], time.perf_counter() - t0)
     same = _digest(keep["path exact, BLAS 1 thread"]) == _digest(keep["path exact, BLAS 2 threads"])
-    print(f"\n{'row':38s} {'time':>10s} {'reference':38s} {'ratio':>7s}  goal")
-    for row, ref, goal in ROWS:
-        g = "" if goal is None else (f"<= {goal * 1e3:g} ms: "
-                                     + ("met" if best[row] <= goal else "NOT met"))
-        print(f"{row:38s} {best[row] * 1e3:8.2f}ms {ref:38s} {best[row] / best[ref]:7.2f}  {g}")
+    print(f"\n{'row':38s} {'time':>10s} {'floor':38s} {'ratio':>7s}  goal: verdict")
+    for row, ref, goal_t, goal_r in ROWS:
+        ratio = best[row] / best[ref]
+        print(f"{row:38s} {best[row] * 1e3:8.2f}ms {ref:38s} {ratio:7.2f}  "
+              + verdict(best[row], ratio, goal_t, goal_r))
     ratio = best["path exact, BLAS 2 threads"] / best["path exact, BLAS 1 thread"]
     print(f"\nBLAS 2 vs 1 thread: ratio {ratio:.2f} (goal <= 1.2), results bit-identical: {same}")
+    scaling([100, 1000, 10000] if args.long else [100, 1000], 1 if args.long else 2)
     print("load average after:", os.getloadavg())
     return 0
 

@@ -676,3 +676,20 @@ COMPILED_VS_NUMPY_SPRINGS = 1e-11
 #: reference: rounding of q artanh q (depth) and of the reduced force, whose closed form cancels
 #: by ~75x at q = a/R = 0.1 where the series takes over (measured 4.4e-15 radius, 2.6e-14 force)
 SPHERE_NEWTON_RADIUS = 1e-13
+
+# ---- exact ring solver speed (issue 28)
+#: the punch-density traction and slip lag summed with a NodeTable (antiderivatives at fixed
+#: points and ring ends, times the density's jumps of offset and slope per node) against the
+#: piece-by-piece differences they replace: the same terms added in another order; measured
+#: 9.6e-13 of the largest |traction| over the 185 checks of the 180-step benchmark path (the
+#: arccosh terms of neighbouring nodes cancel) and 3e-14 on the test densities. Only the
+#: annulus step's checks use them (slack CHECK_RTOL = 1e-9), so the series stay bit-identical
+RINGS_NODE_TABLE = 1e-11
+#: the exact Hertz torque-twist curve from its closed forms (physics.torsion_hertz: Newton in
+#: ln(c/a) on K - E, a 32-point Gauss rule for the torque integral) against the 30-digit mpmath
+#: Lubkin reference: measured 3.5e-15 of the torque (twists given; the stick ratio round trip
+#: 4e-16); a few hundred ulps allowed for scipy's elliptic integrals
+HERTZ_TORSION_CLOSED = 1e-13
+#: the same curve against the quadrature route it replaces (root solve of the slip function and
+#: tanh-sinh torque integral at rtol 1e-10, whose own error is that tolerance)
+HERTZ_TORSION_VS_QUADRATURE = 1e-9

@@ -57,8 +57,9 @@ JUMP_POINT = 0.25
 _WRITES = ("twist", "torque", "stick_radius", "dissipated_energy")
 
 #: float64 values held at the peak of an exact run (tracemalloc, rounded up; measured 7.7 per
-#: ring and step of the longest leaf, 12-14 per ring squared, 390 per step on short paths)
-_PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 16, 64
+#: ring and step of the longest leaf, 12-14 per ring squared, 390 per step on short paths; the
+#: NodeTable of the annulus checks adds 4 per point and ring end, up to 8 per ring squared)
+_PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 24, 64
 
 
 def memory(n_steps: int, longest_leaf: int, n_rings: int) -> float:
@@ -133,6 +134,9 @@ class Rings(Foundation):
         mats = _influence(b, self.points, self.moduli.torsional, self.edge_punch, self.jumps)
         self.H, self.C, self.g = mats["H"], mats["C"], mats["g"]
         self.B, self.lu = mats["B"], mats["lu"]
+        #: the traction's and slip's antiderivatives at the points and ring ends (the checks of
+        #: the annulus steps)
+        self.table = mats["table"]
 
     def new_state(self) -> RingState:
         n = self.points.size
@@ -459,8 +463,12 @@ def _influence(b: np.ndarray, points: np.ndarray, G_t: float, edge_punch: bool,
             _CACHE.move_to_end(key)
             return hit
     with serial_blas():
-        mats = _tr.influence(b, points, G_t, edge_punch=edge_punch, jumps=jumps)
-    arrays = [mats["H"], mats["C"], mats["g"], mats["B"], *mats["lu"]]
+        mats: dict[str, Any] = dict(_tr.influence(b, points, G_t, edge_punch=edge_punch,
+                                                  jumps=jumps))
+    table = _ta.NodeTable(points, b)
+    mats["table"] = table
+    arrays = [mats["H"], mats["C"], mats["g"], mats["B"], *mats["lu"],
+              *(a for pair in table.arrays.values() for a in pair)]
     for a in arrays:
         a.flags.writeable = False
     if sum(a.nbytes for a in arrays) <= _CACHE_MAX_BYTES:
@@ -499,9 +507,11 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     if slide is None:
         slide = _ta.density(rings.lu, b, jumps, bound, radius)
     if ctrl == "twist":
-        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip)
+        out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip,
+                       table=rings.table)
     else:
-        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound, slip=slip)
+        out = _ta.step(w, slide, radius, G_t, target_torque=target, r=r, bound=bound, slip=slip,
+                       table=rings.table)
     if out["ok"]:
         s, c, extra = out["sense"], out["c"], out["gross"]
         gross = bool(np.isnan(extra))

@@ -35,7 +35,7 @@ from typing import cast
 import numpy as np
 import scipy.linalg as _la
 
-__all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
+__all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
            "difference", "add", "step", "punch_step", "punch_torque", "punch_energy",
            "punch_traction", "ROOT_XTOL", "CHECK_RTOL"]
@@ -62,7 +62,10 @@ def from_nodes(b: np.ndarray, left: np.ndarray, right: np.ndarray) -> Pieces:
 def _lin(p: Pieces):
     lo, hi, wl, wr = p
     h = hi - lo
-    be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
+    if h.size and h.min() > 0:      # no zero-width piece (the usual case): the same values
+        be = (wr - wl) / h
+    else:
+        be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
     return wl - be * lo, be
 
 
@@ -90,8 +93,86 @@ def torque(p: Pieces, G_t: float) -> float:
                                            + be * (hi ** 5 - lo ** 5) / 5.0))
 
 
-def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
-    """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece)."""
+def _antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``arccosh(t/r)`` and ``sqrt(t² − r²)`` at the nodes ``t`` (columns) for the radii ``r``
+    (rows), ``t`` clipped to ``r`` (both vanish for nodes below ``r``): elementwise, so a column
+    taken from a :class:`NodeTable` is the same to the last bit as one computed here."""
+    rr = r[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(rr > 0, np.maximum(nodes[None, :] / np.where(rr > 0, rr, 1.0), 1.0), 1.0)
+    # the antiderivatives vanish at u = 1 (nodes below r): evaluated above r only
+    m = u > 1.0
+    A, S = np.zeros(u.shape), np.zeros(u.shape)
+    um = u[m]
+    A[m] = np.arccosh(um)
+    S[m] = np.sqrt((um - 1.0) * (um + 1.0))
+    S *= rr
+    return A, S
+
+
+class NodeTable:
+    """The antiderivatives of :func:`traction` and :func:`slip_kernel_integral` at fixed radii
+    ``r`` (sorted) and fixed nodes (sorted), computed once: a ring set's collocation points and
+    ring ends, which most piece ends of the solver's densities are (four ``r.size ×
+    nodes.size`` arrays, read-only).
+
+    With a table, those functions sum each antiderivative times the density's jump of offset
+    and slope at each node (one matrix-vector product; columns computed only for nodes not in
+    the table) instead of differencing the antiderivatives piece by piece: the same terms added
+    in another order, equal to rounding, not to the last bit (the slip kernel's antiderivatives
+    are kept relative to their value at ``t = r``, so that nodes beyond ``r`` add exact zeros)."""
+
+    def __init__(self, r: np.ndarray, nodes: np.ndarray) -> None:
+        self.r = np.array(r, float)
+        self.nodes = np.array(nodes, float)
+        self.arrays = {"traction": _antiderivatives(self.r, self.nodes),
+                       "slip": _slip_antiderivatives(self.r, self.nodes)}
+        for a in (self.r, self.nodes, *self.arrays["traction"], *self.arrays["slip"]):
+            a.flags.writeable = False
+
+    @property
+    def nbytes(self) -> int:
+        return int(sum(a.nbytes for pair in self.arrays.values() for a in pair))
+
+    def rows(self, r: np.ndarray) -> np.ndarray | None:
+        """Row indices of the radii ``r`` (``None`` unless every one is a row of the table)."""
+        if r.size == 0:
+            return None
+        k = np.minimum(np.searchsorted(self.r, r), self.r.size - 1)
+        return k if np.array_equal(self.r[k], r) else None
+
+    def sums(self, kind: str, rows: np.ndarray, r: np.ndarray, nodes: np.ndarray,
+             c0: np.ndarray, c1: np.ndarray) -> np.ndarray:
+        """``Σ_n F0(r, t_n) c0_n + F1(r, t_n) c1_n`` at the rows ``rows`` (radii ``r``) for the
+        antiderivatives ``kind`` (``"traction"`` or ``"slip"``) at the nodes ``t_n``."""
+        F0, F1 = self.arrays[kind]
+        k = np.minimum(np.searchsorted(self.nodes, nodes), self.nodes.size - 1)
+        hit = self.nodes[k] == nodes
+        v0, v1 = np.zeros(self.nodes.size), np.zeros(self.nodes.size)
+        v0[k[hit]], v1[k[hit]] = c0[hit], c1[hit]
+        # the rows asked for lie in one contiguous band of the table (radii sorted)
+        i0, i1 = int(rows.min()), int(rows.max()) + 1
+        out = (F0[i0:i1] @ v0 + F1[i0:i1] @ v1)[rows - i0]
+        if not hit.all():
+            make = _antiderivatives if kind == "traction" else _slip_antiderivatives
+            A, S = make(r, nodes[~hit])
+            out += A @ c0[~hit] + S @ c1[~hit]
+        return out
+
+
+def _jumps(al: np.ndarray, be: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Jumps of the offset and slope of abutting pieces at their nodes (zero outside)."""
+    zero = np.zeros(1)
+    return (np.concatenate([zero, al]) - np.concatenate([al, zero]),
+            np.concatenate([zero, be]) - np.concatenate([be, zero]))
+
+
+def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = None
+             ) -> np.ndarray:
+    """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece).
+
+    ``table`` (optional): antiderivatives computed once for radii that include ``r`` and most of
+    the density's nodes (:class:`NodeTable`; equal to rounding)."""
     lo, hi, _, _ = p
     al, be = _lin(p)
     r = np.asarray(r, float)
@@ -100,16 +181,10 @@ def traction(p: Pieces, r: np.ndarray, G_t: float) -> np.ndarray:
         # abutting pieces: the antiderivatives arccosh(t/r) and sqrt(t² − r²) once per node
         # (t clipped to r: a piece below r gives 0, the piece holding r starts there)
         nodes = np.append(lo, hi[-1])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            u = np.where(rr > 0, np.maximum(nodes[None, :] / np.where(rr > 0, rr, 1.0), 1.0),
-                         1.0)
-        # the antiderivatives vanish at u = 1 (nodes below r): evaluated above r only
-        m = u > 1.0
-        A, S = np.zeros(u.shape), np.zeros(u.shape)
-        um = u[m]
-        A[m] = np.arccosh(um)
-        S[m] = np.sqrt((um - 1.0) * (um + 1.0))
-        S *= rr
+        rows = None if table is None else table.rows(r)
+        if table is not None and rows is not None:
+            return 4.0 * G_t / np.pi * r * table.sums("traction", rows, r, nodes, *_jumps(al, be))
+        A, S = _antiderivatives(r, nodes)
         return 4.0 * G_t / np.pi * r * (np.diff(A, axis=1) @ al + np.diff(S, axis=1) @ be)
     t0 = np.maximum(lo[None, :], rr)
     inside = (rr < hi[None, :]) & (rr > 0)
@@ -131,14 +206,35 @@ def _G01(x):
     return g0, g1
 
 
-def slip_kernel_integral(p: Pieces, r: np.ndarray) -> np.ndarray:
+def _slip_antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``r² (G0(t/r) − G0(1))`` and ``r³ (G1(t/r) − G1(1))`` at the nodes ``t`` (columns) for the
+    radii ``r`` (rows), ``t/r`` clipped to ``[0, 1]``: exact zeros for nodes beyond ``r``."""
+    rr = r[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(rr > 0, np.minimum(np.maximum(nodes[None, :] / rr, 0.0), 1.0), 1.0)
+    m = x < 1.0
+    one0, one1 = _G01(np.ones(1))
+    g0, g1 = np.zeros(x.shape), np.zeros(x.shape)
+    x0, x1 = _G01(x[m])
+    g0[m], g1[m] = x0 - one0, x1 - one1
+    return g0 * (rr * rr), g1 * rr ** 3
+
+
+def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = None
+                         ) -> np.ndarray:
     """``v(r) = ∫_0^r w(t) K(r, t) dt`` (m): the lag of the surface at ``r`` behind the rigid turn
-    ``Ψ(0) r``; a step's slip increment is ``Δv`` (plus ``r`` times any gross-sliding turn)."""
+    ``Ψ(0) r``; a step's slip increment is ``Δv`` (plus ``r`` times any gross-sliding turn).
+
+    ``table`` (optional): :class:`NodeTable` for radii that include ``r`` (equal to rounding)."""
     lo, hi, _, _ = p
     al, be = _lin(p)
     rr = np.asarray(r, float)[:, None]
     # abutting pieces share their ends: the antiderivatives once per node
     shared = bool(lo.size) and np.array_equal(lo[1:], hi[:-1])
+    rows = None if table is None or not shared else table.rows(rr[:, 0])
+    if table is not None and rows is not None:
+        return 2.0 / np.pi * table.sums("slip", rows, rr[:, 0], np.append(lo, hi[-1]),
+                                        *_jumps(al, be))
     ends = np.append(lo, hi[-1]) if shared else np.concatenate([lo, hi])
     with np.errstate(divide="ignore", invalid="ignore"):
         x = np.where(rr > 0, np.minimum(np.maximum(ends / rr, 0.0), 1.0), 1.0)
@@ -263,9 +359,28 @@ def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
     if xs.size < 2:
         return tuple(np.zeros(0) for _ in range(4))
     lo, hi = xs[:-1], xs[1:]
-    wl = _values(new, lo, 1) - _values(old, lo, 1)
-    wr = _values(new, hi, -1) - _values(old, hi, -1)
-    return lo, hi, wl, wr
+    nl, nr = _ends(new, lo, hi)
+    ol, orr = _ends(old, lo, hi)
+    return lo, hi, nl - ol, nr - orr
+
+
+def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``w(lo⁺)`` and ``w(hi⁻)`` on intervals ``[lo, hi]`` that each lie inside one piece of
+    ``p`` or in a gap (the piece ends of ``p`` among the interval ends): :func:`_values` at both
+    ends with one look-up, the same values."""
+    plo, phi, wl, wr = p
+    if plo.size == 0:
+        return np.zeros(lo.shape), np.zeros(lo.shape)
+    k = np.searchsorted(plo, lo, "right") - 1
+    inside = (k >= 0) & (hi <= phi[np.maximum(k, 0)])
+    k = np.maximum(k, 0)
+    l0, h0, a, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
+    h = h0 - l0
+    pos = h > 0
+    hh = np.where(pos, h, 1.0)
+    fl = np.where(pos, (lo - l0) / hh, 0.0)
+    fr = np.where(pos, (hi - l0) / hh, 0.0)
+    return np.where(inside, a + d * fl, 0.0), np.where(inside, a + d * fr, 0.0)
 
 
 def add(p: Pieces, q: Pieces) -> Pieces:
@@ -368,7 +483,8 @@ def _root(d_lo: float, d_hi: float, x0: float, x1: float, f1: float, target: flo
 
 def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float | None = None,
          target_torque: float | None = None, r: np.ndarray | None = None,
-         bound: np.ndarray | None = None, slip: bool = True) -> dict:
+         bound: np.ndarray | None = None, slip: bool = True,
+         table: NodeTable | None = None) -> dict:
     """One step with a single slip annulus ``c < r < radius``.
 
     Parameters
@@ -388,6 +504,10 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         is checked against ``μ p``, the slip increments on the annulus against the sense.
     slip : bool
         Compute the slip increments at ``r`` (else only where the check needs them; zeros).
+    table : NodeTable, optional
+        Antiderivatives at the points ``r`` computed once, for the checks (:func:`traction`,
+        :func:`slip_kernel_integral`; equal to rounding). The returned slip increments are
+        computed without it.
 
     Returns
     -------
@@ -454,14 +574,16 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= slack))
                       and bool(np.all(s * dw[3] >= slack)))
         if on.any() and not np.isnan(gross) and (slip or not sufficient):
-            ds[on] = slip_kernel_integral(dw, r[on]) + gross * r[on]
+            # (the table's sums where the increments only feed the check)
+            ds[on] = (slip_kernel_integral(dw, r[on], None if slip else table)
+                      + gross * r[on])
             ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
             if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
         if not why and c > 0:
             inside = r < c
             if inside.any():
-                tau = traction(w, r[inside], G_t)
+                tau = traction(w, r[inside], G_t, table)
                 if np.any(np.abs(tau) > bound[inside] * (1 + CHECK_RTOL)):
                     why = "traction beyond the friction limit inside the stick radius"
     return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,

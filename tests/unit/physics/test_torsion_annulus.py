@@ -153,3 +153,71 @@ def test_rigid_punches_energy_and_a_shrinking_contact():
     # a torque target instead: the same state back from its torque
     t3, m3, d3 = ta.punch_step(t, m, 0.6, G, target_torque=ta.punch_torque(t2, m2, G))
     assert d3 == pytest.approx(0.0, abs=1e-14) and np.allclose(m3, m2, rtol=1e-14)
+
+
+# ---- the speed routes (issue 28): each against the route it replaces --------------------------
+def _densities(rng):
+    """Abutting densities on a grid with a few off-grid nodes (stick radii), one with a gap."""
+    b = np.linspace(0.0, 1.0, 41)
+    out = []
+    for extra in ([], [0.3137], [0.11, 0.5551, 0.77]):
+        nodes = np.unique(np.concatenate([b[b <= 0.9], extra]))
+        n = nodes.size - 1
+        out.append((nodes[:-1], nodes[1:], rng.normal(size=n), rng.normal(size=n)))
+    return b, out
+
+
+def test_node_table_traction_and_slip_equal_the_piece_by_piece_sums():
+    from tests.tolerances import RINGS_NODE_TABLE
+    rng = np.random.default_rng(7)
+    b, dens = _densities(rng)
+    r = 0.5 * (b[1:] + b[:-1])
+    table = ta.NodeTable(r, b)
+    for p in dens:
+        for sel in (slice(None), slice(0, 17), slice(9, 30)):
+            want = ta.traction(p, r[sel], G)
+            got = ta.traction(p, r[sel], G, table)
+            assert np.max(np.abs(got - want)) <= RINGS_NODE_TABLE * np.max(np.abs(want))
+            want = ta.slip_kernel_integral(p, r[sel])
+            got = ta.slip_kernel_integral(p, r[sel], table)
+            assert np.max(np.abs(got - want)) <= RINGS_NODE_TABLE * np.max(np.abs(want))
+    # radii that are not rows of the table: the direct route, bit for bit
+    rr = np.array([0.123, 0.456])
+    assert np.array_equal(ta.traction(dens[1], rr, G, table), ta.traction(dens[1], rr, G))
+    assert np.array_equal(ta.slip_kernel_integral(dens[1], rr, table),
+                          ta.slip_kernel_integral(dens[1], rr))
+
+
+def test_node_table_slip_is_exact_zero_beyond_the_nodes_and_small_near_the_axis():
+    # a density far outside the point: its lag there is 0 (K vanishes for t > r), and at a
+    # point near the axis with every node beyond it no constant residue is left by the sums
+    from tests.tolerances import RINGS_NODE_TABLE
+    b = np.linspace(0.0, 1.0, 41)
+    r = 0.5 * (b[1:] + b[:-1])
+    table = ta.NodeTable(r, b)
+    p = (b[20:-1], b[21:], np.ones(20), 2.0 * np.ones(20))
+    got = ta.slip_kernel_integral(p, r[:20], table)
+    assert np.array_equal(got, np.zeros(20))
+    p = (b[:-1], b[1:], np.linspace(1, 2, 40), np.linspace(1.5, 2.5, 40))
+    want = ta.slip_kernel_integral(p, r[:1])
+    got = ta.slip_kernel_integral(p, r[:1], table)
+    assert abs(got[0] - want[0]) <= RINGS_NODE_TABLE * abs(want[0])
+
+
+def test_difference_with_one_lookup_equals_the_four_evaluations():
+    # difference() takes both interval ends of each density with one search (_ends): the same
+    # values, bit for bit, as w(x+) and w(x-) taken one by one (_values)
+    rng = np.random.default_rng(3)
+    _, dens = _densities(rng)
+    gap = (np.array([0.0, 0.5]), np.array([0.2, 0.9]), np.array([1.0, -2.0]),
+           np.array([3.0, 4.0]))
+    for new, old in [(dens[0], dens[1]), (dens[2], gap), (gap, dens[1]), (dens[1], ta.empty())]:
+        for start in (0.0, 0.3137, 0.6):
+            got = ta.difference(new, old, start)
+            xs = np.unique(np.concatenate([new[0], new[1], old[0], old[1], [start]]))
+            xs = xs[xs >= start]
+            lo, hi = xs[:-1], xs[1:]
+            want = (lo, hi, ta._values(new, lo, 1) - ta._values(old, lo, 1),
+                    ta._values(new, hi, -1) - ta._values(old, hi, -1))
+            for u, v in zip(got, want):
+                assert np.array_equal(u, v)

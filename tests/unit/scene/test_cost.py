@@ -233,7 +233,13 @@ def test_bad_arguments():
 
 
 def test_cli_cost_text_json_and_exit_codes(capsys, tmp_path):
-    path = str(EXAMPLES / "steel_ball_twist.toml")           # Lubkin quadratures read rtol
+    # the twisted steel ball with a cone in place of the ball: its exact torsion runs on
+    # quadratures that read rtol (the ball's Lubkin curve is a closed form since issue 28)
+    text = (EXAMPLES / "steel_ball_twist.toml").read_text()
+    text = text.replace('type = "paraboloid"\nR = "10 mm"', 'type = "cone"\nhalf_angle = "85 deg"')
+    assert 'type = "cone"' in text
+    path = str(tmp_path / "cone_twist.toml")
+    (tmp_path / "cone_twist.toml").write_text(text)
     assert main(["cost", path, "--target", "1e-8"]) == 0
     out = capsys.readouterr().out
     assert "rtol" in out and "recommended" in out and "default" in out
@@ -247,6 +253,10 @@ def test_cli_cost_text_json_and_exit_codes(capsys, tmp_path):
     assert doc["knobs"] == [] and doc["inert"] == {"rtol": 0.0} and doc["choice"] == {}
     assert main(["cost", path, "--target", "2"]) == 2
     assert "target" in capsys.readouterr().err
+    # Lubkin's twisted ball: closed forms now, rtol not read
+    assert main(["cost", str(EXAMPLES / "steel_ball_twist.toml"), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["knobs"] == [] and "rtol" in doc["inert"]
 
 
 def test_cli_cost_plot(capsys, tmp_path):
@@ -265,7 +275,9 @@ def test_cli_cost_plot(capsys, tmp_path):
 def test_cost_plot_into_given_axes():
     """The gallery and notebooks draw the report into their own axes (no file, figure kept)."""
     plt = pytest.importorskip("matplotlib.pyplot")
-    report = Scene(twist_scene()).cost(target=1e-6, ladders={"rtol": [1e-4, 1e-8, 1e-12]})
+    # a cone: its exact torsion reads rtol (a paraboloid's is a closed form since issue 28)
+    report = Scene(twist_scene(profile={"type": "cone", "half_angle": "85 deg"})).cost(
+        target=1e-6, ladders={"rtol": [1e-4, 1e-8, 1e-12]})
     fig, ax = plt.subplots()
     assert report.plot(ax=ax) is ax
     knob_lines = [ln for ln in ax.get_lines() if ln.get_label() == "rtol"]
