@@ -73,17 +73,19 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
     """``∂q/∂h`` at the nodes, Pa (``q = p s_load``, see the module docstring): ``mode`` is
     ``"tangential"`` (``G_mod = G*``) or ``"torsion"`` (``G_mod = G_t``, ``method`` exact|mdr).
 
-    ``edge > 0`` takes the ``edge`` nodes beyond the contact edge as if they touched (the side
-    of the kink they reach when the scar grows): the matrix then carries the stiff pressure
-    coupling of the nodes a step brings into contact, which keeps a long step stable there
+    ``edge > 0`` adds, on the diagonal of the ``edge`` nodes beyond the contact edge, the stiff
+    self-coupling each would have if it touched (the side of the kink a growing scar reaches):
+    it damps a node that a step brings into contact, which keeps a long step stable there, and
+    it leaves every other entry, so a node that stays out of contact gets no increment
     (``edge = 0``: the exact derivative on the current contact set)."""
     G, K = jops["G"], jops["K"]
     r = ops["r"]
     gap = d - g
     m = gap > 0
+    pad = np.zeros(0, dtype=int)
     if edge > 0 and np.any(m):
         last = int(np.flatnonzero(m)[-1])
-        m[last + 1:last + 1 + edge] = True
+        pad = np.arange(last + 1, min(last + 1 + edge, r.size))
     u = np.where(m, gap, 0.0)
     w = np.where(m, ops["w1"], 0.0)
     c = (w @ G) / np.sum(w)
@@ -92,7 +94,7 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
     U_m = c[None, :] - Gm
     p_raw = K @ u
     Dp = K[:, m] @ U_m
-    Dp[(p_raw <= 0) & ~m] = 0.0
+    Dp[p_raw <= 0] = 0.0
     p = np.maximum(p_raw, 0.0)
     if mode == "tangential":
         s1 = amplitude - mu * E_star * u / G_mod
@@ -119,6 +121,14 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
     s3 = np.maximum(a3, 0.0)
     Ds[a3 <= 0] = 0.0
     J = s3[:, None] * Dp + p[:, None] * Ds
+    if pad.size:
+        # ∂p_j/∂h_j of a padded node as if it touched: contact set and force balance with it
+        mp = m.copy()
+        mp[pad] = True
+        wp = np.where(mp, ops["w1"], 0.0)
+        cp = (wp @ G[:, pad]) / np.sum(wp)
+        self_p = np.einsum("ij,ji->i", K[pad][:, mp], cp[None, :] - G[mp][:, pad])
+        J[pad, pad] += s3[pad] * np.minimum(self_p, 0.0)
     # the axis row: q_0 = max((4 q_1 - q_2)/3, 0) (physics.wear._extrapolate_axis)
     q = p * s3
     J[0] = (4.0 * J[1] - J[2]) / 3.0 if (4.0 * q[1] - q[2]) > 0 else 0.0
@@ -132,7 +142,7 @@ def factor(J: np.ndarray, dN: float) -> tuple:
 
 def rosenbrock_step(rate: Callable[[np.ndarray], np.ndarray], y: np.ndarray, f0: np.ndarray,
                     dN: float, J: np.ndarray, lu: tuple, dN_lu: float
-                    ) -> tuple[np.ndarray, np.ndarray, int]:
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One ROS34PW2 step of ``dy/dN = rate(y)`` from ``y`` (``f0 = rate(y)``) over ``dN``:
     ``(I - γ dN W) k_i = dN rate(y + Σ α_ij k_j) + dN W Σ γ_ij k_j``, ``y1 = y + Σ b_i k_i``.
 
@@ -140,14 +150,28 @@ def rosenbrock_step(rate: Callable[[np.ndarray], np.ndarray], y: np.ndarray, f0:
     step uses ``W = (dN_lu/dN) J``, which a W-method may (any matrix keeps its order), so a
     change of step does not need a new factorisation.
 
+    The increment is kept on the support of the rates only (components whose rate vanishes at
+    every stage and at the end stay put): the linear solves spread a little of every increment
+    over all components, which for wear would wear the surface outside the contact.
+
     Returns ``y1``, the local error estimate ``Σ (b_i - b̂_i) k_i`` (of the order-2 solution) and
-    the number of rate evaluations. ``rate`` may raise; the caller retries with a smaller step."""
+    the rate at ``y1``. ``rate`` may raise; the caller retries with a smaller step."""
     ks: list[np.ndarray] = []
+    active = f0 != 0
     for i in range(4):
         f = f0 if i == 0 else rate(y + ALPHA[i, :i] @ np.array(ks))
+        active |= f != 0
         rhs = dN * f
         if i > 0 and np.any(GAMMA_OFF[i, :i]):
             rhs = rhs + dN_lu * (J @ (GAMMA_OFF[i, :i] @ np.array(ks)))
         ks.append(scipy.linalg.lu_solve(lu, rhs, check_finite=False))
     K = np.array(ks)
-    return y + B @ K, (B - B_HAT) @ K, 3
+    step, err = B @ K, (B - B_HAT) @ K
+    y1 = y + step
+    f1 = rate(y1)                       # the next step's first rate: the end of this one
+    active |= f1 != 0
+    if not np.all(active):
+        y1[~active] = y[~active]
+        err[~active] = 0.0
+        f1 = rate(y1)
+    return y1, err, f1
