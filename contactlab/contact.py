@@ -515,7 +515,7 @@ class Contact:
     def wear(self, *, force: Any, displacement_amplitude: Any = None, twist_amplitude: Any = None,
              wear_coefficient: Any, cycles: Any, method: str | None = None,
              checkpoints: Any = None, n_grid: int = 400, max_radius: Any = None,
-             jump_rtol: float = 1e-4) -> WearResult:
+             jump_rtol: float = 1e-4, integrator: str = "explicit") -> WearResult:
         """Fretting wear at constant normal force (Archard's law on the 3D profile).
 
         Parameters
@@ -540,7 +540,15 @@ class Contact:
         max_radius : float, optional
             Grid radius, m (default: estimated from the fresh loop and a wear-volume bound).
         jump_rtol : float
-            Local error of one cycle jump (Euler vs Heun) relative to the indentation depth.
+            Local error of one cycle jump relative to the indentation depth plus the largest
+            wear depth (explicit: Euler vs Heun; implicit: the embedded order-2 solution).
+        integrator : {"explicit", "implicit"}
+            Cycle jumps: ``"explicit"`` Heun steps (the reference; their length is bounded by
+            the stiffness of the wear equation, about one cycle per step in long gross-slip
+            runs at large ``k``) or ``"implicit"`` Rosenbrock-W steps with the rate's Jacobian
+            (ROS34PW2, L-stable: the length is bounded by the accuracy). Both report
+            ``meta["error_estimates"]`` (relative, per quantity, from the accumulated local
+            errors); docs/fretting.md section 8.
 
         Returns
         -------
@@ -556,4 +564,5 @@ class Contact:
         return _drivers.wear.wear(self, force=force, displacement_amplitude=displacement_amplitude,
                                   twist_amplitude=twist_amplitude, wear_coefficient=wear_coefficient,
                                   cycles=cycles, method=method, checkpoints=checkpoints,
-                                  n_grid=n_grid, max_radius=max_radius, jump_rtol=jump_rtol)
+                                  n_grid=n_grid, max_radius=max_radius, jump_rtol=jump_rtol,
+                                  integrator=integrator)
