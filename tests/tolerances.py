@@ -663,3 +663,7 @@ FIT_RECOVERY = 1e-8
 #: analytic slope dΦ/dδ = 2a of the fit's tip models against a central finite difference with
 #: step 1e-6 δ (truncation ~1e-12, rounding ~1e-10 relative)
 FIT_JACOBIAN_FD = 1e-7
+#: the viscoelastic (Lee-Radok/Ting) fit model against Ting's solution by mpmath quadrature,
+#: relative to the largest force: Gauss-Legendre on each time step (the step where contact
+#: begins in u with s = t_c + L u²) measured 3e-15; the rest is the reference's 25 digits
+FIT_TING_MODEL = 1e-12
