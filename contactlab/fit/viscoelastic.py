@@ -108,6 +108,46 @@ def _free(free: Any, sample: Material) -> tuple[str, ...]:
     return tuple(out)
 
 
+#: factors on the template's relaxation times tried for the start (approach, projected)
+_TAU_FACTORS = np.geomspace(1.0 / 30.0, 30.0, 9)
+
+
+def _project_start(cls: type, st: dict, app: Any, F: np.ndarray, cp0: float,
+                   offset: bool) -> None:
+    """Starting moduli and relaxation times: on the approach the force is linear in the moduli
+    at fixed relaxation times and contact point (``4G_∞Φ + Σ 4G_k H_k``), so for each factor
+    on the template's times the moduli (and the offset) are solved by linear least squares and
+    the best positive solution is kept."""
+    Gi0, Gk0, tk0 = _prony(cls, st)
+    K = Gk0.size
+    best: tuple[float, np.ndarray, np.ndarray] | None = None
+    for c in _TAU_FACTORS:
+        _, dGi, dGk, _, _ = app(1.0, np.ones(K), tk0 * c, cp0)
+        cols = ([] if cls is Maxwell else [dGi]) + list(dGk)
+        if offset:
+            cols.append(np.ones_like(F))
+        A = np.stack(cols, axis=1)
+        coef, *_ = np.linalg.lstsq(A, F, rcond=None)
+        mod = coef[:A.shape[1] - int(offset)]
+        if not np.all(mod > 0):
+            continue
+        rss = float(np.sum((A @ coef - F) ** 2))
+        if best is None or rss < best[0]:
+            best = (rss, mod, tk0 * c)
+    if best is None:
+        return
+    _, mod, tk = best
+    if cls is Maxwell:
+        st.update(G=float(mod[0]), eta=float(mod[0] * tk[0]))
+    elif cls is StandardLinearSolid:
+        st.update(G_inf=float(mod[0]), G_1=float(mod[1]), eta_1=float(mod[1] * tk[0]))
+    else:
+        st["G_inf"] = float(mod[0])
+        for k in range(K):
+            st[f"moduli[{k}]"] = float(mod[1 + k])
+            st[f"relaxation_times[{k}]"] = float(tk[k])
+
+
 def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
                      sample: Material, tip: Material | None, free: Any,
                      start: dict | None, rtol: float) -> FitResult:
@@ -168,7 +208,12 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
         d_max = min(d_max, reach)
     from ._ting import TingModel
-    model = TingModel(t, z, TipModel(profile, d_max, rtol))
+    tipm = TipModel(profile, d_max, rtol)
+    model = TingModel(t, z, tipm)
+    own = _names(sample)
+    if all(n in names and n not in (start or {}) for n in own) and im > 0:
+        _project_start(cls, st, TingModel(t[app], z[app], tipm), F[app], cp0,
+                       "force_offset" in names)
     top = float(np.max(np.abs(F))) or 1.0
     scales = {n: (max(span, 1e-300) if n == "contact_point" else top if n == "force_offset"
                   else float(st[n])) for n in names}
