@@ -120,20 +120,32 @@ def _apex_radius(profile: Profile) -> float:
 
 
 def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
-               work_of_adhesion: float | None) -> Any:
-    """The JKR model of a single power-law tip, or None without adhesion."""
+               work_of_adhesion: float | None, delta_max: float = 0.0, rtol: float = 1e-12
+               ) -> Any:
+    """The JKR model of the tip, or None without adhesion: closed forms for a single power-law
+    tip ``c r^n`` (n >= 1), else a Hermite table of ``g`` in the contact radius."""
     if adhesion is None:
         return None
-    terms = profile.power_terms()
-    if (terms is None or len(terms) != 1 or terms[0][1] < 1.0 or profile.flat_radius != 0.0
-            or np.isfinite(profile.wall_radius)):
+    if profile.flat_radius != 0.0 or np.isfinite(profile.wall_radius):
         raise NotSupportedError(
-            f"adhesion='jkr' with profile={profile!r}: JKR fits cover single power-law tips "
-            "c r^n with n >= 1 (Paraboloid, Cone, PowerLaw); give one of these.")
+            f"adhesion='jkr' with profile={profile!r}: a flat punch or a wall is not covered by "
+            "the JKR fit (its contact radius does not follow from the indentation); give a "
+            "rounded or pointed tip.")
     _check_work(names, work_of_adhesion, adhesion)
-    from ._jkr import JKRPower
-    c, n = terms[0]
-    return JKRPower(profile._power_kappa(n) * c, n)
+    from ._jkr import JKRPower, JKRTable
+    terms = profile.power_terms()
+    if terms is not None and len(terms) == 1 and terms[0][1] >= 1.0:
+        c, n = terms[0]
+        return JKRPower(profile._power_kappa(n) * c, n)
+    if terms is not None and any(n < 1.0 for _, n in terms):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: a power term with n < 1 (a cusp at the "
+            "apex) has no JKR branch end; give a tip whose terms have n >= 1.")
+    a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
+    a_top = 1.5 * a_na                  # adhesion widens the contact at a given indentation
+    if np.isfinite(profile.max_radius):
+        a_top = min(a_top, profile.max_radius * (1.0 - 1e-6))
+    return JKRTable(profile, a_top, rtol)
 
 
 @reporting()
@@ -231,7 +243,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     if free is None:
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
-    jkr = _jkr_model(profile, adhesion, names, work_of_adhesion) if adhesion == "jkr" else None
+    jkr = None
     dmt_R = None
     if adhesion == "dmt":
         _check_work(names, work_of_adhesion, adhesion)
@@ -266,6 +278,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                     "reaches at its max_radius; use a larger tip or drop the deep points.")
     from ._tip import TipModel
     tipm = TipModel(profile, delta_max, rtol)
+    if adhesion == "jkr":
+        jkr = _jkr_model(profile, adhesion, names, work_of_adhesion, delta_max, rtol)
     # ---- starting values
     user_start = dict(start or {})
     start = dict(user_start)
@@ -441,11 +455,19 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                   "tip_route": "jkr" if jkr is not None else tipm.route}
     if dmt_R is not None:
         meta["apex_radius"] = dmt_R
+    if jkr is not None and hasattr(jkr, "error"):
+        meta["tip_model_errors"] = {"g": jkr.error}
+        meta["model_error_basis"] = ("cubic Hermite table of the tip's transform g in the "
+                                     "contact radius, measured at the interval midpoints")
     if adhesion is not None and equilibrium_distance is not None:
         assert w_fit is not None        # fitted or fixed with an adhesion model
+        radius = dmt_R
+        pt = profile.power_terms()
+        if radius is None and (pt is None or len(pt) > 1):
+            radius = _apex_radius(profile)
         meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
-                                         equilibrium_distance, adhesion, dmt_R)
-    if tipm.route == "table":
+                                         equilibrium_distance, adhesion, radius)
+    if tipm.route == "table" and jkr is None:
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
                                      "measured at the interval midpoints")
@@ -467,24 +489,27 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     the work of adhesion follows from that force (the branch-end force is a power of ``Δγ``)
     and the contact point from its depth (``z_pull - δ_c``); the candidate with the smallest
     residual of (a subsample of) the data wins."""
-    K, n = jkr.K, jkr.n
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
 
-    def branch_end(E_star: float, w: float) -> tuple[float, float]:
-        a_c, d_c = jkr.critical(E_star, w)
-        return 2.0 * E_star * (a_c * d_c - K * a_c ** (n + 1.0) / (n + 1.0)), d_c
+    branch_end = jkr.branch_end
+    # the branch-end force of c r^n grows as Δγ^((n+1)/(2n-1)) (a table: the paraboloid's 1,
+    # iterated)
+    n = getattr(jkr, "n", 2.0)
+    p = (2.0 * n - 1.0) / (n + 1.0)
 
     def work(E_star: float) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:
             return float(start.get("work_of_adhesion", w_fixed))
         if not f_pull < 0:
             return 1e-9 * E_star * float(np.max(np.abs(zs)))
-        # the branch-end force -2E*K a_c^(n+1) n(2n+1)/(n+1) grows as Δγ^((n+1)/(2n-1))
-        f_ref = branch_end(E_star, 1.0)[0]
-        return float((f_pull / f_ref) ** ((2.0 * n - 1.0) / (n + 1.0)))
+        w = float((f_pull / branch_end(E_star, 1.0)[0]) ** p)
+        if not hasattr(jkr, "n"):
+            for _ in range(4):
+                w *= float((f_pull / branch_end(E_star, w)[0]) ** p)
+        return w
 
     best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
     for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):

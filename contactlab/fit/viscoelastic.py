@@ -118,7 +118,7 @@ def _project_start(cls: type, st: dict, app: Any, F: np.ndarray, cp0: float,
     at fixed relaxation times and contact point (``4G_∞Φ + Σ 4G_k H_k``), so for each factor
     on the template's times the moduli (and the offset) are solved by linear least squares and
     the best positive solution is kept."""
-    Gi0, Gk0, tk0 = _prony(cls, st)
+    _, Gk0, tk0 = _prony(cls, st)
     K = Gk0.size
     best: tuple[float, np.ndarray, np.ndarray] | None = None
     for c in _TAU_FACTORS:
