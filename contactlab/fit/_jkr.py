@@ -24,6 +24,34 @@ import numpy as np
 __all__ = ["JKRPower", "JKRTable"]
 
 _NEWTON = 60
+#: Newton steps after the master table's start (its error ~1e-9: two steps reach rounding)
+_MASTER_NEWTON = 2
+_MASTERS: dict = {}
+
+
+def _master(n: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Nodes ``σ_i``, ``x_i`` and slopes ``dx/dσ`` of the branch's master curve (cached)."""
+    if n not in _MASTERS:
+        q = np.concatenate([[0.0], np.geomspace(1e-8, 1e8, 2000)])
+        x = 1.0 + q
+        psi = x ** n - 2.0 * n * np.sqrt(x)
+        sig = np.sqrt(np.maximum(psi - (1.0 - 2.0 * n), 0.0))
+        dpsi = n * x ** (n - 1.0) - n / np.sqrt(x)
+        m = np.empty_like(x)
+        m[1:] = 2.0 * sig[1:] / dpsi[1:]
+        m[0] = np.sqrt(2.0 / (n * (n - 0.5)))          # ψ''(1) = n(n - 1/2)
+        _MASTERS[n] = (sig, x, m)
+    return _MASTERS[n]
+
+
+def _hermite_x(s: np.ndarray, sn: np.ndarray, xn: np.ndarray, mn: np.ndarray) -> np.ndarray:
+    k = np.clip(np.searchsorted(sn, s, side="right") - 1, 0, sn.size - 2)
+    h = sn[k + 1] - sn[k]
+    t = (s - sn[k]) / h
+    t2 = t * t
+    t3 = t2 * t
+    return ((2 * t3 - 3 * t2 + 1) * xn[k] + (t3 - 2 * t2 + t) * h * mn[k]
+            + (3 * t2 - 2 * t3) * xn[k + 1] + (t3 - t2) * h * mn[k + 1])
 
 
 class JKRPower:
@@ -39,7 +67,6 @@ class JKRPower:
 
     def __init__(self, kc: float, n: float) -> None:
         self.K, self.n = float(kc), float(n)
-        self._last: np.ndarray | None = None    # radii of the previous call (warm start)
 
     def critical(self, E_star: float, w: float) -> tuple[float, float]:
         """Contact radius ``a_c`` (m) and indentation ``δ_c`` (m) where the branch ends."""
@@ -51,37 +78,36 @@ class JKRPower:
         return a_c, K * a_c ** n - beta * np.sqrt(a_c)
 
     def radius(self, delta: np.ndarray, E_star: float, w: float) -> np.ndarray:
-        """Contact radius on the stable branch (m); ``nan`` below ``δ_c``."""
+        """Contact radius on the stable branch (m); ``nan`` below ``δ_c``.
+
+        With ``x = a/a_c`` the branch is one master curve for every ``E*`` and ``Δγ``:
+        ``δ = δ_s ψ(x)``, ``ψ(x) = x^n - 2n√x``, ``δ_s = K a_c^n`` (since
+        ``β √a_c = 2nK a_c^n`` at the branch end). In ``σ = √(ψ(x) - ψ(1))``, which grows
+        linearly from the branch end (where ``ψ' = 0``), ``x(σ)`` is a cubic Hermite table built
+        once per exponent; two Newton steps on ``σ(x) = σ`` then reach rounding."""
         K, n = self.K, self.n
-        beta = np.sqrt(2.0 * np.pi * w / E_star)
         a_c, d_c = self.critical(E_star, w)
+        if a_c == 0.0:                          # no adhesion: Hertz-like
+            return (np.maximum(delta, 0.0) / K) ** (1.0 / n)
         on = delta >= d_c
-        dp = np.maximum(delta, 0.0)
-        a = (2.0 * dp / K) ** (1.0 / n) + a_c
-        if beta > 0:
-            a += (2.0 * beta / K) ** (1.0 / (n - 0.5))
-        last = self._last
-        if last is not None and last.shape == a.shape:
-            # the previous call's radii (a fit moves its parameters little between calls): on
-            # the convex, increasing h one Newton step from either side lands right of the
-            # root, and the iteration is monotone from there
-            warm = np.isfinite(last) & (last > a_c)
-            a = np.where(warm, last, a)
-        last_step = False
-        for _ in range(_NEWTON):
-            sa = np.sqrt(a)
-            an = a * a if n == 2.0 else a ** n
-            h = K * an - beta * sa - delta
-            ha = n * K * an / a - beta / (2.0 * sa)
-            step = np.where(on & (ha > 0), h / np.where(ha > 0, ha, 1.0), 0.0)
-            a = np.maximum(a - step, a_c)
-            if last_step:
-                break
-            # quadratic convergence: one more step after 1e-10 reaches rounding
-            last_step = not np.any(np.abs(step) > 1e-10 * a)
-        out = np.where(on, a, np.nan)
-        self._last = out
-        return out
+        y = delta / (K * a_c ** n)
+        sig = np.sqrt(np.maximum(y - (1.0 - 2.0 * n), 0.0))
+        sn, xn, mn = _master(n)
+        inside = sig <= sn[-1]
+        far = np.maximum(y, 1.0) ** (1.0 / n)          # beyond the table: x^n = y + 2n√x
+        far = (np.maximum(y, 1.0) + 2.0 * n * np.sqrt(far)) ** (1.0 / n)
+        x = np.where(inside, _hermite_x(np.minimum(sig, sn[-1]), sn, xn, mn), far)
+        for _ in range(_MASTER_NEWTON):
+            sx = np.sqrt(x)
+            xn_ = x * x if n == 2.0 else x ** n
+            psi = xn_ - 2.0 * n * sx
+            dpsi = n * xn_ / x - n / sx
+            s_x = np.sqrt(np.maximum(psi - (1.0 - 2.0 * n), 0.0))
+            ok = dpsi > 0
+            # Newton on σ(x) = σ: σ' = ψ'/(2σ)
+            x = np.maximum(x - np.where(ok, (s_x - sig) * 2.0 * s_x / np.where(ok, dpsi, 1.0),
+                                        0.0), 1.0)
+        return np.where(on, a_c * x, np.nan)
 
     def branch_end(self, E_star: float, w: float) -> tuple[float, float]:
         """Force (N) and indentation (m) at the end of the branch."""
