@@ -29,7 +29,12 @@ def _best(f, repeat: int = 5, number: int = 20) -> float:
 
 
 def main() -> None:
+    import os
+    import platform
+
     from scipy.optimize import curve_fit
+    print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, load average "
+          f"{os.getloadavg()[0]:.1f}")
 
     from contactlab import Elastic, fit
     from contactlab.profiles import Paraboloid, Tabulated
