@@ -589,9 +589,9 @@ def _parser() -> argparse.ArgumentParser:
     ft.add_argument("--tip", metavar="NAME:K=V,...", help="tip material (default rigid)")
     ft.add_argument("--free", default="E,contact_point",
                     help="comma-separated names to fit (default E,contact_point)")
-    ft.add_argument("--adhesion", choices=("jkr",), default=None, help="adhesive model")
+    ft.add_argument("--adhesion", choices=("jkr", "dmt"), default=None, help="adhesive model")
     ft.add_argument("--work-of-adhesion", type=float, default=None,
-                    help="fixed work of adhesion, J/m^2 (with --adhesion jkr)")
+                    help="fixed work of adhesion, J/m^2 (with --adhesion jkr or dmt)")
     ft.add_argument("-o", "--output", metavar="FILE", help="write data, fit and residuals (CSV)")
     ft.add_argument("--plot", metavar="FILE", help="write data, fit and residuals as a picture")
     ft.add_argument("--overwrite", action="store_true", help="replace existing output files")

@@ -33,6 +33,7 @@ from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry
 from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
+from .law_tangent import snapshot as _tangent_snapshot
 from .law_tangent import tangent as _tangent
 
 __all__ = ["ContactLaw", "LawStep", "law_memory", "law_spring_memory", "DEFAULT_MEMORY",
@@ -435,6 +436,7 @@ class ContactLaw:
         """
         if out is not None:
             self._check_out(out)
+        pre = _tangent_snapshot(self) if tangent else None     # the springs' step start
         if self.fast:
             res = self._step_fast(depth, force, displacement, twist, out)
         else:
@@ -443,7 +445,8 @@ class ContactLaw:
                 for f in _OUT_FIELDS:
                     getattr(out, f)[...] = getattr(res, f)
                 res = out
-        object.__setattr__(res, "tangent", _tangent(self, res, displacement, twist, tangent))
+        object.__setattr__(res, "tangent", _tangent(self, res, displacement, twist, tangent,
+                                                    pre))
         return self._stamp(res)
 
     def _stamp(self, res: LawStep) -> LawStep:

@@ -65,9 +65,6 @@ def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, f
         raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab Profile "
                              "(e.g. contactlab.profiles.Sphere(R=1e-5)).")
     if not isinstance(sample, Elastic):
-        if isinstance(sample, Material) and sample.is_viscoelastic:
-            raise NotSupportedError(f"sample={sample!r}: fitting viscoelastic materials "
-                                    "(time=...) is not available yet; give an Elastic template.")
         raise ParameterError(f"sample={sample!r} is invalid: give an Elastic material template "
                              "(its E is the starting value when 'E' is free, else fixed).")
     tip_m = Rigid() if tip is None else tip
@@ -95,32 +92,65 @@ def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, f
     return z, F, names, tip_m
 
 
-def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
-               work_of_adhesion: float | None) -> Any:
-    """The JKR model of a single power-law tip, or None without adhesion."""
-    if adhesion is None:
-        return None
-    terms = profile.power_terms()
-    if (terms is None or len(terms) != 1 or terms[0][1] < 1.0 or profile.flat_radius != 0.0
-            or np.isfinite(profile.wall_radius)):
-        raise NotSupportedError(
-            f"adhesion='jkr' with profile={profile!r}: JKR fits cover single power-law tips "
-            "c r^n with n >= 1 (Paraboloid, Cone, PowerLaw); give one of these.")
+def _check_work(names: tuple[str, ...], work_of_adhesion: float | None, adhesion: str) -> None:
     if "work_of_adhesion" not in names:
         if work_of_adhesion is None:
-            raise ParameterError("adhesion='jkr' needs the work of adhesion: add "
+            raise ParameterError(f"adhesion={adhesion!r} needs the work of adhesion: add "
                                  "'work_of_adhesion' to free or give work_of_adhesion=... J/m².")
         if not (np.isfinite(work_of_adhesion) and work_of_adhesion > 0):
             raise ParameterError(f"work_of_adhesion={work_of_adhesion!r} is invalid: give a "
                                  "positive value, J/m².")
-    from ._jkr import JKRPower
-    c, n = terms[0]
-    return JKRPower(profile._power_kappa(n) * c, n)
+
+
+def _apex_radius(profile: Profile) -> float:
+    """Radius of curvature of the tip's apex, ``1/f''(0)`` (m), for DMT: a paraboloid term
+    ``r²/(2R)`` plus higher powers, or the exact sphere."""
+    from ..profiles import Sphere
+    if isinstance(profile, Sphere):
+        return float(profile.R)
+    terms = profile.power_terms()
+    if terms is not None and profile.flat_radius == 0.0 and not np.isfinite(profile.wall_radius):
+        quad = [c for c, n in terms if n == 2.0]
+        if len(quad) == 1 and quad[0] > 0 and all(n >= 2.0 for _, n in terms):
+            return 1.0 / (2.0 * quad[0])
+    raise NotSupportedError(
+        f"adhesion='dmt' with profile={profile!r}: the DMT force 2π R Δγ needs the tip's apex "
+        "radius of curvature R (a paraboloid, the exact Sphere, or a sum of a paraboloid and "
+        "higher powers); a cone or flat apex has none (R = 0 or infinite).")
+
+
+def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
+               work_of_adhesion: float | None, delta_max: float = 0.0, rtol: float = 1e-12
+               ) -> Any:
+    """The JKR model of the tip, or None without adhesion: closed forms for a single power-law
+    tip ``c r^n`` (n >= 1), else a Hermite table of ``g`` in the contact radius."""
+    if adhesion is None:
+        return None
+    if profile.flat_radius != 0.0 or np.isfinite(profile.wall_radius):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: a flat punch or a wall is not covered by "
+            "the JKR fit (its contact radius does not follow from the indentation); give a "
+            "rounded or pointed tip.")
+    _check_work(names, work_of_adhesion, adhesion)
+    from ._jkr import JKRPower, JKRTable
+    terms = profile.power_terms()
+    if terms is not None and len(terms) == 1 and terms[0][1] >= 1.0:
+        c, n = terms[0]
+        return JKRPower(profile._power_kappa(n) * c, n)
+    if terms is not None and any(n < 1.0 for _, n in terms):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: a power term with n < 1 (a cusp at the "
+            "apex) has no JKR branch end; give a tip whose terms have n >= 1.")
+    a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
+    a_top = 1.5 * a_na                  # adhesion widens the contact at a given indentation
+    if np.isfinite(profile.max_radius):
+        a_top = min(a_top, profile.max_radius * (1.0 - 1e-6))
+    return JKRTable(profile, a_top, rtol)
 
 
 @reporting()
 def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
-                tip: Material | None = None, free: Any = ("E", "contact_point"),
+                tip: Material | None = None, free: Any = None,
                 adhesion: str | None = None, work_of_adhesion: float | None = None,
                 equilibrium_distance: float | None = None, time: Any = None,
                 start: dict | None = None, rtol: float = 1e-12) -> FitResult:
@@ -192,15 +222,32 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     >>> round(res.params["E"] / 2e6, 9), round(res.params["contact_point"] * 1e9, 6)
     (1.0, 10.0)
     """
-    if adhesion not in (None, "jkr"):
-        if adhesion == "dmt":
-            raise NotSupportedError("adhesion='dmt': DMT fits are not available yet; use "
-                                    "adhesion='jkr' (large Tabor parameter) or None.")
-        raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None or 'jkr'.")
+    if adhesion not in (None, "jkr", "dmt"):
+        raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
     if time is not None:
-        raise NotSupportedError("time=...: viscoelastic fits are not available yet.")
+        if adhesion is not None:
+            raise NotSupportedError(f"adhesion={adhesion!r} with time=...: adhesive "
+                                    "viscoelastic fits are not available; give adhesion=None.")
+        if not isinstance(profile, Profile):
+            raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab "
+                                 "Profile (e.g. contactlab.profiles.Sphere(R=1e-5)).")
+        z, F = _array("depth", depth), _array("force", force)
+        if z.size != F.size:
+            raise ParameterError(f"depth has {z.size} points and force has {F.size}: give "
+                                 "curves of equal length.")
+        from .viscoelastic import fit_viscoelastic
+        return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol)
+    if isinstance(sample, Material) and sample.is_viscoelastic:
+        raise ParameterError(f"sample={sample!r} is viscoelastic: give the sample times as "
+                             "time=... (s) to fit it with Ting's rules.")
+    if free is None:
+        free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
-    jkr = _jkr_model(profile, adhesion, names, work_of_adhesion)
+    jkr = None
+    dmt_R = None
+    if adhesion == "dmt":
+        _check_work(names, work_of_adhesion, adhesion)
+        dmt_R = _apex_radius(profile)
     c_tip = tip_m._compliances()[0]
     k_nu = 1.0 - sample.nu ** 2
     order = np.argsort(z, kind="stable")
@@ -231,6 +278,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                     "reaches at its max_radius; use a larger tip or drop the deep points.")
     from ._tip import TipModel
     tipm = TipModel(profile, delta_max, rtol)
+    if adhesion == "jkr":
+        jkr = _jkr_model(profile, adhesion, names, work_of_adhesion, delta_max, rtol)
     # ---- starting values
     user_start = dict(start or {})
     start = dict(user_start)
@@ -238,14 +287,25 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     base = Fs[:n_base]
     off0 = float(np.median(base)) if fit_off else 0.0
     rise = Fs - off0
-    top = float(np.max(rise))
+    top = float(np.max(np.abs(rise) if dmt_R is not None else rise))   # DMT: the drop counts
     noise = float(np.median(np.abs(base - np.median(base)))) * 1.4826 if fit_off else 0.0
     thr = max(5.0 * noise, 0.02 * top)
-    if top <= 0 or not np.any(rise > thr):
+    if top <= 0 or not np.any((np.abs(rise) if dmt_R is not None else rise) > thr):
         raise ParameterError(
             f"force never rises above its baseline (largest rise {top!r} N over an offset of "
             f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
     zc, Fc, proj_off = zs, Fs, fit_off
+    if dmt_R is not None:           # DMT: the force drops by 2πRΔγ at the contact point
+        i_min = int(np.argmin(rise))
+        if fit_cp and "contact_point" not in start:
+            start["contact_point"] = 0.5 * (float(zs[max(i_min - 1, 0)]) + float(zs[i_min]))
+        if "work_of_adhesion" in names and "work_of_adhesion" not in start:
+            start["work_of_adhesion"] = max(-float(rise[i_min]), 1e-6 * top) / (
+                2.0 * np.pi * dmt_R)
+        if fit_off and "force_offset" not in start:
+            start["force_offset"] = off0
+        w0 = float(start.get("work_of_adhesion", work_of_adhesion or 0.0))
+        Fc = Fs + 2.0 * np.pi * dmt_R * w0 * (zs > float(start.get("contact_point", 0.0)))
     if jkr is not None:             # the start from the part above the baseline after pull-off
         keep = (np.arange(zs.size) > int(np.argmin(rise))) & (rise > 0)
         zc, Fc, proj_off = zs[keep], rise[keep], False
@@ -324,6 +384,9 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             if jkr is None:             # F = E*Φ: ∂F/∂E* = Φ, ∂F/∂δ = E*Φ' = 2E*a
                 phi, dphi = tipm(z - v["contact_point"])
                 f, f_d, f_e, f_w = Es * phi, Es * dphi, phi, None
+                if dmt_R is not None:   # DMT: - 2πRΔγ in contact, ∂F/∂Δγ = -2πR there
+                    f_w = np.where(z > v["contact_point"], -2.0 * np.pi * dmt_R, 0.0)
+                    f = f + f_w * v["work_of_adhesion"]
             else:
                 f, f_d, f_e, f_w = jkr.force(z - v["contact_point"], Es, v["work_of_adhesion"])
             cache[key] = (v, Es, f, f_d, f_e, f_w)
@@ -382,21 +445,34 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
     from ..contact import Contact
     fitted = Elastic(E=vals["E"], nu=sample.nu)
-    w_fit = vals["work_of_adhesion"] if jkr is not None else None
-    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit)
-    meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ()),
+    w_fit = vals["work_of_adhesion"] if adhesion is not None else None
+    # the fitted contact carries the work of adhesion only for JKR (the contact's own adhesion
+    # model); a DMT fit reports it in params
+    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit if jkr else None)
+    meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ())
+                  + (("DMT75", "M92") if dmt_R is not None else ()),
                   "x_name": "depth", "y_name": "force",
                   "tip_route": "jkr" if jkr is not None else tipm.route}
-    if jkr is not None and equilibrium_distance is not None:
-        assert w_fit is not None        # fitted or fixed with adhesion="jkr"
+    if dmt_R is not None:
+        meta["apex_radius"] = dmt_R
+    if jkr is not None and hasattr(jkr, "error"):
+        meta["tip_model_errors"] = {"g": jkr.error}
+        meta["model_error_basis"] = ("cubic Hermite table of the tip's transform g in the "
+                                     "contact radius, measured at the interval midpoints")
+    if adhesion is not None and equilibrium_distance is not None:
+        assert w_fit is not None        # fitted or fixed with an adhesion model
+        radius = dmt_R
+        pt = profile.power_terms()
+        if radius is None and (pt is None or len(pt) > 1):
+            radius = _apex_radius(profile)
         meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
-                                         equilibrium_distance)
-    if tipm.route == "table":
+                                         equilibrium_distance, adhesion, radius)
+    if tipm.route == "table" and jkr is None:
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
                                      "measured at the interval midpoints")
     params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
-    if jkr is not None:
+    if adhesion is not None:
         params["work_of_adhesion"] = vals["work_of_adhesion"]
     params["nu"] = float(sample.nu)
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
@@ -413,24 +489,27 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     the work of adhesion follows from that force (the branch-end force is a power of ``Δγ``)
     and the contact point from its depth (``z_pull - δ_c``); the candidate with the smallest
     residual of (a subsample of) the data wins."""
-    K, n = jkr.K, jkr.n
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
 
-    def branch_end(E_star: float, w: float) -> tuple[float, float]:
-        a_c, d_c = jkr.critical(E_star, w)
-        return 2.0 * E_star * (a_c * d_c - K * a_c ** (n + 1.0) / (n + 1.0)), d_c
+    branch_end = jkr.branch_end
+    # the branch-end force of c r^n grows as Δγ^((n+1)/(2n-1)) (a table: the paraboloid's 1,
+    # iterated)
+    n = getattr(jkr, "n", 2.0)
+    p = (2.0 * n - 1.0) / (n + 1.0)
 
     def work(E_star: float) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:
             return float(start.get("work_of_adhesion", w_fixed))
         if not f_pull < 0:
             return 1e-9 * E_star * float(np.max(np.abs(zs)))
-        # the branch-end force -2E*K a_c^(n+1) n(2n+1)/(n+1) grows as Δγ^((n+1)/(2n-1))
-        f_ref = branch_end(E_star, 1.0)[0]
-        return float((f_pull / f_ref) ** ((2.0 * n - 1.0) / (n + 1.0)))
+        w = float((f_pull / branch_end(E_star, 1.0)[0]) ** p)
+        if not hasattr(jkr, "n"):
+            for _ in range(4):
+                w *= float((f_pull / branch_end(E_star, w)[0]) ** p)
+        return w
 
     best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
     for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):
@@ -447,22 +526,30 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     return best[1]
 
 
-def _tabor(profile: Profile, w: float, E_star: float, z0: float) -> float:
-    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` of a paraboloid; warns below 5."""
+def _tabor(profile: Profile, w: float, E_star: float, z0: float, adhesion: str = "jkr",
+           radius: float | None = None) -> float:
+    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` of a rounded tip (radius ``R``); warns
+    outside the model's range: below 5 for JKR, above 0.1 for DMT."""
     import warnings
 
     from ..errors import ValidityWarning
-    terms = profile.power_terms()
-    c, n = terms[0] if terms else (0.0, 0.0)
-    if n != 2.0:
-        raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined for "
-                                "paraboloid tips (a tip radius); drop it for other tips.")
+    if radius is None:
+        terms = profile.power_terms()
+        c, n = terms[0] if terms else (0.0, 0.0)
+        if n != 2.0:
+            raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined "
+                                    "for paraboloid tips (a tip radius); drop it for other tips.")
+        radius = 1.0 / (2.0 * c)
     if not (np.isfinite(z0) and z0 > 0):
         raise ParameterError(f"equilibrium_distance={z0!r} is invalid: give a positive "
                              "distance, m (typically 0.2-0.5e-9).")
-    mu = float((1.0 / (2.0 * c) * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
-    if mu < 5.0:
+    mu = float((radius * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
+    if adhesion == "jkr" and mu < 5.0:
         warnings.warn(f"Tabor parameter {mu:.3g} < 5: the contact is outside the JKR limit "
                       "(short-range adhesion, compliant bodies); the fitted work of adhesion "
                       "is biased (DMT applies below ~0.1).", ValidityWarning, stacklevel=3)
+    if adhesion == "dmt" and mu > 0.1:
+        warnings.warn(f"Tabor parameter {mu:.3g} > 0.1: the contact is outside the DMT limit "
+                      "(long-range adhesion, stiff bodies); the fitted work of adhesion is "
+                      "biased (JKR applies above ~5).", ValidityWarning, stacklevel=3)
     return mu

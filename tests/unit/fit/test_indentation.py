@@ -161,7 +161,7 @@ def test_coverage_of_the_95_percent_interval():
     (Z, hertz(Z), {"free": ("E", "nu")}, errors.ParameterError, "nu"),
     (Z, np.zeros_like(Z), {}, errors.ParameterError, "never reaches contact"),
     (Z, -hertz(Z), {}, errors.ParameterError, "never reaches contact"),
-    (Z, hertz(Z), {"adhesion": "dmt"}, errors.NotSupportedError, "dmt"),
+    (Z, hertz(Z), {"adhesion": "dmt"}, errors.ParameterError, "work of adhesion"),
     (Z, hertz(Z), {"adhesion": "jkr"}, errors.ParameterError, "work of adhesion"),
     (Z, hertz(Z), {"adhesion": "glue"}, errors.ParameterError, "adhesion='glue'"),
     (Z, hertz(Z), {"free": ("E", "work_of_adhesion")}, errors.ParameterError, "jkr"),

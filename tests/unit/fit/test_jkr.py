@@ -111,10 +111,70 @@ def test_tabor_parameter():
     assert any("Tabor" in n for n in low.notes)
 
 
+def sphere_curve(a_max=2.5e-6, n=1700, detached=300):
+    """Fixed-grips JKR branch of the exact sphere by Heß's rule, parametric in a:
+    g = (a/2) ln((R+a)/(R-a)), ∫_0^a g = ((a²-R²)/2) artanh(a/R) + Ra/2,
+    δ = g - sqrt(2πaΔγ/E*), F = 2E*(aδ - ∫g); the branch end (dδ/da = 0) located on a fine
+    grid and left out by 1 %."""
+    aa = np.linspace(1e-9, a_max, 200001)
+    dd = aa / 2 * np.log((R + aa) / (R - aa)) - np.sqrt(2 * np.pi * aa * W / ESTAR)
+    a = np.linspace(1.01 * aa[np.argmin(dd)], a_max, n)
+    d = a / 2 * np.log((R + a) / (R - a)) - np.sqrt(2 * np.pi * a * W / ESTAR)
+    F = 2 * ESTAR * (a * d - ((a * a - R * R) / 2 * np.arctanh(a / R) + R * a / 2))
+    before = np.linspace(d[0] - 0.3 * (d[-1] - d[0]), d[0], detached, endpoint=False)
+    return np.concatenate([before, d]) + Z0, np.concatenate([np.zeros(detached), F])
+
+
+def test_exact_sphere_recovered():
+    z, F = sphere_curve()
+    res = indentation(z, F, Sphere(R=R), sample=SAMPLE, adhesion="jkr",
+                      free=("E", "contact_point", "work_of_adhesion"))
+    for k, want in {"E": E, "contact_point": Z0, "work_of_adhesion": W}.items():
+        assert res.params[k] == pytest.approx(want, rel=FIT_RECOVERY)
+
+
+def test_tabulated_sphere_within_the_tables_bound():
+    """A measured sphere (2001 heights, 2 nm apart): the recovered parameters lie within the
+    JKR table's stated error of g."""
+    from contactlab.profiles import Tabulated
+    z, F = sphere_curve()
+    r = np.linspace(0.0, 4e-6, 2001)
+    res = indentation(z, F, Tabulated(r, R - np.sqrt(R * R - r * r)), sample=SAMPLE,
+                      adhesion="jkr", free=("E", "contact_point", "work_of_adhesion"))
+    bound = res.meta["tip_model_errors"]["g"]
+    assert 0 < bound < 0.05
+    for k, want in {"E": E, "contact_point": Z0, "work_of_adhesion": W}.items():
+        assert res.params[k] == pytest.approx(want, rel=bound), k
+
+
+def test_table_route_matches_the_power_law_route():
+    from contactlab.fit._jkr import JKRTable
+    tab, pw = JKRTable(Paraboloid(R=R), 3e-6), JKRPower(1.0 / R, 2.0)
+    _, d_c = pw.critical(ESTAR, W)
+    d = d_c + np.abs(d_c) * np.linspace(0.01, 6.0, 200)          # a <= 2.8 µm (table 3 µm)
+    for x, y in zip(tab.force(d, ESTAR, W), pw.force(d, ESTAR, W)):
+        np.testing.assert_allclose(x, y, rtol=JKR_FD, atol=JKR_FD * np.max(np.abs(y)))
+
+
+def test_table_derivatives_against_finite_differences():
+    from contactlab.fit._jkr import JKRTable
+    m = JKRTable(Sphere(R=R), 3e-6)
+    _, d_c = m.critical(ESTAR, W)
+    d = d_c + np.abs(d_c) * np.linspace(0.2, 8.0, 40) + 1e-9       # a <= 2.6 µm (table 3 µm)
+    _, f_d, f_e, f_w = m.force(d, ESTAR, W)
+    h = 1e-5
+    for got, fun, x in [(f_d, lambda t: m.force(d + t * np.abs(d_c), ESTAR, W)[0], np.abs(d_c)),
+                        (f_e, lambda t: m.force(d, ESTAR * (1 + t), W)[0], ESTAR),
+                        (f_w, lambda t: m.force(d, ESTAR, W * (1 + t))[0], W)]:
+        fd = (fun(h) - fun(-h)) / (2 * h)
+        np.testing.assert_allclose(got * x, fd, rtol=0, atol=JKR_FD * np.max(np.abs(fd)))
+
+
 def test_unsupported_tips():
+    from contactlab.profiles import FlatPunch
     z, F = paraboloid_curve(n=200, detached=30)
-    with pytest.raises(errors.NotSupportedError, match="power-law"):
-        indentation(z, F, Sphere(R=R), sample=SAMPLE, adhesion="jkr", work_of_adhesion=W)
+    with pytest.raises(errors.NotSupportedError, match="wall"):
+        indentation(z, F, FlatPunch(radius=1e-6), sample=SAMPLE, adhesion="jkr", work_of_adhesion=W)
     with pytest.raises(errors.ParameterError, match="work_of_adhesion=-1"):
         indentation(z, F, Paraboloid(R=R), sample=SAMPLE, adhesion="jkr", work_of_adhesion=-1.0)
 
