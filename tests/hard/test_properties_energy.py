@@ -26,13 +26,14 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import contactlab as cl
 from contactlab import LoadPath
 from contactlab.profiles import Cone, Paraboloid
-from tests.tolerances import ENERGY_BALANCE, ENERGY_STEP_ROUNDING, ENERGY_SUPERPOSITION
+from tests.tolerances import (ENERGY_BALANCE, ENERGY_STEP_ROUNDING, ENERGY_SUPERPOSITION,
+                              TINY_LOOP_DISSIPATION)
 
 SETTINGS = settings(max_examples=6, deadline=None)
 STEEL = cl.Elastic(E=210e9, nu=0.3)
@@ -161,12 +162,9 @@ def check_mdr_path(i, segs):
 
 
 def check_histories(i, points, n):
-    # twists below 1e-6 of the scale (down to one ulp) are outside what is judged: a history's
-    # per-step dissipation (~φ³) is a difference of work terms (~φ²) whose rounding it then falls
-    # under (measured: -3e-55 J steps at 2.2e-16 of the scale, energies of 1e-54 J); recorded in
-    # the notes of issue 26 as a known limitation
-    amp = max(abs(p) for p in points)
-    assume(amp == 0.0 or amp >= 1e-6)
+    # every amplitude down to one ulp of the scale is judged: a thin slip annulus is integrated
+    # in its own coordinate (physics.edge_annulus), no longer at a stick radius c ≈ a that
+    # rounds (-3e-55 J steps against energies of 1e-54 J at 2.2e-16 of the scale, issue 26)
     c = contact(i)
     pts = np.concatenate([[0.0], points])
     x = np.concatenate([[0.0]] + [np.linspace(p, q, n + 1)[1:] for p, q in itertools.pairwise(pts)])
@@ -219,9 +217,9 @@ def test_no_negative_step_after_shrink_and_regrowth_at_a_tiny_twist():
 
 
 
-#: the Mindlin loop's monotone dissipation at a tiny amplitude against its definition evaluated
-#: at 40 digits (issue 26 item 2): what a cancellation-free form must reach
-TINY_LOOP_DISSIPATION = 1e-12
+#: amplitudes of the tiny-loop references, of the scale (the annulus form holds below a slip
+#: width of 1e-3 a; beyond it the stick-radius forms carry the route's rtol)
+TINY = [1e-15, 1e-12, 1e-9, 1e-6]
 
 
 def mindlin_dissipation_mp(a, E_star, G_star, R, u):
@@ -239,11 +237,7 @@ def mindlin_dissipation_mp(a, E_star, G_star, R, u):
         return float(2 * k * k / G_star * delta ** 3 * f)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 26 item 2, open: the monotone dissipation of a "
-                   "history is computed at the stick radius c = a − δ, which cannot resolve an "
-                   "annulus narrower than a few ulps of a (D = 0 at one-ulp amplitudes, a "
-                   "relative error ~ε a/δ above)")
-@pytest.mark.parametrize("rel", [1e-15, 1e-12, 1e-9])
+@pytest.mark.parametrize("rel", TINY)
 def test_shift_history_dissipation_at_tiny_amplitudes_against_mpmath(rel):
     c = contact(0)
     ns = c.normal(force=F0)
@@ -270,9 +264,7 @@ def mdr_torsion_dissipation_mp(a, E_star, G_t, R, phi):
         return float(16 * G_t * delta ** 3 * f)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 26 item 2, open: as for the shift history, the "
-                   "MDR twist history's monotone dissipation is computed at c = a − δ")
-@pytest.mark.parametrize("rel", [1e-15, 1e-12, 1e-9])
+@pytest.mark.parametrize("rel", TINY)
 def test_mdr_twist_history_dissipation_at_tiny_amplitudes_against_mpmath(rel):
     c = contact(0)
     a = float(c.normal(force=F0).radius)
@@ -282,3 +274,54 @@ def test_mdr_twist_history_dissipation_at_tiny_amplitudes_against_mpmath(rel):
         h = c.twist_history(twist=np.array([phi]), force=F0, method="mdr")
     ref = mdr_torsion_dissipation_mp(a, c.moduli.normal, c.moduli.torsional, PROFILES[0].R, phi)
     assert float(h.dissipated_energy[-1]) == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
+
+
+def exact_torsion_dissipation_mp(a, E_star, G_t, R, phi):
+    """Jäger's exact Hertz solution twisted monotonically to ``φ``: ``D = (4μ²/G_t) ∫_c^a x² P
+    (P(c) − P) dx`` with the slip function ``P(x) = ∫_x^a p/sqrt(s² − x²) ds = p₀ (K(m) − E(m))
+    = p₀ (πm/4) ₂F₁(1/2, 3/2; 2; m)``, ``m = 1 − x²/a² = σ(2a − σ)/a²`` at ``x = a − σ``
+    (``p = p₀ sqrt(1 − s²/a²)``, ``p₀ = 2aE*/(πR)``), and the stick width from
+    ``φ = μ P(c)/(2 G_t)``; at 40 digits, in the annulus coordinate ``σ`` (the ₂F₁ form: ``K − E``
+    itself loses more than 30 digits to cancellation at ``m ~ 1e-15``)."""
+    import mpmath as mp
+    with mp.workdps(40):
+        a, E_star, G_t, R, phi, mu = (mp.mpf(v) for v in (a, E_star, G_t, R, phi, MU))
+        p0 = 2 * a * E_star / (mp.pi * R)
+
+        def P(sig):
+            m = sig * (2 * a - sig) / (a * a)
+            return p0 * mp.pi * m / 4 * mp.hyp2f1(0.5, 1.5, 2, m)
+
+        target = 2 * G_t * phi / mu
+        s0 = target * R / E_star                        # the edge slope: P ~ E* σ/R
+        sig_c = mp.findroot(lambda s: P(s) / target - 1, (s0, s0 * (1 + mp.mpf("1e-3"))))
+        # on [0, 1] with an integrand of order one (mpmath's quad stops at an absolute error)
+        f = mp.quad(lambda t: (1 - sig_c * t / a) ** 2 * P(sig_c * t) / target
+                    * (1 - P(sig_c * t) / target), [0, 1])
+        return float(4 * mu * mu / G_t * sig_c * a * a * target * target * f)
+
+
+@pytest.mark.parametrize("rel", TINY)
+def test_exact_twist_history_dissipation_at_tiny_amplitudes_against_mpmath(rel):
+    c = contact(0)
+    a = float(c.normal(force=F0).radius)
+    phi = rel * PHI
+    h = c.twist_history(twist=np.array([phi]), force=F0, method="exact")
+    ref = exact_torsion_dissipation_mp(a, c.moduli.normal, c.moduli.torsional, PROFILES[0].R, phi)
+    assert float(h.dissipated_energy[-1]) == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
+
+
+@pytest.mark.parametrize("i, points, n", [
+    # exact route: -1.0 of the running total (found by a seeded search at amplitudes 1e-16..1e-6)
+    (0, [-8.10715454615115e-16, 7.572042011516818e-15, 7.519998601763104e-15,
+         4.910315472077341e-15], 6),
+    (0, [-3.740403167476634e-14, -6.387915540705568e-14, 6.960492414264353e-14], 9),
+    # shift history: -0.60 of the running total
+    (0, [-4.1347588446418064e-16, -4.0661640713611123e-16, -3.652262319413517e-16,
+         -6.94115360887443e-16, 4.157339187227157e-16, 2.5997543732214314e-16], 7),
+])
+def test_histories_at_amplitudes_of_a_few_ulps(i, points, n):
+    """Regression (issue 26 item 2): histories at twists and shifts of a few ulps of the scale
+    booked negative steps as large as the running total (the monotone dissipation at a stick
+    radius that rounds to the contact radius: 0, then a value, then 0 again)."""
+    check_histories(i, points, n)
