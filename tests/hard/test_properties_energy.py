@@ -325,3 +325,26 @@ def test_histories_at_amplitudes_of_a_few_ulps(i, points, n):
     booked negative steps as large as the running total (the monotone dissipation at a stick
     radius that rounds to the contact radius: 0, then a value, then 0 again)."""
     check_histories(i, points, n)
+
+
+@pytest.mark.parametrize("rel", TINY)
+def test_cone_histories_at_tiny_amplitudes_against_closed_forms(rel):
+    """The cone's MDR profile ``g = (π/2) m x`` (slope ``m``) is linear at the edge: with
+    ``h = μE*(π/2) m σ`` at ``x = a − σ`` the shift dissipates ``k² σ_c³/(3G*)``
+    (``k = μE*(π/2) m``, ``σ_c = G* u/k``) and the MDR torsion springs ``16 G_t q (φ + q) σ_c³/6``
+    (``u_s = q σ``, ``q = k/(4 G_t)``, ``σ_c = aφ/(φ + q)``): closed forms without cancellation."""
+    c = contact(1)
+    a = float(c.normal(force=F0).radius)
+    G_star, G_t = c.moduli.tangential, c.moduli.torsional
+    k = MU * c.moduli.normal * np.pi / 2 * PROFILES[1].slope
+    u = rel * MU * F0 / (G_star * a)
+    h = c.shift_history(displacement=np.array([u]), force=F0)
+    ref = k * k * (G_star * u / k) ** 3 / (3 * G_star)
+    assert float(h.dissipated_energy[-1]) == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
+    phi = rel * PHI
+    q = k / (4 * G_t)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "MDR torsion model")
+        h = c.twist_history(twist=np.array([phi]), force=F0, method="mdr")
+    ref = 16 * G_t * q * (phi + q) * (a * phi / (phi + q)) ** 3 / 6
+    assert float(h.dissipated_energy[-1]) == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
