@@ -49,9 +49,17 @@ def power_edge(profile) -> tuple[float, float] | None:
     return float(kappa(n)) * c, n
 
 
+def _edge_depth(K: float, n: float, a: np.ndarray) -> np.ndarray:
+    """``g(a) = K aⁿ``, m; ``nan`` where it leaves the float range (not this form's range: the
+    stick-radius form answers there)."""
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        g = np.exp(np.log(K) + n * np.log(a))
+    return np.where(np.isfinite(g) & (g > 0), g, np.nan)
+
+
 def edge_drop(K: float, n: float, a: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """``g(a) − g(a − σ)`` for ``g = K x^n``, m, to relative rounding (``0 <= σ <= a``)."""
-    return K * a ** n * -np.expm1(n * np.log1p(-sigma / a))
+    return _edge_depth(K, n, a) * -np.expm1(n * np.log1p(-sigma / a))
 
 
 def _annulus_rule(sig_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -67,8 +75,9 @@ def shift_dissipation(K: float, n: float, E_star: float, G_star: float, mu: floa
     ``inf`` where the drop ``h(c)`` exceeds half of ``μE* g(a)`` (not this form's range)."""
     a, u = np.asarray(a, float), np.abs(np.asarray(u, float))
     hc = G_star * u                                         # h(c) = G* u
-    y = hc / (mu * E_star * K * a ** n)                     # drop at c relative to g(a)
-    # (beyond y = 1/2 the slip reaches far inside: not this form's range)
+    y = hc / (mu * E_star * _edge_depth(K, n, a))           # drop at c relative to g(a)
+    # (beyond y = 1/2 the slip reaches far inside: not this form's range; nan: g(a) overflows)
+    y = np.where(np.isfinite(y), y, np.inf)
     s_c = np.where(y <= 0.5, -np.expm1(np.log1p(-np.minimum(y, 0.5)) / n), np.inf)
     out = np.zeros(a.shape)
     ok = np.isfinite(s_c) & (s_c > 0)
@@ -89,15 +98,18 @@ def torsion_dissipation(K: float, n: float, E_star: float, G_t: float, mu: float
     right rises in ``s``: one root; from ``s₀`` Newton converges to rounding in a few steps where
     ``s`` is small, the range of this form)."""
     a, phi = np.asarray(a, float), np.abs(np.asarray(phi, float))
-    Q = mu * E_star * K * a ** n / (4.0 * G_t)
+    Q = mu * E_star * _edge_depth(K, n, a) / (4.0 * G_t)
+    keep = np.isfinite(Q)                                   # else: not this form's range
+    Q = np.where(keep, Q, 1.0)
     A = a * phi
     s = A / (A + n * Q)
     for _ in range(6):
         F = (1.0 - s) * A + Q * np.expm1(n * np.log1p(-s))
         dF = -A - n * Q * np.exp((n - 1.0) * np.log1p(-s))
         s = np.clip(s - F / dF, 0.0, 0.5)
+    s = np.where(keep, s, np.inf)
     out = np.zeros(a.shape)
-    ok = s > 0
+    ok = np.isfinite(s) & (s > 0)
     if np.any(ok):
         ak, pk = a[ok], phi[ok]
         sig, w = _annulus_rule(s[ok] * ak)
@@ -119,7 +131,7 @@ def _slip_function(K: float, n: float, E_star: float, a: np.ndarray,
     tau = half * (_GL_X + 1.0)
     t = a[..., None] - tau
     m = (sigma[..., None] - tau) * (2.0 * a[..., None] - sigma[..., None] - tau) / (t * t)
-    f = n * K * t ** (n - 2.0) * ellipk(m)
+    f = n * _edge_depth(K, n, t) / (t * t) * ellipk(m)
     return E_star / np.pi * np.sum(half * _GL_W * f, axis=-1)
 
 
@@ -133,14 +145,15 @@ def exact_torsion_dissipation(K: float, n: float, E_star: float, G_t: float, mu:
     small, the range of this form)."""
     a, phi = np.asarray(a, float), np.abs(np.asarray(phi, float))
     target = 2.0 * G_t * phi / mu
-    sig = target / (0.5 * E_star * n * K * a ** (n - 1.0))
-    sig = np.minimum(sig, 0.5 * a)
+    slope = 0.5 * E_star * n * _edge_depth(K, n, a) / a     # P ≈ (E*/2) g'(a) σ
+    keep = np.isfinite(slope)                               # else: not this form's range
+    sig = np.minimum(target / np.where(keep, slope, 1.0), 0.5 * a)
     for _ in range(8):
         P = _slip_function(K, n, E_star, a, sig)
         sig = np.minimum(np.where(P > 0, sig * target / np.where(P > 0, P, 1.0), 0.0), 0.5 * a)
-    s = sig / a
+    s = np.where(keep, sig / a, np.inf)
     out = np.zeros(a.shape)
-    ok = sig > 0
+    ok = keep & (sig > 0)
     if np.any(ok):
         ak = a[ok]
         nodes, w = _annulus_rule(sig[ok])
