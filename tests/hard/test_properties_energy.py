@@ -348,3 +348,14 @@ def test_cone_histories_at_tiny_amplitudes_against_closed_forms(rel):
         h = c.twist_history(twist=np.array([phi]), force=F0, method="mdr")
     ref = 16 * G_t * q * (phi + q) * (a * phi / (phi + q)) ** 3 / 6
     assert float(h.dissipated_energy[-1]) == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
+
+
+def test_fretting_loop_of_a_huge_contact_under_a_tiny_shift():
+    """A contact of radius 4e95 m (force 1e300 N) under a 1 µm shift slips in an annulus of
+    relative width ~1e-200: its loop energy, four times the virgin dissipation (Masing), against
+    the 40-digit Mindlin reference (the stick-radius form overflowed here)."""
+    c = contact(0)
+    a = float(c.normal(force=1e300).radius)
+    loop = c.fretting_loop(force=1e300, displacement_amplitude=1e-6, n_points=10)
+    ref = 4 * mindlin_dissipation_mp(a, c.moduli.normal, c.moduli.tangential, PROFILES[0].R, 1e-6)
+    assert loop.energy == pytest.approx(ref, rel=TINY_LOOP_DISSIPATION, abs=0)
