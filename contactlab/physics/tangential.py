@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import edge_annulus as _edge
 from . import normal as _normal
 
 __all__ = ["stick_radius_of_displacement", "displacement_of_stick_radius", "force_of_stick_radius",
@@ -187,6 +188,18 @@ def virgin_dissipation(profile, E_star: float, G_star: float, mu: float,
         out, small = np.array(out, float).ravel(), np.ravel(small)
         pick = [np.ravel(np.broadcast_to(v, shape))[small] for v in (a, c, d, u)]
         out[small] = _dissipation_by_quadrature(profile, E_star, G_star, mu, *pick)
+        out = out.reshape(shape)
+    # a thin annulus (σ_c < EDGE_SLIP_RATIO a) of a single power law: in annulus coordinates,
+    # accurate to rounding down to amplitudes of one ulp (the forms above err by ~ε a/σ_c)
+    pw = _edge.power_edge(profile)
+    if pw is not None:
+        shape = np.shape(out)
+        out = np.array(out, float).ravel()
+        af, uf = (np.ravel(np.broadcast_to(v, shape)) for v in (a, u))
+        live = np.flatnonzero((af > 0) & (uf > 0) & np.isfinite(uf))
+        D, s_c = _edge.shift_dissipation(*pw, E_star, G_star, mu, af[live], uf[live])
+        thin = s_c < _edge.EDGE_SLIP_RATIO
+        out[live[thin]] = D[thin]
         out = out.reshape(shape)
     return out
 

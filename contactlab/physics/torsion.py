@@ -31,6 +31,7 @@ import numpy as np
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError
 from ..profiles.base import ROUNDING
 from ..profiles.power_law import PowerLaw
+from . import edge_annulus as _edge
 from . import torsion_exact as _exact
 from . import torsion_hertz as _hertz
 from . import torsion_mdr as _mdr
@@ -395,6 +396,16 @@ class Exact(TorsionModel):
             phi_m = _exact.twist_of_stick(self.mu, self.G, P)
             M_full = self.sliding_torque(a[slid], d[slid])
             D[slid] += M_full * np.maximum(phi[slid] - phi_m, 0.0)
+        # a thin annulus (σ_c < EDGE_SLIP_RATIO a) of a single power law: in annulus
+        # coordinates, accurate to rounding down to twists of one ulp (J at the stick radius
+        # errs by ~ε a/σ_c, and c rounds to a below an annulus of one ulp)
+        pw = _edge.power_edge(self.prof)
+        if pw is not None:
+            live = np.flatnonzero((a > 0) & (phi > 0) & np.isfinite(phi))
+            D_e, s_c = _edge.exact_torsion_dissipation(*pw, self.E, self.G, self.mu, a[live],
+                                                       phi[live])
+            thin = s_c < _edge.EDGE_SLIP_RATIO
+            D[live[thin]] = D_e[thin]
         return D
 
 

@@ -31,9 +31,12 @@ that end at the same density:
 
 * ``s Δφ >= 0``: a release at the held twist to ``w_m`` (the step with ``Δφ = 0``), then the
   family ``w_m → w_n``;
-* ``s Δφ < 0`` (``|Δφ| < |G|``): the family releases the outer density down to the radius
-  ``c₁`` with ``Ψ_o(c₁) = −Δφ`` (``w_q``: the twist reaches ``Δφ`` monotonically), then a release
-  at the held twist ``w_q → w_n``.
+* ``s Δφ < 0`` (``|Δφ| < |G|``): the family releases the outer density down to the outermost
+  radius ``c₁ >= a_n`` with ``Ψ_o(c₁) = −Δφ`` (``w_q``: the twist reaches ``Δφ``), then a release
+  at the held twist ``w_q → w_n``. The release never reaches inside ``a_n`` (``Ψ_o`` need not be
+  monotone there: the outer density holds bands of both senses), so the held stage adds only
+  the step's own annulus; where the booked ``Δφ`` (a difference of two totals ``Ψ(0)``) rounds
+  beyond ``|G|``, ``c₁ = a_n``.
 
 A contact without a friction limit carries rigid punches (point masses of the density,
 :func:`contactlab.physics.torsion_annulus.punch_step`): its step is a release at the held twist
@@ -153,10 +156,33 @@ def annulus_energy(old: tuple, new: tuple, slide: tuple, radius: float, sense: f
             if sense * dphi >= 0:
                 mid = _ta.step(old, slide, radius, G_t, dphi=0.0)["w"]
                 return _stages([(old, None), (mid, None), (new, True)], G_t, gross)
-            # the outer density released down to Ψ_o(c₁) = −Δφ (a step onto no density)
-            q = _ta.step(old, _ta.empty(), top, G_t, dphi=float(dphi))["w"]
-            return _stages([(old, None), (q, True), (new, None)], G_t)
+            return _stages([(old, None), (_release(old, radius, top, G_t, float(dphi)), True),
+                            (new, None)], G_t)
     return step_energy(old, new, G_t, gross)
+
+
+def _release(old: tuple, radius: float, top: float, G_t: float, dphi: float) -> tuple:
+    """The outer density of ``old`` released from its end ``top`` down to the outermost
+    ``c₁ >= radius`` with ``Ψ_o(c₁) = −Δφ`` (a step onto no density: the first stage of a
+    shrinking contact whose twist goes back, module docstring).
+
+    The release never reaches inside the new contact radius: the held stage that follows adds
+    the annulus ``(c, radius)`` only, so its slip is the step's own (checked) slip. ``Ψ_o`` need
+    not be monotone beyond ``radius`` (the density there carries the bands of earlier steps of
+    both senses, or a ring step's remainder), so the first crossing from ``top`` may sit in the
+    piece that holds ``radius``, with a second root below it; the search is then repeated with a
+    piece end at ``radius``. Where ``|Δφ| > |Ψ_o(radius)|`` (the twist of the step is ``Δφ``
+    but the booked turn is a difference of two totals ``Ψ(0)``, and its rounding can exceed a
+    ``Ψ_o(radius)`` of ~1e-25 rad) no root lies beyond ``radius`` and the whole band beyond it
+    is released (``c₁ = radius``, the twist of the step to rounding).
+    """
+    q = _ta.step(old, _ta.empty(), top, G_t, dphi=dphi)
+    if q["c"] >= radius:
+        return q["w"]
+    q = _ta.step(_ta.splice(old, old, radius), _ta.empty(), top, G_t, dphi=dphi)
+    if q["c"] >= radius:
+        return q["w"]
+    return _ta.splice(old, _ta.empty(), radius)
 
 
 def ring_dissipation(H: np.ndarray, z_old: np.ndarray, z: np.ndarray, lam: np.ndarray,

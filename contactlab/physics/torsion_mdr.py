@@ -17,6 +17,7 @@ import numpy as np
 
 from ..numeric.roots import bracketed_root
 from ..profiles.base import ROUNDING as _ROUNDING
+from . import edge_annulus as _edge
 from .torsion_exact import C_MIN_REL, _integrate_log, sharpen_error, x_g_integral
 
 __all__ = ["slip_displacement", "stick_radius", "torque_of_stick", "annulus_integral",
@@ -157,10 +158,26 @@ def dissipation(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray, 
     """
     out = np.zeros(c.shape)
     todo = np.flatnonzero(c < a)
-    if todo.size == 0:
-        return out
-    as_, ds, ps = a[todo], d[todo], phi[todo]
-    cs = np.maximum(c[todo], C_MIN_REL * as_)
+    if todo.size:
+        out[todo] = _stick_radius_form(profile, E_star, G_t, mu, phi[todo], c[todo], a[todo],
+                                       d[todo], rtol)
+    # a thin annulus (σ_c < EDGE_SLIP_RATIO a) of a single power law: in annulus coordinates,
+    # accurate to rounding down to twists of one ulp (the stick-radius form errs by ~ε a/σ_c,
+    # and c rounds to a below an annulus of one ulp)
+    pw = _edge.power_edge(profile)
+    if pw is not None:
+        live = np.flatnonzero((a > 0) & (phi > 0) & np.isfinite(phi))
+        D, s_c = _edge.torsion_dissipation(*pw, E_star, G_t, mu, a[live], phi[live])
+        thin = s_c < _edge.EDGE_SLIP_RATIO
+        out[live[thin]] = D[thin]
+    return out
+
+
+def _stick_radius_form(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
+                       c: np.ndarray, a: np.ndarray, d: np.ndarray, rtol: float) -> np.ndarray:
+    """:func:`dissipation` at the stick radii ``c < a`` (quadrature over ``[c, a]``)."""
+    as_, ds, ps = a, d, phi
+    cs = np.maximum(c, C_MIN_REL * as_)
 
     def kernel(x: np.ndarray, gx: np.ndarray, idx: np.ndarray) -> np.ndarray:
         us = mu * E_star * (ds[idx][:, None] - gx) / (4.0 * G_t)
@@ -169,5 +186,4 @@ def dissipation(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray, 
     us_scale = mu * E_star * ds / (4 * G_t)
     scale = us_scale * ps * as_ * (as_ - cs)
     val, _ = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
-    out[todo] = 16.0 * G_t * val
-    return out
+    return 16.0 * G_t * val

@@ -258,13 +258,6 @@ def test_scene_fuzzing_only_contactlab_errors_and_finite_results(data):
 # ---- energy of torsion paths (issue 26 item 1): the properties of test_properties_energy.py
 
 
-# Known defect (issue 26 stays open for it): at 10^4 examples this property finds a path whose
-# contact shrinks (force 3.09 -> 0.25 F0 at held twist) and regrows (1.47 F0) after a tiny twist
-# (0.01 of the scale): its last step books -6.1e-14 J against a running total of 8.1e-13 J. The
-# exact example is a strict xfail in test_properties_energy.py; this property reports as xfail
-# while the defect is there and passes once it is fixed.
-@pytest.mark.xfail(strict=False, reason="known negative step after a shrink and regrowth of the "
-                   "contact at a tiny twist (issue 26, item 1; see test_properties_energy.py)")
 @SLOW
 @given(i=st.integers(min_value=0, max_value=1), segs=_en.segments)
 def test_energy_exact_path_steps_non_negative_and_work_balance(i, segs):
