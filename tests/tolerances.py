@@ -663,3 +663,11 @@ FIT_RECOVERY = 1e-8
 #: analytic slope dΦ/dδ = 2a of the fit's tip models against a central finite difference with
 #: step 1e-6 δ (truncation ~1e-12, rounding ~1e-10 relative)
 FIT_JACOBIAN_FD = 1e-7
+
+# ---- small gaps of issue 26 (tiny scales, model error, budgets)
+#: a truncated cone's depth and force at tiny forces against the θ closed form (mpmath, 40
+#: digits): the Newton root in t = tan θ stops at rounding (measured <= 2e-16 down to 1e-290 N);
+#: at 1e-300 N the reduced force F/(2E*) ~ 4e-312 m² is subnormal and keeps ~12 digits
+#: (measured 4e-13)
+TRUNCATED_CONE_TINY = 1e-15
+TRUNCATED_CONE_SUBNORMAL = 1e-11
