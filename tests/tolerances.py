@@ -671,3 +671,7 @@ FIT_JACOBIAN_FD = 1e-7
 #: (measured 4e-13)
 TRUNCATED_CONE_TINY = 1e-15
 TRUNCATED_CONE_SUBNORMAL = 1e-11
+#: an exact ring-solver torque path scaled by s (force s F, torque s^(4/3) M) against the same path
+#: at s = 1 through the Hertz scaling laws (a ~ s^(1/3), twist ~ s^(1/3)): the
+#: ring solver keeps every digit where a⁵ is a normal float; measured <= 7e-15 down to a = 3e-58 m
+RINGS_SCALE_INVARIANCE = 1e-13
