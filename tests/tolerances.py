@@ -675,3 +675,11 @@ TRUNCATED_CONE_SUBNORMAL = 1e-11
 #: at s = 1 through the Hertz scaling laws (a ~ s^(1/3), twist ~ s^(1/3)): the
 #: ring solver keeps every digit where a⁵ is a normal float; measured <= 7e-15 down to a = 3e-58 m
 RINGS_SCALE_INVARIANCE = 1e-13
+#: MDR annulus integral, twist and torque of a flat punch with c/a = 1 - 1e-3 .. 1 - 1e-12 against
+#: their closed forms (mpmath): integrated in the offset x - c, measured <= 2.4e-16 (integral)
+#: and <= 1e-15 (twist, torque); the error estimate of the integral ~3.7e-14
+MDR_NEAR_ANNULUS = 1e-12
+#: the MDR loop energy 32 G_t φ0² c (a - c)² of a flat punch next to the punch radius, relative,
+#: in units of eps a/(a - c): the stick radius of the amplitude enters squared through a - c,
+#: which carries the rounding of c (measured 1.1-1.9 units at gaps 1e-6 .. 1e-12)
+MDR_NEAR_LOOP_ENERGY = 8.0

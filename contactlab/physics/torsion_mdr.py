@@ -17,7 +17,63 @@ import numpy as np
 
 from ..numeric.roots import bracketed_root
 from ..profiles.base import ROUNDING as _ROUNDING
-from .torsion_exact import C_MIN_REL, _integrate_log, sharpen_error, x_g_integral
+from ..numeric.quadrature import tanh_sinh
+from .torsion_exact import (
+    _TABLE_SPLIT_MAX,
+    C_MIN_REL,
+    _composite_nodes,
+    _cuts,
+    _integrate_log,
+    sharpen_error,
+    x_g_integral,
+)
+
+#: annuli ``[c, a]`` narrower than this fraction of ``a`` are integrated in ``x`` itself, wider
+#: ones in ``ln x``: the width ``ln a - ln c`` of a narrow annulus carries the rounding of
+#: ``ln a`` (relative ``eps |ln a| a/(a - c)``), 7e-12 of a flat punch's annulus integral at
+#: ``1 - c/a = 1e-4``, 3e-9 at 1e-7 and a ConvergenceError from 1e-8 on, while ``a - c`` is exact
+NEAR_REL = 1e-3
+
+
+def _integrate_annulus(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
+                       atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``∫_lo^hi kernel(x, g(x), idx) dx`` per element (the MDR annulus integrals).
+
+    Annuli with ``hi - lo > NEAR_REL hi`` (and large tables) go through
+    :func:`contactlab.physics.torsion_exact._integrate_log`; narrower ones are integrated in the
+    offset ``x - lo`` of each segment between the profile's breakpoints (nodes clipped into it).
+    """
+    near = (hi - lo) <= NEAR_REL * hi
+    nodes = _composite_nodes(profile)
+    if not np.any(near) or (nodes is not None and nodes.size > _TABLE_SPLIT_MAX):
+        return _integrate_log(profile, kernel, lo, hi, rtol, atol)
+    val = np.zeros(lo.shape)
+    err = np.zeros(lo.shape)
+    far = np.flatnonzero(~near)
+    if far.size:
+        val[far], err[far] = _integrate_log(
+            profile, lambda x, gx, idx: kernel(x, gx, far[idx]), lo[far], hi[far], rtol,
+            np.broadcast_to(atol, lo.shape)[far])
+    idx_n = np.flatnonzero(near)
+    ln, hn = lo[idx_n], hi[idx_n]
+    edges = np.stack([ln] + [np.clip(np.full_like(ln, b), ln, hn) for b in _cuts(profile)] + [hn])
+    n_seg = edges.shape[0] - 1
+    t_lo, t_hi = edges[:-1].ravel(), edges[1:].ravel()
+    elem = np.broadcast_to(idx_n, (n_seg, idx_n.size)).ravel()
+
+    def integrand(u: np.ndarray, k: np.ndarray) -> np.ndarray:
+        t = np.clip(t_lo[k][:, None] + u, t_lo[k][:, None], t_hi[k][:, None])
+        return kernel(t, profile._g(t), elem[k])
+
+    at = np.broadcast_to(np.asarray(atol, float), lo.shape)[idx_n]
+    # in the offset u = x - lo over [0, hi - lo] (an exact width): nodes in x itself collapse
+    # onto the ends of a narrow annulus, and the weight they drop (relative ~eps a/(a - c))
+    # reads as quadrature error
+    res = tanh_sinh(integrand, np.zeros(t_lo.shape), t_hi - t_lo, rtol=rtol,
+                    atol=np.broadcast_to(at / n_seg, (n_seg, idx_n.size)).ravel())
+    val[idx_n] = res.value.reshape(n_seg, -1).sum(axis=0)
+    err[idx_n] = res.error.reshape(n_seg, -1).sum(axis=0)
+    return val, err
 
 __all__ = ["slip_displacement", "stick_radius", "torque_of_stick", "annulus_integral",
            "sliding_torque", "twist_of_stick", "stick_radius_of_torque", "dissipation"]
@@ -80,8 +136,9 @@ def stick_radius(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
 def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
                      rtol: float, return_error: bool = False):
     """``∫_c^a x (d - g(x)) dx`` (m³) by quadrature of the non-negative integrand (no cancellation
-    as ``c → a``), split at the profile's breakpoints (composite rule for large tables). The part
-    below ``C_MIN_REL a`` (relative size 1e-200) is dropped. ``return_error=True``: also the
+    as ``c → a``), split at the profile's breakpoints (composite rule for large tables), in ``x``
+    for annuli narrower than :data:`NEAR_REL` ``a`` (else in ``ln x``). The part below
+    ``C_MIN_REL a`` (relative size 1e-200) is dropped. ``return_error=True``: also the
     absolute quadrature error estimate (m³)."""
     out = np.zeros(c.shape)
     err = np.zeros(c.shape)
@@ -95,7 +152,7 @@ def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
         return x * (ds[idx][:, None] - gx)
 
     scale = ds * as_ * (as_ - cs)
-    val, e = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
+    val, e = _integrate_annulus(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
     out[todo] = val
     err[todo] = e
     return (out, err) if return_error else out
@@ -168,6 +225,6 @@ def dissipation(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray, 
 
     us_scale = mu * E_star * ds / (4 * G_t)
     scale = us_scale * ps * as_ * (as_ - cs)
-    val, _ = _integrate_log(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
+    val, _ = _integrate_annulus(profile, kernel, cs, as_, rtol, rtol * scale * 1e-3 + 1e-300)
     out[todo] = 16.0 * G_t * val
     return out
