@@ -683,3 +683,17 @@ MDR_NEAR_ANNULUS = 1e-12
 #: in units of eps a/(a - c): the stick radius of the amplitude enters squared through a - c,
 #: which carries the rounding of c (measured 1.1-1.9 units at gaps 1e-6 .. 1e-12)
 MDR_NEAR_LOOP_ENERGY = 8.0
+#: the MDR torsion kernels of a single power term in closed form (stick radius from
+#: β s + s^n = δ, annulus integral (1 - s²)/2 - (1 - s^(n+2))/(n+2) or its offset rule) against
+#: the generic quadrature route: torque measured <= 1.1e-14 (twist and stick-radius control);
+#: the generic route's stick radius is a bracketed root to its tolerance (ln c to 1e-10 of
+#: rtol, measured 3.3e-11), so it is compared at that tolerance
+MDR_POWER_CLOSED_TORQUE = 1e-13
+MDR_POWER_CLOSED_STICK = 1e-9
+#: the MDR Hertz torque-twist relation against its closed form written with mpmath (30 digits):
+#: measured <= 4e-16 (stick radius) and 1e-15 (torque)
+MDR_HERTZ_CLOSED = 1e-14
+#: MDR torsion given the force, scalar call against the same state in an array call: the scalar
+#: and array normal solves of a non-whole power may differ in the last bits of the depth
+#: (docs/robustness.md, <= 2.1e-15), which the torsion state carries (measured <= 1e-15)
+MDR_SCALAR_ARRAY_FORCE = 1e-14

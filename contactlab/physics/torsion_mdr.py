@@ -10,6 +10,12 @@ a spring at ``x`` sticks (``u_y = xφ``) until ``8 G_t |u_y| = μ* E* (d - g(x))
 
 The model is exact only as ``c → a`` (first order in ``1 - c/a``); the relative torque error at a
 given twist is O((1 - c/a)²). Pure, vectorised kernels: flat arrays of equal size.
+
+A single power term ``g = K x^n`` (paraboloid, cone, power law) has closed forms: the stick
+radius solves ``β s + s^n = δ`` in ``s = c/a`` (``β = 4G_tφ a/(μE* K a^n)``,
+``δ = d/(K a^n)``; a quadratic for the paraboloid), and the annulus integral is
+``(d - K a^n)(a² - c²)/2 + K a^(n+2) h(c/a)``, ``h(s) = ∫_s^1 x (1 - x^n) dx``
+(:func:`_annulus_shape`, free of cancellation as ``c → a``). Other profiles take quadratures.
 """
 from __future__ import annotations
 
@@ -79,6 +85,82 @@ __all__ = ["slip_displacement", "stick_radius", "torque_of_stick", "annulus_inte
            "sliding_torque", "twist_of_stick", "stick_radius_of_torque", "dissipation"]
 
 
+def _single_power(profile) -> tuple[float, float] | None:
+    """``(K, n)`` with ``g(x) = K x**n`` for a single power term without a flat part or a wall
+    (paraboloid, cone, power law), else ``None``: the MDR kernels then have closed forms."""
+    if (not np.isfinite(profile.wall_radius)) and profile.flat_radius == 0:
+        terms = profile.power_terms()
+        if terms is not None and len(terms) == 1:
+            c, n = (float(v) for v in terms[0])
+            return profile._power_kappa(n) * c, n
+    return None
+
+
+#: Gauss-Legendre rule of :func:`_annulus_shape` on ``[0, 1]`` (nodes, weights)
+_GL_V, _GL_W = np.polynomial.legendre.leggauss(20)
+_GL_V, _GL_W = 0.5 * (_GL_V + 1.0), 0.5 * _GL_W
+
+
+def _annulus_shape(s: np.ndarray, n: float) -> np.ndarray:
+    """``h(s) = ∫_s^1 x (1 - x**n) dx`` for ``0 <= s <= 1`` (flat arrays).
+
+    ``n = 2``: ``(1 - s²)²/4``; ``n = 1``: ``(1 - s)² (1 + 2s)/6`` (no cancellation). Else
+    ``(1 - s²)/2 - (1 - s**(n+2))/(n+2)`` below ``s = 1/2``; above it (where the two terms
+    cancel as ``u = 1 - s -> 0``, ``h ~ n u²/2``) a 20-point Gauss-Legendre rule in the offset
+    ``v = 1 - x`` over ``[0, u]`` of ``(1 - v)(-expm1(n log1p(-v)))``, analytic on a disc of
+    radius ``1 - u >= 1/2`` about ``[0, u]`` (error below 1e-20 relative).
+    """
+    out = np.empty(s.shape)
+    if n == 2.0:                    # (1 - s²)²/4, 1 - s² = u (1 + s)
+        w = (1.0 - s) * (1.0 + s)
+        return 0.25 * w * w
+    if n == 1.0:                    # u² (1 + 2s)/6
+        u = 1.0 - s
+        return u * u * (1.0 + 2.0 * s) / 6.0
+    far = s < 0.5
+    sf = s[far]
+    out[far] = 0.5 * (1.0 - sf) * (1.0 + sf) - (1.0 - sf ** (n + 2.0)) / (n + 2.0)
+    u = 1.0 - s[~far]
+    v = u[:, None] * _GL_V
+    f = (1.0 - v) * -np.expm1(n * np.log1p(-v))
+    # a row sum, not BLAS: a state's rounding must not depend on the other states of the call
+    out[~far] = u * np.sum(f * _GL_W, axis=1)
+    return out
+
+
+def _stick_ratio(beta: np.ndarray, delta: np.ndarray, n: float) -> np.ndarray:
+    """Root ``s`` in ``(0, 1]`` of ``beta s + s**n = delta`` (``beta > 0``, ``delta ≈ 1``):
+    in closed form for ``n = 1, 2``, else Newton safeguarded by the bracket ``[lo, hi]`` (the
+    residual is increasing in ``s``), per element, until the bracket or the step reaches
+    rounding (flat arrays)."""
+    if n == 2.0:                    # the stable root of s² + β s - δ = 0
+        return 2.0 * delta / (beta + np.sqrt(beta * beta + 4.0 * delta))
+    if n == 1.0:
+        return delta / (beta + 1.0)
+    lo = np.zeros(beta.shape)
+    hi = np.minimum(delta / beta, delta ** (1.0 / n))     # each term alone reaches delta
+    s = 0.5 * hi if n < 1 else hi.copy()
+    todo = np.arange(beta.size)
+    for _ in range(200):
+        if not todo.size:
+            break
+        b, dl, ss = beta[todo], delta[todo], s[todo]
+        sn = ss ** n
+        F = b * ss + sn - dl
+        pos = F > 0
+        hi[todo] = np.where(pos, ss, hi[todo])
+        lo[todo] = np.where(pos, lo[todo], ss)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            new = ss - F / (b + n * sn / ss)
+        l_, h_ = lo[todo], hi[todo]
+        new = np.where((new > l_) & (new < h_), new, 0.5 * (l_ + h_))
+        s[todo] = new
+        keep = (np.abs(new - ss) > 2e-16 * ss) & (h_ - l_ > 2e-16 * h_) & (F != 0)
+        s[todo[~keep & (F == 0)]] = ss[~keep & (F == 0)]
+        todo = todo[keep]
+    return s
+
+
 def slip_displacement(profile, E_star: float, G_t: float, mu: float, x: np.ndarray,
                       d: np.ndarray) -> np.ndarray:
     """Spring displacement in the slip zone ``u_s = μE*(d - g(x))/(4G_t)`` (m) [S eq. 51]."""
@@ -103,6 +185,13 @@ def stick_radius(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
     if not np.any(live):
         return c
     al, dl, pl = a[live], d[live], phi[live]
+    power = _single_power(profile)
+    if power is not None:           # β s + s^n = δ in s = c/a, no quadrature
+        K, n = power
+        kk = 4.0 * G_t / (mu * E_star)
+        Kan = K * al ** n
+        c[live] = al * _stick_ratio(kk * pl * al / Kan, dl / Kan, n)
+        return c
     phi_top = twist_of_stick(profile, E_star, G_t, mu, al, dl)
     solve = pl > phi_top
     out = al.copy()
@@ -147,6 +236,16 @@ def annulus_integral(profile, c: np.ndarray, a: np.ndarray, d: np.ndarray,
         return (out, err) if return_error else out
     as_, ds = a[todo], d[todo]
     cs = np.maximum(c[todo], C_MIN_REL * as_)
+    power = _single_power(profile)
+    if power is not None:
+        # d (a² - c²)/2 - K (a^(n+2) - c^(n+2))/(n+2) = (d - K a^n)(a² - c²)/2 + K a^(n+2) h(c/a)
+        K, n = power
+        Kan = K * as_ ** n
+        val = ((ds - Kan) * (0.5 * (as_ - cs) * (as_ + cs))
+               + Kan * as_ * as_ * _annulus_shape(cs / as_, n))
+        out[todo] = val
+        err[todo] = _ROUNDING * (np.abs(val) + np.abs(ds - Kan) * as_ * as_)
+        return (out, err) if return_error else out
 
     def kernel(x: np.ndarray, gx: np.ndarray, idx: np.ndarray) -> np.ndarray:
         return x * (ds[idx][:, None] - gx)
