@@ -647,7 +647,7 @@ def _parse_time(name: str, value: object) -> float:
 
 
 def time_budget() -> float:
-    """The time budget, seconds, that long requests are checked against before they start.
+    """The time budget, s, that long requests are checked against before they start.
 
     :func:`set_time_budget` if called, else the environment variable ``CONTACTLAB_TIME_BUDGET``
     (seconds, ``90s``, ``10min``, ``2h`` or ``inf``), else :data:`DEFAULT_TIME_BUDGET` (600 s).
@@ -667,7 +667,7 @@ def set_time_budget(seconds: float | str | None) -> float | None:
     Parameters
     ----------
     seconds : float, str or None
-        Seconds (> 0; ``math.inf`` or ``"inf"`` disables the check; ``"30min"`` style strings
+        Time budget, s (> 0; ``math.inf`` or ``"inf"`` disables the check; ``"30min"`` style strings
         accepted). ``None`` returns to the environment variable or the default.
 
     Examples
