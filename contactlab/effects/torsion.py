@@ -185,7 +185,8 @@ def _warn_mdr(contact, phi: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.nd
         if not np.any(maybe_bad):
             return
         top = float(np.max(r_f / (1.0 + m)))
-        cand = np.flatnonzero(maybe_bad & (r_f >= top * (1.0 - m)))
+        with np.errstate(invalid="ignore"):
+            cand = np.flatnonzero(maybe_bad & ((r_f >= top * (1.0 - m)) | ~np.isfinite(m)))
     limit = mdr_validity_twist(contact, a[cand], d[cand], g_a[cand])
     phi = phi[cand]
     bad = np.abs(phi) > limit
