@@ -9,7 +9,7 @@ from ._lazy import attach as _attach
 from ._version import __version__
 from .contact import Contact
 from .materials import Elastic, Rigid, effective_moduli
-from .params import memory_budget, set_memory_budget
+from .params import memory_budget, set_memory_budget, set_time_budget, time_budget
 from .registry import register_material, register_profile
 
 __all__ = [
@@ -19,7 +19,7 @@ __all__ = [
     "ContactLaw", "LawStep",
     "profiles", "materials", "errors", "fit", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
-    "fretting_map_sweep",
+    "time_budget", "set_time_budget", "fretting_map_sweep",
     "cite", "citations",
     "__version__",
 ]

@@ -30,6 +30,8 @@ from .materials import Rigid as Rigid
 from .materials import effective_moduli as effective_moduli
 from .params import memory_budget as memory_budget
 from .params import set_memory_budget as set_memory_budget
+from .params import set_time_budget as set_time_budget
+from .params import time_budget as time_budget
 from .registry import register_material as register_material
 from .registry import register_profile as register_profile
 from .sweeps import fretting_map_sweep as fretting_map_sweep
@@ -42,7 +44,7 @@ __all__ = [
     "ContactLaw", "LawStep",
     "profiles", "materials", "errors", "fit", "foundation", "loadpath", "registry",
     "register_profile", "register_material", "sweep", "memory_budget", "set_memory_budget",
-    "fretting_map_sweep",
+    "time_budget", "set_time_budget", "fretting_map_sweep",
     "cite", "citations",
     "__version__",
 ]

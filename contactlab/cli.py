@@ -161,7 +161,8 @@ def _write_outputs(args: argparse.Namespace, result: Any, outdir: Path | None) -
     files: list[Path] = []
     notes = ""
     if outdir is not None:
-        files += result.write(outdir, args.format)
+        # the command checked its targets before the run (-o DIR, --overwrite)
+        files += result.write(outdir, args.format, overwrite=True)
     if args.plot:
         try:
             files.append(result.plot((outdir or Path(".")) / "plot.png"))
@@ -226,7 +227,7 @@ def _partial_run(args: argparse.Namespace, err: Any, outdir: Path | None) -> int
     one line naming the step and the files (or one JSON object), exit 1."""
     from .errors import ConvergenceError
     part = err.partial
-    files = part.write(outdir, args.format) if outdir is not None else []
+    files = part.write(outdir, args.format, overwrite=True) if outdir is not None else []
     msg = _one_line(err).rstrip(".")
     if files:
         msg += f"; wrote what was computed to {', '.join(str(f) for f in files)}"

@@ -10,6 +10,7 @@ __all__ = [
     "ParameterError",
     "TabulatedDataError",
     "MemoryBudgetError",
+    "TimeBudgetError",
     "OutsideTheoryError",
     "UnknownNameError",
     "PluginError",
@@ -60,6 +61,15 @@ class MemoryBudgetError(ParameterError):
 
     Raise the budget with :func:`contactlab.set_memory_budget` or the environment variable
     ``CONTACTLAB_MEMORY_BUDGET`` (bytes; suffixes ``K``, ``M``, ``G`` allowed).
+    """
+
+
+class TimeBudgetError(ParameterError):
+    """A request would run longer than the time budget allows (estimated before any work from a
+    calibrated cost per unit of work: map points, wear steps).
+
+    Raise the budget with :func:`contactlab.set_time_budget` or the environment variable
+    ``CONTACTLAB_TIME_BUDGET`` (seconds; suffixes ``s``, ``min``, ``h`` allowed; ``inf`` for none).
     """
 
 

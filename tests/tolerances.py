@@ -713,3 +713,37 @@ FIT_TING_MODEL = 1e-12
 #: slip annulus integrated in its own coordinate is exact to rounding (measured 4.4e-16; at the
 #: stick radius the old forms erred by ~ε a/(a − c): D = 0 at one ulp, 1.4e-3 at 1e-12)
 TINY_LOOP_DISSIPATION = 1e-12
+
+# ---- small gaps of issue 26 (tiny scales, model error, budgets)
+#: a truncated cone's depth and force at tiny forces against the θ closed form (mpmath, 40
+#: digits): the Newton root in t = tan θ stops at rounding (measured <= 2e-16 down to 1e-290 N);
+#: at 1e-300 N the reduced force F/(2E*) ~ 4e-312 m² is subnormal and keeps ~12 digits
+#: (measured 4e-13)
+TRUNCATED_CONE_TINY = 1e-15
+TRUNCATED_CONE_SUBNORMAL = 1e-11
+#: an exact ring-solver torque path scaled by s (force s F, torque s^(4/3) M) against the same path
+#: at s = 1 through the Hertz scaling laws (a ~ s^(1/3), twist ~ s^(1/3)): the
+#: ring solver keeps every digit where a⁵ is a normal float; measured <= 7e-15 down to a = 3e-58 m
+RINGS_SCALE_INVARIANCE = 1e-13
+#: MDR annulus integral, twist and torque of a flat punch with c/a = 1 - 1e-3 .. 1 - 1e-12 against
+#: their closed forms (mpmath): integrated in the offset x - c, measured <= 2.4e-16 (integral)
+#: and <= 1e-15 (twist, torque); the error estimate of the integral ~3.7e-14
+MDR_NEAR_ANNULUS = 1e-12
+#: the MDR loop energy 32 G_t φ0² c (a - c)² of a flat punch next to the punch radius, relative,
+#: in units of eps a/(a - c): the stick radius of the amplitude enters squared through a - c,
+#: which carries the rounding of c (measured 1.1-1.9 units at gaps 1e-6 .. 1e-12)
+MDR_NEAR_LOOP_ENERGY = 8.0
+#: the MDR torsion kernels of a single power term in closed form (stick radius from
+#: β s + s^n = δ, annulus integral (1 - s²)/2 - (1 - s^(n+2))/(n+2) or its offset rule) against
+#: the generic quadrature route: torque measured <= 1.1e-14 (twist and stick-radius control);
+#: the generic route's stick radius is a bracketed root to its tolerance (ln c to 1e-10 of
+#: rtol, measured 3.3e-11), so it is compared at that tolerance
+MDR_POWER_CLOSED_TORQUE = 1e-13
+MDR_POWER_CLOSED_STICK = 1e-9
+#: the MDR Hertz torque-twist relation against its closed form written with mpmath (30 digits):
+#: measured <= 4e-16 (stick radius) and 1e-15 (torque)
+MDR_HERTZ_CLOSED = 1e-14
+#: MDR torsion given the force, scalar call against the same state in an array call: the scalar
+#: and array normal solves of a non-whole power may differ in the last bits of the depth
+#: (docs/robustness.md, <= 2.1e-15), which the torsion state carries (measured <= 1e-15)
+MDR_SCALAR_ARRAY_FORCE = 1e-14

@@ -229,7 +229,7 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
             if state is not None:           # plain floats: overflow gives inf (or raises)
                 F = state._force
                 if not math.isfinite(F + state._depth + state._radius) or (
-                        force is not None and F > 0 and not abs(F - force) <= _FORCE_SANITY * abs(force)):
+                        force is not None and force > 0 and not abs(F - force) <= _FORCE_SANITY * force):
                     raise FloatingPointError("non-finite or inconsistent state")
                 return state
         with np.errstate(over="raise"):

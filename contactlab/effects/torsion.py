@@ -163,8 +163,32 @@ def mdr_validity_twist(contact, a: np.ndarray, d: np.ndarray, g_a: np.ndarray) -
 
 
 def _warn_mdr(contact, phi: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray) -> None:
-    """Warn where the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD` (see above)."""
-    limit = mdr_validity_twist(contact, a, d, g_a)
+    """Warn where the MDR torque errs by more than :data:`MDR_ERROR_THRESHOLD` (see above).
+
+    Many states are screened first (:func:`~contactlab.physics.torsion_validity.
+    screen_twist_at_stick_ratio`, a fixed rule with an error bound): the exact limit is computed
+    only for the states the bound cannot settle, those that may exceed their limit and may
+    hold the largest ratio of twist to limit. The warning (and its numbers) is the one the
+    exact limits of every state give.
+    """
+    from ..physics.torsion_validity import screen_twist_at_stick_ratio
+    screen = screen_twist_at_stick_ratio(contact.profile, contact.moduli.normal,
+                                         contact.moduli.torsional, contact.friction,
+                                         MDR_VALID_STICK_RATIO, a, d)
+    if screen is None:
+        cand = np.arange(a.size)
+    else:
+        L_f, m = screen
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r_f = np.abs(phi) / L_f
+        maybe_bad = r_f > 1.0 - m
+        if not np.any(maybe_bad):
+            return
+        top = float(np.max(r_f / (1.0 + m)))
+        with np.errstate(invalid="ignore"):
+            cand = np.flatnonzero(maybe_bad & ((r_f >= top * (1.0 - m)) | ~np.isfinite(m)))
+    limit = mdr_validity_twist(contact, a[cand], d[cand], g_a[cand])
+    phi = phi[cand]
     bad = np.abs(phi) > limit
     if np.any(bad):
         i = int(np.argmax(np.abs(phi) / limit))

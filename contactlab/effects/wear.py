@@ -17,6 +17,8 @@ rates, so worn volume = (k/μ) × dissipated energy holds to rounding for the ta
 """
 from __future__ import annotations
 
+import math
+
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -27,7 +29,7 @@ from ..citations import Cited, sources_for
 from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
                       ValidityWarning)
 from ..params import (FieldsEqual, as_float_array, as_real, check_memory,
-                     check_positive)
+                     check_positive, check_time)
 from ..physics import wear as _wear
 from ..physics import wear_rosenbrock as _ros
 from ..profiles import Tabulated
@@ -235,6 +237,28 @@ def _checkpoint_sizes(checkpoints: Any, n_grid: int, jump_rtol: float) -> None:
         raise ParameterError(f"jump_rtol={jump_rtol!r} is invalid: the wear-step tolerance must be "
                              f">= {MIN_JUMP_RTOL:g} (the steps grow as jump_rtol**-0.5 while the "
                              "grid's error stays); e.g. jump_rtol=1e-6.")
+    steps = wear_steps_lower(n_ck, jump_rtol)
+    check_time("wear()", steps * wear_step_seconds(int(n_grid)),
+               f"at least {steps:.3g} wear steps ({n_ck} checkpoints, jump_rtol={jump_rtol:g}) on "
+               f"the {int(n_grid) + 1}-node grid")
+
+
+#: run time of one wear step, s: a fixed part and one per dense-grid entry (n_grid + 1)²;
+#: measured 2.0-2.8 ms per step at n_grid = 100-200 on the shared 2-core VM at load ~9 (shift
+#: and twist, MDR and exact), taken at about 0.25 of that (a lower estimate for an unloaded core)
+WEAR_STEP_SECONDS, WEAR_STEP_SECONDS_PER_ENTRY = 5e-4, 1e-8
+
+
+def wear_step_seconds(n_grid: int) -> float:
+    """Estimated run time (s) of one wear step on the ``n_grid`` grid."""
+    return WEAR_STEP_SECONDS + WEAR_STEP_SECONDS_PER_ENTRY * (n_grid + 1.0) ** 2
+
+
+def wear_steps_lower(n_checkpoints: int, jump_rtol: float) -> float:
+    """A lower bound of a run's wear steps: one per checkpoint at least, and the steps the jump
+    tolerance asks for (``0.9 jump_rtol**-0.5``: 28 at 1e-3, 3540 at 1e-8 measured on a Hertz
+    shift, more on others)."""
+    return max(float(n_checkpoints), 0.9 / math.sqrt(jump_rtol))
 
 
 def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndarray,

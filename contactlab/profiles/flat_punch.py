@@ -328,6 +328,37 @@ class TruncatedCone(_FlatCentred):
         val = self.slope * (0.5 * a**2 * np.arctan2(root, b) - 0.5 * b * root)
         return np.where(a > b, val, 0.0)
 
+    def _radius_depth_of_reduced_force(self, fr: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Contact radius and depth (m) of reduced forces ``F/(2E*) >= 0`` (m²).
+
+        With ``t = tan θ``, ``θ = arccos(b/a)``: ``a = b sqrt(1 + t²)``, ``d = g(a) = s a θ`` and
+        ``F/(2E*) = a g(a) - ∫_0^a g = (s b²/2) [θ (1 + t²) + t]``, increasing and convex in
+        ``t`` (derivative ``s b² (1 + t θ)``). Newton from ``t0 = min(q, sqrt(8q/π))``
+        (``q = F/(2E* s b²)``, an upper bound of the root) descends monotonically onto the root
+        and stops when a step no longer descends. For small forces ``t ≈ q`` and
+        ``d ≈ F/(2E* b)`` (the flat punch): the radius rounds onto the rim ``b`` while ``t``
+        and the depth keep every digit. A root solve in ``a`` lost them (a depth of 0 below
+        1e-10 N on the scalar route, an overflow report on the array route).
+        """
+        b, s = self.radius, self.slope
+        q = np.asarray(fr, dtype=float) / (s * b) / b
+        t = _cone_rim_tangent(q)
+        a = b * np.hypot(1.0, t)
+        return a, s * a * np.arctan(t)
+
+    def _scalar_closed_forms(self) -> dict:
+        """The scalar normal solve's radius and depth of a reduced force: the array formula on a
+        one-element array (the same operations, the same bits as the array route)."""
+        def radius_depth(fr: float) -> tuple[float, float]:
+            a, d = self._radius_depth_of_reduced_force(np.array([fr]))
+            return float(a[0]), float(d[0])
+
+        return {"radius_depth_of_reduced_force": radius_depth}
+
+    @property
+    def capabilities(self) -> frozenset[str]:
+        return frozenset({"reduced_force_state"})
+
     def _sympy_form(self) -> SympyForm:
         import sympy as sp
         b, s = symbol("b"), symbol("s")
@@ -345,3 +376,25 @@ class TruncatedCone(_FlatCentred):
             xg_integral=xg_integral,
             reason="a truncated cone has no closed-form inverse of d = s a arccos(b/a) and no "
                    "closed-form pressure (theory §3: quadrature)")
+
+
+def _cone_rim_tangent(q: np.ndarray) -> np.ndarray:
+    """The root ``t >= 0`` of ``[arctan(t) (1 + t²) + t]/2 = q`` for every ``q >= 0`` (see
+    :meth:`TruncatedCone._radius_depth_of_reduced_force`): Newton from an upper bound, every
+    element stopped at its first step that does not descend (convexity makes the iterates
+    decrease onto the root; the stop is rounding, never a tolerance)."""
+    q = np.asarray(q, dtype=float)
+    flat_q = q.reshape(-1)
+    out = np.minimum(flat_q, np.sqrt(flat_q * (8.0 / math.pi)))
+    todo = np.flatnonzero(flat_q > 0)
+    tt, qq = out[todo], flat_q[todo]
+    for _ in range(200):          # quadratic convergence: < 10 steps from the bound
+        if not tt.size:
+            break
+        at = np.arctan(tt)
+        new = tt - (0.5 * (at * (1.0 + tt * tt) + tt) - qq) / (1.0 + tt * at)
+        keep = new < tt
+        out[todo[~keep]] = tt[~keep]
+        todo, tt, qq = todo[keep], new[keep], qq[keep]
+    out[todo] = tt
+    return out.reshape(q.shape)

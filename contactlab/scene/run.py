@@ -17,7 +17,7 @@ import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import (ConvergenceError, ContactlabError, EffectNotPlannedError,
-                      NotSupportedError, failed_part_way)
+                      NotSupportedError, ParameterError, failed_part_way)
 from ..numeric.prefix import solved_prefix
 from ..params import FieldsEqual
 from ..loadpath import UNITS
@@ -248,7 +248,8 @@ class SceneResult(FieldsEqual, Result, Cited):
                                    "boundary": _jsonable(self.fretting_map.boundary)}
         return out
 
-    def write(self, directory: str | Path, fmt: str = "csv") -> list[Path]:
+    def write(self, directory: str | Path, fmt: str = "csv", *,
+              overwrite: bool = False) -> list[Path]:
         """Write ``series.csv`` (+ ``fields.csv``) or ``result.json`` into ``directory``.
 
         A partial result (``meta["status"] == "partial"``, the ``err.partial`` of a run that failed
@@ -260,51 +261,78 @@ class SceneResult(FieldsEqual, Result, Cited):
         beside a new ``result.json``, an old ``plot.png``, ...) are removed, so the folder holds
         one consistent result; only files that record lists, unchanged since that run wrote
         them, are removed: a file this package did not write is never removed.
+
+        Parameters
+        ----------
+        directory : str or Path
+            Output folder (created if missing).
+        fmt : {"csv", "json"}
+        overwrite : bool
+            Replace existing files of the same names and remove an earlier run's outputs
+            (default ``False``: the same rule as the results' ``to_csv``).
+
+        Raises
+        ------
+        ParameterError
+            Without ``overwrite=True``, a file this call would replace or remove exists (checked
+            before anything is written).
         """
         d = Path(directory)
+        if d.exists() and not d.is_dir():
+            raise ParameterError(f"directory={str(directory)!r} is invalid: it is a file, not a "
+                                 "folder; give a folder name (created if missing).")
+        files = self._file_bytes(fmt)
+        if not overwrite and d.is_dir():
+            names = {n for n, _ in files}
+            stale = [n for n in _manifest(d) if n not in names]
+            for name in [*names, *stale]:
+                path = d / name
+                if path.exists() or path.is_symlink():
+                    raise ParameterError(
+                        f"path={str(path)!r} exists: SceneResult.write() never replaces or "
+                        "removes a file unless asked; pass overwrite=True or choose another "
+                        "folder.")
         d.mkdir(parents=True, exist_ok=True)
-        if fmt == "json":
-            paths = [atomic_write(d / "result.json",
-                                  json.dumps(self.to_dict(), indent=1).encode())]
-        else:
-            info = self.metadata()
-            paths = [atomic_write(d / "series.csv", _csv_bytes(self.series, SERIES_UNITS, info))]
-            if self.fields:
-                paths.append(atomic_write(d / "fields.csv", _csv_bytes(self.fields, FIELD_UNITS,
-                                                                       info)))
-            paths += self._write_fretting(d)
-            if self.meta.get("status") == "partial":     # the CSV files cannot say so
-                status = {k: self.meta.get(k) for k in ("status", "failed_at", "error", "title",
-                                                        "computed", "route", "version")}
-                paths.append(atomic_write(d / "status.json",
-                                          json.dumps(status, indent=1).encode()))
+        paths = [atomic_write(d / name, data) for name, data in files]
         remove_earlier_outputs(d, paths)
         record_outputs(d, paths, keep=False)
         return paths
 
-    def _write_fretting(self, d: Path) -> list[Path]:
-        """CSV files of the wear run and the fretting map (``name [unit]`` headers)."""
-        paths = []
+    def _file_bytes(self, fmt: str) -> list[tuple[str, bytes]]:
+        """The files :meth:`write` writes: (name, contents)."""
+        if fmt == "json":
+            return [("result.json", json.dumps(self.to_dict(), indent=1).encode())]
         info = self.metadata()
+        out = [("series.csv", _csv_bytes(self.series, SERIES_UNITS, info))]
+        if self.fields:
+            out.append(("fields.csv", _csv_bytes(self.fields, FIELD_UNITS, info)))
+        out += self._fretting_bytes(info)
+        if self.meta.get("status") == "partial":     # the CSV files cannot say so
+            status = {k: self.meta.get(k) for k in ("status", "failed_at", "error", "title",
+                                                    "computed", "route", "version")}
+            out.append(("status.json", json.dumps(status, indent=1).encode()))
+        return out
+
+    def _fretting_bytes(self, info: dict) -> list[tuple[str, bytes]]:
+        """CSV files of the wear run and the fretting map (``name [unit]`` headers)."""
+        out = []
         if self.wear is not None:
             w = self.wear
-            paths.append(atomic_write(d / "wear.csv", _csv_bytes(w.to_dict(), WEAR_UNITS, info)))
+            out.append(("wear.csv", _csv_bytes(w.to_dict(), WEAR_UNITS, info)))
             cols = {"r": w.r}
             for N, prof in zip(w.checkpoints, w.profiles):
                 cols[f"profile@{N:.6g}"] = prof.f
             units = {k: "m" for k in cols}
-            paths.append(atomic_write(d / "wear_profiles.csv", _csv_bytes(cols, units, info)))
-            paths.append(atomic_write(d / "worn_profile.csv",
-                                      _csv_bytes({"r": w.r, "f": w.profile.f},
-                                                 {"r": "m", "f": "m"}, info)))
+            out.append(("wear_profiles.csv", _csv_bytes(cols, units, info)))
+            out.append(("worn_profile.csv", _csv_bytes({"r": w.r, "f": w.profile.f},
+                                                       {"r": "m", "f": "m"}, info)))
         if self.fretting_map is not None:
             m = self.fretting_map
-            paths.append(atomic_write(d / "fretting_map.csv", _csv_bytes(m.to_dict(), MAP_UNITS,
-                                                                         info)))
+            out.append(("fretting_map.csv", _csv_bytes(m.to_dict(), MAP_UNITS, info)))
             amp = m.amplitude_name
-            paths.append(atomic_write(d / "fretting_boundary.csv", _csv_bytes(
+            out.append(("fretting_boundary.csv", _csv_bytes(
                 {"force": m.force, amp: m.boundary}, MAP_UNITS, info)))
-        return paths
+        return out
 
     def figure(self, *, units: str = "si") -> Any:
         """The figure :meth:`plot` saves (needs matplotlib): one row per series against time, the

@@ -149,7 +149,7 @@ def test_tangential_wear_scene(tmp_path):
     assert "# model_error: inf" in lines
     head = next(line for line in lines if not line.startswith("#"))
     assert head.startswith("cycles [1],depth [m],radius [m]")
-    # a later run without wear removes the stale wear files
-    Scene(twist_scene()).run().write(tmp_path)
+    # a later run without wear removes the stale wear files (when asked to replace them)
+    Scene(twist_scene()).run().write(tmp_path, overwrite=True)
     assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST, "series.csv"]
     assert "wear (tangential, mdr) after 100000 cycles" in res.table()
