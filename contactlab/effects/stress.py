@@ -35,6 +35,7 @@ __all__ = [
     "normal_max_stress",
     "normal_stress",
     "normal_stress_field",
+    "slope_route",
 ]
 
 #: derived scalar fields :meth:`StressField` offers (names of its properties)
@@ -305,6 +306,23 @@ def table_slope(profile, a: float):
     return value, error, values
 
 
+def slope_route(prof, a: float, rtol: float):
+    """``(g', g' error or None, g or None, cuts, is_table)`` of a profile on ``[0, a]`` for
+    :func:`~contactlab.physics.stress.superposed_field`: a table's interpolated slope (a linear
+    table: the Riemann-Stieltjes cell sums of ``g`` itself; a spline: its smooth ``g'`` with the
+    interpolation error), else :func:`g_prime_of` cut at the profile's breakpoints."""
+    cuts = tuple(b for b in (*prof.breakpoints, prof.flat_radius) if 0 < b < a)
+    if prof.has("node_table"):
+        gp, gp_err, g_vals = table_slope(prof, a)
+        cuts = ()       # the interpolated slope is continuous; node cuts cost O(nodes)
+        if prof.interpolation != "linear":
+            g_vals = None   # a spline's g' is smooth: the Gauss-Kronrod sums on g'
+        else:
+            gp_err = None   # the cell sums carry the exact increments of g
+        return gp, gp_err, g_vals, cuts, True
+    return g_prime_of(prof, rtol), None, None, cuts, False
+
+
 def _route(profile, a: float) -> str:
     terms = profile.power_terms()
     if terms is not None and len(terms) == 1 and terms[0][1] == 2.0:
@@ -343,17 +361,9 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
     else:
         comps, err = (zero,) * 4, zero
         if route == "superposition":
-            cuts = tuple(b for b in (*prof.breakpoints, prof.flat_radius) if 0 < b < a)
-            if prof.has("node_table"):
-                gp, gp_err, g_vals = table_slope(prof, a)
-                cuts = ()       # the interpolated slope is continuous; node cuts cost O(nodes)
-                if prof.interpolation != "linear":
-                    g_vals = None   # a spline's g' is smooth: the Gauss-Kronrod sums on g'
-                else:
-                    gp_err = None   # the cell sums carry the exact increments of g
+            gp, gp_err, g_vals, cuts, table = slope_route(prof, a, ct.rtol)
+            if table:
                 route = "superposition (table)"
-            else:
-                gp, gp_err, g_vals = g_prime_of(prof, ct.rtol), None, None
             comps, err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, gp, E, nu, cuts,
                                               gp_err, g_vals)
     if a > 0 and edge != 0:

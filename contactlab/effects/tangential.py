@@ -117,6 +117,28 @@ class TangentialState(Result, Cited):
         tau = _tan.shear(c_.profile, c_.moduli.normal, mu, r, a, d, c, c_.rtol)
         return _out(sign * tau)
 
+    # ---- subsurface stresses (contactlab.effects.stress_tangential does the work)
+    def stress(self, x: Any, y: Any, z: Any, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field (a ``CartesianStressField``) at points ``(x, y, z)`` (m,
+        broadcast; ``x`` along the shift, ``z >= 0`` the depth): the normal preload's field plus
+        the Cattaneo–Mindlin shear field (``part="friction"``: the shear part alone). Body 1
+        receives the traction :meth:`shear` reports; body 2 its opposite. See docs/stress.md."""
+        from .stress_tangential import tangential_stress
+        return tangential_stress(self, x, y, z, body, part)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` of the whole field in body 1 or 2 and its location (``r``, ``z``;
+        ``meta["x"], meta["y"]``)."""
+        from .stress_tangential import tangential_max_stress
+        return tangential_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1, part: str = "total",
+                     y: float = 0.0) -> Any:
+        """Stress field on a grid ``(x_values, z_values)`` of the plane ``y`` for plots (default
+        200 x 100 over ``[-2a, 2a] x [0, 1.5a]``)."""
+        from .stress_tangential import tangential_stress_field
+        return tangential_stress_field(self, grid, body, part, y)
+
 
 @reporting()
 def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = None,

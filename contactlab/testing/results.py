@@ -19,7 +19,8 @@ RESULT_MODULES = ("contactlab.effects.normal", "contactlab.effects.adhesion",
                   "contactlab.effects.tangential", "contactlab.effects.torsion",
                   "contactlab.effects.viscoelastic", "contactlab.effects.path",
                   "contactlab.effects.fretting", "contactlab.effects.wear",
-                  "contactlab.effects.law", "contactlab.effects.stress", "contactlab.scene.run",
+                  "contactlab.effects.law", "contactlab.effects.stress",
+                  "contactlab.effects.stress_tangential", "contactlab.scene.run",
                   "contactlab.fit.result")
 
 

@@ -88,6 +88,14 @@ class TestStressMaximum(ResultChecks):
         return HERTZ.normal(force=100.0).max_stress("max_shear")
 
 
+class TestCartesianStressField(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        s = HERTZ.tangential(force=100.0, tangential_force=10.0)
+        return s.stress_field(grid=(np.linspace(-2e-4, 2e-4, 5), np.linspace(0, 1e-4, 3)))
+
+
 class TestShiftHistory(ResultChecks):
     exact, plots = True, True
 
