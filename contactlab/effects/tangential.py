@@ -260,6 +260,15 @@ class ShiftHistory(Result, Cited):
                           x_name="displacement", x_unit="m", y_name="tangential force",
                           y_unit="N", units=units, axes=axes, title="shift history")
 
+    def stress(self, x: Any, y: Any, z: Any, *, step: int, body: int = 1,
+               part: str = "total") -> Any:
+        """Subsurface stress field (a ``CartesianStressField``) at ``step`` of the history, at
+        points ``(x, y, z)`` (m): the Masing sum of virgin Cattaneo–Mindlin fields over the
+        active turning points, plus the normal preload (``part="friction"``: without it). See
+        docs/stress.md."""
+        from .stress_history import history_stress
+        return history_stress(self, x, y, z, step=step, body=body, part=part)
+
 
 #: peak memory of a shift history, bytes per step (turning-point bookkeeping, the loading curve
 #: at every step's argument, the dissipation): 801 B measured with tracemalloc for random walks

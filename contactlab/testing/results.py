@@ -20,7 +20,8 @@ RESULT_MODULES = ("contactlab.effects.normal", "contactlab.effects.adhesion",
                   "contactlab.effects.viscoelastic", "contactlab.effects.path",
                   "contactlab.effects.fretting", "contactlab.effects.wear",
                   "contactlab.effects.law", "contactlab.effects.stress",
-                  "contactlab.effects.stress_tangential", "contactlab.scene.run",
+                  "contactlab.effects.stress_tangential", "contactlab.effects.stress_history",
+                  "contactlab.scene.run",
                   "contactlab.fit.result")
 
 

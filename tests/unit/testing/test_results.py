@@ -96,6 +96,14 @@ class TestCartesianStressField(ResultChecks):
         return s.stress_field(grid=(np.linspace(-2e-4, 2e-4, 5), np.linspace(0, 1e-4, 3)))
 
 
+class TestFrettingFatigue(ResultChecks):
+    exact = True
+
+    def make_result(self):
+        loop = HERTZ.fretting_loop(force=100.0, displacement_amplitude=1e-7)
+        return loop.fatigue(n_phases=4)
+
+
 class TestShiftHistory(ResultChecks):
     exact, plots = True, True
 
