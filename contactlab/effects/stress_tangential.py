@@ -202,7 +202,7 @@ def to_cartesian(f, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, ...]:
 
 
 def _single(state, what: str) -> None:
-    if state.shape != () if hasattr(state, "shape") else np.ndim(state._c) != 0:
+    if np.ndim(state._c) != 0:
         raise NotSupportedError(f"{what} needs a single state, this one has shape "
                                 f"{np.shape(state._c)}: index the loads or call tangential() "
                                 "per load.")
