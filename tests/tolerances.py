@@ -747,3 +747,16 @@ MDR_HERTZ_CLOSED = 1e-14
 #: and array normal solves of a non-whole power may differ in the last bits of the depth
 #: (docs/robustness.md, <= 2.1e-15), which the torsion state carries (measured <= 1e-15)
 MDR_SCALAR_ARRAY_FORCE = 1e-14
+
+#: tangential field of the sliding sphere against Hamilton's closed form (1983), relative to p0:
+#: the superposition's quadrature reaches ~1e-9 p0 (measured 7e-10 at worst over points inside
+#: and outside the contact down to z = 0.01a, away from the edge)
+STRESS_HAMILTON = 1e-8
+#: the same within 0.05a of the edge and 0.02a of the surface, where the elementary shear field
+#: varies on the scale of the depth: measured 8.4e-8 p0 at (x, y, z) = (1.05, 0.1, 0.02)a (the
+#: field's own error estimate there is 7e-5 p0, so the estimate holds)
+STRESS_HAMILTON_EDGE = 2e-7
+#: surface sxz of a Cattaneo-Mindlin state against the library's own surface traction
+#: state.shear(r), relative to its peak (measured 8e-14 for Hertz; a cone's pressure shape
+#: difference near the axis is summed differently by the two routes)
+STRESS_TANGENTIAL_SURFACE = 1e-8

@@ -274,6 +274,21 @@ class FrettingLoop(Result, Cited):
             pl.loop_axes(ax)
         return ax
 
+    def stress(self, x: Any, y: Any, z: Any, *, phase: float, body: int = 1,
+               part: str = "total") -> Any:
+        """Subsurface stress field (a ``CartesianStressField``, both modes) at ``phase`` of the
+        steady loop (``control = amplitude cos 2π phase``; 0: the tip at +amplitude, 0.5: at
+        -amplitude) at points ``(x, y, z)`` (m). See docs/stress.md."""
+        from .stress_history import loop_stress
+        return loop_stress(self, x, y, z, phase=phase, body=body, part=part)
+
+    def fatigue(self, body: int = 1, n_phases: int = 24, points: Any = None) -> Any:
+        """Fretting-fatigue indicators over the loop (a ``FrettingFatigue``): the largest
+        tensile stress at the contact edge and its range, and the Smith–Watson–Topper
+        parameter on the critical plane. See docs/stress.md."""
+        from .stress_history import fretting_fatigue
+        return fretting_fatigue(self, body, n_phases, points)
+
 
 @reporting()
 def fretting_loop(contact, *, force: Any = None, depth: Any = None,

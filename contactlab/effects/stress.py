@@ -16,13 +16,15 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
+from ..citations import Cited
 from ..errors import NotSupportedError, ParameterError, ValidityWarning
 from ..params import as_float_array
 from ..physics import stress as _st
+from ._protocol import Result
 
 __all__ = [
     "KINDS",
@@ -33,6 +35,7 @@ __all__ = [
     "normal_max_stress",
     "normal_stress",
     "normal_stress_field",
+    "slope_route",
 ]
 
 #: derived scalar fields :meth:`StressField` offers (names of its properties)
@@ -40,9 +43,18 @@ KINDS = ("von_mises", "max_shear", "tresca", "max_principal", "min_principal")
 
 _CYL = ("srr", "stt", "szz", "srz", "stz", "srt")
 
+#: sources of the fields: Sneddon's punch superposition, Johnson's half-space solutions
+#: (Boussinesq, Hertz), Reissner-Sagoci's twisted punch (torsion)
+NORMAL_SOURCES = ("Sn65", "J85")
+TORSION_SOURCES = ("Sn65", "J85", "RS44")
+
+#: units of the CSV columns of a :class:`StressField`
+FIELD_UNITS = {"r": "m", "z": "m", **{k: "Pa" for k in _CYL}, "von_mises": "Pa",
+               "max_shear": "Pa", "tresca": "Pa", "error": "Pa"}
+
 
 @dataclass(frozen=True, eq=False)
-class StressField:
+class StressField(Result, Cited):
     """Stress field at a set of points (immutable; arrays of the broadcast shape of the points).
 
     Attributes
@@ -76,6 +88,8 @@ class StressField:
     error: np.ndarray = field(repr=False)
     meta: dict = field(default_factory=dict, repr=False)
 
+    units: ClassVar[dict[str, str]] = FIELD_UNITS
+
     def __post_init__(self) -> None:
         for name in ("r", "z", *_CYL, "error"):
             arr = np.asarray(getattr(self, name), dtype=float)
@@ -86,6 +100,11 @@ class StressField:
     def shape(self) -> tuple[int, ...]:
         """Shape of the point arrays."""
         return self.srr.shape
+
+    @property
+    def error_estimate(self) -> float:
+        """Largest estimated error relative to the largest finite stress magnitude."""
+        return float(self.meta.get("error_estimate", 0.0))
 
     @cached_property
     def principal(self) -> np.ndarray:
@@ -132,7 +151,9 @@ class StressField:
         return np.asarray(getattr(self, kind))
 
     def to_dict(self) -> dict[str, Any]:
-        """Coordinates, components, derived fields and the error estimate as arrays (SI units)."""
+        """Coordinates, components, derived fields and the error estimate as arrays (SI units;
+        one CSV row per point, flattened in C order). The model error is 0.0: the fields are
+        the exact elastic half-space solutions of the state's tractions."""
         out: dict[str, Any] = {"r": self.r, "z": self.z}
         out.update({k: getattr(self, k) for k in _CYL})
         out.update({k: getattr(self, k) for k in ("von_mises", "max_shear", "tresca")})
@@ -158,7 +179,7 @@ class StressField:
 
 
 @dataclass(frozen=True)
-class StressMaximum:
+class StressMaximum(Result, Cited):
     """Largest value of a stress measure in a body and where it occurs.
 
     Attributes
@@ -169,15 +190,24 @@ class StressMaximum:
         Its radius and depth, m.
     kind : str
         The measure (one of :data:`KINDS`).
+    meta : dict
+        ``body``, ``citations``.
     """
 
     value: float
     r: float
     z: float
     kind: str
+    meta: dict = field(default_factory=dict, repr=False, compare=False)
+
+    units: ClassVar[dict[str, str]] = {"value": "Pa", "r": "m", "z": "m"}
 
     def to_dict(self) -> dict[str, Any]:
+        """``value`` (Pa), ``r``, ``z`` (m) and ``kind``."""
         return {"value": self.value, "r": self.r, "z": self.z, "kind": self.kind}
+
+    def _columns(self) -> dict[str, Any]:
+        return {k: np.ravel(getattr(self, k)) for k in ("value", "r", "z")}
 
 
 def body_poisson_ratio(contact, body: Any) -> float:
@@ -276,6 +306,23 @@ def table_slope(profile, a: float):
     return value, error, values
 
 
+def slope_route(prof, a: float, rtol: float):
+    """``(g', g' error or None, g or None, cuts, is_table)`` of a profile on ``[0, a]`` for
+    :func:`~contactlab.physics.stress.superposed_field`: a table's interpolated slope (a linear
+    table: the Riemann-Stieltjes cell sums of ``g`` itself; a spline: its smooth ``g'`` with the
+    interpolation error), else :func:`g_prime_of` cut at the profile's breakpoints."""
+    cuts = tuple(b for b in (*prof.breakpoints, prof.flat_radius) if 0 < b < a)
+    if prof.has("node_table"):
+        gp, gp_err, g_vals = table_slope(prof, a)
+        cuts = ()       # the interpolated slope is continuous; node cuts cost O(nodes)
+        if prof.interpolation != "linear":
+            g_vals = None   # a spline's g' is smooth: the Gauss-Kronrod sums on g'
+        else:
+            gp_err = None   # the cell sums carry the exact increments of g
+        return gp, gp_err, g_vals, cuts, True
+    return g_prime_of(prof, rtol), None, None, cuts, False
+
+
 def _route(profile, a: float) -> str:
     terms = profile.power_terms()
     if terms is not None and len(terms) == 1 and terms[0][1] == 2.0:
@@ -314,17 +361,9 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
     else:
         comps, err = (zero,) * 4, zero
         if route == "superposition":
-            cuts = tuple(b for b in (*prof.breakpoints, prof.flat_radius) if 0 < b < a)
-            if prof.has("node_table"):
-                gp, gp_err, g_vals = table_slope(prof, a)
-                cuts = ()       # the interpolated slope is continuous; node cuts cost O(nodes)
-                if prof.interpolation != "linear":
-                    g_vals = None   # a spline's g' is smooth: the Gauss-Kronrod sums on g'
-                else:
-                    gp_err = None   # the cell sums carry the exact increments of g
+            gp, gp_err, g_vals, cuts, table = slope_route(prof, a, ct.rtol)
+            if table:
                 route = "superposition (table)"
-            else:
-                gp, gp_err, g_vals = g_prime_of(prof, ct.rtol), None, None
             comps, err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, gp, E, nu, cuts,
                                               gp_err, g_vals)
     if a > 0 and edge != 0:
@@ -342,10 +381,10 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
     zero = np.zeros(r.shape)
     return StressField(r, z, srr, stt, szz, srz, zero, zero, err,
                        {"route": route, "body": body, "nu": nu, "error_estimate": rel,
-                        "edge_depth": edge})
+                        "edge_depth": edge, "citations": NORMAL_SOURCES})
 
 
-def _maximise(evaluate, kind: str, a: float) -> StressMaximum:
+def _maximise(evaluate, kind: str, a: float, meta: dict) -> StressMaximum:
     """Grid search over ``0 <= r, z <= 2a`` then a Nelder-Mead polish (``|r|, |z|`` mirrored)."""
     from scipy.optimize import minimize
     rg = np.linspace(0.0, 2.0 * a, 41)
@@ -354,7 +393,7 @@ def _maximise(evaluate, kind: str, a: float) -> StressMaximum:
     vals = evaluate(RG, ZG).get(kind)
     if not np.all(np.isfinite(vals)):
         i = np.unravel_index(np.argmax(~np.isfinite(vals)), vals.shape)
-        return StressMaximum(float("inf"), float(RG[i]), float(ZG[i]), kind)
+        return StressMaximum(float("inf"), float(RG[i]), float(ZG[i]), kind, meta)
     i = np.unravel_index(np.argmax(vals), vals.shape)
 
     def neg(p: np.ndarray) -> float:
@@ -366,7 +405,8 @@ def _maximise(evaluate, kind: str, a: float) -> StressMaximum:
                             "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
                                                          [RG[i] / a + 0.02, ZG[i] / a],
                                                          [RG[i] / a, ZG[i] / a + 0.02]])})
-    return StressMaximum(-float(res.fun), float(abs(res.x[0]) * a), float(abs(res.x[1]) * a), kind)
+    return StressMaximum(-float(res.fun), float(abs(res.x[0]) * a), float(abs(res.x[1]) * a), kind,
+                         meta)
 
 
 def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
@@ -375,12 +415,13 @@ def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMa
         raise ParameterError(f"kind={kind!r} is invalid: choose one of "
                              f"{', '.join(repr(k) for k in KINDS)}.")
     body_poisson_ratio(state.contact, body)
+    meta = {"body": body, "citations": NORMAL_SOURCES}
     a = float(np.asarray(state._radius))
     if state.shape != ():
         raise NotSupportedError("max_stress() needs a single state.")
     if a <= 0:
-        return StressMaximum(0.0, 0.0, 0.0, kind)
-    return _maximise(lambda r, z: normal_stress(state, r, z, body), kind, a)
+        return StressMaximum(0.0, 0.0, 0.0, kind, meta)
+    return _maximise(lambda r, z: normal_stress(state, r, z, body), kind, a, meta)
 
 
 def _field_grid(grid: Any, a: float) -> tuple[np.ndarray, np.ndarray]:
@@ -521,7 +562,7 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
     rel = float(np.max(err[fin], initial=0.0) / top) if top > 0 else 0.0
     return StressField(r, z, *comps, stz, srt, err,
                        {"route": route, "body": body, "nu": nu, "error_estimate": rel,
-                        "part": part})
+                        "part": part, "citations": TORSION_SOURCES})
 
 
 def _one_normal(state):
@@ -540,12 +581,13 @@ def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressM
     if state.shape != ():
         raise NotSupportedError("max_stress() needs a single state.")
     a = float(state._a)
+    meta = {"body": body, "citations": TORSION_SOURCES}
     if a <= 0:
-        return StressMaximum(0.0, 0.0, 0.0, kind)
+        return StressMaximum(0.0, 0.0, 0.0, kind, meta)
     partial = (state.method != "no-slip" and 0 < float(state._stick) < a
                and np.isfinite(float(state._twist)) and float(state._twist) != 0)
     dens = _torsion_density(state) if partial else None
-    return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a)
+    return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a, meta)
 
 
 def torsion_stress_field(state, grid: Any = None, body: Any = 1, part: str = "total"

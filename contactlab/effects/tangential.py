@@ -117,6 +117,28 @@ class TangentialState(Result, Cited):
         tau = _tan.shear(c_.profile, c_.moduli.normal, mu, r, a, d, c, c_.rtol)
         return _out(sign * tau)
 
+    # ---- subsurface stresses (contactlab.effects.stress_tangential does the work)
+    def stress(self, x: Any, y: Any, z: Any, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field (a ``CartesianStressField``) at points ``(x, y, z)`` (m,
+        broadcast; ``x`` along the shift, ``z >= 0`` the depth): the normal preload's field plus
+        the Cattaneo–Mindlin shear field (``part="friction"``: the shear part alone). Body 1
+        receives the traction :meth:`shear` reports; body 2 its opposite. See docs/stress.md."""
+        from .stress_tangential import tangential_stress
+        return tangential_stress(self, x, y, z, body, part)
+
+    def max_stress(self, kind: str = "von_mises", body: int = 1) -> Any:
+        """Largest ``kind`` of the whole field in body 1 or 2 and its location (``r``, ``z``;
+        ``meta["x"], meta["y"]``)."""
+        from .stress_tangential import tangential_max_stress
+        return tangential_max_stress(self, kind, body)
+
+    def stress_field(self, grid: Any = None, body: int = 1, part: str = "total",
+                     y: float = 0.0) -> Any:
+        """Stress field on a grid ``(x_values, z_values)`` of the plane ``y`` for plots (default
+        200 x 100 over ``[-2a, 2a] x [0, 1.5a]``)."""
+        from .stress_tangential import tangential_stress_field
+        return tangential_stress_field(self, grid, body, part, y)
+
 
 @reporting()
 def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
@@ -237,6 +259,15 @@ class ShiftHistory(Result, Cited):
         return pl.history(self.displacement, self.tangential_force, self.stick_radius,
                           x_name="displacement", x_unit="m", y_name="tangential force",
                           y_unit="N", units=units, axes=axes, title="shift history")
+
+    def stress(self, x: Any, y: Any, z: Any, *, step: int, body: int = 1,
+               part: str = "total") -> Any:
+        """Subsurface stress field (a ``CartesianStressField``) at ``step`` of the history, at
+        points ``(x, y, z)`` (m): the Masing sum of virgin Cattaneo–Mindlin fields over the
+        active turning points, plus the normal preload (``part="friction"``: without it). See
+        docs/stress.md."""
+        from .stress_history import history_stress
+        return history_stress(self, x, y, z, step=step, body=body, part=part)
 
 
 #: peak memory of a shift history, bytes per step (turning-point bookkeeping, the loading curve

@@ -690,6 +690,13 @@ class TwistHistory(Result, Cited):
 
         return masing_dissipation(self._segments, n, loading, self.contact.rtol)
 
+    def stress(self, r: Any, z: Any, *, step: int, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field (a ``StressField``) at ``step`` of the history, at radii
+        ``r`` and depths ``z`` (m): the Masing sum of virgin torsion fields over the active
+        turning points, plus the normal preload (``part="friction"``: without it)."""
+        from .stress_history import history_stress
+        return history_stress(self, r, z, step=step, body=body, part=part)
+
     def plot(self, axes: Any = None, *, units: str = "si"):
         """Torque–twist loop and stick radius per step (needs matplotlib); returns the two axes.
 

@@ -220,22 +220,26 @@ _WIDTH = 2.0
 _LOG_RATIO = 0.05
 
 
-def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray
-           ) -> tuple[np.ndarray, np.ndarray]:
+def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray,
+           z: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Quadrature abscissae and Jacobians ``(x, dx/dt)`` on segments ``[lo, hi]``, ``t`` in [0, 1].
 
     Default map: ``x = lo + (hi - lo)(3t² - 2t³)`` (smooth at inverse-square-root ends). A segment
-    lying on one side of ``r`` whose gap to ``r`` is a small fraction of its length gets the
-    geometric map ``x - r = (lo - r)((hi - r)/(lo - r))^t`` (or the mirror image), so the
-    ``|x - r|^-1/2`` fall of the near-surface kernel is integrated as a smooth function."""
+    lying on one side of ``r`` whose gap to ``r`` is a small fraction of its length, and not
+    smaller than the depth ``z``, gets the geometric map ``x - r = (lo - r)((hi - r)/(lo - r))^t``
+    (or the mirror image), so the ``|x - r|^-1/2`` fall of the near-surface kernel is integrated
+    as a smooth function. Within ``z`` of ``r`` the kernel is smooth on the scale ``z`` and the
+    geometric map would spend its nodes on decades where nothing happens (a cut a hair from
+    ``r``, e.g. a stick radius of 1e-12 m under a point on the axis)."""
     L = hi - lo
     x = lo + L * (t * t * (3.0 - 2.0 * t))
     jac = L * (6.0 * t * (1.0 - t))
     gap_r = lo - r                                   # segment right of r
     gap_l = r - hi                                   # segment left of r
+    floor = 0.0 if z is None else z
     with np.errstate(divide="ignore", invalid="ignore"):
-        right = (gap_r > 0) & (gap_r < _LOG_RATIO * L)
-        left = (gap_l > 0) & (gap_l < _LOG_RATIO * L)
+        right = (gap_r > 0) & (gap_r < _LOG_RATIO * L) & (gap_r >= floor)
+        left = (gap_l > 0) & (gap_l < _LOG_RATIO * L) & (gap_l >= floor)
         if np.any(right):
             lr = np.log((hi - r) / np.where(right, gap_r, 1.0))
             dx = np.where(right, gap_r, 1.0) * np.exp(lr * t)
@@ -314,10 +318,11 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         rr, zz, aa, ee = r[sl], z[sl], a[sl], edge[sl]
         ends = _segments(rr, zz, aa, cuts)                 # (P, S + 1)
         lo, hi = ends[:, :-1, None], ends[:, 1:, None]     # (P, S, 1)
-        x, jac = _nodes(rr[:, None, None], lo, hi, t)      # (P, S, 15)
+        z3 = zz[:, None, None]
+        x, jac = _nodes(rr[:, None, None], lo, hi, t, z3)  # (P, S, 15)
         if g_values is not None:
-            xk, _ = _nodes(rr[:, None, None], lo, hi, bk)
-            xg, _ = _nodes(rr[:, None, None], lo, hi, bg)
+            xk, _ = _nodes(rr[:, None, None], lo, hi, bk, z3)
+            xg, _ = _nodes(rr[:, None, None], lo, hi, bg, z3)
             with np.errstate(invalid="ignore"):
                 # increments oriented along +x (a mirrored log map runs right to left)
                 dgk = np.diff(g_values(xk), axis=-1) * np.sign(np.diff(xk, axis=-1))

@@ -19,7 +19,10 @@ RESULT_MODULES = ("contactlab.effects.normal", "contactlab.effects.adhesion",
                   "contactlab.effects.tangential", "contactlab.effects.torsion",
                   "contactlab.effects.viscoelastic", "contactlab.effects.path",
                   "contactlab.effects.fretting", "contactlab.effects.wear",
-                  "contactlab.effects.law", "contactlab.scene.run", "contactlab.fit.result")
+                  "contactlab.effects.law", "contactlab.effects.stress",
+                  "contactlab.effects.stress_tangential", "contactlab.effects.stress_history",
+                  "contactlab.scene.run",
+                  "contactlab.fit.result")
 
 
 def result_types() -> list[type]:

@@ -73,6 +73,37 @@ class TestTangentialState(ResultChecks):
         return HERTZ.tangential(force=100.0, displacement=[1e-7, 5e-7])
 
 
+class TestStressField(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        return HERTZ.normal(force=100.0).stress_field(grid=(np.linspace(0, 2e-4, 5),
+                                                            np.linspace(0, 1e-4, 3)))
+
+
+class TestStressMaximum(ResultChecks):
+    exact = True
+
+    def make_result(self):
+        return HERTZ.normal(force=100.0).max_stress("max_shear")
+
+
+class TestCartesianStressField(ResultChecks):
+    exact, plots = True, True
+
+    def make_result(self):
+        s = HERTZ.tangential(force=100.0, tangential_force=10.0)
+        return s.stress_field(grid=(np.linspace(-2e-4, 2e-4, 5), np.linspace(0, 1e-4, 3)))
+
+
+class TestFrettingFatigue(ResultChecks):
+    exact = True
+
+    def make_result(self):
+        loop = HERTZ.fretting_loop(force=100.0, displacement_amplitude=1e-7)
+        return loop.fatigue(n_phases=4)
+
+
 class TestShiftHistory(ResultChecks):
     exact, plots = True, True
 
