@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums
-from ._base import _CHUNK, _TableBase
+from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
 
 
 class _LinearTransform(_TableBase):
@@ -26,14 +26,14 @@ class _LinearTransform(_TableBase):
         """
         self._guard(x, "x")
         x = np.asarray(x, dtype=float)
-        flat = x.ravel()
+        flat, order = _sorted(x)
         out = np.zeros(flat.size)
         slope = np.zeros(flat.size) if with_slope else None
         # only nodes with a slope jump contribute, and only those below the largest x
         jump = self._dslope != 0
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
-        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        chunk = _rows_per_chunk(nodes_all.size)
         k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
@@ -56,12 +56,13 @@ class _LinearTransform(_TableBase):
                     cusp = np.where(below, ds[None, :] * nodes[None, :]
                                     / np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :])), 0.0)
                 slope[start:start + chunk][pos] = base + row_sums(cusp, nodes_all.size)
-        return out.reshape(x.shape), None if slope is None else slope.reshape(x.shape)
+        return (_unsorted(out, order, x.shape),
+                None if slope is None else _unsorted(slope, order, x.shape))
 
     def _linear_g_integral(self, a: np.ndarray) -> np.ndarray:
         self._guard(a, "a")
         a = np.asarray(a, dtype=float)
-        flat = a.ravel()
+        flat, order = _sorted(a)
         out = np.zeros(flat.size)
         # summation by parts of Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr: with
         # P_a(r) = (r sqrt(a²-r²) + a² asin(r/a))/2 and P_a(a) = πa²/4,
@@ -70,7 +71,7 @@ class _LinearTransform(_TableBase):
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
         k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
-        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        chunk = _rows_per_chunk(nodes_all.size)
         for start in range(0, flat.size, chunk):
             aa = flat[start:start + chunk]
             pos = aa > 0
@@ -86,7 +87,7 @@ class _LinearTransform(_TableBase):
             out[start:start + chunk][pos] = (
                 self._slopes[k_all[start:start + chunk][pos]] * 0.25 * np.pi * aa[pos] ** 2
                 - row_sums(np.where(below, ds * P, 0.0), nodes_all.size))
-        return out.reshape(a.shape)
+        return _unsorted(out, order, a.shape)
 
     def _linear_xg_integral(self, a: np.ndarray) -> np.ndarray:
         """``∫_0^a x g(x) dx`` (m³) of the interpolant in closed form, O(nodes below a) per point.
