@@ -72,6 +72,9 @@ class _TableBase(Profile):
 
         def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
 
+        def _g_slope_integral(self, x: np.ndarray
+                              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
         def _height(self, r: np.ndarray) -> np.ndarray: ...
 
     def _guard(self, r: np.ndarray, name: str) -> None:

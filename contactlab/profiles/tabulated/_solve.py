@@ -182,8 +182,13 @@ class _TableSolver(_TableBase):
                                    H_c[j - 1].copy(), H_c[j].copy())
 
         def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            g, gp = self._g_and_slope(x)
-            return x * g - self._g_integral_closed_form(x), x * gp      # dH/da = a g'(a)
+            if self._spline is None:
+                # g, g' and ∫g of the linear interpolant in one pass (the same bits as apart)
+                g, gp, integral = self._g_slope_integral(x)
+            else:
+                g, gp = self._g_and_slope(x)
+                integral = self._g_integral_closed_form(x)
+            return x * g - integral, x * gp      # dH/da = a g'(a)
 
         return self._newton_on_node_interval(
             flat, lo, hi, self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi),

@@ -115,3 +115,18 @@ def test_depth_solve_makes_two_passes_over_the_nodes_at_rtol_1e_6(kind):
     tab._g_and_slope = counted
     c.normal(depth=np.random.default_rng(2).uniform(1e-8, 2.4e-5, 1000))
     assert len(sizes) == 2, sizes
+
+
+def test_force_step_pass_equals_the_separate_passes_bit_for_bit():
+    """The force solve's one pass for g, g' and ∫g (linear) gives the bits of the separate
+    kernels, on a random table with noise, at random points, at nodes, at 0 and at a tiny x."""
+    rng = np.random.default_rng(11)
+    r = np.sort(rng.uniform(0.0, 1e-3, 3000))
+    r[0] = 0.0
+    tab = Tabulated(r, r * r / 0.02 + 1e3 * r**3 + 1e-9 * rng.standard_normal(r.size))
+    x = np.concatenate([rng.uniform(0.0, r[-1], 300), r[5:40], [0.0, r[-1], 1e-300]])
+    g, gp, integral = tab._g_slope_integral(x)
+    g2, gp2 = tab._arcsine_sums(x, with_slope=True)
+    assert np.array_equal(g, g2)
+    assert np.array_equal(gp, gp2, equal_nan=True)
+    assert np.array_equal(integral, tab._linear_g_integral(x))
