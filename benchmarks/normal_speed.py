@@ -11,7 +11,8 @@ Issue 29 rows (:func:`issue29_rows`):
 * the exact ``Sphere``, 10^5 depths / forces, against the numpy closed form of the same curve
   evaluated at the solved radii (``d = a artanh(a/R)``, ``F`` from ``∫g``; goal <= 10x), and the
   gain of batching over one scalar call per load;
-* 10^3 depths on a 10^4-point linear table, per depth (goal <= 20 µs per depth).
+* 10^3 random depths / forces on a 10^4-point linear and cubic table, per load (goal <= 20 µs),
+  beside the linear table's previous Newton iteration.
 
 Targets:
 
@@ -71,6 +72,22 @@ def goal(ratio: float, limit: float, what: str = "x") -> str:
     return f"{'MET   ' if ratio <= limit else 'MISSED'} (goal <= {limit:g}{what})"
 
 
+def _previous_newton(tab):
+    """The table's Newton iteration as before issue 29's change (plain start in u², stop only on
+    a small step), for the side-by-side row."""
+    import contactlab.profiles.tabulated._solve as solve_mod
+    orig = tab._newton_on_node_interval
+
+    def plain(*args, cusp=None, **kw):
+        saved = solve_mod._NEWTON_MARGIN
+        solve_mod._NEWTON_MARGIN = np.inf
+        try:
+            return orig(*args, **kw)
+        finally:
+            solve_mod._NEWTON_MARGIN = saved
+    return plain
+
+
 def issue29_rows() -> None:
     """The normal-solve rows of issue 29, each against its floor measured in the same run."""
     print("Issue 29: batched closed forms, ratio to the floor measured interleaved (best of 7, "
@@ -126,16 +143,40 @@ def issue29_rows() -> None:
           f"per depth, one batch {t1['batch'] / few.size * 1e6:.2f} µs per depth: batching gains "
           f"{t1['scalar'] / t1['batch']:.0f}x (was 3x)")
 
-    # 10^3 depths on a 10^4-point table, per depth
+    # 10^3 depths on a 10^4-point table, per depth: fresh random depths every round (nothing
+    # but the table's coarse node grid is reused), linear and cubic, and the linear table's
+    # previous Newton iteration (plain start, stop on a small step) interleaved beside it
     r = np.linspace(0, 1e-3, 10**4)
-    tab = Tabulated(r, R - np.sqrt(R * R - r * r))
-    ct = cl.Contact(tab, MATERIALS, rtol=1e-6)
-    dt = np.linspace(1e-8, 2.5e-5, 10**3)
-    ct.normal(depth=dt[:5])
-    t2 = interleaved({"batch": lambda: ct.normal(depth=dt)}, rounds=3)
-    per = t2["batch"] / dt.size * 1e6
-    print(f"  10^3 depths on a 10^4-point linear table (rtol 1e-6) {per:8.1f} µs per depth  "
-          f"{goal(per, 20.0, ' µs')}")
+    f = R - np.sqrt(R * R - r * r)
+    rng = np.random.default_rng(29)
+    contacts = {}
+    for key, kind in (("linear", "linear"), ("previous", "linear"), ("cubic", "cubic")):
+        tab = Tabulated(r, f, kind)
+        if key == "previous":
+            tab._newton_on_node_interval = _previous_newton(tab)
+        contacts[key] = cl.Contact(tab, MATERIALS, rtol=1e-6)
+        contacts[key].normal(depth=[1e-8, 2e-5])
+    batches = [rng.uniform(1e-8, 2.5e-5, 10**3) for _ in range(3)]
+    forces = [np.asarray(contacts["linear"].normal(depth=b).force) for b in batches]
+
+    def fresh(key: str, control: str):
+        it = iter(range(10**6))
+
+        def call():
+            i = next(it) % len(batches)
+            vals = batches[i] if control == "depth" else forces[i]
+            return contacts[key].normal(**{control: vals})
+        return call
+
+    t2 = interleaved({(k, ctl): fresh(k, ctl) for k in contacts for ctl in ("depth", "force")},
+                     rounds=3)
+    for ctl in ("depth", "force"):
+        per = {k: t2[(k, ctl)] / 10**3 * 1e6 for k in contacts}
+        print(f"  10^3 random {ctl}s on a 10^4-point linear table (rtol 1e-6) "
+              f"{per['linear']:7.1f} µs per {ctl} (previous iteration {per['previous']:.1f}: "
+              f"{per['previous'] / per['linear']:.2f}x)  {goal(per['linear'], 20.0, ' µs')}")
+        print(f"  10^3 random {ctl}s on a 10^4-point cubic table  (rtol 1e-6) "
+              f"{per['cubic']:7.1f} µs per {ctl}  {goal(per['cubic'], 20.0, ' µs')}")
     print()
 
 

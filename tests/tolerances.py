@@ -760,3 +760,15 @@ STRESS_HAMILTON_EDGE = 2e-7
 #: state.shear(r), relative to its peak (measured 8e-14 for Hertz; a cone's pressure shape
 #: difference near the axis is summed differently by the two routes)
 STRESS_TANGENTIAL_SURFACE = 1e-8
+#: contact radius of a table by the Newton iteration of issue 29 (start from the left node's
+#: cusp, stop on quadratic convergence) against the previous iteration (plain start, stop on a
+#: small step), in units of the solve's relative tolerance root_rtol(rtol): each stops within
+#: 0.5 root_rtol of the root, so they differ by at most 1 (measured <= 0.1 at rtol 1e-6; at
+#: rtol 1e-10 both sit at rounding, a few ulps against the floor of 1e-15)
+TABLE_NEWTON_ROUTES = 2.0
+#: contact radius and force of a uniformly sampled paraboloid's linear table against the
+#: paraboloid's closed form at radii drawn at random between the nodes, as C (Δr/a)²: measured
+#: C = 4.9 for the radius over 50 random radii on a 2000-point table (tabulated_linear's C = 3
+#: was measured at one radius and does not cover every position of a between two nodes);
+#: the test allows 2C for the other quantity
+TABLE_LINEAR_RANDOM_RADII = 6.0

@@ -16,6 +16,33 @@ from ..base import Profile
 #: elements per dense (x, node) block of the node sums
 _CHUNK = 2_000_000
 
+#: points per dense (point, node) block at most: with the points sorted, a block's nodes are
+#: those below its largest point, so short blocks waste few terms (a triangle, not a rectangle)
+_ROWS = 64
+
+
+def _rows_per_chunk(n_nodes: int) -> int:
+    return max(1, min(_ROWS, _CHUNK // max(n_nodes, 1)))
+
+
+def _sorted(x: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    """The points flattened and sorted (``order``, or None when already sorted). A point's node
+    sums do not depend on the other points of its block (fixed_sums), so sorting changes no
+    bit; it keeps every block's nodes to those below its own points."""
+    flat = x.ravel()
+    if flat.size < 2 or bool(np.all(flat[1:] >= flat[:-1])):
+        return flat, None
+    order = np.argsort(flat, kind="stable")
+    return flat[order], order
+
+
+def _unsorted(vals: np.ndarray, order: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
+    if order is None:
+        return vals.reshape(shape)
+    out = np.empty_like(vals)
+    out[order] = vals
+    return out.reshape(shape)
+
 
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
@@ -44,6 +71,9 @@ class _TableBase(Profile):
         def _g_and_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
 
         def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
+
+        def _g_slope_integral(self, x: np.ndarray
+                              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
 
         def _height(self, r: np.ndarray) -> np.ndarray: ...
 

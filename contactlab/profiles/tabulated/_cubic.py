@@ -13,7 +13,7 @@ from typing import cast
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums, weighted_row_sums
-from ._base import _CHUNK, _TableBase
+from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
 
 _GL_HI = np.polynomial.legendre.leggauss(12)
 _GL_LO = np.polynomial.legendre.leggauss(8)
@@ -141,14 +141,14 @@ class _CubicTransform(_TableBase):
         """
         self._guard(x, "x" if kind == "g" else "a")
         x = np.asarray(x, dtype=float)
-        flat = x.ravel()
+        flat, order = _sorted(x)
         out = np.zeros(flat.size)
         err = np.zeros(flat.size)
         slope = np.zeros(flat.size) if with_slope else None
         b0, c0, d0 = self._cubic_base
         nodes_all, jump_all = self._cubic_nodes, self._cubic_jumps
         total = nodes_all.size
-        chunk = max(1, _CHUNK // max(total, 1))
+        chunk = _rows_per_chunk(total)
         eps = np.finfo(float).eps
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
@@ -222,8 +222,8 @@ class _CubicTransform(_TableBase):
             err[start:start + chunk][pos] = 8 * eps * (
                 np.abs(head[0]) + np.abs(head[1]) + np.abs(head[2]) + row_sums(mags, total)) \
                 + av2 * xv * loc_mag
-        return (out.reshape(x.shape), err.reshape(x.shape),
-                None if slope is None else slope.reshape(x.shape))
+        return (_unsorted(out, order, x.shape), _unsorted(err, order, x.shape),
+                None if slope is None else _unsorted(slope, order, x.shape))
 
     def _cubic_local(self, xv: np.ndarray, kind: str, with_slope: bool
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:

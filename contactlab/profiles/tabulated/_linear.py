@@ -7,10 +7,12 @@ class is :class:`~contactlab.profiles.tabulated.Tabulated`, which dispatches her
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums
-from ._base import _CHUNK, _TableBase
+from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
 
 
 class _LinearTransform(_TableBase):
@@ -24,16 +26,29 @@ class _LinearTransform(_TableBase):
         ``g' = s_k π/2 − Σ Δs_j [asin(r_j/x) − r_j/sqrt(x² − r_j²)]`` (nodes r_j <= x; g' is
         infinite exactly at a node with a slope jump, the square-root cusp).
         """
+        g, slope, _ = self._arcsine_pass(x, with_slope, False)
+        return g, slope
+
+    def _g_slope_integral(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(g, g', ∫_0^x g)`` of the linear interpolant in one pass over the nodes (the
+        arcsines and square roots shared), each bit-identical to :meth:`_arcsine_sums` and
+        :meth:`_linear_g_integral` (the force solve's Newton step needs all three)."""
+        g, slope, integral = self._arcsine_pass(x, True, True)
+        return g, cast(np.ndarray, slope), cast(np.ndarray, integral)
+
+    def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
+                      ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
         self._guard(x, "x")
         x = np.asarray(x, dtype=float)
-        flat = x.ravel()
+        flat, order = _sorted(x)
         out = np.zeros(flat.size)
         slope = np.zeros(flat.size) if with_slope else None
+        integral = np.zeros(flat.size) if with_integral else None
         # only nodes with a slope jump contribute, and only those below the largest x
         jump = self._dslope != 0
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
-        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        chunk = _rows_per_chunk(nodes_all.size)
         k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
@@ -48,20 +63,32 @@ class _LinearTransform(_TableBase):
             # (radius floors of 1e-300) from overflowing node / x
             q = nodes[None, :] / np.maximum(xp, nodes[None, :])
             # a node at x itself contributes asin(1) (x exactly on a node: k includes its slope)
-            asin_sum = row_sums(np.where(below, ds[None, :] * np.arcsin(q), 0.0), nodes_all.size)
-            base = 0.5 * np.pi * self._slopes[k_all[start:start + chunk][pos]] - asin_sum
+            asin = np.arcsin(q)
+            asin_sum = row_sums(np.where(below, ds[None, :] * asin, 0.0), nodes_all.size)
+            s_k = self._slopes[k_all[start:start + chunk][pos]]
+            base = 0.5 * np.pi * s_k - asin_sum
             out[start:start + chunk][pos] = xs[pos] * base
-            if slope is not None:
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    cusp = np.where(below, ds[None, :] * nodes[None, :]
-                                    / np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :])), 0.0)
-                slope[start:start + chunk][pos] = base + row_sums(cusp, nodes_all.size)
-        return out.reshape(x.shape), None if slope is None else slope.reshape(x.shape)
+            if slope is None and integral is None:
+                continue
+            with np.errstate(divide="ignore", invalid="ignore"):
+                root = np.sqrt((xp - nodes[None, :]) * (xp + nodes[None, :]))
+                if slope is not None:
+                    cusp = np.where(below, ds[None, :] * nodes[None, :] / root, 0.0)
+                    slope[start:start + chunk][pos] = base + row_sums(cusp, nodes_all.size)
+                if integral is not None:
+                    # the terms of _linear_g_integral, the same operations in the same order
+                    P = 0.5 * (nodes[None, :] * root + xp**2 * asin)
+                    integral[start:start + chunk][pos] = (
+                        s_k * 0.25 * np.pi * xs[pos] ** 2
+                        - row_sums(np.where(below, ds[None, :] * P, 0.0), nodes_all.size))
+        return (_unsorted(out, order, x.shape),
+                None if slope is None else _unsorted(slope, order, x.shape),
+                None if integral is None else _unsorted(integral, order, x.shape))
 
     def _linear_g_integral(self, a: np.ndarray) -> np.ndarray:
         self._guard(a, "a")
         a = np.asarray(a, dtype=float)
-        flat = a.ravel()
+        flat, order = _sorted(a)
         out = np.zeros(flat.size)
         # summation by parts of Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr: with
         # P_a(r) = (r sqrt(a²-r²) + a² asin(r/a))/2 and P_a(a) = πa²/4,
@@ -70,7 +97,7 @@ class _LinearTransform(_TableBase):
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
         k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
-        chunk = max(1, _CHUNK // max(nodes_all.size, 1))
+        chunk = _rows_per_chunk(nodes_all.size)
         for start in range(0, flat.size, chunk):
             aa = flat[start:start + chunk]
             pos = aa > 0
@@ -86,7 +113,7 @@ class _LinearTransform(_TableBase):
             out[start:start + chunk][pos] = (
                 self._slopes[k_all[start:start + chunk][pos]] * 0.25 * np.pi * aa[pos] ** 2
                 - row_sums(np.where(below, ds * P, 0.0), nodes_all.size))
-        return out.reshape(a.shape)
+        return _unsorted(out, order, a.shape)
 
     def _linear_xg_integral(self, a: np.ndarray) -> np.ndarray:
         """``∫_0^a x g(x) dx`` (m³) of the interpolant in closed form, O(nodes below a) per point.

@@ -15,6 +15,11 @@ import numpy as np
 from ...errors import OutsideTheoryError
 from ._base import _TableBase
 
+#: safety factor on the error predicted from quadratic convergence (|step|³/prev²) before a
+#: Newton iteration of :meth:`_TableSolver._newton_on_node_interval` stops without a further
+#: pass over the nodes
+_NEWTON_MARGIN = 100.0
+
 
 class _TableSolver(_TableBase):
     """Contact-radius solvers of a table (private helpers only)."""
@@ -79,7 +84,17 @@ class _TableSolver(_TableBase):
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
         return self._newton_on_node_interval(
             flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),
-            self._g_and_slope, self._g).reshape(np.shape(d))
+            self._g_and_slope, self._g, cusp=self._cusp_in_u(lo, hi)).reshape(np.shape(d))
+
+    def _cusp_in_u(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """Leading term ``α u`` of g across node intervals ``[r[lo], r[hi]]`` in ``u`` (``x = r_lo
+        + h u²``): the left node's slope jump gives ``x Δs acos(r_lo/x) ≈ Δs sqrt(2 h r_lo) u``
+        (0 on the axis, which carries no jump). The cubic spline's g has no cusp: 0."""
+        x0, h = self.r[lo], self.r[hi] - self.r[lo]
+        if self._spline is not None:
+            return np.zeros(x0.shape)
+        ds = np.where(lo >= 1, self._dslope[np.maximum(lo - 1, 0)], 0.0)
+        return ds * np.sqrt(2.0 * h * x0)
 
     @staticmethod
     def _node_search(at_nodes, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
@@ -167,17 +182,23 @@ class _TableSolver(_TableBase):
                                    H_c[j - 1].copy(), H_c[j].copy())
 
         def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            g, gp = self._g_and_slope(x)
-            return x * g - self._g_integral_closed_form(x), x * gp      # dH/da = a g'(a)
+            if self._spline is None:
+                # g, g' and ∫g of the linear interpolant in one pass (the same bits as apart)
+                g, gp, integral = self._g_slope_integral(x)
+            else:
+                g, gp = self._g_and_slope(x)
+                integral = self._g_integral_closed_form(x)
+            return x * g - integral, x * gp      # dH/da = a g'(a)
 
         return self._newton_on_node_interval(
             flat, lo, hi, self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi),
             0.5 * root_rtol(rtol), value_and_slope,
-            lambda x: x * self._g(x) - self._g_integral_closed_form(x)).reshape(np.shape(target))
+            lambda x: x * self._g(x) - self._g_integral_closed_form(x),
+            cusp=self.r[lo] * self._cusp_in_u(lo, hi)).reshape(np.shape(target))
 
     def _newton_on_node_interval(self, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
                                  v0: np.ndarray, v1: np.ndarray, tol: float, value_and_slope,
-                                 value) -> np.ndarray:
+                                 value, cusp: np.ndarray | None = None) -> np.ndarray:
         """Solve ``v(x) = target`` inside node intervals ``[r[lo], r[hi]]`` (``v`` increasing).
 
         Newton in ``u`` with ``x = r_lo + h u²`` (removes the square-root cusp of g at the left
@@ -190,7 +211,17 @@ class _TableSolver(_TableBase):
         x0, h = self.r[lo], self.r[hi] - self.r[lo]
         with np.errstate(divide="ignore", invalid="ignore"):
             u = np.sqrt(np.clip(np.where(v1 > v0, (target - v0) / (v1 - v0), 0.25), 1e-12, 1.0))
+            if cusp is not None:
+                # start from the quadratic v0 + α u + β u² through both ends, α the left node's
+                # square-root cusp (in u it is linear): one or two Newton passes fewer
+                c = target - v0
+                beta = (v1 - v0) - cusp
+                disc = cusp * cusp + 4.0 * beta * c
+                uq = 2.0 * c / (cusp + np.sqrt(disc))
+                good = (v1 > v0) & (disc >= 0) & np.isfinite(uq) & (uq > 0) & (uq <= 1)
+                u = np.where(good, uq, u)
         done = np.zeros(target.size, dtype=bool)
+        prev = np.full(target.size, np.inf)        # |previous Newton step| in u
         for _ in range(6):
             act = np.flatnonzero(~done)
             if act.size == 0:
@@ -201,8 +232,18 @@ class _TableSolver(_TableBase):
             u_new = u[act] - step
             ok = np.isfinite(u_new) & (u_new > 0) & (u_new <= 1)
             u[act] = np.where(ok, u_new, u[act])
-            conv = ok & (np.abs(step) * 2 * h[act] * u[act]
-                         <= tol * (x0[act] + h[act] * u[act] ** 2))
+            size = np.abs(step)
+            # quadratic convergence: the error left after this step is about C step², with C
+            # estimated from the last two steps (step ≈ C prev²): |step|³/prev², taken with a
+            # margin of _NEWTON_MARGIN and only while the steps contract by 10x or more
+            pa = prev[act]
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                left = np.where(np.isfinite(pa) & (size <= 0.1 * pa),
+                                _NEWTON_MARGIN * (size**3 / pa**2), np.inf)
+                scale = 2 * h[act] * u[act]
+                bound = tol * (x0[act] + h[act] * u[act] ** 2)
+                conv = ok & ((size * scale <= bound) | (left * scale <= bound))
+            prev[act] = np.where(ok, size, np.inf)
             done[act[conv]] = True
         rest = np.flatnonzero(~done)
         if rest.size:
