@@ -772,3 +772,20 @@ TABLE_NEWTON_ROUTES = 2.0
 #: was measured at one radius and does not cover every position of a between two nodes);
 #: the test allows 2C for the other quantity
 TABLE_LINEAR_RANDOM_RADII = 6.0
+#: gross sliding on the exact torsion route (torque beyond the sliding torque, the force falling
+#: at held twist): the dissipation of the fall against the closed-form elastic energy of the
+#: Hertz-shaped sliding traction (independent quadrature), and the torque against 3πμFa/16: the
+#: sliding density collocated on 200 rings (measured 9.5e-7 and 5.1e-7; 3e-5 at 50 rings)
+GROSS_SLIDING_ENERGY = 1e-5
+#: gross sliding with the force rising (the twist turns with the full-sliding density): booked
+#: work against the trapezoid of the closed-form sliding torque over the reported twist: first
+#: order in the force step (each step's family takes the end pressure; measured 1.2e-2 in 20
+#: steps from 12 N to 20 N, 3.2e-3 in 80)
+GROSS_SLIDING_WORK_STEP = 1e-2
+#: the ring solver's full-sliding density has the traction μp at its collocation points only;
+#: between them near the contact edge it overshoots and changes sign (−6.6 % of the largest μp
+#: at 24 rings), so part of a slip annulus carries a traction against its slip and a step can
+#: book a negative dissipation. A model error of the ring count, not rounding: per negative
+#: step, of the largest elastic energy of the path so far (measured up to 9.4e-2 on the first 40
+#: generated paths at 24-61 rings; none beyond rounding at 200 rings)
+COLLOCATION_SIGN = 0.2

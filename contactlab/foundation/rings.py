@@ -339,6 +339,8 @@ class Rings(Foundation):
                             if "ring" in book:
                                 fallback += 1
                                 en = _te.ring_step_energy(w_o, w, G_t, book["ring"])
+                            elif book["turn"] is None:     # gross sliding, twist held
+                                en = _te.step_energy(w_o, w, G_t, gross=None)
                             else:
                                 en = _te.annulus_energy(w_o, w, slide, edge_j, book["sense"], G_t,
                                                         book["turn"], book["gross"])
@@ -536,9 +538,20 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         # the target (they differ by the root's rounding)
         book = {"sense": s, "turn": out["dpsi"] + (0.0 if gross else float(extra)),
                 "gross": 0.0 if gross else float(extra)}
-        if gross:                   # torque beyond the sliding torque: slides, twist held
+        if gross:
+            # torque beyond the sliding torque: the contact slides as a whole onto s·W and its
+            # twist is whatever the slip makes it; it turns by the smallest increment at which
+            # all of it slides (the rule of the spring routes): the turn of its density where
+            # that points the way of the slip (the force rose), else none (the force fell: the
+            # twist is held, the step releases energy at no work; a held stage)
+            turn = float(out["dpsi"])
+            if s * turn >= 0:
+                return (w_new, None, ds, turn, True, 0.0,
+                        np.where(bound == 0, 2, int(s)).astype(int), 1,
+                        {"sense": s, "turn": turn, "gross": 0.0})
             return (w_new, None, ds, 0.0, True, 0.0,
-                    np.where(bound == 0, 2, int(s)).astype(int), 1, book)
+                    np.where(bound == 0, 2, int(s)).astype(int), 1,
+                    {"sense": s, "turn": None, "gross": 0.0})
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
         act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
         return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, book)
