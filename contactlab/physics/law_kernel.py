@@ -302,6 +302,10 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             cp1 = kcc * cov * cov * cov
             Ga = kcc * aj * aj * aj / n1
             Ha = kcc * aj * aj * aj * aj / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * aj * aj / n1
+            Ha = kcc * aj * aj * aj / n2
         else:
             cp1 = kcc * cov ** n1
             Ga = kcc * aj ** n1 / n1
@@ -431,6 +435,10 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             cp1 = kcc * cov * cov * cov
             Ga = kcc * a0 * a0 * a0 / n1
             Ha = kcc * a0 * a0 * a0 * a0 / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * a0 * a0 / n1
+            Ha = kcc * a0 * a0 * a0 / n2
         else:
             cp1 = kcc * cov ** n1
             Ga = kcc * a0 ** n1 / n1
