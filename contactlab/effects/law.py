@@ -32,6 +32,7 @@ from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry
+from . import law_springs_numpy as _np_springs
 from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
 from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
 from .law_tangent import snapshot as _tangent_snapshot
@@ -557,7 +558,7 @@ class ContactLaw:
                 n_spr = int(np.count_nonzero(on | off))
                 check_memory("ContactLaw.step()", law_spring_memory(n_spr, self.springs),
                              f"{n_spr} contacts on {self.springs} springs each")
-            self._to_springs(np.flatnonzero(off & ~on), d, a)
+            _np_springs.to_springs(self, np.flatnonzero(off & ~on), d, a)
             off = np.zeros(size, bool)
         if np.any(off):
             i = int(np.argmax(off))
@@ -594,7 +595,7 @@ class ContactLaw:
         n_over = int(np.count_nonzero(over & ~was & live))
         if self.springs and self._pool is not None and self._pool.used:
             idx = np.flatnonzero(self._on() & live)
-            r = self._spring_step(idx, d[idx], a[idx], None if u is None else u[idx],
+            r = _np_springs.spring_step(self, idx, d[idx], a[idx], None if u is None else u[idx],
                                   None if phi is None else phi[idx])
             for arr, v in zip((Ft, ct, M, cm, dW), r):
                 arr[idx] = v
@@ -713,7 +714,7 @@ class ContactLaw:
             assert self._pool is not None
             grow = a[spr] > self._spr("spr_cover", spr)
             if np.any(grow):
-                self._regrid(spr[grow], a[spr][grow])
+                _np_springs.regrid(self, spr[grow], a[spr][grow])
             nf += _kernel.spring_pass(spr, d, a, u, phi, self.kc, self.n, self._beta,
                                       self.friction, self.E_star, self.G_star, self.G_torsion,
                                       self._pool, (Ft, ct, M, cm, dW), self.parallel)
@@ -733,83 +734,11 @@ class ContactLaw:
         mu, E = self.friction[idx, None], self.E_star[idx, None]
         return 2.0 * mu * E * S, 4.0 * mu * E * T
 
-    def _to_springs(self, idx: np.ndarray, d: np.ndarray, a: np.ndarray) -> None:
-        """Switch contacts ``idx`` from the exact constant-load law to MDR springs: the cells
-        take the state of the held load the contact leaves (its Masing turning points replayed
-        through the elements at that load)."""
-        if idx.size == 0:
-            return
-        st = self._st
-        pool = self._pool
-        assert pool is not None
-        P = pool.rows
-        s = pool.assign(idx)
-        d0 = st["depth_ref"][idx]
-        a0 = self._radius(d0, idx)
-        P["spr_cover"][s] = self.spring_cover[idx] * np.maximum(a0, a[idx])
-        geo = self._geometry(idx)
-        S, T, k = _springs.normal_cells(geo, d0, a0)
-        frac = _springs.weights(geo, S, S, k, k, np.zeros(idx.size), a0)
-        L_tan, L_tor = self._limits(idx, S, T)
-        K_tan = 2.0 * self.G_star[idx, None] * geo["w"]
-        K_tor = 16.0 * self.G_torsion[idx, None] * geo["X2"]
-        for ch, K, L in (("tan", K_tan, L_tan), ("tor", K_tor, L_tor)):
-            P[f"spr_{ch}"][s] = _springs.replay(st[f"{ch}_X"][idx], st[f"{ch}_depth"][idx],
-                                                st[f"{ch}_x"][idx], K * frac, L)
-            P[f"spr_x_{ch}"][s] = st[f"{ch}_x"][idx]
-        P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d0
-
-    def _regrid(self, idx: np.ndarray, a_new: np.ndarray) -> None:
-        """Grow the cover of contacts ``idx`` to ``spring_cover × a_new``; element forces are
-        carried over by their cumulative line load (approximate)."""
-        assert self._pool is not None
-        P, s = self._pool.rows, self._pool.slot[idx]
-        old = self._geometry(idx)
-        P["spr_cover"][s] = self.spring_cover[idx] * a_new
-        new = self._geometry(idx)
-        for ch in ("tan", "tor"):
-            m = P[f"spr_{ch}"][s]
-            cum = np.concatenate([np.zeros((idx.size, 1)), np.cumsum(m, axis=1)], axis=1)
-            P[f"spr_{ch}"][s] = np.diff(_springs.interp_rows(new["b"], old["b"], cum), axis=1)
-        d0 = P["spr_depth"][s]
-        S, _, k = _springs.normal_cells(new, d0, self._radius(d0, idx))
-        P["spr_S"][s], P["spr_k"][s] = S, k
-
     def _radius(self, d: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Contact radius (m) of contacts ``idx`` at depths ``d >= 0``."""
         if self.n == np.inf:
             return np.where(d > 0, self._flat[idx], 0.0)
         return (d / self.kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self.kc[idx])
-
-    def _spring_step(self, idx, d, a, u, phi):
-        assert self._pool is not None
-        grow = a > self._spr("spr_cover", idx)
-        if np.any(grow):
-            self._regrid(idx[grow], a[grow])
-        P, s = self._pool.rows, self._pool.slot[idx]
-        geo = self._geometry(idx)
-        S, T, k = _springs.normal_cells(geo, d, a)
-        dd = d - P["spr_depth"][s]
-        wgt = _springs.weights(geo, S, P["spr_S"][s], k, P["spr_k"][s], dd, a)
-        L_tan, L_tor = self._limits(idx, S, T)
-        zero = np.zeros(idx.size)
-        Ft, ct, M, cm, dW = zero, a.copy(), zero, a.copy(), zero.copy()
-        if u is not None:
-            m = P["spr_tan"][s]
-            Keff = 2.0 * self.G_star[idx, None] * geo["w"] * wgt
-            dW += _springs.jenkins_rows(m, Keff, L_tan, u - P["spr_x_tan"][s])
-            P["spr_tan"][s], P["spr_x_tan"][s] = m, u
-            Ft = m.sum(axis=1)
-            ct = _springs.stick_radius(m, L_tan, geo["bl"], a)
-        if phi is not None:
-            m = P["spr_tor"][s]
-            Keff = 16.0 * self.G_torsion[idx, None] * geo["X2"] * wgt
-            dW += _springs.jenkins_rows(m, Keff, L_tor, phi - P["spr_x_tor"][s])
-            P["spr_tor"][s], P["spr_x_tor"][s] = m, phi
-            M = m.sum(axis=1)
-            cm = _springs.stick_radius(m, L_tor, geo["bl"], a)
-        P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d
-        return Ft, ct, M, cm, dW
 
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}
