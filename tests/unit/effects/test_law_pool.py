@@ -119,3 +119,28 @@ def test_spring_rows_are_checked_against_the_budget_when_they_grow(fast):
             law.step(force=2.0, displacement=1e-8)
     finally:
         cl.set_memory_budget(previous)
+
+
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_threaded_switch_and_springs_are_bit_identical():
+    """The threaded kernel assigns the same rows in its switch and gives the serial results to
+    the bit under a changing load with separations."""
+    n, steps = 500, 12
+    rng = np.random.default_rng(3)
+    F = rng.uniform(1.0, 50.0, n)
+    par, ser = _law(n, True, parallel=True), _law(n, True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            L = F * (1.0 + 0.05 * np.sin(0.7 * k + np.arange(n))) if k >= 2 else F.copy()
+            if k == 6:
+                L[::7] = 0.0
+            phi, u = 1e-4 * np.sin(0.5 * k + np.arange(n)), 3e-8 * np.cos(0.4 * k + np.arange(n))
+            a = par.step(force=L, twist=phi, displacement=u)
+            b = ser.step(force=L, twist=phi, displacement=u)
+            for f in FIELDS:
+                np.testing.assert_array_equal(getattr(a, f), getattr(b, f), err_msg=f)
+    np.testing.assert_array_equal(par._pool.slot, ser._pool.slot)
+    sp, ss = par.state, ser.state
+    for key, v in ss.items():
+        np.testing.assert_array_equal(sp[key], v, err_msg=key)
