@@ -32,6 +32,8 @@ from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry
+from . import law_springs_numpy as _np_springs
+from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
 from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
 from .law_tangent import snapshot as _tangent_snapshot
 from .law_tangent import tangent as _tangent
@@ -62,24 +64,27 @@ _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
 
 #: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
 #: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
-#: per turning point of memory 2 channels x (X, Y); with springs 5 scalars + a flag, and per
-#: spring 3 floats (S, both channels' elements); plus a step's 8 float and 2 flag bytes of
-#: results (the arrays a step returns, or ``out``) and 3 scalar inputs broadcast per contact
-_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_SPRING, _PER_STEP = 132, 32, 41, 24, 90
+#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
+#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
+#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (44 + 24
+#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
+#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
+_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 132, 32, 4, 90
 #: float64 values per contact on springs in a step of the numpy path (temporaries; measured
 #: 20-21 per spring): the compiled step has none
 _NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
 
 
-def law_memory(size: int, memory: int, springs: int) -> float:
+def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
     """Memory of a :class:`ContactLaw`'s state and of one step's results, bytes (checked
     against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
-    ``size × (132 + 32 memory + [springs > 0] (41 + 24 springs) + 90)``, 903 B per contact at
-    the defaults."""
+    ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
+    plus ``on_springs × (44 + 24 springs)`` for the contacts on their springs (428 B each at
+    the default 16 springs; allocated when they switch, checked then)."""
     per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
     if springs:
-        per += _PER_SPRINGS + _PER_SPRING * springs
-    return float(size) * per
+        per += _PER_SPRINGS
+    return float(size) * per + (float(on_springs) * pool_row_bytes(springs) if springs else 0.0)
 
 
 def law_spring_memory(n_contacts: int, springs: int) -> float:
@@ -300,19 +305,30 @@ class ContactLaw:
         for c, ch in enumerate(("tan", "tor")):
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]
-        if self.springs:
-            N = self.springs
-            st.update(spr_on=np.zeros(n, bool), spr_cover=np.zeros(n), spr_depth=np.zeros(n),
-                      spr_k=np.zeros(n, np.int64), spr_S=np.zeros((n, N)),
-                      spr_tan=np.zeros((n, N)), spr_tor=np.zeros((n, N)),
-                      spr_x_tan=np.zeros(n), spr_x_tor=np.zeros(n))
+        # the spring state: rows only for contacts that switch onto their springs
+        self._pool = SpringPool(n, self.springs) if self.springs else None
         return st
+
+    def _on(self) -> np.ndarray:
+        """Per contact: on its springs (a new bool array; all False without springs)."""
+        return self._pool.on() if self._pool is not None else np.zeros(self.size, bool)
+
+    def _spr(self, key: str, idx: np.ndarray) -> np.ndarray:
+        """Spring field ``key`` of the contacts ``idx`` (on springs), a copy."""
+        assert self._pool is not None
+        return self._pool.of(key, idx)
 
     @property
     def state(self) -> dict[str, np.ndarray]:
         """Every contact's memory as named arrays (copies): save with ``np.savez(file,
-        **law.state)``, restore with ``law.state = dict(np.load(file))``."""
-        return {k: v.copy() for k, v in self._st.items()}
+        **law.state)``, restore with ``law.state = dict(np.load(file))``. With springs, the
+        spring state is given per contact (``spr_on`` and zeros where it is False), whichever
+        contacts hold rows of the law's spring pool."""
+        out = {k: v.copy() for k, v in self._st.items()}
+        if self._pool is not None:
+            out["spr_on"] = self._pool.on()
+            out.update({k: self._pool.full(k) for k in SPRING_FIELDS})
+        return out
 
     @state.setter
     def state(self, value: dict) -> None:
@@ -320,7 +336,7 @@ class ContactLaw:
         if not isinstance(value, Mapping):
             raise ParameterError(f"state={_short(value)} is invalid: give the dict of arrays "
                                  "returned by law.state (e.g. dict(np.load(file))).")
-        ref = self._st
+        ref = self._state_like()
         missing = sorted(set(ref) - set(value))
         extra = sorted(set(value) - set(ref))
         if missing or extra:
@@ -328,8 +344,18 @@ class ContactLaw:
                                  f"{extra} (it must come from law.state of a law of the same "
                                  "size and memory).")
         new = {k: checked_state_entry(k, value[k], v, self.memory, self.springs) for k, v in ref.items()}
-        for k, v in new.items():                # in place: channel fields are views
-            ref[k][...] = v
+        for k, v in self._st.items():           # in place: channel fields are views
+            v[...] = new[k]
+        if self._pool is not None:
+            self._pool.load(new["spr_on"], new)
+
+    def _state_like(self) -> dict[str, np.ndarray]:
+        """Arrays of the shapes and dtypes of :attr:`state` (views, nothing allocated)."""
+        like = dict(self._st)
+        if self._pool is not None:
+            like["spr_on"] = np.broadcast_to(np.zeros((), bool), (self.size,))
+            like.update({k: self._pool.like(k) for k in SPRING_FIELDS})
+        return like
 
     @property
     def citations(self) -> Citations:
@@ -371,6 +397,8 @@ class ContactLaw:
             return
         for v in self._st.values():
             v[idx] = 0
+        if self._pool is not None:
+            self._pool.release(idx)
 
     def to_source(self) -> str:
         """Standalone Python source (numpy only, no contactlab import) of this law's family at
@@ -473,7 +501,7 @@ class ContactLaw:
         res.meta.pop("notes", None)
         if (self.warn_model_error and self.springs
                 and len(self._model_warned) < len(_MODEL_ERROR_CAUSES)
-                and np.any(self._st["spr_on"])):
+                and self._pool is not None and self._pool.used):
             self._warn_model_error(res)
         return res
 
@@ -481,7 +509,7 @@ class ContactLaw:
         """A :class:`ValidityWarning` when a step's model error exceeds
         :data:`MODEL_ERROR_WARN` for a quantity at a contact on springs, once per law and
         quantity (its text also in that step's ``meta["notes"]``)."""
-        on = self._st["spr_on"]         # (an overflowed memory warns on its own)
+        on = self._on()                 # (an overflowed memory warns on its own)
         for q, err in res.model_errors.items():
             err = np.where(on, np.asarray(err, float), 0.0)
             # (the table's 1.0e-2 at the default 16 springs is at 1 %, not above: its log-log
@@ -525,12 +553,12 @@ class ContactLaw:
         ref[new] = d[new]
         off = live & (np.abs(d - ref) > self.load_rtol * ref)
         if self.springs:
-            on = st["spr_on"]
+            on = self._on()
             if np.any(off & ~on):
                 n_spr = int(np.count_nonzero(on | off))
                 check_memory("ContactLaw.step()", law_spring_memory(n_spr, self.springs),
                              f"{n_spr} contacts on {self.springs} springs each")
-            self._to_springs(np.flatnonzero(off & ~on), d, a)
+            _np_springs.to_springs(self, np.flatnonzero(off & ~on), d, a)
             off = np.zeros(size, bool)
         if np.any(off):
             i = int(np.argmax(off))
@@ -563,11 +591,11 @@ class ContactLaw:
         over = st["tan_overflow"] | st["tor_overflow"]
         exact = live & ~over
         if self.springs:                        # their (unused) stacks are not counted
-            over &= ~st["spr_on"]
+            over &= ~self._on()
         n_over = int(np.count_nonzero(over & ~was & live))
-        if self.springs and np.any(st["spr_on"]):
-            idx = np.flatnonzero(st["spr_on"] & live)
-            r = self._spring_step(idx, d[idx], a[idx], None if u is None else u[idx],
+        if self.springs and self._pool is not None and self._pool.used:
+            idx = np.flatnonzero(self._on() & live)
+            r = _np_springs.spring_step(self, idx, d[idx], a[idx], None if u is None else u[idx],
                                   None if phi is None else phi[idx])
             for arr, v in zip((Ft, ct, M, cm, dW), r):
                 arr[idx] = v
@@ -658,11 +686,14 @@ class ContactLaw:
                     "raise load_rtol.")
             # compiled switch onto the springs: no temporaries per contact (the state it
             # writes was allocated with the law), so no memory check here
-            new = np.flatnonzero(offm & ~st["spr_on"])
+            pool = self._pool
+            assert pool is not None
+            new = np.flatnonzero(offm & (pool.slot < 0))
             if new.size:
+                pool.reserve(new.size)          # grown (rarely) before the kernel assigns rows
                 _kernel.switch_pass(new, a, self._flat, self.spring_cover, self.kc, self.n,
                                     self._beta, self.friction, self.E_star, self.G_star,
-                                    self.G_torsion, self._chan, st, self.parallel)
+                                    self.G_torsion, self._chan, st, pool, self.parallel)
         if both and not self._warned:
             self._warned = True
             warnings.warn("ContactLaw: displacement and twist together are treated as two "
@@ -670,8 +701,8 @@ class ContactLaw:
                           "(outside the theory: the slip conditions couple).", ValidityWarning,
                           stacklevel=3)
         spr = None
-        if self.springs and (off or np.any(st["spr_on"])):
-            spr = np.flatnonzero(st["spr_on"] & (flag != 1))
+        if self._pool is not None and self._pool.used:
+            spr = np.flatnonzero((self._pool.slot >= 0) & (flag != 1))
             flag[spr] = 3                               # the fused pass leaves them out
         mc = self._master
         Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
@@ -680,12 +711,13 @@ class ContactLaw:
             None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                       out.torsion_stick_radius, out.dissipated_energy, out.exact))
         if spr is not None and spr.size:
-            grow = a[spr] > st["spr_cover"][spr]
+            assert self._pool is not None
+            grow = a[spr] > self._spr("spr_cover", spr)
             if np.any(grow):
-                self._regrid(spr[grow], a[spr][grow])
-            nf += _kernel.spring_pass(spr, d, a, u, phi, st["spr_cover"], self.kc, self.n,
-                                      self._beta, self.friction, self.E_star, self.G_star,
-                                      self.G_torsion, st, (Ft, ct, M, cm, dW), self.parallel)
+                _np_springs.regrid(self, spr[grow], a[spr][grow])
+            nf += _kernel.spring_pass(spr, d, a, u, phi, self.kc, self.n, self._beta,
+                                      self.friction, self.E_star, self.G_star, self.G_torsion,
+                                      self._pool, (Ft, ct, M, cm, dW), self.parallel)
         if nonfinite or nf:                             # overflow: refused, contacts reset
             self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
         if n_over:
@@ -695,85 +727,18 @@ class ContactLaw:
     # ------------------------------------------------------------------ changing load: springs
     def _geometry(self, idx: np.ndarray) -> dict:
         # flat punch: kc = 0 (g = 0 inside the punch radius) with any finite exponent
-        return _springs.cells(self._st["spr_cover"][idx], self.kc[idx],
+        return _springs.cells(self._spr("spr_cover", idx), self.kc[idx],
                               self.n if self.n != np.inf else 1.0, self._beta)
 
     def _limits(self, idx, S, T):
         mu, E = self.friction[idx, None], self.E_star[idx, None]
         return 2.0 * mu * E * S, 4.0 * mu * E * T
 
-    def _to_springs(self, idx: np.ndarray, d: np.ndarray, a: np.ndarray) -> None:
-        """Switch contacts ``idx`` from the exact constant-load law to MDR springs: the cells
-        take the state of the held load the contact leaves (its Masing turning points replayed
-        through the elements at that load)."""
-        if idx.size == 0:
-            return
-        st = self._st
-        d0 = st["depth_ref"][idx]
-        a0 = self._radius(d0, idx)
-        st["spr_cover"][idx] = self.spring_cover[idx] * np.maximum(a0, a[idx])
-        geo = self._geometry(idx)
-        S, T, k = _springs.normal_cells(geo, d0, a0)
-        frac = _springs.weights(geo, S, S, k, k, np.zeros(idx.size), a0)
-        L_tan, L_tor = self._limits(idx, S, T)
-        K_tan = 2.0 * self.G_star[idx, None] * geo["w"]
-        K_tor = 16.0 * self.G_torsion[idx, None] * geo["X2"]
-        for ch, K, L in (("tan", K_tan, L_tan), ("tor", K_tor, L_tor)):
-            st[f"spr_{ch}"][idx] = _springs.replay(st[f"{ch}_X"][idx], st[f"{ch}_depth"][idx],
-                                                   st[f"{ch}_x"][idx], K * frac, L)
-            st[f"spr_x_{ch}"][idx] = st[f"{ch}_x"][idx]
-        st["spr_S"][idx], st["spr_k"][idx], st["spr_depth"][idx] = S, k, d0
-        st["spr_on"][idx] = True
-
-    def _regrid(self, idx: np.ndarray, a_new: np.ndarray) -> None:
-        """Grow the cover of contacts ``idx`` to ``spring_cover × a_new``; element forces are
-        carried over by their cumulative line load (approximate)."""
-        st = self._st
-        old = self._geometry(idx)
-        st["spr_cover"][idx] = self.spring_cover[idx] * a_new
-        new = self._geometry(idx)
-        for ch in ("tan", "tor"):
-            m = st[f"spr_{ch}"][idx]
-            cum = np.concatenate([np.zeros((idx.size, 1)), np.cumsum(m, axis=1)], axis=1)
-            st[f"spr_{ch}"][idx] = np.diff(_springs.interp_rows(new["b"], old["b"], cum), axis=1)
-        d0 = st["spr_depth"][idx]
-        S, _, k = _springs.normal_cells(new, d0, self._radius(d0, idx))
-        st["spr_S"][idx], st["spr_k"][idx] = S, k
-
     def _radius(self, d: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Contact radius (m) of contacts ``idx`` at depths ``d >= 0``."""
         if self.n == np.inf:
             return np.where(d > 0, self._flat[idx], 0.0)
         return (d / self.kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self.kc[idx])
-
-    def _spring_step(self, idx, d, a, u, phi):
-        st = self._st
-        grow = a > st["spr_cover"][idx]
-        if np.any(grow):
-            self._regrid(idx[grow], a[grow])
-        geo = self._geometry(idx)
-        S, T, k = _springs.normal_cells(geo, d, a)
-        dd = d - st["spr_depth"][idx]
-        wgt = _springs.weights(geo, S, st["spr_S"][idx], k, st["spr_k"][idx], dd, a)
-        L_tan, L_tor = self._limits(idx, S, T)
-        zero = np.zeros(idx.size)
-        Ft, ct, M, cm, dW = zero, a.copy(), zero, a.copy(), zero.copy()
-        if u is not None:
-            m = st["spr_tan"][idx]
-            Keff = 2.0 * self.G_star[idx, None] * geo["w"] * wgt
-            dW += _springs.jenkins_rows(m, Keff, L_tan, u - st["spr_x_tan"][idx])
-            st["spr_tan"][idx], st["spr_x_tan"][idx] = m, u
-            Ft = m.sum(axis=1)
-            ct = _springs.stick_radius(m, L_tan, geo["bl"], a)
-        if phi is not None:
-            m = st["spr_tor"][idx]
-            Keff = 16.0 * self.G_torsion[idx, None] * geo["X2"] * wgt
-            dW += _springs.jenkins_rows(m, Keff, L_tor, phi - st["spr_x_tor"][idx])
-            st["spr_tor"][idx], st["spr_x_tor"][idx] = m, phi
-            M = m.sum(axis=1)
-            cm = _springs.stick_radius(m, L_tor, geo["bl"], a)
-        st["spr_S"][idx], st["spr_k"][idx], st["spr_depth"][idx] = S, k, d
-        return Ft, ct, M, cm, dW
 
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}

@@ -33,10 +33,10 @@ _AT_LIMIT = 1e-9
 
 
 def snapshot(law: Any) -> tuple[np.ndarray, np.ndarray] | None:
-    """The springs' depth and on-flags before a step (None without springs)."""
+    """The springs' depth (per contact) and on-flags before a step (None without springs)."""
     if not law.springs:
         return None
-    return law._st["spr_depth"].copy(), law._st["spr_on"].copy()
+    return law._pool.full("spr_depth"), law._on()
 
 
 def _springs_tangent(law: Any, res: Any, idx: np.ndarray, pre: tuple | None,
@@ -44,7 +44,7 @@ def _springs_tangent(law: Any, res: Any, idx: np.ndarray, pre: tuple | None,
     """Tangential (N/m) and torsional (N·m/rad) springs' sums of contacts ``idx``."""
     st = law._st
     d, a = res.depth[idx], res.radius[idx]
-    d_pre, on_pre = pre if pre is not None else (st["spr_depth"], st["spr_on"])
+    d_pre, on_pre = pre if pre is not None else (law._pool.full("spr_depth"), law._on())
     # the step's start: the springs' depth, or the held load a contact left in this step
     d_old = np.where(on_pre[idx], d_pre[idx], st["depth_ref"][idx])
     geo = law._geometry(idx)
@@ -55,8 +55,8 @@ def _springs_tangent(law: Any, res: Any, idx: np.ndarray, pre: tuple | None,
     K_tan = 2.0 * law.G_star[idx, None] * geo["w"] * wgt
     K_tor = 16.0 * law.G_torsion[idx, None] * geo["X2"] * wgt
     # at its limit to rounding (the compiled route forms L in another order): sliding
-    stick_tan = np.abs(st["spr_tan"][idx]) < L_tan * (1.0 - _AT_LIMIT)
-    stick_tor = np.abs(st["spr_tor"][idx]) < L_tor * (1.0 - _AT_LIMIT)
+    stick_tan = np.abs(law._spr("spr_tan", idx)) < L_tan * (1.0 - _AT_LIMIT)
+    stick_tor = np.abs(law._spr("spr_tor", idx)) < L_tor * (1.0 - _AT_LIMIT)
     return (np.sum(np.where(stick_tan, K_tan, 0.0), axis=1),
             np.sum(np.where(stick_tor, K_tor, 0.0), axis=1))
 
@@ -77,7 +77,7 @@ def tangent(law: Any, res: Any, displacement: Any, twist: Any, wanted: bool = Tr
     if not wanted:
         return None
     live = res.radius > 0
-    on = law._st["spr_on"] & live if law.springs else np.zeros(live.shape, bool)
+    on = law._on() & live
     if np.any(live & ~res.exact & ~on):
         i = int(np.argmax(live & ~res.exact & ~on))
         raise NotSupportedError(

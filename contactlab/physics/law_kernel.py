@@ -281,18 +281,20 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
     return nonfinite, n_over
 
 
-def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G, Gt,
-                 S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW):
+def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
+                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW):
     """One MDR spring step of the contacts ``idx`` (the arithmetic of
     :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
-    weights, Jenkins elements of both channels, forces, stick radii and dissipation."""
+    weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
+    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
     nonfinite = 0
     for j in _prange(idx.size):
         c = idx[j]
-        cov = cover[c]
+        r = slot[c]
+        cov = cover[r]
         kcc = kc[c]
         dj = d[c]
         aj = a[c]
@@ -300,6 +302,10 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
             cp1 = kcc * cov * cov * cov
             Ga = kcc * aj * aj * aj / n1
             Ha = kcc * aj * aj * aj * aj / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * aj * aj / n1
+            Ha = kcc * aj * aj * aj / n2
         else:
             cp1 = kcc * cov ** n1
             Ga = kcc * aj ** n1 / n1
@@ -308,13 +314,13 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
         k = 0
         while k < N - 1 and cov * beta[k + 1] < aj:
             k += 1
-        ko = k_old[c]
+        ko = k_old[r]
         lo = min(k, ko)
         hi = max(k, ko) + 1
-        dd = dj - d_old[c]
+        dd = dj - d_old[r]
         mu_E = mu[c] * E[c]
-        du = u[c] - x_tan[c] if has_u else 0.0
-        dp = phi[c] - x_tor[c] if has_phi else 0.0
+        du = u[c] - x_tan[r] if has_u else 0.0
+        dp = phi[c] - x_tor[r] if has_phi else 0.0
         Ft_j = 0.0
         M_j = 0.0
         e = 0.0
@@ -345,17 +351,17 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
                 elif i >= hi:
                     wgt = 0.0
                 else:
-                    wgt = min(max((S - S_old[c, i]) / (dd * w), 0.0), 1.0)
+                    wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
             else:
                 wgt = min(max((aj - bl) / w, 0.0), 1.0)
-            S_old[c, i] = S
+            S_old[r, i] = S
             if has_u:
                 L = 2.0 * mu_E * S
                 Kt = 2.0 * G[c] * w * wgt
-                mo = m_tan[c, i]
+                mo = m_tan[r, i]
                 trial = mo + Kt * du
                 mn = min(max(trial, -L), L)
-                m_tan[c, i] = mn
+                m_tan[r, i] = mn
                 if Kt > 0.0:
                     e += (trial - mn) * mn / Kt
                 Ft_j += mn
@@ -365,27 +371,27 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
             if has_phi:
                 L = 4.0 * mu_E * T
                 Kr = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * wgt
-                mo = m_tor[c, i]
+                mo = m_tor[r, i]
                 trial = mo + Kr * dp
                 mn = min(max(trial, -L), L)
-                m_tor[c, i] = mn
+                m_tor[r, i] = mn
                 if Kr > 0.0:
                     e += (trial - mn) * mn / Kr
                 M_j += mn
                 if free_m and abs(mn) >= L:
                     free_m = False
                     cm_j = min(bl, aj)
-        k_old[c] = k
-        d_old[c] = dj
+        k_old[r] = k
+        d_old[r] = dj
         if has_u:
-            x_tan[c] = u[c]
+            x_tan[r] = u[c]
             Ft[c] = Ft_j
             ct[c] = ct_j
         else:
             Ft[c] = 0.0
             ct[c] = aj
         if has_phi:
-            x_tor[c] = phi[c]
+            x_tor[r] = phi[c]
             M[c] = M_j
             cm[c] = cm_j
         else:
@@ -398,18 +404,23 @@ def _spring_pass(idx, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, 
 
 
 def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
-                 X, depth, x, cover, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, on):
+                 X, depth, x, slot, owner, base, cover, S_old, k_old, d_old, m_tan, m_tor,
+                 x_tan, x_tor):
     """Switch the contacts ``idx`` from the exact constant-load law to their MDR springs (the
     arithmetic of ``ContactLaw._to_springs`` with the cell integrals of :func:`_spring_pass`,
     one contact at a time, no temporaries): cover, normal cells at the held depth ``ref`` the
     contact leaves, and each channel's Masing turning points ``X[ch, c, :depth]`` then its
     current control ``x[ch, c]`` replayed through the elements at that load (channel 0
-    tangential, 1 torsion)."""
+    tangential, 1 torsion). Contact ``idx[j]`` gets row ``base + j`` of the spring pool
+    (``slot``: row per contact, ``owner``: contact per row)."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
     for j in _prange(idx.size):
         c = idx[j]
+        r = base + j
+        slot[c] = r
+        owner[r] = c
         d0 = ref[c]
         kcc = kc[c]
         if is_flat:
@@ -419,11 +430,15 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
         else:
             a0 = (d0 / kcc) ** (1.0 / n)
         cov = cover_factor[c] * max(a0, a[c])
-        cover[c] = cov
+        cover[r] = cov
         if n == 2.0:
             cp1 = kcc * cov * cov * cov
             Ga = kcc * a0 * a0 * a0 / n1
             Ha = kcc * a0 * a0 * a0 * a0 / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * a0 * a0 / n1
+            Ha = kcc * a0 * a0 * a0 / n2
         else:
             cp1 = kcc * cov ** n1
             Ga = kcc * a0 ** n1 / n1
@@ -448,7 +463,7 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             else:
                 S = 0.0
                 T = 0.0
-            S_old[c, i] = S
+            S_old[r, i] = S
             frac = min(max((a0 - bl) / w, 0.0), 1.0)
             for ch in range(2):
                 if ch == 0:
@@ -465,14 +480,13 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                     prev = tgt
                 m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
                 if ch == 0:
-                    m_tan[c, i] = m
+                    m_tan[r, i] = m
                 else:
-                    m_tor[c, i] = m
-        x_tan[c] = x[0, c]
-        x_tor[c] = x[1, c]
-        k_old[c] = k
-        d_old[c] = d0
-        on[c] = True
+                    m_tor[r, i] = m
+        x_tan[r] = x[0, c]
+        x_tor[r] = x[1, c]
+        k_old[r] = k
+        d_old[r] = d0
 
 
 _PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass)
@@ -591,36 +605,43 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     return (*out, nf, n_over)
 
 
-def spring_pass(idx, d, a, u, phi, cover, kc, n: float, beta, mu, E, G, Gt, st: dict,
+def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
                 out: tuple, parallel: bool = False) -> int:
     """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
-    radius and controls of all contacts, or None; ``cover``, ``kc``, moduli: per contact;
-    ``beta``: unit cell boundaries). Spring state ``st`` (the law's ``spr_*`` arrays) is updated
-    in place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
+    radius and controls of all contacts, or None; ``kc``, moduli: per contact; ``beta``: unit
+    cell boundaries). The spring state (``pool``: the law's
+    :class:`~contactlab.effects.law_pool.SpringPool`, rows ``pool.slot[idx]``) is updated in
+    place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
     Returns the number of contacts whose outputs are not finite.
     Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
     nn = float(n) if n != np.inf else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
     bH = beta ** (nn + 2.0) / (nn + 2.0)
-    return _kernels(parallel)[2](idx, d, a, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
-                          u is not None, phi is not None, cover, kc, nn, beta, bG, bH, mu, E,
-                          G, Gt, st["spr_S"], st["spr_k"], st["spr_depth"], st["spr_tan"],
-                          st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"], *out)
+    P = pool.rows
+    return _kernels(parallel)[2](idx, pool.slot, d, a, _EMPTY if u is None else u,
+                          _EMPTY if phi is None else phi, u is not None, phi is not None,
+                          P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
+                          P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                          P["spr_x_tan"], P["spr_x_tor"], *out)
 
 
 def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, chan: dict,
-                st: dict, parallel: bool = False) -> None:
-    """Compiled switch of the contacts ``idx`` (int64) from their Masing stacks (``chan``: the
-    fields of :func:`~contactlab.physics.masing_stack.new_stack` over a leading channel axis)
-    to their MDR springs (``st``: the law's ``depth_ref`` and ``spr_*`` arrays, written at
-    ``idx``); ``a``: the contacts' radii in this step (the cover spans the larger of it and the
-    held radius), ``cover_factor``: ``spring_cover`` per contact. No temporaries per contact."""
+                st: dict, pool, parallel: bool = False) -> None:
+    """Compiled switch of the contacts ``idx`` (int64, not on springs) from their Masing
+    stacks (``chan``: the fields of :func:`~contactlab.physics.masing_stack.new_stack` over a
+    leading channel axis) to their MDR springs: rows ``pool.used ...`` of the law's
+    :class:`~contactlab.effects.law_pool.SpringPool` (room reserved by the caller), assigned and
+    written in the kernel; ``st``: the law's state (``depth_ref``); ``a``: the contacts' radii
+    in this step (the cover spans the larger of it and the held radius), ``cover_factor``:
+    ``spring_cover`` per contact. No temporaries per contact."""
     is_flat = n == np.inf
     nn = float(n) if not is_flat else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
     bH = beta ** (nn + 2.0) / (nn + 2.0)
+    P = pool.rows
     _kernels(parallel)[3](idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta,
                           bG, bH, mu, E, G, Gt, chan["X"], chan["depth"], chan["x"],
-                          st["spr_cover"], st["spr_S"], st["spr_k"], st["spr_depth"],
-                          st["spr_tan"], st["spr_tor"], st["spr_x_tan"], st["spr_x_tor"],
-                          st["spr_on"])
+                          pool.slot, pool.owner, pool.used, P["spr_cover"], P["spr_S"],
+                          P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                          P["spr_x_tan"], P["spr_x_tor"])
+    pool.used += int(idx.size)

@@ -230,8 +230,11 @@ def mdr_ratio_error(profile, quantity: str, ratio: np.ndarray) -> np.ndarray:
     ratio = np.asarray(ratio, float)
     out = np.zeros(ratio.shape)
     for c in _columns(profile):
-        ladder = np.asarray(_MDR_RATIO[c], float)
-        k = np.sum(ladder > ratio[..., None], axis=-1)
+        # the number of ladder ratios above each ratio, by one sorted search (a comparison
+        # against the whole ladder per value cost a (n, 41) temporary and most of a contact
+        # law's changing-load step)
+        ladder = np.sort(np.asarray(_MDR_RATIO[c], float))
+        k = ladder.size - np.searchsorted(ladder, ratio, side="right")
         out = np.maximum(out, _running_max(quantity, c)[k])
     return np.where(ratio >= 1.0, 0.0, out)
 

@@ -1,0 +1,146 @@
+"""Lazy spring state of ContactLaw (issue 29): spring rows exist only for contacts that switch
+onto their springs (a pool grown by doubling, rows given back on separation or reset); which row
+a contact holds never changes its results, and the state per contact is unchanged."""
+from __future__ import annotations
+
+import tracemalloc
+import warnings
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.effects.law import law_memory
+from contactlab.effects.law_pool import SpringPool, pool_row_bytes
+from contactlab.errors import MemoryBudgetError, ValidityWarning
+
+HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
+BACKENDS = [False, True] if HAS_NUMBA else [False]
+FIELDS = ("depth", "radius", "force", "tangential_force", "torque", "stick_radius",
+          "torsion_stick_radius", "dissipated_energy", "exact")
+
+
+def _law(n, fast, **kw):
+    return cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11,
+                         G_star=4.4e10, G_torsion=4e10, friction=0.3, fast=fast, **kw)
+
+
+def test_pool_rows_follow_their_contacts():
+    """Rows given back are filled from the end; every contact keeps its own row contents."""
+    pool = SpringPool(10, 3)
+    idx = np.array([7, 2, 5, 9, 0])
+    s = pool.assign(idx)
+    pool.rows["spr_depth"][s] = idx + 0.5
+    pool.rows["spr_S"][s] = (idx + 0.25)[:, None]
+    pool.release(np.array([2, 9, 3]))                # 3 holds no row
+    assert pool.used == 3
+    on = np.flatnonzero(pool.on())
+    np.testing.assert_array_equal(on, [0, 5, 7])
+    np.testing.assert_array_equal(pool.owner[pool.slot[on]], on)
+    np.testing.assert_array_equal(pool.full("spr_depth")[on], on + 0.5)
+    np.testing.assert_array_equal(pool.full("spr_S")[on], np.repeat((on + 0.25)[:, None], 3, 1))
+    assert not pool.full("spr_depth")[[1, 2, 3, 4, 6, 8, 9]].any()
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_results_do_not_depend_on_the_rows(fast):
+    """A law of 40 contacts whose rows are reshuffled by separations and resets gives, for the
+    contacts it shares with a law of those contacts alone, the same results to the bit."""
+    n, steps = 40, 24
+    keep = np.arange(0, n, 3)                       # contacts never separated nor reset
+    rng = np.random.default_rng(7)
+    F = rng.uniform(1.0, 50.0, n)
+    u = np.cumsum(rng.standard_normal((steps, n)), axis=0) * 3e-8
+    phi = np.cumsum(rng.standard_normal((steps, n)), axis=0) * 1e-4
+    big = _law(n, fast)
+    small = cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, n)[keep],
+                          E_star=1.15e11, G_star=4.4e10, G_torsion=4e10, friction=0.3,
+                          fast=fast)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            L = F * (1.0 + 0.05 * np.sin(0.7 * k + np.arange(n))) if k >= 3 else F
+            L = L.copy()
+            others = np.setdiff1d(np.arange(n), keep)
+            if k % 5 == 4:
+                L[others[k % 4::4]] = 0.0           # separate: their rows go back to the pool
+            if k % 7 == 6:
+                big.reset(others[1::3])
+            a = big.step(force=L, displacement=u[k], twist=phi[k])
+            b = small.step(force=L[keep], displacement=u[k][keep], twist=phi[k][keep])
+            for f in FIELDS:
+                np.testing.assert_array_equal(getattr(a, f)[keep], getattr(b, f), err_msg=f)
+    assert big._pool.used == np.count_nonzero(big.state["spr_on"])
+    sb = big.state
+    for key, v in small.state.items():
+        np.testing.assert_array_equal(sb[key][keep], v, err_msg=key)
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_spring_rows_only_for_contacts_that_switch(fast):
+    """The law holds no spring rows until a load changes, then rows for those contacts only
+    (the pool doubles at most): a tenth switching holds far less than every contact's rows
+    (they were allocated with the law: 425 B per contact, 903 B per contact in all)."""
+    n = 2000
+    law = _law(n, fast)
+    law.step(force=10.0, displacement=1e-8)
+    assert law._pool.capacity == 0
+    F = np.full(n, 10.0)
+    F[:200] = 11.0                                  # a tenth of the contacts change load
+    law.step(force=F, displacement=1e-8)
+    assert law._pool.used == 200 and law._pool.capacity <= 400
+    assert law_memory(n, 8, 16) == 482 * n
+    assert law_memory(n, 8, 16, 200) == 482 * n + 200 * pool_row_bytes(16)
+
+
+def test_a_fresh_law_holds_its_state_and_no_spring_rows():
+    """Measured: tracemalloc's count of a fresh law and a step's results is within
+    law_memory (no springs), far below the 903 B per contact when every row was allocated."""
+    n = 20_000
+    _law(n, None).step(force=1.0, twist=1e-4)       # warm: kernels, tables
+    tracemalloc.start()
+    try:
+        law = _law(n, None)
+        law.step(force=1.0, twist=1e-4)
+        held = tracemalloc.get_traced_memory()[0]
+    finally:
+        tracemalloc.stop()
+    assert held <= law_memory(n, 8, 16) < 600 * n
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_spring_rows_are_checked_against_the_budget_when_they_grow(fast):
+    """springs=4096 costs nothing until contacts switch; their rows are checked then."""
+    previous = cl.set_memory_budget(10e6)
+    try:
+        law = _law(1000, fast, springs=4096)
+        law.step(force=1.0, displacement=1e-8)
+        with pytest.raises(MemoryBudgetError, match="1000 contacts on 4096 springs"):
+            law.step(force=2.0, displacement=1e-8)
+    finally:
+        cl.set_memory_budget(previous)
+
+
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_threaded_switch_and_springs_are_bit_identical():
+    """The threaded kernel assigns the same rows in its switch and gives the serial results to
+    the bit under a changing load with separations."""
+    n, steps = 500, 12
+    rng = np.random.default_rng(3)
+    F = rng.uniform(1.0, 50.0, n)
+    par, ser = _law(n, True, parallel=True), _law(n, True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            L = F * (1.0 + 0.05 * np.sin(0.7 * k + np.arange(n))) if k >= 2 else F.copy()
+            if k == 6:
+                L[::7] = 0.0
+            phi, u = 1e-4 * np.sin(0.5 * k + np.arange(n)), 3e-8 * np.cos(0.4 * k + np.arange(n))
+            a = par.step(force=L, twist=phi, displacement=u)
+            b = ser.step(force=L, twist=phi, displacement=u)
+            for f in FIELDS:
+                np.testing.assert_array_equal(getattr(a, f), getattr(b, f), err_msg=f)
+    np.testing.assert_array_equal(par._pool.slot, ser._pool.slot)
+    sp, ss = par.state, ser.state
+    for key, v in ss.items():
+        np.testing.assert_array_equal(sp[key], v, err_msg=key)
