@@ -15,9 +15,8 @@ SCALE = np.array([1.0, 0.5, 0.2])
 
 def _law(fast, profile=cl.profiles.Paraboloid, torsion="exact", **geo):
     geo = geo or {"R": np.full(3, 0.01)}
-    # the springs' model-error warning (> 1 %) is not what these derivative checks are about
     return cl.ContactLaw(profile, E_star=115e9, G_star=40e9, G_torsion=40e9, friction=0.3,
-                         fast=fast, torsion=torsion, warn_model_error=False, **geo)
+                         fast=fast, torsion=torsion, **geo)
 
 
 @pytest.mark.parametrize("fast, torsion", [(True, "exact"), (False, "exact")])
