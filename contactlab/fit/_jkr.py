@@ -89,14 +89,22 @@ class JKRPower:
         a_c, d_c = self.critical(E_star, w)
         if a_c == 0.0:                          # no adhesion: Hertz-like
             return (np.maximum(delta, 0.0) / K) ** (1.0 / n)
+        out = np.full(np.shape(delta), np.nan)
         on = delta >= d_c
-        y = delta / (K * a_c ** n)
+        out[on] = a_c * self._master_x(delta[on] / (K * a_c ** n))
+        return out
+
+    def _master_x(self, y: np.ndarray) -> np.ndarray:
+        """``x = a/a_c >= 1`` on the master curve at ``y = δ/δ_s >= ψ(1)``."""
+        n = self.n
         sig = np.sqrt(np.maximum(y - (1.0 - 2.0 * n), 0.0))
         sn, xn, mn = _master(n)
-        inside = sig <= sn[-1]
-        far = np.maximum(y, 1.0) ** (1.0 / n)          # beyond the table: x^n = y + 2n√x
-        far = (np.maximum(y, 1.0) + 2.0 * n * np.sqrt(far)) ** (1.0 / n)
-        x = np.where(inside, _hermite_x(np.minimum(sig, sn[-1]), sn, xn, mn), far)
+        x = _hermite_x(np.minimum(sig, sn[-1]), sn, xn, mn)
+        beyond = sig > sn[-1]
+        if np.any(beyond):                      # beyond the table: x^n = y + 2n√x
+            yb = np.maximum(y[beyond], 1.0)
+            far = yb ** (1.0 / n)
+            x[beyond] = (yb + 2.0 * n * np.sqrt(far)) ** (1.0 / n)
         for _ in range(_MASTER_NEWTON):
             sx = np.sqrt(x)
             xn_ = x * x if n == 2.0 else x ** n
@@ -107,18 +115,44 @@ class JKRPower:
             # Newton on σ(x) = σ: σ' = ψ'/(2σ)
             x = np.maximum(x - np.where(ok, (s_x - sig) * 2.0 * s_x / np.where(ok, dpsi, 1.0),
                                         0.0), 1.0)
-        return np.where(on, a_c * x, np.nan)
+        return x
 
     def branch_end(self, E_star: float, w: float) -> tuple[float, float]:
         """Force (N) and indentation (m) at the end of the branch."""
         a_c, d_c = self.critical(E_star, w)
         return 2.0 * E_star * (a_c * d_c - self.K * a_c ** (self.n + 1.0) / (self.n + 1.0)), d_c
 
+    def branch_min(self, E_star: float, w: float) -> tuple[float, float]:
+        """Smallest force on the branch (N) and its indentation (m): on the master curve
+        ``F = 2E* K a_c^(n+1) (x ψ(x) - x^(n+1)/(n+1))``, smallest at ``x^(n-1/2) = 3``
+        (the pull-off force under load control; ``-3πΔγR/2`` for the paraboloid)."""
+        K, n = self.K, self.n
+        a_c, _ = self.critical(E_star, w)
+        x = 3.0 ** (1.0 / (n - 0.5))
+        psi = x ** n - 2.0 * n * np.sqrt(x)
+        f = 2.0 * E_star * K * a_c ** (n + 1.0) * (x * psi - x ** (n + 1.0) / (n + 1.0))
+        return float(f), float(K * a_c ** n * psi)
+
     def force(self, delta: np.ndarray, E_star: float, w: float
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Force (N) and its derivatives ``dF/dδ``, ``dF/dE*``, ``dF/dΔγ`` at indentations
         ``δ``; zeros where the surfaces are apart."""
         K, n = self.K, self.n
+        a_c, d_c = self.critical(E_star, w)
+        if a_c > 0.0:                           # only the attached points are computed
+            out = np.zeros((4, np.size(delta)))
+            on = np.flatnonzero(delta >= d_c)
+            d = delta[on]
+            a = a_c * self._master_x(d / (K * a_c ** n))
+            F = 2.0 * E_star * (a * d - K * a ** (n + 1.0) / (n + 1.0))
+            s = np.sqrt(2.0 * np.pi * w * a / E_star)
+            ha = n * K * a ** (n - 1.0) - s / (2.0 * a)      # > 0 on the branch (a > a_c)
+            inv = np.where(ha > 0, 1.0 / np.where(ha > 0, ha, 1.0), 0.0)
+            out[0, on] = F
+            out[1, on] = 2.0 * E_star * (a - s * inv)
+            out[2, on] = F / E_star + s * s * inv
+            out[3, on] = -2.0 * np.pi * a * inv
+            return out[0], out[1], out[2], out[3]
         a = self.radius(delta, E_star, w)
         on = np.isfinite(a)
         a = np.where(on, a, 0.0)
@@ -285,6 +319,20 @@ class JKRTable:
         z = np.zeros_like(F)
         return (np.where(on, F, z), np.where(on, 2.0 * E_star * (a - s * inv), z),
                 np.where(on, F / E_star + s * s * inv, z), np.where(on, -2.0 * np.pi * a * inv, z))
+
+    def branch_min(self, E_star: float, w: float) -> tuple[float, float]:
+        """Smallest force on the branch (N) and its indentation (m), at the table's nodes (a
+        starting value)."""
+        a_c, d_c = self.critical(E_star, w)
+        beta = np.sqrt(2.0 * np.pi * w / E_star)
+        on = self.a >= a_c
+        a = self.a[on]
+        d = self.g[on] - beta * np.sqrt(a)
+        f = 2.0 * E_star * (a * d - self.G[on])
+        if f.size == 0:
+            return self.branch_end(E_star, w)
+        i = int(np.argmin(f))
+        return float(f[i]), float(d[i])
 
     def branch_end(self, E_star: float, w: float) -> tuple[float, float]:
         """Force (N) and indentation (m) at the end of the branch."""

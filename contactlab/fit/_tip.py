@@ -168,14 +168,48 @@ class TipModel:
         return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
 
 
-def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500) -> tuple:
+class _AtRounding(Exception):
+    """Raised inside the residual callback to stop MINPACK once the residual is at rounding."""
+
+    def __init__(self, x: np.ndarray) -> None:
+        super().__init__()
+        self.x = x
+
+
+def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500,
+                        floor: float = 0.0) -> tuple:
     """MINPACK's Levenberg-Marquardt (``scipy.optimize.leastsq``, the routine behind
     ``least_squares(method="lm")`` and ``curve_fit``) with the exact Jacobian, without the
-    wrapper's per-call overhead: returns ``(x, nfev, ok, message)``."""
+    wrapper's per-call overhead: returns ``(x, nfev, ok, message)``.
+
+    ``floor``: a sum of squares at the rounding of the model (``(ROUNDING · |data|)²``); the
+    first point whose residual reaches it is the solution (nothing is left to gain, and
+    MINPACK's own tests, tight so that noisy fits converge fully, would otherwise spend several
+    more evaluations on rounding noise). Noisy data never reach it and stop by MINPACK's tests.
+    """
     from scipy.optimize import leastsq
-    x, _, info, msg, ier = leastsq(residual, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
-                                   xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
+    count = 0
+
+    def res(x: np.ndarray) -> np.ndarray:
+        nonlocal count
+        count += 1
+        r = residual(x)
+        if float(r @ r) <= floor:
+            raise _AtRounding(np.array(x, dtype=float))
+        return r
+
+    try:
+        x, _, info, msg, ier = leastsq(res, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
+                                       xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
+    except _AtRounding as stop:
+        return np.atleast_1d(stop.x), count, True, "the residual reached rounding"
     return np.atleast_1d(x), int(info["nfev"]), ier in (1, 2, 3, 4), msg
+
+
+#: residual norm, relative to the data's norm, taken as the rounding of a model evaluation
+#: (noise-free data reach ~1e-15; parameters are then exact to ~1e-13, far inside the fits'
+#: tolerances)
+ROUNDING = 1e-13
 
 
 def covariance(J: np.ndarray, s2: float) -> np.ndarray:

@@ -410,7 +410,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 J[:, i] = scales[n]
         return J
 
-    from ._tip import covariance, levenberg_marquardt
+    from ._tip import ROUNDING, covariance, levenberg_marquardt
+    floor = (ROUNDING ** 2) * float(F @ F)
     stages = [names]
     if jkr is not None and fit_off and len(names) > 1:
         # the offset shifts the detached points and the branch end together: fitted last,
@@ -427,7 +428,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             x0[i] = np.log(v0) if n in logs else v0
         # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
         # model is defined for every contact point) and its gradient test is scale-free
-        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0, floor=floor)
         if not ok:
             raise ConvergenceError(f"fit.indentation did not converge: {msg}")
         start.update({n: v for n, v in unpack(x_sol).items() if n in idx})
@@ -484,42 +485,56 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
                rise: np.ndarray, w_fixed: float, given: set) -> float:
     """Starting values of a JKR fit; returns the starting ``E*``.
 
-    Under fixed grips the last attached point is the end of the branch, at the smallest force:
-    for each candidate ``E*`` (a factor 1/3..3 around the non-adhesive estimate ``E_star0``)
-    the work of adhesion follows from that force (the branch-end force is a power of ``Δγ``)
-    and the contact point from its depth (``z_pull - δ_c``); the candidate with the smallest
-    residual of (a subsample of) the data wins."""
+    The smallest force of the data is either the smallest force of the branch (the data pass
+    through it, as under fixed grips) or the end of the branch (the data stop there, as when
+    the surfaces jump apart under load control): for each candidate ``E*`` (a factor 1/3..3
+    around the non-adhesive estimate ``E_star0``) and each reading, the work of adhesion follows
+    from that force (it is a power of ``Δγ``) and the contact point from its depth; the
+    candidate with the smallest residual of (a subsample of) the data wins."""
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
-
-    branch_end = jkr.branch_end
-    # the branch-end force of c r^n grows as Δγ^((n+1)/(2n-1)) (a table: the paraboloid's 1,
-    # iterated)
+    # the force of c r^n grows as Δγ^((n+1)/(2n-1)) at a fixed point of the branch (a table:
+    # the paraboloid's 1, iterated)
     n = getattr(jkr, "n", 2.0)
     p = (2.0 * n - 1.0) / (n + 1.0)
 
-    def work(E_star: float) -> float:
+    def work(E_star: float, point: Any) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:
             return float(start.get("work_of_adhesion", w_fixed))
         if not f_pull < 0:
             return 1e-9 * E_star * float(np.max(np.abs(zs)))
-        w = float((f_pull / branch_end(E_star, 1.0)[0]) ** p)
+        w = float((f_pull / point(E_star, 1.0)[0]) ** p)
         if not hasattr(jkr, "n"):
             for _ in range(4):
-                w *= float((f_pull / branch_end(E_star, w)[0]) ** p)
+                w *= float((f_pull / point(E_star, w)[0]) ** p)
         return w
 
-    best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
-    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):
-        w = work(es)
-        cp = (z_pull - branch_end(es, w)[1] if "contact_point" not in given
+    def trial(es: float, point: Any) -> tuple[float, float, float, float]:
+        w = work(es, point)
+        cp = (z_pull - point(es, w)[1] if "contact_point" not in given
               and "contact_point" in names else float(start.get("contact_point", 0.0)))
         f = jkr.force(zs - cp, es, w)[0]
-        rss = float(np.sum((f - rise) ** 2))
-        if rss < best[0]:
-            best = (rss, float(es), w, cp)
+        return float(np.sum((f - rise) ** 2)), float(es), w, cp
+
+    best = (np.inf, E_star0, work(E_star0, jkr.branch_end),
+            float(start.get("contact_point", 0.0)))
+    h = np.log(3.0) / 4.0                       # the grid's step in ln E*
+    grid = E_star0 * np.exp(h * np.arange(-4, 5))
+    for point in (jkr.branch_min, jkr.branch_end):
+        rows = [trial(float(es), point) for es in grid]
+        i = int(np.argmin([r[0] for r in rows]))
+        if rows[i][0] < best[0]:
+            best = rows[i]
+        if 0 < i < grid.size - 1 and "E" in names and "E" not in given:
+            # one parabolic step in ln E* through the best point and its neighbours
+            r0, r1, r2 = rows[i - 1][0], rows[i][0], rows[i + 1][0]
+            curv = r0 - 2.0 * r1 + r2
+            if curv > 0:
+                row = trial(float(grid[i] * np.exp(0.5 * h * (r0 - r2) / curv)), point)
+                if row[0] < best[0]:
+                    best = row
     start["work_of_adhesion"] = best[2]
     if "contact_point" in names:
         start["contact_point"] = best[3]

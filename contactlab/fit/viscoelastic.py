@@ -202,7 +202,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
                                           or n == "eta") else 1.0)
     # ---- the model over the depths the contact point allows
     span = float(np.max(z) - np.min(z))
-    from ._tip import TipModel, covariance, levenberg_marquardt
+    from ._tip import ROUNDING, TipModel, covariance, levenberg_marquardt
     d_max = (float(np.max(z)) - (float(np.min(z)) - span if fit_cp else cp0)) * 1.0001
     if np.isfinite(profile.max_radius):
         reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
@@ -258,7 +258,8 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
 
     x0 = np.array([np.log(st[n] / scales[n]) if n in logs else st[n] / scales[n]
                    for n in names])
-    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0,
+                                                floor=(ROUNDING ** 2) * float(F @ F))
     if not ok:
         raise ConvergenceError(f"fit.indentation (viscoelastic) did not converge: {msg}")
     vals = unpack(x_sol)
