@@ -36,6 +36,8 @@ FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
 _BASELINE = 0.1
 #: candidate contact points of the start search
 _START_CANDIDATES = 8
+#: successive parabolic steps of the JKR start search in ln E*
+_JKR_PARABOLIC = 4
 
 
 def _array(name: str, value: Any) -> np.ndarray:
@@ -523,16 +525,35 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     h = np.log(3.0) / 4.0                       # the grid's step in ln E*
     grid = E_star0 * np.exp(h * np.arange(-4, 5))
     for point in (jkr.branch_min, jkr.branch_end):
-        rows = [trial(float(es), point) for es in grid]
+        if hasattr(jkr, "forces"):          # a power-law tip: all candidates in one evaluation
+            ws = np.array([work(float(es), point) for es in grid])
+            cps = np.array([z_pull - point(float(es), float(w))[1] for es, w in zip(grid, ws)]
+                           if "contact_point" not in given and "contact_point" in names
+                           else [float(start.get("contact_point", 0.0))] * grid.size)
+            f = jkr.forces(zs[None, :] - cps[:, None], grid, ws)
+            rss = np.sum((f - rise) ** 2, axis=1)
+            rows = [(float(r), float(es), float(w), float(c))
+                    for r, es, w, c in zip(rss, grid, ws, cps)]
+        else:
+            rows = [trial(float(es), point) for es in grid]
         i = int(np.argmin([r[0] for r in rows]))
         if rows[i][0] < best[0]:
             best = rows[i]
         if 0 < i < grid.size - 1 and "E" in names and "E" not in given:
-            # one parabolic step in ln E* through the best point and its neighbours
-            r0, r1, r2 = rows[i - 1][0], rows[i][0], rows[i + 1][0]
-            curv = r0 - 2.0 * r1 + r2
-            if curv > 0:
-                row = trial(float(grid[i] * np.exp(0.5 * h * (r0 - r2) / curv)), point)
+            # successive parabolic steps in ln E* from the best point and its neighbours
+            pts = [(float(np.log(r[1])), r) for r in rows[i - 1:i + 2]]
+            for _ in range(_JKR_PARABOLIC):
+                (u0, q0), (u1, q1), (u2, q2) = sorted(pts, key=lambda p: p[0])
+                r0, r1, r2 = q0[0], q1[0], q2[0]
+                den = (u1 - u0) * (r1 - r2) - (u1 - u2) * (r1 - r0)
+                if not den != 0:
+                    break
+                u = u1 - 0.5 * ((u1 - u0) ** 2 * (r1 - r2) - (u1 - u2) ** 2 * (r1 - r0)) / den
+                if not u0 < u < u2 or min(abs(u - u0), abs(u - u1), abs(u - u2)) < 1e-9:
+                    break
+                row = trial(float(np.exp(u)), point)
+                # keep the three best points
+                pts = sorted(pts + [(u, row)], key=lambda p: p[1][0])[:3]
                 if row[0] < best[0]:
                     best = row
     start["work_of_adhesion"] = best[2]
