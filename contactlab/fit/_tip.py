@@ -168,16 +168,20 @@ class TipModel:
         return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
 
 
-class _AtRounding(Exception):
-    """Raised inside the residual callback to stop MINPACK once the residual is at rounding."""
+#: evaluations over which a stalled fit is recognised (see :func:`levenberg_marquardt`)
+STALL_WINDOW = 40
 
-    def __init__(self, x: np.ndarray) -> None:
-        super().__init__()
-        self.x = x
+
+class _AtRounding(Exception):
+    """Raised inside the residual callback to stop MINPACK (at rounding, or stalled)."""
+
+    def __init__(self, x: np.ndarray, message: str) -> None:
+        super().__init__(message)
+        self.x, self.message = x, message
 
 
 def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500,
-                        floor: float = 0.0) -> tuple:
+                        floor: float = 0.0, stall: float = 0.0) -> tuple:
     """MINPACK's Levenberg-Marquardt (``scipy.optimize.leastsq``, the routine behind
     ``least_squares(method="lm")`` and ``curve_fit``) with the exact Jacobian, without the
     wrapper's per-call overhead: returns ``(x, nfev, ok, message)``.
@@ -186,23 +190,41 @@ def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500,
     first point whose residual reaches it is the solution (nothing is left to gain, and
     MINPACK's own tests, tight so that noisy fits converge fully, would otherwise spend several
     more evaluations on rounding noise). Noisy data never reach it and stop by MINPACK's tests.
+
+    ``stall``: a relative decrease of the sum of squares; when the best sum of squares has
+    fallen by less than this over the last :data:`STALL_WINDOW` evaluations, the best point is
+    the solution. A model with jumps (the end of a JKR branch, the DMT step at contact) can
+    have its least squares on the edge where a data point changes sides; MINPACK then creeps
+    along that edge by rejected and tiny accepted steps until ``max_nfev``. Given as
+    ``0.1/dof``, the fit stops once chi² falls by less than 0.1 over the window (a change of
+    the parameters well inside their standard errors); ``0`` never stops.
     """
     from scipy.optimize import leastsq
     count = 0
+    best = [np.inf, None]               # the best sum of squares and its point
+    marks = [np.inf] * STALL_WINDOW     # the best sum of squares at the last evaluations
 
     def res(x: np.ndarray) -> np.ndarray:
         nonlocal count
         count += 1
         r = residual(x)
-        if float(r @ r) <= floor:
-            raise _AtRounding(np.array(x, dtype=float))
+        ss = float(r @ r)
+        if ss <= floor:
+            raise _AtRounding(np.array(x, dtype=float), "the residual reached rounding")
+        if ss < best[0]:
+            best[0], best[1] = ss, np.array(x, dtype=float)
+        old = marks[count % STALL_WINDOW]
+        marks[count % STALL_WINDOW] = best[0]
+        if stall > 0 and best[0] >= old * (1.0 - stall):
+            raise _AtRounding(best[1], f"the sum of squares fell by less than {stall:.3g} "
+                              f"(relative) over {STALL_WINDOW} evaluations")
         return r
 
     try:
         x, _, info, msg, ier = leastsq(res, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
                                        xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
     except _AtRounding as stop:
-        return np.atleast_1d(stop.x), count, True, "the residual reached rounding"
+        return np.atleast_1d(stop.x), count, True, stop.message
     return np.atleast_1d(x), int(info["nfev"]), ier in (1, 2, 3, 4), msg
 
 

@@ -430,7 +430,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             x0[i] = np.log(v0) if n in logs else v0
         # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
         # model is defined for every contact point) and its gradient test is scale-free
-        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0, floor=floor)
+        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0, floor=floor,
+                                                   stall=0.1 / (z.size - len(stage)))
         if not ok:
             raise ConvergenceError(f"fit.indentation did not converge: {msg}")
         start.update({n: v for n, v in unpack(x_sol).items() if n in idx})
@@ -487,12 +488,14 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
                rise: np.ndarray, w_fixed: float, given: set) -> float:
     """Starting values of a JKR fit; returns the starting ``E*``.
 
-    The smallest force of the data is either the smallest force of the branch (the data pass
-    through it, as under fixed grips) or the end of the branch (the data stop there, as when
-    the surfaces jump apart under load control): for each candidate ``E*`` (a factor 1/3..3
-    around the non-adhesive estimate ``E_star0``) and each reading, the work of adhesion follows
-    from that force (it is a power of ``Δγ``) and the contact point from its depth; the
-    candidate with the smallest residual of (a subsample of) the data wins."""
+    The smallest force of the data is read as the end of the branch: for each candidate ``E*``
+    (a factor 1/3..3 around the non-adhesive estimate ``E_star0``, then successive parabolic
+    steps in ``ln E*``) the work of adhesion follows from that force (it is a power of ``Δγ``)
+    and the contact point from its depth; the candidate with the smallest residual of (a
+    subsample of) the data wins. (Under fixed grips the data's smallest force is the branch's
+    minimum, ``9/5`` of the branch end's for a paraboloid, so ``Δγ`` starts high; reading it
+    as the minimum instead starts closer on noise-free curves but led noisy fits into local
+    minima at the branch end's jump more often.)"""
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
@@ -524,7 +527,7 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
             float(start.get("contact_point", 0.0)))
     h = np.log(3.0) / 4.0                       # the grid's step in ln E*
     grid = E_star0 * np.exp(h * np.arange(-4, 5))
-    for point in (jkr.branch_min, jkr.branch_end):
+    for point in (jkr.branch_end,):     # (jkr.branch_min: see the docstring)
         if hasattr(jkr, "forces"):          # a power-law tip: all candidates in one evaluation
             ws = np.array([work(float(es), point) for es in grid])
             cps = np.array([z_pull - point(float(es), float(w))[1] for es, w in zip(grid, ws)]

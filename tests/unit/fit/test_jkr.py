@@ -215,3 +215,24 @@ def test_solver_jacobian_against_finite_differences(monkeypatch, adhesive):
         smooth = np.abs(residual(x + e) - residual(x - e)) < 1e3 * np.abs(J[:, i]).max() * h
         err = np.minimum(np.abs(J[:, i] - fd), np.abs(J[:, i] - fd10))
         assert np.max(err[smooth]) <= JKR_FD * np.max(np.abs(fd[smooth]))
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval():
+    """With noise, the 95 % intervals of E, the contact point and Δγ cover the truth in 90-99 %
+    of 200 repetitions (fixed-grips branch of a paraboloid)."""
+    rng = np.random.default_rng(32)
+    free = ("E", "contact_point", "work_of_adhesion")
+    hits = dict.fromkeys(free, 0)
+    n = 200
+    z, clean = paraboloid_curve()
+    truth = {"E": E, "contact_point": Z0, "work_of_adhesion": W}
+    noise = 1e-3 * float(np.max(np.abs(clean)))
+    for _ in range(n):
+        res = indentation(z, clean + rng.normal(0.0, noise, z.size), Paraboloid(R=R),
+                          sample=SAMPLE, adhesion="jkr", free=free)
+        ci = res.confidence(0.95)
+        for k in free:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)

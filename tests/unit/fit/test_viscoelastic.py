@@ -174,3 +174,26 @@ def test_bad_input_named(sls_curve):
     tt[3] = np.nan
     with pytest.raises(errors.ParameterError, match=r"time\[3\]"):
         indentation(z, F, prof, time=tt, sample=tmpl)
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval(sls_curve):
+    """With noise, the 95 % intervals of the standard linear solid's parameters and the contact
+    point cover the truth in 90-99 % of 200 repetitions (Ting's solution, approach and
+    retract)."""
+    t, z, clean = sls_curve
+    rng = np.random.default_rng(33)
+    free = ("G_inf", "G_1", "eta_1", "contact_point")
+    hits = dict.fromkeys(free, 0)
+    n = 200
+    truth = {**SLS, "contact_point": Z0}
+    noise = 1e-3 * float(np.max(clean))
+    tmpl = StandardLinearSolid(G_inf=3e4, G_1=1e4, eta_1=1e4)
+    for _ in range(n):
+        res = indentation(z, clean + rng.normal(0.0, noise, z.size), Paraboloid(R=R), time=t,
+                          sample=tmpl, free=free)
+        ci = res.confidence(0.95)
+        for k in free:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)
