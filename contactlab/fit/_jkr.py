@@ -100,7 +100,8 @@ class JKRPower:
         ``δ = δ_s ψ(x)``, ``ψ(x) = x^n - 2n√x``, ``δ_s = K a_c^n`` (since
         ``β √a_c = 2nK a_c^n`` at the branch end). In ``σ = √(ψ(x) - ψ(1))``, which grows
         linearly from the branch end (where ``ψ' = 0``), ``x(σ)`` is a cubic Hermite table built
-        once per exponent; two Newton steps on ``σ(x) = σ`` then reach rounding."""
+        once per exponent; two Newton steps on ``σ(x) = σ`` then reach rounding. The paraboloid
+        (``n = 2``) takes the closed form of :func:`_paraboloid_x` and one Newton step."""
         K, n = self.K, self.n
         a_c, d_c = self.critical(E_star, w)
         if a_c == 0.0:                          # no adhesion: Hertz-like

@@ -121,8 +121,12 @@ def _project_start(cls: type, st: dict, app: Any, F: np.ndarray, cp0: float,
     _, Gk0, tk0 = _prony(cls, st)
     K = Gk0.size
     best: tuple[float, np.ndarray, np.ndarray] | None = None
-    for c in _TAU_FACTORS:
-        _, dGi, dGk, _, _ = app(1.0, np.ones(K), tk0 * c, cp0)
+    # the hereditary integral of each relaxation time is computed on its own, so every factor's
+    # times go through the model at once (as one longer Prony series)
+    taus = np.concatenate([tk0 * c for c in _TAU_FACTORS])
+    _, dGi, dGk_all, _, _ = app(1.0, np.ones(taus.size), taus, cp0)
+    for i, c in enumerate(_TAU_FACTORS):
+        dGk = dGk_all[i * K:(i + 1) * K]
         cols = ([] if cls is Maxwell else [dGi]) + list(dGk)
         if offset:
             cols.append(np.ones_like(F))
