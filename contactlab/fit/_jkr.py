@@ -144,17 +144,6 @@ class JKRPower:
         a_c, d_c = self.critical(E_star, w)
         return 2.0 * E_star * (a_c * d_c - self.K * a_c ** (self.n + 1.0) / (self.n + 1.0)), d_c
 
-    def branch_min(self, E_star: float, w: float) -> tuple[float, float]:
-        """Smallest force on the branch (N) and its indentation (m): on the master curve
-        ``F = 2E* K a_c^(n+1) (x ψ(x) - x^(n+1)/(n+1))``, smallest at ``x^(n-1/2) = 3``
-        (the pull-off force under load control; ``-3πΔγR/2`` for the paraboloid)."""
-        K, n = self.K, self.n
-        a_c, _ = self.critical(E_star, w)
-        x = 3.0 ** (1.0 / (n - 0.5))
-        psi = x ** n - 2.0 * n * np.sqrt(x)
-        f = 2.0 * E_star * K * a_c ** (n + 1.0) * (x * psi - x ** (n + 1.0) / (n + 1.0))
-        return float(f), float(K * a_c ** n * psi)
-
     def forces(self, delta: np.ndarray, E_star: np.ndarray, w: np.ndarray) -> np.ndarray:
         """Forces (N) of several parameter sets at once (a start search): ``delta`` of shape
         ``(m, k)``, ``E_star`` and ``w`` of shape ``(m,)`` (``w > 0``); zeros where apart."""
@@ -362,20 +351,6 @@ class JKRTable:
         z = np.zeros_like(F)
         return (np.where(on, F, z), np.where(on, 2.0 * E_star * (a - s * inv), z),
                 np.where(on, F / E_star + s * s * inv, z), np.where(on, -2.0 * np.pi * a * inv, z))
-
-    def branch_min(self, E_star: float, w: float) -> tuple[float, float]:
-        """Smallest force on the branch (N) and its indentation (m), at the table's nodes (a
-        starting value)."""
-        a_c, d_c = self.critical(E_star, w)
-        beta = np.sqrt(2.0 * np.pi * w / E_star)
-        on = self.a >= a_c
-        a = self.a[on]
-        d = self.g[on] - beta * np.sqrt(a)
-        f = 2.0 * E_star * (a * d - self.G[on])
-        if f.size == 0:
-            return self.branch_end(E_star, w)
-        i = int(np.argmin(f))
-        return float(f[i]), float(d[i])
 
     def branch_end(self, E_star: float, w: float) -> tuple[float, float]:
         """Force (N) and indentation (m) at the end of the branch."""

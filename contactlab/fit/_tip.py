@@ -201,22 +201,23 @@ def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500,
     """
     from scipy.optimize import leastsq
     count = 0
-    best = [np.inf, None]               # the best sum of squares and its point
+    best_ss = np.inf                    # the best sum of squares and its point
+    best_x = np.asarray(x0, dtype=float)
     marks = [np.inf] * STALL_WINDOW     # the best sum of squares at the last evaluations
 
     def res(x: np.ndarray) -> np.ndarray:
-        nonlocal count
+        nonlocal count, best_ss, best_x
         count += 1
         r = residual(x)
         ss = float(r @ r)
         if ss <= floor:
             raise _AtRounding(np.array(x, dtype=float), "the residual reached rounding")
-        if ss < best[0]:
-            best[0], best[1] = ss, np.array(x, dtype=float)
+        if ss < best_ss:
+            best_ss, best_x = ss, np.array(x, dtype=float)
         old = marks[count % STALL_WINDOW]
-        marks[count % STALL_WINDOW] = best[0]
-        if stall > 0 and best[0] >= old * (1.0 - stall):
-            raise _AtRounding(best[1], f"the sum of squares fell by less than {stall:.3g} "
+        marks[count % STALL_WINDOW] = best_ss
+        if stall > 0 and best_ss >= old * (1.0 - stall):
+            raise _AtRounding(best_x, f"the sum of squares fell by less than {stall:.3g} "
                               f"(relative) over {STALL_WINDOW} evaluations")
         return r
 

@@ -494,7 +494,7 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     and the contact point from its depth; the candidate with the smallest residual of (a
     subsample of) the data wins. (Under fixed grips the data's smallest force is the branch's
     minimum, ``9/5`` of the branch end's for a paraboloid, so ``Δγ`` starts high; reading it
-    as the minimum instead starts closer on noise-free curves but led noisy fits into local
+    as that minimum instead started closer on noise-free curves but led noisy fits into local
     minima at the branch end's jump more often.)"""
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
@@ -527,7 +527,7 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
             float(start.get("contact_point", 0.0)))
     h = np.log(3.0) / 4.0                       # the grid's step in ln E*
     grid = E_star0 * np.exp(h * np.arange(-4, 5))
-    for point in (jkr.branch_end,):     # (jkr.branch_min: see the docstring)
+    for point in (jkr.branch_end,):
         if hasattr(jkr, "forces"):          # a power-law tip: all candidates in one evaluation
             ws = np.array([work(float(es), point) for es in grid])
             cps = np.array([z_pull - point(float(es), float(w))[1] for es, w in zip(grid, ws)]
@@ -556,7 +556,7 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
                     break
                 row = trial(float(np.exp(u)), point)
                 # keep the three best points
-                pts = sorted(pts + [(u, row)], key=lambda p: p[1][0])[:3]
+                pts = sorted([*pts, (u, row)], key=lambda p: p[1][0])[:3]
                 if row[0] < best[0]:
                     best = row
     start["work_of_adhesion"] = best[2]
