@@ -19,7 +19,7 @@ def test_floor_stops_a_noise_free_fit_at_rounding():
     def jac(p):
         return np.stack([X, np.ones_like(X)], axis=1)
 
-    x_free, n_free, ok_free, _ = levenberg_marquardt(res, jac, np.array([1.0, 0.0]))
+    _, n_free, ok_free, _ = levenberg_marquardt(res, jac, np.array([1.0, 0.0]))
     x, n, ok, msg = levenberg_marquardt(res, jac, np.array([1.0, 0.0]),
                                         floor=(1e-13 ** 2) * float(y @ y))
     assert ok and ok_free and "rounding" in msg
