@@ -108,6 +108,8 @@ def _free(free: Any, sample: Material) -> tuple[str, ...]:
     return tuple(out)
 
 
+#: samples of the first pass of a long curve (a subsample)
+_SUBSAMPLE = 256
 #: factors on the template's relaxation times tried for the start (approach, projected)
 _TAU_FACTORS = np.geomspace(1.0 / 30.0, 30.0, 9)
 
@@ -262,6 +264,19 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
 
     x0 = np.array([np.log(st[n] / scales[n]) if n in logs else st[n] / scales[n]
                    for n in names])
+    model_all, z_all, F_all = model, z, F
+    sub = z.size // _SUBSAMPLE
+    if sub > 1:
+        # a first pass on every sub-th sample (the turning point kept): most of the walk from
+        # the start costs a fraction of a full evaluation; the full curve follows from there
+        keep = np.union1d(np.arange(0, z.size, sub), [model.im, z.size - 1])
+        model, z, F = TingModel(t[keep], z_all[keep], tipm), z_all[keep], F_all[keep]
+        x_sub, _, ok, _ = levenberg_marquardt(residual, jacobian, x0,
+                                              floor=(ROUNDING ** 2) * float(F @ F))
+        cache.clear()
+        model, z, F = model_all, z_all, F_all
+        if ok:
+            x0 = x_sub
     x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0,
                                                 floor=(ROUNDING ** 2) * float(F @ F))
     if not ok:
