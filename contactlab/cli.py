@@ -405,12 +405,14 @@ def _parse_assignments(items: Sequence[str], what: str) -> dict[str, float]:
 
 
 def _cmd_fit(args: argparse.Namespace) -> int:
-    """``contactlab fit CURVE.csv``: fit an indentation curve (depth, force) and report the
-    parameters with their standard errors and 95 % intervals."""
+    """``contactlab fit CURVE``: fit an indentation curve (depth, force; with the sample times
+    for a viscoelastic sample) and report the parameters with their standard errors and 95 %
+    intervals. CSV files, or AFM instrument files through ``afmformats`` (the extra ``afm``)."""
     import numpy as np
 
     from . import fit
     from .errors import ParameterError
+    from .fit.io import AFM_EXTENSIONS
     from .numeric.tables import read_columns
     from .registry import registry
     profile = registry.create("profile", args.profile, **_parse_assignments(args.param, "--param"))
@@ -422,12 +424,48 @@ def _cmd_fit(args: argparse.Namespace) -> int:
 
     sample = material(args.sample)
     tip = material(args.tip) if args.tip else None
-    _, cols = read_columns(args.curve, names=("depth", "force"), dimension=("length", "force"),
-                           min_columns=2)
-    depth, force = (cols[k] for k in list(cols)[:2])
-    free = tuple(n.strip() for n in args.free.split(",") if n.strip())
+    visco = bool(getattr(sample, "is_viscoelastic", False))
+    time = None
+    if str(args.curve).lower().endswith(AFM_EXTENSIONS):
+        if args.time is not None:
+            raise ParameterError(f"--time {args.time!r} is invalid for an instrument file: its "
+                                 "own time channel is used; drop --time.")
+        # a viscoelastic fit needs the approach and the retract
+        segment = args.segment or ("both" if visco else "approach")
+        curve = fit.read_curve(args.curve, segment=segment, index=args.index)
+        depth, force = curve.depth, curve.force
+        if visco:
+            if curve.time is None:
+                raise ParameterError(f"{args.curve!r} has no time channel: a viscoelastic "
+                                     f"sample ({args.sample!r}) needs the sample times.")
+            time = curve.time
+    else:
+        if args.segment is not None or args.index != 0:
+            raise ParameterError("--segment and --index apply to AFM instrument files "
+                                 f"({', '.join(AFM_EXTENSIONS)}); a CSV file is read whole.")
+        names, cols = read_columns(args.curve, names=("depth", "force"),
+                                   dimension=("length", "force"), min_columns=2)
+        depth, force = (cols[k] for k in list(cols)[:2])
+        if visco or args.time is not None:
+            col = args.time or "time"
+            if col not in names[2:]:
+                raise ParameterError(
+                    f"{args.curve!r} has no column {col!r} (columns {names}): "
+                    + ("a viscoelastic sample needs the sample times, e.g. a column "
+                       "'time [ms]' (or name it with --time)." if visco else
+                       "--time names the column of sample times."))
+            if not visco:
+                raise ParameterError(f"--time {col!r} is given but sample={args.sample!r} is "
+                                     "elastic: times are used by viscoelastic samples only "
+                                     "(e.g. standard_linear_solid:G_inf=...,G_1=...,eta_1=...).")
+            _, tcols = read_columns(args.curve, dimension=lambda c: "time" if c == col
+                                    else "ignore", min_columns=2)
+            time = tcols[col]
+    free = (None if args.free is None
+            else tuple(n.strip() for n in args.free.split(",") if n.strip()))
     res = fit.indentation(depth, force, profile, sample=sample, tip=tip, free=free,
-                          adhesion=args.adhesion, work_of_adhesion=args.work_of_adhesion)
+                          adhesion=args.adhesion, work_of_adhesion=args.work_of_adhesion,
+                          time=time)
     if args.output:
         res.to_csv(args.output, overwrite=args.overwrite)
     if args.plot:
@@ -446,9 +484,15 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                           "model_error": float(res.model_error)}, indent=1))
         return 0
     units = {"E": "Pa", "contact_point": "m", "force_offset": "N", "work_of_adhesion": "J/m^2"}
+
+    def unit(k: str) -> str:            # viscoelastic names: moduli, viscosities, times
+        base = k.split("[")[0]
+        return units.get(k) or ("Pa" if base.startswith("G") or base == "moduli" else
+                                "Pa s" if base.startswith("eta") else
+                                "s" if base in ("relaxation_times", "tau") else "")
     for k in res.free:
         lo, hi = ci[k]
-        print(f"{k} = {res.params[k]:.10g} {units.get(k, '')}  (stderr {res.stderr[k]:.3g}; "
+        print(f"{k} = {res.params[k]:.10g} {unit(k)}  (stderr {res.stderr[k]:.3g}; "
               f"95 %: {lo:.8g} .. {hi:.8g})")
     print(f"residual rms = {float(np.sqrt(np.mean(res.residuals ** 2))):.3g} N "
           f"({res.x.size} points, {res.dof} degrees of freedom)")
@@ -581,15 +625,26 @@ def _parser() -> argparse.ArgumentParser:
     ft = add("fit", _cmd_fit, "fit an indentation curve (depth, force): modulus, contact point, "
              "offset, work of adhesion, with standard errors", scene=False)
     ft.add_argument("curve", help="CSV file: depth and force columns (units in the header, e.g. "
-                    "'depth [nm], force [nN]'; SI without)")
+                    "'depth [nm], force [nN]'; SI without) and, for a viscoelastic sample, a "
+                    "'time' column; or an AFM instrument file (.jpk-force, .ibw, .tab, ...) "
+                    "read through afmformats (pip install 'contactlab[afm]')")
     ft.add_argument("--profile", required=True, help="registered profile name, e.g. sphere")
     ft.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                     help="profile parameter (repeatable), e.g. R=5e-6")
     ft.add_argument("--sample", required=True, metavar="NAME:K=V,...",
                     help="sample material template, e.g. elastic:E=1e6,nu=0.5 (E: the start)")
     ft.add_argument("--tip", metavar="NAME:K=V,...", help="tip material (default rigid)")
-    ft.add_argument("--free", default="E,contact_point",
-                    help="comma-separated names to fit (default E,contact_point)")
+    ft.add_argument("--free", default=None,
+                    help="comma-separated names to fit (default E,contact_point; for a "
+                    "viscoelastic sample its parameters and contact_point)")
+    ft.add_argument("--time", metavar="COLUMN", default=None,
+                    help="CSV column of the sample times for a viscoelastic sample (default "
+                    "'time'; units in the header, e.g. 'time [ms]')")
+    ft.add_argument("--segment", choices=("approach", "retract", "both"), default=None,
+                    help="part of an instrument curve (default approach; both for a "
+                    "viscoelastic sample)")
+    ft.add_argument("--index", type=int, default=0,
+                    help="curve of an instrument file holding several (a force map), from 0")
     ft.add_argument("--adhesion", choices=("jkr", "dmt"), default=None, help="adhesive model")
     ft.add_argument("--work-of-adhesion", type=float, default=None,
                     help="fixed work of adhesion, J/m^2 (with --adhesion jkr or dmt)")

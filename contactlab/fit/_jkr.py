@@ -44,6 +44,22 @@ def _master(n: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return _MASTERS[n]
 
 
+def _paraboloid_x(y: np.ndarray) -> np.ndarray:
+    """The paraboloid's master curve in closed form: ``x = u²`` with ``u >= 1`` the largest
+    root of the quartic ``u⁴ - 4u - y = 0`` (``y >= -3``), by Ferrari's resolvent cubic
+    ``m³ + y m - 2 = 0``, whose real root is written ``m = 2/(A² + AB + B²)`` (no
+    cancellation; ``A³ = 1 + √(1 + y³/27)``, ``B = y/(3A)``), and ``u² - √(2m) u + m - 2/√(2m)
+    = 0``. Near the branch end (``y → -3``, a double root) the last square root loses
+    digits; one Newton step in ``σ`` restores them."""
+    y = np.maximum(y, -3.0)
+    A = np.cbrt(1.0 + np.sqrt(np.maximum(1.0 + y * y * y / 27.0, 0.0)))
+    B = y / (3.0 * A)
+    m = 2.0 / (A * A + A * B + B * B)
+    s = np.sqrt(2.0 * m)
+    u = 0.5 * (s + np.sqrt(np.maximum(8.0 / s - 2.0 * m, 0.0)))
+    return np.maximum(u * u, 1.0)
+
+
 def _hermite_x(s: np.ndarray, sn: np.ndarray, xn: np.ndarray, mn: np.ndarray) -> np.ndarray:
     k = np.clip(np.searchsorted(sn, s, side="right") - 1, 0, sn.size - 2)
     h = sn[k + 1] - sn[k]
@@ -84,20 +100,34 @@ class JKRPower:
         ``δ = δ_s ψ(x)``, ``ψ(x) = x^n - 2n√x``, ``δ_s = K a_c^n`` (since
         ``β √a_c = 2nK a_c^n`` at the branch end). In ``σ = √(ψ(x) - ψ(1))``, which grows
         linearly from the branch end (where ``ψ' = 0``), ``x(σ)`` is a cubic Hermite table built
-        once per exponent; two Newton steps on ``σ(x) = σ`` then reach rounding."""
+        once per exponent; two Newton steps on ``σ(x) = σ`` then reach rounding. The paraboloid
+        (``n = 2``) takes the closed form of :func:`_paraboloid_x` and one Newton step."""
         K, n = self.K, self.n
         a_c, d_c = self.critical(E_star, w)
         if a_c == 0.0:                          # no adhesion: Hertz-like
             return (np.maximum(delta, 0.0) / K) ** (1.0 / n)
+        out = np.full(np.shape(delta), np.nan)
         on = delta >= d_c
-        y = delta / (K * a_c ** n)
+        out[on] = a_c * self._master_x(delta[on] / (K * a_c ** n))
+        return out
+
+    def _master_x(self, y: np.ndarray) -> np.ndarray:
+        """``x = a/a_c >= 1`` on the master curve at ``y = δ/δ_s >= ψ(1)``."""
+        n = self.n
         sig = np.sqrt(np.maximum(y - (1.0 - 2.0 * n), 0.0))
-        sn, xn, mn = _master(n)
-        inside = sig <= sn[-1]
-        far = np.maximum(y, 1.0) ** (1.0 / n)          # beyond the table: x^n = y + 2n√x
-        far = (np.maximum(y, 1.0) + 2.0 * n * np.sqrt(far)) ** (1.0 / n)
-        x = np.where(inside, _hermite_x(np.minimum(sig, sn[-1]), sn, xn, mn), far)
-        for _ in range(_MASTER_NEWTON):
+        if n == 2.0:
+            x = _paraboloid_x(y)
+            steps = 1
+        else:
+            sn, xn, mn = _master(n)
+            x = _hermite_x(np.minimum(sig, sn[-1]), sn, xn, mn)
+            beyond = sig > sn[-1]
+            if np.any(beyond):                  # beyond the table: x^n = y + 2n√x
+                yb = np.maximum(y[beyond], 1.0)
+                far = yb ** (1.0 / n)
+                x[beyond] = (yb + 2.0 * n * np.sqrt(far)) ** (1.0 / n)
+            steps = _MASTER_NEWTON
+        for _ in range(steps):
             sx = np.sqrt(x)
             xn_ = x * x if n == 2.0 else x ** n
             psi = xn_ - 2.0 * n * sx
@@ -107,18 +137,54 @@ class JKRPower:
             # Newton on σ(x) = σ: σ' = ψ'/(2σ)
             x = np.maximum(x - np.where(ok, (s_x - sig) * 2.0 * s_x / np.where(ok, dpsi, 1.0),
                                         0.0), 1.0)
-        return np.where(on, a_c * x, np.nan)
+        return x
 
     def branch_end(self, E_star: float, w: float) -> tuple[float, float]:
         """Force (N) and indentation (m) at the end of the branch."""
         a_c, d_c = self.critical(E_star, w)
         return 2.0 * E_star * (a_c * d_c - self.K * a_c ** (self.n + 1.0) / (self.n + 1.0)), d_c
 
+    def forces(self, delta: np.ndarray, E_star: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """Forces (N) of several parameter sets at once (a start search): ``delta`` of shape
+        ``(m, k)``, ``E_star`` and ``w`` of shape ``(m,)`` (``w > 0``); zeros where apart."""
+        K, n = self.K, self.n
+        beta = np.sqrt(2.0 * np.pi * w / E_star)
+        a_c = (beta / (2.0 * n * K)) ** (1.0 / (n - 0.5))
+        d_c = K * a_c ** n - beta * np.sqrt(a_c)
+        out = np.zeros(delta.shape)
+        on = delta >= d_c[:, None]
+        rows = on.nonzero()[0]
+        d = delta[on]
+        a = a_c[rows] * self._master_x(d / (K * a_c[rows] ** n))
+        out[on] = 2.0 * E_star[rows] * (a * d - K * a ** (n + 1.0) / (n + 1.0))
+        return out
+
     def force(self, delta: np.ndarray, E_star: float, w: float
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Force (N) and its derivatives ``dF/dδ``, ``dF/dE*``, ``dF/dΔγ`` at indentations
         ``δ``; zeros where the surfaces are apart."""
         K, n = self.K, self.n
+        a_c, d_c = self.critical(E_star, w)
+        if a_c > 0.0:                           # only the attached points are computed
+            out = np.zeros((4, np.size(delta)))
+            on = (delta >= d_c).nonzero()[0]
+            d = delta[on]
+            a = a_c * self._master_x(d / (K * a_c ** n))
+            if n == 2.0:                        # the paraboloid without general powers
+                F = 2.0 * E_star * (a * d - K * (a * a * a) / 3.0)
+                s = np.sqrt((2.0 * np.pi * w / E_star) * a)
+                ha = 2.0 * K * a - s / (2.0 * a)
+            else:
+                F = 2.0 * E_star * (a * d - K * a ** (n + 1.0) / (n + 1.0))
+                s = np.sqrt(2.0 * np.pi * w * a / E_star)
+                ha = n * K * a ** (n - 1.0) - s / (2.0 * a)
+            # ha > 0 on the branch (a > a_c); 0 at its end
+            inv = np.where(ha > 0, 1.0 / np.where(ha > 0, ha, 1.0), 0.0)
+            out[0, on] = F
+            out[1, on] = 2.0 * E_star * (a - s * inv)
+            out[2, on] = F / E_star + s * s * inv
+            out[3, on] = -2.0 * np.pi * a * inv
+            return out[0], out[1], out[2], out[3]
         a = self.radius(delta, E_star, w)
         on = np.isfinite(a)
         a = np.where(on, a, 0.0)

@@ -168,14 +168,71 @@ class TipModel:
         return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
 
 
-def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500) -> tuple:
+#: evaluations over which a stalled fit is recognised (see :func:`levenberg_marquardt`)
+STALL_WINDOW = 40
+
+
+class _AtRounding(Exception):
+    """Raised inside the residual callback to stop MINPACK (at rounding, or stalled)."""
+
+    def __init__(self, x: np.ndarray, message: str) -> None:
+        super().__init__(message)
+        self.x, self.message = x, message
+
+
+def levenberg_marquardt(residual, jacobian, x0: np.ndarray, max_nfev: int = 500,
+                        floor: float = 0.0, stall: float = 0.0) -> tuple:
     """MINPACK's Levenberg-Marquardt (``scipy.optimize.leastsq``, the routine behind
     ``least_squares(method="lm")`` and ``curve_fit``) with the exact Jacobian, without the
-    wrapper's per-call overhead: returns ``(x, nfev, ok, message)``."""
+    wrapper's per-call overhead: returns ``(x, nfev, ok, message)``.
+
+    ``floor``: a sum of squares at the rounding of the model (``(ROUNDING · |data|)²``); the
+    first point whose residual reaches it is the solution (nothing is left to gain, and
+    MINPACK's own tests, tight so that noisy fits converge fully, would otherwise spend several
+    more evaluations on rounding noise). Noisy data never reach it and stop by MINPACK's tests.
+
+    ``stall``: a relative decrease of the sum of squares; when the best sum of squares has
+    fallen by less than this over the last :data:`STALL_WINDOW` evaluations, the best point is
+    the solution. A model with jumps (the end of a JKR branch, the DMT step at contact) can
+    have its least squares on the edge where a data point changes sides; MINPACK then creeps
+    along that edge by rejected and tiny accepted steps until ``max_nfev``. Given as
+    ``0.1/dof``, the fit stops once chi² falls by less than 0.1 over the window (a change of
+    the parameters well inside their standard errors); ``0`` never stops.
+    """
     from scipy.optimize import leastsq
-    x, _, info, msg, ier = leastsq(residual, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
-                                   xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
+    count = 0
+    best_ss = np.inf                    # the best sum of squares and its point
+    best_x = np.asarray(x0, dtype=float)
+    marks = [np.inf] * STALL_WINDOW     # the best sum of squares at the last evaluations
+
+    def res(x: np.ndarray) -> np.ndarray:
+        nonlocal count, best_ss, best_x
+        count += 1
+        r = residual(x)
+        ss = float(r @ r)
+        if ss <= floor:
+            raise _AtRounding(np.array(x, dtype=float), "the residual reached rounding")
+        if ss < best_ss:
+            best_ss, best_x = ss, np.array(x, dtype=float)
+        old = marks[count % STALL_WINDOW]
+        marks[count % STALL_WINDOW] = best_ss
+        if stall > 0 and best_ss >= old * (1.0 - stall):
+            raise _AtRounding(best_x, f"the sum of squares fell by less than {stall:.3g} "
+                              f"(relative) over {STALL_WINDOW} evaluations")
+        return r
+
+    try:
+        x, _, info, msg, ier = leastsq(res, x0, Dfun=jacobian, full_output=True, ftol=1e-15,
+                                       xtol=1e-15, gtol=1e-15, maxfev=max_nfev)
+    except _AtRounding as stop:
+        return np.atleast_1d(stop.x), count, True, stop.message
     return np.atleast_1d(x), int(info["nfev"]), ier in (1, 2, 3, 4), msg
+
+
+#: residual norm, relative to the data's norm, taken as the rounding of a model evaluation
+#: (noise-free data reach ~1e-15; parameters are then exact to ~1e-13, far inside the fits'
+#: tolerances)
+ROUNDING = 1e-13
 
 
 def covariance(J: np.ndarray, s2: float) -> np.ndarray:

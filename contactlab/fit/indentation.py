@@ -36,6 +36,10 @@ FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
 _BASELINE = 0.1
 #: candidate contact points of the start search
 _START_CANDIDATES = 8
+#: successive parabolic steps of the JKR start search in ln E*
+_JKR_PARABOLIC = 4
+#: points of the first pass of a JKR fit (a subsample of the curve)
+_JKR_SUBSAMPLE = 256
 
 
 def _array(name: str, value: Any) -> np.ndarray:
@@ -410,14 +414,24 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                 J[:, i] = scales[n]
         return J
 
-    from ._tip import covariance, levenberg_marquardt
+    from ._tip import ROUNDING, covariance, levenberg_marquardt
+    floor = (ROUNDING ** 2) * float(F @ F)
     stages = [names]
     if jkr is not None and fit_off and len(names) > 1:
         # the offset shifts the detached points and the branch end together: fitted last,
         # from the solution with the baseline's offset (Levenberg-Marquardt otherwise wanders
         # along the discontinuity at the branch end)
         stages.insert(0, tuple(n for n in names if n != "force_offset"))
-    for stage in stages:
+    z_all, F_all = z, F
+    sub = max(1, z.size // _JKR_SUBSAMPLE)
+    if jkr is not None and sub > 1:
+        # a first pass on every sub-th point: most of the walk from the start (whose Δγ is
+        # high under fixed grips) costs a fraction of a full evaluation
+        stages.insert(0, stages[0])
+    for k_stage, stage in enumerate(stages):
+        z, F = (z_all[::sub], F_all[::sub]) if (k_stage == 0 and len(stages) > 1
+                                                 and jkr is not None and sub > 1) \
+            else (z_all, F_all)
         idx.clear()
         idx.update({n: i for i, n in enumerate(stage)})
         cache.clear()
@@ -427,7 +441,9 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             x0[i] = np.log(v0) if n in logs else v0
         # Levenberg-Marquardt (MINPACK): no bounds are needed (E > 0 through ln E; the tip
         # model is defined for every contact point) and its gradient test is scale-free
-        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+        x_sol, nfev, ok, msg = levenberg_marquardt(
+            residual, jacobian, x0, floor=floor * z.size / z_all.size,
+            stall=0.1 / (z.size - len(stage)))
         if not ok:
             raise ConvergenceError(f"fit.indentation did not converge: {msg}")
         start.update({n: v for n, v in unpack(x_sol).items() if n in idx})
@@ -484,42 +500,77 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
                rise: np.ndarray, w_fixed: float, given: set) -> float:
     """Starting values of a JKR fit; returns the starting ``E*``.
 
-    Under fixed grips the last attached point is the end of the branch, at the smallest force:
-    for each candidate ``E*`` (a factor 1/3..3 around the non-adhesive estimate ``E_star0``)
-    the work of adhesion follows from that force (the branch-end force is a power of ``Δγ``)
-    and the contact point from its depth (``z_pull - δ_c``); the candidate with the smallest
-    residual of (a subsample of) the data wins."""
+    The smallest force of the data is read as the end of the branch: for each candidate ``E*``
+    (a factor 1/3..3 around the non-adhesive estimate ``E_star0``, then successive parabolic
+    steps in ``ln E*``) the work of adhesion follows from that force (it is a power of ``Δγ``)
+    and the contact point from its depth; the candidate with the smallest residual of (a
+    subsample of) the data wins. (Under fixed grips the data's smallest force is the branch's
+    minimum, ``9/5`` of the branch end's for a paraboloid, so ``Δγ`` starts high; reading it
+    as that minimum instead started closer on noise-free curves but led noisy fits into local
+    minima at the branch end's jump more often.)"""
     i_pull = int(np.argmin(rise))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
-
-    branch_end = jkr.branch_end
-    # the branch-end force of c r^n grows as Δγ^((n+1)/(2n-1)) (a table: the paraboloid's 1,
-    # iterated)
+    # the force of c r^n grows as Δγ^((n+1)/(2n-1)) at a fixed point of the branch (a table:
+    # the paraboloid's 1, iterated)
     n = getattr(jkr, "n", 2.0)
     p = (2.0 * n - 1.0) / (n + 1.0)
 
-    def work(E_star: float) -> float:
+    def work(E_star: float, point: Any) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:
             return float(start.get("work_of_adhesion", w_fixed))
         if not f_pull < 0:
             return 1e-9 * E_star * float(np.max(np.abs(zs)))
-        w = float((f_pull / branch_end(E_star, 1.0)[0]) ** p)
+        w = float((f_pull / point(E_star, 1.0)[0]) ** p)
         if not hasattr(jkr, "n"):
             for _ in range(4):
-                w *= float((f_pull / branch_end(E_star, w)[0]) ** p)
+                w *= float((f_pull / point(E_star, w)[0]) ** p)
         return w
 
-    best = (np.inf, E_star0, work(E_star0), float(start.get("contact_point", 0.0)))
-    for es in E_star0 * np.geomspace(1.0 / 3.0, 3.0, 9):
-        w = work(es)
-        cp = (z_pull - branch_end(es, w)[1] if "contact_point" not in given
+    def trial(es: float, point: Any) -> tuple[float, float, float, float]:
+        w = work(es, point)
+        cp = (z_pull - point(es, w)[1] if "contact_point" not in given
               and "contact_point" in names else float(start.get("contact_point", 0.0)))
         f = jkr.force(zs - cp, es, w)[0]
-        rss = float(np.sum((f - rise) ** 2))
-        if rss < best[0]:
-            best = (rss, float(es), w, cp)
+        return float(np.sum((f - rise) ** 2)), float(es), w, cp
+
+    best = (np.inf, E_star0, work(E_star0, jkr.branch_end),
+            float(start.get("contact_point", 0.0)))
+    h = np.log(3.0) / 4.0                       # the grid's step in ln E*
+    grid = E_star0 * np.exp(h * np.arange(-4, 5))
+    for point in (jkr.branch_end,):
+        if hasattr(jkr, "forces"):          # a power-law tip: all candidates in one evaluation
+            ws = np.array([work(float(es), point) for es in grid])
+            cps = np.array([z_pull - point(float(es), float(w))[1] for es, w in zip(grid, ws)]
+                           if "contact_point" not in given and "contact_point" in names
+                           else [float(start.get("contact_point", 0.0))] * grid.size)
+            f = jkr.forces(zs[None, :] - cps[:, None], grid, ws)
+            rss = np.sum((f - rise) ** 2, axis=1)
+            rows = [(float(r), float(es), float(w), float(c))
+                    for r, es, w, c in zip(rss, grid, ws, cps)]
+        else:
+            rows = [trial(float(es), point) for es in grid]
+        i = int(np.argmin([r[0] for r in rows]))
+        if rows[i][0] < best[0]:
+            best = rows[i]
+        if 0 < i < grid.size - 1 and "E" in names and "E" not in given:
+            # successive parabolic steps in ln E* from the best point and its neighbours
+            pts = [(float(np.log(r[1])), r) for r in rows[i - 1:i + 2]]
+            for _ in range(_JKR_PARABOLIC):
+                (u0, q0), (u1, q1), (u2, q2) = sorted(pts, key=lambda p: p[0])
+                r0, r1, r2 = q0[0], q1[0], q2[0]
+                den = (u1 - u0) * (r1 - r2) - (u1 - u2) * (r1 - r0)
+                if not den != 0:
+                    break
+                u = u1 - 0.5 * ((u1 - u0) ** 2 * (r1 - r2) - (u1 - u2) ** 2 * (r1 - r0)) / den
+                if not u0 < u < u2 or min(abs(u - u0), abs(u - u1), abs(u - u2)) < 1e-9:
+                    break
+                row = trial(float(np.exp(u)), point)
+                # keep the three best points
+                pts = sorted([*pts, (u, row)], key=lambda p: p[1][0])[:3]
+                if row[0] < best[0]:
+                    best = row
     start["work_of_adhesion"] = best[2]
     if "contact_point" in names:
         start["contact_point"] = best[3]

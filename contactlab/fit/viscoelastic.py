@@ -108,6 +108,8 @@ def _free(free: Any, sample: Material) -> tuple[str, ...]:
     return tuple(out)
 
 
+#: samples of the first pass of a long curve (a subsample)
+_SUBSAMPLE = 256
 #: factors on the template's relaxation times tried for the start (approach, projected)
 _TAU_FACTORS = np.geomspace(1.0 / 30.0, 30.0, 9)
 
@@ -121,8 +123,12 @@ def _project_start(cls: type, st: dict, app: Any, F: np.ndarray, cp0: float,
     _, Gk0, tk0 = _prony(cls, st)
     K = Gk0.size
     best: tuple[float, np.ndarray, np.ndarray] | None = None
-    for c in _TAU_FACTORS:
-        _, dGi, dGk, _, _ = app(1.0, np.ones(K), tk0 * c, cp0)
+    # the hereditary integral of each relaxation time is computed on its own, so every factor's
+    # times go through the model at once (as one longer Prony series)
+    taus = np.concatenate([tk0 * c for c in _TAU_FACTORS])
+    _, dGi, dGk_all, _, _ = app(1.0, np.ones(taus.size), taus, cp0)
+    for i, c in enumerate(_TAU_FACTORS):
+        dGk = dGk_all[i * K:(i + 1) * K]
         cols = ([] if cls is Maxwell else [dGi]) + list(dGk)
         if offset:
             cols.append(np.ones_like(F))
@@ -202,7 +208,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
                                           or n == "eta") else 1.0)
     # ---- the model over the depths the contact point allows
     span = float(np.max(z) - np.min(z))
-    from ._tip import TipModel, covariance, levenberg_marquardt
+    from ._tip import ROUNDING, TipModel, covariance, levenberg_marquardt
     d_max = (float(np.max(z)) - (float(np.min(z)) - span if fit_cp else cp0)) * 1.0001
     if np.isfinite(profile.max_radius):
         reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
@@ -258,7 +264,21 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
 
     x0 = np.array([np.log(st[n] / scales[n]) if n in logs else st[n] / scales[n]
                    for n in names])
-    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0)
+    model_all, z_all, F_all = model, z, F
+    sub = z.size // _SUBSAMPLE
+    if sub > 1:
+        # a first pass on every sub-th sample (the turning point kept): most of the walk from
+        # the start costs a fraction of a full evaluation; the full curve follows from there
+        keep = np.union1d(np.arange(0, z.size, sub), [model.im, z.size - 1])
+        model, z, F = TingModel(t[keep], z_all[keep], tipm), z_all[keep], F_all[keep]
+        x_sub, _, ok, _ = levenberg_marquardt(residual, jacobian, x0,
+                                              floor=(ROUNDING ** 2) * float(F @ F))
+        cache.clear()
+        model, z, F = model_all, z_all, F_all
+        if ok:
+            x0 = x_sub
+    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, x0,
+                                                floor=(ROUNDING ** 2) * float(F @ F))
     if not ok:
         raise ConvergenceError(f"fit.indentation (viscoelastic) did not converge: {msg}")
     vals = unpack(x_sol)

@@ -60,3 +60,93 @@ def test_fit_bad_input_exits_2(curve, capsys, extra, text):
 def test_fit_missing_file(tmp_path, capsys):
     assert main(["fit", str(tmp_path / "none.csv"), *ARGS]) == 2
     assert "cannot be read" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------- viscoelastic: --time
+G_INF, G_1, TAU, V = 1e4, 3e4, 0.4, 1e-6
+
+
+def lee_radok_ramp(t):
+    """Lee-Radok's force of a rigid paraboloid (radius R) pressed at speed V into an
+    incompressible standard linear solid (G(t) = G_inf + G_1 exp(-t/τ), E*(t) = 4G(t)), contact
+    at t = 0: F = 4∫G(t - s) dΦ(s) with Φ = (4/3)√R δ^(3/2), δ = V s, in closed form through
+    Dawson's integral D: ∫_0^t e^(-(t-s)/τ) √s ds = τ√t - τ^(3/2) D(√(t/τ))."""
+    from scipy.special import dawsn
+    s = np.maximum(t, 0.0)
+    return 8 * np.sqrt(R) * V ** 1.5 * (G_INF * 2 / 3 * s ** 1.5 + G_1 * (
+        TAU * np.sqrt(s) - TAU ** 1.5 * dawsn(np.sqrt(s / TAU))))
+
+
+@pytest.fixture
+def visco_curve(tmp_path):
+    t = np.linspace(-0.1, 0.5, 400)                     # s
+    z = Z0 + V * t
+    F = lee_radok_ramp(t)
+    p = tmp_path / "visco.csv"
+    p.write_text("depth [nm],force [nN],time [ms]\n" + "".join(
+        f"{float(a * 1e9)!r},{float(b * 1e9)!r},{float(c * 1e3)!r}\n" for a, b, c in zip(z, F, t)))
+    return p
+
+
+VISCO = ["--profile", "paraboloid", "--param", f"R={R}",
+         "--sample", "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4"]
+
+
+def test_fit_viscoelastic_reads_the_time_column(visco_curve, capsys):
+    assert main(["fit", str(visco_curve), *VISCO, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["free"] == ["G_inf", "G_1", "eta_1", "contact_point"]
+    want = {"G_inf": G_INF, "G_1": G_1, "eta_1": G_1 * TAU, "contact_point": Z0}
+    for k, v in want.items():
+        assert abs(out["params"][k] / v - 1) < FIT_RECOVERY, k
+
+
+def test_fit_viscoelastic_time_column_named(tmp_path, visco_curve, capsys):
+    renamed = tmp_path / "renamed.csv"
+    renamed.write_text(visco_curve.read_text().replace("time [ms]", "t [ms]"))
+    assert main(["fit", str(renamed), *VISCO, "--time", "t"]) == 0
+    text = capsys.readouterr().out
+    assert "G_inf = " in text and " Pa " in text and "eta_1 = " in text and "Pa s" in text
+
+
+@pytest.mark.parametrize("extra, sample, text", [
+    ([], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "needs the sample times"),
+    (["--time", "stamp"], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "'stamp'"),
+    (["--segment", "both"], "elastic:E=1e6,nu=0.5", "--segment and --index"),
+])
+def test_fit_time_problems_exit_2(curve, capsys, extra, sample, text):
+    args = ["--profile", "paraboloid", "--param", f"R={R}", "--sample", sample]
+    assert main(["fit", str(curve), *args, *extra]) == 2
+    err = capsys.readouterr().err
+    assert text in err and "Traceback" not in err
+
+
+def test_fit_time_with_an_elastic_sample_exits_2(visco_curve, capsys):
+    assert main(["fit", str(visco_curve), *ARGS, "--time", "time"]) == 2
+    assert "elastic" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------- instrument files
+def test_fit_reads_an_instrument_file(tmp_path, capsys):
+    """An AFM file written by afmformats' own exporter (height of the cantilever's base and
+    force, spring constant in its metadata) is read through read_curve and fitted."""
+    afmformats = pytest.importorskip("afmformats")
+    k = 50.0
+    tip = np.concatenate([np.linspace(50e-9, -200e-9, 300), np.linspace(-200e-9, 50e-9, 300)])
+    d = np.maximum(-tip - Z0, 0.0)
+    F = 4 / 3 * E / 0.75 * np.sqrt(R) * d ** 1.5
+    data = {"force": F, "height (measured)": tip - F / k, "height (piezo)": tip - F / k,
+            "segment": np.r_[np.zeros(300), np.ones(300)].astype(np.uint8),
+            "time": np.linspace(0.0, 1.2, 600)}
+    meta = {"path": str(tmp_path / "src.tab"), "enum": 0, "spring constant": k,
+            "point count": 600, "imaging mode": "force-distance"}
+    out = tmp_path / "curve.tab"
+    afmformats.AFMForceDistance(data, meta).export_data(str(out), fmt="tab")
+    assert main(["fit", str(out), *ARGS, "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    # the exporter writes 8 significant digits: the recovery is as good as the file
+    assert abs(res["params"]["E"] / E - 1) < 1e-6
+    assert main(["fit", str(out), *ARGS, "--index", "2"]) == 2
+    assert "index=2" in capsys.readouterr().err
+    assert main(["fit", str(out), *ARGS, "--time", "time"]) == 2
+    assert "instrument file" in capsys.readouterr().err

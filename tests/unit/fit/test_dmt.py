@@ -89,3 +89,23 @@ def test_apex_radius_of_a_sum_and_refusals():
         indentation(Z, dmt_paraboloid(Z), Paraboloid(R=R), sample=SAMPLE, adhesion="dmt")
     with pytest.raises(errors.ParameterError, match="adhesion='vdw'"):
         indentation(Z, dmt_paraboloid(Z), Paraboloid(R=R), sample=SAMPLE, adhesion="vdw")
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval():
+    """With noise, the 95 % intervals of E, the contact point and Δγ cover the truth in 90-99 %
+    of 200 repetitions."""
+    rng = np.random.default_rng(31)
+    free = ("E", "contact_point", "work_of_adhesion")
+    hits = dict.fromkeys(free, 0)
+    n = 200
+    clean = dmt_paraboloid(Z)
+    truth = {"E": E, "contact_point": Z0, "work_of_adhesion": W}
+    for _ in range(n):
+        res = indentation(Z, clean + rng.normal(0.0, 3e-10, Z.size), Paraboloid(R=R),
+                          sample=SAMPLE, adhesion="dmt", free=free)
+        ci = res.confidence(0.95)
+        for k in free:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)

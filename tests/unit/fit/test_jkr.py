@@ -187,9 +187,9 @@ def test_solver_jacobian_against_finite_differences(monkeypatch, adhesive):
     seen = {}
     real = tipmod.levenberg_marquardt
 
-    def spy(residual, jacobian, x0, max_nfev=500):
+    def spy(residual, jacobian, x0, **kw):
         seen.setdefault("fun", (residual, jacobian, np.array(x0, float)))
-        return real(residual, jacobian, x0, max_nfev)
+        return real(residual, jacobian, x0, **kw)
 
     monkeypatch.setattr(tipmod, "levenberg_marquardt", spy)
     z, F = paraboloid_curve(n=300, detached=40)
@@ -204,8 +204,35 @@ def test_solver_jacobian_against_finite_differences(monkeypatch, adhesive):
         e = np.zeros(x.size)
         e[i] = h
         fd = (residual(x + e) - residual(x - e)) / (2 * h)
+        # the first attached point can sit where the branch's curvature is unbounded: there
+        # the truncation error (~h²) of step h is large; Richardson's extrapolation of steps h
+        # and h/10 removes it (its rounding error is larger elsewhere): each point must agree
+        # with one of the two
+        fd10 = (residual(x + e / 10) - residual(x - e / 10)) / (2 * h / 10)
+        fd10 = (100.0 * fd10 - fd) / 99.0
         # points next to the branch end switch between attached and detached: compare where
         # the step does not move the branch end across a data point
         smooth = np.abs(residual(x + e) - residual(x - e)) < 1e3 * np.abs(J[:, i]).max() * h
-        np.testing.assert_allclose(J[smooth, i], fd[smooth], rtol=0,
-                                   atol=JKR_FD * np.max(np.abs(fd[smooth])))
+        err = np.minimum(np.abs(J[:, i] - fd), np.abs(J[:, i] - fd10))
+        assert np.max(err[smooth]) <= JKR_FD * np.max(np.abs(fd[smooth]))
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval():
+    """With noise, the 95 % intervals of E, the contact point and Δγ cover the truth in 90-99 %
+    of 200 repetitions (fixed-grips branch of a paraboloid)."""
+    rng = np.random.default_rng(32)
+    free = ("E", "contact_point", "work_of_adhesion")
+    hits = dict.fromkeys(free, 0)
+    n = 200
+    z, clean = paraboloid_curve()
+    truth = {"E": E, "contact_point": Z0, "work_of_adhesion": W}
+    noise = 1e-3 * float(np.max(np.abs(clean)))
+    for _ in range(n):
+        res = indentation(z, clean + rng.normal(0.0, noise, z.size), Paraboloid(R=R),
+                          sample=SAMPLE, adhesion="jkr", free=free)
+        ci = res.confidence(0.95)
+        for k in free:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)

@@ -174,3 +174,42 @@ def test_bad_input_named(sls_curve):
     tt[3] = np.nan
     with pytest.raises(errors.ParameterError, match=r"time\[3\]"):
         indentation(z, F, prof, time=tt, sample=tmpl)
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval(sls_curve):
+    """With noise, the 95 % intervals of the standard linear solid's parameters and the contact
+    point cover the truth in 90-99 % of 200 repetitions (Ting's solution, approach and
+    retract)."""
+    t, z, clean = sls_curve
+    rng = np.random.default_rng(33)
+    free = ("G_inf", "G_1", "eta_1", "contact_point")
+    hits = dict.fromkeys(free, 0)
+    n = 200
+    truth = {**SLS, "contact_point": Z0}
+    noise = 1e-3 * float(np.max(clean))
+    tmpl = StandardLinearSolid(G_inf=3e4, G_1=1e4, eta_1=1e4)
+    for _ in range(n):
+        res = indentation(z, clean + rng.normal(0.0, noise, z.size), Paraboloid(R=R), time=t,
+                          sample=tmpl, free=free)
+        ci = res.confidence(0.95)
+        for k in free:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)
+
+
+def test_long_curve_first_pass_on_a_subsample():
+    """A curve of 1500 samples (fitted first on a subsample, then on every sample) is recovered
+    as well: Lee-Radok's approach on a ramp in closed form (Dawson's integral D:
+    ∫_0^t e^(-(t-s)/τ) √s ds = τ√t - τ^(3/2) D(√(t/τ)))."""
+    from scipy.special import dawsn
+    g_inf, g_1, tau = SLS["G_inf"], SLS["G_1"], SLS["eta_1"] / SLS["G_1"]
+    t = np.linspace(-0.1, TM, 1500)
+    s = np.maximum(t, 0.0)
+    F = 8 * np.sqrt(R) * V ** 1.5 * (g_inf * 2 / 3 * s ** 1.5 + g_1 * (
+        tau * np.sqrt(s) - tau ** 1.5 * dawsn(np.sqrt(s / tau))))
+    res = indentation(Z0 + V * t, F, Paraboloid(R=R), time=t,
+                      sample=StandardLinearSolid(G_inf=3e4, G_1=1e4, eta_1=1e4))
+    for k, want in {**SLS, "contact_point": Z0}.items():
+        assert res.params[k] == pytest.approx(want, rel=FIT_RECOVERY)
