@@ -205,10 +205,6 @@ LU_REUSE = 2.0
 IMPLICIT_FLOOR = 1e-6
 #: a rejected step whose error estimate exceeds this many tolerances recomputes a kept Jacobian
 JACOBIAN_RETRY = 10.0
-#: the implicit steps' PI step-size controller (Gustafsson): exponents of the error and of its
-#: change over the last accepted step, divided by the order + 1 of the error estimate
-PI_CONTROL = True
-PI_KI, PI_KP = 0.7, 0.4
 
 #: most checkpoints a run takes: each costs at least one wear step (two rate evaluations on the
 #: dense grid) and a stored profile, so their count sets the run time whatever the tolerance
@@ -479,8 +475,6 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     err_h = np.zeros(r.shape)            # accumulated |local error| per node (error estimate)
     err_V = 0.0                          # accumulated |local error| of the volume
 
-    ratio_prev: float | None = None      # error / tolerance of the last accepted step
-    prev_rej = False                     # the step before was rejected
     last: list[Any] = [None, None]           # the implicit step's last state: (y, state(y))
     n_rate = [0]
 
@@ -518,16 +512,14 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             if dN <= 1e-9 * max(N, 1.0):
                 raise
             rejected += 1
-            rejected_last = prev_rej = True
+            rejected_last = True
             dN *= 0.25
             continue
         if not implicit:
             r2 = 4.0 * k * q2
             err = 0.5 * dN * float(np.max(np.abs(r2 - r1)))
             e_vec = 0.5 * dN * (r2 - r1)
-        accepted_now = err <= tol or dN <= 1e-9 * max(N, 1.0)
-        rejected_before, prev_rej = prev_rej, not accepted_now
-        if accepted_now:
+        if err <= tol or dN <= 1e-9 * max(N, 1.0):
             if implicit:
                 dE = ((mu / k) * float(v @ (h_new - h)) if k > 0
                       else dN * 4.0 * mu * float(v @ q1))
@@ -562,21 +554,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             # one near it is the step size (a node crossing the contact edge)
             rejected_last = err > JACOBIAN_RETRY * tol
         if implicit:
-            ratio = err / tol if tol > 0 else np.inf
-            if err == 0:
-                grow = 4.0
-            elif accepted_now and PI_CONTROL and ratio_prev is not None:
-                # Gustafsson's PI controller on accepted steps: the trend of the error damps the
-                # step's oscillation between accepted and rejected lengths
-                grow = 0.9 * ratio ** (-PI_KI / (_ros.ORDER + 1)) * (
-                    ratio_prev / ratio) ** (PI_KP / (_ros.ORDER + 1))
-                grow = min(4.0, max(0.2, grow))
-                if rejected_before:
-                    grow = min(grow, 1.0)
-            else:
-                grow = min(4.0, max(0.2, 0.9 * ratio ** (-1.0 / 3.0)))
-            if accepted_now:
-                ratio_prev = max(ratio, 1e-4)
+            grow = 4.0 if err == 0 else min(4.0, max(0.2, 0.9 * (tol / err) ** (1.0 / 3.0)))
         else:
             grow = 4.0 if err == 0 else min(4.0, max(0.2, 0.9 * np.sqrt(tol / err)))
         dN = max(dN * grow, 1e-9 * max(N, 1.0))
