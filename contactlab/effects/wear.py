@@ -268,7 +268,13 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
     (``Σ|v·e_n|``). The wear equation damps a perturbation of the worn depth (a locally deeper
     wear unloads that spot), so the global error stays near the sum of the local ones; the scar
     radius moves by what ``h ± err_h`` moves it. Each is taken ``ERROR_SAFETY`` times: the
-    moving contact edge is not damped, and there the sum alone fell short (see the constant)."""
+    moving contact edge is not damped, and there the sum alone fell short (see the constant).
+
+    The outermost worn node takes at least the accumulated error of its inner neighbour (the
+    grid's edge term): it wears from the moment the contact edge reaches it, and that moment is
+    set by the depths inside it, which its own small local errors (its rate is small) do not
+    see. The scar radius sits on that node, ``SCAR_EDGE`` of the largest depth, so its depth
+    error is a large part of its depth (docs/fretting.md section 8)."""
     V = float(v @ h)
     hm = float(np.max(h))
     if hm <= 0:
@@ -280,7 +286,11 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
         return _wear.contact_radius(r, y - SCAR_EDGE * ym) if ym > 0 else 0.0
 
     s0 = scar(h)
-    e = ERROR_SAFETY * err_h
+    e = err_h.copy()
+    m = int(np.flatnonzero(h > 0)[-1])
+    if m > 0:
+        e[m] = max(e[m], e[m - 1])
+    e *= ERROR_SAFETY
     ds = max(abs(scar(h + e) - s0), abs(scar(h - e) - s0))
     return {"volume": ERROR_SAFETY * err_V / V, "dissipated_energy": ERROR_SAFETY * err_V / V,
             "max_wear_depth": float(np.max(e)) / hm,

@@ -457,17 +457,21 @@ def _fretting_rows(scene: "Scene", h: Any, issues: list) -> dict[str, tuple[Effe
             kw: dict[str, Any] = {"force": force, key: amp,
                                   "wear_coefficient": w["wear_coefficient"],
                                   "cycles": w["cycles"], "method": method}
-            for k in ("checkpoints", "n_grid", "jump_rtol", "max_radius"):
+            for k in ("checkpoints", "n_grid", "jump_rtol", "max_radius", "integrator"):
                 if k in w:
                     kw[k] = w[k]
             impl = (f"contact.wear(force={_fmt(force)} N, {key}={_fmt(amp)} {unit}, "
                     f"wear_coefficient={_fmt(w['wear_coefficient'])} 1/Pa, "
                     f"cycles={_fmt(w['cycles'])}"
-                    + (f", method={method!r}" if method else "") + ")")
+                    + (f", method={method!r}" if method else "")
+                    + (f", integrator={w['integrator']!r}" if "integrator" in w else "") + ")")
+            jumps = ("Rosenbrock-W (implicit) cycle jumps, local error <= "
+                     f"{_fmt(w.get('jump_rtol', 1e-4))} x largest wear depth"
+                     if w.get("integrator") == "implicit" else
+                     f"Heun cycle jumping, local error <= {_fmt(w.get('jump_rtol', 1e-4))} x depth")
             why = (f"[wear] table; fretting condition of load_path[{i}] ({ctrl} sinusoid of "
                    f"amplitude {_fmt(amp)} {unit} at constant force {_fmt(force)} N); Archard "
-                   f"wear with the {_SLIP_MODEL[(mode, method)]}; Heun cycle jumping, local "
-                   f"error <= {_fmt(w.get('jump_rtol', 1e-4))} x depth")
+                   f"wear with the {_SLIP_MODEL[(mode, method)]}; {jumps}")
             out["wear"] = (Effect("wear", impl, why), {"kwargs": kw, "segment": i, "mode": mode})
     if "fretting_map" in data:
         m = data["fretting_map"]

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..contact import Contact
+from ..effects.wear import INTEGRATORS
 from ..loadpath.base import GROUPS, QUANTITIES
 from ..loadpath.base import UNITS as PATH_UNITS
 from ..numeric.units import DIMENSION_OF_SI_UNIT, canonical_unit
@@ -177,6 +178,7 @@ WEAR_KEYS: dict[str, Key] = {
     "jump_rtol": Key("quantity", "dimensionless", "positive", high=0.1, high_open=True,
                      high_allowed="0 < jump_rtol < 0.1"),
     "max_radius": Key("quantity", "length", "positive"),
+    "integrator": Key("choice", choices=INTEGRATORS),
 }
 #: torsional gross-slip criteria of a fretting map (docs/fretting.md, section 2)
 CRITERIA = ("energy_ratio", "stick_ratio", "torque_ratio")

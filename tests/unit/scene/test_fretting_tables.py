@@ -153,3 +153,22 @@ def test_tangential_wear_scene(tmp_path):
     Scene(twist_scene()).run().write(tmp_path, overwrite=True)
     assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST, "series.csv"]
     assert "wear (tangential, mdr) after 100000 cycles" in res.table()
+
+
+def test_wear_integrator_key():
+    """[wear] integrator = "implicit" runs the Rosenbrock-W route (issue 28); the plan names it,
+    the run equals the direct call, and a misspelt name is caught with a suggestion."""
+    s = Scene(wear_scene(integrator="implicit", cycles=1e3))
+    assert Scene.from_dict(s.to_dict()) == s
+    row = s.plan()["wear"]
+    assert "integrator='implicit'" in row.implementation and "Rosenbrock-W" in row.reason
+    assert "Heun" in Scene(wear_scene(cycles=1e3)).plan()["wear"].reason
+    w = s.run().wear
+    assert w.meta["integrator"] == "implicit"
+    kw = s.plan().details["wear"]["kwargs"]
+    assert kw["integrator"] == "implicit"
+    direct = s.contact().wear(**kw)
+    np.testing.assert_array_equal(w.volume, direct.volume)
+    assert w.meta["steps"] == direct.meta["steps"]
+    got = issues(wear_scene(integrator="implict"))
+    assert "did you mean 'implicit'" in got["wear.integrator"][1]
