@@ -153,3 +153,43 @@ def test_sphere_refuses_radius_beyond_R():
         c.normal(depth=np.array([1e-6, 1.0]))
     with pytest.raises(OutsideTheoryError, match=r"force=1e\+30 N needs .*max_radius"):
         c.normal(force=np.array([1.0, 1e30]))
+
+
+# ------------------------------------------------- fewer arrays on the force route (issue 29)
+def test_force_residual_takes_the_integral_buffer_only_when_unshared():
+    """The force residual is written into the buffer of ∫g only when nothing else holds that
+    array: a profile caching its ∫g keeps its cache intact, and the estimate is the same."""
+    cache: dict = {}
+
+    class Cached(PowerLaw):
+        name = "cached_power_law_test"
+
+        def _g_integral_closed_form(self, a):
+            key = a.tobytes()
+            if key not in cache:
+                cache[key] = super()._g_integral_closed_form(a)
+            return cache[key]
+
+    plain, cached = PowerLaw(2.0, 1.5), Cached(2.0, 1.5)
+    F = np.random.default_rng(3).uniform(1e-3, 50.0, 200)
+    E = 1e11
+    ref = N.solve(plain, E, "force", F.copy(), 1e-10)
+    out = N.solve(cached, E, "force", F.copy(), 1e-10, error_estimate="lazy")
+    (stored,) = cache.values()
+    kept = stored.copy()
+    assert out[3]().tobytes() == ref[3].tobytes()
+    assert stored.tobytes() == kept.tobytes()       # the cached ∫g was not overwritten
+    assert N._is_own_temporary(np.empty(3), (3,))
+    held = np.empty(3)
+    assert not N._is_own_temporary(held[:], (3,))   # a view does not own its data
+
+
+def test_finite_state_short_cut_catches_non_finite_parts():
+    from contactlab.effects.normal import _finite_state
+    a = np.array([1e-3, 2e-3])
+    for d, F in ((np.array([1.0, np.inf]), np.array([1.0, np.inf])),
+                 (np.array([1.0, np.nan]), np.array([1.0, np.nan]))):
+        assert not _finite_state(F, d, a)
+    assert _finite_state(np.array([1.0, 2.0]), np.array([1.0, 2.0]), a)
+    # a radius that is not positive leaves the full check: a NaN depth there is still seen
+    assert not _finite_state(np.array([0.0, 2.0]), np.array([np.nan, 2.0]), np.array([0.0, 1.0]))
