@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import OutsideTheoryError
-from ..numeric.roots import convex_newton
+from ..numeric.roots import convex_newton_fused
 from ..params import Param
 from ..symbolic.form import SympyForm, symbol
 from .base import Profile, root_rtol
@@ -34,14 +34,19 @@ def _reduced_force(q: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
     out = 0.5 * ((q * q + 1) * at - q)
     small = q < 0.1
     if np.any(small):
-        qs = q[small]
-        x = qs * qs
-        acc = np.full(qs.shape, _H_SERIES[-1])
-        for c in _H_SERIES[-2::-1]:          # Horner in q²
-            acc *= x
-            acc += c
-        out[small] = acc * (x * qs)
+        out[small] = _series_of_small(q[small])
     return out
+
+
+def _series_of_small(qs: np.ndarray) -> np.ndarray:
+    """The series of :func:`_reduced_force` at ``qs < 0.1`` (Horner in ``q²``)."""
+    x = qs * qs
+    acc = np.full(qs.shape, _H_SERIES[-1])
+    for c in _H_SERIES[-2::-1]:
+        acc *= x
+        acc += c
+    acc *= x * qs
+    return acc
 
 #: a/R above which a sphere contact leaves the half-space theory (ValidityWarning): the theory
 #: linearises the boundary conditions in the surface slope, here a/sqrt(R²-a²) = 0.58 (30°) at
@@ -146,7 +151,7 @@ class Sphere(Profile):
         """Contact radii of depths ``d > 0``: Newton on ``q artanh q = d/R`` (``q = a/R``) from
         the Hertz radius ``sqrt(R d)`` (or, for deep contacts, ``tanh(δ/tanh δ)``), both above
         the root of this increasing convex function (``artanh q >= q``), so the steps fall onto
-        it without a bracket (:func:`~contactlab.numeric.roots.convex_newton`)."""
+        it without a bracket (:func:`~contactlab.numeric.roots.convex_newton_fused`)."""
         rtol = self.rtol if rtol is None else rtol
         R = self.R
         delta = np.asarray(d, dtype=float) / R
@@ -165,13 +170,27 @@ class Sphere(Profile):
         q0 = np.minimum(q0, q_cap)
 
         flat = delta.ravel()
+        # residual q artanh q - δ, its derivative artanh q + q/((1-q)(1+q)) and rounding level
+        # _NOISE·δ, written into buffers of the whole batch (convex_newton_fused)
+        at, res, w = (np.empty(flat.shape) for _ in range(3))
+        noise = _NOISE * flat
 
-        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            at = np.arctanh(q)
-            dl = flat[idx] if idx.size < flat.size else flat
-            return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
+        def step_of(q: np.ndarray, step: np.ndarray, quiet: np.ndarray) -> None:
+            np.arctanh(q, out=at)
+            np.multiply(q, at, out=res)
+            np.subtract(res, flat, out=res)
+            np.abs(res, out=w)
+            np.less_equal(w, noise, out=quiet)
+            np.subtract(1.0, q, out=w)
+            np.add(1.0, q, out=step)
+            np.multiply(w, step, out=w)
+            np.divide(q, w, out=w)
+            np.add(w, at, out=w)
+            np.divide(res, w, out=step)
 
-        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+        q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius")
+        q *= R
+        return q
 
     def _radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
         """Contact radii of reduced forces ``F/(2E*) > 0``: Newton on
@@ -199,16 +218,40 @@ class Sphere(Profile):
         q0 = np.minimum(q0, q_cap)
 
         flat = eta.ravel()
+        at, p, h, w = (np.empty(flat.shape) for _ in range(4))
+        small = np.empty(flat.shape, dtype=bool)
 
-        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            at = np.arctanh(q)
-            h = _reduced_force(q, at)
-            el = flat[idx] if idx.size < flat.size else flat
-            # rounding: of the series (~η) below q = 0.1, of the cancelling terms (~q) above
-            noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
-            return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
+        def step_of(q: np.ndarray, step: np.ndarray, quiet: np.ndarray) -> None:
+            # the operations of _reduced_force(q) - η, of its derivative
+            # q (artanh q + q/((1-q)(1+q))) and of the rounding level of the residual (of the
+            # series (~η) below q = 0.1, of the cancelling terms (~q) above), into buffers
+            np.arctanh(q, out=at)
+            np.multiply(q, q, out=p)
+            np.add(p, 1, out=p)
+            np.multiply(p, at, out=p)                                 # (q² + 1) artanh q
+            np.subtract(p, q, out=h)
+            np.multiply(h, 0.5, out=h)
+            np.less(q, 0.1, out=small)
+            if small.any():
+                h[small] = _series_of_small(q[small])
+            np.subtract(h, flat, out=h)                               # the residual
+            np.add(p, q, out=w)
+            np.multiply(w, 0.5, out=w)
+            np.copyto(w, flat, where=small)
+            np.multiply(w, _NOISE, out=w)
+            np.abs(h, out=p)
+            np.less_equal(p, w, out=quiet)
+            np.subtract(1.0, q, out=w)
+            np.add(1.0, q, out=step)
+            np.multiply(w, step, out=w)
+            np.divide(q, w, out=w)
+            np.add(w, at, out=w)
+            np.multiply(w, q, out=w)
+            np.divide(h, w, out=step)
 
-        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+        q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius")
+        q *= R
+        return q
 
     def _refuse_beyond(self, q0: np.ndarray, q_cap: float, phi: Any, goal: np.ndarray,
                        value: np.ndarray, what: str, unit: str, fix: str) -> None:

@@ -125,16 +125,16 @@ def test_sphere_newton_against_mpmath():
 
 def test_sphere_newton_few_steps_and_batch_independent(monkeypatch):
     calls = []
-    real = roots.convex_newton
+    real = roots.convex_newton_fused
 
-    def counting(residual, x0, **kw):
-        def counted(q, idx):
+    def counting(step_of, x0, **kw):
+        def counted(q, step, quiet):
             calls.append(q.size)
-            return residual(q, idx)
+            return step_of(q, step, quiet)
         return real(counted, x0, **kw)
 
     import contactlab.profiles.sphere as sphere_mod
-    monkeypatch.setattr(sphere_mod, "convex_newton", counting)
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", counting)
     s = Sphere(R)
     d = np.array([_depth_ref(q) for q in Q[:-1]])
     a = s._solve_radius(d, s.max_radius, 1e-10)
@@ -193,3 +193,41 @@ def test_finite_state_short_cut_catches_non_finite_parts():
     assert _finite_state(np.array([1.0, 2.0]), np.array([1.0, 2.0]), a)
     # a radius that is not positive leaves the full check: a NaN depth there is still seen
     assert not _finite_state(np.array([0.0, 2.0]), np.array([np.nan, 2.0]), np.array([0.0, 1.0]))
+
+
+def test_fused_newton_same_bits_as_convex_newton(monkeypatch):
+    """The sphere's Newton on whole arrays with buffers (convex_newton_fused) repeats the
+    iterates and the stopping rule of convex_newton on its residuals as written before, bit for
+    bit: depths and reduced forces over the whole range of q, from the sphere's own starts."""
+    from contactlab.profiles import sphere as sphere_mod
+    from contactlab.profiles.sphere import _NOISE, _reduced_force
+    q_true = np.r_[np.geomspace(1e-9, 0.999, 3000), np.linspace(0.01, 0.9, 3000)]
+    delta = q_true * np.arctanh(q_true)
+    eta = _reduced_force(q_true)
+
+    def depth_residual(q, idx):
+        at = np.arctanh(q)
+        dl = delta[idx]
+        return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
+
+    def force_residual(q, idx):
+        at = np.arctanh(q)
+        h = _reduced_force(q, at)
+        el = eta[idx]
+        noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
+        return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
+
+    seen = []
+    real = roots.convex_newton_fused
+
+    def capturing(step_of, x0, **kw):
+        seen.append((np.array(x0, copy=True), kw["rtol"]))
+        return real(step_of, x0, **kw)
+
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", capturing)
+    s = Sphere(1.0)
+    a_d = s._solve_radius(delta, s.max_radius, 1e-10)
+    a_f = s._radius_of_reduced_force(eta, 1e-10)
+    for (x0, tol), residual, out in zip(seen, (depth_residual, force_residual), (a_d, a_f)):
+        ref = roots.convex_newton(residual, x0, rtol=tol)
+        assert out.tobytes() == (1.0 * ref).tobytes()
