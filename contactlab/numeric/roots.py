@@ -333,8 +333,8 @@ def convex_newton(residual: Callable[[np.ndarray, np.ndarray],
 
 
 def convex_newton_fused(step_of: Callable[[np.ndarray, np.ndarray, np.ndarray], None],
-                        x0: np.ndarray, *, rtol: float, maxiter: int = 200, what: str = "root"
-                        ) -> np.ndarray:
+                        x0: np.ndarray, *, rtol: float, maxiter: int = 200, what: str = "root",
+                        overwrite: bool = False) -> np.ndarray:
     """:func:`convex_newton` on whole arrays with no per-round allocation: the same iterates,
     the same stopping rule, the same values bit for bit.
 
@@ -344,17 +344,22 @@ def convex_newton_fused(step_of: Callable[[np.ndarray, np.ndarray, np.ndarray], 
     perform, so that the bits agree). Elements that have stopped are evaluated too and keep
     their value: each round costs the whole array, but no masked copies or scatters, which on
     arrays of 10^5 elements cost more than the arithmetic (a fresh array is a page fault per
-    4 KiB). An element's value does not depend on the other elements of the batch.
+    4 KiB). An element's value does not depend on the other elements of the batch. With
+    ``overwrite``, a C-contiguous float64 ``x0`` of the caller's own is iterated in place (and
+    returned).
 
     Raises
     ------
     ConvergenceError
         If some element has not stopped after ``maxiter`` steps.
     """
-    x = np.array(x0, dtype=float, copy=True).ravel()
+    if (overwrite and type(x0) is np.ndarray and x0.dtype == np.float64
+            and x0.flags.c_contiguous and x0.flags.writeable):
+        x = x0.reshape(-1)
+    else:
+        x = np.array(x0, dtype=float, copy=True).ravel()
     step = np.empty_like(x)
     new = np.empty_like(x)
-    lim = np.empty_like(x)
     quiet = np.empty(x.shape, dtype=bool)
     done = np.empty(x.shape, dtype=bool)
     live = np.ones(x.shape, dtype=bool)
@@ -363,12 +368,13 @@ def convex_newton_fused(step_of: Callable[[np.ndarray, np.ndarray, np.ndarray], 
             step_of(x, step, quiet)
             np.subtract(x, step, out=new)
         np.copyto(new, x, where=quiet)                  # (a quiet element keeps its value)
-        np.abs(new, out=lim)
-        lim *= rtol
-        np.abs(step, out=step)
-        np.less_equal(step, lim, out=done)
-        done |= quiet
         np.copyto(x, new, where=live)
+        # done: |step| <= rtol |new|, with x = new wherever it matters (the live elements)
+        np.abs(x, out=new)
+        new *= rtol
+        np.abs(step, out=step)
+        np.less_equal(step, new, out=done)
+        done |= quiet
         np.logical_not(done, out=done)
         live &= done
         if not live.any():

@@ -371,6 +371,17 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         if profile._has("_check_monotone_upto"):    # (the base hook checks nothing)
             profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
         return a, d
+    if (profile.has("reduced_force_solver") and not profile.has("reduced_force_state")
+            and terms is None and not np.isfinite(profile.wall_radius)
+            and F.ndim and F.size and float(np.min(F)) > 0):
+        # every force positive on a profile solving its own radius (the exact sphere): the
+        # branch below without its masks, copies and scatters (the same values)
+        a = profile._radius_of_reduced_force(F / (2 * E), rtol)
+        if a is not None:
+            d = profile._g(a, rtol)
+            if profile._has("_check_monotone_upto"):
+                profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
+            return a, d
     a = np.zeros(F.shape)
     d = np.zeros(F.shape)
     pos = F > 0
