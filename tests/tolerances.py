@@ -747,3 +747,8 @@ MDR_HERTZ_CLOSED = 1e-14
 #: and array normal solves of a non-whole power may differ in the last bits of the depth
 #: (docs/robustness.md, <= 2.1e-15), which the torsion state carries (measured <= 1e-15)
 MDR_SCALAR_ARRAY_FORCE = 1e-14
+#: the exact sphere's ∫g closed form ((a² - R²)/2 artanh(a/R) + R a/2, q = a/R >= 0.1) against a
+#: 30-digit reference: the cancellation of its two terms near q = 0.1 costs digits (measured
+#: up to 2.7e-14 relative over q in [0.1, 0.999] at R = 0.01; 1e-13 leaves room for other libms'
+#: artanh)
+SPHERE_G_INTEGRAL = 1e-13

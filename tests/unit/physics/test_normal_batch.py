@@ -20,7 +20,7 @@ from contactlab.errors import OutsideTheoryError
 from contactlab.numeric import powers, roots
 from contactlab.physics import normal as N
 from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere
-from tests.tolerances import SPHERE_NEWTON_RADIUS
+from tests.tolerances import SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 PROFILES = [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0), PowerLaw(2.0, 1.5), Sphere(0.01),
@@ -231,3 +231,24 @@ def test_fused_newton_same_bits_as_convex_newton(monkeypatch):
     for (x0, tol), residual, out in zip(seen, (depth_residual, force_residual), (a_d, a_f)):
         ref = roots.convex_newton(residual, x0, rtol=tol)
         assert out.tobytes() == (1.0 * ref).tobytes()
+
+
+def test_sphere_all_positive_forces_same_bits_as_masked_branch():
+    """The all-positive force branch (no masks) gives, element by element, the bits of the
+    masked branch that a zero force in the batch takes; so do the in-place ∫g and g."""
+    s = Sphere(R)
+    E = 1e11
+    F = np.random.default_rng(7).uniform(1e-3, 2e3, 500)
+    a1, d1 = N.radius_depth_of_force(s, E, F, 1e-10)
+    a0, d0 = N.radius_depth_of_force(s, E, np.r_[F, 0.0], 1e-10)
+    assert a1.tobytes() == a0[:-1].tobytes() and d1.tobytes() == d0[:-1].tobytes()
+    q = a1 / R
+    ref_gi = np.where(q < 0.1, 0.0, 0.5 * (a1**2 - R**2) * np.arctanh(q) + 0.5 * R * a1)
+    gi = s._g_integral_closed_form(a1)
+    assert gi[q >= 0.1].tobytes() == ref_gi[q >= 0.1].tobytes()
+    assert s._g_closed_form(a1).tobytes() == (a1 * np.arctanh(a1 / R)).tobytes()
+    # against 30-digit references: ∫g = (a² - R²)/2 artanh(a/R) + R a/2
+    for ai, gv in zip(a1[::50], gi[::50]):
+        am = mp.mpf(float(ai))
+        ref = (am * am - mp.mpf(R) ** 2) / 2 * mp.atanh(am / R) + mp.mpf(R) * am / 2
+        assert abs(gv / float(ref) - 1) <= SPHERE_G_INTEGRAL
