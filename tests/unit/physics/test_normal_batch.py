@@ -252,3 +252,16 @@ def test_sphere_all_positive_forces_same_bits_as_masked_branch():
         am = mp.mpf(float(ai))
         ref = (am * am - mp.mpf(R) ** 2) / 2 * mp.atanh(am / R) + mp.mpf(R) * am / 2
         assert abs(gv / float(ref) - 1) <= SPHERE_G_INTEGRAL
+
+
+@pytest.mark.parametrize("prof", [Paraboloid(1e-3), Sphere(1e-3), PowerLaw(2.0, 1.5)], ids=repr)
+def test_zero_dimensional_force_array(prof):
+    """A 0-d force array takes the array route: it raised a raw TypeError (the residual of a
+    0-d request is a numpy scalar, which np.abs(out=) refuses); now it gives the state of the
+    one-element batch, bit for bit, as a 0-d state."""
+    c = cl.Contact(prof, MATERIALS)
+    s = c.normal(force=np.array(1.0))
+    one = c.normal(force=np.array([1.0]))
+    assert s.shape == ()
+    for q in ("depth", "radius", "force", "error_estimate"):
+        assert np.asarray(getattr(s, q)).tobytes() == np.asarray(getattr(one, q))[0].tobytes()
