@@ -279,6 +279,15 @@ def _has_bool_or_str(seq: object) -> bool:
     return False
 
 
+def _all_finite(arr: np.ndarray) -> bool:
+    """Whether every element of a float array is finite: by its two extremes (a NaN propagates
+    through min and max), two reductions with no temporary (``np.isfinite`` would write a
+    boolean array of the input's size first)."""
+    if arr.size == 0:
+        return True
+    return math.isfinite(float(arr.min())) and math.isfinite(float(arr.max()))
+
+
 def as_float_array(name: str, value: object, *, allow_nan: bool = False,
                    allow_empty: bool = False, unit: str | None = None) -> np.ndarray:
     """Convert ``value`` to a float ndarray, the one array entry point of every driver.
@@ -314,7 +323,7 @@ def as_float_array(name: str, value: object, *, allow_nan: bool = False,
     if arr.size == 0 and not allow_empty:
         raise ParameterError(f"{name}={_short(value)} is invalid: it is empty; give at least one "
                              "value.")
-    if not allow_nan and not np.all(np.isfinite(arr)):
+    if not allow_nan and not _all_finite(arr):
         bad = float(arr[~np.isfinite(arr)].ravel()[0])
         raise ParameterError(f"{name} contains {bad!r}: every value must be finite.")
     return arr

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["bracketed_root", "scalar_root", "shrink_bracket", "shrink_bracket_scalar",
+__all__ = ["convex_newton_fused", "bracketed_root", "scalar_root", "shrink_bracket", "shrink_bracket_scalar",
            "convex_newton", "DEFAULT_XTOL", "SHRINK_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
@@ -330,3 +330,55 @@ def convex_newton(residual: Callable[[np.ndarray, np.ndarray],
             xa = new
     raise ConvergenceError(f"{what}: Newton's method did not converge in {maxiter} steps "
                            f"(at {xa[0]!r}).")
+
+
+def convex_newton_fused(step_of: Callable[[np.ndarray, np.ndarray, np.ndarray], None],
+                        x0: np.ndarray, *, rtol: float, maxiter: int = 200, what: str = "root",
+                        overwrite: bool = False) -> np.ndarray:
+    """:func:`convex_newton` on whole arrays with no per-round allocation: the same iterates,
+    the same stopping rule, the same values bit for bit.
+
+    ``step_of(x, step, quiet)`` writes, for every element of the flat float array ``x``, the
+    Newton step ``r/r'`` into ``step`` and whether ``|r| <= noise`` into the boolean ``quiet``
+    (both of ``x``'s shape, with the operations :func:`convex_newton`'s ``residual`` would
+    perform, so that the bits agree). Elements that have stopped are evaluated too and keep
+    their value: each round costs the whole array, but no masked copies or scatters, which on
+    arrays of 10^5 elements cost more than the arithmetic (a fresh array is a page fault per
+    4 KiB). An element's value does not depend on the other elements of the batch. With
+    ``overwrite``, a C-contiguous float64 ``x0`` of the caller's own is iterated in place (and
+    returned).
+
+    Raises
+    ------
+    ConvergenceError
+        If some element has not stopped after ``maxiter`` steps.
+    """
+    if (overwrite and type(x0) is np.ndarray and x0.dtype == np.float64
+            and x0.flags.c_contiguous and x0.flags.writeable):
+        x = x0.reshape(-1)
+    else:
+        x = np.array(x0, dtype=float, copy=True).ravel()
+    step = np.empty_like(x)
+    new = np.empty_like(x)
+    quiet = np.empty(x.shape, dtype=bool)
+    done = np.empty(x.shape, dtype=bool)
+    live = np.ones(x.shape, dtype=bool)
+    for _ in range(maxiter):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step_of(x, step, quiet)
+            np.subtract(x, step, out=new)
+        np.copyto(new, x, where=quiet)                  # (a quiet element keeps its value)
+        np.copyto(x, new, where=live)
+        # done: |step| <= rtol |new|, with x = new wherever it matters (the live elements)
+        np.abs(x, out=new)
+        new *= rtol
+        np.abs(step, out=step)
+        np.less_equal(step, new, out=done)
+        done |= quiet
+        np.logical_not(done, out=done)
+        live &= done
+        if not live.any():
+            return x.reshape(np.shape(x0))
+    raise ConvergenceError(f"{what}: Newton's method did not converge in {maxiter} steps "
+                           f"(at {x[np.argmax(live)]!r}).")
+

@@ -15,6 +15,7 @@ otherwise S is evaluated by parts so only g is needed:
 """
 from __future__ import annotations
 
+import sys
 from typing import Any, cast
 
 import numpy as np
@@ -370,6 +371,17 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         if profile._has("_check_monotone_upto"):    # (the base hook checks nothing)
             profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
         return a, d
+    if (profile.has("reduced_force_solver") and not profile.has("reduced_force_state")
+            and terms is None and not np.isfinite(profile.wall_radius)
+            and F.ndim and F.size and float(np.min(F)) > 0):
+        # every force positive on a profile solving its own radius (the exact sphere): the
+        # branch below without its masks, copies and scatters (the same values)
+        a = profile._radius_of_reduced_force(F / (2 * E), rtol)
+        if a is not None:
+            d = profile._g(a, rtol)
+            if profile._has("_check_monotone_upto"):
+                profile._check_monotone_upto(float(np.max(a)), float(np.max(d)))
+            return a, d
     a = np.zeros(F.shape)
     d = np.zeros(F.shape)
     pos = F > 0
@@ -515,20 +527,54 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         # caller's array may change before then)
         req = value.copy() if control == "force" and not all_pos else None
         resid = None
+        reuse = False
         if control == "force" and all_pos:
             # every force requested is positive: the residual |F - F_req| is the whole
-            # force-control term, kept (the caller reads it too: pending.residual)
-            resid = np.subtract(F, value)
+            # force-control term, kept (the caller reads it too: pending.residual). It takes
+            # the buffer of ∫g when nothing else holds that array (then ∫g, a pure function of
+            # the radius, is recomputed if the estimate is read): one new array fewer
+            reuse = _is_own_temporary(g_int, np.shape(F))
+            # (a 0-d request gives numpy scalars: the residual is then made a 0-d array)
+            resid = (np.subtract(F, value, out=g_int) if reuse
+                     else np.array(np.subtract(F, value), dtype=float))
             np.abs(resid, out=resid)
+        kept = None if reuse else g_int
+        del g_int
 
         def pending() -> np.ndarray:
-            return _force_rel_error(E, control, a, a * d, g_int, ROUNDING * np.abs(g_int), F,
+            gi = profile._g_integral(a, rtol) if kept is None else kept
+            return _force_rel_error(E, control, a, a * d, gi, ROUNDING * np.abs(gi), F,
                                     all_pos, req, g_a_err, resid)
         pending.residual = resid            # type: ignore[attr-defined]
         return np.asarray(d, float), np.asarray(a, float), F, pending
     return (np.asarray(d, float), np.asarray(a, float), F,
             _force_rel_error(E, control, a, ad, g_int, g_int_err, F, all_pos, value,
                              g_a_err))
+
+
+def _is_own_temporary(v: Any, shape: tuple[int, ...]) -> bool:
+    """Whether ``v`` is a float64 array of ``shape`` owning its writeable data that nothing but
+    the caller's one local variable refers to, so that the caller may write into it: by the
+    interpreter's reference count (a profile's cache of the array, or a view of it, would hold
+    another reference), compared with that of a probe array held the same way
+    (:data:`_OWN_REFS`). Without reference counts (not CPython): False."""
+    return (_OWN_REFS > 0 and type(v) is np.ndarray and v.dtype == np.float64
+            and v.shape == shape and v.flags.owndata and v.flags.writeable
+            and v.flags.c_contiguous and sys.getrefcount(v) == _OWN_REFS)
+
+
+def _probe_own_refs() -> int:
+    probe = np.empty(1)
+    return _refs_of(probe)
+
+
+def _refs_of(v: Any) -> int:
+    return sys.getrefcount(v) if hasattr(sys, "getrefcount") else 0
+
+
+#: the reference count :func:`_is_own_temporary` sees for an array held by one local variable
+#: of its caller (0 where the interpreter keeps none)
+_OWN_REFS = _probe_own_refs()
 
 
 def _force_rel_error(E: float, control: str, a: np.ndarray, ad: np.ndarray, g_int: np.ndarray,

@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import OutsideTheoryError
-from ..numeric.roots import convex_newton
+from ..numeric.roots import convex_newton_fused
 from ..params import Param
 from ..symbolic.form import SympyForm, symbol
 from .base import Profile, root_rtol
@@ -34,14 +34,19 @@ def _reduced_force(q: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
     out = 0.5 * ((q * q + 1) * at - q)
     small = q < 0.1
     if np.any(small):
-        qs = q[small]
-        x = qs * qs
-        acc = np.full(qs.shape, _H_SERIES[-1])
-        for c in _H_SERIES[-2::-1]:          # Horner in q²
-            acc *= x
-            acc += c
-        out[small] = acc * (x * qs)
+        out[small] = _series_of_small(q[small])
     return out
+
+
+def _series_of_small(qs: np.ndarray) -> np.ndarray:
+    """The series of :func:`_reduced_force` at ``qs < 0.1`` (Horner in ``q²``)."""
+    x = qs * qs
+    acc = np.full(qs.shape, _H_SERIES[-1])
+    for c in _H_SERIES[-2::-1]:
+        acc *= x
+        acc += c
+    acc *= x * qs
+    return acc
 
 #: a/R above which a sphere contact leaves the half-space theory (ValidityWarning): the theory
 #: linearises the boundary conditions in the surface slope, here a/sqrt(R²-a²) = 0.58 (30°) at
@@ -86,7 +91,9 @@ class Sphere(Profile):
         return self.R
 
     def _guard(self, r: np.ndarray, name: str) -> None:
-        if np.any(r >= self.R):
+        # (by the largest radius: one reduction and no boolean temporary; a NaN passes, as
+        # it did the comparison)
+        if np.size(r) and np.max(r) >= self.R:
             raise OutsideTheoryError(
                 f"{name}={float(np.max(r))!r} m is invalid for Sphere(R={self.R!r}): radii must stay "
                 "below the sphere radius R.")
@@ -102,26 +109,51 @@ class Sphere(Profile):
 
     def _g_closed_form(self, x: np.ndarray) -> np.ndarray:
         self._guard(x, "x")
-        return x * np.arctanh(x / self.R)
+        # x artanh(x/R), in one new array
+        out = np.divide(x, self.R)
+        if not isinstance(out, np.ndarray):
+            return x * np.arctanh(out)
+        np.arctanh(out, out=out)
+        out *= x
+        return out
 
     def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray:
         self._guard(a, "a")
         R = self.R
         # (a²-R²)/2·artanh(a/R) + R a/2 cancels for a ≪ R: use its series below a/R = 0.1
+        a = np.asarray(a, dtype=float)
+        shape = a.shape
+        a = a.reshape(-1)
         q = a / R
         small = q < 0.1
-        out = np.empty_like(a)
-        big = ~small
-        out[big] = 0.5 * (a[big] ** 2 - R**2) * np.arctanh(q[big]) + 0.5 * R * a[big]
-        qs = q[small]
-        # series: R² Σ_{k>=1} q^(2k+1) / ((2k-1)(2k+1))
-        ser = np.zeros_like(qs)
-        term = qs.copy()
-        for k in range(1, 18):
-            term = term * qs * qs if k > 1 else qs**3
-            ser += term / ((2 * k - 1) * (2 * k + 1))
-        out[small] = R**2 * ser
-        return out
+        any_small = bool(small.any())
+        qs = q[small] if any_small else None
+        if any_small and bool(small.all()):
+            out = np.empty_like(a)
+        else:
+            # the closed form on the whole array in place (the series replaces it below 0.1):
+            # 0.5 (a² - R²) artanh(a/R) + (0.5 R) a
+            at = np.arctanh(q, out=q)
+            out = np.multiply(a, a)
+            out -= R**2
+            out *= 0.5
+            out *= at
+            np.multiply(0.5 * R, a, out=at)
+            out += at
+        if qs is not None:
+            # series: R² Σ_{k>=1} q^(2k+1) / ((2k-1)(2k+1))
+            ser = np.zeros_like(qs)
+            term = qs**3
+            part = np.empty_like(qs)
+            for k in range(1, 18):
+                if k > 1:
+                    term *= qs
+                    term *= qs
+                np.divide(term, (2 * k - 1) * (2 * k + 1), out=part)
+                ser += part
+            ser *= R**2
+            out[small] = ser
+        return out.reshape(shape)
 
     def _sympy_form(self) -> SympyForm:
         import sympy as sp
@@ -146,32 +178,56 @@ class Sphere(Profile):
         """Contact radii of depths ``d > 0``: Newton on ``q artanh q = d/R`` (``q = a/R``) from
         the Hertz radius ``sqrt(R d)`` (or, for deep contacts, ``tanh(δ/tanh δ)``), both above
         the root of this increasing convex function (``artanh q >= q``), so the steps fall onto
-        it without a bracket (:func:`~contactlab.numeric.roots.convex_newton`)."""
+        it without a bracket (:func:`~contactlab.numeric.roots.convex_newton_fused`)."""
         rtol = self.rtol if rtol is None else rtol
         R = self.R
-        delta = np.asarray(d, dtype=float) / R
+        shape = np.shape(d)
+        d = np.asarray(d, dtype=float).reshape(-1)      # (1-D: the buffers below are arrays)
+        delta = d / R
         q_cap = limit * (1 - 1e-15) / R
         # start: q² = δ - δ²/3 + δ³/45 + O(δ⁴) inverts δ = q artanh q = q² + q⁴/3 + q⁶/5 + ...
         # (relative error ~δ³ of q: one or two steps below δ = 0.01); if it falls below the root,
         # the first step lands above it (convexity) and the steps then fall onto it
         ds = np.minimum(delta, 0.25)        # (the series is used below 0.25 only)
-        q0 = np.sqrt(delta * (1.0 - ds * (1.0 / 3.0 - ds / 45.0)))
-        deep = delta > 0.25             # Hertz / the tanh bound there, both above the root
-        if np.any(deep):
+        # q0 = sqrt(δ (1 - ds (1/3 - ds/45))), in two buffers
+        q0 = np.divide(ds, 45.0)
+        np.subtract(1.0 / 3.0, q0, out=q0)
+        q0 *= ds
+        np.subtract(1.0, q0, out=q0)
+        np.multiply(delta, q0, out=q0)
+        np.sqrt(q0, out=q0)
+        del ds
+        if delta.size and np.max(delta) > 0.25:
+            deep = delta > 0.25         # Hertz / the tanh bound there, both above the root
             dd = delta[deep]
             q0[deep] = np.minimum(np.sqrt(dd), np.tanh(dd / np.tanh(dd)))
         self._refuse_beyond(q0, q_cap, lambda q: q * np.arctanh(q), delta, d, "depth", "m",
                             "depth/force")
-        q0 = np.minimum(q0, q_cap)
+        np.minimum(q0, q_cap, out=q0)
 
         flat = delta.ravel()
+        # residual q artanh q - δ, its derivative artanh q + q/((1-q)(1+q)) and rounding level
+        # _NOISE·δ, written into buffers of the whole batch (convex_newton_fused)
+        at, res, w = (np.empty(flat.shape) for _ in range(3))
+        noise = _NOISE * flat
 
-        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            at = np.arctanh(q)
-            dl = flat[idx] if idx.size < flat.size else flat
-            return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
+        def step_of(q: np.ndarray, step: np.ndarray, quiet: np.ndarray) -> None:
+            np.arctanh(q, out=at)
+            np.multiply(q, at, out=res)
+            np.subtract(res, flat, out=res)
+            np.abs(res, out=w)
+            np.less_equal(w, noise, out=quiet)
+            np.subtract(1.0, q, out=w)
+            np.add(1.0, q, out=step)
+            np.multiply(w, step, out=w)
+            np.divide(q, w, out=w)
+            np.add(w, at, out=w)
+            np.divide(res, w, out=step)
 
-        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+        q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius",
+                                overwrite=True)
+        q *= R
+        return q.reshape(shape)
 
     def _radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
         """Contact radii of reduced forces ``F/(2E*) > 0``: Newton on
@@ -180,15 +236,24 @@ class Sphere(Profile):
         from the Hertz radius (``h >= 2R² q³/3``), above the root of this increasing convex
         function (``h'' = g' + a g'' > 0``)."""
         R = self.R
-        eta = np.asarray(target, dtype=float) / (R * R)
+        shape = np.shape(target)
+        eta = np.asarray(target, dtype=float).reshape(-1) / (R * R)
         q_cap = self.max_radius * (1 - 1e-15) / R
         # start: η = (2/3) q³ (1 + 2q²/5 + 9q⁴/35 + ...), the bracket evaluated at the Hertz
         # radius q_H = cbrt(3η/2) (relative error ~q⁴ of q; see _solve_radius for a start below)
-        qh = np.cbrt(1.5 * eta)
-        qh2 = qh * qh
-        q0 = qh / np.cbrt(1.0 + qh2 * (0.4 + qh2 * (9.0 / 35.0)))
-        deep = qh > 0.5                 # Hertz / the tanh bound there, both above the root
-        if np.any(deep):
+        qh = np.multiply(1.5, eta)
+        np.cbrt(qh, out=qh)
+        # q0 = qh / cbrt(1 + qh² (0.4 + qh² (9/35))), in two more buffers
+        qh2 = np.multiply(qh, qh)
+        q0 = np.multiply(qh2, 9.0 / 35.0)
+        q0 += 0.4
+        q0 *= qh2
+        q0 += 1.0
+        np.cbrt(q0, out=q0)
+        np.divide(qh, q0, out=q0)
+        del qh2
+        if qh.size and np.max(qh) > 0.5:
+            deep = qh > 0.5             # Hertz / the tanh bound there, both above the root
             ed = eta[deep]
             ql = np.tanh(ed)
             q0[deep] = np.minimum(qh[deep], np.tanh((2 * ed + 1) / (ql * ql + 1)))
@@ -196,19 +261,45 @@ class Sphere(Profile):
         if np.any(over) and np.any(_reduced_force(np.full(int(np.count_nonzero(over)), q_cap))
                                    < eta[over]):
             return None     # a radius beyond R: declined, the bracketed solve names the force
-        q0 = np.minimum(q0, q_cap)
+        np.minimum(q0, q_cap, out=q0)
+        del qh
 
         flat = eta.ravel()
+        at, p, h, w = (np.empty(flat.shape) for _ in range(4))
+        small = np.empty(flat.shape, dtype=bool)
 
-        def residual(q: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            at = np.arctanh(q)
-            h = _reduced_force(q, at)
-            el = flat[idx] if idx.size < flat.size else flat
-            # rounding: of the series (~η) below q = 0.1, of the cancelling terms (~q) above
-            noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
-            return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
+        def step_of(q: np.ndarray, step: np.ndarray, quiet: np.ndarray) -> None:
+            # the operations of _reduced_force(q) - η, of its derivative
+            # q (artanh q + q/((1-q)(1+q))) and of the rounding level of the residual (of the
+            # series (~η) below q = 0.1, of the cancelling terms (~q) above), into buffers
+            np.arctanh(q, out=at)
+            np.multiply(q, q, out=p)
+            np.add(p, 1, out=p)
+            np.multiply(p, at, out=p)                                 # (q² + 1) artanh q
+            np.subtract(p, q, out=h)
+            np.multiply(h, 0.5, out=h)
+            np.less(q, 0.1, out=small)
+            if small.any():
+                h[small] = _series_of_small(q[small])
+            np.subtract(h, flat, out=h)                               # the residual
+            np.add(p, q, out=w)
+            np.multiply(w, 0.5, out=w)
+            np.copyto(w, flat, where=small)
+            np.multiply(w, _NOISE, out=w)
+            np.abs(h, out=p)
+            np.less_equal(p, w, out=quiet)
+            np.subtract(1.0, q, out=w)
+            np.add(1.0, q, out=step)
+            np.multiply(w, step, out=w)
+            np.divide(q, w, out=w)
+            np.add(w, at, out=w)
+            np.multiply(w, q, out=w)
+            np.divide(h, w, out=step)
 
-        return R * convex_newton(residual, q0, rtol=root_rtol(rtol), what="contact radius")
+        q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius",
+                                overwrite=True)
+        q *= R
+        return q.reshape(shape)
 
     def _refuse_beyond(self, q0: np.ndarray, q_cap: float, phi: Any, goal: np.ndarray,
                        value: np.ndarray, what: str, unit: str, fix: str) -> None:

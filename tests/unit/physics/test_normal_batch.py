@@ -20,7 +20,7 @@ from contactlab.errors import OutsideTheoryError
 from contactlab.numeric import powers, roots
 from contactlab.physics import normal as N
 from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere
-from tests.tolerances import SPHERE_NEWTON_RADIUS
+from tests.tolerances import SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 PROFILES = [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0), PowerLaw(2.0, 1.5), Sphere(0.01),
@@ -125,16 +125,16 @@ def test_sphere_newton_against_mpmath():
 
 def test_sphere_newton_few_steps_and_batch_independent(monkeypatch):
     calls = []
-    real = roots.convex_newton
+    real = roots.convex_newton_fused
 
-    def counting(residual, x0, **kw):
-        def counted(q, idx):
+    def counting(step_of, x0, **kw):
+        def counted(q, step, quiet):
             calls.append(q.size)
-            return residual(q, idx)
+            return step_of(q, step, quiet)
         return real(counted, x0, **kw)
 
     import contactlab.profiles.sphere as sphere_mod
-    monkeypatch.setattr(sphere_mod, "convex_newton", counting)
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", counting)
     s = Sphere(R)
     d = np.array([_depth_ref(q) for q in Q[:-1]])
     a = s._solve_radius(d, s.max_radius, 1e-10)
@@ -153,3 +153,115 @@ def test_sphere_refuses_radius_beyond_R():
         c.normal(depth=np.array([1e-6, 1.0]))
     with pytest.raises(OutsideTheoryError, match=r"force=1e\+30 N needs .*max_radius"):
         c.normal(force=np.array([1.0, 1e30]))
+
+
+# ------------------------------------------------- fewer arrays on the force route (issue 29)
+def test_force_residual_takes_the_integral_buffer_only_when_unshared():
+    """The force residual is written into the buffer of ∫g only when nothing else holds that
+    array: a profile caching its ∫g keeps its cache intact, and the estimate is the same."""
+    cache: dict = {}
+
+    class Cached(PowerLaw):
+        name = "cached_power_law_test"
+
+        def _g_integral_closed_form(self, a):
+            key = a.tobytes()
+            if key not in cache:
+                cache[key] = super()._g_integral_closed_form(a)
+            return cache[key]
+
+    plain, cached = PowerLaw(2.0, 1.5), Cached(2.0, 1.5)
+    F = np.random.default_rng(3).uniform(1e-3, 50.0, 200)
+    E = 1e11
+    ref = N.solve(plain, E, "force", F.copy(), 1e-10)
+    out = N.solve(cached, E, "force", F.copy(), 1e-10, error_estimate="lazy")
+    (stored,) = cache.values()
+    kept = stored.copy()
+    assert out[3]().tobytes() == ref[3].tobytes()
+    assert stored.tobytes() == kept.tobytes()       # the cached ∫g was not overwritten
+    assert N._is_own_temporary(np.empty(3), (3,))
+    held = np.empty(3)
+    assert not N._is_own_temporary(held[:], (3,))   # a view does not own its data
+
+
+def test_finite_state_short_cut_catches_non_finite_parts():
+    from contactlab.effects.normal import _finite_state
+    a = np.array([1e-3, 2e-3])
+    for d, F in ((np.array([1.0, np.inf]), np.array([1.0, np.inf])),
+                 (np.array([1.0, np.nan]), np.array([1.0, np.nan]))):
+        assert not _finite_state(F, d, a)
+    assert _finite_state(np.array([1.0, 2.0]), np.array([1.0, 2.0]), a)
+    # a radius that is not positive leaves the full check: a NaN depth there is still seen
+    assert not _finite_state(np.array([0.0, 2.0]), np.array([np.nan, 2.0]), np.array([0.0, 1.0]))
+
+
+def test_fused_newton_same_bits_as_convex_newton(monkeypatch):
+    """The sphere's Newton on whole arrays with buffers (convex_newton_fused) repeats the
+    iterates and the stopping rule of convex_newton on its residuals as written before, bit for
+    bit: depths and reduced forces over the whole range of q, from the sphere's own starts."""
+    from contactlab.profiles import sphere as sphere_mod
+    from contactlab.profiles.sphere import _NOISE, _reduced_force
+    q_true = np.r_[np.geomspace(1e-9, 0.999, 3000), np.linspace(0.01, 0.9, 3000)]
+    delta = q_true * np.arctanh(q_true)
+    eta = _reduced_force(q_true)
+
+    def depth_residual(q, idx):
+        at = np.arctanh(q)
+        dl = delta[idx]
+        return q * at - dl, at + q / ((1 - q) * (1 + q)), _NOISE * dl
+
+    def force_residual(q, idx):
+        at = np.arctanh(q)
+        h = _reduced_force(q, at)
+        el = eta[idx]
+        noise = _NOISE * np.where(q < 0.1, el, 0.5 * ((q * q + 1) * at + q))
+        return h - el, q * (at + q / ((1 - q) * (1 + q))), noise
+
+    seen = []
+    real = roots.convex_newton_fused
+
+    def capturing(step_of, x0, **kw):
+        seen.append((np.array(x0, copy=True), kw["rtol"]))
+        return real(step_of, x0, **kw)
+
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", capturing)
+    s = Sphere(1.0)
+    a_d = s._solve_radius(delta, s.max_radius, 1e-10)
+    a_f = s._radius_of_reduced_force(eta, 1e-10)
+    for (x0, tol), residual, out in zip(seen, (depth_residual, force_residual), (a_d, a_f)):
+        ref = roots.convex_newton(residual, x0, rtol=tol)
+        assert out.tobytes() == (1.0 * ref).tobytes()
+
+
+def test_sphere_all_positive_forces_same_bits_as_masked_branch():
+    """The all-positive force branch (no masks) gives, element by element, the bits of the
+    masked branch that a zero force in the batch takes; so do the in-place ∫g and g."""
+    s = Sphere(R)
+    E = 1e11
+    F = np.random.default_rng(7).uniform(1e-3, 2e3, 500)
+    a1, d1 = N.radius_depth_of_force(s, E, F, 1e-10)
+    a0, d0 = N.radius_depth_of_force(s, E, np.r_[F, 0.0], 1e-10)
+    assert a1.tobytes() == a0[:-1].tobytes() and d1.tobytes() == d0[:-1].tobytes()
+    q = a1 / R
+    ref_gi = np.where(q < 0.1, 0.0, 0.5 * (a1**2 - R**2) * np.arctanh(q) + 0.5 * R * a1)
+    gi = s._g_integral_closed_form(a1)
+    assert gi[q >= 0.1].tobytes() == ref_gi[q >= 0.1].tobytes()
+    assert s._g_closed_form(a1).tobytes() == (a1 * np.arctanh(a1 / R)).tobytes()
+    # against 30-digit references: ∫g = (a² - R²)/2 artanh(a/R) + R a/2
+    for ai, gv in zip(a1[::50], gi[::50]):
+        am = mp.mpf(float(ai))
+        ref = (am * am - mp.mpf(R) ** 2) / 2 * mp.atanh(am / R) + mp.mpf(R) * am / 2
+        assert abs(gv / float(ref) - 1) <= SPHERE_G_INTEGRAL
+
+
+@pytest.mark.parametrize("prof", [Paraboloid(1e-3), Sphere(1e-3), PowerLaw(2.0, 1.5)], ids=repr)
+def test_zero_dimensional_force_array(prof):
+    """A 0-d force array takes the array route: it raised a raw TypeError (the residual of a
+    0-d request is a numpy scalar, which np.abs(out=) refuses); now it gives the state of the
+    one-element batch, bit for bit, as a 0-d state."""
+    c = cl.Contact(prof, MATERIALS)
+    s = c.normal(force=np.array(1.0))
+    one = c.normal(force=np.array([1.0]))
+    assert s.shape == ()
+    for q in ("depth", "radius", "force", "error_estimate"):
+        assert np.asarray(getattr(s, q)).tobytes() == np.asarray(getattr(one, q))[0].tobytes()
