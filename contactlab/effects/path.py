@@ -120,6 +120,24 @@ class PathResult(Result, Cited):
         """Copies of the per-step series, keyed by name."""
         return {k: np.array(v) for k, v in self.data.items()}
 
+    def stress(self, r: Any, z: Any, *, step: int, body: int = 1, part: str = "total") -> Any:
+        """Subsurface stress field at snapshot ``step`` of a path without shift, Pa.
+
+        The normal part is the exact field of the step's normal state; the torsional part is
+        the field of the step's own surface traction (``snapshots[step]["shear_torsion"]``) as
+        a superposition of twisted flat punches (:mod:`contactlab.effects.stress_path`), as
+        exact as that traction. ``part="friction"`` gives the torsional part alone. Raises
+        :class:`~contactlab.errors.EffectNotPlannedError` for a step without snapshot and
+        :class:`~contactlab.errors.NotSupportedError` for a shifted or no-slip twisted path.
+
+        Returns
+        -------
+        StressField
+            As :meth:`TorsionState.stress` (``meta["step"]``, ``meta["error_estimate"]``).
+        """
+        from .stress_path import path_stress
+        return path_stress(self, r, z, step=step, body=body, part=part)
+
     def _assess(self, notes: list, contact: Any, path: Any) -> list[str]:
         """Where the model error of a run on the MDR torsion springs comes from, into ``meta``
         (``model_error_basis``; ``model_errors`` per torsion output, computed on first access
@@ -415,8 +433,10 @@ def _run(fnd: Any, method: str, contact, path: LoadPath, outputs: Any, snapshots
             and contact.friction is not None):
         warn_mdr_path(contact, res["twist"], res["radius"], res["depth"], res["force"],
                       energy="dissipated_energy" in outputs, stacklevel=4)
-    return PathResult({k: res[k] for k in outputs}, _with_pressure(contact, out.snapshots),
-                      out.meta)
+    result = PathResult({k: res[k] for k in outputs}, _with_pressure(contact, out.snapshots),
+                        out.meta)
+    object.__setattr__(result, "_contact", contact)     # for stress(); not a result field
+    return result
 
 
 def _with_pressure(contact, snapshots: dict) -> dict:
