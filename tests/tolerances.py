@@ -796,13 +796,13 @@ COLLOCATION_SIGN = 0.2
 SPHERE_G_INTEGRAL = 1e-13
 #: PathResult.stress (issue 31): the normal part of a path snapshot is the normal state's own
 #: field (same code: rounding); the force through a plane (trapezoid to 10⁴ a on 6800 radii) to
-#: the quadrature of the plane integral (measured below 1e-4)
+#: the quadrature of the plane integral (measured 2.2e-7)
 PATH_STRESS_NORMAL = 1e-12
-PATH_STRESS_PLANE = 1e-3
+PATH_STRESS_PLANE = 1e-6
 #: the torsional part at depth against the torque of the snapshot traction and that torque
-#: against the ring solver's step torque (200 rings; measured 2.3e-3 and 1.6e-3 on the varying
+#: against the ring solver's step torque (200 rings; measured 1.5e-3 and 7.3e-4 on the varying
 #: load path of tests/unit/effects/test_stress_path.py), and the field against TwistHistory's
-#: at a constant force step (measured below 3e-3 of the largest σ_θz)
+#: at a constant force step (measured 1.4e-3 of the largest σ_θz)
 PATH_STRESS_TORQUE = 5e-3
 #: the part of the difference of PathResult.stress's torsional field from the snapshot traction
 #: (surface) and from TwistHistory's field (constant force step) that its own error estimate does
