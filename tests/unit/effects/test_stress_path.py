@@ -126,3 +126,24 @@ def test_bad_calls_raise(run):
                          snapshots=[2])
     with pytest.raises(NotSupportedError, match="shift"):
         shifted.stress(0.0, 1e-5, step=2)
+
+
+def test_mdr_route_uses_its_own_traction():
+    # the MDR snapshot's traction (cell midpoints ``x``) at the constant-force step
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        res = C.simulate(cl.LoadPath.from_arrays(force=FORCE[:10], twist=TWIST[:10]),
+                         method="mdr", snapshots=[9])
+    snap = res.snapshots[9]
+    a = snap["radius"]
+    keep = snap["x"] < 0.98 * a
+    t = snap["shear_torsion"][keep]
+    f = res.stress(snap["x"][keep], 0.0, step=9)
+    assert np.all(np.abs(f.stz - t) <= f.error + tol.PATH_STRESS_EXCESS * np.max(np.abs(t)))
+    inside = snap["x"] < a
+    r = np.concatenate([[0.0], snap["x"][inside], [a]])
+    M0 = 2 * np.pi * np.trapezoid(np.concatenate([[0.0], snap["shear_torsion"][inside], [0.0]])
+                                  * r * r, r)
+    Fz, M, _ = _plane(res, 9, 0.5 * a)
+    assert Fz == pytest.approx(-res.force[9], rel=tol.PATH_STRESS_PLANE)
+    assert M == pytest.approx(M0, rel=tol.PATH_STRESS_TORQUE)     # measured 2.1e-4
