@@ -25,6 +25,7 @@ from ..errors import (
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
+from ..physics.normal_fused import FORCE_SANITY
 from ._protocol import Result
 
 __all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip",
@@ -91,13 +92,16 @@ class LazyMeta(dict):
     when it is computed changes no bit of it.
     """
 
-    __slots__ = ("_pending", "residual")
+    __slots__ = ("_pending", "checked", "residual")
 
     def __init__(self, base: dict, pending: Any, *args: Any) -> None:
         dict.__init__(self, base)
         self._pending: tuple[Any, tuple[Any, ...]] | None = (pending, args)
         #: ``|F - force|`` of a batched force-controlled solve (its request check), or None
         self.residual: np.ndarray | None = None
+        #: True where a compiled force solve made the driver's checks on its way (every
+        #: force finite and within _FORCE_SANITY of its request)
+        self.checked = False
 
     def _resolve(self) -> None:
         pending = self._pending
@@ -209,7 +213,7 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
 #: solution but a numerical breakdown (overflow): raised, never returned. Smaller residuals of the
 #: radius solve are reported by the state's error estimate (measured up to 1.4e-8 next to a
 #: truncated profile's rim).
-_FORCE_SANITY = 1e-6
+_FORCE_SANITY = FORCE_SANITY
 
 
 def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
@@ -235,11 +239,13 @@ def normal(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
         with np.errstate(over="raise"):
             state = _normal_state(contact, depth, force, radius, branch)
         F, d, a = (np.asarray(v, float) for v in (state._force, state._depth, state._radius))
-        if not _finite_state(F, d, a) or (force is not None and not _carries_request(
-                F, force, getattr(state.meta, "residual", None))):
+        if not getattr(state.meta, "checked", False) and (
+                not _finite_state(F, d, a) or (force is not None and not _carries_request(
+                    F, force, getattr(state.meta, "residual", None)))):
             raise FloatingPointError("non-finite or inconsistent state")
         if isinstance(state.meta, LazyMeta):
-            state.meta.residual = None          # (read: the state does not keep it)
+            state.meta.residual = None          # (read: the state does not keep them)
+            state.meta.checked = False
         return state
     except (FloatingPointError, OverflowError) as err:
         given = {k: v for k, v in (("depth", depth), ("force", force), ("radius", radius))
@@ -313,6 +319,7 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
     if callable(rel):       # exact routes: the estimate is computed when it is first read
         meta = LazyMeta(base, _estimate_value, rel)
         meta.residual = getattr(rel, "residual", None)   # |F - force| for the caller's check
+        meta.checked = getattr(rel, "checked", False)
     else:
         meta = {**base, "error_estimate": _estimate_value(lambda: rel)}
     return NormalState(contact, d, a, F, meta)

@@ -25,6 +25,8 @@ from ..numeric.powers import root_of_ratio
 from ..numeric.quadrature import tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..profiles.base import ROUNDING, root_rtol
+from ..profiles.power_law import Paraboloid
+from . import normal_fused as _fused
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "pressure_from_shape", "displacement",
            "elastic_energy", "g_squared_integral", "force_of_radius", "radius_depth_of_force", "solve"]
@@ -497,6 +499,11 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         d = np.where(a > 0, g_a, 0.0)
         profile._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
     else:
+        if (error_estimate == "lazy" and value.size >= _fused.FUSED_FROM
+                and type(profile) is Paraboloid and _fused.backend() == "numba"):
+            fused = _solve_force_fused(profile, E, value, rtol)
+            if fused is not None:
+                return fused
         a, d = radius_depth_of_force(profile, E, value, rtol)
     all_pos = a.size == 0 or bool(a.min() > 0)     # (one reduction, no mask)
     lazy = error_estimate == "lazy" and profile._g_integral_is_exact()
@@ -550,6 +557,32 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
     return (np.asarray(d, float), np.asarray(a, float), F,
             _force_rel_error(E, control, a, ad, g_int, g_int_err, F, all_pos, value,
                              g_a_err))
+
+
+def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float, compiled: bool = True
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any] | None:
+    """:func:`solve`'s lazy force route on a paraboloid by the compiled passes of
+    :func:`contactlab.physics.normal_fused.paraboloid_force` (the same values, bit for bit), or
+    None where they decline. The pending estimate carries the residual (``pending.residual``)
+    and ``pending.checked = True``: every force is finite and within
+    :data:`~contactlab.physics.normal_fused.FORCE_SANITY` of its request (the caller's checks,
+    made in the compiled pass)."""
+    if profile.g_route != "closed_form" or np.isfinite(profile.wall_radius):
+        return None
+    res = _fused.paraboloid_force(profile, E, value, compiled)
+    if res is None:
+        return None
+    a, d, F, resid = res
+
+    def pending() -> np.ndarray:
+        # ∫g, a pure function of the radius, recomputed when the estimate is read (as the
+        # numpy route does where it lent ∫g's buffer to the residual)
+        gi = profile._g_integral(a, rtol)
+        return _force_rel_error(E, "force", a, a * d, gi, ROUNDING * np.abs(gi), F, True, None,
+                                None, resid)
+    pending.residual = resid            # type: ignore[attr-defined]
+    pending.checked = True              # type: ignore[attr-defined]
+    return d, a, F, pending
 
 
 def _is_own_temporary(v: Any, shape: tuple[int, ...]) -> bool:
