@@ -541,9 +541,11 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
             # the buffer of ∫g when nothing else holds that array (then ∫g, a pure function of
             # the radius, is recomputed if the estimate is read): one new array fewer
             reuse = _is_own_temporary(g_int, np.shape(F))
-            # (a 0-d request gives numpy scalars: the residual is then made a 0-d array)
-            resid = (np.subtract(F, value, out=g_int) if reuse
-                     else np.array(np.subtract(F, value), dtype=float))
+            # (a 0-d request gives numpy scalars: the residual is then made a 0-d array; an
+            # array difference is the residual's own new array, not copied again)
+            resid = np.subtract(F, value, out=g_int) if reuse else np.subtract(F, value)
+            if not isinstance(resid, np.ndarray):
+                resid = np.array(resid, dtype=float)
             np.abs(resid, out=resid)
         kept = None if reuse else g_int
         del g_int

@@ -12,7 +12,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import OutsideTheoryError
+from ..errors import ConvergenceError, OutsideTheoryError
+from ..numeric import normal_kernels as _kernels
 from ..numeric.roots import convex_newton_fused
 from ..params import Param
 from ..symbolic.form import SympyForm, symbol
@@ -23,8 +24,10 @@ __all__ = ["Sphere", "VALIDITY_RATIO"]
 #: rounding level of a Newton residual relative to the size of its terms
 _NOISE = 8 * float(np.finfo(float).eps)
 #: series coefficients of h(q)/(R² q³) in q², 2m/((2m-1)(2m+1)), m = 1..9 (q < 0.1: the tenth
-#: term is below 1e-18 of the first)
-_H_SERIES = tuple(2 * m / ((2 * m - 1) * (2 * m + 1)) for m in range(1, 10))
+#: term is below 1e-18 of the first), shared with the compiled Newton round
+_H_SERIES = _kernels.SPHERE_SERIES
+#: Newton rounds of the force solve before it gives up (ConvergenceError)
+_MAXITER = 200
 
 
 def _reduced_force(q: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
@@ -153,7 +156,8 @@ class Sphere(Profile):
                 ser += part
             ser *= R**2
             out[small] = ser
-        return out.reshape(shape)
+        # (1-D input: out itself, an array of the caller's own, not a view of it)
+        return out if out.shape == shape else out.reshape(shape)
 
     def _sympy_form(self) -> SympyForm:
         import sympy as sp
@@ -251,20 +255,30 @@ class Sphere(Profile):
         q0 += 1.0
         np.cbrt(q0, out=q0)
         np.divide(qh, q0, out=q0)
-        del qh2
         if qh.size and np.max(qh) > 0.5:
             deep = qh > 0.5             # Hertz / the tanh bound there, both above the root
             ed = eta[deep]
             ql = np.tanh(ed)
             q0[deep] = np.minimum(qh[deep], np.tanh((2 * ed + 1) / (ql * ql + 1)))
-        over = q0 >= q_cap
-        if np.any(over) and np.any(_reduced_force(np.full(int(np.count_nonzero(over)), q_cap))
-                                   < eta[over]):
-            return None     # a radius beyond R: declined, the bracketed solve names the force
+        if q0.size and np.max(q0) >= q_cap:     # (one reduction; the mask only when needed)
+            over = q0 >= q_cap
+            if np.any(_reduced_force(np.full(int(np.count_nonzero(over)), q_cap)) < eta[over]):
+                return None     # a radius beyond R: declined, the bracketed solve names the force
         np.minimum(q0, q_cap, out=q0)
         del qh
 
         flat = eta.ravel()
+        if flat.size >= _kernels.FUSED_FROM and _kernels.backend() == "numba":
+            # the same rounds compiled (numeric.normal_kernels: bit-identical)
+            # (qh2's buffer, free now, takes artanh q)
+            stuck = _kernels.sphere_force_newton(q0, flat, _NOISE, root_rtol(rtol), _MAXITER,
+                                                 work=qh2)
+            if stuck is not None:
+                raise ConvergenceError(f"contact radius: Newton's method did not converge in "
+                                       f"{_MAXITER} steps (at {stuck!r}).")
+            q0 *= R
+            return q0.reshape(shape)
+        del qh2
         at, p, h, w = (np.empty(flat.shape) for _ in range(4))
         small = np.empty(flat.shape, dtype=bool)
 
@@ -297,7 +311,7 @@ class Sphere(Profile):
             np.divide(h, w, out=step)
 
         q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius",
-                                overwrite=True)
+                                overwrite=True, maxiter=_MAXITER)
         q *= R
         return q.reshape(shape)
 

@@ -1,19 +1,25 @@
-"""The compiled force-controlled normal solve of a paraboloid (issue 29; numba, extra ``fast``)
-against the numpy route it short-cuts: bit-identical radius, depth, force and error estimate
-on random batches (and to the scalar route), the same refusals, and the declined cases (a force
-that is not positive, a quotient beyond the normal range) left to the numpy route.
-The kernels' logic is also run uncompiled (plain Python), so it is tested without numba."""
+"""The compiled force-controlled normal solves (issue 29; numba, extra ``fast``) against the
+numpy routes they short-cut: on a paraboloid bit-identical radius, depth, force and error
+estimate on random batches (and to the scalar route), the declined cases (a force that is not
+positive, a quotient beyond the normal range) left to the numpy route; the exact sphere's
+Newton rounds bit-identical to the numpy rounds (series, closed form and deep starts), giving up
+after as many rounds with the same error. The kernels' logic is also run uncompiled (plain
+Python), so it is tested without numba."""
 from __future__ import annotations
+
+import functools
 
 import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.errors import ParameterError
+from contactlab.errors import ConvergenceError, ParameterError, ValidityWarning
 from contactlab.numeric import jit
+from contactlab.numeric import normal_kernels as NK
 from contactlab.physics import normal as N
 from contactlab.physics import normal_fused as NF
-from contactlab.profiles import Paraboloid
+from contactlab.profiles import Paraboloid, Sphere
+from contactlab.profiles import sphere as sphere_mod
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 needs_numba = pytest.mark.skipif(not jit.available(), reason="numba (extra 'fast') not installed")
@@ -120,3 +126,65 @@ def test_backend_choice(backend, monkeypatch):
     NF.set_backend(None)
     monkeypatch.delenv("CONTACTLAB_BACKEND")
     assert NF.backend() == ("numba" if jit.available() else "numpy")
+
+
+# ------------------------------------------------------------------ the exact sphere's Newton
+def _sphere_forces(R: float, size: int, seed: int) -> np.ndarray:
+    """Forces of contact radii from 1e-9 R to 0.999 R (the series below a/R = 0.1, the closed
+    form above it, the deep start above a/R ~ 0.5)."""
+    rng = np.random.default_rng(seed)
+    q = np.concatenate([rng.uniform(0.0, 0.999, size - 3), [1e-9, 0.0999999, 0.1]])
+    c = cl.Contact(Sphere(R), MATERIALS)
+    with pytest.warns(ValidityWarning):
+        return np.asarray(c.normal(radius=q * R).force)
+
+
+@needs_numba
+@pytest.mark.parametrize("R", [1e-2, 1e-6, 3.0])
+def test_sphere_compiled_newton_bit_identical_to_numpy(backend, R):
+    F = _sphere_forces(R, NF.FUSED_FROM + 500, int(R * 1e6) % 997)
+    c = cl.Contact(Sphere(R), MATERIALS)
+    backend("numba")
+    with pytest.warns(ValidityWarning):
+        fast = c.normal(force=F)
+    backend("numpy")
+    with pytest.warns(ValidityWarning):
+        ref = c.normal(force=F)
+    assert _state_arrays(fast) == _state_arrays(ref)
+
+
+@pytest.mark.parametrize("compiled", [False, pytest.param(True, marks=needs_numba)])
+def test_sphere_newton_kernel_matches_numpy_rounds(monkeypatch, compiled):
+    """The Newton round itself (plain Python when not compiled) against the numpy rounds."""
+    prof = Sphere(0.01)
+    F = _sphere_forces(0.01, 400, 5)
+    E = cl.Contact(prof, MATERIALS).moduli.normal
+    NK._state["backend"] = "numpy"
+    try:
+        ref = prof._radius_of_reduced_force(F / (2 * E), 1e-10)
+        monkeypatch.setattr(NK, "FUSED_FROM", 1)
+        monkeypatch.setattr(NK, "sphere_force_newton",
+                            functools.partial(NK.sphere_force_newton, compiled=compiled))
+        NK._state["backend"] = "numba"        # (the route; the kernels as the test chose)
+        got = prof._radius_of_reduced_force(F / (2 * E), 1e-10)
+    finally:
+        NK.set_backend(None)
+    assert ref.tobytes() == got.tobytes()
+
+
+@pytest.mark.parametrize("compiled", [False, pytest.param(True, marks=needs_numba)])
+def test_sphere_newton_kernel_gives_up_as_numpy_does(monkeypatch, compiled):
+    prof = Sphere(0.01)
+    F = _sphere_forces(0.01, 300, 6)
+    E = cl.Contact(prof, MATERIALS).moduli.normal
+    monkeypatch.setattr(sphere_mod, "_MAXITER", 1)
+    monkeypatch.setattr(NK, "FUSED_FROM", 1)
+    monkeypatch.setattr(NK, "sphere_force_newton",
+                        functools.partial(NK.sphere_force_newton, compiled=compiled))
+    for route in ("numpy", "numba"):
+        NK._state["backend"] = route
+        try:
+            with pytest.raises(ConvergenceError, match=r"did not converge in 1 steps \(at "):
+                prof._radius_of_reduced_force(F / (2 * E), 1e-10)
+        finally:
+            NK.set_backend(None)
