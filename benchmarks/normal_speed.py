@@ -8,6 +8,8 @@ goal).
 Issue 29 rows (:func:`issue29_rows`):
 
 * 10^6 depths / forces on a ``Paraboloid`` against the numpy closed form (goal <= 2x);
+* the force rows also by the numpy route (the reference, and what runs without numba: the
+  compiled passes of :mod:`contactlab.numeric.normal_kernels` run where numba imports);
 * the exact ``Sphere``, 10^5 depths / forces, against the numpy closed form of the same curve
   evaluated at the solved radii (``d = a artanh(a/R)``, ``F`` from ``∫g``; goal <= 10x), and the
   gain of batching over one scalar call per load;
@@ -39,6 +41,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import contactlab as cl  # noqa: E402
 from contactlab.profiles import (Cone, Paraboloid, Polynomial, PowerLaw, Sphere,  # noqa: E402
                                  Tabulated)
+from contactlab.numeric import normal_kernels  # noqa: E402
 from _harness import best_time, machine  # noqa: E402
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
@@ -70,6 +73,23 @@ def interleaved(fns: dict, rounds: int = 7) -> dict:
 
 def goal(ratio: float, limit: float, what: str = "x") -> str:
     return f"{'MET   ' if ratio <= limit else 'MISSED'} (goal <= {limit:g}{what})"
+
+
+#: the force rows run the compiled passes where numba imports (contactlab.numeric.
+#: normal_kernels); the numpy route (the reference, and what runs without numba) is timed beside
+BACKEND_NOTE = f"backend of the rows above: {normal_kernels.backend()}"
+
+
+def numpy_route(fn):
+    """``fn`` run with the batched normal solves forced onto their numpy route."""
+    def call():
+        saved = normal_kernels._state["backend"]
+        normal_kernels.set_backend("numpy")
+        try:
+            return fn()
+        finally:
+            normal_kernels._state["backend"] = saved
+    return call
 
 
 def _previous_newton(tab):
@@ -109,12 +129,15 @@ def issue29_rows() -> None:
         return a, a * a / R
 
     t = interleaved({"depth": lambda: c.normal(depth=d), "floor_d": floor_depth,
-                     "force": lambda: c.normal(force=F), "floor_f": floor_force})
+                     "force": lambda: c.normal(force=F), "floor_f": floor_force,
+                     "force_np": numpy_route(lambda: c.normal(force=F))})
     for key, fl, label in (("depth", "floor_d", "10^6 depths -> radius, force"),
                            ("force", "floor_f", "10^6 forces -> radius, depth")):
         r = t[key] / t[fl]
         print(f"  Paraboloid {label:32s} {t[key] * 1e3:7.2f} ms, numpy closed form "
               f"{t[fl] * 1e3:6.2f} ms: {r:5.2f}x  {goal(r, 2.0)}")
+    print(f"    (the forces by the numpy route, {BACKEND_NOTE}: {t['force_np'] * 1e3:.2f} ms, "
+          f"{t['force_np'] / t['floor_f']:.2f}x)")
 
     # exact sphere: the closed form of the same curve is parametric in the contact radius
     cs = cl.Contact(Sphere(R), MATERIALS)
@@ -128,12 +151,15 @@ def issue29_rows() -> None:
         return dd, 2 * E * (a * dd - (0.5 * (a * a - R * R) * at + 0.5 * R * a))
 
     t = interleaved({"depth": lambda: cs.normal(depth=ds), "force": lambda: cs.normal(force=Fs),
-                     "radius": lambda: cs.normal(radius=a), "floor": floor_sphere})
+                     "radius": lambda: cs.normal(radius=a), "floor": floor_sphere,
+                     "force_np": numpy_route(lambda: cs.normal(force=Fs))})
     for key in ("depth", "force"):
         r = t[key] / t["floor"]
         print(f"  exact Sphere, 10^5 {key + 's':6s} -> state          {t[key] * 1e3:7.2f} ms, "
               f"numpy closed form of the curve {t['floor'] * 1e3:5.2f} ms: {r:5.1f}x  "
               f"{goal(r, 10.0)}")
+    print(f"    (the forces by the numpy route, {BACKEND_NOTE}: {t['force_np'] * 1e3:.2f} ms, "
+          f"{t['force_np'] / t['floor']:.1f}x)")
     print(f"  (contactlab's own closed form, normal(radius=) on the same radii: "
           f"{t['radius'] * 1e3:.2f} ms)")
     few = ds[:: ds.size // 200][:200]
