@@ -184,13 +184,19 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
         power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
         branch under fixed grips (zero force once the surfaces have come apart).
-        ``"dmt"`` is not available yet.
+        ``"dmt"``: the non-adhesive MDR force less the Derjaguin force of a short-range
+        attraction on the rigid gap beyond the contact edge, ``2πΔγ ρ(a)`` with the effective
+        radius ``ρ(a) = a/f'(a)`` (``R`` for a paraboloid, ``sqrt(R² - a²)`` for the exact
+        sphere, ``a/s`` for a cone of slope ``s``), for any tip without a wall whose gap opens
+        beyond the contact edge; ``meta["effective_radius"]`` is ``ρ`` at the deepest point.
     work_of_adhesion : float, optional
         ``Δγ``, J/m²: the fixed value when ``"work_of_adhesion"`` is not free.
     equilibrium_distance : float, optional
-        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m (paraboloid tips):
-        the fit reports ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when
-        ``μ_T < 5`` (outside the JKR limit).
+        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m: the fit reports
+        ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when ``μ_T < 5``
+        with JKR or ``μ_T > 0.1`` with DMT (outside the model's limit). ``R``: the apex radius
+        (JKR, rounded tips); with DMT the effective radius ``a/f'(a)`` at the deepest point
+        (any tip).
     time : None
         Reserved for viscoelastic fits (not available yet).
     start : dict, optional
@@ -210,7 +216,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     UnknownNameError
         An unknown name in ``free``.
     NotSupportedError
-        ``adhesion``, ``time``, a profile with a wall.
+        ``adhesion`` with ``time``, a profile with a wall, DMT on a tip flat at the contact's
+        onset (``f'(a)/a -> 0``).
     ConvergenceError
         The solver did not converge.
 
@@ -248,10 +255,11 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
     jkr = None
-    dmt_R = None
+    dmt = None
     if adhesion == "dmt":
         _check_work(names, work_of_adhesion, adhesion)
-        dmt_R = _apex_radius(profile)
+        from ._dmt import check_wall
+        check_wall(profile)
     c_tip = tip_m._compliances()[0]
     k_nu = 1.0 - sample.nu ** 2
     order = np.argsort(z, kind="stable")
@@ -282,6 +290,9 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                     "reaches at its max_radius; use a larger tip or drop the deep points.")
     from ._tip import TipModel
     tipm = TipModel(profile, delta_max, rtol)
+    if adhesion == "dmt":
+        from ._dmt import DMTModel
+        dmt = DMTModel(profile, tipm)
     if adhesion == "jkr":
         jkr = _jkr_model(profile, adhesion, names, work_of_adhesion, delta_max, rtol)
     # ---- starting values
@@ -291,25 +302,32 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     base = Fs[:n_base]
     off0 = float(np.median(base)) if fit_off else 0.0
     rise = Fs - off0
-    top = float(np.max(np.abs(rise) if dmt_R is not None else rise))   # DMT: the drop counts
+    top = float(np.max(np.abs(rise) if dmt is not None else rise))   # DMT: the drop counts
     noise = float(np.median(np.abs(base - np.median(base)))) * 1.4826 if fit_off else 0.0
     thr = max(5.0 * noise, 0.02 * top)
-    if top <= 0 or not np.any((np.abs(rise) if dmt_R is not None else rise) > thr):
+    if top <= 0 or not np.any((np.abs(rise) if dmt is not None else rise) > thr):
         raise ParameterError(
             f"force never rises above its baseline (largest rise {top!r} N over an offset of "
             f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
     zc, Fc, proj_off = zs, Fs, fit_off
-    if dmt_R is not None:           # DMT: the force drops by 2πRΔγ at the contact point
+    if dmt is not None and dmt.rho0 == 0.0:
+        # a pointed tip: no step at the contact point; the force is linear in E*, Δγ and the
+        # offset at a given contact point, which a search over candidates projects out
+        from ._dmt import dmt_start
+        dmt_start(dmt, tipm, start, names, zs, Fs, rise, cp_lo, fit_off,
+                  float(work_of_adhesion or 0.0), k_nu, c_tip, float(sample.E))
+    if dmt is not None:             # DMT: the force drops by 2πΔγ ρ0 at the contact point
         i_min = int(np.argmin(rise))
         if fit_cp and "contact_point" not in start:
             start["contact_point"] = 0.5 * (float(zs[max(i_min - 1, 0)]) + float(zs[i_min]))
         if "work_of_adhesion" in names and "work_of_adhesion" not in start:
             start["work_of_adhesion"] = max(-float(rise[i_min]), 1e-6 * top) / (
-                2.0 * np.pi * dmt_R)
+                2.0 * np.pi * dmt.rho0)
         if fit_off and "force_offset" not in start:
             start["force_offset"] = off0
         w0 = float(start.get("work_of_adhesion", work_of_adhesion or 0.0))
-        Fc = Fs + 2.0 * np.pi * dmt_R * w0 * (zs > float(start.get("contact_point", 0.0)))
+        rho_s = dmt(zs - float(start.get("contact_point", 0.0)))[0]
+        Fc = Fs + 2.0 * np.pi * rho_s * w0
     if jkr is not None:             # the start from the part above the baseline after pull-off
         keep = (np.arange(zs.size) > int(np.argmin(rise))) & (rise > 0)
         zc, Fc, proj_off = zs[keep], rise[keep], False
@@ -388,9 +406,13 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             if jkr is None:             # F = E*Φ: ∂F/∂E* = Φ, ∂F/∂δ = E*Φ' = 2E*a
                 phi, dphi = tipm(z - v["contact_point"])
                 f, f_d, f_e, f_w = Es * phi, Es * dphi, phi, None
-                if dmt_R is not None:   # DMT: - 2πRΔγ in contact, ∂F/∂Δγ = -2πR there
-                    f_w = np.where(z > v["contact_point"], -2.0 * np.pi * dmt_R, 0.0)
+                if dmt is not None:     # DMT: - 2πΔγ ρ in contact, ∂F/∂Δγ = -2πρ there
+                    delta = z - v["contact_point"]
+                    rho, rho_d = dmt(delta)
+                    f_w = np.where(delta > 0, -2.0 * np.pi * rho, 0.0)
                     f = f + f_w * v["work_of_adhesion"]
+                    if dmt.route != "constant":     # ∂F/∂δ: - 2πΔγ dρ/dδ
+                        f_d = f_d - (2.0 * np.pi * v["work_of_adhesion"]) * rho_d
             else:
                 f, f_d, f_e, f_w = jkr.force(z - v["contact_point"], Es, v["work_of_adhesion"])
             cache[key] = (v, Es, f, f_d, f_e, f_w)
@@ -466,11 +488,14 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     # model); a DMT fit reports it in params
     contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit if jkr else None)
     meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ())
-                  + (("DMT75", "M92") if dmt_R is not None else ()),
+                  + (("DMT75", "M92") if dmt is not None else ()),
                   "x_name": "depth", "y_name": "force",
                   "tip_route": "jkr" if jkr is not None else tipm.route}
-    if dmt_R is not None:
-        meta["apex_radius"] = dmt_R
+    dmt_R = None
+    if dmt is not None:             # the effective radius a/f'(a) at the deepest point
+        dmt_R = float(dmt(np.array([float(zs[-1]) - vals["contact_point"]]))[0][0])
+        meta["effective_radius"] = dmt_R
+        meta["dmt_route"] = dmt.route
     if jkr is not None and hasattr(jkr, "error"):
         meta["tip_model_errors"] = {"g": jkr.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's transform g in the "
@@ -487,6 +512,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
                                      "measured at the interval midpoints")
+    if dmt is not None and dmt.route == "table":
+        meta.setdefault("tip_model_errors", {})["dmt_radius"] = dmt.error
+        meta["model_error_basis"] = (meta.get("model_error_basis", "") + "; " if
+                                     "model_error_basis" in meta else "") + (
+            "cubic spline of the DMT effective radius a/f'(a) in the contact radius (relative "
+            "to its largest value), measured at the interval midpoints")
     params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
     if adhesion is not None:
         params["work_of_adhesion"] = vals["work_of_adhesion"]
