@@ -162,9 +162,13 @@ def dmt_start(dmt: DMTModel, tipm: Any, start: dict, names: tuple[str, ...], zs:
     point): at each candidate contact point the force ``E* Φ - 2πΔγ ρ + F0`` is linear in the
     free ones of ``E*``, ``Δγ`` and ``F0``, solved by linear least squares; the candidate with
     the smallest residual (and ``E*``, ``Δγ`` positive) wins, on a grid from the start of the
-    data (or one span before it) to the force's minimum, then on a finer grid around it.
+    data (or one span before it) to the force's minimum, then on a finer grid around it; the
+    candidates are judged on a subsample of about 256 points.
     Fills ``start`` for the names it does not hold."""
     fit_cp = "contact_point" in names and "contact_point" not in start
+    step = max(1, zs.size // 256)               # the candidates are judged on a subsample
+    z_min = float(zs[int(np.argmin(rise))])
+    zs, Fs = zs[::step], Fs[::step]
     free_e = "E" in names and "E" not in start
     free_w = "work_of_adhesion" in names and "work_of_adhesion" not in start
     free_o = fit_off and "force_offset" not in start
@@ -198,7 +202,6 @@ def dmt_start(dmt: DMTModel, tipm: Any, start: dict, names: tuple[str, ...], zs:
 
     cp0 = float(start.get("contact_point", 0.0))
     if fit_cp:
-        z_min = float(zs[int(np.argmin(rise))])
         lo = max(cp_lo, float(zs[0]))
         grid = np.linspace(lo, z_min, _START_CANDIDATES)
         rows = [(*solve(float(c)), float(c)) for c in grid]

@@ -107,8 +107,8 @@ def _check_work(names: tuple[str, ...], work_of_adhesion: float | None, adhesion
 
 
 def _apex_radius(profile: Profile) -> float:
-    """Radius of curvature of the tip's apex, ``1/f''(0)`` (m), for DMT: a paraboloid term
-    ``r²/(2R)`` plus higher powers, or the exact sphere."""
+    """Radius of curvature of the tip's apex, ``1/f''(0)`` (m), for the Tabor parameter of a
+    JKR fit: a paraboloid term ``r²/(2R)`` plus higher powers, or the exact sphere."""
     from ..profiles import Sphere
     if isinstance(profile, Sphere):
         return float(profile.R)
@@ -118,9 +118,10 @@ def _apex_radius(profile: Profile) -> float:
         if len(quad) == 1 and quad[0] > 0 and all(n >= 2.0 for _, n in terms):
             return 1.0 / (2.0 * quad[0])
     raise NotSupportedError(
-        f"adhesion='dmt' with profile={profile!r}: the DMT force 2π R Δγ needs the tip's apex "
-        "radius of curvature R (a paraboloid, the exact Sphere, or a sum of a paraboloid and "
-        "higher powers); a cone or flat apex has none (R = 0 or infinite).")
+        f"equilibrium_distance=... with adhesion='jkr' and profile={profile!r}: the Tabor "
+        "parameter needs the tip's apex radius of curvature R (a paraboloid, the exact Sphere, "
+        "or a sum of a paraboloid and higher powers); a cone or flat apex has none (R = 0 or "
+        "infinite); drop equilibrium_distance.")
 
 
 def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
