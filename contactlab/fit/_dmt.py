@@ -206,8 +206,8 @@ def dmt_start(dmt: DMTModel, tipm: Any, start: dict, names: tuple[str, ...], zs:
         grid = np.linspace(lo, z_min, _START_CANDIDATES)
         rows = [(*solve(float(c)), float(c)) for c in grid]
         i = int(np.argmin([r[0] for r in rows]))
-        step = float(grid[1] - grid[0]) if grid.size > 1 else 0.0
-        fine = np.linspace(max(lo, rows[i][4] - step), min(z_min, rows[i][4] + step),
+        dz = float(grid[1] - grid[0]) if grid.size > 1 else 0.0
+        fine = np.linspace(max(lo, rows[i][4] - dz), min(z_min, rows[i][4] + dz),
                            _START_CANDIDATES // 2)
         rows += [(*solve(float(c)), float(c)) for c in fine]
         best = min(rows, key=lambda r: r[0])

@@ -184,7 +184,11 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     adhesion : None or "jkr"
         ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
         power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
-        branch under fixed grips (zero force once the surfaces have come apart).
+        branch under fixed grips (zero force once the surfaces have come apart). A flat
+        punch (``FlatPunch``): Kendall's model, ``F = 2E* b δ`` while attached, detachment at
+        ``δ_c = -sqrt(2π b Δγ/E*)``; ``E``, the contact point and the offset by linear least
+        squares, ``Δγ`` from the measured pull-off in closed form (its sampling bracket in
+        ``meta["work_of_adhesion_bracket"]``, see the fitting docs).
         ``"dmt"``: the non-adhesive MDR force less the Derjaguin force of a short-range
         attraction on the rigid gap beyond the contact edge, ``2πΔγ ρ(a)`` with the effective
         radius ``ρ(a) = a/f'(a)`` (``R`` for a paraboloid, ``sqrt(R² - a²)`` for the exact
@@ -255,6 +259,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     if free is None:
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
+    if adhesion == "jkr":
+        from ._kendall import kendall_profile
+        if kendall_profile(profile):
+            _check_work(names, work_of_adhesion, adhesion)
+            return _kendall_result(z, F, profile, sample, tip_m, names, work_of_adhesion,
+                                   dict(start or {}))
     jkr = None
     dmt = None
     if adhesion == "dmt":
@@ -526,6 +536,27 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
                      model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev,
                      meta=meta)
+
+
+def _kendall_result(z: np.ndarray, F: np.ndarray, profile: Profile, sample: Elastic,
+                    tip_m: Material, names: tuple[str, ...], work_of_adhesion: float | None,
+                    start: dict) -> FitResult:
+    """A flat punch's JKR (Kendall) fit: :mod:`contactlab.fit._kendall`."""
+    from ..contact import Contact
+    from ._kendall import fit_kendall
+    k_nu = 1.0 - sample.nu ** 2
+    vals, stderr, cov, model, dof, extra = fit_kendall(
+        z, F, float(profile.wall_radius), names, float(sample.E), k_nu,
+        tip_m._compliances()[0], work_of_adhesion, start)
+    fitted = Elastic(E=vals["E"], nu=sample.nu)
+    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=vals["work_of_adhesion"])
+    meta: dict = {"citations": ("PH", "K71"), "x_name": "depth", "y_name": "force",
+                  "tip_route": "kendall", **extra}
+    params = {k: vals[k] for k in ("E", "contact_point", "force_offset", "work_of_adhesion")}
+    params["nu"] = float(sample.nu)
+    r = model - F
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
+                     model=model, residuals=r, contact=contact, dof=dof, nfev=1, meta=meta)
 
 
 def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs: np.ndarray,
