@@ -131,12 +131,22 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
     tip ``c r^n`` (n >= 1), else a Hermite table of ``g`` in the contact radius."""
     if adhesion is None:
         return None
-    if profile.flat_radius != 0.0 or np.isfinite(profile.wall_radius):
+    if np.isfinite(profile.wall_radius):
         raise NotSupportedError(
-            f"adhesion='jkr' with profile={profile!r}: a flat punch or a wall is not covered by "
-            "the JKR fit (its contact radius does not follow from the indentation); give a "
-            "rounded or pointed tip.")
+            f"adhesion='jkr' with profile={profile!r}: a wall around a rising profile is not "
+            "covered by the JKR fit (the contact radius stops at the wall, the curve has two "
+            "regimes); a flat punch alone (FlatPunch) is fitted by Kendall's model.")
     _check_work(names, work_of_adhesion, adhesion)
+    if profile.flat_radius > 0.0:           # a flat centre with a rising flank
+        if not (profile.g_route == "closed_form"
+                and profile._g_integral_exact(np.array([profile.flat_radius])) is not None):
+            raise NotSupportedError(
+                f"adhesion='jkr' with profile={profile!r}: a flat centre is covered for tips "
+                "whose transform g and its integral have closed forms (TruncatedCone, "
+                "TruncatedParaboloid); a measured flat-centred tip is not.")
+        from ._jkr_flat import JKRFlat
+        a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
+        return JKRFlat(profile, 1.5 * a_na, rtol)
     from ._jkr import JKRPower, JKRTable
     terms = profile.power_terms()
     if terms is not None and len(terms) == 1 and terms[0][1] >= 1.0:
@@ -171,7 +181,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         Measured normal force, N, same length.
     profile : Profile
         The tip's shape: closed forms, the exact ``Sphere``, ``Cone``, a measured
-        ``Tabulated`` tip, sums; no punch wall.
+        ``Tabulated`` tip, sums; a punch wall only as ``FlatPunch`` with ``adhesion="jkr"``.
     sample : Elastic
         Material template of the sample: its ``nu`` is used, its ``E`` is the fixed value (or
         the fallback start when ``"E"`` is free; the start is computed from the data).
@@ -182,8 +192,9 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         ``adhesion="jkr"``, ``"work_of_adhesion"``. The others are fixed
         (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
     adhesion : None or "jkr"
-        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
-        power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
+        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for tips
+        without a wall (power laws ``c r^n`` with ``n >= 1`` in closed form, others by a table,
+        flat-centred tips with a rising flank exactly); the curve is the retraction
         branch under fixed grips (zero force once the surfaces have come apart). A flat
         punch (``FlatPunch``): Kendall's model, ``F = 2E* b δ`` while attached, detachment at
         ``δ_c = -sqrt(2π b Δγ/E*)``; ``E``, the contact point and the offset by linear least
