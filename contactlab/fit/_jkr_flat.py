@@ -43,6 +43,12 @@ class JKRFlat:
     """
 
     error = 0.0
+    #: the branch end's force grows as Δγ^(1/2) when it lies at the flat's edge (Kendall):
+    #: the start search matches Δγ to the smallest force with this power
+    work_power = 2.0
+    #: the start search reads the branch end at the jump, not at the smallest force (the
+    #: force falls further along the branch before the end on a shallow flank)
+    end_at_jump = True
 
     def __init__(self, profile: Any, a_max: float, rtol: float = 1e-12) -> None:
         self.profile, self.a_max, self.rtol = profile, float(a_max), rtol

@@ -583,13 +583,18 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     as that minimum instead started closer on noise-free curves but led noisy fits into local
     minima at the branch end's jump more often.)"""
     i_pull = int(np.argmin(rise))
+    if getattr(jkr, "end_at_jump", False) and rise[i_pull] < 0:
+        # the branch end is the jump: the first sample (in depth) below a quarter of the
+        # smallest force (the end's force is more than half of it on these tips: 5/9 in the
+        # paraboloid's limit b -> 0, all of it on a steep flank)
+        i_pull = int(np.argmax(rise < 0.25 * rise[i_pull]))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
     # the force of c r^n grows as Δγ^((n+1)/(2n-1)) at a fixed point of the branch (a table:
     # the paraboloid's 1, iterated)
     n = getattr(jkr, "n", 2.0)
-    p = (2.0 * n - 1.0) / (n + 1.0)
+    p = getattr(jkr, "work_power", (2.0 * n - 1.0) / (n + 1.0))
 
     def work(E_star: float, point: Any) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:

@@ -67,3 +67,19 @@ def test_recovered_from_the_branch():
                       free=("E", "contact_point", "work_of_adhesion"))
     for k, want in {"E": E, "contact_point": Z0, "work_of_adhesion": W}.items():
         assert res.params[k] == pytest.approx(want, rel=FIT_RECOVERY), k
+
+
+def test_truncated_paraboloid_recovered():
+    """f = (r² - b²)/(2R) beyond b: g = (a/R) sqrt(a² - b²), ∫_0^a g = (a² - b²)^(3/2)/(3R)."""
+    from contactlab.profiles import TruncatedParaboloid
+    Rr = 5e-6
+    a = B + (2 * B) * np.linspace(0.0, 1.0, 1700) ** 2      # uniform in sqrt(a - b)
+    d = a / Rr * np.sqrt(a * a - B * B) - BETA * np.sqrt(a)
+    F = 2 * ESTAR * (a * d - (a * a - B * B) ** 1.5 / (3 * Rr))
+    before = np.linspace(d[0] - 0.3 * (d[-1] - d[0]), d[0], 300, endpoint=False)
+    z = np.concatenate([before, d]) + Z0
+    force = np.concatenate([np.zeros(300), F])
+    res = indentation(z, force, TruncatedParaboloid(radius=B, R=Rr), sample=Elastic(E=1e6, nu=NU),
+                      adhesion="jkr", free=("E", "contact_point", "work_of_adhesion"))
+    for k, want in {"E": E, "contact_point": Z0, "work_of_adhesion": W}.items():
+        assert res.params[k] == pytest.approx(want, rel=FIT_RECOVERY), k
