@@ -213,8 +213,10 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         with JKR or ``μ_T > 0.1`` with DMT (outside the model's limit). ``R``: the apex radius
         (JKR, rounded tips); with DMT the effective radius ``a/f'(a)`` at the deepest point
         (any tip).
-    time : None
-        Reserved for viscoelastic fits (not available yet).
+    time : array_like, optional
+        Sample times, s, for a viscoelastic sample (Lee-Radok on the approach, Ting on the
+        retract); with ``adhesion="dmt"`` the adhesive force follows Ting's contact radius
+        (``adhesion="jkr"`` is refused: the crack at the edge is rate dependent).
     start : dict, optional
         Starting values by name (override the automatic ones).
     rtol : float
@@ -252,9 +254,14 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     if adhesion not in (None, "jkr", "dmt"):
         raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
     if time is not None:
-        if adhesion is not None:
-            raise NotSupportedError(f"adhesion={adhesion!r} with time=...: adhesive "
-                                    "viscoelastic fits are not available; give adhesion=None.")
+        if adhesion == "jkr":
+            raise NotSupportedError(
+                "adhesion='jkr' with time=...: on a viscoelastic sample the JKR crack at the "
+                "contact edge grows and heals at rates that depend on the crack speed (the "
+                "work of adhesion is rate dependent, with a hysteresis between approach and "
+                "retract), which Ting's rules do not describe; fit adhesion='dmt' (an "
+                "attraction beyond the contact edge, through Ting's contact radius) or an "
+                "elastic JKR fit of the retract.")
         if not isinstance(profile, Profile):
             raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab "
                                  "Profile (e.g. contactlab.profiles.Sphere(R=1e-5)).")
@@ -263,7 +270,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             raise ParameterError(f"depth has {z.size} points and force has {F.size}: give "
                                  "curves of equal length.")
         from .viscoelastic import fit_viscoelastic
-        return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol)
+        return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol,
+                                adhesion, work_of_adhesion)
     if isinstance(sample, Material) and sample.is_viscoelastic:
         raise ParameterError(f"sample={sample!r} is viscoelastic: give the sample times as "
                              "time=... (s) to fit it with Ting's rules.")
