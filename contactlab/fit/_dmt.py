@@ -32,10 +32,12 @@ import numpy as np
 
 from ..errors import NotSupportedError
 
-__all__ = ["DMT_NODES", "DMTModel", "check_wall", "dmt_start"]
+__all__ = ["DMT_NODES", "DMT_TABLE_WARN", "DMTModel", "check_wall", "dmt_start"]
 
 #: nodes of the ``"table"`` route's spline of ``a/f'(a)``
 DMT_NODES = 2049
+#: error of that spline (relative to the largest ``a/f'(a)``) above which a fit warns
+DMT_TABLE_WARN = 1e-3
 
 
 def check_wall(profile: Any) -> None:
@@ -78,6 +80,16 @@ class DMTModel:
         else:
             self.route = "table"
             self._build(float(tipm.radius(np.array([tipm.delta_max]))[0][0]))
+            if self.error > DMT_TABLE_WARN:
+                import warnings
+
+                from ..errors import ValidityWarning
+                warnings.warn(
+                    f"adhesion='dmt' with profile={profile!r}: the effective radius a/f'(a) "
+                    f"of the tip is not smooth (its spline is off by {self.error:.2g} of its "
+                    "largest value between nodes; a linear table's slope is constant on each "
+                    "interval); the fitted work of adhesion carries that error. Use "
+                    "interpolation='cubic' for a measured tip.", ValidityWarning, stacklevel=4)
         rho0 = float(self.rho_of_radius(np.array([b]))[0][0])
         if not (np.isfinite(rho0) and rho0 >= 0.0):
             raise NotSupportedError(

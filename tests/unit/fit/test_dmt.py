@@ -215,6 +215,17 @@ def test_measured_sphere_tip_within_its_table_error():
     assert res.params["contact_point"] == pytest.approx(Z0, abs=10 * bound * float(z[-1]))
 
 
+def test_linear_table_warns_that_its_effective_radius_is_not_smooth():
+    """A linear table's slope is constant on each interval: a/f'(a) is a saw-tooth, and the
+    fit says so (the cubic table of the same points does not warn, see above)."""
+    z, F = sphere_dmt(0.4 * R)
+    r = np.linspace(0.0, 0.5 * R, 4001)
+    with pytest.warns(errors.ValidityWarning, match="not smooth"):
+        res = indentation(z, F, Tabulated(r, R - np.sqrt(R * R - r * r)), sample=SAMPLE,
+                          adhesion="dmt", free=("E", "contact_point", "work_of_adhesion"))
+    assert res.meta["tip_model_errors"]["dmt_radius"] > 1e-3
+
+
 PROFILES = [Cone(slope=0.3), PowerLaw(c=2e2, n=1.5), Sphere(R=R),
             Paraboloid(R=R) + Cone(slope=0.05), TruncatedCone(radius=0.3e-6, slope=0.3),
             Tabulated(np.linspace(0, 2e-6, 301), np.linspace(0, 2e-6, 301) ** 2 / (2 * R),
