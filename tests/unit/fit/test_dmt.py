@@ -248,6 +248,41 @@ def test_effective_radius_slope_is_the_derivative(profile):
     np.testing.assert_allclose(m.radius(d)[1], fa, rtol=FIT_JACOBIAN_FD)
 
 
+@pytest.mark.parametrize("profile", [PROFILES[0], PROFILES[2], PROFILES[4], PROFILES[5]])
+def test_solver_jacobian_against_finite_differences(profile, monkeypatch):
+    """The residual and Jacobian handed to the solver (E, contact point, Δγ and offset, an
+    elastic tip) agree with central differences at a point away from the solution; samples
+    that change sides of the contact point within the step are left out."""
+    import contactlab.fit._tip as tipmod
+    seen = {}
+    real = tipmod.levenberg_marquardt
+
+    def spy(residual, jacobian, x0, **kw):
+        seen.setdefault("fn", (residual, jacobian, x0))
+        return real(residual, jacobian, x0, **kw)
+
+    monkeypatch.setattr(tipmod, "levenberg_marquardt", spy)
+    d = np.linspace(0.0, 2.4e-7, 400)
+    z = np.concatenate([np.linspace(-6e-8, 0.0, 100, endpoint=False), d]) + Z0
+    m = TipModel(profile, 4e-7)
+    phi = m(z - Z0)[0]
+    F = ESTAR * phi - 2 * np.pi * WP * DMTModel(profile, m)(z - Z0)[0] + 1e-10
+    indentation(z, F, profile, sample=SAMPLE, tip=Elastic(E=1e9, nu=0.3), adhesion="dmt",
+                free=ALL)
+    residual, jacobian, x0 = seen["fn"]
+    x = np.asarray(x0, float) + 0.01
+    J = jacobian(x)
+    for i in range(x.size):
+        h = 1e-6 * max(abs(x[i]), 1.0)
+        e = np.zeros_like(x)
+        e[i] = h
+        rp, r0, rm = residual(x + e), residual(x), residual(x - e)
+        fd = (rp - rm) / (2 * h)
+        smooth = np.abs((rp - r0) - (r0 - rm)) <= 1e-3 * np.abs(rp - rm) + 1e-30
+        np.testing.assert_allclose(J[smooth, i], fd[smooth], rtol=FIT_JACOBIAN_FD,
+                                   atol=FIT_JACOBIAN_FD * np.max(np.abs(fd)))
+
+
 @pytest.mark.parametrize("profile", PROFILES[:4])
 def test_effective_radius_closed_forms(profile):
     """ρ(a) = a/f'(a) against the profile's own slope, at its own contact radius."""
