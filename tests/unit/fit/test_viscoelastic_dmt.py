@@ -96,7 +96,7 @@ def test_jacobian_against_finite_differences(curve, monkeypatch):
     real = tipmod.levenberg_marquardt
 
     def spy(residual, jacobian, x0, **kw):
-        seen.setdefault("fn", (residual, jacobian, x0))
+        seen["fn"] = (residual, jacobian, x0)   # the last: the whole curve, five parameters
         return real(residual, jacobian, x0, **kw)
 
     monkeypatch.setattr(tipmod, "levenberg_marquardt", spy)
@@ -104,6 +104,7 @@ def test_jacobian_against_finite_differences(curve, monkeypatch):
     indentation(z, F, prof, time=t, sample=tmpl, adhesion="dmt",
                 free=("G_inf", "G_1", "eta_1", "contact_point", "work_of_adhesion"))
     residual, jacobian, x0 = seen["fn"]
+    assert len(x0) == 5
     x = np.asarray(x0, float) + 0.03
     J = jacobian(x)
     for i in range(x.size):
