@@ -271,7 +271,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                                  "curves of equal length.")
         from .viscoelastic import fit_viscoelastic
         return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol,
-                                adhesion, work_of_adhesion)
+                                adhesion, work_of_adhesion, equilibrium_distance)
     if isinstance(sample, Material) and sample.is_viscoelastic:
         raise ParameterError(f"sample={sample!r} is viscoelastic: give the sample times as "
                              "time=... (s) to fit it with Ting's rules.")

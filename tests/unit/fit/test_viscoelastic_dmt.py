@@ -119,6 +119,21 @@ def test_jacobian_against_finite_differences(curve, monkeypatch):
                                    atol=FIT_JACOBIAN_FD * scale)
 
 
+def test_tabor_parameter_at_the_instantaneous_and_relaxed_moduli(curve):
+    name, prof, w, t, z, F = curve
+    if name != "paraboloid":
+        pytest.skip("one tip is enough")
+    tmpl = StandardLinearSolid(G_inf=3e3, G_1=1e4, eta_1=1e4)
+    with pytest.warns(errors.ValidityWarning, match="outside the DMT limit"):
+        res = indentation(z, F, prof, time=t, sample=tmpl, adhesion="dmt",
+                          free=("G_inf", "G_1", "eta_1", "contact_point", "work_of_adhesion"),
+                          equilibrium_distance=0.3e-9)
+    e_inst, e_rel = 4 * (SLS["G_inf"] + SLS["G_1"]), 4 * SLS["G_inf"]
+    for key, e in (("tabor_parameter", e_inst), ("tabor_parameter_relaxed", e_rel)):
+        assert res.meta[key] == pytest.approx((R * w * w / (e * e * 0.3e-9 ** 3)) ** (1 / 3),
+                                              rel=1e-7)
+
+
 def test_jkr_with_a_viscoelastic_sample_is_refused():
     t, z = ramp()
     with pytest.raises(errors.NotSupportedError, match="rate"):
