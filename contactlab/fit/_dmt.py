@@ -119,6 +119,8 @@ class DMTModel:
                 rho0 = (y[0] * x[1] * x[2] / ((x[0] - x[1]) * (x[0] - x[2]))
                         + y[1] * x[0] * x[2] / ((x[1] - x[0]) * (x[1] - x[2]))
                         + y[2] * x[0] * x[1] / ((x[2] - x[0]) * (x[2] - x[1])))
+                if rho0 <= 1e-9 * float(np.max(rho)):     # a pointed apex: 0, not rounding
+                    rho0 = 0.0
             vals = np.concatenate([[rho0], rho])
             spline = CubicSpline(a, vals)
             am = 0.5 * (a[2:] + a[1:-1])

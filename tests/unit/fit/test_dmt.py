@@ -215,6 +215,22 @@ def test_measured_sphere_tip_within_its_table_error():
     assert res.params["contact_point"] == pytest.approx(Z0, abs=10 * bound * float(z[-1]))
 
 
+def test_measured_cone_tip():
+    """A cubic table of a cone (its slope kept on the axis): a pointed apex, ρ(0) = 0 (no step
+    at the contact point), recovered like the closed-form cone within the table's errors."""
+    s = 0.3
+    a = 2 * D / (np.pi * s)
+    F = 2 / np.pi * ESTAR * D * D / s - 2 * np.pi * WP * a / s
+    r = np.linspace(0, 2e-6, 401)
+    tab = Tabulated(r, s * r, interpolation="cubic", axis="free")
+    res = indentation(Z, F, tab, sample=SAMPLE, adhesion="dmt",
+                      free=("E", "contact_point", "work_of_adhesion"))
+    assert res.meta["dmt_route"] == "table"
+    bound = sum(res.meta["tip_model_errors"].values())
+    assert bound < 1e-10
+    check(res)
+
+
 def test_linear_table_warns_that_its_effective_radius_is_not_smooth():
     """A linear table's slope is constant on each interval: a/f'(a) is a saw-tooth, and the
     fit says so (the cubic table of the same points does not warn, see above)."""
