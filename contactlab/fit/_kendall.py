@@ -9,9 +9,9 @@ everywhere and a least-squares fit of ``Δγ`` is ill-posed. The fit therefore s
 
 1. ``E*``, the contact point ``z0`` and the offset ``F0`` by linear least squares on the
    model ``F = 2E* b (z - z0) [z >= z_last] + F0`` (attached samples: those at or beyond
-   ``z_last``, the sample of the most negative force, i.e. the last one before the jump; the
-   model is linear in ``E*``, ``E* z0`` and ``F0``), with the usual covariance ``s² (JᵀJ)⁻¹``
-   of the exact Jacobian ``∂F/∂E* = 2b (z - z0)``, ``∂F/∂z0 = -2E* b`` (attached),
+   ``z_last``, the first sample in depth below half the smallest force, i.e. the last one
+   before the jump; the model is linear in ``E*``, ``E* z0`` and ``F0``), with the usual
+   covariance ``s² (JᵀJ)⁻¹`` of the exact Jacobian ``∂F/∂E* = 2b (z - z0)``, ``∂F/∂z0 = -2E* b`` (attached),
    ``∂F/∂F0 = 1``;
 2. ``Δγ = E* δ_last²/(2π b)`` in closed form from the last attached sample's indentation
    ``δ_last = z_last - z0``: the detachment lies between that sample and the next one out
@@ -51,8 +51,12 @@ def fit_kendall(z: np.ndarray, F: np.ndarray, b: float, names: tuple[str, ...], 
     off_fixed = float(start.get("force_offset", 0.0))
     n_base = max(2, zs.size // 10)
     base = float(np.median(Fs[:n_base])) if fit_off else off_fixed
-    i_last = int(np.argmin(Fs - base))          # the last attached sample (most negative force)
-    if not (Fs[i_last] - base < 0 and 0 < i_last):
+    # the last attached sample: the first one (in depth) beyond the jump, i.e. below half the
+    # smallest force (near the end the attached force changes by less than the noise from
+    # sample to sample, so the smallest force itself may lie a few samples deeper)
+    rise = Fs - base
+    i_last = int(np.argmax(rise < 0.5 * float(np.min(rise))))
+    if not (rise[i_last] < 0 and 0 < i_last):
         raise ParameterError(
             "adhesion='jkr' with a flat punch: the curve has no pull-off (no force below the "
             "baseline followed by a jump back to it at smaller depth); Kendall's work of "

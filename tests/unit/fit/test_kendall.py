@@ -57,6 +57,20 @@ def test_work_of_adhesion_within_the_sampling_bracket():
     assert res.params["contact_point"] == pytest.approx(Z0, rel=FIT_RECOVERY)
 
 
+def test_last_attached_sample_is_the_jump_not_the_smallest_force():
+    """Near the pull-off the attached force changes by less than the noise per sample: a sample
+    a few steps deeper can hold the smallest force. The samples between it and the jump are
+    still attached (regression: they were taken as detached, biasing the contact point)."""
+    dd = np.concatenate([np.linspace(DC - 60e-9, DC, 400, endpoint=False),
+                         np.linspace(DC, 200e-9, 1600)])
+    F = kendall(dd, 0.0)
+    F[403] -= 1e-8                  # 3 samples deeper than the end (1.8e-9 N per sample)
+    res = indentation(dd + Z0, F, FlatPunch(radius=B), sample=SAMPLE, adhesion="jkr",
+                      free=ALL)
+    assert res.meta["pull_off_indentation"] == pytest.approx(DC, rel=1e-6)
+    assert res.params["contact_point"] == pytest.approx(Z0, rel=1e-6)
+
+
 def test_noisy_interval_of_the_modulus():
     rng = np.random.default_rng(3)
     dd = np.linspace(DC - 60e-9, 200e-9, 2000)
@@ -78,3 +92,25 @@ def test_fixed_work_and_refusals():
     with pytest.raises(errors.ParameterError, match="no pull-off"):
         indentation(dd + Z0, np.maximum(kendall(dd, 0.0), 0.0), FlatPunch(radius=B),
                     sample=SAMPLE, adhesion="jkr", free=ALL)
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval():
+    """With noise larger than the attached force's change from one sample to the next near the
+    pull-off, the 95 % intervals of E and the contact point cover the truth in 90-99 % of 200
+    repetitions; Δγ's (its sampling bracket included) in at least 90 %."""
+    rng = np.random.default_rng(7)
+    dd = np.linspace(DC - 60e-9, 200e-9, 2000)
+    clean = kendall(dd, 0.0)
+    truth = {"E": E, "contact_point": Z0, "work_of_adhesion": W}
+    hits = dict.fromkeys(truth, 0)
+    n = 200
+    for _ in range(n):
+        res = indentation(dd + Z0, clean + rng.normal(0.0, 2e-9, dd.size), FlatPunch(radius=B),
+                          sample=SAMPLE, adhesion="jkr", free=ALL)
+        ci = res.confidence(0.95)
+        for k in truth:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k in ("E", "contact_point"):
+        assert 0.90 * n <= hits[k] <= 0.99 * n, (k, hits[k])
+    assert hits["work_of_adhesion"] >= 0.90 * n
