@@ -341,3 +341,24 @@ def test_coverage_of_the_95_percent_interval():
             hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
     for k, v in hits.items():
         assert 0.90 * n <= v <= 0.99 * n, (k, v)
+
+
+@pytest.mark.slow
+def test_coverage_of_the_95_percent_interval_on_a_cone():
+    """The pointed tip's start (a search over contact points with the linear parameters
+    projected out) and fit: the 95 % intervals of E, the contact point and Δγ cover the truth
+    in 90-99 % of 200 repetitions."""
+    rng = np.random.default_rng(17)
+    s = 0.3
+    clean = 2 / np.pi * ESTAR * D * D / s - 2 * np.pi * WP * (2 * D / (np.pi * s)) / s
+    truth = {"E": E, "contact_point": Z0, "work_of_adhesion": WP}
+    hits = dict.fromkeys(truth, 0)
+    n = 200
+    for _ in range(n):
+        res = indentation(Z, clean + rng.normal(0.0, 2e-10, Z.size), Cone(slope=s),
+                          sample=SAMPLE, adhesion="dmt", free=ALL)
+        ci = res.confidence(0.95)
+        for k in truth:
+            hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
+    for k, v in hits.items():
+        assert 0.90 * n <= v <= 0.99 * n, (k, v)
