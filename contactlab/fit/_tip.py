@@ -58,28 +58,44 @@ class TipModel:
     Parameters
     ----------
     profile : Profile
-        Any axisymmetric profile without a punch wall.
+        Any axisymmetric profile (a punch wall only with ``allow_wall``).
     delta_max : float
         Largest indentation the fit may need, m (> 0).
     rtol : float
         Tolerance of the profile's own routes when a table is built.
+    allow_wall : bool
+        Accept a punch wall (the elastic fits); ``False`` refuses it.
 
     Raises
     ------
     NotSupportedError
-        A flat punch with a wall (its force is not a function of the indentation alone).
+        A punch wall without ``allow_wall``.
+
+    Notes
+    -----
+    A punch wall at ``b``: a flat punch takes the route ``"punch"`` (``Φ = 2bδ``); a profile
+    rising up to the wall takes the table up to the depth ``g(b)`` where the contact reaches
+    the wall, and ``Φ`` grows as ``2b`` per unit indentation beyond.
     """
 
-    def __init__(self, profile, delta_max: float, rtol: float = 1e-12) -> None:
-        if np.isfinite(profile.wall_radius):
+    def __init__(self, profile, delta_max: float, rtol: float = 1e-12,
+                 allow_wall: bool = False) -> None:
+        if np.isfinite(profile.wall_radius) and not allow_wall:
             raise NotSupportedError(
-                f"profile={profile!r} has a punch wall: its contact radius does not follow from "
-                "the indentation, so fit.indentation does not cover it; fit a profile without a "
-                "wall.")
+                f"profile={profile!r} has a punch wall: its contact radius stops at the wall, "
+                "which this fit (viscoelastic or friction loop) does not cover; fit a profile "
+                "without a wall.")
         self.profile = profile
         self.rtol = rtol
-        terms = profile.power_terms()
         self.error = 0.0
+        #: a wall stops the contact radius: beyond the depth it reaches, Φ grows as 2bδ
+        self._wall = bool(np.isfinite(profile.wall_radius))
+        if self._wall and profile.flat_radius >= profile.wall_radius:
+            self.route = "punch"            # a flat punch: Φ = 2bδ, a = b
+            self._b = float(profile.wall_radius)
+            self.delta_max = float(delta_max)
+            return
+        terms = profile.power_terms()
         if terms is not None and len(terms) == 1 and profile.flat_radius == 0.0:
             c, n = terms[0]
             self.route = "power"
@@ -90,7 +106,7 @@ class TipModel:
         cheap = (profile.g_route == "closed_form" and not profile.has("linear_table")
                  and not profile.has("node_table")
                  and profile._g_integral_exact(np.array([0.0])) is not None)
-        self.route = "newton" if cheap else "table"
+        self.route = "newton" if cheap and not self._wall else "table"
         nodes = _START_NODES if cheap else TABLE_NODES
         self._build(float(delta_max), nodes)
 
@@ -130,6 +146,9 @@ class TipModel:
     def __call__(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``Φ(δ)`` and ``dΦ/dδ`` at indentations ``δ`` (m, array); 0 where ``δ <= 0``."""
         d = np.maximum(np.asarray(delta, float), 0.0)
+        if self.route == "punch":
+            pos = d > 0
+            return 2.0 * self._b * d, np.where(pos, 2.0 * self._b, 0.0)
         if self.route == "power":
             n = self._n
             if n == 2.0:                    # the paraboloid without general powers (speed)
@@ -144,10 +163,13 @@ class TipModel:
                 phi = a ** (n + 1.0)
             phi *= 2.0 * self._kc * n / (n + 1.0)
             return phi, 2.0 * a
+        d_in = d
         d = np.minimum(d, self._g[-1])
         if self.route == "table":
             phi, der = _hermite(d, self._g, self._phi, 2.0 * self._a)
             pos = d > 0
+            if self._wall:                  # beyond the wall's depth: the punch's 2bδ
+                phi = phi + 2.0 * self._a[-1] * (d_in - d)
             return np.where(pos, phi, 0.0), np.where(pos, der, 0.0)
         a = self._newton_radius(d)
         phi = 2.0 * (a * d - self.profile._g_integral(a, self.rtol))
@@ -177,6 +199,8 @@ class TipModel:
         the Hermite interpolant on the ``"table"`` route, ``1/g'(a)`` on the others."""
         d = np.maximum(np.asarray(delta, float), 0.0)
         pos = d > 0
+        if self.route == "punch":
+            return np.where(pos, self._b, 0.0), np.zeros(d.shape)
         if self.route == "power":
             n, kc = self._n, self._kc
             a = (d / kc) ** (1.0 / n)
@@ -193,6 +217,8 @@ class TipModel:
                    + (3 * t * t - 4 * t + 1) * mn[k] + (3 * t * t - 2 * t) * mn[k + 1])
             der2 = ((12 * t - 6) / (h * h) * (yn[k] - yn[k + 1]) + (6 * t - 4) / h * mn[k]
                     + (6 * t - 2) / h * mn[k + 1])
+            if self._wall:                  # at the wall the radius stops
+                der2 = np.where(np.maximum(np.asarray(delta, float), 0.0) > xn[-1], 0.0, der2)
             return np.where(pos, 0.5 * der, 0.0), np.where(pos, 0.5 * der2, 0.0)
         a = self._newton_radius(d)
         gp = g_prime(self.profile, a, self.rtol)

@@ -131,12 +131,11 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
     tip ``c r^n`` (n >= 1), else a Hermite table of ``g`` in the contact radius."""
     if adhesion is None:
         return None
-    if np.isfinite(profile.wall_radius):
-        raise NotSupportedError(
-            f"adhesion='jkr' with profile={profile!r}: a wall around a rising profile is not "
-            "covered by the JKR fit (the contact radius stops at the wall, the curve has two "
-            "regimes); a flat punch alone (FlatPunch) is fitted by Kendall's model.")
     _check_work(names, work_of_adhesion, adhesion)
+    if profile.flat_radius > 0.0 and np.isfinite(profile.wall_radius):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: a flat centre inside a wall (other than "
+            "a flat punch, fitted by Kendall's model) is not covered.")
     if profile.flat_radius > 0.0:           # a flat centre with a rising flank
         if not (profile.g_route == "closed_form"
                 and profile._g_integral_exact(np.array([profile.flat_radius])) is not None):
@@ -160,6 +159,8 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
     a_top = 1.5 * a_na                  # adhesion widens the contact at a given indentation
     if np.isfinite(profile.max_radius):
         a_top = min(a_top, profile.max_radius * (1.0 - 1e-6))
+    if np.isfinite(profile.wall_radius):    # the contact stops at the wall (the table's end)
+        a_top = min(a_top, profile.wall_radius)
     return JKRTable(profile, a_top, rtol)
 
 
@@ -181,7 +182,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         Measured normal force, N, same length.
     profile : Profile
         The tip's shape: closed forms, the exact ``Sphere``, ``Cone``, a measured
-        ``Tabulated`` tip, sums; a punch wall only as ``FlatPunch`` with ``adhesion="jkr"``.
+        ``Tabulated`` tip, sums, a punch wall (``FlatPunch``, a rounded end inside a wall;
+        not with ``"dmt"``).
     sample : Elastic
         Material template of the sample: its ``nu`` is used, its ``E`` is the fixed value (or
         the fallback start when ``"E"`` is free; the start is computed from the data).
@@ -192,9 +194,10 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         ``adhesion="jkr"``, ``"work_of_adhesion"``. The others are fixed
         (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
     adhesion : None or "jkr"
-        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for tips
-        without a wall (power laws ``c r^n`` with ``n >= 1`` in closed form, others by a table,
-        flat-centred tips with a rising flank exactly); the curve is the retraction
+        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit): power laws
+        ``c r^n`` with ``n >= 1`` in closed form, others by a table (a rounded end inside a
+        wall: the radius stops at the wall), flat-centred tips with a rising flank exactly;
+        the curve is the retraction
         branch under fixed grips (zero force once the surfaces have come apart). A flat
         punch (``FlatPunch``): Kendall's model, ``F = 2E* b δ`` while attached, detachment at
         ``δ_c = -sqrt(2π b Δγ/E*)``; ``E``, the contact point and the offset by linear least
@@ -319,7 +322,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                     f"depth={float(zs[-1])!r} m exceeds the depth {reach!r} m that {profile!r} "
                     "reaches at its max_radius; use a larger tip or drop the deep points.")
     from ._tip import TipModel
-    tipm = TipModel(profile, delta_max, rtol)
+    tipm = TipModel(profile, delta_max, rtol, allow_wall=True)
     if adhesion == "dmt":
         from ._dmt import DMTModel
         dmt = DMTModel(profile, tipm)
