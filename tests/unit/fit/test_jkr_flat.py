@@ -14,7 +14,12 @@ from contactlab import Elastic
 from contactlab.fit import indentation
 from contactlab.fit._jkr_flat import JKRFlat
 from contactlab.profiles import TruncatedCone
-from tests.tolerances import FIT_JACOBIAN_FD, FIT_RECOVERY
+from tests.tolerances import (
+    FIT_CLOSED_FORM_ROUNDING,
+    FIT_JACOBIAN_FD,
+    FIT_MODEL_SOLVE,
+    FIT_RECOVERY,
+)
 
 B, S, Z0, W = 0.3e-6, 0.3, 12e-9, 0.005
 E, NU = 2e6, 0.5
@@ -33,9 +38,10 @@ def test_branch_end_at_the_flat_edge_is_kendalls():
     m = JKRFlat(TIP, 1.5e-6)
     a_c, d_c = m.critical(ESTAR, W)
     assert a_c == B
-    assert d_c == pytest.approx(-BETA * np.sqrt(B), rel=1e-14)
+    assert d_c == pytest.approx(-BETA * np.sqrt(B), rel=FIT_CLOSED_FORM_ROUNDING)
     F_c, _ = m.branch_end(ESTAR, W)
-    assert F_c == pytest.approx(-np.sqrt(8 * np.pi * B ** 3 * ESTAR * W), rel=1e-13)
+    assert F_c == pytest.approx(-np.sqrt(8 * np.pi * B ** 3 * ESTAR * W),
+                                rel=FIT_CLOSED_FORM_ROUNDING)
 
 
 def test_force_and_derivatives():
@@ -43,7 +49,8 @@ def test_force_and_derivatives():
     a = B * (1 + np.geomspace(1e-6, 3, 60))
     d, F = branch(a)
     Fm, Fd, Fe, Fw = m.force(d, ESTAR, W)
-    np.testing.assert_allclose(Fm, F, rtol=1e-11, atol=1e-13 * np.max(np.abs(F)))
+    np.testing.assert_allclose(Fm, F, rtol=FIT_MODEL_SOLVE,
+                               atol=FIT_MODEL_SOLVE * np.max(np.abs(F)))
     h = 1e-6 * np.abs(d)
     scale = np.max(np.abs(Fd))
     fd = (m.force(d + h, ESTAR, W)[0] - m.force(d - h, ESTAR, W)[0]) / (2 * h)
@@ -127,9 +134,9 @@ def test_wall_part_of_the_jkr_model_and_its_derivatives():
     d = BW * BW / RW - BETAW * np.sqrt(BW) + np.array([1e-9, 1e-8, 1e-7])
     F, Fd, Fe, Fw = m.force(d, ESTAR, WW)
     want = 2 * ESTAR * (BW * d - BW ** 3 / (3 * RW))
-    np.testing.assert_allclose(F, want, rtol=1e-10)
-    np.testing.assert_allclose(Fd, 2 * ESTAR * BW, rtol=1e-12)
-    np.testing.assert_allclose(Fe, want / ESTAR, rtol=1e-10)
+    np.testing.assert_allclose(F, want, rtol=FIT_MODEL_SOLVE)
+    np.testing.assert_allclose(Fd, 2 * ESTAR * BW, rtol=FIT_CLOSED_FORM_ROUNDING)
+    np.testing.assert_allclose(Fe, want / ESTAR, rtol=FIT_MODEL_SOLVE)
     assert np.all(Fw == 0.0)
 
 

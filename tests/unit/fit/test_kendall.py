@@ -10,7 +10,7 @@ import pytest
 from contactlab import Elastic, errors
 from contactlab.fit import indentation
 from contactlab.profiles import FlatPunch
-from tests.tolerances import FIT_RECOVERY
+from tests.tolerances import FIT_CLOSED_FORM_ROUNDING, FIT_RECOVERY
 
 E, NU, Z0, W, B = 2e6, 0.5, 12e-9, 0.05, 1e-6
 ESTAR = E / (1 - NU ** 2)
@@ -25,7 +25,7 @@ def kendall(dd, off=3e-10):
 
 def test_pull_off_force_is_kendalls():
     assert 2 * ESTAR * B * DC == pytest.approx(-np.sqrt(8 * np.pi * B ** 3 * ESTAR * W),
-                                               rel=1e-14)
+                                               rel=FIT_CLOSED_FORM_ROUNDING)
 
 
 def test_recovered_with_a_sample_at_the_detachment():
@@ -67,8 +67,8 @@ def test_last_attached_sample_is_the_jump_not_the_smallest_force():
     F[403] -= 1e-8                  # 3 samples deeper than the end (1.8e-9 N per sample)
     res = indentation(dd + Z0, F, FlatPunch(radius=B), sample=SAMPLE, adhesion="jkr",
                       free=ALL)
-    assert res.meta["pull_off_indentation"] == pytest.approx(DC, rel=1e-6)
-    assert res.params["contact_point"] == pytest.approx(Z0, rel=1e-6)
+    assert res.meta["pull_off_indentation"] == pytest.approx(DC, rel=FIT_RECOVERY)
+    assert res.params["contact_point"] == pytest.approx(Z0, rel=FIT_RECOVERY)
 
 
 def test_noisy_interval_of_the_modulus():

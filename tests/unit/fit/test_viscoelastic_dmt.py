@@ -131,7 +131,7 @@ def test_tabor_parameter_at_the_instantaneous_and_relaxed_moduli(curve):
     e_inst, e_rel = 4 * (SLS["G_inf"] + SLS["G_1"]), 4 * SLS["G_inf"]
     for key, e in (("tabor_parameter", e_inst), ("tabor_parameter_relaxed", e_rel)):
         assert res.meta[key] == pytest.approx((R * w * w / (e * e * 0.3e-9 ** 3)) ** (1 / 3),
-                                              rel=1e-7)
+                                              rel=FIT_RECOVERY)
 
 
 def test_jkr_with_a_viscoelastic_sample_is_refused():
