@@ -119,10 +119,9 @@ def test_jacobian_against_finite_differences(curve, monkeypatch):
                                    atol=FIT_JACOBIAN_FD * scale)
 
 
+@pytest.mark.parametrize("curve", ["paraboloid"], indirect=True)
 def test_tabor_parameter_at_the_instantaneous_and_relaxed_moduli(curve):
-    name, prof, w, t, z, F = curve
-    if name != "paraboloid":
-        pytest.skip("one tip is enough")
+    _, prof, w, t, z, F = curve
     tmpl = StandardLinearSolid(G_inf=3e3, G_1=1e4, eta_1=1e4)
     with pytest.warns(errors.ValidityWarning, match="outside the DMT limit"):
         res = indentation(z, F, prof, time=t, sample=tmpl, adhesion="dmt",
