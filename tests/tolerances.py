@@ -809,3 +809,11 @@ PATH_STRESS_TORQUE = 5e-3
 #: not cover, of the largest traction: measured 1.4e-3 (surface, step 20 of the varying load
 #: path, where the traction turns sharply at earlier stick radii) and 3.1e-4 (TwistHistory)
 PATH_STRESS_EXCESS = 3e-3
+#: the fit's models against closed forms written in the tests, where both are closed forms in
+#: double precision (Kendall's pull-off, the effective radius a/f'(a), the punch's stiffness):
+#: a few ulps times the cancellation (measured <= 2e-14)
+FIT_CLOSED_FORM_ROUNDING = 1e-12
+#: the fit's models against closed forms where the model finds the contact radius by iteration
+#: or a table (the JKR branch of a flat-centred tip, a JKR table ending at a wall): the solve's
+#: tolerance and the table's differenced slopes (measured <= 4e-11)
+FIT_MODEL_SOLVE = 1e-10

@@ -241,6 +241,8 @@ class JKRTable:
             cache[key] = (a, g, gp, G, err)
         self.a, self.g, self.gp, self.G, self.error = cache[key]
         self.a_max = a_max
+        #: a punch wall at the table's end (its radius, m; ``inf`` without)
+        self.wall = float(profile.wall_radius) if a_max >= profile.wall_radius else np.inf
 
     @staticmethod
     def _slopes(profile, a: np.ndarray, rtol: float) -> np.ndarray:
@@ -250,9 +252,10 @@ class JKRTable:
                 gp = np.asarray(fn(a), float)
             if np.all(np.isfinite(gp)):
                 return gp
-        # fourth-order central differences on a finer step
+        # fourth-order central differences on a finer step (inside a wall: the last node's
+        # stencil ends at the wall)
         eps = 1e-3 * np.diff(a).min()
-        x = np.clip(a, 2 * eps, None)
+        x = np.clip(a, 2 * eps, profile.wall_radius - 2 * eps)
         f = [profile._g(x + k * eps, rtol) for k in (-2, -1, 1, 2)]
         return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * eps)
 
@@ -294,6 +297,10 @@ class JKRTable:
             return 0.0, 0.0
         an = self.a[1:]
         ha = self.gp[1:] - beta / (2.0 * np.sqrt(an))
+        if np.isfinite(self.wall) and not ha[-1] > 0:
+            # the branch would end beyond the wall (a start's trial Δγ far too high): it ends
+            # at the wall, where the contact radius stops
+            return float(an[-1]), float(self.g[-1] - beta * np.sqrt(an[-1]))
         i = int(np.argmax(ha > 0))
         a = np.array([an[i]])
         for _ in range(12):                       # Newton on h'(a) = 0 from the right
@@ -322,16 +329,19 @@ class JKRTable:
             # the previous call's radii: a fit moves its parameters little between calls
             a = np.where(np.isfinite(last_a) & (last_a >= a_c), last_a, a)
         last = False
+        move = on & (delta < hn[-1]) if np.isfinite(self.wall) else on
         for _ in range(_NEWTON):
             g, gp = self._piece(a, full=False)
             sa = np.sqrt(a)
             hval = g - beta * sa - delta
             ha = gp - beta / (2.0 * np.where(sa > 0, sa, 1.0))
-            step = np.where(on & (ha > 0), hval / np.where(ha > 0, ha, 1.0), 0.0)
+            step = np.where(move & (ha > 0), hval / np.where(ha > 0, ha, 1.0), 0.0)
             a = np.clip(a - step, a_c, an[-1])
             if last:
                 break
             last = not np.any(np.abs(step) > 1e-10 * np.maximum(a, 1e-300))
+        if np.isfinite(self.wall):          # beyond the wall's depth the radius stays at it
+            a = np.where(on & (delta >= hn[-1]), an[-1], a)
         out = np.where(on, a, np.nan)
         self._last = out
         return out
@@ -348,6 +358,9 @@ class JKRTable:
         with np.errstate(divide="ignore", invalid="ignore"):
             ha = gp - s / (2.0 * a)
             inv = np.where(on & (ha > 0), 1.0 / ha, 0.0)
+        if np.isfinite(self.wall):          # at the wall a does not move: F = 2E*(bδ - ∫g)
+            at_wall = on & (delta >= self.g[-1] - np.sqrt(2.0 * np.pi * w / E_star * self.a[-1]))
+            inv = np.where(at_wall, 0.0, inv)
         z = np.zeros_like(F)
         return (np.where(on, F, z), np.where(on, 2.0 * E_star * (a - s * inv), z),
                 np.where(on, F / E_star + s * s * inv, z), np.where(on, -2.0 * np.pi * a * inv, z))

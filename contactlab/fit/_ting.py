@@ -24,6 +24,11 @@ depends on the parameters through ``D = 0``; since ``∂F/∂t1 = 4G(t - t1)·2a
 ``∂D/∂t1 = -G(t - t1) ż(t1)``, the total derivative is
 ``dF/dθ = ∂F/∂θ|_{t1} + 8a(t1) ∂D/∂θ`` (``∂D/∂z0 = 0``: ``t1`` does not depend on the contact
 point).
+
+After each call, ``contact`` holds the indentation whose (elastic) contact radius is the
+present one, ``δ`` on the approach and ``δ(t1)`` on the retract (0 apart), and its derivatives
+by ``G_∞``, ``G_k`` and ``τ_k`` (``dδ(t1)/dθ = (∂D/∂θ)/G(t - t1)``; 0 on the approach): an
+adhesive force that depends on the contact radius only (DMT) follows from it.
 """
 from __future__ import annotations
 
@@ -188,6 +193,14 @@ class TingModel:
         dGk[:, a] = 4.0 * H
         dtk[:, a] = 4.0 * Gk[:, None] * H_t
         dz0[a] = 4.0 * (-G_inf * a2_n[a] + Gk @ H_z)
+        # the indentation whose contact radius is the present one (0 apart) and its
+        # derivatives by G_∞, G_k, τ_k (the retract's t1 moves with them; ∂/∂z0 is -1)
+        c_d = np.zeros(n)
+        c_Gi = np.zeros(n)
+        c_Gk = np.zeros((K, n))
+        c_tk = np.zeros((K, n))
+        c_d[a] = np.maximum(z[a] - z0, 0.0)
+        self.contact = (c_d, c_Gi, c_Gk, c_tk)
         if im == n - 1:
             return F, dGi, dGk, dtk, dz0
         # ---- retract: t1 from Ting's condition, then the force up to t1
@@ -275,4 +288,10 @@ class TingModel:
         dGk[:, ri] = m * (4.0 * X + corr * Y)
         dtk[:, ri] = m * Gk[:, None] * (4.0 * X_t + corr * Y_t)
         dz0[ri] = m * 4.0 * (-G_inf * a21 + Gk @ X_z)
+        # δ(t1) = z(t1) - z0: dδ1/dθ = ż(t1) dt1/dθ = (∂D/∂θ)/G(t - t1)
+        g_t1 = G_inf + Gk @ e1
+        c_d[ri] = np.where(on, d1, 0.0)
+        c_Gi[ri] = m * (z[ri] - (zj + vj * (s1 - sj))) / g_t1
+        c_Gk[:, ri] = m * Y / g_t1
+        c_tk[:, ri] = m * Gk[:, None] * Y_t / g_t1
         return F, dGi, dGk, dtk, dz0

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import NotSupportedError
 
-__all__ = ["TABLE_NODES", "TipModel"]
+__all__ = ["TABLE_NODES", "TipModel", "g_prime"]
 
 #: Hermite nodes of the ``"table"`` route (graded towards zero in the contact radius)
 TABLE_NODES = 1025
@@ -58,28 +58,44 @@ class TipModel:
     Parameters
     ----------
     profile : Profile
-        Any axisymmetric profile without a punch wall.
+        Any axisymmetric profile (a punch wall only with ``allow_wall``).
     delta_max : float
         Largest indentation the fit may need, m (> 0).
     rtol : float
         Tolerance of the profile's own routes when a table is built.
+    allow_wall : bool
+        Accept a punch wall (the elastic fits); ``False`` refuses it.
 
     Raises
     ------
     NotSupportedError
-        A flat punch with a wall (its force is not a function of the indentation alone).
+        A punch wall without ``allow_wall``.
+
+    Notes
+    -----
+    A punch wall at ``b``: a flat punch takes the route ``"punch"`` (``Φ = 2bδ``); a profile
+    rising up to the wall takes the table up to the depth ``g(b)`` where the contact reaches
+    the wall, and ``Φ`` grows as ``2b`` per unit indentation beyond.
     """
 
-    def __init__(self, profile, delta_max: float, rtol: float = 1e-12) -> None:
-        if np.isfinite(profile.wall_radius):
+    def __init__(self, profile, delta_max: float, rtol: float = 1e-12,
+                 allow_wall: bool = False) -> None:
+        if np.isfinite(profile.wall_radius) and not allow_wall:
             raise NotSupportedError(
-                f"profile={profile!r} has a punch wall: its contact radius does not follow from "
-                "the indentation, so fit.indentation does not cover it; fit a profile without a "
-                "wall.")
+                f"profile={profile!r} has a punch wall: its contact radius stops at the wall, "
+                "which this fit (viscoelastic or friction loop) does not cover; fit a profile "
+                "without a wall.")
         self.profile = profile
         self.rtol = rtol
-        terms = profile.power_terms()
         self.error = 0.0
+        #: a wall stops the contact radius: beyond the depth it reaches, Φ grows as 2bδ
+        self._wall = bool(np.isfinite(profile.wall_radius))
+        if self._wall and profile.flat_radius >= profile.wall_radius:
+            self.route = "punch"            # a flat punch: Φ = 2bδ, a = b
+            self._b = float(profile.wall_radius)
+            self.delta_max = float(delta_max)
+            return
+        terms = profile.power_terms()
         if terms is not None and len(terms) == 1 and profile.flat_radius == 0.0:
             c, n = terms[0]
             self.route = "power"
@@ -90,7 +106,7 @@ class TipModel:
         cheap = (profile.g_route == "closed_form" and not profile.has("linear_table")
                  and not profile.has("node_table")
                  and profile._g_integral_exact(np.array([0.0])) is not None)
-        self.route = "newton" if cheap else "table"
+        self.route = "newton" if cheap and not self._wall else "table"
         nodes = _START_NODES if cheap else TABLE_NODES
         self._build(float(delta_max), nodes)
 
@@ -130,6 +146,9 @@ class TipModel:
     def __call__(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``Φ(δ)`` and ``dΦ/dδ`` at indentations ``δ`` (m, array); 0 where ``δ <= 0``."""
         d = np.maximum(np.asarray(delta, float), 0.0)
+        if self.route == "punch":
+            pos = d > 0
+            return 2.0 * self._b * d, np.where(pos, 2.0 * self._b, 0.0)
         if self.route == "power":
             n = self._n
             if n == 2.0:                    # the paraboloid without general powers (speed)
@@ -144,11 +163,21 @@ class TipModel:
                 phi = a ** (n + 1.0)
             phi *= 2.0 * self._kc * n / (n + 1.0)
             return phi, 2.0 * a
+        d_in = d
         d = np.minimum(d, self._g[-1])
         if self.route == "table":
             phi, der = _hermite(d, self._g, self._phi, 2.0 * self._a)
             pos = d > 0
+            if self._wall:                  # beyond the wall's depth: the punch's 2bδ
+                phi = phi + 2.0 * self._a[-1] * (d_in - d)
             return np.where(pos, phi, 0.0), np.where(pos, der, 0.0)
+        a = self._newton_radius(d)
+        phi = 2.0 * (a * d - self.profile._g_integral(a, self.rtol))
+        pos = d > 0
+        return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
+
+    def _newton_radius(self, d: np.ndarray) -> np.ndarray:
+        """Contact radius of the ``"newton"`` route at indentations ``d`` (clipped, m)."""
         p = self.profile
         k = np.clip(np.searchsorted(self._g, d, side="right") - 1, 0, self._g.size - 2)
         a0 = np.interp(d, self._g, self._a)
@@ -162,10 +191,59 @@ class TipModel:
             step = np.where(moving, (d - g1) * (a1 - a0) / np.where(moving, dg, 1.0), 0.0)
             a0, g0 = a1, g1
             a1 = np.clip(a1 + step, p.flat_radius, self._a_top)
-        a = a1
-        phi = 2.0 * (a * d - p._g_integral(a, self.rtol))
+        return a1
+
+    def radius(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Contact radius ``a`` (m) of the model and its slope ``da/dδ`` at indentations ``δ``
+        (m); both 0 where ``δ <= 0``. The model's own: ``a = Φ'/2`` and ``da/dδ = Φ''/2`` of
+        the Hermite interpolant on the ``"table"`` route, ``1/g'(a)`` on the others."""
+        d = np.maximum(np.asarray(delta, float), 0.0)
         pos = d > 0
-        return np.where(pos, phi, 0.0), np.where(pos, 2.0 * a, 0.0)
+        if self.route == "punch":
+            return np.where(pos, self._b, 0.0), np.zeros(d.shape)
+        if self.route == "power":
+            n, kc = self._n, self._kc
+            a = (d / kc) ** (1.0 / n)
+            # g = K a^n: da/dδ = a/(n δ)
+            slope = np.where(pos, a / (n * np.where(pos, d, 1.0)), 0.0)
+            return a, slope
+        d = np.minimum(d, self._g[-1])
+        if self.route == "table":
+            xn, yn, mn = self._g, self._phi, 2.0 * self._a
+            k = np.clip(np.searchsorted(xn, d, side="right") - 1, 0, xn.size - 2)
+            h = xn[k + 1] - xn[k]
+            t = (d - xn[k]) / h
+            der = ((6 * t * t - 6 * t) / h * (yn[k] - yn[k + 1])
+                   + (3 * t * t - 4 * t + 1) * mn[k] + (3 * t * t - 2 * t) * mn[k + 1])
+            der2 = ((12 * t - 6) / (h * h) * (yn[k] - yn[k + 1]) + (6 * t - 4) / h * mn[k]
+                    + (6 * t - 2) / h * mn[k + 1])
+            if self._wall:                  # at the wall the radius stops
+                der2 = np.where(np.maximum(np.asarray(delta, float), 0.0) > xn[-1], 0.0, der2)
+            return np.where(pos, 0.5 * der, 0.0), np.where(pos, 0.5 * der2, 0.0)
+        a = self._newton_radius(d)
+        gp = g_prime(self.profile, a, self.rtol)
+        return np.where(pos, a, 0.0), np.where(pos & (gp > 0), 1.0 / np.where(gp > 0, gp, 1.0),
+                                                0.0)
+
+
+def g_prime(profile, a: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
+    """``g'(a)`` (dimensionless) of a profile: its closed form, the sum of its power terms'
+    ``n κ_n c a^(n-1)``, else fourth-order central differences of ``g`` (step ``1e-4`` of ``a``
+    or of the distance ``a - b`` from a flat centre's edge, whichever is smaller)."""
+    if profile._has("_g_prime_closed_form"):
+        with np.errstate(all="ignore"):
+            gp = np.asarray(profile._g_prime_closed_form(a), float)
+        if np.all(np.isfinite(gp)):
+            return gp
+    terms = profile.power_terms()
+    if terms is not None and profile.flat_radius == 0.0:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return sum(n * profile._power_kappa(n) * c * a ** (n - 1.0) for c, n in terms)
+    b = profile.flat_radius       # the stencil stays beyond a flat centre's edge
+    eps = 1e-4 * np.maximum(np.minimum(a, a - b) if b > 0 else a, 1e-300)
+    x = np.maximum(a, b + 2.0 * eps)
+    f = [profile._g(x + k * eps, rtol) for k in (-2.0, -1.0, 1.0, 2.0)]
+    return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * eps)
 
 
 #: evaluations over which a stalled fit is recognised (see :func:`levenberg_marquardt`)

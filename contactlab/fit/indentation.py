@@ -107,8 +107,8 @@ def _check_work(names: tuple[str, ...], work_of_adhesion: float | None, adhesion
 
 
 def _apex_radius(profile: Profile) -> float:
-    """Radius of curvature of the tip's apex, ``1/f''(0)`` (m), for DMT: a paraboloid term
-    ``r²/(2R)`` plus higher powers, or the exact sphere."""
+    """Radius of curvature of the tip's apex, ``1/f''(0)`` (m), for the Tabor parameter of a
+    JKR fit: a paraboloid term ``r²/(2R)`` plus higher powers, or the exact sphere."""
     from ..profiles import Sphere
     if isinstance(profile, Sphere):
         return float(profile.R)
@@ -118,9 +118,10 @@ def _apex_radius(profile: Profile) -> float:
         if len(quad) == 1 and quad[0] > 0 and all(n >= 2.0 for _, n in terms):
             return 1.0 / (2.0 * quad[0])
     raise NotSupportedError(
-        f"adhesion='dmt' with profile={profile!r}: the DMT force 2π R Δγ needs the tip's apex "
-        "radius of curvature R (a paraboloid, the exact Sphere, or a sum of a paraboloid and "
-        "higher powers); a cone or flat apex has none (R = 0 or infinite).")
+        f"equilibrium_distance=... with adhesion='jkr' and profile={profile!r}: the Tabor "
+        "parameter needs the tip's apex radius of curvature R (a paraboloid, the exact Sphere, "
+        "or a sum of a paraboloid and higher powers); a cone or flat apex has none (R = 0 or "
+        "infinite); drop equilibrium_distance.")
 
 
 def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
@@ -130,12 +131,21 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
     tip ``c r^n`` (n >= 1), else a Hermite table of ``g`` in the contact radius."""
     if adhesion is None:
         return None
-    if profile.flat_radius != 0.0 or np.isfinite(profile.wall_radius):
-        raise NotSupportedError(
-            f"adhesion='jkr' with profile={profile!r}: a flat punch or a wall is not covered by "
-            "the JKR fit (its contact radius does not follow from the indentation); give a "
-            "rounded or pointed tip.")
     _check_work(names, work_of_adhesion, adhesion)
+    if profile.flat_radius > 0.0 and np.isfinite(profile.wall_radius):
+        raise NotSupportedError(
+            f"adhesion='jkr' with profile={profile!r}: a flat centre inside a wall (other than "
+            "a flat punch, fitted by Kendall's model) is not covered.")
+    if profile.flat_radius > 0.0:           # a flat centre with a rising flank
+        if not (profile.g_route == "closed_form"
+                and profile._g_integral_exact(np.array([profile.flat_radius])) is not None):
+            raise NotSupportedError(
+                f"adhesion='jkr' with profile={profile!r}: a flat centre is covered for tips "
+                "whose transform g and its integral have closed forms (TruncatedCone, "
+                "TruncatedParaboloid); a measured flat-centred tip is not.")
+        from ._jkr_flat import JKRFlat
+        a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
+        return JKRFlat(profile, 1.5 * a_na, rtol)
     from ._jkr import JKRPower, JKRTable
     terms = profile.power_terms()
     if terms is not None and len(terms) == 1 and terms[0][1] >= 1.0:
@@ -149,6 +159,8 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
     a_top = 1.5 * a_na                  # adhesion widens the contact at a given indentation
     if np.isfinite(profile.max_radius):
         a_top = min(a_top, profile.max_radius * (1.0 - 1e-6))
+    if np.isfinite(profile.wall_radius):    # the contact stops at the wall (the table's end)
+        a_top = min(a_top, profile.wall_radius)
     return JKRTable(profile, a_top, rtol)
 
 
@@ -170,7 +182,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         Measured normal force, N, same length.
     profile : Profile
         The tip's shape: closed forms, the exact ``Sphere``, ``Cone``, a measured
-        ``Tabulated`` tip, sums; no punch wall.
+        ``Tabulated`` tip, sums, a punch wall (``FlatPunch``, a rounded end inside a wall;
+        not with ``"dmt"``).
     sample : Elastic
         Material template of the sample: its ``nu`` is used, its ``E`` is the fixed value (or
         the fallback start when ``"E"`` is free; the start is computed from the data).
@@ -181,18 +194,32 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         ``adhesion="jkr"``, ``"work_of_adhesion"``. The others are fixed
         (``contact_point`` 0 m, ``force_offset`` 0 N, ``E`` the template's).
     adhesion : None or "jkr"
-        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit), for a single
-        power-law tip ``c r^n`` with ``n >= 1`` (paraboloid, cone); the curve is the retraction
-        branch under fixed grips (zero force once the surfaces have come apart).
-        ``"dmt"`` is not available yet.
+        ``"jkr"``: adhesive contact by Heß's rule through the MDR (the JKR limit): power laws
+        ``c r^n`` with ``n >= 1`` in closed form, others by a table (a rounded end inside a
+        wall: the radius stops at the wall), flat-centred tips with a rising flank exactly;
+        the curve is the retraction
+        branch under fixed grips (zero force once the surfaces have come apart). A flat
+        punch (``FlatPunch``): Kendall's model, ``F = 2E* b δ`` while attached, detachment at
+        ``δ_c = -sqrt(2π b Δγ/E*)``; ``E``, the contact point and the offset by linear least
+        squares, ``Δγ`` from the measured pull-off in closed form (its sampling bracket in
+        ``meta["work_of_adhesion_bracket"]``, see the fitting docs).
+        ``"dmt"``: the non-adhesive MDR force less the Derjaguin force of a short-range
+        attraction on the rigid gap beyond the contact edge, ``2πΔγ ρ(a)`` with the effective
+        radius ``ρ(a) = a/f'(a)`` (``R`` for a paraboloid, ``sqrt(R² - a²)`` for the exact
+        sphere, ``a/s`` for a cone of slope ``s``), for any tip without a wall whose gap opens
+        beyond the contact edge; ``meta["effective_radius"]`` is ``ρ`` at the deepest point.
     work_of_adhesion : float, optional
         ``Δγ``, J/m²: the fixed value when ``"work_of_adhesion"`` is not free.
     equilibrium_distance : float, optional
-        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m (paraboloid tips):
-        the fit reports ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when
-        ``μ_T < 5`` (outside the JKR limit).
-    time : None
-        Reserved for viscoelastic fits (not available yet).
+        ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m: the fit reports
+        ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when ``μ_T < 5``
+        with JKR or ``μ_T > 0.1`` with DMT (outside the model's limit). ``R``: the apex radius
+        (JKR, rounded tips); with DMT the effective radius ``a/f'(a)`` at the deepest point
+        (any tip).
+    time : array_like, optional
+        Sample times, s, for a viscoelastic sample (Lee-Radok on the approach, Ting on the
+        retract); with ``adhesion="dmt"`` the adhesive force follows Ting's contact radius
+        (``adhesion="jkr"`` is refused: the crack at the edge is rate dependent).
     start : dict, optional
         Starting values by name (override the automatic ones).
     rtol : float
@@ -210,7 +237,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     UnknownNameError
         An unknown name in ``free``.
     NotSupportedError
-        ``adhesion``, ``time``, a profile with a wall.
+        ``adhesion`` with ``time``, a profile with a wall, DMT on a tip flat at the contact's
+        onset (``f'(a)/a -> 0``).
     ConvergenceError
         The solver did not converge.
 
@@ -229,9 +257,14 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     if adhesion not in (None, "jkr", "dmt"):
         raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
     if time is not None:
-        if adhesion is not None:
-            raise NotSupportedError(f"adhesion={adhesion!r} with time=...: adhesive "
-                                    "viscoelastic fits are not available; give adhesion=None.")
+        if adhesion == "jkr":
+            raise NotSupportedError(
+                "adhesion='jkr' with time=...: on a viscoelastic sample the JKR crack at the "
+                "contact edge grows and heals at rates that depend on the crack speed (the "
+                "work of adhesion is rate dependent, with a hysteresis between approach and "
+                "retract), which Ting's rules do not describe; fit adhesion='dmt' (an "
+                "attraction beyond the contact edge, through Ting's contact radius) or an "
+                "elastic JKR fit of the retract.")
         if not isinstance(profile, Profile):
             raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab "
                                  "Profile (e.g. contactlab.profiles.Sphere(R=1e-5)).")
@@ -240,18 +273,26 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             raise ParameterError(f"depth has {z.size} points and force has {F.size}: give "
                                  "curves of equal length.")
         from .viscoelastic import fit_viscoelastic
-        return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol)
+        return fit_viscoelastic(z, F, time, profile, sample, tip, free, start, rtol,
+                                adhesion, work_of_adhesion, equilibrium_distance)
     if isinstance(sample, Material) and sample.is_viscoelastic:
         raise ParameterError(f"sample={sample!r} is viscoelastic: give the sample times as "
                              "time=... (s) to fit it with Ting's rules.")
     if free is None:
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
+    if adhesion == "jkr":
+        from ._kendall import kendall_profile
+        if kendall_profile(profile):
+            _check_work(names, work_of_adhesion, adhesion)
+            return _kendall_result(z, F, profile, sample, tip_m, names, work_of_adhesion,
+                                   dict(start or {}))
     jkr = None
-    dmt_R = None
+    dmt = None
     if adhesion == "dmt":
         _check_work(names, work_of_adhesion, adhesion)
-        dmt_R = _apex_radius(profile)
+        from ._dmt import check_wall
+        check_wall(profile)
     c_tip = tip_m._compliances()[0]
     k_nu = 1.0 - sample.nu ** 2
     order = np.argsort(z, kind="stable")
@@ -281,7 +322,10 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
                     f"depth={float(zs[-1])!r} m exceeds the depth {reach!r} m that {profile!r} "
                     "reaches at its max_radius; use a larger tip or drop the deep points.")
     from ._tip import TipModel
-    tipm = TipModel(profile, delta_max, rtol)
+    tipm = TipModel(profile, delta_max, rtol, allow_wall=True)
+    if adhesion == "dmt":
+        from ._dmt import DMTModel
+        dmt = DMTModel(profile, tipm)
     if adhesion == "jkr":
         jkr = _jkr_model(profile, adhesion, names, work_of_adhesion, delta_max, rtol)
     # ---- starting values
@@ -291,25 +335,32 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     base = Fs[:n_base]
     off0 = float(np.median(base)) if fit_off else 0.0
     rise = Fs - off0
-    top = float(np.max(np.abs(rise) if dmt_R is not None else rise))   # DMT: the drop counts
+    top = float(np.max(np.abs(rise) if dmt is not None else rise))   # DMT: the drop counts
     noise = float(np.median(np.abs(base - np.median(base)))) * 1.4826 if fit_off else 0.0
     thr = max(5.0 * noise, 0.02 * top)
-    if top <= 0 or not np.any((np.abs(rise) if dmt_R is not None else rise) > thr):
+    if top <= 0 or not np.any((np.abs(rise) if dmt is not None else rise) > thr):
         raise ParameterError(
             f"force never rises above its baseline (largest rise {top!r} N over an offset of "
             f"{off0!r} N): the curve never reaches contact; check the sign of force and depth.")
     zc, Fc, proj_off = zs, Fs, fit_off
-    if dmt_R is not None:           # DMT: the force drops by 2πRΔγ at the contact point
+    if dmt is not None and dmt.rho0 == 0.0:
+        # a pointed tip: no step at the contact point; the force is linear in E*, Δγ and the
+        # offset at a given contact point, which a search over candidates projects out
+        from ._dmt import dmt_start
+        dmt_start(dmt, tipm, start, names, zs, Fs, rise, cp_lo, fit_off,
+                  float(work_of_adhesion or 0.0), k_nu, c_tip, float(sample.E))
+    if dmt is not None:             # DMT: the force drops by 2πΔγ ρ0 at the contact point
         i_min = int(np.argmin(rise))
         if fit_cp and "contact_point" not in start:
             start["contact_point"] = 0.5 * (float(zs[max(i_min - 1, 0)]) + float(zs[i_min]))
         if "work_of_adhesion" in names and "work_of_adhesion" not in start:
             start["work_of_adhesion"] = max(-float(rise[i_min]), 1e-6 * top) / (
-                2.0 * np.pi * dmt_R)
+                2.0 * np.pi * dmt.rho0)
         if fit_off and "force_offset" not in start:
             start["force_offset"] = off0
         w0 = float(start.get("work_of_adhesion", work_of_adhesion or 0.0))
-        Fc = Fs + 2.0 * np.pi * dmt_R * w0 * (zs > float(start.get("contact_point", 0.0)))
+        rho_s = dmt(zs - float(start.get("contact_point", 0.0)))[0]
+        Fc = Fs + 2.0 * np.pi * rho_s * w0
     if jkr is not None:             # the start from the part above the baseline after pull-off
         keep = (np.arange(zs.size) > int(np.argmin(rise))) & (rise > 0)
         zc, Fc, proj_off = zs[keep], rise[keep], False
@@ -388,9 +439,13 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
             if jkr is None:             # F = E*Φ: ∂F/∂E* = Φ, ∂F/∂δ = E*Φ' = 2E*a
                 phi, dphi = tipm(z - v["contact_point"])
                 f, f_d, f_e, f_w = Es * phi, Es * dphi, phi, None
-                if dmt_R is not None:   # DMT: - 2πRΔγ in contact, ∂F/∂Δγ = -2πR there
-                    f_w = np.where(z > v["contact_point"], -2.0 * np.pi * dmt_R, 0.0)
+                if dmt is not None:     # DMT: - 2πΔγ ρ in contact, ∂F/∂Δγ = -2πρ there
+                    delta = z - v["contact_point"]
+                    rho, rho_d = dmt(delta)
+                    f_w = np.where(delta > 0, -2.0 * np.pi * rho, 0.0)
                     f = f + f_w * v["work_of_adhesion"]
+                    if dmt.route != "constant":     # ∂F/∂δ: - 2πΔγ dρ/dδ
+                        f_d = f_d - (2.0 * np.pi * v["work_of_adhesion"]) * rho_d
             else:
                 f, f_d, f_e, f_w = jkr.force(z - v["contact_point"], Es, v["work_of_adhesion"])
             cache[key] = (v, Es, f, f_d, f_e, f_w)
@@ -466,11 +521,14 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     # model); a DMT fit reports it in params
     contact = Contact(profile, (tip_m, fitted), work_of_adhesion=w_fit if jkr else None)
     meta: dict = {"citations": ("PH", "H1", "Sn65") + (("JKR71", "Heß11") if jkr else ())
-                  + (("DMT75", "M92") if dmt_R is not None else ()),
+                  + (("DMT75", "M92") if dmt is not None else ()),
                   "x_name": "depth", "y_name": "force",
                   "tip_route": "jkr" if jkr is not None else tipm.route}
-    if dmt_R is not None:
-        meta["apex_radius"] = dmt_R
+    dmt_R = None
+    if dmt is not None:             # the effective radius a/f'(a) at the deepest point
+        dmt_R = float(dmt(np.array([float(zs[-1]) - vals["contact_point"]]))[0][0])
+        meta["effective_radius"] = dmt_R
+        meta["dmt_route"] = dmt.route
     if jkr is not None and hasattr(jkr, "error"):
         meta["tip_model_errors"] = {"g": jkr.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's transform g in the "
@@ -487,6 +545,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
                                      "measured at the interval midpoints")
+    if dmt is not None and dmt.route == "table":
+        meta.setdefault("tip_model_errors", {})["dmt_radius"] = dmt.error
+        meta["model_error_basis"] = (meta.get("model_error_basis", "") + "; " if
+                                     "model_error_basis" in meta else "") + (
+            "cubic spline of the DMT effective radius a/f'(a) in the contact radius (relative "
+            "to its largest value), measured at the interval midpoints")
     params = {k: vals[k] for k in ("E", "contact_point", "force_offset")}
     if adhesion is not None:
         params["work_of_adhesion"] = vals["work_of_adhesion"]
@@ -494,6 +558,27 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
                      model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev,
                      meta=meta)
+
+
+def _kendall_result(z: np.ndarray, F: np.ndarray, profile: Profile, sample: Elastic,
+                    tip_m: Material, names: tuple[str, ...], work_of_adhesion: float | None,
+                    start: dict) -> FitResult:
+    """A flat punch's JKR (Kendall) fit: :mod:`contactlab.fit._kendall`."""
+    from ..contact import Contact
+    from ._kendall import fit_kendall
+    k_nu = 1.0 - sample.nu ** 2
+    vals, stderr, cov, model, dof, extra = fit_kendall(
+        z, F, float(profile.wall_radius), names, float(sample.E), k_nu,
+        tip_m._compliances()[0], work_of_adhesion, start)
+    fitted = Elastic(E=vals["E"], nu=sample.nu)
+    contact = Contact(profile, (tip_m, fitted), work_of_adhesion=vals["work_of_adhesion"])
+    meta: dict = {"citations": ("PH", "K71"), "x_name": "depth", "y_name": "force",
+                  "tip_route": "kendall", **extra}
+    params = {k: vals[k] for k in ("E", "contact_point", "force_offset", "work_of_adhesion")}
+    params["nu"] = float(sample.nu)
+    r = model - F
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=z, y=F,
+                     model=model, residuals=r, contact=contact, dof=dof, nfev=1, meta=meta)
 
 
 def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs: np.ndarray,
@@ -509,13 +594,18 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     as that minimum instead started closer on noise-free curves but led noisy fits into local
     minima at the branch end's jump more often.)"""
     i_pull = int(np.argmin(rise))
+    if getattr(jkr, "end_at_jump", False) and rise[i_pull] < 0:
+        # the branch end is the jump: the first sample (in depth) below a quarter of the
+        # smallest force (the end's force is more than half of it on these tips: 5/9 in the
+        # paraboloid's limit b -> 0, all of it on a steep flank)
+        i_pull = int(np.argmax(rise < 0.25 * rise[i_pull]))
     f_pull, z_pull = float(rise[i_pull]), float(zs[i_pull])
     step = max(1, zs.size // 256)           # the candidates are judged on a subsample
     zs, rise = zs[::step], rise[::step]
     # the force of c r^n grows as Δγ^((n+1)/(2n-1)) at a fixed point of the branch (a table:
     # the paraboloid's 1, iterated)
     n = getattr(jkr, "n", 2.0)
-    p = (2.0 * n - 1.0) / (n + 1.0)
+    p = getattr(jkr, "work_power", (2.0 * n - 1.0) / (n + 1.0))
 
     def work(E_star: float, point: Any) -> float:
         if "work_of_adhesion" not in names or "work_of_adhesion" in given:

@@ -86,15 +86,16 @@ def _material(cls: type, v: dict[str, float]) -> Material:
                               [v[f"relaxation_times[{k}]"] for k in range(K)])
 
 
-def _free(free: Any, sample: Material) -> tuple[str, ...]:
+def _free(free: Any, sample: Material, adhesive: bool = False) -> tuple[str, ...]:
     if free is None:                            # every parameter of the material and z0
         free = (*tuple(p.name for p in type(sample).params), "contact_point")
     names = (free,) if isinstance(free, str) else tuple(free)
     scalars = _names(sample)
-    allowed = tuple(p.name for p in type(sample).params) + _EXTRA
+    extra = _EXTRA + (("work_of_adhesion",) if adhesive else ())
+    allowed = tuple(p.name for p in type(sample).params) + extra
     out: list[str] = []
     for n in names:
-        if n in scalars or n in _EXTRA:
+        if n in scalars or n in extra:
             out.append(n)
         elif n in allowed:                      # a sequence: every entry
             out += [s for s in scalars if s.startswith(n + "[")]
@@ -156,9 +157,17 @@ def _project_start(cls: type, st: dict, app: Any, F: np.ndarray, cp0: float,
 
 def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
                      sample: Material, tip: Material | None, free: Any,
-                     start: dict | None, rtol: float) -> FitResult:
-    """The viscoelastic branch of :func:`contactlab.fit.indentation` (checked ``z``, ``F``)."""
-    from .indentation import _array, indentation
+                     start: dict | None, rtol: float, adhesion: str | None = None,
+                     work_of_adhesion: float | None = None,
+                     equilibrium_distance: float | None = None) -> FitResult:
+    """The viscoelastic branch of :func:`contactlab.fit.indentation` (checked ``z``, ``F``).
+
+    ``adhesion="dmt"``: the force less ``2πΔγ ρ(a(t))`` in contact, with Ting's contact radius
+    ``a(t)`` (:mod:`contactlab.fit._dmt`); the derivatives through the contact radius's own
+    (``TingModel.contact``). With ``equilibrium_distance`` the Tabor parameter is reported at
+    the instantaneous modulus ``E* = 4(G_∞ + Σ G_k)`` (``meta["tabor_parameter"]``, warns
+    above 0.1) and at the relaxed one ``4G_∞`` (``meta["tabor_parameter_relaxed"]``)."""
+    from .indentation import _array, _check_work, indentation
     if not isinstance(sample, VISCOELASTIC_MATERIALS):
         raise NotSupportedError(
             f"sample={sample!r} with time=...: viscoelastic fits cover "
@@ -172,28 +181,35 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         raise ParameterError(f"time has {t.size} points and depth has {z.size}: give curves "
                              "of equal length.")
     cls = type(sample)
-    names = _free(free, sample)
+    names = _free(free, sample, adhesion == "dmt")
+    if adhesion == "dmt":
+        _check_work(names, work_of_adhesion, adhesion)
+        from ._dmt import check_wall
+        check_wall(profile)
     if z.size <= len(names):
         raise ParameterError(f"depth has {z.size} points: a fit of {len(names)} parameters "
                              f"needs more than {len(names)}.")
     fixed = _values(sample)
-    fixed.update({"contact_point": 0.0, "force_offset": 0.0})
+    fixed.update({"contact_point": 0.0, "force_offset": 0.0,
+                  "work_of_adhesion": float(work_of_adhesion or 0.0)})
+    extra = _EXTRA + (("work_of_adhesion",) if adhesion == "dmt" else ())
     fit_cp = "contact_point" in names
     im = int(z.size - 1 - np.argmax(z[::-1]))
     # ---- starting values: an elastic fit of the approach gives the contact point and the
     # apparent modulus E* = 4G; the template's moduli are scaled to it at the approach's time
     st = dict(start or {})
     app = slice(0, im + 1)
-    el_free = ("E", *tuple(n for n in _EXTRA if n in names))
+    el_free = ("E", *tuple(n for n in extra if n in names))
     try:
         el = indentation(z[app], F[app], profile, sample=Elastic(E=1.0, nu=0.5),
-                         free=el_free, rtol=rtol,
-                         start={k: st[k] for k in _EXTRA if k in st})
+                         free=el_free, rtol=rtol, adhesion=adhesion,
+                         work_of_adhesion=work_of_adhesion,
+                         start={k: st[k] for k in extra if k in st})
     except ConvergenceError as err:
         raise ConvergenceError(f"fit.indentation (viscoelastic): the elastic fit of the "
                                f"approach, which gives the starting values, failed: {err}") \
             from err
-    for n in _EXTRA:
+    for n in extra:
         if n in names and n not in st:
             st[n] = el.params[n]
     cp0 = float(st.get("contact_point", fixed["contact_point"]))
@@ -203,7 +219,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     G_inf, Gk, tk = _prony(cls, fixed)
     scale = G_app / (G_inf + float(np.sum(Gk * np.exp(-t_eff / tk))))
     for n in names:
-        if n not in st and n not in _EXTRA:
+        if n not in st and n not in extra:
             st[n] = fixed[n] * (scale if (n.startswith(("G", "moduli")) or n == "eta_1"
                                           or n == "eta") else 1.0)
     # ---- the model over the depths the contact point allows
@@ -216,14 +232,22 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     from ._ting import TingModel
     tipm = TipModel(profile, d_max, rtol)
     model = TingModel(t, z, tipm)
+    dmt = None
+    if adhesion == "dmt":
+        from ._dmt import DMTModel
+        dmt = DMTModel(profile, tipm)
     own = _names(sample)
     if all(n in names and n not in (start or {}) for n in own) and im > 0:
-        _project_start(cls, st, TingModel(t[app], z[app], tipm), F[app], cp0,
+        F_app = F[app]
+        if dmt is not None:             # the approach without the adhesive force
+            F_app = F_app + 2.0 * np.pi * float(st.get("work_of_adhesion", fixed[
+                "work_of_adhesion"])) * dmt(z[app] - cp0)[0]
+        _project_start(cls, st, TingModel(t[app], z[app], tipm), F_app, cp0,
                        "force_offset" in names)
     top = float(np.max(np.abs(F))) or 1.0
     scales = {n: (max(span, 1e-300) if n == "contact_point" else top if n == "force_offset"
                   else float(st[n])) for n in names}
-    logs = tuple(n for n in names if n not in _EXTRA)      # moduli, viscosities, times > 0
+    logs = tuple(n for n in names if n not in _EXTRA)   # moduli, viscosities, times, Δγ > 0
     idx = {n: i for i, n in enumerate(names)}
 
     def unpack(x: np.ndarray) -> dict[str, float]:
@@ -241,8 +265,19 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
             v = unpack(x)
             Gi, Gk_, tk_ = _prony(cls, v)
             f, dGi, dGk, dtk, dz0 = model(Gi, Gk_, tk_, v["contact_point"])
+            if dmt is not None:         # - 2πΔγ ρ(a(t)), through δ(t1) on the retract
+                c_d, c_Gi, c_Gk, c_tk = model.contact
+                rho, rho_d = dmt(c_d)
+                w2 = 2.0 * np.pi * v["work_of_adhesion"]
+                f = f - w2 * rho
+                dGi = dGi - w2 * rho_d * c_Gi
+                dGk = dGk - w2 * rho_d * c_Gk
+                dtk = dtk - w2 * rho_d * c_tk
+                dz0 = dz0 + w2 * rho_d * (c_d > 0)
             d = _chain(cls, v, dGi, dGk, dtk)
             d["contact_point"] = dz0
+            if dmt is not None:
+                d["work_of_adhesion"] = -2.0 * np.pi * rho
             cache[key] = (v, f, d)
         return cache[key]
 
@@ -265,6 +300,24 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     x0 = np.array([np.log(st[n] / scales[n]) if n in logs else st[n] / scales[n]
                    for n in names])
     model_all, z_all, F_all = model, z, F
+    if dmt is not None and dmt.rho0 > 0 and im > len(names):
+        # the adhesive force jumps where the contact starts and ends; the end on the retract
+        # moves with the moduli, and from a rough start a jump on the wrong side of a sample
+        # sends the solver astray: a first pass on the approach and the retract up to its
+        # first sample below half the jump 2πΔγρ0 (the end's neighbourhood and the samples
+        # apart left out), then the whole curve
+        jump = 2.0 * np.pi * dmt.rho0 * float(st.get("work_of_adhesion",
+                                                     fixed["work_of_adhesion"]))
+        low = np.flatnonzero(F[im + 1:] - float(st.get("force_offset", 0.0)) < -0.5 * jump)
+        n_keep = im + 1 + (int(low[0]) if low.size else z.size - im - 1)
+        keep = np.arange(n_keep)
+        model, z, F = TingModel(t[keep], z_all[keep], tipm), z_all[keep], F_all[keep]
+        x_app, _, ok, _ = levenberg_marquardt(residual, jacobian, x0,
+                                              floor=(ROUNDING ** 2) * float(F @ F))
+        cache.clear()
+        model, z, F = model_all, z_all, F_all
+        if ok:
+            x0 = x_app
     sub = z.size // _SUBSAMPLE
     if sub > 1:
         # a first pass on every sub-th sample (the turning point kept): most of the walk from
@@ -289,10 +342,25 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
     from ..contact import Contact
     contact = Contact(profile, (Rigid(), _material(cls, vals)))
-    params = {n: vals[n] for n in _names(sample) + _EXTRA}
-    meta: dict = {"citations": ("PH", "H3", "LR60", "T66"), "x_name": "time", "y_name": "force",
+    params = {n: vals[n] for n in _names(sample) + extra}
+    meta: dict = {"citations": ("PH", "H3", "LR60", "T66") + (("DMT75",) if dmt else ()),
+                  "x_name": "time", "y_name": "force",
                   "tip_route": model.tip.route, "depth": z, "largest_depth_index": im}
     if model.tip.route == "table":
         meta["tip_model_errors"] = {"force": model.tip.error}
+    if dmt is not None:
+        meta["dmt_route"] = dmt.route
+        meta["effective_radius"] = float(dmt(np.array([float(np.max(z)) - vals[
+            "contact_point"]]))[0][0])
+        if dmt.route == "table":
+            meta.setdefault("tip_model_errors", {})["dmt_radius"] = dmt.error
+        if equilibrium_distance is not None:
+            from .indentation import _tabor
+            Gi, Gk_, _ = _prony(cls, vals)
+            rho, w = meta["effective_radius"], vals["work_of_adhesion"]
+            meta["tabor_parameter"] = _tabor(profile, w, 4.0 * (Gi + float(np.sum(Gk_))),
+                                             float(equilibrium_distance), "dmt", rho)
+            meta["tabor_parameter_relaxed"] = (float((rho * w * w / ((4.0 * Gi) ** 2 * float(
+                equilibrium_distance) ** 3)) ** (1.0 / 3.0)) if Gi > 0 else float("inf"))
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=t, y=F,
                      model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev, meta=meta)

@@ -10,6 +10,7 @@ import contactlab as cl
 from contactlab import Elastic, errors
 from contactlab.fit import FitResult, indentation
 from contactlab.fit._tip import TipModel
+from contactlab.materials.viscoelastic import StandardLinearSolid
 from contactlab.profiles import Cone, Paraboloid, Sphere, Tabulated
 from tests.tolerances import FIT_JACOBIAN_FD, FIT_RECOVERY
 
@@ -176,8 +177,9 @@ def test_bad_parts():
         indentation(Z, hertz(Z), "sphere", sample=SAMPLE)
     with pytest.raises(errors.ParameterError, match="sample"):
         indentation(Z, hertz(Z), Paraboloid(R=R), sample=cl.Rigid())
-    with pytest.raises(errors.NotSupportedError, match="wall"):
-        indentation(Z, hertz(Z), cl.profiles.FlatPunch(radius=1e-6), sample=SAMPLE)
+    with pytest.raises(errors.NotSupportedError, match="wall"):      # Ting's rule with a wall
+        indentation(Z, hertz(Z), cl.profiles.FlatPunch(radius=1e-6), time=np.arange(Z.size),
+                    sample=StandardLinearSolid(G_inf=1e4, G_1=1e4, eta_1=1e4))
 
 
 def test_fit_is_reachable_lazily():

@@ -173,8 +173,12 @@ def test_table_derivatives_against_finite_differences():
 def test_unsupported_tips():
     from contactlab.profiles import FlatPunch
     z, F = paraboloid_curve(n=200, detached=30)
+    # a flat centre inside a wall (the flat punch alone is Kendall's, test_kendall.py; a
+    # rounded end inside a wall, test_jkr_flat.py)
+    from contactlab.profiles import TruncatedCone
     with pytest.raises(errors.NotSupportedError, match="wall"):
-        indentation(z, F, FlatPunch(radius=1e-6), sample=SAMPLE, adhesion="jkr", work_of_adhesion=W)
+        indentation(z, F, FlatPunch(radius=1e-6) + TruncatedCone(radius=0.5e-6, slope=0.3),
+                    sample=SAMPLE, adhesion="jkr", work_of_adhesion=W)
     with pytest.raises(errors.ParameterError, match="work_of_adhesion=-1"):
         indentation(z, F, Paraboloid(R=R), sample=SAMPLE, adhesion="jkr", work_of_adhesion=-1.0)
 
