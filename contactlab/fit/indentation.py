@@ -214,8 +214,11 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         ``z0`` of the Tabor parameter ``μ_T = (R Δγ²/(E*² z0³))^(1/3)``, m: the fit reports
         ``μ_T`` in ``meta["tabor_parameter"]`` and warns (ValidityWarning) when ``μ_T < 5``
         with JKR or ``μ_T > 0.1`` with DMT (outside the model's limit). ``R``: the apex radius
-        (JKR, rounded tips); with DMT the effective radius ``a/f'(a)`` at the deepest point
-        (any tip).
+        (JKR, rounded tips); with DMT, and for JKR tips without one, the effective radius
+        ``a/f'(a)`` at the deepest point; none for a flat punch. Every adhesive fit reports
+        ``μ_T``: without ``equilibrium_distance`` at an assumed 0.3 nm, with
+        ``meta["tabor_parameter_range"]`` over 0.2-0.5 nm, warning only when the whole range
+        is outside the model's limit.
     time : array_like, optional
         Sample times, s, for a viscoelastic sample (Lee-Radok on the approach, Ting on the
         retract); with ``adhesion="dmt"`` the adhesive force follows Ting's contact radius
@@ -533,14 +536,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         meta["tip_model_errors"] = {"g": jkr.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's transform g in the "
                                      "contact radius, measured at the interval midpoints")
-    if adhesion is not None and equilibrium_distance is not None:
+    if adhesion is not None:
         assert w_fit is not None        # fitted or fixed with an adhesion model
-        radius = dmt_R
-        pt = profile.power_terms()
-        if radius is None and (pt is None or len(pt) > 1):
-            radius = _apex_radius(profile)
-        meta["tabor_parameter"] = _tabor(profile, w_fit, contact.moduli.normal,
-                                         equilibrium_distance, adhesion, radius)
+        radius = dmt_R if dmt_R is not None else tabor_radius(
+            profile, float(zs[-1]) - vals["contact_point"])
+        report_tabor(meta, w_fit, contact.moduli.normal, equilibrium_distance, adhesion,
+                     radius)
     if tipm.route == "table" and jkr is None:
         meta["tip_model_errors"] = {"force": tipm.error}
         meta["model_error_basis"] = ("cubic Hermite table of the tip's force at unit modulus, "
@@ -574,6 +575,7 @@ def _kendall_result(z: np.ndarray, F: np.ndarray, profile: Profile, sample: Elas
     contact = Contact(profile, (tip_m, fitted), work_of_adhesion=vals["work_of_adhesion"])
     meta: dict = {"citations": ("PH", "K71"), "x_name": "depth", "y_name": "force",
                   "tip_route": "kendall", **extra}
+    report_tabor(meta, vals["work_of_adhesion"], contact.moduli.normal, None, "jkr", None)
     params = {k: vals[k] for k in ("E", "contact_point", "force_offset", "work_of_adhesion")}
     params["nu"] = float(sample.nu)
     r = model - F
@@ -667,30 +669,93 @@ def _jkr_start(jkr: Any, start: dict, names: tuple[str, ...], E_star0: float, zs
     return best[1]
 
 
-def _tabor(profile: Profile, w: float, E_star: float, z0: float, adhesion: str = "jkr",
-           radius: float | None = None) -> float:
-    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` of a rounded tip (radius ``R``); warns
-    outside the model's range: below 5 for JKR, above 0.1 for DMT."""
+#: equilibrium distance ``z0`` of the Tabor parameter when the user gives none, m, and the
+#: range of typical interatomic distances a warning must hold over (Tabor 1977; Johnson and
+#: Greenwood 1997 use 0.2-0.5 nm)
+TABOR_Z0_DEFAULT = 0.3e-9
+TABOR_Z0_RANGE = (0.2e-9, 0.5e-9)
+#: limits of the two models in the Tabor parameter (Johnson and Greenwood 1997)
+TABOR_JKR_MIN, TABOR_DMT_MAX = 5.0, 0.1
+
+
+def tabor_radius(profile: Profile, delta: float) -> float | None:
+    """Length ``R`` of the Tabor parameter of a tip (m): its apex radius of curvature where it
+    has one (paraboloid, exact sphere, a paraboloid plus higher powers), else the effective
+    radius ``a/f'(a)`` at the non-adhesive contact radius of the indentation ``delta`` (a cone,
+    a power law, a truncated or measured tip); None where neither is finite and positive (a
+    flat punch, whose adhesion is Kendall's)."""
+    try:
+        return _apex_radius(profile)
+    except NotSupportedError:
+        pass
+    if not (np.isfinite(delta) and delta > 0.0):
+        return None
+    a = float(profile._radius_of_depth(np.array([delta]), 1e-10)[0])
+    if np.isfinite(profile.wall_radius) and a >= profile.wall_radius:
+        return None                     # the edge is at the wall: f' is infinite there
+    slope = float(np.asarray(profile.derivative(a)))
+    rho = a / slope if slope > 0.0 else float("inf")
+    return rho if np.isfinite(rho) and rho > 0.0 else None
+
+
+def report_tabor(meta: dict, w: float, E_star: float, z0: float | None, adhesion: str,
+                 radius: float | None) -> None:
+    """Write the Tabor parameter of an adhesive fit into ``meta`` and warn (ValidityWarning)
+    where the chosen model is outside its limit.
+
+    With ``z0`` given: ``meta["tabor_parameter"]`` at it, warning below 5 (JKR) or above 0.1
+    (DMT). Without: the value at :data:`TABOR_Z0_DEFAULT` and ``meta["tabor_parameter_range"]``
+    over :data:`TABOR_Z0_RANGE`; the warning is raised only where the whole range lies outside
+    the model's limit (the result does not depend on the unknown ``z0`` then)."""
+    if radius is None:
+        meta["tabor_parameter"] = None
+        meta["tabor_note"] = ("undefined: the tip has no curvature radius at the contact edge "
+                              "(a punch wall); Kendall's adhesion acts through the pull-off")
+        return
+    if z0 is not None:
+        meta["tabor_parameter"] = _tabor(w, E_star, z0, adhesion, radius, stacklevel=5)
+        meta["equilibrium_distance"] = float(z0)
+        return
+    mu = _tabor_value(radius, w, E_star, TABOR_Z0_DEFAULT)
+    lo = _tabor_value(radius, w, E_star, TABOR_Z0_RANGE[1])
+    hi = _tabor_value(radius, w, E_star, TABOR_Z0_RANGE[0])
+    meta["tabor_parameter"] = mu
+    meta["tabor_parameter_range"] = (lo, hi)
+    meta["equilibrium_distance"] = TABOR_Z0_DEFAULT
+    meta["tabor_note"] = ("equilibrium distance assumed (0.3 nm; the range is over 0.2-0.5 nm): "
+                          "give equilibrium_distance= to set it")
+    _tabor_warn(adhesion, hi if adhesion == "jkr" else lo,
+                " for every equilibrium distance in 0.2-0.5 nm (give equilibrium_distance= "
+                "to set it)", stacklevel=4)
+
+
+def _tabor_value(radius: float, w: float, E_star: float, z0: float) -> float:
+    return float((radius * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
+
+
+def _tabor_warn(adhesion: str, mu: float, where: str = "", stacklevel: int = 4) -> None:
     import warnings
 
     from ..errors import ValidityWarning
-    if radius is None:
-        terms = profile.power_terms()
-        c, n = terms[0] if terms else (0.0, 0.0)
-        if n != 2.0:
-            raise NotSupportedError("equilibrium_distance=...: the Tabor parameter is defined "
-                                    "for paraboloid tips (a tip radius); drop it for other tips.")
-        radius = 1.0 / (2.0 * c)
+    if adhesion == "jkr" and mu < TABOR_JKR_MIN:
+        warnings.warn(f"Tabor parameter {mu:.3g} < 5{where}: the contact is outside the JKR "
+                      "limit (short-range adhesion, compliant bodies); the fitted work of "
+                      "adhesion is biased (DMT applies below ~0.1).", ValidityWarning,
+                      stacklevel=stacklevel)
+    if adhesion == "dmt" and mu > TABOR_DMT_MAX:
+        warnings.warn(f"Tabor parameter {mu:.3g} > 0.1{where}: the contact is outside the DMT "
+                      "limit (long-range adhesion, stiff bodies); the fitted work of adhesion "
+                      "is biased (JKR applies above ~5).", ValidityWarning,
+                      stacklevel=stacklevel)
+
+
+def _tabor(w: float, E_star: float, z0: float, adhesion: str, radius: float,
+           stacklevel: int = 4) -> float:
+    """Tabor parameter ``(R Δγ²/(E*² z0³))^(1/3)`` for the length ``radius``; warns outside
+    the model's range: below 5 for JKR, above 0.1 for DMT."""
     if not (np.isfinite(z0) and z0 > 0):
         raise ParameterError(f"equilibrium_distance={z0!r} is invalid: give a positive "
                              "distance, m (typically 0.2-0.5e-9).")
-    mu = float((radius * w * w / (E_star * E_star * z0 ** 3)) ** (1.0 / 3.0))
-    if adhesion == "jkr" and mu < 5.0:
-        warnings.warn(f"Tabor parameter {mu:.3g} < 5: the contact is outside the JKR limit "
-                      "(short-range adhesion, compliant bodies); the fitted work of adhesion "
-                      "is biased (DMT applies below ~0.1).", ValidityWarning, stacklevel=3)
-    if adhesion == "dmt" and mu > 0.1:
-        warnings.warn(f"Tabor parameter {mu:.3g} > 0.1: the contact is outside the DMT limit "
-                      "(long-range adhesion, stiff bodies); the fitted work of adhesion is "
-                      "biased (JKR applies above ~5).", ValidityWarning, stacklevel=3)
+    mu = _tabor_value(radius, w, E_star, z0)
+    _tabor_warn(adhesion, mu, stacklevel=stacklevel)
     return mu

@@ -164,9 +164,11 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
 
     ``adhesion="dmt"``: the force less ``2πΔγ ρ(a(t))`` in contact, with Ting's contact radius
     ``a(t)`` (:mod:`contactlab.fit._dmt`); the derivatives through the contact radius's own
-    (``TingModel.contact``). With ``equilibrium_distance`` the Tabor parameter is reported at
-    the instantaneous modulus ``E* = 4(G_∞ + Σ G_k)`` (``meta["tabor_parameter"]``, warns
-    above 0.1) and at the relaxed one ``4G_∞`` (``meta["tabor_parameter_relaxed"]``)."""
+    (``TingModel.contact``). The Tabor parameter is reported at the instantaneous modulus
+    ``E* = 4(G_∞ + Σ G_k)`` (``meta["tabor_parameter"]``, warns above 0.1; without
+    ``equilibrium_distance`` at 0.3 nm, warning only when it is above 0.1 over 0.2-0.5 nm) and,
+    with ``equilibrium_distance``, at the relaxed one ``4G_∞``
+    (``meta["tabor_parameter_relaxed"]``)."""
     from .indentation import _array, _check_work, indentation
     if not isinstance(sample, VISCOELASTIC_MATERIALS):
         raise NotSupportedError(
@@ -354,13 +356,14 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
             "contact_point"]]))[0][0])
         if dmt.route == "table":
             meta.setdefault("tip_model_errors", {})["dmt_radius"] = dmt.error
-        if equilibrium_distance is not None:
-            from .indentation import _tabor
-            Gi, Gk_, _ = _prony(cls, vals)
-            rho, w = meta["effective_radius"], vals["work_of_adhesion"]
-            meta["tabor_parameter"] = _tabor(profile, w, 4.0 * (Gi + float(np.sum(Gk_))),
-                                             float(equilibrium_distance), "dmt", rho)
+        from .indentation import report_tabor
+        Gi, Gk_, _ = _prony(cls, vals)
+        rho, w = meta["effective_radius"], vals["work_of_adhesion"]
+        report_tabor(meta, w, 4.0 * (Gi + float(np.sum(Gk_))), equilibrium_distance, "dmt",
+                     rho)
+        z0 = meta.get("equilibrium_distance")
+        if z0 is not None and meta["tabor_parameter"] is not None:
             meta["tabor_parameter_relaxed"] = (float((rho * w * w / ((4.0 * Gi) ** 2 * float(
-                equilibrium_distance) ** 3)) ** (1.0 / 3.0)) if Gi > 0 else float("inf"))
+                z0) ** 3)) ** (1.0 / 3.0)) if Gi > 0 else float("inf"))
     return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=t, y=F,
                      model=r + F, residuals=r, contact=contact, dof=dof, nfev=nfev, meta=meta)

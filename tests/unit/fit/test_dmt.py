@@ -28,6 +28,11 @@ from contactlab.profiles import (
 )
 from tests.tolerances import FIT_CLOSED_FORM_ROUNDING, FIT_JACOBIAN_FD, FIT_RECOVERY
 
+# the synthetic curves use AFM-like soft samples (Tabor parameters far above 0.1): these tests
+# are about recovery and derivatives, so the DMT-range warning is tested on its own below
+pytestmark = pytest.mark.filterwarnings(
+    "ignore:Tabor parameter:contactlab.errors.ValidityWarning")
+
 E, NU, R, Z0, W = 2e6, 0.5, 5e-6, 12e-9, 0.05
 ESTAR = E / (1 - NU ** 2)
 SAMPLE = Elastic(E=1e6, nu=NU)
@@ -364,3 +369,26 @@ def test_coverage_of_the_95_percent_interval_on_a_cone():
             hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
     for k, v in hits.items():
         assert 0.90 * n <= v <= 0.99 * n, (k, v)
+
+
+def test_tabor_warning_without_an_equilibrium_distance_only_when_the_range_is_outside():
+    """Without z0 the DMT warning is raised only when the Tabor parameter exceeds 0.1 for every
+    z0 in 0.2-0.5 nm; a stiff sample and a sharp tip stay silent and report the value."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")
+        with pytest.warns(errors.ValidityWarning, match="for every equilibrium distance"):
+            indentation(Z, dmt_paraboloid(Z), Paraboloid(R=R), sample=SAMPLE, adhesion="dmt",
+                        free=("E", "contact_point", "work_of_adhesion"))
+    Rs, Es = 10e-9, 100e9
+    zz = np.linspace(-0.5e-9, 2e-9, 400)
+    dd = np.maximum(zz - 0.2e-9, 0.0)
+    es = Es / (1 - 0.3 ** 2)
+    ff = 4 / 3 * es * np.sqrt(Rs) * dd ** 1.5 - 2 * np.pi * Rs * W * (zz > 0.2e-9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = indentation(zz, ff, Paraboloid(R=Rs), sample=Elastic(E=1e9, nu=0.3),
+                          adhesion="dmt", free=("E", "contact_point", "work_of_adhesion"))
+    lo, hi = res.meta["tabor_parameter_range"]
+    assert lo < res.meta["tabor_parameter"] < hi < 0.1
+    assert res.meta["tabor_parameter"] == pytest.approx(
+        (Rs * W * W / (es ** 2 * 0.3e-9 ** 3)) ** (1 / 3), rel=1e-6)

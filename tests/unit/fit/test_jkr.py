@@ -240,3 +240,35 @@ def test_coverage_of_the_95_percent_interval():
             hits[k] += ci[k][0] <= truth[k] <= ci[k][1]
     for k, v in hits.items():
         assert 0.90 * n <= v <= 0.99 * n, (k, v)
+
+
+def test_tabor_parameter_reported_without_an_equilibrium_distance():
+    """Every adhesive fit reports the Tabor parameter (closed form here): at z0 = 0.3 nm with
+    its range over 0.2-0.5 nm; no warning when the whole range is inside the JKR limit."""
+    z, F = paraboloid_curve(n=400, detached=60)
+    res = indentation(z, F, Paraboloid(R=R), sample=SAMPLE, adhesion="jkr",
+                      free=("E", "contact_point", "work_of_adhesion"))
+    def mu(z0):
+        return (R * W * W / (ESTAR ** 2 * z0 ** 3)) ** (1 / 3)
+    assert res.meta["tabor_parameter"] == pytest.approx(mu(0.3e-9), rel=1e-8)
+    lo, hi = res.meta["tabor_parameter_range"]
+    assert (lo, hi) == (pytest.approx(mu(0.5e-9), rel=1e-8), pytest.approx(mu(0.2e-9), rel=1e-8))
+    assert res.meta["equilibrium_distance"] == 0.3e-9 and "assumed" in res.meta["tabor_note"]
+    assert not res.notes
+
+
+def test_tabor_parameter_of_a_jkr_cone_uses_the_effective_radius():
+    """A cone has no apex radius: the Tabor length is a/f'(a) at the deepest point, with
+    Sneddon's a = 2δ/(π s) (independent of the fit's tip model)."""
+    s = 0.5
+    a = np.linspace(0.2e-6, 2e-6, 600)
+    # JKR cone by Heß's rule: g = (π/2) s a, δ = g - sqrt(2πaΔγ/E*), F = 2E*(aδ - π s a²/4)
+    d = np.pi / 2 * s * a - np.sqrt(2 * np.pi * a * W / ESTAR)
+    F = 2 * ESTAR * (a * d - np.pi * s * a * a / 4)
+    res = indentation(d + Z0, F, Cone(slope=s), sample=SAMPLE, adhesion="jkr",
+                      free=("E", "contact_point", "work_of_adhesion"),
+                      start={"contact_point": Z0})
+    a_deep = 2 * (d[-1] + Z0 - res.params["contact_point"]) / (np.pi * s)
+    rho = a_deep / s
+    assert res.meta["tabor_parameter"] == pytest.approx(
+        (rho * W * W / (ESTAR ** 2 * 0.3e-9 ** 3)) ** (1 / 3), rel=1e-6)

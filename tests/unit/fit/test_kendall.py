@@ -114,3 +114,11 @@ def test_coverage_of_the_95_percent_interval():
     for k in ("E", "contact_point"):
         assert 0.90 * n <= hits[k] <= 0.99 * n, (k, hits[k])
     assert hits["work_of_adhesion"] >= 0.90 * n
+
+
+def test_tabor_parameter_is_undefined_for_a_punch_and_says_why():
+    dd = np.concatenate([np.linspace(DC - 60e-9, DC, 400, endpoint=False),
+                         np.linspace(DC, 200e-9, 1600)])
+    res = indentation((dd + Z0)[::-1], kendall(dd)[::-1], FlatPunch(radius=B), sample=SAMPLE,
+                      adhesion="jkr", free=ALL)
+    assert res.meta["tabor_parameter"] is None and "wall" in res.meta["tabor_note"]
