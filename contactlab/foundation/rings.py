@@ -327,7 +327,8 @@ class Rings(Foundation):
                                                    bnd.size - 1)])
                             if slide_key is None or not (slide_key[0] == edge_j and
                                                          np.array_equal(slide_key[1], bj)):
-                                slide = _ta.density(rings.lu, bnd, rings.jumps, bj, edge_j)
+                                slide = _ta.nonnegative_psi(_ta.density(rings.lu, bnd, rings.jumps, bj,
+                                                                      edge_j))
                                 slide_key = (edge_j, bj)
                             out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
                                                 st.twist, st.active, slip=bool(snaps), slide=slide)
@@ -522,7 +523,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     full-sliding density when known."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
     if slide is None:
-        slide = _ta.density(rings.lu, b, jumps, bound, radius)
+        slide = _ta.nonnegative_psi(_ta.density(rings.lu, b, jumps, bound, radius))
     if ctrl == "twist":
         out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip,
                        table=rings.table)
