@@ -377,10 +377,11 @@ class Rings(Foundation):
                                                                 torque=float(target[j]),
                                                                 guess=st.active, C=rings.C)
                             gross = not np.isfinite(dphi)
-                            if gross:       # torque beyond full sliding: gross sliding
-                                z = np.sign(target[j]) * bj
-                                lam = np.zeros_like(z)
-                                dphi = 0.0
+                            if gross:       # torque beyond full sliding: gross sliding, the
+                                # twist turned by the smallest increment at which all slides
+                                # (held while the force falls: no work at a held twist)
+                                z, lam, dphi = _tr.gross_step(H, g, z_old, bj,
+                                                              float(np.sign(target[j])))
                             M = float(g @ z)
                             # the end traction times the slip (+ the release at a held twist),
                             # in the ring solver's energy; the work balances it
@@ -573,10 +574,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
                                         torque=target + float(g @ z_old) - M_w, guess=active,
                                         C=rings.C)
     gross = not np.isfinite(dphi)
-    if gross:
-        z = np.sign(target) * bound
-        lam = np.zeros_like(z)
-        dphi = 0.0
+    if gross:       # all slides: the smallest turn at which it does (held while the force falls)
+        z, lam, dphi = _tr.gross_step(H, g, z_old, bound, float(np.sign(target)))
     lam = np.where(bound > 0, lam, 0.0)
     act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
     w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))
