@@ -153,9 +153,9 @@ def test_flat_punch_gross_sliding_turns_while_the_force_rises_and_holds_while_it
     that held twist. Now, with the target held at 0.9 of the sliding torque at F0: while the
     force falls below 0.9 F0 the twist is held after the step that turns the stuck centre into
     sliding, no work is booked and each step dissipates ``>= 0``; while it rises again (still
-    beyond the target) the twist advances and each step's work lies between ``M_slide(F_o) Δφ`` and ``M_slide(F_n) Δφ`` (the closed-form sliding torque
-    at the ends of the step, ``∫ M dφ`` with ``M`` rising with the force); the torque is the
-    sliding torque."""
+    beyond the target) the twist advances and each step's work lies between ``M_slide(F_o) Δφ``
+    and ``M_slide(F_n) Δφ`` (the closed-form sliding torque at the ends of the step, ``∫ M dφ``
+    with ``M`` rising with the force); the torque is the sliding torque."""
     from contactlab.profiles import FlatPunch
     from tests.tolerances import RINGS_FLAT_PUNCH
     a, F0 = 2e-4, 50.0
