@@ -71,6 +71,15 @@ def test_generated_paths_at_coarse_ring_counts(i, rings):
     assert check_path(i, n_rings=rings) == "ok"
 
 
+def test_a_shrinking_step_books_its_rounding_turn_as_work():
+    """Regression: generated path 141 (cone, torque control, 61 rings), step 133: the contact
+    shrinks while the twist goes back by almost exactly the turn of the band beyond the new
+    radius; the release at the held twist that ends the step turned its density by a rounding
+    4.6e-18 rad, whose work on the whole torque (3.9e-20 J) was booked as a negative
+    dissipation against a running total of 4.1e-9 J. That turn's work is now booked as work."""
+    assert check_path(141) == "ok"
+
+
 def test_the_step_that_was_negative_is_the_slip_integral_of_its_own_density(monkeypatch):
     """Path 26 (24 rings), step 31 booked −1.72e-11 J: its collocated sliding density ended
     below zero at the contact edge (the edge falls short of its node; ``Ψ`` dipped to −7.5e-4 of
