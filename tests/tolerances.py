@@ -475,6 +475,11 @@ RINGS_WORK_BALANCE = 1e-10
 RINGS_DISSIPATION_QUADRATURE = 2e-4
 #: Coulomb's law on the returned fields, of the largest μp: rounding of the tractions
 RINGS_COMPLEMENTARITY = 1e-9
+#: the full-sliding density held to Ψ >= 0 (physics.torsion_annulus.nonnegative_psi): the band of
+#: the edge ring it removes slides below μp, and the points inside the edge ring see its
+#: traction; of the largest μp beyond the edge ring (measured 2.7e-7 on the 100-ring varying-load
+#: path, 1.8e-5 at 200 rings, 3.7e-3 at 24)
+RINGS_SLIDING_PROJECTION = 1e-6
 #: torque control inverted by twist control on a cone with a changing force (steps with two slip
 #: zones on the ring solver): the torque of the twist-controlled run against the prescribed one,
 #: of the largest torque; root solves and rounding (measured 3e-13; 4.5e-3 when the ring solver's
@@ -782,13 +787,6 @@ GROSS_SLIDING_ENERGY = 1e-5
 #: order in the force step (each step's family takes the end pressure; measured 1.2e-2 in 20
 #: steps from 12 N to 20 N, 3.2e-3 in 80)
 GROSS_SLIDING_WORK_STEP = 1e-2
-#: the ring solver's full-sliding density has the traction μp at its collocation points only;
-#: between them near the contact edge it overshoots and changes sign (−6.6 % of the largest μp
-#: at 24 rings), so part of a slip annulus carries a traction against its slip and a step can
-#: book a negative dissipation. A model error of the ring count, not rounding: per negative
-#: step, of the largest elastic energy of the path so far (measured up to 9.4e-2 on the first 40
-#: generated paths at 24-61 rings; none beyond rounding at 200 rings)
-COLLOCATION_SIGN = 0.2
 #: the exact sphere's ∫g closed form ((a² - R²)/2 artanh(a/R) + R a/2, q = a/R >= 0.1) against a
 #: 30-digit reference: the cancellation of its two terms near q = 0.1 costs digits (measured
 #: up to 2.7e-14 relative over q in [0.1, 0.999] at R = 0.01; 1e-13 leaves room for other libms'

@@ -327,7 +327,8 @@ class Rings(Foundation):
                                                    bnd.size - 1)])
                             if slide_key is None or not (slide_key[0] == edge_j and
                                                          np.array_equal(slide_key[1], bj)):
-                                slide = _ta.density(rings.lu, bnd, rings.jumps, bj, edge_j)
+                                slide = _ta.nonnegative_psi(_ta.density(rings.lu, bnd, rings.jumps, bj,
+                                                                      edge_j))
                                 slide_key = (edge_j, bj)
                             out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
                                                 st.twist, st.active, slip=bool(snaps), slide=slide)
@@ -376,10 +377,11 @@ class Rings(Foundation):
                                                                 torque=float(target[j]),
                                                                 guess=st.active, C=rings.C)
                             gross = not np.isfinite(dphi)
-                            if gross:       # torque beyond full sliding: gross sliding
-                                z = np.sign(target[j]) * bj
-                                lam = np.zeros_like(z)
-                                dphi = 0.0
+                            if gross:       # torque beyond full sliding: gross sliding, the
+                                # twist turned by the smallest increment at which all slides
+                                # (held while the force falls: no work at a held twist)
+                                z, lam, dphi = _tr.gross_step(H, g, z_old, bj,
+                                                              float(np.sign(target[j])))
                             M = float(g @ z)
                             # the end traction times the slip (+ the release at a held twist),
                             # in the ring solver's energy; the work balances it
@@ -522,7 +524,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     full-sliding density when known."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
     if slide is None:
-        slide = _ta.density(rings.lu, b, jumps, bound, radius)
+        slide = _ta.nonnegative_psi(_ta.density(rings.lu, b, jumps, bound, radius))
     if ctrl == "twist":
         out = _ta.step(w, slide, radius, G_t, dphi=target - twist, r=r, bound=bound, slip=slip,
                        table=rings.table)
@@ -572,10 +574,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
                                         torque=target + float(g @ z_old) - M_w, guess=active,
                                         C=rings.C)
     gross = not np.isfinite(dphi)
-    if gross:
-        z = np.sign(target) * bound
-        lam = np.zeros_like(z)
-        dphi = 0.0
+    if gross:       # all slides: the smallest turn at which it does (held while the force falls)
+        z, lam, dphi = _tr.gross_step(H, g, z_old, bound, float(np.sign(target)))
     lam = np.where(bound > 0, lam, 0.0)
     act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
     w_new = _ta.add(w, _ta.density(rings.lu, b, jumps, z - z_old, b[-1]))

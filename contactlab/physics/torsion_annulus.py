@@ -37,7 +37,7 @@ import scipy.linalg as _la
 
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
-           "difference", "add", "step", "punch_step", "punch_torque", "punch_energy",
+           "difference", "add", "nonnegative_psi", "step", "punch_step", "punch_torque", "punch_energy",
            "punch_traction", "ROOT_XTOL", "CHECK_RTOL"]
 
 #: relative tolerance (of the contact radius) of the stick radius's root solve
@@ -596,6 +596,66 @@ def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: fl
     the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
     coef = _la.lu_solve(lu, np.asarray(values, float), check_finite=False)
     return from_coefficients(b, coef, jumps, radius)
+
+
+def _psi_roots(p: Pieces, psi_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The roots of ``Ψ`` strictly inside each piece (two columns, ``nan`` where none): on a
+    piece ``Ψ(hi − u) = Ψ(hi) + w_r u − ½ m u²`` (``m`` the slope), a quadratic in ``u``."""
+    lo, hi, wl, wr = p
+    h = hi - lo
+    m = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
+    a, b, c = -0.5 * m, wr, psi_hi
+    disc = b * b - 4.0 * a * c
+    sq = np.sqrt(np.maximum(disc, 0.0))
+    q = -0.5 * (b + np.where(b >= 0, sq, -sq))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u1 = np.where(a != 0, q / np.where(a != 0, a, 1.0), np.nan)
+        u2 = np.where(q != 0, c / np.where(q != 0, q, 1.0), np.nan)
+    u1 = np.where(disc >= 0, u1, np.nan)
+    u2 = np.where(disc >= 0, u2, np.nan)
+    roots = np.stack([hi - u1, hi - u2], axis=1)
+    inside = (roots > lo[:, None]) & (roots < hi[:, None])
+    return np.where(inside, roots, np.nan), h
+
+
+def nonnegative_psi(p: Pieces) -> Pieces:
+    """The density whose ``Ψ`` is ``max(Ψ_p, 0)``: ``p`` with its density removed wherever
+    ``Ψ_p < 0`` (``p`` itself, the same arrays, where ``Ψ_p >= 0`` everywhere).
+
+    The full-sliding density of a step must have ``Ψ >= 0`` (for ``τ >= 0``,
+    ``Ψ(x) = (1/2G_t) ∫_x^a τ(r)/sqrt(r² − x²) dr``); a collocated one can dip below zero near
+    the contact edge, where the pressure falls like a square root. Every region where
+    ``Ψ_p < 0`` is bounded by zeros of ``Ψ_p`` (or the outer end, where ``Ψ = 0``), so removing
+    the density there removes a band of zero net turn and leaves ``Ψ_p`` unchanged elsewhere.
+    ``max(Ψ_p, 0)`` is the projection of ``Ψ_p`` onto ``Ψ >= 0`` in the energy norm
+    ``8 G_t ∫ x² Ψ² dx``: the nearest density, in the elastic energy, that slides the way of
+    its traction."""
+    lo, hi, wl, wr = p
+    if lo.size == 0:
+        return p
+    psi_hi = psi(p, hi)
+    psi_lo = psi(p, lo)
+    # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w)
+    al, be = _lin(p)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = np.where(be != 0, -al / np.where(be != 0, be, 1.0), lo)
+    xs = np.minimum(np.maximum(xs, lo), hi)
+    low = np.minimum(np.minimum(psi_lo, psi_hi), psi(p, xs))
+    if low.min() >= 0.0:
+        return p
+    roots, h = _psi_roots(p, psi_hi)
+    cuts = np.sort(np.column_stack([lo, roots, hi]), axis=1)        # nan sort last
+    cuts = np.where(np.isnan(cuts), hi[:, None], cuts)
+    nlo, nhi = cuts[:, :-1].ravel(), cuts[:, 1:].ravel()
+    par = np.repeat(np.arange(lo.size), cuts.shape[1] - 1)
+    keep = nhi > nlo
+    nlo, nhi, par = nlo[keep], nhi[keep], par[keep]
+    hp = np.where(h[par] > 0, h[par], 1.0)
+    vl = wl[par] + (wr[par] - wl[par]) * (nlo - lo[par]) / hp
+    vr = wl[par] + (wr[par] - wl[par]) * (nhi - lo[par]) / hp
+    # keep the sub-pieces where Ψ_p >= 0 (its sign at the midpoint: no root inside)
+    neg = psi(p, 0.5 * (nlo + nhi)) < 0.0
+    return nlo, nhi, np.where(neg, 0.0, vl), np.where(neg, 0.0, vr)
 
 
 # ---- no friction limit: the density is a sum of rigid punches (point masses) -------------------

@@ -58,7 +58,7 @@ import scipy.linalg as _la
 from ..errors import ConvergenceError
 
 __all__ = ["hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence",
-           "box_step", "stick_radius", "slip_density", "aligned_grid", "edge_punch_traction",
+           "box_step", "gross_step", "stick_radius", "slip_density", "aligned_grid", "edge_punch_traction",
            "jump_traction", "jump_torque", "jump_psi", "radius_nodes", "GAUSS_NODES",
            "MAX_PIVOTS", "ALIGN_GAP", "ALIGN_MERGE", "ALIGN_MAX_FACTOR"]
 
@@ -408,6 +408,48 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         state[bad_up | bad_dn] = 0
     raise ConvergenceError("the ring solver's active-set iteration did not converge "
                            f"({4 * n + MAX_PIVOTS + 1} pivots)")
+
+
+def gross_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
+               sense: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """The step of a torque target beyond the full-sliding torque: every point in contact
+    slides, ``z = s μ p``, and the twist turns by the smallest increment at which all of them
+    slide the way of their traction.
+
+    With ``λ = H z_old + Δφ g − H z`` (the area-weighted slips of :func:`box_step`), all points
+    slide the way of ``s`` when ``s λ_i >= 0``, i.e. ``s Δφ >= max_i (s (H (z − z_old))_i /
+    g_i)``. Where that bound is positive (the force rose: a held twist would make points slide
+    against their traction) the twist turns by it; else it is held (``Δφ = 0``: the force fell,
+    the step releases energy and does no work).
+
+    Parameters
+    ----------
+    H, g : ndarray
+        Complementary-energy matrix and torque weights (:func:`influence`).
+    z_old : ndarray
+        Point tractions before the step, Pa.
+    bound : ndarray
+        ``μ p_i`` at the end of the step, Pa (0 outside the contact).
+    sense : float
+        Sense of the torque target, ``±1``.
+
+    Returns
+    -------
+    z : ndarray
+        Point tractions after the step (``s μ p``), Pa.
+    lam : ndarray
+        Area-weighted slip increments, m³ (``s λ >= 0``; 0 outside the contact).
+    dphi : float
+        The twist increment, rad (0: held).
+    """
+    s = 1.0 if sense >= 0 else -1.0
+    z = s * bound
+    base = H @ (z_old - z)
+    on = bound > 0
+    need = float(np.max(-s * base[on] / g[on], initial=0.0))
+    dphi = s * need
+    lam = np.where(on, base + dphi * g, 0.0)
+    return z, lam, dphi
 
 
 def stick_radius(r: np.ndarray, z: np.ndarray, bound: np.ndarray, radius: float,

@@ -145,3 +145,49 @@ def test_gross_sliding_with_rising_force_books_the_work_of_the_sliding_torque():
     W = float(e["work"][rise[-1]] - e["work"][rise[0] - 1])
     assert abs(W - trap) <= GROSS_SLIDING_WORK_STEP * trap
     _check_steps(res)
+
+
+def test_flat_punch_gross_sliding_turns_while_the_force_rises_and_holds_while_it_falls():
+    """A flat punch runs on the ring solver alone: its gross step (torque target beyond the
+    sliding torque ``π μ F a/4``) held the twist and booked ``E_n − E_o + ½ΔzᵀHΔz`` as work at
+    that held twist. Now, with the target held at 0.9 of the sliding torque at F0: while the
+    force falls below 0.9 F0 the twist is held after the step that turns the stuck centre into
+    sliding, no work is booked and each step dissipates ``>= 0``; while it rises again (still
+    beyond the target) the twist advances and each step's work lies between ``M_slide(F_o) Δφ``
+    and ``M_slide(F_n) Δφ`` (the closed-form sliding torque at the ends of the step, ``∫ M dφ``
+    with ``M`` rising with the force); the torque is the sliding torque."""
+    from contactlab.profiles import FlatPunch
+    from tests.tolerances import RINGS_FLAT_PUNCH
+    a, F0 = 2e-4, 50.0
+    c = cl.Contact(FlatPunch(radius=a), materials=(STEEL, STEEL), friction=MU)
+
+    def slide(f):
+        return np.pi * MU * f * a / 4.0
+
+    n = 12
+    force = np.concatenate([np.linspace(F0 / 5, F0, 5), np.full(5, F0),
+                            np.linspace(F0, 0.5 * F0, n + 1)[1:],
+                            np.linspace(0.5 * F0, 0.85 * F0, n + 1)[1:]])
+    torque = np.concatenate([np.zeros(5), np.linspace(0.18, 0.9, 5) * slide(F0),
+                             np.full(2 * n, 0.9 * slide(F0))])
+    res = c.simulate(LoadPath.from_arrays(force=force, torque=torque), method="exact")
+    g = np.asarray(res.gross_sliding)
+    tw, M = np.asarray(res.twist), np.asarray(res.torque)
+    fall = np.flatnonzero(g & (np.arange(g.size) < 10 + n))
+    rise = np.arange(10 + n, 10 + 2 * n)
+    assert fall.size >= 6 and g[rise].all() and not g[:10].any()     # the premise
+    assert np.max(np.abs(M[g] / slide(force[g]) - 1.0)) <= RINGS_FLAT_PUNCH
+    e = res.meta["energy"]
+    scale = float(np.max(e["stored"]))
+    # falling: the first gross step turns the stuck centre on into sliding; then the twist is
+    # held and no work is booked
+    held = fall[1:]
+    assert tw[fall[0]] > tw[fall[0] - 1] and np.all(tw[held] == tw[fall[0]])
+    assert np.all(np.abs(e["work"][held] - e["work"][held - 1]) <= ENERGY_BALANCE * scale)
+    # rising: the twist turns on, the work of each step within the sliding torque's bracket
+    dphi = tw[rise] - tw[rise - 1]
+    assert np.all(dphi > 0.0)
+    W = e["work"][rise] - e["work"][rise - 1]
+    lo, hi = slide(force[rise - 1]) * dphi, slide(force[rise]) * dphi
+    assert np.all(W >= lo * (1 - RINGS_FLAT_PUNCH)) and np.all(W <= hi * (1 + RINGS_FLAT_PUNCH))
+    _check_steps(res)

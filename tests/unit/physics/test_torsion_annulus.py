@@ -221,3 +221,64 @@ def test_difference_with_one_lookup_equals_the_four_evaluations():
                     ta._values(new, hi, -1) - ta._values(old, hi, -1))
             for u, v in zip(got, want):
                 assert np.array_equal(u, v)
+
+
+# ---- the full-sliding density held to Ψ >= 0 (nonnegative_psi) ------------------------------
+#: a density whose Ψ dips below zero inside (0.45..0.6: w changes sign twice) and at the outer
+#: end (w < 0 on the last piece), with a gap of zero density
+Q = (np.array([0.1, 0.3, 0.45, 0.6, 0.85]), np.array([0.3, 0.45, 0.6, 0.85, 1.0]),
+     np.array([1.0, -2.0, -6.0, 4.0, 2.0]), np.array([-1.0, -6.0, 8.0, 3.0, -9.0]))
+
+
+def _psi_by_quadrature(p, x):
+    lo, hi, wl, wr = p
+    tot = 0.0
+    for a, b, u, v in zip(lo, hi, wl, wr):
+        if b > x:
+            s = max(a, x)        # a linear piece: its trapezoid is exact
+            tot += 0.5 * (b - s) * (u + (v - u) * (s - a) / (b - a) + v)
+    return tot
+
+
+def test_nonnegative_psi_is_the_positive_part_of_psi():
+    """The projected density's Ψ is ``max(Ψ, 0)`` (Ψ of the original density summed piece by
+    piece), its elastic energy that of ``max(Ψ, 0)`` (quadrature), and it is the density
+    itself, the same arrays, where Ψ never dips below zero."""
+    x = np.linspace(0.0, 1.0, 2001)
+    want = np.array([max(_psi_by_quadrature(Q, v), 0.0) for v in x])
+    assert np.min(ta.psi(Q, x)) < -0.05                      # the case has negative bands
+    out = ta.nonnegative_psi(Q)
+    got = ta.psi(out, x)
+    assert np.all(got >= 0.0)
+    assert np.max(np.abs(got - want)) <= QUADRATURE * np.max(np.abs(want))
+    E = 8 * G * quad(lambda v: v * v * max(_psi_by_quadrature(Q, v), 0.0) ** 2, 0.0, 1.0,
+                     points=[0.3, 0.45, 0.6, 0.85], limit=200, epsabs=0, epsrel=1e-11)[0]
+    assert ta.stored_energy(out, G) == pytest.approx(E, rel=QUADRATURE * 10)
+    # Ψ >= 0 everywhere: nothing to remove
+    assert ta.psi(P, x).min() >= 0.0 and ta.nonnegative_psi(P) is P
+    assert ta.nonnegative_psi(ta.empty())[0].size == 0
+
+
+def test_sliding_density_of_an_edge_short_of_its_node_is_held_to_non_negative_psi():
+    """A Hertz contact of radius 0.97 on 24 rings whose contact-radius node sits at 1.0 (an edge
+    that shares a node of the aligned grid lies up to a fraction of a ring inside it): the
+    collocated full-sliding density ends negative and its Ψ dips below zero near the edge (so
+    a slip annulus there would book a negative dissipation); the projection has Ψ >= 0 and
+    moves the torque by less than the collocated density's own error against the closed form
+    ``μ π² a³ p₀/8`` (p₀ = 1, G_t = 1)."""
+    a = 0.97
+    b = tr.aligned_grid(np.linspace(0.0, 1.2, 25), np.array([1.0, 1.2]))
+    jumps = tr.radius_nodes(b, np.array([1.0, 1.2]))
+    h = np.diff(b)
+    pts = np.sort(np.concatenate([0.5 * (b[1:] + b[:-1]), b[jumps] + 0.25 * h[jumps]]))
+    m = tr.influence(b, pts, 1.0, jumps=jumps)
+    bound = MU * np.sqrt(np.clip(1 - (pts / a) ** 2, 0, None))
+    W = ta.density(m["lu"], b, jumps, bound, 1.0)
+    x = np.linspace(0.0, 1.0, 20001)
+    assert W[3][-1] < 0 and ta.psi(W, x).min() < -1e-3 * ta.psi(W, x).max()
+    Wp = ta.nonnegative_psi(W)
+    assert ta.psi(Wp, x).min() >= 0.0
+    M = MU * np.pi ** 2 * a ** 3 / 8
+    err = abs(ta.torque(W, 1.0) - M)
+    assert abs(ta.torque(Wp, 1.0) - ta.torque(W, 1.0)) < err
+    assert abs(ta.torque(Wp, 1.0) - M) < err

@@ -147,3 +147,24 @@ def test_jump_at_an_inner_contact_edge_carries_the_sliding_traction():
             out.append(abs(g @ p / (np.pi ** 2 * a ** 3 / 8) - 1))
     assert errs[1] < QUADRATURE_EDGE_PUNCH and errs[0] / errs[1] > 4.0 ** 2
     assert plain[1] > 10 * errs[1]
+
+
+def test_gross_step_turns_by_the_smallest_increment_at_which_everything_slides():
+    """``gross_step``: ``z = s μp``; every point slides the way of ``s`` (``s λ >= 0``), the
+    binding point exactly at zero when the twist turns, and no smaller turn would do (the box
+    step with that twist increment, less 1e-6 of it, keeps a point stuck); where the force fell
+    (``μp`` scaled down from a full-sliding state) the twist is held."""
+    b = np.linspace(0.0, 1.0, 21)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    H, g = m["H"], m["g"]
+    bound = 0.3 * np.sqrt(1.0 - r * r)
+    z_old, _, _, _ = tr.box_step(H, g, np.zeros(r.size), bound, dphi=0.5)   # partial slip
+    z, lam, dphi = tr.gross_step(H, g, z_old, 1.2 * bound, 1.0)
+    assert np.array_equal(z, 1.2 * bound) and dphi > 0
+    tol = 1e-12 * np.abs(lam).max()
+    assert np.all(lam >= -tol) and np.min(np.abs(lam)) <= tol
+    zb, _, _, _ = tr.box_step(H, g, z_old, 1.2 * bound, dphi=dphi * (1 - 1e-6))
+    assert np.any(np.abs(zb) < 1.2 * bound * (1 - 1e-12))
+    _, lam2, d2 = tr.gross_step(H, g, z, 0.8 * bound, 1.0)
+    assert d2 == 0.0 and np.all(lam2 >= 0.0)
