@@ -809,3 +809,23 @@ PATH_STRESS_TORQUE = 5e-3
 #: not cover, of the largest traction: measured 1.4e-3 (surface, step 20 of the varying load
 #: path, where the traction turns sharply at earlier stick radii) and 3.1e-4 (TwistHistory)
 PATH_STRESS_EXCESS = 3e-3
+#: PathResult.stress along a shifted path (issue 31): the field of the step's sampled traction
+#: (2000 springs, linear between the samples, which spread the stick radius's kink over a few
+#: samples) against Cattaneo–Mindlin from Hamilton's closed form and against ShiftHistory at a
+#: constant-force step: measured up to 4.5e-5 p0 (PATH_SHIFT_FIELD); the part of it the field's
+#: own estimate does not cover (PATH_SHIFT_EXCESS, of p0 or of the largest traction); the
+#: estimate itself relative to the largest stress (measured 1.0e-3); the tangential force through
+#: planes at depth 0.1-1.5 a against the step's Q (measured 4.8e-5: the sampled traction's Q)
+PATH_SHIFT_FIELD = 2e-4
+PATH_SHIFT_EXCESS = 1e-4
+PATH_SHIFT_ESTIMATE = 3e-3
+PATH_SHIFT_PLANE = 3e-4
+#: PathResult.stress without friction (issue 31): the ring solver's punches are summed exactly
+#: (torque through planes measured 3e-12); the springs' entry history (depth and control linear
+#: within a step) against the springs' own torque/force (their cell-averaged contact weights:
+#: measured up to 6.5e-4 of M and 1.3e-3 of Q on the unloading-reloading path); the twisted or
+#: shifted punch at a constant force against Reissner–Sagoci's Hankel integral and the closed-form
+#: surface traction beyond the field's estimate, of 4Gφ/π or Q/a²
+PATH_NOSLIP_RINGS = 1e-9
+PATH_NOSLIP_SPRINGS = 3e-3
+PATH_NOSLIP_CLOSED = 1e-8
