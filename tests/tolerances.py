@@ -829,3 +829,7 @@ PATH_SHIFT_PLANE = 3e-4
 PATH_NOSLIP_RINGS = 1e-9
 PATH_NOSLIP_SPRINGS = 3e-3
 PATH_NOSLIP_CLOSED = 1e-8
+#: Findley's parameter on the 2.5° grids of plane normals and in-plane shear directions against
+#: the maximum over all planes in closed form: a smooth maximum missed by at most 1.25° on each
+#: grid (measured 8.4e-6 uniaxial, 4.4e-4 for the fully reversed shear)
+FINDLEY_GRID = 1e-3
