@@ -144,10 +144,6 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
     """Radial functions (flat) of the frictional field of a single tangential state, with the
     body's sign applied, their error and the route."""
     ct = state.contact
-    if ct.friction is None:
-        raise NotSupportedError("stress() of a tangential state needs a friction coefficient "
-                                "(as shear() does): without friction the no-slip traction is "
-                                "that of a rigidly shifted punch.")
     ns = _normal_of(state)
     a, d = float(ns._radius), float(ns._depth)
     c = float(np.ravel(state._c)[0])
@@ -156,6 +152,14 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
     zero = np.zeros(R.shape)
     if a <= 0 or u == 0:
         return (zero,) * _sh.N_SHEAR_RADIAL, zero, "tangential: none"
+    if ct.friction is None:
+        # no slip: the rigidly shifted punch, q = Q/(2π a sqrt(a² - r²)): the single
+        # punch-type traction of radius a (its kernel's σ_xz is -1/sqrt(a² - r²))
+        amp = -float(np.ravel(state.tangential_force)[0]) / (2.0 * np.pi * a)
+        amp *= 1.0 if body == 1 else -1.0
+        P = tuple(amp * p for p in _sh.shear_kernel(R, Z, a, nu))
+        err = 4e-15 * np.maximum.reduce([np.abs(p) for p in P])
+        return P, err, "tangential: no-slip shifted punch"
     sign = -np.sign(u) * (1.0 if body == 1 else -1.0)
     k = ct.friction * ct.moduli.normal / np.pi
     prof = ct.profile
