@@ -30,6 +30,7 @@ import numpy as np
 from ..errors import NotSupportedError
 from ..physics import stress as _st
 from ..physics import stress_tangential as _sh
+from .stress import slope_route
 
 __all__ = ["entry_history", "noslip_shift_part", "noslip_twist_part", "ring_punches"]
 
@@ -125,6 +126,62 @@ def _halved(field: Any) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     return comps, e + np.maximum.reduce([np.abs(u - v) for u, v in zip(comps, half)])
 
 
+def _slope_part(contact: Any, result: Any, k: int, control: str, alpha: float,
+                R: np.ndarray, Z: np.ndarray, nu: float, kernel: Any, scale: float
+                ) -> tuple[tuple[np.ndarray, ...], np.ndarray] | None:
+    """The superposition over the profile ``P = alpha Δc`` with its exact slope: between the
+    path's contact radii ``Δc`` follows the depth, ``P' = -alpha rate_j g'(x)`` (``rate_j`` the
+    control's change per depth over the entry step ``j``), each jump of ``Δc`` at a radius
+    ``s`` a punch of radius ``s`` and the drop to 0 at ``a`` the edge punch. ``None`` for a
+    linear table (its slope is not pointwise: the grid route takes it)."""
+    radii, depth = _series(result, "radius", k), _series(result, "depth", k)
+    ctrl = _series(result, control, k)
+    a = float(radii[-1])
+    gp, gp_err, g_vals, pcuts, _ = slope_route(contact.profile, a, contact.rtol)
+    if g_vals is not None:
+        return None
+    dd = np.concatenate([[0.0], depth])
+    cc = np.concatenate([[0.0], ctrl])
+    sm = np.minimum.accumulate(dd[::-1])[::-1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = np.where(np.diff(dd) != 0, np.diff(cc) / np.diff(dd), 0.0)
+    d_k = float(depth[-1])
+
+    def g_of(x: np.ndarray) -> np.ndarray:
+        return np.minimum(np.asarray(contact.profile.g(x), float), d_k)
+
+    def dens(x: np.ndarray) -> np.ndarray:
+        j = np.clip(np.searchsorted(sm, g_of(x), side="left") - 1, 0, rate.size - 1)
+        return np.where((x > 0) & (x < a), -alpha * rate[j] * gp(x), 0.0)
+
+    dens_err = None
+    if gp_err is not None:
+        def dens_err(x: np.ndarray) -> np.ndarray:
+            j = np.clip(np.searchsorted(sm, g_of(x), side="left") - 1, 0, rate.size - 1)
+            return np.abs(alpha * rate[j]) * gp_err(x)
+
+    inner = np.unique(radii[(radii > 0) & (radii < a)])
+    lo, hi = inner * (1.0 - 1e-12), inner * (1.0 + 1e-12)
+    both = entry_history(g_of(np.concatenate([lo, hi, [a]])), depth, ctrl)
+    jump = alpha * (both[inner.size:2 * inner.size] - both[:inner.size])
+    edge = -alpha * float(both[-1])
+    cuts = tuple(sorted({*inner[:MAX_CUTS], *pcuts}))
+    P, err = _st.superposed_field(R, Z, np.full(R.shape, a), np.full(R.shape, edge), dens,
+                                  0.0, nu, cuts, dens_err, None, kernel, scale)
+    live = np.abs(jump) > 1e-12 * np.max(np.abs(both), initial=0.0) * max(abs(alpha), 1e-300)
+    if np.any(live):
+        s, J = inner[live], jump[live]
+        step = max(1, PUNCH_BLOCK // s.size)
+        P = tuple(np.array(p) for p in P)
+        for lo_i in range(0, R.size, step):
+            sl = slice(lo_i, lo_i + step)
+            K = kernel(R[sl, None], Z[sl, None], s[None, :])
+            for p, c in zip(P, K):
+                with np.errstate(invalid="ignore"):
+                    p[sl] += scale * (c @ J)
+    return P, err
+
+
 def noslip_shift_part(contact: Any, result: Any, k: int, R: np.ndarray, Z: np.ndarray,
                       nu: float) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     """Radial functions of :func:`~contactlab.physics.stress_tangential.shear_kernel` (body 1,
@@ -134,10 +191,16 @@ def noslip_shift_part(contact: Any, result: Any, k: int, R: np.ndarray, Z: np.nd
     def kernel(rr, zz, xx):
         return _sh.shear_kernel(rr, zz, xx, nu)
 
+    # q = -(2/π)∫Ψ'/sqrt(x² - ρ²) + (2/π)Ψ(a⁻)/sqrt(a² - ρ²), Ψ = G* Δu/2; the kernel's σ_xz
+    # is -1/sqrt, so the field is (2/π)[∫Ψ' K - Ψ(a⁻) K(a)]
+    exact = _slope_part(contact, result, k, "displacement", 0.5 * Gs, R, Z, nu, kernel,
+                        2.0 / np.pi)
+    if exact is not None:
+        return exact
+
     def field(n: int) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
         xs, du, a, cuts = _profile_grid(contact, result, k, "displacement", n)
         psi = 0.5 * Gs * du
-        # q = -(2/π)∫Ψ'/sqrt(x² - ρ²) + (2/π)Ψ(a⁻)/sqrt(a² - ρ²); the kernel's σ_xz is -1/sqrt
         return _superpose(xs, psi, a, -float(psi[-1]), cuts, R, Z, nu, kernel, 2.0 / np.pi)
 
     return _halved(field)
@@ -160,6 +223,11 @@ def noslip_twist_part(contact: Any, result: Any, k: int, R: np.ndarray, Z: np.nd
                 out[1][sl] = (4.0 * G / np.pi) * (rt @ m)
         scale = np.maximum(np.abs(out[0]), np.abs(out[1]))
         return (out[0], out[1]), 1e-14 * max(t.size, 1) * scale
+
+    exact = _slope_part(contact, result, k, "twist", -1.0, R, Z, nu, _st.twist_kernel,
+                        4.0 * G / np.pi)
+    if exact is not None:
+        return exact
 
     def field(n: int) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
         xs, dphi, a, cuts = _profile_grid(contact, result, k, "twist", n)

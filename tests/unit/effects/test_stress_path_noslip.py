@@ -98,6 +98,9 @@ def test_torque_through_planes_under_a_varying_force(twisted, k, depth):
     exact = twisted.meta["foundation"].startswith("Rings")
     bound = tol.PATH_NOSLIP_RINGS if exact else tol.PATH_NOSLIP_SPRINGS
     assert abs(M - Mk) < bound * abs(Mk)
+    # the same torque at the surface's depth 0.1 a as here (equilibrium of the field itself)
+    M1, dM1 = _torque(twisted, k, 0.1 * twisted.radius[k])
+    assert abs(M - M1) <= dM + dM1 + tol.PATH_STRESS_PLANE * abs(Mk)
     assert "no-slip" in twisted.stress(0.0, 1e-6, step=k).meta["route"]
 
 
@@ -141,10 +144,11 @@ def test_shift_constant_force_surface_traction_and_force():
 @pytest.mark.parametrize("k", [5, 20, 29])
 def test_shift_force_through_planes_under_a_varying_force(k):
     res = _shift_run()
-    for depth in (0.1, 1.0):
-        Q, _ = _shift_force(res, k, depth * res.radius[k])
-        assert abs(Q - res.tangential_force[k]) < tol.PATH_NOSLIP_SPRINGS * abs(
-            res.tangential_force[k])
+    Qk = res.tangential_force[k]
+    (Q1, dQ1), (Q2, dQ2) = (_shift_force(res, k, d * res.radius[k]) for d in (0.1, 1.0))
+    for Q in (Q1, Q2):
+        assert abs(Q - Qk) < tol.PATH_NOSLIP_SPRINGS * abs(Qk)
+    assert abs(Q1 - Q2) <= dQ1 + dQ2 + tol.PATH_STRESS_PLANE * abs(Qk)
 
 
 _RUNS: dict = {}
