@@ -156,7 +156,10 @@ class PathResult(Result, Cited):
         EffectNotPlannedError
             ``step`` has no snapshot.
         NotSupportedError
-            A traction that sticks at the contact edge (no friction), where it is singular.
+            A shift whose traction sticks at the contact edge with friction (a profile with an
+            edge below its slip limit there), where it is singular. Without friction the
+            tractions are rebuilt from the path's series instead (rigid punches;
+            :mod:`contactlab.effects.stress_path_noslip`).
         """
         from .stress_path import path_stress
         return path_stress(self, a, b, c, step=step, body=body, part=part)
