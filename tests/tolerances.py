@@ -835,3 +835,8 @@ PATH_NOSLIP_CLOSED = 1e-8
 #: the maximum over all planes in closed form: a smooth maximum missed by at most 1.25° on each
 #: grid (measured 8.4e-6 uniaxial, 4.4e-4 for the fully reversed shear)
 FINDLEY_GRID = 1e-3
+#: TorsionState.stress at full sliding (the slip annulus reaching the axis, the punches
+#: narrower than 1e-6 a left out): the surface σ_θz against the state's traction (μp on the exact
+#: model), measured up to 7.1e-7 of its peak (paraboloid, flat punch; exact and MDR); the torque
+#: through a plane to 7e-9
+STRESS_TORSION_SLIDING = 1e-5

@@ -487,6 +487,10 @@ def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
 #: its error estimate); the lag ψ is interpolated in ln x, where the logarithmic growth of
 #: Jäger's slip function towards small radii is smooth
 TWIST_DENSITY_POINTS = 48
+#: at full sliding the twisted punches narrower than this fraction of the contact radius are
+#: left out (the lag grows like ln x towards the axis: its Chebyshev interpolant in ln x spans
+#: ln(1e6)); the torque they carry is O(1e-18) of the sliding torque
+FULL_SLIDING_CORE = 1e-6
 
 
 def _twist_density(lag, c: float, a: float):
@@ -513,8 +517,9 @@ def _twist_density(lag, c: float, a: float):
     return (lambda x: at(d_full, x)), (lambda x: np.abs(at(d_full, x) - at(d_half, x)))
 
 
-def _torsion_density(state):
-    """``(lag, density, density_error)`` of a single partial-slip torsion state."""
+def _torsion_density(state, stick: float | None = None):
+    """``(lag, density, density_error)`` of a single partial-slip torsion state (on
+    ``[stick, a]``, by default the state's stick radius)."""
     from ..physics.torsion import METHODS
     ct = state.contact
     model = METHODS[state.method](ct.profile, ct.moduli.normal, ct.moduli.torsional,
@@ -526,7 +531,8 @@ def _torsion_density(state):
     def lag(x: np.ndarray) -> np.ndarray:
         return psi(np.asarray(x, float)[None, :], idx)[0]
 
-    return (lag, *_twist_density(lag, float(state._stick), float(state._a)))
+    c = float(state._stick) if stick is None else stick
+    return (lag, *_twist_density(lag, c, float(state._a)))
 
 
 def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
@@ -550,9 +556,12 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
     R, Z = r.ravel(), z.ravel()
     k = 4.0 * G / np.pi
     zero = np.zeros(R.shape)
-    if not np.isfinite(phi):
-        raise NotSupportedError("stress() at full sliding (infinite twist) is not implemented: "
-                                "prescribe a finite twist or torque below the sliding torque.")
+    sliding = not np.isfinite(phi)
+    if sliding:
+        # full sliding, τ = μp: the slip annulus reaching the axis; the twisted punches narrower
+        # than FULL_SLIDING_CORE·a are left out (their traction sits on that disc; its effect
+        # is added to the estimate below)
+        c = FULL_SLIDING_CORE * a
     if a <= 0 or phi == 0:
         stz, srt, err = zero, zero, zero
         route = "torsion: none"
@@ -561,16 +570,29 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
         err = 4e-15 * (np.abs(stz) + np.abs(srt))
         route = "torsion: twisted punch"
     else:
-        lag, dens, dens_err = _density if _density is not None else _torsion_density(state)
+        lag, dens, dens_err = (_density if _density is not None else
+                               _torsion_density(state, c if sliding else None))
         (stz, srt), err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, dens, 0.0, nu,
                                                (c,), dens_err, None, _st.twist_kernel, k)
         edge = float(lag(np.array([a * (1 - 1e-15)]))[0])
+        ref = abs(float(lag(np.array([c]))[0])) if sliding else phi
         # a lag left at the rim (flat punch; MDR with d != g(a)) is a twisted punch of radius a;
         # a smooth non-adhesive profile's lag vanishes there (to rounding: not an edge term)
-        if abs(edge) > 1e-9 * phi:
+        if sliding:
+            # the left-out core: at most μp there, its torque's field falling as (c/ρ)³
+            p_core = float(np.max(np.asarray(state.normal.pressure(np.array([0.5 * c, c]))
+                                             if state.normal.shape == () else
+                                             _one_normal(state).pressure(
+                                                 np.array([0.5 * c, c])), float)))
+            rho = np.maximum(np.hypot(R, Z), c)
+            err = err + 2.0 * ct.friction * p_core * (c / rho) ** 3
+            route_extra = " at full sliding"
+        else:
+            route_extra = ""
+        if abs(edge) > 1e-9 * ref:
             e_tz, e_rt = _st.twist_kernel(R, Z, a)
             stz, srt = stz + k * edge * e_tz, srt + k * edge * e_rt
-        route = f"torsion: superposition ({state.method})"
+        route = f"torsion: superposition ({state.method}){route_extra}"
     stz, srt = sign * stz, sign * srt
     if part == "total":
         base = normal_stress(state.normal if state.normal.shape == () else _one_normal(state),
@@ -614,7 +636,9 @@ def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressM
         return StressMaximum(0.0, 0.0, 0.0, kind, meta)
     partial = (state.method != "no-slip" and 0 < float(state._stick) < a
                and np.isfinite(float(state._twist)) and float(state._twist) != 0)
-    dens = _torsion_density(state) if partial else None
+    sliding = state.method != "no-slip" and not np.isfinite(float(state._twist))
+    dens = (_torsion_density(state) if partial else
+            _torsion_density(state, FULL_SLIDING_CORE * a) if sliding else None)
     return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a, meta)
 
 
