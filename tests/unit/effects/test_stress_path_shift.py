@@ -173,3 +173,26 @@ def test_body_two_and_bad_calls(held):
         held.stress(0.0, 1e-5, step=5)
     with pytest.raises(NotSupportedError, match="Poisson"):
         held.stress(0.0, 0.0, 1e-5, step=5, body=2)
+    # a flat punch below its slip limit at the edge: the singular edge traction is not sampled
+    flat = cl.Contact(cl.profiles.FlatPunch(radius=1e-4), materials=MAT, friction=MU)
+    stuck = _quiet(flat.simulate, cl.LoadPath.from_arrays(depth=[1e-6] * 3,
+                                                          displacement=[0.0, 1e-9, 2e-9]),
+                   snapshots=[2])
+    with pytest.raises(NotSupportedError, match="sticks at the contact edge"):
+        stuck.stress(0.0, 0.0, 1e-5, step=2)
+
+
+def test_a_path_without_shift_in_cartesian_points():
+    # (x, y, z) on a twisted path: the cylindrical field rotated (to_cartesian)
+    S = MU * F / (C.moduli.torsional * A0 * A0)
+    res = _quiet(C.simulate, cl.LoadPath.from_arrays(force=np.full(4, F),
+                                                     twist=np.linspace(0, 0.3 * S, 4)),
+                 snapshots=[3])
+    X, Y, Z = (PTS * A0).T
+    f = res.stress(X, Y, Z, step=3)
+    g = res.stress(np.hypot(X, Y), Z, step=3)
+    c, s = X / np.hypot(X, Y), Y / np.hypot(X, Y)
+    np.testing.assert_array_equal(f.szz, g.szz)
+    np.testing.assert_allclose(f.sxz, g.srz * c - g.stz * s, rtol=1e-12, atol=1e-12 * P0)
+    np.testing.assert_allclose(f.syz, g.srz * s + g.stz * c, rtol=1e-12, atol=1e-12 * P0)
+    np.testing.assert_array_equal(f.error, g.error)
