@@ -815,3 +815,34 @@ FIT_CLOSED_FORM_ROUNDING = 1e-12
 #: or a table (the JKR branch of a flat-centred tip, a JKR table ending at a wall): the solve's
 #: tolerance and the table's differenced slopes (measured <= 4e-11)
 FIT_MODEL_SOLVE = 1e-10
+#: PathResult.stress along a shifted path (issue 31): the field of the step's sampled traction
+#: (2000 springs, linear between the samples, which spread the stick radius's kink over a few
+#: samples) against Cattaneo–Mindlin from Hamilton's closed form and against ShiftHistory at a
+#: constant-force step: measured up to 4.5e-5 p0 (PATH_SHIFT_FIELD); the part of it the field's
+#: own estimate does not cover (PATH_SHIFT_EXCESS, of p0 or of the largest traction); the
+#: estimate itself relative to the largest stress (measured 1.0e-3); the tangential force through
+#: planes at depth 0.1-1.5 a against the step's Q (measured 4.8e-5: the sampled traction's Q)
+PATH_SHIFT_FIELD = 2e-4
+PATH_SHIFT_EXCESS = 1e-4
+PATH_SHIFT_ESTIMATE = 3e-3
+PATH_SHIFT_PLANE = 3e-4
+#: PathResult.stress without friction (issue 31): the ring solver's punches are summed exactly
+#: (torque through planes measured 3e-12); the springs' entry history (depth and control linear
+#: within a step, pointwise) against the springs' own torque/force (cell-averaged contact
+#: weights): measured 8e-8 / 6e-11 while the contact grows, up to 5.9e-4 of M and 6.2e-4 of Q
+#: after unloading and reloading (the same at every depth: the field carries its traction's
+#: load to 1e-9); the twisted or shifted punch at a constant force against Reissner–Sagoci's
+#: Hankel integral and the closed-form surface traction beyond the field's estimate, of 4Gφ/π or
+#: Q/a² (measured 1.6e-14 and 4.5e-17)
+PATH_NOSLIP_RINGS = 1e-9
+PATH_NOSLIP_SPRINGS = 2e-3
+PATH_NOSLIP_CLOSED = 1e-8
+#: Findley's parameter on the 2.5° grids of plane normals and in-plane shear directions against
+#: the maximum over all planes in closed form: a smooth maximum missed by at most 1.25° on each
+#: grid (measured 8.4e-6 uniaxial, 4.4e-4 for the fully reversed shear)
+FINDLEY_GRID = 1e-3
+#: TorsionState.stress at full sliding (the slip annulus reaching the axis, the punches
+#: narrower than 1e-6 a left out): the surface σ_θz against the state's traction (μp on the exact
+#: model), measured up to 7.1e-7 of its peak (paraboloid, flat punch; exact and MDR); the torque
+#: through a plane to 7e-9
+STRESS_TORSION_SLIDING = 1e-5

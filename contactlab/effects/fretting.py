@@ -282,12 +282,14 @@ class FrettingLoop(Result, Cited):
         from .stress_history import loop_stress
         return loop_stress(self, x, y, z, phase=phase, body=body, part=part)
 
-    def fatigue(self, body: int = 1, n_phases: int = 24, points: Any = None) -> Any:
+    def fatigue(self, body: int = 1, n_phases: int = 24, points: Any = None,
+                findley_k: float | None = None) -> Any:
         """Fretting-fatigue indicators over the loop (a ``FrettingFatigue``): the largest
-        tensile stress at the contact edge and its range, and the Smith–Watson–Topper
-        parameter on the critical plane. See docs/stress.md."""
+        tensile stress at the contact edge and its range, the Smith–Watson–Topper parameter on
+        the critical plane and, with ``findley_k`` (the material's normal-stress sensitivity
+        ``k``, dimensionless), Findley's ``max_n [τ_a + k σ_n,max]`` (Pa). See docs/stress.md."""
         from .stress_history import fretting_fatigue
-        return fretting_fatigue(self, body, n_phases, points)
+        return fretting_fatigue(self, body, n_phases, points, findley_k)
 
 
 @reporting()

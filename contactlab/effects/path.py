@@ -120,23 +120,49 @@ class PathResult(Result, Cited):
         """Copies of the per-step series, keyed by name."""
         return {k: np.array(v) for k, v in self.data.items()}
 
-    def stress(self, r: Any, z: Any, *, step: int, body: int = 1, part: str = "total") -> Any:
-        """Subsurface stress field at snapshot ``step`` of a path without shift, Pa.
+    def stress(self, a: Any, b: Any, c: Any = None, *, step: int, body: int = 1,
+               part: str = "total") -> Any:
+        """Subsurface stress field at snapshot ``step``, Pa.
 
-        The normal part is the exact field of the step's normal state; the torsional part is
-        the field of the step's own surface traction (``snapshots[step]["shear_torsion"]``) as
-        a superposition of twisted flat punches (:mod:`contactlab.effects.stress_path`), as
-        exact as that traction. ``part="friction"`` gives the torsional part alone. Raises
-        :class:`~contactlab.errors.EffectNotPlannedError` for a step without snapshot and
-        :class:`~contactlab.errors.NotSupportedError` for a shifted or no-slip twisted path.
+        The normal part is the exact field of the step's normal state; the frictional parts are
+        the fields of the step's own surface tractions (``snapshots[step]["shear_torsion"]``:
+        a superposition of twisted flat punches; ``snapshots[step]["shear_tangential"]``: a
+        superposition of punch-type shear tractions along ``+x``), as exact as those tractions
+        (:mod:`contactlab.effects.stress_path`). ``part="friction"`` gives the frictional parts
+        alone.
+
+        Parameters
+        ----------
+        a, b, c : array_like
+            Points, m: ``(r, z)`` (radius and depth) for a path without shift, or
+            ``(x, y, z)`` (``x`` along the shift, ``z >= 0`` the depth) for any path (needed
+            for a path with a shift).
+        step : int
+            A step with a snapshot (negative: counted from the end).
+        body : int
+            1 or 2 (the body's Poisson ratio; body 2 receives the opposite tractions).
+        part : str
+            ``"total"`` or ``"friction"``.
 
         Returns
         -------
-        StressField
-            As :meth:`TorsionState.stress` (``meta["step"]``, ``meta["error_estimate"]``).
+        StressField or CartesianStressField
+            Cylindrical components at ``(r, z)`` as :meth:`TorsionState.stress`, or Cartesian
+            components at ``(x, y, z)`` as :meth:`TangentialState.stress` (``meta["step"]``,
+            ``meta["error_estimate"]``).
+
+        Raises
+        ------
+        EffectNotPlannedError
+            ``step`` has no snapshot.
+        NotSupportedError
+            A shift whose traction sticks at the contact edge with friction (a profile with an
+            edge below its slip limit there), where it is singular. Without friction the
+            tractions are rebuilt from the path's series instead (rigid punches;
+            :mod:`contactlab.effects.stress_path_noslip`).
         """
         from .stress_path import path_stress
-        return path_stress(self, r, z, step=step, body=body, part=part)
+        return path_stress(self, a, b, c, step=step, body=body, part=part)
 
     def _assess(self, notes: list, contact: Any, path: Any) -> list[str]:
         """Where the model error of a run on the MDR torsion springs comes from, into ``meta``

@@ -28,6 +28,7 @@ from ._protocol import Result
 
 __all__ = [
     "KINDS",
+    "StressDerived",
     "StressField",
     "StressMaximum",
     "body_poisson_ratio",
@@ -53,74 +54,53 @@ FIELD_UNITS = {"r": "m", "z": "m", **{k: "Pa" for k in _CYL}, "von_mises": "Pa",
                "max_shear": "Pa", "tresca": "Pa", "error": "Pa"}
 
 
-@dataclass(frozen=True, eq=False)
-class StressField(Result, Cited):
-    """Stress field at a set of points (immutable; arrays of the broadcast shape of the points).
+class StressDerived:
+    """Derived quantities shared by the stress-field results (a mixin): principal stresses,
+    von Mises, maximum shear, Tresca, ``get``, ``to_dict`` and ``plot``, parametrised by the
+    class's coordinate names ``_COORDS``, component names ``_COMPONENTS`` (as stored) and
+    ``_TENSOR``, the components in the order ``(s11, s22, s33, s12, s13, s23)`` of an
+    orthonormal frame."""
 
-    Attributes
-    ----------
-    r, z : ndarray
-        Radius and depth of each point, m.
-    srr, stt, szz, srz, stz, srt : ndarray
-        Cylindrical stress components ``σ_rr, σ_θθ, σ_zz, σ_rz, σ_θz, σ_rθ``, Pa (tension
-        positive).
-    error : ndarray
-        Estimated absolute error of the components, Pa (0 for the closed forms up to rounding;
-        ``inf`` at singular points).
-    meta : dict
-        ``route`` (``"hertz"``, ``"flat_punch"`` or ``"superposition"``), ``body``, ``nu``,
-        ``error_estimate`` (largest error relative to the largest stress magnitude).
-
-    Notes
-    -----
-    Derived fields are computed on first access: :attr:`principal` (descending, last axis),
-    :attr:`von_mises`, :attr:`max_shear` ``(σ1 - σ3)/2``, :attr:`tresca` ``σ1 - σ3``.
-    """
-
-    r: np.ndarray
+    _COORDS: ClassVar[tuple[str, ...]] = ()
+    _COMPONENTS: ClassVar[tuple[str, ...]] = ()
+    _TENSOR: ClassVar[tuple[str, ...]] = ()
     z: np.ndarray
-    srr: np.ndarray
-    stt: np.ndarray
-    szz: np.ndarray
-    srz: np.ndarray
-    stz: np.ndarray
-    srt: np.ndarray
-    error: np.ndarray = field(repr=False)
-    meta: dict = field(default_factory=dict, repr=False)
-
-    units: ClassVar[dict[str, str]] = FIELD_UNITS
+    error: np.ndarray
+    meta: dict
 
     def __post_init__(self) -> None:
-        for name in ("r", "z", *_CYL, "error"):
+        for name in (*self._COORDS, *self._COMPONENTS, "error"):
             arr = np.asarray(getattr(self, name), dtype=float)
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
 
+    def _tensor(self) -> tuple[np.ndarray, ...]:
+        return tuple(getattr(self, k) for k in self._TENSOR)
+
     @property
     def shape(self) -> tuple[int, ...]:
         """Shape of the point arrays."""
-        return self.srr.shape
+        return getattr(self, self._COMPONENTS[0]).shape
 
     @property
     def error_estimate(self) -> float:
         """Largest estimated error relative to the largest finite stress magnitude."""
         return float(self.meta.get("error_estimate", 0.0))
 
+    def _principal(self) -> np.ndarray:
+        return _st.principal_general(*self._tensor())
+
     @cached_property
     def principal(self) -> np.ndarray:
         """Principal stresses, Pa, descending along the last axis (``shape + (3,)``)."""
-        if not (np.any(self.stz) or np.any(self.srt)):
-            out = _st.principal_axisymmetric(self.srr, self.stt, self.szz, self.srz)
-        else:
-            out = _st.principal_general(self.srr, self.stt, self.szz, self.srt, self.srz,
-                                        self.stz)
+        out = self._principal()
         out.setflags(write=False)
         return out
 
     @cached_property
     def von_mises(self) -> np.ndarray:
         """Von Mises equivalent stress, Pa."""
-        return _st.von_mises(self.srr, self.stt, self.szz, self.srt, self.srz, self.stz)
+        return _st.von_mises(*self._tensor())
 
     @cached_property
     def max_shear(self) -> np.ndarray:
@@ -145,37 +125,85 @@ class StressField(Result, Cited):
 
     def get(self, kind: str) -> np.ndarray:
         """A component or derived field by name (one of :data:`KINDS` or a component)."""
-        if kind not in KINDS + _CYL:
+        if kind not in KINDS + self._COMPONENTS:
             raise ParameterError(f"kind={kind!r} is invalid: choose one of "
-                                 f"{', '.join(repr(k) for k in KINDS + _CYL)}.")
+                                 f"{', '.join(repr(k) for k in KINDS + self._COMPONENTS)}.")
         return np.asarray(getattr(self, kind))
 
     def to_dict(self) -> dict[str, Any]:
         """Coordinates, components, derived fields and the error estimate as arrays (SI units;
         one CSV row per point, flattened in C order). The model error is 0.0: the fields are
         the exact elastic half-space solutions of the state's tractions."""
-        out: dict[str, Any] = {"r": self.r, "z": self.z}
-        out.update({k: getattr(self, k) for k in _CYL})
+        out: dict[str, Any] = {k: getattr(self, k) for k in self._COORDS}
+        out.update({k: getattr(self, k) for k in self._COMPONENTS})
         out.update({k: getattr(self, k) for k in ("von_mises", "max_shear", "tresca")})
         out["error"] = self.error
         return out
 
     def plot(self, kind: str = "von_mises", ax: Any = None, *, levels: int = 30):
-        """Filled contour plot of ``kind`` over a 2D grid of ``(r, z)`` (needs matplotlib);
-        returns the axes. Depth is drawn downward."""
+        """Filled contour plot of ``kind`` over a 2D grid of the first coordinate and the
+        depth (needs matplotlib); returns the axes. Depth is drawn downward."""
         from .. import plotting as pl
         plt = pl.pyplot()
-        if self.r.ndim != 2:
+        h = getattr(self, self._COORDS[0])
+        if h.ndim != 2:
             raise ParameterError("plot() needs a 2D grid of points (use state.stress_field()).")
         if ax is None:
             _, ax = plt.subplots()
         vals = self.get(kind)
-        cs = ax.contourf(self.r, -self.z, np.where(np.isfinite(vals), vals, np.nan), levels=levels)
+        cs = ax.contourf(h, -self.z, np.where(np.isfinite(vals), vals, np.nan), levels=levels)
         ax.figure.colorbar(cs, ax=ax, label=f"{kind} (Pa)")
-        ax.set_xlabel("r (m)")
+        ax.set_xlabel(f"{self._COORDS[0]} (m)")
         ax.set_ylabel("-z (m)")
         ax.set_aspect("equal")
         return ax
+
+
+@dataclass(frozen=True, eq=False)
+class StressField(StressDerived, Result, Cited):
+    """Stress field at a set of points (immutable; arrays of the broadcast shape of the points).
+
+    Attributes
+    ----------
+    r, z : ndarray
+        Radius and depth of each point, m.
+    srr, stt, szz, srz, stz, srt : ndarray
+        Cylindrical stress components ``σ_rr, σ_θθ, σ_zz, σ_rz, σ_θz, σ_rθ``, Pa (tension
+        positive).
+    error : ndarray
+        Estimated absolute error of the components, Pa (0 for the closed forms up to rounding;
+        ``inf`` at singular points).
+    meta : dict
+        ``route`` (``"hertz"``, ``"flat_punch"`` or ``"superposition"``), ``body``, ``nu``,
+        ``error_estimate`` (largest error relative to the largest stress magnitude).
+
+    Notes
+    -----
+    Derived fields are computed on first access (:class:`StressDerived`): :attr:`principal`
+    (descending, last axis), :attr:`von_mises`, :attr:`max_shear` ``(σ1 - σ3)/2``,
+    :attr:`tresca` ``σ1 - σ3``, :attr:`max_principal`, :attr:`min_principal`.
+    """
+
+    r: np.ndarray
+    z: np.ndarray
+    srr: np.ndarray
+    stt: np.ndarray
+    szz: np.ndarray
+    srz: np.ndarray
+    stz: np.ndarray
+    srt: np.ndarray
+    error: np.ndarray = field(repr=False)
+    meta: dict = field(default_factory=dict, repr=False)
+
+    units: ClassVar[dict[str, str]] = FIELD_UNITS
+    _COORDS: ClassVar[tuple[str, ...]] = ("r", "z")
+    _COMPONENTS: ClassVar[tuple[str, ...]] = _CYL
+    _TENSOR: ClassVar[tuple[str, ...]] = ("srr", "stt", "szz", "srt", "srz", "stz")
+
+    def _principal(self) -> np.ndarray:
+        if not (np.any(self.stz) or np.any(self.srt)):
+            return _st.principal_axisymmetric(self.srr, self.stt, self.szz, self.srz)
+        return _st.principal_general(*self._tensor())
 
 
 @dataclass(frozen=True)
@@ -459,6 +487,10 @@ def normal_stress_field(state, grid: Any = None, body: Any = 1) -> StressField:
 #: its error estimate); the lag ψ is interpolated in ln x, where the logarithmic growth of
 #: Jäger's slip function towards small radii is smooth
 TWIST_DENSITY_POINTS = 48
+#: at full sliding the twisted punches narrower than this fraction of the contact radius are
+#: left out (the lag grows like ln x towards the axis: its Chebyshev interpolant in ln x spans
+#: ln(1e6)); the torque they carry is O(1e-18) of the sliding torque
+FULL_SLIDING_CORE = 1e-6
 
 
 def _twist_density(lag, c: float, a: float):
@@ -485,8 +517,9 @@ def _twist_density(lag, c: float, a: float):
     return (lambda x: at(d_full, x)), (lambda x: np.abs(at(d_full, x) - at(d_half, x)))
 
 
-def _torsion_density(state):
-    """``(lag, density, density_error)`` of a single partial-slip torsion state."""
+def _torsion_density(state, stick: float | None = None):
+    """``(lag, density, density_error)`` of a single partial-slip torsion state (on
+    ``[stick, a]``, by default the state's stick radius)."""
     from ..physics.torsion import METHODS
     ct = state.contact
     model = METHODS[state.method](ct.profile, ct.moduli.normal, ct.moduli.torsional,
@@ -498,7 +531,8 @@ def _torsion_density(state):
     def lag(x: np.ndarray) -> np.ndarray:
         return psi(np.asarray(x, float)[None, :], idx)[0]
 
-    return (lag, *_twist_density(lag, float(state._stick), float(state._a)))
+    c = float(state._stick) if stick is None else stick
+    return (lag, *_twist_density(lag, c, float(state._a)))
 
 
 def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
@@ -522,9 +556,12 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
     R, Z = r.ravel(), z.ravel()
     k = 4.0 * G / np.pi
     zero = np.zeros(R.shape)
-    if not np.isfinite(phi):
-        raise NotSupportedError("stress() at full sliding (infinite twist) is not implemented: "
-                                "prescribe a finite twist or torque below the sliding torque.")
+    sliding = not np.isfinite(phi)
+    if sliding:
+        # full sliding, τ = μp: the slip annulus reaching the axis; the twisted punches narrower
+        # than FULL_SLIDING_CORE·a are left out (their traction sits on that disc; its effect
+        # is added to the estimate below)
+        c = FULL_SLIDING_CORE * a
     if a <= 0 or phi == 0:
         stz, srt, err = zero, zero, zero
         route = "torsion: none"
@@ -533,16 +570,29 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
         err = 4e-15 * (np.abs(stz) + np.abs(srt))
         route = "torsion: twisted punch"
     else:
-        lag, dens, dens_err = _density if _density is not None else _torsion_density(state)
+        lag, dens, dens_err = (_density if _density is not None else
+                               _torsion_density(state, c if sliding else None))
         (stz, srt), err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, dens, 0.0, nu,
                                                (c,), dens_err, None, _st.twist_kernel, k)
         edge = float(lag(np.array([a * (1 - 1e-15)]))[0])
+        ref = abs(float(lag(np.array([c]))[0])) if sliding else phi
         # a lag left at the rim (flat punch; MDR with d != g(a)) is a twisted punch of radius a;
         # a smooth non-adhesive profile's lag vanishes there (to rounding: not an edge term)
-        if abs(edge) > 1e-9 * phi:
+        if sliding:
+            # the left-out core: at most μp there, its torque's field falling as (c/ρ)³
+            p_core = float(np.max(np.asarray(state.normal.pressure(np.array([0.5 * c, c]))
+                                             if state.normal.shape == () else
+                                             _one_normal(state).pressure(
+                                                 np.array([0.5 * c, c])), float)))
+            rho = np.maximum(np.hypot(R, Z), c)
+            err = err + 2.0 * ct.friction * p_core * (c / rho) ** 3
+            route_extra = " at full sliding"
+        else:
+            route_extra = ""
+        if abs(edge) > 1e-9 * ref:
             e_tz, e_rt = _st.twist_kernel(R, Z, a)
             stz, srt = stz + k * edge * e_tz, srt + k * edge * e_rt
-        route = f"torsion: superposition ({state.method})"
+        route = f"torsion: superposition ({state.method}){route_extra}"
     stz, srt = sign * stz, sign * srt
     if part == "total":
         base = normal_stress(state.normal if state.normal.shape == () else _one_normal(state),
@@ -586,7 +636,9 @@ def torsion_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressM
         return StressMaximum(0.0, 0.0, 0.0, kind, meta)
     partial = (state.method != "no-slip" and 0 < float(state._stick) < a
                and np.isfinite(float(state._twist)) and float(state._twist) != 0)
-    dens = _torsion_density(state) if partial else None
+    sliding = state.method != "no-slip" and not np.isfinite(float(state._twist))
+    dens = (_torsion_density(state) if partial else
+            _torsion_density(state, FULL_SLIDING_CORE * a) if sliding else None)
     return _maximise(lambda r, z: torsion_stress(state, r, z, body, "total", dens), kind, a, meta)
 
 

@@ -196,6 +196,9 @@ class FrettingFatigue(Result, Cited):
         normals, Pa (see :mod:`contactlab.physics.fatigue`).
     swt_location, swt_normal : ndarray
         Its point ``(x, y, z)`` (m) and critical plane normal.
+    findley, findley_location, findley_normal, findley_at_point
+        Findley's parameter ``max_n [τ_a + k max_t σ_n]`` (Pa), its point, plane and value per
+        point, when ``findley_k`` was given (else ``None`` and empty arrays).
     phase, control : ndarray
         The instants of the cycle (phase in [0, 1)) and the displacement (m) or twist (rad).
     x, y, z, swt_at_point : ndarray
@@ -217,18 +220,30 @@ class FrettingFatigue(Result, Cited):
     z: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     swt_at_point: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     meta: dict = field(default_factory=dict, repr=False)
+    findley: float | None = None
+    findley_location: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    findley_normal: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    findley_at_point: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
-    units: ClassVar[dict[str, str]] = {"x": "m", "y": "m", "z": "m", "swt": "Pa"}
+    units: ClassVar[dict[str, str]] = {"x": "m", "y": "m", "z": "m", "swt": "Pa",
+                                       "findley": "Pa"}
 
     def to_dict(self) -> dict[str, Any]:
         """The indicators (``edge_stress``, ``edge_stress_range`` and ``swt`` in Pa, locations
         in m). The model error is 0.0 (exact fields of the loop's tractions)."""
-        return {"edge_stress": self.edge_stress, "edge_stress_range": self.edge_stress_range,
-                "edge_normal": self.edge_normal, "swt": self.swt,
-                "swt_location": self.swt_location, "swt_normal": self.swt_normal}
+        out = {"edge_stress": self.edge_stress, "edge_stress_range": self.edge_stress_range,
+               "edge_normal": self.edge_normal, "swt": self.swt,
+               "swt_location": self.swt_location, "swt_normal": self.swt_normal}
+        if self.findley is not None:
+            out.update(findley=self.findley, findley_location=self.findley_location,
+                       findley_normal=self.findley_normal)
+        return out
 
     def _columns(self) -> dict[str, Any]:
-        return {"x": self.x, "y": self.y, "z": self.z, "swt": self.swt_at_point}
+        out = {"x": self.x, "y": self.y, "z": self.z, "swt": self.swt_at_point}
+        if self.findley is not None:
+            out["findley"] = self.findley_at_point
+        return out
 
 
 #: instants per cycle of :func:`fretting_fatigue` and surface points along the x axis
@@ -237,10 +252,20 @@ FATIGUE_POINTS = 49
 
 
 def fretting_fatigue(loop, body: Any = 1, n_phases: int = FATIGUE_PHASES,
-                     points: Any = None) -> FrettingFatigue:
-    """Implementation of ``FrettingLoop.fatigue``: edge tensile stress, its range and the SWT
-    parameter over ``n_phases`` instants of the steady loop, at surface points along the ``x``
-    axis (``FATIGUE_POINTS`` over ``[-1.2a, 1.2a]`` plus the edges) or at ``points=(x, y, z)``."""
+                     points: Any = None, findley_k: Any = None) -> FrettingFatigue:
+    """Implementation of ``FrettingLoop.fatigue``: edge tensile stress, its range, the SWT
+    parameter and (with ``findley_k``) Findley's over ``n_phases`` instants of the steady loop,
+    at surface points along the ``x`` axis (``FATIGUE_POINTS`` over ``[-1.2a, 1.2a]`` plus the
+    edges) or at ``points=(x, y, z)``."""
+    if findley_k is not None:
+        try:
+            fk = float(findley_k)
+        except (TypeError, ValueError) as err:
+            raise ParameterError(f"findley_k={findley_k!r} is invalid: give a number >= 0.") \
+                from err
+        if isinstance(findley_k, bool) or not np.isfinite(fk) or fk < 0:
+            raise ParameterError(f"findley_k={findley_k!r} is invalid: Findley's normal-stress "
+                                 "sensitivity k must be a finite number >= 0.")
     nu = body_poisson_ratio(loop.normal.contact, body)
     E = getattr(loop.normal.contact.materials[body - 1], "E", None)
     if E is None:
@@ -281,8 +306,15 @@ def fretting_fatigue(loop, body: Any = 1, n_phases: int = FATIGUE_PHASES,
     sn = _fat.normal_stress_on_planes(S[:, e, :], n[None, :])[:, 0]
     val, normals = _fat.swt(S, E, nu)
     j = int(np.argmax(val))
+    extra: dict[str, Any] = {}
+    meta = {"body": body, "E": float(E), "nu": nu, "mode": loop.mode,
+            "citations": ("J85", "MD53")}
+    if findley_k is not None:
+        fv, fn = _fat.findley(S, fk)
+        i = int(np.argmax(fv))
+        extra = {"findley": float(fv[i]), "findley_location": np.array([X[i], Y[i], Z[i]]),
+                 "findley_normal": fn[i], "findley_at_point": fv}
+        meta["findley_k"] = fk
     return FrettingFatigue(float(w[t, e, -1]), float(np.max(sn) - np.min(sn)), n,
                            float(val[j]), np.array([X[j], Y[j], Z[j]]), normals[j], phases,
-                           ctrl, X, Y, Z, val,
-                           {"body": body, "E": float(E), "nu": nu, "mode": loop.mode,
-                            "citations": ("J85", "MD53")})
+                           ctrl, X, Y, Z, val, meta, **extra)

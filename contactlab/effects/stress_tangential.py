@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
@@ -30,7 +29,8 @@ from ..params import as_float_array
 from ..physics import stress as _st
 from ..physics import stress_tangential as _sh
 from ._protocol import Result
-from .stress import KINDS, StressMaximum, body_poisson_ratio, normal_stress, slope_route
+from .stress import (KINDS, StressDerived, StressMaximum, body_poisson_ratio, normal_stress,
+                     slope_route)
 
 __all__ = ["CartesianStressField", "TANGENTIAL_SOURCES", "combined_stress", "to_cartesian",
            "tangential_max_stress", "tangential_stress", "tangential_stress_field"]
@@ -47,7 +47,7 @@ CART_UNITS = {"x": "m", "y": "m", "z": "m", **{k: "Pa" for k in _CART}, "von_mis
 
 
 @dataclass(frozen=True, eq=False)
-class CartesianStressField(Result, Cited):
+class CartesianStressField(StressDerived, Result, Cited):
     """Stress field at points ``(x, y, z)`` in Cartesian components (immutable arrays of the
     broadcast shape of the points).
 
@@ -65,9 +65,10 @@ class CartesianStressField(Result, Cited):
 
     Notes
     -----
-    Derived fields as for :class:`~contactlab.effects.stress.StressField`: :attr:`principal`,
-    :attr:`von_mises`, :attr:`max_shear`, :attr:`tresca`, :attr:`max_principal`,
-    :attr:`min_principal`.
+    Derived fields as for :class:`~contactlab.effects.stress.StressField` (the shared
+    :class:`~contactlab.effects.stress.StressDerived`): :attr:`principal`, :attr:`von_mises`,
+    :attr:`max_shear`, :attr:`tresca`, :attr:`max_principal`, :attr:`min_principal`; ``plot``
+    draws the ``x``–``z`` plane.
     """
 
     x: np.ndarray
@@ -83,89 +84,9 @@ class CartesianStressField(Result, Cited):
     meta: dict = field(default_factory=dict, repr=False)
 
     units: ClassVar[dict[str, str]] = CART_UNITS
-
-    def __post_init__(self) -> None:
-        for name in ("x", "y", "z", *_CART, "error"):
-            arr = np.asarray(getattr(self, name), dtype=float)
-            arr.setflags(write=False)
-            object.__setattr__(self, name, arr)
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """Shape of the point arrays."""
-        return self.sxx.shape
-
-    @property
-    def error_estimate(self) -> float:
-        """Largest estimated error relative to the largest finite stress magnitude."""
-        return float(self.meta.get("error_estimate", 0.0))
-
-    @cached_property
-    def principal(self) -> np.ndarray:
-        """Principal stresses, Pa, descending along the last axis (``shape + (3,)``)."""
-        out = _st.principal_general(self.sxx, self.syy, self.szz, self.sxy, self.sxz, self.syz)
-        out.setflags(write=False)
-        return out
-
-    @cached_property
-    def von_mises(self) -> np.ndarray:
-        """Von Mises equivalent stress, Pa."""
-        return _st.von_mises(self.sxx, self.syy, self.szz, self.sxy, self.sxz, self.syz)
-
-    @cached_property
-    def max_shear(self) -> np.ndarray:
-        """Maximum shear stress ``(σ1 - σ3)/2``, Pa."""
-        p = self.principal
-        return 0.5 * (p[..., 0] - p[..., 2])
-
-    @property
-    def tresca(self) -> np.ndarray:
-        """Tresca equivalent stress ``σ1 - σ3``, Pa."""
-        return 2.0 * self.max_shear
-
-    @property
-    def max_principal(self) -> np.ndarray:
-        """Largest principal stress ``σ1``, Pa."""
-        return self.principal[..., 0]
-
-    @property
-    def min_principal(self) -> np.ndarray:
-        """Smallest principal stress ``σ3``, Pa."""
-        return self.principal[..., 2]
-
-    def get(self, kind: str) -> np.ndarray:
-        """A component or derived field by name (one of :data:`KINDS` or a component)."""
-        if kind not in KINDS + _CART:
-            raise ParameterError(f"kind={kind!r} is invalid: choose one of "
-                                 f"{', '.join(repr(k) for k in KINDS + _CART)}.")
-        return np.asarray(getattr(self, kind))
-
-    def to_dict(self) -> dict[str, Any]:
-        """Coordinates, components, derived fields and the error estimate as arrays (SI units).
-        The model error is 0.0: exact half-space fields of the state's tractions."""
-        out: dict[str, Any] = {"x": self.x, "y": self.y, "z": self.z}
-        out.update({k: getattr(self, k) for k in _CART})
-        out.update({k: getattr(self, k) for k in ("von_mises", "max_shear", "tresca")})
-        out["error"] = self.error
-        return out
-
-    def plot(self, kind: str = "von_mises", ax: Any = None, *, levels: int = 30):
-        """Filled contour plot of ``kind`` over a 2D grid in the ``x``–``z`` plane (needs
-        matplotlib); returns the axes. Depth is drawn downward."""
-        from .. import plotting as pl
-        plt = pl.pyplot()
-        if self.x.ndim != 2:
-            raise ParameterError("plot() needs a 2D grid of points (use state.stress_field()).")
-        if ax is None:
-            _, ax = plt.subplots()
-        vals = self.get(kind)
-        cs = ax.contourf(self.x, -self.z, np.where(np.isfinite(vals), vals, np.nan),
-                         levels=levels)
-        ax.figure.colorbar(cs, ax=ax, label=f"{kind} (Pa)")
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("-z (m)")
-        ax.set_aspect("equal")
-        return ax
+    _COORDS: ClassVar[tuple[str, ...]] = ("x", "y", "z")
+    _COMPONENTS: ClassVar[tuple[str, ...]] = _CART
+    _TENSOR: ClassVar[tuple[str, ...]] = _CART
 
 
 def _xyz(x: Any, y: Any, z: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -223,10 +144,6 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
     """Radial functions (flat) of the frictional field of a single tangential state, with the
     body's sign applied, their error and the route."""
     ct = state.contact
-    if ct.friction is None:
-        raise NotSupportedError("stress() of a tangential state needs a friction coefficient "
-                                "(as shear() does): without friction the no-slip traction is "
-                                "that of a rigidly shifted punch.")
     ns = _normal_of(state)
     a, d = float(ns._radius), float(ns._depth)
     c = float(np.ravel(state._c)[0])
@@ -235,6 +152,14 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
     zero = np.zeros(R.shape)
     if a <= 0 or u == 0:
         return (zero,) * _sh.N_SHEAR_RADIAL, zero, "tangential: none"
+    if ct.friction is None:
+        # no slip: the rigidly shifted punch, q = Q/(2π a sqrt(a² - r²)): the single
+        # punch-type traction of radius a (its kernel's σ_xz is -1/sqrt(a² - r²))
+        amp = -float(np.ravel(state.tangential_force)[0]) / (2.0 * np.pi * a)
+        amp *= 1.0 if body == 1 else -1.0
+        P = tuple(amp * p for p in _sh.shear_kernel(R, Z, a, nu))
+        err = 4e-15 * np.maximum.reduce([np.abs(p) for p in P])
+        return P, err, "tangential: no-slip shifted punch"
     sign = -np.sign(u) * (1.0 if body == 1 else -1.0)
     k = ct.friction * ct.moduli.normal / np.pi
     prof = ct.profile

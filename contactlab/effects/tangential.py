@@ -121,7 +121,8 @@ class TangentialState(Result, Cited):
     def stress(self, x: Any, y: Any, z: Any, body: int = 1, part: str = "total") -> Any:
         """Subsurface stress field (a ``CartesianStressField``) at points ``(x, y, z)`` (m,
         broadcast; ``x`` along the shift, ``z >= 0`` the depth): the normal preload's field plus
-        the Cattaneo–Mindlin shear field (``part="friction"``: the shear part alone). Body 1
+        the Cattaneo–Mindlin shear field (``part="friction"``: the shear part alone; without a
+        friction limit the rigidly shifted punch's, ``q = Q/(2π a sqrt(a² - r²))``). Body 1
         receives the traction :meth:`shear` reports; body 2 its opposite. See docs/stress.md."""
         from .stress_tangential import tangential_stress
         return tangential_stress(self, x, y, z, body, part)

@@ -323,23 +323,35 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         if g_values is not None:
             xk, _ = _nodes(rr[:, None, None], lo, hi, bk, z3)
             xg, _ = _nodes(rr[:, None, None], lo, hi, bg, z3)
+            seg_k = np.broadcast_to(hi > lo, xk.shape)      # g on the non-empty segments
+            seg_g = np.broadcast_to(hi > lo, xg.shape)
             with np.errstate(invalid="ignore"):
                 # increments oriented along +x (a mirrored log map runs right to left)
-                dgk = np.diff(g_values(xk), axis=-1) * np.sign(np.diff(xk, axis=-1))
-                dgg = np.diff(g_values(xg), axis=-1) * np.sign(np.diff(xg, axis=-1))
+                dgk = (np.diff(_scatter(seg_k, g_values(xk[seg_k])), axis=-1)
+                       * np.sign(np.diff(xk, axis=-1)))
+                dgg = (np.diff(_scatter(seg_g, g_values(xg[seg_g])), axis=-1)
+                       * np.sign(np.diff(xg, axis=-1)))
         live = jac > 0
         xs = np.where(live, x, aa[:, None, None])          # dead nodes: a harmless radius
+        # the density and the kernel at the live nodes only (empty segments are common: a
+        # point beyond a or deeper than a/4 has some), scattered back with zeros elsewhere;
+        # elementwise, so each live value is the one the full arrays gave
+        xl = xs[live]
         with np.errstate(invalid="ignore", divide="ignore"):
-            gp = np.where(live, g_prime(xs), 0.0) * jac
-            dgp = None if g_prime_error is None else np.where(live, g_prime_error(xs), 0.0) * jac
-        comps = kernel(rr[:, None, None], zz[:, None, None], xs)
+            gp = _scatter(live, g_prime(xl)) * jac
+            dgp = (None if g_prime_error is None else
+                   _scatter(live, g_prime_error(xl)) * jac)
+        shape3 = xs.shape
+        comps = tuple(_scatter(live, c) for c in kernel(
+            np.broadcast_to(rr[:, None, None], shape3)[live],
+            np.broadcast_to(zz[:, None, None], shape3)[live], xl))
         has_edge = bool(np.any(ee != 0))
         if has_edge:
             edge_c = kernel(rr, zz, aa)
         e = np.zeros(rr.shape)
         for i, c in enumerate(comps):
             with np.errstate(invalid="ignore"):
-                f = np.where(live, c * gp, 0.0)
+                f = c * gp                   # both 0 at the dead nodes
             if g_values is None:
                 kr = f @ wk                                    # (P, S)
                 ga = f @ wg
@@ -364,6 +376,13 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         err[sl] = e
     scale = np.maximum.reduce([np.abs(o) for o in out])
     return tuple(out), err + 1e-14 * scale
+
+
+def _scatter(mask: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """``values`` at the ``True`` places of ``mask``, 0 elsewhere."""
+    out = np.zeros(mask.shape)
+    out[mask] = values
+    return out
 
 
 def principal_axisymmetric(srr: np.ndarray, stt: np.ndarray, szz: np.ndarray, srz: np.ndarray

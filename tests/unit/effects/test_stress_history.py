@@ -132,6 +132,47 @@ def test_swt_of_hand_computed_cycles():
     assert abs(abs(n[0, 0]) - np.sqrt(0.5)) <= 1e-12 and abs(n[0, 2]) <= 1e-12
 
 
+def test_findley_of_hand_computed_cycles():
+    # uniaxial σ_min..σ_max along x: on the plane at θ from x, σ_n = σ cos²θ and the shear
+    # σ sinθ cosθ (fixed direction), so FP(θ) = (Δσ/4) sin 2θ + (kσ_max/2)(1 + cos 2θ), whose
+    # maximum over θ is kσ_max/2 + sqrt((Δσ/4)² + (kσ_max/2)²)
+    k = 0.3
+    smin, smax = -100e6, 300e6
+    t = np.linspace(0, 2 * np.pi, 13)
+    S = np.zeros((t.size, 1, 6))
+    S[:, 0, 0] = 0.5 * (smax + smin) + 0.5 * (smax - smin) * np.cos(t)
+    val, n = fatigue.findley(S, k)
+    ds = smax - smin
+    want = k * smax / 2 + np.hypot(ds / 4, k * smax / 2)
+    # the 2.5° grids of normals and shear directions: within O((1.25°)²) of the maximum
+    assert want * (1 - tol.FINDLEY_GRID) <= val[0] <= want * (1 + 1e-12)
+    theta = 0.5 * np.arctan2(ds / 4, k * smax / 2)                # the critical plane
+    assert abs(abs(n[0, 0]) - np.cos(theta)) < np.radians(2.5)
+    # fully reversed shear ±τ in xy: on the plane at α from x in xy, τ_a = τ|cos 2α| and
+    # σ_n,max = τ|sin 2α|, so FP = τ sqrt(1 + k²)
+    tau = 150e6
+    S = np.zeros((t.size, 1, 6))
+    S[:, 0, 3] = tau * np.cos(t)
+    val, _ = fatigue.findley(S, k)
+    want = tau * np.sqrt(1 + k * k)
+    assert want * (1 - tol.FINDLEY_GRID) <= val[0] <= want * (1 + 1e-12)
+    # k = 0: the largest shear amplitude, τ on the x and y planes
+    val, n = fatigue.findley(S, 0.0)
+    assert val[0] == pytest.approx(tau, rel=1e-12)
+
+
+def test_loop_findley_beside_swt():
+    loop = C.fretting_loop(force=F, displacement_amplitude=1e-7)
+    plain = loop.fatigue(n_phases=4)
+    ff = loop.fatigue(n_phases=4, findley_k=0.25)
+    assert plain.findley is None and "findley" not in plain.to_dict()
+    assert ff.swt == plain.swt and ff.findley == ff.findley_at_point.max()
+    assert ff.to_dict()["findley"] == ff.findley and ff.meta["findley_k"] == 0.25
+    for bad in (-0.1, np.nan, "x", True):
+        with pytest.raises(ParameterError):
+            loop.fatigue(n_phases=4, findley_k=bad)
+
+
 def test_bad_steps_and_phases_raise():
     h = C.shift_history(force=F, displacement=np.array([0.0, 1e-7]))
     for bad in (2, -3, 1.0, True):

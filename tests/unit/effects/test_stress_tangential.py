@@ -307,3 +307,34 @@ def test_measured_paraboloid_reproduces_cattaneo_mindlin_within_its_error():
     Q = st.tangential_force
     assert abs(Qx - Q) <= dQ + tol.STRESS_EQUILIBRIUM * Q
     assert dQ < 3e-5 * Q                               # measured 3.0e-6
+
+
+def test_without_friction_the_shifted_punch():
+    # no friction limit: nothing slips, the traction is the rigidly shifted punch's
+    # q = Q/(2π a sqrt(a² - r²)) (closed form, written here), carried through every depth
+    nofr = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(STEEL, STEEL), friction=None)
+    s = nofr.tangential(force=F, displacement=2e-8)
+    a, Q = s.normal.radius, s.tangential_force
+    r = np.array([0.0, 0.2, 0.6, 0.95]) * a
+    f = s.stress(r, 0.3 * r, 0.0, part="friction")
+    rho = np.hypot(r, 0.3 * r)
+    want = Q / (2 * np.pi * a * np.sqrt(a * a - rho * rho))
+    np.testing.assert_allclose(f.sxz, want, rtol=tol.STRESS_TANGENTIAL_SURFACE, atol=0)
+    assert np.all(np.abs(f.syz) <= tol.STRESS_TANGENTIAL_SURFACE * want)
+    assert "no-slip" in f.meta["route"]
+    t, w = np.polynomial.legendre.leggauss(400)
+    for z in (0.1 * a, 0.7 * a):
+        th_a = np.arctan(a / z)
+        parts = [(0.0, th_a), (th_a, 0.5 * np.pi * (1 - 1e-12))]
+        th = np.concatenate([lo + (hi - lo) * (t + 1) / 2 for lo, hi in parts])
+        wt = np.concatenate([(hi - lo) / 2 * w for lo, hi in parts])
+        rr = z * np.tan(th)
+        dr = z / np.cos(th) ** 2 * wt
+        f0 = s.stress(rr, 0 * rr, z, part="friction")
+        f90 = s.stress(0 * rr, rr, z, part="friction")
+        Qx = np.sum(2 * np.pi * rr * 0.5 * (f0.sxz + f90.sxz) * dr)
+        assert Qx == pytest.approx(Q, rel=tol.STRESS_EQUILIBRIUM)
+    two = s.stress(r, 0.3 * r, 0.1 * a, part="friction", body=2)
+    np.testing.assert_array_equal(two.sxz, -s.stress(r, 0.3 * r, 0.1 * a, part="friction").sxz)
+    tot = s.stress(r, 0.3 * r, 0.1 * a)
+    assert np.all(tot.szz < 0)                   # the normal preload is included

@@ -114,3 +114,36 @@ def test_max_stress_and_grid():
 def test_bad_part():
     with pytest.raises(ParameterError, match="part="):
         states()[0].stress(0.0, 0.0, part="both")
+
+
+@pytest.mark.parametrize("method", ["exact", "mdr"])
+@pytest.mark.parametrize("flat", [False, True])
+def test_full_sliding(method, flat):
+    # the slip annulus reaching the axis (stick_radius=0, infinite twist): the surface value
+    # is the state's own traction (μp on the exact model, independent of the superposition)
+    # and the torque through a plane the sliding torque
+    prof = cl.profiles.FlatPunch(radius=1e-4) if flat else None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)       # the MDR model at full sliding
+        s = contact(prof).torsion(force=F, stick_radius=0.0, method=method)
+    a = float(s._a)
+    r = np.array([0.05, 0.2, 0.5, 0.8, 0.95]) * a
+    f = s.stress(r, 0.0, part="friction")
+    tau = np.asarray(s.shear(r))
+    assert np.all(np.abs(f.stz - tau) <= f.error + tol.STRESS_TORSION_SLIDING * np.max(tau))
+    assert np.max(np.abs(f.stz - tau)) < tol.STRESS_TORSION_SLIDING * np.max(tau)
+    if method == "exact":
+        p = np.asarray(s.normal.pressure(r))
+        np.testing.assert_allclose(tau, 0.3 * p, rtol=1e-12)
+    assert "full sliding" in f.meta["route"]
+    t, w = np.polynomial.legendre.leggauss(400)
+    z = 0.3 * a
+    th_a = np.arctan(a / z)
+    parts = [(0.0, th_a), (th_a, 0.5 * np.pi * (1 - 1e-12))]
+    th = np.concatenate([lo + (hi - lo) * (t + 1) / 2 for lo, hi in parts])
+    wt = np.concatenate([(hi - lo) / 2 * w for lo, hi in parts])
+    rr = z * np.tan(th)
+    dr = z / np.cos(th) ** 2 * wt
+    g = s.stress(rr, z, part="friction")
+    M = np.sum(2 * np.pi * rr * rr * g.stz * dr)
+    assert M == pytest.approx(s.torque, rel=tol.STRESS_EQUILIBRIUM * 10)
