@@ -14,6 +14,22 @@ Targets:
    with the normal preload, and its largest deviation from Hamilton's sliding-sphere closed form
    at gross slip, relative to p0.
 
+4. (no target) Tamaas, where it is installed (optional, never a dependency): the subsurface
+   stress of the same Hertz contact from Tamaas' volume model (``model_type.volume_2d``, its
+   "boussinesq_gradient" and "hooke" volume operators applied to the Hertz pressure sampled on
+   its periodic grid) at three grids, beside contactlab on the same points (the r-z plane of
+   the grid's nodes: by axisymmetry the same information), timed interleaved in this run (best
+   of 3, wall and CPU time; Tamaas' output arrays allocated once, outside the timing). Errors
+   on the axis nodes against Johnson's closed form of the axis stresses (written here,
+   independently of the package), and the maximum shear (0.31 p0 at z = 0.48 a for nu = 0.3,
+   maximised here from that closed form) estimated from the same nodes the same way (the
+   maximum of the cubic spline through the nodes' values); contactlab's own
+   ``max_stress("max_shear")`` beside it. Skipped with a line when tamaas is not importable
+   (or with ``--no-tamaas``). Tamaas' error has two parts: the sampled pressure (sigma_zz,
+   falling with the node spacing h) and the periodic images (sigma_rr, falling with the
+   period L: about nu/(1 - nu) times the mean pressure F/L^2, the lateral stress of the
+   uniform mode).
+
 Also printed: the superposition on the paraboloid's own g' (no table), and each table's largest
 deviation from the Hertz field relative to p0, beside its own stated error. Times are wall-clock
 best of 5 with the process CPU time alongside (the machine may be a shared, noisy VM).
@@ -96,6 +112,10 @@ def main() -> None:
     print(f"Cattaneo-Mindlin 200x100 (superposition): {w * 1e3:.0f} ms wall, {c * 1e3:.0f} ms "
           f"CPU; sliding sphere |field - Hamilton|/p0 = {dev:.2e}, stated error "
           f"{fs.meta['error_estimate']:.2e} of max|σ|")
+    if "--no-tamaas" in sys.argv:
+        print("Tamaas comparison: skipped (--no-tamaas)")
+    else:
+        compare_tamaas(hertz)
     print(f"load average after: {os.getloadavg()}")
 
 
@@ -109,6 +129,107 @@ def hamilton(x, y, z, nu):
     """Hamilton's sliding-sphere shear field (tests/reference/stress_tangential.py)."""
     from tests.reference.stress_tangential import hamilton_shear
     return hamilton_shear(x, y, z, nu)
+
+
+#: Tamaas grids (period L in units of a, N x N surface nodes); 31 depths over [0, 1.5a] each
+TAMAAS_GRIDS = ((8, 64), (8, 128), (16, 256))
+TAMAAS_NZ, TAMAAS_DEPTH = 31, 1.5
+
+
+def johnson_axis(zeta, nu):
+    """Hertz stresses on the axis over p0 (Johnson, Contact Mechanics, eq. 3.45): sigma_z, sigma_r."""
+    szz = -1.0 / (1.0 + zeta**2)
+    srr = -(1.0 + nu) * (1.0 - zeta * np.arctan2(1.0, zeta)) + 0.5 / (1.0 + zeta**2)
+    return szz, srr
+
+
+def johnson_max_shear(nu):
+    """The closed form's largest (sigma_r - sigma_z)/2 on the axis over p0, and its depth over a."""
+    from scipy.optimize import minimize_scalar
+
+    def tau(zeta):
+        szz, srr = johnson_axis(zeta, nu)
+        return 0.5 * (srr - szz)
+    res = minimize_scalar(lambda t: -tau(t), bounds=(0.2, 1.0), method="bounded",
+                          options={"xatol": 1e-12})
+    return float(tau(res.x)), float(res.x)
+
+
+def node_max(z, tau):
+    """Largest tau from its values at the nodes z: the maximum of their cubic spline."""
+    from scipy.interpolate import CubicSpline
+    from scipy.optimize import minimize_scalar
+    k = int(np.argmax(tau))
+    spline = CubicSpline(z, tau)
+    bounds = (z[max(k - 1, 0)], z[min(k + 1, len(z) - 1)])
+    res = minimize_scalar(lambda t: -spline(t), bounds=bounds, method="bounded",
+                          options={"xatol": 1e-12 * z[-1]})
+    return float(spline(res.x)), float(res.x)
+
+
+def compare_tamaas(hertz, n: int = 3) -> None:
+    try:
+        import tamaas as tm
+    except ImportError:
+        print("Tamaas: not importable here: comparison skipped (optional: pip install tamaas)")
+        return
+    tm.set_log_level(tm.LogLevel.error)
+    a, nu, F = hertz.radius, STEEL.nu, hertz.force
+    p0 = 3 * F / (2 * np.pi * a**2)
+    z = np.linspace(0.0, TAMAAS_DEPTH * a, TAMAAS_NZ)
+    szz_ex, srr_ex = johnson_axis(z / a, nu)
+    tau_ex, zeta_ex = johnson_max_shear(nu)
+    print(f"Tamaas {tm.__version__} against contactlab ({os.cpu_count()} CPUs), Hertz axis "
+          f"(nu = {nu}; closed-form maximum shear {tau_ex:.6f} p0 at z = {zeta_ex:.6f} a); "
+          f"{TAMAAS_NZ} depths over [0, {TAMAAS_DEPTH}a]; best of {n}, interleaved; errors "
+          f"over p0 (stresses) and a (depth) on the axis nodes:")
+    jobs = []
+    for periods, N in TAMAAS_GRIDS:
+        L = periods * a
+        model = tm.Model(tm.model_type.volume_2d, [TAMAAS_DEPTH * a, L, L], [TAMAAS_NZ, N, N])
+        model.E, model.nu = STEEL.E, nu
+        tm.ModelFactory.registerVolumeOperators(model)
+        x = np.arange(N) * L / N - L / 2          # a node on the axis (index N // 2)
+        X, Y = np.meshgrid(x, x, indexing="ij")
+        model.traction[..., 2] = p0 * np.sqrt(np.clip(1 - (X**2 + Y**2) / a**2, 0.0, None))
+
+        strain, stress = np.zeros((2, TAMAAS_NZ, N, N, 6))
+
+        def run_tm(model=model, N=N, strain=strain, stress=stress):
+            model.operators["boussinesq_gradient"](model.traction, strain)
+            model.operators["hooke"](strain, stress)
+            return stress[:, N // 2, N // 2, :3]     # the axis: xx, yy, zz
+        rr, zz = np.meshgrid(x[N // 2:], z)          # the same nodes in the r-z plane
+        jobs.append(dict(L=periods, N=N, tm=run_tm,
+                         cl=lambda rr=rr, zz=zz: hertz.stress(rr, zz),
+                         times={"tm": [np.inf, np.inf], "cl": [np.inf, np.inf]}, out={}))
+    for _ in range(n):
+        for job in jobs:
+            for key in ("tm", "cl"):
+                t0, c0 = time.perf_counter(), time.process_time()
+                job["out"][key] = job[key]()
+                t = job["times"][key]
+                t[0] = min(t[0], time.perf_counter() - t0)
+                t[1] = min(t[1], time.process_time() - c0)
+
+    def errors(szz, srr):
+        tau, zmax = node_max(z, 0.5 * (srr - szz))
+        return (np.max(np.abs(szz / p0 - szz_ex)), np.max(np.abs(srr / p0 - srr_ex)),
+                abs(tau / p0 - tau_ex), abs(zmax / a - zeta_ex))
+    for job in jobs:
+        s = job["out"]["tm"]
+        f = job["out"]["cl"]
+        e_tm = errors(s[:, 2], s[:, 0])
+        e_cl = errors(f.szz[:, 0], f.srr[:, 0])
+        for name, key, e in (("Tamaas    ", "tm", e_tm), ("contactlab", "cl", e_cl)):
+            w, c = job["times"][key]
+            print(f"  {name} L = {job['L']:2d}a, {job['N']:3d}^2 nodes (h = a/{job['N'] // job['L']}): "
+                  f"{w * 1e3:7.1f} ms wall, {c * 1e3:7.1f} ms CPU; sigma_zz err {e[0]:.1e}, "
+                  f"sigma_rr err {e[1]:.1e}, max shear err {e[2]:.1e} at depth err {e[3]:.1e}")
+    w, c, m = best(lambda: hertz.max_stress("max_shear"), n)
+    print(f"  contactlab max_stress('max_shear'): {w * 1e3:.0f} ms wall, {c * 1e3:.0f} ms CPU; "
+          f"{m.value / p0:.9f} p0 at r = {m.r / a:.1e} a, z = {m.z / a:.9f} a (closed form "
+          f"{tau_ex:.9f} p0 at {zeta_ex:.9f} a)")
 
 
 if __name__ == "__main__":
