@@ -567,14 +567,14 @@ class NormalState(Result, Cited):
         rho = np.linspace(0.0, 1.0, 1025)[:-1]
         a = self._radius[..., None]
         g_edge = np.asarray(self._edge_g)
-        args = (self.contact.profile, self.contact.moduli.normal)
-        rest = (a, self._depth[..., None], g_edge[..., None], self.contact.rtol)
+        prof, E, rtol = self.contact.profile, self.contact.moduli.normal, self.contact.rtol
+        d, g = self._depth[..., None], g_edge[..., None]
         # the axis first: where the pressure there is +inf (a cone tip: a linear table whose
         # first segment is not flat) on every state, that is the peak, and the other 1023 radii
         # need not be computed (otherwise all 1024 are, as one array: the same bits)
-        val, _ = _normal.pressure(*args, rho[:1] * a, *rest)
+        val, _ = _normal.pressure(prof, E, rho[:1] * a, a, d, g, rtol)
         if not np.all(np.isposinf(val)):
-            val, _ = _normal.pressure(*args, rho * a, *rest)
+            val, _ = _normal.pressure(prof, E, rho * a, a, d, g, rtol)
         flat_edge = self._edge_at_wall & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         warn_cone_tip(self.contact.profile, val[..., 0])
