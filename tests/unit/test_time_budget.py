@@ -152,7 +152,9 @@ def test_a_budget_raise_lets_the_same_calls_run(monkeypatch):
     calls = [lambda: C.twist_history(twist=np.linspace(0.0, 1e-4, 50), force=10.0),
              lambda: C.shift_history(displacement=np.linspace(0.0, 1e-7, 50), force=10.0),
              lambda: C.simulate(path, method="exact", n_rings=16),
-             lambda: C.simulate(path, method="mdr", n_springs=64)]
+             lambda: C.simulate(path, method="mdr", n_springs=64),
+             lambda: C.wear(force=10.0, displacement_amplitude=1e-6, wear_coefficient=1e-13,
+                            cycles=100.0, n_grid=100)]
     previous = cl.set_time_budget(1e-9)
     try:
         for call in calls:
