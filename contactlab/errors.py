@@ -66,7 +66,8 @@ class MemoryBudgetError(ParameterError):
 
 class TimeBudgetError(ParameterError):
     """A request would run longer than the time budget allows (estimated before any work from a
-    calibrated cost per unit of work: map points, wear steps).
+    calibrated cost per unit of work: map points, wear steps, history and path steps; for a
+    sweep, whose point is the user's function, from its first points, timed).
 
     Raise the budget with :func:`contactlab.set_time_budget` or the environment variable
     ``CONTACTLAB_TIME_BUDGET`` (seconds; suffixes ``s``, ``min``, ``h`` allowed; ``inf`` for none).

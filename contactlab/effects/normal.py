@@ -567,14 +567,21 @@ class NormalState(Result, Cited):
         ``inf`` where the pressure is singular (flat-punch edge, cone tip, ``n < 1``). A linear
         table whose first segment is not flat is a cone tip: ``inf``, with a
         :class:`~contactlab.errors.ValidityWarning` naming the smooth alternative
-        (``interpolation="cubic"``, whose axis slope is 0). Tables take per-segment rules
+        (``interpolation="cubic"``, whose axis slope is 0); the axis is computed first, and
+        where its pressure is ``+inf`` the other radii are not. Tables take per-segment rules
         cached per table (:mod:`contactlab.physics.table_pressure`).
         """
         rho = np.linspace(0.0, 1.0, 1025)[:-1]
         a = self._radius[..., None]
         g_edge = np.asarray(self._edge_g)
-        val, _ = _normal.pressure(self.contact.profile, self.contact.moduli.normal, rho * a, a,
-                                  self._depth[..., None], g_edge[..., None], self.contact.rtol)
+        prof, E, rtol = self.contact.profile, self.contact.moduli.normal, self.contact.rtol
+        d, g = self._depth[..., None], g_edge[..., None]
+        # the axis first: where the pressure there is +inf (a cone tip: a linear table whose
+        # first segment is not flat) on every state, that is the peak, and the other 1023 radii
+        # need not be computed (otherwise all 1024 are, as one array: the same bits)
+        val, _ = _normal.pressure(prof, E, rho[:1] * a, a, d, g, rtol)
+        if not np.all(np.isposinf(val)):
+            val, _ = _normal.pressure(prof, E, rho * a, a, d, g, rtol)
         flat_edge = self._edge_at_wall & (self._depth != g_edge)
         peak = np.where(flat_edge, np.inf, np.max(val, axis=-1))
         warn_cone_tip(self.contact.profile, val[..., 0])

@@ -17,7 +17,7 @@ import numpy as np
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError
 from ..numeric.roots import bracketed_root
-from ..params import (as_float_array, broadcast_inputs, check_memory, exactly_one,
+from ..params import (as_float_array, broadcast_inputs, check_memory, check_time, exactly_one,
                       scalar_or_array)
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
@@ -275,6 +275,12 @@ class ShiftHistory(Result, Cited):
 #: at every step's argument, the dissipation): 801 B measured with tracemalloc for random walks
 #: of 10^5 steps on three profiles, rounded up; checked before the history is walked
 HISTORY_BYTES_PER_STEP = 1024
+#: run time of a shift history, s per step (bookkeeping, the loading curve at every step's
+#: argument, the dissipation), checked against the time budget before any work: measured 4.7-12
+#: µs per step (CPU time, shared 2-core VM at load ~3.5, paraboloid, random walks and sine
+#: sweeps of 10^4-10^6 steps), taken at about 0.4 of the smallest (a lower estimate;
+#: benchmarks/time_estimates.py checks it)
+HISTORY_SECONDS_PER_STEP = 2e-6
 
 
 @reporting()
@@ -294,6 +300,8 @@ def shift_history(contact, *, displacement: Any, depth: Any = None,
     u = as_float_array("displacement", displacement).ravel()
     check_memory("shift_history()", float(u.size) * HISTORY_BYTES_PER_STEP,
                  f"displacement: {u.size} steps x {HISTORY_BYTES_PER_STEP} B")
+    check_time("shift_history()", float(u.size) * HISTORY_SECONDS_PER_STEP,
+               f"displacement: {u.size} steps x {HISTORY_SECONDS_PER_STEP * 1e6:g} us")
     prof, E, Gs, mu = (contact.profile, contact.moduli.normal, contact.moduli.tangential,
                        contact.friction)
     a, d = float(ns._radius), float(ns._depth)

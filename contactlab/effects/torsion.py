@@ -19,7 +19,7 @@ import numpy as np
 
 from ..citations import Cited, sources_for
 from ..errors import NotSupportedError, ParameterError, UnknownNameError, ValidityWarning
-from ..params import (as_float_array, broadcast_inputs, check_memory, exactly_one,
+from ..params import (as_float_array, broadcast_inputs, check_memory, check_time, exactly_one,
                       scalar_or_array)
 from ..physics import normal as _normal
 from ..physics import torsion as _models
@@ -480,6 +480,15 @@ HISTORY_BYTES_PER_STEP = 512
 #: (paraboloid, power law n = 4) and 17.1 KB for the quadrature route (cone), mdr 2.9 KB; the
 #: largest, rounded up (no-slip: the closed form, like the bookkeeping)
 SOLVE_BYTES_PER_ARGUMENT = {"exact": 20 * 1024, "mdr": 4 * 1024, "no-slip": 512}
+#: run time of a history's bookkeeping (turning points, the Masing response, the dissipation),
+#: s per step, and of the loading-curve solve, s per distinct twist argument, by method; checked
+#: against the time budget before any work (steps) and before the solve (distinct arguments).
+#: Measured (CPU time, shared 2-core VM at load ~3.5, paraboloid, random walks of 10^4-10^5
+#: steps): exact 5.4-40 µs per step in all (33-38 µs on the cone's quadrature route), mdr
+#: 2.5-3.8 µs; taken at about 0.4 of the smallest (a lower estimate: a refused history takes at
+#: least that long; benchmarks/time_estimates.py checks it)
+HISTORY_SECONDS_PER_STEP = 5e-7
+SOLVE_SECONDS_PER_ARGUMENT = {"exact": 2e-6, "mdr": 1e-6, "no-slip": 0.0}
 
 
 @reporting()
@@ -498,6 +507,8 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
                              "one per step.")
     check_memory("twist_history()", float(phi.size) * HISTORY_BYTES_PER_STEP,
                  f"twist: {phi.size} steps x {HISTORY_BYTES_PER_STEP} B")
+    check_time("twist_history()", float(phi.size) * HISTORY_SECONDS_PER_STEP,
+               f"twist: {phi.size} steps x {HISTORY_SECONDS_PER_STEP * 1e6:g} us of bookkeeping")
     normal = contact.normal(**{load_key: float(load)})
     origin, factor, arg, segs = masing_program(phi)
     model = torsion_model(contact, method)
@@ -515,6 +526,11 @@ def twist_history(contact, *, twist: Any, depth: Any = None, force: Any = None,
     check_memory("twist_history()", float(u_arg.size) * per,
                  f"twist: {u_arg.size} distinct amplitudes of the {phi.size} steps x {per} B for "
                  f"the method={method!r} loading curve")
+    solve = SOLVE_SECONDS_PER_ARGUMENT.get(method, max(SOLVE_SECONDS_PER_ARGUMENT.values()))
+    check_time("twist_history()", phi.size * HISTORY_SECONDS_PER_STEP + u_arg.size * solve,
+               f"twist: {phi.size} steps x {HISTORY_SECONDS_PER_STEP * 1e6:g} us of bookkeeping "
+               f"and {u_arg.size} distinct amplitudes x {solve * 1e6:g} us for the "
+               f"method={method!r} loading curve")
     A = np.full(u_arg.shape, a)
     Dd = np.full(u_arg.shape, d)
     GA = np.full(u_arg.shape, g_a)

@@ -243,22 +243,39 @@ def _checkpoint_sizes(checkpoints: Any, n_grid: int, jump_rtol: float) -> None:
                f"the {int(n_grid) + 1}-node grid")
 
 
-#: run time of one wear step, s: a fixed part and one per dense-grid entry (n_grid + 1)²;
-#: measured 2.0-2.8 ms per step at n_grid = 100-200 on the shared 2-core VM at load ~9 (shift
-#: and twist, MDR and exact), taken at about 0.25 of that (a lower estimate for an unloaded core)
-WEAR_STEP_SECONDS, WEAR_STEP_SECONDS_PER_ENTRY = 5e-4, 1e-8
+#: run time of one wear step, s: a fixed part, one per dense-grid entry (n_grid + 1)² (the
+#: operators' products) and one per (n_grid + 1)³ (the implicit steps' Jacobians and LU
+#: factors, kept over several steps). Measured (CPU time, shared 2-core VM at load ~3.5, Hertz
+#: shifts): 1.13 ms per accepted step at n_grid = 100 (454 steps), 0.68 ms at 400 (1146 steps),
+#: 36 and 43 ms at 700 and 1000 on short runs (32-37 steps, the factorisations not spread);
+#: 0.39-0.45 ms at 400 on runs of 4 000-9 000 steps. The formula lies below each (0.21, 0.62,
+#: 2.1, 5.2 ms): a lower estimate; benchmarks/time_estimates.py checks it
+WEAR_STEP_SECONDS, WEAR_STEP_SECONDS_PER_ENTRY, WEAR_STEP_SECONDS_PER_CUBE = 2e-4, 1e-9, 4e-12
+#: wear steps against the worn-volume ratio ``ρ = k N W / (μ π a² d)`` (the volume the fresh
+#: contact's wear rate removes in the run, over the contact's volume scale; ``W`` the energy of
+#: the fresh loop): at least ``WEAR_STEPS_FACTOR ρ**WEAR_STEPS_POWER`` at the default
+#: ``jump_rtol``. Measured (default integrator, n_grid = 100) 26, 209, 1146, 3993 steps at
+#: ρ = 0.049-19.7 on a Hertz shift, 65-9144 at ρ = 0.14-55 on an n = 3 power-law shift and
+#: 1-243 at ρ = 3e-4-0.12 on a Hertz twist; ``200 ρ^0.8`` lies below every one (by 1.2-6.7)
+WEAR_STEPS_FACTOR, WEAR_STEPS_POWER = 200.0, 0.8
 
 
 def wear_step_seconds(n_grid: int) -> float:
     """Estimated run time (s) of one wear step on the ``n_grid`` grid."""
-    return WEAR_STEP_SECONDS + WEAR_STEP_SECONDS_PER_ENTRY * (n_grid + 1.0) ** 2
+    n = n_grid + 1.0
+    return WEAR_STEP_SECONDS + WEAR_STEP_SECONDS_PER_ENTRY * n**2 + WEAR_STEP_SECONDS_PER_CUBE * n**3
 
 
-def wear_steps_lower(n_checkpoints: int, jump_rtol: float) -> float:
-    """A lower bound of a run's wear steps: one per checkpoint at least, and the steps the jump
+def wear_steps_lower(n_checkpoints: int, jump_rtol: float, wear_ratio: float = 0.0) -> float:
+    """A lower bound of a run's wear steps: one per checkpoint at least, the steps the jump
     tolerance asks for (``0.9 jump_rtol**-0.5``: 28 at 1e-3, 3540 at 1e-8 measured on a Hertz
-    shift, more on others)."""
-    return max(float(n_checkpoints), 0.9 / math.sqrt(jump_rtol))
+    shift, more on others), and those the amount of wear asks for, growing with the cycles:
+    ``WEAR_STEPS_FACTOR wear_ratio**WEAR_STEPS_POWER`` (``wear_ratio``: the worn-volume ratio
+    ``k N W / (μ π a² d)``, see :data:`WEAR_STEPS_FACTOR`), fewer in proportion to
+    ``jump_rtol**-0.5`` above the default tolerance (never more below it: a lower bound)."""
+    by_wear = WEAR_STEPS_FACTOR * max(wear_ratio, 0.0) ** WEAR_STEPS_POWER
+    by_wear *= min(1.0, math.sqrt(DEFAULT_JUMP_RTOL / jump_rtol))
+    return max(float(n_checkpoints), 0.9 / math.sqrt(jump_rtol), by_wear)
 
 
 def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndarray,
@@ -394,6 +411,18 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     fresh = loops(contact, mode, method, one(a0), one(d0), one(F), one(amp), "energy_ratio", 0.2)
     if mode == "torsion" and method == "mdr":
         warn_mdr(contact, one(amp), one(a0), one(d0), ("worn_volume", "stick_radius"))
+    # the wear the run removes sets its steps, which grow with the cycles: checked now that the
+    # fresh loop's energy is known, before the grid and the wear steps
+    W_fresh = float(fresh["energy"][0])
+    ratio = (k * N_end * W_fresh / (mu * math.pi * a0 * a0 * d0)
+             if a0 > 0 and d0 > 0 and mu and np.isfinite(W_fresh) else 0.0)
+    n_ck = 1 if checkpoints is None else (int(checkpoints) if isinstance(
+        checkpoints, (int, np.integer)) else int(np.size(checkpoints)))
+    steps_est = wear_steps_lower(n_ck, jump_rtol, ratio)
+    check_time("wear()", steps_est * wear_step_seconds(int(n_grid)),
+               f"at least {steps_est:.3g} wear steps: {N_end:.4g} cycles remove {ratio:.3g} times "
+               f"the contact's volume scale pi a^2 d at the fresh wear rate (k={k:g} 1/Pa), on "
+               f"the {int(n_grid) + 1}-node grid")
     R = (float(check_positive("max_radius", max_radius, "the grid radius", "m"))
          if max_radius is not None else _grid_radius(contact, mode, F, amp, k, N_end, fresh,
                                                       a0, d0))

@@ -30,7 +30,7 @@ import numpy as np
 from ..citations import sources_for
 from ..errors import ContactlabError, NotSupportedError, OutsideTheoryError, ParameterError
 from ..numeric.blas import serial_blas
-from ..params import check_count, check_memory
+from ..params import check_count, check_memory, check_time
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
 from ..physics import torsion_annulus as _ta
@@ -38,7 +38,7 @@ from ..physics import torsion_energy as _te
 from ..physics import torsion_rings as _tr
 from .base import SERIES, Foundation, PathArrays, PathNormal
 
-__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory"]
+__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory", "step_seconds"]
 
 #: default number of rings over the path's largest contact radius (before the nodes added at the
 #: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
@@ -91,6 +91,19 @@ class RingState:
     S: np.ndarray
     active: np.ndarray
     twist: float = 0.0
+
+
+#: run time of a path on the exact rings, s per step per ring. Measured (CPU time, shared
+#: 2-core VM at load ~3.5, paraboloid under a varying force with a sinusoidal twist, 200-1000
+#: steps): 2.1-3.8 ms per step on 200 rings, 1.1-1.25 ms on 100 rings (10-19 µs per ring);
+#: taken at about 0.45 of the smallest per ring, a lower estimate (the cost per ring grows with
+#: the rings; benchmarks/time_estimates.py checks it)
+STEP_SECONDS_PER_RING = 5e-6
+
+
+def step_seconds(n_rings: int) -> float:
+    """Estimated run time (s) of one path step on ``n_rings`` rings."""
+    return STEP_SECONDS_PER_RING * n_rings
 
 
 class Rings(Foundation):
@@ -181,6 +194,9 @@ class Rings(Foundation):
         check_memory("simulate(method='exact')", memory(n_total, longest, n_max),
                      f"{n_total} steps, longest segment {longest} steps, {n_rings} rings "
                      f"(up to {n_max} with the nodes at the contact radii)")
+        per = step_seconds(n_rings)
+        check_time("simulate(method='exact')", n_total * per,
+                   f"{n_total} steps x {per * 1e3:.3g} ms on {n_rings} rings")
         return {"n_rings": n_rings, "spacing": spacing, **sw}
 
     @classmethod

@@ -34,7 +34,7 @@ from ..errors import (ContactlabError, OutsideTheoryError, ParameterError, Unkno
                       ValidityWarning)
 from ..numeric.powers import WHOLE_POWERS, power_integral
 from ..numeric.quadrature import tanh_sinh
-from ..params import check_count, check_memory
+from ..params import check_count, check_memory, check_time
 from .base import (DEFAULT_N_SPRINGS, SERIES, SPACINGS, Foundation, PathArrays, PathNormal,
                    families_needed)
 
@@ -47,7 +47,7 @@ def _check_stiffness(K: np.ndarray, radius: float) -> None:
                                  "to 0 or overflow): load the contact further or use the closed-form "
                                  "routes (normal(), torsion()).")
 
-__all__ = ["Winkler", "SpringState", "xg_integral"]
+__all__ = ["Winkler", "SpringState", "xg_integral", "step_seconds"]
 
 
 def _gint(profile, x: np.ndarray) -> np.ndarray:
@@ -138,6 +138,21 @@ class SpringState:
 STRATEGIES = ("segments", "steps")
 
 
+#: run time of a path on the MDR springs, s per step: a fixed part, and with
+#: ``strategy="steps"`` one per spring and step. Measured (CPU time, shared 2-core VM at load
+#: ~3.5, paraboloid, numba kernels): "segments" 0.26 µs per step on a held-force twist ramp of
+#: 10^5 steps (closed form per run of steps), 3.4-7.5 µs on sinusoids and varying forces at 2 000
+#: springs; "steps" 4.1-13 µs per step at 2 000 springs and 21-35 µs at 20 000 (~1 ns per spring
+#: and step). Taken at about 0.4 of the smallest, and "segments" without a per-spring part: a
+#: lower estimate (numpy without numba is slower; benchmarks/time_estimates.py checks it)
+STEP_SECONDS, STEP_SECONDS_PER_SPRING = 1e-7, 4e-10
+
+
+def step_seconds(n_springs: int, strategy: str) -> float:
+    """Estimated run time (s) of one path step on ``n_springs`` springs with ``strategy``."""
+    return STEP_SECONDS + (STEP_SECONDS_PER_SPRING * n_springs if strategy == "steps" else 0.0)
+
+
 class Winkler(Foundation):
     """Independent springs with stick/slip memory (see the module docstring).
 
@@ -177,6 +192,11 @@ class Winkler(Foundation):
         n_snap = len(snapshots)
         check_memory("simulate()", _loop.memory(n_total, n_springs, n_snap),
                      f"{n_total} steps, {n_springs} springs, {n_snap} snapshots")
+        per = step_seconds(n_springs, strategy)
+        check_time("simulate()", n_total * per,
+                   f"{n_total} steps x {per * 1e6:.3g} us on the MDR springs (strategy="
+                   f"{strategy!r}" + (f", {n_springs} springs per step)" if strategy == "steps"
+                                      else ")"))
         return {"n_springs": n_springs, "spacing": spacing, "strategy": strategy,
                 "approximate": bool(approximate)}
 

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ContactlabError, ParameterError
+from ..params import check_time, time_budget
 from .backends import DaskClient, DeferredInterrupt, Pool, Serial, _dumps
 from .grid import Grid, make_grid
 from .store import Store
@@ -243,6 +244,7 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
                 size = max(1, math.ceil(SERIAL_BATCH_SECONDS / max(point_seconds, 1e-9)))
             else:
                 size = _size(point_seconds, overhead, len(todo), backend.workers)
+            _check_time(point_seconds, timed, len(todo), backend.workers, store)
             batches = [Points.take(g, todo[k:k + size]) for k in range(0, len(todo), size)]
             stats.update(backend=type(backend).__name__, workers=backend.workers,
                          roundtrip_seconds=overhead, batch_size=size, tasks=len(batches))
@@ -274,6 +276,26 @@ def sweep(study: Any, grid: Any, *, client: Any = None, workers: int | None = No
 
 
 _size = batch_size   # the module function; ``sweep``'s keyword shadows the name inside it
+
+
+def _check_time(point_seconds: float, timed: int, remaining: int, workers: int,
+                store: Any) -> None:
+    """Refuse to run on (:class:`~contactlab.errors.TimeBudgetError`) when the remaining points,
+    at the time per point measured on the timing points run here, spread over the workers,
+    would take longer than the time budget. The timing points are kept in the store; the
+    message says how to resume with a larger budget."""
+    est = point_seconds * remaining / max(workers, 1)
+    if est <= time_budget():
+        return
+    kept = (f"the {timed} points done are kept in the store {str(store)!r}: run the same sweep "
+            f"again with a larger budget and the same store to resume from them"
+            if store is not None else
+            f"the {timed} points done are not kept (no store): give store='study.parquet' "
+            "(CLI: -o) to keep the finished points and resume")
+    check_time("sweep()", est,
+               f"{remaining} points left x {point_seconds:.3g} s per point measured on the "
+               f"first {timed}, over {max(workers, 1)} worker{'s' if workers > 1 else ''}; "
+               f"{kept}")
 
 
 def _accept(rec: Records, grid: Grid, fn: Callable[..., Any], on_error: str,

@@ -115,3 +115,26 @@ def test_a_killed_sweep_resumes_computing_only_the_rest(tmp_path):
     assert second == sorted(set(range(250)) - stored)           # only the rest, each once
     assert table["y"].tolist() == [float(i * i) for i in range(250)]
     assert table.attrs["sweep"]["stats"]["resumed"] == len(stored)
+
+
+def test_sweep_over_the_time_budget_is_a_clean_error_and_resumes(tmp_path, capsys, monkeypatch):
+    """Over the time budget after the timing points: a clean message (the estimate, the budget,
+    how to raise it and resume), the exit code of other errors; the same command with a larger
+    budget resumes from the store."""
+    pytest.importorskip("pyarrow")
+    out = tmp_path / "out"
+    monkeypatch.setenv("CONTACTLAB_TIME_BUDGET", "1e-9")
+    previous = contactlab.set_time_budget(None)
+    try:
+        argv = ["sweep", str(SCENE), *GRID, "-o", str(out), "--workers", "1", "--json"]
+        assert main(argv) == 2
+        payload = json.loads(capsys.readouterr().out)
+        assert payload["ok"] is False and "Traceback" not in payload["error"]
+        assert "sweep() would run for about" in payload["error"]
+        assert "CONTACTLAB_TIME_BUDGET" in payload["error"] and "resume" in payload["error"]
+        monkeypatch.setenv("CONTACTLAB_TIME_BUDGET", "1h")
+        assert main(argv) == 0
+        payload = json.loads(capsys.readouterr().out)
+        assert payload["stats"]["resumed"] > 0 and payload["points"] == 9
+    finally:
+        contactlab.set_time_budget(previous)

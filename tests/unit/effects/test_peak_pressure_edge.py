@@ -124,3 +124,33 @@ def test_truncated_profile_pinned_at_a_wall_counts_its_edge():
     c = cl.Contact(prof, materials=(STEEL, STEEL))
     s = c.normal(depth=np.array([1e-7, 2e-7]))
     assert np.all(np.isinf(s.peak_pressure))
+
+
+def test_peak_of_a_cone_tip_table_skips_the_radii_and_others_take_all_1024(monkeypatch):
+    """``peak_pressure`` computes the axis first: a linear table whose first segment is not flat
+    (a cone tip, ``+inf`` on the axis) needs no other radius, so the pressure is computed once
+    on one radius per state; a table with a flat first segment, or states without contact
+    among the array, take all 1024 radii, and their peak is the maximum of ``pressure`` there
+    (the same bits)."""
+    from contactlab.physics import normal as _normal
+    r = np.linspace(0.0, 2e-3, 300)
+    tip = cl.Contact(Tabulated(r, r**2 / 0.02, "linear"), materials=(STEEL, STEEL))
+    flat = cl.Contact(Tabulated(r, np.maximum(r - 1e-5, 0.0)**2 / 0.02, "linear"),
+                      materials=(STEEL, STEEL))
+    sizes = []
+    real = _normal.pressure
+
+    def counted(profile, E, rr, *args):
+        sizes.append(np.shape(rr)[-1])
+        return real(profile, E, rr, *args)
+
+    monkeypatch.setattr(_normal, "pressure", counted)
+    with pytest.warns(ValidityWarning, match="cone tip"):
+        peak = tip.normal(force=[10.0, 50.0]).peak_pressure
+    assert np.all(np.isposinf(peak)) and sizes == [1]
+    sizes.clear()
+    s = flat.normal(force=50.0)
+    peak = s.peak_pressure
+    assert sizes == [1, 1024]
+    rho = np.linspace(0.0, 1.0, 1025)[:-1]
+    assert np.isfinite(peak) and peak == np.max(s.pressure(rho * s.radius))

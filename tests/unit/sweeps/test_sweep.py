@@ -167,3 +167,34 @@ def test_failed_points_are_stored_and_not_recomputed(tmp_path, calls):
     pd.testing.assert_frame_equal(again, first, check_exact=True)
     assert again["error"].tolist() == ["SceneError", None]
     assert math.isnan(again["torque"][0])
+
+
+def _study_sum(x, y):
+    return {"s": x + y}
+
+
+def test_sweep_stops_on_its_time_estimate_and_resumes_with_a_larger_budget(tmp_path):
+    """The cost of a point is the user's function: timed on the first points, extrapolated over
+    the rest and the workers, refused before running on when over the budget; the timed points
+    stay in the store and a run with a larger budget resumes from them (issue 26 item 6)."""
+    pytest.importorskip("pyarrow")
+    from contactlab.errors import TimeBudgetError
+    grid = {"x": [float(i) for i in range(40)], "y": [1.0, -1.0]}
+    store = tmp_path / "study.parquet"
+    previous = contactlab.set_time_budget(1e-9)
+    try:
+        with pytest.raises(TimeBudgetError, match=r"sweep\(\) would run for about .*points left "
+                                                  r"x .* per point measured on the first \d+, "
+                                                  r"over 1 worker; the \d+ points done are "
+                                                  r"kept in the store .*resume") as err:
+            contactlab.sweep(_study_sum, grid, workers=1, store=store, progress=False)
+        done = read_store(store)["point"].tolist()
+        assert 0 < len(done) < 80 and f"the {len(done)} points done" in str(err.value)
+        with pytest.raises(TimeBudgetError, match=r"not kept \(no store\)"):
+            contactlab.sweep(_study_sum, grid, workers=1, progress=False)
+        contactlab.set_time_budget("1h")
+        table = contactlab.sweep(_study_sum, grid, workers=1, store=store, progress=False)
+    finally:
+        contactlab.set_time_budget(previous)
+    assert table.attrs["sweep"]["stats"]["resumed"] == len(done)
+    assert table["s"].tolist() == [x + y for x in grid["x"] for y in grid["y"]]
