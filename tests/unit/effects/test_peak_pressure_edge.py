@@ -154,3 +154,37 @@ def test_peak_of_a_cone_tip_table_skips_the_radii_and_others_take_all_1024(monke
     assert sizes == [1, 1024]
     rho = np.linspace(0.0, 1.0, 1025)[:-1]
     assert np.isfinite(peak) and peak == np.max(s.pressure(rho * s.radius))
+
+
+def _full_pass_peak(state):
+    """The maximum of ``pressure`` on the 1024 radii the peak samples, all computed."""
+    r = np.linspace(0.0, 1.0, 1025)[:-1] * float(state.radius)
+    return float(np.max(state.pressure(r)))
+
+
+@pytest.mark.parametrize("shape", ["paraboloid", "worn", "quartic", "bumpy"])
+def test_cubic_table_peak_search_finds_the_full_pass_maximum(shape, monkeypatch):
+    """A cubic table's peak comes from 128 coarse radii and the 45 around the 3 largest; it is
+    the maximum of the full 1024-radius pass (to rounding: a radius computed in another batch
+    may differ in its last bit) on smooth, worn (peak off the axis) and wavy tables."""
+    f = {"paraboloid": _R ** 2 / 0.02,
+         "worn": _R ** 2 / 0.02 - 2e-6 * np.exp(-(_R / 1e-3) ** 2),
+         "quartic": _R ** 4 / 1e-5,
+         "bumpy": _R ** 2 / 0.02 + 5e-8 * np.sin(_R / 1e-4) ** 2}[shape]
+    c = cl.Contact(Tabulated(_R, f - f[0], interpolation="cubic"), materials=(STEEL, STEEL))
+    from contactlab.physics import normal as _normal
+    seen = []
+    real = _normal.pressure
+
+    def counting(prof, E, r, *rest):
+        seen.append(np.size(r))
+        return real(prof, E, r, *rest)
+
+    for F in (3.0, 30.0, 300.0):
+        st = c.normal(force=F)
+        monkeypatch.setattr(_normal, "pressure", counting)
+        seen.clear()
+        peak = st.peak_pressure
+        monkeypatch.setattr(_normal, "pressure", real)
+        assert sum(seen) == 1 + 128 + 45
+        assert peak == pytest.approx(_full_pass_peak(st), rel=1e-15, abs=0)
