@@ -240,7 +240,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     UnknownNameError
         An unknown name in ``free``.
     NotSupportedError
-        ``adhesion`` with ``time``, a profile with a wall, DMT on a tip flat at the contact's
+        ``adhesion`` with ``time``, a profile rising up to a wall with ``time`` (a flat punch
+        is covered), DMT on a tip flat at the contact's
         onset (``f'(a)/a -> 0``).
     ConvergenceError
         The solver did not converge.
