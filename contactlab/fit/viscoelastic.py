@@ -274,6 +274,12 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         if key not in cache:
             cache.clear()
             v = unpack(x)
+            gone = [n for n in logs if not 0.0 < v[n] < np.inf]
+            if gone:                    # a log-parameter under- or overflowed: the data do
+                raise ConvergenceError(   # not determine it (a model far from the curve)
+                    f"fit.indentation (viscoelastic) did not converge: {gone[0]} went to "
+                    f"{v[gone[0]]!r} (the curve does not determine it with this tip and "
+                    "material; check the profile, the template and the time axis).")
             Gi, Gk_, tk_ = _prony(cls, v)
             f, dGi, dGk, dtk, dz0 = model(Gi, Gk_, tk_, v["contact_point"])
             if dmt is not None:         # - 2πΔγ ρ(a(t)), through δ(t1) on the retract
