@@ -846,3 +846,9 @@ FINDLEY_GRID = 1e-3
 #: model), measured up to 7.1e-7 of its peak (paraboloid, flat punch; exact and MDR); the torque
 #: through a plane to 7e-9
 STRESS_TORSION_SLIDING = 1e-5
+#: fit.torsion_loop's exact route (issue 30): the test's nested scipy quadrature of Jäger's
+#: equations (epsrel 1e-12 per level) against Lubkin's closed form for Hertz; and the exact
+#: route's fitted values and model on a paraboloid against the certified master curve (both at
+#: rounding of ~1e-13, the fits' stopping tolerance ~1e-12)
+FIT_TORSION_VIRGIN = 1e-10
+FIT_TORSION_ROUTES = 1e-10

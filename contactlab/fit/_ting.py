@@ -25,6 +25,10 @@ depends on the parameters through ``D = 0``; since ``∂F/∂t1 = 4G(t - t1)·2a
 ``dF/dθ = ∂F/∂θ|_{t1} + 8a(t1) ∂D/∂θ`` (``∂D/∂z0 = 0``: ``t1`` does not depend on the contact
 point).
 
+A flat punch (``Φ = 2bδ``, ``a = b`` from the first touch) needs nothing else: with ``Φ``
+linear the retract force ``4∫_{t_c}^{t1} G dΦ = 8b(∫_{t_c}^{t} G ż ds - D(t1))`` is the
+constant-radius hereditary integral, and leaving the surface is that force reaching zero.
+
 After each call, ``contact`` holds the indentation whose (elastic) contact radius is the
 present one, ``δ`` on the approach and ``δ(t1)`` on the retract (0 apart), and its derivatives
 by ``G_∞``, ``G_k`` and ``τ_k`` (``dδ(t1)/dθ = (∂D/∂θ)/G(t - t1)``; 0 on the approach): an

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import NotSupportedError
 
-__all__ = ["TABLE_NODES", "TipModel", "g_prime"]
+__all__ = ["TABLE_NODES", "TipModel", "flat_radius", "g_prime"]
 
 #: Hermite nodes of the ``"table"`` route (graded towards zero in the contact radius)
 TABLE_NODES = 1025
@@ -116,7 +116,7 @@ class TipModel:
         key = (self.route, nodes, delta_max, self.rtol)
         cache = p.__dict__.setdefault("_fit_tip_tables", {})
         if key not in cache:
-            b = p.flat_radius
+            b = flat_radius(p)
             a_top = float(p._radius_of_depth(np.array([delta_max]), self.rtol)[0])
             a = b + (a_top - b) * np.linspace(0.0, 1.0, nodes) ** 2   # graded towards δ = 0
             g = p._g(a, self.rtol)
@@ -224,6 +224,18 @@ class TipModel:
         gp = g_prime(self.profile, a, self.rtol)
         return np.where(pos, a, 0.0), np.where(pos & (gp > 0), 1.0 / np.where(gp > 0, gp, 1.0),
                                                 0.0)
+
+
+def flat_radius(profile) -> float:
+    """Radius ``b`` (m) of the tip's flat centre: the profile's own, or for a measured table
+    with linear interpolation the last node of its leading run of zero heights (``g = 0``
+    exactly up to it); 0 without one."""
+    b = float(profile.flat_radius)
+    if b > 0.0 or not profile.has("linear_table"):
+        return b
+    f, r = np.asarray(profile.f, float), np.asarray(profile.r, float)
+    k = int(np.argmax(f != f[0])) - 1 if np.any(f != f[0]) else 0
+    return float(r[k]) if k > 0 and f[0] == 0.0 else 0.0
 
 
 def g_prime(profile, a: np.ndarray, rtol: float = 1e-12) -> np.ndarray:

@@ -136,15 +136,22 @@ def _jkr_model(profile: Profile, adhesion: str | None, names: tuple[str, ...],
         raise NotSupportedError(
             f"adhesion='jkr' with profile={profile!r}: a flat centre inside a wall (other than "
             "a flat punch, fitted by Kendall's model) is not covered.")
-    if profile.flat_radius > 0.0:           # a flat centre with a rising flank
+    from ._tip import flat_radius
+    b = flat_radius(profile)
+    if b > 0.0:                             # a flat centre with a rising flank
+        a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
+        if profile.flat_radius == 0.0:      # a measured table, flat up to b
+            from ._jkr_flat import JKRFlatTable
+            return JKRFlatTable(profile, min(1.5 * a_na, profile.max_radius * (1.0 - 1e-6)),
+                                rtol, b)
         if not (profile.g_route == "closed_form"
                 and profile._g_integral_exact(np.array([profile.flat_radius])) is not None):
             raise NotSupportedError(
                 f"adhesion='jkr' with profile={profile!r}: a flat centre is covered for tips "
                 "whose transform g and its integral have closed forms (TruncatedCone, "
-                "TruncatedParaboloid); a measured flat-centred tip is not.")
+                "TruncatedParaboloid) and for measured tables with linear interpolation; this "
+                "one is not.")
         from ._jkr_flat import JKRFlat
-        a_na = float(profile._radius_of_depth(np.array([delta_max]), rtol)[0])
         return JKRFlat(profile, 1.5 * a_na, rtol)
     from ._jkr import JKRPower, JKRTable
     terms = profile.power_terms()
@@ -240,7 +247,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     UnknownNameError
         An unknown name in ``free``.
     NotSupportedError
-        ``adhesion`` with ``time``, a profile with a wall, DMT on a tip flat at the contact's
+        ``adhesion`` with ``time``, a profile rising up to a wall with ``time`` (a flat punch
+        is covered), DMT on a tip flat at the contact's
         onset (``f'(a)/a -> 0``).
     ConvergenceError
         The solver did not converge.

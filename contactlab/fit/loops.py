@@ -9,9 +9,11 @@ branch travelled downwards is ``X = L(x0) - 2L((x0 - x)/2)`` and the branch trav
 * Tangential (Cattaneo-Mindlin through the MDR, exact for any profile):
   ``L(u) = μ [F_N - E* Φ(d - G* u/(μ E*))]`` with ``Φ`` the force at unit modulus
   (:mod:`contactlab.fit._tip`) and ``d`` the depth at the normal force; ``L'(u) = 2G* c``.
-* Torsion (Jäger's exact partial slip, power-law tips): ``L(φ) = M_full m(φ/φ_s)`` with the
+* Torsion (Jäger's exact partial slip): power-law tips ``L(φ) = M_full m(φ/φ_s)`` with the
   certified master curve ``m`` of :mod:`contactlab.physics.master`, ``M_full ∝ μ``,
-  ``φ_s ∝ μ/G_t``; ``L'(φ) = (16/3) G_t c³``.
+  ``φ_s ∝ μ/G_t``; every other wall-free tip ``L(φ) = μ m(G_t φ/μ)`` with ``m`` the exact
+  torsion at unit friction and modulus (its tractions are linear in ``μ`` when ``φ`` scales
+  with ``μ/G_t``); both ``L'(φ) = (16/3) G_t c³``.
 
 Both have the form ``L = μ ℓ(x G/μ)``, so the derivatives are exact in closed form from the
 slope: ``∂L/∂G = L'(x) x/G`` and ``∂L/∂μ = L/μ - L'(x) x/μ``. The sample's shear modulus
@@ -249,9 +251,10 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
 @reporting()
 def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sample: Elastic,
                  tip: Material | None = None, free: Any = ("friction", "shear_modulus"),
-                 friction: float | None = None, start: dict | None = None) -> FitResult:
+                 friction: float | None = None, start: dict | None = None,
+                 route: str = "auto") -> FitResult:
     """Fit a steady torsion loop at a known normal force: friction coefficient and the sample's
-    shear modulus (Jäger's exact partial slip with Masing's rule; power-law tips).
+    shear modulus (Jäger's exact partial slip with Masing's rule; any tip without a wall).
 
     Parameters
     ----------
@@ -262,28 +265,73 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
     force : float
         The constant normal force, N (> 0).
     profile : Profile
-        A single power-law tip ``c r^n`` (Paraboloid, Cone, PowerLaw).
+        The tip's shape without a punch wall: power laws ``c r^n`` (Paraboloid, Cone, PowerLaw)
+        take the certified master curve, every other shape (exact ``Sphere``, sums,
+        ``Tabulated``, ``TruncatedCone``, ...) the library's exact torsion.
     sample, tip, free, friction, start
         As for :func:`tangential_loop`; the shear modulus enters through ``1/G_t = 1/G + 1/G_tip``.
+    route : {"auto", "exact"}
+        ``"auto"``: the master curve for a single power law, else the exact torsion;
+        ``"exact"``: the exact torsion for every tip (the same model as the master curve on a
+        power law, slower).
 
     Returns
     -------
     FitResult
-        ``params``: ``friction``, ``shear_modulus`` (Pa), ``G_torsion`` (Pa). The master curve
-        is certified to ``model_error`` (relative to the full-sliding torque).
+        ``params``: ``friction``, ``shear_modulus`` (Pa), ``G_torsion`` (Pa). ``meta["route"]``
+        is ``"master"`` or ``"exact"``; the model error is the master curve's certified error
+        or the exact torsion's estimated error (relative to the torque) at the fitted values.
 
     Raises
     ------
     ParameterError, UnknownNameError, NotSupportedError, ConvergenceError
+
+    Notes
+    -----
+    At a fixed normal state Jäger's tractions are linear in ``μ`` when the twist scales with
+    ``μ/G_t``, so the first-loading torque is ``L(φ) = μ m(G_t φ/μ)`` with ``m`` the torque at
+    unit friction and unit torsional modulus; its slope is ``(16/3) G_t c³`` with ``c`` the
+    stick radius (an increment of twist adds a rigidly twisted punch of radius ``c``).
     """
     from ..errors import NotSupportedError
     x, y, FN, tip_m, names, centre, amp = _prepare(twist, torque, force, profile, sample, tip,
                                                    free, "twist", "torque")
+    if route not in ("auto", "exact"):
+        raise ParameterError(f"route={route!r} is invalid: choose 'auto' or 'exact'.")
+    if np.isfinite(profile.wall_radius):
+        raise NotSupportedError(f"torsion_loop with profile={profile!r}: tips with a punch wall "
+                                "(flat punch edge) are not supported; give a wall-free profile.")
     terms = profile.power_terms()
-    if terms is None or len(terms) != 1 or np.isfinite(profile.wall_radius):
-        raise NotSupportedError(f"torsion_loop with profile={profile!r}: power-law tips c r^n "
-                                "only (Paraboloid, Cone, PowerLaw).")
-    n = float(terms[0][1])
+    if route == "auto" and terms is not None and len(terms) == 1:
+        return _torsion_master(x, y, FN, profile, sample, tip_m, names, centre, amp, friction,
+                               start, float(terms[0][1]))
+    return _torsion_exact(x, y, FN, profile, sample, tip_m, names, centre, amp, friction, start)
+
+
+def _torsion_G_of(tip_m: Material) -> Callable:
+    c_tip = tip_m._compliances()[2]
+
+    def G_of(G: float) -> tuple[float, float]:
+        ge = 1.0 / (1.0 / G + c_tip)
+        return ge, ge * ge / (G * G)
+
+    return G_of
+
+
+def _torsion_result(x, y, profile, sample, tip_m, names, q, model, r, cov, stderr, dof, nfev,
+                    G_of, meta) -> FitResult:
+    from ..contact import Contact
+    params = {"friction": q["friction"], "shear_modulus": q["shear_modulus"],
+              "G_torsion": G_of(q["shear_modulus"])[0]}
+    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=x, y=y,
+                     model=model, residuals=r, contact=Contact(profile, (tip_m, sample),
+                                                               friction=q["friction"]),
+                     dof=dof, nfev=nfev, meta=meta)
+
+
+def _torsion_master(x, y, FN, profile, sample, tip_m, names, centre, amp, friction, start,
+                    n) -> FitResult:
+    """The power-law route: Jäger's torsion from the certified master curve."""
     from ..contact import Contact
     from ..physics import master as _master
     contact = Contact(profile, (tip_m, sample), friction=friction)
@@ -291,11 +339,7 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
     st = contact.normal(force=FN)
     d, a = float(st.depth), float(st.radius)
     mc = _master.torsion_master(n)
-    c_tip = tip_m._compliances()[2]
-
-    def G_of(G: float) -> tuple[float, float]:
-        ge = 1.0 / (1.0 / G + c_tip)
-        return ge, ge * ge / (G * G)
+    G_of = _torsion_G_of(tip_m)
 
     def load(phi: np.ndarray, mu: float, Gt: float) -> tuple[np.ndarray, np.ndarray]:
         phi_s, M_full = _master.torsion_scales(n, E_star, Gt, mu, a, d)
@@ -312,12 +356,58 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
     st0.update({k: fixed[k] for k in _LOOP_NAMES if k not in names})
     q, model, r, cov, stderr, dof, nfev = _fit_loop(x, y, names, centre, amp, load, G_of,
                                                       st0, fixed)
-    params = {"friction": q["friction"], "shear_modulus": q["shear_modulus"],
-              "G_torsion": G_of(q["shear_modulus"])[0]}
     meta = {"citations": ("PH", "J95"), "x_name": "twist", "y_name": "torque",
             "tip_model_errors": {"torque": float(mc.certified_error)},
-            "model_error_basis": "certified error of the exact torsion master curve"}
-    return FitResult(params=params, free=names, stderr=stderr, covariance=cov, x=x, y=y,
-                     model=model, residuals=r, contact=Contact(profile, (tip_m, sample),
-                                                               friction=q["friction"]),
-                     dof=dof, nfev=nfev, meta=meta)
+            "model_error_basis": "certified error of the exact torsion master curve",
+            "route": "master"}
+    return _torsion_result(x, y, profile, sample, tip_m, names, q, model, r, cov, stderr, dof,
+                           nfev, G_of, meta)
+
+
+def _exact_virgin(contact: Any, d: float, Gt0: float) -> Callable:
+    """``load(phi, mu, G_t) -> (L, L')`` of the first-loading torsion from the exact solver of
+    ``contact`` (friction 1, torsional modulus ``Gt0``) at depth ``d``: ``L = μ m(G_t φ/μ)``
+    with ``m(s)`` its torque at twist ``s/Gt0``, ``L' = (16/3) G_t c³``."""
+
+    def load(phi: np.ndarray, mu: float, Gt: float) -> tuple[np.ndarray, np.ndarray]:
+        psi, inv = np.unique(Gt / (mu * Gt0) * np.asarray(phi, float), return_inverse=True)
+        st = contact.torsion(depth=d, twist=psi, method="exact")
+        M = np.asarray(st.torque, float).reshape(-1)[inv]
+        c = np.asarray(st.stick_radius, float).reshape(-1)[inv]
+        return mu * M, 16.0 / 3.0 * Gt * c ** 3
+
+    return load
+
+
+def _torsion_exact(x, y, FN, profile, sample, tip_m, names, centre, amp, friction,
+                   start) -> FitResult:
+    """Any wall-free tip: the virgin curve at unit friction from the library's exact torsion,
+    scaled by ``L = μ m(G_t φ/μ)``; the slope from the stick radius."""
+    from ..contact import Contact
+    from ..physics.torsion_exact import sliding_torque
+    contact = Contact(profile, (tip_m, sample), friction=1.0)
+    E_star, Gt0 = contact.moduli.normal, contact.moduli.torsional
+    st = contact.normal(force=FN)
+    d, a = float(st.depth), float(st.radius)
+    G_of = _torsion_G_of(tip_m)
+    load = _exact_virgin(contact, d, Gt0)
+    fixed = {"friction": float(friction or 0.0), "shear_modulus": float(sample.G)}
+    if "friction" not in names and friction is None:
+        raise ParameterError("friction is fixed (not in free): give friction=... .")
+    M_unit = float(sliding_torque(profile, E_star, 1.0, np.array([a]), np.array([d]),
+                                  contact.rtol)[0])
+    st0 = _starts(y, x, centre, amp, FN, 16.0 / 3.0 * a ** 3, names, start, sample, G_of,
+                  M_unit)
+    st0.update({k: fixed[k] for k in _LOOP_NAMES if k not in names})
+    q, model, r, cov, stderr, dof, nfev = _fit_loop(x, y, names, centre, amp, load, G_of,
+                                                      st0, fixed)
+    Gt = G_of(q["shear_modulus"])[0]
+    fin = contact.torsion(depth=d, twist=Gt / (q["friction"] * Gt0) * np.array([amp]),
+                          method="exact")
+    err = float(np.max(np.atleast_1d(np.asarray(fin.error_estimate, float))))
+    meta = {"citations": ("PH", "J95"), "x_name": "twist", "y_name": "torque",
+            "tip_model_errors": {"torque": err},
+            "model_error_basis": "estimated error of the exact torsion at the loop's amplitude",
+            "route": "exact"}
+    return _torsion_result(x, y, profile, sample, tip_m, names, q, model, r, cov, stderr, dof,
+                           nfev, G_of, meta)

@@ -188,6 +188,15 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         _check_work(names, work_of_adhesion, adhesion)
         from ._dmt import check_wall
         check_wall(profile)
+    # a flat punch (contact radius b from the first touch): Φ = 2bδ, Ting's t1 then gives the
+    # constant-radius hereditary integral up to the force's zero (see _ting)
+    punch = bool(np.isfinite(profile.wall_radius)
+                 and profile.flat_radius >= profile.wall_radius)
+    if np.isfinite(profile.wall_radius) and not punch:
+        raise NotSupportedError(
+            f"profile={profile!r} with time=...: a profile rising up to a punch wall is not "
+            "covered by the viscoelastic fits (its contact radius stalls at the wall and moves "
+            "again on the retract); give a flat punch or a profile without a wall.")
     if z.size <= len(names):
         raise ParameterError(f"depth has {z.size} points: a fit of {len(names)} parameters "
                              f"needs more than {len(names)}.")
@@ -228,11 +237,11 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     span = float(np.max(z) - np.min(z))
     from ._tip import ROUNDING, TipModel, covariance, levenberg_marquardt
     d_max = (float(np.max(z)) - (float(np.min(z)) - span if fit_cp else cp0)) * 1.0001
-    if np.isfinite(profile.max_radius):
+    if np.isfinite(profile.max_radius) and not punch:
         reach = float(profile._g(np.array([profile.max_radius * (1.0 - 1e-6)]), rtol)[0])
         d_max = min(d_max, reach)
     from ._ting import TingModel
-    tipm = TipModel(profile, d_max, rtol)
+    tipm = TipModel(profile, d_max, rtol, allow_wall=punch)
     model = TingModel(t, z, tipm)
     dmt = None
     if adhesion == "dmt":
@@ -265,6 +274,12 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         if key not in cache:
             cache.clear()
             v = unpack(x)
+            gone = [n for n in logs if not 0.0 < v[n] < np.inf]
+            if gone:                    # a log-parameter under- or overflowed: the data do
+                raise ConvergenceError(   # not determine it (a model far from the curve)
+                    f"fit.indentation (viscoelastic) did not converge: {gone[0]} went to "
+                    f"{v[gone[0]]!r} (the curve does not determine it with this tip and "
+                    "material; check the profile, the template and the time axis).")
             Gi, Gk_, tk_ = _prony(cls, v)
             f, dGi, dGk, dtk, dz0 = model(Gi, Gk_, tk_, v["contact_point"])
             if dmt is not None:         # - 2πΔγ ρ(a(t)), through δ(t1) on the retract

@@ -178,6 +178,11 @@ def test_bad_parts():
     with pytest.raises(errors.ParameterError, match="sample"):
         indentation(Z, hertz(Z), Paraboloid(R=R), sample=cl.Rigid())
     with pytest.raises(errors.NotSupportedError, match="wall"):      # Ting's rule with a wall
+        indentation(Z, hertz(Z), cl.profiles.FlatPunch(radius=1e-6) + Paraboloid(R=R),
+                    time=np.arange(Z.size),
+                    sample=StandardLinearSolid(G_inf=1e4, G_1=1e4, eta_1=1e4))
+    # a flat punch is covered (issue 30); Hertz data on it: a named error, no raw traceback
+    with pytest.raises(errors.ConvergenceError, match="went to"):
         indentation(Z, hertz(Z), cl.profiles.FlatPunch(radius=1e-6), time=np.arange(Z.size),
                     sample=StandardLinearSolid(G_inf=1e4, G_1=1e4, eta_1=1e4))
 
