@@ -21,8 +21,9 @@ random phases so that reversals and loop closures occur):
 
 The floor is one numpy pass over 10^6 floats (``np.multiply(x, 2.0, out=y)``), timed right before
 each measured step (best of its repetitions), so both see the same machine load. Each time is the
-best of its steps after two warm-up steps; the kernels are compiled (or loaded from the disk cache)
-on a small law first.
+best of its steps after two warm-up steps (each row also prints the step's CPU time, which a
+shared machine's load disturbs far less than the wall time); the kernels are compiled (or
+loaded from the disk cache) on a small law first.
 """
 from __future__ import annotations
 
@@ -138,43 +139,50 @@ def _controls(n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return F, 2e-4 * np.sin(0.3 * k + ph), 1e-7 * np.cos(0.3 * k + ph)
 
 
-def constant_row(n: int, mode: str, steps: int = 6) -> tuple[float, float]:
-    """(best step time, the floor measured right before it) at constant load."""
+def constant_row(n: int, mode: str, steps: int = 6) -> tuple[float, float, float]:
+    """(best step time, the floor measured right before it, best step CPU time of this
+    thread) at constant load. On a shared machine the CPU time varies far less than the wall
+    time (other processes' load); with ``threads`` it counts the calling thread only."""
     law = _law(n, mode)
     F = _controls(n, 0)[0]
-    best, floor, out = np.inf, np.inf, None
+    best, floor, cpu, out = np.inf, np.inf, np.inf, None
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
         fl = floor_pass()
+        c0 = time.thread_time()
         t0 = time.perf_counter()
         res = law.step(force=F, twist=tw, displacement=u, out=out)
         t = time.perf_counter() - t0
+        c = time.thread_time() - c0
         if mode == "fast+out":
             out = res
         if k >= 2:
-            best, floor = min(best, t), min(floor, fl)
-    return best, floor
+            best, floor, cpu = min(best, t), min(floor, fl), min(cpu, c)
+    return best, floor, cpu
 
 
 def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0
-                 ) -> tuple[float, float, float]:
-    """(first changing-load step, best later changing-load step, floor): the force of every
-    contact (``frac``: of that fraction of the contacts, the rest held) changes from step 2 on."""
+                 ) -> tuple[float, float, float, float, float]:
+    """(first changing-load step, best later changing-load step, floor, and the CPU times of
+    this thread of the first and the best later step): the force of every contact (``frac``: of
+    that fraction of the contacts, the rest held) changes from step 2 on."""
     law = _law(n, mode)
     F = _controls(n, 0)[0]
     m = round(frac * n)
-    times, floor = [], np.inf
+    times, cpus, floor = [], [], np.inf
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
         fl = floor_pass()
         Fk = F.copy()
         if k >= 2:
             Fk[:m] *= 1.0 + 0.02 * np.sin(0.5 * k)
+        c0 = time.thread_time()
         t0 = time.perf_counter()
         law.step(force=Fk, twist=tw, displacement=u)
         times.append(time.perf_counter() - t0)
+        cpus.append(time.thread_time() - c0)
         floor = min(floor, fl)
-    return times[2], min(times[3:]), floor
+    return times[2], min(times[3:]), floor, cpus[2], min(cpus[3:])
 
 
 def memory_row(n: int, frac: float = 1.0) -> tuple[float, float, float]:
@@ -217,22 +225,22 @@ def issue_rows() -> None:
         w.step(force=2.0, twist=1e-5, displacement=1e-9)                    # switch + springs
     print(f"{'row':<44} {'time':>10} {'floor':>9} {'ratio':>8}  goal     verdict")
     for m in (["numpy", "fast", "fast+out", "threads"] if fast else ["numpy"]):
-        t, fl = constant_row(n, m)
+        t, fl, cpu = constant_row(n, m)
         print(f"{'constant-load step, ' + m:<44} {1e3 * t:>8.1f}ms {1e3 * fl:>7.2f}ms "
               f"{t / fl:>7.0f}x  <= 40 ms {_verdict(t <= 0.040)}   "
-              f"(load {os.getloadavg()[0]:.1f})", flush=True)
+              f"(CPU {1e3 * cpu:.1f} ms; load {os.getloadavg()[0]:.1f})", flush=True)
     modes = (["fast", "threads"] if fast else []) + (
         ["numpy"] if "--numpy-springs" in sys.argv or not fast else [])
     # every contact's load changes, or a tenth of them (a packing where few contacts switch:
     # the spring rows are allocated for those only)
     for frac in (1.0, 0.1):
         for m in modes:
-            first, later, fl = changing_row(n, m, frac=frac)
-            for name, t in (("FIRST changing-load step", first),
-                            ("later changing-load step", later)):
+            first, later, fl, c_first, c_later = changing_row(n, m, frac=frac)
+            for name, t, c in (("FIRST changing-load step", first, c_first),
+                               ("later changing-load step", later, c_later)):
                 print(f"{f'{name}, {m}, {frac:.0%}':<44} {1e3 * t:>8.1f}ms {1e3 * fl:>7.2f}ms "
                       f"{t / fl:>7.0f}x  <= 100 ms {_verdict(t <= 0.100)}   "
-                      f"(load {os.getloadavg()[0]:.1f})", flush=True)
+                      f"(CPU {1e3 * c:.1f} ms; load {os.getloadavg()[0]:.1f})", flush=True)
     if fast:
         for frac in (1.0, 0.1):
             const, changing, counted = memory_row(n, frac)

@@ -75,14 +75,24 @@ class LawStep(Result):
         return {k: getattr(self, k) for k in _OUT_FIELDS}
 
     def _model_errors(self) -> dict[str, Any]:
+        return self.model_errors_at(None)
+
+    def model_errors_at(self, idx: np.ndarray | None) -> dict[str, Any]:
+        """:attr:`model_errors` of the contacts ``idx`` only (all for None; ``{}`` when none
+        of them is off the exact law), entry by entry the same numbers: the law's model-error
+        warning looks at the contacts on springs without a pass over every contact."""
         from ..physics import model_error as _maps
-        off = ~np.asarray(self.exact, bool) & (np.asarray(self.radius) > 0)
+        exact, radius = np.asarray(self.exact, bool), np.asarray(self.radius)
+        cm, torque = self.torsion_stick_radius, self.torque
+        if idx is not None:
+            exact, radius, cm, torque = exact[idx], radius[idx], cm[idx], torque[idx]
+        off = ~exact & (radius > 0)
         if not np.any(off):
             return {}
         spring = _maps.law_spring_error(self.meta.get("springs", _DEFAULT_SPRINGS))
         with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(off, self.torsion_stick_radius / np.where(off, self.radius, 1.0), 1.0)
-        twisted = off & (self.torque != 0)
+            ratio = np.where(off, cm / np.where(off, radius, 1.0), 1.0)
+        twisted = off & (torque != 0)
         mdr = np.where(twisted, _maps.mdr_ratio_error(None, "torque", ratio), 0.0)
         return {"tangential_force": np.where(off, spring, 0.0),
                 "torque": np.where(off, spring + mdr, 0.0)}

@@ -172,9 +172,11 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
     :func:`~contactlab.physics.masing_stack.masing_step`) and outputs of every contact.
 
     Channel state with a leading channel axis (0 tangential, 1 torsion): ``sx, sy, sw, last,
-    depth, over`` (2, n), turning points ``X, Y`` (2, n, K)."""
+    depth, over`` (2, n), turning points ``X, Y`` (2, K, n), level-major: a step reads the
+    top levels of each stack, and most contacts hold one or two, so the deeper levels' rows
+    stay out of the memory traffic (a contact-major block of K levels is read whole)."""
     cM = math.pi * n / (2.0 * (n + 2.0)) if n != math.inf else 0.5 * math.pi
-    K = X.shape[2]
+    K = X.shape[1]
     nonfinite = 0
     n_over = 0
     for i in _prange(a.size):
@@ -226,24 +228,24 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                         over[c, i] = True
                         depth[c, i] -= 2
                     k = depth[c, i]
-                    X[c, i, k] = xp
-                    Y[c, i, k] = sy[c, i]
+                    X[c, k, i] = xp
+                    Y[c, k, i] = sy[c, i]
                     depth[c, i] = k + 1
                     sw[c, i] = 0.0
                 last[c, i] = s
                 while depth[c, i] > 0:              # loop closure (Iwan erasure)
                     k = depth[c, i]
-                    lim = X[c, i, k - 2] if k >= 2 else -X[c, i, 0]
+                    lim = X[c, k - 2, i] if k >= 2 else -X[c, 0, i]
                     if (xi - lim) * last[c, i] <= 0:
                         break
-                    xo = X[c, i, k - 1]
+                    xo = X[c, k - 1, i]
                     D = _load(kind, abs(lim - xo) / 2.0, xs, ys, ai, Ds, coef, y_scale, n, y0,
                               m0, kp)[2]
                     e += max(2.0 * D - sw[c, i], 0.0)
                     k = k - 2 if k >= 2 else 0
                     depth[c, i] = k
                     if k > 0:
-                        xo2, f2 = X[c, i, k - 1], 2.0
+                        xo2, f2 = X[c, k - 1, i], 2.0
                     else:
                         xo2, f2 = 0.0, 1.0
                     D = _load(kind, abs(lim - xo2) / f2, xs, ys, ai, Ds, coef, y_scale, n, y0,
@@ -251,7 +253,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                     sw[c, i] = f2 * D
             k = depth[c, i]
             if k > 0:
-                xo, yo, f = X[c, i, k - 1], Y[c, i, k - 1], 2.0
+                xo, yo, f = X[c, k - 1, i], Y[c, k - 1, i], 2.0
             else:
                 xo, yo, f = 0.0, 0.0, 1.0
             yl, ax, D = _load(kind, abs(xi - xo) / f, xs, ys, ai, Ds, coef, y_scale, n, y0,
@@ -586,7 +588,9 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     """Both channels of every contact in one pass (``master``: the torsion
     :class:`~contactlab.physics.master.MasterCurve`; ``chan``: the fields of
     :func:`~contactlab.physics.masing_stack.new_stack` stacked over a leading channel axis, 0
-    tangential and 1 torsion, updated in place; ``ref`` set where it is 0). Returns
+    tangential and 1 torsion, updated in place, the turning points also as level-major
+    arrays ``X_levels``, ``Y_levels`` (2, K, n), which the kernel reads; ``ref`` set where it
+    is 0). Returns
     ``(Ft, ct, M, cm, dW, exact, nonfinite, n_over)``: the outputs (written into ``out`` when
     given), the number of contacts with a non-finite output and the number of contacts whose
     turning-point stack overflowed for the first time in this step (``exact`` is False for
@@ -599,8 +603,8 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
                           u is not None, phi is not None, d, a, F, flag, ref, mu, E, G, Gt,
                           float(n), master.coef, float(master.y_scale), float(master.y0),
                           float(master.m0), None if master.power == 1 else int(master.power),
-                          chan["x"], chan["y"], chan["w"], chan["last"], chan["depth"], chan["X"],
-                          chan["Y"], chan["overflow"],
+                          chan["x"], chan["y"], chan["w"], chan["last"], chan["depth"],
+                          chan["X_levels"], chan["Y_levels"], chan["overflow"],
                           *out)
     return (*out, nf, n_over)
 

@@ -220,3 +220,32 @@ def test_numpy_fallback_without_numba(tmp_path):
         for k, o in enumerate(outs):
             for f in FIELDS:
                 np.testing.assert_array_equal(got[f"{k}_{f}"], o[f], err_msg=f"{k} {f}")
+
+
+def test_level_major_stacks_give_contact_major_state():
+    """The turning points live level-major for the fused pass (issue 29: a step reads the top
+    levels only); ``law.state`` still gives each channel's stack per contact, (n, memory),
+    C-contiguous, and a restored state lands in the arrays the kernel reads."""
+    pytest.importorskip("numba")
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=[0.01, 0.02, 0.03], E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, memory=4, fast=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)    # shift + twist together
+        for k in range(6):          # reversals: turning points on the stacks
+            law.step(force=[10.0, 20.0, 30.0],
+                     twist=2e-5 * np.array([1, -1, 1]) * (-1) ** k * (6 - k),
+                     displacement=1e-8 * (-1) ** k * (6 - k))
+    st = law.state
+    for ch in ("tan", "tor"):
+        for f in ("X", "Y"):
+            v = st[f"{ch}_{f}"]
+            assert v.shape == (3, 4) and v.flags.c_contiguous
+            c = 0 if ch == "tan" else 1
+            assert np.array_equal(v, law._chan[f + "_levels"][c].T)
+    assert np.any(st["tor_depth"] > 0)
+    saved = {k: v.copy() for k, v in st.items()}
+    law.reset()
+    law.state = saved
+    for c, ch in enumerate(("tan", "tor")):
+        assert np.array_equal(law._chan["X_levels"][c].T, saved[f"{ch}_X"])
+        assert np.array_equal(law._chan["Y_levels"][c].T, saved[f"{ch}_Y"])

@@ -67,3 +67,35 @@ def test_silenced_by_flag_and_attribute():
 def test_a_fresh_law_warns_again():
     assert len(_run(_law(springs=8))[1]) == 2
     assert len(_run(_law(springs=8))[1]) == 2
+
+
+@pytest.mark.parametrize("fast", [False, True])
+def test_warning_reads_the_contacts_on_springs_only(fast):
+    """The warning computes the model errors of the contacts on springs only (issue 29: not a
+    pass over every contact per step); it names the same contact and value as the full
+    model_errors masked to those contacts, and the step's model_errors stay lazy and whole."""
+    if fast:
+        pytest.importorskip("numba")
+    n = 40
+    R = np.linspace(0.005, 0.02, n)
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=R, E_star=1.15e11, G_star=4.4e10,
+                        G_torsion=4.0e10, friction=0.3, springs=8, fast=fast)
+    F = np.linspace(5.0, 50.0, n)
+    tw = np.linspace(2e-5, 4e-4, n)
+    moved = np.arange(n) % 3 == 1               # these contacts' loads change: springs
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        law.step(force=F, twist=0.5 * tw, displacement=1e-8)
+        out = law.step(force=np.where(moved, 1.3 * F, F), twist=tw, displacement=2e-8)
+    rec = [str(x.message) for x in w if "model error" in str(x.message)]
+    assert "_model_errors_cache" not in out.__dict__     # the warning did not fill it
+    on = np.flatnonzero(law._on())
+    assert np.array_equal(on, np.flatnonzero(moved))
+    full = out.model_errors
+    part = out.model_errors_at(on)
+    for q in ("tangential_force", "torque"):
+        assert np.array_equal(part[q], full[q][on])      # entry by entry the same numbers
+        masked = np.where(law._on(), full[q], 0.0)
+        i = int(np.argmax(masked))
+        said = [t for t in rec if q.replace("_", " ") in t]
+        assert len(said) == 1 and f"{masked[i]:.3g} at contact {i} " in said[0]
