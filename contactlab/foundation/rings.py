@@ -262,7 +262,9 @@ class Rings(Foundation):
     def coarser(cls, options: dict, meta: dict) -> dict | None:
         """Half the rings (the torque error falls at least as fast as ``N^-1`` on varying-load
         paths, so the difference bounds the error of the ``N``-ring run from above)."""
-        return dict(options, n_rings=max(4, meta["n_rings"] // 2))
+        # the coarse run halves the rings the run used (those of torque_rtol when it chose them)
+        coarse = {k: v for k, v in options.items() if k != "torque_rtol"}
+        return dict(coarse, n_rings=max(4, meta["n_rings"] // 2))
 
     @classmethod
     def for_path(cls, profile: Any, moduli: Any, friction: float | None, path: Any, *,

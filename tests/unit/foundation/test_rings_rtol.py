@@ -95,3 +95,18 @@ def test_default_rings_unchanged_without_torque_rtol():
         warnings.simplefilter("ignore")
         r = c.simulate(path)
     assert r.meta["n_rings"] == _rings.DEFAULT_N_RINGS
+
+
+def test_error_estimate_with_torque_rtol_halves_the_chosen_rings():
+    """Regression: the coarse run of ``error_estimate=True`` kept ``torque_rtol`` beside its
+    halved ``n_rings`` and raised "both given"."""
+    c = cl.Contact(PROFILES["hertz"](), materials=MAT, friction=MU)
+    path, _ = _path(c, 0.4, n=12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = c.simulate(path, torque_rtol=1e-2, error_estimate=True)
+        half = c.simulate(path, method="exact", n_rings=_rings.rings_for_rtol(1e-2) // 2)
+    full = r.torque
+    expected = float(np.max(np.abs(full - half.torque))) / float(np.max(np.abs(full)))
+    assert r.meta["n_rings"] == 45
+    assert r.meta["error_estimates"]["torque"] == expected
