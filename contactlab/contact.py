@@ -296,13 +296,15 @@ class Contact:
                  spacing: str | None = None, snapshots: Any = None, progress: bool = False,
                  approximate: bool = False, strategy: str | None = None,
                  error_estimate: bool = False, method: str | None = None,
-                 n_rings: int | None = None) -> PathResult:
+                 n_rings: int | None = None,
+                 torque_rtol: float | None = None) -> PathResult:
         """Run a :class:`~contactlab.LoadPath` through the MDR foundation with frictional memory.
 
         See :func:`contactlab.effects.path.simulate` for the parameters (``error_estimate=True``
         adds ``result.meta["error_estimates"]``, the discretisation error per series). A path with
         twist or torque runs the exact torsion solver by default (``method="exact"``, ``n_rings``
-        rings); ``method="mdr"`` keeps the MDR spring model.
+        rings, or as many as ``torque_rtol``, the torque's accuracy relative to the sliding torque,
+        needs); ``method="mdr"`` keeps the MDR spring model.
 
         Parameters
         ----------
@@ -320,7 +322,8 @@ class Contact:
         return _drivers.path.simulate(self, path, outputs=outputs, n_springs=n_springs,
                                       spacing=spacing, snapshots=snapshots, progress=progress,
                                       approximate=approximate, strategy=strategy,
-                                      error_estimate=error_estimate, method=method, n_rings=n_rings)
+                                      error_estimate=error_estimate, method=method, n_rings=n_rings,
+                                      torque_rtol=torque_rtol)
 
     # ---- symbolic formula export (issue 6)
     def formulas(self, substitute: bool = False):

@@ -44,7 +44,8 @@ METHODS: dict[str, type[Foundation]] = {"mdr": Winkler, "exact": Rings}
 #: torsion models of :func:`simulate` (``method=``)
 PATH_METHODS = tuple(sorted(METHODS))
 #: arguments of :func:`simulate` that only one method reads (its discretisation)
-METHOD_ARGUMENTS = {"mdr": ("n_springs", "spacing", "strategy"), "exact": ("n_rings",)}
+METHOD_ARGUMENTS = {"mdr": ("n_springs", "spacing", "strategy"),
+                    "exact": ("n_rings", "torque_rtol")}
 
 
 def simulate_memory(n_steps: int, n_springs: int, n_snapshots: int = 0) -> float:
@@ -304,7 +305,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
              spacing: str | None = None, snapshots: Any = None, progress: bool = False,
              approximate: bool = False, strategy: str | None = None,
              error_estimate: bool = False, method: str | None = None,
-             n_rings: int | None = None) -> PathResult:
+             n_rings: int | None = None, torque_rtol: float | None = None) -> PathResult:
     """Run ``path`` through the foundation of ``method`` (:data:`METHODS`).
 
     Parameters
@@ -343,6 +344,12 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     n_rings : int, optional
         ``"exact"``: rings over the path's largest contact radius (default
         :data:`contactlab.foundation.rings.DEFAULT_N_RINGS`).
+    torque_rtol : float, optional
+        ``"exact"``: the accuracy asked of the torque instead of a ring count: the rings are
+        chosen from the measured error law of the ring solver
+        (:func:`contactlab.foundation.rings.rings_for_rtol`) so that the largest torque error
+        of the path stays below ``torque_rtol`` times its largest full-sliding torque
+        ``2π μ ∫ p r² dr``; in ``[1e-5, 0.1]``, not together with ``n_rings``.
 
     Returns
     -------
@@ -351,8 +358,8 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
     Notes
     -----
     The discretisation arguments belong to one method (:data:`METHOD_ARGUMENTS`): ``n_springs``,
-    ``spacing`` and ``strategy`` to ``"mdr"``, ``n_rings`` to ``"exact"``; given to the other
-    method they raise :class:`~contactlab.errors.ParameterError` instead of being ignored.
+    ``spacing`` and ``strategy`` to ``"mdr"``, ``n_rings`` and ``torque_rtol`` to ``"exact"``; given
+    to the other method they raise :class:`~contactlab.errors.ParameterError` instead of being ignored.
 
     ``error_estimate=True`` runs the path a second time with half the springs (rings) and
     stores, in ``result.meta["error_estimates"]``, ``max|s_N - s_{N/2}| / max|s_N|`` for each
@@ -388,7 +395,7 @@ def simulate(contact, path: LoadPath, *, outputs: Any = None, n_springs: int | N
         outputs = name_list("outputs", outputs, SERIES)
     method = resolve_path_method(path, method, approximate)
     given = {"n_springs": n_springs, "spacing": spacing, "strategy": strategy,
-             "n_rings": n_rings}
+             "n_rings": n_rings, "torque_rtol": torque_rtol}
     _check_method_arguments(method, **given)
     options = {name: given[name] for name in METHOD_ARGUMENTS[method]}
     options["approximate"] = approximate

@@ -30,7 +30,7 @@ import numpy as np
 from ..citations import sources_for
 from ..errors import ContactlabError, NotSupportedError, OutsideTheoryError, ParameterError
 from ..numeric.blas import serial_blas
-from ..params import check_count, check_memory, check_time
+from ..params import check_count, check_in_range, check_memory, check_time
 from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
 from ..physics import torsion_annulus as _ta
@@ -38,7 +38,8 @@ from ..physics import torsion_energy as _te
 from ..physics import torsion_rings as _tr
 from .base import SERIES, Foundation, PathArrays, PathNormal
 
-__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory", "step_seconds"]
+__all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory", "step_seconds", "rings_for_rtol",
+           "RTOL_LAW", "RTOL_RANGE"]
 
 #: default number of rings over the path's largest contact radius (before the nodes added at the
 #: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
@@ -99,6 +100,54 @@ class RingState:
 #: taken at about 0.45 of the smallest per ring, a lower estimate (the cost per ring grows with
 #: the rings; benchmarks/time_estimates.py checks it)
 STEP_SECONDS_PER_RING = 5e-6
+
+
+#: the error law of the ring count on varying-load paths: the largest torque error of a path on
+#: ``n`` rings, relative to the path's largest full-sliding torque, stays below ``C n^-p`` with
+#: ``(C, p)`` = RTOL_LAW. An upper envelope of measured errors, not the asymptotic order: on
+#: 180-step paths (Hertz, cone, a cubic table; force constant, +-30 % and +-40 % at two cycles;
+#: twist at 80 % of sliding at three cycles) against 400 rings (400 vs 800 rings: 6e-6) the error
+#: is 2e-3-6e-3 from 16 to 80 rings (the cone: 4.8e-3 at 60, 3.1e-3 at 80, the envelope's
+#: tightest points), then falls faster than n^-2 (2e-4-3.3e-4 at 100, <= 3e-4 at 150); at
+#: constant force it is 100-1000x smaller (docs/torsion_varying_load.md, "Accuracy and rings")
+RTOL_LAW = (20.0, 2.0)
+#: the torque accuracies ``torque_rtol`` may ask for (the law's measured range: 0.1 -> 16 rings,
+#: 1e-4 -> 448 rings; finer asks need references this law was not measured against)
+RTOL_RANGE = (1e-4, 0.1)
+#: fewest rings an accuracy chooses (the coarsest measured count)
+_RTOL_MIN_RINGS = 16
+
+
+def rings_for_rtol(rtol: float) -> int:
+    """Rings of the exact path solver for a torque accuracy ``rtol`` (relative to the path's
+    largest full-sliding torque): the fewest for which :data:`RTOL_LAW` is below ``rtol``,
+    at least 16.
+
+    Parameters
+    ----------
+    rtol : float
+        Requested accuracy, dimensionless, in :data:`RTOL_RANGE`.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ParameterError
+        ``rtol`` outside :data:`RTOL_RANGE`.
+
+    Examples
+    --------
+    >>> rings_for_rtol(1e-3)
+    142
+    """
+    rtol = check_in_range("torque_rtol", rtol, RTOL_RANGE[0], RTOL_RANGE[1], low_open=False,
+                          high_open=False, what="a torque accuracy relative to the sliding "
+                          "torque (the range of the measured error law)")
+    c, p = RTOL_LAW
+    n = int(np.ceil((c / rtol) ** (1.0 / p) * (1.0 - 1e-12)))
+    return max(_RTOL_MIN_RINGS, n)
 
 
 def step_seconds(n_rings: int) -> float:
@@ -170,12 +219,13 @@ class Rings(Foundation):
     @classmethod
     # a ring model counts rings: its keyword is n_rings where the base class has n_springs
     def check_path(cls, path: Any, snapshots: Any = (), *,  # type: ignore[override]
-                   n_rings: int | None = None,
+                   n_rings: int | None = None, torque_rtol: float | None = None,
                    spacing: str = "uniform", approximate: bool = False,
                    **switches: bool) -> dict[str, Any]:
         """Check a run along ``path``: twist or torque without shift, ``n_rings`` (default
-        :data:`DEFAULT_N_RINGS`), the memory budget. ``approximate`` has no meaning here (one
-        family) and is ignored; ``switches``: :data:`SWITCHES`."""
+        :data:`DEFAULT_N_RINGS`) or ``torque_rtol`` (:func:`rings_for_rtol`), the memory
+        budget. ``approximate`` has no meaning here (one family) and is ignored; ``switches``:
+        :data:`SWITCHES`."""
         if "tangential" in path.groups:
             raise NotSupportedError("method='exact' solves torsion paths (twist/torque); this "
                                     "path drives a tangential shift: use method='mdr'.")
@@ -184,6 +234,11 @@ class Rings(Foundation):
             raise ParameterError(f"{bad[0]}= is not an option of the ring solver: allowed are "
                                  f"{cls.SWITCHES}.")
         sw = {k: bool(switches.get(k, True)) for k in cls.SWITCHES}
+        if torque_rtol is not None:
+            if n_rings is not None:
+                raise ParameterError(f"n_rings={n_rings!r} and torque_rtol={torque_rtol!r} were "
+                                     "both given: pass one (torque_rtol chooses the rings).")
+            n_rings = rings_for_rtol(torque_rtol)
         n_rings = DEFAULT_N_RINGS if n_rings is None else check_count("n_rings", n_rings)
         n_total = path.n_steps
         longest = max((_longest_leaf(s) for s in path.segments), default=0)
@@ -207,7 +262,9 @@ class Rings(Foundation):
     def coarser(cls, options: dict, meta: dict) -> dict | None:
         """Half the rings (the torque error falls at least as fast as ``N^-1`` on varying-load
         paths, so the difference bounds the error of the ``N``-ring run from above)."""
-        return dict(options, n_rings=max(4, meta["n_rings"] // 2))
+        # the coarse run halves the rings the run used (those of torque_rtol when it chose them)
+        coarse = {k: v for k, v in options.items() if k != "torque_rtol"}
+        return dict(coarse, n_rings=max(4, meta["n_rings"] // 2))
 
     @classmethod
     def for_path(cls, profile: Any, moduli: Any, friction: float | None, path: Any, *,
