@@ -157,8 +157,10 @@ class PathResult(Result, Cited):
         EffectNotPlannedError
             ``step`` has no snapshot.
         NotSupportedError
-            A shift whose traction sticks at the contact edge with friction (a profile with an
-            edge below its slip limit there), where it is singular. Without friction the
+            A shift whose traction sticks at the contact edge with friction on a profile that
+            rises to a wall (below the slip limit there), where it is singular; a plain flat
+            punch is covered (its traction keeps the punch's shape at every step). Without
+            friction the
             tractions are rebuilt from the path's series instead (rigid punches;
             :mod:`contactlab.effects.stress_path_noslip`).
         """

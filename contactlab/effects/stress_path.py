@@ -209,6 +209,25 @@ def _stick_of_traction(snap: dict, tau: np.ndarray, a: float) -> float:
     return float(x[int(np.argmax(turn)) + 1])
 
 
+def _flat_punch(profile: Any) -> bool:
+    """Whether the profile is flat up to its wall (a flat punch): ``g = 0`` in every contact."""
+    return bool(np.isfinite(profile.wall_radius) and profile.flat_radius >= profile.wall_radius)
+
+
+def _punch_shift_part(Q: float, a: float, R: np.ndarray, Z: np.ndarray, nu: float
+                      ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """Radial functions of the shift traction of a flat punch at the tangential force ``Q``.
+
+    Every spring of a flat punch carries the same normal force and the same shift, so they
+    stick or slide together at every step of any history: the traction keeps the shape of the
+    punch's own pressure, ``q = Q/(2π a sqrt(a² - r²))`` (sticking or sliding alike), the
+    single punch-type traction of radius ``a`` (its kernel's ``σ_xz`` is ``-1/sqrt(a² - r²)``).
+    """
+    amp = -Q / (2.0 * np.pi * a)
+    P = tuple(amp * p for p in _sh.shear_kernel(R, Z, a, nu))
+    return P, 4e-15 * np.maximum.reduce([np.abs(p) for p in P])
+
+
 def _sticking_edge(contact: Any, snap: dict, family: str) -> bool:
     """Whether the snapshot's outermost spring of ``family`` sticks with a load on it: its 3D
     traction then has an edge singularity ``∝ 1/sqrt(a² - ρ²)`` the samples do not resolve."""
@@ -244,8 +263,9 @@ def path_stress(result: Any, a: Any, b: Any, c: Any = None, *, step: Any, body: 
     if q is not None and c is None:
         raise ParameterError("stress() of a path with a tangential shift takes points "
                              "(x, y, z) (m), x along the shift, as ShiftHistory.stress.")
-    if q is not None and contact.friction is not None and _sticking_edge(contact, snap,
-                                                                         "tangential"):
+    punch = q is not None and contact.friction is not None and _flat_punch(contact.profile)
+    if (q is not None and contact.friction is not None and not punch
+            and _sticking_edge(contact, snap, "tangential")):
         raise NotSupportedError(
             f"stress() at step {k}: the shift's traction sticks at the contact edge below "
             "the slip limit there (a profile with an edge, e.g. a flat punch), where it is "
@@ -264,6 +284,9 @@ def path_stress(result: Any, a: Any, b: Any, c: Any = None, *, step: Any, body: 
     if q is not None and rad > 0 and (contact.friction is None or np.any(q != 0)):
         if contact.friction is None:
             P, e = _ns.noslip_shift_part(contact, result, k, rho.ravel(), z.ravel(), nu)
+        elif punch:
+            P, e = _punch_shift_part(float(result.tangential_force[k]), rad, rho.ravel(),
+                                     z.ravel(), nu)
         else:
             stick = result.data.get("stick_radius")
             cs = float(stick[k]) if stick is not None else 0.0
@@ -274,6 +297,8 @@ def path_stress(result: Any, a: Any, b: Any, c: Any = None, *, step: Any, body: 
         err = err + e.reshape(x.shape)
         route = f"{route} + shift: " + ("no-slip punch-type shear tractions of the path's "
                                          "history" if contact.friction is None else
+                                         "the step's tangential force on the shifted punch"
+                                         if punch else
                                          "punch-type shear tractions of the step's traction "
                                          "(Abel inversion)")
     return _wrap(x, y, z, comps, err, {"route": route, "body": body, "nu": nu, "part": part,

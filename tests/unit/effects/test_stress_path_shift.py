@@ -173,9 +173,11 @@ def test_body_two_and_bad_calls(held):
         held.stress(0.0, 1e-5, step=5)
     with pytest.raises(NotSupportedError, match="Poisson"):
         held.stress(0.0, 0.0, 1e-5, step=5, body=2)
-    # a flat punch below its slip limit at the edge: the singular edge traction is not sampled
-    flat = cl.Contact(cl.profiles.FlatPunch(radius=1e-4), materials=MAT, friction=MU)
-    stuck = _quiet(flat.simulate, cl.LoadPath.from_arrays(depth=[1e-6] * 3,
+    # a paraboloid pressed to its wall, below the slip limit at the edge: the singular edge
+    # traction is not sampled (a plain flat punch is: test_flat_punch_with_friction_...)
+    walled = cl.profiles.Paraboloid(R=0.01) + cl.profiles.FlatPunch(radius=1e-4)
+    flat = cl.Contact(walled, materials=MAT, friction=MU)
+    stuck = _quiet(flat.simulate, cl.LoadPath.from_arrays(depth=[3e-6] * 3,
                                                           displacement=[0.0, 1e-9, 2e-9]),
                    snapshots=[2])
     with pytest.raises(NotSupportedError, match="sticks at the contact edge"):
@@ -196,3 +198,27 @@ def test_a_path_without_shift_in_cartesian_points():
     np.testing.assert_allclose(f.sxz, g.srz * c - g.stz * s, rtol=1e-12, atol=1e-12 * P0)
     np.testing.assert_allclose(f.syz, g.srz * s + g.stz * c, rtol=1e-12, atol=1e-12 * P0)
     np.testing.assert_array_equal(f.error, g.error)
+
+
+def test_flat_punch_with_friction_under_a_varying_force():
+    """Every spring of a flat punch sticks or slides with the others: at any step the shift
+    traction is Q_k/(2π a sqrt(a² - r²)) (the closed form, written here), sticking (step 3) or
+    sliding (step 6) alike; the tangential force through a plane is Q_k."""
+    b = 1e-3
+    punch = cl.Contact(cl.profiles.FlatPunch(radius=b), materials=MAT, friction=MU)
+    force = F * np.array([1.0, 1.0, 1.2, 1.2, 0.8, 0.6, 0.6])
+    u_slide = MU * F / (2 * punch.moduli.tangential * b)
+    disp = u_slide * np.array([0.0, 0.3, 0.6, 0.9, 0.9, 1.2, 1.5])
+    res = _quiet(punch.simulate, cl.LoadPath.from_arrays(force=force, displacement=disp),
+                 snapshots=[3, 6])
+    assert abs(res.tangential_force[3]) < MU * force[3]            # stuck
+    assert res.tangential_force[6] == pytest.approx(MU * force[6], rel=1e-12)   # sliding
+    for k in (3, 6):
+        Qk = float(res.tangential_force[k])
+        r = np.array([0.0, 0.3, 0.6, 0.9]) * b
+        f = res.stress(r, 0.0 * r, 0.0, step=k, part="friction")
+        want = Qk / (2 * np.pi * b * np.sqrt(b * b - r * r))
+        np.testing.assert_allclose(f.sxz, want, rtol=1e-12)
+        Q, Fz, dQ = _plane(res, k, 0.5 * b)
+        assert Q == pytest.approx(Qk, rel=tol.PATH_STRESS_PLANE)
+        assert Fz == pytest.approx(-force[k], rel=tol.PATH_STRESS_PLANE)
