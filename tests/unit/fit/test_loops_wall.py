@@ -259,3 +259,69 @@ def test_flat_punch_torsion_that_never_slips_leaves_friction_unidentified():
     res = torsion_loop(x, y, FN, FlatPunch(radius=B), sample=START, free="shear_modulus",
                        friction=0.5)
     assert rel(res.params["shear_modulus"], GT) < FIT_RECOVERY
+
+
+# ---------------------------------------------------------------- torsion, rising to a wall
+class WallJaeger:
+    """Jäger's first-loading torsion of ``WALL`` held at its wall (force ``F_W``): pressure
+    ``p(r) = (E*/π) [2 sqrt(B_W² - r²)/R + (d - B_W²/R)/sqrt(B_W² - r²)]`` (the paraboloid's
+    part plus the punch's for the indentation beyond the wall); ``q = p sqrt(B_W² - r²)`` is
+    smooth, so the slip function and the torque integral are algebraic-weight quadratures."""
+
+    def __init__(self):
+        b, dw = B_W, B_W * B_W / R
+        self.d = dw + (F_W / E_STAR - _wall_phi(dw)) / (2 * b)
+
+    def q(self, s):
+        return E_STAR / np.pi * (2 * (B_W * B_W - s * s) / R + self.d - B_W * B_W / R)
+
+    def pressure(self, r):
+        return self.q(r) / np.sqrt(B_W * B_W - r * r)
+
+    def P(self, c):
+        if c >= B_W:                            # ∫_c^b ds/sqrt((b²-s²)(s²-c²)) -> π/(2b)
+            return self.q(B_W) * np.pi / (2 * B_W)
+        return quad(lambda s: self.q(s) / np.sqrt((B_W + s) * (s + c)), c, B_W,
+                    weight="alg", wvar=(-0.5, -0.5), **Q)[0]
+
+    def T(self, c):
+        def f(s):
+            return (self.q(s) / np.sqrt(B_W + s)
+                    * (s * s / 2 * (np.pi / 2 - (np.arcsin(c / s) if s > c else np.pi / 2))
+                       + c / 2 * np.sqrt(max(s * s - c * c, 0.0))))
+        return quad(f, c, B_W, weight="alg", wvar=(0.0, -0.5), **Q)[0] if c < B_W else 0.0
+
+    def virgin(self, t):
+        c = np.asarray(t, float) * B_W
+        phi = np.array([MU * self.P(cc) / (2 * GT) for cc in c])
+        return phi, 16 / 3 * GT * phi * c ** 3 + 8 * MU * np.array([self.T(cc) for cc in c])
+
+    def loop(self, t0=0.3, n=80):
+        x0 = float(self.virgin([t0])[0][0])
+        phi_s = float(self.virgin([1.0])[0][0])
+
+        def stick(vv):
+            return brentq(lambda tt: self.virgin([tt])[0][0] - vv, t0 * 0.99, 1.0,
+                          xtol=1e-16, rtol=1e-15)
+
+        v = np.linspace(0, x0, n)
+        t = np.array([1.0 if vv <= phi_s else stick(vv) for vv in v])
+        Lv = np.where(v <= phi_s, 16 / 3 * GT * B_W ** 3 * v, self.virgin(t)[1])
+        return _loop(x0, v, Lv, Lv[-1])
+
+
+def test_paraboloid_in_a_wall_torsion_loop():
+    jag = WallJaeger()
+    c = cl.Contact(WALL, (cl.Rigid(), STEEL), friction=MU)
+    st = c.normal(force=F_W)
+    assert rel(float(st.depth), jag.d) < 1e-12 and float(st.radius) == B_W
+    r = np.array([0.0, 0.5, 0.9, 0.99]) * B_W
+    np.testing.assert_allclose(st.pressure(r), jag.pressure(r), rtol=1e-10)
+    phi, M = jag.virgin([0.95, 0.6, 0.3])
+    np.testing.assert_allclose(c.torsion(force=F_W, twist=phi, method="exact").torque, M,
+                               rtol=1e-10)
+    x, y = jag.loop()
+    res = torsion_loop(x, y, F_W, WALL, sample=STEEL)     # the template's E: the depth
+    assert res.meta["route"] == "exact"
+    assert rel(res.params["friction"], MU) < FIT_RECOVERY
+    assert rel(res.params["shear_modulus"], GT) < FIT_RECOVERY
