@@ -325,3 +325,21 @@ def test_paraboloid_in_a_wall_torsion_loop():
     assert res.meta["route"] == "exact"
     assert rel(res.params["friction"], MU) < FIT_RECOVERY
     assert rel(res.params["shear_modulus"], GT) < FIT_RECOVERY
+
+
+def test_wall_not_reached_is_mindlin():
+    """Below the wall's force (30.8 kN here) a paraboloid ending in a wall is Hertz:
+    Mindlin-Deresiewicz's closed form, recovered on the tip's table route."""
+    a = (3 * FN * R / (4 * E_STAR)) ** (1 / 3)
+    u_star = 3 * MU * FN / (4 * a * G_STAR)
+
+    def virgin(u):
+        return MU * FN * (1 - (1 - np.minimum(u / u_star, 1)) ** 1.5)
+
+    x0 = 0.7 * u_star
+    v = np.linspace(0, x0, 200)
+    x, y = _loop(x0, v, virgin(v), virgin(x0))
+    res = tangential_loop(x, y, FN, Paraboloid(R=R) + FlatPunch(radius=B), sample=STEEL)
+    assert res.meta["tip_route"] == "table"
+    assert rel(res.params["friction"], MU) < FIT_RECOVERY
+    assert rel(res.params["shear_modulus"], STEEL.G) < FIT_RECOVERY
