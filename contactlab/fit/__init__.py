@@ -7,7 +7,7 @@
   Ting);
 * :func:`tangential_loop`, :func:`torsion_loop`: friction coefficient and shear modulus of
   steady hysteresis loops at a known normal force (Cattaneo-Mindlin and Jäger with Masing's
-  rule, exact);
+  rule, exact; any tip, flat punches and profiles rising to a wall included);
 * :func:`read_curve`: a curve from a CSV file (units in the header) or an AFM instrument file
   (through ``afmformats``, the extra ``afm``);
 * :class:`FitResult`: the parameters, standard errors, covariance, confidence intervals, the

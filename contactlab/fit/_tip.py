@@ -64,7 +64,7 @@ class TipModel:
     rtol : float
         Tolerance of the profile's own routes when a table is built.
     allow_wall : bool
-        Accept a punch wall (the elastic fits); ``False`` refuses it.
+        Accept a punch wall (the elastic and loop fits); ``False`` refuses it.
 
     Raises
     ------
@@ -83,7 +83,7 @@ class TipModel:
         if np.isfinite(profile.wall_radius) and not allow_wall:
             raise NotSupportedError(
                 f"profile={profile!r} has a punch wall: its contact radius stops at the wall, "
-                "which this fit (viscoelastic or friction loop) does not cover; fit a profile "
+                "which this fit (a viscoelastic one, beyond the flat punch) does not cover; fit a profile "
                 "without a wall.")
         self.profile = profile
         self.rtol = rtol

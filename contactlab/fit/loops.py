@@ -6,20 +6,27 @@ contact at constant normal force: on a steady loop of amplitude ``x0`` (about it
 branch travelled downwards is ``X = L(x0) - 2L((x0 - x)/2)`` and the branch travelled upwards
 ``X = -L(x0) + 2L((x0 + x)/2)``.
 
-* Tangential (Cattaneo-Mindlin through the MDR, exact for any profile):
+* Tangential (Cattaneo-Mindlin through the MDR, exact for any profile, punch walls included):
   ``L(u) = μ [F_N - E* Φ(d - G* u/(μ E*))]`` with ``Φ`` the force at unit modulus
   (:mod:`contactlab.fit._tip`) and ``d`` the depth at the normal force; ``L'(u) = 2G* c``.
+  A flat punch (radius ``b``, ``Φ = 2bδ``) has no partial slip: ``L = min(2G* b u, μ F_N)``,
+  the loop a parallelogram; a profile held at its wall (``d > g(b)``) sticks fully until
+  ``u = μE*(d - g(b))/G*``.
 * Torsion (Jäger's exact partial slip): power-law tips ``L(φ) = M_full m(φ/φ_s)`` with the
   certified master curve ``m`` of :mod:`contactlab.physics.master`, ``M_full ∝ μ``,
-  ``φ_s ∝ μ/G_t``; every other wall-free tip ``L(φ) = μ m(G_t φ/μ)`` with ``m`` the exact
-  torsion at unit friction and modulus (its tractions are linear in ``μ`` when ``φ`` scales
-  with ``μ/G_t``); both ``L'(φ) = (16/3) G_t c³``.
+  ``φ_s ∝ μ/G_t``; every other tip (punch walls included) ``L(φ) = μ m(G_t φ/μ)`` with
+  ``m`` the exact torsion at unit friction and modulus (its tractions are linear in ``μ``
+  when ``φ`` scales with ``μ/G_t``); both ``L'(φ) = (16/3) G_t c³``.
 
 Both have the form ``L = μ ℓ(x G/μ)``, so the derivatives are exact in closed form from the
 slope: ``∂L/∂G = L'(x) x/G`` and ``∂L/∂μ = L/μ - L'(x) x/μ``. The sample's shear modulus
 ``G`` enters through ``1/G* = (2 - ν)/(4G) + (tip)`` (tangential) or ``1/G_t = 1/G + (tip)``
 (torsion). The normal problem (``a``, ``d`` at the normal force) uses the sample template's
 Young's modulus; the fitted shear modulus is the one the loop measures.
+
+A loop that never slips (a punch's, or a profile's held at its wall, below the amplitudes
+above) is the elastic line whatever the friction: a free friction then raises
+:class:`~contactlab.errors.ParameterError` (the shear modulus alone is identified).
 """
 from __future__ import annotations
 
@@ -39,6 +46,12 @@ from .result import FitResult
 __all__ = ["tangential_loop", "torsion_loop"]
 
 _LOOP_NAMES = ("friction", "shear_modulus")
+#: step of ``ln μ`` and relative change of the loop below which (per unit step) the friction is
+#: not identifiable: a flat punch's loop that never slides is the elastic line ``k x`` whatever
+#: ``μ`` (a change at rounding, ~1e-16 of the loop), while any slip changes the loop by the
+#: order of the slipped force times the step
+_SLIDE_STEP = 1e-4
+_SLIDE_FLOOR = 1e-10
 
 
 def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
@@ -134,6 +147,19 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
         raise ConvergenceError(f"the loop fit did not converge: {msg}")
     q, model, d = parts(x_sol)
     r = model - y
+    if "friction" in idx:
+        # identifiable only if a larger friction changes the loop: a flat punch's loop that
+        # never slides is the elastic line whatever the friction (any larger value fits as
+        # well; at the threshold the derivative is one-sided)
+        up = x_sol.copy()
+        up[idx["friction"]] += _SLIDE_STEP
+        change = float(np.linalg.norm(parts(up)[1] - model))
+        if not change > _SLIDE_FLOOR * _SLIDE_STEP * float(np.linalg.norm(model)):
+            raise ParameterError(
+                f"free='friction' is not identifiable from this loop: at the fitted values "
+                f"(friction={q['friction']!r}) it never slides, and every larger friction gives "
+                "the same loop (the elastic line of a contact held at a punch wall); fit "
+                "free=('shear_modulus',) with friction=... given, or a loop of larger amplitude.")
     J = np.stack([d[n] / q[n] for n in names], axis=1)
     dof = x.size - len(names)
     s2 = float(r @ r) / dof
@@ -144,19 +170,27 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
 
 def _starts(y: np.ndarray, x: np.ndarray, centre: float, amp: float, FN: float, slope0: float,
             names: tuple[str, ...], start: dict | None, sample: Elastic, G_of: Callable,
-            scale: float) -> dict:
+            scale: float, plateau: bool = False) -> dict:
     """Starting values: the friction from the loop's largest value over its full-slip value
-    (``scale`` = the full-slip value at friction 1), the modulus from the slope at the
-    turning points (the loop starts each branch with the no-slip stiffness)."""
+    (``scale`` = the full-slip value at friction 1; 5 % above it, or the value itself for a
+    ``plateau`` loop that reaches full slip, a flat punch's, so that the start slides where the
+    data do), the modulus from the slope of the branches
+    leaving the turning points (the loop starts each branch with the no-slip stiffness)."""
     out = dict(start or {})
     if "friction" not in out:
-        out["friction"] = max(float(np.max(np.abs(y))) / scale, 1e-6) * 1.05
+        out["friction"] = max(float(np.max(np.abs(y))) / scale, 1e-6) * (1.0 if plateau
+                                                                         else 1.05)
     if "shear_modulus" not in out:
         xr = x - centre
-        top = np.abs(np.abs(xr) - amp) < 0.1 * amp
+        # the branches leaving the turning points (a punch's loop is elastic there and flat
+        # on the branch arriving at them)
+        top = (np.abs(np.abs(xr) - amp) < 0.1 * amp) & (_branches(xr) * xr > 0)
         k = 0.0
         if np.count_nonzero(top) > 2:
-            k = abs(float(np.polyfit(xr[top], y[top], 1)[0]))
+            # the lower turning point's branch folded onto the upper's (x, y) -> (-x, -y): one
+            # line, one intercept
+            sg = np.sign(xr[top])
+            k = abs(float(np.polyfit(sg * xr[top], sg * y[top], 1)[0]))
         G0 = float(sample.G)
         if k > 0 and slope0 > 0:
             # no-slip stiffness slope0 * G_eff: invert G_eff(G) by one secant on the template
@@ -173,7 +207,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
                     start: dict | None = None, rtol: float = 1e-12) -> FitResult:
     """Fit a steady tangential (fretting) loop at a known normal force: friction coefficient
     and the sample's shear modulus (Cattaneo-Mindlin with Masing's rule, exact through the MDR
-    for any wall-free profile).
+    for any profile, punch walls included).
 
     Parameters
     ----------
@@ -184,7 +218,9 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     force : float
         The constant normal force, N (> 0).
     profile : Profile
-        The tip's shape (no punch wall).
+        The tip's shape: any, a punch wall included (a flat punch has no partial slip: the
+        loop is a parallelogram, ``Q = 2G* b u`` up to ``μF``; its friction comes from the
+        plateau, the modulus from the elastic branches).
     sample : Elastic
         The sample template: its ``E`` and ``nu`` set the normal problem, its ``G`` is the
         fallback start (or fixed value) of ``"shear_modulus"``.
@@ -206,7 +242,10 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
 
     Raises
     ------
-    ParameterError, UnknownNameError, ConvergenceError
+    ParameterError
+        Bad input; or ``"friction"`` free on a loop that never slips at the fitted values (a
+        flat punch below ``|Q| = μF``): every larger friction gives the same loop.
+    UnknownNameError, ConvergenceError
     """
     x, y, FN, tip_m, names, centre, amp = _prepare(
         displacement, tangential_force, force, profile, sample, tip, free, "displacement",
@@ -217,7 +256,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     E_star = contact.moduli.normal
     st = contact.normal(force=FN)
     d, a = float(st.depth), float(st.radius)
-    tipm = TipModel(profile, d * 1.0001, rtol)
+    tipm = TipModel(profile, d * 1.0001, rtol, allow_wall=True)
     c_tip = tip_m._compliances()[1]
     k_nu = (2.0 - sample.nu) / 4.0
 
@@ -232,7 +271,8 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     fixed = {"friction": float(friction or 0.0), "shear_modulus": float(sample.G)}
     if "friction" not in names and friction is None:
         raise ParameterError("friction is fixed (not in free): give friction=... .")
-    st0 = _starts(y, x, centre, amp, FN, 2.0 * a, names, start, sample, G_of, FN)
+    st0 = _starts(y, x, centre, amp, FN, 2.0 * a, names, start, sample, G_of, FN,
+                  plateau=tipm.route == "punch")
     st0.update({n: fixed[n] for n in _LOOP_NAMES if n not in names})
     q, model, r, cov, stderr, dof, nfev = _fit_loop(x, y, names, centre, amp, load, G_of,
                                                       st0, fixed)
@@ -254,7 +294,8 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
                  friction: float | None = None, start: dict | None = None,
                  route: str = "auto") -> FitResult:
     """Fit a steady torsion loop at a known normal force: friction coefficient and the sample's
-    shear modulus (Jäger's exact partial slip with Masing's rule; any tip without a wall).
+    shear modulus (Jäger's exact partial slip with Masing's rule; any tip, punch walls
+    included).
 
     Parameters
     ----------
@@ -265,9 +306,11 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
     force : float
         The constant normal force, N (> 0).
     profile : Profile
-        The tip's shape without a punch wall: power laws ``c r^n`` (Paraboloid, Cone, PowerLaw)
-        take the certified master curve, every other shape (exact ``Sphere``, sums,
-        ``Tabulated``, ``TruncatedCone``, ...) the library's exact torsion.
+        The tip's shape: power laws ``c r^n`` (Paraboloid, Cone, PowerLaw) take the certified
+        master curve, every other shape (exact ``Sphere``, sums, ``Tabulated``,
+        ``TruncatedCone``, a ``FlatPunch``, a profile rising to a wall, ...) the library's
+        exact torsion. A flat punch sticks fully up to the twist ``μF/(8 G_t b²)`` (slip then
+        starts at the edge) and slides fully at the torque ``μF πb/4``.
     sample, tip, free, friction, start
         As for :func:`tangential_loop`; the shear modulus enters through ``1/G_t = 1/G + 1/G_tip``.
     route : {"auto", "exact"}
@@ -284,7 +327,10 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
 
     Raises
     ------
-    ParameterError, UnknownNameError, NotSupportedError, ConvergenceError
+    ParameterError
+        Bad input; or ``"friction"`` free on a loop that never slips at the fitted values (a
+        flat punch below the twist above): every larger friction gives the same loop.
+    UnknownNameError, ConvergenceError
 
     Notes
     -----
@@ -293,16 +339,13 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
     unit friction and unit torsional modulus; its slope is ``(16/3) G_t c³`` with ``c`` the
     stick radius (an increment of twist adds a rigidly twisted punch of radius ``c``).
     """
-    from ..errors import NotSupportedError
     x, y, FN, tip_m, names, centre, amp = _prepare(twist, torque, force, profile, sample, tip,
                                                    free, "twist", "torque")
     if route not in ("auto", "exact"):
         raise ParameterError(f"route={route!r} is invalid: choose 'auto' or 'exact'.")
-    if np.isfinite(profile.wall_radius):
-        raise NotSupportedError(f"torsion_loop with profile={profile!r}: tips with a punch wall "
-                                "(flat punch edge) are not supported; give a wall-free profile.")
     terms = profile.power_terms()
-    if route == "auto" and terms is not None and len(terms) == 1:
+    if (route == "auto" and terms is not None and len(terms) == 1
+            and not np.isfinite(profile.wall_radius)):
         return _torsion_master(x, y, FN, profile, sample, tip_m, names, centre, amp, friction,
                                start, float(terms[0][1]))
     return _torsion_exact(x, y, FN, profile, sample, tip_m, names, centre, amp, friction, start)
@@ -381,8 +424,9 @@ def _exact_virgin(contact: Any, d: float, Gt0: float) -> Callable:
 
 def _torsion_exact(x, y, FN, profile, sample, tip_m, names, centre, amp, friction,
                    start) -> FitResult:
-    """Any wall-free tip: the virgin curve at unit friction from the library's exact torsion,
-    scaled by ``L = μ m(G_t φ/μ)``; the slope from the stick radius."""
+    """Any tip other than a single power law (walls included): the virgin curve at unit
+    friction from the library's exact torsion, scaled by ``L = μ m(G_t φ/μ)``; the slope from
+    the stick radius."""
     from ..contact import Contact
     from ..physics.torsion_exact import sliding_torque
     contact = Contact(profile, (tip_m, sample), friction=1.0)

@@ -16,7 +16,7 @@ import contactlab as cl
 from contactlab import Elastic, errors
 from contactlab.fit import torsion_loop
 from contactlab.fit.loops import _exact_virgin, _loop_model, _torsion_G_of
-from contactlab.profiles import Cone, FlatPunch, Paraboloid, Sphere, Tabulated
+from contactlab.profiles import Cone, Paraboloid, Sphere, Tabulated
 from tests.tolerances import (FIT_JACOBIAN_FD, FIT_RECOVERY, FIT_TORSION_ROUTES,
                               FIT_TORSION_VIRGIN)
 
@@ -170,9 +170,7 @@ def test_tabulated_sphere_within_its_table_error():
     assert rel(res.params["shear_modulus"], GT) < 10 * bound
 
 
-def test_wall_and_route_refused():
+def test_unknown_route_refused():
     x, y = SUM.loop(n=10)
-    with pytest.raises(errors.NotSupportedError, match="wall"):
-        torsion_loop(x, y, FN, FlatPunch(radius=1e-3), sample=STEEL)
     with pytest.raises(errors.ParameterError, match="route='fast'"):
         torsion_loop(x, y, FN, Sphere(R=R), sample=STEEL, route="fast")
