@@ -160,8 +160,7 @@ class PathResult(Result, Cited):
             A shift whose traction sticks at the contact edge with friction on a profile that
             rises to a wall (below the slip limit there), where it is singular; a plain flat
             punch is covered (its traction keeps the punch's shape at every step). Without
-            friction the
-            tractions are rebuilt from the path's series instead (rigid punches;
+            friction the tractions are rebuilt from the path's series instead (rigid punches;
             :mod:`contactlab.effects.stress_path_noslip`).
         """
         from .stress_path import path_stress
