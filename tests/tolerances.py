@@ -815,3 +815,16 @@ FIT_CLOSED_FORM_ROUNDING = 1e-12
 #: or a table (the JKR branch of a flat-centred tip, a JKR table ending at a wall): the solve's
 #: tolerance and the table's differenced slopes (measured <= 4e-11)
 FIT_MODEL_SOLVE = 1e-10
+
+# ---- tiny shifts and twists on any profile (edge annulus from g')
+#: torque (exact, MDR) and force at amplitudes 1e-30..1e-18 against the no-slip limit, beyond
+#: the slip-correction bound (1.5 σ_c/a, σ_c/(2a)): rounding of the no-slip closed form and of
+#: the correction (measured <= 2.3e-16 at 1e-30..1e-21)
+EDGE_ANNULUS_NO_SLIP = 8 * 2.220446049250313e-16
+#: dissipation at 1e-30..1e-18 against the leading order of a thin annulus, g'(a) from closed
+#: forms (mpmath) or a fourth-order difference of g at a step of 1e-3 a: the O(σ_c/a) <= 1e-12
+#: correction plus the difference's error (measured <= 3.3e-11, truncated cone; <= 9e-13 else)
+EDGE_ANNULUS_LEADING = 1e-9
+#: shift dissipation (sphere, paraboloid + cone, linear table) at 1e-28, 1e-20, 1e-12 against
+#: its definition at 90 digits: measured <= 6.7e-16
+EDGE_ANNULUS_ANY = 1e-14
