@@ -232,6 +232,9 @@ def _cuts_of(profile) -> np.ndarray:
 #: cuts of ``g'`` the annulus rule splits at per annulus (an annulus narrower than
 #: ``EDGE_SLIP_RATIO a`` crossing more table nodes is not this form's range)
 MAX_CUTS = 4
+#: stick widths ``σ_c/a`` of the linearised root beyond which the forms skip a row (they are
+#: used below ``EDGE_SLIP_RATIO``; the root differs from its linearisation by ``O(σ_c/a)``)
+_PREFILTER = 1e-2
 
 
 class ProfileEdge:
@@ -323,9 +326,11 @@ def shift_any(edge: ProfileEdge, E_star: float, G_star: float, mu: float, a: np.
     range (not a smooth edge)."""
     a, u = np.asarray(a, float), np.abs(np.asarray(u, float))
     ok = edge.edge_ok(a)
-    aa = np.where(ok, a, 1.0)
+    aa = np.where(ok, a, a[ok][0] if np.any(ok) else 1.0)     # a valid radius: g' is defined
     y = G_star * u / (mu * E_star)
     gp = np.where(ok, edge.slope(aa), 1.0)
+    ok &= y / gp < _PREFILTER * aa             # far wider than EDGE_SLIP_RATIO a: not here
+    y = np.where(ok, y, 0.0)
     sig = _newton_width(edge, aa, lambda s: edge.drop(aa, s) - y,
                         lambda s: edge.slope(aa - s), y / gp)
     D, C = np.zeros(a.shape), np.zeros(a.shape)
@@ -349,9 +354,11 @@ def torsion_any(edge: ProfileEdge, E_star: float, G_t: float, mu: float, a: np.n
     ``σ_c/a``; the width solves ``(a − σ)φ = Q (g(a) − g(a − σ))``, ``Q = μE*/(4G_t)``."""
     a, phi = np.asarray(a, float), np.abs(np.asarray(phi, float))
     ok = edge.edge_ok(a)
-    aa = np.where(ok, a, 1.0)
+    aa = np.where(ok, a, a[ok][0] if np.any(ok) else 1.0)     # a valid radius: g' is defined
     Q = mu * E_star / (4.0 * G_t)
     gp = np.where(ok, edge.slope(aa), 1.0)
+    ok &= phi / (phi + Q * gp) < _PREFILTER
+    phi = np.where(ok, phi, 0.0)
     sig = _newton_width(edge, aa, lambda s: (aa - s) * phi - Q * edge.drop(aa, s),
                         lambda s: -phi - Q * edge.slope(aa - s), aa * phi / (phi + Q * gp))
     D = np.zeros(a.shape)
@@ -386,9 +393,11 @@ def exact_torsion_any(edge: ProfileEdge, E_star: float, G_t: float, mu: float, a
     ``P ≈ E* g'(a) σ/(2a)``."""
     a, phi = np.asarray(a, float), np.abs(np.asarray(phi, float))
     ok = edge.edge_ok(a)
-    aa = np.where(ok, a, 1.0)
+    aa = np.where(ok, a, a[ok][0] if np.any(ok) else 1.0)     # a valid radius: g' is defined
     target = 2.0 * G_t * phi / mu
     slope = np.where(ok, 0.5 * E_star * edge.slope(aa) / aa, 1.0)
+    ok &= target / slope < _PREFILTER * aa
+    target = np.where(ok, target, 0.0)
     sig = np.minimum(target / slope, 0.5 * aa)
     for _ in range(8):
         P = _slip_any(edge, E_star, aa, sig)
