@@ -855,3 +855,16 @@ FIT_TORSION_ROUTES = 1e-10
 #: the exact ring solver's reference in the torque_rtol ladder (400 rings): its own error on the
 #: 180-step varying-load Hertz path, against 800 rings, measured 6.2e-6 of the sliding torque
 RINGS_RTOL_REFERENCE = 1e-5
+
+# ---- tiny shifts and twists on any profile (edge annulus from g')
+#: torque (exact, MDR) and force at amplitudes 1e-30..1e-18 against the no-slip limit, beyond
+#: the slip-correction bound (1.5 σ_c/a, σ_c/(2a)): rounding of the no-slip closed form and of
+#: the correction (measured <= 2.3e-16 at 1e-30..1e-21)
+EDGE_ANNULUS_NO_SLIP = 8 * 2.220446049250313e-16
+#: dissipation at 1e-30..1e-18 against the leading order of a thin annulus, g'(a) from closed
+#: forms (mpmath) or a fourth-order difference of g at a step of 1e-3 a: the O(σ_c/a) <= 1e-12
+#: correction plus the difference's error (measured <= 3.3e-11, truncated cone; <= 9e-13 else)
+EDGE_ANNULUS_LEADING = 1e-9
+#: shift dissipation (sphere, paraboloid + cone, linear table) at 1e-28, 1e-20, 1e-12 against
+#: its definition at 90 digits: measured <= 6.7e-16
+EDGE_ANNULUS_ANY = 1e-14

@@ -89,7 +89,15 @@ def force_of_displacement(profile, E_star: float, G_star: float, mu: float, a: n
     u = np.abs(u)
     c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
     slip = slip_integral(profile, a, c, d)
-    return 2.0 * G_star * c * u + 2.0 * mu * E_star * np.maximum(slip, 0.0), c
+    F = 2.0 * G_star * c * u + 2.0 * mu * E_star * np.maximum(slip, 0.0)
+    # a stick zone within EDGE_FORCE_RATIO a of a smooth edge: the no-slip force minus the
+    # annulus correction (the form above reads the normal solve's rounding d - g(a) as a punch
+    # step there, an error growing like 1/u)
+    thin = (c > a * (1.0 - _edge.EDGE_FORCE_RATIO)) & (u > 0) & (a > 0)
+    if np.any(thin):
+        F = _edge_any_override(profile, E_star, G_star, mu, np.where(thin, a, 0.0), u, F, 1,
+                               _edge.EDGE_FORCE_RATIO)
+    return F, c
 
 
 #: slip-zone width ``(a - c)/a`` below which :func:`slip_integral` also integrates across a
@@ -162,9 +170,41 @@ def virgin_dissipation(profile, E_star: float, G_star: float, mu: float,
                        rtol: float) -> np.ndarray:
     """Energy dissipated on the virgin curve from 0 to ``|u|``, J.
 
-    ``D = 2∫_c^a h(|u| - h/G*) dx`` with ``h = μE*(d - g)``; uses ``∫g`` and ``∫g²``.
+    ``D = 2∫_c^a h(|u| - h/G*) dx`` with ``h = μE*(d - g)``; uses ``∫g`` and ``∫g²``. A thin
+    slip annulus (``σ_c < EDGE_SLIP_RATIO a``) takes the annulus form of
+    :mod:`~contactlab.physics.edge_annulus` (accurate to rounding down to amplitudes of one ulp;
+    the forms from ``∫g``, ``∫g²`` err by ``~ε a/σ_c`` and their quadratures need not converge
+    on an interval of a few ulps next to a table node), the rest the forms below.
     """
     a, d, u = np.broadcast_arrays(*(np.asarray(v, float) for v in (a, d, u)))
+    shape = a.shape
+    af, df, uf = (np.ravel(v) for v in (a, d, np.abs(u)))
+    out = np.zeros(af.shape)
+    thin = np.zeros(af.shape, bool)
+    live = np.flatnonzero((af > 0) & (uf > 0) & np.isfinite(uf))
+    pw = _edge.power_edge(profile)
+    edge = None if pw is not None or live.size == 0 else _edge.edge_of(profile)
+    if live.size and (pw is not None or edge is not None):
+        if pw is not None:
+            D, s_c = _edge.shift_dissipation(*pw, E_star, G_star, mu, af[live], uf[live])
+        elif edge is not None:
+            # any other profile: the drop g(a) - g(a - σ) integrated from g' on the annulus
+            D, _, s_c = _edge.shift_any(edge, E_star, G_star, mu, af[live], uf[live])
+        t = s_c < _edge.EDGE_SLIP_RATIO
+        out[live[t]] = D[t]
+        thin[live[t]] = True
+    rest = ~thin & (uf != 0)                   # no shift: no dissipation
+    if np.all(rest):
+        return _virgin_stick_form(profile, E_star, G_star, mu, a, d, u, rtol)
+    if np.any(rest):
+        out[rest] = _virgin_stick_form(profile, E_star, G_star, mu, af[rest], df[rest],
+                                       uf[rest], rtol)
+    return out.reshape(shape)
+
+
+def _virgin_stick_form(profile, E_star, G_star, mu, a, d, u, rtol) -> np.ndarray:
+    """:func:`virgin_dissipation` at the stick radius (closed form from ``∫g``, ``∫g²``; by
+    Gauss-Legendre on ``[c, a]`` for slip zones up to ``SMALL_SLIP_RATIO a``)."""
     u = np.abs(u)
     c = stick_radius_of_displacement(profile, E_star, G_star, mu, a, d, u)
     L = a - c
@@ -189,19 +229,27 @@ def virgin_dissipation(profile, E_star: float, G_star: float, mu: float,
         pick = [np.ravel(np.broadcast_to(v, shape))[small] for v in (a, c, d, u)]
         out[small] = _dissipation_by_quadrature(profile, E_star, G_star, mu, *pick)
         out = out.reshape(shape)
-    # a thin annulus (σ_c < EDGE_SLIP_RATIO a) of a single power law: in annulus coordinates,
-    # accurate to rounding down to amplitudes of one ulp (the forms above err by ~ε a/σ_c)
-    pw = _edge.power_edge(profile)
-    if pw is not None:
-        shape = np.shape(out)
-        out = np.array(out, float).ravel()
-        af, uf = (np.ravel(np.broadcast_to(v, shape)) for v in (a, u))
-        live = np.flatnonzero((af > 0) & (uf > 0) & np.isfinite(uf))
-        D, s_c = _edge.shift_dissipation(*pw, E_star, G_star, mu, af[live], uf[live])
-        thin = s_c < _edge.EDGE_SLIP_RATIO
-        out[live[thin]] = D[thin]
-        out = out.reshape(shape)
     return out
+
+
+def _edge_any_override(profile, E_star, G_star, mu, a, u, out, which: int, ratio: float):
+    """``out`` with the entries whose stick width ``σ_c/a`` is below ``ratio`` replaced by
+    the annulus form of :func:`edge_annulus.shift_any` (``which``: 0 the dissipation, 1 the
+    force ``2G*a|u| -`` its slip correction)."""
+    edge = _edge.edge_of(profile)
+    if edge is None:
+        return out
+    shape = np.shape(out)
+    out = np.array(out, float).ravel()
+    af, uf = (np.ravel(np.broadcast_to(v, shape)) for v in (a, u))
+    live = np.flatnonzero((af > 0) & (uf > 0) & np.isfinite(uf))
+    if live.size == 0:
+        return out.reshape(shape)
+    D, C, s_c = _edge.shift_any(edge, E_star, G_star, mu, af[live], uf[live])
+    thin = s_c < ratio
+    val = D if which == 0 else 2.0 * G_star * af[live] * np.abs(uf[live]) - C
+    out[live[thin]] = val[thin]
+    return out.reshape(shape)
 
 
 #: slip-zone width ``(a - c)/a`` up to which :func:`virgin_dissipation` integrates its definition

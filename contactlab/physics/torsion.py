@@ -281,6 +281,18 @@ class Exact(TorsionModel):
         if np.any(slid):
             M[slid] = self.sliding_torque(a[slid], d[slid])
             M_err[slid] = self._sliding_err(a[slid], d[slid], M[slid], np.pi)
+        # a stick zone within EDGE_FORCE_RATIO a of a smooth edge: the no-slip torque minus the
+        # annulus correction (M1 + 8μT reads the normal solve's rounding d - g(a) as a punch
+        # step there, an error growing like 1/φ)
+        thin = np.flatnonzero((c > a * (1.0 - _edge.EDGE_FORCE_RATIO)) & (phi > 0) & (a > 0))
+        edge = _edge.edge_of(self.prof) if thin.size else None
+        if edge is not None:
+            _, C, s_c = _edge.exact_torsion_any(edge, self.E, self.G, self.mu, a[thin],
+                                                phi[thin])
+            ok = s_c < _edge.EDGE_FORCE_RATIO
+            t, Ct = thin[ok], C[ok]
+            M[t] = 16.0 / 3.0 * self.G * phi[t] * a[t] ** 3 - Ct
+            M_err[t] = 4.0 * ROUNDING * M[t] + _edge.ANNULUS_RTOL * Ct
         return M, c, M_err, deferred
 
     def _of_twist_hertz(self, phi, a, d, p0):
@@ -406,6 +418,15 @@ class Exact(TorsionModel):
                                                        phi[live])
             thin = s_c < _edge.EDGE_SLIP_RATIO
             D[live[thin]] = D_e[thin]
+        else:
+            # any other profile: P from g' integrated on the annulus
+            edge = _edge.edge_of(self.prof)
+            live = np.flatnonzero((a > 0) & (phi > 0) & np.isfinite(phi))
+            if edge is not None and live.size:
+                D_e, _, s_c = _edge.exact_torsion_any(edge, self.E, self.G, self.mu, a[live],
+                                                      phi[live])
+                thin = s_c < _edge.EDGE_SLIP_RATIO
+                D[live[thin]] = D_e[thin]
         return D
 
 

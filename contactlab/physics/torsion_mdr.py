@@ -326,6 +326,14 @@ def dissipation(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray, 
         D, s_c = _edge.torsion_dissipation(*pw, E_star, G_t, mu, a[live], phi[live])
         thin = s_c < _edge.EDGE_SLIP_RATIO
         out[live[thin]] = D[thin]
+    else:
+        # any other profile: the drop g(a) - g(a - σ) integrated from g' on the annulus
+        edge = _edge.edge_of(profile)
+        live = np.flatnonzero((a > 0) & (phi > 0) & np.isfinite(phi))
+        if edge is not None and live.size:
+            D, s_c = _edge.torsion_any(edge, E_star, G_t, mu, a[live], phi[live])
+            thin = s_c < _edge.EDGE_SLIP_RATIO
+            out[live[thin]] = D[thin]
     return out
 
 
