@@ -99,7 +99,10 @@ class TangentialState(Result, Cited):
         return _out(2.0 * self.contact.moduli.tangential * self._c)
 
     def shear(self, r: Any) -> Any:
-        """Tangential traction ``τ_x(r)``, Pa (sign of the displacement), shape ``state + r``."""
+        """Tangential traction ``τ_x(r)``, Pa (sign of the displacement), shape ``state + r``.
+
+        Without a friction coefficient nothing slips: the traction of the rigidly shifted punch
+        of the contact radius, ``Q/(2π a sqrt(a² - r²))`` (singular at the edge)."""
         r = as_float_array("r", r)
         if np.any(r < 0):
             raise ParameterError(f"r contains {r[r < 0].ravel()[0]!r}: radii must be >= 0 m.")
@@ -112,8 +115,14 @@ class TangentialState(Result, Cited):
         c_ = self.contact
         mu = np.inf if c_.friction is None else c_.friction
         if not np.isfinite(mu):
-            raise NotSupportedError("shear() needs a friction coefficient: without friction the "
-                                    "no-slip traction is that of a rigidly shifted punch.")
+            # no friction limit, no slip: the rigidly shifted punch of the contact radius,
+            # Q/(2π a sqrt(a² - r²)) inside (+inf at the edge itself), 0 outside
+            Q = np.abs(np.asarray(self.tangential_force, float)).reshape(sh + ex)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                tau = np.where(r < a, Q / (2.0 * np.pi * a * np.sqrt(np.maximum(a * a - r * r,
+                                                                                 0.0))),
+                               np.where((r == a) & (Q > 0), np.inf, 0.0))
+            return _out(sign * tau)
         tau = _tan.shear(c_.profile, c_.moduli.normal, mu, r, a, d, c, c_.rtol)
         return _out(sign * tau)
 

@@ -338,3 +338,28 @@ def test_without_friction_the_shifted_punch():
     np.testing.assert_array_equal(two.sxz, -s.stress(r, 0.3 * r, 0.1 * a, part="friction").sxz)
     tot = s.stress(r, 0.3 * r, 0.1 * a)
     assert np.all(tot.szz < 0)                   # the normal preload is included
+
+
+def test_shear_without_friction_is_the_shifted_punch_and_the_field_surface():
+    """Without friction nothing slips: shear() is Q/(2π a sqrt(a² - r²)) with Q = 2 G* a u
+    (the closed form, written here), its integral over the contact is Q, and the stress
+    field's surface σ_xz equals it."""
+    nofr = cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=(STEEL, STEEL), friction=None)
+    st = nofr.tangential(force=F, displacement=1e-7)
+    a = float(st.normal.radius)
+    Q = 2 * nofr.moduli.tangential * a * 1e-7
+    assert float(st.tangential_force) == pytest.approx(Q, rel=1e-14)
+    r = np.array([0.0, 0.2, 0.5, 0.9, 0.99]) * a
+    tau = np.asarray(st.shear(r))
+    np.testing.assert_allclose(tau, Q / (2 * np.pi * a * np.sqrt(a * a - r * r)), rtol=1e-14)
+    assert np.asarray(st.shear(np.array([a, 1.5 * a]))).tolist() == [np.inf, 0.0]
+    # ∫ 2π r τ dr with r = a sin t (the edge singularity removed): Q
+    t, w = np.polynomial.legendre.leggauss(40)
+    th = (t + 1) * np.pi / 4
+    rr = a * np.sin(th)
+    integral = np.sum(2 * np.pi * rr * np.asarray(st.shear(rr)) * a * np.cos(th) * w) * np.pi / 4
+    assert integral == pytest.approx(Q, rel=1e-12)
+    f = st.stress(r[1:4], 0.0 * r[1:4], 0.0, part="friction")
+    np.testing.assert_allclose(f.sxz, tau[1:4], rtol=1e-12)
+    back = nofr.tangential(force=F, displacement=-1e-7)
+    np.testing.assert_array_equal(np.asarray(back.shear(r)), -tau)
