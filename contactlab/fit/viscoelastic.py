@@ -7,11 +7,14 @@ starting values and runs the solver.
 """
 from __future__ import annotations
 
+import warnings
+
 from typing import Any
 
 import numpy as np
 
-from ..errors import ConvergenceError, NotSupportedError, ParameterError, UnknownNameError
+from ..errors import (ConvergenceError, NotSupportedError, ParameterError, UnknownNameError,
+                      ValidityWarning)
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..materials.viscoelastic import GeneralizedMaxwell, Maxwell, StandardLinearSolid
@@ -212,10 +215,14 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     app = slice(0, im + 1)
     el_free = ("E", *tuple(n for n in extra if n in names))
     try:
-        el = indentation(z[app], F[app], profile, sample=Elastic(E=1.0, nu=0.5),
-                         free=el_free, rtol=rtol, adhesion=adhesion,
-                         work_of_adhesion=work_of_adhesion,
-                         start={k: st[k] for k in extra if k in st})
+        # (a start only: its validity notes, e.g. the Tabor parameter at a unit modulus, are
+        # not the fit's; the fit reports its own below)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            el = indentation(z[app], F[app], profile, sample=Elastic(E=1.0, nu=0.5),
+                             free=el_free, rtol=rtol, adhesion=adhesion,
+                             work_of_adhesion=work_of_adhesion,
+                             start={k: st[k] for k in extra if k in st})
     except ConvergenceError as err:
         raise ConvergenceError(f"fit.indentation (viscoelastic): the elastic fit of the "
                                f"approach, which gives the starting values, failed: {err}") \

@@ -7,6 +7,8 @@ viscoelastic sample is refused with its reason."""
 from __future__ import annotations
 
 import mpmath as mp
+import warnings
+
 import numpy as np
 import pytest
 
@@ -143,3 +145,17 @@ def test_jkr_with_a_viscoelastic_sample_is_refused():
     with pytest.raises(errors.NotSupportedError, match="rate"):
         indentation(z, np.zeros_like(z), Paraboloid(R=R), time=t,
                     sample=StandardLinearSolid(**SLS), adhesion="jkr", work_of_adhesion=0.01)
+
+
+@pytest.mark.parametrize("curve", ["paraboloid"], indirect=True)
+def test_one_tabor_warning_from_the_fit_not_from_its_elastic_start(curve):
+    """The elastic fit that starts a viscoelastic one (at a unit modulus) keeps its validity
+    notes to itself: the user sees the fit's own Tabor warning, once."""
+    _, prof, w, t, z, F = curve
+    tmpl = StandardLinearSolid(G_inf=3e3, G_1=1e4, eta_1=1e4)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        indentation(z, F, prof, time=t, sample=tmpl, adhesion="dmt",
+                    free=("G_inf", "G_1", "eta_1", "contact_point", "work_of_adhesion"))
+    tabor = [str(x.message) for x in seen if "Tabor" in str(x.message)]
+    assert len(tabor) == 1 and "for every equilibrium distance" in tabor[0]
