@@ -30,11 +30,17 @@ profile's own route. A radius exactly on a node where the linear interpolant's s
 
 Cost: set-up 14 g' evaluations per segment (O(nodes) each); then O(radii x segments x 8)
 arithmetic plus 64 g' evaluations per radius. Tables beyond :data:`MAX_NODES` nodes take the
-profile's own route (the set-up would be O(nodes²)).
+profile's own route (the set-up would be O(nodes²)). With numba (extra ``fast``) the 20/12-point
+rules of whole radius arrays (a peak search's 1024 radii) run in one compiled pass per radius
+(:mod:`contactlab.numeric.table_kernels`; the same operations in the same order, so the same
+bits as the numpy route here, which ``CONTACTLAB_BACKEND=numpy`` keeps).
 """
 from __future__ import annotations
 
 import numpy as np
+
+from ..numeric import normal_kernels as _normal_kernels
+from ..numeric import table_kernels as _table_kernels
 
 __all__ = ["MAX_NODES", "pressure_shape"]
 
@@ -165,6 +171,20 @@ def _series(c: dict, k: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return _clenshaw_rows(c["coef_t"][:, k], y), c["fit_err"][k]
 
 
+#: the compiled pass (:mod:`contactlab.numeric.table_kernels`): ``"on"``: compiled by numba
+#: (False: its plain Python logic, for tests); ``"from"``: fewest rows it takes
+_COMPILED: dict = {"on": True, "from": _table_kernels.TABLE_ROWS_FROM}
+_NEAR_U2 = _NEAR_BOTH[0] ** 2
+
+
+def _compiled_rows(rows: int) -> bool:
+    """Whether :func:`_piece` takes the compiled pass for ``rows`` radii (the same bits as the
+    numpy route below it)."""
+    if rows < _COMPILED["from"]:
+        return False
+    return not _COMPILED["on"] or _normal_kernels.backend() == "numba"
+
+
 def _piece(c: dict, k: np.ndarray, s1: np.ndarray, s2: np.ndarray, hi: np.ndarray,
            r: np.ndarray, r_is_s2: bool) -> tuple[np.ndarray, np.ndarray]:
     """``∫_{s2}^{hi} q(x)/sqrt(x² - r²) dx`` inside segment ``k`` (1-D arrays), with ``s1 <= s2``
@@ -188,6 +208,14 @@ def _piece(c: dict, k: np.ndarray, s1: np.ndarray, s2: np.ndarray, hi: np.ndarra
     half = 0.5 * (T[:, None] * u[None, :])
     sh = np.sinh(half)
     ch = np.cosh(half)
+    if _compiled_rows(k.size):
+        v_hi = np.empty(k.shape)
+        err = np.empty(k.shape)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            _table_kernels.kernel(_COMPILED["on"])(
+                c["coef_t"], c["sqrt_h"], c["fit_err"], k, T, delta, s2, span, r, sh, ch, u,
+                _NEAR_U2, wts, _N_HI, r_is_s2, v_hi, err)
+        return v_hi, err
     d2 = 2.0 * delta[:, None]
     # x - s2 = 2δ sinh²(t/2), x - s1 = 2δ cosh²(t/2)
     x = s2[:, None] + d2 * sh * sh
