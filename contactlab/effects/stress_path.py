@@ -209,11 +209,6 @@ def _stick_of_traction(snap: dict, tau: np.ndarray, a: float) -> float:
     return float(x[int(np.argmax(turn)) + 1])
 
 
-def _flat_punch(profile: Any) -> bool:
-    """Whether the profile is flat up to its wall (a flat punch): ``g = 0`` in every contact."""
-    return bool(np.isfinite(profile.wall_radius) and profile.flat_radius >= profile.wall_radius)
-
-
 def _punch_shift_part(Q: float, a: float, R: np.ndarray, Z: np.ndarray, nu: float
                       ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     """Radial functions of the shift traction of a flat punch at the tangential force ``Q``.
@@ -263,7 +258,7 @@ def path_stress(result: Any, a: Any, b: Any, c: Any = None, *, step: Any, body: 
     if q is not None and c is None:
         raise ParameterError("stress() of a path with a tangential shift takes points "
                              "(x, y, z) (m), x along the shift, as ShiftHistory.stress.")
-    punch = q is not None and contact.friction is not None and _flat_punch(contact.profile)
+    punch = q is not None and contact.friction is not None and contact.profile.is_flat_punch
     if (q is not None and contact.friction is not None and not punch
             and _sticking_edge(contact, snap, "tangential")):
         raise NotSupportedError(

@@ -22,7 +22,6 @@ everywhere and a least-squares fit of ``Δγ`` is ill-posed. The fit therefore s
 """
 from __future__ import annotations
 
-from typing import Any
 
 import numpy as np
 
@@ -159,7 +158,3 @@ def fit_kendall(z: np.ndarray, F: np.ndarray, b: float, names: tuple[str, ...], 
     back[order] = model
     return vals, stderr, cov, back, dof, extra
 
-
-def kendall_profile(profile: Any) -> bool:
-    """Whether the tip is a flat punch (a wall at the flat centre's edge)."""
-    return bool(np.isfinite(profile.wall_radius) and profile.flat_radius == profile.wall_radius)

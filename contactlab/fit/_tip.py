@@ -90,7 +90,7 @@ class TipModel:
         self.error = 0.0
         #: a wall stops the contact radius: beyond the depth it reaches, Φ grows as 2bδ
         self._wall = bool(np.isfinite(profile.wall_radius))
-        if self._wall and profile.flat_radius >= profile.wall_radius:
+        if profile.is_flat_punch:
             self.route = "punch"            # a flat punch: Φ = 2bδ, a = b
             self._b = float(profile.wall_radius)
             self.delta_max = float(delta_max)

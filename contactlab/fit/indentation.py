@@ -293,8 +293,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
     if adhesion == "jkr":
-        from ._kendall import kendall_profile
-        if kendall_profile(profile):
+        if profile.is_flat_punch:
             _check_work(names, work_of_adhesion, adhesion)
             return _kendall_result(z, F, profile, sample, tip_m, names, work_of_adhesion,
                                    dict(start or {}))

@@ -193,8 +193,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
         check_wall(profile)
     # a flat punch (contact radius b from the first touch): Φ = 2bδ, Ting's t1 then gives the
     # constant-radius hereditary integral up to the force's zero (see _ting)
-    punch = bool(np.isfinite(profile.wall_radius)
-                 and profile.flat_radius >= profile.wall_radius)
+    punch = profile.is_flat_punch
     if np.isfinite(profile.wall_radius) and not punch:
         raise NotSupportedError(
             f"profile={profile!r} with time=...: a profile rising up to a punch wall is not "

@@ -147,6 +147,12 @@ class Profile(ParamIdentity, ABC):
         return np.inf
 
     @property
+    def is_flat_punch(self) -> bool:
+        """Whether the profile is flat up to its wall (``g = 0`` in every contact, contact
+        radius the wall's from the first touch)."""
+        return bool(np.isfinite(self.wall_radius) and self.flat_radius >= self.wall_radius)
+
+    @property
     def breakpoints(self) -> tuple[float, ...]:
         """Radii, m, where the slope f' jumps (quadratures split there)."""
         return ()
