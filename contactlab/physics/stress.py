@@ -39,6 +39,7 @@ __all__ = [
     "principal_axisymmetric",
     "principal_general",
     "punch_kernel",
+    "spheroidal",
     "superposed_field",
     "von_mises",
 ]
@@ -73,14 +74,14 @@ def kronrod_rule() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * wk, 0.5 * wg
 
 
-def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Field ``(σ_rr, σ_θθ, σ_zz, σ_rz)`` of a flat punch of radius ``x`` whose surface pressure
-    is ``1/sqrt(x² - r²)`` (tension positive, ``z >= 0`` the depth), Pa per unit amplitude.
+def spheroidal(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
+               ) -> tuple[np.ndarray, ...]:
+    """Oblate spheroidal set-up of the point ``(r, z)`` against a disc of radius ``x``.
 
-    Multiply by ``E* d/π`` for a rigid punch pressed to depth ``d``. Finite everywhere except at
-    the punch rim ``(r, z) = (x, 0)`` (inverse-square-root singular there); on the surface under
-    the punch ``σ_zz = -1/sqrt(x² - r²)``. Arguments broadcast.
+    Returns ``(r, z, x, x², A, Q, m², n²)`` broadcast to one shape, with ``A = r² + z² - x²``,
+    ``Q = sqrt(A² + 4x²z²)``, ``m² = (Q - A)/2 = x² - l1²`` and ``n² = (Q + A)/2 = l2² - x²``,
+    each written without cancellation (the smaller of the two is ``2x²z²/(|A| + Q)``). Every
+    field kernel of this module and :mod:`contactlab.physics.stress_tangential` starts here.
     """
     r, z, x = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float),
                                   np.asarray(x, float))
@@ -93,6 +94,20 @@ def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
         small = np.where(Q > 0, 2.0 * x2 * z * z / big, 0.0)
         m2 = np.where(pos, small, 0.5 * big)     # x² - l1²
         n2 = np.where(pos, 0.5 * big, small)     # l2² - x²
+    return r, z, x, x2, A, Q, m2, n2
+
+
+def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Field ``(σ_rr, σ_θθ, σ_zz, σ_rz)`` of a flat punch of radius ``x`` whose surface pressure
+    is ``1/sqrt(x² - r²)`` (tension positive, ``z >= 0`` the depth), Pa per unit amplitude.
+
+    Multiply by ``E* d/π`` for a rigid punch pressed to depth ``d``. Finite everywhere except at
+    the punch rim ``(r, z) = (x, 0)`` (inverse-square-root singular there); on the surface under
+    the punch ``σ_zz = -1/sqrt(x² - r²)``. Arguments broadcast.
+    """
+    r, z, x, x2, A, Q, m2, n2 = spheroidal(r, z, x)
+    with np.errstate(divide="ignore", invalid="ignore"):
         m = np.sqrt(m2)
         n = np.sqrt(n2)
         l22 = x2 + n2
@@ -127,17 +142,9 @@ def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
     and ``σ_rθ = -(∂u/∂r - u/r)`` give ``σ_θz = r x² m/(l2² Q)``, ``σ_rθ = r² x³ n/(l2⁴ Q)``
     (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim.
     """
-    r, z, x = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float),
-                                  np.asarray(x, float))
-    x2 = x * x
-    A = r * r + z * z - x2
-    Q = np.hypot(A, 2.0 * x * z)
-    pos = A >= 0
+    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x)
     with np.errstate(divide="ignore", invalid="ignore"):
-        big = np.abs(A) + Q
-        small = np.where(Q > 0, 2.0 * x2 * z * z / big, 0.0)
-        m = np.sqrt(np.where(pos, small, 0.5 * big))
-        n2 = np.where(pos, 0.5 * big, small)
+        m = np.sqrt(m2)
         n = np.sqrt(n2)
         l22 = x2 + n2
         stz = r * x2 * m / (l22 * Q)
@@ -172,15 +179,8 @@ def hertz_field(r: np.ndarray, z: np.ndarray, a: np.ndarray | float, p0: np.ndar
     finite); on the surface inside the contact ``s = 1`` (``u → 0``).
     """
     r, z, a, p0 = np.broadcast_arrays(*(np.asarray(v, float) for v in (r, z, a, p0)))
-    a2 = a * a
-    A = r * r + z * z - a2
-    Q = np.hypot(A, 2.0 * a * z)
-    pos = A >= 0
+    r, z, a, a2, _A, _Q, m2, u = spheroidal(r, z, a)           # u = n², m² = a² - l1²
     with np.errstate(divide="ignore", invalid="ignore"):
-        big = np.abs(A) + Q
-        small = np.where(Q > 0, 2.0 * a2 * z * z / big, 0.0)
-        u = np.where(pos, 0.5 * big, small)                  # n²
-        m2 = np.where(pos, small, 0.5 * big)                 # a² - l1²
         su = np.sqrt(u)
         # s = z/sqrt(u) = m/a (mn = az); exactly 1 on the contact face
         s = np.sqrt(m2) / a

@@ -31,6 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .stress import spheroidal
+
 __all__ = ["shear_kernel", "shear_components", "N_SHEAR_RADIAL"]
 
 #: number of radial functions :func:`shear_kernel` returns
@@ -50,17 +52,8 @@ def shear_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
     (:func:`shear_components` assembles them). On the surface under the load
     ``σ_xz = -1/sqrt(x² - r²)``. Arguments broadcast; ``inf`` at the rim ``(x, 0)``.
     """
-    r, z, x = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float),
-                                  np.asarray(x, float))
-    x2 = x * x
-    A = r * r + z * z - x2
-    Q = np.hypot(A, 2.0 * x * z)
-    pos = A >= 0
+    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x)
     with np.errstate(divide="ignore", invalid="ignore"):
-        big = np.abs(A) + Q
-        small = np.where(Q > 0, 2.0 * x2 * z * z / big, 0.0)
-        m2 = np.where(pos, small, 0.5 * big)
-        n2 = np.where(pos, 0.5 * big, small)
         m = np.sqrt(m2)
         n = np.sqrt(n2)
         L2 = x2 + n2

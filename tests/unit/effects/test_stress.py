@@ -264,3 +264,17 @@ def test_adhesive_state_adds_the_tensile_edge_punch():
     # F is small against the compressive and tensile parts: compare with their scale
     assert abs(total + st.force) <= tol.STRESS_EQUILIBRIUM * (4 / 3 * c.moduli.normal * a**3 / R)
     assert not np.isfinite(st.stress(a, 0.0).szz)          # the JKR edge is singular
+
+
+def test_spheroidal_setup_satisfies_its_defining_identities():
+    """``m² n² = x² z²``, ``n² - m² = A`` and ``m² + n² = Q``, to rounding, on points inside,
+    outside and on the surface, and m², n² never negative (no cancellation near the surface)."""
+    rng = np.random.default_rng(7)
+    r = np.concatenate([rng.uniform(0, 3, 500), [0.0, 0.5, 2.0]])
+    z = np.concatenate([rng.uniform(0, 2, 500), [0.0, 0.0, 1e-9]])
+    r, z, x, x2, A, Q, m2, n2 = kern.spheroidal(r, z, 1.3)
+    assert np.all(m2 >= 0) and np.all(n2 >= 0)
+    scale = r * r + z * z + x2
+    assert np.all(np.abs(m2 * n2 - x2 * z * z) <= 8e-16 * scale * scale)
+    assert np.all(np.abs(n2 - m2 - A) <= 8e-16 * scale)
+    assert np.all(np.abs(m2 + n2 - Q) <= 8e-16 * scale)
