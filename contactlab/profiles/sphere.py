@@ -41,6 +41,16 @@ def _reduced_force(q: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
     return out
 
 
+def _slope_into(q: np.ndarray, at: np.ndarray, out: np.ndarray, scratch: np.ndarray) -> None:
+    """``out = artanh q + q/((1 - q)(1 + q))``, the derivative of ``q artanh q``, from
+    ``at = artanh q`` (both Newton rounds below use it; ``scratch`` is overwritten)."""
+    np.subtract(1.0, q, out=out)
+    np.add(1.0, q, out=scratch)
+    np.multiply(out, scratch, out=out)
+    np.divide(q, out, out=out)
+    np.add(out, at, out=out)
+
+
 def _series_of_small(qs: np.ndarray) -> np.ndarray:
     """The series of :func:`_reduced_force` at ``qs < 0.1`` (Horner in ``q²``)."""
     x = qs * qs
@@ -221,11 +231,7 @@ class Sphere(Profile):
             np.subtract(res, flat, out=res)
             np.abs(res, out=w)
             np.less_equal(w, noise, out=quiet)
-            np.subtract(1.0, q, out=w)
-            np.add(1.0, q, out=step)
-            np.multiply(w, step, out=w)
-            np.divide(q, w, out=w)
-            np.add(w, at, out=w)
+            _slope_into(q, at, w, step)
             np.divide(res, w, out=step)
 
         q = convex_newton_fused(step_of, q0, rtol=root_rtol(rtol), what="contact radius",
@@ -302,11 +308,7 @@ class Sphere(Profile):
             np.multiply(w, _NOISE, out=w)
             np.abs(h, out=p)
             np.less_equal(p, w, out=quiet)
-            np.subtract(1.0, q, out=w)
-            np.add(1.0, q, out=step)
-            np.multiply(w, step, out=w)
-            np.divide(q, w, out=w)
-            np.add(w, at, out=w)
+            _slope_into(q, at, w, step)
             np.multiply(w, q, out=w)
             np.divide(h, w, out=step)
 
