@@ -38,10 +38,11 @@ __all__ = ["BACKENDS", "DeviceLawStep", "array_module", "device_law_memory", "XP
 #: the backends of a law: numpy reference, compiled (numba), GPU (CuPy), and the GPU code
 #: run with numpy (tests the GPU path without a GPU; slower than "numpy")
 BACKENDS = ("numpy", "numba", "cupy", "xp-numpy")
-#: peak temporaries of one step of the array-module path per contact, bytes (measured with
-#: tracemalloc on "xp-numpy" at 10^5 contacts, twist and displacement, reversals and loop
-#: closures: 1.23 kB; rounded up)
-XP_STEP_BYTES = 1400
+#: peak memory of one step of the array-module path per contact beyond the law's state, bytes
+#: (measured with tracemalloc on "xp-numpy" at 10^5 contacts, force, displacement and twist
+#: with reversals: 313 B including the step's results, which law_memory counts already; rounded
+#: up for the allocator of a GPU array module, which keeps freed blocks for reuse)
+XP_STEP_BYTES = 320
 
 
 def array_module(backend: str) -> Any:
