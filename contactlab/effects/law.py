@@ -512,7 +512,7 @@ class ContactLaw:
         """
         if self._xp is not None:
             return self._stamp(_device.step(self, depth, force, displacement, twist, out,
-                                            tangent))
+                                            tangent, law_spring_memory))
         if out is not None:
             self._check_out(out)
         pre = _tangent_snapshot(self) if tangent else None     # the springs' step start

@@ -18,6 +18,7 @@ reference law (``backend="numpy"``) to the bit.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -127,6 +128,10 @@ class DeviceLawStep(LawStep):
     def citations(self) -> Citations:
         return Citations(law_sources(springs=not bool(self.exact.all())))
 
+    def _columns(self) -> dict[str, Any]:
+        """The columns of ``to_csv`` and ``to_dataframe``, on the host."""
+        return {k: _host(v) for k, v in self.to_dict().items()}
+
 
 def _to(like: Any, idx: np.ndarray) -> Any:
     """Host indices as an index array of ``like``'s module."""
@@ -207,11 +212,12 @@ def _check_out(law: Any, xp: Any, out: Any) -> None:
 
 
 def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: Any,
-         tangent: bool) -> DeviceLawStep:
+         tangent: bool, spring_memory: Callable[[int, int], float]) -> DeviceLawStep:
     """One step of ``law`` on its array-module backend (see the module docstring): the
-    arithmetic and bookkeeping of the numpy law's step, in the law's array module."""
+    arithmetic and bookkeeping of the numpy law's step, in the law's array module
+    (``spring_memory``: :func:`contactlab.effects.law.law_spring_memory`, checked before a
+    switch onto the springs)."""
     from ..params import exactly_one
-    from .law import law_spring_memory
     xp = law._xp
     if tangent:
         raise NotSupportedError(f"tangent=True is not supported on backend={law.backend!r}: "
@@ -242,7 +248,7 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
             switch = off_idx[~on[off_idx]]
             if switch.size:
                 n_spr = int(np.count_nonzero(on)) + int(switch.size)
-                check_memory("ContactLaw.step()", law_spring_memory(n_spr, law.springs),
+                check_memory("ContactLaw.step()", spring_memory(n_spr, law.springs),
                              f"{n_spr} contacts on {law.springs} springs each")
                 if xp is np:
                     _np_springs.to_springs(law, switch, d, a)

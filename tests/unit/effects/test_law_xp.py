@@ -98,9 +98,10 @@ def test_xp_numpy_state_saved_and_restored_in_a_changing_load_run(tmp_path):
         np.testing.assert_array_equal(v, numpy_law.state[key], err_msg=key)
 
 
-def test_xp_numpy_out_reset_and_constant_load_refusal():
-    """``out=`` is overwritten and returned; ``reset`` clears the memory as on the numpy law;
-    without springs a load change is refused with the numpy law's error."""
+def test_xp_numpy_out_reset_and_constant_load_refusal(tmp_path):
+    """``out=`` is overwritten and returned and writes the numpy law's CSV; ``reset`` clears
+    the memory as on the numpy law; without springs a load change is refused with the numpy
+    law's error."""
     par = dict(R=[0.01, 0.02, 0.03], friction=0.3, **KW)
     dev = cl.ContactLaw(cl.profiles.Paraboloid, backend="xp-numpy", springs=0, **par)
     ref = cl.ContactLaw(cl.profiles.Paraboloid, backend="numpy", springs=0, **par)
@@ -109,6 +110,9 @@ def test_xp_numpy_out_reset_and_constant_load_refusal():
     got = dev.step(force=[1.0, 2.0, 3.0], displacement=-2e-8, out=out)
     want = ref.step(force=[1.0, 2.0, 3.0], displacement=-2e-8)
     assert got is out
+    got.to_csv(tmp_path / "dev.csv")
+    want.to_csv(tmp_path / "ref.csv")
+    assert (tmp_path / "dev.csv").read_text() == (tmp_path / "ref.csv").read_text()
     for f in FIELDS:
         np.testing.assert_array_equal(getattr(got, f), getattr(want, f), err_msg=f)
     dev.reset([1])
