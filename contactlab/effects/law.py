@@ -355,7 +355,7 @@ class ContactLaw:
         **law.state)``, restore with ``law.state = dict(np.load(file))``. With springs, the
         spring state is given per contact (``spr_on`` and zeros where it is False), whichever
         contacts hold rows of the law's spring pool."""
-        out = {k: _device._host(v) for k, v in self._st.items()}
+        out = {k: _device._host(v, self._xp) for k, v in self._st.items()}
         if self._pool is not None:
             out["spr_on"] = self._pool.on()
             out.update({k: self._pool.full(k) for k in SPRING_FIELDS})

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -102,11 +102,11 @@ def check_device(xp: Any, what: str, size: int, state_bytes: float) -> None:
                 "use fewer contacts per law (several laws, one per block of contacts).")
 
 
-def _host(v: Any) -> np.ndarray:
-    """A numpy copy of an array of either module."""
-    if isinstance(v, np.ndarray):
-        return v.copy()
-    return v.get()          # CuPy
+def _host(v: Any, xp: Any = None) -> np.ndarray:
+    """A numpy copy of an array of the module ``xp`` (None or numpy: a numpy array)."""
+    if xp is None or xp is np:
+        return np.array(v, order="C")
+    return xp.asnumpy(v)
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,11 +114,13 @@ class DeviceLawStep(LawStep):
     """A :class:`~contactlab.effects.law_step.LawStep` whose arrays belong to the law's array
     module (CuPy arrays on a GPU); its model errors and citations are computed on the host."""
 
+    xp: Any = field(default=None, repr=False)      # the arrays' module (None: numpy)
+
     def model_errors_at(self, idx: np.ndarray | None) -> dict[str, Any]:
         pick = {}
         for f in ("exact", "radius", "torsion_stick_radius", "torque"):
             v = getattr(self, f)
-            pick[f] = _host(v if idx is None else v[_to(v, idx)])
+            pick[f] = _host(v if idx is None else v[_to(self.xp or np, idx)], self.xp)
         zero = np.zeros(pick["radius"].shape)
         host = LawStep(zero, pick["radius"], zero, zero, pick["torque"], zero,
                        pick["torsion_stick_radius"], zero, pick["exact"], meta=self.meta)
@@ -130,25 +132,23 @@ class DeviceLawStep(LawStep):
 
     def _columns(self) -> dict[str, Any]:
         """The columns of ``to_csv`` and ``to_dataframe``, on the host."""
-        return {k: _host(v) for k, v in self.to_dict().items()}
+        return {k: _host(v, self.xp) for k, v in self.to_dict().items()}
 
 
-def _to(like: Any, idx: np.ndarray) -> Any:
-    """Host indices as an index array of ``like``'s module."""
-    if isinstance(like, np.ndarray):
-        return idx
-    import cupy  # type: ignore[import-not-found, unused-ignore]
-    return cupy.asarray(idx)
+def _to(xp: Any, idx: np.ndarray) -> Any:
+    """Host indices as an index array of the module ``xp``."""
+    return idx if xp is np else xp.asarray(idx)
 
 
 class _Gather:
     """``v[idx]`` of a device array, as numpy, for host indices ``idx``."""
 
-    def __init__(self, v: Any) -> None:
+    def __init__(self, v: Any, xp: Any) -> None:
         self.v = v
+        self.xp = xp
 
     def __getitem__(self, idx: np.ndarray) -> np.ndarray:
-        return _host(self.v[_to(self.v, idx)])
+        return _host(self.v[_to(self.xp, idx)], self.xp)
 
 
 class _HostView:
@@ -157,7 +157,7 @@ class _HostView:
 
     def __init__(self, law: Any) -> None:
         self._law = law
-        self._st = {k: _Gather(v) for k, v in law._st.items()}
+        self._st = {k: _Gather(v, law._xp) for k, v in law._st.items()}
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._law, name)
@@ -185,15 +185,15 @@ def _input(law: Any, xp: Any, name: str, value: Any, unit: str, nonneg: bool = F
     if xp is np or not isinstance(value, xp.ndarray):
         return xp.asarray(_per_step(name, value, size, unit, nonneg=nonneg))
     if value.ndim > 1 or (value.ndim == 1 and value.size != size) or value.dtype.kind not in "iuf":
-        _per_step(name, _host(value), size, unit, nonneg=nonneg)        # raises, naming it
+        _per_step(name, _host(value, xp), size, unit, nonneg=nonneg)        # raises, naming it
         raise ParameterError(f"{name} is invalid: give a float array of one value per contact "
                              f"({size},) or a scalar.")
-    x = xp.broadcast_to(value.astype(xp.float64, copy=False), (size,))
+    x = xp.broadcast_to(value.astype(np.float64, copy=False), (size,))
     ok = xp.isfinite(x)
     if nonneg:
         ok &= x >= 0
     if not bool(ok.all()):
-        _per_step(name, _host(x), size, unit, nonneg=nonneg)            # raises, naming it
+        _per_step(name, _host(x, xp), size, unit, nonneg=nonneg)            # raises, naming it
     return x
 
 
@@ -201,7 +201,7 @@ def _check_out(law: Any, xp: Any, out: Any) -> None:
     ok = isinstance(out, LawStep)
     for f in _OUT_FIELDS if ok else ():
         v = getattr(out, f)
-        want = xp.bool_ if f == "exact" else xp.float64
+        want = np.bool_ if f == "exact" else np.float64
         if not (isinstance(v, xp.ndarray) and v.shape == (law.size,) and v.dtype == want
                 and v.flags.c_contiguous):
             ok = False
@@ -238,13 +238,13 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         live = a > 0
         all_live = bool(live.all())
         if not all_live:
-            law._clear(_host(xp.flatnonzero(~live)))
+            law._clear(_host(xp.flatnonzero(~live), xp))
         ref = st["depth_ref"]
         ref[...] = xp.where(live & (ref == 0), d, ref)
         off = live & (xp.abs(d - ref) > law.load_rtol * ref)
         if law.springs:
             on = law._on()
-            off_idx = _host(xp.flatnonzero(off))
+            off_idx = _host(xp.flatnonzero(off), xp)
             switch = off_idx[~on[off_idx]]
             if switch.size:
                 n_spr = int(np.count_nonzero(on)) + int(switch.size)
@@ -253,7 +253,7 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
                 if xp is np:
                     _np_springs.to_springs(law, switch, d, a)
                 else:
-                    host: Any = (_Gather(d), _Gather(a))     # read at the switching ones
+                    host: Any = (_Gather(d, xp), _Gather(a, xp))     # read at the switching ones
                     _np_springs.to_springs(_HostView(law), switch, *host)
         elif bool(off.any()):
             i = int(xp.argmax(off))
@@ -288,31 +288,31 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         on_dev = None
         if pool is not None and pool.used:
             on_dev = xp.zeros(size, bool)
-            on_dev[_to(on_dev, np.flatnonzero(law._on()))] = True
+            on_dev[_to(xp, np.flatnonzero(law._on()))] = True
             over &= ~on_dev                     # their (unused) stacks are not counted
         n_over = int(xp.count_nonzero(over & ~was & live))
         if on_dev is not None:
-            idx = _host(xp.flatnonzero(on_dev & live))
-            di = _to(d, idx)
-            r = _np_springs.spring_step(law, idx, _host(d[di]), _host(a[di]),
-                                        None if u is None else _host(u[di]),
-                                        None if phi is None else _host(phi[di]))
+            idx = _host(xp.flatnonzero(on_dev & live), xp)
+            di = _to(xp, idx)
+            r = _np_springs.spring_step(law, idx, _host(d[di], xp), _host(a[di], xp),
+                                        None if u is None else _host(u[di], xp),
+                                        None if phi is None else _host(phi[di], xp))
             for arr, val_ in zip((Ft, ct, M, cm, dW), r):
                 arr[di] = xp.asarray(val_)
             exact[di] = False
         if not all_live:
             dead = ~live
             Ft, M, dW, ct, cm = (xp.where(dead, 0.0, arr) for arr in (Ft, M, dW, ct, cm))
-            law._clear(_host(xp.flatnonzero(dead)))
+            law._clear(_host(xp.flatnonzero(dead), xp))
         outs = (d, a, F, Ft, M, ct, cm, dW)
         bad = xp.zeros(size, bool)
         for arr in outs:
             bad |= ~xp.isfinite(arr)
         if bool(bad.any()):
-            law._check_finite(_host(live), *(_host(arr) for arr in outs))
+            law._check_finite(_host(live, xp), *(_host(arr, xp) for arr in outs))
     if n_over:
         law._warn_overflow(n_over)
-    res = DeviceLawStep(d, a, F, Ft, M, ct, cm, dW, exact)
+    res = DeviceLawStep(d, a, F, Ft, M, ct, cm, dW, exact, xp=xp)
     if out is None:
         return res
     for f in _OUT_FIELDS:

@@ -95,7 +95,7 @@ def torsion_curves(xp: Any, coef: Any, y_scale: float, y: Any, y0: float = 0.0,
         r = (y / y_scale) ** (1.0 / power)
         s = r / (1.0 + r)
     z = s * N
-    j = xp.clip(xp.minimum(z.astype(xp.intp), N - 1), 0, N - 1)
+    j = xp.clip(xp.minimum(z.astype(np.intp), N - 1), 0, N - 1)
     u = 2.0 * (z - j) - 1.0
     out = []
     for k in range(3):
@@ -136,7 +136,7 @@ def masing_step(xp: Any, st: dict, x: Any, load: Callable[[Any], tuple[Any, Any,
     x_prev = st["x"]
     delta = x - x_prev
     moved = delta != 0.0
-    s = xp.sign(delta).astype(xp.int8)
+    s = xp.sign(delta).astype(np.int8)
     rev = moved & (last != 0) & (s != last)
     dW = xp.zeros(n)
     if bool(xp.any(rev)):

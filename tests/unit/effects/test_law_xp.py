@@ -174,6 +174,92 @@ def test_device_memory_checked_against_the_budget_before_allocating():
         cl.set_memory_budget(old)
 
 
+class _DeviceArray(np.ndarray):
+    """A numpy array standing in for a device array (its own type, host conversions through
+    the module's asnumpy only)."""
+
+
+def _dev(x):
+    if isinstance(x, np.ndarray) and not isinstance(x, _DeviceArray):
+        return x.view(_DeviceArray)
+    if isinstance(x, tuple):
+        return tuple(_dev(v) for v in x)
+    return x
+
+
+class _FakeCupy:
+    """numpy dressed as CuPy (a device count, free memory, asnumpy, its own array type): runs
+    the code paths that backend="cupy" takes and numpy does not (host views and gathers for
+    the springs, device inputs, host copies of the state), with numpy's arithmetic."""
+    ndarray = _DeviceArray
+
+    class cuda:                                 # noqa: N801 - CuPy's spelling
+        class runtime:                          # noqa: N801
+            @staticmethod
+            def getDeviceCount():               # noqa: N802
+                return 1
+
+            @staticmethod
+            def memGetInfo():                   # noqa: N802
+                return 2**40, 2**40
+
+    @staticmethod
+    def asnumpy(v):
+        return np.array(np.asarray(v).view(np.ndarray), order="C")
+
+    def __getattr__(self, name):
+        f = getattr(np, name)
+        if not callable(f) or isinstance(f, type):
+            return f
+        return lambda *a, **k: _dev(f(*a, **k))
+
+
+@pytest.mark.parametrize("by", ["force", "depth"])
+def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
+    """backend="cupy" with numpy dressed as CuPy: every output, model error and state entry
+    equal to the numpy law to the bit (springs switched through host gathers, results
+    scattered back), device arrays accepted as inputs and their bad entries named, and a state
+    restored through an .npz continues to the bit."""
+    monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    n, steps = 60, 50
+    dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
+                          memory=3)
+    assert isinstance(dev._st["tan_X"], _DeviceArray)
+    for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
+        assert isinstance(raw.torque, _DeviceArray)
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[f], getattr(b, f), err_msg=f)
+        for q, err in b.model_errors.items():
+            np.testing.assert_array_equal(raw.model_errors[q], err, err_msg=q)
+    sd, sr = dev.state, ref.state
+    assert sr["spr_on"][n // 2:].all()
+    for key, v in sd.items():
+        assert type(v) is np.ndarray and v.flags.c_contiguous
+        np.testing.assert_array_equal(v, sr[key], err_msg=key)
+    np.savez(tmp_path / "s.npz", **sd)
+    twin = cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", memory=3, R=dev.geometry["R"],
+                         friction=dev.friction, **KW)
+    with np.load(tmp_path / "s.npz") as f:
+        twin.state = dict(f)
+    F = ref.normal(depth=ref.state["depth_ref"])[2]
+    for law in (dev, twin, ref):
+        law.reset([0, 1])
+    x = np.linspace(-1e-8, 1e-8, n)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)    # the twin's model-error warning
+        r = [law.step(force=_dev(F), displacement=_dev(x), twist=0.0) for law in (dev, twin)]
+        want = ref.step(force=F, displacement=x, twist=0.0)
+    for f in FIELDS:
+        np.testing.assert_array_equal(np.asarray(getattr(r[0], f)), getattr(want, f), err_msg=f)
+        np.testing.assert_array_equal(np.asarray(getattr(r[1], f)), getattr(want, f), err_msg=f)
+    bad = F.copy()
+    bad[3] = np.nan
+    with pytest.raises(ParameterError, match=r"force\[3\]"):
+        dev.step(force=_dev(bad))
+    with pytest.raises(ParameterError, match="out="):
+        dev.step(force=F, out=want)                 # a numpy LawStep is no device result
+
+
 def _cupy():
     cupy = pytest.importorskip("cupy")
     try:
