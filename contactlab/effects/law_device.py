@@ -41,8 +41,9 @@ __all__ = ["BACKENDS", "DeviceLawStep", "array_module", "device_law_memory", "XP
 BACKENDS = ("numpy", "numba", "cupy", "xp-numpy")
 #: peak memory of one step of the array-module path per contact beyond the law's state, bytes
 #: (measured with tracemalloc on "xp-numpy" at 10^5 contacts, force, displacement and twist
-#: with reversals: 313 B including the step's results, which law_memory counts already; rounded
-#: up for the allocator of a GPU array module, which keeps freed blocks for reuse)
+#: with reversals and loop closures: 278 B including the step's results, which law_memory
+#: counts already; rounded up for the allocator of a GPU array module, which keeps freed
+#: blocks for reuse)
 XP_STEP_BYTES = 320
 
 
@@ -333,9 +334,12 @@ def _tangential(law: Any, xp: Any, P: dict, u: Any, a: Any, d: Any, FN: Any) -> 
     muF = mu * FN
     Dscale = 2.0 * a * (mu * E * d) ** 2 / G
 
-    def load(arg: Any) -> tuple:
-        t, f, w = _xp.tangential_curve(xp, n, arg / u_star)
-        return muF * f, a * t, Dscale * w
+    def load(arg: Any, idx: Any) -> tuple:
+        if idx is None:
+            t, f, w = _xp.tangential_curve(xp, n, arg / u_star)
+            return muF * f, a * t, Dscale * w
+        t, f, w = _xp.tangential_curve(xp, n, arg / u_star[idx])
+        return muF[idx] * f, a[idx] * t, Dscale[idx] * w
 
     return _xp.masing_step(xp, _channel(law._st, "tan"), u, load)
 
@@ -345,9 +349,13 @@ def _torsion(law: Any, xp: Any, P: dict, phi: Any, a: Any, d: Any) -> tuple:
     mc = law._master
     phi_s, M_full = _master.torsion_scales(law.n, P["E"], P["Gt"], P["mu"], a, d)
 
-    def load(arg: Any) -> tuple:
-        t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg / phi_s, mc.y0, mc.m0,
-                                     mc.scaled, mc.power)
-        return M_full * m, a * t, M_full * arg * q
+    def load(arg: Any, idx: Any) -> tuple:
+        if idx is None:
+            t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg / phi_s, mc.y0, mc.m0,
+                                         mc.scaled, mc.power)
+            return M_full * m, a * t, M_full * arg * q
+        t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg / phi_s[idx], mc.y0,
+                                     mc.m0, mc.scaled, mc.power)
+        return M_full[idx] * m, a[idx] * t, M_full[idx] * arg * q
 
     return _xp.masing_step(xp, _channel(law._st, "tor"), phi, load)

@@ -3,18 +3,18 @@ CPU, CuPy on a GPU): normal contact, the Cattaneo–Mindlin and exact-torsion lo
 Masing's rule with a bounded turning-point stack.
 
 Every function takes the array namespace ``xp`` as its first argument and uses only
-operations that numpy and CuPy both provide elementwise (ufuncs, ``where``, ``take_along_axis``,
-integer-array gathers and scatters): no Python loop runs over contacts. The only Python loop
-is the loop closure of Masing's rule, over *levels* of the stack (at most ``K // 2 + 1``
-rounds for ``K`` turning points, ended as soon as no contact passes a closing point).
+operations that numpy and CuPy both provide (ufuncs, ``where``, ``take_along_axis``,
+``flatnonzero``, integer-array gathers and scatters): no Python loop runs over contacts. The only Python loop
+is the loop closure of Masing's rule, in rounds (at most ``K // 2 + 1`` for ``K`` turning
+points, ended as soon as no contact passes a closing point), each over the contacts that close
+a loop in it, gathered by index.
 
 With ``xp = numpy`` every function performs, element by element, the floating-point operations
 of the numpy reference (:meth:`contactlab.effects.law.ContactLaw.normal`,
 :func:`~contactlab.physics.master.tangential_master`,
 :func:`~contactlab.physics.master.evaluate`,
 :func:`~contactlab.physics.masing_stack.masing_step`) in the same order, so its results are the
-reference's to the bit (the reference evaluates the loop closures on the subset of contacts
-that close a loop; here every contact computes and a mask keeps the closing ones). On a GPU the
+reference's to the bit. On a GPU the
 elementwise transcendental functions (``power``, ``sqrt``, ``expm1``, ``log1p``) come from the
 device's math library and may differ from numpy's in the last bits.
 
@@ -111,24 +111,36 @@ def torsion_curves(xp: Any, coef: Any, y_scale: float, y: Any, y0: float = 0.0,
     return xp.clip(out[0], 0.0, 1.0), out[1] * s, out[2] * (s * s)
 
 
-def _origin(xp: Any, X: Any, Y: Any, dep: Any) -> tuple[Any, Any, Any]:
-    """Origin ``(x_o, y_o)`` and factor ``f`` of every contact's active branch."""
-    top = xp.maximum(dep - 1, 0)[:, None]
-    Xo = xp.take_along_axis(X, top, 1)[:, 0]
-    Yo = xp.take_along_axis(Y, top, 1)[:, 0]
+def _origin(xp: Any, st: dict, idx: Any) -> tuple[Any, Any, Any]:
+    """Origin ``(x_o, y_o)`` and factor ``f`` of the active branch of the contacts ``idx``
+    (an index array of ``xp``; None: every contact)."""
+    X, Y = st["X"], st["Y"]
+    if idx is None:
+        dep = st["depth"]
+        top = xp.maximum(dep - 1, 0)[:, None]
+        Xo = xp.take_along_axis(X, top, 1)[:, 0]
+        Yo = xp.take_along_axis(Y, top, 1)[:, 0]
+    else:
+        dep = st["depth"][idx]
+        top = xp.maximum(dep - 1, 0)
+        Xo, Yo = X[idx, top], Y[idx, top]
     has = dep > 0
     return xp.where(has, Xo, 0.0), xp.where(has, Yo, 0.0), xp.where(has, 2.0, 1.0)
 
 
-def masing_step(xp: Any, st: dict, x: Any, load: Callable[[Any], tuple[Any, Any, Any]]
-                ) -> tuple[Any, Any, Any]:
+def masing_step(xp: Any, st: dict, x: Any,
+                load: Callable[[Any, Any], tuple[Any, Any, Any]]) -> tuple[Any, Any, Any]:
     """Advance every contact to the control ``x``; ``st`` (the fields of
     :func:`~contactlab.physics.masing_stack.new_stack`, arrays of ``xp``) is updated in place.
 
-    ``load(arg) -> (y_load, aux, D_load)``: the loading curve of every contact at arguments
-    ``arg >= 0``. Returns ``(y, aux, dW)``: response, auxiliary quantity of the active branch
-    and energy dissipated in this step (the bookkeeping of
-    :func:`contactlab.physics.masing_stack.masing_step`, with masks instead of index lists).
+    ``load(arg, idx) -> (y_load, aux, D_load)``: the loading curve of the contacts ``idx`` (an
+    index array of ``xp``; None: every contact) at arguments ``arg >= 0``. Returns
+    ``(y, aux, dW)``: response, auxiliary quantity of the active branch and energy dissipated in
+    this step (the bookkeeping of :func:`contactlab.physics.masing_stack.masing_step`). The
+    contacts that reverse or close a loop are gathered by index (``flatnonzero``), so a step
+    costs the full arrays once plus the contacts that reverse or close loops; a round of loop
+    closures closes one loop per contact (its depth falls by 2 or to 0), so there are at most
+    ``K // 2 + 1`` rounds.
     """
     n = x.size
     X, Y, depth, w, last = st["X"], st["Y"], st["depth"], st["w"], st["last"]
@@ -139,40 +151,43 @@ def masing_step(xp: Any, st: dict, x: Any, load: Callable[[Any], tuple[Any, Any,
     s = xp.sign(delta).astype(np.int8)
     rev = moved & (last != 0) & (s != last)
     dW = xp.zeros(n)
-    if bool(xp.any(rev)):
+    push = xp.flatnonzero(rev)
+    if push.size:
         full = rev & (depth >= K)
-        st["overflow"][...] = st["overflow"] | full
-        depth[...] = xp.where(full, depth - (2 if K >= 2 else 1), depth)
-        rows = xp.arange(n)
-        lev = xp.minimum(depth, K - 1)
-        X[rows, lev] = xp.where(rev, x_prev, X[rows, lev])
-        Y[rows, lev] = xp.where(rev, st["y"], Y[rows, lev])
-        depth[...] = xp.where(rev, depth + 1, depth)
-        w[...] = xp.where(rev, 0.0, w)
+        if bool(xp.any(full)):
+            # no room: forget the innermost pending loop (the two newest turning points),
+            # then record the reversal as usual
+            st["overflow"][...] = st["overflow"] | full
+            depth[...] = xp.where(full, depth - (2 if K >= 2 else 1), depth)
+        dep = depth[push]
+        X[push, dep] = x_prev[push]
+        Y[push, dep] = st["y"][push]
+        depth[push] = dep + 1
+        w[push] = 0.0
     last[...] = xp.where(moved, s, last)
-    # loop closure: only contacts moving in their branch direction can pass a closing point;
-    # each round closes one loop per contact (depth falls by 2), so K // 2 + 1 rounds suffice
-    active = moved & (s == last) & (depth > 0)
-    for _ in range(K // 2 + 2):
-        if not bool(xp.any(active)):
+    # loop closure: only contacts moving in their branch direction can pass a closing point
+    cand = xp.flatnonzero(moved & (s == last) & (depth > 0))
+    while cand.size:
+        dep = depth[cand]
+        keep = dep > 0
+        cand, dep = cand[keep], dep[keep]
+        lim = xp.where(dep >= 2, X[cand, xp.maximum(dep - 2, 0)], -X[cand, 0])
+        passing = (x[cand] - lim) * last[cand] > 0
+        cand, lim, dep = cand[passing], lim[passing], dep[passing]
+        if cand.size == 0:
             break
-        dep = depth
-        first = xp.take_along_axis(X, xp.zeros((n, 1), dep.dtype), 1)[:, 0]
-        below = xp.take_along_axis(X, xp.maximum(dep - 2, 0)[:, None], 1)[:, 0]
-        lim = xp.where(dep >= 2, below, -first)
-        active = active & (dep > 0) & ((x - lim) * last > 0)
-        xo, _, f = _origin(xp, X, Y, depth)
-        _, _, D = load(xp.abs(lim - xo) / f)
-        dW = xp.where(active, dW + xp.maximum(f * D - w, 0.0), dW)
-        depth[...] = xp.where(active, xp.where(dep >= 2, dep - 2, 0), depth)
-        xo, _, f = _origin(xp, X, Y, depth)
-        _, _, D = load(xp.abs(lim - xo) / f)
-        w[...] = xp.where(active, f * D, w)
-    xo, yo, f = _origin(xp, X, Y, depth)
-    y_l, aux, D = load(xp.abs(x - xo) / f)
+        xo, _, f = _origin(xp, st, cand)
+        _, _, D = load(xp.abs(lim - xo) / f, cand)
+        dW[cand] += xp.maximum(f * D - w[cand], 0.0)
+        depth[cand] = xp.where(dep >= 2, dep - 2, 0)
+        xo, _, f = _origin(xp, st, cand)
+        _, _, D = load(xp.abs(lim - xo) / f, cand)
+        w[cand] = f * D
+    xo, yo, f = _origin(xp, st, None)
+    y_l, aux, D = load(xp.abs(x - xo) / f, None)
     y = yo + xp.sign(x - xo) * f * y_l
     wn = f * D
-    dW = dW + xp.maximum(wn - w, 0.0)
+    dW += xp.maximum(wn - w, 0.0)
     w[...] = xp.maximum(w, wn)
     x_prev[...] = x
     st["y"][...] = y
