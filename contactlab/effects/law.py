@@ -143,10 +143,8 @@ class ContactLaw:
         Run the compiled kernel on numba's threads (over contacts; bit-identical to the serial
         kernel). Off by default: a threading layer inside forked worker processes can hang.
     backend : {"numpy", "numba", "cupy", "xp-numpy"}, optional
-        Where the step runs: the numpy reference, the compiled kernel (as ``fast=True``), a
-        CUDA GPU through CuPy (extra ``gpu``; results are CuPy arrays, contacts on springs run
-        on the host, :mod:`contactlab.effects.law_device`) or the GPU code run with numpy
-        (bit-identical to "numpy", for tests). Default: ``fast``'s choice.
+        numpy reference, compiled (``fast=True``), CUDA GPU through CuPy (extra ``gpu``, CuPy
+        results: :mod:`contactlab.effects.law_device`) or the GPU code on numpy (tests).
     warn_model_error : bool
         Emit a :class:`~contactlab.errors.ValidityWarning` when a step's model error (contacts
         on springs after a load change, :attr:`LawStep.model_error`) exceeds 1 % for the
@@ -284,19 +282,8 @@ class ContactLaw:
         self.spring_cover = np.broadcast_to(cover, (self.size,)).copy()
         self._beta = _springs.unit_boundaries(max(self.springs, 2))
         self.torsion = torsion
-        if backend is not None:
-            if backend not in _device.BACKENDS:
-                raise UnknownNameError(f"backend={backend!r} is invalid: allowed are "
-                                       f"{_device.BACKENDS}.")
-            if fast is not None and fast != (backend == "numba"):
-                raise ParameterError(f"fast={fast!r} contradicts backend={backend!r}: give one "
-                                     "of them.")
-            fast = backend == "numba"
-        self._xp = (_device.array_module(backend) if backend in ("cupy", "xp-numpy")
-                    else None)
-        if self._xp is not None:
-            _device.check_device(self._xp, "ContactLaw()", self.size,
-                                 law_memory(size, memory, springs))
+        fast, self._xp = _device.resolve(backend, fast, self.size,
+                                         law_memory(size, memory, springs))
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
         if fast is None:        # numba when it imports, unless CONTACTLAB_BACKEND=numpy (or
@@ -304,7 +291,6 @@ class ContactLaw:
             from ..foundation import _compiled
             fast = _kernel.AVAILABLE and _compiled.backend() == "numba"
         self.fast = bool(fast)
-        #: where the step runs ("numpy", "numba", "cupy" or "xp-numpy")
         self.backend = backend if backend is not None else ("numba" if fast else "numpy")
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)

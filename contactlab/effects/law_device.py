@@ -26,6 +26,7 @@ import numpy as np
 
 from ..citations import Citations
 from ..errors import MemoryBudgetError, NotSupportedError, OutsideTheoryError, ParameterError
+from ..errors import UnknownNameError
 from ..errors import ValidityWarning
 from ..params import check_memory
 from ..physics import law_xp as _xp
@@ -34,7 +35,8 @@ from . import law_springs_numpy as _np_springs
 from .law_checks import _per_step
 from .law_step import _OUT_FIELDS, LawStep, law_sources
 
-__all__ = ["BACKENDS", "DeviceLawStep", "array_module", "device_law_memory", "XP_STEP_BYTES"]
+__all__ = ["BACKENDS", "DeviceLawStep", "array_module", "device_law_memory", "XP_STEP_BYTES",
+           "resolve", "check_device", "step", "params"]
 
 #: the backends of a law: numpy reference, compiled (numba), GPU (CuPy), and the GPU code
 #: run with numpy (tests the GPU path without a GPU; slower than "numpy")
@@ -45,6 +47,25 @@ BACKENDS = ("numpy", "numba", "cupy", "xp-numpy")
 #: counts already; rounded up for the allocator of a GPU array module, which keeps freed
 #: blocks for reuse)
 XP_STEP_BYTES = 320
+
+
+def resolve(backend: Any, fast: bool | None, size: int, state_bytes: float
+            ) -> tuple[bool | None, Any]:
+    """``(fast, xp)`` of a law's ``backend`` and ``fast`` arguments: ``fast`` as the law reads
+    it (None: its default choice), ``xp`` the array module of "cupy" and "xp-numpy" (None
+    otherwise), checked: the name, its agreement with ``fast``, the module's presence and the
+    device memory of ``size`` contacts (:func:`check_device`)."""
+    if backend is None:
+        return fast, None
+    if not isinstance(backend, str) or backend not in BACKENDS:
+        raise UnknownNameError(f"backend={backend!r} is invalid: allowed are {BACKENDS}.")
+    if fast is not None and fast != (backend == "numba"):
+        raise ParameterError(f"fast={fast!r} contradicts backend={backend!r}: give one of "
+                             "them.")
+    xp = array_module(backend) if backend in ("cupy", "xp-numpy") else None
+    if xp is not None:
+        check_device(xp, "ContactLaw()", size, state_bytes)
+    return backend == "numba", xp
 
 
 def array_module(backend: str) -> Any:
