@@ -16,6 +16,8 @@ random phases so that reversals and loop closures occur):
   the contacts that switch) and the following ones, compiled; goal <= 100 ms each. numpy's
   first changing step takes tens of seconds and ~4 GB at 10^6: ``--numpy-springs``
   adds it.
+* GPU (``backend="cupy"``, 10^7 contacts): measured when CuPy finds a device, otherwise
+  printed as skipped; always the estimate of ``benchmarks/law_gpu.py`` (counted traffic).
 * memory: tracemalloc's peak per contact of a law through constant and changing-load steps
   (and ``law_memory``, what the budget check counts); goal <= 1.5 GB at 10^6.
 
@@ -279,6 +281,12 @@ def main() -> None:
     cl.set_memory_budget("inf")
     print(machine(), f"load average {os.getloadavg()[0]:.1f}")
     issue_rows()
+    # the GPU row (backend="cupy", 10^7 contacts): measured where CuPy finds a device, else
+    # a line saying it was skipped; and the estimate from the counted memory traffic
+    from benchmarks.law_gpu import estimate, gpu_rows
+    print("\nGPU (ContactLaw(..., backend='cupy')):")
+    estimate()
+    gpu_rows(10**7)
     if "--scaling" in sys.argv:
         scaling()
 

@@ -32,6 +32,7 @@ from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry
+from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
 from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
@@ -141,6 +142,9 @@ class ContactLaw:
     parallel : bool
         Run the compiled kernel on numba's threads (over contacts; bit-identical to the serial
         kernel). Off by default: a threading layer inside forked worker processes can hang.
+    backend : {"numpy", "numba", "cupy", "xp-numpy"}, optional
+        numpy reference, compiled (``fast=True``), CUDA GPU through CuPy (extra ``gpu``, CuPy
+        results: :mod:`contactlab.effects.law_device`) or the GPU code on numpy (tests).
     warn_model_error : bool
         Emit a :class:`~contactlab.errors.ValidityWarning` when a step's model error (contacts
         on springs after a load change, :attr:`LawStep.model_error`) exceeds 1 % for the
@@ -175,7 +179,7 @@ class ContactLaw:
                  fast: bool | None = None, parallel: bool = False,
                  springs: int = DEFAULT_SPRINGS,
                  spring_cover: Any = DEFAULT_SPRING_COVER,
-                 warn_model_error: bool = True) -> None:
+                 warn_model_error: bool = True, backend: str | None = None) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
         if not (isinstance(cls, type) and issubclass(cls, (PowerLaw, FlatPunch))):
@@ -278,6 +282,8 @@ class ContactLaw:
         self.spring_cover = np.broadcast_to(cover, (self.size,)).copy()
         self._beta = _springs.unit_boundaries(max(self.springs, 2))
         self.torsion = torsion
+        fast, self._xp = _device.resolve(backend, fast, self.size,
+                                         law_memory(size, memory, springs))
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
         if fast is None:        # numba when it imports, unless CONTACTLAB_BACKEND=numpy (or
@@ -285,6 +291,7 @@ class ContactLaw:
             from ..foundation import _compiled
             fast = _kernel.AVAILABLE and _compiled.backend() == "numba"
         self.fast = bool(fast)
+        self.backend = backend if backend is not None else ("numba" if fast else "numpy")
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
@@ -297,18 +304,19 @@ class ContactLaw:
 
     # ------------------------------------------------------------------ state
     def _fresh(self, n: int) -> dict[str, np.ndarray]:
-        st = {"depth_ref": np.zeros(n)}
+        xp = np if self._xp is None else self._xp      # the state lives in the backend's module
+        st = {"depth_ref": xp.zeros(n)}
         # both channels' stacks in one array per field (leading axis: tangential, torsion) for
         # the compiled kernel; the state names views of it
         one = new_stack(0, self.memory)         # the fields' dtypes and trailing shapes
-        self._chan = {k: np.zeros((2, n, *v.shape[1:]), v.dtype) for k, v in one.items()
+        self._chan = {k: xp.zeros((2, n, *v.shape[1:]), v.dtype) for k, v in one.items()
                       if k not in ("X", "Y")}
         # turning points level-major (channel, level, contact): the fused pass reads the top
         # levels only (measured 8-10 % less CPU time per constant-load step at 10^6 contacts
         # than contact-major blocks); "X", "Y" and the state are (channel, contact, level)
         # views of the same memory
         for k in ("X", "Y"):
-            lev = np.zeros((2, self.memory, n), one[k].dtype)
+            lev = xp.zeros((2, self.memory, n), one[k].dtype)
             self._chan[k + "_levels"] = lev
             self._chan[k] = lev.transpose(0, 2, 1)
         for c, ch in enumerate(("tan", "tor")):
@@ -333,7 +341,7 @@ class ContactLaw:
         **law.state)``, restore with ``law.state = dict(np.load(file))``. With springs, the
         spring state is given per contact (``spr_on`` and zeros where it is False), whichever
         contacts hold rows of the law's spring pool."""
-        out = {k: v.copy() for k, v in self._st.items()}
+        out = {k: _device._host(v, self._xp) for k, v in self._st.items()}
         if self._pool is not None:
             out["spr_on"] = self._pool.on()
             out.update({k: self._pool.full(k) for k in SPRING_FIELDS})
@@ -354,7 +362,7 @@ class ContactLaw:
                                  "size and memory).")
         new = {k: checked_state_entry(k, value[k], v, self.memory, self.springs) for k, v in ref.items()}
         for k, v in self._st.items():           # in place: channel fields are views
-            v[...] = new[k]
+            v[...] = new[k] if self._xp is None else self._xp.asarray(new[k])
         if self._pool is not None:
             self._pool.load(new["spr_on"], new)
 
@@ -404,8 +412,9 @@ class ContactLaw:
     def _clear(self, idx: np.ndarray) -> None:
         if idx.size == 0:
             return
+        at = idx if self._xp is None else self._xp.asarray(idx)
         for v in self._st.values():
-            v[idx] = 0
+            v[at] = 0
         if self._pool is not None:
             self._pool.release(idx)
 
@@ -487,6 +496,9 @@ class ContactLaw:
         NotSupportedError
             ``tangent=True`` while a contact is on springs.
         """
+        if self._xp is not None:
+            return self._stamp(_device.step(self, depth, force, displacement, twist, out,
+                                            tangent, law_spring_memory))
         if out is not None:
             self._check_out(out)
         pre = _tangent_snapshot(self) if tangent else None     # the springs' step start

@@ -1,0 +1,325 @@
+"""ContactLaw on an array-module backend (issue 29, GPU part): the step written once for any
+array module (:mod:`contactlab.physics.law_xp`), run with numpy (``backend="xp-numpy"``)
+equals the numpy reference law to the bit on random histories (every family, by force and by
+depth, overflowing stacks, separation, a changing load onto the springs, a state saved and
+restored in the middle); with CuPy on a GPU it agrees with the numpy law to GPU_VS_NUMPY
+(skipped without CuPy or without a device); the errors of a backend that is not there and of
+a law too large for the memory budget."""
+from __future__ import annotations
+
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.effects import law_device
+from contactlab.errors import MemoryBudgetError, NotSupportedError, ParameterError
+from contactlab.errors import UnknownNameError, ValidityWarning
+from tests.tolerances import GPU_VS_NUMPY
+from tests.unit.effects.test_law_compiled import FAMILIES, FIELDS, _changing_run, _history
+
+KW = dict(E_star=1.15e11, G_star=4.4e10, G_torsion=4.0e10)
+
+
+def _laws(family, gname, lo_hi, extra, seed, n, backend, **kw):
+    rng = np.random.default_rng(seed)
+    par = dict({gname: rng.uniform(*lo_hi, n)}, friction=rng.uniform(0.1, 0.5, n), **KW,
+               **extra, **kw)
+    return (cl.ContactLaw(family, backend=backend, **par),
+            cl.ContactLaw(family, backend="numpy", **par), rng)
+
+
+def _run(dev, ref, rng, by, steps, n, host):
+    """A random history (reversals, loop closures, separation, from step 40 a changing load
+    on half the contacts) through both laws; yields ``(dev step as numpy, ref step)``."""
+    F = rng.uniform(1.0, 100.0, n)
+    u, phi = _history(rng, steps, n, 3e-8, 1e-4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)    # overflow; shift + twist together
+        for k in range(steps):
+            L = F.copy()
+            if 20 <= k < 25:
+                L[:10] = 0.0                                # separated, then back
+            if k >= 40:
+                L[n // 2:] *= 1.0 + 0.03 * np.sin(0.4 * k + np.arange(n - n // 2))
+            load = L if by == "force" else ref.normal(force=L)[0]
+            a = dev.step(**{by: load}, displacement=u[k], twist=phi[k])
+            b = ref.step(**{by: load}, displacement=u[k], twist=phi[k])
+            yield {f: host(getattr(a, f)) for f in FIELDS}, b, a
+
+
+@pytest.mark.parametrize("by", ["force", "depth"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_xp_numpy_equals_the_numpy_law_to_the_bit(family, gname, lo_hi, extra, by):
+    """Every output, every model error and every state entry equal to the bit, step by step:
+    memory=3 (stacks overflow), contacts separating and coming back, half the contacts onto
+    their springs from step 40 (a changing load)."""
+    n, steps = 80, 60
+    dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "xp-numpy", memory=3)
+    assert dev.backend == "xp-numpy" and dev._xp is np and not dev.fast
+    for a, b, raw in _run(dev, ref, rng, by, steps, n, np.asarray):
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[f], getattr(b, f), err_msg=f)
+        assert raw.model_errors.keys() == b.model_errors.keys()
+        for q, err in b.model_errors.items():
+            np.testing.assert_array_equal(raw.model_errors[q], err, err_msg=q)
+        assert raw.citations.tags == b.citations.tags
+    sd, sr = dev.state, ref.state
+    assert sr["tan_overflow"].any() and sr["tor_overflow"].any()
+    assert sr["spr_on"][n // 2:].all() and not sr["spr_on"][: n // 2].any()
+    assert sd.keys() == sr.keys()
+    for key, v in sd.items():
+        np.testing.assert_array_equal(v, sr[key], err_msg=key)
+
+
+def test_xp_numpy_state_saved_and_restored_in_a_changing_load_run(tmp_path):
+    """A law restored from law.state (through an .npz file) in the middle of a changing-load
+    run continues to the bit as the law that ran through, and as the numpy law."""
+    n, steps = 60, 30
+    par = dict(R=np.linspace(2e-3, 9e-3, n), friction=0.3, memory=4, **KW)
+
+    def make(backend="xp-numpy"):
+        return cl.ContactLaw(cl.profiles.Paraboloid, backend=backend, **par)
+
+    through, a = _changing_run(make(), 3, steps, n)
+    restored, b = _changing_run(make(), 3, steps, n, restore_at=17, tmp_path=tmp_path,
+                                make=make)
+    numpy_law, c = _changing_run(make("numpy"), 3, steps, n)
+    assert through.state["spr_on"][: n // 2].all()
+    for k in range(steps):
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[k][f], b[k][f], err_msg=f"step {k}: {f}")
+            np.testing.assert_array_equal(a[k][f], c[k][f], err_msg=f"step {k}: {f}")
+    for key, v in through.state.items():
+        np.testing.assert_array_equal(v, restored.state[key], err_msg=key)
+        np.testing.assert_array_equal(v, numpy_law.state[key], err_msg=key)
+
+
+def test_xp_numpy_out_reset_and_constant_load_refusal(tmp_path):
+    """``out=`` is overwritten and returned and writes the numpy law's CSV; ``reset`` clears
+    the memory as on the numpy law; without springs a load change is refused with the numpy
+    law's error."""
+    par = dict(R=[0.01, 0.02, 0.03], friction=0.3, **KW)
+    dev = cl.ContactLaw(cl.profiles.Paraboloid, backend="xp-numpy", springs=0, **par)
+    ref = cl.ContactLaw(cl.profiles.Paraboloid, backend="numpy", springs=0, **par)
+    out = dev.step(force=[1.0, 2.0, 3.0], displacement=1e-8)
+    ref.step(force=[1.0, 2.0, 3.0], displacement=1e-8)
+    got = dev.step(force=[1.0, 2.0, 3.0], displacement=-2e-8, out=out)
+    want = ref.step(force=[1.0, 2.0, 3.0], displacement=-2e-8)
+    assert got is out
+    got.to_csv(tmp_path / "dev.csv")
+    want.to_csv(tmp_path / "ref.csv")
+    assert (tmp_path / "dev.csv").read_text() == (tmp_path / "ref.csv").read_text()
+    for f in FIELDS:
+        np.testing.assert_array_equal(getattr(got, f), getattr(want, f), err_msg=f)
+    dev.reset([1])
+    ref.reset([1])
+    for key, v in dev.state.items():
+        np.testing.assert_array_equal(v, ref.state[key], err_msg=key)
+    with pytest.raises(cl.errors.OutsideTheoryError, match=r"depth\[0\]="):
+        dev.step(force=[2.0, 2.0, 3.0])
+    with pytest.raises(ParameterError, match="force"):
+        dev.step(force=[1.0, -2.0, 3.0])
+    with pytest.raises(NotSupportedError, match="tangent=True"):
+        dev.step(force=[1.0, 2.0, 3.0], tangent=True)
+    with pytest.raises(ParameterError, match="out="):
+        dev.step(force=[1.0, 2.0, 3.0], out="no")
+
+
+def test_backend_choices_and_contradictions():
+    """The backend names and their agreement with ``fast``."""
+    kw = dict(R=0.01, friction=0.3, **KW)
+    assert cl.ContactLaw(cl.profiles.Paraboloid, backend="numpy", **kw).backend == "numpy"
+    assert cl.ContactLaw(cl.profiles.Paraboloid, fast=False, **kw).backend == "numpy"
+    with pytest.raises(UnknownNameError, match=r"backend='opencl'.*allowed"):
+        cl.ContactLaw(cl.profiles.Paraboloid, backend="opencl", **kw)
+    with pytest.raises(ParameterError, match=r"fast=True contradicts backend='numpy'"):
+        cl.ContactLaw(cl.profiles.Paraboloid, backend="numpy", fast=True, **kw)
+
+
+def test_cupy_missing_names_the_backend_and_the_extra(monkeypatch):
+    """backend='cupy' without CuPy: NotSupportedError naming the parameter, its value and
+    what it needs (the extra ``gpu``, a CUDA device), before anything is allocated."""
+    monkeypatch.setitem(sys.modules, "cupy", None)          # import cupy -> ImportError
+    with pytest.raises(NotSupportedError) as err:
+        cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, friction=0.3, backend="cupy", **KW)
+    text = str(err.value)
+    assert "backend='cupy'" in text and "contactlab[gpu]" in text and "CUDA" in text
+
+
+def test_device_memory_checked_against_the_budget_before_allocating():
+    """10^7-10^8 contacts: the law's state plus one step's temporaries on the device
+    (law_device.device_law_memory) is checked against the memory budget before anything is
+    allocated; a budget that holds the numpy law's state but not the device step refuses
+    only the array-module backend."""
+    from contactlab.effects.law import law_memory
+    per = law_device.device_law_memory(1, law_memory(1, 8, 16))
+    assert per == law_memory(1, 8, 16) + 56 + law_device.XP_STEP_BYTES
+    kw = dict(R=0.01, friction=0.3, **KW)
+    for size in (10**7, 10**8):
+        with pytest.raises(MemoryBudgetError, match="GiB"):
+            cl.ContactLaw(cl.profiles.Paraboloid, size=size, backend="xp-numpy", **kw)
+    size = 10**5
+    budget = 0.5 * (law_memory(size, 8, 16) + law_device.device_law_memory(
+        size, law_memory(size, 8, 16)))
+    old = cl.set_memory_budget(budget)
+    try:
+        cl.ContactLaw(cl.profiles.Paraboloid, size=size, backend="numpy", **kw)
+        with pytest.raises(MemoryBudgetError, match="backend 'cupy' or 'xp-numpy'"):
+            cl.ContactLaw(cl.profiles.Paraboloid, size=size, backend="xp-numpy", **kw)
+    finally:
+        cl.set_memory_budget(old)
+
+
+class _DeviceArray(np.ndarray):
+    """A numpy array standing in for a device array (its own type, host conversions through
+    the module's asnumpy only)."""
+
+
+def _dev(x):
+    if isinstance(x, np.ndarray) and not isinstance(x, _DeviceArray):
+        return x.view(_DeviceArray)
+    if isinstance(x, tuple):
+        return tuple(_dev(v) for v in x)
+    return x
+
+
+class _FakeCupy:
+    """numpy dressed as CuPy (a device count, free memory, asnumpy, its own array type): runs
+    the code paths that backend="cupy" takes and numpy does not (host views and gathers for
+    the springs, device inputs, host copies of the state), with numpy's arithmetic."""
+    ndarray = _DeviceArray
+
+    class cuda:                                 # noqa: N801 - CuPy's spelling
+        class runtime:                          # noqa: N801
+            @staticmethod
+            def getDeviceCount():               # noqa: N802
+                return 1
+
+            @staticmethod
+            def memGetInfo():                   # noqa: N802
+                return 2**40, 2**40
+
+    @staticmethod
+    def asnumpy(v):
+        return np.array(np.asarray(v).view(np.ndarray), order="C")
+
+    def __getattr__(self, name):
+        f = getattr(np, name)
+        if not callable(f) or isinstance(f, type):
+            return f
+        return lambda *a, **k: _dev(f(*a, **k))
+
+
+@pytest.mark.parametrize("by", ["force", "depth"])
+def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
+    """backend="cupy" with numpy dressed as CuPy: every output, model error and state entry
+    equal to the numpy law to the bit (springs switched through host gathers, results
+    scattered back), device arrays accepted as inputs and their bad entries named, and a state
+    restored through an .npz continues to the bit."""
+    monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    n, steps = 60, 50
+    dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
+                          memory=3)
+    assert isinstance(dev._st["tan_X"], _DeviceArray)
+    for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
+        assert isinstance(raw.torque, _DeviceArray)
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[f], getattr(b, f), err_msg=f)
+        for q, err in b.model_errors.items():
+            np.testing.assert_array_equal(raw.model_errors[q], err, err_msg=q)
+    sd, sr = dev.state, ref.state
+    assert sr["spr_on"][n // 2:].all()
+    for key, v in sd.items():
+        assert type(v) is np.ndarray and v.flags.c_contiguous
+        np.testing.assert_array_equal(v, sr[key], err_msg=key)
+    np.savez(tmp_path / "s.npz", **sd)
+    twin = cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", memory=3, R=dev.geometry["R"],
+                         friction=dev.friction, **KW)
+    with np.load(tmp_path / "s.npz") as f:
+        twin.state = dict(f)
+    F = ref.normal(depth=ref.state["depth_ref"])[2]
+    for law in (dev, twin, ref):
+        law.reset([0, 1])
+    x = np.linspace(-1e-8, 1e-8, n)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)    # the twin's model-error warning
+        r = [law.step(force=_dev(F), displacement=_dev(x), twist=0.0) for law in (dev, twin)]
+        want = ref.step(force=F, displacement=x, twist=0.0)
+    for f in FIELDS:
+        np.testing.assert_array_equal(np.asarray(getattr(r[0], f)), getattr(want, f), err_msg=f)
+        np.testing.assert_array_equal(np.asarray(getattr(r[1], f)), getattr(want, f), err_msg=f)
+    bad = F.copy()
+    bad[3] = np.nan
+    with pytest.raises(ParameterError, match=r"force\[3\]"):
+        dev.step(force=_dev(bad))
+    with pytest.raises(ParameterError, match="out="):
+        dev.step(force=F, out=want)                 # a numpy LawStep is no device result
+
+
+def _cupy():
+    cupy = pytest.importorskip("cupy")
+    try:
+        if cupy.cuda.runtime.getDeviceCount() < 1:
+            pytest.skip("CuPy finds no CUDA device")
+    except Exception as err:                    # no driver
+        pytest.skip(f"CuPy finds no CUDA device ({err})")
+    return cupy
+
+
+@pytest.mark.parametrize("by", ["force", "depth"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_cupy_against_the_numpy_law(family, gname, lo_hi, extra, by):
+    """On a GPU: every output to GPU_VS_NUMPY of its largest value (the per-step dissipation
+    of the cumulative one), ``exact`` and the integer state equal; results are CuPy arrays."""
+    cupy = _cupy()
+    n, steps = 80, 60
+    dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "cupy", memory=3)
+    W = np.zeros(n)
+    for a, b, raw in _run(dev, ref, rng, by, steps, n, cupy.asnumpy):
+        assert isinstance(raw.torque, cupy.ndarray)
+        W += b.dissipated_energy
+        np.testing.assert_array_equal(a["exact"], b.exact)
+        for f in FIELDS[:-2]:
+            y = getattr(b, f)
+            np.testing.assert_allclose(a[f], y, rtol=0, err_msg=f,
+                                       atol=GPU_VS_NUMPY * np.max(np.abs(y)))
+        np.testing.assert_allclose(a["dissipated_energy"], b.dissipated_energy, rtol=0,
+                                   atol=GPU_VS_NUMPY * max(W.max(), 1e-300))
+    sd, sr = dev.state, ref.state
+    for key, v in sd.items():
+        if v.dtype.kind == "f":
+            np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
+                                       atol=GPU_VS_NUMPY * np.max(np.abs(sr[key])))
+        else:
+            np.testing.assert_array_equal(v, sr[key], err_msg=key)
+
+
+def test_cupy_state_round_trip_and_device_inputs(tmp_path):
+    """On a GPU: device arrays as inputs, the state saved to an .npz and restored into a
+    fresh law in the middle of a changing-load run continues to the bit."""
+    cupy = _cupy()
+    n, steps = 60, 30
+    par = dict(R=np.linspace(2e-3, 9e-3, n), friction=0.3, memory=4, **KW)
+
+    def make():
+        return cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", **par)
+
+    through, a = _changing_run(make(), 3, steps, n)
+    restored, b = _changing_run(make(), 3, steps, n, restore_at=17, tmp_path=tmp_path,
+                                make=make)
+    for k in range(steps):
+        for f in FIELDS:
+            np.testing.assert_array_equal(cupy.asnumpy(a[k][f]), cupy.asnumpy(b[k][f]),
+                                          err_msg=f"step {k}: {f}")
+    law = make()
+    r = law.step(force=cupy.full(n, 5.0), displacement=cupy.zeros(n))
+    assert isinstance(r.force, cupy.ndarray)
+    with pytest.raises(ParameterError, match=r"force\[3\]"):
+        bad = cupy.full(n, 5.0)
+        bad[3] = cupy.nan
+        law.step(force=bad)
