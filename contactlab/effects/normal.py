@@ -175,6 +175,8 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     if forms is False:
         forms = _scalar.forms_of(prof)
     if forms is None:
+        if key == "depth" and _scalar.quadrature_scalar_ok(prof):
+            return _fast_normal_quadrature(contact, value)
         return None
     v = float(value)
     if not math.isfinite(v):
@@ -205,6 +207,33 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     state = _new_state(NormalState)
     # numpy float scalars: they act as 0-d arrays in every state method, at half the cost
     state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
+                          meta=meta)
+    return state
+
+
+def _fast_normal_quadrature(contact, value: Any) -> NormalState | None:
+    """One finite positive depth on a profile whose g goes by quadrature: the contact radius
+    by :func:`contactlab.physics.normal_scalar.solve_depth_quadrature` (the array route's
+    radius, bit for bit), then ``∫g`` with its error and the force as
+    :func:`contactlab.physics.normal.solve` forms them. ``None`` (the array route) otherwise."""
+    prof = contact.profile
+    v = float(value)
+    if not (math.isfinite(v) and v > 0):
+        return None
+    rtol = contact.rtol
+    a = _scalar.solve_depth_quadrature(prof, v, rtol)
+    if a is None or not a > 0:
+        return None
+    warn_outside_validity(prof, np.array(a), stacklevel=6)
+    E = contact.moduli.normal
+    gi, gi_err = prof._g_integral_with_error(np.array([a]), rtol)
+    g_int, g_int_err = float(gi[0]), float(gi_err[0])
+    F = (a * v - g_int) * (2.0 * E)
+    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": "depth",
+                     "citations": _SOURCES},
+                    _scalar.quadrature_force_rel_error, E, a, v, g_int, g_int_err, F)
+    state = _new_state(NormalState)
+    state.__dict__.update(contact=contact, _depth=_f64(v), _radius=_f64(a), _force=_f64(F),
                           meta=meta)
     return state
 

@@ -22,7 +22,8 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["QuadratureResult", "tanh_sinh", "min_level_for", "DEFAULT_RTOL", "MAX_LEVEL"]
+__all__ = ["QuadratureResult", "tanh_sinh", "tanh_sinh_level1", "min_level_for", "DEFAULT_RTOL",
+           "MAX_LEVEL"]
 
 DEFAULT_RTOL = 1e-10
 MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
@@ -91,6 +92,70 @@ def _level_nodes(level: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     high = 1.0 / (np.exp(s) + 1.0)         # (1-u)/2
     w = 0.5 * np.pi * np.cosh(t) / np.cosh(0.5 * s) ** 2   # du/dt
     return low, high, w
+
+
+@cache
+def _levels01() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+    """Nodes of levels 0 and 1 side by side (level 0 first): (low, high, w0, w1, n0)."""
+    l0, h0, w0 = _level_nodes(0)
+    l1, h1, w1 = _level_nodes(1)
+    return np.concatenate([l0, l1]), np.concatenate([h0, h1]), w0, w1, l0.size
+
+
+@cache
+def _common_nodes(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes of levels 0 and 1 on one interval ``[lo, hi]`` and their validity (row vectors)."""
+    low, high, *_ = _levels01()
+    lo_, hi_ = np.array([lo]), np.array([hi])
+    d = (hi_ - lo_)[:, None]
+    x = np.where(low[None, :] <= 0.5, lo_[:, None] + d * low, hi_[:, None] - d * high)
+    valid = (x > np.minimum(lo_, hi_)[:, None]) & (x < np.maximum(lo_, hi_)[:, None])
+    x = np.where(valid, x, 0.5 * (lo_ + hi_)[:, None])
+    x.flags.writeable = False
+    valid.flags.writeable = False
+    return x, valid
+
+
+def tanh_sinh_level1(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
+                     lo: np.ndarray, hi: np.ndarray, common: bool = False
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """The first two levels of :func:`tanh_sinh` (19 + 18 nodes per integral) in one pass.
+
+    Returns ``(value, error)`` of 1D ``lo``/``hi``, the same values, bit for bit, as
+    :func:`tanh_sinh` holds after its level 1 (value, level difference plus the tail bound): the
+    same nodes, the same integrand values (one call for both levels instead of two) and the same
+    row sums in the same order. A loose ``rtol`` (:data:`LOOSE_RTOL`) accepts an integral whose
+    ``error <= rtol |value|`` here; the others go to :func:`tanh_sinh`, which repeats these two
+    levels and refines on. It saves the refinement loop's bookkeeping (a few dozen small array
+    operations), which is most of the cost of one integral. ``common``: every row has the
+    interval of the first (its nodes are then kept between calls).
+    """
+    low, high, w0, w1, n0 = _levels01()
+    d = (hi - lo)[:, None]
+    if common:          # every row the same interval: its nodes, computed once
+        x1, valid1 = _common_nodes(float(lo[0]), float(hi[0]))
+        x = np.broadcast_to(x1, (lo.size, x1.shape[1]))
+        valid = np.broadcast_to(valid1, x.shape)
+    else:
+        x = np.where(low[None, :] <= 0.5, lo[:, None] + d * low, hi[:, None] - d * high)
+        valid = (x > np.minimum(lo, hi)[:, None]) & (x < np.maximum(lo, hi)[:, None])
+        x = np.where(valid, x, 0.5 * (lo + hi)[:, None])
+    fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
+    fx = np.where(valid, fx, 0.0)
+    f0, f1 = fx[:, :n0], fx[:, n0:]
+    tail = (_tail(f0[:, 0], f0[:, 1], low[0], low[1])
+            + _tail(f0[:, -1], f0[:, -2], high[n0 - 1], high[n0 - 2])) * np.abs(d[:, 0])
+    half = 0.5 * (hi - lo)
+    s0 = np.sum(f0 * w0, axis=1)
+    v0 = half * _H0 * s0
+    s1 = s0 + np.sum(f1 * w1, axis=1)
+    v1 = half * (_H0 / 2) * s1
+    error = np.abs(v1 - v0) + tail
+    same = hi == lo
+    if np.any(same):
+        v1 = np.where(same, 0.0, v1)
+        error = np.where(same, 0.0, error)
+    return v1, error
 
 
 def _tail(f0: np.ndarray, f1: np.ndarray, d0: float, d1: float) -> np.ndarray:

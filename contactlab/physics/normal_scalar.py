@@ -34,9 +34,9 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import OutsideTheoryError
+from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-from ..numeric.roots import scalar_root, shrink_bracket_scalar
+from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
 if TYPE_CHECKING:
@@ -44,7 +44,8 @@ if TYPE_CHECKING:
 
 _TINY = float(np.finfo(float).tiny)
 
-__all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
+__all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error",
+           "quadrature_scalar_ok", "solve_depth_quadrature", "quadrature_force_rel_error"]
 
 _CACHE_KEY = "_scalar_normal_forms"
 
@@ -304,3 +305,94 @@ def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
     if requested is not None and requested > 0:
         err += abs(F - requested)
     return float(err / F)
+
+
+# ----------------------------------------------------------------------------- quadrature route
+_QUAD_KEY = "_scalar_quadrature_ok"
+#: the Profile methods the array route of a depth runs on a quadrature profile: a subclass that
+#: overrides one of them keeps the array route
+_QUAD_METHODS = ("_radius_of_depth", "_solve_radius", "_g", "_g_route_eval", "_g_quadrature",
+                 "_theta_quadrature", "_theta_segments", "_g_integral",
+                 "_g_integral_with_error", "_g_integral_quadrature", "_initial_bracket")
+
+
+def quadrature_scalar_ok(profile: Profile) -> bool:
+    """Whether one depth on ``profile`` may take :func:`solve_depth_quadrature` (kept on the
+    profile): g by quadrature, no wall, no ring-contact check, no closed-form inverse, and the
+    base class's solve (no override of the methods it runs)."""
+    ok = profile.__dict__.get(_QUAD_KEY)
+    if ok is None:
+        cls = type(profile)
+        ok = (profile.g_route == "quadrature" and not profile.has("terms")
+              and not math.isfinite(float(profile.wall_radius))
+              and not profile._has("_check_monotone_upto")
+              and not profile._has("_g_inverse_closed_form")
+              and all(getattr(cls, m) is getattr(Profile, m) for m in _QUAD_METHODS))
+        profile.__dict__[_QUAD_KEY] = ok
+    return bool(ok)
+
+
+def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | None:
+    """Contact radius (m) of one depth ``d > 0`` on a quadrature profile, or ``None`` (the
+    array route then runs, and raises where this one would).
+
+    The steps of :meth:`Profile._solve_radius` and :func:`~contactlab.numeric.roots.
+    bracketed_root` for one element in plain floats (the bracket grown on f, then on g, shrunk
+    from above, then Chandrupatla's iteration), with each g a one-element array through the same
+    quadrature: the same radius, bit for bit, as the array route, without its per-iteration
+    array bookkeeping (which costs more than one g at a loose ``rtol``).
+    """
+    def g(x: float) -> float:
+        return float(profile._g(np.array([x]), rtol)[0])
+
+    limit = float(profile.max_radius)
+    finite = math.isfinite(limit)
+    lo = float(profile.flat_radius)
+    hi = float(profile._initial_bracket())
+    if profile._has("_height"):
+        cap = limit * (1 - 1e-15) if finite else math.inf
+        f_prev = -math.inf
+        for _ in range(200):
+            hc = min(hi, cap)
+            with np.errstate(over="ignore", invalid="ignore"):
+                f_hc = float(profile._height(np.array([hc]))[0])
+            if not ((f_hc < d) and (hc < cap) and (f_hc > f_prev)):
+                break
+            f_prev = f_hc
+            hi = hi * 4.0
+    for _ in range(400):
+        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
+        g_hi = g(hi_c)
+        if not g_hi < d:
+            lo, hi, g_hi = shrink_bracket_scalar(g, d, lo, hi_c, g_hi)
+            break
+        if finite and hi >= limit * (1 - 1e-15):
+            return None
+        lo, hi = hi_c, hi * 4.0
+    else:
+        return None
+    f1, f2 = g(lo) - d, g_hi - d
+    if not (math.isfinite(f1) and math.isfinite(f2)) or f1 * f2 > 0:
+        return None
+    if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
+        a = hi
+    elif f1 == 0:
+        a = lo
+    else:
+        try:
+            a = _chandrupatla(g, d, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+        except ConvergenceError:
+            return None
+    if finite and a >= limit:
+        return None
+    return a
+
+
+def quadrature_force_rel_error(E_star: float, a: float, d: float, g_int: float,
+                               g_int_err: float, F: float) -> float:
+    """Relative force error of one depth on the quadrature route, the operations of
+    :func:`contactlab.physics.normal._force_rel_error` in floats (the same bits)."""
+    if not a > 0:
+        return 0.0
+    F_err = ((abs(a * d) + abs(g_int)) * ROUNDING + abs(g_int_err)) * (2.0 * E_star)
+    return float(F_err / F) if F > 0 else 0.0

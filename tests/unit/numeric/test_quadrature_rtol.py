@@ -108,8 +108,17 @@ def test_g_work_falls_as_rtol_loosens(monkeypatch):
         evaluations[kw["rtol"]] = evaluations.get(kw["rtol"], 0) + res.evaluations
         return res
 
+    real1 = quadrature.tanh_sinh_level1
+
+    def counting1(integrand, lo, hi, **kw):
+        # the loose-rtol pass: levels 0 and 1 of every integral (19 + 18 nodes)
+        evaluations[LOOSE] = evaluations.get(LOOSE, 0) + 37 * np.size(lo)
+        return real1(integrand, lo, hi, **kw)
+
     import contactlab.profiles.base as base
+    LOOSE = 1e-2
     monkeypatch.setattr(base, "tanh_sinh", counting)
+    monkeypatch.setattr(base, "tanh_sinh_level1", counting1)
     q = QuadratureOnly(PowerLaw(10.0, 4.0))
     x = np.array([0.05, 0.1, 0.2])
     for rtol in (1e-2, 1e-6, 1e-10):
@@ -120,3 +129,48 @@ def test_g_work_falls_as_rtol_loosens(monkeypatch):
 @pytest.mark.parametrize("rtol, level", [(1e-2, 1), (1e-3, 1), (9.9e-4, 2), (1e-10, 2)])
 def test_rule_from_rtol(rtol, level):
     assert quadrature.min_level_for(rtol) == level
+
+
+@pytest.mark.parametrize("common", [False, True])
+def test_two_level_pass_is_tanh_sinh_at_level_1(common):
+    """The loose-rtol pass gives tanh_sinh's value and estimate after level 1, bit for bit."""
+    if common:
+        lo, hi = np.zeros(3), np.full(3, 0.5 * np.pi)
+    else:
+        lo, hi = np.array([0.0, 0.3, 1.0, 0.2]), np.array([1.5, 0.3, 2.5, 0.0])
+    c = np.array([0.5, 1.0, 2.0, 3.0])[:lo.size]
+
+    def integrand(x, idx):
+        return c[idx][:, None] * np.sin(x) ** -0.3 + x**2
+
+    v, e = quadrature.tanh_sinh_level1(integrand, lo, hi, common=common)
+    ref = quadrature.tanh_sinh(integrand, lo, hi, rtol=1e300, min_level=1, max_level=1)
+    assert ref.level == 1
+    assert v.tobytes() == ref.value.tobytes()
+    assert e.tobytes() == ref.error.tobytes()
+
+
+@pytest.mark.parametrize("prof", [Paraboloid(1.0), Cone(0.5), PowerLaw(1.0, 0.5)],
+                         ids=repr)
+@pytest.mark.parametrize("rtol", [1e-2, 1e-3, 1e-6, 1e-10])
+def test_scalar_quadrature_depth_is_the_batched_route(prof, rtol):
+    """One depth on a quadrature profile takes the plain-float solve; it gives the batched
+    route's radius, force and estimate bit for bit (a batch of one and a batch of three)."""
+    q = QuadratureOnly(prof)
+    contact = cl.Contact(q, MATERIALS, rtol=rtol)
+    depths = np.array([1e-4, 3e-2, 2.0])
+    batch = contact.normal(depth=depths)
+    for i, d in enumerate(depths):
+        s = contact.normal(depth=float(d))
+        one = contact.normal(depth=np.array([d]))
+        for got in (s, one):
+            assert np.float64(got.radius).tobytes() == batch.radius[i].tobytes()
+            assert np.float64(got.force).tobytes() == batch.force[i].tobytes()
+        assert np.float64(s.error_estimate).tobytes() == np.float64(
+            one.error_estimate[0]).tobytes()
+
+
+def test_scalar_quadrature_route_is_taken():
+    from contactlab.physics import normal_scalar
+    assert normal_scalar.quadrature_scalar_ok(QuadratureOnly(Paraboloid(1.0)))
+    assert not normal_scalar.quadrature_scalar_ok(Paraboloid(1.0))      # closed form
