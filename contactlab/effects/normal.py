@@ -226,8 +226,7 @@ def _fast_normal_quadrature(contact, value: Any) -> NormalState | None:
         return None
     warn_outside_validity(prof, np.array(a), stacklevel=6)
     E = contact.moduli.normal
-    gi, gi_err = prof._g_integral_with_error(np.array([a]), rtol)
-    g_int, g_int_err = float(gi[0]), float(gi_err[0])
+    g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
     F = (a * v - g_int) * (2.0 * E)
     meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": "depth",
                      "citations": _SOURCES},

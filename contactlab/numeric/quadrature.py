@@ -22,8 +22,8 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["QuadratureResult", "tanh_sinh", "tanh_sinh_level1", "min_level_for", "DEFAULT_RTOL",
-           "MAX_LEVEL"]
+__all__ = ["QuadratureResult", "tanh_sinh", "tanh_sinh_upto", "first_converged", "min_level_for",
+           "DEFAULT_RTOL", "MAX_LEVEL", "UPTO_LEVEL"]
 
 DEFAULT_RTOL = 1e-10
 MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
@@ -95,17 +95,22 @@ def _level_nodes(level: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 @cache
-def _levels01() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
-    """Nodes of levels 0 and 1 side by side (level 0 first): (low, high, w0, w1, n0)."""
-    l0, h0, w0 = _level_nodes(0)
-    l1, h1, w1 = _level_nodes(1)
-    return np.concatenate([l0, l1]), np.concatenate([h0, h1]), w0, w1, l0.size
+def _levels_upto(top: int) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...],
+                                     tuple[int, ...]]:
+    """Nodes of levels 0 … ``top`` side by side (level 0 first): (low, high, the weights of
+    each level, the column where each level starts and, last, the total)."""
+    parts = [_level_nodes(k) for k in range(top + 1)]
+    starts = np.cumsum([0] + [p[0].size for p in parts])
+    return (np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]),
+            tuple(p[2] for p in parts), tuple(int(v) for v in starts))
 
 
 @cache
-def _common_nodes(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes of levels 0 and 1 on one interval ``[lo, hi]`` and their validity (row vectors)."""
-    low, high, *_ = _levels01()
+def _common_nodes(lo: float, hi: float, top: int
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Nodes of levels 0 … ``top`` on one interval ``[lo, hi]`` (a row vector), their
+    validity, and the positions of the invalid ones (None when every node is valid)."""
+    low, high, *_ = _levels_upto(top)
     lo_, hi_ = np.array([lo]), np.array([hi])
     d = (hi_ - lo_)[:, None]
     x = np.where(low[None, :] <= 0.5, lo_[:, None] + d * low, hi_[:, None] - d * high)
@@ -113,49 +118,117 @@ def _common_nodes(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
     x = np.where(valid, x, 0.5 * (lo_ + hi_)[:, None])
     x.flags.writeable = False
     valid.flags.writeable = False
-    return x, valid
+    bad = np.flatnonzero(~valid[0])
+    return x, valid, (bad if bad.size else None)
 
 
-def tanh_sinh_level1(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
-                     lo: np.ndarray, hi: np.ndarray, common: bool = False
-                     ) -> tuple[np.ndarray, np.ndarray]:
-    """The first two levels of :func:`tanh_sinh` (19 + 18 nodes per integral) in one pass.
+@cache
+def _tail_constants() -> tuple[np.ndarray, np.ndarray]:
+    """The end distances and the logarithms of their ratios :func:`_tail` takes at the lower
+    and upper ends of level 0 (as a column pair: lower end first)."""
+    low, high, _, starts = _levels_upto(0)
+    n0 = starts[1]
+    d0 = np.array([low[0], high[n0 - 1]])
+    lnr = np.array([np.log(low[0] / low[1]), np.log(high[n0 - 1] / high[n0 - 2])])
+    return d0[:, None], lnr[:, None]
 
-    Returns ``(value, error)`` of 1D ``lo``/``hi``, the same values, bit for bit, as
-    :func:`tanh_sinh` holds after its level 1 (value, level difference plus the tail bound): the
-    same nodes, the same integrand values (one call for both levels instead of two) and the same
-    row sums in the same order. A loose ``rtol`` (:data:`LOOSE_RTOL`) accepts an integral whose
-    ``error <= rtol |value|`` here; the others go to :func:`tanh_sinh`, which repeats these two
-    levels and refines on. It saves the refinement loop's bookkeeping (a few dozen small array
-    operations), which is most of the cost of one integral. ``common``: every row has the
-    interval of the first (its nodes are then kept between calls).
+
+def _tails(f0: np.ndarray) -> np.ndarray:
+    """:func:`_tail` at both ends of the level-0 values ``f0`` (rows: integrals), summed: the
+    same operations on both ends at once (the same values; in place where :func:`_tail` makes
+    new arrays, and no ``where`` unless some end value is 0 or NaN)."""
+    d0, lnr = _tail_constants()
+    n = f0.shape[1]
+    a0 = np.abs(f0[:, ::n - 1].T)               # the outermost nodes (columns 0 and n-1)
+    a1 = np.abs(f0[:, 1:n - 1:n - 3].T)         # their neighbours (columns 1 and n-2)
+    ok = (a0 > 0) & (a1 > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.log(a0 / a1)
+    e /= lnr
+    if not ok.all():
+        np.copyto(e, 0.0, where=~ok)
+    np.minimum(e, 0.0, out=e)
+    e += 1.0
+    np.maximum(e, 0.02, out=e)
+    t = a0 * d0
+    t /= e
+    return t[0] + t[1]
+
+
+#: the highest level :func:`tanh_sinh_upto` evaluates (73 nodes per integral)
+UPTO_LEVEL = 2
+
+
+def tanh_sinh_upto(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
+                   lo: np.ndarray, hi: np.ndarray, top: int = UPTO_LEVEL, common: bool = False
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Levels 0 … ``top`` of :func:`tanh_sinh` in one pass (one integrand call for all nodes).
+
+    Returns ``(values, errors)``, shape ``(top, m)`` for 1D ``lo``/``hi`` of size ``m``: row
+    ``k - 1`` holds, bit for bit, the value and error estimate (level difference plus the tail
+    bound) that :func:`tanh_sinh` holds after its level ``k``: the same nodes, the same
+    integrand values and the same row sums in the same order. :func:`tanh_sinh` with
+    ``min_level`` stops an integral at the first level ``k >= min_level`` whose
+    ``error <= atol + rtol |value|``: where that level is ``<= top`` its result can be read off
+    here (:func:`first_converged`), which saves the refinement loop's bookkeeping (a few dozen
+    small array operations per level, most of the cost of one integral at a loose ``rtol``).
+    ``common``: every row has the interval of the first, ``lo < hi`` (its nodes are then kept
+    between calls).
     """
-    low, high, w0, w1, n0 = _levels01()
-    d = (hi - lo)[:, None]
+    low, high, ws, starts = _levels_upto(top)
     if common:          # every row the same interval: its nodes, computed once
-        x1, valid1 = _common_nodes(float(lo[0]), float(hi[0]))
-        x = np.broadcast_to(x1, (lo.size, x1.shape[1]))
-        valid = np.broadcast_to(valid1, x.shape)
+        x1, valid1, bad = _common_nodes(float(lo[0]), float(hi[0]), top)
+        x = x1 if lo.size == 1 else np.broadcast_to(x1, (lo.size, x1.shape[1]))
+        fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
+        if bad is not None:
+            fx = np.where(valid1, fx, 0.0)
+        same = None
     else:
+        d = (hi - lo)[:, None]
         x = np.where(low[None, :] <= 0.5, lo[:, None] + d * low, hi[:, None] - d * high)
         valid = (x > np.minimum(lo, hi)[:, None]) & (x < np.maximum(lo, hi)[:, None])
         x = np.where(valid, x, 0.5 * (lo + hi)[:, None])
-    fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
-    fx = np.where(valid, fx, 0.0)
-    f0, f1 = fx[:, :n0], fx[:, n0:]
-    tail = (_tail(f0[:, 0], f0[:, 1], low[0], low[1])
-            + _tail(f0[:, -1], f0[:, -2], high[n0 - 1], high[n0 - 2])) * np.abs(d[:, 0])
+        fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
+        fx = np.where(valid, fx, 0.0)
+        same = hi == lo
     half = 0.5 * (hi - lo)
-    s0 = np.sum(f0 * w0, axis=1)
-    v0 = half * _H0 * s0
-    s1 = s0 + np.sum(f1 * w1, axis=1)
-    v1 = half * (_H0 / 2) * s1
-    error = np.abs(v1 - v0) + tail
-    same = hi == lo
-    if np.any(same):
-        v1 = np.where(same, 0.0, v1)
-        error = np.where(same, 0.0, error)
-    return v1, error
+    f0 = fx[:, :starts[1]]
+    tail = _tails(f0) * np.abs(hi - lo)
+    sums = 0.0 + np.sum(f0 * ws[0], axis=1)         # (tanh_sinh's sums start at +0.0)
+    prev = half * _H0 * sums
+    values = np.empty((top, lo.size))
+    errors = np.empty((top, lo.size))
+    for k in range(1, top + 1):
+        sums = sums + np.sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1)
+        value = half * (_H0 / 2**k) * sums
+        values[k - 1] = value
+        errors[k - 1] = np.abs(value - prev) + tail
+        prev = value
+    if same is not None and same.any():
+        values[:, same] = 0.0
+        errors[:, same] = 0.0
+    return values, errors
+
+
+def first_converged(values: np.ndarray, errors: np.ndarray, rtol: float, min_level: int
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`tanh_sinh`'s stopping rule (``atol = 0``) on :func:`tanh_sinh_upto`'s levels:
+    ``(value, error, done)`` per integral, at the first level ``>= min_level`` with
+    ``error <= rtol |value|``; ``done`` is False where no level up to the top one stops (value
+    and error are then those of the top level)."""
+    top = values.shape[0]
+    value = values[top - 1].copy()
+    error = errors[top - 1].copy()
+    done = np.zeros(values.shape[1], dtype=bool)
+    for k in range(top, min_level - 1, -1):      # the lowest stopping level wins: last
+        ok = errors[k - 1] <= rtol * np.abs(values[k - 1])
+        if k == top:
+            done = ok
+        else:
+            done = done | ok
+        value = np.where(ok, values[k - 1], value)
+        error = np.where(ok, errors[k - 1], error)
+    return value, error, done
 
 
 def _tail(f0: np.ndarray, f1: np.ndarray, d0: float, d1: float) -> np.ndarray:

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
+from ..numeric.quadrature import LOOSE_RTOL, first_converged, min_level_for, tanh_sinh_upto
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
@@ -309,11 +310,59 @@ def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
 
 # ----------------------------------------------------------------------------- quadrature route
 _QUAD_KEY = "_scalar_quadrature_ok"
+#: radii of the bracket's growth on f evaluated per call of f (4**8: a factor 65536)
+_LADDER = 8
 #: the Profile methods the array route of a depth runs on a quadrature profile: a subclass that
 #: overrides one of them keeps the array route
 _QUAD_METHODS = ("_radius_of_depth", "_solve_radius", "_g", "_g_route_eval", "_g_quadrature",
-                 "_theta_quadrature", "_theta_segments", "_g_integral",
-                 "_g_integral_with_error", "_g_integral_quadrature", "_initial_bracket")
+                 "_theta_quadrature", "_theta_segments", "_theta_whole", "_quadrature_floor",
+                 "_g_integral", "_g_integral_with_error", "_g_integral_quadrature",
+                 "_initial_bracket")
+_THETA = (np.zeros(1), np.full(1, 0.5 * np.pi))
+
+
+def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[float, float] | None:
+    """``(value, error)`` of :meth:`Profile._theta_quadrature` at one ``x > 0`` over the whole
+    θ range at a loose ``rtol`` when the first levels reach it (the same operations on a batch
+    of one: the same bits), or None (the caller takes the array route)."""
+    xr = np.array([x])
+    slope = profile._slope_any
+    if cos2:
+        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return slope(xr[idx][:, None] * np.sin(th)) * np.cos(th) ** 2
+    else:
+        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            return slope(xr[idx][:, None] * np.sin(th))
+    v, e, done = first_converged(*tanh_sinh_upto(integrand, _THETA[0], _THETA[1], common=True),
+                                 rtol, min_level_for(rtol))
+    if not done[0]:
+        return None
+    return float(v[0]), float(e[0])
+
+
+def _lean(profile: Profile, rtol: float) -> bool:
+    """Whether :func:`_level1_one` applies (a loose rtol, θ never split)."""
+    return rtol >= LOOSE_RTOL and profile._theta_whole()
+
+
+def g_one(profile: Profile, x: float, rtol: float, lean: bool) -> float:
+    """``profile._g`` at one radius ``x`` (m) on a quadrature profile (the same bits)."""
+    if lean and x > 0:
+        ve = _level1_one(profile, x, rtol, False)
+        if ve is not None:
+            return ve[0] * x
+    return float(profile._g(np.array([x]), rtol)[0])
+
+
+def g_integral_one(profile: Profile, a: float, rtol: float, lean: bool) -> tuple[float, float]:
+    """``profile._g_integral_with_error`` at one radius ``a`` (m) on a quadrature profile."""
+    if lean and a > 0:
+        ve = _level1_one(profile, a, rtol, True)
+        if ve is not None:
+            a2 = a * a
+            return ve[0] * a2, ve[1] * a2
+    gi, gi_err = profile._g_integral_with_error(np.array([a]), rtol)
+    return float(gi[0]), float(gi_err[0])
 
 
 def quadrature_scalar_ok(profile: Profile) -> bool:
@@ -342,24 +391,36 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
     quadrature: the same radius, bit for bit, as the array route, without its per-iteration
     array bookkeeping (which costs more than one g at a loose ``rtol``).
     """
+    lean = _lean(profile, rtol)
+
     def g(x: float) -> float:
-        return float(profile._g(np.array([x]), rtol)[0])
+        return g_one(profile, x, rtol, lean)
 
     limit = float(profile.max_radius)
     finite = math.isfinite(limit)
     lo = float(profile.flat_radius)
     hi = float(profile._initial_bracket())
     if profile._has("_height"):
+        # the array route's growth of the bracket on f, its radii taken _LADDER at a time in one
+        # call of f (f is elementwise: the same values)
         cap = limit * (1 - 1e-15) if finite else math.inf
         f_prev = -math.inf
-        for _ in range(200):
-            hc = min(hi, cap)
+        growing = True
+        for _ in range(200 // _LADDER):
+            his = [hi]
+            for _ in range(_LADDER - 1):
+                his.append(his[-1] * 4.0)
+            hcs = [min(h, cap) for h in his]
             with np.errstate(over="ignore", invalid="ignore"):
-                f_hc = float(profile._height(np.array([hc]))[0])
-            if not ((f_hc < d) and (hc < cap) and (f_hc > f_prev)):
+                fs = profile._height(np.array(hcs))
+            for hc, f_hc in zip(hcs, fs.tolist()):
+                if not ((f_hc < d) and (hc < cap) and (f_hc > f_prev)):
+                    growing = False
+                    break
+                f_prev = f_hc
+                hi = hi * 4.0
+            if not growing:
                 break
-            f_prev = f_hc
-            hi = hi * 4.0
     for _ in range(400):
         hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
         g_hi = g(hi_c)

@@ -31,8 +31,8 @@ import numpy as np
 
 from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
-from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, min_level_for, tanh_sinh,
-                                  tanh_sinh_level1)
+from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min_level_for,
+                                  tanh_sinh, tanh_sinh_upto)
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
@@ -368,10 +368,11 @@ class Profile(ParamIdentity, ABC):
 
         lo_f, hi_f = lo.ravel(), hi.ravel()
         if rtol >= LOOSE_RTOL:
-            # levels 0 and 1 in one pass (tanh_sinh stops there for every integral whose level
+            # the first levels in one pass (tanh_sinh stops there for every integral whose level
             # difference is within rtol: the same values); the others refine in tanh_sinh
-            v, e = tanh_sinh_level1(integrand, lo_f, hi_f, common=whole)
-            more = np.flatnonzero(~(e <= rtol * np.abs(v)))
+            v, e, done = first_converged(*tanh_sinh_upto(integrand, lo_f, hi_f, common=whole),
+                                         rtol, min_level_for(rtol))
+            more = np.flatnonzero(~done)
             if more.size:
                 xr_all = xr
 

@@ -100,30 +100,32 @@ def test_estimates_cover_the_true_error_on_the_ladder():
 
 
 def test_g_work_falls_as_rtol_loosens(monkeypatch):
-    evaluations = {}
+    """At a loose rtol g takes one integrand call (the first levels in one pass) and no
+    refinement loop; tighter tolerances refine, with more nodes the tighter."""
+    evaluations: dict = {}
+    calls: dict = {}
     real = quadrature.tanh_sinh
+    real1 = quadrature.tanh_sinh_upto
 
     def counting(*args, **kw):
         res = real(*args, **kw)
         evaluations[kw["rtol"]] = evaluations.get(kw["rtol"], 0) + res.evaluations
         return res
 
-    real1 = quadrature.tanh_sinh_level1
-
     def counting1(integrand, lo, hi, **kw):
-        # the loose-rtol pass: levels 0 and 1 of every integral (19 + 18 nodes)
-        evaluations[LOOSE] = evaluations.get(LOOSE, 0) + 37 * np.size(lo)
+        calls[rtol] = calls.get(rtol, 0) + 1
         return real1(integrand, lo, hi, **kw)
 
     import contactlab.profiles.base as base
-    LOOSE = 1e-2
     monkeypatch.setattr(base, "tanh_sinh", counting)
-    monkeypatch.setattr(base, "tanh_sinh_level1", counting1)
+    monkeypatch.setattr(base, "tanh_sinh_upto", counting1)
     q = QuadratureOnly(PowerLaw(10.0, 4.0))
     x = np.array([0.05, 0.1, 0.2])
-    for rtol in (1e-2, 1e-6, 1e-10):
+    for rtol in (1e-2, 1e-3, 1e-6, 1e-10):
         q._g(x, rtol)
-    assert evaluations[1e-2] < evaluations[1e-6] <= evaluations[1e-10]
+    assert calls == {1e-2: 1, 1e-3: 1}
+    assert 1e-2 not in evaluations and 1e-3 not in evaluations
+    assert evaluations[1e-6] <= evaluations[1e-10]
 
 
 @pytest.mark.parametrize("rtol, level", [(1e-2, 1), (1e-3, 1), (9.9e-4, 2), (1e-10, 2)])
@@ -132,8 +134,9 @@ def test_rule_from_rtol(rtol, level):
 
 
 @pytest.mark.parametrize("common", [False, True])
-def test_two_level_pass_is_tanh_sinh_at_level_1(common):
-    """The loose-rtol pass gives tanh_sinh's value and estimate after level 1, bit for bit."""
+def test_first_levels_pass_is_tanh_sinh(common):
+    """The loose-rtol pass gives tanh_sinh's value and estimate at each of its first levels,
+    bit for bit, and tanh_sinh's stopping level."""
     if common:
         lo, hi = np.zeros(3), np.full(3, 0.5 * np.pi)
     else:
@@ -143,11 +146,18 @@ def test_two_level_pass_is_tanh_sinh_at_level_1(common):
     def integrand(x, idx):
         return c[idx][:, None] * np.sin(x) ** -0.3 + x**2
 
-    v, e = quadrature.tanh_sinh_level1(integrand, lo, hi, common=common)
-    ref = quadrature.tanh_sinh(integrand, lo, hi, rtol=1e300, min_level=1, max_level=1)
-    assert ref.level == 1
-    assert v.tobytes() == ref.value.tobytes()
-    assert e.tobytes() == ref.error.tobytes()
+    values, errors = quadrature.tanh_sinh_upto(integrand, lo, hi, common=common)
+    for k in (1, 2):
+        ref = quadrature.tanh_sinh(integrand, lo, hi, rtol=1e300, min_level=k, max_level=k)
+        assert ref.level == k
+        assert values[k - 1].tobytes() == ref.value.tobytes()
+        assert errors[k - 1].tobytes() == ref.error.tobytes()
+    for rtol in (1e-1, 1e-2, 1e-3):
+        ref = quadrature.tanh_sinh(integrand, lo, hi, rtol=rtol, min_level=1,
+                                   raise_on_failure=False)
+        v, e, done = quadrature.first_converged(values, errors, rtol, 1)
+        assert v[done].tobytes() == ref.value[done].tobytes()
+        assert e[done].tobytes() == ref.error[done].tobytes()
 
 
 @pytest.mark.parametrize("prof", [Paraboloid(1.0), Cone(0.5), PowerLaw(1.0, 0.5)],
