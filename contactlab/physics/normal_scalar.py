@@ -46,7 +46,8 @@ if TYPE_CHECKING:
 _TINY = float(np.finfo(float).tiny)
 
 __all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error",
-           "quadrature_scalar_ok", "solve_depth_quadrature", "quadrature_force_rel_error"]
+           "quadrature_scalar_ok", "solve_depth_quadrature", "solve_force_quadrature",
+           "quadrature_force_rel_error"]
 
 _CACHE_KEY = "_scalar_normal_forms"
 
@@ -319,6 +320,7 @@ _QUAD_METHODS = ("_radius_of_depth", "_solve_radius", "_g", "_g_route_eval", "_g
                  "_g_integral", "_g_integral_with_error", "_g_integral_quadrature",
                  "_initial_bracket")
 _THETA = (np.zeros(1), np.full(1, 0.5 * np.pi))
+_THETA2 = (np.zeros(2), np.full(2, 0.5 * np.pi))
 
 
 def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[float, float] | None:
@@ -338,6 +340,27 @@ def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[fl
     if not done[0]:
         return None
     return float(v[0]), float(e[0])
+
+
+def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
+                        ) -> tuple[float, float]:
+    """``(g(x), ∫_0^x g)`` at one radius on a quadrature profile (the same bits as
+    ``profile._g`` and ``profile._g_integral``): at a loose rtol both θ integrals in one pass,
+    f' evaluated once for both (the ∫g integrand is that f' times cos²θ)."""
+    if lean and x > 0:
+        xr = np.array([x])
+        slope = profile._slope_any
+
+        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
+            t1 = th[:1]             # (both rows share the nodes)
+            fx = slope(xr[:, None] * np.sin(t1))
+            return np.concatenate([fx, fx * np.cos(t1) ** 2])
+        v, _, done = first_converged(
+            *tanh_sinh_upto(integrand, _THETA2[0], _THETA2[1], common=True), rtol,
+            min_level_for(rtol))
+        if done[0] and done[1]:
+            return float(v[0]) * x, float(v[1]) * (x * x)
+    return g_one(profile, x, rtol, lean), g_integral_one(profile, x, rtol, lean)[0]
 
 
 def _lean(profile: Profile, rtol: float) -> bool:
@@ -373,6 +396,8 @@ def quadrature_scalar_ok(profile: Profile) -> bool:
     if ok is None:
         cls = type(profile)
         ok = (profile.g_route == "quadrature" and not profile.has("terms")
+              and not profile.has("reduced_force_solver")
+              and not profile.has("reduced_force_state")
               and not math.isfinite(float(profile.wall_radius))
               and not profile._has("_check_monotone_upto")
               and not profile._has("_g_inverse_closed_form")
@@ -449,11 +474,63 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
     return a
 
 
+def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: float
+                           ) -> tuple[float, float] | None:
+    """Contact radius and depth (m) of one force ``F > 0`` (N) on a quadrature profile, or
+    ``None`` (the array route then runs, and raises where this one would).
+
+    The steps of the bracketed branch of :func:`contactlab.physics.normal.radius_depth_of_force`
+    for one element in plain floats, the force ``2E*(a g(a) - ∫g)`` of each radius through the
+    same quadratures (one pass for both at a loose rtol): the array route's radius and depth,
+    bit for bit.
+    """
+    lean = _lean(profile, rtol)
+    two_e = 2.0 * E_star
+
+    def force(x: float) -> float:
+        g, gi = _g_and_integral_one(profile, x, rtol, lean)
+        return two_e * (x * g - gi)
+
+    limit = float(profile.max_radius)
+    finite = math.isfinite(limit)
+    lo = float(profile.flat_radius)
+    hi = float(profile._initial_bracket())
+    for _ in range(400):
+        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
+        F_hi = force(hi_c)
+        if not F_hi < F:
+            lo, hi, F_hi = shrink_bracket_scalar(force, F, lo, hi_c, F_hi)
+            break
+        if finite and hi_c >= limit * (1 - 1e-15):
+            return None
+        lo, hi = hi_c, hi * 4.0
+    else:
+        return None
+    f1, f2 = force(lo) - F, F_hi - F
+    if not (math.isfinite(f1) and math.isfinite(f2)) or f1 * f2 > 0:
+        return None
+    if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
+        a = hi
+    elif f1 == 0:
+        a = lo
+    else:
+        try:
+            a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+        except ConvergenceError:
+            return None
+    if not a > 0 or (finite and a >= limit):
+        return None
+    return a, g_one(profile, a, rtol, lean)
+
+
 def quadrature_force_rel_error(E_star: float, a: float, d: float, g_int: float,
-                               g_int_err: float, F: float) -> float:
-    """Relative force error of one depth on the quadrature route, the operations of
+                               g_int_err: float, F: float, requested: float | None = None
+                               ) -> float:
+    """Relative force error of one depth or force on the quadrature route, the operations of
     :func:`contactlab.physics.normal._force_rel_error` in floats (the same bits)."""
     if not a > 0:
         return 0.0
     F_err = ((abs(a * d) + abs(g_int)) * ROUNDING + abs(g_int_err)) * (2.0 * E_star)
+    if requested is not None:
+        F_err = F_err + (abs(F - requested) if requested > 0 else 0.0)
     return float(F_err / F) if F > 0 else 0.0

@@ -163,21 +163,26 @@ def test_first_levels_pass_is_tanh_sinh(common):
 @pytest.mark.parametrize("prof", [Paraboloid(1.0), Cone(0.5), PowerLaw(1.0, 0.5)],
                          ids=repr)
 @pytest.mark.parametrize("rtol", [1e-2, 1e-3, 1e-6, 1e-10])
-def test_scalar_quadrature_depth_is_the_batched_route(prof, rtol):
-    """One depth on a quadrature profile takes the plain-float solve; it gives the batched
-    route's radius, force and estimate bit for bit (a batch of one and a batch of three)."""
+@pytest.mark.parametrize("control, values", [("depth", (1e-4, 3e-2, 2.0)),
+                                             ("force", (1e-9, 1e-3, 5.0))])
+def test_scalar_quadrature_solve_is_the_batched_route(prof, rtol, control, values):
+    """One depth or force on a quadrature profile takes the plain-float solve; it gives the
+    batched route's radius, depth, force and estimate bit for bit (a batch of one and a batch
+    of three)."""
     q = QuadratureOnly(prof)
     contact = cl.Contact(q, MATERIALS, rtol=rtol)
-    depths = np.array([1e-4, 3e-2, 2.0])
-    batch = contact.normal(depth=depths)
-    for i, d in enumerate(depths):
-        s = contact.normal(depth=float(d))
-        one = contact.normal(depth=np.array([d]))
+    batch = contact.normal(**{control: np.array(values)})
+    for i, v in enumerate(values):
+        s = contact.normal(**{control: float(v)})
+        one = contact.normal(**{control: np.array([v])})
         for got in (s, one):
-            assert np.float64(got.radius).tobytes() == batch.radius[i].tobytes()
-            assert np.float64(got.force).tobytes() == batch.force[i].tobytes()
+            for name in ("radius", "depth", "force"):
+                assert (np.float64(getattr(got, name)).tobytes()
+                        == getattr(batch, name)[i].tobytes()), name
         assert np.float64(s.error_estimate).tobytes() == np.float64(
             one.error_estimate[0]).tobytes()
+        assert (np.float64(s.error_estimates["radius"]).tobytes()
+                == np.float64(one.error_estimates["radius"][0]).tobytes())
 
 
 def test_scalar_quadrature_route_is_taken():
