@@ -155,6 +155,8 @@ def _tails(f0: np.ndarray) -> np.ndarray:
     return t[0] + t[1]
 
 
+_row_sum = np.add.reduce
+
 #: the highest level :func:`tanh_sinh_upto` evaluates (73 nodes per integral)
 UPTO_LEVEL = 2
 
@@ -176,6 +178,7 @@ def tanh_sinh_upto(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
     between calls).
     """
     low, high, ws, starts = _levels_upto(top)
+    width = hi - lo
     if common:          # every row the same interval: its nodes, computed once
         x1, valid1, bad = _common_nodes(float(lo[0]), float(hi[0]), top)
         x = x1 if lo.size == 1 else np.broadcast_to(x1, (lo.size, x1.shape[1]))
@@ -184,30 +187,32 @@ def tanh_sinh_upto(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
             fx = np.where(valid1, fx, 0.0)
         same = None
     else:
-        d = (hi - lo)[:, None]
+        d = width[:, None]
         x = np.where(low[None, :] <= 0.5, lo[:, None] + d * low, hi[:, None] - d * high)
         valid = (x > np.minimum(lo, hi)[:, None]) & (x < np.maximum(lo, hi)[:, None])
         x = np.where(valid, x, 0.5 * (lo + hi)[:, None])
         fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
         fx = np.where(valid, fx, 0.0)
         same = hi == lo
-    half = 0.5 * (hi - lo)
+    half = 0.5 * width
     f0 = fx[:, :starts[1]]
-    tail = _tails(f0) * np.abs(hi - lo)
-    sums = 0.0 + np.sum(f0 * ws[0], axis=1)         # (tanh_sinh's sums start at +0.0)
+    tail = _tails(f0) * np.abs(width)
+    # np.sum's reduction itself (np.add.reduce: the same row sums, without its wrapper)
+    sums = 0.0 + _row_sum(f0 * ws[0], axis=1)         # (tanh_sinh's sums start at +0.0)
     prev = half * _H0 * sums
-    values = np.empty((top, lo.size))
-    errors = np.empty((top, lo.size))
+    values = []
+    errors = []
     for k in range(1, top + 1):
-        sums = sums + np.sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1)
+        sums = sums + _row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1)
         value = half * (_H0 / 2**k) * sums
-        values[k - 1] = value
-        errors[k - 1] = np.abs(value - prev) + tail
+        values.append(value)
+        errors.append(np.abs(value - prev) + tail)
         prev = value
+    out_v, out_e = np.array(values), np.array(errors)
     if same is not None and same.any():
-        values[:, same] = 0.0
-        errors[:, same] = 0.0
-    return values, errors
+        out_v[:, same] = 0.0
+        out_e[:, same] = 0.0
+    return out_v, out_e
 
 
 def first_converged(values: np.ndarray, errors: np.ndarray, rtol: float, min_level: int

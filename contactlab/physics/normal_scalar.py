@@ -36,7 +36,7 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-from ..numeric.quadrature import LOOSE_RTOL, first_converged, min_level_for, tanh_sinh_upto
+from ..numeric.quadrature import LOOSE_RTOL, min_level_for, tanh_sinh_upto
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
@@ -335,11 +335,19 @@ def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[fl
     else:
         def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return slope(xr[idx][:, None] * np.sin(th))
-    v, e, done = first_converged(*tanh_sinh_upto(integrand, _THETA[0], _THETA[1], common=True),
-                                 rtol, min_level_for(rtol))
-    if not done[0]:
-        return None
-    return float(v[0]), float(e[0])
+    values, errors = tanh_sinh_upto(integrand, _THETA[0], _THETA[1], common=True)
+    return _first_converged_one(values[:, 0].tolist(), errors[:, 0].tolist(), rtol)
+
+
+def _first_converged_one(values: list[float], errors: list[float], rtol: float
+                         ) -> tuple[float, float] | None:
+    """:func:`~contactlab.numeric.quadrature.first_converged` of one integral in floats (the
+    same comparisons): ``(value, error)`` at the first level that stops, or None."""
+    for k in range(min_level_for(rtol), len(values) + 1):
+        v, e = values[k - 1], errors[k - 1]
+        if e <= rtol * abs(v):
+            return v, e
+    return None
 
 
 def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
@@ -355,11 +363,12 @@ def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
             t1 = th[:1]             # (both rows share the nodes)
             fx = slope(xr[:, None] * np.sin(t1))
             return np.concatenate([fx, fx * np.cos(t1) ** 2])
-        v, _, done = first_converged(
-            *tanh_sinh_upto(integrand, _THETA2[0], _THETA2[1], common=True), rtol,
-            min_level_for(rtol))
-        if done[0] and done[1]:
-            return float(v[0]) * x, float(v[1]) * (x * x)
+        values, errors = tanh_sinh_upto(integrand, _THETA2[0], _THETA2[1], common=True)
+        vs, es = values.T.tolist(), errors.T.tolist()
+        g = _first_converged_one(vs[0], es[0], rtol)
+        gi = _first_converged_one(vs[1], es[1], rtol)
+        if g is not None and gi is not None:
+            return g[0] * x, gi[0] * (x * x)
     return g_one(profile, x, rtol, lean), g_integral_one(profile, x, rtol, lean)[0]
 
 
@@ -370,6 +379,8 @@ def _lean(profile: Profile, rtol: float) -> bool:
 
 def g_one(profile: Profile, x: float, rtol: float, lean: bool) -> float:
     """``profile._g`` at one radius ``x`` (m) on a quadrature profile (the same bits)."""
+    if x == 0.0:
+        return 0.0          # (Profile._theta_quadrature skips x = 0: its value 0 times x)
     if lean and x > 0:
         ve = _level1_one(profile, x, rtol, False)
         if ve is not None:
