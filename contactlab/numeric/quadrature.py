@@ -14,6 +14,7 @@ Publ. RIMS 9 (1974) 721-741.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cache
 from collections.abc import Callable
@@ -213,6 +214,64 @@ def tanh_sinh_upto(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
         out_v[:, same] = 0.0
         out_e[:, same] = 0.0
     return out_v, out_e
+
+
+def upto_rows(fx: np.ndarray, lo: float, hi: float, top: int = UPTO_LEVEL
+              ) -> list[tuple[list[float], list[float]]] | None:
+    """:func:`tanh_sinh_upto` on one interval ``[lo, hi]`` (``lo < hi``) from the integrand
+    values ``fx`` on its nodes (:func:`common_nodes`, one row per integral, invalid nodes
+    included), in floats: per row ``(values, errors)`` of levels 1 … ``top``, the same
+    operations in the same order (numpy's row sums and logarithm, the rest IEEE float
+    arithmetic): the same bits, without the array bookkeeping that dominates one integral.
+    ``None`` where an end value is not finite (the caller then takes :func:`tanh_sinh_upto`)."""
+    _, valid1, bad = _common_nodes(lo, hi, top)
+    if bad is not None:
+        fx = np.where(valid1, fx, 0.0)
+    _, _, ws, starts = _levels_upto(top)
+    n0 = starts[1]
+    d_lo, d_hi, ln_lo, ln_hi = _tail_floats()
+    width = hi - lo
+    half = 0.5 * width
+    aw = abs(width)
+    sums_k = [_row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1).tolist()
+              for k in range(top + 1)]
+    out = []
+    for i, row in enumerate(fx[:, [0, 1, n0 - 2, n0 - 1]].tolist()):
+        a0, a1, b1, b0 = (abs(v) for v in row)
+        if not (math.isfinite(a0) and math.isfinite(a1) and math.isfinite(b0)
+                and math.isfinite(b1)):
+            return None
+        ok_lo, ok_hi = a0 > 0 and a1 > 0, b0 > 0 and b1 > 0
+        logs = np.log(np.array([a0 / a1 if ok_lo else 1.0, b0 / b1 if ok_hi else 1.0]))
+        e_lo = float(logs[0]) / ln_lo if ok_lo else 0.0
+        e_hi = float(logs[1]) / ln_hi if ok_hi else 0.0
+        t_lo = a0 * d_lo / max(1.0 + min(e_lo, 0.0), 0.02)
+        t_hi = b0 * d_hi / max(1.0 + min(e_hi, 0.0), 0.02)
+        tail = (t_lo + t_hi) * aw
+        sums = 0.0 + sums_k[0][i]
+        prev = half * _H0 * sums
+        values, errors = [], []
+        for k in range(1, top + 1):
+            sums = sums + sums_k[k][i]
+            value = half * (_H0 / 2**k) * sums
+            values.append(value)
+            errors.append(abs(value - prev) + tail)
+            prev = value
+        out.append((values, errors))
+    return out
+
+
+def common_nodes(lo: float, hi: float, top: int = UPTO_LEVEL) -> np.ndarray:
+    """The nodes of levels 0 … ``top`` on ``[lo, hi]`` as :func:`tanh_sinh_upto` passes them
+    to the integrand of one integral (a read-only row vector, kept between calls)."""
+    return _common_nodes(lo, hi, top)[0]
+
+
+@cache
+def _tail_floats() -> tuple[float, float, float, float]:
+    """:func:`_tail_constants` as floats: end distances (lower, upper), their log ratios."""
+    d0, lnr = _tail_constants()
+    return float(d0[0, 0]), float(d0[1, 0]), float(lnr[0, 0]), float(lnr[1, 0])
 
 
 def first_converged(values: np.ndarray, errors: np.ndarray, rtol: float, min_level: int

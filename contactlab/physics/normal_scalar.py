@@ -36,7 +36,7 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-from ..numeric.quadrature import LOOSE_RTOL, min_level_for, tanh_sinh_upto
+from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
@@ -319,24 +319,29 @@ _QUAD_METHODS = ("_radius_of_depth", "_solve_radius", "_g", "_g_route_eval", "_g
                  "_theta_quadrature", "_theta_segments", "_theta_whole", "_quadrature_floor",
                  "_g_integral", "_g_integral_with_error", "_g_integral_quadrature",
                  "_initial_bracket")
-_THETA = (np.zeros(1), np.full(1, 0.5 * np.pi))
-_THETA2 = (np.zeros(2), np.full(2, 0.5 * np.pi))
+_HALF_PI = float(np.full(1, 0.5 * np.pi)[0])      # θ's upper end as _theta_quadrature sets it
+
+
+def _theta_values(profile: Profile, x: float, cos2: bool) -> np.ndarray:
+    """The θ integrands of g (and, with ``cos2``, of ∫g as a second row) at one ``x`` on the
+    first levels' nodes over ``[0, π/2]``: the operations of :meth:`Profile._g_quadrature`'s
+    and :meth:`Profile._g_integral_quadrature`'s weights (f' evaluated once)."""
+    th = common_nodes(0.0, _HALF_PI)
+    fx = np.asarray(profile._slope_any(np.array([[x]]) * np.sin(th)), dtype=float)
+    if cos2:
+        fx = np.concatenate([fx, fx * np.cos(th) ** 2])
+    return fx
 
 
 def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[float, float] | None:
     """``(value, error)`` of :meth:`Profile._theta_quadrature` at one ``x > 0`` over the whole
-    θ range at a loose ``rtol`` when the first levels reach it (the same operations on a batch
-    of one: the same bits), or None (the caller takes the array route)."""
-    xr = np.array([x])
-    slope = profile._slope_any
-    if cos2:
-        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return slope(xr[idx][:, None] * np.sin(th)) * np.cos(th) ** 2
-    else:
-        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            return slope(xr[idx][:, None] * np.sin(th))
-    values, errors = tanh_sinh_upto(integrand, _THETA[0], _THETA[1], common=True)
-    return _first_converged_one(values[:, 0].tolist(), errors[:, 0].tolist(), rtol)
+    θ range at a loose ``rtol`` when the first levels reach it (the same operations as on a
+    batch of one: the same bits), or None (the caller takes the array route)."""
+    fx = _theta_values(profile, x, cos2)
+    rows = upto_rows(fx, 0.0, _HALF_PI)
+    if rows is None:
+        return None
+    return _first_converged_one(*rows[-1], rtol)
 
 
 def _first_converged_one(values: list[float], errors: list[float], rtol: float
@@ -356,19 +361,12 @@ def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
     ``profile._g`` and ``profile._g_integral``): at a loose rtol both θ integrals in one pass,
     f' evaluated once for both (the ∫g integrand is that f' times cos²θ)."""
     if lean and x > 0:
-        xr = np.array([x])
-        slope = profile._slope_any
-
-        def integrand(th: np.ndarray, idx: np.ndarray) -> np.ndarray:
-            t1 = th[:1]             # (both rows share the nodes)
-            fx = slope(xr[:, None] * np.sin(t1))
-            return np.concatenate([fx, fx * np.cos(t1) ** 2])
-        values, errors = tanh_sinh_upto(integrand, _THETA2[0], _THETA2[1], common=True)
-        vs, es = values.T.tolist(), errors.T.tolist()
-        g = _first_converged_one(vs[0], es[0], rtol)
-        gi = _first_converged_one(vs[1], es[1], rtol)
-        if g is not None and gi is not None:
-            return g[0] * x, gi[0] * (x * x)
+        rows = upto_rows(_theta_values(profile, x, True), 0.0, _HALF_PI)
+        if rows is not None:
+            g = _first_converged_one(*rows[0], rtol)
+            gi = _first_converged_one(*rows[1], rtol)
+            if g is not None and gi is not None:
+                return g[0] * x, gi[0] * (x * x)
     return g_one(profile, x, rtol, lean), g_integral_one(profile, x, rtol, lean)[0]
 
 
