@@ -27,7 +27,9 @@ Pareto plot per knob (``benchmarks/results/pareto_*.png``, if matplotlib is inst
 from __future__ import annotations
 
 import argparse
+import gc
 import math
+import random
 import sys
 import time
 import warnings
@@ -449,16 +451,31 @@ def _tamaas_n8(name: str):
 
 
 def _interleaved(fns: dict, rounds: int = 15) -> dict:
-    """Best time of each callable, run in turn every round; the process's CPU time (``--wall``:
+    """Best time of each callable, run in turn every round in a new (seeded) order, the garbage
+    collector off during each call; the process's CPU time (``--wall``:
     wall time), so that time slices lost to other jobs on a loaded machine do not count (tamaas
     runs in this process: its threads' CPU time counts too)."""
     clock = time.perf_counter if "--wall" in sys.argv else time.process_time
     best = {k: math.inf for k in fns}
+    order = list(fns)
+    rng = random.Random(29)
     for _ in range(rounds):
-        for k, fn in fns.items():
-            t0 = clock()
-            fn()
-            best[k] = min(best[k], clock() - t0)
+        # a new order every round: a short call right after a long one (a 12 ms tight-rtol solve)
+        # runs ~1.5x slower (cold caches), and a fixed order charged that to the same callables
+        rng.shuffle(order)
+        for k in order:
+            fn = fns[k]
+            # the garbage collector off while a callable runs, as timeit does: a collection
+            # triggered by the previous callable's allocations (a 12 ms tight-rtol solve before a
+            # 0.4 ms table call) would be charged to the next one in every round (an explicit
+            # collection before each call instead leaves every call with cold caches)
+            gc.disable()
+            try:
+                t0 = clock()
+                fn()
+                best[k] = min(best[k], clock() - t0)
+            finally:
+                gc.enable()
     return best
 
 
