@@ -236,8 +236,8 @@ def upto_rows(fx: np.ndarray, lo: float, hi: float, top: int = UPTO_LEVEL
     sums_k = [_row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1).tolist()
               for k in range(top + 1)]
     out = []
-    for i, row in enumerate(fx[:, [0, 1, n0 - 2, n0 - 1]].tolist()):
-        a0, a1, b1, b0 = (abs(v) for v in row)
+    for i, row in enumerate(fx[:, :n0].tolist()):
+        a0, a1, b1, b0 = abs(row[0]), abs(row[1]), abs(row[n0 - 2]), abs(row[n0 - 1])
         if not (math.isfinite(a0) and math.isfinite(a1) and math.isfinite(b0)
                 and math.isfinite(b1)):
             return None

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 from typing import TYPE_CHECKING, cast
 from collections.abc import Callable
 
@@ -326,11 +327,22 @@ def _theta_values(profile: Profile, x: float, cos2: bool) -> np.ndarray:
     """The θ integrands of g (and, with ``cos2``, of ∫g as a second row) at one ``x`` on the
     first levels' nodes over ``[0, π/2]``: the operations of :meth:`Profile._g_quadrature`'s
     and :meth:`Profile._g_integral_quadrature`'s weights (f' evaluated once)."""
-    th = common_nodes(0.0, _HALF_PI)
-    fx = np.asarray(profile._slope_any(np.array([[x]]) * np.sin(th)), dtype=float)
+    sin_th, cos2_th = _theta_trig()
+    fx = np.asarray(profile._slope_any(np.array([[x]]) * sin_th), dtype=float)
     if cos2:
-        fx = np.concatenate([fx, fx * np.cos(th) ** 2])
+        fx = np.concatenate([fx, fx * cos2_th])
     return fx
+
+
+@cache
+def _theta_trig() -> tuple[np.ndarray, np.ndarray]:
+    """``sin θ`` and ``cos²θ`` on :func:`common_nodes` over ``[0, π/2]`` (numpy's, as the
+    weights compute them at every call; kept read-only)."""
+    th = common_nodes(0.0, _HALF_PI)
+    sin_th, cos2_th = np.sin(th), np.cos(th) ** 2
+    sin_th.flags.writeable = False
+    cos2_th.flags.writeable = False
+    return sin_th, cos2_th
 
 
 def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[float, float] | None:
