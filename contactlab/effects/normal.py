@@ -223,18 +223,24 @@ def _fast_normal_quadrature(contact, key: str, value: Any) -> NormalState | None
         return None
     rtol = contact.rtol
     E = contact.moduli.normal
-    if key == "depth":
-        a = _scalar.solve_depth_quadrature(prof, v, rtol)
-        d = v
-    else:
-        ad = _scalar.solve_force_quadrature(prof, E, v, rtol)
-        if ad is None:
-            return None
-        a, d = ad
-    if a is None or not a > 0:
+    try:
+        # as the array route runs (normal()): an overflow raises, and the array route then
+        # reports it
+        with np.errstate(over="raise"):
+            if key == "depth":
+                a = _scalar.solve_depth_quadrature(prof, v, rtol)
+                d = v
+            else:
+                ad = _scalar.solve_force_quadrature(prof, E, v, rtol)
+                if ad is None:
+                    return None
+                a, d = ad
+            if a is None or not a > 0:
+                return None
+            g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
+    except FloatingPointError:
         return None
     warn_outside_validity(prof, np.array(a), stacklevel=6)
-    g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
     F = (a * d - g_int) * (2.0 * E)
     meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key,
                      "citations": _SOURCES},

@@ -427,6 +427,15 @@ def quadrature_scalar_ok(profile: Profile) -> bool:
     return bool(ok)
 
 
+def _times4(hi: float) -> float:
+    """``4 hi``, raising FloatingPointError where it overflows (as the array route's bracket
+    growth does under numpy's ``over="raise"``)."""
+    out = hi * 4.0
+    if out == math.inf and hi < math.inf:
+        raise FloatingPointError("overflow growing the bracket")
+    return out
+
+
 def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | None:
     """Contact radius (m) of one depth ``d > 0`` on a quadrature profile, or ``None`` (the
     array route then runs, and raises where this one would).
@@ -464,7 +473,7 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
                     growing = False
                     break
                 f_prev = f_hc
-                hi = hi * 4.0
+                hi = _times4(hi)
             if not growing:
                 break
     for _ in range(400):
@@ -475,11 +484,16 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
             break
         if finite and hi >= limit * (1 - 1e-15):
             return None
-        lo, hi = hi_c, hi * 4.0
+        lo, hi = hi_c, _times4(hi)
     else:
         return None
     f1, f2 = g(lo) - d, g_hi - d
-    if not (math.isfinite(f1) and math.isfinite(f2)) or f1 * f2 > 0:
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    if math.isinf(f1 * f2):
+        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
+        raise FloatingPointError("overflow in the bracket's sign test")
+    if f1 * f2 > 0:
         return None
     if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
         a = hi
@@ -510,7 +524,11 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
 
     def force(x: float) -> float:
         g, gi = _g_and_integral_one(profile, x, rtol, lean)
-        return two_e * (x * g - gi)
+        out = two_e * (x * g - gi)
+        if not math.isfinite(out) and math.isfinite(g) and math.isfinite(gi):
+            # an overflow, which raises on the array route (numpy's over="raise" there)
+            raise FloatingPointError("overflow in the force of a contact radius")
+        return out
 
     limit = float(profile.max_radius)
     finite = math.isfinite(limit)
@@ -524,11 +542,16 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
             break
         if finite and hi_c >= limit * (1 - 1e-15):
             return None
-        lo, hi = hi_c, hi * 4.0
+        lo, hi = hi_c, _times4(hi)
     else:
         return None
     f1, f2 = force(lo) - F, F_hi - F
-    if not (math.isfinite(f1) and math.isfinite(f2)) or f1 * f2 > 0:
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    if math.isinf(f1 * f2):
+        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
+        raise FloatingPointError("overflow in the bracket's sign test")
+    if f1 * f2 > 0:
         return None
     if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
         a = hi
