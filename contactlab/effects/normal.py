@@ -175,6 +175,8 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     if forms is False:
         forms = _scalar.forms_of(prof)
     if forms is None:
+        if _scalar.quadrature_scalar_ok(prof):
+            return _fast_normal_quadrature(contact, key, value)
         return None
     v = float(value)
     if not math.isfinite(v):
@@ -204,6 +206,47 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     # (the dataclass __init__ and its frozen setattr cost more than the solve: fill the fields)
     state = _new_state(NormalState)
     # numpy float scalars: they act as 0-d arrays in every state method, at half the cost
+    state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
+                          meta=meta)
+    return state
+
+
+def _fast_normal_quadrature(contact, key: str, value: Any) -> NormalState | None:
+    """One finite positive depth or force on a profile whose g goes by quadrature: the contact
+    radius (and depth) by :func:`contactlab.physics.normal_scalar.solve_depth_quadrature` or
+    :func:`~contactlab.physics.normal_scalar.solve_force_quadrature` (the array route's, bit for
+    bit), then ``∫g`` with its error and the force as :func:`contactlab.physics.normal.solve`
+    forms them. ``None`` (the array route) otherwise."""
+    prof = contact.profile
+    v = float(value)
+    if not (math.isfinite(v) and v > 0):
+        return None
+    rtol = contact.rtol
+    E = contact.moduli.normal
+    try:
+        # as the array route runs (normal()): an overflow raises, and the array route then
+        # reports it
+        with np.errstate(over="raise"):
+            if key == "depth":
+                a = _scalar.solve_depth_quadrature(prof, v, rtol)
+                d = v
+            else:
+                ad = _scalar.solve_force_quadrature(prof, E, v, rtol)
+                if ad is None:
+                    return None
+                a, d = ad
+            if a is None or not a > 0:
+                return None
+            g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
+    except FloatingPointError:
+        return None
+    warn_outside_validity(prof, np.array(a), stacklevel=6)
+    F = (a * d - g_int) * (2.0 * E)
+    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": key,
+                     "citations": _SOURCES},
+                    _scalar.quadrature_force_rel_error, E, a, d, g_int, g_int_err, F,
+                    v if key == "force" else None)
+    state = _new_state(NormalState)
     state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
                           meta=meta)
     return state

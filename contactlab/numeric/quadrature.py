@@ -14,6 +14,7 @@ Publ. RIMS 9 (1974) 721-741.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cache
 from collections.abc import Callable
@@ -22,7 +23,8 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["QuadratureResult", "tanh_sinh", "min_level_for", "DEFAULT_RTOL", "MAX_LEVEL"]
+__all__ = ["QuadratureResult", "tanh_sinh", "tanh_sinh_upto", "first_converged", "min_level_for",
+           "DEFAULT_RTOL", "MAX_LEVEL", "UPTO_LEVEL"]
 
 DEFAULT_RTOL = 1e-10
 MAX_LEVEL = 9          # step h = 2**-9 / 2: ~ 6600 nodes per integral at most
@@ -91,6 +93,206 @@ def _level_nodes(level: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     high = 1.0 / (np.exp(s) + 1.0)         # (1-u)/2
     w = 0.5 * np.pi * np.cosh(t) / np.cosh(0.5 * s) ** 2   # du/dt
     return low, high, w
+
+
+@cache
+def _levels_upto(top: int) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...],
+                                     tuple[int, ...]]:
+    """Nodes of levels 0 … ``top`` side by side (level 0 first): (low, high, the weights of
+    each level, the column where each level starts and, last, the total)."""
+    parts = [_level_nodes(k) for k in range(top + 1)]
+    starts = np.cumsum([0] + [p[0].size for p in parts])
+    return (np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]),
+            tuple(p[2] for p in parts), tuple(int(v) for v in starts))
+
+
+@cache
+def _common_nodes(lo: float, hi: float, top: int
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Nodes of levels 0 … ``top`` on one interval ``[lo, hi]`` (a row vector), their
+    validity, and the positions of the invalid ones (None when every node is valid)."""
+    low, high, *_ = _levels_upto(top)
+    lo_, hi_ = np.array([lo]), np.array([hi])
+    d = (hi_ - lo_)[:, None]
+    x = np.where(low[None, :] <= 0.5, lo_[:, None] + d * low, hi_[:, None] - d * high)
+    valid = (x > np.minimum(lo_, hi_)[:, None]) & (x < np.maximum(lo_, hi_)[:, None])
+    x = np.where(valid, x, 0.5 * (lo_ + hi_)[:, None])
+    x.flags.writeable = False
+    valid.flags.writeable = False
+    bad = np.flatnonzero(~valid[0])
+    return x, valid, (bad if bad.size else None)
+
+
+@cache
+def _tail_constants() -> tuple[np.ndarray, np.ndarray]:
+    """The end distances and the logarithms of their ratios :func:`_tail` takes at the lower
+    and upper ends of level 0 (as a column pair: lower end first)."""
+    low, high, _, starts = _levels_upto(0)
+    n0 = starts[1]
+    d0 = np.array([low[0], high[n0 - 1]])
+    lnr = np.array([np.log(low[0] / low[1]), np.log(high[n0 - 1] / high[n0 - 2])])
+    return d0[:, None], lnr[:, None]
+
+
+def _tails(f0: np.ndarray) -> np.ndarray:
+    """:func:`_tail` at both ends of the level-0 values ``f0`` (rows: integrals), summed: the
+    same operations on both ends at once (the same values; in place where :func:`_tail` makes
+    new arrays, and no ``where`` unless some end value is 0 or NaN)."""
+    d0, lnr = _tail_constants()
+    n = f0.shape[1]
+    a0 = np.abs(f0[:, ::n - 1].T)               # the outermost nodes (columns 0 and n-1)
+    a1 = np.abs(f0[:, 1:n - 1:n - 3].T)         # their neighbours (columns 1 and n-2)
+    ok = (a0 > 0) & (a1 > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.log(a0 / a1)
+    e /= lnr
+    if not ok.all():
+        np.copyto(e, 0.0, where=~ok)
+    np.minimum(e, 0.0, out=e)
+    e += 1.0
+    np.maximum(e, 0.02, out=e)
+    t = a0 * d0
+    t /= e
+    return t[0] + t[1]
+
+
+_row_sum = np.add.reduce
+
+#: the highest level :func:`tanh_sinh_upto` evaluates (73 nodes per integral)
+UPTO_LEVEL = 2
+
+
+def tanh_sinh_upto(integrand: Callable[[np.ndarray, np.ndarray], np.ndarray],
+                   lo: np.ndarray, hi: np.ndarray, top: int = UPTO_LEVEL, common: bool = False
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Levels 0 … ``top`` of :func:`tanh_sinh` in one pass (one integrand call for all nodes).
+
+    Returns ``(values, errors)``, shape ``(top, m)`` for 1D ``lo``/``hi`` of size ``m``: row
+    ``k - 1`` holds, bit for bit, the value and error estimate (level difference plus the tail
+    bound) that :func:`tanh_sinh` holds after its level ``k``: the same nodes, the same
+    integrand values and the same row sums in the same order. :func:`tanh_sinh` with
+    ``min_level`` stops an integral at the first level ``k >= min_level`` whose
+    ``error <= atol + rtol |value|``: where that level is ``<= top`` its result can be read off
+    here (:func:`first_converged`), which saves the refinement loop's bookkeeping (a few dozen
+    small array operations per level, most of the cost of one integral at a loose ``rtol``).
+    ``common``: every row has the interval of the first, ``lo < hi`` (its nodes are then kept
+    between calls).
+    """
+    low, high, ws, starts = _levels_upto(top)
+    width = hi - lo
+    if common:          # every row the same interval: its nodes, computed once
+        x1, valid1, bad = _common_nodes(float(lo[0]), float(hi[0]), top)
+        x = x1 if lo.size == 1 else np.broadcast_to(x1, (lo.size, x1.shape[1]))
+        fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
+        if bad is not None:
+            fx = np.where(valid1, fx, 0.0)
+        same = None
+    else:
+        d = width[:, None]
+        x = np.where(low[None, :] <= 0.5, lo[:, None] + d * low, hi[:, None] - d * high)
+        valid = (x > np.minimum(lo, hi)[:, None]) & (x < np.maximum(lo, hi)[:, None])
+        x = np.where(valid, x, 0.5 * (lo + hi)[:, None])
+        fx = np.asarray(integrand(x, np.arange(lo.size)), dtype=float)
+        fx = np.where(valid, fx, 0.0)
+        same = hi == lo
+    half = 0.5 * width
+    f0 = fx[:, :starts[1]]
+    tail = _tails(f0) * np.abs(width)
+    # np.sum's reduction itself (np.add.reduce: the same row sums, without its wrapper)
+    sums = 0.0 + _row_sum(f0 * ws[0], axis=1)         # (tanh_sinh's sums start at +0.0)
+    prev = half * _H0 * sums
+    values = []
+    errors = []
+    for k in range(1, top + 1):
+        sums = sums + _row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1)
+        value = half * (_H0 / 2**k) * sums
+        values.append(value)
+        errors.append(np.abs(value - prev) + tail)
+        prev = value
+    out_v, out_e = np.array(values), np.array(errors)
+    if same is not None and same.any():
+        out_v[:, same] = 0.0
+        out_e[:, same] = 0.0
+    return out_v, out_e
+
+
+def upto_rows(fx: np.ndarray, lo: float, hi: float, top: int = UPTO_LEVEL
+              ) -> list[tuple[list[float], list[float]]] | None:
+    """:func:`tanh_sinh_upto` on one interval ``[lo, hi]`` (``lo < hi``) from the integrand
+    values ``fx`` on its nodes (:func:`common_nodes`, one row per integral, invalid nodes
+    included), in floats: per row ``(values, errors)`` of levels 1 … ``top``, the same
+    operations in the same order (numpy's row sums and logarithm, the rest IEEE float
+    arithmetic): the same bits, without the array bookkeeping that dominates one integral.
+    ``None`` where an end value is not finite (the caller then takes :func:`tanh_sinh_upto`)."""
+    _, valid1, bad = _common_nodes(lo, hi, top)
+    if bad is not None:
+        fx = np.where(valid1, fx, 0.0)
+    _, _, ws, starts = _levels_upto(top)
+    n0 = starts[1]
+    d_lo, d_hi, ln_lo, ln_hi = _tail_floats()
+    width = hi - lo
+    half = 0.5 * width
+    aw = abs(width)
+    sums_k = [_row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1).tolist()
+              for k in range(top + 1)]
+    out = []
+    for i, row in enumerate(fx[:, :n0].tolist()):
+        a0, a1, b1, b0 = abs(row[0]), abs(row[1]), abs(row[n0 - 2]), abs(row[n0 - 1])
+        if not (math.isfinite(a0) and math.isfinite(a1) and math.isfinite(b0)
+                and math.isfinite(b1)):
+            return None
+        ok_lo, ok_hi = a0 > 0 and a1 > 0, b0 > 0 and b1 > 0
+        logs = np.log(np.array([a0 / a1 if ok_lo else 1.0, b0 / b1 if ok_hi else 1.0]))
+        e_lo = float(logs[0]) / ln_lo if ok_lo else 0.0
+        e_hi = float(logs[1]) / ln_hi if ok_hi else 0.0
+        t_lo = a0 * d_lo / max(1.0 + min(e_lo, 0.0), 0.02)
+        t_hi = b0 * d_hi / max(1.0 + min(e_hi, 0.0), 0.02)
+        tail = (t_lo + t_hi) * aw
+        sums = 0.0 + sums_k[0][i]
+        prev = half * _H0 * sums
+        values, errors = [], []
+        for k in range(1, top + 1):
+            sums = sums + sums_k[k][i]
+            value = half * (_H0 / 2**k) * sums
+            values.append(value)
+            errors.append(abs(value - prev) + tail)
+            prev = value
+        out.append((values, errors))
+    return out
+
+
+def common_nodes(lo: float, hi: float, top: int = UPTO_LEVEL) -> np.ndarray:
+    """The nodes of levels 0 … ``top`` on ``[lo, hi]`` as :func:`tanh_sinh_upto` passes them
+    to the integrand of one integral (a read-only row vector, kept between calls)."""
+    return _common_nodes(lo, hi, top)[0]
+
+
+@cache
+def _tail_floats() -> tuple[float, float, float, float]:
+    """:func:`_tail_constants` as floats: end distances (lower, upper), their log ratios."""
+    d0, lnr = _tail_constants()
+    return float(d0[0, 0]), float(d0[1, 0]), float(lnr[0, 0]), float(lnr[1, 0])
+
+
+def first_converged(values: np.ndarray, errors: np.ndarray, rtol: float, min_level: int
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`tanh_sinh`'s stopping rule (``atol = 0``) on :func:`tanh_sinh_upto`'s levels:
+    ``(value, error, done)`` per integral, at the first level ``>= min_level`` with
+    ``error <= rtol |value|``; ``done`` is False where no level up to the top one stops (value
+    and error are then those of the top level)."""
+    top = values.shape[0]
+    value = values[top - 1].copy()
+    error = errors[top - 1].copy()
+    done = np.zeros(values.shape[1], dtype=bool)
+    for k in range(top, min_level - 1, -1):      # the lowest stopping level wins: last
+        ok = errors[k - 1] <= rtol * np.abs(values[k - 1])
+        if k == top:
+            done = ok
+        else:
+            done = done | ok
+        value = np.where(ok, values[k - 1], value)
+        error = np.where(ok, errors[k - 1], error)
+    return value, error, done
 
 
 def _tail(f0: np.ndarray, f1: np.ndarray, d0: float, d1: float) -> np.ndarray:

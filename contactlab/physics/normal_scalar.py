@@ -29,14 +29,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 from typing import TYPE_CHECKING, cast
 from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import OutsideTheoryError
+from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
-from ..numeric.roots import scalar_root, shrink_bracket_scalar
+from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
+from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
 
 if TYPE_CHECKING:
@@ -44,7 +46,9 @@ if TYPE_CHECKING:
 
 _TINY = float(np.finfo(float).tiny)
 
-__all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error"]
+__all__ = ["ScalarForms", "forms_of", "solve_depth", "solve_force", "force_rel_error",
+           "quadrature_scalar_ok", "solve_depth_quadrature", "solve_force_quadrature",
+           "quadrature_force_rel_error"]
 
 _CACHE_KEY = "_scalar_normal_forms"
 
@@ -304,3 +308,273 @@ def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
     if requested is not None and requested > 0:
         err += abs(F - requested)
     return float(err / F)
+
+
+# ----------------------------------------------------------------------------- quadrature route
+_QUAD_KEY = "_scalar_quadrature_ok"
+#: radii of the bracket's growth on f evaluated per call of f (4**8: a factor 65536)
+_LADDER = 8
+#: the Profile methods the array route of a depth runs on a quadrature profile: a subclass that
+#: overrides one of them keeps the array route
+_QUAD_METHODS = ("_radius_of_depth", "_solve_radius", "_g", "_g_route_eval", "_g_quadrature",
+                 "_theta_quadrature", "_theta_segments", "_theta_whole", "_quadrature_floor",
+                 "_g_integral", "_g_integral_with_error", "_g_integral_quadrature",
+                 "_initial_bracket")
+_HALF_PI = float(np.full(1, 0.5 * np.pi)[0])      # θ's upper end as _theta_quadrature sets it
+
+
+def _theta_values(profile: Profile, x: float, cos2: bool) -> np.ndarray:
+    """The θ integrands of g (and, with ``cos2``, of ∫g as a second row) at one ``x`` on the
+    first levels' nodes over ``[0, π/2]``: the operations of :meth:`Profile._g_quadrature`'s
+    and :meth:`Profile._g_integral_quadrature`'s weights (f' evaluated once)."""
+    sin_th, cos2_th = _theta_trig()
+    fx = np.asarray(profile._slope_any(np.array([[x]]) * sin_th), dtype=float)
+    if cos2:
+        fx = np.concatenate([fx, fx * cos2_th])
+    return fx
+
+
+@cache
+def _theta_trig() -> tuple[np.ndarray, np.ndarray]:
+    """``sin θ`` and ``cos²θ`` on :func:`common_nodes` over ``[0, π/2]`` (numpy's, as the
+    weights compute them at every call; kept read-only)."""
+    th = common_nodes(0.0, _HALF_PI)
+    sin_th, cos2_th = np.sin(th), np.cos(th) ** 2
+    sin_th.flags.writeable = False
+    cos2_th.flags.writeable = False
+    return sin_th, cos2_th
+
+
+def _level1_one(profile: Profile, x: float, rtol: float, cos2: bool) -> tuple[float, float] | None:
+    """``(value, error)`` of :meth:`Profile._theta_quadrature` at one ``x > 0`` over the whole
+    θ range at a loose ``rtol`` when the first levels reach it (the same operations as on a
+    batch of one: the same bits), or None (the caller takes the array route)."""
+    fx = _theta_values(profile, x, cos2)
+    rows = upto_rows(fx, 0.0, _HALF_PI)
+    if rows is None:
+        return None
+    return _first_converged_one(*rows[-1], rtol)
+
+
+def _first_converged_one(values: list[float], errors: list[float], rtol: float
+                         ) -> tuple[float, float] | None:
+    """:func:`~contactlab.numeric.quadrature.first_converged` of one integral in floats (the
+    same comparisons): ``(value, error)`` at the first level that stops, or None."""
+    for k in range(min_level_for(rtol), len(values) + 1):
+        v, e = values[k - 1], errors[k - 1]
+        if e <= rtol * abs(v):
+            return v, e
+    return None
+
+
+def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
+                        ) -> tuple[float, float]:
+    """``(g(x), ∫_0^x g)`` at one radius on a quadrature profile (the same bits as
+    ``profile._g`` and ``profile._g_integral``): at a loose rtol both θ integrals in one pass,
+    f' evaluated once for both (the ∫g integrand is that f' times cos²θ)."""
+    if lean and x > 0:
+        rows = upto_rows(_theta_values(profile, x, True), 0.0, _HALF_PI)
+        if rows is not None:
+            g = _first_converged_one(*rows[0], rtol)
+            gi = _first_converged_one(*rows[1], rtol)
+            if g is not None and gi is not None:
+                return g[0] * x, gi[0] * (x * x)
+    return g_one(profile, x, rtol, lean), g_integral_one(profile, x, rtol, lean)[0]
+
+
+def _lean(profile: Profile, rtol: float) -> bool:
+    """Whether :func:`_level1_one` applies (a loose rtol, θ never split)."""
+    return rtol >= LOOSE_RTOL and profile._theta_whole()
+
+
+def g_one(profile: Profile, x: float, rtol: float, lean: bool) -> float:
+    """``profile._g`` at one radius ``x`` (m) on a quadrature profile (the same bits)."""
+    if x == 0.0:
+        return 0.0          # (Profile._theta_quadrature skips x = 0: its value 0 times x)
+    if lean and x > 0:
+        ve = _level1_one(profile, x, rtol, False)
+        if ve is not None:
+            return ve[0] * x
+    return float(profile._g(np.array([x]), rtol)[0])
+
+
+def g_integral_one(profile: Profile, a: float, rtol: float, lean: bool) -> tuple[float, float]:
+    """``profile._g_integral_with_error`` at one radius ``a`` (m) on a quadrature profile."""
+    if lean and a > 0:
+        ve = _level1_one(profile, a, rtol, True)
+        if ve is not None:
+            a2 = a * a
+            return ve[0] * a2, ve[1] * a2
+    gi, gi_err = profile._g_integral_with_error(np.array([a]), rtol)
+    return float(gi[0]), float(gi_err[0])
+
+
+def quadrature_scalar_ok(profile: Profile) -> bool:
+    """Whether one depth on ``profile`` may take :func:`solve_depth_quadrature` (kept on the
+    profile): g by quadrature, no wall, no ring-contact check, no closed-form inverse, and the
+    base class's solve (no override of the methods it runs)."""
+    ok = profile.__dict__.get(_QUAD_KEY)
+    if ok is None:
+        cls = type(profile)
+        ok = (profile.g_route == "quadrature" and not profile.has("terms")
+              and not profile.has("reduced_force_solver")
+              and not profile.has("reduced_force_state")
+              and not math.isfinite(float(profile.wall_radius))
+              and not profile._has("_check_monotone_upto")
+              and not profile._has("_g_inverse_closed_form")
+              and all(getattr(cls, m) is getattr(Profile, m) for m in _QUAD_METHODS))
+        profile.__dict__[_QUAD_KEY] = ok
+    return bool(ok)
+
+
+def _times4(hi: float) -> float:
+    """``4 hi``, raising FloatingPointError where it overflows (as the array route's bracket
+    growth does under numpy's ``over="raise"``)."""
+    out = hi * 4.0
+    if out == math.inf and hi < math.inf:
+        raise FloatingPointError("overflow growing the bracket")
+    return out
+
+
+def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | None:
+    """Contact radius (m) of one depth ``d > 0`` on a quadrature profile, or ``None`` (the
+    array route then runs, and raises where this one would).
+
+    The steps of :meth:`Profile._solve_radius` and :func:`~contactlab.numeric.roots.
+    bracketed_root` for one element in plain floats (the bracket grown on f, then on g, shrunk
+    from above, then Chandrupatla's iteration), with each g a one-element array through the same
+    quadrature: the same radius, bit for bit, as the array route, without its per-iteration
+    array bookkeeping (which costs more than one g at a loose ``rtol``).
+    """
+    lean = _lean(profile, rtol)
+
+    def g(x: float) -> float:
+        return g_one(profile, x, rtol, lean)
+
+    limit = float(profile.max_radius)
+    finite = math.isfinite(limit)
+    lo = float(profile.flat_radius)
+    hi = float(profile._initial_bracket())
+    if profile._has("_height"):
+        # the array route's growth of the bracket on f, its radii taken _LADDER at a time in one
+        # call of f (f is elementwise: the same values)
+        cap = limit * (1 - 1e-15) if finite else math.inf
+        f_prev = -math.inf
+        growing = True
+        for _ in range(200 // _LADDER):
+            his = [hi]
+            for _ in range(_LADDER - 1):
+                his.append(his[-1] * 4.0)
+            hcs = [min(h, cap) for h in his]
+            with np.errstate(over="ignore", invalid="ignore"):
+                fs = profile._height(np.array(hcs))
+            for hc, f_hc in zip(hcs, fs.tolist()):
+                if not ((f_hc < d) and (hc < cap) and (f_hc > f_prev)):
+                    growing = False
+                    break
+                f_prev = f_hc
+                hi = _times4(hi)
+            if not growing:
+                break
+    for _ in range(400):
+        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
+        g_hi = g(hi_c)
+        if not g_hi < d:
+            lo, hi, g_hi = shrink_bracket_scalar(g, d, lo, hi_c, g_hi)
+            break
+        if finite and hi >= limit * (1 - 1e-15):
+            return None
+        lo, hi = hi_c, _times4(hi)
+    else:
+        return None
+    f1, f2 = g(lo) - d, g_hi - d
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    if math.isinf(f1 * f2):
+        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
+        raise FloatingPointError("overflow in the bracket's sign test")
+    if f1 * f2 > 0:
+        return None
+    if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
+        a = hi
+    elif f1 == 0:
+        a = lo
+    else:
+        try:
+            a = _chandrupatla(g, d, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+        except ConvergenceError:
+            return None
+    if finite and a >= limit:
+        return None
+    return a
+
+
+def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: float
+                           ) -> tuple[float, float] | None:
+    """Contact radius and depth (m) of one force ``F > 0`` (N) on a quadrature profile, or
+    ``None`` (the array route then runs, and raises where this one would).
+
+    The steps of the bracketed branch of :func:`contactlab.physics.normal.radius_depth_of_force`
+    for one element in plain floats, the force ``2E*(a g(a) - ∫g)`` of each radius through the
+    same quadratures (one pass for both at a loose rtol): the array route's radius and depth,
+    bit for bit.
+    """
+    lean = _lean(profile, rtol)
+    two_e = 2.0 * E_star
+
+    def force(x: float) -> float:
+        g, gi = _g_and_integral_one(profile, x, rtol, lean)
+        out = two_e * (x * g - gi)
+        if not math.isfinite(out) and math.isfinite(g) and math.isfinite(gi):
+            # an overflow, which raises on the array route (numpy's over="raise" there)
+            raise FloatingPointError("overflow in the force of a contact radius")
+        return out
+
+    limit = float(profile.max_radius)
+    finite = math.isfinite(limit)
+    lo = float(profile.flat_radius)
+    hi = float(profile._initial_bracket())
+    for _ in range(400):
+        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
+        F_hi = force(hi_c)
+        if not F_hi < F:
+            lo, hi, F_hi = shrink_bracket_scalar(force, F, lo, hi_c, F_hi)
+            break
+        if finite and hi_c >= limit * (1 - 1e-15):
+            return None
+        lo, hi = hi_c, _times4(hi)
+    else:
+        return None
+    f1, f2 = force(lo) - F, F_hi - F
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    if math.isinf(f1 * f2):
+        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
+        raise FloatingPointError("overflow in the bracket's sign test")
+    if f1 * f2 > 0:
+        return None
+    if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
+        a = hi
+    elif f1 == 0:
+        a = lo
+    else:
+        try:
+            a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+        except ConvergenceError:
+            return None
+    if not a > 0 or (finite and a >= limit):
+        return None
+    return a, g_one(profile, a, rtol, lean)
+
+
+def quadrature_force_rel_error(E_star: float, a: float, d: float, g_int: float,
+                               g_int_err: float, F: float, requested: float | None = None
+                               ) -> float:
+    """Relative force error of one depth or force on the quadrature route, the operations of
+    :func:`contactlab.physics.normal._force_rel_error` in floats (the same bits)."""
+    if not a > 0:
+        return 0.0
+    F_err = ((abs(a * d) + abs(g_int)) * ROUNDING + abs(g_int_err)) * (2.0 * E_star)
+    if requested is not None:
+        F_err = F_err + (abs(F - requested) if requested > 0 else 0.0)
+    return float(F_err / F) if F > 0 else 0.0

@@ -31,7 +31,8 @@ import numpy as np
 
 from ..errors import (OutsideTheoryError, ParameterError, PluginError,
                       StrategyUnavailableError)
-from ..numeric.quadrature import DEFAULT_RTOL, min_level_for, tanh_sinh
+from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min_level_for,
+                                  tanh_sinh, tanh_sinh_upto)
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
@@ -329,6 +330,17 @@ class Profile(ParamIdentity, ABC):
         lo, hi = edges[:-1], edges[1:]
         return lo, hi, np.broadcast_to(flat, lo.shape)
 
+    def _theta_whole(self) -> bool:
+        """Whether θ is never split (no breakpoint, no flat part, the base class's
+        :meth:`_theta_segments`): every θ integral then runs over ``[0, π/2]`` (kept on the
+        profile, a pure function of it)."""
+        whole = self.__dict__.get("_theta_whole_cache")
+        if whole is None:
+            whole = (type(self)._theta_segments is Profile._theta_segments
+                     and not [b for b in self.breakpoints if b > 0] and not self.flat_radius > 0)
+            self.__dict__["_theta_whole_cache"] = whole
+        return bool(whole)
+
     def _theta_quadrature(self, flat: np.ndarray, weight, rtol: float
                           ) -> tuple[np.ndarray, np.ndarray]:
         """``Σ_segments ∫ weight(x, θ) dθ`` over the split θ range for each ``x`` in ``flat``.
@@ -342,16 +354,41 @@ class Profile(ParamIdentity, ABC):
         nz = flat > 0          # x = 0 contributes nothing (every caller multiplies by a power of x)
         if not np.any(nz):
             return val, err
-        lo, hi, xs = self._theta_segments(flat[nz])
-        xr = xs.ravel()
+        whole = self._theta_whole()
+        if whole:       # one segment [0, π/2] for every x: _theta_segments' arrays, built directly
+            xr = flat[nz]
+            lo = np.zeros((1, xr.size))
+            hi = np.full((1, xr.size), 0.5 * np.pi)
+        else:
+            lo, hi, xs = self._theta_segments(flat[nz])
+            xr = xs.ravel()
 
         def integrand(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return weight(xr[idx][:, None], theta)
 
-        res = tanh_sinh(integrand, lo.ravel(), hi.ravel(), rtol=rtol, raise_on_failure=False,
-                        min_level=min_level_for(rtol))
-        val[nz] = res.value.reshape(lo.shape).sum(axis=0)
-        err[nz] = res.error.reshape(lo.shape).sum(axis=0)
+        lo_f, hi_f = lo.ravel(), hi.ravel()
+        if rtol >= LOOSE_RTOL:
+            # the first levels in one pass (tanh_sinh stops there for every integral whose level
+            # difference is within rtol: the same values); the others refine in tanh_sinh
+            v, e, done = first_converged(*tanh_sinh_upto(integrand, lo_f, hi_f, common=whole),
+                                         rtol, min_level_for(rtol))
+            more = np.flatnonzero(~done)
+            if more.size:
+                xr_all = xr
+
+                def integrand_more(theta: np.ndarray, idx: np.ndarray) -> np.ndarray:
+                    return weight(xr_all[more[idx]][:, None], theta)
+
+                res = tanh_sinh(integrand_more, lo_f[more], hi_f[more], rtol=rtol,
+                                raise_on_failure=False, min_level=min_level_for(rtol))
+                v[more] = res.value
+                e[more] = res.error
+        else:
+            res = tanh_sinh(integrand, lo_f, hi_f, rtol=rtol, raise_on_failure=False,
+                            min_level=min_level_for(rtol))
+            v, e = res.value, res.error
+        val[nz] = v.reshape(lo.shape).sum(axis=0)
+        err[nz] = e.reshape(lo.shape).sum(axis=0)
         missed = err > rtol * np.abs(val) + self._quadrature_floor(flat, val)
         if np.any(missed):
             from ..errors import ConvergenceError
