@@ -15,6 +15,7 @@ from .errors import ParameterError
 from .materials import Material, effective_moduli
 from .materials.pair import EffectiveModuli, viscoelastic_body
 from .numeric.quadrature import DEFAULT_RTOL
+from .params import without_caches
 from .params import PLAIN_TYPES, Param, to_si_values
 from .profiles import Profile
 
@@ -123,6 +124,11 @@ class Contact:
             viscoelastic_body(m1, m2)  # only (viscoelastic, rigid) is covered
         else:
             _ = self.moduli  # validate the pair now (and cache it)
+
+    def __getstate__(self) -> dict[str, Any]:
+        # per-contact caches stay behind (rebuilt on first use): a used contact pickles like a
+        # fresh one, for process pools and distributed sweeps
+        return without_caches(self.__dict__)
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in (("friction", self.friction),

@@ -22,7 +22,8 @@ __all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in
            "name_list", "memory_budget", "set_memory_budget", "check_memory",
            "DEFAULT_MEMORY_BUDGET", "MEMORY_BUDGET_ENV", "time_budget", "set_time_budget",
            "check_time", "DEFAULT_TIME_BUDGET", "TIME_BUDGET_ENV", "values_equal", "FieldsEqual",
-           "QUANTITY_UNITS", "to_si", "to_si_values", "PLAIN_TYPES"]
+           "QUANTITY_UNITS", "to_si", "to_si_values", "PLAIN_TYPES", "CACHE_KEYS",
+           "without_caches"]
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -76,6 +77,22 @@ class Param:
         return v
 
 
+#: attributes that objects keep as per-object caches of derived data (in their ``__dict__``):
+#: never pickled (some hold closures; all are rebuilt on first use), so a profile or contact
+#: that has already been used travels to a worker process like a fresh one. Every
+#: ``__dict__[...]`` cache key in the package must be listed here (a test reads the sources).
+CACHE_KEYS = frozenset({
+    "_g_route_cache", "_theta_whole_cache", "_scalar_normal_forms", "_scalar_quadrature_ok",
+    "_grid_cache", "_node_H", "_coarse_idx", "_cubic_cols", "_table_pressure_cache",
+    "_fit_tip_tables", "_critical_memo", "_jkr_branches", "_xp_params",
+})
+
+
+def without_caches(state: dict[str, Any]) -> dict[str, Any]:
+    """``state`` (an object's ``__dict__``) less the per-object caches of :data:`CACHE_KEYS`."""
+    return {k: v for k, v in state.items() if k not in CACHE_KEYS}
+
+
 class ParamIdentity:
     """Mixin: ``repr``, ``==`` and ``hash`` from the declared ``params`` (class + values), so two
     objects built with the same parameters are interchangeable (and usable as cache keys)."""
@@ -95,6 +112,10 @@ class ParamIdentity:
 
     def __hash__(self) -> int:
         return hash((type(self), self._param_values()))
+
+    def __getstate__(self) -> dict[str, Any]:
+        # caches of derived data stay behind (:data:`CACHE_KEYS`): rebuilt on first use
+        return without_caches(self.__dict__)
 
 
 # ---------------------------------------------------------------------------- units
