@@ -2,8 +2,8 @@
 
 Run from the repository root: ``python benchmarks/normal_speed.py`` (``--tables`` for the
 issue-29 table rows only, ~15 s; ``--issue29`` for the issue-29 rows only: each a ratio
-against its floor measured interleaved in the same run, best of several rounds of the process's CPU time (``--wall``: wall time), with a verdict against the
-goal).
+against its floor measured interleaved in the same run, best of several rounds of the
+process's CPU time (``--wall``: wall time), with a verdict against the goal).
 
 Issue 29 rows (:func:`issue29_rows`):
 
