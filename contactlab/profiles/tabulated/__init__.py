@@ -15,7 +15,8 @@ sums to rounding), so tables of 10^6 points work and batches of loads on them ar
 
 ``interpolation="cubic"`` uses a C² cubic spline (scipy ``CubicSpline``, not-a-knot ends). Its
 transform is set up once as node sums: the spline's slope written as jumps at the nodes, each
-node contributing elementary terms (``Tabulated._cubic_sums``), O(nodes below x) per point.
+node contributing elementary terms (``Tabulated._cubic_sums``), O(nodes below x) per point (on
+the tree of ``_far_cols`` for tables of at least 4096 jump nodes: O(log N)).
 Pieces between nearly coincident nodes (random spacing: 1e-15 of the radius apart at 10^6
 points), whose cubic coefficient is data rounding divided by h³, are kept local: integrated over
 the piece only instead of extrapolated over the table, where their huge jumps would cancel
@@ -38,7 +39,8 @@ Layout (one module per job, all private; the public class is :class:`Tabulated`)
 ``_table`` reads and checks the table and implements the Profile hooks by dispatching to
 ``_linear`` (the linear interpolant's transform), ``_cubic`` (the spline's transform) and
 ``_solve`` (contact-radius solves); ``_base`` holds the shared attributes and node integrals;
-``_far`` the tree of a large linear table's node sums.
+``_far`` the tree of a large linear table's node sums, ``_far_cols`` the same tree for the
+cubic spline's coefficient columns.
 """
 from ._cubic import CUBIC_LOCAL_RATIO, CUBIC_SUM_RTOL
 from ._table import BREAKPOINT_LIMIT, Tabulated

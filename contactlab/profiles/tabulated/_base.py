@@ -77,6 +77,9 @@ class _TableBase(Profile):
 
         def _height(self, r: np.ndarray) -> np.ndarray: ...
 
+        def _cubic_g_slope_integral(self, x: np.ndarray
+                                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
     def _guard(self, r: np.ndarray, name: str) -> None:
         if np.any(r > self.r[-1]):
             raise OutsideTheoryError(
