@@ -8,6 +8,8 @@ too large are recomputed by a Gauss-Legendre rule per table interval in θ (see
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from typing import cast
 
 import numpy as np
@@ -387,13 +389,20 @@ class _CubicTransform(_TableBase):
         """``(g, g', ∫_0^x g)`` of the spline, the same bits as :meth:`_g_and_slope` and
         :meth:`_g_integral_closed_form` apart; on the column tree the node sums of both come
         from one pass (the force solve's Newton step needs all three)."""
-        self.__dict__["_cubic_pair"] = {}
-        try:
+        with self._cubic_shared_pass():
             g, gp = self._g_and_slope(x)
             integral = self._g_integral_closed_form(x)
+        return g, gp, integral
+
+    @contextlib.contextmanager
+    def _cubic_shared_pass(self) -> Iterator[None]:
+        """Inside: the column tree's sums at a set of points are computed once for every
+        column and reused by the next call at the same points (g, then ∫g; the same bits)."""
+        self.__dict__["_cubic_pair"] = {}
+        try:
+            yield
         finally:
             self.__dict__.pop("_cubic_pair", None)
-        return g, gp, integral
 
     def _cubic_columns(self, kind: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """Per-node coefficient columns of the node sums of :meth:`_cubic_sums` (set up once).

@@ -152,7 +152,8 @@ class _TableSolver(_TableBase):
         if np.any(missing):
             new = np.unique(idx[missing])
             x = self.r[new]
-            cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
+            with self._cubic_shared_pass():    # (a spline on the column tree: one pass)
+                cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
             vals = cache[idx]
         return vals
 
