@@ -41,6 +41,7 @@ nodes whose nodes are spread evenly enough (:data:`NEAR_MAX`).
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -49,8 +50,8 @@ import numpy as np
 from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
-__all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "COMPILED_FROM", "FarTree",
-           "build", "sums", "far_rows"]
+__all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
+           "FarTree", "layout", "level_moments", "build", "sums", "far_rows"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -62,6 +63,9 @@ SEPARATION = 2
 #: most nodes in SEPARATION + 1 adjacent finest blocks (the near zone); a table with denser
 #: clusters keeps the node-by-node sums (its near zone would not be short)
 NEAR_MAX = 64
+#: finest level at most (a 10^6-node table: 2^17 blocks, 21 MB of moments); a table with more
+#: than two nodes per finest block then sums more near nodes exactly
+LEVELS_MAX = 16
 #: points per call of the dense (point, slot) arrays
 _ROWS = 4096
 #: fewest points a call hands to the compiled pass (:func:`far_rows`, numba; the same bits as
@@ -96,40 +100,76 @@ class FarTree:
     half: np.ndarray           # (blocks + 1,): each block's half-width h (the last row: 1)
 
 
-def build(nodes: np.ndarray, weights: np.ndarray, r_end: float) -> FarTree | None:
-    """The tree of ``nodes`` (sorted, > 0) with ``weights``, or None when the table is too
-    small (:data:`FAR_FIELD_FROM`) or its nodes too clustered (:data:`NEAR_MAX`)."""
+def layout(nodes: np.ndarray, r_end: float, max_levels: int = LEVELS_MAX
+           ) -> tuple[int, np.ndarray] | None:
+    """``(levels, finest block of each node)`` of the tree of ``nodes``, or None when the table
+    is too small (:data:`FAR_FIELD_FROM`) or its nodes cluster: more than :data:`NEAR_MAX` (or,
+    when ``max_levels`` caps the tree, that many times the mean occupancy of two nodes per
+    block) in ``SEPARATION + 1`` adjacent finest blocks."""
     n = nodes.size
     if n < FAR_FIELD_FROM or not r_end > 0:
         return None
-    levels = int(np.clip(np.floor(np.log2(n / 2.0)), 1, 24))
-    q = nodes / r_end
-    finest = np.minimum(np.floor(q * 2.0**levels).astype(np.int64), 2**levels - 1)
+    levels = int(np.clip(np.floor(np.log2(n / 2.0)), 1, max_levels))
+    finest = np.minimum(np.floor(nodes / r_end * 2.0**levels).astype(np.int64), 2**levels - 1)
     counts = np.bincount(finest, minlength=2**levels)
     window = np.convolve(counts, np.ones(SEPARATION + 1, dtype=np.int64), mode="valid")
-    if window.size and int(window.max()) > NEAR_MAX:
+    limit = NEAR_MAX * max(1, int(np.ceil(n / 2.0 ** (levels + 1))))
+    if window.size and int(window.max()) > limit:
         return None
+    return levels, finest
+
+
+def level_moments(nodes: np.ndarray, columns: np.ndarray, r_end: float, levels: int,
+                  finest: np.ndarray) -> list[np.ndarray]:
+    """Moments ``M_n = Σ c_kj u_j^n`` of every block, one (2^L, k, TERMS) array per level L =
+    1..levels: the finest level from the nodes, each coarser one from its two children,
+    ``M_n = 2^-n Σ_i C(n, i) (±1)^(n-i) M_child,i`` (a child's offset is ``∓h/2``, its
+    half-width ``h/2``): O(N TERMS k) for the nodes, O(TERMS² k) per block above."""
+    k = columns.shape[0]
+    nb = 2**levels
+    width = r_end * 2.0**-levels
+    u = (nodes - (finest + 0.5) * width) / (0.5 * width)
+    mom = np.zeros((nb, k, TERMS))
+    # the nodes are sorted, so every block's nodes are contiguous: one reduceat per power
+    counts = np.bincount(finest, minlength=nb)
+    filled = np.flatnonzero(counts)
+    starts = np.searchsorted(finest, filled, side="left")
+    term = np.array(columns, dtype=float)
+    for j in range(TERMS):
+        mom[filled, :, j] = np.add.reduceat(term, starts, axis=1).T
+        term = term * u
+    nn = np.arange(TERMS)
+    binom = np.array([[float(math.comb(a, b)) for b in range(TERMS)] for a in range(TERMS)])
+    scale = (2.0 ** -nn)[:, None] * binom
+    sign = (-1.0) ** (nn[:, None] - nn[None, :])
+    left = np.tril(scale * sign)              # child below the centre: offset -h/2
+    right = np.tril(scale)
+    out = [mom]
+    for _ in range(levels - 1):
+        child = out[-1]
+        out.append(np.einsum("ni,bci->bcn", left, child[0::2])
+                   + np.einsum("ni,bci->bcn", right, child[1::2]))
+    return out[::-1]
+
+
+def build(nodes: np.ndarray, weights: np.ndarray, r_end: float) -> FarTree | None:
+    """The tree of ``nodes`` (sorted, > 0) with ``weights``, or None (:func:`layout`)."""
+    lay = layout(nodes, r_end)
+    if lay is None:
+        return None
+    levels, finest = lay
+    per_level = level_moments(nodes, weights[None, :], r_end, levels, finest)
     offsets = np.zeros(levels + 1, dtype=np.int64)
     total = 0
-    rows = []
     centres, halves = [], []
     for L in range(1, levels + 1):
         offsets[L] = total
         nb = 2**L
-        k = finest >> (levels - L)
         width = r_end * 2.0**-L
-        centre = (k + 0.5) * width
-        u = (nodes - centre) / (0.5 * width)
-        mom = np.empty((nb, TERMS))
-        term = weights.copy()
-        for j in range(TERMS):
-            mom[:, j] = np.bincount(k, weights=term, minlength=nb)
-            term = term * u
-        rows.append(mom)
         centres.append((np.arange(nb) + 0.5) * width)
         halves.append(np.full(nb, 0.5 * width))
         total += nb
-    moments = np.concatenate([*rows, np.zeros((1, TERMS))])
+    moments = np.concatenate([*(m[:, 0, :] for m in per_level), np.zeros((1, TERMS))])
     return FarTree(nodes, weights, float(r_end), levels, finest, offsets, moments,
                    tuple(np.ascontiguousarray(moments[:, j]) for j in range(TERMS)),
                    np.concatenate([*centres, np.zeros(1)]),

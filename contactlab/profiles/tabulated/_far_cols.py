@@ -26,7 +26,7 @@ import numpy as np
 
 from . import _far
 
-__all__ = ["ColumnTree", "build", "sums", "far_columns"]
+__all__ = ["LEVELS_MAX", "ColumnTree", "build", "sums", "far_columns"]
 
 #: kernel of a column: acos t, sqrt(1 - t²), (1 - t²)^(3/2)
 ACOS, ROOT, ROOT3 = 0, 1, 2
@@ -41,27 +41,37 @@ class ColumnTree:
     moments: np.ndarray         # (blocks + 1, k, TERMS), the last block zeros
 
 
+#: finest level at most of a cubic table's tree (14 columns: 2^14 blocks hold 37 MB of moments)
+LEVELS_MAX = 13
+
+
 def build(nodes: np.ndarray, columns: np.ndarray, r_end: float) -> ColumnTree | None:
     """The column tree of ``nodes`` (sorted, > 0) with ``columns`` (k, n), or None when
-    :func:`._far.build` declines the table."""
-    tree = _far.build(nodes, np.ones(nodes.size), r_end)
-    if tree is None:
+    :func:`._far.layout` declines the table."""
+    lay = _far.layout(nodes, r_end, LEVELS_MAX)
+    if lay is None:
         return None
+    levels, finest = lay
+    per_level = _far.level_moments(nodes, columns, r_end, levels, finest)
     k = columns.shape[0]
-    T = _far.TERMS
-    out = np.zeros((tree.moments.shape[0], k, T))
-    for L in range(1, tree.levels + 1):
-        nb = 2**L
-        kb = tree.finest >> (tree.levels - L)
+    # the block geometry of the linear tree (its own moments: the column sums, unused)
+    ones = np.zeros(nodes.size)
+    offsets = np.zeros(levels + 1, dtype=np.int64)
+    centres, halves = [], []
+    total = 0
+    for L in range(1, levels + 1):
+        offsets[L] = total
         width = r_end * 2.0**-L
-        u = (nodes - (kb + 0.5) * width) / (0.5 * width)
-        term = columns.copy()
-        off = int(tree.offsets[L])
-        for j in range(T):
-            for c in range(k):
-                out[off:off + nb, c, j] = np.bincount(kb, weights=term[c], minlength=nb)
-            term = term * u
-    return ColumnTree(tree, np.ascontiguousarray(columns), out)
+        centres.append((np.arange(2**L) + 0.5) * width)
+        halves.append(np.full(2**L, 0.5 * width))
+        total += 2**L
+    zero = np.zeros((total + 1, _far.TERMS))
+    tree = _far.FarTree(nodes, ones, float(r_end), levels, finest, offsets, zero,
+                        tuple(zero[:, j] for j in range(_far.TERMS)),
+                        np.concatenate([*centres, np.zeros(1)]),
+                        np.concatenate([*halves, np.ones(1)]))
+    moments = np.concatenate([*per_level, np.zeros((1, k, _far.TERMS))])
+    return ColumnTree(tree, np.ascontiguousarray(columns), moments)
 
 
 _COMPILED: dict = {"kernel": None}
