@@ -10,7 +10,8 @@ The linear interpolant's transform needs, at every point x, three sums over the 
 Summed node by node they cost O(N) per point, O(N M) for M points. Here the radius axis is cut
 into a fixed dyadic tree (level L: ``2^L`` blocks of width ``Δ_L = r_end 2^-L``); every block keeps
 the moments ``M_n = Σ_{j in block} w_j u_j^n`` of its nodes, ``u_j = (b_j - c)/h`` about its
-centre c (half-width ``h = Δ_L/2``), set up once per table. At a point x, the nodes below x are
+centre c (half-width ``h = Δ_L/2``), set up once per table (the finest level from the nodes,
+the others from their two children: :func:`level_moments`). At a point x, the nodes below x are
 split into the blocks of each level that lie at least :data:`SEPARATION` block widths below the
 block holding x (and not inside an accepted block of the coarser level: at most
 ``SEPARATION + 1`` per level), and the nodes of the finest level's remaining blocks up to x, the
@@ -152,9 +153,10 @@ def level_moments(nodes: np.ndarray, columns: np.ndarray, r_end: float, levels: 
     return out[::-1]
 
 
-def build(nodes: np.ndarray, weights: np.ndarray, r_end: float) -> FarTree | None:
+def build(nodes: np.ndarray, weights: np.ndarray, r_end: float,
+          max_levels: int = LEVELS_MAX) -> FarTree | None:
     """The tree of ``nodes`` (sorted, > 0) with ``weights``, or None (:func:`layout`)."""
-    lay = layout(nodes, r_end)
+    lay = layout(nodes, r_end, max_levels)
     if lay is None:
         return None
     levels, finest = lay
