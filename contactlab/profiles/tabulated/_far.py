@@ -52,7 +52,7 @@ from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
 __all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
-           "FarTree", "layout", "level_moments", "build", "sums", "far_rows"]
+           "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -161,6 +161,15 @@ def build(nodes: np.ndarray, weights: np.ndarray, r_end: float,
         return None
     levels, finest = lay
     per_level = level_moments(nodes, weights[None, :], r_end, levels, finest)
+    moments = np.concatenate([*(m[:, 0, :] for m in per_level), np.zeros((1, TERMS))])
+    return tree_of(nodes, weights, r_end, levels, finest, moments)
+
+
+def tree_of(nodes: np.ndarray, weights: np.ndarray, r_end: float, levels: int,
+            finest: np.ndarray, moments: np.ndarray) -> FarTree:
+    """The :class:`FarTree` of a layout (:func:`layout`) with ``moments`` (blocks + 1,
+    TERMS): the blocks' offsets per level, centres and half-widths (the extra last block: 0
+    and 1)."""
     offsets = np.zeros(levels + 1, dtype=np.int64)
     total = 0
     centres, halves = [], []
@@ -171,7 +180,6 @@ def build(nodes: np.ndarray, weights: np.ndarray, r_end: float,
         centres.append((np.arange(nb) + 0.5) * width)
         halves.append(np.full(nb, 0.5 * width))
         total += nb
-    moments = np.concatenate([*(m[:, 0, :] for m in per_level), np.zeros((1, TERMS))])
     return FarTree(nodes, weights, float(r_end), levels, finest, offsets, moments,
                    tuple(np.ascontiguousarray(moments[:, j]) for j in range(TERMS)),
                    np.concatenate([*centres, np.zeros(1)]),

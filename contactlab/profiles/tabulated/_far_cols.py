@@ -3,8 +3,9 @@
 The cubic spline's node sums (:meth:`~._cubic._CubicTransform._cubic_sums`) contract per-node
 coefficient columns ``c_kj`` with three kernels of ``t = b_j/x``: ``θ = acos t``,
 ``sqrt(1 - t²)`` (the root ``sqrt(x² - b²)`` over x) and ``(1 - t²)^(3/2)`` (its cube over x³).
-The tree and the choice of blocks are those of :mod:`._far` (same levels, separation and number
-of terms); each block stores the moments of every column, and a used block contributes
+The tree and the choice of blocks are those of :mod:`._far` (same separation and number of
+terms; the finest level capped at :data:`LEVELS_MAX`: 14 columns take 14 times the memory);
+each block stores the moments of every column, and a used block contributes
 ``Σ_n k_n (h/x)^n M_kn`` with the Taylor coefficients of the column's kernel about ``c/x``, all
 from the arcsine's ``ã_n``:
 
@@ -54,22 +55,10 @@ def build(nodes: np.ndarray, columns: np.ndarray, r_end: float) -> ColumnTree | 
     levels, finest = lay
     per_level = _far.level_moments(nodes, columns, r_end, levels, finest)
     k = columns.shape[0]
-    # the block geometry of the linear tree (its own moments: the column sums, unused)
-    ones = np.zeros(nodes.size)
-    offsets = np.zeros(levels + 1, dtype=np.int64)
-    centres, halves = [], []
-    total = 0
-    for L in range(1, levels + 1):
-        offsets[L] = total
-        width = r_end * 2.0**-L
-        centres.append((np.arange(2**L) + 0.5) * width)
-        halves.append(np.full(2**L, 0.5 * width))
-        total += 2**L
-    zero = np.zeros((total + 1, _far.TERMS))
-    tree = _far.FarTree(nodes, ones, float(r_end), levels, finest, offsets, zero,
-                        tuple(zero[:, j] for j in range(_far.TERMS)),
-                        np.concatenate([*centres, np.zeros(1)]),
-                        np.concatenate([*halves, np.ones(1)]))
+    # the block geometry of the linear tree (its own moments unused: zeros)
+    total = 2 ** (levels + 1) - 2
+    tree = _far.tree_of(nodes, np.zeros(nodes.size), r_end, levels, finest,
+                        np.zeros((total + 1, _far.TERMS)))
     moments = np.concatenate([*per_level, np.zeros((1, k, _far.TERMS))])
     return ColumnTree(tree, np.ascontiguousarray(columns), moments)
 
