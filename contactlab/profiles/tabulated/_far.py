@@ -211,15 +211,14 @@ def _slots(tree: FarTree, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     levels, S = tree.levels, SEPARATION + 1
     q = x / tree.r_end
     zero_row = tree.moments.shape[0] - 1
-    row = np.empty((x.size, levels, S), dtype=np.int64)
-    k1_prev = np.zeros(x.size, dtype=np.int64)
-    slot = np.arange(S)[None, :]
-    for L in range(1, levels + 1):
-        kx = np.floor(q * 2.0**L).astype(np.int64)
-        k1 = np.maximum(kx - SEPARATION, 0)
-        k = 2 * k1_prev[:, None] + slot
-        row[:, L - 1, :] = np.where(k < k1[:, None], tree.offsets[L] + k, zero_row)
-        k1_prev = k1
+    # every level at once: x's block kx, the accepted blocks below k1, and this level's
+    # slots from twice the coarser level's k1 on
+    kx = np.floor(q[:, None] * (2.0 ** np.arange(1, levels + 1))[None, :]).astype(np.int64)
+    k1 = np.maximum(kx - SEPARATION, 0)
+    k1_prev = np.concatenate([np.zeros((x.size, 1), dtype=np.int64), k1[:, :-1]], axis=1)
+    k = 2 * k1_prev[:, :, None] + np.arange(S)[None, None, :]
+    row = np.where(k < k1[:, :, None], tree.offsets[1:][None, :, None] + k, zero_row)
+    k1_prev = k1[:, -1]
     return row.reshape(x.size, -1), k1_prev
 
 
