@@ -1,9 +1,9 @@
 """Normal-contact speed (issue 2 and issue 29 targets), printed with the machine.
 
-Run from the repository root: ``python benchmarks/normal_speed.py`` (``--issue29`` for the
-issue-29 rows only: each a ratio against its floor measured interleaved in the same run, best of
-several rounds of the process's CPU time (``--wall``: wall time), with a verdict against the
-goal).
+Run from the repository root: ``python benchmarks/normal_speed.py`` (``--tables`` for the
+issue-29 table rows only, ~15 s; ``--issue29`` for the issue-29 rows only: each a ratio
+against its floor measured interleaved in the same run, best of several rounds of the
+process's CPU time (``--wall``: wall time), with a verdict against the goal).
 
 Issue 29 rows (:func:`issue29_rows`):
 
@@ -14,7 +14,8 @@ Issue 29 rows (:func:`issue29_rows`):
   evaluated at the solved radii (``d = a artanh(a/R)``, ``F`` from ``∫g``; goal <= 10x), and the
   gain of batching over one scalar call per load;
 * 10^3 random depths / forces on a 10^4-point linear and cubic table, per load (goal <= 20 µs),
-  beside the linear table's previous Newton iteration.
+  the tree sums beside the node-by-node sums (the route before; linear and cubic) and the
+  linear table's previous Newton iteration on those, interleaved.
 
 Targets:
 
@@ -169,21 +170,45 @@ def issue29_rows() -> None:
           f"per depth, one batch {t1['batch'] / few.size * 1e6:.2f} µs per depth: batching gains "
           f"{t1['scalar'] / t1['batch']:.0f}x (was 3x)")
 
-    # 10^3 depths on a 10^4-point table, per depth: fresh random depths every round (nothing
-    # but the table's coarse node grid is reused), linear and cubic, and the linear table's
-    # previous Newton iteration (plain start, stop on a small step) interleaved beside it
+    table_rows()
+
+
+def _node_by_node(tab):
+    """``tab`` made to sum its nodes one by one (the route before the dyadic tree of
+    contactlab.profiles.tabulated._far), for the side-by-side row."""
+    tab.__dict__["_far_cache"] = (None,)
+    tab.__dict__["_cubic_tree_cache"] = (None,)
+    return tab
+
+
+def table_rows() -> None:
+    """10^3 random depths / forces on a 10^4-point table, per load, against the goal (20 µs),
+    the node sums by the tree beside the node-by-node sums (linear and cubic, interleaved)."""
+    # fresh random depths every round (nothing but the table's coarse node grid and the node
+    # values the node search memoises is reused), linear and cubic, and the linear table with
+    # its node-by-node sums and its previous Newton iteration interleaved beside it
+    R = 0.01
     r = np.linspace(0, 1e-3, 10**4)
     f = R - np.sqrt(R * R - r * r)
     rng = np.random.default_rng(29)
     contacts = {}
-    for key, kind in (("linear", "linear"), ("previous", "linear"), ("cubic", "cubic")):
+    for key, kind in (("linear", "linear"), ("nodes", "linear"), ("previous", "linear"),
+                      ("cubic", "cubic"), ("cubic_nodes", "cubic")):
         tab = Tabulated(r, f, kind)
+        if key in ("nodes", "cubic_nodes"):
+            _node_by_node(tab)
         if key == "previous":
+            _node_by_node(tab)
             tab._newton_on_node_interval = _previous_newton(tab)
         contacts[key] = cl.Contact(tab, MATERIALS, rtol=1e-6)
         contacts[key].normal(depth=[1e-8, 2e-5])
     batches = [rng.uniform(1e-8, 2.5e-5, 10**3) for _ in range(3)]
     forces = [np.asarray(contacts["linear"].normal(depth=b).force) for b in batches]
+    for b in batches:                                      # the routes agree (to rounding)
+        for key, ref_key in (("linear", "nodes"), ("cubic", "cubic_nodes")):
+            st, ref = contacts[key].normal(depth=b), contacts[ref_key].normal(depth=b)
+            dev = float(np.max(np.abs(np.asarray(st.radius) / np.asarray(ref.radius) - 1)))
+            assert dev < 1e-12, (key, dev)
 
     def fresh(key: str, control: str):
         it = iter(range(10**6))
@@ -199,16 +224,24 @@ def issue29_rows() -> None:
     for ctl in ("depth", "force"):
         per = {k: t2[(k, ctl)] / 10**3 * 1e6 for k in contacts}
         print(f"  10^3 random {ctl}s on a 10^4-point linear table (rtol 1e-6) "
-              f"{per['linear']:7.1f} µs per {ctl} (previous iteration {per['previous']:.1f}: "
-              f"{per['previous'] / per['linear']:.2f}x)  {goal(per['linear'], 20.0, ' µs')}")
+              f"{per['linear']:7.1f} µs per {ctl}; node-by-node sums {per['nodes']:.1f} "
+              f"({per['nodes'] / per['linear']:.1f}x), and with the previous iteration "
+              f"{per['previous']:.1f}  {goal(per['linear'], 20.0, ' µs')}")
         print(f"  10^3 random {ctl}s on a 10^4-point cubic table  (rtol 1e-6) "
-              f"{per['cubic']:7.1f} µs per {ctl}  {goal(per['cubic'], 20.0, ' µs')}")
+              f"{per['cubic']:7.1f} µs per {ctl}; node-by-node sums {per['cubic_nodes']:.1f} "
+              f"({per['cubic_nodes'] / per['cubic']:.1f}x)  {goal(per['cubic'], 20.0, ' µs')}")
+    print()
     print()
 
 
 def main() -> int:
     print("Machine:", machine())
     print()
+    if "--tables" in sys.argv:
+        print("Issue 29, tables (best of 3, " + ("wall time" if CLOCK is time.perf_counter
+                                                  else "CPU time of this process") + ")")
+        table_rows()
+        return 0
     issue29_rows()
     if "--issue29" in sys.argv:
         return 0

@@ -7,12 +7,16 @@ transform is exact, a sum of truncated-cone transforms (theory §2):
 
 (the node r_k = x itself is included, so g is continuous at the nodes)
 
-and ``∫_0^a g = Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr`` in closed form. Each evaluation
-costs O(N) for N table points; nothing is precomputed for all nodes, so tables of 10^6 points work.
+and ``∫_0^a g = Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr`` in closed form. Summed node by
+node, each evaluation costs O(N) for N table points; tables of at least 4096
+slope-jump nodes (``_far.FAR_FIELD_FROM``) sum the far nodes by Taylor series over a dyadic
+tree of node blocks set up once (``_far``: O(log N) per point, agreeing with the node-by-node
+sums to rounding), so tables of 10^6 points work and batches of loads on them are cheap.
 
 ``interpolation="cubic"`` uses a C² cubic spline (scipy ``CubicSpline``, not-a-knot ends). Its
 transform is set up once as node sums: the spline's slope written as jumps at the nodes, each
-node contributing elementary terms (``Tabulated._cubic_sums``), O(nodes below x) per point.
+node contributing elementary terms (``Tabulated._cubic_sums``), O(nodes below x) per point (on
+the tree of ``_far_cols`` for tables of at least 4096 jump nodes: O(log N)).
 Pieces between nearly coincident nodes (random spacing: 1e-15 of the radius apart at 10^6
 points), whose cubic coefficient is data rounding divided by h³, are kept local: integrated over
 the piece only instead of extrapolated over the table, where their huge jumps would cancel
@@ -34,7 +38,9 @@ table (``max_radius`` = last radius).
 Layout (one module per job, all private; the public class is :class:`Tabulated`):
 ``_table`` reads and checks the table and implements the Profile hooks by dispatching to
 ``_linear`` (the linear interpolant's transform), ``_cubic`` (the spline's transform) and
-``_solve`` (contact-radius solves); ``_base`` holds the shared attributes and node integrals.
+``_solve`` (contact-radius solves); ``_base`` holds the shared attributes and node integrals;
+``_far`` the tree of a large linear table's node sums, ``_far_cols`` the same tree for the
+cubic spline's coefficient columns.
 """
 from ._cubic import CUBIC_LOCAL_RATIO, CUBIC_SUM_RTOL
 from ._table import BREAKPOINT_LIMIT, Tabulated

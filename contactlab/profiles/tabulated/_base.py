@@ -6,6 +6,7 @@ share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabul
 """
 from __future__ import annotations
 
+import contextlib
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -76,6 +77,11 @@ class _TableBase(Profile):
                               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
 
         def _height(self, r: np.ndarray) -> np.ndarray: ...
+
+        def _cubic_g_slope_integral(self, x: np.ndarray
+                                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
+        def _cubic_shared_pass(self) -> contextlib.AbstractContextManager[None]: ...
 
     def _guard(self, r: np.ndarray, name: str) -> None:
         if np.any(r > self.r[-1]):

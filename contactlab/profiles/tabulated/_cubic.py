@@ -8,11 +8,14 @@ too large are recomputed by a Gauss-Legendre rule per table interval in θ (see
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from typing import cast
 
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums, weighted_row_sums
+from . import _far_cols
 from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
 
 _GL_HI = np.polynomial.legendre.leggauss(12)
@@ -150,6 +153,10 @@ class _CubicTransform(_TableBase):
         total = nodes_all.size
         chunk = _rows_per_chunk(total)
         eps = np.finfo(float).eps
+        # large tables: the column sums over the tree (_far_cols), O(log N) per point
+        ct = self._cubic_tree() if kind in ("g", "int") else None
+        if ct is not None:
+            chunk = max(chunk, 4096)
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
             pos = xs > 0
@@ -157,21 +164,25 @@ class _CubicTransform(_TableBase):
                 continue
             xv = xs[pos]
             xp = xv[:, None]
-            # the nodes below the chunk's largest point; row_sums groups every point's sums the
-            # same whatever else is in its chunk (fixed_sums)
-            m = int(np.searchsorted(nodes_all, xv.max(), side="left"))
-            nodes = nodes_all[:m][None, :]
-            al, be, jmp = (jump_all[k, :m][None, :] for k in range(3))
-            below = nodes < xp
-            root = np.sqrt(np.maximum((xp - nodes) * (xp + nodes), 0.0))
-            theta = np.arctan2(root, nodes)                       # acos(r_j/x), accurate near x
+            if ct is not None:
+                T, S, R3 = self._cubic_tree_sums(ct, xv, kind, with_slope)
+                xv2 = xv * xv
+            else:
+                # the nodes below the chunk's largest point; row_sums groups every point's
+                # sums the same whatever else is in its chunk (fixed_sums)
+                m = int(np.searchsorted(nodes_all, xv.max(), side="left"))
+                nodes = nodes_all[:m][None, :]
+                al, be, jmp = (jump_all[k, :m][None, :] for k in range(3))
+                below = nodes < xp
+                root = np.sqrt(np.maximum((xp - nodes) * (xp + nodes), 0.0))
+                theta = np.arctan2(root, nodes)                   # acos(r_j/x), accurate near x
 
             # each node term is a difference of parts that cancel as r_j -> x (the J term by
             # (root/x)^2 and more): its rounding is eps times the parts' magnitudes, not its value.
             # g and ∫g: the node terms are θ, root (and root³) times per-node coefficients and
             # powers of x, so their sums (and the parts' magnitudes) are contractions with
             # coefficient columns set up once (θ = root = 0 at nodes >= x: no mask needed)
-            if kind in ("g", "int"):
+            if kind in ("g", "int") and ct is None:
                 c_th, c_rt, c_r3 = self._cubic_columns(kind)
                 # one padded product buffer and one blocked sum per term array (weighted_row_sums)
                 T = weighted_row_sums(theta, c_th, total)
@@ -194,7 +205,9 @@ class _CubicTransform(_TableBase):
                         2.0 * c0 + 1.5 * np.pi * d0 * xv + dnodes + loc_slope)
                 continue
             if kind == "int":
-                R3 = weighted_row_sums(root ** 3 / 3.0, cast(np.ndarray, c_r3), total)
+                if ct is None:
+                    R3 = weighted_row_sums(root ** 3 / 3.0, cast(np.ndarray, c_r3), total)
+                R3 = cast(np.ndarray, R3)
                 c13 = 13.0 / 24.0 * xv2
                 out[start:start + chunk][pos] = (
                     0.25 * np.pi * b0 * xv2 + 2.0 / 3.0 * c0 * xv2 * xv
@@ -259,28 +272,30 @@ class _CubicTransform(_TableBase):
         far = below & ~near
         s = np.sqrt(np.where(far, (xp - rm) * (xp + rm), 1.0))
         slope = None
-        if kind == "g":
-            s3 = s * s * s
-            vals = mu0 / s + mu1 * rm / s3
-            mags = np.abs(mu0) / s + np.abs(mu1) * rm / s3
-            w2 = (1.0 + 3.0 * rm * rm / (s * s)) / s3
-            if with_slope:
-                nu0, nu1 = (self._cubic_local_mom[k, None, :m] for k in (4, 5))
-                dvals = (nu0 * rm / s + nu1 * xp * xp / s3) / xp
-        elif kind == "int":
-            vals = (mu0 * s - mu1 * rm / s) / (xp * xp)
-            mags = (np.abs(mu0) * s + np.abs(mu1) * rm / s) / (xp * xp)
-            w2 = xp / (s * s * s)
-        else:
-            L = np.arccosh(np.maximum(xp / np.where(far, rm, xp), 1.0))
-            x3 = xp * xp * xp
-            w0 = 0.5 * (xp * s + rm * rm * L)
-            w1 = rm * L - xp * rm / s
-            vals = (mu0 * w0 + mu1 * w1) / x3
-            mags = (np.abs(mu0) * w0 + np.abs(mu1) * np.abs(w1)) / x3
-            w2 = (L + xp / s + x3 / (s * s * s)) / x3
-        vals = np.where(far, vals, 0.0)
-        errs = np.where(far, q2 * w2 + 8 * eps * mags, 0.0)
+        # (entries of pieces not below x, masked below, may divide by a tiny x² = 0)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            if kind == "g":
+                s3 = s * s * s
+                vals = mu0 / s + mu1 * rm / s3
+                mags = np.abs(mu0) / s + np.abs(mu1) * rm / s3
+                w2 = (1.0 + 3.0 * rm * rm / (s * s)) / s3
+                if with_slope:
+                    nu0, nu1 = (self._cubic_local_mom[k, None, :m] for k in (4, 5))
+                    dvals = (nu0 * rm / s + nu1 * xp * xp / s3) / xp
+            elif kind == "int":
+                vals = (mu0 * s - mu1 * rm / s) / (xp * xp)
+                mags = (np.abs(mu0) * s + np.abs(mu1) * rm / s) / (xp * xp)
+                w2 = xp / (s * s * s)
+            else:
+                L = np.arccosh(np.maximum(xp / np.where(far, rm, xp), 1.0))
+                x3 = xp * xp * xp
+                w0 = 0.5 * (xp * s + rm * rm * L)
+                w1 = rm * L - xp * rm / s
+                vals = (mu0 * w0 + mu1 * w1) / x3
+                mags = (np.abs(mu0) * w0 + np.abs(mu1) * np.abs(w1)) / x3
+                w2 = (L + xp / s + x3 / (s * s * s)) / x3
+            vals = np.where(far, vals, 0.0)
+            errs = np.where(far, q2 * w2 + 8 * eps * mags, 0.0)
         if with_slope:
             dvals = np.where(far, dvals, 0.0)
         ri, ki = np.nonzero(near)
@@ -323,6 +338,71 @@ class _CubicTransform(_TableBase):
                       if with_slope else None)
         err = np.abs(res[0] - res[1]) + 8 * np.finfo(float).eps * mag
         return res[0], err, dv
+
+    def _cubic_tree(self) -> _far_cols.ColumnTree | None:
+        """The column tree (:mod:`._far_cols`) of the node sums' coefficient columns (θ-columns,
+        root-columns of g and of ∫g, root³/3-columns: 14 in all), built on first use; None for
+        tables that keep the dense node sums (small, or clustered nodes)."""
+        cached = self.__dict__.get("_cubic_tree_cache")
+        if cached is None:
+            th, rt_g, _ = self._cubic_columns("g")
+            _, rt_i, r3 = self._cubic_columns("int")
+            cols = np.concatenate([th, rt_g, rt_i, cast(np.ndarray, r3)])
+            cached = (_far_cols.build(self._cubic_nodes, cols, float(self.r[-1])),)
+            self.__dict__["_cubic_tree_cache"] = cached
+        return cast("_far_cols.ColumnTree | None", cached[0])
+
+    def _cubic_tree_sums(self, ct: _far_cols.ColumnTree, xv: np.ndarray, kind: str,
+                         with_slope: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """``(T, S, R3)`` of :meth:`_cubic_sums` from the column tree (R3 for ``"int"`` only).
+
+        Inside :meth:`_cubic_g_slope_integral` every column is summed on the first call and
+        kept for the second at the same points (a column's sums do not depend on which other
+        columns share the call: the same bits)."""
+        A, R, R3k = _far_cols.ACOS, _far_cols.ROOT, _far_cols.ROOT3
+        memo = self.__dict__.get("_cubic_pair")
+        if memo is not None:
+            key = xv.tobytes()
+            if memo.get("key") != key:
+                memo["key"] = key
+                memo["sums"] = _far_cols.sums(
+                    ct, xv, np.arange(14), np.array([A] * 4 + [R] * 8 + [R3k] * 2))
+            out = memo["sums"]
+            if kind == "g":
+                return out[:4], out[4:8] if with_slope else out[4:6], None
+            return out[:4], out[8:12], out[12:14]
+        if kind == "g":
+            n_rt = 4 if with_slope else 2
+            cols = np.array([0, 1, 2, 3, *range(4, 4 + n_rt)])
+            kinds = np.array([A] * 4 + [R] * n_rt)
+        else:
+            cols = np.arange(14)
+            cols = np.concatenate([cols[:4], cols[8:14]])
+            kinds = np.array([A] * 4 + [R] * 4 + [R3k] * 2)
+        out = _far_cols.sums(ct, xv, cols, kinds)
+        if kind == "g":
+            return out[:4], out[4:], None
+        return out[:4], out[4:8], out[8:10]
+
+    def _cubic_g_slope_integral(self, x: np.ndarray
+                                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(g, g', ∫_0^x g)`` of the spline, the same bits as :meth:`_g_and_slope` and
+        :meth:`_g_integral_closed_form` apart; on the column tree the node sums of both come
+        from one pass (the force solve's Newton step needs all three)."""
+        with self._cubic_shared_pass():
+            g, gp = self._g_and_slope(x)
+            integral = self._g_integral_closed_form(x)
+        return g, gp, integral
+
+    @contextlib.contextmanager
+    def _cubic_shared_pass(self) -> Iterator[None]:
+        """Inside: the column tree's sums at a set of points are computed once for every
+        column and reused by the next call at the same points (g, then ∫g; the same bits)."""
+        self.__dict__["_cubic_pair"] = {}
+        try:
+            yield
+        finally:
+            self.__dict__.pop("_cubic_pair", None)
 
     def _cubic_columns(self, kind: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """Per-node coefficient columns of the node sums of :meth:`_cubic_sums` (set up once).

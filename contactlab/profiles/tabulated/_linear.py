@@ -12,6 +12,7 @@ from typing import cast
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums
+from . import _far
 from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
 
 
@@ -36,10 +37,48 @@ class _LinearTransform(_TableBase):
         g, slope, integral = self._arcsine_pass(x, True, True)
         return g, cast(np.ndarray, slope), cast(np.ndarray, integral)
 
+    def _far_tree(self) -> _far.FarTree | None:
+        """The dyadic tree of the slope-jump nodes (:mod:`._far`), built on first use; None for
+        tables that keep the node-by-node sums (small, or clustered)."""
+        cached = self.__dict__.get("_far_cache")
+        if cached is None:
+            jump = self._dslope != 0
+            cached = (_far.build(self.r[1:-1][jump], self._dslope[jump], float(self.r[-1])),)
+            self.__dict__["_far_cache"] = cached
+        return cast("_far.FarTree | None", cached[0])
+
+    def _far_pass(self, tree: _far.FarTree, x: np.ndarray, with_g: bool, with_slope: bool,
+                  with_integral: bool
+                  ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """``(g, g', ∫_0^x g)`` from the tree's sums (:mod:`._far`): the formulas of
+        :meth:`_arcsine_pass`, O(log N) per point; ``g'`` and ``∫g`` only when asked."""
+        flat = x.ravel()
+        g = np.zeros(flat.size)
+        slope = np.zeros(flat.size) if with_slope else None
+        integral = np.zeros(flat.size) if with_integral else None
+        pos = flat > 0
+        if np.any(pos):
+            xs = flat[pos]
+            A, C, P = _far.sums(tree, xs, with_slope, with_integral)
+            k = np.clip(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
+            s_k = self._slopes[k]
+            base = 0.5 * np.pi * s_k - A
+            g[pos] = xs * base
+            if slope is not None:
+                slope[pos] = base + cast(np.ndarray, C)
+            if integral is not None:
+                integral[pos] = s_k * 0.25 * np.pi * xs**2 - cast(np.ndarray, P)
+        shape = x.shape
+        return (g.reshape(shape), None if slope is None else slope.reshape(shape),
+                None if integral is None else integral.reshape(shape))
+
     def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
                       ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
         self._guard(x, "x")
         x = np.asarray(x, dtype=float)
+        tree = self._far_tree()
+        if tree is not None:
+            return self._far_pass(tree, x, True, with_slope, with_integral)
         flat, order = _sorted(x)
         out = np.zeros(flat.size)
         slope = np.zeros(flat.size) if with_slope else None
@@ -88,6 +127,9 @@ class _LinearTransform(_TableBase):
     def _linear_g_integral(self, a: np.ndarray) -> np.ndarray:
         self._guard(a, "a")
         a = np.asarray(a, dtype=float)
+        tree = self._far_tree()
+        if tree is not None:
+            return cast(np.ndarray, self._far_pass(tree, a, False, False, True)[2])
         flat, order = _sorted(a)
         out = np.zeros(flat.size)
         # summation by parts of Σ_i s_i ∫_{r_i}^{min(r_{i+1},a)} sqrt(a²-r²) dr: with

@@ -152,7 +152,8 @@ class _TableSolver(_TableBase):
         if np.any(missing):
             new = np.unique(idx[missing])
             x = self.r[new]
-            cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
+            with self._cubic_shared_pass():    # (a spline on the column tree: one pass)
+                cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
             vals = cache[idx]
         return vals
 
@@ -186,8 +187,8 @@ class _TableSolver(_TableBase):
                 # g, g' and ∫g of the linear interpolant in one pass (the same bits as apart)
                 g, gp, integral = self._g_slope_integral(x)
             else:
-                g, gp = self._g_and_slope(x)
-                integral = self._g_integral_closed_form(x)
+                # (one pass over the spline's column tree for both, the same bits as apart)
+                g, gp, integral = self._cubic_g_slope_integral(x)
             return x * g - integral, x * gp      # dH/da = a g'(a)
 
         return self._newton_on_node_interval(

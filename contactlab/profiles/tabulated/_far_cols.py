@@ -1,0 +1,270 @@
+"""Column node sums of a large cubic table over the dyadic tree of :mod:`._far`.
+
+The cubic spline's node sums (:meth:`~._cubic._CubicTransform._cubic_sums`) contract per-node
+coefficient columns ``c_kj`` with three kernels of ``t = b_j/x``: ``θ = acos t``,
+``sqrt(1 - t²)`` (the root ``sqrt(x² - b²)`` over x) and ``(1 - t²)^(3/2)`` (its cube over x³).
+The tree and the choice of blocks are those of :mod:`._far` (same separation and number of
+terms; the finest level capped at :data:`LEVELS_MAX`: 14 columns take 14 times the memory);
+each block stores the moments of every column, and a used block contributes
+``Σ_n k_n (h/x)^n M_kn`` with the Taylor coefficients of the column's kernel about ``c/x``, all
+from the arcsine's ``ã_n``:
+
+* ``acos``: ``acos t0``, then ``-ã_n``;
+* ``sqrt(1 - t²) = (1 - t²) asin'``: ``s̃_n = (1 - t0²)(n+1) ã_{n+1}/σ - 2 t0 n ã_n
+  - (n-1) σ ã_{n-1}`` (``s̃_0 = sqrt(1 - t0²)``);
+* ``(1 - t²)^(3/2)``: ``q̃_n = (1 - t0²) s̃_n - 2 t0 σ s̃_{n-1} - σ² s̃_{n-2}``.
+
+The finest blocks next to x are summed node by node with the cubic route's own formulas
+(``θ = arctan2(root, b)``). Each point's value is independent of the other points of its call.
+Private: used by :mod:`._cubic` for tables of at least :data:`._far.FAR_FIELD_FROM` jump nodes.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _far
+
+__all__ = ["LEVELS_MAX", "ColumnTree", "build", "sums", "far_columns"]
+
+#: kernel of a column: acos t, sqrt(1 - t²), (1 - t²)^(3/2)
+ACOS, ROOT, ROOT3 = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class ColumnTree:
+    """The tree of :mod:`._far` with the moments of several coefficient columns."""
+
+    tree: _far.FarTree          # levels, blocks, node positions (its own moments unused)
+    columns: np.ndarray         # (k, n) the columns
+    moments: np.ndarray         # (blocks + 1, k, TERMS), the last block zeros
+
+
+#: finest level at most of a cubic table's tree (14 columns: 2^14 blocks hold 37 MB of moments)
+LEVELS_MAX = 13
+
+
+def build(nodes: np.ndarray, columns: np.ndarray, r_end: float) -> ColumnTree | None:
+    """The column tree of ``nodes`` (sorted, > 0) with ``columns`` (k, n), or None when
+    :func:`._far.layout` declines the table."""
+    lay = _far.layout(nodes, r_end, LEVELS_MAX)
+    if lay is None:
+        return None
+    levels, finest = lay
+    per_level = _far.level_moments(nodes, columns, r_end, levels, finest)
+    k = columns.shape[0]
+    # the block geometry of the linear tree (its own moments unused: zeros)
+    total = 2 ** (levels + 1) - 2
+    tree = _far.tree_of(nodes, np.zeros(nodes.size), r_end, levels, finest,
+                        np.zeros((total + 1, _far.TERMS)))
+    moments = np.concatenate([*per_level, np.zeros((1, k, _far.TERMS))])
+    return ColumnTree(tree, np.ascontiguousarray(columns), moments)
+
+
+_COMPILED: dict = {"kernel": None}
+
+
+def kernel(compiled: bool = True) -> Callable:
+    """:func:`far_columns` compiled by numba (built once), or the plain Python function."""
+    if not compiled:
+        return far_columns
+    if _COMPILED["kernel"] is None:
+        from ...numeric import jit as _jit
+        _COMPILED["kernel"] = _jit.njit(far_columns, nogil=True, error_model="numpy")
+    return _COMPILED["kernel"]
+
+
+def sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) -> np.ndarray:
+    """``Σ_j c_kj K_k(b_j, x)`` for the selected columns ``cols`` with kernels ``kinds``
+    (:data:`ACOS`: ``acos(b/x)``; :data:`ROOT`: ``sqrt(x² - b²)``; :data:`ROOT3`:
+    ``(x² - b²)^(3/2)/3``) at the points ``x`` (1D, ``0 < x <= r_end``): shape (len(cols),
+    x.size)."""
+    out = np.empty((cols.size, x.size))
+    for start in range(0, x.size, _far._ROWS):
+        sl = slice(start, start + _far._ROWS)
+        out[:, sl] = _sums(ct, x[sl], cols, kinds)
+    return out
+
+
+def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) -> np.ndarray:
+    tree = ct.tree
+    row, k_near = _far._slots(tree, x)
+    xc = x[:, None]
+    zero_row = tree.moments.shape[0] - 1
+    c = tree.centre[row]
+    with np.errstate(all="ignore"):
+        t = c / xc
+        h = tree.half[row]
+        sig = h / xc
+        one_m = (xc - c) * (xc + c) / (xc * xc)
+        # acos t0 accurately (as arctan2 of the root), numpy's for both routes
+        acos_t = np.arctan2(np.sqrt(one_m), t)
+        asin_t = np.arcsin(t)
+    far = np.empty((cols.size, x.size))
+    if _far._compiled(x.size):
+        kernel(_far._COMPILED["on"])(x, row, acos_t, asin_t, tree.centre, tree.half,
+                                     ct.moments, zero_row, _far.CA, _far.CB, _far._N, cols,
+                                     kinds, far)
+    else:
+        far = _columns_numpy(ct, row, t, sig, one_m, acos_t, asin_t, cols, kinds, zero_row)
+    # near nodes: finest blocks from k_near on, nodes below x (the cubic route's formulas)
+    lo = np.searchsorted(tree.finest, k_near, side="left")
+    hi = np.searchsorted(tree.nodes, x, side="left")
+    width = int(np.max(hi - lo)) if x.size else 0
+    near = np.zeros((cols.size, x.size))
+    if width > 0:
+        idx = lo[:, None] + np.arange(width)[None, :]
+        inside = idx < hi[:, None]
+        idx = np.where(inside, idx, 0)
+        b = tree.nodes[idx]
+        root = np.sqrt(np.maximum((xc - b) * (xc + b), 0.0))
+        theta = np.arctan2(root, b)
+        for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
+            w = np.where(inside, ct.columns[col][idx], 0.0)
+            base = theta if kind == ACOS else (root if kind == ROOT else root**3 / 3.0)
+            near[i] = _far._sequential(np.where(inside, w * base, 0.0))
+    res = np.empty((cols.size, x.size))
+    for i, kind in enumerate(kinds.tolist()):
+        if kind == ACOS:
+            res[i] = far[i] + near[i]
+        elif kind == ROOT:
+            res[i] = x * far[i] + near[i]
+        else:
+            res[i] = (x * x * x / 3.0) * far[i] + near[i]
+    return res
+
+
+def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarray,
+                   one_m: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray, cols: np.ndarray,
+                   kinds: np.ndarray, zero_row: int) -> np.ndarray:
+    """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`)."""
+    T = _far.TERMS
+    N = _far._N
+    used = row != zero_row
+    need_root = bool(np.any(kinds != ACOS))
+    need_r3 = bool(np.any(kinds == ROOT3))
+    with np.errstate(all="ignore"):
+        u = t * sig / one_m
+        v = sig * sig / one_m
+        a = [asin_t, sig / np.sqrt(one_m)]
+        for n in range(T - 1):
+            nxt = _far.CA[n] * (u * a[n + 1])
+            if n:
+                nxt = nxt + _far.CB[n] * (v * a[n])
+            a.append(nxt)
+        s: list = []
+        if need_root:
+            s = [np.sqrt(one_m)]
+            for n in range(1, T):
+                sn = one_m * (N[n + 1] * a[n + 1] / sig) - (2.0 * t) * (N[n] * a[n])
+                if n >= 2:
+                    sn = sn - N[n - 1] * (sig * a[n - 1])
+                s.append(sn)
+        q: list = []
+        if need_r3:
+            tts = 2.0 * t * sig
+            ss = sig * sig
+            for n in range(T):
+                qn = one_m * s[n]
+                if n >= 1:
+                    qn = qn - tts * s[n - 1]
+                if n >= 2:
+                    qn = qn - ss * s[n - 2]
+                q.append(qn)
+        out = np.empty((cols.size, row.shape[0]))
+        for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
+            mom = ct.moments[row, col, :]                    # (rows, slots, TERMS)
+            if kind == ACOS:
+                val = acos_t * mom[..., 0]
+                for n in range(1, T):
+                    val = val - a[n] * mom[..., n]
+            else:
+                coef = s if kind == ROOT else q
+                val = coef[0] * mom[..., 0]
+                for n in range(1, T):
+                    val = val + coef[n] * mom[..., n]
+            out[i] = _far._sequential(np.where(used, val, 0.0))
+    return out
+
+
+def far_columns(x: np.ndarray, row: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray,
+                centre: np.ndarray, half: np.ndarray, moments: np.ndarray, zero_row: int,
+                ca: np.ndarray, cb: np.ndarray, nf: np.ndarray, cols: np.ndarray,
+                kinds: np.ndarray, out: np.ndarray) -> None:
+    """:func:`_columns_numpy` point by point (compiled by numba): the same operations in the
+    same order, unused slots skipped (exact zeros there)."""
+    T = moments.shape[2]
+    a = np.empty(T + 1)
+    s = np.empty(T)
+    q = np.empty(T)
+    need_root = False
+    need_r3 = False
+    for i in range(kinds.size):
+        if kinds[i] != 0:
+            need_root = True
+        if kinds[i] == 2:
+            need_r3 = True
+    acc = np.zeros(cols.size)
+    for p in range(x.size):
+        xi = x[p]
+        first = True
+        for i in range(cols.size):
+            acc[i] = 0.0
+        for sl in range(row.shape[1]):
+            rw = row[p, sl]
+            if rw == zero_row:
+                continue
+            c = centre[rw]
+            t = c / xi
+            sig = half[rw] / xi
+            one_m = (xi - c) * (xi + c) / (xi * xi)
+            u = t * sig / one_m
+            v = sig * sig / one_m
+            a[0] = asin_t[p, sl]
+            a[1] = sig / np.sqrt(one_m)
+            for n in range(T - 1):
+                nxt = ca[n] * (u * a[n + 1])
+                if n:
+                    nxt = nxt + cb[n] * (v * a[n])
+                a[n + 2] = nxt
+            if need_root:
+                s[0] = np.sqrt(one_m)
+                for n in range(1, T):
+                    sn = one_m * (nf[n + 1] * a[n + 1] / sig) - (2.0 * t) * (nf[n] * a[n])
+                    if n >= 2:
+                        sn = sn - nf[n - 1] * (sig * a[n - 1])
+                    s[n] = sn
+            if need_r3:
+                tts = 2.0 * t * sig
+                ss = sig * sig
+                for n in range(T):
+                    qn = one_m * s[n]
+                    if n >= 1:
+                        qn = qn - tts * s[n - 1]
+                    if n >= 2:
+                        qn = qn - ss * s[n - 2]
+                    q[n] = qn
+            for i in range(cols.size):
+                col = cols[i]
+                kind = kinds[i]
+                if kind == 0:
+                    val = acos_t[p, sl] * moments[rw, col, 0]
+                    for n in range(1, T):
+                        val = val - a[n] * moments[rw, col, n]
+                elif kind == 1:
+                    val = s[0] * moments[rw, col, 0]
+                    for n in range(1, T):
+                        val = val + s[n] * moments[rw, col, n]
+                else:
+                    val = q[0] * moments[rw, col, 0]
+                    for n in range(1, T):
+                        val = val + q[n] * moments[rw, col, n]
+                if first:
+                    acc[i] = val
+                else:
+                    acc[i] = acc[i] + val
+            first = False
+        for i in range(cols.size):
+            out[i, p] = acc[i] + 0.0
