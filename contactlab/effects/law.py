@@ -521,6 +521,11 @@ class ContactLaw:
         # the contacts on springs only (an overflowed memory warns on its own): their model
         # errors, not a pass over every contact of the step (res.model_errors stays lazy)
         on = np.flatnonzero(self._on())
+        peak = res.model_error_peaks_at(on)
+        todo = [q for q, e in peak.items()
+                if q not in self._model_warned and e > MODEL_ERROR_WARN * (1.0 + 1e-12)]
+        if not todo:        # the usual step: no per-contact error array at all
+            return
         for q, err in res.model_errors_at(on).items():
             err = np.asarray(err, float)
             # (the table's 1.0e-2 at the default 16 springs is at 1 %, not above: its log-log
