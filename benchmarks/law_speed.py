@@ -199,26 +199,27 @@ class Row:
         self.t, self.cpu = min(self.t, t), min(self.cpu, cpu)
 
 
-def _timed(mode: str, f) -> tuple[float, float, int]:
+def _timed(mode: str, law: cl.ContactLaw, **kw) -> tuple[object, float, float, int]:
+    """``law.step(**kw)``: (its result, wall time, CPU time, minor page faults)."""
     f0 = _faults()
     c0 = _cpu(mode)
     t0 = time.perf_counter()
-    f()
+    res = law.step(**kw)
     t = time.perf_counter() - t0
-    return t, _cpu(mode) - c0, _faults() - f0
+    return res, t, _cpu(mode) - c0, _faults() - f0
 
 
 def constant_row(n: int, mode: str, steps: int = 6) -> Row:
     """Best constant-load step (wall, CPU) after two warm-up steps, floors interleaved."""
     law = _law(n, mode)
     F = _controls(n, 0)[0]
-    row, box = Row(), [None]
+    row, out = Row(), None
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
         row.floors()
-        t, c, f = _timed(mode, lambda: box.__setitem__(
-            0, law.step(force=F, twist=tw, displacement=u,
-                        out=box[0] if mode == "fast+out" else None)))
+        res, t, c, f = _timed(mode, law, force=F, twist=tw, displacement=u, out=out)
+        if mode == "fast+out":
+            out = res
         if k >= 2:
             row.add(t, c, f)
     return row
@@ -238,7 +239,7 @@ def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0) -> tuple[
             Fk[:m] *= 1.0 + 0.02 * np.sin(0.5 * k)
         row = first if k == 2 else later
         row.floors()
-        t, c, f = _timed(mode, lambda: law.step(force=Fk, twist=tw, displacement=u))
+        _, t, c, f = _timed(mode, law, force=Fk, twist=tw, displacement=u)
         if k >= 2:
             row.add(t, c, f)
     return first, later
@@ -290,7 +291,7 @@ def _modes(fast: bool) -> list[str]:
         return ["numpy"]
     import numba
     return ["numpy", "fast", "fast+out"] + [f"threads x{k}" for k in (1, 2)
-                                             if k <= numba.config.NUMBA_NUM_THREADS]
+                                             if k <= numba.get_num_threads()]
 
 
 def _threads(mode: str) -> None:
