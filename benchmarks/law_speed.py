@@ -46,6 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import contactlab as cl                                     # noqa: E402
 from benchmarks._harness import machine                     # noqa: E402
 from contactlab.errors import ValidityWarning               # noqa: E402
+from contactlab.effects import law_pool                     # noqa: E402
 from contactlab.physics import law_kernel                   # noqa: E402
 
 
@@ -247,7 +248,8 @@ def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0) -> tuple[
 
 def memory_row(n: int, frac: float = 1.0) -> tuple[float, float, float]:
     """tracemalloc peaks per contact (bytes): the law and constant-load steps, then the first
-    changing-load steps (every contact, or the fraction ``frac`` of them, onto its springs); and
+    changing-load steps (every contact, or the fraction ``frac`` of them, onto its springs; plus
+    the spring pool's memory-mapped arrays, which tracemalloc does not count); and
     law_memory per contact (its spring rows for those contacts included)."""
     import tracemalloc
     from contactlab.effects.law import DEFAULT_MEMORY, DEFAULT_SPRINGS, law_memory
@@ -267,6 +269,11 @@ def memory_row(n: int, frac: float = 1.0) -> tuple[float, float, float]:
         changing = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
+    # the pool's large arrays are memory maps of their own (law_pool._mapped), which
+    # tracemalloc does not see: their bytes are added
+    pool = law._pool
+    changing += sum(v.nbytes for v in (pool.owner, *pool.rows.values())
+                    if v.nbytes >= law_pool._MAP_BYTES)
     return const / n, changing / n, law_memory(n, DEFAULT_MEMORY, DEFAULT_SPRINGS, m) / n
 
 
