@@ -10,7 +10,7 @@ Rows (10^6 Hertz contacts, normal + torsion + tangential with memory, sinusoidal
 random phases so that reversals and loop closures occur):
 
 * constant-load step: numpy, compiled, compiled with ``out=`` (no fresh result arrays) and the
-  compiled step on numba's threads; goal <= 40 ms.
+  compiled step on numba's threads, 1 and 2 of them (``numba.set_num_threads``); goal <= 40 ms.
 * changing-load step (every contact's load changes, then a tenth of them; 16 springs each): the
   FIRST such step (the switch from the exact law onto the springs, the spring rows allocated for
   the contacts that switch) and the following ones, compiled; goal <= 100 ms each. numpy's
@@ -21,15 +21,22 @@ random phases so that reversals and loop closures occur):
 * memory: tracemalloc's peak per contact of a law through constant and changing-load steps
   (and ``law_memory``, what the budget check counts); goal <= 1.5 GB at 10^6.
 
-The floor is one numpy pass over 10^6 floats (``np.multiply(x, 2.0, out=y)``), timed right before
-each measured step (best of its repetitions), so both see the same machine load. Each time is the
-best of its steps after two warm-up steps (each row also prints the step's CPU time, which a
-shared machine's load disturbs far less than the wall time); the kernels are compiled (or
-loaded from the disk cache) on a small law first.
+Each row prints the step's best wall time and its CPU time (this thread's; the process's on
+numba's threads: a shared machine's other processes lengthen the wall time, far less the CPU
+time), and two floors timed right before each of its steps (best over the row), so both see the
+same machine load: one numpy pass over 10^6 floats (``np.multiply(x, 2.0, out=y)``), and the
+bandwidth floor, the bytes the step must move at the least (counted per contact: ``CONST_READ``,
+``CONST_WRITE``, plus the spring row read and written of a contact on springs) over the copy rate
+numpy gets between two 128 MB arrays. The wall time's ratio to each floor, the minor page faults
+of the best step (fresh arrays of 10^6 entries fault in their pages on the first write) and a
+verdict of the wall and of the CPU time against the goal follow; the header names the machine
+and its load. Each time is the best of its steps after two warm-up steps; the kernels are
+compiled (or loaded from the disk cache) on a small law first.
 """
 from __future__ import annotations
 
 import os
+import resource
 import sys
 import time
 import warnings
@@ -41,6 +48,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import contactlab as cl                                     # noqa: E402
 from benchmarks._harness import machine                     # noqa: E402
 from contactlab.errors import ValidityWarning               # noqa: E402
+from contactlab.effects import law_pool                     # noqa: E402
 from contactlab.physics import law_kernel                   # noqa: E402
 
 
@@ -113,6 +121,14 @@ def linearity(best_of: dict[int, float]) -> None:
 
 
 FLOOR_N = 10**6
+#: bytes one constant-load step of a Hertz contact must move at the least (both channels, by
+#: force): read the three controls, five per-contact parameters (kc, E*, mu, G*, G_t), the held
+#: depth, both channels' stack scalars (x, y, w 8 B each, last 1, depth 8, overflow 1) and the top
+#: turning point (X, Y); write the nine outputs (8 x 8 B + exact 1 B), the stack scalars back and
+#: the one-byte flag (issue 29's "bandwidth floor for the state it must touch")
+CONST_READ = 3 * 8 + 5 * 8 + 8 + 2 * 34 + 2 * 16
+CONST_WRITE = 8 * 8 + 1 + 2 * 34 + 1
+_BW: dict[str, np.ndarray] = {}
 
 
 def floor_pass(reps: int = 5) -> float:
@@ -127,11 +143,28 @@ def floor_pass(reps: int = 5) -> float:
     return best
 
 
+def bandwidth(reps: int = 3) -> float:
+    """Memory bandwidth, bytes/s (read + written): numpy copying 128 MB into another 128 MB
+    array (both allocated and touched once, outside the timing: no page faults), best of
+    ``reps``; far beyond the caches, so it is the DRAM rate a pass over a 10^6-contact state
+    gets."""
+    if not _BW:
+        _BW["x"] = np.ones(16 * 2**20)
+        _BW["y"] = np.zeros_like(_BW["x"])
+    x, y = _BW["x"], _BW["y"]
+    best = np.inf
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        np.copyto(y, x)
+        best = min(best, time.perf_counter() - t0)
+    return 2 * x.nbytes / best
+
+
 def _law(n: int, mode: str, **kw) -> cl.ContactLaw:
     rng = np.random.default_rng(0)
     return cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
                          G_star=4.4e10, G_torsion=4.0e10, friction=0.3, fast=mode != "numpy",
-                         parallel=mode == "threads", **kw)
+                         parallel=mode.startswith("threads"), **kw)
 
 
 def _controls(n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -141,55 +174,84 @@ def _controls(n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return F, 2e-4 * np.sin(0.3 * k + ph), 1e-7 * np.cos(0.3 * k + ph)
 
 
-def constant_row(n: int, mode: str, steps: int = 6) -> tuple[float, float, float]:
-    """(best step time, the floor measured right before it, best step CPU time of this
-    thread) at constant load. On a shared machine the CPU time varies far less than the wall
-    time (other processes' load); with ``threads`` it counts the calling thread only."""
+def _cpu(mode: str) -> float:
+    """CPU seconds: of this thread (serial modes), of the process (numba's threads)."""
+    return time.process_time() if mode.startswith("threads") else time.thread_time()
+
+
+def _faults() -> int:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+
+
+class Row:
+    """Best wall and CPU time of a row's steps, the floors measured right before each step
+    (best of the row), and the minor page faults of the best-wall step."""
+
+    def __init__(self) -> None:
+        self.t = self.cpu = self.floor = np.inf
+        self.bw = 0.0
+        self.faults = 0
+
+    def floors(self) -> None:
+        self.floor = min(self.floor, floor_pass())
+        self.bw = max(self.bw, bandwidth())
+
+    def add(self, t: float, cpu: float, faults: int) -> None:
+        if t < self.t:
+            self.faults = faults
+        self.t, self.cpu = min(self.t, t), min(self.cpu, cpu)
+
+
+def _timed(mode: str, law: cl.ContactLaw, **kw) -> tuple[object, float, float, int]:
+    """``law.step(**kw)``: (its result, wall time, CPU time, minor page faults)."""
+    f0 = _faults()
+    c0 = _cpu(mode)
+    t0 = time.perf_counter()
+    res = law.step(**kw)
+    t = time.perf_counter() - t0
+    return res, t, _cpu(mode) - c0, _faults() - f0
+
+
+def constant_row(n: int, mode: str, steps: int = 6) -> Row:
+    """Best constant-load step (wall, CPU) after two warm-up steps, floors interleaved."""
     law = _law(n, mode)
     F = _controls(n, 0)[0]
-    best, floor, cpu, out = np.inf, np.inf, np.inf, None
+    row, out = Row(), None
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
-        fl = floor_pass()
-        c0 = time.thread_time()
-        t0 = time.perf_counter()
-        res = law.step(force=F, twist=tw, displacement=u, out=out)
-        t = time.perf_counter() - t0
-        c = time.thread_time() - c0
+        row.floors()
+        res, t, c, f = _timed(mode, law, force=F, twist=tw, displacement=u, out=out)
         if mode == "fast+out":
             out = res
         if k >= 2:
-            best, floor, cpu = min(best, t), min(floor, fl), min(cpu, c)
-    return best, floor, cpu
+            row.add(t, c, f)
+    return row
 
 
-def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0
-                 ) -> tuple[float, float, float, float, float]:
-    """(first changing-load step, best later changing-load step, floor, and the CPU times of
-    this thread of the first and the best later step): the force of every contact (``frac``: of
-    that fraction of the contacts, the rest held) changes from step 2 on."""
+def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0) -> tuple[Row, Row]:
+    """(the first changing-load step, the best later one): the force of every contact
+    (``frac``: of that fraction of the contacts, the rest held) changes from step 2 on."""
     law = _law(n, mode)
     F = _controls(n, 0)[0]
     m = round(frac * n)
-    times, cpus, floor = [], [], np.inf
+    first, later = Row(), Row()
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
-        fl = floor_pass()
         Fk = F.copy()
         if k >= 2:
             Fk[:m] *= 1.0 + 0.02 * np.sin(0.5 * k)
-        c0 = time.thread_time()
-        t0 = time.perf_counter()
-        law.step(force=Fk, twist=tw, displacement=u)
-        times.append(time.perf_counter() - t0)
-        cpus.append(time.thread_time() - c0)
-        floor = min(floor, fl)
-    return times[2], min(times[3:]), floor, cpus[2], min(cpus[3:])
+        row = first if k == 2 else later
+        row.floors()
+        _, t, c, f = _timed(mode, law, force=Fk, twist=tw, displacement=u)
+        if k >= 2:
+            row.add(t, c, f)
+    return first, later
 
 
 def memory_row(n: int, frac: float = 1.0) -> tuple[float, float, float]:
     """tracemalloc peaks per contact (bytes): the law and constant-load steps, then the first
-    changing-load steps (every contact, or the fraction ``frac`` of them, onto its springs); and
+    changing-load steps (every contact, or the fraction ``frac`` of them, onto its springs; plus
+    the spring pool's memory-mapped arrays, which tracemalloc does not count); and
     law_memory per contact (its spring rows for those contacts included)."""
     import tracemalloc
     from contactlab.effects.law import DEFAULT_MEMORY, DEFAULT_SPRINGS, law_memory
@@ -209,6 +271,11 @@ def memory_row(n: int, frac: float = 1.0) -> tuple[float, float, float]:
         changing = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
+    # the pool's large arrays are memory maps of their own (law_pool._mapped), which
+    # tracemalloc does not see: their bytes are added
+    pool = law._pool
+    changing += sum(v.nbytes for v in (pool.owner, *pool.rows.values())
+                    if v.nbytes >= law_pool._MAP_BYTES)
     return const / n, changing / n, law_memory(n, DEFAULT_MEMORY, DEFAULT_SPRINGS, m) / n
 
 
@@ -216,42 +283,79 @@ def _verdict(ok: bool) -> str:
     return "meets the goal" if ok else "MISSES the goal"
 
 
+def _print(name: str, row: Row, traffic: float, goal: float) -> None:
+    """One row: wall and CPU time, the numpy pass and the bandwidth floor of ``traffic`` bytes
+    with the wall time's ratio to each, the verdict of the wall time against ``goal`` and of the
+    CPU time (the step's own work, without the shared machine's other processes)."""
+    bw_floor = traffic / row.bw
+    print(f"{name:<40} {1e3 * row.t:>7.1f} {1e3 * row.cpu:>7.1f} {1e3 * row.floor:>6.2f} "
+          f"{row.t / row.floor:>6.0f}x {1e3 * bw_floor:>6.1f} {row.t / bw_floor:>5.1f}x "
+          f"{row.faults:>7d}  <= {1e3 * goal:.0f} ms: wall {_verdict(row.t <= goal)}, "
+          f"CPU {_verdict(row.cpu <= goal)}  (load {os.getloadavg()[0]:.1f})", flush=True)
+
+
+def _modes(fast: bool) -> list[str]:
+    """numpy, compiled (fresh outputs / out=), compiled on numba's threads (1 and 2)."""
+    if not fast:
+        return ["numpy"]
+    import numba
+    return ["numpy", "fast", "fast+out"] + [f"threads x{k}" for k in (1, 2)
+                                             if k <= numba.get_num_threads()]
+
+
+def _threads(mode: str) -> None:
+    if mode.startswith("threads"):
+        import numba
+        numba.set_num_threads(int(mode.split("x")[1]))
+
+
 def issue_rows() -> None:
+    from contactlab.effects.law import DEFAULT_SPRINGS
+    from contactlab.effects.law_pool import pool_row_bytes
     n = int(float(sys.argv[sys.argv.index("--n") + 1])) if "--n" in sys.argv else 10**6
     fast = law_kernel.AVAILABLE
-    print(f"\nissue 29, ContactLaw rows at n = {n} (floor: one numpy pass over 10^6 floats, "
-          "timed before each step)")
-    for m in (["numpy", "fast", "fast+out", "threads"] if fast else ["numpy"]):    # build + JIT
+    modes = _modes(fast)
+    print(f"\nissue 29, ContactLaw rows at n = {n}: best wall and CPU time of the step (CPU of "
+          "this thread; of the process on numba's threads), the numpy pass over 10^6 floats "
+          "('pass') and the bandwidth floor of the bytes the step must move ('bw floor': bytes "
+          "per contact x n / the measured copy rate), both timed before each step, the wall "
+          "time's ratio to each, minor page faults of the best step")
+    for m in modes:                                 # build + JIT
         w = _law(64, m)
         w.step(force=1.0, twist=1e-5, displacement=1e-9)
         w.step(force=2.0, twist=1e-5, displacement=1e-9)                    # switch + springs
-    print(f"{'row':<44} {'time':>10} {'floor':>9} {'ratio':>8}  goal     verdict")
-    for m in (["numpy", "fast", "fast+out", "threads"] if fast else ["numpy"]):
-        t, fl, cpu = constant_row(n, m)
-        print(f"{'constant-load step, ' + m:<44} {1e3 * t:>8.1f}ms {1e3 * fl:>7.2f}ms "
-              f"{t / fl:>7.0f}x  <= 40 ms {_verdict(t <= 0.040)}   "
-              f"(CPU {1e3 * cpu:.1f} ms; load {os.getloadavg()[0]:.1f})", flush=True)
-    modes = (["fast", "threads"] if fast else []) + (
-        ["numpy"] if "--numpy-springs" in sys.argv or not fast else [])
+    const_b = CONST_READ + CONST_WRITE
+    print(f"constant-load step: {const_b} B per contact moved at the least "
+          f"({CONST_READ} read, {CONST_WRITE} written)")
+    print(f"{'row':<40} {'wall':>7} {'CPU':>7} {'pass':>6} {'ratio':>7} {'bw fl':>6} "
+          f"{'ratio':>6} {'faults':>7}  goal")
+    for m in modes:
+        _threads(m)
+        _print(f"constant-load step, {m}", constant_row(n, m), const_b * n, 0.040)
+    # a contact on its springs also reads and writes its spring row (3 floats per spring and
+    # the row's scalars)
+    spr_b = 2 * pool_row_bytes(DEFAULT_SPRINGS)
+    print(f"changing-load step: + {spr_b} B per contact on springs (its spring row read and "
+          "written)")
     # every contact's load changes, or a tenth of them (a packing where few contacts switch:
     # the spring rows are allocated for those only)
     for frac in (1.0, 0.1):
         for m in modes:
-            first, later, fl, c_first, c_later = changing_row(n, m, frac=frac)
-            for name, t, c in (("FIRST changing-load step", first, c_first),
-                               ("later changing-load step", later, c_later)):
-                print(f"{f'{name}, {m}, {frac:.0%}':<44} {1e3 * t:>8.1f}ms {1e3 * fl:>7.2f}ms "
-                      f"{t / fl:>7.0f}x  <= 100 ms {_verdict(t <= 0.100)}   "
-                      f"(CPU {1e3 * c:.1f} ms; load {os.getloadavg()[0]:.1f})", flush=True)
+            if m == "fast+out" or (m == "numpy" and "--numpy-springs" not in sys.argv):
+                continue
+            _threads(m)
+            first, later = changing_row(n, m, frac=frac)
+            for name, row in (("FIRST changing step", first), ("later changing step", later)):
+                _print(f"{name}, {m}, {frac:.0%}", row, (const_b + frac * spr_b) * n, 0.100)
     if fast:
         for frac in (1.0, 0.1):
             const, changing, counted = memory_row(n, frac)
             for name, b in (("memory, law + constant-load steps", const),
                             (f"memory, law + changing-load steps, {frac:.0%}", changing)):
-                print(f"{name:<44} {b * n / 1e9:>8.2f}GB {'':>9} {b:>6.0f}B/contact  <= 1.5 GB "
+                print(f"{name:<44} {b * n / 1e9:>8.2f}GB {b:>6.0f}B/contact  <= 1.5 GB "
                       f"{_verdict(b * n <= 1.5e9)}")
             print(f"{f'memory counted (law_memory), {frac:.0%}':<44} {counted * n / 1e9:>8.2f}GB "
-                  f"{'':>9} {counted:>6.0f}B/contact")
+                  f"{counted:>6.0f}B/contact")
 
 
 def scaling() -> None:

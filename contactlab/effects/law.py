@@ -31,7 +31,7 @@ from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
-from .law_checks import _per_contact, _per_step, _short, checked_state_entry
+from .law_checks import _per_contact, _per_step, _short, checked_state_entry, warn_model_error
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
@@ -529,27 +529,9 @@ class ContactLaw:
     def _warn_model_error(self, res: LawStep) -> None:
         """A :class:`ValidityWarning` when a step's model error exceeds
         :data:`MODEL_ERROR_WARN` for a quantity at a contact on springs, once per law and
-        quantity (its text also in that step's ``meta["notes"]``)."""
-        # the contacts on springs only (an overflowed memory warns on its own): their model
-        # errors, not a pass over every contact of the step (res.model_errors stays lazy)
-        on = np.flatnonzero(self._on())
-        for q, err in res.model_errors_at(on).items():
-            err = np.asarray(err, float)
-            # (the table's 1.0e-2 at the default 16 springs is at 1 %, not above: its log-log
-            # interpolation returns it one ulp high)
-            if q in self._model_warned or not np.any(err > MODEL_ERROR_WARN * (1.0 + 1e-12)):
-                continue
-            self._model_warned.add(q)
-            j = int(np.argmax(err))
-            i = int(on[j])
-            text = (f"ContactLaw: the model error of the {q.replace('_', ' ')} reached "
-                    f"{float(err[j]):.3g} at contact {i} (> {MODEL_ERROR_WARN:.0%}): contacts "
-                    "whose normal load changed run on MDR springs (step.model_error per contact; "
-                    f"{self.springs} springs per contact, raise springs= to lower the spring "
-                    "part). Said once per law and quantity; silence it with "
-                    "ContactLaw(..., warn_model_error=False) or law.warn_model_error = False.")
-            res.meta["notes"] = (*res.meta.get("notes", ()), text)
-            warnings.warn(text, ValidityWarning, stacklevel=4)
+        quantity (:func:`~contactlab.effects.law_checks.warn_model_error`)."""
+        warn_model_error(res, np.flatnonzero(self._on()), self._model_warned, self.springs,
+                         MODEL_ERROR_WARN)
 
     def _check_out(self, out: Any) -> None:
         ok = isinstance(out, LawStep)

@@ -2,14 +2,18 @@
 and the entries of a restored state, each refused with a ParameterError naming what is wrong."""
 from __future__ import annotations
 
-from typing import Any
+import warnings
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, ValidityWarning
 from ..params import as_checked_array
 
-__all__ = ["checked_state_entry"]
+__all__ = ["checked_state_entry", "warn_model_error"]
+
+if TYPE_CHECKING:
+    from .law_step import LawStep
 
 _UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
           "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
@@ -82,3 +86,34 @@ def checked_state_entry(key: str, value: Any, like: np.ndarray, memory: int,
                              f"be {allowed} (restore a state saved from law.state of a law "
                              "of the same size, memory and springs).")
     return arr.astype(like.dtype, copy=True)
+
+
+def warn_model_error(res: "LawStep", on: np.ndarray, warned: set[str], springs: int,
+                     limit: float) -> None:
+    """A :class:`ValidityWarning` when the step ``res``'s model error exceeds ``limit`` for a
+    quantity at a contact on springs (indices ``on``), once per quantity: ``warned`` (the law's
+    set of quantities already said) gains it; the text also goes into ``res.meta["notes"]``.
+
+    Reads the contacts on springs only (an overflowed memory warns on its own), and their
+    largest errors first: the per-contact arrays are built only in the step that warns."""
+    peak = res.model_error_peaks_at(on)
+    todo = [q for q, e in peak.items() if q not in warned and e > limit * (1.0 + 1e-12)]
+    if not todo:        # the usual step: no per-contact error array at all
+        return
+    for q, err in res.model_errors_at(on).items():
+        err = np.asarray(err, float)
+        # (the table's 1.0e-2 at the default 16 springs is at 1 %, not above: its log-log
+        # interpolation returns it one ulp high)
+        if q in warned or not np.any(err > limit * (1.0 + 1e-12)):
+            continue
+        warned.add(q)
+        j = int(np.argmax(err))
+        i = int(on[j])
+        text = (f"ContactLaw: the model error of the {q.replace('_', ' ')} reached "
+                f"{float(err[j]):.3g} at contact {i} (> {limit:.0%}): contacts "
+                "whose normal load changed run on MDR springs (step.model_error per contact; "
+                f"{springs} springs per contact, raise springs= to lower the spring "
+                "part). Said once per law and quantity; silence it with "
+                "ContactLaw(..., warn_model_error=False) or law.warn_model_error = False.")
+        res.meta["notes"] = (*res.meta.get("notes", ()), text)
+        warnings.warn(text, ValidityWarning, stacklevel=5)

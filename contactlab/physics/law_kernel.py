@@ -239,24 +239,24 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                     if (xi - lim) * last[c, i] <= 0:
                         break
                     xo = X[c, k - 1, i]
-                    D = _load(kind, abs(lim - xo) / 2.0, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                    D = _load(kind, abs(lim - xo) * 0.5, xs, ys, ai, Ds, coef, y_scale, n, y0,
                               m0, kp)[2]
                     e += max(2.0 * D - sw[c, i], 0.0)
                     k = k - 2 if k >= 2 else 0
                     depth[c, i] = k
                     if k > 0:
-                        xo2, f2 = X[c, k - 1, i], 2.0
+                        xo2, f2, h2 = X[c, k - 1, i], 2.0, 0.5
                     else:
-                        xo2, f2 = 0.0, 1.0
-                    D = _load(kind, abs(lim - xo2) / f2, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                        xo2, f2, h2 = 0.0, 1.0, 1.0
+                    D = _load(kind, abs(lim - xo2) * h2, xs, ys, ai, Ds, coef, y_scale, n, y0,
                               m0, kp)[2]
                     sw[c, i] = f2 * D
             k = depth[c, i]
-            if k > 0:
-                xo, yo, f = X[c, k - 1, i], Y[c, k - 1, i], 2.0
+            if k > 0:       # (x / f by a multiply: f is 1 or 2, the same bits)
+                xo, yo, f, h = X[c, k - 1, i], Y[c, k - 1, i], 2.0, 0.5
             else:
-                xo, yo, f = 0.0, 0.0, 1.0
-            yl, ax, D = _load(kind, abs(xi - xo) / f, xs, ys, ai, Ds, coef, y_scale, n, y0,
+                xo, yo, f, h = 0.0, 0.0, 1.0, 1.0
+            yl, ax, D = _load(kind, abs(xi - xo) * h, xs, ys, ai, Ds, coef, y_scale, n, y0,
                                m0, kp)
             sg = 1.0 if xi > xo else (-1.0 if xi < xo else 0.0)
             yv = yo + sg * f * yl

@@ -249,3 +249,29 @@ def test_level_major_stacks_give_contact_major_state():
     for c, ch in enumerate(("tan", "tor")):
         assert np.array_equal(law._chan["X_levels"][c].T, saved[f"{ch}_X"])
         assert np.array_equal(law._chan["Y_levels"][c].T, saved[f"{ch}_Y"])
+
+
+@needs_numba
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES[:2],
+                         ids=[f[0].__name__ for f in FAMILIES[:2]])
+def test_uncompiled_kernels_give_the_compiled_bits(family, gname, lo_hi, extra, monkeypatch):
+    """The kernels' Python source run uncompiled (numba's ``py_func``, plain loops) gives the
+    compiled law's outputs and state to the bit on a random changing-load history (reversals,
+    loop closures, the switch onto the springs): what numba compiles is what the source says
+    (a rewrite such as ``x / 2`` -> ``x * 0.5`` in a kernel must not move a bit)."""
+    from contactlab.physics import law_kernel as K
+    n, steps = 16, 14
+    par = dict({gname: np.linspace(*lo_hi, n)}, E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
+               friction=0.3, memory=4, springs=8, **extra)
+    compiled, a = _changing_run(cl.ContactLaw(family, fast=True, **par), 5, steps, n)
+    built = K._kernels(False)
+    monkeypatch.setitem(K._KERNELS, False, tuple(f.py_func for f in built))
+    monkeypatch.setattr(K, "_load", K._KERNELS["load"].py_func)
+    assert not any(hasattr(f, "py_func") for f in K._kernels(False))     # plain Python now
+    plain, b = _changing_run(cl.ContactLaw(family, fast=True, **par), 5, steps, n)
+    assert compiled.state["spr_on"].any()
+    for k in range(steps):
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[k][f], b[k][f], err_msg=f"step {k}: {f}")
+    for key, v in compiled.state.items():
+        np.testing.assert_array_equal(v, plain.state[key], err_msg=key)

@@ -99,3 +99,31 @@ def test_warning_reads_the_contacts_on_springs_only(fast):
         i = int(np.argmax(masked))
         said = [t for t in rec if q.replace("_", " ") in t]
         assert len(said) == 1 and f"{masked[i]:.3g} at contact {i} " in said[0]
+
+
+@pytest.mark.parametrize("springs", [8, 16])
+def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
+    """The warning's first check (issue 29: no per-contact error arrays in a changing-load step
+    that does not warn) gives exactly the largest entry of each full model-error array over
+    the contacts asked for, on random loads, twists (some zero) and displacements; ``{}`` when
+    none of them is off the exact law."""
+    rng = np.random.default_rng(7)
+    n = 300
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
+                        fast=False, warn_model_error=False)
+    F = rng.uniform(1.0, 100.0, n)
+    tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        out0 = law.step(force=F, twist=0.3 * tw, displacement=1e-8)
+        assert out0.model_error_peaks_at(np.arange(n)) == {}
+        for k in range(3):
+            Fk = F * np.where(rng.uniform(size=n) < 0.5, 1.0 + 0.05 * rng.uniform(size=n), 1.0)
+            out = law.step(force=Fk, twist=tw * (1.0 - 0.4 * k), displacement=2e-8)
+            for idx in (np.arange(n), np.flatnonzero(law._on()), np.arange(0, n, 7)):
+                full = out.model_errors_at(idx)
+                peak = out.model_error_peaks_at(idx)
+                assert peak.keys() == full.keys()
+                for q in full:
+                    assert peak[q] == float(np.max(full[q]))
