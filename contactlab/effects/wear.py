@@ -501,6 +501,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     dN_lu = 0.0
     factorisations = 0
     J_age = 0                            # accepted steps since J was computed
+    J_edge = -1                          # contact edge (grid cell of a) when J was computed
     err_h = np.zeros(r.shape)            # accumulated |local error| per node (error estimate)
     err_V = 0.0                          # accumulated |local error| of the volume
 
@@ -519,11 +520,13 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
         r1 = 4.0 * k * q1
         evals += 1
         tol = jump_rtol * (d + float(np.max(h)))
-        if implicit and (J is None or J_age >= JACOBIAN_REUSE or (rejected_last and not J_fresh)):
+        edge_cell = int(a / ops["dr"])
+        if implicit and (J is None or J_age >= JACOBIAN_REUSE or (rejected_last and not J_fresh)
+                         or edge_cell != J_edge):
             J = 4.0 * k * _ros.rate_jacobian(ops, jops, _wear.transform(ops, f0 + h), d, E, G_mod,
                                              mu, amp, mode, method, JACOBIAN_EDGE)
             jacobians += 1
-            J_fresh, J_age, lu = True, 0, None
+            J_fresh, J_age, lu, J_edge = True, 0, None, edge_cell
         if implicit and (lu is None or not 1.0 / LU_REUSE <= dN / dN_lu <= LU_REUSE):
             assert J is not None
             lu, dN_lu = _ros.factor(J, dN), dN
