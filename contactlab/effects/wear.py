@@ -203,6 +203,10 @@ LU_REUSE = 2.0
 #: floor of the implicit steps' error scale (the largest wear depth after the step), relative to
 #: the indentation depth: a run that starts unworn is controlled by its wear, not by the depth
 IMPLICIT_FLOOR = 1e-6
+#: an implicit step ends this fraction past the predicted moment the next grid node beyond the
+#: contact edge touches (:func:`_edge_crossing`): the kink of the positive parts then falls at
+#: the step's end (0 switches the event off)
+EDGE_EVENT = 0.1
 #: a rejected step whose error estimate exceeds this many tolerances recomputes a kept Jacobian
 JACOBIAN_RETRY = 10.0
 
@@ -312,6 +316,28 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
     return {"volume": ERROR_SAFETY * err_V / V, "dissipated_energy": ERROR_SAFETY * err_V / V,
             "max_wear_depth": float(np.max(e)) / hm,
             "scar_radius": ds / s0 if s0 > 0 else 0.0}
+
+
+def _edge_crossing(ops: dict, f: np.ndarray, d: float, rate: np.ndarray,
+                   overshoot: float) -> float:
+    """Cycles until the first grid node beyond the contact edge touches, predicted from the
+    current rates and taken ``1 + overshoot`` times (inf when the edge does not advance).
+
+    The gap of a node is ``u = d - g`` with ``g = G f``; under the rates ``R`` it changes at
+    ``du/dN = c·R - (G R)_j``, where ``c·R`` is the depth's rate from the force balance on the
+    contact set ``C`` (``Σ_C w1 (G R) / Σ_C w1``). A step that ends just past the crossing keeps
+    the kink of the positive parts at its very end, where it costs the least accuracy."""
+    g = _wear.transform(ops, f)
+    inside = d - g > 0
+    if not np.any(inside) or inside[-1]:
+        return math.inf
+    j = int(np.flatnonzero(inside)[-1]) + 1
+    dg = _wear.transform(ops, rate)
+    w = np.where(inside, ops["w1"], 0.0)
+    du = float(w @ dg) / float(np.sum(w)) - float(dg[j])
+    if du <= 0:
+        return math.inf
+    return (1.0 + overshoot) * (g[j] - d) / du
 
 
 def _checkpoints(cycles: float, checkpoints: Any) -> np.ndarray:
@@ -436,6 +462,8 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     v = ops["v"]
     edge = 0.9 * R
 
+    implicit = integrator == "implicit"
+
     def state(h: np.ndarray):
         g = _wear.transform(ops, f0 + h)
         try:
@@ -446,9 +474,11 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             raise ConvergenceError(f"wear(): the contact outgrew the grid (radius {R!r} m); give "
                                    "a larger max_radius=.")
         if mode == "tangential":
-            q, c, a = _wear.tangential_rate(ops, g, d, E, contact.moduli.tangential, mu, amp)
+            q, c, a = _wear.tangential_rate(ops, g, d, E, contact.moduli.tangential, mu, amp,
+                                            implicit)
         else:
-            q, c, a = _wear.torsion_rate(ops, g, d, E, contact.moduli.torsional, mu, amp, method)
+            q, c, a = _wear.torsion_rate(ops, g, d, E, contact.moduli.torsional, mu, amp, method,
+                                         implicit)
         if a > edge:
             raise ConvergenceError(f"wear(): the contact radius {a!r} m reached 90 % of the grid "
                                    f"radius {R!r} m after some wear; give a larger max_radius=.")
@@ -492,7 +522,6 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     dN = N_end if rate_max == 0 else min(N_end, 0.01 * d / rate_max)
     steps = rejected = evals = jacobians = 0
     rejected_last = False
-    implicit = integrator == "implicit"
     G_mod = contact.moduli.tangential if mode == "tangential" else contact.moduli.torsional
     jops = _ros.jacobian_operators(ops, E) if implicit else {}
     J: np.ndarray | None = None
@@ -527,6 +556,8 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
                                              mu, amp, mode, method, JACOBIAN_EDGE)
             jacobians += 1
             J_fresh, J_age, lu, J_edge = True, 0, None, edge_cell
+        if implicit and EDGE_EVENT > 0:
+            dN = min(dN, _edge_crossing(ops, f0 + h, d, r1, EDGE_EVENT))
         if implicit and (lu is None or not 1.0 / LU_REUSE <= dN / dN_lu <= LU_REUSE):
             assert J is not None
             lu, dN_lu = _ros.factor(J, dN), dN
