@@ -39,12 +39,18 @@ print(f"full sliding: u_t = {u_t:.4g} m, phi_s = {phi_s:.4g} rad; k = {k:g} 1/Pa
       f"n_grid = {args.n_grid}")
 
 
+CPU = {}
+
+
 def run(integrator, cycles, **amp):
-    t = time.perf_counter()
+    """Wall time and result; the CPU time of the run is kept in ``CPU[id(result)]`` (on a shared
+    machine the wall time also counts the other jobs)."""
+    t, t_cpu = time.perf_counter(), time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")          # the MDR-validity note of the long runs
         w = c.wear(force=F, wear_coefficient=k, cycles=cycles, n_grid=args.n_grid,
                    integrator=integrator, **amp)
+    CPU[id(w)] = time.process_time() - t_cpu
     return time.perf_counter() - t, w
 
 
@@ -66,13 +72,17 @@ for name, amp in cases:
     t_im, w = run("implicit", args.cycles, **amp)
     est = w.meta["error_estimates"]
     base = t_im if base is None else base
-    law = "" if base == t_im else f", scar / law {w.scar_radius[-1] / scar_law(amp, w.cycles[-1]):.4f}"
-    print(f"{name}: implicit {t_im:.2f} s ({w.meta['steps']} steps, {w.meta['rejected']} rejected,"
-          f" {w.meta['jacobians']} Jacobians), {t_im / base:.1f} x the partial-slip run; "
+    ratio = w.scar_radius[-1] / scar_law(amp, w.cycles[-1])
+    law = "" if base == t_im else f", scar / law {ratio:.4f}"
+    print(f"{name}: implicit {t_im:.2f} s ({CPU[id(w)]:.2f} s CPU; {w.meta['steps']} steps, "
+          f"{w.meta['rejected']} rejected, {w.meta['jacobians']} Jacobians), "
+          f"{t_im / base:.1f} x the partial-slip run; "
           f"volume {w.volume[-1]:.4g} m^3 (est. {est['volume']:.1e}), scar {w.scar_radius[-1]:.4g}"
           f" m (est. {est['scar_radius']:.1e}{law}); MDR valid to "
           f"{w.meta['mdr_valid_cycles']:.3g} cycles; verdict: "
-          f"{'meets' if t_im <= GOAL else 'misses'} the {GOAL:g} s goal", flush=True)
+          f"{'meets' if t_im <= GOAL else 'misses'} the {GOAL:g} s goal"
+          f"{'' if t_im <= GOAL or CPU[id(w)] > GOAL else ' in wall time, meets it in CPU time'}",
+          flush=True)
     n_ex = args.cycles if args.full else min(args.cycles, 1e4)
     t_ex, we = run("explicit", n_ex, **amp)
     t_i2, wi = run("implicit", n_ex, **amp)
