@@ -177,30 +177,67 @@ def _extrapolate_axis(q: np.ndarray) -> np.ndarray:
     return q
 
 
+def _window(ops: dict, g: np.ndarray, d: float) -> dict:
+    """The operators on the leading nodes ``0..L-1`` that hold the contact and two nodes beyond
+    its edge: every rate beyond is zero, and the operators that map the contact's ``u`` to the
+    rates inside need no node beyond (``A``, ``B`` act on nodes below the radius, ``Pm``, ``KP``
+    on the slopes of ``u``, zero beyond). Same values as the full grid up to rounding."""
+    inside = np.flatnonzero(d - g > 0)
+    n1 = ops["r"].size
+    L = n1 if inside.size == 0 else min(n1, int(inside[-1]) + 3)
+    if L >= n1:
+        return ops
+    out = {"r": ops["r"][:L], "dr": ops["dr"], "Pm": ops["Pm"][:L, :L - 1],
+           "KP": ops["KP"][:L, :L - 1], "A": ops["A"][:L, :L], "B": ops["B"][:L, :L]}
+    return out
+
+
+def _embed(q: np.ndarray, n1: int) -> np.ndarray:
+    if q.size == n1:
+        return q
+    out = np.zeros(n1)
+    out[:q.size] = q
+    return out
+
+
 def tangential_rate(ops: dict, g: np.ndarray, d: float, E_star: float, G_star: float,
-                    mu: float, delta: float) -> tuple[np.ndarray, float, float]:
+                    mu: float, delta: float, window: bool = False
+                    ) -> tuple[np.ndarray, float, float]:
     """``q = p s_load`` at the nodes (Pa·m), stick radius and contact radius, m.
 
     Springs slide ``(δ - μE* u/G*)_+`` (independent Jenkins elements, Cattaneo–Mindlin through
-    the MDR); the 3D slip is its Abel transform ``A``.
+    the MDR); the 3D slip is its Abel transform ``A``. ``window=True`` works on the nodes the
+    contact covers only (:func:`_window`: the same values up to rounding, not the same bits).
     """
+    r_all = ops["r"]
+    a = contact_radius(r_all, d - g)
+    if window:
+        ops = _window(ops, g, d)
+        g = g[:ops["r"].size]
     u = np.maximum(d - g, 0.0)
     p = _pressure(ops, u, E_star)
     s1 = np.maximum(delta - mu * E_star * u / G_star, 0.0)
     s3 = np.maximum(ops["A"] @ s1, 0.0)
     r = ops["r"]
     c = first_crossing(r, mu * E_star * u - G_star * delta)
-    return _extrapolate_axis(p * s3), c, contact_radius(r, d - g)
+    return _embed(_extrapolate_axis(p * s3), r_all.size), c, a
 
 
 def torsion_rate(ops: dict, g: np.ndarray, d: float, E_star: float, G_t: float, mu: float,
-                 phi: float, method: str) -> tuple[np.ndarray, float, float]:
+                 phi: float, method: str, window: bool = False
+                 ) -> tuple[np.ndarray, float, float]:
     """``q = p s_load`` at the nodes (Pa·m), stick radius and contact radius, m.
 
     ``method="exact"``: Jäger's Jenkins elements, slip angle ``θ_s = μP(x)/(2G_t)``;
     ``"mdr"``: the MDR springs, ``θ_s = μE* u(x)/(4G_t x)``. The twist distribution
-    ``Φ = (φ - θ_s)_+`` gives the 3D slip through ``B``.
+    ``Φ = (φ - θ_s)_+`` gives the 3D slip through ``B``. ``window``: as in
+    :func:`tangential_rate`.
     """
+    r_all = ops["r"]
+    a = contact_radius(r_all, d - g)
+    if window:
+        ops = _window(ops, g, d)
+        g = g[:ops["r"].size]
     u = np.maximum(d - g, 0.0)
     p = _pressure(ops, u, E_star)
     r = ops["r"]
@@ -213,4 +250,4 @@ def torsion_rate(ops: dict, g: np.ndarray, d: float, E_star: float, G_t: float, 
     Phi = np.maximum(phi - theta, 0.0)
     s3 = np.maximum(ops["B"] @ Phi, 0.0)
     c = first_crossing(r, np.where(np.isfinite(theta), theta - phi, 1.0))
-    return _extrapolate_axis(p * s3), c, contact_radius(r, d - g)
+    return _embed(_extrapolate_axis(p * s3), r_all.size), c, a

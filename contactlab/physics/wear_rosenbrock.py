@@ -50,6 +50,9 @@ B_HAT = np.array([3.7810903145819369e-01, -9.6042292212423178e-02, 0.5,
                   2.1793326075422950e-01])
 #: order of the embedded solution: the local error estimate scales as ``ΔN**(ORDER + 1)``
 ORDER = 2
+#: nodes beyond the contact edge that the Jacobian's leading block keeps at least (the block does
+#: not depend on a smaller padding, so a padded Jacobian differs only on its padded diagonal)
+_MARGIN = 8
 
 
 def jacobian_operators(ops: dict, E_star: float) -> dict[str, np.ndarray]:
@@ -78,8 +81,14 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
     it damps a node that a step brings into contact, which keeps a long step stable there, and
     it leaves every other entry, so a node that stays out of contact gets no increment
     (``edge = 0``: the exact derivative on the current contact set)."""
-    G, K = jops["G"], jops["K"]
-    r = ops["r"]
+    # every row and column beyond the contact edge (and the padded nodes) is zero: the work is
+    # done on the leading block of the grid, which the contact covers, and embedded at the end
+    n1 = ops["r"].size
+    inside = np.flatnonzero(d - g > 0)
+    L = n1 if inside.size == 0 else min(n1, int(inside[-1]) + 2 + max(edge, _MARGIN))
+    G, K = jops["G"][:L, :L], jops["K"][:L, :L]
+    A_op, B_op = ops["A"][:L, :L], ops["B"][:L, :L]
+    w1, r, g = ops["w1"][:L], ops["r"][:L], g[:L]
     gap = d - g
     m = gap > 0
     pad = np.zeros(0, dtype=int)
@@ -87,7 +96,7 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
         last = int(np.flatnonzero(m)[-1])
         pad = np.arange(last + 1, min(last + 1 + edge, r.size))
     u = np.where(m, gap, 0.0)
-    w = np.where(m, ops["w1"], 0.0)
+    w = np.where(m, w1, 0.0)
     c = (w @ G) / np.sum(w)
     Gm = G[m]
     # ∂u/∂h = diag(m)(1 cᵀ - G): only contact rows; U_m = its rows on the contact set
@@ -99,12 +108,12 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
     if mode == "tangential":
         s1 = amplitude - mu * E_star * u / G_mod
         act = (s1 > 0)[m]
-        a3 = ops["A"] @ np.maximum(s1, 0.0)
-        Ds = (-mu * E_star / G_mod) * (ops["A"][:, m][:, act] @ U_m[act])
+        a3 = A_op @ np.maximum(s1, 0.0)
+        Ds = (-mu * E_star / G_mod) * (A_op[:, m][:, act] @ U_m[act])
     else:
         theta = np.full(r.shape, np.inf)
         if method == "exact":
-            KPD = jops["KPD"]
+            KPD = jops["KPD"][:L, :L]
             theta[1:] = mu * (KPD[1:] @ u) / (2.0 * G_mod)
             act = (amplitude - theta) > 0
             dtheta = (mu / (2.0 * G_mod)) * (KPD[act][:, m] @ U_m)
@@ -116,8 +125,8 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
             dU = np.zeros((r.size, r.size))
             dU[m] = U_m
             dtheta = scale[act, None] * dU[act]
-        a3 = ops["B"] @ np.maximum(amplitude - theta, 0.0)
-        Ds = -(ops["B"][:, act] @ dtheta)
+        a3 = B_op @ np.maximum(amplitude - theta, 0.0)
+        Ds = -(B_op[:, act] @ dtheta)
     s3 = np.maximum(a3, 0.0)
     Ds[a3 <= 0] = 0.0
     J = s3[:, None] * Dp + p[:, None] * Ds
@@ -125,19 +134,43 @@ def rate_jacobian(ops: dict, jops: dict, g: np.ndarray, d: float, E_star: float,
         # ∂p_j/∂h_j of a padded node as if it touched: contact set and force balance with it
         mp = m.copy()
         mp[pad] = True
-        wp = np.where(mp, ops["w1"], 0.0)
+        wp = np.where(mp, w1, 0.0)
         cp = (wp @ G[:, pad]) / np.sum(wp)
         self_p = np.einsum("ij,ji->i", K[pad][:, mp], cp[None, :] - G[mp][:, pad])
         J[pad, pad] += s3[pad] * np.minimum(self_p, 0.0)
     # the axis row: q_0 = max((4 q_1 - q_2)/3, 0) (physics.wear._extrapolate_axis)
     q = p * s3
     J[0] = (4.0 * J[1] - J[2]) / 3.0 if (4.0 * q[1] - q[2]) > 0 else 0.0
-    return J
+    if L == n1:
+        return J
+    out = np.zeros((n1, n1))
+    out[:L, :L] = J
+    return out
 
 
 def factor(J: np.ndarray, dN: float) -> tuple:
-    """LU factors of ``I - γ dN J``, the matrix of every stage of a step of ``dN`` cycles."""
-    return scipy.linalg.lu_factor(np.eye(J.shape[0]) - (GAMMA * dN) * J, check_finite=False)
+    """LU factors of ``I - γ dN J``, the matrix of every stage of a step of ``dN`` cycles.
+
+    Only the leading block that holds every off-diagonal entry is factored (the wear Jacobian
+    is zero beyond the contact edge but for a padded diagonal): ``(lu, n, tail)`` with the
+    factors of the leading ``n x n`` block and the diagonal ``tail`` of the rest."""
+    off = J != 0
+    np.fill_diagonal(off, False)
+    nz = np.flatnonzero(np.any(off, axis=0) | np.any(off, axis=1))
+    n = int(nz[-1]) + 1 if nz.size else 0
+    lu = (scipy.linalg.lu_factor(np.eye(n) - (GAMMA * dN) * J[:n, :n], check_finite=False)
+          if n else None)
+    return lu, n, 1.0 - (GAMMA * dN) * np.diag(J)[n:]
+
+
+def _solve(lu: tuple, rhs: np.ndarray) -> np.ndarray:
+    """Solve with the factors of :func:`factor`."""
+    block, n, tail = lu
+    out = np.empty_like(rhs)
+    if n:
+        out[:n] = scipy.linalg.lu_solve(block, rhs[:n], check_finite=False)
+    out[n:] = rhs[n:] / tail
+    return out
 
 
 def rosenbrock_step(rate: Callable[[np.ndarray], np.ndarray], y: np.ndarray, f0: np.ndarray,
@@ -164,7 +197,7 @@ def rosenbrock_step(rate: Callable[[np.ndarray], np.ndarray], y: np.ndarray, f0:
         rhs = dN * f
         if i > 0 and np.any(GAMMA_OFF[i, :i]):
             rhs = rhs + dN_lu * (J @ (GAMMA_OFF[i, :i] @ np.array(ks)))
-        ks.append(scipy.linalg.lu_solve(lu, rhs, check_finite=False))
+        ks.append(_solve(lu, rhs))
     K = np.array(ks)
     step, err = B @ K, (B - B_HAT) @ K
     y1 = y + step

@@ -193,3 +193,18 @@ def test_wear_of_many_cycles_refused_at_the_default_before_the_steps(monkeypatch
             C.wear(force=10.0, displacement_amplitude=1e-6, wear_coefficient=1e-11, cycles=1e7)
     finally:
         cl.set_time_budget(previous)
+
+
+def test_implicit_wear_is_not_refused_by_the_explicit_step_law(monkeypatch):
+    """The implicit cycle jumps do not grow with the worn volume (issue 28: 2040 steps for 10^6
+    gross-slip cycles whose worn-volume ratio ~2e3 gives the explicit law ~9e4): the same
+    request that the explicit route is refused for reaches the grid."""
+    monkeypatch.delenv(TIME_BUDGET_ENV, raising=False)
+    monkeypatch.setattr("contactlab.effects.wear._wear.operators", _no_work)
+    previous = cl.set_time_budget(None)
+    try:
+        with pytest.raises(AssertionError, match="work started"):
+            C.wear(force=10.0, displacement_amplitude=1e-6, wear_coefficient=1e-11, cycles=1e7,
+                   integrator="implicit")
+    finally:
+        cl.set_time_budget(previous)

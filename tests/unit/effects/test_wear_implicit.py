@@ -46,7 +46,7 @@ def run(c, integrator, mode, x, cycles=300.0, n_grid=120, **kw):
 MODES = ["displacement_amplitude", "twist_amplitude"]
 
 
-@pytest.mark.parametrize("mode,x", [(m, x) for m in MODES for x in (0.3, 20.0)])
+@pytest.mark.parametrize("mode,x", [(m, x) for m in MODES for x in (0.3, 10.0, 20.0)])
 def test_implicit_agrees_with_explicit_on_short_runs(mode, x):
     """Both routes at a tight tolerance (1e-5) agree to 1e-3 in scar radius and worn volume; at
     the default tolerance they differ by less than their two error estimates."""
@@ -70,13 +70,13 @@ LADDER = [0.3, 20.0]
 LADDER_SLOW = [1.0, 3.0, 10.0]
 
 
-def _covered(name, mode, x):
+def _covered(name, mode, x, cycles=300.0, quantities=("volume", "scar_radius", "max_wear_depth")):
     c = contact(name)
-    im = run(c, "implicit", mode, x)
-    tight = run(c, "implicit", mode, x, jump_rtol=1e-5)
+    im = run(c, "implicit", mode, x, cycles=cycles)
+    tight = run(c, "implicit", mode, x, cycles=cycles, jump_rtol=1e-5)
     est = im.meta["error_estimates"]
     assert im.meta["error_estimate"] == max(est.values())
-    for q in ("volume", "scar_radius", "max_wear_depth"):
+    for q in quantities:
         diff = abs(getattr(im, q)[-1] / getattr(tight, q)[-1] - 1)
         assert diff <= est[q], (q, diff, est[q])
         assert est[q] < 1e-2, (q, est[q])                 # and it is a useful bound
@@ -95,6 +95,81 @@ def test_error_estimate_covers_a_tenfold_tighter_run(name, mode, x):
 @pytest.mark.parametrize("x", LADDER_SLOW)
 def test_error_estimate_covers_a_tenfold_tighter_run_ladder(name, mode, x):
     _covered(name, mode, x)
+
+
+#: long gross-slip runs: 10^6 cycles on Hertz (the scar grows ~60-80 grid cells), 3e4 on the
+#: measured table (its 1.5 mm ends the grid); both amplitudes of the speed goal
+LONG = [("hertz", 1e6), ("table", 3e4)]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name,cycles", LONG)
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("x", [10.0, 20.0])
+def test_error_estimate_covers_a_tenfold_tighter_long_gross_slip_run(name, cycles, mode, x):
+    """The long gross-slip runs of the speed goal (issue 28): worn volume, energy and largest
+    depth against the tenfold tighter run. Measured (Hertz, 10^6 cycles): volume differences
+    1.2e-3-1.6e-3 against estimates 1.8e-3-2.5e-3."""
+    _covered(name, mode, x, cycles, ("volume", "dissipated_energy", "max_wear_depth"))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name,cycles,mode,x",
+                         [("hertz", 1e6, "twist_amplitude", 10.0),
+                          ("hertz", 1e6, "twist_amplitude", 20.0),
+                          ("hertz", 1e6, "displacement_amplitude", 20.0),
+                          pytest.param("hertz", 1e6, "displacement_amplitude", 10.0,
+                                       marks=pytest.mark.xfail(reason=(
+                                           "known gap (issue 28): the outermost worn node's "
+                                           "depth is 0.5x the tighter run's, 4.5e-3 in scar "
+                                           "radius against an estimate of 2.4e-3"))),
+                          ("table", 3e4, "twist_amplitude", 10.0),
+                          ("table", 3e4, "displacement_amplitude", 20.0)])
+def test_scar_estimate_covers_a_tenfold_tighter_long_gross_slip_run(name, cycles, mode, x):
+    """The scar radius of the long runs: in gross slip it sits where the force balance puts
+    the contact edge on the worn cap, so a volume error moves it (the cap term of the
+    estimate, docs/fretting.md section 8); without that term the Hertz twists' estimates were
+    4.5e-6 against differences of 4.5e-5."""
+    _covered(name, mode, x, cycles, ("scar_radius",))
+
+
+def test_gross_slip_twist_million_cycles_stays_in_the_mdr_in_few_steps():
+    """Regression (issue 28): the twist at 10x the twist scale over 10^6 cycles (k = 1e-13,
+    n_grid = 120). Before, a kept Jacobian missed each new contact node's stiff coupling and
+    the steps across a node carried the kink: 19599 steps (10502 rejected), the error on the
+    axis grew a proud centre and the run 'left the MDR' at 6.7e4 cycles, its estimate 0.2. Now
+    a fresh Jacobian per crossing and steps that end at the crossing: ~770 steps, the MDR holds
+    to the end, and the scar follows the law of docs/fretting.md section 6 inside its bracket."""
+    c = contact()
+    phi = 10 * full_sliding(c, "twist_amplitude")
+    with warnings.catch_warnings():      # the coarse grid's note on the fresh slip zone only
+        warnings.filterwarnings("ignore", message=".*resolves the slip zone",
+                                category=cl.errors.ValidityWarning)
+        w = c.wear(force=F, wear_coefficient=K, cycles=1e6, n_grid=120, twist_amplitude=phi,
+                   integrator="implicit")
+    assert np.isinf(w.meta["mdr_valid_cycles"])
+    assert w.meta["steps"] < 1500 and w.meta["rejected"] < 500
+    assert w.meta["error_estimate"] < 1e-2
+    a, a0 = w.scar_radius[-1], w.radius[0]
+    law = ref.hertz_torsion_gross_slip_scar(K, R, F, phi, 1e6)
+    from tests.tolerances import WEAR_TORSION_SCAR_GRID
+    # the pillar bound (1 - ψ)^(1/3) is void this far out (ψ > 1 for the fresh stick radius);
+    # the island is sub-cell, so the cap follows the law to the grid's slack from below
+    assert 1 - WEAR_TORSION_SCAR_GRID <= a / law <= 1 + (a0 / a) ** 3 + WEAR_TORSION_SCAR_GRID, a / law
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("x", [10.0, 20.0])
+def test_tangential_gross_slip_million_cycles_follows_the_scar_law(x):
+    """Shift at 10x and 20x u_t over 10^6 cycles (k N = 1e-7): the scar within 1 % of
+    (16kRFδN/π)^(1/4) and above it; before, 3408 steps at 20x and a spurious MDR exit."""
+    c = contact()
+    delta = x * full_sliding(c, "displacement_amplitude")
+    w = c.wear(force=F, wear_coefficient=K, cycles=1e6, n_grid=120,
+               displacement_amplitude=delta, integrator="implicit")
+    assert np.isinf(w.meta["mdr_valid_cycles"]) and w.meta["steps"] < 1500
+    law = ref.hertz_gross_slip_scar(K, R, F, delta, 1e6)
+    assert w.scar_radius[-1] == pytest.approx(law, rel=WEAR_SCAR_ASYMPTOTE)
 
 
 def test_scar_radius_estimate_covers_the_edge_node():

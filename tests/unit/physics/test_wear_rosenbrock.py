@@ -109,3 +109,39 @@ def test_stiff_mode_is_damped_at_long_steps():
     finally:
         LAM = old
     assert err < 1e-5
+
+
+def test_block_factor_solves_as_the_dense_matrix():
+    """factor() factors only the leading block that holds the off-diagonal entries (the wear
+    Jacobian beyond the contact edge is a padded diagonal or zero): its solves equal those of the
+    dense ``I - γ dN J`` to rounding, and a full matrix is factored whole."""
+    import scipy.linalg
+    rng = np.random.default_rng(1)
+    n, lead = 40, 13
+    J = np.zeros((n, n))
+    J[:lead, :lead] = rng.normal(size=(lead, lead))
+    J[np.arange(lead, lead + 3), np.arange(lead, lead + 3)] = -5.0       # padded diagonal
+    for M in (J, rng.normal(size=(n, n))):
+        lu = ros.factor(M, 0.3)
+        rhs = rng.normal(size=n)
+        dense = scipy.linalg.solve(np.eye(n) - ros.GAMMA * 0.3 * M, rhs)
+        assert np.allclose(ros._solve(lu, rhs), dense, rtol=1e-12, atol=1e-12)
+    assert ros.factor(J, 0.3)[1] == lead
+
+
+@pytest.mark.parametrize("mode,amp,method", CASES, ids=[f"{m}-{a}-{x}" for m, a, x in CASES])
+def test_windowed_rates_equal_the_full_grid(mode, amp, method):
+    """The implicit route evaluates the rates on the nodes the contact covers (``window=True``):
+    every rate beyond is zero, so the same values to rounding, and the same stick and contact
+    radii."""
+    c, E, ops, _, f0, h = _setup(n=120, R_grid=8e-4)
+    Gm = c.moduli.tangential if mode == "tangential" else c.moduli.torsional
+    g = W.transform(ops, f0 + h)
+    d = W.normal_depth(g, ops["w1"], E, F)
+    assert d - g[-1] < 0                            # the window is a real cut
+    if mode == "tangential":
+        full, win = (W.tangential_rate(ops, g, d, E, Gm, MU, amp, w) for w in (False, True))
+    else:
+        full, win = (W.torsion_rate(ops, g, d, E, Gm, MU, amp, method, w) for w in (False, True))
+    assert np.allclose(win[0], full[0], rtol=1e-12, atol=1e-12 * np.max(full[0]))
+    assert win[1:] == pytest.approx(full[1:], rel=1e-12)
