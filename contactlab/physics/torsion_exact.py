@@ -109,17 +109,17 @@ def _log_segments(profile, lo: np.ndarray, hi: np.ndarray):
 
 
 def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
-                   atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                   atol: np.ndarray, panels: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """``Σ_segments ∫ kernel(t, g(t), idx) t dw`` over ``t ∈ [lo, hi]`` (``w = ln t``), per element.
 
     ``kernel(t, g_t, idx)`` receives nodes ``t`` (shape (m, k)), ``g`` there and the flat element
     indices ``idx`` (shape (m,)) into ``lo``/``hi``. Nodes are clipped into their exact segment so
     that rounding of ``exp(ln t)`` never crosses a breakpoint. Large tables (linear or cubic) go
-    through :func:`_integrate_table`.
+    through :func:`_integrate_table` (``panels``: with its product-integration panels).
     """
     nodes = _composite_nodes(profile)
     if nodes is not None and nodes.size > _TABLE_SPLIT_MAX:
-        return _integrate_table(profile, kernel, lo, hi, rtol, atol)
+        return _integrate_table(profile, kernel, lo, hi, rtol, atol, panels)
     w_lo, w_hi, t_lo, t_hi = _log_segments(profile, lo, hi)
     n_seg, n = w_lo.shape
     elem = np.broadcast_to(np.arange(n), (n_seg, n)).ravel()
@@ -177,7 +177,7 @@ def _table_rule(profile, upto: float | None = None
 
 
 def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
-                     atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                     atol: np.ndarray, panels: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """``∫_lo^hi kernel(t, g(t), idx) dt`` for a large table (N nodes, g analytic between them:
     sqrt cusps of a linear table, weaker kinks of a cubic spline).
 
@@ -190,6 +190,11 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     kernel may vary over many decades, is integrated adaptively in ``ln t`` with the closed-form
     g of that segment (``profile.table_g_first``); only this part carries an error estimate. The composite
     rule's own error is verified in the tests against the split adaptive route (1e-9).
+
+    ``panels=True``: the whole segments inside the product-integration panels of
+    :mod:`contactlab.physics.table_panels` are integrated there (``PANEL_POINTS`` kernel
+    evaluations per panel instead of 8 per segment; ``kernel`` must be linear in ``g`` and
+    analytic in ``t > 0``, as every kernel of this module is).
     """
     t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
     n = lo.size
@@ -240,6 +245,16 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     # whole segments j_lo+1 .. j_hi-1: one row of q rule nodes per (element, segment), no
     # padding, chunked over elements so that a chunk holds at most ~2e6 nodes
     first, last = j_lo + 1, j_hi - 1
+    covered = None
+    if panels:
+        from . import table_panels as _tp
+        pan = _tp.panels_of(profile)
+        top = int(np.max(last, initial=-1))
+        p_top = int(pan.panel_of[top]) if 0 <= top < pan.panel_of.size else -1
+        if p_top >= 0:           # g on every segment of the highest panel met
+            t_n, w_n, g_n, r = _table_rule(profile, float(r[pan.end[p_top]]))
+        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
+        val += v_p
     count = np.maximum(last - first + 1, 0)
     todo = np.flatnonzero(count > 0)
     q = t_n.shape[1]
@@ -253,6 +268,9 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         elem = np.repeat(ids, cnt)                                  # element of each row
         offs = np.arange(elem.size) - np.repeat(np.cumsum(cnt) - cnt, cnt)
         seg = first[elem] + offs
+        if covered is not None:                   # the panels took these segments
+            keep = ~covered[seg]
+            elem, seg = elem[keep], seg[keep]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             f = kernel(t_n[seg], g_n[seg], elem)
         val += np.bincount(elem, weights=np.sum(f * w_n[seg], axis=1), minlength=n)
@@ -262,11 +280,13 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
 
 # ---------------------------------------------------------------- the slip function P
 def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.ndarray,
-                  g_a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+                  g_a: np.ndarray, rtol: float, panels: bool = False
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """``P(x) = ∫_x^a p(s)/sqrt(s²-x²) ds`` (Pa), ``0 < x <= a``; returns (value, error estimate).
 
     [S eq. 53]; by-parts swapped form of the module docstring. ``P(a) = 0`` unless ``d != g(a)``
-    (flat punch: ``P(a) = π E* d/(2a)``). Arrays broadcast.
+    (flat punch: ``P(a) = π E* d/(2a)``). Arrays broadcast. ``panels``: large tables integrate
+    on their product-integration panels (:mod:`contactlab.physics.table_panels`).
     """
     x, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, a, d, g_a)))
     shape = x.shape
@@ -287,15 +307,17 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
             return dg * kme_over_m((xx / t) ** 2) / (t * t)
 
         scale = np.abs(boundary[todo]) + (g_a[todo] - gxs) / as_
-        v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale)
+        v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale, panels)
         val[todo] += v
         err[todo] = e
     return E_star / np.pi * val.reshape(shape), E_star / np.pi * err.reshape(shape)
 
 
 def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.ndarray,
-                    g_a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
-    """``T(c) = ∫_c^a x² P(x) dx`` (N), ``0 <= c <= a``, as one swapped integral; (value, error)."""
+                    g_a: np.ndarray, rtol: float, panels: bool = False
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """``T(c) = ∫_c^a x² P(x) dx`` (N), ``0 <= c <= a``, as one swapped integral; (value, error).
+    ``panels`` as in :func:`slip_function`."""
     c, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (c, a, d, g_a)))
     shape = c.shape
     c, a, d, g_a = (v.ravel() for v in (c, a, d, g_a))
@@ -321,7 +343,7 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
                 return (gp[idx][:, None] - gt) * D
 
             scale = gp * ap * ap
-            v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3)
+            v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3, panels)
             val[todo[pos]] += v
             err[todo[pos]] = e
     return E_star / np.pi * val.reshape(shape), E_star / np.pi * err.reshape(shape)
@@ -506,13 +528,13 @@ def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndar
 # ---------------------------------------------------------------- inverse problems
 def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
                          a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                         rtol: float) -> np.ndarray:
+                         rtol: float, panels: bool = False) -> np.ndarray:
     """Stick radius ``c`` (m) for twists ``phi >= 0`` (rad): root of ``μ P(c)/(2G_t) = φ``.
 
     Solved in ``y = ln(c/a)`` by the bracketed root finder (``φ`` is monotone in ``y`` and nearly
     linear as ``c → 0``). ``c = a`` while ``φ <= μP(a)/(2G_t)`` (no slip; > 0 only for a flat
     punch), ``c = 0`` when the stick radius would lie below ``C_MIN_REL a`` (full sliding to double
-    precision). Flat arrays of equal size.
+    precision). Flat arrays of equal size. ``panels`` as in :func:`slip_function`.
     """
     c = a.copy()
     live = (a > 0) & (phi > 0)
@@ -539,7 +561,7 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
 
         def func(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
             P, _ = slip_function(profile, E_star, s_a[idx] * np.exp(y), s_a[idx], s_d[idx],
-                                 s_g[idx], rtol)
+                                 s_g[idx], rtol, panels)
             return twist_of_stick(mu, G_t, P)
 
         lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min)

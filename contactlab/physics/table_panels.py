@@ -1,0 +1,164 @@
+"""Product-integration panels over a large table for the exact torsion integrals (issue 28).
+
+The composite rule of :mod:`contactlab.physics.torsion_exact` integrates ``∫ F(t, g(t)) dt`` over
+every whole table segment with 8 Gauss nodes (``t = r_j + Δ u²`` removes the square-root cusp of
+``g`` at each node), so one integral costs 8 kernel evaluations per segment in contact: a
+torque-twist curve on a table with hundreds of nodes in contact pays ``O(points × nodes)``.
+
+Every integrand of the exact torsion kernels is linear in ``g``, ``F = A(t) g + B(t)``, and ``A``,
+``B`` are analytic in ``t`` on the whole right half-plane (``(K - E)/k²`` of ``k² = 1 - x²/t²``,
+``h(x/t)`` and ``K`` are analytic for ``Re(x/t) > 0``; only ``g`` has the cusps). So on a *panel*
+of consecutive segments spanning at most a factor :data:`PANEL_RATIO` in ``t``, ``A`` and ``B``
+are interpolated at :data:`PANEL_POINTS` Chebyshev points (Bernstein ellipse ``ρ = 3 + 2√2`` for
+ratio 2, interpolation error ``ρ^-18 ≈ 2e-14`` of the kernel's scale), and
+
+    ∫_{segments j1..j2-1} F dt = Σ_m A(τ_m) [Cg_m(j2) - Cg_m(j1)] + B(τ_m) [C1_m(j2) - C1_m(j1)]
+
+with the prefix sums ``Cg_m(j) = Σ_{j' < j} ∫_seg g ℓ_m dt`` and ``C1_m`` (``ℓ_m`` the Lagrange basis
+of the panel) computed once per table by the same 8-point rule (a panel holds at least
+:data:`PANEL_MIN_SEGMENTS` segments, so ``ℓ_m`` is smooth on one segment: the rule integrates
+``g ℓ_m`` as accurately as ``g``). A range that starts or ends inside a panel is a difference
+of two prefix sums; the interpolation points below the range's lower limit evaluate the
+kernels' analytic continuation (``torsion_elliptic``). One integral then costs
+``PANEL_POINTS`` kernel evaluations per panel (about ``log2(a/r_1)`` panels) instead of 8 per
+segment. Segments outside every panel (the first few, where a factor 2 holds fewer than
+``PANEL_MIN_SEGMENTS`` of them) stay on the composite rule.
+
+Pure functions and a per-table cache (by the profile's value identity, like the composite
+rule's); used by the exact torque-twist curve of large tables (``panels=True``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["PANEL_RATIO", "PANEL_POINTS", "PANEL_MIN_SEGMENTS", "Panels", "panels_of"]
+
+#: largest ratio of a panel's ends (the interpolation's Bernstein ellipse: ρ = 3 + 2√2 at 2)
+PANEL_RATIO = 2.0
+#: Chebyshev points per panel: ρ^-18 = 1.6e-14 at ratio 2
+PANEL_POINTS = 18
+#: fewest table segments of a panel (fewer stay on the composite rule: a Lagrange polynomial
+#: of degree 17 over 32 segments varies little on one, so the 8-point rule integrates g ℓ_m to
+#: the accuracy it integrates g)
+PANEL_MIN_SEGMENTS = 32
+
+_CACHE: dict = {}
+
+
+def _chebyshev(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """First-kind Chebyshev points on [-1, 1] and their barycentric weights."""
+    k = np.arange(n)
+    theta = (2 * k + 1) * np.pi / (2 * n)
+    return np.cos(theta), (-1.0) ** k * np.sin(theta)
+
+
+def _lagrange(t: np.ndarray, tau: np.ndarray, bw: np.ndarray) -> np.ndarray:
+    """Lagrange basis of the points ``tau`` (weights ``bw``) at ``t``: shape ``t.shape + (n,)``."""
+    diff = t[..., None] - tau
+    hit = diff == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = bw / diff
+        out = q / np.sum(q, axis=-1, keepdims=True)
+    if np.any(hit):
+        rows = np.any(hit, axis=-1)
+        out[rows] = hit[rows].astype(float)
+    return out
+
+
+class Panels:
+    """The panels of one table: segment ranges, points and (lazily) prefix sums of weights.
+
+    Attributes
+    ----------
+    start, end : ndarray of int
+        Segment range ``[start, end)`` of each panel.
+    panel_of : ndarray of int
+        Panel of each segment (-1: not in a panel, composite rule).
+    tau : ndarray, shape (n_panels, PANEL_POINTS)
+        Interpolation points of each panel, m.
+    """
+
+    def __init__(self, r: np.ndarray) -> None:
+        n_seg = r.size - 1
+        starts, ends = [], []
+        s = 1                               # segment 0 ([0, r_1]) never: its ratio is infinite
+        while s < n_seg:
+            e = min(int(np.searchsorted(r, PANEL_RATIO * r[s], side="right")) - 1, n_seg)
+            if e - s >= PANEL_MIN_SEGMENTS:
+                starts.append(s)
+                ends.append(e)
+                s = e
+            else:
+                s += 1
+        self.start = np.array(starts, dtype=np.intp)
+        self.end = np.array(ends, dtype=np.intp)
+        self.panel_of = np.full(n_seg, -1, dtype=np.intp)
+        for p, (s0, e0) in enumerate(zip(starts, ends)):
+            self.panel_of[s0:e0] = p
+        x, self._bw = _chebyshev(PANEL_POINTS)
+        lo, hi = r[self.start], r[self.end]
+        self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
+        # prefix sums per panel (rows start..end), flattened with offsets; built on demand
+        self.offset = np.concatenate([[0], np.cumsum(self.end - self.start + 1)])
+        self.cum_g = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self.cum_1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self.built = np.zeros(self.start.size, dtype=bool)
+
+    def build(self, which: np.ndarray, t: np.ndarray, w: np.ndarray, g: np.ndarray) -> None:
+        """Prefix sums of the panels ``which`` from the composite rule (nodes ``t``, weights
+        ``w``, ``g`` there; rows = segments, g filled for every segment of those panels)."""
+        for p in which[~self.built[which]]:
+            s0, e0 = int(self.start[p]), int(self.end[p])
+            ell = _lagrange(t[s0:e0], self.tau[p], self._bw)          # (seg, q, n)
+            wg = np.einsum("sq,sqn->sn", w[s0:e0] * g[s0:e0], ell)
+            w1 = np.einsum("sq,sqn->sn", w[s0:e0], ell)
+            o = int(self.offset[p])
+            self.cum_g[o + 1:o + 1 + e0 - s0] = np.cumsum(wg, axis=0)
+            self.cum_1[o + 1:o + 1 + e0 - s0] = np.cumsum(w1, axis=0)
+            self.built[p] = True
+
+
+def panels_of(profile) -> Panels:
+    """The (cached) panels of the node table ``profile``."""
+    r = profile.table_nodes()
+    key = (hash(profile), r.size)
+    hit = _CACHE.get(key)
+    if hit is None or hit[0] != profile:
+        if len(_CACHE) > 8:
+            _CACHE.clear()
+        hit = (profile, Panels(r))
+        _CACHE[key] = hit
+    return hit[1]
+
+
+def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
+              rule: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The panel part of ``Σ_elements ∫ kernel`` over whole segments ``first..last`` (inclusive,
+    per element): returns ``(values, covered)`` with ``covered[seg]`` True for segments the panels
+    take (the caller integrates the others by the composite rule).
+
+    ``kernel(t, g_t, idx)`` must be linear in ``g_t`` and analytic in ``t`` for ``t > 0``
+    (evaluated at ``g = 0`` and ``g = 1``).
+    """
+    val = np.zeros(n)
+    n_p = pan.start.size
+    if n_p == 0:
+        return val, np.zeros(pan.panel_of.size, dtype=bool)
+    lo = np.maximum(first[:, None], pan.start[None, :])             # (elements, panels)
+    hi = np.minimum(last[:, None] + 1, pan.end[None, :])
+    el, p = np.nonzero(hi > lo)
+    if el.size:
+        need = np.unique(p)
+        t, w, g = rule
+        pan.build(need, t, w, g)
+        base = pan.offset[p]
+        i1 = base + lo[el, p] - pan.start[p]
+        i2 = base + hi[el, p] - pan.start[p]
+        sg = pan.cum_g[i2] - pan.cum_g[i1]
+        s1 = pan.cum_1[i2] - pan.cum_1[i1]
+        tau = pan.tau[p]
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            k0 = kernel(tau, np.zeros(tau.shape), el)
+            k1 = kernel(tau, np.ones(tau.shape), el)
+        val += np.bincount(el, weights=np.sum((k1 - k0) * sg + k0 * s1, axis=1), minlength=n)
+    return val, pan.panel_of >= 0
