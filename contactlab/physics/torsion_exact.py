@@ -136,6 +136,27 @@ def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
 
 
 _TABLE_CACHE: dict = {}
+_GAUSS: dict = {}
+
+
+def _gauss_unit(q: int) -> tuple[np.ndarray, np.ndarray]:
+    """``q``-point Gauss-Legendre nodes and weights on [0, 1] (cached: the eigenvalue solve
+    costs ~1 ms, as much as a whole curve step)."""
+    hit = _GAUSS.get(q)
+    if hit is None:
+        u, wu = np.polynomial.legendre.leggauss(q)
+        hit = _GAUSS[q] = (0.5 * (u + 1.0), 0.5 * wu)
+    return hit
+
+
+def _g_route(profile, panels: bool):
+    """``g`` of the profile at fresh points: with ``panels`` (the curve route) a linear table's
+    per-segment cached form (:func:`contactlab.physics.table_panels.fast_g`, same values to
+    rounding, O(1) per point), else ``profile._g``."""
+    if not panels:
+        return profile._g
+    from .table_panels import fast_g
+    return lambda t: fast_g(profile, t)
 
 
 def _table_rule(profile, upto: float | None = None
@@ -197,11 +218,10 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     analytic in ``t > 0``, as every kernel of this module is).
     """
     t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
+    g_of = _g_route(profile, panels)
     n = lo.size
     q = t_n.shape[1]
-    u, wu = np.polynomial.legendre.leggauss(q)
-    u = 0.5 * (u + 1.0)
-    wu = 0.5 * wu
+    u, wu = _gauss_unit(q)
     j_lo = np.clip(np.searchsorted(r, lo, side="right") - 1, 0, r.size - 2)
     j_hi = np.clip(np.searchsorted(r, hi, side="left") - 1, 0, r.size - 2)
     same = j_lo >= j_hi
@@ -227,7 +247,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         width = (a_end[rest] - lo[rest])[:, None]
         tt = lo[rest][:, None] + width * u**2
         ww = 2.0 * width * u * wu
-        gg = profile._g(tt.ravel()).reshape(tt.shape)
+        gg = g_of(tt.ravel()).reshape(tt.shape)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[rest] += np.sum(kernel(tt, gg, rest) * ww, axis=1)
     # last piece [r_j_hi, hi], g once per distinct piece
@@ -238,7 +258,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         inv = inv.ravel()
         kw = (keys[:, 1] - keys[:, 0])[:, None]
         kt = keys[:, :1] + kw * u**2
-        kg = profile._g(kt.ravel()).reshape(kt.shape)
+        kg = g_of(kt.ravel()).reshape(kt.shape)
         kww = 2.0 * kw * u * wu
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[last] += np.sum(kernel(kt[inv], kg[inv], last) * kww[inv], axis=1)
@@ -291,7 +311,7 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
     x, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, a, d, g_a)))
     shape = x.shape
     x, a, d, g_a = (v.ravel() for v in (x, a, d, g_a))
-    g_x = profile._g(x)
+    g_x = _g_route(profile, panels)(x)
     p_a = (x / a) ** 2
     Ka = K_comp(p_a)
     boundary = (g_a - g_x) * Ka / a + (d - g_a) * Ka / a
