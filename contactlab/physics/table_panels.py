@@ -138,7 +138,8 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
     take (the caller integrates the others by the composite rule).
 
     ``kernel(t, g_t, idx)`` must be linear in ``g_t`` and analytic in ``t`` for ``t > 0``
-    (evaluated at ``g = 0`` and ``g = 1``).
+    (evaluated at ``g = 0`` and ``g = 1``, or once by its attribute ``kernel.linear(t, idx)``
+    returning ``(A, B)`` with ``kernel = A g + B``).
     """
     val = np.zeros(n)
     n_p = pan.start.size
@@ -158,9 +159,12 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
         s1 = pan.cum_1[i2] - pan.cum_1[i1]
         tau = pan.tau[p]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            k0 = kernel(tau, np.zeros(tau.shape), el)
-            k1 = kernel(tau, np.ones(tau.shape), el)
-        val += np.bincount(el, weights=np.sum((k1 - k0) * sg + k0 * s1, axis=1), minlength=n)
+            if hasattr(kernel, "linear"):          # kernel = A g + B in one evaluation
+                A, B = kernel.linear(tau, el)
+            else:
+                B = kernel(tau, np.zeros(tau.shape), el)
+                A = kernel(tau, np.ones(tau.shape), el) - B
+        val += np.bincount(el, weights=np.sum(A * sg + B * s1, axis=1), minlength=n)
     return val, pan.panel_of >= 0
 
 

@@ -326,6 +326,11 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
             dg = gt - gxs[idx][:, None]
             return dg * kme_over_m((xx / t) ** 2) / (t * t)
 
+        def linear(t: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            A = kme_over_m((xs[idx][:, None] / t) ** 2) / (t * t)      # kernel = A g + B
+            return A, -gxs[idx][:, None] * A
+
+        kernel.linear = linear     # type: ignore[attr-defined]  # the panels' one evaluation
         scale = np.abs(boundary[todo]) + (g_a[todo] - gxs) / as_
         v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale, panels)
         val[todo] += v
@@ -362,6 +367,13 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
                 D = 2.0 * t * h_kernel(v) + cc * v * v * K_comp(v * v)
                 return (gp[idx][:, None] - gt) * D
 
+            def linear(t: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                cc = cp[idx][:, None]
+                v = cc / t
+                D = 2.0 * t * h_kernel(v) + cc * v * v * K_comp(v * v)
+                return -D, gp[idx][:, None] * D                           # kernel = A g + B
+
+            kernel.linear = linear     # type: ignore[attr-defined]
             scale = gp * ap * ap
             v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3, panels)
             val[todo[pos]] += v
@@ -584,12 +596,19 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
                                  s_g[idx], rtol, panels)
             return twist_of_stick(mu, G_t, P)
 
-        lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min)
-        y = _bracketed(func, pl[solve], lo, hi, f_lo, f_hi, rtol, "stick radius")
+        lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min,
+                                            refine=_CURVE_REFINE if panels else 0)
+        y = _bracketed(func, pl[solve], lo, hi, f_lo, f_hi, rtol, "stick radius",
+                       secant_start=panels)
         out[solve] = s_a * np.exp(y)
     c[idx_live] = out
     return np.where(a > 0, c, 0.0)
 
+
+#: subintervals of each root-bracketing grid interval on the curve route (``panels``): one more
+#: batched evaluation of at most (roots x this) points buys a start closer to the root by
+#: about ``(this + 1)³`` and saves passes of the root finder over all the curve's points
+_CURVE_REFINE = 4
 
 #: ``y = ln(c/a)`` grid used to bracket many roots that share one normal state (log-spaced in
 #: ``|y|`` from 1e-9 to ``|ln C_MIN_REL|``, ~10 points per decade)
@@ -597,7 +616,7 @@ _Y_GRID = -np.logspace(-9.0, np.log10(-np.log(C_MIN_REL)), 120)[::-1]
 
 
 def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                   y_min: float, min_group: int = 16):
+                   y_min: float, min_group: int = 16, refine: int = 0):
     """Narrow brackets in ``y = ln(c/a)`` for roots of a function decreasing in ``y``.
 
     Elements sharing one normal state ``(a, d, g(a))`` (a torque-twist curve) share one evaluation
@@ -606,6 +625,10 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     at a point very close to the root, so the root finder starts with one end nearly on the root.
     Returns ``(lo, hi, f_lo, f_hi)`` (``f`` = NaN where unknown); groups smaller than ``min_group``
     keep the full bracket ``[y_min, 0]``.
+
+    ``refine > 0`` (curves of many points): every grid interval that brackets a root of a
+    one-state group is split into ``refine + 1`` (one more batched evaluation), so the
+    interpolated start lies much closer to the root and the root finder needs fewer passes.
     """
     n = target.size
     lo = np.full(n, y_min)
@@ -628,6 +651,18 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     v = vals[row[inverse[sel]]]                       # (m, n_g), decreasing along the grid
     tg = target[sel]
     k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
+    if refine > 0 and big.size == 1:
+        # one state (a curve): split the bracketing intervals, evaluate once, re-bracket
+        used = np.unique(k)
+        frac = np.arange(1, refine + 1) / (refine + 1)
+        new = (grid[used - 1][:, None] + frac * (grid[used] - grid[used - 1])[:, None]).ravel()
+        f_new = func(new, np.full(new.size, first[0]))
+        grid = np.concatenate([grid, new])
+        order = np.argsort(grid, kind="stable")
+        grid = grid[order]
+        n_g = grid.size
+        v = np.concatenate([vals[0], f_new])[order][None, :].repeat(sel.size, axis=0)
+        k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
     ylo, yhi = grid[k - 1], grid[k]
     flo = v[np.arange(sel.size), k - 1]
     fhi = v[np.arange(sel.size), k]
@@ -667,7 +702,8 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
 
 
 def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
-               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None) -> np.ndarray:
+               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None,
+               secant_start: bool = False) -> np.ndarray:
     """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite.
 
     ``ftol`` (default ``rtol``): residual test; 0 keeps refining the bracket in ``y`` to ``rtol``
@@ -685,7 +721,8 @@ def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: n
 
         out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=ftol,
                                   what=what, f_lo=f_lo[ids] if use else None,
-                                  f_hi=f_hi[ids] if use else None)
+                                  f_hi=f_hi[ids] if use else None,
+                                  secant_start=secant_start and use)
     return out
 
 
