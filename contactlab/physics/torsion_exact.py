@@ -276,6 +276,12 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
         val += v_p
     count = np.maximum(last - first + 1, 0)
+    direct = None
+    if covered is not None:
+        # only the segments outside every panel, as positions in their sorted list
+        direct = np.flatnonzero(~covered)
+        first = np.searchsorted(direct, first, side="left")
+        count = np.maximum(np.searchsorted(direct, last, side="right") - first, 0)
     todo = np.flatnonzero(count > 0)
     q = t_n.shape[1]
     ends = np.cumsum(count[todo])
@@ -288,9 +294,8 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         elem = np.repeat(ids, cnt)                                  # element of each row
         offs = np.arange(elem.size) - np.repeat(np.cumsum(cnt) - cnt, cnt)
         seg = first[elem] + offs
-        if covered is not None:                   # the panels took these segments
-            keep = ~covered[seg]
-            elem, seg = elem[keep], seg[keep]
+        if direct is not None:                    # the panels took the other segments
+            seg = direct[seg]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             f = kernel(t_n[seg], g_n[seg], elem)
         val += np.bincount(elem, weights=np.sum(f * w_n[seg], axis=1), minlength=n)
@@ -661,7 +666,8 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
         order = np.argsort(grid, kind="stable")
         grid = grid[order]
         n_g = grid.size
-        v = np.concatenate([vals[0], f_new])[order][None, :].repeat(sel.size, axis=0)
+        row0 = np.concatenate([vals[0], f_new])[order]
+        v = np.broadcast_to(row0, (sel.size, n_g))                    # one row, no copies
         k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
     ylo, yhi = grid[k - 1], grid[k]
     flo = v[np.arange(sel.size), k - 1]
