@@ -22,8 +22,11 @@ machine's load mostly cancels; the machine and its load average are printed. Row
 6. the exact curve (200 and 1000 twists) on a 1000-point linear table sampling the Hertz
    paraboloid out to 1.5 contact radii, so that 667 nodes lie in contact (the table of row 5 has
    only 94), against the closed-form exact Hertz curve of the same twists (the route of row 4 on
-   the paraboloid the table samples); goal <= 50 ms. Its torques are printed against that
-   closed form too: they differ by the table's interpolation error only.
+   the paraboloid the table samples) and against the composite route it replaced (every whole
+   segment on its 8-point rule: the stick-radius solve and torque integral with
+   ``panels=False``, without the call's normal solve and bookkeeping, so a little cheaper than
+   the old call); goal <= 50 ms. Its torques are printed against both: the closed form differs
+   by the table's interpolation error, the composite route by the panels' error.
 """
 from __future__ import annotations
 
@@ -117,7 +120,23 @@ def cases() -> dict:
                                                                    method="exact"),
         "curve exact, Hertz closed form, 1000": lambda: c.torsion(force=10.0, twist=twists_1000,
                                                                   method="exact"),
+        "curve composite (old), 667, 200": lambda: composite_curve(dense, twists),
+        "curve composite (old), 667, 1000": lambda: composite_curve(dense, twists_1000),
     }
+
+
+def composite_curve(c: cl.Contact, phi: np.ndarray, force: float = 10.0) -> np.ndarray:
+    """Torques of the exact curve by the composite route the panels replaced (whole segments on
+    the 8-point rule): root of μP(c)/(2G_t) = φ, then M = (16/3) G_t φ c³ + 8μT(c)."""
+    from contactlab.physics import torsion_exact as te
+    n = c.normal(force=force)
+    a, d = float(n._radius), float(n._depth)
+    A, D = np.full(phi.shape, a), np.full(phi.shape, d)
+    G = np.full(phi.shape, float(c.profile._g(np.array(a))))
+    E, G_t = c.moduli.normal, c.moduli.torsional
+    cc = te.solve_stick_of_twist(c.profile, E, G_t, MU, phi, A, D, G, c.rtol, panels=False)
+    T, _ = te.torque_integral(c.profile, E, cc, A, D, G, c.rtol, panels=False)
+    return np.where(cc < a, 16.0 / 3.0 * G_t * phi * cc**3 + 8.0 * MU * T, 0.0)
 
 
 def dense_table(c: cl.Contact, a: float) -> cl.Contact:
@@ -157,6 +176,8 @@ ROWS = [
     ("curve exact, table 1000", "curve mdr, table 1000", 0.05, None),
     ("curve exact, 667 in contact, 200", "curve exact, Hertz closed form, 200", 0.05, None),
     ("curve exact, 667 in contact, 1000", "curve exact, Hertz closed form, 1000", 0.05, None),
+    ("curve exact, 667 in contact, 200", "curve composite (old), 667, 200", None, None),
+    ("curve exact, 667 in contact, 1000", "curve composite (old), 667, 1000", None, None),
 ]
 
 
@@ -262,9 +283,11 @@ def main() -> int:
         tab, ref = keep[f"curve exact, 667 in contact, {n}"], keep[f"curve exact, Hertz closed form, {n}"]
         nodes = int(np.sum(tab.contact.profile.table_nodes() < float(tab.normal.radius)))
         err = float(np.max(np.abs(tab.torque - ref.torque)) / np.max(np.abs(ref.torque)))
+        old = keep[f"curve composite (old), 667, {n}"]
+        err_old = float(np.max(np.abs(tab.torque - old)) / np.max(np.abs(old)))
         print(f"table curve, {n} twists: {nodes} nodes in contact; torque against the sampled "
               f"paraboloid's closed form {err:.2e} of the largest torque (the table's "
-              "interpolation error)")
+              f"interpolation error), against the composite route {err_old:.1e}")
     if args.curves_only:
         print("load average after:", os.getloadavg())
         return 0
