@@ -47,11 +47,18 @@ def kme_over_m(p: np.ndarray) -> np.ndarray:
     p = np.asarray(p, float)
     m = 1.0 - p
     small = np.abs(m) <= 0.1
-    out = np.empty(p.shape)
     big = ~small
     from scipy.special import ellipe, ellipkm1
-    out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions only where used
-    if np.any(small):
+    n_small = int(np.count_nonzero(small))
+    if 2 * n_small < small.size:
+        # mostly the special functions (the panels' points): evaluate them everywhere (the same
+        # values elementwise), the few series points overwritten below, no gathers
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = np.asarray((ellipkm1(p) - ellipe(m)) / m, dtype=float)
+    else:
+        out = np.empty(p.shape)
+        out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions where used
+    if n_small:
         ms = m[small]
         acc = np.zeros(ms.shape)
         for n in range(_KME_TERMS, 0, -1):
