@@ -119,7 +119,7 @@ def test_curve_against_the_sampled_paraboloid():
     table samples. The linear interpolant lies within Δ²/(8R) of it, a fraction (Δ/a)²/8 of the
     indentation depth; the torques differ by less (measured 1.9e-8 against 2.8e-7)."""
     r, f = next(iter(_tables())).values
-    c, a, d, g_a = _state(r, f)
+    c, a, _, _ = _state(r, f)
     hertz = cl.Contact(cl.profiles.Paraboloid(R=R), materials=MAT, friction=MU, rtol=RTOL)
     s = MU * 10.0 / (c.moduli.torsional * a * a)
     phi = np.linspace(0.0, 0.95, 200) * s

@@ -76,7 +76,7 @@ def test_torque_rtol_and_n_rings_are_refused_together():
     assert "not both" in allowed and "n_rings = 100" in allowed
     # as the Python call refuses them
     s = Scene(twist_scene(SEG))
-    with pytest.raises(ParameterError, match="n_rings=100 and torque_rtol=0.001"):
+    with pytest.raises(ParameterError, match=r"n_rings=100 and torque_rtol=0\.001"):
         s.contact().simulate(s.load_path, method="exact", n_rings=100, torque_rtol=1e-3)
 
 
