@@ -171,28 +171,34 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
 # ---------------------------------------------------------------- g of a linear table, fast
 #: nodes below a segment whose arcsine terms are summed exactly at every point (the others,
 #: analytic on the segment, are interpolated): the nearest interpolated singularity lies
-#: (G_NEAR + 1) segments below, a Bernstein ellipse of ρ ≈ 38 for a uniform table
-G_NEAR = 8
-#: Chebyshev points of the interpolated far sum per segment (ρ^-10 ≈ 1.6e-16 at ρ = 38)
-G_POINTS = 10
+#: (G_NEAR + 1) segments below, a Bernstein ellipse of ρ ≈ 18 for a uniform table
+G_NEAR = 3
+#: Chebyshev terms of the interpolated far sum per segment (ρ^-14 ≈ 3e-18 at ρ = 18)
+G_POINTS = 14
 #: segments whose ellipse is smaller (strongly non-uniform tables) take the exact sum
-_G_RHO_MIN = 30.0
+#: (ρ^-14 <= 8e-16 above it)
+_G_RHO_MIN = 12.0
 
 
 class _FastG:
     """``g`` of a linear table at any point of segment ``j >= 1``:
     ``g(t) = t [s_j π/2 - Σ_{i<=j} Δs_i asin(r_i/t)]`` with the terms of the nodes more than
-    :data:`G_NEAR` below interpolated per segment (built on demand, cached per table)."""
+    :data:`G_NEAR` below summed as a Chebyshev series per segment (coefficients built on
+    demand from the sum at the Chebyshev points, cached per table; Clenshaw's recurrence)."""
 
     def __init__(self, r: np.ndarray, slopes: np.ndarray) -> None:
         self.r = r
         self.s = slopes
         self.ds = np.concatenate([[0.0], np.diff(slopes)])     # jump at node i (ds[0] unused)
         n_seg = r.size - 1
-        x, self.bw = _chebyshev(G_POINTS)
+        x, _ = _chebyshev(G_POINTS)
+        theta = np.arccos(x)
+        # values at the points -> Chebyshev coefficients (discrete orthogonality)
+        self.to_coef = 2.0 / G_POINTS * np.cos(np.outer(theta, np.arange(G_POINTS)))
+        self.to_coef[:, 0] *= 0.5
         lo, hi = r[:-1], r[1:]
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
-        self.far = np.zeros((n_seg, G_POINTS))
+        self.coef = np.zeros((n_seg, G_POINTS))
         self.done = 0
         # ρ of the far sum's nearest singularity, r_{j-G_NEAR-1}, seen from segment j
         j = np.arange(n_seg)
@@ -210,9 +216,8 @@ class _FastG:
             k = j - G_NEAR                                     # nodes 1 .. k-1 are far
             if k <= 1 or not self.ok[j]:
                 continue
-            nodes = self.r[1:k]
-            t = self.tau[j]
-            self.far[j] = np.arcsin(nodes[None, :] / t[:, None]) @ self.ds[1:k]
+            far = np.arcsin(self.r[1:k][None, :] / self.tau[j][:, None]) @ self.ds[1:k]
+            self.coef[j] = far @ self.to_coef
         self.done = need
 
     def serves(self, t: np.ndarray) -> np.ndarray:
@@ -226,8 +231,14 @@ class _FastG:
         r = self.r
         j = np.clip(np.searchsorted(r, t, side="right") - 1, 0, r.size - 2)
         self._build(int(np.max(j, initial=0)) + 1)
-        ell = _lagrange(t, self.tau[j], self.bw)
-        far = np.einsum("kn,kn->k", ell, self.far[j])
+        lo, hi = r[j], r[j + 1]
+        x2 = 2.0 * (2.0 * t - lo - hi) / (hi - lo)
+        c = self.coef[j]
+        b1 = np.zeros(t.shape)
+        b2 = np.zeros(t.shape)
+        for m in range(G_POINTS - 1, 0, -1):
+            b1, b2 = c[:, m] + x2 * b1 - b2, b1
+        far = c[:, 0] + 0.5 * x2 * b1 - b2
         i = j[:, None] - np.arange(G_NEAR + 1)[None, :]       # nodes j, j-1, .., j-G_NEAR
         live = i >= 1
         ic = np.where(live, i, 1)
@@ -242,7 +253,7 @@ _G_CACHE: dict = {}
 def fast_g(profile, t: np.ndarray) -> np.ndarray:
     """``profile._g(t)`` of a linear table from per-segment cached far sums (O(1) per point
     instead of O(nodes below)); any other profile, and points it cannot serve, by ``_g``.
-    Agrees with the direct sum to rounding (the interpolation errs by ``ρ^-10 < 1e-15`` of the
+    Agrees with the direct sum to rounding (the interpolation errs by ``ρ^-14 < 1e-15`` of the
     far sum)."""
     t = np.asarray(t, float)
     if not profile.has("linear_table") or t.size == 0:
