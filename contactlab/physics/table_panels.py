@@ -98,24 +98,35 @@ class Panels:
         x, self._bw = _chebyshev(PANEL_POINTS)
         lo, hi = r[self.start], r[self.end]
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
-        # prefix sums per panel (rows start..end), flattened with offsets; built on demand
+        # per-segment weights and prefix sums per panel (rows start..end), flattened with
+        # offsets; built on demand up to the segments a call needs (g is known only there)
         self.offset = np.concatenate([[0], np.cumsum(self.end - self.start + 1)])
         self.cum_g = np.zeros((int(self.offset[-1]), PANEL_POINTS))
         self.cum_1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
-        self.built = np.zeros(self.start.size, dtype=bool)
+        self._wg = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self._w1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self.built = np.zeros(self.start.size, dtype=np.intp)     # segments built per panel
 
-    def build(self, which: np.ndarray, t: np.ndarray, w: np.ndarray, g: np.ndarray) -> None:
-        """Prefix sums of the panels ``which`` from the composite rule (nodes ``t``, weights
-        ``w``, ``g`` there; rows = segments, g filled for every segment of those panels)."""
-        for p in which[~self.built[which]]:
-            s0, e0 = int(self.start[p]), int(self.end[p])
-            ell = _lagrange(t[s0:e0], self.tau[p], self._bw)          # (seg, q, n)
-            wg = np.einsum("sq,sqn->sn", w[s0:e0] * g[s0:e0], ell)
-            w1 = np.einsum("sq,sqn->sn", w[s0:e0], ell)
+    def build(self, which: np.ndarray, upto: np.ndarray, t: np.ndarray, w: np.ndarray,
+              g: np.ndarray) -> None:
+        """Prefix sums of the panels ``which`` over their first ``upto`` segments from the
+        composite rule (nodes ``t``, weights ``w``, ``g`` there; rows = segments, g filled for
+        those segments). The weights of a segment are its own (elementwise), and the prefix sums
+        are one sequential ``cumsum`` from the panel's start, so their values do not depend on
+        how the panel grew (same call, same bits)."""
+        for p, u in zip(which, upto):
+            b = int(self.built[p])
+            if u <= b:
+                continue
+            s0 = int(self.start[p])
             o = int(self.offset[p])
-            self.cum_g[o + 1:o + 1 + e0 - s0] = np.cumsum(wg, axis=0)
-            self.cum_1[o + 1:o + 1 + e0 - s0] = np.cumsum(w1, axis=0)
-            self.built[p] = True
+            rows = slice(s0 + b, s0 + u)
+            ell = _lagrange(t[rows], self.tau[p], self._bw)           # (seg, q, n)
+            self._wg[o + b:o + u] = np.einsum("sq,sqn->sn", w[rows] * g[rows], ell)
+            self._w1[o + b:o + u] = np.einsum("sq,sqn->sn", w[rows], ell)
+            self.cum_g[o + 1:o + 1 + u] = np.cumsum(self._wg[o:o + u], axis=0)
+            self.cum_1[o + 1:o + 1 + u] = np.cumsum(self._w1[o:o + u], axis=0)
+            self.built[p] = u
 
 
 def panels_of(profile) -> Panels:
@@ -150,8 +161,10 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
     el, p = np.nonzero(hi > lo)
     if el.size:
         need = np.unique(p)
+        upto = np.zeros(n_p, dtype=np.intp)
+        np.maximum.at(upto, p, hi[el, p] - pan.start[p])
         t, w, g = rule
-        pan.build(need, t, w, g)
+        pan.build(need, upto[need], t, w, g)
         base = pan.offset[p]
         i1 = base + lo[el, p] - pan.start[p]
         i2 = base + hi[el, p] - pan.start[p]
@@ -268,6 +281,14 @@ def fast_g(profile, t: np.ndarray) -> np.ndarray:
     flat = t.ravel()
     fg = hit[1]
     ok = (flat > 0) & np.isfinite(flat) & (flat < fg.r[-1])
+    need = int(np.searchsorted(fg.r, np.max(flat[ok], initial=0.0), side="right"))
+    if need > fg.done:
+        # building the far sums up to segment `need` costs ~G_POINTS need²/2 arcsines, the
+        # direct sums ~(points x need): build only when this call alone repays most of it
+        # (a curve's passes do; one state of a huge table does not)
+        build = G_POINTS * 0.5 * (float(need) ** 2 - float(fg.done) ** 2)
+        if build > 4.0 * float(np.count_nonzero(ok)) * need:
+            return profile._g(t)
     ok[ok] = fg.serves(flat[ok])
     out = np.empty(flat.shape)
     if np.any(ok):

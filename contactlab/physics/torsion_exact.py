@@ -269,10 +269,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     if panels:
         from . import table_panels as _tp
         pan = _tp.panels_of(profile)
-        top = int(np.max(last, initial=-1))
-        p_top = int(pan.panel_of[top]) if 0 <= top < pan.panel_of.size else -1
-        if p_top >= 0:           # g on every segment of the highest panel met
-            t_n, w_n, g_n, r = _table_rule(profile, float(r[pan.end[p_top]]))
+        # (g is filled up to the largest hi, beyond every segment a panel takes here)
         v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
         val += v_p
     count = np.maximum(last - first + 1, 0)

@@ -128,3 +128,28 @@ def test_curve_against_the_sampled_paraboloid():
     bound = (r[1] / a) ** 2 / 8
     assert np.max(np.abs(got.torque - ref.torque)) <= bound * np.max(ref.torque)
     assert np.sum(r < a) == 667
+
+
+def test_same_call_same_bits_whatever_the_panels_built_before():
+    """The panels grow with the contact radius; a curve after a smaller contact (panels built
+    part-way) is bit-identical to the same curve on fresh caches."""
+    from contactlab.physics import torsion_exact as te_mod
+    r, f = list(_tables())[0].values
+
+    def curve():
+        c = cl.Contact(cl.profiles.Tabulated(r=r, f=f), materials=MAT, friction=MU)
+        a = float(c.normal(force=10.0)._radius)
+        phi = np.linspace(0.0, 0.9, 50) * MU * 10.0 / (c.moduli.torsional * a * a)
+        return c, c.torsion(force=10.0, twist=phi).torque
+
+    for cache in (tp._CACHE, tp._G_CACHE, te_mod._TABLE_CACHE):
+        cache.clear()
+    _, fresh = curve()
+    for cache in (tp._CACHE, tp._G_CACHE, te_mod._TABLE_CACHE):
+        cache.clear()
+    small = cl.Contact(cl.profiles.Tabulated(r=r, f=f), materials=MAT, friction=MU)
+    small.torsion(force=1.0, twist=np.linspace(0.0, 1e-4, 40))  # a smaller contact first
+    assert 0 < tp.panels_of(small.profile).built.max() < (
+        tp.panels_of(small.profile).end - tp.panels_of(small.profile).start).max()
+    _, after = curve()
+    np.testing.assert_array_equal(after, fresh)
