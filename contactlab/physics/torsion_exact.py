@@ -37,7 +37,7 @@ from ..numeric.roots import bracketed_root
 from .torsion_elliptic import K_comp, h_kernel, kme_over_m
 from .torsion_split import Summed, per_element, split_at_cuts
 
-__all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral",
+__all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral", "panels_apply",
            "x_g_integral", "sliding_torque", "twist_of_stick", "torque_of_stick",
            "dissipation_integral", "stick_shear", "circumferential_displacement",
            "solve_stick_of_twist", "solve_stick_of_torque",
@@ -147,6 +147,19 @@ def _gauss_unit(q: int) -> tuple[np.ndarray, np.ndarray]:
         u, wu = np.polynomial.legendre.leggauss(q)
         hit = _GAUSS[q] = (0.5 * (u + 1.0), 0.5 * wu)
     return hit
+
+
+def panels_apply(profile, a: np.ndarray) -> bool:
+    """Whether the product-integration panels take part for contact radii ``a`` (m): a node
+    table on the composite route (more than ``_TABLE_SPLIT_MAX`` nodes) with a panel starting
+    inside the largest contact. Only then does the curve route differ from the composite one
+    (every other profile and state keeps its bits)."""
+    nodes = _composite_nodes(profile)
+    if nodes is None or nodes.size <= _TABLE_SPLIT_MAX:
+        return False
+    from .table_panels import panels_of
+    pan = panels_of(profile)
+    return bool(pan.start.size) and float(nodes[pan.start[0]]) < float(np.max(a, initial=0.0))
 
 
 def _g_route(profile, panels: bool):

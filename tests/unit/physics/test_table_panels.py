@@ -134,7 +134,7 @@ def test_same_call_same_bits_whatever_the_panels_built_before():
     """The panels grow with the contact radius; a curve after a smaller contact (panels built
     part-way) is bit-identical to the same curve on fresh caches."""
     from contactlab.physics import torsion_exact as te_mod
-    r, f = list(_tables())[0].values
+    r, f = next(iter(_tables())).values
 
     def curve():
         c = cl.Contact(cl.profiles.Tabulated(r=r, f=f), materials=MAT, friction=MU)
@@ -153,3 +153,26 @@ def test_same_call_same_bits_whatever_the_panels_built_before():
         tp.panels_of(small.profile).end - tp.panels_of(small.profile).start).max()
     _, after = curve()
     np.testing.assert_array_equal(after, fresh)
+
+
+@pytest.mark.parametrize("profile", [cl.profiles.Cone(slope=0.02),
+                                     cl.profiles.Tabulated(r=np.linspace(0.0, 1e-4, 40),
+                                                           f=np.linspace(0.0, 1e-4, 40) ** 2
+                                                           / (2 * R))],
+                         ids=["cone", "small-table"])
+def test_curves_without_panels_keep_their_bits(profile):
+    """Profiles the panels do not serve (no node table, or too few nodes) take the composite
+    route unchanged: the curve is bit-identical to its solve written out with panels=False."""
+    from contactlab.physics.torsion import METHODS
+    c = cl.Contact(profile, materials=MAT, friction=MU)
+    n = c.normal(force=10.0)
+    a, d = float(n._radius), float(n._depth)
+    assert not te.panels_apply(c.profile, np.array([a]))
+    phi = np.linspace(0.0, 0.9, 60) * MU * 10.0 / (c.moduli.torsional * a * a)
+    A, D = np.full(phi.shape, a), np.full(phi.shape, d)
+    G = np.full(phi.shape, float(c.profile._g(np.array(a))))
+    E, G_t = c.moduli.normal, c.moduli.torsional
+    cc = te.solve_stick_of_twist(c.profile, E, G_t, MU, phi, A, D, G, c.rtol, panels=False)
+    model = METHODS["exact"](c.profile, E, G_t, MU, c.rtol)
+    got = model.of_twist(phi, A, D, G)
+    np.testing.assert_array_equal(got.stick_radius, cc)
