@@ -18,7 +18,15 @@ machine's load mostly cancels; the machine and its load average are printed. Row
    forces; goal <= 0.1 s;
 4. the exact torque-twist curve (200 twists, Hertz) against its floor, the closed form of the same
    curve written out with numpy (200 stick radii, no contact set-up); goal <= 2 ms;
-5. the exact curve (200 twists) on a 1000-point table, against its MDR curve; goal <= 50 ms.
+5. the exact curve (200 twists) on a 1000-point table, against its MDR curve; goal <= 50 ms;
+6. the exact curve (200 and 1000 twists) on a 1000-point linear table sampling the Hertz
+   paraboloid out to 1.5 contact radii, so that 667 nodes lie in contact (the table of row 5 has
+   only 94), against the closed-form exact Hertz curve of the same twists (the route of row 4 on
+   the paraboloid the table samples) and against the composite route it replaced (every whole
+   segment on its 8-point rule: the stick-radius solve and torque integral with
+   ``panels=False``, without the call's normal solve and bookkeeping, so a little cheaper than
+   the old call); goal <= 50 ms. Its torques are printed against both: the closed form differs
+   by the table's interpolation error, the composite route by the panels' error.
 """
 from __future__ import annotations
 
@@ -88,6 +96,8 @@ def cases() -> dict:
     r_tab = np.linspace(0.0, 4e-4, 1000)
     tab = cl.Contact(cl.profiles.Tabulated(r=r_tab, f=r_tab ** 2 / 0.02 + 2e3 * r_tab ** 3),
                      materials=MAT, friction=MU)
+    dense = dense_table(c, a10)
+    twists_1000 = np.linspace(0.0, 0.95, 1000) * s10
     return {
         "path exact, BLAS 1 thread": exact_threads(1),
         "path exact, BLAS 2 threads": exact_threads(2),
@@ -102,7 +112,39 @@ def cases() -> dict:
         "curve mdr, Hertz 200": lambda: c.torsion(force=10.0, twist=twists, method="mdr"),
         "curve exact, table 1000": lambda: tab.torsion(force=10.0, twist=twists, method="exact"),
         "curve mdr, table 1000": lambda: tab.torsion(force=10.0, twist=twists, method="mdr"),
+        "curve exact, 667 in contact, 200": lambda: dense.torsion(force=10.0, twist=twists,
+                                                                  method="exact"),
+        "curve exact, Hertz closed form, 200": lambda: c.torsion(force=10.0, twist=twists,
+                                                                 method="exact"),
+        "curve exact, 667 in contact, 1000": lambda: dense.torsion(force=10.0, twist=twists_1000,
+                                                                   method="exact"),
+        "curve exact, Hertz closed form, 1000": lambda: c.torsion(force=10.0, twist=twists_1000,
+                                                                  method="exact"),
+        "curve composite (old), 667, 200": lambda: composite_curve(dense, twists),
+        "curve composite (old), 667, 1000": lambda: composite_curve(dense, twists_1000),
     }
+
+
+def composite_curve(c: cl.Contact, phi: np.ndarray, force: float = 10.0) -> np.ndarray:
+    """Torques of the exact curve by the composite route the panels replaced (whole segments on
+    the 8-point rule): root of μP(c)/(2G_t) = φ, then M = (16/3) G_t φ c³ + 8μT(c)."""
+    from contactlab.physics import torsion_exact as te
+    n = c.normal(force=force)
+    a, d = float(n._radius), float(n._depth)
+    A, D = np.full(phi.shape, a), np.full(phi.shape, d)
+    G = np.full(phi.shape, float(c.profile._g(np.array(a))))
+    E, G_t = c.moduli.normal, c.moduli.torsional
+    cc = te.solve_stick_of_twist(c.profile, E, G_t, MU, phi, A, D, G, c.rtol, panels=False)
+    T, _ = te.torque_integral(c.profile, E, cc, A, D, G, c.rtol, panels=False)
+    return np.where(cc < a, 16.0 / 3.0 * G_t * phi * cc**3 + 8.0 * MU * T, 0.0)
+
+
+def dense_table(c: cl.Contact, a: float) -> cl.Contact:
+    """A 1000-point linear table of the paraboloid of ``c`` out to ``1.5 a``: at the force of
+    contact radius ``a`` two thirds of its nodes (667) lie in contact."""
+    r = np.linspace(0.0, 1.5 * a, 1000)
+    prof = cl.profiles.Tabulated(r=r, f=r**2 / (2 * float(c.profile.R)))
+    return cl.Contact(prof, materials=MAT, friction=MU)
 
 
 _GL = np.polynomial.legendre.leggauss(32)
@@ -132,6 +174,10 @@ ROWS = [
     ("torsion mdr, 1e5 forces", "torsion no-slip, 1e5 forces", 0.1, None),
     ("curve exact, Hertz 200", "curve closed form (numpy), Hertz 200", 0.002, None),
     ("curve exact, table 1000", "curve mdr, table 1000", 0.05, None),
+    ("curve exact, 667 in contact, 200", "curve exact, Hertz closed form, 200", 0.05, None),
+    ("curve exact, 667 in contact, 1000", "curve exact, Hertz closed form, 1000", 0.05, None),
+    ("curve exact, 667 in contact, 200", "curve composite (old), 667, 200", None, None),
+    ("curve exact, 667 in contact, 1000", "curve composite (old), 667, 1000", None, None),
 ]
 
 
@@ -188,29 +234,9 @@ def scaling(steps: list[int], rounds: int) -> None:
           + ("met" if tail <= 1.05 else "NOT met") + ")")
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rounds", type=int, default=3)
-    ap.add_argument("--long", action="store_true", help="scaling up to 10^4 steps (~1 min)")
-    args = ap.parse_args()
-    print("Machine:", machine())
-    print("load average (1, 5, 15 min):", os.getloadavg())
-    fns = cases()
-    best = dict.fromkeys(fns, np.inf)
-    keep: dict = {}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for _ in range(args.rounds):
-            for name, fn in fns.items():
-                t0 = time.perf_counter()
-                keep[name] = fn()
-                best[name] = min(best[name], time.perf_counter() - t0)
+def path_summary(best: dict, keep: dict) -> None:
+    """The path rows' BLAS-thread ratio, bit-identity and accuracy at ``torque_rtol``."""
     same = _digest(keep["path exact, BLAS 1 thread"]) == _digest(keep["path exact, BLAS 2 threads"])
-    print(f"\n{'row':38s} {'time':>10s} {'floor':38s} {'ratio':>7s}  goal: verdict")
-    for row, ref, goal_t, goal_r in ROWS:
-        ratio = best[row] / best[ref]
-        print(f"{row:38s} {best[row] * 1e3:8.2f}ms {ref:38s} {ratio:7.2f}  "
-              + verdict(best[row], ratio, goal_t, goal_r))
     ratio = best["path exact, BLAS 2 threads"] / best["path exact, BLAS 1 thread"]
     print(f"\nBLAS 2 vs 1 thread: ratio {ratio:.2f} (goal <= 1.2), results bit-identical: {same}")
     r1, r2 = keep["path exact rtol 1e-3, BLAS 1 thread"], keep["path exact rtol 1e-3, BLAS 2 threads"]
@@ -221,6 +247,52 @@ def main() -> int:
           f"the contact radii), torque error {err:.2e} of the sliding torque (goal <= {RTOL:g}: "
           + ("met" if err <= RTOL else "NOT met") + "), BLAS 1 vs 2 threads bit-identical: "
           f"{_digest(r1) == _digest(r2)}")
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--long", action="store_true", help="scaling up to 10^4 steps (~1 min)")
+    ap.add_argument("--curves-only", action="store_true",
+                    help="only the torque-twist curve rows (4-6), no path rows or scaling")
+    args = ap.parse_args()
+    print("Machine:", machine())
+    print("load average (1, 5, 15 min):", os.getloadavg())
+    fns = cases()
+    if args.curves_only:
+        fns = {k: v for k, v in fns.items() if k.startswith("curve")}
+    best = dict.fromkeys(fns, np.inf)
+    keep: dict = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(args.rounds):
+            for name, fn in fns.items():
+                t0 = time.perf_counter()
+                keep[name] = fn()
+                best[name] = min(best[name], time.perf_counter() - t0)
+    print(f"\n{'row':38s} {'time':>10s} {'floor':38s} {'its time':>10s} {'ratio':>7s}  "
+          "goal: verdict")
+    for row, ref, goal_t, goal_r in ROWS:
+        if row not in best:
+            continue
+        ratio = best[row] / best[ref]
+        print(f"{row:38s} {best[row] * 1e3:8.2f}ms {ref:38s} {best[ref] * 1e3:8.2f}ms "
+              f"{ratio:7.3f}  "
+              + verdict(best[row], ratio, goal_t, goal_r))
+    if not args.curves_only:
+        path_summary(best, keep)
+    for n in (200, 1000):
+        tab, ref = keep[f"curve exact, 667 in contact, {n}"], keep[f"curve exact, Hertz closed form, {n}"]
+        nodes = int(np.sum(tab.contact.profile.table_nodes() < float(tab.normal.radius)))
+        err = float(np.max(np.abs(tab.torque - ref.torque)) / np.max(np.abs(ref.torque)))
+        old = keep[f"curve composite (old), 667, {n}"]
+        err_old = float(np.max(np.abs(tab.torque - old)) / np.max(np.abs(old)))
+        print(f"table curve, {n} twists: {nodes} nodes in contact; torque against the sampled "
+              f"paraboloid's closed form {err:.2e} of the largest torque (the table's "
+              f"interpolation error), against the composite route {err_old:.1e}")
+    if args.curves_only:
+        print("load average after:", os.getloadavg())
+        return 0
     scaling([100, 1000, 10000] if args.long else [100, 1000], 1 if args.long else 2)
     print("load average after:", os.getloadavg())
     return 0

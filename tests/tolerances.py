@@ -894,3 +894,18 @@ TABLE_LINEAR_RANDOM_RADII_10K = 15.0
 #: the rounding estimate the dense route reports (8 eps times the parts' magnitudes): measured
 #: <= 0.68 (wavy 10^4-point table, at points where g nearly cancels), 0.03 on a sampled sphere
 TABLE_FAR_FIELD_CUBIC = 1.0
+# ---- exact torque-twist curve on large tables: product-integration panels (issue 28)
+#: the slip function P and torque integral T with panels against the composite rule, relative to
+#: their largest value over the curve: the panel interpolation (rho^-18 = 1.6e-14 of the kernel's
+#: scale at ratio 2) and the 8-point rule's integration of g times the Lagrange basis; measured
+#: 1e-15 (P) and 2e-15 (T) of the largest value on a 667-node linear table, 60x below this
+TABLE_PANELS = 1e-13
+#: the analytic continuations the panels evaluate below a lower limit (kme_over_m at p > 1,
+#: h_kernel at 1 < v <= 2) against mpmath: rounding of scipy's ellipk/ellipe and of a 16-point
+#: Gauss rule of an analytic integrand (measured <= 1.7e-15)
+PANEL_CONTINUATION = 1e-14
+#: g of a linear table from per-segment cached far sums against the direct sum over all nodes,
+#: relative to the largest |g|: rounding of two orderings of one sum (measured 8e-16 on a
+#: smooth sampled table, 5e-13 on one with 20 % noise whose slope jumps of both signs cancel
+#: in the sum to 1e-4 of their magnitudes)
+FAST_G = 2e-12

@@ -33,6 +33,7 @@ def bracketed_root(
     what: str = "root",
     f_lo: np.ndarray | float | None = None,
     f_hi: np.ndarray | float | None = None,
+    secant_start: bool = False,
 ) -> np.ndarray:
     """Solve ``func(x, index) = target`` for each element with a bracket ``[lo, hi]``.
 
@@ -53,6 +54,9 @@ def bracketed_root(
         Name of the unknown, used in error messages.
     f_lo, f_hi : array_like, optional
         ``func`` at ``lo``/``hi`` when the caller already knows them (saves two evaluations).
+    secant_start : bool
+        Take the first step at the secant of the two ends instead of the midpoint (for brackets
+        already tight around the root: one pass saved; default False keeps the classic start).
 
     Returns
     -------
@@ -84,6 +88,10 @@ def bracketed_root(
     x3 = x2.copy()
     f3 = f2.copy()
     step = np.full(t.size, 0.5)
+    if secant_start:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sec = f1 / (f1 - f2)
+        step = np.where(np.isfinite(sec), np.clip(sec, 4 * _EPS, 1 - 4 * _EPS), 0.5)
     act = np.flatnonzero(~done)
     for _ in range(maxiter):
         if act.size == 0:

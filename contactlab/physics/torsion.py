@@ -260,9 +260,13 @@ class Exact(TorsionModel):
         p0 = _hertz_p0(self.prof, self.E, a, d, g_a)
         if p0 is not None:
             return self._of_twist_hertz(phi, a, d, p0)
+        # large tables: the whole segments on product-integration panels (issue 28: a curve
+        # costs O(points x panels), not O(points x nodes in contact); agrees to TABLE_PANELS)
+        panels = _exact.panels_apply(self.prof, a)
         c = _exact.solve_stick_of_twist(self.prof, self.E, self.G, self.mu, phi, a, d, g_a,
-                                        self.rtol)
-        T, T_err = _exact.torque_integral(self.prof, self.E, c, a, d, g_a, self.rtol)
+                                        self.rtol, panels=panels)
+        T, T_err = _exact.torque_integral(self.prof, self.E, c, a, d, g_a, self.rtol,
+                                          panels=panels)
         T_err = _exact.sharpen_error(T_err, T)
         M1 = 16.0 / 3.0 * self.G * phi * c**3
         M = M1 + 8.0 * self.mu * T

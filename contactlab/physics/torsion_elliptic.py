@@ -38,17 +38,27 @@ _KME_TERMS = 18
 def kme_over_m(p: np.ndarray) -> np.ndarray:
     """``(K(k) - E(k))/k²`` from ``p = 1 - k²`` (``π/4`` at ``k = 0``, ``~ln(4/sqrt(p)) - 1`` as p → 0).
 
-    Power series for ``k² <= 0.1`` (the difference ``K - E`` would cancel), ``ellipkm1`` and
-    ``ellipe`` above. Relative error ~1e-16 (checked against Carlson's ``R_D(0, p, 1)/3``).
+    Power series for ``|k²| <= 0.1`` (the difference ``K - E`` would cancel), ``ellipkm1`` and
+    ``ellipe`` elsewhere. Relative error ~1e-16 (checked against Carlson's ``R_D(0, p, 1)/3``).
+    ``p > 1`` (``k² < 0``) gives the analytic continuation, which the product-integration panels
+    of large tables evaluate at interpolation points below the lower limit
+    (:mod:`contactlab.physics.table_panels`).
     """
     p = np.asarray(p, float)
     m = 1.0 - p
-    small = m <= 0.1
-    out = np.empty(p.shape)
+    small = np.abs(m) <= 0.1
     big = ~small
     from scipy.special import ellipe, ellipkm1
-    out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions only where used
-    if np.any(small):
+    n_small = int(np.count_nonzero(small))
+    if 2 * n_small < small.size:
+        # mostly the special functions (the panels' points): evaluate them everywhere (the same
+        # values elementwise), the few series points overwritten below, no gathers
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = np.asarray((ellipkm1(p) - ellipe(m)) / m, dtype=float)
+    else:
+        out = np.empty(p.shape)
+        out[big] = (ellipkm1(p[big]) - ellipe(m[big])) / m[big]   # special functions where used
+    if n_small:
         ms = m[small]
         acc = np.zeros(ms.shape)
         for n in range(_KME_TERMS, 0, -1):
@@ -136,6 +146,11 @@ def h_kernel(v: np.ndarray) -> np.ndarray:
     cA, cB, cH, v0 = _H_CHEB
     v = np.asarray(v, float)
     out = np.empty(v.shape)
+    over = v > 1.0
+    if np.any(over):
+        vo = v[over]
+        out[over] = np.where(vo <= 2.0, (1.0 - vo) * chebval(2.0 * vo - 3.0, _h_over_cheb()),
+                             _h_over_one(vo))
     small = v <= v0
     if np.any(small):
         vs = v[small]
@@ -143,8 +158,39 @@ def h_kernel(v: np.ndarray) -> np.ndarray:
         with np.errstate(divide="ignore", invalid="ignore"):
             L = np.where(vs > 0, np.log(4.0 / np.where(vs > 0, vs, 1.0)), 0.0)
         out[small] = np.pi**2 / 16 - vs**3 * (L * chebval(x, cA) + chebval(x, cB))
-    big = ~small
+    big = ~small & ~over
     if np.any(big):
         x = 2.0 * (v[big] - v0) / (1.0 - v0) - 1.0
         out[big] = (1.0 - v[big]) * chebval(x, cH)
     return out
+
+
+_GL16 = np.polynomial.legendre.leggauss(16)
+
+
+def _h_over_one(v: np.ndarray) -> np.ndarray:
+    """Analytic continuation of :func:`h_kernel` to ``1 < v <= 2``:
+    ``h(v) = -∫_1^v u² K(u) du`` with ``K(u) = ellipkm1(u²)`` (``k² = 1 - u² < 0``), analytic
+    there, by a 16-point Gauss-Legendre rule (to rounding for ``v <= 2``). Only the panels of
+    :mod:`contactlab.physics.table_panels` evaluate it, at interpolation points below the lower
+    limit of their integrals."""
+    from scipy.special import ellipkm1
+    x, w = _GL16
+    half = 0.5 * (v - 1.0)
+    u = 1.0 + half[..., None] * (x + 1.0)
+    return -half * np.sum(w * u * u * ellipkm1(u * u), axis=-1)
+
+
+_H_OVER: list = []
+
+
+def _h_over_cheb() -> np.ndarray:
+    """Chebyshev coefficients of ``h(v)/(1 - v)`` on ``[1, 2]`` from :func:`_h_over_one` (built
+    once: analytic there, relative accuracy kept at the simple zero ``v = 1``; the nearest
+    singularity ``v = 0`` gives ``ρ = 3 + 2√2``, so 26 terms reach ~1e-17 of its scale)."""
+    if not _H_OVER:
+        from numpy.polynomial import chebyshev as C
+        x = np.cos(np.pi * (np.arange(40) + 0.5) / 40)
+        v = 1.5 + 0.5 * x
+        _H_OVER.append(C.chebfit(x, _h_over_one(v) / (1.0 - v), 25))
+    return _H_OVER[0]

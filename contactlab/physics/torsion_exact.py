@@ -37,7 +37,7 @@ from ..numeric.roots import bracketed_root
 from .torsion_elliptic import K_comp, h_kernel, kme_over_m
 from .torsion_split import Summed, per_element, split_at_cuts
 
-__all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral",
+__all__ = ["K_comp", "kme_over_m", "h_kernel", "slip_function", "torque_integral", "panels_apply",
            "x_g_integral", "sliding_torque", "twist_of_stick", "torque_of_stick",
            "dissipation_integral", "stick_shear", "circumferential_displacement",
            "solve_stick_of_twist", "solve_stick_of_torque",
@@ -109,17 +109,17 @@ def _log_segments(profile, lo: np.ndarray, hi: np.ndarray):
 
 
 def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
-                   atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                   atol: np.ndarray, panels: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """``Σ_segments ∫ kernel(t, g(t), idx) t dw`` over ``t ∈ [lo, hi]`` (``w = ln t``), per element.
 
     ``kernel(t, g_t, idx)`` receives nodes ``t`` (shape (m, k)), ``g`` there and the flat element
     indices ``idx`` (shape (m,)) into ``lo``/``hi``. Nodes are clipped into their exact segment so
     that rounding of ``exp(ln t)`` never crosses a breakpoint. Large tables (linear or cubic) go
-    through :func:`_integrate_table`.
+    through :func:`_integrate_table` (``panels``: with its product-integration panels).
     """
     nodes = _composite_nodes(profile)
     if nodes is not None and nodes.size > _TABLE_SPLIT_MAX:
-        return _integrate_table(profile, kernel, lo, hi, rtol, atol)
+        return _integrate_table(profile, kernel, lo, hi, rtol, atol, panels)
     w_lo, w_hi, t_lo, t_hi = _log_segments(profile, lo, hi)
     n_seg, n = w_lo.shape
     elem = np.broadcast_to(np.arange(n), (n_seg, n)).ravel()
@@ -136,6 +136,40 @@ def _integrate_log(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
 
 
 _TABLE_CACHE: dict = {}
+_GAUSS: dict = {}
+
+
+def _gauss_unit(q: int) -> tuple[np.ndarray, np.ndarray]:
+    """``q``-point Gauss-Legendre nodes and weights on [0, 1] (cached: the eigenvalue solve
+    costs ~1 ms, as much as a whole curve step)."""
+    hit = _GAUSS.get(q)
+    if hit is None:
+        u, wu = np.polynomial.legendre.leggauss(q)
+        hit = _GAUSS[q] = (0.5 * (u + 1.0), 0.5 * wu)
+    return hit
+
+
+def panels_apply(profile, a: np.ndarray) -> bool:
+    """Whether the product-integration panels take part for contact radii ``a`` (m): a node
+    table on the composite route (more than ``_TABLE_SPLIT_MAX`` nodes) with a panel starting
+    inside the largest contact. Only then does the curve route differ from the composite one
+    (every other profile and state keeps its bits)."""
+    nodes = _composite_nodes(profile)
+    if nodes is None or nodes.size <= _TABLE_SPLIT_MAX:
+        return False
+    from .table_panels import panels_of
+    pan = panels_of(profile)
+    return bool(pan.start.size) and float(nodes[pan.start[0]]) < float(np.max(a, initial=0.0))
+
+
+def _g_route(profile, panels: bool):
+    """``g`` of the profile at fresh points: with ``panels`` (the curve route) a linear table's
+    per-segment cached form (:func:`contactlab.physics.table_panels.fast_g`, same values to
+    rounding, O(1) per point), else ``profile._g``."""
+    if not panels:
+        return profile._g
+    from .table_panels import fast_g
+    return lambda t: fast_g(profile, t)
 
 
 def _table_rule(profile, upto: float | None = None
@@ -177,7 +211,7 @@ def _table_rule(profile, upto: float | None = None
 
 
 def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: float,
-                     atol: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                     atol: np.ndarray, panels: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """``∫_lo^hi kernel(t, g(t), idx) dt`` for a large table (N nodes, g analytic between them:
     sqrt cusps of a linear table, weaker kinks of a cubic spline).
 
@@ -190,13 +224,17 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     kernel may vary over many decades, is integrated adaptively in ``ln t`` with the closed-form
     g of that segment (``profile.table_g_first``); only this part carries an error estimate. The composite
     rule's own error is verified in the tests against the split adaptive route (1e-9).
+
+    ``panels=True``: the whole segments inside the product-integration panels of
+    :mod:`contactlab.physics.table_panels` are integrated there (``PANEL_POINTS`` kernel
+    evaluations per panel instead of 8 per segment; ``kernel`` must be linear in ``g`` and
+    analytic in ``t > 0``, as every kernel of this module is).
     """
     t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
+    g_of = _g_route(profile, panels)
     n = lo.size
     q = t_n.shape[1]
-    u, wu = np.polynomial.legendre.leggauss(q)
-    u = 0.5 * (u + 1.0)
-    wu = 0.5 * wu
+    u, wu = _gauss_unit(q)
     j_lo = np.clip(np.searchsorted(r, lo, side="right") - 1, 0, r.size - 2)
     j_hi = np.clip(np.searchsorted(r, hi, side="left") - 1, 0, r.size - 2)
     same = j_lo >= j_hi
@@ -222,7 +260,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         width = (a_end[rest] - lo[rest])[:, None]
         tt = lo[rest][:, None] + width * u**2
         ww = 2.0 * width * u * wu
-        gg = profile._g(tt.ravel()).reshape(tt.shape)
+        gg = g_of(tt.ravel()).reshape(tt.shape)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[rest] += np.sum(kernel(tt, gg, rest) * ww, axis=1)
     # last piece [r_j_hi, hi], g once per distinct piece
@@ -233,14 +271,27 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         inv = inv.ravel()
         kw = (keys[:, 1] - keys[:, 0])[:, None]
         kt = keys[:, :1] + kw * u**2
-        kg = profile._g(kt.ravel()).reshape(kt.shape)
+        kg = g_of(kt.ravel()).reshape(kt.shape)
         kww = 2.0 * kw * u * wu
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[last] += np.sum(kernel(kt[inv], kg[inv], last) * kww[inv], axis=1)
     # whole segments j_lo+1 .. j_hi-1: one row of q rule nodes per (element, segment), no
     # padding, chunked over elements so that a chunk holds at most ~2e6 nodes
     first, last = j_lo + 1, j_hi - 1
+    covered = None
+    if panels:
+        from . import table_panels as _tp
+        pan = _tp.panels_of(profile)
+        # (g is filled up to the largest hi, beyond every segment a panel takes here)
+        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
+        val += v_p
     count = np.maximum(last - first + 1, 0)
+    direct = None
+    if covered is not None:
+        # only the segments outside every panel, as positions in their sorted list
+        direct = np.flatnonzero(~covered)
+        first = np.searchsorted(direct, first, side="left")
+        count = np.maximum(np.searchsorted(direct, last, side="right") - first, 0)
     todo = np.flatnonzero(count > 0)
     q = t_n.shape[1]
     ends = np.cumsum(count[todo])
@@ -253,6 +304,8 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         elem = np.repeat(ids, cnt)                                  # element of each row
         offs = np.arange(elem.size) - np.repeat(np.cumsum(cnt) - cnt, cnt)
         seg = first[elem] + offs
+        if direct is not None:                    # the panels took the other segments
+            seg = direct[seg]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             f = kernel(t_n[seg], g_n[seg], elem)
         val += np.bincount(elem, weights=np.sum(f * w_n[seg], axis=1), minlength=n)
@@ -262,16 +315,18 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
 
 # ---------------------------------------------------------------- the slip function P
 def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.ndarray,
-                  g_a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+                  g_a: np.ndarray, rtol: float, panels: bool = False
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """``P(x) = ∫_x^a p(s)/sqrt(s²-x²) ds`` (Pa), ``0 < x <= a``; returns (value, error estimate).
 
     [S eq. 53]; by-parts swapped form of the module docstring. ``P(a) = 0`` unless ``d != g(a)``
-    (flat punch: ``P(a) = π E* d/(2a)``). Arrays broadcast.
+    (flat punch: ``P(a) = π E* d/(2a)``). Arrays broadcast. ``panels``: large tables integrate
+    on their product-integration panels (:mod:`contactlab.physics.table_panels`).
     """
     x, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, a, d, g_a)))
     shape = x.shape
     x, a, d, g_a = (v.ravel() for v in (x, a, d, g_a))
-    g_x = profile._g(x)
+    g_x = _g_route(profile, panels)(x)
     p_a = (x / a) ** 2
     Ka = K_comp(p_a)
     boundary = (g_a - g_x) * Ka / a + (d - g_a) * Ka / a
@@ -286,16 +341,23 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
             dg = gt - gxs[idx][:, None]
             return dg * kme_over_m((xx / t) ** 2) / (t * t)
 
+        def linear(t: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            A = kme_over_m((xs[idx][:, None] / t) ** 2) / (t * t)      # kernel = A g + B
+            return A, -gxs[idx][:, None] * A
+
+        kernel.linear = linear     # type: ignore[attr-defined]  # the panels' one evaluation
         scale = np.abs(boundary[todo]) + (g_a[todo] - gxs) / as_
-        v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale)
+        v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale, panels)
         val[todo] += v
         err[todo] = e
     return E_star / np.pi * val.reshape(shape), E_star / np.pi * err.reshape(shape)
 
 
 def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.ndarray,
-                    g_a: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
-    """``T(c) = ∫_c^a x² P(x) dx`` (N), ``0 <= c <= a``, as one swapped integral; (value, error)."""
+                    g_a: np.ndarray, rtol: float, panels: bool = False
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """``T(c) = ∫_c^a x² P(x) dx`` (N), ``0 <= c <= a``, as one swapped integral; (value, error).
+    ``panels`` as in :func:`slip_function`."""
     c, a, d, g_a = np.broadcast_arrays(*(np.asarray(v, float) for v in (c, a, d, g_a)))
     shape = c.shape
     c, a, d, g_a = (v.ravel() for v in (c, a, d, g_a))
@@ -320,8 +382,15 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
                 D = 2.0 * t * h_kernel(v) + cc * v * v * K_comp(v * v)
                 return (gp[idx][:, None] - gt) * D
 
+            def linear(t: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                cc = cp[idx][:, None]
+                v = cc / t
+                D = 2.0 * t * h_kernel(v) + cc * v * v * K_comp(v * v)
+                return -D, gp[idx][:, None] * D                           # kernel = A g + B
+
+            kernel.linear = linear     # type: ignore[attr-defined]
             scale = gp * ap * ap
-            v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3)
+            v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3, panels)
             val[todo[pos]] += v
             err[todo[pos]] = e
     return E_star / np.pi * val.reshape(shape), E_star / np.pi * err.reshape(shape)
@@ -506,13 +575,13 @@ def circumferential_displacement(psi, phi: np.ndarray, r: np.ndarray, c: np.ndar
 # ---------------------------------------------------------------- inverse problems
 def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.ndarray,
                          a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                         rtol: float) -> np.ndarray:
+                         rtol: float, panels: bool = False) -> np.ndarray:
     """Stick radius ``c`` (m) for twists ``phi >= 0`` (rad): root of ``μ P(c)/(2G_t) = φ``.
 
     Solved in ``y = ln(c/a)`` by the bracketed root finder (``φ`` is monotone in ``y`` and nearly
     linear as ``c → 0``). ``c = a`` while ``φ <= μP(a)/(2G_t)`` (no slip; > 0 only for a flat
     punch), ``c = 0`` when the stick radius would lie below ``C_MIN_REL a`` (full sliding to double
-    precision). Flat arrays of equal size.
+    precision). Flat arrays of equal size. ``panels`` as in :func:`slip_function`.
     """
     c = a.copy()
     live = (a > 0) & (phi > 0)
@@ -539,15 +608,22 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
 
         def func(y: np.ndarray, idx: np.ndarray) -> np.ndarray:
             P, _ = slip_function(profile, E_star, s_a[idx] * np.exp(y), s_a[idx], s_d[idx],
-                                 s_g[idx], rtol)
+                                 s_g[idx], rtol, panels)
             return twist_of_stick(mu, G_t, P)
 
-        lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min)
-        y = _bracketed(func, pl[solve], lo, hi, f_lo, f_hi, rtol, "stick radius")
+        lo, hi, f_lo, f_hi = _grid_brackets(func, pl[solve], s_a, s_d, s_g, y_min,
+                                            refine=_CURVE_REFINE if panels else 0)
+        y = _bracketed(func, pl[solve], lo, hi, f_lo, f_hi, rtol, "stick radius",
+                       secant_start=panels)
         out[solve] = s_a * np.exp(y)
     c[idx_live] = out
     return np.where(a > 0, c, 0.0)
 
+
+#: subintervals of each root-bracketing grid interval on the curve route (``panels``): one more
+#: batched evaluation of at most (roots x this) points buys a start closer to the root by
+#: about ``(this + 1)³`` and saves passes of the root finder over all the curve's points
+_CURVE_REFINE = 4
 
 #: ``y = ln(c/a)`` grid used to bracket many roots that share one normal state (log-spaced in
 #: ``|y|`` from 1e-9 to ``|ln C_MIN_REL|``, ~10 points per decade)
@@ -555,7 +631,7 @@ _Y_GRID = -np.logspace(-9.0, np.log10(-np.log(C_MIN_REL)), 120)[::-1]
 
 
 def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                   y_min: float, min_group: int = 16):
+                   y_min: float, min_group: int = 16, refine: int = 0):
     """Narrow brackets in ``y = ln(c/a)`` for roots of a function decreasing in ``y``.
 
     Elements sharing one normal state ``(a, d, g(a))`` (a torque-twist curve) share one evaluation
@@ -564,6 +640,10 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     at a point very close to the root, so the root finder starts with one end nearly on the root.
     Returns ``(lo, hi, f_lo, f_hi)`` (``f`` = NaN where unknown); groups smaller than ``min_group``
     keep the full bracket ``[y_min, 0]``.
+
+    ``refine > 0`` (curves of many points): every grid interval that brackets a root of a
+    one-state group is split into ``refine + 1`` (one more batched evaluation), so the
+    interpolated start lies much closer to the root and the root finder needs fewer passes.
     """
     n = target.size
     lo = np.full(n, y_min)
@@ -586,6 +666,19 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     v = vals[row[inverse[sel]]]                       # (m, n_g), decreasing along the grid
     tg = target[sel]
     k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
+    if refine > 0 and big.size == 1:
+        # one state (a curve): split the bracketing intervals, evaluate once, re-bracket
+        used = np.unique(k)
+        frac = np.arange(1, refine + 1) / (refine + 1)
+        new = (grid[used - 1][:, None] + frac * (grid[used] - grid[used - 1])[:, None]).ravel()
+        f_new = func(new, np.full(new.size, first[0]))
+        grid = np.concatenate([grid, new])
+        order = np.argsort(grid, kind="stable")
+        grid = grid[order]
+        n_g = grid.size
+        row0 = np.concatenate([vals[0], f_new])[order]
+        v = np.broadcast_to(row0, (sel.size, n_g))                    # one row, no copies
+        k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
     ylo, yhi = grid[k - 1], grid[k]
     flo = v[np.arange(sel.size), k - 1]
     fhi = v[np.arange(sel.size), k]
@@ -625,7 +718,8 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
 
 
 def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
-               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None) -> np.ndarray:
+               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None,
+               secant_start: bool = False) -> np.ndarray:
     """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite.
 
     ``ftol`` (default ``rtol``): residual test; 0 keeps refining the bracket in ``y`` to ``rtol``
@@ -643,7 +737,8 @@ def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: n
 
         out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=ftol,
                                   what=what, f_lo=f_lo[ids] if use else None,
-                                  f_hi=f_hi[ids] if use else None)
+                                  f_hi=f_hi[ids] if use else None,
+                                  secant_start=secant_start and use)
     return out
 
 

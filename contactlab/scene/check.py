@@ -136,6 +136,9 @@ class Checker:
                     v >= key.high if key.high_open else v > key.high):
                 self.add(path, value, key.high_allowed)
                 return None
+            if v is not None and key.low is not None and v < key.low:
+                self.add(path, value, key.high_allowed)
+                return None
             return v
         if kind == "integer":
             return self.integer(path, value, int(key.low or 0), int(key.high or 0))

@@ -11,7 +11,8 @@ setting:
     history).
 ``n_rings``
     Rings of the exact torsion solver (scenes whose plan runs it: a twist under a varying normal
-    load); it does not read ``n_springs``.
+    load); it does not read ``n_springs``. A scene with ``solver.torque_rtol`` ladders around the
+    rings that accuracy chooses (each rung sets ``n_rings`` in its place).
 ``steps``
     Refinement factor of every load-path segment's ``steps`` (``steps_per_cycle`` for a
     sinusoid), durations and periods held (foundation and viscoelastic scenes; a measured table
@@ -287,14 +288,17 @@ def _defaults(scene: "Scene") -> dict[str, Any]:
     from ..effects.viscoelastic import DEFAULT_N_SPRINGS as VISCO_N
     from ..effects.wear import DEFAULT_GRID, DEFAULT_JUMP_RTOL
     from ..foundation import DEFAULT_N_SPRINGS
-    from ..foundation.rings import DEFAULT_N_RINGS
+    from ..foundation.rings import DEFAULT_N_RINGS, rings_for_rtol
     data = scene.to_dict()
     wear = data.get("wear", {})
     sol = data.get("solver", {})
+    # the scene's rings: its n_rings, or those its torque_rtol chooses
+    rings = (rings_for_rtol(float(sol["torque_rtol"])) if "torque_rtol" in sol
+             else DEFAULT_N_RINGS)
     n_def = VISCO_N if scene.plan().route == "viscoelastic" else DEFAULT_N_SPRINGS
     return {"rtol": float(sol.get("rtol", DEFAULT_RTOL)),
             "n_springs": int(sol.get("n_springs", n_def)),
-            "n_rings": int(sol.get("n_rings", DEFAULT_N_RINGS)), "steps": 1.0,
+            "n_rings": int(sol.get("n_rings", rings)), "steps": 1.0,
             "interpolation": data["profile"].get("interpolation", "linear"),
             "n_grid": int(wear.get("n_grid", DEFAULT_GRID)),
             "jump_rtol": float(wear.get("jump_rtol", DEFAULT_JUMP_RTOL))}
@@ -363,6 +367,8 @@ def with_setting(scene: "Scene", knob: str, value: Any) -> "Scene":
         data.setdefault("solver", {})["rtol"] = float(value)
     elif knob in ("n_springs", "n_rings"):
         data.setdefault("solver", {})[knob] = int(value)
+        if knob == "n_rings":          # a rung's rings replace those torque_rtol would choose
+            data["solver"].pop("torque_rtol", None)
     elif knob == "steps":
         refined = _refined(data, float(value))
         if refined is None:

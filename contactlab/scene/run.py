@@ -572,10 +572,11 @@ def run_scene(scene: "Scene") -> SceneResult:
         # the model the plan resolved (effects.path.resolve_path_method, as simulate does)
         method = plan.details.get("path_method") or "mdr"
         if method == "exact":
-            # the exact ring solver: it reads n_rings, not n_springs
+            # the exact ring solver: it reads n_rings (or torque_rtol), not n_springs
             kw = {"method": "exact"}
-            if "n_rings" in scene.solver:
-                kw["n_rings"] = scene.solver["n_rings"]
+            for key in ("n_rings", "torque_rtol"):
+                if key in scene.solver:
+                    kw[key] = scene.solver[key]
         else:                              # the plan chose the MDR springs
             kw = {**kw, "method": method}
         try:

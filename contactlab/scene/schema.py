@@ -15,6 +15,7 @@ from typing import Any
 
 from ..contact import Contact
 from ..effects.wear import INTEGRATORS
+from ..foundation.rings import RTOL_RANGE as _TORQUE_RTOL_RANGE
 from ..loadpath.base import GROUPS, QUANTITIES
 from ..loadpath.base import UNITS as PATH_UNITS
 from ..numeric.units import DIMENSION_OF_SI_UNIT, canonical_unit
@@ -47,7 +48,8 @@ class Key:
         Quantities and axes.
     low, high : float, optional
         Integers: the inclusive range. Quantities: ``high`` is an upper bound (exclusive when
-        ``high_open``), ``high_allowed`` the message past it.
+        ``high_open``), ``low`` an inclusive lower bound, ``high_allowed`` the message outside
+        them.
     choices : tuple of str
         Names for ``"choice"`` and ``"names"``; for a quantity, names accepted instead of a
         number (``smoothing = "auto"``).
@@ -126,6 +128,13 @@ SOLVER_KEYS = {
     "n_springs": Key("integer", low=2, high=10_000_000),
     # rings of the exact torsion solver (varying-load twist)
     "n_rings": Key("integer", low=2, high=10_000_000),
+    # or the rings chosen for a torque accuracy (Contact.simulate(torque_rtol=...)); not both
+    "torque_rtol": Key("quantity", "dimensionless", "positive", low=_TORQUE_RTOL_RANGE[0],
+                       high=_TORQUE_RTOL_RANGE[1],
+                       high_allowed=f"a torque accuracy relative to the sliding torque, "
+                                    f"{_TORQUE_RTOL_RANGE[0]:g} <= torque_rtol <= "
+                                    f"{_TORQUE_RTOL_RANGE[1]:g} (the range of the measured "
+                                    "error law of the ring count)"),
 }
 #: [outputs]
 OUTPUT_KEYS = {

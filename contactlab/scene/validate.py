@@ -468,6 +468,12 @@ def validate(raw: Any, base_dir: str | Path | None = None, *,
     if outs.get("method") in ("exact", "mdr") and "friction" not in itf:
         ck.add("outputs.method", outs["method"], "'no-slip' without interface.friction (the "
                "exact and mdr methods model partial slip and need a friction coefficient)")
+    sol = data.get("solver", {})
+    if "n_rings" in sol and "torque_rtol" in sol:
+        # Contact.simulate refuses both (the accuracy chooses the rings)
+        ck.add("solver.torque_rtol", sol["torque_rtol"],
+               f"solver.n_rings or solver.torque_rtol, not both (n_rings = {sol['n_rings']} was "
+               "given; torque_rtol chooses the rings of the exact ring solver itself)")
     eff = outs.get("effects", [])
     if "slip" in eff and "friction" not in itf:
         ck.add("outputs.effects", "slip", "'slip' only with interface.friction")

@@ -1,0 +1,298 @@
+"""Product-integration panels over a large table for the exact torsion integrals (issue 28).
+
+The composite rule of :mod:`contactlab.physics.torsion_exact` integrates ``∫ F(t, g(t)) dt`` over
+every whole table segment with 8 Gauss nodes (``t = r_j + Δ u²`` removes the square-root cusp of
+``g`` at each node), so one integral costs 8 kernel evaluations per segment in contact: a
+torque-twist curve on a table with hundreds of nodes in contact pays ``O(points × nodes)``.
+
+Every integrand of the exact torsion kernels is linear in ``g``, ``F = A(t) g + B(t)``, and ``A``,
+``B`` are analytic in ``t`` on the whole right half-plane (``(K - E)/k²`` of ``k² = 1 - x²/t²``,
+``h(x/t)`` and ``K`` are analytic for ``Re(x/t) > 0``; only ``g`` has the cusps). So on a *panel*
+of consecutive segments spanning at most a factor :data:`PANEL_RATIO` in ``t``, ``A`` and ``B``
+are interpolated at :data:`PANEL_POINTS` Chebyshev points (Bernstein ellipse ``ρ = 3 + 2√2`` for
+ratio 2, interpolation error ``ρ^-18 ≈ 2e-14`` of the kernel's scale), and
+
+    ∫_{segments j1..j2-1} F dt = Σ_m A(τ_m) [Cg_m(j2) - Cg_m(j1)] + B(τ_m) [C1_m(j2) - C1_m(j1)]
+
+with the prefix sums ``Cg_m(j) = Σ_{j' < j} ∫_seg g ℓ_m dt`` and ``C1_m`` (``ℓ_m`` the Lagrange basis
+of the panel) computed once per table by the same 8-point rule (a panel holds at least
+:data:`PANEL_MIN_SEGMENTS` segments, so ``ℓ_m`` is smooth on one segment: the rule integrates
+``g ℓ_m`` as accurately as ``g``). A range that starts or ends inside a panel is a difference
+of two prefix sums; the interpolation points below the range's lower limit evaluate the
+kernels' analytic continuation (``torsion_elliptic``). One integral then costs
+``PANEL_POINTS`` kernel evaluations per panel (about ``log2(a/r_1)`` panels) instead of 8 per
+segment. Segments outside every panel (the first few, where a factor 2 holds fewer than
+``PANEL_MIN_SEGMENTS`` of them) stay on the composite rule.
+
+Pure functions and a per-table cache (by the profile's value identity, like the composite
+rule's); used by the exact torque-twist curve of large tables (``panels=True``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["PANEL_RATIO", "PANEL_POINTS", "PANEL_MIN_SEGMENTS", "Panels", "panels_of"]
+
+#: largest ratio of a panel's ends (the interpolation's Bernstein ellipse: ρ = 3 + 2√2 at 2)
+PANEL_RATIO = 2.0
+#: Chebyshev points per panel: ρ^-18 = 1.6e-14 at ratio 2
+PANEL_POINTS = 18
+#: fewest table segments of a panel (fewer stay on the composite rule: a Lagrange polynomial
+#: of degree 17 over 32 segments varies little on one, so the 8-point rule integrates g ℓ_m to
+#: the accuracy it integrates g)
+PANEL_MIN_SEGMENTS = 32
+
+_CACHE: dict = {}
+
+
+def _chebyshev(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """First-kind Chebyshev points on [-1, 1] and their barycentric weights."""
+    k = np.arange(n)
+    theta = (2 * k + 1) * np.pi / (2 * n)
+    return np.cos(theta), (-1.0) ** k * np.sin(theta)
+
+
+def _lagrange(t: np.ndarray, tau: np.ndarray, bw: np.ndarray) -> np.ndarray:
+    """Lagrange basis of the points ``tau`` (weights ``bw``) at ``t``: shape ``t.shape + (n,)``."""
+    diff = t[..., None] - tau
+    hit = diff == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = bw / diff
+        out = q / np.sum(q, axis=-1, keepdims=True)
+    if np.any(hit):
+        rows = np.any(hit, axis=-1)
+        out[rows] = hit[rows].astype(float)
+    return out
+
+
+class Panels:
+    """The panels of one table: segment ranges, points and (lazily) prefix sums of weights.
+
+    Attributes
+    ----------
+    start, end : ndarray of int
+        Segment range ``[start, end)`` of each panel.
+    panel_of : ndarray of int
+        Panel of each segment (-1: not in a panel, composite rule).
+    tau : ndarray, shape (n_panels, PANEL_POINTS)
+        Interpolation points of each panel, m.
+    """
+
+    def __init__(self, r: np.ndarray) -> None:
+        n_seg = r.size - 1
+        starts, ends = [], []
+        s = 1                               # segment 0 ([0, r_1]) never: its ratio is infinite
+        while s < n_seg:
+            e = min(int(np.searchsorted(r, PANEL_RATIO * r[s], side="right")) - 1, n_seg)
+            if e - s >= PANEL_MIN_SEGMENTS:
+                starts.append(s)
+                ends.append(e)
+                s = e
+            else:
+                s += 1
+        self.start = np.array(starts, dtype=np.intp)
+        self.end = np.array(ends, dtype=np.intp)
+        self.panel_of = np.full(n_seg, -1, dtype=np.intp)
+        for p, (s0, e0) in enumerate(zip(starts, ends)):
+            self.panel_of[s0:e0] = p
+        x, self._bw = _chebyshev(PANEL_POINTS)
+        lo, hi = r[self.start], r[self.end]
+        self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
+        # per-segment weights and prefix sums per panel (rows start..end), flattened with
+        # offsets; built on demand up to the segments a call needs (g is known only there)
+        self.offset = np.concatenate([[0], np.cumsum(self.end - self.start + 1)])
+        self.cum_g = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self.cum_1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self._wg = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self._w1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
+        self.built = np.zeros(self.start.size, dtype=np.intp)     # segments built per panel
+
+    def build(self, which: np.ndarray, upto: np.ndarray, t: np.ndarray, w: np.ndarray,
+              g: np.ndarray) -> None:
+        """Prefix sums of the panels ``which`` over their first ``upto`` segments from the
+        composite rule (nodes ``t``, weights ``w``, ``g`` there; rows = segments, g filled for
+        those segments). The weights of a segment are its own (elementwise), and the prefix sums
+        are one sequential ``cumsum`` from the panel's start, so their values do not depend on
+        how the panel grew (same call, same bits)."""
+        for p, u in zip(which, upto):
+            b = int(self.built[p])
+            if u <= b:
+                continue
+            s0 = int(self.start[p])
+            o = int(self.offset[p])
+            rows = slice(s0 + b, s0 + u)
+            ell = _lagrange(t[rows], self.tau[p], self._bw)           # (seg, q, n)
+            self._wg[o + b:o + u] = np.einsum("sq,sqn->sn", w[rows] * g[rows], ell)
+            self._w1[o + b:o + u] = np.einsum("sq,sqn->sn", w[rows], ell)
+            self.cum_g[o + 1:o + 1 + u] = np.cumsum(self._wg[o:o + u], axis=0)
+            self.cum_1[o + 1:o + 1 + u] = np.cumsum(self._w1[o:o + u], axis=0)
+            self.built[p] = u
+
+
+def panels_of(profile) -> Panels:
+    """The (cached) panels of the node table ``profile``."""
+    r = profile.table_nodes()
+    key = (hash(profile), r.size)
+    hit = _CACHE.get(key)
+    if hit is None or hit[0] != profile:
+        if len(_CACHE) > 8:
+            _CACHE.clear()
+        hit = (profile, Panels(r))
+        _CACHE[key] = hit
+    return hit[1]
+
+
+def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
+              rule: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The panel part of ``Σ_elements ∫ kernel`` over whole segments ``first..last`` (inclusive,
+    per element): returns ``(values, covered)`` with ``covered[seg]`` True for segments the panels
+    take (the caller integrates the others by the composite rule).
+
+    ``kernel(t, g_t, idx)`` must be linear in ``g_t`` and analytic in ``t`` for ``t > 0``
+    (evaluated at ``g = 0`` and ``g = 1``, or once by its attribute ``kernel.linear(t, idx)``
+    returning ``(A, B)`` with ``kernel = A g + B``).
+    """
+    val = np.zeros(n)
+    n_p = pan.start.size
+    if n_p == 0:
+        return val, np.zeros(pan.panel_of.size, dtype=bool)
+    lo = np.maximum(first[:, None], pan.start[None, :])             # (elements, panels)
+    hi = np.minimum(last[:, None] + 1, pan.end[None, :])
+    el, p = np.nonzero(hi > lo)
+    if el.size:
+        need = np.unique(p)
+        upto = np.zeros(n_p, dtype=np.intp)
+        np.maximum.at(upto, p, hi[el, p] - pan.start[p])
+        t, w, g = rule
+        pan.build(need, upto[need], t, w, g)
+        base = pan.offset[p]
+        i1 = base + lo[el, p] - pan.start[p]
+        i2 = base + hi[el, p] - pan.start[p]
+        sg = pan.cum_g[i2] - pan.cum_g[i1]
+        s1 = pan.cum_1[i2] - pan.cum_1[i1]
+        tau = pan.tau[p]
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            if hasattr(kernel, "linear"):          # kernel = A g + B in one evaluation
+                A, B = kernel.linear(tau, el)
+            else:
+                B = kernel(tau, np.zeros(tau.shape), el)
+                A = kernel(tau, np.ones(tau.shape), el) - B
+        val += np.bincount(el, weights=np.sum(A * sg + B * s1, axis=1), minlength=n)
+    return val, pan.panel_of >= 0
+
+
+# ---------------------------------------------------------------- g of a linear table, fast
+#: nodes below a segment whose arcsine terms are summed exactly at every point (the others,
+#: analytic on the segment, are interpolated): the nearest interpolated singularity lies
+#: (G_NEAR + 1) segments below, a Bernstein ellipse of ρ ≈ 18 for a uniform table
+G_NEAR = 3
+#: Chebyshev terms of the interpolated far sum per segment (ρ^-14 ≈ 3e-18 at ρ = 18)
+G_POINTS = 14
+#: segments whose ellipse is smaller (strongly non-uniform tables) take the exact sum
+#: (ρ^-14 <= 8e-16 above it)
+_G_RHO_MIN = 12.0
+
+
+class _FastG:
+    """``g`` of a linear table at any point of segment ``j >= 1``:
+    ``g(t) = t [s_j π/2 - Σ_{i<=j} Δs_i asin(r_i/t)]`` with the terms of the nodes more than
+    :data:`G_NEAR` below summed as a Chebyshev series per segment (coefficients built on
+    demand from the sum at the Chebyshev points, cached per table; Clenshaw's recurrence)."""
+
+    def __init__(self, r: np.ndarray, slopes: np.ndarray) -> None:
+        self.r = r
+        self.s = slopes
+        self.ds = np.concatenate([[0.0], np.diff(slopes)])     # jump at node i (ds[0] unused)
+        n_seg = r.size - 1
+        x, _ = _chebyshev(G_POINTS)
+        theta = np.arccos(x)
+        # values at the points -> Chebyshev coefficients (discrete orthogonality)
+        self.to_coef = 2.0 / G_POINTS * np.cos(np.outer(theta, np.arange(G_POINTS)))
+        self.to_coef[:, 0] *= 0.5
+        lo, hi = r[:-1], r[1:]
+        self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
+        self.coef = np.zeros((n_seg, G_POINTS))
+        self.done = 0
+        # ρ of the far sum's nearest singularity, r_{j-G_NEAR-1}, seen from segment j
+        j = np.arange(n_seg)
+        near = r[np.clip(j - G_NEAR - 1, 0, None)]
+        h = 0.5 * (hi - lo)
+        m = np.where(h > 0, (0.5 * (lo + hi) - near) / np.where(h > 0, h, 1.0), np.inf)
+        rho = m + np.sqrt(np.maximum(m * m - 1.0, 0.0))
+        self.ok = (j >= 1) & ((j - G_NEAR <= 1) | (rho >= _G_RHO_MIN))
+
+    def _build(self, need: int) -> None:
+        if need <= self.done:
+            return
+        need = min(self.r.size - 1, max(need, self.done + self.done // 2))
+        for j in range(self.done, need):                      # O(j) each, once per table
+            k = j - G_NEAR                                     # nodes 1 .. k-1 are far
+            if k <= 1 or not self.ok[j]:
+                continue
+            far = np.arcsin(self.r[1:k][None, :] / self.tau[j][:, None]) @ self.ds[1:k]
+            self.coef[j] = far @ self.to_coef
+        self.done = need
+
+    def serves(self, t: np.ndarray) -> np.ndarray:
+        """Points (flat, > 0) this form serves: not in segment 0 nor in a segment whose far sum
+        does not interpolate to rounding (strongly non-uniform tables)."""
+        r = self.r
+        return self.ok[np.clip(np.searchsorted(r, t, side="right") - 1, 0, r.size - 2)]
+
+    def __call__(self, t: np.ndarray) -> np.ndarray:
+        """g at points ``t`` (flat) that :meth:`serves`."""
+        r = self.r
+        j = np.clip(np.searchsorted(r, t, side="right") - 1, 0, r.size - 2)
+        self._build(int(np.max(j, initial=0)) + 1)
+        lo, hi = r[j], r[j + 1]
+        x2 = 2.0 * (2.0 * t - lo - hi) / (hi - lo)
+        c = self.coef[j]
+        b1 = np.zeros(t.shape)
+        b2 = np.zeros(t.shape)
+        for m in range(G_POINTS - 1, 0, -1):
+            b1, b2 = c[:, m] + x2 * b1 - b2, b1
+        far = c[:, 0] + 0.5 * x2 * b1 - b2
+        i = j[:, None] - np.arange(G_NEAR + 1)[None, :]       # nodes j, j-1, .., j-G_NEAR
+        live = i >= 1
+        ic = np.where(live, i, 1)
+        q = np.minimum(r[ic] / t[:, None], 1.0)
+        near = np.sum(np.where(live, self.ds[ic] * np.arcsin(q), 0.0), axis=1)
+        return t * (0.5 * np.pi * self.s[j] - near - far)
+
+
+_G_CACHE: dict = {}
+
+
+def fast_g(profile, t: np.ndarray) -> np.ndarray:
+    """``profile._g(t)`` of a linear table from per-segment cached far sums (O(1) per point
+    instead of O(nodes below)); any other profile, and points it cannot serve, by ``_g``.
+    Agrees with the direct sum to rounding (the interpolation errs by ``ρ^-14 < 1e-15`` of the
+    far sum)."""
+    t = np.asarray(t, float)
+    if not profile.has("linear_table") or t.size == 0:
+        return profile._g(t)
+    key = (hash(profile), profile.table_nodes().size)
+    hit = _G_CACHE.get(key)
+    if hit is None or hit[0] != profile:
+        if len(_G_CACHE) > 8:
+            _G_CACHE.clear()
+        hit = (profile, _FastG(profile.table_nodes(), profile.table_slopes()))
+        _G_CACHE[key] = hit
+    flat = t.ravel()
+    fg = hit[1]
+    ok = (flat > 0) & np.isfinite(flat) & (flat < fg.r[-1])
+    need = int(np.searchsorted(fg.r, np.max(flat[ok], initial=0.0), side="right"))
+    if need > fg.done:
+        # building the far sums up to segment `need` costs ~G_POINTS need²/2 arcsines, the
+        # direct sums ~(points x need): build only when this call alone repays most of it
+        # (a curve's passes do; one state of a huge table does not)
+        build = G_POINTS * 0.5 * (float(need) ** 2 - float(fg.done) ** 2)
+        if build > 4.0 * float(np.count_nonzero(ok)) * need:
+            return profile._g(t)
+    ok[ok] = fg.serves(flat[ok])
+    out = np.empty(flat.shape)
+    if np.any(ok):
+        out[ok] = fg(flat[ok])
+    if not np.all(ok):
+        out[~ok] = profile._g(flat[~ok])
+    return out.reshape(t.shape)
