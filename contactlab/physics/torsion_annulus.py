@@ -35,6 +35,9 @@ from typing import cast
 import numpy as np
 import scipy.linalg as _la
 
+from ..numeric import normal_kernels as _normal_kernels
+from ..numeric import ring_kernels as _ring_kernels
+
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
            "difference", "add", "nonnegative_psi", "step", "punch_step", "punch_torque", "punch_energy",
@@ -47,6 +50,20 @@ CHECK_RTOL = 1e-9
 
 #: a piecewise-linear density: (lo, hi, wl, wr), each an array over the pieces, sorted, abutting
 Pieces = tuple
+
+#: the compiled passes of :func:`psi` and :func:`_ends` (:mod:`contactlab.numeric.ring_kernels`,
+#: the same bits as the numpy route): ``"on"`` None follows the backend
+#: (:func:`contactlab.numeric.normal_kernels.backend`), True/False forces them (tests; False is
+#: the numpy reference), ``"compiled"`` False runs the kernels' plain Python logic (tests)
+_COMPILED: dict = {"on": None, "compiled": True}
+
+
+def _kernels() -> dict | None:
+    """The ring kernels to use, or None for the numpy route."""
+    on = _COMPILED["on"]
+    if on is None:
+        on = _normal_kernels.backend() == "numba"
+    return _ring_kernels.kernels(_COMPILED["compiled"]) if on else None
 
 
 def empty() -> Pieces:
@@ -75,6 +92,12 @@ def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, float)
     if lo.size == 0:
         return np.zeros(x.shape)
+    kern = _kernels()
+    if kern is not None:
+        out = np.empty(x.size)
+        kern["psi"](*(np.ascontiguousarray(a, float) for a in p),
+                    np.ascontiguousarray(x).ravel(), out)
+        return out.reshape(x.shape)
     al, be = _lin(p)
     whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
     tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
@@ -371,6 +394,12 @@ def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.nda
     plo, phi, wl, wr = p
     if plo.size == 0:
         return np.zeros(lo.shape), np.zeros(lo.shape)
+    kern = _kernels()
+    if kern is not None:
+        out_l, out_r = np.empty(lo.size), np.empty(lo.size)
+        kern["ends"](*(np.ascontiguousarray(a, float) for a in p), np.ascontiguousarray(lo, float),
+                     np.ascontiguousarray(hi, float), out_l, out_r)
+        return out_l, out_r
     k = np.searchsorted(plo, lo, "right") - 1
     inside = (k >= 0) & (hi <= phi[np.maximum(k, 0)])
     k = np.maximum(k, 0)

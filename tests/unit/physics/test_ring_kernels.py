@@ -1,0 +1,150 @@
+"""The compiled passes of the exact ring solver's punch densities (issue 28, ring solver row).
+
+Must show: :func:`contactlab.physics.torsion_annulus.psi` and ``_ends`` (through
+:func:`~contactlab.physics.torsion_annulus.difference`) give the same bits with the kernels of
+:mod:`contactlab.numeric.ring_kernels` as with the numpy route (the reference, which defines the
+stored path hashes), on random densities (abutting, with gaps, zero-width pieces, one piece) at
+radii on, between, below and beyond their piece ends; whole exact paths (Hertz, cone, a table;
+force rising, falling, constant; a release) bit-identical on both routes; the kernels' logic run
+uncompiled too (so it is covered without numba); ``set_backend("numpy")`` keeping numpy.
+"""
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.numeric import jit
+from contactlab.numeric import normal_kernels as NK
+from contactlab.physics import torsion_annulus as ta
+
+needs_numba = pytest.mark.skipif(not jit.available(), reason="numba (extra 'fast') not installed")
+MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
+MU = 0.3
+SERIES = ("torque", "twist", "dissipated_energy", "stick_radius")
+
+
+def _densities(seed):
+    rng = np.random.default_rng(seed)
+    b = np.sort(np.r_[0.0, rng.random(40), 1.0]) * 1e-4
+    wl, wr = rng.normal(size=(2, b.size - 1))
+    yield ta.from_nodes(b, wl, wr)                                    # abutting
+    keep = rng.random(b.size - 1) < 0.6                               # gaps between pieces
+    yield tuple(a[keep] for a in ta.from_nodes(b, wl, wr))
+    z = b.copy()
+    z[5] = z[4]                                                       # a zero-width piece
+    yield ta.from_nodes(z, wl, wr)
+    yield (b[3:4], b[4:5], wl[:1], wr[:1])                            # one piece
+
+
+def _radii(p, seed):
+    rng = np.random.default_rng(seed)
+    lo, hi = p[0], p[1]
+    return np.concatenate([lo, hi, 0.5 * (lo + hi), [0.0, -1e-5, 2e-4, lo[0], hi[-1]],
+                           np.nextafter(hi, 0.0), rng.uniform(0.0, 1.1e-4, 50)])
+
+
+def _route(monkeypatch, on, compiled=True):
+    monkeypatch.setitem(ta._COMPILED, "on", on)
+    monkeypatch.setitem(ta._COMPILED, "compiled", compiled)
+
+
+def _check_psi_and_ends(monkeypatch, compiled):
+    for seed in range(4):
+        dens = list(_densities(seed))
+        for p in dens:
+            x = _radii(p, seed)
+            _route(monkeypatch, False)
+            ref = ta.psi(p, x), ta.psi(p, x[:x.size // 2 * 2].reshape(2, -1)), ta.psi(p, np.float64(3e-5))
+            diffs = [ta.difference(p, q, s) for q in dens for s in (0.0, float(x[7]))]
+            _route(monkeypatch, True, compiled)
+            got = ta.psi(p, x), ta.psi(p, x[:x.size // 2 * 2].reshape(2, -1)), ta.psi(p, np.float64(3e-5))
+            for u, v in zip(got, ref):
+                assert u.shape == v.shape and u.tobytes() == v.tobytes()
+            got_d = [ta.difference(p, q, s) for q in dens for s in (0.0, float(x[7]))]
+            for d1, d0 in zip(got_d, diffs):
+                assert [a.tobytes() for a in d1] == [a.tobytes() for a in d0]
+
+
+def test_psi_and_ends_uncompiled_logic_is_bit_identical(monkeypatch):
+    _check_psi_and_ends(monkeypatch, compiled=False)
+
+
+@needs_numba
+def test_psi_and_ends_compiled_are_bit_identical(monkeypatch):
+    _check_psi_and_ends(monkeypatch, compiled=True)
+
+
+def _contacts():
+    r = np.linspace(0.0, 4e-4, 200)
+    return {"hertz": cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=MAT, friction=MU),
+            "cone": cl.Contact(cl.profiles.Cone(slope=0.03), materials=MAT,
+                               friction=MU),
+            "table": cl.Contact(cl.profiles.Tabulated(r=r, f=r ** 2 / 0.02 + 2e3 * r ** 3),
+                                materials=MAT, friction=MU)}
+
+
+def _path(c, kind, n=60, seed=0):
+    rng = np.random.default_rng(seed)
+    t = np.arange(1, n + 1) / n
+    force = {"rising": 5.0 + 10.0 * t, "falling": 15.0 - 10.0 * t,
+             "constant": np.full(n, 10.0),
+             "varying": 10.0 * (1 + 0.4 * np.sin(4 * np.pi * t + rng.uniform(0, 1))),
+             # unloaded to no contact in the middle, then loaded again
+             "release": 10.0 * np.abs(np.cos(np.pi * t)) ** 1.5}[kind]
+    a = float(np.max(c.normal(force=np.maximum(force, 1e-3))._radius))
+    s = MU * float(np.max(force)) / (c.moduli.torsional * a * a)
+    phi = 0.8 * s * np.sin(2 * np.pi * 3 * t + rng.uniform(0, 1)) * np.minimum(1, 2 * t)
+    return cl.LoadPath.from_arrays(force=force, twist=phi)
+
+
+def _runs(monkeypatch, c, path, compiled, **kw):
+    _route(monkeypatch, False)
+    ref = c.simulate(path, method="exact", **kw)
+    _route(monkeypatch, True, compiled)
+    got = c.simulate(path, method="exact", **kw)
+    return ref, got
+
+
+def _same(ref, got):
+    for k in SERIES:
+        assert getattr(got, k).tobytes() == getattr(ref, k).tobytes(), k
+    for k in ("work", "stored", "dissipated_per_step"):
+        assert got.meta["energy"][k].tobytes() == ref.meta["energy"][k].tobytes(), k
+    assert got.meta["fallback_steps"] == ref.meta["fallback_steps"]
+
+
+@needs_numba
+@pytest.mark.parametrize("name", ["hertz", "cone", "table"])
+@pytest.mark.parametrize("kind", ["rising", "falling", "constant", "varying", "release"])
+def test_exact_paths_are_bit_identical_on_the_compiled_route(monkeypatch, name, kind):
+    c = _contacts()[name]
+    ref, got = _runs(monkeypatch, c, _path(c, kind), True, n_rings=40)
+    _same(ref, got)
+
+
+def test_exact_path_uncompiled_logic_is_bit_identical(monkeypatch):
+    c = _contacts()["hertz"]
+    ref, got = _runs(monkeypatch, c, _path(c, "varying", n=40), False, n_rings=24)
+    assert ref.meta["annulus"]
+    _same(ref, got)
+
+
+@needs_numba
+def test_torque_controlled_path_is_bit_identical_on_the_compiled_route(monkeypatch):
+    c = _contacts()["hertz"]
+    t = np.arange(1, 61) / 60
+    force = 10.0 * (1 + 0.3 * np.sin(4 * np.pi * t))
+    a = float(np.min(c.normal(force=force)._radius))
+    # up to 0.7 of the smallest sliding torque (Hertz: 3π/16 μ F a)
+    M = 0.7 * 3 * np.pi / 16 * MU * 7.0 * a * np.sin(6 * np.pi * t)
+    path = cl.LoadPath.from_arrays(force=force, torque=M)
+    ref, got = _runs(monkeypatch, c, path, True, n_rings=40)
+    _same(ref, got)
+
+
+def test_numpy_backend_keeps_the_numpy_route(monkeypatch):
+    monkeypatch.setitem(ta._COMPILED, "on", None)
+    monkeypatch.setitem(NK._state, "backend", "numpy")
+    assert ta._kernels() is None
+    if jit.available():
+        monkeypatch.setitem(NK._state, "backend", "numba")
+        assert ta._kernels() is not None
