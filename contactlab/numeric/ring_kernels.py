@@ -116,6 +116,9 @@ def kernels(compiled: bool = True) -> dict:
     tests)."""
     if not compiled:
         return {"psi": psi_pass, "ends": ends_pass}
+    built = _state["kernels"]
+    if built is not None:               # built: no lock (asked ~15 times a solver step)
+        return built
     with _lock:
         if _state["kernels"] is None:
             _state["kernels"] = {
