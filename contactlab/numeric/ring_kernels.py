@@ -25,7 +25,8 @@ import numpy as np
 
 from . import jit as _jit
 
-__all__ = ["psi_pass", "ends_pass", "kernels"]
+__all__ = ["psi_pass", "ends_pass", "arccosh_args", "traction_fill", "arccos_args", "slip_fill",
+           "kernels"]
 
 _state: dict = {"kernels": None}
 _lock = threading.Lock()
@@ -110,18 +111,117 @@ def ends_pass(plo: np.ndarray, phi: np.ndarray, wl: np.ndarray, wr: np.ndarray, 
             out_r[i] = v + d * 0.0
 
 
+def arccosh_args(r: np.ndarray, t: np.ndarray, um: np.ndarray, idx: np.ndarray) -> int:
+    """First pass of ``torsion_annulus._antiderivatives``: ``u = max(t/r, 1)`` (1 where
+    ``r <= 0``) over the rows ``r`` and columns ``t``; the ``u > 1`` into ``um`` and their flat
+    (row-major) indices into ``idx``, in numpy's boolean-mask order; returns their count (the
+    caller takes ``arccosh(um[:n])`` with numpy)."""
+    k = t.size
+    n = 0
+    for i in range(r.size):
+        ri = r[i]
+        for j in range(k):
+            if ri > 0:
+                q = t[j] / ri
+                u = q if (q >= 1.0 or q != q) else 1.0     # np.maximum: nan propagates
+            else:
+                u = 1.0
+            if u > 1.0:
+                um[n] = u
+                idx[n] = i * k + j
+                n += 1
+    return n
+
+
+def traction_fill(r: np.ndarray, um: np.ndarray, a: np.ndarray, idx: np.ndarray,
+                  A: np.ndarray, S: np.ndarray) -> None:
+    """Second pass of ``torsion_annulus._antiderivatives``: ``A`` (zeros, ``r.size × k``) gets
+    ``arccosh`` values ``a`` at the flat indices ``idx``, ``S`` gets ``sqrt((u − 1)(u + 1))``
+    there, then ``S *= r`` by rows (every element, as numpy's)."""
+    k = A.shape[1]
+    Af = A.ravel()
+    Sf = S.ravel()
+    for n in range(um.size):
+        u = um[n]
+        Af[idx[n]] = a[n]
+        Sf[idx[n]] = np.sqrt((u - 1.0) * (u + 1.0))
+    for i in range(r.size):
+        ri = r[i]
+        for j in range(k):
+            S[i, j] = S[i, j] * ri
+
+
+def arccos_args(r: np.ndarray, t: np.ndarray, xm: np.ndarray, qm: np.ndarray,
+                idx: np.ndarray) -> int:
+    """First pass of ``torsion_annulus._slip_antiderivatives``: ``x = min(max(t/r, 0), 1)`` (1
+    where ``r <= 0``); the ``x < 1`` into ``xm``, ``q = sqrt(max(1 − x², 0))`` of them into
+    ``qm``, their flat indices into ``idx``; returns their count (the caller takes ``arccos``
+    and ``q ** 3`` with numpy)."""
+    k = t.size
+    n = 0
+    for i in range(r.size):
+        ri = r[i]
+        for j in range(k):
+            if ri > 0:
+                x = t[j] / ri
+                if x != x:
+                    pass                                  # np.maximum/minimum: nan propagates
+                else:
+                    x = x if x >= 0.0 else 0.0
+                    x = x if x <= 1.0 else 1.0
+            else:
+                x = 1.0
+            if x < 1.0:
+                xm[n] = x
+                w = 1.0 - x * x
+                qm[n] = np.sqrt(w if w >= 0.0 else 0.0)
+                idx[n] = i * k + j
+                n += 1
+    return n
+
+
+def slip_fill(r: np.ndarray, r3: np.ndarray, xm: np.ndarray, qm: np.ndarray, q3: np.ndarray,
+              ac: np.ndarray, idx: np.ndarray, one0: float, one1: float, g0: np.ndarray,
+              g1: np.ndarray) -> None:
+    """Second pass of ``torsion_annulus._slip_antiderivatives``: at the flat indices ``idx`` of
+    ``g0``, ``g1`` (zeros, ``r.size × k``) the antiderivatives ``G0(x) − G0(1)``, ``G1(x) −
+    G1(1)`` from ``x``, ``q``, ``q³`` and ``arccos x`` (``torsion_annulus._G01``'s arithmetic),
+    then ``g0 *= r²``, ``g1 *= r3`` (numpy's ``r ** 3``) by rows (every element)."""
+    k = g0.shape[1]
+    f0 = g0.ravel()
+    f1 = g1.ravel()
+    half_pi = 0.5 * np.pi
+    for n in range(xm.size):
+        x, q, c = xm[n], qm[n], ac[n]
+        asn = half_pi - c
+        v0 = x * c - q - q3[n] / 3.0
+        v1 = (0.5 * x * x * c - 0.25 * x * q + 0.25 * asn + (x * (2.0 * x * x - 1.0) * q + asn) / 8.0)
+        f0[idx[n]] = v0 - one0
+        f1[idx[n]] = v1 - one1
+    for i in range(r.size):
+        r2 = r[i] * r[i]
+        c3 = r3[i]
+        for j in range(k):
+            g0[i, j] = g0[i, j] * r2
+            g1[i, j] = g1[i, j] * c3
+
+
+#: the kernels by name (plain Python functions)
+_PLAIN = {"psi": psi_pass, "ends": ends_pass, "arccosh_args": arccosh_args,
+          "traction_fill": traction_fill, "arccos_args": arccos_args, "slip_fill": slip_fill}
+
+
 def kernels(compiled: bool = True) -> dict:
     """``{"psi": psi_pass, "ends": ends_pass}`` compiled by numba (built once per process), or
     the plain Python functions (``compiled=False``: the kernels' logic without numba, for
     tests)."""
     if not compiled:
-        return {"psi": psi_pass, "ends": ends_pass}
+        return dict(_PLAIN)
     built = _state["kernels"]
     if built is not None:               # built: no lock (asked ~15 times a solver step)
         return built
     with _lock:
         if _state["kernels"] is None:
-            _state["kernels"] = {
-                "psi": _jit.njit(psi_pass, nogil=True, error_model="numpy"),
-                "ends": _jit.njit(ends_pass, nogil=True, error_model="numpy")}
+            _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
+                                 for name, f in _PLAIN.items()}
     return _state["kernels"]

@@ -1,7 +1,9 @@
 """The compiled passes of the exact ring solver's punch densities (issue 28, ring solver row).
 
-Must show: :func:`contactlab.physics.torsion_annulus.psi` and ``_ends`` (through
-:func:`~contactlab.physics.torsion_annulus.difference`) give the same bits with the kernels of
+Must show: :func:`contactlab.physics.torsion_annulus.psi`, ``_ends`` (through
+:func:`~contactlab.physics.torsion_annulus.difference`) and the checks' antiderivatives
+(``_antiderivatives``, ``_slip_antiderivatives``: nodes off a table, nan, infinite, zero and
+negative radii and nodes) give the same bits with the kernels of
 :mod:`contactlab.numeric.ring_kernels` as with the numpy route (the reference, which defines the
 stored path hashes), on random densities (abutting, with gaps, zero-width pieces, one piece) at
 radii on, between, below and beyond their piece ends; whole exact paths (Hertz, cone, a table;
@@ -71,6 +73,44 @@ def test_psi_and_ends_uncompiled_logic_is_bit_identical(monkeypatch):
 @needs_numba
 def test_psi_and_ends_compiled_are_bit_identical(monkeypatch):
     _check_psi_and_ends(monkeypatch, compiled=True)
+
+
+def _antiderivative_cases(seed):
+    """Radii (rows) and nodes (columns) of the checks' antiderivatives: zero, negative, nan
+    and infinite radii, nodes equal to, just below and beyond radii, a table's band with a
+    couple of off-table nodes (the solver's case) and a square block."""
+    rng = np.random.default_rng(seed)
+    r = np.sort(rng.random(120)) * 1e-4
+    t = np.sort(rng.random(9)) * 1.2e-4
+    odd = np.array([0.0, -1e-5, np.nan, np.inf, 3e-5])
+    yield np.concatenate([odd, r]), np.concatenate([t, r[[3, 50]], np.nextafter(r[7:9], 0.0),
+                                                     [0.0, -0.0, 2e-4, np.nan, np.inf]])
+    yield r[20:90], r[[33, 71]]
+    yield r[:40], np.concatenate([[0.0], r[:40]])
+    yield r[:5], np.empty(0)
+    yield np.empty(0), t
+
+
+def _check_antiderivatives(monkeypatch, compiled):
+    for seed in range(3):
+        for r, t in _antiderivative_cases(seed):
+            _route(monkeypatch, False)
+            with np.errstate(invalid="ignore"):
+                ref = ta._antiderivatives(r, t) + ta._slip_antiderivatives(r, t)
+            _route(monkeypatch, True, compiled)
+            with np.errstate(invalid="ignore"):
+                got = ta._antiderivatives(r, t) + ta._slip_antiderivatives(r, t)
+            for u, v in zip(got, ref):
+                assert u.shape == v.shape and u.tobytes() == v.tobytes()
+
+
+def test_check_antiderivatives_uncompiled_logic_is_bit_identical(monkeypatch):
+    _check_antiderivatives(monkeypatch, compiled=False)
+
+
+@needs_numba
+def test_check_antiderivatives_compiled_are_bit_identical(monkeypatch):
+    _check_antiderivatives(monkeypatch, compiled=True)
 
 
 def _contacts():
