@@ -182,6 +182,25 @@ class NodeTable:
         k = np.minimum(np.searchsorted(self.r, r), self.r.size - 1)
         return k if np.array_equal(self.r[k], r) else None
 
+    def columns(self, r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`_antiderivatives` at the radii ``r`` and ``nodes``, the same bits: the columns
+        of nodes in the table taken from it (elementwise values, so equal to the last bit),
+        the others computed; all computed unless every radius is a row of the table."""
+        rows = self.rows(r)
+        if rows is None or nodes.size == 0:
+            return _antiderivatives(r, nodes)
+        F0, F1 = self.arrays["traction"]
+        k = np.minimum(np.searchsorted(self.nodes, nodes), self.nodes.size - 1)
+        hit = self.nodes[k] == nodes
+        # C order, as computed (the products below sum in the layout's order)
+        if rows.size == self.r.size:                       # rows sorted and distinct: all rows
+            A, S = np.take(F0, k, axis=1), np.take(F1, k, axis=1)
+        else:
+            A, S = F0[np.ix_(rows, k)], F1[np.ix_(rows, k)]
+        if not hit.all():
+            A[:, ~hit], S[:, ~hit] = _antiderivatives(r, nodes[~hit])
+        return np.ascontiguousarray(A), np.ascontiguousarray(S)
+
     def sums(self, kind: str, rows: np.ndarray, r: np.ndarray, nodes: np.ndarray,
              c0: np.ndarray, c1: np.ndarray) -> np.ndarray:
         """``Σ_n F0(r, t_n) c0_n + F1(r, t_n) c1_n`` at the rows ``rows`` (radii ``r``) for the
@@ -208,12 +227,14 @@ def _jumps(al: np.ndarray, be: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             np.concatenate([zero, be]) - np.concatenate([be, zero]))
 
 
-def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = None
-             ) -> np.ndarray:
+def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = None, *,
+             columns: NodeTable | None = None) -> np.ndarray:
     """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece).
 
     ``table`` (optional): antiderivatives computed once for radii that include ``r`` and most of
-    the density's nodes (:class:`NodeTable`; equal to rounding)."""
+    the density's nodes (:class:`NodeTable`; equal to rounding). ``columns`` (optional, without
+    ``table``): a :class:`NodeTable` whose columns replace the antiderivatives of its nodes in
+    the route without a table (:meth:`NodeTable.columns`; the same bits)."""
     lo, hi, _, _ = p
     al, be = _lin(p)
     r = np.asarray(r, float)
@@ -225,7 +246,7 @@ def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = Non
         rows = None if table is None else table.rows(r)
         if table is not None and rows is not None:
             return 4.0 * G_t / np.pi * r * table.sums("traction", rows, r, nodes, *_jumps(al, be))
-        A, S = _antiderivatives(r, nodes)
+        A, S = _antiderivatives(r, nodes) if columns is None else columns.columns(r, nodes)
         return 4.0 * G_t / np.pi * r * (np.diff(A, axis=1) @ al + np.diff(S, axis=1) @ be)
     t0 = np.maximum(lo[None, :], rr)
     inside = (rr < hi[None, :]) & (rr > 0)

@@ -113,6 +113,31 @@ def test_check_antiderivatives_compiled_are_bit_identical(monkeypatch):
     _check_antiderivatives(monkeypatch, compiled=True)
 
 
+@pytest.mark.parametrize("on", [False, True])
+def test_traction_with_table_columns_is_bit_identical(monkeypatch, on):
+    """The ring-solver step's tractions from a table's columns (``columns=``) are the same bits
+    as computed: all rows, a band of rows, radii off the table, densities with nodes on and off
+    the table, with gaps (the other formula)."""
+    if on and not jit.available():
+        pytest.skip("numba (extra 'fast') not installed")
+    _route(monkeypatch, on)
+    rng = np.random.default_rng(5)
+    b = np.sort(np.r_[0.0, rng.random(60), 1.0]) * 1e-4
+    r = 0.5 * (b[1:] + b[:-1])
+    table = ta.NodeTable(r, b)
+    off = np.sort(rng.random(3)) * 1e-4
+    nodes = [b, np.unique(np.r_[b[:30], off]), np.unique(np.r_[b[::3], off, b[-1]]), off]
+    for t in nodes:
+        wl, wr = rng.normal(size=(2, t.size - 1))
+        p = ta.from_nodes(t, wl, wr)
+        gaps = tuple(a[::2] for a in p)
+        for q in (p, gaps):
+            for x in (r, r[10:40], np.r_[r[:5], 3.3e-5], np.r_[r[:5], r[3]]):
+                ref = ta.traction(q, x, 1e10)
+                got = ta.traction(q, x, 1e10, columns=table)
+                assert got.tobytes() == ref.tobytes()
+
+
 def _contacts():
     r = np.linspace(0.0, 4e-4, 200)
     return {"hertz": cl.Contact(cl.profiles.Paraboloid(R=0.01), materials=MAT, friction=MU),
