@@ -685,8 +685,19 @@ def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: fl
     """Pieces of the ring solver's density whose traction at its collocation points is
     ``values`` (``lu``: the LU factors of the traction-per-basis matrix, hats then jumps), cut at
     the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
-    coef = _la.lu_solve(lu, np.asarray(values, float), check_finite=False)
+    values = np.asarray(values, float)
+    if values.ndim != 1 or values.size != lu[0].shape[0]:
+        coef = _la.lu_solve(lu, values, check_finite=False)
+    else:
+        # scipy's lu_solve is this LAPACK call (getrs) behind a batching wrapper that costs as
+        # much as the solve at the ring solver's sizes: the same bits
+        coef, info = _getrs(lu[0], lu[1], values)
+        if info != 0:
+            raise ValueError(f"illegal value in argument {-info} of getrs")
     return from_coefficients(b, coef, jumps, radius)
+
+
+_getrs, = _la.get_lapack_funcs(("getrs",), (np.zeros((1, 1)),))
 
 
 def _psi_roots(p: Pieces, psi_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

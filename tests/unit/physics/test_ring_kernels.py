@@ -213,3 +213,35 @@ def test_numpy_backend_keeps_the_numpy_route(monkeypatch):
     if jit.available():
         monkeypatch.setitem(NK._state, "backend", "numba")
         assert ta._kernels() is not None
+
+
+def test_ring_solver_lapack_calls_are_scipys_bits():
+    """The box step's positive-definite solves (``torsion_rings._pos_solve``) and the density's
+    LU solve (``torsion_annulus.density``) call LAPACK directly: the same bits as
+    ``scipy.linalg.solve(assume_a="pos")`` and ``lu_solve`` (one unknown, one and two
+    right-hand sides, a matrix symmetric only to rounding), and ``LinAlgError`` where scipy
+    raises it (not positive definite, a zero 1x1)."""
+    import scipy.linalg as la
+    from contactlab.physics import torsion_rings as tr
+    rng = np.random.default_rng(3)
+    for n in (1,) * 8 + (2, 7, 120):
+        M = rng.random((n, n))
+        H = M @ M.T + n * np.eye(n)
+        H = H + 1e-12 * rng.random((n, n))          # symmetric to rounding only
+        for b in (rng.random(n), rng.random((n, 2))):
+            ref = la.solve(H, b, assume_a="pos", check_finite=False)
+            got = tr._pos_solve(H, b)
+            assert got.shape == ref.shape and got.tobytes() == ref.tobytes()
+            assert got.strides == ref.strides     # products of its columns sum in this order
+        lu = la.lu_factor(M + n * np.eye(n))
+        v = rng.random(n)
+        coef = la.lu_solve(lu, v, check_finite=False)
+        b_nodes = np.linspace(0.0, 1e-4, n + 1)
+        got = ta.density(lu, b_nodes, np.zeros(0, np.int64), v, 1e-4)
+        want = ta.from_coefficients(b_nodes, coef, np.zeros(0, np.int64), 1e-4)
+        assert [a.tobytes() for a in got] == [a.tobytes() for a in want]
+    for bad in (np.array([[1.0, 2.0], [2.0, 1.0]]), np.zeros((1, 1))):
+        with pytest.raises(np.linalg.LinAlgError):
+            la.solve(bad, np.ones(2 if bad.size > 1 else 1), assume_a="pos", check_finite=False)
+        with pytest.raises(np.linalg.LinAlgError):
+            tr._pos_solve(bad, np.ones(2 if bad.size > 1 else 1))
