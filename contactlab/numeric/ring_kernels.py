@@ -20,6 +20,8 @@ numba is used when it imports and :func:`contactlab.numeric.normal_kernels.backe
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -207,12 +209,14 @@ def slip_fill(r: np.ndarray, r3: np.ndarray, xm: np.ndarray, qm: np.ndarray, q3:
 
 
 #: the kernels by name (plain Python functions)
-_PLAIN = {"psi": psi_pass, "ends": ends_pass, "arccosh_args": arccosh_args,
-          "traction_fill": traction_fill, "arccos_args": arccos_args, "slip_fill": slip_fill}
+_PLAIN: dict[str, Callable[..., Any]] = {
+    "psi": psi_pass, "ends": ends_pass, "arccosh_args": arccosh_args,
+    "traction_fill": traction_fill, "arccos_args": arccos_args, "slip_fill": slip_fill}
 
 
 def kernels(compiled: bool = True) -> dict:
-    """``{"psi": psi_pass, "ends": ends_pass}`` compiled by numba (built once per process), or
+    """The kernels by name (``"psi"``, ``"ends"``, ``"arccosh_args"``, ``"traction_fill"``,
+    ``"arccos_args"``, ``"slip_fill"``) compiled by numba (built once per process), or
     the plain Python functions (``compiled=False``: the kernels' logic without numba, for
     tests)."""
     if not compiled:
