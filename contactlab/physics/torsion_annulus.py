@@ -95,9 +95,11 @@ def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
     kern = _kernels()
     if kern is not None:
         out = np.empty(x.size)
-        kern["psi"](*(np.ascontiguousarray(a, float) for a in p),
-                    np.ascontiguousarray(x).ravel(), out)
-        return out.reshape(x.shape)
+        c = np.ascontiguousarray
+        # (called ~10 times a solver step: the arguments spelled out, no generator)
+        kern["psi"](c(lo, float), c(hi, float), c(p[2], float), c(p[3], float),
+                    x if x.ndim == 1 and x.flags.c_contiguous else c(x).ravel(), out)
+        return out if x.ndim == 1 else out.reshape(x.shape)
     al, be = _lin(p)
     whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
     tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
