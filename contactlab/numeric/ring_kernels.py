@@ -5,7 +5,13 @@ A step of the exact torsion path solver (:mod:`contactlab.physics.torsion_annulu
 times per step: ``Ψ(x) = ∫_x^∞ w dt`` at piece ends and Gauss points (:func:`psi_pass`), and the
 end values of a density on the intervals of a finer partition (:func:`ends_pass`). In numpy each
 evaluation is some fifteen small array operations of a few microseconds each on ~100-1000
-elements; here it is one compiled pass.
+elements; here it is one compiled pass. The step's checks (the traction inside the stick radius,
+the slip on the annulus) need the antiderivatives ``arccosh(t/r)``, ``sqrt(t² − r²)`` and the
+slip kernel's ``G0``, ``G1`` at the density's nodes off the precomputed table: there the
+transcendental values stay numpy's own (``arccosh``, ``arccos``, ``** 3`` of the same vectors the
+numpy route takes them of; a compiled one would be the C library's, which may differ in the last
+bit) and two compiled passes do the rest (:func:`arccosh_args` / :func:`traction_fill`,
+:func:`arccos_args` / :func:`slip_fill`).
 
 Every operation is an IEEE multiplication, division, addition, subtraction or comparison in the
 order of the numpy route, the running sum of the tail integrals is numpy's ``cumsum`` order
