@@ -315,10 +315,16 @@ def _pos_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 _potrf, _potrs = _la.get_lapack_funcs(("potrf", "potrs"), (np.zeros((1, 1)),))
 
 
+def _block(M: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """``M[np.ix_(rows, cols)]`` for boolean masks: the same values in C order, by two
+    ``compress`` (a few times faster at the ring solver's sizes)."""
+    return M.compress(rows, axis=0).compress(cols, axis=1)
+
+
 def _solve_free(H, rhs, F, zA, A):
-    HFF = H[np.ix_(F, F)]
-    r = rhs[F] - H[np.ix_(F, A)] @ zA if zA.size else rhs[F]
-    return _pos_solve(HFF, r)
+    HF = H.compress(F, axis=0)
+    r = rhs[F] - HF.compress(A, axis=1) @ zA if zA.size else rhs[F]
+    return _pos_solve(HF.compress(F, axis=1), r)
 
 
 def _solve_active(C, rhs_cols, A, zA):
@@ -328,7 +334,7 @@ def _solve_active(C, rhs_cols, A, zA):
     if not A.any():
         return Cr, np.zeros((0, *rhs_cols.shape[1:]))
     rhs_A = Cr[A] - (zA if rhs_cols.ndim == 1 else np.stack([zA, np.zeros_like(zA)], axis=1))
-    lamA = _pos_solve(C[np.ix_(A, A)], rhs_A)
+    lamA = _pos_solve(_block(C, A, A), rhs_A)
     return Cr - C[:, A] @ lamA, lamA
 
 
@@ -400,8 +406,8 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         else:
             if F.any():
                 both = np.stack([base, g], axis=1)
-                HFF = H[np.ix_(F, F)]
-                r0 = both[F, 0] - (H[np.ix_(F, A)] @ zA if zA.size else 0.0)
+                HFF = _block(H, F, F)
+                r0 = both[F, 0] - (_block(H, F, A) @ zA if zA.size else 0.0)
                 sol = _pos_solve(HFF, np.stack([r0, both[F, 1]], axis=1))
                 gz0 = g[A] @ zA + g[F] @ sol[:, 0]
                 gz1 = g[F] @ sol[:, 1]

@@ -245,3 +245,16 @@ def test_ring_solver_lapack_calls_are_scipys_bits():
             la.solve(bad, np.ones(2 if bad.size > 1 else 1), assume_a="pos", check_finite=False)
         with pytest.raises(np.linalg.LinAlgError):
             tr._pos_solve(bad, np.ones(2 if bad.size > 1 else 1))
+
+
+def test_ring_solver_blocks_are_the_fancy_indexed_blocks():
+    """``torsion_rings._block`` (two ``compress``) gives ``M[np.ix_(rows, cols)]``: the same
+    values in the same (C) layout, for empty, full and mixed masks."""
+    from contactlab.physics import torsion_rings as tr
+    rng = np.random.default_rng(4)
+    M = rng.random((40, 40))
+    for rows, cols in ((rng.random(40) < 0.7, rng.random(40) < 0.3), (np.ones(40, bool),) * 2,
+                       (np.zeros(40, bool), np.ones(40, bool))):
+        ref, got = M[np.ix_(rows, cols)], tr._block(M, rows, cols)
+        assert got.shape == ref.shape and got.strides == ref.strides
+        assert got.tobytes() == ref.tobytes()
