@@ -34,7 +34,7 @@ import numpy as np
 from . import jit as _jit
 
 __all__ = ["psi_pass", "ends_pass", "arccosh_args", "traction_fill", "arccos_args", "slip_fill",
-           "kernels"]
+           "traction_antiderivatives", "slip_antiderivatives", "kernels"]
 
 _state: dict = {"kernels": None}
 _lock = threading.Lock()
@@ -212,6 +212,39 @@ def slip_fill(r: np.ndarray, r3: np.ndarray, xm: np.ndarray, qm: np.ndarray, q3:
         for j in range(k):
             g0[i, j] = g0[i, j] * r2
             g1[i, j] = g1[i, j] * c3
+
+
+def traction_antiderivatives(kern: dict, r: np.ndarray, nodes: np.ndarray
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """``torsion_annulus._antiderivatives`` by the kernels ``kern`` (:func:`kernels`): two
+    passes around numpy's own ``arccosh`` of the same vector (the same bits)."""
+    r = np.ascontiguousarray(r, float)
+    nodes = np.ascontiguousarray(nodes, float)
+    size = r.size * nodes.size
+    um, idx = np.empty(size), np.empty(size, np.int64)
+    n = kern["arccosh_args"](r, nodes, um, idx)
+    um, idx = um[:n], idx[:n]
+    A, S = np.zeros((r.size, nodes.size)), np.zeros((r.size, nodes.size))
+    kern["traction_fill"](r, um, np.arccosh(um), idx, A, S)
+    return A, S
+
+
+def slip_antiderivatives(kern: dict, rr: np.ndarray, nodes: np.ndarray, one0: float,
+                         one1: float) -> tuple[np.ndarray, np.ndarray]:
+    """``torsion_annulus._slip_antiderivatives`` (radii ``rr`` as a column; ``one0``, ``one1``:
+    ``G0(1)``, ``G1(1)``) by the kernels ``kern``: two passes around numpy's own ``arccos``,
+    ``q ** 3`` and ``r ** 3`` of the same vectors (the same bits)."""
+    rr = np.ascontiguousarray(rr, float)
+    r = rr.ravel()
+    nodes = np.ascontiguousarray(nodes, float)
+    size = r.size * nodes.size
+    xm, qm, idx = np.empty(size), np.empty(size), np.empty(size, np.int64)
+    n = kern["arccos_args"](r, nodes, xm, qm, idx)
+    xm, qm, idx = xm[:n], qm[:n], idx[:n]
+    g0, g1 = np.zeros((r.size, nodes.size)), np.zeros((r.size, nodes.size))
+    kern["slip_fill"](r, (rr ** 3).ravel(), xm, qm, qm ** 3, np.arccos(xm), idx, one0, one1,
+                      g0, g1)
+    return g0, g1
 
 
 #: the kernels by name (plain Python functions)

@@ -124,7 +124,7 @@ def _antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.n
     taken from a :class:`NodeTable` is the same to the last bit as one computed here."""
     kern = _kernels()
     if kern is not None:
-        return _antiderivatives_compiled(kern, r, nodes)
+        return _ring_kernels.traction_antiderivatives(kern, r, nodes)
     rr = r[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
         u = np.where(rr > 0, np.maximum(nodes[None, :] / np.where(rr > 0, rr, 1.0), 1.0), 1.0)
@@ -135,21 +135,6 @@ def _antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.n
     A[m] = np.arccosh(um)
     S[m] = np.sqrt((um - 1.0) * (um + 1.0))
     S *= rr
-    return A, S
-
-
-def _antiderivatives_compiled(kern: dict, r: np.ndarray, nodes: np.ndarray
-                              ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_antiderivatives` by two compiled passes around numpy's own ``arccosh`` of the
-    same vector (the same bits)."""
-    r = np.ascontiguousarray(r, float)
-    nodes = np.ascontiguousarray(nodes, float)
-    size = r.size * nodes.size
-    um, idx = np.empty(size), np.empty(size, np.int64)
-    n = kern["arccosh_args"](r, nodes, um, idx)
-    um, idx = um[:n], idx[:n]
-    A, S = np.zeros((r.size, nodes.size)), np.zeros((r.size, nodes.size))
-    kern["traction_fill"](r, um, np.arccosh(um), idx, A, S)
     return A, S
 
 
@@ -276,7 +261,7 @@ def _slip_antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray,
     rr = r[:, None]
     kern = _kernels()
     if kern is not None:
-        return _slip_antiderivatives_compiled(kern, rr, nodes)
+        return _ring_kernels.slip_antiderivatives(kern, rr, nodes, *_G01_ONE)
     with np.errstate(divide="ignore", invalid="ignore"):
         x = np.where(rr > 0, np.minimum(np.maximum(nodes[None, :] / rr, 0.0), 1.0), 1.0)
     m = x < 1.0
@@ -289,22 +274,6 @@ def _slip_antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray,
 
 #: ``G0(1)``, ``G1(1)`` (:func:`_G01` at 1, numpy's values)
 _G01_ONE = tuple(float(v[0]) for v in _G01(np.ones(1)))
-
-
-def _slip_antiderivatives_compiled(kern: dict, rr: np.ndarray, nodes: np.ndarray
-                                   ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_slip_antiderivatives` (radii ``rr`` as a column) by two compiled passes around
-    numpy's own ``arccos``, ``q ** 3`` and ``r ** 3`` of the same vectors (the same bits)."""
-    rr = np.ascontiguousarray(rr, float)
-    r = rr.ravel()
-    nodes = np.ascontiguousarray(nodes, float)
-    size = r.size * nodes.size
-    xm, qm, idx = np.empty(size), np.empty(size), np.empty(size, np.int64)
-    n = kern["arccos_args"](r, nodes, xm, qm, idx)
-    xm, qm, idx = xm[:n], qm[:n], idx[:n]
-    g0, g1 = np.zeros((r.size, nodes.size)), np.zeros((r.size, nodes.size))
-    kern["slip_fill"](r, (rr ** 3).ravel(), xm, qm, qm ** 3, np.arccos(xm), idx, *_G01_ONE, g0, g1)
-    return g0, g1
 
 
 def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = None
