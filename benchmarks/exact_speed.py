@@ -11,9 +11,12 @@ machine's load mostly cancels; the machine and its load average are printed. Row
    matrices built) and warm (reused), against ``method="mdr"`` on the same path; goal <= 50 ms;
    and at the rings chosen for the goal's accuracy, ``simulate(path, torque_rtol=1e-3)`` (one and
    two BLAS threads), with its largest torque error against a 400-ring run, relative to the
-   path's largest sliding torque (measured outside the timed rounds);
+   path's largest sliding torque (measured outside the timed rounds); the same with the punch
+   densities' numpy route (``CONTACTLAB_BACKEND=numpy``'s, the reference of the stored hashes)
+   against the compiled passes (numba), with their bit-identity;
 2. the ring solver's cost per step against the path length: the same path shape with 10^2 and
-   10^3 steps (and 10^4 with ``--long``), the fitted exponent of time against steps; goal <= 1.05;
+   10^3 steps (and 10^4 with ``--long``), at the default rings and at ``torque_rtol=1e-3``, the
+   fitted exponent of time against steps; goal <= 1.05;
 3. ``Contact.torsion(method="mdr")`` on 10^5 forces, against ``method="no-slip"`` on the same
    forces; goal <= 0.1 s;
 4. the exact torque-twist curve (200 twists, Hertz) against its floor, the closed form of the same
@@ -45,6 +48,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import contactlab as cl
 from contactlab.foundation import rings as _rings
+from contactlab.physics import torsion_annulus as _ta
 from _harness import machine
 
 MAT = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
@@ -85,6 +89,15 @@ def cases() -> dict:
                 return c.simulate(path, method="exact", **kw)
         return run
 
+    def exact_route(compiled, **kw):
+        def run():
+            _ta._COMPILED["on"] = compiled
+            try:
+                return c.simulate(path, method="exact", **kw)
+            finally:
+                _ta._COMPILED["on"] = None
+        return run
+
     def exact_cold():
         _rings._CACHE.clear()
         return c.simulate(path, method="exact")
@@ -104,6 +117,8 @@ def cases() -> dict:
         "path exact, cold (matrices built)": exact_cold,
         "path exact rtol 1e-3, BLAS 1 thread": exact_threads(1, torque_rtol=RTOL),
         "path exact rtol 1e-3, BLAS 2 threads": exact_threads(2, torque_rtol=RTOL),
+        "path exact rtol 1e-3, numpy route": exact_route(False, torque_rtol=RTOL),
+        "path exact rtol 1e-3, compiled route": exact_route(True, torque_rtol=RTOL),
         "path mdr": lambda: c.simulate(path, method="mdr"),
         "torsion mdr, 1e5 forces": lambda: c.torsion(force=F, twist=2e-4, method="mdr"),
         "torsion no-slip, 1e5 forces": lambda: c.torsion(force=F, twist=2e-4, method="no-slip"),
@@ -171,6 +186,8 @@ ROWS = [
     ("path exact, cold (matrices built)", "path exact, BLAS 1 thread", None, None),
     ("path exact rtol 1e-3, BLAS 1 thread", "path mdr", 0.05, None),
     ("path exact rtol 1e-3, BLAS 2 threads", "path exact rtol 1e-3, BLAS 1 thread", None, 1.2),
+    ("path exact rtol 1e-3, numpy route", "path mdr", 0.05, None),
+    ("path exact rtol 1e-3, compiled route", "path exact rtol 1e-3, numpy route", 0.05, None),
     ("torsion mdr, 1e5 forces", "torsion no-slip, 1e5 forces", 0.1, None),
     ("curve exact, Hertz 200", "curve closed form (numpy), Hertz 200", 0.002, None),
     ("curve exact, table 1000", "curve mdr, table 1000", 0.05, None),
@@ -205,7 +222,7 @@ def verdict(t: float, ratio: float, goal_t: float | None, goal_r: float | None) 
     return "; ".join(parts) or "(reported)"
 
 
-def scaling(steps: list[int], rounds: int) -> None:
+def scaling(steps: list[int], rounds: int, **kw) -> None:
     """Ring-solver time per step against the path length (same path shape, CPU time, best of
     ``rounds``), the fitted exponent of time against steps (goal <= 1.05), and what grows with
     the length: rings (nodes added at the contact radii met), jump nodes, ring-solver steps."""
@@ -218,10 +235,11 @@ def scaling(steps: list[int], rounds: int) -> None:
         for _ in range(rounds):
             for n in steps:
                 t0 = time.process_time()
-                r = c.simulate(paths[n], method="exact")
+                r = c.simulate(paths[n], method="exact", **kw)
                 best[n] = min(best[n], time.process_time() - t0)
                 info[n] = (r.meta["rings"], r.meta["jump_nodes"], r.meta["fallback_steps"])
-    print(f"\n{'steps':>7s} {'ms/step':>8s} {'rings':>6s} {'jumps':>6s} {'ring-solver steps':>18s}")
+    print(f"\n{kw or 'default rings'}:")
+    print(f"{'steps':>7s} {'ms/step':>8s} {'rings':>6s} {'jumps':>6s} {'ring-solver steps':>18s}")
     for n in steps:
         print(f"{n:7d} {best[n] / n * 1e3:8.3f} {info[n][0]:6d} {info[n][1]:6d} {info[n][2]:18d}")
     x, y = np.log(np.array(steps, float)), np.log(np.array([best[n] for n in steps]))
@@ -293,7 +311,13 @@ def main() -> int:
     if args.curves_only:
         print("load average after:", os.getloadavg())
         return 0
-    scaling([100, 1000, 10000] if args.long else [100, 1000], 1 if args.long else 2)
+    same = _digest(keep["path exact rtol 1e-3, numpy route"]) == _digest(
+        keep["path exact rtol 1e-3, compiled route"])
+    ratio = best["path exact rtol 1e-3, numpy route"] / best["path exact rtol 1e-3, compiled route"]
+    print(f"compiled passes (numba available: {_ta._ring_kernels._jit.available()}): "
+          f"{ratio:.2f}x faster than the numpy route, bit-identical: {same}")
+    for kw in ({}, {"torque_rtol": RTOL}):
+        scaling([100, 1000, 10000] if args.long else [100, 1000], 1 if args.long else 2, **kw)
     print("load average after:", os.getloadavg())
     return 0
 

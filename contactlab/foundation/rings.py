@@ -484,7 +484,7 @@ class Rings(Foundation):
                             z = _ta.punch_traction(pt, pm, r, G_t)
                         if c_stick is None:
                             if z is None:
-                                z = _ta.traction(w, r, G_t)
+                                z = _ta.traction(w, r, G_t, columns=rings.table)
                             c_stick = _tr.stick_radius(r, z, bj, aj)
                         res["stick_radius"][k] = c_stick
                         work[k], step_diss[k] = W_in, dW
@@ -492,7 +492,7 @@ class Rings(Foundation):
                         done = k + 1
                         if k in snaps:
                             if z is None:
-                                z = _ta.traction(w, r, G_t)
+                                z = _ta.traction(w, r, G_t, columns=rings.table)
                             snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
                                             "radius": aj, "shear_torsion": z.copy(),
                                             "pressure": (np.zeros(r.size) if p is None else
@@ -633,7 +633,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
-    z_old = _ta.traction(w, r, G_t)
+    z_old = _ta.traction(w, r, G_t, columns=rings.table)
     if ctrl == "twist":
         z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
                                         C=rings.C)

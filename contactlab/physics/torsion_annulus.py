@@ -35,6 +35,9 @@ from typing import cast
 import numpy as np
 import scipy.linalg as _la
 
+from ..numeric import normal_kernels as _normal_kernels
+from ..numeric import ring_kernels as _ring_kernels
+
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
            "difference", "add", "nonnegative_psi", "step", "punch_step", "punch_torque", "punch_energy",
@@ -47,6 +50,20 @@ CHECK_RTOL = 1e-9
 
 #: a piecewise-linear density: (lo, hi, wl, wr), each an array over the pieces, sorted, abutting
 Pieces = tuple
+
+#: the compiled passes of :func:`psi` and :func:`_ends` (:mod:`contactlab.numeric.ring_kernels`,
+#: the same bits as the numpy route): ``"on"`` None follows the backend
+#: (:func:`contactlab.numeric.normal_kernels.backend`), True/False forces them (tests; False is
+#: the numpy reference), ``"compiled"`` False runs the kernels' plain Python logic (tests)
+_COMPILED: dict = {"on": None, "compiled": True}
+
+
+def _kernels() -> dict | None:
+    """The ring kernels to use, or None for the numpy route."""
+    on = _COMPILED["on"]
+    if on is None:
+        on = _normal_kernels.backend() == "numba"
+    return _ring_kernels.kernels(_COMPILED["compiled"]) if on else None
 
 
 def empty() -> Pieces:
@@ -75,6 +92,14 @@ def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, float)
     if lo.size == 0:
         return np.zeros(x.shape)
+    kern = _kernels()
+    if kern is not None:
+        out = np.empty(x.size)
+        c = np.ascontiguousarray
+        # (called ~10 times a solver step: the arguments spelled out, no generator)
+        kern["psi"](c(lo, float), c(hi, float), c(p[2], float), c(p[3], float),
+                    x if x.ndim == 1 and x.flags.c_contiguous else c(x).ravel(), out)
+        return out if x.ndim == 1 else out.reshape(x.shape)
     al, be = _lin(p)
     whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
     tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
@@ -97,6 +122,9 @@ def _antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.n
     """``arccosh(t/r)`` and ``sqrt(t² − r²)`` at the nodes ``t`` (columns) for the radii ``r``
     (rows), ``t`` clipped to ``r`` (both vanish for nodes below ``r``): elementwise, so a column
     taken from a :class:`NodeTable` is the same to the last bit as one computed here."""
+    kern = _kernels()
+    if kern is not None:
+        return _ring_kernels.traction_antiderivatives(kern, r, nodes)
     rr = r[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
         u = np.where(rr > 0, np.maximum(nodes[None, :] / np.where(rr > 0, rr, 1.0), 1.0), 1.0)
@@ -141,6 +169,25 @@ class NodeTable:
         k = np.minimum(np.searchsorted(self.r, r), self.r.size - 1)
         return k if np.array_equal(self.r[k], r) else None
 
+    def columns(self, r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`_antiderivatives` at the radii ``r`` and ``nodes``, the same bits: the columns
+        of nodes in the table taken from it (elementwise values, so equal to the last bit),
+        the others computed; all computed unless every radius is a row of the table."""
+        rows = self.rows(r)
+        if rows is None or nodes.size == 0:
+            return _antiderivatives(r, nodes)
+        F0, F1 = self.arrays["traction"]
+        k = np.minimum(np.searchsorted(self.nodes, nodes), self.nodes.size - 1)
+        hit = self.nodes[k] == nodes
+        # C order, as computed (the products below sum in the layout's order)
+        if rows.size == self.r.size:                       # rows sorted and distinct: all rows
+            A, S = np.take(F0, k, axis=1), np.take(F1, k, axis=1)
+        else:
+            A, S = F0[np.ix_(rows, k)], F1[np.ix_(rows, k)]
+        if not hit.all():
+            A[:, ~hit], S[:, ~hit] = _antiderivatives(r, nodes[~hit])
+        return np.ascontiguousarray(A), np.ascontiguousarray(S)
+
     def sums(self, kind: str, rows: np.ndarray, r: np.ndarray, nodes: np.ndarray,
              c0: np.ndarray, c1: np.ndarray) -> np.ndarray:
         """``Σ_n F0(r, t_n) c0_n + F1(r, t_n) c1_n`` at the rows ``rows`` (radii ``r``) for the
@@ -167,12 +214,14 @@ def _jumps(al: np.ndarray, be: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             np.concatenate([zero, be]) - np.concatenate([be, zero]))
 
 
-def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = None
-             ) -> np.ndarray:
+def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = None, *,
+             columns: NodeTable | None = None) -> np.ndarray:
     """Traction ``(4G_t/π) r ∫_r w(t)/sqrt(t² − r²) dt`` at ``r``, Pa (closed form per piece).
 
     ``table`` (optional): antiderivatives computed once for radii that include ``r`` and most of
-    the density's nodes (:class:`NodeTable`; equal to rounding)."""
+    the density's nodes (:class:`NodeTable`; equal to rounding). ``columns`` (optional, without
+    ``table``): a :class:`NodeTable` whose columns replace the antiderivatives of its nodes in
+    the route without a table (:meth:`NodeTable.columns`; the same bits)."""
     lo, hi, _, _ = p
     al, be = _lin(p)
     r = np.asarray(r, float)
@@ -184,7 +233,7 @@ def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = Non
         rows = None if table is None else table.rows(r)
         if table is not None and rows is not None:
             return 4.0 * G_t / np.pi * r * table.sums("traction", rows, r, nodes, *_jumps(al, be))
-        A, S = _antiderivatives(r, nodes)
+        A, S = _antiderivatives(r, nodes) if columns is None else columns.columns(r, nodes)
         return 4.0 * G_t / np.pi * r * (np.diff(A, axis=1) @ al + np.diff(S, axis=1) @ be)
     t0 = np.maximum(lo[None, :], rr)
     inside = (rr < hi[None, :]) & (rr > 0)
@@ -210,6 +259,9 @@ def _slip_antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray,
     """``r² (G0(t/r) − G0(1))`` and ``r³ (G1(t/r) − G1(1))`` at the nodes ``t`` (columns) for the
     radii ``r`` (rows), ``t/r`` clipped to ``[0, 1]``: exact zeros for nodes beyond ``r``."""
     rr = r[:, None]
+    kern = _kernels()
+    if kern is not None:
+        return _ring_kernels.slip_antiderivatives(kern, rr, nodes, *_G01_ONE)
     with np.errstate(divide="ignore", invalid="ignore"):
         x = np.where(rr > 0, np.minimum(np.maximum(nodes[None, :] / rr, 0.0), 1.0), 1.0)
     m = x < 1.0
@@ -218,6 +270,10 @@ def _slip_antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray,
     x0, x1 = _G01(x[m])
     g0[m], g1[m] = x0 - one0, x1 - one1
     return g0 * (rr * rr), g1 * rr ** 3
+
+
+#: ``G0(1)``, ``G1(1)`` (:func:`_G01` at 1, numpy's values)
+_G01_ONE = tuple(float(v[0]) for v in _G01(np.ones(1)))
 
 
 def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = None
@@ -371,6 +427,12 @@ def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.nda
     plo, phi, wl, wr = p
     if plo.size == 0:
         return np.zeros(lo.shape), np.zeros(lo.shape)
+    kern = _kernels()
+    if kern is not None:
+        out_l, out_r = np.empty(lo.size), np.empty(lo.size)
+        kern["ends"](*(np.ascontiguousarray(a, float) for a in p), np.ascontiguousarray(lo, float),
+                     np.ascontiguousarray(hi, float), out_l, out_r)
+        return out_l, out_r
     k = np.searchsorted(plo, lo, "right") - 1
     inside = (k >= 0) & (hi <= phi[np.maximum(k, 0)])
     k = np.maximum(k, 0)
@@ -594,8 +656,19 @@ def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: fl
     """Pieces of the ring solver's density whose traction at its collocation points is
     ``values`` (``lu``: the LU factors of the traction-per-basis matrix, hats then jumps), cut at
     the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
-    coef = _la.lu_solve(lu, np.asarray(values, float), check_finite=False)
+    values = np.asarray(values, float)
+    if values.ndim != 1 or values.size != lu[0].shape[0]:
+        coef = _la.lu_solve(lu, values, check_finite=False)
+    else:
+        # scipy's lu_solve is this LAPACK call (getrs) behind a batching wrapper that costs as
+        # much as the solve at the ring solver's sizes: the same bits
+        coef, info = _getrs(lu[0], lu[1], values)
+        if info != 0:
+            raise ValueError(f"illegal value in argument {-info} of getrs")
     return from_coefficients(b, coef, jumps, radius)
+
+
+_getrs, = _la.get_lapack_funcs(("getrs",), (np.zeros((1, 1)),))
 
 
 def _psi_roots(p: Pieces, psi_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -38,9 +38,9 @@ print(h.hexdigest(), r.meta["fallback_steps"])
 """
 
 
-def _run(threads: int) -> str:
+def _run(threads: int, backend: str = "") -> str:
     env = dict(os.environ, OPENBLAS_NUM_THREADS=str(threads), OMP_NUM_THREADS=str(threads),
-               MKL_NUM_THREADS=str(threads), PYTHONPATH=str(ROOT))
+               MKL_NUM_THREADS=str(threads), PYTHONPATH=str(ROOT), CONTACTLAB_BACKEND=backend)
     out = subprocess.run([sys.executable, "-c", _SCRIPT], env=env, capture_output=True,
                          text=True, check=True, timeout=600)
     return out.stdout.strip()
@@ -52,6 +52,16 @@ def test_exact_path_is_bit_identical_for_one_and_two_blas_threads():
     # the path takes both routes: annulus steps and ring-solver fallback steps
     assert int(one.split()[1]) > 0
     assert one == two
+
+
+def test_exact_path_is_bit_identical_on_the_numpy_route_for_one_and_two_blas_threads():
+    """The numpy route of the punch densities (the reference of the stored path hashes) and the
+    compiled one (numba, when installed: the default run above) give the same bits, on one and
+    two BLAS threads."""
+    pytest.importorskip("threadpoolctl")
+    one, two = _run(1, "numpy"), _run(2, "numpy")
+    assert one == two
+    assert one == _run(1)
 
 
 def test_influence_matrices_are_factored_once_per_ring_set():
