@@ -22,10 +22,11 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio
-from ..numeric.quadrature import tanh_sinh
+from ..numeric.quadrature import LOOSE_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..profiles.base import ROUNDING, root_rtol
 from ..profiles.power_law import Paraboloid
+from ..profiles.radius_bounds import upper_radius_from_f
 from . import normal_fused as _fused
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "pressure_from_shape", "displacement",
@@ -417,6 +418,15 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         else:
             lo = np.full(Fs.shape, profile.flat_radius)
             hi = np.full(Fs.shape, profile._initial_bracket())
+            if (rtol >= LOOSE_RTOL and profile.g_route == "quadrature"
+                    and profile._has("_height")):
+                # at a loose rtol the first bracket from a lower bound of the force on f
+                # (radius_bounds), checked by the loop below, instead of growing it from the
+                # initial bracket with one force (two quadratures) per factor 4
+                hb = upper_radius_from_f(profile, Fs / (2 * E), profile._initial_bracket(),
+                                         limit * (1 - 1e-15) if np.isfinite(limit) else np.inf,
+                                         "force")
+                hi = np.where(np.isfinite(hb), hb, hi)
             for _ in range(400):
                 hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
                 F_hi = force_of_radius(profile, E, hi_c, rtol)

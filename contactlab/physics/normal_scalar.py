@@ -40,6 +40,7 @@ from ..numeric.powers import root_of_ratio_float, times_power_float
 from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, root_rtol
+from ..profiles.radius_bounds import upper_radius_from_f
 
 if TYPE_CHECKING:
     from ..profiles.compound import Scaled, Sum
@@ -461,7 +462,12 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
         cap = limit * (1 - 1e-15) if finite else math.inf
         f_prev = -math.inf
         growing = True
-        for _ in range(200 // _LADDER):
+        if rtol >= LOOSE_RTOL:
+            # the array route's bracket from the lower bound of g on f (the same function)
+            hb = float(upper_radius_from_f(profile, np.array([d]), hi, cap, "depth")[0])
+            if math.isfinite(hb):
+                hi, growing = hb, False
+        for _ in range(200 // _LADDER if growing else 0):
             his = [hi]
             for _ in range(_LADDER - 1):
                 his.append(his[-1] * 4.0)
@@ -534,6 +540,12 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
     finite = math.isfinite(limit)
     lo = float(profile.flat_radius)
     hi = float(profile._initial_bracket())
+    if rtol >= LOOSE_RTOL and profile._has("_height"):
+        # the array route's first bracket from the lower bound of the force on f
+        hb = float(upper_radius_from_f(profile, np.array([F]) / (2 * E_star), hi,
+                                       limit * (1 - 1e-15) if finite else math.inf, "force")[0])
+        if math.isfinite(hb):
+            hi = hb
     for _ in range(400):
         hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
         F_hi = force(hi_c)

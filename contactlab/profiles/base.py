@@ -36,6 +36,7 @@ from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
+from .radius_bounds import upper_radius_from_f
 
 if TYPE_CHECKING:
     from ..symbolic.formulas import FormulaSet
@@ -520,12 +521,19 @@ class Profile(ParamIdentity, ABC):
             # radius with f >= d is at or above the root (the loop below still checks g there)
             # (f that stops rising, saturating or falling, stops the growth: g takes over there)
             cap = limit * (1 - 1e-15) if np.isfinite(limit) else np.inf
+            found = np.zeros(d.shape, dtype=bool)
+            if rtol >= LOOSE_RTOL:
+                # at a loose rtol a tighter bracket from a lower bound of g on f (radius_bounds):
+                # fewer of the (few, costly) g evaluations of the root; the loop below checks g
+                hb = upper_radius_from_f(self, d, self._initial_bracket(), cap, "depth")
+                found = np.isfinite(hb)
+                hi = np.where(found, hb, hi)
             f_prev = np.full(d.shape, -np.inf)
             for _ in range(200):
                 hc = np.minimum(hi, cap)
                 with np.errstate(over="ignore", invalid="ignore"):
                     f_hc = self._height(hc)
-                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev)
+                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev) & ~found
                 if not np.any(short):
                     break
                 f_prev = f_hc

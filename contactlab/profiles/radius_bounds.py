@@ -1,0 +1,103 @@
+"""Upper brackets of the contact radius from the gap f alone (no quadrature of g).
+
+The depth and the reduced force of a contact radius ``a`` are Stieltjes integrals over f:
+
+    g(a)      = ∫_0^a  a / sqrt(a² - r²)  df(r)
+    F(a)/2E*  = ∫_0^a  r² / sqrt(a² - r²) df(r)
+
+Both weights grow with r. Where f does not decrease on [0, a] (df >= 0), a left Riemann-Stieltjes
+sum on any grid, ``Σ w(r_{i-1}) (f(r_i) - f(r_{i-1}))``, is therefore a lower bound of the
+integral, and the first radius whose lower bound reaches the requested depth or force lies at or
+above the root: an upper bracket from a few dozen values of f, without a quadrature of g. Where
+f decreases between grid points the sum is no bound at all, so the callers check g (or the force)
+at the bracket with one quadrature and fall back to growing the bracket on g where it falls short.
+
+The grid is ``r_i = a sin(θ_i)``, ``θ_i = (π/2) i/m``, dense near ``r = a`` where the weights are
+singular; the candidate radii are ``start · 2^(k/4)``. A candidate's bound depends only on the
+profile and the candidate (never on the other requests of a batch), so one load and a batch of
+loads get the same bracket, bit for bit.
+"""
+from __future__ import annotations
+
+from functools import cache
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .base import Profile
+
+__all__ = ["upper_radius_from_f", "BOUND_POINTS", "LADDER_STEPS", "LADDER_CHUNK"]
+
+#: grid intervals per candidate radius (the bound is within ~10 % of g for a paraboloid)
+BOUND_POINTS = 16
+#: candidate radii per octave (the bracket is at most 2^(1/4) ≈ 1.19 above the first radius whose
+#: bound reaches the target)
+LADDER_STEPS = 4
+#: candidate radii per call of f; at most four chunks (64 octaves above the start) are tried
+LADDER_CHUNK = 64
+_MAX_CHUNKS = 4
+
+
+@cache
+def _grid() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``sin θ_i`` (i = 0..m) and the left weights of g (``1/cos θ_i``) and of the force
+    (``sin²θ_i / cos θ_i``, times a), i = 0..m-1; read-only."""
+    th = np.arange(BOUND_POINTS + 1) * (0.5 * np.pi / BOUND_POINTS)
+    s = np.sin(th)
+    s[-1] = 1.0
+    c = np.cos(th[:-1])
+    w_g = 1.0 / c
+    w_f = s[:-1] * s[:-1] / c
+    for v in (s, w_g, w_f):
+        v.flags.writeable = False
+    return s, w_g, w_f
+
+
+def _bounds(profile: Profile, radii: np.ndarray, kind: str) -> np.ndarray:
+    """Lower bounds of g (``kind="depth"``) or of F/2E* (``kind="force"``) at each radius;
+    -inf where f decreases between two grid points (no bound) or is not finite."""
+    s, w_g, w_f = _grid()
+    r = radii[:, None] * s[None, :]
+    with np.errstate(over="ignore", invalid="ignore"):
+        f = np.asarray(profile._height(r), dtype=float)
+        df = f[:, 1:] - f[:, :-1]
+        w = w_g if kind == "depth" else w_f
+        total = np.zeros(radii.shape)
+        for i in range(BOUND_POINTS):       # (a fixed order of the sum: the same bits per row)
+            total = total + w[i] * df[:, i]
+        if kind == "force":
+            total = total * radii
+        ok = np.all(df >= 0, axis=1) & np.isfinite(total)
+    return np.where(ok, total, -np.inf)
+
+
+def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap: float,
+                        kind: str) -> np.ndarray:
+    """Per target (depth in m, or ``F/2E*`` in N/Pa), the first candidate radius
+    ``start · 2^(k/4) <= cap`` whose lower bound from f reaches it, or NaN where none does.
+
+    Only a bracket candidate: the bound holds where f does not decrease on [0, radius], which
+    the callers verify with one evaluation of g (or the force) there.
+    """
+    t = np.asarray(target, dtype=float)
+    out = np.full(t.shape, np.nan)
+    todo = np.ones(t.shape, dtype=bool)
+    if not (np.isfinite(start) and start > 0):
+        return out
+    for chunk in range(_MAX_CHUNKS):
+        k = np.arange(chunk * LADDER_CHUNK, (chunk + 1) * LADDER_CHUNK)
+        radii = start * 2.0 ** (k / LADDER_STEPS)
+        radii = radii[radii <= cap]
+        if radii.size == 0:
+            break
+        b = _bounds(profile, radii, kind)
+        reach = b[None, :] >= t[todo][:, None]
+        hit = reach.any(axis=1)
+        first = np.argmax(reach, axis=1)
+        vals = np.where(hit, radii[first], np.nan)
+        out[todo] = vals
+        todo[todo] = ~hit
+        if not todo.any() or radii.size < LADDER_CHUNK:
+            break
+    return out
