@@ -39,7 +39,7 @@ from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
 from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
-from ..profiles.base import ROUNDING, Profile, root_rtol
+from ..profiles.base import ROUNDING, Profile, quadrature_root_rtol, root_rtol
 from ..profiles.radius_bounds import upper_radius_from_f
 
 if TYPE_CHECKING:
@@ -507,7 +507,8 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
         a = lo
     else:
         try:
-            a = _chandrupatla(g, d, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+            a = _chandrupatla(g, d, lo, hi, f1, f2, quadrature_root_rtol(rtol), 200,
+                             "contact radius")
         except ConvergenceError:
             return None
     if finite and a >= limit:

@@ -41,7 +41,7 @@ from .radius_bounds import upper_radius_from_f
 if TYPE_CHECKING:
     from ..symbolic.formulas import FormulaSet
 
-__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
+__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol", "quadrature_root_rtol"]
 
 
 #: Capabilities a profile may declare (``Profile.capabilities``) and the hook each one promises.
@@ -83,6 +83,16 @@ def root_rtol(rtol: float) -> float:
     ``docs/accuracy.md``), and never looser than ``rtol`` itself.
     """
     return max(1e-15, 1e-5 * rtol)
+
+
+def quadrature_root_rtol(rtol: float) -> float:
+    """:func:`root_rtol` of a depth's contact radius on the quadrature route: ``1e-3 * rtol`` at
+    a loose ``rtol >= LOOSE_RTOL`` (each g there is a whole quadrature, and the force of a depth
+    does not move to first order with the radius: ``dF/da = 2E*(d - g(a))`` vanishes at the
+    root), :func:`root_rtol` otherwise (results at tighter tolerances unchanged). Not for a
+    force's radius: the depth of a force moves with it (``g'(a) δa``).
+    """
+    return 1e-3 * rtol if rtol >= LOOSE_RTOL else root_rtol(rtol)
 
 
 class Profile(ParamIdentity, ABC):
@@ -561,7 +571,8 @@ class Profile(ParamIdentity, ABC):
         def func(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return self._g(x, rtol)
 
-        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=root_rtol(rtol),
+        tol = quadrature_root_rtol(rtol) if self.g_route == "quadrature" else root_rtol(rtol)
+        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=tol,
                               what="contact radius").reshape(d.shape)
 
     def _initial_bracket(self) -> float:

@@ -34,9 +34,10 @@ BOUND_POINTS = 16
 #: candidate radii per octave (the bracket is at most 2^(1/4) ≈ 1.19 above the first radius whose
 #: bound reaches the target)
 LADDER_STEPS = 4
-#: candidate radii per call of f; at most four chunks (64 octaves above the start) are tried
-LADDER_CHUNK = 64
-_MAX_CHUNKS = 4
+#: candidate radii per call of f (32 octaves: 1 µm to 4 km from the usual start); at most two
+#: chunks are tried
+LADDER_CHUNK = 128
+_MAX_CHUNKS = 2
 
 
 @cache
@@ -56,20 +57,28 @@ def _grid() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def _bounds(profile: Profile, radii: np.ndarray, kind: str) -> np.ndarray:
     """Lower bounds of g (``kind="depth"``) or of F/2E* (``kind="force"``) at each radius;
-    -inf where f decreases between two grid points (no bound) or is not finite."""
+    -inf where f decreases between two grid points (no bound) or is not finite. (Always called
+    on the same ladder of radii, whatever the targets: the same bits for one load and a batch.)"""
     s, w_g, w_f = _grid()
     r = radii[:, None] * s[None, :]
     with np.errstate(over="ignore", invalid="ignore"):
         f = np.asarray(profile._height(r), dtype=float)
         df = f[:, 1:] - f[:, :-1]
-        w = w_g if kind == "depth" else w_f
-        total = np.zeros(radii.shape)
-        for i in range(BOUND_POINTS):       # (a fixed order of the sum: the same bits per row)
-            total = total + w[i] * df[:, i]
+        total = (df * (w_g if kind == "depth" else w_f)).sum(axis=1)
         if kind == "force":
-            total = total * radii
-        ok = np.all(df >= 0, axis=1) & np.isfinite(total)
+            total *= radii
+        ok = (df >= 0).all(axis=1) & np.isfinite(total)
     return np.where(ok, total, -np.inf)
+
+
+@cache
+def _ladder(start: float, cap: float, chunk: int) -> np.ndarray:
+    """Candidate radii ``start · 2^(k/4)`` of one chunk, those ``<= cap`` (read-only)."""
+    k = np.arange(chunk * LADDER_CHUNK, (chunk + 1) * LADDER_CHUNK)
+    radii = start * 2.0 ** (k / LADDER_STEPS)
+    radii = radii[radii <= cap]
+    radii.flags.writeable = False
+    return radii
 
 
 def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap: float,
@@ -82,21 +91,25 @@ def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap:
     """
     t = np.asarray(target, dtype=float)
     out = np.full(t.shape, np.nan)
-    todo = np.ones(t.shape, dtype=bool)
     if not (np.isfinite(start) and start > 0):
         return out
+    todo = np.ones(t.shape, dtype=bool)
     for chunk in range(_MAX_CHUNKS):
-        k = np.arange(chunk * LADDER_CHUNK, (chunk + 1) * LADDER_CHUNK)
-        radii = start * 2.0 ** (k / LADDER_STEPS)
-        radii = radii[radii <= cap]
+        radii = _ladder(float(start), float(cap), chunk)
         if radii.size == 0:
             break
-        b = _bounds(profile, radii, kind)
+        key = (float(start), float(cap), kind, chunk)
+        cache = profile.__dict__.get("_radius_bound_cache")
+        if cache is None:
+            cache = profile.__dict__["_radius_bound_cache"] = {}
+        b = cache.get(key)
+        if b is None:
+            # (the profile's parameters are fixed: its bounds on a ladder are computed once)
+            b = cache[key] = _bounds(profile, radii, kind)
+            b.flags.writeable = False
         reach = b[None, :] >= t[todo][:, None]
         hit = reach.any(axis=1)
-        first = np.argmax(reach, axis=1)
-        vals = np.where(hit, radii[first], np.nan)
-        out[todo] = vals
+        out[todo] = np.where(hit, radii[reach.argmax(axis=1)], np.nan)
         todo[todo] = ~hit
         if not todo.any() or radii.size < LADDER_CHUNK:
             break
