@@ -36,7 +36,7 @@ from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
-from .radius_bounds import upper_radius_from_f
+from .radius_bounds import first_step_from_f, upper_radius_from_f
 
 if TYPE_CHECKING:
     from ..symbolic.formulas import FormulaSet
@@ -548,6 +548,7 @@ class Profile(ParamIdentity, ABC):
                     break
                 f_prev = f_hc
                 hi = np.where(short, hi * 4.0, hi)
+        g_top = np.full(d.size, np.nan)
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
             g_hi = self._g(hi_c, rtol)
@@ -555,8 +556,8 @@ class Profile(ParamIdentity, ABC):
             if not np.any(short):
                 hi = hi_c
                 # a root far below the first bracket (depths of 1e-200 m): tightened
-                lo, hi, _ = shrink_bracket(lambda x, idx: self._g(x, rtol), d.ravel(),
-                                           lo.ravel(), hi.ravel(), np.ravel(g_hi))
+                lo, hi, g_top = shrink_bracket(lambda x, idx: self._g(x, rtol), d.ravel(),
+                                               lo.ravel(), hi.ravel(), np.ravel(g_hi))
                 lo, hi = lo.reshape(d.shape), hi.reshape(d.shape)
                 break
             if np.isfinite(limit) and np.any(short & (hi >= limit * (1 - 1e-15))):
@@ -572,8 +573,17 @@ class Profile(ParamIdentity, ABC):
             return self._g(x, rtol)
 
         tol = quadrature_root_rtol(rtol) if self.g_route == "quadrature" else root_rtol(rtol)
-        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=tol,
-                              what="contact radius").reshape(d.shape)
+        step0, ftol = None, 0.0
+        if rtol >= LOOSE_RTOL and self.g_route == "quadrature" and self._has("_height"):
+            # (and a stop once g is within tol of the depth: the radius is then within about
+            # tol/n of the root, n the local power of g, and the force unmoved to first order)
+            ftol = tol
+            # the first point where the bound of g on f, scaled to g at hi, meets the depth
+            step0 = first_step_from_f(
+                self, d_flat, lo.ravel(), hi.ravel(), g_top, self._initial_bracket(),
+                limit * (1 - 1e-15) if np.isfinite(limit) else np.inf, "depth")
+        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=tol, ftol=ftol,
+                              what="contact radius", first_step=step0).reshape(d.shape)
 
     def _initial_bracket(self) -> float:
         finite = [v for v in (self.max_radius, self.wall_radius) if np.isfinite(v)]

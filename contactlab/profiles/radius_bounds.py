@@ -27,7 +27,7 @@ import numpy as np
 if TYPE_CHECKING:
     from .base import Profile
 
-__all__ = ["upper_radius_from_f", "BOUND_POINTS", "LADDER_STEPS", "LADDER_CHUNK"]
+__all__ = ["upper_radius_from_f", "first_step_from_f", "BOUND_POINTS", "LADDER_STEPS", "LADDER_CHUNK"]
 
 #: grid intervals per candidate radius (the bound is within ~10 % of g for a paraboloid)
 BOUND_POINTS = 16
@@ -114,3 +114,43 @@ def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap:
         if not todo.any() or radii.size < LADDER_CHUNK:
             break
     return out
+
+
+#: the first step of the root's iteration stays this far inside the bracket (as a fraction)
+_STEP_MARGIN = 1.0 / 64.0
+
+
+def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                      value_hi: np.ndarray, start: float, cap: float, kind: str) -> np.ndarray:
+    """A first point for the root's iteration in ``[lo, hi]``, as a fraction from ``lo``
+    (0.5, a bisection, where no guess applies).
+
+    ``value_hi`` is g (or F/2E*) at ``hi``. The ratio of g to its lower bound from f is the same
+    at every radius for a power-law gap (both scale as ``a^n``) and varies slowly otherwise; so
+    the guess is the radius where the bound, scaled by the ratio found at ``hi``, meets the
+    target, both read off the bounds of the first ladder chunk by linear interpolation (plain
+    arithmetic per element: one load and a batch get the same bits).
+    """
+    t = np.asarray(target, dtype=float)
+    out = np.full(t.shape, 0.5)
+    if not (np.isfinite(start) and start > 0):
+        return out
+    radii = _ladder(float(start), float(cap), 0)
+    b = (profile.__dict__.get("_radius_bound_cache") or {}).get(
+        (float(start), float(cap), kind, 0))
+    if b is None or radii.size < 2 or not bool(np.all(b[1:] >= b[:-1])) or not b[0] > -np.inf:
+        return out
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        # the bound at hi (linear between the ladder's radii), then the ratio of value to bound
+        j = np.clip(np.searchsorted(radii, hi), 1, radii.size - 1)
+        r0, r1, b0, b1 = radii[j - 1], radii[j], b[j - 1], b[j]
+        b_hi = b0 + (hi - r0) * ((b1 - b0) / (r1 - r0))
+        tau = t * (b_hi / value_hi)
+        # the radius where the bound reaches tau (linear between the ladder's bounds)
+        k = np.clip(np.searchsorted(b, tau), 1, radii.size - 1)
+        r0, r1, b0, b1 = radii[k - 1], radii[k], b[k - 1], b[k]
+        x0 = r0 + (tau - b0) * ((r1 - r0) / (b1 - b0))
+        frac = (x0 - lo) / (hi - lo)
+        ok = (np.isfinite(frac) & (hi >= radii[0]) & (hi <= radii[-1]) & (value_hi > 0)
+              & (b_hi > 0) & (tau >= b[0]) & (tau <= b[-1]))
+    return np.where(ok, np.clip(frac, _STEP_MARGIN, 1.0 - _STEP_MARGIN), out)
