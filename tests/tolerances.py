@@ -894,3 +894,7 @@ TABLE_LINEAR_RANDOM_RADII_10K = 15.0
 #: the rounding estimate the dense route reports (8 eps times the parts' magnitudes): measured
 #: <= 0.68 (wavy 10^4-point table, at points where g nearly cancels), 0.03 on a sampled sphere
 TABLE_FAR_FIELD_CUBIC = 1.0
+#: the lower bounds of g and of F/2E* from f (radius_bounds: left Riemann-Stieltjes sums of
+#: non-negative terms) against the closed forms of random polynomial gaps: a bound may exceed
+#: the value only by the rounding of the two sums (16 terms each; measured: never above it)
+RADIUS_BOUND_ROUNDING = 1e-13
