@@ -143,7 +143,7 @@ def test_bracket_edge_cases():
     assert st[0] == 0.5
 
 
-@pytest.mark.parametrize("p", _random_polynomials(6, seed=5)[3:] + [Wavy()], ids=repr)
+@pytest.mark.parametrize("p", [*_random_polynomials(6, seed=5)[3:], Wavy()], ids=repr)
 @pytest.mark.parametrize("rtol", [1e-2, 1e-3])
 @pytest.mark.parametrize("control", ["depth", "force"])
 def test_loose_solves_scalar_equals_batched(p, rtol, control):
