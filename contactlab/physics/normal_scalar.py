@@ -40,7 +40,7 @@ from ..numeric.powers import root_of_ratio_float, times_power_float
 from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
 from ..profiles.base import ROUNDING, Profile, quadrature_root_rtol, root_rtol
-from ..profiles.radius_bounds import first_step_from_f, upper_radius_from_f
+from ..profiles.radius_bounds import first_step_one, upper_radius_one
 
 if TYPE_CHECKING:
     from ..profiles.compound import Scaled, Sum
@@ -464,7 +464,7 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
         growing = True
         if rtol >= LOOSE_RTOL:
             # the array route's bracket from the lower bound of g on f (the same function)
-            hb = float(upper_radius_from_f(profile, np.array([d]), hi, cap, "depth")[0])
+            hb = upper_radius_one(profile, d, hi, cap, "depth")
             if math.isfinite(hb):
                 hi, growing = hb, False
         for _ in range(200 // _LADDER if growing else 0):
@@ -510,10 +510,9 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
             step0, ftol, tol = 0.5, 0.0, quadrature_root_rtol(rtol)
             if rtol >= LOOSE_RTOL and profile._has("_height"):
                 # the array route's first point (the same function on one element) and stop
-                step0, ftol = float(first_step_from_f(
-                    profile, np.array([d]), np.array([lo]), np.array([hi]), np.array([g_hi]),
-                    float(profile._initial_bracket()),
-                    limit * (1 - 1e-15) if finite else math.inf, "depth")[0]), tol
+                step0, ftol = first_step_one(
+                    profile, d, lo, hi, g_hi, float(profile._initial_bracket()),
+                    limit * (1 - 1e-15) if finite else math.inf, "depth"), tol
             a = _chandrupatla(g, d, lo, hi, f1, f2, tol, 200, "contact radius", step0, ftol)
         except ConvergenceError:
             return None
@@ -554,8 +553,8 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
     hi = float(profile._initial_bracket())
     if rtol >= LOOSE_RTOL and profile._has("_height"):
         # the array route's first bracket from the lower bound of the force on f
-        hb = float(upper_radius_from_f(profile, np.array([F]) / (2 * E_star), hi,
-                                       limit * (1 - 1e-15) if finite else math.inf, "force")[0])
+        hb = upper_radius_one(profile, F / (2 * E_star), hi,
+                              limit * (1 - 1e-15) if finite else math.inf, "force")
         if math.isfinite(hb):
             hi = hb
     for _ in range(400):
@@ -586,10 +585,10 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
             step0 = 0.5
             if rtol >= LOOSE_RTOL and profile._has("_height"):
                 # the array route's first point (the same function on one element)
-                step0 = float(first_step_from_f(
-                    profile, np.array([F]) / (2 * E_star), np.array([lo]), np.array([hi]),
-                    np.array([F_hi]) / (2 * E_star), float(profile._initial_bracket()),
-                    limit * (1 - 1e-15) if finite else math.inf, "force")[0])
+                step0 = first_step_one(
+                    profile, F / (2 * E_star), lo, hi, F_hi / (2 * E_star),
+                    float(profile._initial_bracket()),
+                    limit * (1 - 1e-15) if finite else math.inf, "force")
             a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius",
                               step0)
         except ConvergenceError:

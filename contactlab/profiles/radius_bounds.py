@@ -19,6 +19,8 @@ loads get the same bracket, bit for bit.
 """
 from __future__ import annotations
 
+import math
+from bisect import bisect_left
 from functools import cache
 from typing import TYPE_CHECKING
 
@@ -27,7 +29,8 @@ import numpy as np
 if TYPE_CHECKING:
     from .base import Profile
 
-__all__ = ["upper_radius_from_f", "first_step_from_f", "BOUND_POINTS", "LADDER_STEPS", "LADDER_CHUNK"]
+__all__ = ["upper_radius_from_f", "first_step_from_f", "upper_radius_one", "first_step_one",
+           "BOUND_POINTS", "LADDER_STEPS", "LADDER_CHUNK"]
 
 #: grid intervals per candidate radius (the bound is within ~10 % of g for a paraboloid)
 BOUND_POINTS = 16
@@ -81,6 +84,49 @@ def _ladder(start: float, cap: float, chunk: int) -> np.ndarray:
     return radii
 
 
+def _chunk(profile: Profile, start: float, cap: float, kind: str, chunk: int
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """The ladder's radii of one chunk and their bounds (kept per profile, read-only)."""
+    radii = _ladder(float(start), float(cap), chunk)
+    key = (float(start), float(cap), kind, chunk)
+    cache = profile.__dict__.get("_radius_bound_cache")
+    if cache is None:
+        cache = profile.__dict__["_radius_bound_cache"] = {}
+    b = cache.get(key)
+    if b is None:
+        # (the profile's parameters are fixed: its bounds on a ladder are computed once)
+        b = cache[key] = _bounds(profile, radii, kind) if radii.size else np.zeros(0)
+        b.flags.writeable = False
+    return radii, b
+
+
+def _chunk_lists(profile: Profile, start: float, cap: float, kind: str
+                 ) -> tuple[list[float], list[float], bool]:
+    """The first chunk's radii and bounds as lists and whether the bounds never decrease (for
+    the one-load functions below; kept per profile)."""
+    cache = profile.__dict__.get("_radius_bound_cache")
+    key = (float(start), float(cap), kind, "lists")
+    got = cache.get(key) if cache is not None else None
+    if got is None:
+        radii, b = _chunk(profile, start, cap, kind, 0)
+        mono = bool(radii.size >= 2 and np.all(b[1:] >= b[:-1]) and b[0] > -np.inf)
+        got = (radii.tolist(), b.tolist(), mono)
+        profile.__dict__["_radius_bound_cache"][key] = got
+    return got
+
+
+def upper_radius_one(profile: Profile, target: float, start: float, cap: float,
+                     kind: str) -> float:
+    """:func:`upper_radius_from_f` of one target in floats (the same radius)."""
+    if math.isfinite(start) and start > 0 and target == target:
+        radii, b, mono = _chunk_lists(profile, start, cap, kind)
+        if mono:
+            k = bisect_left(b, target)          # (the first bound >= target, as argmax there)
+            if k < len(radii):
+                return radii[k]
+    return float(upper_radius_from_f(profile, np.array([target]), start, cap, kind)[0])
+
+
 def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap: float,
                         kind: str) -> np.ndarray:
     """Per target (depth in m, or ``F/2E*`` in N/Pa), the first candidate radius
@@ -95,18 +141,9 @@ def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap:
         return out
     todo = np.ones(t.shape, dtype=bool)
     for chunk in range(_MAX_CHUNKS):
-        radii = _ladder(float(start), float(cap), chunk)
+        radii, b = _chunk(profile, start, cap, kind, chunk)
         if radii.size == 0:
             break
-        key = (float(start), float(cap), kind, chunk)
-        cache = profile.__dict__.get("_radius_bound_cache")
-        if cache is None:
-            cache = profile.__dict__["_radius_bound_cache"] = {}
-        b = cache.get(key)
-        if b is None:
-            # (the profile's parameters are fixed: its bounds on a ladder are computed once)
-            b = cache[key] = _bounds(profile, radii, kind)
-            b.flags.writeable = False
         reach = b[None, :] >= t[todo][:, None]
         hit = reach.any(axis=1)
         out[todo] = np.where(hit, radii[reach.argmax(axis=1)], np.nan)
@@ -135,10 +172,8 @@ def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: 
     out = np.full(t.shape, 0.5)
     if not (np.isfinite(start) and start > 0):
         return out
-    radii = _ladder(float(start), float(cap), 0)
-    b = (profile.__dict__.get("_radius_bound_cache") or {}).get(
-        (float(start), float(cap), kind, 0))
-    if b is None or radii.size < 2 or not bool(np.all(b[1:] >= b[:-1])) or not b[0] > -np.inf:
+    radii, b = _chunk(profile, start, cap, kind, 0)
+    if not _chunk_lists(profile, start, cap, kind)[2]:
         return out
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         # the bound at hi (linear between the ladder's radii), then the ratio of value to bound
@@ -154,3 +189,29 @@ def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: 
         ok = (np.isfinite(frac) & (hi >= radii[0]) & (hi <= radii[-1]) & (value_hi > 0)
               & (b_hi > 0) & (tau >= b[0]) & (tau <= b[-1]))
     return np.where(ok, np.clip(frac, _STEP_MARGIN, 1.0 - _STEP_MARGIN), out)
+
+
+def first_step_one(profile: Profile, target: float, lo: float, hi: float, value_hi: float,
+                   start: float, cap: float, kind: str) -> float:
+    """:func:`first_step_from_f` of one element in floats (the same operations: the same
+    fraction, bit for bit)."""
+    if not (math.isfinite(start) and start > 0):
+        return 0.5
+    radii, b, mono = _chunk_lists(profile, start, cap, kind)
+    if not mono:
+        return 0.5
+    n = len(radii)
+    try:
+        j = min(max(bisect_left(radii, hi), 1), n - 1)
+        r0, r1, b0, b1 = radii[j - 1], radii[j], b[j - 1], b[j]
+        b_hi = b0 + (hi - r0) * ((b1 - b0) / (r1 - r0))
+        tau = target * (b_hi / value_hi)
+        k = min(max(bisect_left(b, tau), 1), n - 1)
+        r0, r1, b0, b1 = radii[k - 1], radii[k], b[k - 1], b[k]
+        x0 = r0 + (tau - b0) * ((r1 - r0) / (b1 - b0))
+        frac = (x0 - lo) / (hi - lo)
+    except (ZeroDivisionError, OverflowError):
+        return 0.5
+    ok = (math.isfinite(frac) and radii[0] <= hi <= radii[-1] and value_hi > 0 and b_hi > 0
+          and b[0] <= tau <= b[-1])
+    return min(max(frac, _STEP_MARGIN), 1.0 - _STEP_MARGIN) if ok else 0.5

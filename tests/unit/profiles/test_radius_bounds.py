@@ -18,7 +18,8 @@ import contactlab as cl
 from contactlab.numeric.roots import _chandrupatla, bracketed_root
 from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Profile
 from contactlab.profiles.radius_bounds import (_bounds, _ladder, first_step_from_f,
-                                               upper_radius_from_f)
+                                               first_step_one, upper_radius_from_f,
+                                               upper_radius_one)
 from tests.tolerances import RADIUS_BOUND_ROUNDING
 
 MATERIALS = (cl.Elastic(E=1.0, nu=0.0), cl.Rigid())          # E* = 1 Pa
@@ -209,3 +210,30 @@ def test_loose_rtol_takes_fewer_quadratures(monkeypatch):
     calls.update(g=0, gi=0)
     s = contact.normal(depth=0.01)
     assert calls["g"] + calls["gi"] <= 6 and abs(s.radius / 0.1 - 1) <= 1e-2
+
+
+@pytest.mark.parametrize("p", [*_random_polynomials(4, seed=29), Wavy()], ids=repr)
+@pytest.mark.parametrize("kind", ["depth", "force"])
+def test_one_load_functions_are_the_array_functions(p, kind):
+    """The float versions the one-load solves use give the array versions' bits, on random
+    targets, brackets and values (including degenerate ones: zero width, zero value, NaN)."""
+    q = p if isinstance(p, Wavy) else FOnly(p)
+    rng = np.random.default_rng(31)
+    n = 400
+    t = 10 ** rng.uniform(-12, 6, n)
+    hi = 10 ** rng.uniform(-7, 4, n)
+    lo = hi * rng.choice([0.0, 0.3, 1.0], n)
+    v = t * 10 ** rng.uniform(-0.5, 1.5, n)
+    v[::37] = 0.0
+    t[::53] = np.nan
+    for cap in (math.inf, 0.5):
+        arr = upper_radius_from_f(q, t, 1e-6, cap, kind)
+        steps = first_step_from_f(q, t, lo, hi, v, 1e-6, cap, kind)
+        if not isinstance(p, Wavy):
+            assert np.sum(steps != 0.5) > n // 10 and np.sum(np.isfinite(arr)) > n // 4
+        for i in range(n):
+            one = upper_radius_one(q, float(t[i]), 1e-6, cap, kind)
+            assert np.float64(one).tobytes() == arr[i].tobytes(), i
+            st = first_step_one(q, float(t[i]), float(lo[i]), float(hi[i]), float(v[i]), 1e-6,
+                                cap, kind)
+            assert np.float64(st).tobytes() == steps[i].tobytes(), i
