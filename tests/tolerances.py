@@ -909,3 +909,7 @@ PANEL_CONTINUATION = 1e-14
 #: smooth sampled table, 5e-13 on one with 20 % noise whose slope jumps of both signs cancel
 #: in the sum to 1e-4 of their magnitudes)
 FAST_G = 2e-12
+#: the lower bounds of g and of F/2E* from f (radius_bounds: left Riemann-Stieltjes sums of
+#: non-negative terms) against the closed forms of random polynomial gaps: a bound may exceed
+#: the value only by the rounding of the two sums (16 terms each; measured: never above it)
+RADIUS_BOUND_ROUNDING = 1e-13

@@ -34,6 +34,7 @@ def bracketed_root(
     f_lo: np.ndarray | float | None = None,
     f_hi: np.ndarray | float | None = None,
     secant_start: bool = False,
+    first_step: np.ndarray | None = None,
 ) -> np.ndarray:
     """Solve ``func(x, index) = target`` for each element with a bracket ``[lo, hi]``.
 
@@ -57,6 +58,10 @@ def bracketed_root(
     secant_start : bool
         Take the first step at the secant of the two ends instead of the midpoint (for brackets
         already tight around the root: one pass saved; default False keeps the classic start).
+    first_step : ndarray, optional
+        Per element (flat, the broadcast size), the first point as a fraction of the bracket
+        from ``lo`` (in ``(0, 1)``; default 0.5, a bisection): a good guess of the root there
+        saves the first bisections.
 
     Returns
     -------
@@ -87,11 +92,14 @@ def bracketed_root(
     x[f2 == 0] = x2[f2 == 0]
     x3 = x2.copy()
     f3 = f2.copy()
-    step = np.full(t.size, 0.5)
-    if secant_start:
+    if first_step is not None:
+        step = np.array(first_step, dtype=float).ravel().copy()
+    elif secant_start:
         with np.errstate(invalid="ignore", divide="ignore"):
             sec = f1 / (f1 - f2)
         step = np.where(np.isfinite(sec), np.clip(sec, 4 * _EPS, 1 - 4 * _EPS), 0.5)
+    else:
+        step = np.full(t.size, 0.5)
     act = np.flatnonzero(~done)
     for _ in range(maxiter):
         if act.size == 0:
@@ -257,11 +265,12 @@ def _newton(func, fprime, target, a, b, fa, fb, rtol, maxiter, what) -> float:
                            f"(bracket [{a:.17g}, {b:.17g}]).")
 
 
-def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what) -> float:
+def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what, first_step=0.5,
+                  ftol=0.0) -> float:
     # the same iteration as bracketed_root, for one element in plain floats
     eps4 = 4 * _EPS
     x3, f3 = x2, f2
-    t = 0.5
+    t = first_step
     x = x1 if abs(f1) <= abs(f2) else x2
     for _ in range(maxiter):
         xn = x1 + t * (x2 - x1) if t <= 0.5 else x2 + (1.0 - t) * (x1 - x2)
@@ -277,7 +286,7 @@ def _chandrupatla(func, target, x1, x2, f1, f2, rtol, maxiter, what) -> float:
         width = abs(x2 - x1)
         tol = rtol * max(abs(xm), 1e-300)
         mid = 0.5 * (x1 + x2)
-        if width <= tol or fm == 0 or mid == x1 or mid == x2:
+        if width <= tol or fm == 0 or abs(fm) <= ftol * abs(target) or mid == x1 or mid == x2:
             return x
         tl = min(max(0.5 * tol / width, eps4), 0.5)
         xi = (x1 - x2) / (x3 - x2) if x3 != x2 else math.nan

@@ -22,10 +22,11 @@ import numpy as np
 
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio
-from ..numeric.quadrature import tanh_sinh
+from ..numeric.quadrature import LOOSE_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..profiles.base import ROUNDING, root_rtol
 from ..profiles.power_law import Paraboloid
+from ..profiles.radius_bounds import first_step_from_f, upper_radius_from_f
 from . import normal_fused as _fused
 
 __all__ = ["force", "pressure_shape", "abel_g", "pressure", "pressure_from_shape", "displacement",
@@ -417,6 +418,16 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
         else:
             lo = np.full(Fs.shape, profile.flat_radius)
             hi = np.full(Fs.shape, profile._initial_bracket())
+            if (rtol >= LOOSE_RTOL and profile.g_route == "quadrature"
+                    and profile._has("_height")):
+                # at a loose rtol the first bracket from a lower bound of the force on f
+                # (radius_bounds), checked by the loop below, instead of growing it from the
+                # initial bracket with one force (two quadratures) per factor 4
+                hb = upper_radius_from_f(profile, Fs / (2 * E), profile._initial_bracket(),
+                                         limit * (1 - 1e-15) if np.isfinite(limit) else np.inf,
+                                         "force")
+                hi = np.where(np.isfinite(hb), hb, hi)
+            F_top = np.full(Fs.shape, np.nan)
             for _ in range(400):
                 hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
                 F_hi = force_of_radius(profile, E, hi_c, rtol)
@@ -424,7 +435,7 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
                 if not np.any(short):
                     hi = hi_c
                     # a root far below the first bracket (forces of 1e-100 N): tightened
-                    lo, hi, _ = shrink_bracket(
+                    lo, hi, F_top = shrink_bracket(
                         lambda x, idx: force_of_radius(profile, E, x, rtol), Fs, lo, hi, F_hi)
                     break
                 at_limit = short & (hi_c >= limit * (1 - 1e-15))
@@ -435,8 +446,17 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
                         f"of {profile!r}; reduce the force.")
                 lo = np.where(short, hi_c, lo)
                 hi = np.where(short, hi * 4.0, hi)
+            step0 = None
+            if (rtol >= LOOSE_RTOL and profile.g_route == "quadrature"
+                    and profile._has("_height")):
+                # the first point where the bound of the force on f, scaled to the force at
+                # hi, meets the request
+                step0 = first_step_from_f(
+                    profile, Fs / (2 * E), lo, hi, F_top / (2 * E), profile._initial_bracket(),
+                    limit * (1 - 1e-15) if np.isfinite(limit) else np.inf, "force")
             ap[solve] = bracketed_root(lambda x, idx: force_of_radius(profile, E, x, rtol), Fs, lo,
-                                       hi, rtol=root_rtol(rtol), what="contact radius")
+                                       hi, rtol=root_rtol(rtol), what="contact radius",
+                                       first_step=step0)
     if walled:
         dp = np.where(ap >= profile.wall_radius,
                       (Fp / (2 * E) + profile._g_integral(ap, rtol)) / ap, profile._g(ap, rtol))

@@ -39,7 +39,8 @@ from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
 from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
-from ..profiles.base import ROUNDING, Profile, root_rtol
+from ..profiles.base import ROUNDING, Profile, quadrature_root_rtol, root_rtol
+from ..profiles.radius_bounds import first_step_one, upper_radius_one
 
 if TYPE_CHECKING:
     from ..profiles.compound import Scaled, Sum
@@ -461,7 +462,12 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
         cap = limit * (1 - 1e-15) if finite else math.inf
         f_prev = -math.inf
         growing = True
-        for _ in range(200 // _LADDER):
+        if rtol >= LOOSE_RTOL:
+            # the array route's bracket from the lower bound of g on f (the same function)
+            hb = upper_radius_one(profile, d, hi, cap, "depth")
+            if math.isfinite(hb):
+                hi, growing = hb, False
+        for _ in range(200 // _LADDER if growing else 0):
             his = [hi]
             for _ in range(_LADDER - 1):
                 his.append(his[-1] * 4.0)
@@ -501,7 +507,13 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
         a = lo
     else:
         try:
-            a = _chandrupatla(g, d, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+            step0, ftol, tol = 0.5, 0.0, quadrature_root_rtol(rtol)
+            if rtol >= LOOSE_RTOL and profile._has("_height"):
+                # the array route's first point (the same function on one element) and stop
+                step0, ftol = first_step_one(
+                    profile, d, lo, hi, g_hi, float(profile._initial_bracket()),
+                    limit * (1 - 1e-15) if finite else math.inf, "depth"), tol
+            a = _chandrupatla(g, d, lo, hi, f1, f2, tol, 200, "contact radius", step0, ftol)
         except ConvergenceError:
             return None
     if finite and a >= limit:
@@ -522,8 +534,13 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
     lean = _lean(profile, rtol)
     two_e = 2.0 * E_star
 
+    seen: dict[float, float] = {}           # g of the radii evaluated (the depth at the root)
+
     def force(x: float) -> float:
+        if x == 0.0:
+            return 0.0      # (the array route's 2E*(0 g(0) - ∫_0^0 g): g(0) = ∫_0^0 g = 0)
         g, gi = _g_and_integral_one(profile, x, rtol, lean)
+        seen[x] = g
         out = two_e * (x * g - gi)
         if not math.isfinite(out) and math.isfinite(g) and math.isfinite(gi):
             # an overflow, which raises on the array route (numpy's over="raise" there)
@@ -534,6 +551,12 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
     finite = math.isfinite(limit)
     lo = float(profile.flat_radius)
     hi = float(profile._initial_bracket())
+    if rtol >= LOOSE_RTOL and profile._has("_height"):
+        # the array route's first bracket from the lower bound of the force on f
+        hb = upper_radius_one(profile, F / (2 * E_star), hi,
+                              limit * (1 - 1e-15) if finite else math.inf, "force")
+        if math.isfinite(hb):
+            hi = hb
     for _ in range(400):
         hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
         F_hi = force(hi_c)
@@ -559,12 +582,21 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
         a = lo
     else:
         try:
-            a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius")
+            step0 = 0.5
+            if rtol >= LOOSE_RTOL and profile._has("_height"):
+                # the array route's first point (the same function on one element)
+                step0 = first_step_one(
+                    profile, F / (2 * E_star), lo, hi, F_hi / (2 * E_star),
+                    float(profile._initial_bracket()),
+                    limit * (1 - 1e-15) if finite else math.inf, "force")
+            a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius",
+                              step0)
         except ConvergenceError:
             return None
     if not a > 0 or (finite and a >= limit):
         return None
-    return a, g_one(profile, a, rtol, lean)
+    d = seen.get(a)         # (g of the force's pass: the same bits as g alone)
+    return a, (g_one(profile, a, rtol, lean) if d is None else d)
 
 
 def quadrature_force_rel_error(E_star: float, a: float, d: float, g_int: float,

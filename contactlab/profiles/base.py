@@ -36,11 +36,12 @@ from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min
 from ..numeric.roots import bracketed_root, shrink_bracket
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
+from .radius_bounds import first_step_from_f, upper_radius_from_f
 
 if TYPE_CHECKING:
     from ..symbolic.formulas import FormulaSet
 
-__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol"]
+__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol", "quadrature_root_rtol"]
 
 
 #: Capabilities a profile may declare (``Profile.capabilities``) and the hook each one promises.
@@ -82,6 +83,16 @@ def root_rtol(rtol: float) -> float:
     ``docs/accuracy.md``), and never looser than ``rtol`` itself.
     """
     return max(1e-15, 1e-5 * rtol)
+
+
+def quadrature_root_rtol(rtol: float) -> float:
+    """:func:`root_rtol` of a depth's contact radius on the quadrature route: ``1e-3 * rtol`` at
+    a loose ``rtol >= LOOSE_RTOL`` (each g there is a whole quadrature, and the force of a depth
+    does not move to first order with the radius: ``dF/da = 2E*(d - g(a))`` vanishes at the
+    root), :func:`root_rtol` otherwise (results at tighter tolerances unchanged). Not for a
+    force's radius: the depth of a force moves with it (``g'(a) δa``).
+    """
+    return 1e-3 * rtol if rtol >= LOOSE_RTOL else root_rtol(rtol)
 
 
 class Profile(ParamIdentity, ABC):
@@ -520,16 +531,24 @@ class Profile(ParamIdentity, ABC):
             # radius with f >= d is at or above the root (the loop below still checks g there)
             # (f that stops rising, saturating or falling, stops the growth: g takes over there)
             cap = limit * (1 - 1e-15) if np.isfinite(limit) else np.inf
+            found = np.zeros(d.shape, dtype=bool)
+            if rtol >= LOOSE_RTOL:
+                # at a loose rtol a tighter bracket from a lower bound of g on f (radius_bounds):
+                # fewer of the (few, costly) g evaluations of the root; the loop below checks g
+                hb = upper_radius_from_f(self, d, self._initial_bracket(), cap, "depth")
+                found = np.isfinite(hb)
+                hi = np.where(found, hb, hi)
             f_prev = np.full(d.shape, -np.inf)
             for _ in range(200):
                 hc = np.minimum(hi, cap)
                 with np.errstate(over="ignore", invalid="ignore"):
                     f_hc = self._height(hc)
-                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev)
+                short = (f_hc < d) & (hc < cap) & (f_hc > f_prev) & ~found
                 if not np.any(short):
                     break
                 f_prev = f_hc
                 hi = np.where(short, hi * 4.0, hi)
+        g_top = np.full(d.size, np.nan)
         for _ in range(400):
             hi_c = np.minimum(hi, limit * (1 - 1e-15)) if np.isfinite(limit) else hi
             g_hi = self._g(hi_c, rtol)
@@ -537,8 +556,8 @@ class Profile(ParamIdentity, ABC):
             if not np.any(short):
                 hi = hi_c
                 # a root far below the first bracket (depths of 1e-200 m): tightened
-                lo, hi, _ = shrink_bracket(lambda x, idx: self._g(x, rtol), d.ravel(),
-                                           lo.ravel(), hi.ravel(), np.ravel(g_hi))
+                lo, hi, g_top = shrink_bracket(lambda x, idx: self._g(x, rtol), d.ravel(),
+                                               lo.ravel(), hi.ravel(), np.ravel(g_hi))
                 lo, hi = lo.reshape(d.shape), hi.reshape(d.shape)
                 break
             if np.isfinite(limit) and np.any(short & (hi >= limit * (1 - 1e-15))):
@@ -553,8 +572,18 @@ class Profile(ParamIdentity, ABC):
         def func(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
             return self._g(x, rtol)
 
-        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=root_rtol(rtol),
-                              what="contact radius").reshape(d.shape)
+        tol = quadrature_root_rtol(rtol) if self.g_route == "quadrature" else root_rtol(rtol)
+        step0, ftol = None, 0.0
+        if rtol >= LOOSE_RTOL and self.g_route == "quadrature" and self._has("_height"):
+            # (and a stop once g is within tol of the depth: the radius is then within about
+            # tol/n of the root, n the local power of g, and the force unmoved to first order)
+            ftol = tol
+            # the first point where the bound of g on f, scaled to g at hi, meets the depth
+            step0 = first_step_from_f(
+                self, d_flat, lo.ravel(), hi.ravel(), g_top, self._initial_bracket(),
+                limit * (1 - 1e-15) if np.isfinite(limit) else np.inf, "depth")
+        return bracketed_root(func, d_flat, lo.ravel(), hi.ravel(), rtol=tol, ftol=ftol,
+                              what="contact radius", first_step=step0).reshape(d.shape)
 
     def _initial_bracket(self) -> float:
         finite = [v for v in (self.max_radius, self.wall_radius) if np.isfinite(v)]

@@ -8,6 +8,7 @@ dispatches here.
 """
 from __future__ import annotations
 
+import math
 from typing import cast
 
 import numpy as np
@@ -19,6 +20,55 @@ from ._base import _TableBase
 #: Newton iteration of :meth:`_TableSolver._newton_on_node_interval` stops without a further
 #: pass over the nodes
 _NEWTON_MARGIN = 100.0
+
+
+def _newton_one(x0: float, h: float, target: float, v0: float, v1: float, tol: float,
+                value_and_slope, cusp: float | None) -> float | None:
+    """:meth:`_TableSolver._newton_on_node_interval` for one element in plain floats: the same
+    IEEE operations in the same order (``u ** 2`` as ``u * u``, which numpy's square is; the
+    cube of the convergence test through numpy's power on a one-element array, as on the
+    batch), so the same radius bit for bit; None where the batch's bracketed fallback would run
+    (the caller then takes the array route, which runs it)."""
+    if v1 > v0:
+        u = math.sqrt(min(max((target - v0) / (v1 - v0), 1e-12), 1.0))
+    else:
+        u = math.sqrt(0.25)
+    if cusp is not None:
+        c = target - v0
+        beta = (v1 - v0) - cusp
+        disc = cusp * cusp + 4.0 * beta * c
+        if v1 > v0 and disc >= 0:
+            den = cusp + math.sqrt(disc)
+            if den != 0:
+                uq = 2.0 * c / den
+                if math.isfinite(uq) and 0 < uq <= 1:
+                    u = uq
+    prev = math.inf
+    for _ in range(6):
+        x = x0 + h * (u * u)
+        v, dv = value_and_slope(np.array([x]))
+        v, dv = float(v[0]), float(dv[0])
+        den = dv * 2 * h * u
+        if den == 0 or not (math.isfinite(den) and math.isfinite(v)):
+            return None             # (inf or nan steps: the batch's own handling)
+        step = (v - target) / den
+        u_new = u - step
+        ok = math.isfinite(u_new) and 0 < u_new <= 1
+        if ok:
+            u = u_new
+        size = abs(step)
+        if math.isfinite(prev) and size <= 0.1 * prev:
+            cube = float(np.power(np.array([size]), 3)[0])
+            left = _NEWTON_MARGIN * (cube / (prev * prev))
+        else:
+            left = math.inf
+        scale = 2 * h * u
+        bound = tol * (x0 + h * (u * u))
+        conv = ok and (size * scale <= bound or left * scale <= bound)
+        prev = size if ok else math.inf
+        if conv:
+            return x0 + h * u * u
+    return None
 
 
 class _TableSolver(_TableBase):
@@ -209,6 +259,12 @@ class _TableSolver(_TableBase):
         the bracketed solver on the same interval (``value`` only, end values known).
         """
         from ...numeric.roots import bracketed_root
+        if target.size == 1:
+            x1 = _newton_one(float(self.r[lo[0]]), float(self.r[hi[0]] - self.r[lo[0]]),
+                             float(target[0]), float(v0[0]), float(v1[0]), tol, value_and_slope,
+                             None if cusp is None else float(cusp[0]))
+            if x1 is not None:
+                return np.array([x1])
         x0, h = self.r[lo], self.r[hi] - self.r[lo]
         with np.errstate(divide="ignore", invalid="ignore"):
             u = np.sqrt(np.clip(np.where(v1 > v0, (target - v0) / (v1 - v0), 0.25), 1e-12, 1.0))
