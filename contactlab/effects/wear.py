@@ -289,7 +289,8 @@ def wear_steps_lower(n_checkpoints: int, jump_rtol: float, wear_ratio: float = 0
 
 def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndarray,
                      err_V: float, f0: np.ndarray | None = None,
-                     safety: float = ERROR_SAFETY) -> dict[str, float]:
+                     safety: float = ERROR_SAFETY, threshold: bool = False
+                     ) -> dict[str, float]:
     """Relative error estimates of the cycle jumps at the end of the run from the accumulated
     local error estimates: ``err_h`` per node (``Σ|e_n|``) and ``err_V`` of the volume
     (``Σ|v·e_n|``). The wear equation damps a perturbation of the worn depth (a locally deeper
@@ -306,7 +307,15 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
     In gross slip the scar is a worn cap of the profile ``f0``, and its edge is where the load
     puts the contact edge: a volume error ``δV`` moves it by ``δV/(π s² f0'(s))`` (the cap of
     radius ``s`` grows by ``π s² f0'(s)`` per unit radius), whatever the local errors at the
-    edge. The scar radius takes the larger of the two."""
+    edge.
+
+    ``threshold=True`` adds the threshold term (the implicit route): the wear equation spreads
+    local errors over the cap, so every worn node carries the cap's depth error
+    ``δh = δV/(π s²)`` besides its own sum, and the scar moves by where the 10^-3 crossing of
+    ``h ± (e + δh)`` lands. Between the outermost worn node and the first unworn one the slope
+    of the interpolated depth is ``h_m/Δr``, far below ``f0'(s)`` when that node is just above
+    the threshold. The scar radius takes the largest of the terms (docs/fretting.md section
+    8)."""
     V = float(v @ h)
     hm = float(np.max(h))
     if hm <= 0:
@@ -328,7 +337,14 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
         j = min(int(s0 / r[1]), r.size - 2)
         slope = float(f0[j + 1] - f0[j]) / float(r[1])
         if slope > 0:
-            ds = max(ds, safety * err_V / (math.pi * s0 * s0 * slope))
+            # the cap's depth error: the volume error spread over the cap
+            dh = safety * err_V / (math.pi * s0 * s0)
+            ds = max(ds, dh / slope)
+            if threshold:
+                # the same depth error on every worn node moves the interpolated crossing
+                # by dh over the slope of the grid segment it lies on
+                ec = e + np.where(h > 0, dh, 0.0)
+                ds = max(ds, abs(scar(h + ec) - s0), abs(scar(h - ec) - s0))
     return {"volume": safety * err_V / V, "dissipated_energy": safety * err_V / V,
             "max_wear_depth": float(np.max(e)) / hm,
             "scar_radius": ds / s0 if s0 > 0 else 0.0}
@@ -640,7 +656,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             grow = 4.0 if err == 0 else min(4.0, max(0.2, 0.9 * np.sqrt(tol / err)))
         dN = max(dN * grow, 1e-9 * max(N, 1.0))
     estimates = _error_estimates(r, h, v, err_h, err_V, f0,
-                                 IMPLICIT_ERROR_SAFETY if implicit else ERROR_SAFETY)
+                                 IMPLICIT_ERROR_SAFETY if implicit else ERROR_SAFETY, implicit)
     meta = {"wear_coefficient": k, "amplitude": amp, "force": F, "n_grid": int(n_grid),
             "grid_radius": R, "jump_rtol": jump_rtol, "integrator": integrator, "steps": steps,
             "rejected": rejected, "rates": evals + n_rate[0] + 1, "jacobians": jacobians,
