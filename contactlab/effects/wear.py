@@ -192,6 +192,13 @@ ERROR_SAFETY = 2.0
 #: kink the embedded estimate sees only in part); 3 leaves a margin of 1.5
 IMPLICIT_ERROR_SAFETY = 3.0
 
+#: an explicit step whose rate changed by more than this fraction of the largest rate over the
+#: step (``max|r2 - r1| > STIFF_RATIO max|r1|``, a lower estimate of dN times the stiffest
+#: eigenvalue z) adds ``v·|e|`` to the volume's error estimate: Heun damps a real mode by
+#: ``1 - z + z²/2``, most at z = 1 and not at all at z = 2. Measured (docs/fretting.md section
+#: 8): 1.0 covers the 10^5-cycle Hertz runs 2.8-145 times, 1.5 misses them (0.015-0.27)
+STIFF_RATIO = 1.0
+
 #: the cycle-jump integrators: Rosenbrock-W steps (default) and the explicit Heun steps
 INTEGRATORS = ("implicit", "explicit")
 DEFAULT_INTEGRATOR = "explicit"
@@ -289,7 +296,8 @@ def wear_steps_lower(n_checkpoints: int, jump_rtol: float, wear_ratio: float = 0
 
 def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndarray,
                      err_V: float, f0: np.ndarray | None = None,
-                     safety: float = ERROR_SAFETY) -> dict[str, float]:
+                     safety: float = ERROR_SAFETY, threshold: bool = False,
+                     err_V_stiff: float = 0.0) -> dict[str, float]:
     """Relative error estimates of the cycle jumps at the end of the run from the accumulated
     local error estimates: ``err_h`` per node (``Σ|e_n|``) and ``err_V`` of the volume
     (``Σ|v·e_n|``). The wear equation damps a perturbation of the worn depth (a locally deeper
@@ -306,7 +314,20 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
     In gross slip the scar is a worn cap of the profile ``f0``, and its edge is where the load
     puts the contact edge: a volume error ``δV`` moves it by ``δV/(π s² f0'(s))`` (the cap of
     radius ``s`` grows by ``π s² f0'(s)`` per unit radius), whatever the local errors at the
-    edge. The scar radius takes the larger of the two."""
+    edge.
+
+    ``threshold=True`` adds the threshold term (the implicit route): the wear equation spreads
+    local errors over the cap, so every worn node carries the cap's depth error
+    ``δh = δV/(π s²)`` besides its own sum, and the scar moves by where the 10^-3 crossing of
+    ``h ± (e + δh)`` lands. Between the outermost worn node and the first unworn one the slope
+    of the interpolated depth is ``h_m/Δr``, far below ``f0'(s)`` when that node is just above
+    the threshold. The scar radius takes the largest of the terms (docs/fretting.md section
+    8).
+
+    ``err_V_stiff`` (explicit route) is ``Σ v·|e_n|`` over the steps at Heun's stability limit
+    (``STIFF_RATIO``): there the node errors alternate in sign and cancel in ``v·e_n``, but
+    the never-negative wear rate turns them into volume. It is added to the volume's and the
+    energy's sums only (docs/fretting.md section 8, the stability-limit term)."""
     V = float(v @ h)
     hm = float(np.max(h))
     if hm <= 0:
@@ -328,8 +349,16 @@ def _error_estimates(r: np.ndarray, h: np.ndarray, v: np.ndarray, err_h: np.ndar
         j = min(int(s0 / r[1]), r.size - 2)
         slope = float(f0[j + 1] - f0[j]) / float(r[1])
         if slope > 0:
-            ds = max(ds, safety * err_V / (math.pi * s0 * s0 * slope))
-    return {"volume": safety * err_V / V, "dissipated_energy": safety * err_V / V,
+            # the cap's depth error: the volume error spread over the cap
+            dh = safety * err_V / (math.pi * s0 * s0)
+            ds = max(ds, dh / slope)
+            if threshold:
+                # the same depth error on every worn node moves the interpolated crossing
+                # by dh over the slope of the grid segment it lies on
+                ec = e + np.where(h > 0, dh, 0.0)
+                ds = max(ds, abs(scar(h + ec) - s0), abs(scar(h - ec) - s0))
+    eV = safety * (err_V + err_V_stiff) / V
+    return {"volume": eV, "dissipated_energy": eV,
             "max_wear_depth": float(np.max(e)) / hm,
             "scar_radius": ds / s0 if s0 > 0 else 0.0}
 
@@ -551,6 +580,7 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
     J_edge = -1                          # contact edge (grid cell of a) when J was computed
     err_h = np.zeros(r.shape)            # accumulated |local error| per node (error estimate)
     err_V = 0.0                          # accumulated |local error| of the volume
+    err_Vs = 0.0                         # explicit steps at the stability limit: Σ v·|e_n|
 
     last: list[Any] = [None, None]           # the implicit step's last state: (y, state(y))
     n_rate = [0]
@@ -611,6 +641,10 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             else:
                 h = h + 0.5 * dN * (r1 + r2)
                 energy += 0.5 * dN * 4.0 * mu * float(v @ (q1 + q2))
+                if float(np.max(np.abs(r2 - r1))) > STIFF_RATIO * float(np.max(np.abs(r1))):
+                    # dN times the stiffest rate's eigenvalue near Heun's limit: the node
+                    # errors alternate in sign, cancel in v·e, and wear only adds depth
+                    err_Vs += float(v @ np.abs(e_vec))
             err_h += np.abs(e_vec)
             err_V += abs(float(v @ e_vec))
             N = target if target - (N + dN) <= 1e-12 * target else N + dN
@@ -640,7 +674,8 @@ def wear(contact, *, force: Any, displacement_amplitude: Any = None, twist_ampli
             grow = 4.0 if err == 0 else min(4.0, max(0.2, 0.9 * np.sqrt(tol / err)))
         dN = max(dN * grow, 1e-9 * max(N, 1.0))
     estimates = _error_estimates(r, h, v, err_h, err_V, f0,
-                                 IMPLICIT_ERROR_SAFETY if implicit else ERROR_SAFETY)
+                                 IMPLICIT_ERROR_SAFETY if implicit else ERROR_SAFETY, implicit,
+                                 err_Vs)
     meta = {"wear_coefficient": k, "amplitude": amp, "force": F, "n_grid": int(n_grid),
             "grid_radius": R, "jump_rtol": jump_rtol, "integrator": integrator, "steps": steps,
             "rejected": rejected, "rates": evals + n_rate[0] + 1, "jacobians": jacobians,
