@@ -112,8 +112,9 @@ def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.n
     normal float (the quadrature nodes of one load): the operations of
     :meth:`_PowerSum._slope`'s general route there (``0 + k r**p`` is ``k r**p`` for these
     positive products; the ``np.where`` picks every element), without its masks, zero array
-    and, for one term of power 1 (``r**1`` is ``r``) or 0 (``r**0`` is 1) whose products stay
-    normal floats, without the floating-point state switch. None elsewhere (the caller takes
+    and, for one term whose powers and products stay normal floats (power 1: ``r**1`` is
+    ``r``; power 0: ``r**0`` is 1; else checked at the ends with a margin), without the
+    floating-point state switch. None elsewhere (the caller takes
     the general route)."""
     if r.dtype != np.float64 or r.ndim == 0 or r.size == 0:
         return None
@@ -126,6 +127,16 @@ def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.n
             return k * r
         if p == 0.0:
             return np.full(r.shape, k)
+        # any other power: where r**p and k r**p stay well inside the normal range at both
+        # ends (a factor 2 of margin for the rounding of numpy's power against Python's), no
+        # element can leave it, and the state switch and the range check have nothing to do
+        a, b = (lo, hi) if p > 0 else (hi, lo)
+        try:
+            pa, pb = a ** p, b ** p
+        except OverflowError:
+            pa = pb = math.inf
+        if 2 * _TINY <= pa and pb <= 1e300 and 2 * _TINY <= k * pa and k * pb <= 1e300:
+            return k * r ** p
     out = None
     with np.errstate(over="ignore", under="ignore"):
         for c, n in terms:

@@ -51,6 +51,7 @@ def _clip_index(k: np.ndarray, lo: int, hi: int) -> np.ndarray:
     than the clip on the few points of one load."""
     return np.minimum(np.maximum(k, lo), hi)
 
+
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
 
