@@ -107,6 +107,9 @@ def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
     return out
 
 
+_MIN, _MAX = np.minimum.reduce, np.maximum.reduce
+
+
 def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.ndarray | None:
     """``Σ c n r**(n-1)`` where every radius is a positive finite float and every power a
     normal float (the quadrature nodes of one load): the operations of
@@ -118,11 +121,14 @@ def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.n
     the general route)."""
     if r.dtype != np.float64 or r.ndim == 0 or r.size == 0:
         return None
-    lo, hi = float(r.min()), float(r.max())
-    if not (lo > 0.0 and hi < math.inf) or not all(c * n > 0 for c, n in terms):
+    # (r.min() and r.max() without their Python wrappers: the same reductions)
+    lo, hi = float(_MIN(r, axis=None)), float(_MAX(r, axis=None))
+    if not (lo > 0.0 and hi < math.inf):
         return None
     if len(terms) == 1:
         k, p = terms[0][0] * terms[0][1], terms[0][1] - 1
+        if not k > 0:
+            return None
         if p == 1.0 and lo >= _TINY and k * lo >= _TINY and k * hi < math.inf:
             return k * r
         if p == 0.0:
@@ -137,6 +143,8 @@ def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.n
             pa = pb = math.inf
         if 2 * _TINY <= pa and pb <= 1e300 and 2 * _TINY <= k * pa and k * pb <= 1e300:
             return k * r ** p
+    elif not all(c * n > 0 for c, n in terms):
+        return None
     out = None
     with np.errstate(over="ignore", under="ignore"):
         for c, n in terms:
