@@ -28,6 +28,9 @@ import numpy as np
 
 __all__ = ["BLOCK", "row_sums", "weighted_row_sums"]
 
+#: ``ndarray.sum``'s reduction without its Python wrapper (the same sums)
+_add = np.add.reduce
+
 #: terms per summation block (node axis)
 BLOCK = 64
 
@@ -57,13 +60,15 @@ def row_sums(terms: np.ndarray, total: int) -> np.ndarray:
     full = (m // BLOCK) * BLOCK
     parts = []
     if full:
-        parts.append(terms[:, :full].reshape(rows, full // BLOCK, BLOCK).sum(axis=2))
+        parts.append(_add(terms[:, :full].reshape(rows, full // BLOCK, BLOCK), axis=2))
     if m > full:
         width = min(BLOCK, total - full)       # a whole block, or the axis's last, shorter one
         tail = terms[:, full:]
         if tail.shape[1] < width:              # the zero terms of the later nodes of the block
             tail = np.concatenate([tail, np.zeros((rows, width - tail.shape[1]))], axis=1)
-        parts.append(tail.sum(axis=1)[:, None])
+        if not full:                           # one block: its sums (a new array) are the result
+            return _add(tail, axis=1)
+        parts.append(_add(tail, axis=1)[:, None])
     blocks = parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)
     if blocks.shape[1] == 1:
         return blocks[:, 0].copy()

@@ -107,6 +107,15 @@ def _levels_upto(top: int) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ..
 
 
 @cache
+def _weights_upto(top: int) -> np.ndarray:
+    """The weights of levels 0 … ``top`` side by side (:func:`_levels_upto`'s order; kept
+    read-only)."""
+    w = np.concatenate(_levels_upto(top)[2])
+    w.flags.writeable = False
+    return w
+
+
+@cache
 def _common_nodes(lo: float, hi: float, top: int
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Nodes of levels 0 … ``top`` on one interval ``[lo, hi]`` (a row vector), their
@@ -227,13 +236,16 @@ def upto_rows(fx: np.ndarray, lo: float, hi: float, top: int = UPTO_LEVEL
     _, valid1, bad = _common_nodes(lo, hi, top)
     if bad is not None:
         fx = np.where(valid1, fx, 0.0)
-    _, _, ws, starts = _levels_upto(top)
+    starts = _levels_upto(top)[3]
     n0 = starts[1]
     d_lo, d_hi, ln_lo, ln_hi = _tail_floats()
     width = hi - lo
     half = 0.5 * width
     aw = abs(width)
-    sums_k = [_row_sum(fx[:, starts[k]:starts[k + 1]] * ws[k], axis=1).tolist()
+    # the products of every level in one multiplication (the same products), then each
+    # level's row sums on its columns (the same sums, in the same order)
+    prod = fx * _weights_upto(top)
+    sums_k = [_row_sum(prod[:, starts[k]:starts[k + 1]], axis=1).tolist()
               for k in range(top + 1)]
     out = []
     for i, row in enumerate(fx[:, :n0].tolist()):

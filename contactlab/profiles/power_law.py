@@ -14,7 +14,7 @@ from typing import ClassVar, cast
 import numpy as np
 
 from ..errors import ParameterError
-from ..numeric.powers import power_integral, times_power
+from ..numeric.powers import _TINY, _all_normal, power_integral, times_power
 from ..params import Param, check_in_range, exactly_one
 from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
@@ -107,6 +107,55 @@ def _power_abel(c: float, n: float, r: np.ndarray, a: np.ndarray) -> np.ndarray:
     return out
 
 
+_MIN, _MAX = np.minimum.reduce, np.maximum.reduce
+
+
+def _slope_all_positive(terms: list[tuple[float, float]], r: np.ndarray) -> np.ndarray | None:
+    """``Σ c n r**(n-1)`` where every radius is a positive finite float and every power a
+    normal float (the quadrature nodes of one load): the operations of
+    :meth:`_PowerSum._slope`'s general route there (``0 + k r**p`` is ``k r**p`` for these
+    positive products; the ``np.where`` picks every element), without its masks, zero array
+    and, for one term whose powers and products stay normal floats (power 1: ``r**1`` is
+    ``r``; power 0: ``r**0`` is 1; else checked at the ends with a margin), without the
+    floating-point state switch. None elsewhere (the caller takes
+    the general route)."""
+    if r.dtype != np.float64 or r.ndim == 0 or r.size == 0:
+        return None
+    # (r.min() and r.max() without their Python wrappers: the same reductions)
+    lo, hi = float(_MIN(r, axis=None)), float(_MAX(r, axis=None))
+    if not (lo > 0.0 and hi < math.inf):
+        return None
+    if len(terms) == 1:
+        k, p = terms[0][0] * terms[0][1], terms[0][1] - 1
+        if not k > 0:
+            return None
+        if p == 1.0 and lo >= _TINY and k * lo >= _TINY and k * hi < math.inf:
+            return k * r
+        if p == 0.0:
+            return np.full(r.shape, k)
+        # any other power: where r**p and k r**p stay well inside the normal range at both
+        # ends (a factor 2 of margin for the rounding of numpy's power against Python's), no
+        # element can leave it, and the state switch and the range check have nothing to do
+        a, b = (lo, hi) if p > 0 else (hi, lo)
+        try:
+            pa, pb = a ** p, b ** p
+        except OverflowError:
+            pa = pb = math.inf
+        if 2 * _TINY <= pa and pb <= 1e300 and 2 * _TINY <= k * pa and k * pb <= 1e300:
+            return k * r ** p
+    elif not all(c * n > 0 for c, n in terms):
+        return None
+    out = None
+    with np.errstate(over="ignore", under="ignore"):
+        for c, n in terms:
+            pw = r ** (n - 1)
+            if not _all_normal(pw):
+                return None
+            term = (c * n) * pw
+            out = term if out is None else out + term
+    return out
+
+
 class _PowerSum(Profile):
     """Shared closed forms for ``f = Σ_i c_i r**n_i`` (all ``c_i > 0``, ``n_i > 0``)."""
 
@@ -117,6 +166,9 @@ class _PowerSum(Profile):
         return sum(times_power(c, r, n) for c, n in self.power_terms()) * np.ones_like(r)
 
     def _slope(self, r: np.ndarray) -> np.ndarray:
+        fast = _slope_all_positive(self.power_terms(), r)
+        if fast is not None:
+            return fast
         out = np.zeros_like(r)
         for c, n in self.power_terms():
             with np.errstate(divide="ignore"):

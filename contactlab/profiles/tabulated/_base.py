@@ -45,6 +45,13 @@ def _unsorted(vals: np.ndarray, order: np.ndarray | None, shape: tuple[int, ...]
     return out.reshape(shape)
 
 
+def _clip_index(k: np.ndarray, lo: int, hi: int) -> np.ndarray:
+    """``np.clip`` of an index array from ``searchsorted`` (the same ``min(max(k, lo), hi)``,
+    the same dtype), without ``np.clip``'s wrapper and integer-limit look-ups, which cost more
+    than the clip on the few points of one load."""
+    return np.minimum(np.maximum(k, lo), hi)
+
+
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from ...numeric.fixed_sums import row_sums, weighted_row_sums
 from . import _far_cols
-from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
+from ._base import _CHUNK, _TableBase, _clip_index, _rows_per_chunk, _sorted, _unsorted
 
 _GL_HI = np.polynomial.legendre.leggauss(12)
 _GL_LO = np.polynomial.legendre.leggauss(8)
@@ -100,7 +100,7 @@ class _CubicTransform(_TableBase):
         ``h`` the narrowest interval within 8 of the one holding ``x`` (2-sqrt(3))^8 = 3e-5)."""
         from scipy.ndimage import minimum_filter1d
         h = minimum_filter1d(np.diff(r), size=17, mode="nearest")
-        k = np.clip(np.searchsorted(r, x, side="right") - 1, 0, h.size - 1)
+        k = _clip_index(np.searchsorted(r, x, side="right") - 1, 0, h.size - 1)
         return 4096.0 * np.finfo(float).eps * f_scale / h[k]
 
     def _cubic_value(self, x: np.ndarray, kind: str, with_slope: bool = False

@@ -13,7 +13,7 @@ import numpy as np
 
 from ...numeric.fixed_sums import row_sums
 from . import _far
-from ._base import _CHUNK, _TableBase, _rows_per_chunk, _sorted, _unsorted
+from ._base import _CHUNK, _TableBase, _clip_index, _rows_per_chunk, _sorted, _unsorted
 
 
 class _LinearTransform(_TableBase):
@@ -60,7 +60,7 @@ class _LinearTransform(_TableBase):
         if np.any(pos):
             xs = flat[pos]
             A, C, P = _far.sums(tree, xs, with_slope, with_integral)
-            k = np.clip(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
+            k = _clip_index(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
             s_k = self._slopes[k]
             base = 0.5 * np.pi * s_k - A
             g[pos] = xs * base
@@ -88,11 +88,11 @@ class _LinearTransform(_TableBase):
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
         chunk = _rows_per_chunk(nodes_all.size)
-        k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
+        k_all = _clip_index(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
         for start in range(0, flat.size, chunk):
             xs = flat[start:start + chunk]
             pos = xs > 0
-            if not np.any(pos):
+            if not pos.any():
                 continue
             xp = xs[pos][:, None]
             m = int(np.searchsorted(nodes_all, xp.max(), side="right"))
@@ -138,12 +138,12 @@ class _LinearTransform(_TableBase):
         jump = self._dslope != 0
         nodes_all = self.r[1:-1][jump]
         ds_all = self._dslope[jump]
-        k_all = np.clip(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
+        k_all = _clip_index(np.searchsorted(self.r, flat, side="right") - 1, 0, self._slopes.size - 1)
         chunk = _rows_per_chunk(nodes_all.size)
         for start in range(0, flat.size, chunk):
             aa = flat[start:start + chunk]
             pos = aa > 0
-            if not np.any(pos):
+            if not pos.any():
                 continue
             ap = aa[pos][:, None]
             m = int(np.searchsorted(nodes_all, ap.max(), side="right"))
@@ -181,7 +181,7 @@ class _LinearTransform(_TableBase):
         for start in range(0, flat.size, chunk):
             aa = flat[start:start + chunk]
             pos = aa > 0
-            if not np.any(pos):
+            if not pos.any():
                 continue
             av = aa[pos]
             m = int(np.searchsorted(nodes_all, av.max(), side="left"))

@@ -14,7 +14,7 @@ from typing import cast
 import numpy as np
 
 from ...errors import OutsideTheoryError
-from ._base import _TableBase
+from ._base import _TableBase, _clip_index
 
 #: safety factor on the error predicted from quadratic convergence (|step|³/prev²) before a
 #: Newton iteration of :meth:`_TableSolver._newton_on_node_interval` stops without a further
@@ -128,7 +128,7 @@ class _TableSolver(_TableBase):
                 f"depth={flat[i]!r} m needs a contact radius >= max_radius={limit!r} m of "
                 f"{self!r}; reduce the depth/force.")
         # bracket from the cached coarse node grid (65 nodes, computed once per table)
-        j = np.clip(np.searchsorted(node_g[coarse], flat, side="left"), 1, coarse.size - 1)
+        j = _clip_index(np.searchsorted(node_g[coarse], flat, side="left"), 1, coarse.size - 1)
         lo, hi = coarse[j - 1], coarse[j]
         g_lo, g_hi = node_g[lo].copy(), node_g[hi].copy()
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
@@ -227,7 +227,7 @@ class _TableSolver(_TableBase):
                 f"force/E* = {2 * float(flat[i]):.6g} m² needs a contact radius beyond the table "
                 f"(last radius {float(r[-1])!r} m, which carries force/E* = "
                 f"{2 * float(H_c[-1]):.6g} m²); extend the measured profile or reduce the force.")
-        j = np.clip(np.searchsorted(H_c, flat, side="left"), 1, coarse.size - 1)
+        j = _clip_index(np.searchsorted(H_c, flat, side="left"), 1, coarse.size - 1)
         lo, hi = coarse[j - 1], coarse[j]
         lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
                                    H_c[j - 1].copy(), H_c[j].copy())

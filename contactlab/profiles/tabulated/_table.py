@@ -15,6 +15,7 @@ import numpy as np
 from ...errors import ParameterError, TabulatedDataError
 from ...params import Param, as_real
 from ...symbolic.form import SympyForm
+from ._base import _clip_index
 from ._cubic import _CubicTransform
 from ._linear import _LinearTransform
 from ._solve import _TableSolver
@@ -373,7 +374,7 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         self._guard(r, "r")
         if self._spline is not None:
             return self._spline_d(r)
-        k = np.clip(np.searchsorted(self.r, r, side="right") - 1, 0, self._slopes.size - 1)
+        k = _clip_index(np.searchsorted(self.r, r, side="right") - 1, 0, self._slopes.size - 1)
         return self._slopes[k]
 
     def available_strategies(self) -> tuple[str, ...]:
@@ -506,7 +507,7 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         if self.breakpoints:
             return 0.0
         gaps = np.maximum.accumulate(np.diff(self.r))
-        k = np.clip(np.searchsorted(self.r, x, side="left") - 1, 0, gaps.size - 1)
+        k = _clip_index(np.searchsorted(self.r, x, side="left") - 1, 0, gaps.size - 1)
         with np.errstate(divide="ignore", invalid="ignore"):
             rel = np.where(x > 0, np.minimum((gaps[k] / np.where(x > 0, x, 1.0)) ** 2, 1.0), 0.0)
         return np.abs(value) * rel
