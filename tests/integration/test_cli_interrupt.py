@@ -47,8 +47,11 @@ def test_ctrl_c_in_a_pool_sweep_keeps_the_checkpoint(tmp_path):
     argv = [sys.executable, "-m", "contactlab", "sweep", str(SCENE), "--grid",
             "profile.R=0.005:0.02:20000", "--workers", "2", "-o", str(out)]
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    # a terminal's process starts with SIGINT at its default; a parent that ignores it (a shell's
+    # background job without job control) would pass SIG_IGN on and the sweep would never see it
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env=env, start_new_session=True)
+                            env=env, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         deadline = time.monotonic() + 120
         while not list((out / "sweep.parquet").glob("part-*.parquet")):
