@@ -437,6 +437,36 @@ def _times4(hi: float) -> float:
     return out
 
 
+def _bracket_one(fun: Callable[[float], float], target: float, lo: float, hi: float,
+                 limit: float) -> tuple[float, float, float, float, float] | None:
+    """The array route's bracket for one element in floats: ``hi`` grown ×4 (capped just below
+    ``limit``) until ``fun(hi) >= target``, then shrunk from above; returns ``(lo, hi,
+    fun(hi), fun(lo) - target, fun(hi) - target)``, or ``None`` where the array route would
+    decline (no bracket below ``limit``, a non-finite end, no sign change)."""
+    finite = math.isfinite(limit)
+    cap = limit * (1 - 1e-15)
+    for _ in range(400):
+        hi_c = min(hi, cap) if finite else hi
+        f_hi = fun(hi_c)
+        if not f_hi < target:
+            lo, hi, f_hi = shrink_bracket_scalar(fun, target, lo, hi_c, f_hi)
+            break
+        if finite and hi >= cap:
+            return None
+        lo, hi = hi_c, _times4(hi)
+    else:
+        return None
+    f1, f2 = fun(lo) - target, f_hi - target
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    if math.isinf(f1 * f2):
+        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
+        raise FloatingPointError("overflow in the bracket's sign test")
+    if f1 * f2 > 0:
+        return None
+    return lo, hi, f_hi, f1, f2
+
+
 def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | None:
     """Contact radius (m) of one depth ``d > 0`` on a quadrature profile, or ``None`` (the
     array route then runs, and raises where this one would).
@@ -482,25 +512,10 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
                 hi = _times4(hi)
             if not growing:
                 break
-    for _ in range(400):
-        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
-        g_hi = g(hi_c)
-        if not g_hi < d:
-            lo, hi, g_hi = shrink_bracket_scalar(g, d, lo, hi_c, g_hi)
-            break
-        if finite and hi >= limit * (1 - 1e-15):
-            return None
-        lo, hi = hi_c, _times4(hi)
-    else:
+    got = _bracket_one(g, d, lo, hi, limit)
+    if got is None:
         return None
-    f1, f2 = g(lo) - d, g_hi - d
-    if not (math.isfinite(f1) and math.isfinite(f2)):
-        return None
-    if math.isinf(f1 * f2):
-        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
-        raise FloatingPointError("overflow in the bracket's sign test")
-    if f1 * f2 > 0:
-        return None
+    lo, hi, g_hi, f1, f2 = got
     if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
         a = hi
     elif f1 == 0:
@@ -557,25 +572,10 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
                               limit * (1 - 1e-15) if finite else math.inf, "force")
         if math.isfinite(hb):
             hi = hb
-    for _ in range(400):
-        hi_c = min(hi, limit * (1 - 1e-15)) if finite else hi
-        F_hi = force(hi_c)
-        if not F_hi < F:
-            lo, hi, F_hi = shrink_bracket_scalar(force, F, lo, hi_c, F_hi)
-            break
-        if finite and hi_c >= limit * (1 - 1e-15):
-            return None
-        lo, hi = hi_c, _times4(hi)
-    else:
+    got = _bracket_one(force, F, lo, hi, limit)
+    if got is None:
         return None
-    f1, f2 = force(lo) - F, F_hi - F
-    if not (math.isfinite(f1) and math.isfinite(f2)):
-        return None
-    if math.isinf(f1 * f2):
-        # bracketed_root's sign test f1 f2 > 0 overflows on the array route (over="raise")
-        raise FloatingPointError("overflow in the bracket's sign test")
-    if f1 * f2 > 0:
-        return None
+    lo, hi, F_hi, f1, f2 = got
     if f2 == 0:             # (bracketed_root's order: the upper end wins a double zero)
         a = hi
     elif f1 == 0:
