@@ -230,14 +230,16 @@ def _fast_normal_quadrature(contact, key: str, value: Any) -> NormalState | None
             if key == "depth":
                 a = _scalar.solve_depth_quadrature(prof, v, rtol)
                 d = v
-            else:
-                ad = _scalar.solve_force_quadrature(prof, E, v, rtol)
-                if ad is None:
+                if a is None or not a > 0:
                     return None
-                a, d = ad
-            if a is None or not a > 0:
-                return None
-            g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
+                g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol,
+                                                          _scalar._lean(prof, rtol))
+            else:
+                # (∫g at the radius from the root's own force evaluation: the same bits)
+                got = _scalar.solve_force_quadrature(prof, E, v, rtol)
+                if got is None:
+                    return None
+                a, d, g_int, g_int_err = got
     except FloatingPointError:
         return None
     warn_outside_validity(prof, np.array(a), stacklevel=6)
