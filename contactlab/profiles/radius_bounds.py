@@ -231,8 +231,11 @@ def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: 
 
 def _power_one(x: float, p: float) -> float:
     """numpy's ``power`` of one element, as on an array (its vector loop, not the C
-    library's ``pow``, which may differ in the last bit)."""
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+    library's ``pow``, which may differ in the last bit). The floating-point state switch
+    (a few µs, more than the power) only where the power could overflow or be invalid."""
+    if 0.0 < x < math.inf and abs(p) < 1e300 and abs(p * math.log(x)) < 700.0:
+        return float(np.power(np.array([x]), np.array([p]))[0])
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
         return float(np.power(np.array([x]), np.array([p]))[0])
 
 
