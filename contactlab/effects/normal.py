@@ -25,6 +25,7 @@ from ..errors import (
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
+from ..physics import normal_table_scalar as _table
 from ..physics.normal_fused import FORCE_SANITY
 from ._protocol import Result
 
@@ -177,6 +178,8 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     if forms is None:
         if _scalar.quadrature_scalar_ok(prof):
             return _fast_normal_quadrature(contact, key, value)
+        if key == "depth" and _table.table_scalar_ok(prof):
+            return _fast_normal_table(contact, value)
         return None
     v = float(value)
     if not math.isfinite(v):
@@ -230,14 +233,16 @@ def _fast_normal_quadrature(contact, key: str, value: Any) -> NormalState | None
             if key == "depth":
                 a = _scalar.solve_depth_quadrature(prof, v, rtol)
                 d = v
-            else:
-                ad = _scalar.solve_force_quadrature(prof, E, v, rtol)
-                if ad is None:
+                if a is None or not a > 0:
                     return None
-                a, d = ad
-            if a is None or not a > 0:
-                return None
-            g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol, _scalar._lean(prof, rtol))
+                g_int, g_int_err = _scalar.g_integral_one(prof, a, rtol,
+                                                          _scalar._lean(prof, rtol))
+            else:
+                # (∫g at the radius from the root's own force evaluation: the same bits)
+                got = _scalar.solve_force_quadrature(prof, E, v, rtol)
+                if got is None:
+                    return None
+                a, d, g_int, g_int_err = got
     except FloatingPointError:
         return None
     warn_outside_validity(prof, np.array(a), stacklevel=6)
@@ -246,6 +251,34 @@ def _fast_normal_quadrature(contact, key: str, value: Any) -> NormalState | None
                      "citations": _SOURCES},
                     _scalar.quadrature_force_rel_error, E, a, d, g_int, g_int_err, F,
                     v if key == "force" else None)
+    state = _new_state(NormalState)
+    state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
+                          meta=meta)
+    return state
+
+
+def _fast_normal_table(contact, value: Any) -> NormalState | None:
+    """One finite positive depth on a small linear table: the radius by
+    :func:`contactlab.physics.normal_table_scalar.solve_depth_table`, ``∫g``, the force and its
+    error estimate as :func:`contactlab.physics.normal.solve` forms them (the array route's
+    bits); ``None`` (the array route) otherwise."""
+    prof = contact.profile
+    d = float(value)
+    if not (math.isfinite(d) and d > 0):
+        return None
+    rtol = contact.rtol
+    a = _table.solve_depth_table(prof, d, rtol)
+    if a is None:
+        return None
+    E = contact.moduli.normal
+    g_int = _table.g_integral_table(prof, a)
+    F = (a * d - g_int) * (2.0 * E)
+    if not F > 0:
+        return None
+    warn_outside_validity(prof, np.array(a), stacklevel=5)
+    meta = LazyMeta({"routes": {"g": prof.g_route}, "rtol": rtol, "control": "depth",
+                     "citations": _SOURCES},
+                    _table.table_force_rel_error, E, a, d, g_int, F)
     state = _new_state(NormalState)
     state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a), _force=_f64(F),
                           meta=meta)

@@ -24,7 +24,7 @@ from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio
 from ..numeric.quadrature import LOOSE_RTOL, tanh_sinh
 from ..numeric.roots import bracketed_root, shrink_bracket
-from ..profiles.base import ROUNDING, root_rtol
+from ..profiles.base import ROUNDING, force_ftol, root_rtol
 from ..profiles.power_law import Paraboloid
 from ..profiles.radius_bounds import first_step_from_f, upper_radius_from_f
 from . import normal_fused as _fused
@@ -446,16 +446,17 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
                         f"of {profile!r}; reduce the force.")
                 lo = np.where(short, hi_c, lo)
                 hi = np.where(short, hi * 4.0, hi)
-            step0 = None
+            step0, ftol = None, 0.0
             if (rtol >= LOOSE_RTOL and profile.g_route == "quadrature"
                     and profile._has("_height")):
                 # the first point where the bound of the force on f, scaled to the force at
-                # hi, meets the request
+                # hi, meets the request; and a stop once the force is that close to it
                 step0 = first_step_from_f(
                     profile, Fs / (2 * E), lo, hi, F_top / (2 * E), profile._initial_bracket(),
                     limit * (1 - 1e-15) if np.isfinite(limit) else np.inf, "force")
+                ftol = force_ftol(rtol)
             ap[solve] = bracketed_root(lambda x, idx: force_of_radius(profile, E, x, rtol), Fs, lo,
-                                       hi, rtol=root_rtol(rtol), what="contact radius",
+                                       hi, rtol=root_rtol(rtol), ftol=ftol, what="contact radius",
                                        first_step=step0)
     if walled:
         dp = np.where(ap >= profile.wall_radius,

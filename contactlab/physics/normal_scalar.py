@@ -39,7 +39,7 @@ from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric.powers import root_of_ratio_float, times_power_float
 from ..numeric.quadrature import LOOSE_RTOL, common_nodes, min_level_for, upto_rows
 from ..numeric.roots import _chandrupatla, scalar_root, shrink_bracket_scalar
-from ..profiles.base import ROUNDING, Profile, quadrature_root_rtol, root_rtol
+from ..profiles.base import ROUNDING, Profile, force_ftol, quadrature_root_rtol, root_rtol
 from ..profiles.radius_bounds import first_step_one, upper_radius_one
 
 if TYPE_CHECKING:
@@ -369,18 +369,19 @@ def _first_converged_one(values: list[float], errors: list[float], rtol: float
 
 
 def _g_and_integral_one(profile: Profile, x: float, rtol: float, lean: bool
-                        ) -> tuple[float, float]:
-    """``(g(x), ∫_0^x g)`` at one radius on a quadrature profile (the same bits as
-    ``profile._g`` and ``profile._g_integral``): at a loose rtol both θ integrals in one pass,
-    f' evaluated once for both (the ∫g integrand is that f' times cos²θ)."""
+                        ) -> tuple[float, float, float]:
+    """``(g(x), ∫_0^x g, its error)`` at one radius on a quadrature profile (the same bits as
+    ``profile._g`` and ``profile._g_integral_with_error``): at a loose rtol both θ integrals in
+    one pass, f' evaluated once for both (the ∫g integrand is that f' times cos²θ)."""
     if lean and x > 0:
         rows = upto_rows(_theta_values(profile, x, True), 0.0, _HALF_PI)
         if rows is not None:
             g = _first_converged_one(*rows[0], rtol)
             gi = _first_converged_one(*rows[1], rtol)
             if g is not None and gi is not None:
-                return g[0] * x, gi[0] * (x * x)
-    return g_one(profile, x, rtol, lean), g_integral_one(profile, x, rtol, lean)[0]
+                x2 = x * x
+                return g[0] * x, gi[0] * x2, gi[1] * x2
+    return (g_one(profile, x, rtol, lean), *g_integral_one(profile, x, rtol, lean))
 
 
 def _lean(profile: Profile, rtol: float) -> bool:
@@ -537,9 +538,11 @@ def solve_depth_quadrature(profile: Profile, d: float, rtol: float) -> float | N
 
 
 def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: float
-                           ) -> tuple[float, float] | None:
-    """Contact radius and depth (m) of one force ``F > 0`` (N) on a quadrature profile, or
-    ``None`` (the array route then runs, and raises where this one would).
+                           ) -> tuple[float, float, float, float] | None:
+    """Contact radius and depth (m) of one force ``F > 0`` (N) on a quadrature profile, with
+    ``∫_0^a g`` (m²) and its error estimate there (those of the root's own force evaluation,
+    the bits of :func:`g_integral_one`), or ``None`` (the array route then runs, and raises
+    where this one would).
 
     The steps of the bracketed branch of :func:`contactlab.physics.normal.radius_depth_of_force`
     for one element in plain floats, the force ``2E*(a g(a) - ∫g)`` of each radius through the
@@ -549,13 +552,13 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
     lean = _lean(profile, rtol)
     two_e = 2.0 * E_star
 
-    seen: dict[float, float] = {}           # g of the radii evaluated (the depth at the root)
+    # g, ∫g and its error at the radii evaluated (the depth and ∫g at the root)
+    seen: dict[float, tuple[float, float, float]] = {}
 
     def force(x: float) -> float:
         if x == 0.0:
             return 0.0      # (the array route's 2E*(0 g(0) - ∫_0^0 g): g(0) = ∫_0^0 g = 0)
-        g, gi = _g_and_integral_one(profile, x, rtol, lean)
-        seen[x] = g
+        g, gi, _ = seen[x] = _g_and_integral_one(profile, x, rtol, lean)
         out = two_e * (x * g - gi)
         if not math.isfinite(out) and math.isfinite(g) and math.isfinite(gi):
             # an overflow, which raises on the array route (numpy's over="raise" there)
@@ -582,21 +585,23 @@ def solve_force_quadrature(profile: Profile, E_star: float, F: float, rtol: floa
         a = lo
     else:
         try:
-            step0 = 0.5
+            step0, ftol = 0.5, 0.0
             if rtol >= LOOSE_RTOL and profile._has("_height"):
-                # the array route's first point (the same function on one element)
-                step0 = first_step_one(
+                # the array route's first point (the same function on one element) and stop
+                step0, ftol = first_step_one(
                     profile, F / (2 * E_star), lo, hi, F_hi / (2 * E_star),
                     float(profile._initial_bracket()),
-                    limit * (1 - 1e-15) if finite else math.inf, "force")
+                    limit * (1 - 1e-15) if finite else math.inf, "force"), force_ftol(rtol)
             a = _chandrupatla(force, F, lo, hi, f1, f2, root_rtol(rtol), 200, "contact radius",
-                              step0)
+                              step0, ftol)
         except ConvergenceError:
             return None
     if not a > 0 or (finite and a >= limit):
         return None
-    d = seen.get(a)         # (g of the force's pass: the same bits as g alone)
-    return a, (g_one(profile, a, rtol, lean) if d is None else d)
+    parts = seen.get(a)     # (g and ∫g of the force's pass: the same bits as each alone)
+    if parts is None:
+        return a, g_one(profile, a, rtol, lean), *g_integral_one(profile, a, rtol, lean)
+    return a, *parts
 
 
 def quadrature_force_rel_error(E_star: float, a: float, d: float, g_int: float,

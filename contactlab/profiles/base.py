@@ -34,6 +34,7 @@ from ..errors import (OutsideTheoryError, ParameterError, PluginError,
 from ..numeric.quadrature import (DEFAULT_RTOL, LOOSE_RTOL, first_converged, min_level_for,
                                   tanh_sinh, tanh_sinh_upto)
 from ..numeric.roots import bracketed_root, shrink_bracket
+from ..numeric.normal_kernels import FORCE_SANITY
 from ..params import Param, ParamIdentity, as_float_array
 from ..symbolic.form import SympyForm, form_from_hooks
 from .radius_bounds import first_step_from_f, upper_radius_from_f
@@ -41,7 +42,8 @@ from .radius_bounds import first_step_from_f, upper_radius_from_f
 if TYPE_CHECKING:
     from ..symbolic.formulas import FormulaSet
 
-__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol", "quadrature_root_rtol"]
+__all__ = ["Profile", "G_STRATEGIES", "CAPABILITIES", "ROUNDING", "root_rtol", "quadrature_root_rtol",
+           "force_ftol"]
 
 
 #: Capabilities a profile may declare (``Profile.capabilities``) and the hook each one promises.
@@ -93,6 +95,18 @@ def quadrature_root_rtol(rtol: float) -> float:
     force's radius: the depth of a force moves with it (``g'(a) δa``).
     """
     return 1e-3 * rtol if rtol >= LOOSE_RTOL else root_rtol(rtol)
+
+
+def force_ftol(rtol: float) -> float:
+    """Relative residual ``|F(a) - F| <= force_ftol · F`` at which the contact radius of a
+    force on the quadrature route stops at a loose ``rtol >= LOOSE_RTOL``: ``1e-3 * rtol`` as a
+    depth's (:func:`quadrature_root_rtol`), but at most a tenth of
+    :data:`~contactlab.numeric.normal_kernels.FORCE_SANITY` (the driver's check that a force
+    state carries its request). The depth then errs by at most about that much
+    (``δd/d = (n/(n+1)) δF/F`` for g ∝ a^n), and the residual is part of the state's force
+    error estimate. 0 (no residual stop) at tighter tolerances: results there unchanged.
+    """
+    return min(1e-3 * rtol, 0.1 * FORCE_SANITY) if rtol >= LOOSE_RTOL else 0.0
 
 
 class Profile(ParamIdentity, ABC):

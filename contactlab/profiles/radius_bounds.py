@@ -157,6 +157,35 @@ def upper_radius_from_f(profile: Profile, target: np.ndarray, start: float, cap:
 _STEP_MARGIN = 1.0 / 64.0
 
 
+def _log_slopes(profile: Profile, start: float, cap: float, kind: str) -> np.ndarray:
+    """Per interval of the first chunk's ladder, the power ``m`` of its bounds,
+    ``ln(b_k/b_{k-1}) / ln(r_k/r_{k-1})`` (element ``k``; element 0 and intervals without a
+    positive finite power: NaN). Kept per profile, read-only: one load and a batch read the same
+    values."""
+    cache = profile.__dict__["_radius_bound_cache"]     # (filled by _chunk before)
+    key = (float(start), float(cap), kind, "slopes")
+    m = cache.get(key)
+    if m is None:
+        radii, b = _chunk(profile, start, cap, kind, 0)
+        m = np.full(radii.size, np.nan)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            p = np.log(b[1:] / b[:-1]) / np.log(radii[1:] / radii[:-1])
+        m[1:] = np.where(np.isfinite(p) & (p > 0), p, np.nan)
+        m.flags.writeable = False
+        cache[key] = m
+    return m
+
+
+def _slope_lists(profile: Profile, start: float, cap: float, kind: str) -> list[float]:
+    """:func:`_log_slopes` as a list (for :func:`first_step_one`; kept per profile)."""
+    cache = profile.__dict__["_radius_bound_cache"]
+    key = (float(start), float(cap), kind, "slope lists")
+    got = cache.get(key)
+    if got is None:
+        got = cache[key] = _log_slopes(profile, start, cap, kind).tolist()
+    return got
+
+
 def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
                       value_hi: np.ndarray, start: float, cap: float, kind: str) -> np.ndarray:
     """A first point for the root's iteration in ``[lo, hi]``, as a fraction from ``lo``
@@ -165,8 +194,11 @@ def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: 
     ``value_hi`` is g (or F/2E*) at ``hi``. The ratio of g to its lower bound from f is the same
     at every radius for a power-law gap (both scale as ``a^n``) and varies slowly otherwise; so
     the guess is the radius where the bound, scaled by the ratio found at ``hi``, meets the
-    target, both read off the bounds of the first ladder chunk by linear interpolation (plain
-    arithmetic per element: one load and a batch get the same bits).
+    target, both read off the bounds of the first ladder chunk by power-law interpolation
+    between two ladder radii (``b ∝ r^m`` on the interval, ``m`` from its two bounds: exact for
+    a power-law gap, whose guess is then the root itself up to the quadrature's error), linear
+    where an interval has no positive power. Elementwise arithmetic and numpy's ``power`` per
+    element: one load and a batch get the same bits.
     """
     t = np.asarray(target, dtype=float)
     out = np.full(t.shape, 0.5)
@@ -175,20 +207,36 @@ def first_step_from_f(profile: Profile, target: np.ndarray, lo: np.ndarray, hi: 
     radii, b = _chunk(profile, start, cap, kind, 0)
     if not _chunk_lists(profile, start, cap, kind)[2]:
         return out
+    m = _log_slopes(profile, start, cap, kind)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        # the bound at hi (linear between the ladder's radii), then the ratio of value to bound
+        # the bound at hi (interpolated between the ladder's radii), then the ratio of value
+        # to bound
         j = np.clip(np.searchsorted(radii, hi), 1, radii.size - 1)
-        r0, r1, b0, b1 = radii[j - 1], radii[j], b[j - 1], b[j]
-        b_hi = b0 + (hi - r0) * ((b1 - b0) / (r1 - r0))
+        r0, r1, b0, b1, mj = radii[j - 1], radii[j], b[j - 1], b[j], m[j]
+        pj = np.isfinite(mj)
+        b_hi = np.where(pj, b0 * np.power(hi / r0, np.where(pj, mj, 1.0)),
+                        b0 + (hi - r0) * ((b1 - b0) / (r1 - r0)))
         tau = t * (b_hi / value_hi)
-        # the radius where the bound reaches tau (linear between the ladder's bounds)
+        # the radius where the bound reaches tau (interpolated between the ladder's bounds)
         k = np.clip(np.searchsorted(b, tau), 1, radii.size - 1)
-        r0, r1, b0, b1 = radii[k - 1], radii[k], b[k - 1], b[k]
-        x0 = r0 + (tau - b0) * ((r1 - r0) / (b1 - b0))
+        r0, r1, b0, b1, mk = radii[k - 1], radii[k], b[k - 1], b[k], m[k]
+        pk = np.isfinite(mk)
+        x0 = np.where(pk, r0 * np.power(tau / b0, np.where(pk, 1.0 / mk, 1.0)),
+                      r0 + (tau - b0) * ((r1 - r0) / (b1 - b0)))
         frac = (x0 - lo) / (hi - lo)
         ok = (np.isfinite(frac) & (hi >= radii[0]) & (hi <= radii[-1]) & (value_hi > 0)
               & (b_hi > 0) & (tau >= b[0]) & (tau <= b[-1]))
     return np.where(ok, np.clip(frac, _STEP_MARGIN, 1.0 - _STEP_MARGIN), out)
+
+
+def _power_one(x: float, p: float) -> float:
+    """numpy's ``power`` of one element, as on an array (its vector loop, not the C
+    library's ``pow``, which may differ in the last bit). The floating-point state switch
+    (a few µs, more than the power) only where the power could overflow or be invalid."""
+    if 0.0 < x < math.inf and abs(p) < 1e300 and abs(p * math.log(x)) < 700.0:
+        return float(np.power(np.array([x]), np.array([p]))[0])
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+        return float(np.power(np.array([x]), np.array([p]))[0])
 
 
 def first_step_one(profile: Profile, target: float, lo: float, hi: float, value_hi: float,
@@ -200,15 +248,22 @@ def first_step_one(profile: Profile, target: float, lo: float, hi: float, value_
     radii, b, mono = _chunk_lists(profile, start, cap, kind)
     if not mono:
         return 0.5
+    m = _slope_lists(profile, start, cap, kind)
     n = len(radii)
     try:
         j = min(max(bisect_left(radii, hi), 1), n - 1)
-        r0, r1, b0, b1 = radii[j - 1], radii[j], b[j - 1], b[j]
-        b_hi = b0 + (hi - r0) * ((b1 - b0) / (r1 - r0))
+        r0, r1, b0, b1, mj = radii[j - 1], radii[j], b[j - 1], b[j], m[j]
+        if math.isfinite(mj):
+            b_hi = b0 * _power_one(hi / r0, mj)
+        else:
+            b_hi = b0 + (hi - r0) * ((b1 - b0) / (r1 - r0))
         tau = target * (b_hi / value_hi)
         k = min(max(bisect_left(b, tau), 1), n - 1)
-        r0, r1, b0, b1 = radii[k - 1], radii[k], b[k - 1], b[k]
-        x0 = r0 + (tau - b0) * ((r1 - r0) / (b1 - b0))
+        r0, r1, b0, b1, mk = radii[k - 1], radii[k], b[k - 1], b[k], m[k]
+        if math.isfinite(mk):
+            x0 = r0 * _power_one(tau / b0, 1.0 / mk)
+        else:
+            x0 = r0 + (tau - b0) * ((r1 - r0) / (b1 - b0))
         frac = (x0 - lo) / (hi - lo)
     except (ZeroDivisionError, OverflowError):
         return 0.5

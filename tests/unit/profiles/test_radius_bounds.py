@@ -187,9 +187,40 @@ def test_first_step_and_ftol_same_bits_in_both_root_finders():
             assert np.float64(one).tobytes() == arr[i].tobytes(), i
 
 
+@pytest.mark.parametrize("p, a", [(Paraboloid(1.0), 0.1), (PowerLaw(10.0, 4.0), 0.1),
+                                  (Cone(0.5), 0.1), (PowerLaw(2.0, 1.5), 3.0)], ids=repr)
+@pytest.mark.parametrize("rtol", [1e-2, 1e-3])
+def test_power_law_force_takes_two_passes(monkeypatch, p, a, rtol):
+    """Regression (issue 29): one force on a quadrature power law took 6-7 passes of g and ∫g
+    (the bracket's check, four to five Chandrupatla steps from a linearly interpolated first
+    point, ∫g once more for the state). The first point from the power of the bounds is now
+    the root itself (both the force and its bound scale as a^(n+1)), the residual stop ends
+    there, and the state takes ∫g from the root's own pass: two passes."""
+    from contactlab.physics import normal_scalar as ns
+    calls = {"n": 0}
+    real = ns._g_and_integral_one, ns.g_one, ns.g_integral_one
+
+    def counted(fn):
+        def call(*args, **kw):
+            calls["n"] += 1
+            return fn(*args, **kw)
+        return call
+
+    for name, fn in zip(("_g_and_integral_one", "g_one", "g_integral_one"), real):
+        monkeypatch.setattr(ns, name, counted(fn))
+    q = FOnly(p)
+    _, f2e = _g_and_force(p, np.array([a]))
+    s = cl.Contact(q, MATERIALS, rtol=rtol).normal(force=2.0 * float(f2e[0]))
+    assert calls["n"] == 2
+    assert abs(s.radius / a - 1) <= rtol
+    # the residual stop keeps the force within the driver's check of its request
+    assert abs(s.force / (2.0 * float(f2e[0])) - 1) <= 1e-7
+
+
 def test_loose_rtol_takes_fewer_quadratures(monkeypatch):
     """Regression (issue 29): at rtol 1e-2 one force on a quadrature paraboloid took 18 passes of
-    g and ∫g (a bracket grown ×4 from 1 µm on the force) and one depth 10 g; now at most 7 and 6."""
+    g and ∫g (a bracket grown ×4 from 1 µm on the force) and one depth 10 g; then at most 7 and
+    6; now 2 and 3 (one of them g(0) = 0, no quadrature)."""
     from contactlab.physics import normal_scalar as ns
     calls = {"g": 0, "gi": 0}
     real_g, real_gi = ns.g_one, ns._g_and_integral_one
@@ -206,10 +237,10 @@ def test_loose_rtol_takes_fewer_quadratures(monkeypatch):
     monkeypatch.setattr(ns, "_g_and_integral_one", g_and_integral_one)
     contact = cl.Contact(FOnly(Paraboloid(1.0)), MATERIALS, rtol=1e-2)
     s = contact.normal(force=4 / 3 * 0.1**3)
-    assert calls["g"] + calls["gi"] <= 7 and abs(s.radius / 0.1 - 1) <= 1e-2
+    assert calls["g"] + calls["gi"] <= 2 and abs(s.radius / 0.1 - 1) <= 1e-2
     calls.update(g=0, gi=0)
     s = contact.normal(depth=0.01)
-    assert calls["g"] + calls["gi"] <= 6 and abs(s.radius / 0.1 - 1) <= 1e-2
+    assert calls["g"] + calls["gi"] <= 3 and abs(s.radius / 0.1 - 1) <= 1e-2
 
 
 @pytest.mark.parametrize("p", [*_random_polynomials(4, seed=29), Wavy()], ids=repr)
