@@ -20,7 +20,7 @@ from contactlab.errors import OutsideTheoryError
 from contactlab.numeric import powers, roots
 from contactlab.physics import normal as N
 from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere
-from tests.tolerances import SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
+from tests.tolerances import SPHERE_FORCE_START, SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 PROFILES = [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0), PowerLaw(2.0, 1.5), Sphere(0.01),
@@ -145,6 +145,35 @@ def test_sphere_newton_few_steps_and_batch_independent(monkeypatch):
     a = s._radius_of_reduced_force(F, 1e-10)
     alone = np.array([s._radius_of_reduced_force(F[i:i + 1], 1e-10)[0] for i in range(F.size)])
     assert a.tobytes() == alone.tobytes()
+
+
+def test_sphere_force_start_and_rounds(monkeypatch):
+    """The force solve starts from the inverted series of the Hertz radius: within
+    SPHERE_FORCE_START of 30-digit roots up to q = 0.85, so that Newton stops after at most
+    three rounds on a batch of radii from 1e-9 R to 0.85 R (the Hertz radius corrected by its
+    first two terms, with the tanh bound above q_H = 0.5, took seven)."""
+    from contactlab.numeric import normal_kernels as NK
+    import contactlab.profiles.sphere as sphere_mod
+    starts, rounds = [], []
+    real = roots.convex_newton_fused
+
+    def counting(step_of, x0, **kw):
+        starts.append(np.array(x0, copy=True))
+
+        def counted(q, step, quiet):
+            rounds.append(q.size)
+            return step_of(q, step, quiet)
+        return real(counted, x0, **kw)
+
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", counting)
+    monkeypatch.setitem(NK._state, "backend", "numpy")
+    q = np.r_[np.geomspace(1e-9, 0.85, 400), np.linspace(0.05, 0.85, 400)]
+    F = np.array([_reduced_force_ref(x) for x in q])
+    a = Sphere(R)._radius_of_reduced_force(F, 1e-10)
+    (x0,) = starts
+    assert np.max(np.abs(x0 / q - 1)) <= SPHERE_FORCE_START
+    assert len(rounds) <= 3
+    assert np.max(np.abs(a / (R * q) - 1)) <= SPHERE_NEWTON_RADIUS
 
 
 def test_sphere_refuses_radius_beyond_R():
