@@ -69,6 +69,18 @@ def _series_of_small(qs: np.ndarray) -> np.ndarray:
     acc *= x * qs
     return acc
 
+def _series_tail_vanishes(q_top: float, k: int) -> bool:
+    """Whether the terms ``k, k+1, ...`` of the ``∫g`` series
+    ``Σ q^(2k+1)/((2k-1)(2k+1))`` (positive, each below ``q²`` times the one before) leave the
+    partial sum unchanged for every ``q <= q_top``: a positive addend below half an ulp of the
+    sum rounds away, and the sum, at least its first term ``q³/3``, has an ulp above
+    ``2^-53`` of itself. The ratio of term ``k`` to the first, ``3 q^(2k-2)/((2k-1)(2k+1))``,
+    grows with ``q``, so ``q_top`` bounds it for the whole batch; ``2^-55`` (half of what is
+    needed) covers the rounding of the terms. Skipping those terms gives the same bits as
+    adding them: just below q = 0.1, 8 terms of 17 are evaluated."""
+    return 3.0 * q_top ** (2 * k - 2) / ((2 * k - 1) * (2 * k + 1)) < 2.0 ** -55
+
+
 #: a/R above which a sphere contact leaves the half-space theory (ValidityWarning): the theory
 #: linearises the boundary conditions in the surface slope, here a/sqrt(R²-a²) = 0.58 (30°) at
 #: the edge; the exact-sphere MDR solution stays exact for the half-space problem but no longer
@@ -166,8 +178,11 @@ class Sphere(Profile):
             ser = np.zeros_like(qs)
             term = qs**3
             part = np.empty_like(qs)
+            q_top = float(qs.max())
             for k in range(1, 18):
                 if k > 1:
+                    if _series_tail_vanishes(q_top, k):
+                        break       # (the remaining terms leave every sum's bits unchanged)
                     term *= qs
                     term *= qs
                 np.divide(term, (2 * k - 1) * (2 * k + 1), out=part)

@@ -176,6 +176,33 @@ def test_sphere_force_start_and_rounds(monkeypatch):
     assert np.max(np.abs(a / (R * q) - 1)) <= SPHERE_NEWTON_RADIUS
 
 
+def test_sphere_g_integral_series_stops_where_its_tail_rounds_away():
+    """The ∫g series below a/R = 0.1 stops once the remaining terms are below half an ulp of
+    every partial sum (8 terms of 17 just below 0.1, fewer for smaller radii): the same bits
+    as all 17 terms, on batches of every scale of q."""
+    from contactlab.profiles import sphere as sphere_mod
+    assert not sphere_mod._series_tail_vanishes(0.0999999, 8)
+    assert sphere_mod._series_tail_vanishes(0.0999999, 9)
+    rng = np.random.default_rng(11)
+    for Rs in (R, 1e-6, 3.0):
+        for q_max in (0.0999999999, 0.03, 1e-3, 1e-8, 1e-60, 1e-110):
+            q = np.r_[rng.uniform(0.0, q_max, 2000), np.geomspace(1e-300, q_max, 500), q_max]
+            a = q[q > 0] * Rs
+            q = a / Rs                      # (the function's own quotient)
+            term = q**3
+            ser = np.zeros_like(q)
+            part = np.empty_like(q)
+            for k in range(1, 18):          # all 17 terms, as before the stop
+                if k > 1:
+                    term *= q
+                    term *= q
+                np.divide(term, (2 * k - 1) * (2 * k + 1), out=part)
+                ser += part
+            ser *= Rs**2
+            got = Sphere(Rs)._g_integral_closed_form(a)
+            assert got.tobytes() == ser.tobytes()
+
+
 def test_sphere_refuses_radius_beyond_R():
     c = cl.Contact(Sphere(R), MATERIALS)
     with pytest.raises(OutsideTheoryError, match=r"depth=.*max_radius"):
