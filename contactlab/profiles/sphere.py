@@ -62,11 +62,14 @@ def _slope_into(q: np.ndarray, at: np.ndarray, out: np.ndarray, scratch: np.ndar
 def _series_of_small(qs: np.ndarray) -> np.ndarray:
     """The series of :func:`_reduced_force` at ``qs < 0.1`` (Horner in ``q²``)."""
     x = qs * qs
-    acc = np.full(qs.shape, _H_SERIES[-1])
-    for c in _H_SERIES[-2::-1]:
-        acc *= x
+    # (the first product c9·x written at once, not into a filled array: the same bits)
+    acc = np.multiply(x, _H_SERIES[-1])
+    for c in _H_SERIES[-2:0:-1]:
         acc += c
-    acc *= x * qs
+        acc *= x
+    acc += _H_SERIES[0]
+    x *= qs
+    acc *= x
     return acc
 
 def _series_tail_vanishes(q_top: float, k: int) -> bool:
