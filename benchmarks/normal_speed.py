@@ -8,7 +8,8 @@ process's CPU time (``--wall``: wall time), with a verdict against the goal).
 Issue 29 rows (:func:`issue29_rows`):
 
 * 10^6 depths / forces on a ``Paraboloid`` against the numpy closed form (goal <= 2x);
-* the force rows also by the numpy route (the reference, and what runs without numba: the
+* the force rows also by the numpy route (what runs without numba: the paraboloid's numpy
+  passes of :mod:`contactlab.physics.normal_fused`, the sphere's numpy Newton rounds; the
   compiled passes of :mod:`contactlab.numeric.normal_kernels` run where numba imports);
 * the exact ``Sphere``, 10^5 depths / forces, against the numpy closed form of the same curve
   evaluated at the solved radii (``d = a artanh(a/R)``, ``F`` from ``∫g``; goal <= 10x), and the

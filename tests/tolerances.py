@@ -913,3 +913,7 @@ FAST_G = 2e-12
 #: non-negative terms) against the closed forms of random polynomial gaps: a bound may exceed
 #: the value only by the rounding of the two sums (16 terms each; measured: never above it)
 RADIUS_BOUND_ROUNDING = 1e-13
+#: the exact sphere's force-solve start (the series inverting its Hertz radius, seven terms)
+#: against 30-digit roots up to q = a/R = 0.85: the truncated series errs by 1e-6 there (2.4e-10
+#: at q = 0.45, the cbrt and the reduced force's rounding below ~1e-15); the bound leaves 3x
+SPHERE_FORCE_START = 3e-6

@@ -521,8 +521,9 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         profile._check_monotone_upto(float(np.max(a, initial=0.0)), float(np.max(d, initial=0.0)))
     else:
         if (error_estimate == "lazy" and value.size >= _fused.FUSED_FROM
-                and type(profile) is Paraboloid and _fused.backend() == "numba"):
-            fused = _solve_force_fused(profile, E, value, rtol)
+                and type(profile) is Paraboloid):
+            fused = _solve_force_fused(profile, E, value, rtol,
+                                       _fused.backend() == "numba" or "numpy")
             if fused is not None:
                 return fused
         a, d = radius_depth_of_force(profile, E, value, rtol)
@@ -582,14 +583,15 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
                              g_a_err))
 
 
-def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float, compiled: bool = True
+def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
+                       compiled: bool | str = True
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any] | None:
-    """:func:`solve`'s lazy force route on a paraboloid by the compiled passes of
-    :func:`contactlab.physics.normal_fused.paraboloid_force` (the same values, bit for bit), or
-    None where they decline. The pending estimate carries the residual (``pending.residual``)
-    and ``pending.checked = True``: every force is finite and within
-    :data:`~contactlab.physics.normal_fused.FORCE_SANITY` of its request (the caller's checks,
-    made in the compiled pass)."""
+    """:func:`solve`'s lazy force route on a paraboloid by the passes of
+    :func:`contactlab.physics.normal_fused.paraboloid_force` (compiled, or ``"numpy"``: the
+    same values, bit for bit), or None where they decline. The pending estimate carries the
+    residual (``pending.residual``) and ``pending.checked = True``: every force is finite and
+    within :data:`~contactlab.physics.normal_fused.FORCE_SANITY` of its request (the caller's
+    checks, made in the passes)."""
     if profile.g_route != "closed_form" or np.isfinite(profile.wall_radius):
         return None
     res = _fused.paraboloid_force(profile, E, value, compiled)

@@ -20,7 +20,7 @@ from contactlab.errors import OutsideTheoryError
 from contactlab.numeric import powers, roots
 from contactlab.physics import normal as N
 from contactlab.profiles import Cone, Paraboloid, Polynomial, PowerLaw, Sphere
-from tests.tolerances import SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
+from tests.tolerances import SPHERE_FORCE_START, SPHERE_G_INTEGRAL, SPHERE_NEWTON_RADIUS
 
 MATERIALS = (cl.Elastic(E=210e9, nu=0.3), cl.Rigid())
 PROFILES = [Paraboloid(0.01), Cone(0.2), PowerLaw(1e3, 4.0), PowerLaw(2.0, 1.5), Sphere(0.01),
@@ -145,6 +145,62 @@ def test_sphere_newton_few_steps_and_batch_independent(monkeypatch):
     a = s._radius_of_reduced_force(F, 1e-10)
     alone = np.array([s._radius_of_reduced_force(F[i:i + 1], 1e-10)[0] for i in range(F.size)])
     assert a.tobytes() == alone.tobytes()
+
+
+def test_sphere_force_start_and_rounds(monkeypatch):
+    """The force solve starts from the inverted series of the Hertz radius: within
+    SPHERE_FORCE_START of 30-digit roots up to q = 0.85, so that Newton stops after at most
+    three rounds on a batch of radii from 1e-9 R to 0.85 R (the Hertz radius corrected by its
+    first two terms, with the tanh bound above q_H = 0.5, took seven)."""
+    from contactlab.numeric import normal_kernels as NK
+    import contactlab.profiles.sphere as sphere_mod
+    starts, rounds = [], []
+    real = roots.convex_newton_fused
+
+    def counting(step_of, x0, **kw):
+        starts.append(np.array(x0, copy=True))
+
+        def counted(q, step, quiet):
+            rounds.append(q.size)
+            return step_of(q, step, quiet)
+        return real(counted, x0, **kw)
+
+    monkeypatch.setattr(sphere_mod, "convex_newton_fused", counting)
+    monkeypatch.setitem(NK._state, "backend", "numpy")
+    q = np.r_[np.geomspace(1e-9, 0.85, 400), np.linspace(0.05, 0.85, 400)]
+    F = np.array([_reduced_force_ref(x) for x in q])
+    a = Sphere(R)._radius_of_reduced_force(F, 1e-10)
+    (x0,) = starts
+    assert np.max(np.abs(x0 / q - 1)) <= SPHERE_FORCE_START
+    assert len(rounds) <= 3
+    assert np.max(np.abs(a / (R * q) - 1)) <= SPHERE_NEWTON_RADIUS
+
+
+def test_sphere_g_integral_series_stops_where_its_tail_rounds_away():
+    """The ∫g series below a/R = 0.1 stops once the remaining terms are below half an ulp of
+    every partial sum (8 terms of 17 just below 0.1, fewer for smaller radii): the same bits
+    as all 17 terms, on batches of every scale of q."""
+    from contactlab.profiles import sphere as sphere_mod
+    assert not sphere_mod._series_tail_vanishes(0.0999999, 8)
+    assert sphere_mod._series_tail_vanishes(0.0999999, 9)
+    rng = np.random.default_rng(11)
+    for Rs in (R, 1e-6, 3.0):
+        for q_max in (0.0999999999, 0.03, 1e-3, 1e-8, 1e-60, 1e-110):
+            q = np.r_[rng.uniform(0.0, q_max, 2000), np.geomspace(1e-300, q_max, 500), q_max]
+            a = q[q > 0] * Rs
+            q = a / Rs                      # (the function's own quotient)
+            term = q**3
+            ser = np.zeros_like(q)
+            part = np.empty_like(q)
+            for k in range(1, 18):          # all 17 terms, as before the stop
+                if k > 1:
+                    term *= q
+                    term *= q
+                np.divide(term, (2 * k - 1) * (2 * k + 1), out=part)
+                ser += part
+            ser *= Rs**2
+            got = Sphere(Rs)._g_integral_closed_form(a)
+            assert got.tobytes() == ser.tobytes()
 
 
 def test_sphere_refuses_radius_beyond_R():

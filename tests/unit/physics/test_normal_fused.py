@@ -72,9 +72,11 @@ def test_compiled_route_taken_and_shape_kept(backend):
         assert x.tobytes() == y.tobytes()
 
 
-@pytest.mark.parametrize("compiled", [False, pytest.param(True, marks=needs_numba)])
+@pytest.mark.parametrize("compiled", [False, "numpy", pytest.param(True, marks=needs_numba)])
 def test_kernels_match_the_numpy_route(compiled):
-    """The passes themselves (plain Python when not compiled) on a small batch."""
+    """The passes themselves (plain Python when not compiled, numpy ufuncs into the block) on a
+    small batch; forces over 42 decades, so the numpy passes' request check falls back from
+    the largest residual against the smallest request to element by element."""
     F = _forces(300, 7)
     prof = Paraboloid(0.004)
     E = cl.Contact(prof, MATERIALS).moduli.normal
@@ -86,8 +88,8 @@ def test_kernels_match_the_numpy_route(compiled):
         assert x.tobytes() == y.tobytes()
 
 
-@pytest.mark.parametrize("compiled", [False, pytest.param(True, marks=needs_numba)])
-@pytest.mark.parametrize("bad", [0.0, -1.0, 1e-290, 1e305])
+@pytest.mark.parametrize("compiled", [False, "numpy", pytest.param(True, marks=needs_numba)])
+@pytest.mark.parametrize("bad", [0.0, -1.0, 1e-290, 1e305, np.nan])
 def test_kernels_decline_outside_their_range(compiled, bad):
     """A force that is not positive or a quotient outside [Q_MIN, Q_MAX] (here 1e-290 N and
     1e305 N on a stiff contact): declined, the numpy route decides."""
@@ -113,6 +115,30 @@ def test_declined_batches_give_the_numpy_results_and_errors(backend):
     fast = c.normal(force=F)
     backend("numpy")
     assert _state_arrays(fast) == _state_arrays(c.normal(force=F))
+
+
+@pytest.mark.parametrize("R", [1e-2, 3e-7, 2.5])
+def test_numpy_passes_bit_identical_to_the_general_route(backend, R):
+    """Without numba (or with the numpy backend forced) a batch of at least FUSED_FROM forces
+    on a paraboloid takes the numpy passes into one block: radius, depth, force and error
+    estimate bit-identical to the general route (error_estimate=True never takes the passes),
+    and to the scalar route; the driver's checks made on the way (pending.checked)."""
+    F = _forces(NF.FUSED_FROM + 1001, int(R * 1e7) % 1000)
+    prof = Paraboloid(R)
+    c = cl.Contact(prof, MATERIALS)
+    E = c.moduli.normal
+    backend("numpy")
+    d, a, Fo, pending = N.solve(prof, E, "force", F, 1e-10, error_estimate="lazy")
+    assert pending.checked is True          # (the general route leaves it unset)
+    d0, a0, F0, rel0 = N.solve(prof, E, "force", F, 1e-10)
+    for x, y in ((d0, d), (a0, a), (F0, Fo), (rel0, pending()),
+                 (np.abs(F0 - F), pending.residual)):
+        assert x.tobytes() == y.tobytes()
+    state = c.normal(force=F)
+    assert _state_arrays(state) == tuple(v.tobytes() for v in (d0, a0, F0, rel0))
+    for i in np.random.default_rng(2).integers(0, F.size, 25):
+        s = c.normal(force=float(F[i]))
+        assert (s.depth, s.radius, s.force) == (d0[i], a0[i], F0[i])
 
 
 def test_backend_choice(backend, monkeypatch):
