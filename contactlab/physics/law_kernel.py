@@ -330,17 +330,32 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         cm_j = aj
         free_t = True
         free_m = True
-        for i in range(N):
-            bl = cov * beta[i]
+        # cells from ``tail`` on lie beyond the contact in this step and the last (weight 0,
+        # limits 0): their elements are only clipped to zero (below); the products of a cell's
+        # left boundary are its left neighbour's right ones, carried (the same expressions,
+        # the same bits)
+        tail = hi if dd != 0.0 else k + 1
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        for i in range(min(tail, N)):
             br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
             w = br - bl
             if i < k:
-                S = dj * w - (cp1 * bG[i + 1] - cp1 * bG[i])
-                T = dj * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = dj * w - (gr - gl)
+                T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
             elif i == k:
                 if aj > bl:
-                    S = max(dj * (aj - bl) - (Ga - cp1 * bG[i]), 0.0)
-                    T = max(dj * (aj * aj - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+                    S = max(dj * (aj - bl) - (Ga - gl), 0.0)
+                    T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
                 else:
                     S = 0.0
                     T = 0.0
@@ -350,13 +365,13 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             if dd != 0.0:
                 if i < lo:
                     wgt = 1.0
-                elif i >= hi:
-                    wgt = 0.0
                 else:
                     wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
             else:
                 wgt = min(max((aj - bl) / w, 0.0), 1.0)
             S_old[r, i] = S
+            # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
+            # m): adding it leaves the sum's bits unchanged, so it is skipped there
             if has_u:
                 L = 2.0 * mu_E * S
                 Kt = 2.0 * G[c] * w * wgt
@@ -364,7 +379,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 trial = mo + Kt * du
                 mn = min(max(trial, -L), L)
                 m_tan[r, i] = mn
-                if Kt > 0.0:
+                if Kt > 0.0 and trial != mn:
                     e += (trial - mn) * mn / Kt
                 Ft_j += mn
                 if free_t and abs(mn) >= L:
@@ -372,17 +387,39 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     ct_j = min(bl, aj)
             if has_phi:
                 L = 4.0 * mu_E * T
-                Kr = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * wgt
+                Kr = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * wgt
                 mo = m_tor[r, i]
                 trial = mo + Kr * dp
                 mn = min(max(trial, -L), L)
                 m_tor[r, i] = mn
-                if Kr > 0.0:
+                if Kr > 0.0 and trial != mn:
                     e += (trial - mn) * mn / Kr
                 M_j += mn
                 if free_m and abs(mn) >= L:
                     free_m = False
                     cm_j = min(bl, aj)
+            bl = br
+            bl2 = br2
+            bl3 = br3
+        # beyond the contact: S = T = 0, weight 0, so both stiffnesses and limits are +0
+        # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
+        # reference's arithmetic for those cells without the cell geometry
+        for i in range(tail, N):
+            S_old[r, i] = 0.0
+            if has_u:
+                mn = min(max(m_tan[r, i] + 0.0 * du, -0.0), 0.0)
+                m_tan[r, i] = mn
+                Ft_j += mn
+                if free_t and abs(mn) >= 0.0:
+                    free_t = False
+                    ct_j = min(cov * beta[i], aj)
+            if has_phi:
+                mn = min(max(m_tor[r, i] + 0.0 * dp, -0.0), 0.0)
+                m_tor[r, i] = mn
+                M_j += mn
+                if free_m and abs(mn) >= 0.0:
+                    free_m = False
+                    cm_j = min(cov * beta[i], aj)
         k_old[r] = k
         d_old[r] = dj
         if has_u:
@@ -451,17 +488,29 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             k += 1
         mu_E = mu[c] * E[c]
         # the elements at the held load: the history 0 -> X[0] -> ... -> X[depth-1] -> x,
-        # element by element (each element's path is independent of the others)
-        for i in range(N):
-            bl = cov * beta[i]
+        # element by element (each element's path is independent of the others); the products
+        # of a cell's left boundary are its left neighbour's right ones, carried (the same
+        # expressions, the same bits)
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        for i in range(k + 1):
             br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
             w = br - bl
             if i < k:
-                S = d0 * w - (cp1 * bG[i + 1] - cp1 * bG[i])
-                T = d0 * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
-            elif i == k and a0 > bl:
-                S = max(d0 * (a0 - bl) - (Ga - cp1 * bG[i]), 0.0)
-                T = max(d0 * (a0 * a0 - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = d0 * w - (gr - gl)
+                T = d0 * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
+            elif a0 > bl:
+                S = max(d0 * (a0 - bl) - (Ga - gl), 0.0)
+                T = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha - hl), 0.0)
             else:
                 S = 0.0
                 T = 0.0
@@ -472,7 +521,7 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                     Kc = 2.0 * G[c] * w * frac
                     L = 2.0 * mu_E * S
                 else:
-                    Kc = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * frac
+                    Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
                     L = 4.0 * mu_E * T
                 m = 0.0
                 prev = 0.0
@@ -485,6 +534,27 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                     m_tan[r, i] = m
                 else:
                     m_tor[r, i] = m
+            bl = br
+            bl2 = br2
+            bl3 = br3
+        if k + 1 < N:
+            # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
+            # at or beyond a0), so both stiffnesses and limits are +0 (finite moduli and cells)
+            # in every one of them: one replay per channel, the same for all
+            for ch in range(2):
+                m = 0.0
+                prev = 0.0
+                for p in range(depth[ch, c]):
+                    tgt = X[ch, c, p]
+                    m = min(max(m + 0.0 * (tgt - prev), -0.0), 0.0)
+                    prev = tgt
+                m = min(max(m + 0.0 * (x[ch, c] - prev), -0.0), 0.0)
+                for i in range(k + 1, N):
+                    if ch == 0:
+                        S_old[r, i] = 0.0
+                        m_tan[r, i] = m
+                    else:
+                        m_tor[r, i] = m
         x_tan[r] = x[0, c]
         x_tor[r] = x[1, c]
         k_old[r] = k
