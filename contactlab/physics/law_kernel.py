@@ -284,22 +284,29 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
-                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW):
+                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
     """One MDR spring step of the contacts ``idx`` (the arithmetic of
     :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
     weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
-    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``."""
+    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``. A
+    contact whose radius exceeds its cover is left as it is, ``flag[c] = 4``, and counted
+    (its cells are regridded first: :func:`spring_pass`). Returns (non-finite, grown)."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
     nonfinite = 0
+    grown = 0
     for j in _prange(idx.size):
         c = idx[j]
         r = slot[c]
         cov = cover[r]
+        aj = a[c]
+        if aj > cov:
+            flag[c] = 4
+            grown += 1
+            continue
         kcc = kc[c]
         dj = d[c]
-        aj = a[c]
         if n == 2.0:
             cp1 = kcc * cov * cov * cov
             Ga = kcc * aj * aj * aj / n1
@@ -439,7 +446,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         dW[c] = e
         if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
             nonfinite += 1
-    return nonfinite
+    return nonfinite, grown
 
 
 def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
@@ -680,23 +687,44 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
 
 
 def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
-                out: tuple, parallel: bool = False) -> int:
+                out: tuple, parallel: bool = False, flag=None, regrid=None) -> int:
     """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
     radius and controls of all contacts, or None; ``kc``, moduli: per contact; ``beta``: unit
     cell boundaries). The spring state (``pool``: the law's
     :class:`~contactlab.effects.law_pool.SpringPool`, rows ``pool.slot[idx]``) is updated in
     place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
+    Contacts whose radius exceeds their cover are found in the pass (``flag``: int8 per
+    contact, set to 4 there; scratch by default), given to ``regrid(contacts)`` (it grows
+    their cover, at least to the radius) and then stepped: contacts are independent, so this
+    is the step of regridding them first, without a pass over the covers before the kernel.
     Returns the number of contacts whose outputs are not finite.
     Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
     nn = float(n) if n != np.inf else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
     bH = beta ** (nn + 2.0) / (nn + 2.0)
     P = pool.rows
-    return _kernels(parallel)[2](idx, pool.slot, d, a, _EMPTY if u is None else u,
-                          _EMPTY if phi is None else phi, u is not None, phi is not None,
-                          P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
-                          P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
-                          P["spr_x_tan"], P["spr_x_tor"], *out)
+    if flag is None:
+        flag = np.zeros(pool.size, np.int8)
+    kernel = _kernels(parallel)[2]
+
+    def run(ix):
+        return kernel(ix, pool.slot, d, a, _EMPTY if u is None else u,
+                      _EMPTY if phi is None else phi, u is not None, phi is not None,
+                      P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
+                      P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                      P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+
+    nf, grown = run(idx)
+    if grown:
+        g = idx[flag[idx] == 4]
+        if regrid is None:
+            raise ValueError(f"spring_pass: {g.size} contact(s) outgrew their cover and no "
+                             "regrid was given")
+        regrid(g)
+        nf2, again = run(g)
+        assert again == 0, "regrid left a contact's radius beyond its cover"
+        nf += nf2
+    return int(nf)
 
 
 def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, chan: dict,
