@@ -716,14 +716,11 @@ class ContactLaw:
             self.G_torsion, self.n, mc, self._chan, self.parallel,
             None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                       out.torsion_stick_radius, out.dissipated_energy, out.exact))
-        if spr is not None and spr.size:
-            assert self._pool is not None
-            grow = a[spr] > self._spr("spr_cover", spr)
-            if np.any(grow):
-                _np_springs.regrid(self, spr[grow], a[spr][grow])
+        if spr is not None and spr.size:        # (covers outgrown: regridded in the pass)
             nf += _kernel.spring_pass(spr, d, a, u, phi, self.kc, self.n, self._beta,
                                       self.friction, self.E_star, self.G_star, self.G_torsion,
-                                      self._pool, (Ft, ct, M, cm, dW), self.parallel)
+                                      self._pool, (Ft, ct, M, cm, dW), self.parallel, flag,
+                                      lambda g: _np_springs.regrid(self, g, a[g]))
         if nonfinite or nf:                             # overflow: refused, contacts reset
             self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
         if n_over:

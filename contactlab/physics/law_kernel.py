@@ -284,22 +284,29 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
-                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW):
+                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
     """One MDR spring step of the contacts ``idx`` (the arithmetic of
     :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
     weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
-    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``."""
+    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``. A
+    contact whose radius exceeds its cover is left as it is, ``flag[c] = 4``, and counted
+    (its cells are regridded first: :func:`spring_pass`). Returns (non-finite, grown)."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
     nonfinite = 0
+    grown = 0
     for j in _prange(idx.size):
         c = idx[j]
         r = slot[c]
         cov = cover[r]
+        aj = a[c]
+        if aj > cov:
+            flag[c] = 4
+            grown += 1
+            continue
         kcc = kc[c]
         dj = d[c]
-        aj = a[c]
         if n == 2.0:
             cp1 = kcc * cov * cov * cov
             Ga = kcc * aj * aj * aj / n1
@@ -330,17 +337,32 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         cm_j = aj
         free_t = True
         free_m = True
-        for i in range(N):
-            bl = cov * beta[i]
+        # cells from ``tail`` on lie beyond the contact in this step and the last (weight 0,
+        # limits 0): their elements are only clipped to zero (below); the products of a cell's
+        # left boundary are its left neighbour's right ones, carried (the same expressions,
+        # the same bits)
+        tail = hi if dd != 0.0 else k + 1
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        for i in range(min(tail, N)):
             br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
             w = br - bl
             if i < k:
-                S = dj * w - (cp1 * bG[i + 1] - cp1 * bG[i])
-                T = dj * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = dj * w - (gr - gl)
+                T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
             elif i == k:
                 if aj > bl:
-                    S = max(dj * (aj - bl) - (Ga - cp1 * bG[i]), 0.0)
-                    T = max(dj * (aj * aj - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+                    S = max(dj * (aj - bl) - (Ga - gl), 0.0)
+                    T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
                 else:
                     S = 0.0
                     T = 0.0
@@ -350,13 +372,13 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             if dd != 0.0:
                 if i < lo:
                     wgt = 1.0
-                elif i >= hi:
-                    wgt = 0.0
                 else:
                     wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
             else:
                 wgt = min(max((aj - bl) / w, 0.0), 1.0)
             S_old[r, i] = S
+            # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
+            # m): adding it leaves the sum's bits unchanged, so it is skipped there
             if has_u:
                 L = 2.0 * mu_E * S
                 Kt = 2.0 * G[c] * w * wgt
@@ -364,7 +386,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 trial = mo + Kt * du
                 mn = min(max(trial, -L), L)
                 m_tan[r, i] = mn
-                if Kt > 0.0:
+                if Kt > 0.0 and trial != mn:
                     e += (trial - mn) * mn / Kt
                 Ft_j += mn
                 if free_t and abs(mn) >= L:
@@ -372,17 +394,39 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     ct_j = min(bl, aj)
             if has_phi:
                 L = 4.0 * mu_E * T
-                Kr = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * wgt
+                Kr = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * wgt
                 mo = m_tor[r, i]
                 trial = mo + Kr * dp
                 mn = min(max(trial, -L), L)
                 m_tor[r, i] = mn
-                if Kr > 0.0:
+                if Kr > 0.0 and trial != mn:
                     e += (trial - mn) * mn / Kr
                 M_j += mn
                 if free_m and abs(mn) >= L:
                     free_m = False
                     cm_j = min(bl, aj)
+            bl = br
+            bl2 = br2
+            bl3 = br3
+        # beyond the contact: S = T = 0, weight 0, so both stiffnesses and limits are +0
+        # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
+        # reference's arithmetic for those cells without the cell geometry
+        for i in range(tail, N):
+            S_old[r, i] = 0.0
+            if has_u:
+                mn = min(max(m_tan[r, i] + 0.0 * du, -0.0), 0.0)
+                m_tan[r, i] = mn
+                Ft_j += mn
+                if free_t and abs(mn) >= 0.0:
+                    free_t = False
+                    ct_j = min(cov * beta[i], aj)
+            if has_phi:
+                mn = min(max(m_tor[r, i] + 0.0 * dp, -0.0), 0.0)
+                m_tor[r, i] = mn
+                M_j += mn
+                if free_m and abs(mn) >= 0.0:
+                    free_m = False
+                    cm_j = min(cov * beta[i], aj)
         k_old[r] = k
         d_old[r] = dj
         if has_u:
@@ -402,7 +446,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         dW[c] = e
         if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
             nonfinite += 1
-    return nonfinite
+    return nonfinite, grown
 
 
 def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
@@ -451,17 +495,29 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             k += 1
         mu_E = mu[c] * E[c]
         # the elements at the held load: the history 0 -> X[0] -> ... -> X[depth-1] -> x,
-        # element by element (each element's path is independent of the others)
-        for i in range(N):
-            bl = cov * beta[i]
+        # element by element (each element's path is independent of the others); the products
+        # of a cell's left boundary are its left neighbour's right ones, carried (the same
+        # expressions, the same bits)
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        for i in range(k + 1):
             br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
             w = br - bl
             if i < k:
-                S = d0 * w - (cp1 * bG[i + 1] - cp1 * bG[i])
-                T = d0 * (br * br - bl * bl) / 2.0 - (cp2 * bH[i + 1] - cp2 * bH[i])
-            elif i == k and a0 > bl:
-                S = max(d0 * (a0 - bl) - (Ga - cp1 * bG[i]), 0.0)
-                T = max(d0 * (a0 * a0 - bl * bl) / 2.0 - (Ha - cp2 * bH[i]), 0.0)
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = d0 * w - (gr - gl)
+                T = d0 * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
+            elif a0 > bl:
+                S = max(d0 * (a0 - bl) - (Ga - gl), 0.0)
+                T = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha - hl), 0.0)
             else:
                 S = 0.0
                 T = 0.0
@@ -472,7 +528,7 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                     Kc = 2.0 * G[c] * w * frac
                     L = 2.0 * mu_E * S
                 else:
-                    Kc = 16.0 * Gt[c] * ((br * br * br - bl * bl * bl) / 3.0) * frac
+                    Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
                     L = 4.0 * mu_E * T
                 m = 0.0
                 prev = 0.0
@@ -485,6 +541,27 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                     m_tan[r, i] = m
                 else:
                     m_tor[r, i] = m
+            bl = br
+            bl2 = br2
+            bl3 = br3
+        if k + 1 < N:
+            # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
+            # at or beyond a0), so both stiffnesses and limits are +0 (finite moduli and cells)
+            # in every one of them: one replay per channel, the same for all
+            for ch in range(2):
+                m = 0.0
+                prev = 0.0
+                for p in range(depth[ch, c]):
+                    tgt = X[ch, c, p]
+                    m = min(max(m + 0.0 * (tgt - prev), -0.0), 0.0)
+                    prev = tgt
+                m = min(max(m + 0.0 * (x[ch, c] - prev), -0.0), 0.0)
+                for i in range(k + 1, N):
+                    if ch == 0:
+                        S_old[r, i] = 0.0
+                        m_tan[r, i] = m
+                    else:
+                        m_tor[r, i] = m
         x_tan[r] = x[0, c]
         x_tor[r] = x[1, c]
         k_old[r] = k
@@ -610,23 +687,44 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
 
 
 def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
-                out: tuple, parallel: bool = False) -> int:
+                out: tuple, parallel: bool = False, flag=None, regrid=None) -> int:
     """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
     radius and controls of all contacts, or None; ``kc``, moduli: per contact; ``beta``: unit
     cell boundaries). The spring state (``pool``: the law's
     :class:`~contactlab.effects.law_pool.SpringPool`, rows ``pool.slot[idx]``) is updated in
     place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
+    Contacts whose radius exceeds their cover are found in the pass (``flag``: int8 per
+    contact, set to 4 there; scratch by default), given to ``regrid(contacts)`` (it grows
+    their cover, at least to the radius) and then stepped: contacts are independent, so this
+    is the step of regridding them first, without a pass over the covers before the kernel.
     Returns the number of contacts whose outputs are not finite.
     Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
     nn = float(n) if n != np.inf else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
     bH = beta ** (nn + 2.0) / (nn + 2.0)
     P = pool.rows
-    return _kernels(parallel)[2](idx, pool.slot, d, a, _EMPTY if u is None else u,
-                          _EMPTY if phi is None else phi, u is not None, phi is not None,
-                          P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
-                          P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
-                          P["spr_x_tan"], P["spr_x_tor"], *out)
+    if flag is None:
+        flag = np.zeros(pool.size, np.int8)
+    kernel = _kernels(parallel)[2]
+
+    def run(ix):
+        return kernel(ix, pool.slot, d, a, _EMPTY if u is None else u,
+                      _EMPTY if phi is None else phi, u is not None, phi is not None,
+                      P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
+                      P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                      P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+
+    nf, grown = run(idx)
+    if grown:
+        g = idx[flag[idx] == 4]
+        if regrid is None:
+            raise ValueError(f"spring_pass: {g.size} contact(s) outgrew their cover and no "
+                             "regrid was given")
+        regrid(g)
+        nf2, again = run(g)
+        assert again == 0, "regrid left a contact's radius beyond its cover"
+        nf += nf2
+    return int(nf)
 
 
 def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, chan: dict,

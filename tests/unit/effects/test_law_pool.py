@@ -13,6 +13,7 @@ import contactlab as cl
 from contactlab.effects.law import law_memory
 from contactlab.effects.law_pool import SpringPool, pool_row_bytes
 from contactlab.errors import MemoryBudgetError, ValidityWarning
+from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS
 
 HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
 BACKENDS = [False, True] if HAS_NUMBA else [False]
@@ -144,6 +145,46 @@ def test_threaded_switch_and_springs_are_bit_identical():
     sp, ss = par.state, ser.state
     for key, v in ss.items():
         np.testing.assert_array_equal(sp[key], v, err_msg=key)
+
+
+@pytest.mark.skipif(not HAS_NUMBA, reason="compiled law needs numba")
+def test_outgrown_covers_are_regridded_in_the_compiled_pass_to_the_numpy_bits(monkeypatch):
+    """The compiled spring pass finds the contacts whose radius left their cover itself (no
+    pass over the covers before it), the law regrids those and steps them: only the grown
+    contacts are regridded, covers, depths and edge cells are the numpy law's bits, and forces
+    and the spring state agree with it to COMPILED_VS_NUMPY_SPRINGS (the cell integrals are
+    formed in another order)."""
+    from contactlab.effects import law_springs_numpy
+    n = 60
+    grown = []
+    regrid = law_springs_numpy.regrid
+    monkeypatch.setattr(law_springs_numpy, "regrid",
+                        lambda law, idx, a: (grown.append(idx.copy()), regrid(law, idx, a)))
+    rng = np.random.default_rng(7)
+    F = rng.uniform(1.0, 50.0, n)
+    fast, ref = _law(n, True), _law(n, False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(10):
+            L = F * (1.0 + 0.03 * k)
+            if k == 5:
+                L[::3] *= 8.0                           # radius x2 > the cover (1.5 x)
+            phi, u = 1e-4 * np.sin(0.5 * k + np.arange(n)), 3e-8 * np.cos(0.4 * k + np.arange(n))
+            a = fast.step(force=L, twist=phi, displacement=u)
+            b = ref.step(force=L, twist=phi, displacement=u)
+            for f in FIELDS:
+                x, y = getattr(a, f), getattr(b, f)
+                np.testing.assert_allclose(x, y, rtol=0, err_msg=f"step {k}: {f}",
+                                           atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(y)))
+    sf, sr = fast.state, ref.state
+    for key in ("spr_cover", "spr_depth", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
+        np.testing.assert_array_equal(sf[key], sr[key], err_msg=key)
+    for key in ("spr_S", "spr_tan", "spr_tor"):
+        np.testing.assert_allclose(sf[key], sr[key], rtol=0, err_msg=key,
+                                   atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(sr[key])))
+    assert len(grown) == 2          # once per law, in step 5
+    np.testing.assert_array_equal(grown[0], np.arange(0, n, 3))
+    np.testing.assert_array_equal(grown[1], grown[0])
 
 
 def _run(law, n, steps=12):
