@@ -3,7 +3,11 @@
 Depth (``g(a) = d``) and force (``a g(a) - ∫_0^a g = F/(2E*)``) are solved on the memoised node
 values first, then inside the node interval in a variable that removes the square-root cusp of
 g; tables whose g may decrease are solved for the first crossing and checked for annular
-contacts. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
+contacts. A spline table starts the Newton step from the cubic Hermite interpolant of the node
+values and node slopes (g' memoised with g: one pass mostly suffices), and its force steps on
+the column tree sum the signed columns only, the rounding estimate checked once at the radius.
+A batch with at least one load per :data:`_FILL_PER_LOAD` nodes evaluates every node in one
+pass (the values per node are the same bits however they are grouped). Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
 dispatches here.
 """
 from __future__ import annotations
