@@ -6,8 +6,8 @@ g; tables whose g may decrease are solved for the first crossing and checked for
 contacts. A spline table starts the Newton step from the cubic Hermite interpolant of the node
 values and node slopes (g' memoised with g: one pass mostly suffices), and its force steps on
 the column tree sum the signed columns only, the rounding estimate checked once at the radius.
-A batch with at least one load per :data:`_FILL_PER_LOAD` nodes evaluates every node in one
-pass (the values per node are the same bits however they are grouped). Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
+From the second batch on a table with at least one load per :data:`_FILL_PER_LOAD` nodes,
+every node is evaluated in one pass (the values per node are the same bits however grouped). Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
 dispatches here.
 """
 from __future__ import annotations
@@ -28,9 +28,10 @@ _NEWTON_MARGIN = 100.0
 #: of its contact-radius solves): from the linear fraction, off by ~h/a, three steps reach
 #: rounding (h the node spacing, a the radius)
 _HERMITE_STEPS = 3
-#: a batch of loads evaluates g (or the reduced force) at every table node not yet memoised
-#: when there are at most this many per load: a fresh load's node search evaluates 2-3 nodes
-#: (two calls of the pairs test), so the whole table costs at most ~6 such searches, once
+#: the second (and any later) batch of loads on a table evaluates g (or the reduced force) at
+#: every node not yet memoised when there are at most this many per load: a fresh load's node
+#: search evaluates 2-3 nodes (two calls of the pairs test), so the whole table costs at most
+#: ~6 such searches, once
 _FILL_PER_LOAD = 16
 
 
@@ -179,7 +180,7 @@ class _TableSolver(_TableBase):
         rtol = self.rtol if rtol is None else rtol
         flat = np.asarray(d, dtype=float).ravel()
         coarse = self._coarse_nodes()               # includes the last node
-        self._fill_nodes(self._g_at_nodes, self._node_g, flat.size)
+        self._fill_nodes(self._g_at_nodes, self._node_g, flat.size, "g")
         node_g = cast(np.ndarray, self._node_g)     # (set by _coarse_nodes)
         g_end = float(node_g[-1])
         if np.any(flat > g_end):
@@ -276,13 +277,18 @@ class _TableSolver(_TableBase):
             vals = cache[idx]
         return vals
 
-    def _fill_nodes(self, at_nodes, memo: np.ndarray | None, loads: int) -> None:
-        """Evaluate the node function at every node not yet memoised, in one pass, when there
-        are at most :data:`_FILL_PER_LOAD` times as many as ``loads`` (a batch whose searches
-        would visit a good part of them): every later search on the table then evaluates
-        nothing. A node's value does not depend on the other points of its pass, so this
+    def _fill_nodes(self, at_nodes, memo: np.ndarray | None, loads: int, what: str) -> None:
+        """Evaluate the node function at every node not yet memoised, in one pass, from the
+        second batch on the table (``what``: "g" or "H") with at most :data:`_FILL_PER_LOAD`
+        times as many missing nodes as ``loads``: a table that serves batches again and again
+        (a fit, a sweep) then searches without evaluating anything, and a table used once pays
+        nothing extra. A node's value does not depend on the other points of its pass, so this
         changes no bit, only when the work is done."""
         if memo is None or self.r.size > _FILL_PER_LOAD * loads:
+            return
+        seen = self.__dict__.setdefault("_node_batches", {})
+        seen[what] = seen.get(what, 0) + 1
+        if seen[what] < 2:
             return
         missing = np.flatnonzero(np.isnan(memo))
         if 0 < missing.size <= _FILL_PER_LOAD * loads:
@@ -332,7 +338,7 @@ class _TableSolver(_TableBase):
         flat = np.asarray(target, dtype=float).ravel()
         coarse = self._coarse_nodes()
         H_c = self._reduced_force_at_nodes(coarse)
-        self._fill_nodes(self._reduced_force_at_nodes, self.__dict__["_node_H"], flat.size)
+        self._fill_nodes(self._reduced_force_at_nodes, self.__dict__["_node_H"], flat.size, "H")
         if np.any(flat > H_c[-1]):
             i = int(np.argmax(flat > H_c[-1]))
             raise OutsideTheoryError(
