@@ -7,7 +7,8 @@ contacts. A spline table starts the Newton step from the cubic Hermite interpola
 values and node slopes (g' memoised with g: one pass mostly suffices), and its force steps on
 the column tree sum the signed columns only, the rounding estimate checked once at the radius.
 From the second batch on a table with at least one load per :data:`_FILL_PER_LOAD` nodes,
-every node is evaluated in one pass (the values per node are the same bits however grouped). Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
+every node is evaluated in one pass (the values per node are the same bits however grouped).
+Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
 dispatches here.
 """
 from __future__ import annotations
