@@ -90,6 +90,13 @@ class _TableBase(Profile):
 
         def _cubic_shared_pass(self) -> contextlib.AbstractContextManager[None]: ...
 
+        def _cubic_tree(self) -> Any: ...
+
+        def _cubic_signed_pass(self, x: np.ndarray
+                               ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None: ...
+
+        def _cubic_prime(self, a: np.ndarray) -> np.ndarray: ...
+
     def _guard(self, r: np.ndarray, name: str) -> None:
         if np.any(r > self.r[-1]):
             raise OutsideTheoryError(

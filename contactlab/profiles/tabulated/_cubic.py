@@ -36,6 +36,9 @@ CUBIC_SUM_RTOL = 1e-6
 #: with 300, 29 % of a random 10^6-point table's pieces are local and its node sums are
 #: accurate to ~5e-10 (rounding estimate < 4e-7; 1e3: 18 % local, 1.3e-9; 1e4: 6 %, 7e-9)
 CUBIC_LOCAL_RATIO = 300.0
+#: most radii of a force solve whose column sums are kept for the depth and ∫g asked next
+#: (14 floats each)
+_PRIME_MAX = 65536
 
 
 
@@ -360,14 +363,32 @@ class _CubicTransform(_TableBase):
         kept for the second at the same points (a column's sums do not depend on which other
         columns share the call: the same bits)."""
         A, R, R3k = _far_cols.ACOS, _far_cols.ROOT, _far_cols.ROOT3
+        primed = self.__dict__.get("_cubic_primed")
+        if primed is not None:
+            # the column sums at a force solve's radii (_cubic_prime), for the depth and the
+            # ∫g its caller asks next at the same radii; a call at other points drops them
+            key = xv.tobytes()
+            out = primed.get(key)
+            if out is None and primed.get("fill"):
+                out = _far_cols.sums(ct, xv, np.arange(14),
+                                     np.array([A] * 4 + [R] * 8 + [R3k] * 2))
+                primed[key] = out
+            if out is not None:
+                if kind == "g":
+                    return out[:4], out[4:8] if with_slope else out[4:6], None
+                return out[:4], out[8:12], out[12:14]
+            self.__dict__.pop("_cubic_primed", None)
         memo = self.__dict__.get("_cubic_pair")
         if memo is not None:
             key = xv.tobytes()
-            if memo.get("key") != key:
-                memo["key"] = key
-                memo["sums"] = _far_cols.sums(
+            out = memo.get(key)
+            if out is None:
+                out = _far_cols.sums(
                     ct, xv, np.arange(14), np.array([A] * 4 + [R] * 8 + [R3k] * 2))
-            out = memo["sums"]
+                # every chunk of the pass is kept (up to _PRIME_MAX points; beyond, the last)
+                if sum(v.shape[1] for v in memo.values()) + xv.size > _PRIME_MAX:
+                    memo.clear()
+                memo[key] = out
             if kind == "g":
                 return out[:4], out[4:8] if with_slope else out[4:6], None
             return out[:4], out[8:12], out[12:14]
@@ -393,6 +414,69 @@ class _CubicTransform(_TableBase):
             g, gp = self._g_and_slope(x)
             integral = self._g_integral_closed_form(x)
         return g, gp, integral
+
+    def _cubic_signed_pass(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """``(g, g', ∫_0^x g)`` of the spline on the column tree from the signed columns only
+        (8 of 14: no rounding estimate, no Gauss fallback), for the force solve's Newton steps;
+        the same operations as :meth:`_cubic_sums`, so the same bits wherever that route keeps
+        its node sums. None for tables without the tree. The solve checks the estimate at its
+        radius afterwards (:meth:`_cubic_prime`)."""
+        ct = self._cubic_tree()
+        if ct is None:
+            return None
+        self._guard(x, "x")
+        flat, order = _sorted(np.asarray(x, dtype=float))
+        g, gp, gi = np.zeros(flat.size), np.zeros(flat.size), np.zeros(flat.size)
+        b0, c0, d0 = self._cubic_base
+        A, R, R3k = _far_cols.ACOS, _far_cols.ROOT, _far_cols.ROOT3
+        cols = np.array([0, 1, 4, 6, 7, 8, 9, 12])
+        kinds = np.array([A, A, R, R, R, R, R, R3k])
+        chunk = max(_rows_per_chunk(self._cubic_nodes.size), 4096)
+        for start in range(0, flat.size, chunk):
+            xs = flat[start:start + chunk]
+            pos = xs > 0
+            if not np.any(pos):
+                continue
+            xv = xs[pos]
+            t0, t1, sg0, sg2, sg3, si0, si1, r30 = _far_cols.sums(ct, xv, cols, kinds)
+            xv2 = xv * xv
+            # g and g' (the expressions of _cubic_sums, kind "g")
+            loc_val, _, loc_slope = self._cubic_local(xv, "g", True)
+            total_nodes = t0 + 0.5 * xv2 * t1 + sg0
+            head = (b0 * 0.5 * np.pi, 2.0 * c0 * xv, 0.75 * np.pi * d0 * xv2)
+            total_g = head[0] + head[1] + head[2] + total_nodes + loc_val
+            g[start:start + chunk][pos] = xv * total_g
+            dnodes = (sg2 - sg3) / xv + xv * t1
+            gp[start:start + chunk][pos] = total_g + xv * (
+                2.0 * c0 + 1.5 * np.pi * d0 * xv + dnodes + cast(np.ndarray, loc_slope))
+            # ∫g (kind "int")
+            loc_int = self._cubic_local(xv, "int", False)[0]
+            c13 = 13.0 / 24.0 * xv2
+            gi[start:start + chunk][pos] = (
+                0.25 * np.pi * b0 * xv2 + 2.0 / 3.0 * c0 * xv2 * xv
+                + 0.1875 * np.pi * d0 * xv2 * xv2
+                + 0.5 * xv2 * t0 + 0.125 * xv2 * xv2 * t1 + si0
+                - c13 * si1 + r30 + xv2 * loc_int)
+        shape = np.shape(x)
+        return _unsorted(g, order, shape), _unsorted(gp, order, shape), _unsorted(gi, order, shape)
+
+    def _cubic_prime(self, a: np.ndarray) -> np.ndarray:
+        """After a force solve on the column tree: the node sums of g and ∫g at its radii ``a``
+        in one pass over every column, kept for the depth and the ∫g its caller asks next (the
+        same bits as computed apart); returns where their rounding estimate exceeds
+        :data:`CUBIC_SUM_RTOL` (there the signed-column Newton steps are redone on the full
+        route). Batches above :data:`_PRIME_MAX` points are checked without keeping the sums."""
+        keep = a.size <= _PRIME_MAX
+        if keep:
+            self.__dict__["_cubic_primed"] = {"fill": True}
+        try:
+            vg, eg, _ = self._cubic_sums(a, "g")
+            vi, ei, _ = self._cubic_sums(a, "int")
+        finally:
+            primed = self.__dict__.get("_cubic_primed")
+            if primed is not None:
+                primed["fill"] = False
+        return (eg > CUBIC_SUM_RTOL * np.abs(vg)) | (ei > CUBIC_SUM_RTOL * np.abs(vi))
 
     @contextlib.contextmanager
     def _cubic_shared_pass(self) -> Iterator[None]:

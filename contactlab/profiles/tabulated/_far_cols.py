@@ -194,77 +194,96 @@ def far_columns(x: np.ndarray, row: np.ndarray, acos_t: np.ndarray, asin_t: np.n
                 ca: np.ndarray, cb: np.ndarray, nf: np.ndarray, cols: np.ndarray,
                 kinds: np.ndarray, out: np.ndarray) -> None:
     """:func:`_columns_numpy` point by point (compiled by numba): the same operations in the
-    same order, unused slots skipped (exact zeros there)."""
+    same order, unused slots skipped (exact zeros there).
+
+    A point's used blocks advance side by side in the recurrences (n outer, blocks inner), so
+    their independent chains of dependent multiplications overlap in the processor; every
+    block's own chain, and the order in which the blocks are added, are those of the numpy
+    route."""
     T = moments.shape[2]
-    a = np.empty(T + 1)
-    s = np.empty(T)
-    q = np.empty(T)
+    S = row.shape[1]
+    k = cols.size
     need_root = False
     need_r3 = False
-    for i in range(kinds.size):
+    for i in range(k):
         if kinds[i] != 0:
             need_root = True
         if kinds[i] == 2:
             need_r3 = True
-    acc = np.zeros(cols.size)
+    used = np.empty(S, dtype=np.int64)
+    rows = np.empty(S, dtype=np.int64)
+    tt = np.empty(S)
+    sg = np.empty(S)
+    om = np.empty(S)
+    uu = np.empty(S)
+    vv = np.empty(S)
+    a = np.empty((T + 1, S))
+    s = np.empty((T, S))
+    q = np.empty((T, S))
+    acc = np.zeros(k)
     for p in range(x.size):
         xi = x[p]
-        first = True
-        for i in range(cols.size):
-            acc[i] = 0.0
-        for sl in range(row.shape[1]):
+        m = 0
+        for sl in range(S):
             rw = row[p, sl]
             if rw == zero_row:
                 continue
+            used[m] = sl
+            rows[m] = rw
             c = centre[rw]
             t = c / xi
             sig = half[rw] / xi
             one_m = (xi - c) * (xi + c) / (xi * xi)
-            u = t * sig / one_m
-            v = sig * sig / one_m
-            a[0] = asin_t[p, sl]
-            a[1] = sig / np.sqrt(one_m)
-            for n in range(T - 1):
-                nxt = ca[n] * (u * a[n + 1])
-                if n:
-                    nxt = nxt + cb[n] * (v * a[n])
-                a[n + 2] = nxt
-            if need_root:
-                s[0] = np.sqrt(one_m)
-                for n in range(1, T):
-                    sn = one_m * (nf[n + 1] * a[n + 1] / sig) - (2.0 * t) * (nf[n] * a[n])
-                    if n >= 2:
-                        sn = sn - nf[n - 1] * (sig * a[n - 1])
-                    s[n] = sn
-            if need_r3:
-                tts = 2.0 * t * sig
-                ss = sig * sig
-                for n in range(T):
-                    qn = one_m * s[n]
-                    if n >= 1:
-                        qn = qn - tts * s[n - 1]
-                    if n >= 2:
-                        qn = qn - ss * s[n - 2]
-                    q[n] = qn
-            for i in range(cols.size):
+            tt[m] = t
+            sg[m] = sig
+            om[m] = one_m
+            uu[m] = t * sig / one_m
+            vv[m] = sig * sig / one_m
+            a[0, m] = asin_t[p, sl]
+            a[1, m] = sig / np.sqrt(one_m)
+            m += 1
+        for j in range(m):
+            a[2, j] = ca[0] * (uu[j] * a[1, j])
+        for n in range(1, T - 1):
+            for j in range(m):
+                a[n + 2, j] = ca[n] * (uu[j] * a[n + 1, j]) + cb[n] * (vv[j] * a[n, j])
+        if need_root:
+            for j in range(m):
+                s[0, j] = np.sqrt(om[j])
+            for j in range(m):
+                s[1, j] = (om[j] * (nf[2] * a[2, j] / sg[j])
+                           - (2.0 * tt[j]) * (nf[1] * a[1, j]))
+            for n in range(2, T):
+                for j in range(m):
+                    s[n, j] = (om[j] * (nf[n + 1] * a[n + 1, j] / sg[j])
+                               - (2.0 * tt[j]) * (nf[n] * a[n, j])
+                               - nf[n - 1] * (sg[j] * a[n - 1, j]))
+        if need_r3:
+            for j in range(m):
+                q[0, j] = om[j] * s[0, j]
+            for j in range(m):
+                q[1, j] = om[j] * s[1, j] - (2.0 * tt[j] * sg[j]) * s[0, j]
+            for n in range(2, T):
+                for j in range(m):
+                    q[n, j] = (om[j] * s[n, j] - (2.0 * tt[j] * sg[j]) * s[n - 1, j]
+                               - (sg[j] * sg[j]) * s[n - 2, j])
+        for j in range(m):
+            rw = rows[j]
+            for i in range(k):
                 col = cols[i]
                 kind = kinds[i]
                 if kind == 0:
-                    val = acos_t[p, sl] * moments[rw, col, 0]
+                    v = acos_t[p, used[j]] * moments[rw, col, 0]
                     for n in range(1, T):
-                        val = val - a[n] * moments[rw, col, n]
+                        v = v - a[n, j] * moments[rw, col, n]
                 elif kind == 1:
-                    val = s[0] * moments[rw, col, 0]
+                    v = s[0, j] * moments[rw, col, 0]
                     for n in range(1, T):
-                        val = val + s[n] * moments[rw, col, n]
+                        v = v + s[n, j] * moments[rw, col, n]
                 else:
-                    val = q[0] * moments[rw, col, 0]
+                    v = q[0, j] * moments[rw, col, 0]
                     for n in range(1, T):
-                        val = val + q[n] * moments[rw, col, n]
-                if first:
-                    acc[i] = val
-                else:
-                    acc[i] = acc[i] + val
-            first = False
-        for i in range(cols.size):
-            out[i, p] = acc[i] + 0.0
+                        v = v + q[n, j] * moments[rw, col, n]
+                acc[i] = v if j == 0 else acc[i] + v
+        for i in range(k):
+            out[i, p] = (acc[i] if m else 0.0) + 0.0

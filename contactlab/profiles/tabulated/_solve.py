@@ -3,7 +3,12 @@
 Depth (``g(a) = d``) and force (``a g(a) - ∫_0^a g = F/(2E*)``) are solved on the memoised node
 values first, then inside the node interval in a variable that removes the square-root cusp of
 g; tables whose g may decrease are solved for the first crossing and checked for annular
-contacts. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
+contacts. A spline table starts the Newton step from the cubic Hermite interpolant of the node
+values and node slopes (g' memoised with g: one pass mostly suffices), and its force steps on
+the column tree sum the signed columns only, the rounding estimate checked once at the radius.
+From the second batch on a table with at least one load per :data:`_FILL_PER_LOAD` nodes,
+every node is evaluated in one pass (the values per node are the same bits however grouped).
+Private: the public class is :class:`~contactlab.profiles.tabulated.Tabulated`, which
 dispatches here.
 """
 from __future__ import annotations
@@ -20,10 +25,62 @@ from ._base import _TableBase, _clip_index
 #: Newton iteration of :meth:`_TableSolver._newton_on_node_interval` stops without a further
 #: pass over the nodes
 _NEWTON_MARGIN = 100.0
+#: Newton steps on the cubic Hermite interpolant of a spline table's node interval (the start
+#: of its contact-radius solves): from the linear fraction, off by ~h/a, three steps reach
+#: rounding (h the node spacing, a the radius)
+_HERMITE_STEPS = 3
+#: the second (and any later) batch of loads on a table evaluates g (or the reduced force) at
+#: every node not yet memoised when there are at most this many per load: a fresh load's node
+#: search evaluates 2-3 nodes (two calls of the pairs test), so the whole table costs at most
+#: ~6 such searches, once
+_FILL_PER_LOAD = 16
+
+
+def _hermite_start(target: np.ndarray, v0: np.ndarray, v1: np.ndarray, s0: np.ndarray,
+                   s1: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, ok)``: the fraction ``t`` of node intervals where the cubic Hermite interpolant of
+    ``v`` (end values ``v0, v1``, end slopes ``dv/dx = s0, s1``, width ``h``) meets ``target``,
+    by :data:`_HERMITE_STEPS` Newton steps on the cubic from the linear fraction; ``ok`` where
+    it is finite and inside ``[0, 1]`` (else the caller keeps its own start)."""
+    with np.errstate(all="ignore"):
+        dv = v1 - v0
+        c1 = h * s0
+        c2 = 3.0 * dv - 2.0 * c1 - h * s1
+        c3 = c1 + h * s1 - 2.0 * dv
+        rhs = target - v0
+        t = rhs / dv
+        for _ in range(_HERMITE_STEPS):
+            p = ((c3 * t + c2) * t + c1) * t - rhs
+            dp = (3.0 * c3 * t + 2.0 * c2) * t + c1
+            t = t - p / dp
+        ok = (dv > 0) & np.isfinite(t) & (t >= 0) & (t <= 1)
+    return t, ok
+
+
+def _hermite_start_one(target: float, v0: float, v1: float, s0: float, s1: float, h: float
+                       ) -> float | None:
+    """:func:`_hermite_start` for one element in plain floats (the same IEEE operations in the
+    same order), or None where it is not ``ok``."""
+    dv = v1 - v0
+    if not dv > 0:
+        return None
+    c1 = h * s0
+    c2 = 3.0 * dv - 2.0 * c1 - h * s1
+    c3 = c1 + h * s1 - 2.0 * dv
+    rhs = target - v0
+    t = rhs / dv
+    for _ in range(_HERMITE_STEPS):
+        p = ((c3 * t + c2) * t + c1) * t - rhs
+        dp = (3.0 * c3 * t + 2.0 * c2) * t + c1
+        if dp == 0:
+            return None         # (the batch's inf or nan fraction: not ok there either)
+        t = t - p / dp
+    return t if math.isfinite(t) and 0 <= t <= 1 else None
 
 
 def _newton_one(x0: float, h: float, target: float, v0: float, v1: float, tol: float,
-                value_and_slope, cusp: float | None) -> float | None:
+                value_and_slope, cusp: float | None,
+                slopes: tuple[float, float] | None = None) -> float | None:
     """:meth:`_TableSolver._newton_on_node_interval` for one element in plain floats: the same
     IEEE operations in the same order (``u ** 2`` as ``u * u``, which numpy's square is; the
     cube of the convergence test through numpy's power on a one-element array, as on the
@@ -43,6 +100,10 @@ def _newton_one(x0: float, h: float, target: float, v0: float, v1: float, tol: f
                 uq = 2.0 * c / den
                 if math.isfinite(uq) and 0 < uq <= 1:
                     u = uq
+    if slopes is not None:
+        t = _hermite_start_one(target, v0, v1, slopes[0], slopes[1], h)
+        if t is not None:
+            u = math.sqrt(min(max(t, 1e-12), 1.0))
     prev = math.inf
     for _ in range(6):
         x = x0 + h * (u * u)
@@ -120,6 +181,7 @@ class _TableSolver(_TableBase):
         rtol = self.rtol if rtol is None else rtol
         flat = np.asarray(d, dtype=float).ravel()
         coarse = self._coarse_nodes()               # includes the last node
+        self._fill_nodes(self._g_at_nodes, self._node_g, flat.size, "g")
         node_g = cast(np.ndarray, self._node_g)     # (set by _coarse_nodes)
         g_end = float(node_g[-1])
         if np.any(flat > g_end):
@@ -132,9 +194,12 @@ class _TableSolver(_TableBase):
         lo, hi = coarse[j - 1], coarse[j]
         g_lo, g_hi = node_g[lo].copy(), node_g[hi].copy()
         lo, hi = self._node_search(self._g_at_nodes, flat, lo, hi, g_lo, g_hi)
+        slopes = ((self._node_slopes(lo), self._node_slopes(hi)) if self._hermite_nodes()
+                  else None)
         return self._newton_on_node_interval(
             flat, lo, hi, self._g_at_nodes(lo), self._g_at_nodes(hi), 0.5 * root_rtol(rtol),
-            self._g_and_slope, self._g, cusp=self._cusp_in_u(lo, hi)).reshape(np.shape(d))
+            self._g_and_slope, self._g, cusp=self._cusp_in_u(lo, hi),
+            slopes=slopes).reshape(np.shape(d))
 
     def _cusp_in_u(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
         """Leading term ``α u`` of g across node intervals ``[r[lo], r[hi]]`` in ``u`` (``x = r_lo
@@ -202,9 +267,62 @@ class _TableSolver(_TableBase):
         if np.any(missing):
             new = np.unique(idx[missing])
             x = self.r[new]
-            with self._cubic_shared_pass():    # (a spline on the column tree: one pass)
-                cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
+            if self._hermite_nodes():
+                # g, g' and ∫g in one pass: g' kept for the Hermite start (the same bits of g)
+                g, gp, integral = self._cubic_g_slope_integral(x)
+                self._store_node_slopes(new, g, gp)
+                cache[new] = x * g - integral
+            else:
+                with self._cubic_shared_pass():    # (a spline on the column tree: one pass)
+                    cache[new] = x * self._g_at_nodes(new) - self._g_integral_closed_form(x)
             vals = cache[idx]
+        return vals
+
+    def _fill_nodes(self, at_nodes, memo: np.ndarray | None, loads: int, what: str) -> None:
+        """Evaluate the node function at every node not yet memoised, in one pass, from the
+        second batch on the table (``what``: "g" or "H") with at most :data:`_FILL_PER_LOAD`
+        times as many missing nodes as ``loads``: a table that serves batches again and again
+        (a fit, a sweep) then searches without evaluating anything, and a table used once pays
+        nothing extra. A node's value does not depend on the other points of its pass, so this
+        changes no bit, only when the work is done."""
+        if memo is None or self.r.size > _FILL_PER_LOAD * loads:
+            return
+        seen = self.__dict__.setdefault("_node_batches", {})
+        seen[what] = seen.get(what, 0) + 1
+        if seen[what] < 2:
+            return
+        missing = np.flatnonzero(np.isnan(memo))
+        if 0 < missing.size <= _FILL_PER_LOAD * loads:
+            at_nodes(missing)
+
+    def _hermite_nodes(self) -> bool:
+        """Whether the radius solves start from the cubic Hermite interpolant of the node values
+        (a spline table on its closed-form route: g is smooth across the nodes; g' is memoised
+        with g at every node the solves visit)."""
+        return self._spline is not None and self.g_route == "closed_form"
+
+    def _store_node_slopes(self, new: np.ndarray, g: np.ndarray, gp: np.ndarray) -> None:
+        """Memoise g (where missing) and g' at the nodes ``new`` (unique indices)."""
+        if self._node_g is None:
+            self._node_g = np.full(self.r.size, np.nan)
+        gp_memo = self.__dict__.get("_node_gp")
+        if gp_memo is None:
+            gp_memo = np.full(self.r.size, np.nan)
+            self.__dict__["_node_gp"] = gp_memo
+        miss = np.isnan(self._node_g[new])
+        self._node_g[new[miss]] = g[miss]
+        gp_memo[new] = gp
+
+    def _node_slopes(self, idx: np.ndarray) -> np.ndarray:
+        """g' at table nodes ``r[idx]`` (spline tables), memoised like g."""
+        memo = self.__dict__.get("_node_gp")
+        vals = memo[idx] if memo is not None else np.full(idx.size, np.nan)
+        missing = np.isnan(vals)
+        if np.any(missing):
+            new = np.unique(idx[missing])
+            g, gp = self._g_and_slope(self.r[new])
+            self._store_node_slopes(new, g, gp)
+            vals = self.__dict__["_node_gp"][idx]
         return vals
 
     def _table_radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
@@ -221,6 +339,7 @@ class _TableSolver(_TableBase):
         flat = np.asarray(target, dtype=float).ravel()
         coarse = self._coarse_nodes()
         H_c = self._reduced_force_at_nodes(coarse)
+        self._fill_nodes(self._reduced_force_at_nodes, self.__dict__["_node_H"], flat.size, "H")
         if np.any(flat > H_c[-1]):
             i = int(np.argmax(flat > H_c[-1]))
             raise OutsideTheoryError(
@@ -232,24 +351,48 @@ class _TableSolver(_TableBase):
         lo, hi = self._node_search(self._reduced_force_at_nodes, flat, lo, hi,
                                    H_c[j - 1].copy(), H_c[j].copy())
 
-        def value_and_slope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        signed = self._hermite_nodes() and self._cubic_tree() is not None
+
+        def value_and_slope(x: np.ndarray, full: bool = False
+                            ) -> tuple[np.ndarray, np.ndarray]:
             if self._spline is None:
                 # g, g' and ∫g of the linear interpolant in one pass (the same bits as apart)
                 g, gp, integral = self._g_slope_integral(x)
+            elif signed and not full:
+                # the spline's column tree, signed columns only (checked at the radius below)
+                g, gp, integral = cast(tuple, self._cubic_signed_pass(x))
             else:
                 # (one pass over the spline's column tree for both, the same bits as apart)
                 g, gp, integral = self._cubic_g_slope_integral(x)
             return x * g - integral, x * gp      # dH/da = a g'(a)
 
-        return self._newton_on_node_interval(
-            flat, lo, hi, self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi),
-            0.5 * root_rtol(rtol), value_and_slope,
-            lambda x: x * self._g(x) - self._g_integral_closed_form(x),
-            cusp=self.r[lo] * self._cusp_in_u(lo, hi)).reshape(np.shape(target))
+        def value(x: np.ndarray) -> np.ndarray:
+            return x * self._g(x) - self._g_integral_closed_form(x)
+
+        v0, v1 = self._reduced_force_at_nodes(lo), self._reduced_force_at_nodes(hi)
+        cusp = self.r[lo] * self._cusp_in_u(lo, hi)
+        slopes = ((r[lo] * self._node_slopes(lo), r[hi] * self._node_slopes(hi))
+                  if self._hermite_nodes() else None)
+        tol = 0.5 * root_rtol(rtol)
+        a = self._newton_on_node_interval(flat, lo, hi, v0, v1, tol, value_and_slope, value,
+                                          cusp=cusp, slopes=slopes)
+        if signed:
+            # the rounding estimate of the node sums at the radii (one pass over every column,
+            # kept for the depth and ∫g asked next); where it is too large (the Gauss rule takes
+            # over there) the solve is redone on the full route
+            bad = np.flatnonzero(self._cubic_prime(a))
+            if bad.size:
+                a[bad] = self._newton_on_node_interval(
+                    flat[bad], lo[bad], hi[bad], v0[bad], v1[bad], tol,
+                    lambda x: value_and_slope(x, full=True), value, cusp=cusp[bad],
+                    slopes=(cast(tuple, slopes)[0][bad], cast(tuple, slopes)[1][bad]))
+        return a.reshape(np.shape(target))
 
     def _newton_on_node_interval(self, target: np.ndarray, lo: np.ndarray, hi: np.ndarray,
                                  v0: np.ndarray, v1: np.ndarray, tol: float, value_and_slope,
-                                 value, cusp: np.ndarray | None = None) -> np.ndarray:
+                                 value, cusp: np.ndarray | None = None,
+                                 slopes: tuple[np.ndarray, np.ndarray] | None = None
+                                 ) -> np.ndarray:
         """Solve ``v(x) = target`` inside node intervals ``[r[lo], r[hi]]`` (``v`` increasing).
 
         Newton in ``u`` with ``x = r_lo + h u²`` (removes the square-root cusp of g at the left
@@ -262,7 +405,9 @@ class _TableSolver(_TableBase):
         if target.size == 1:
             x1 = _newton_one(float(self.r[lo[0]]), float(self.r[hi[0]] - self.r[lo[0]]),
                              float(target[0]), float(v0[0]), float(v1[0]), tol, value_and_slope,
-                             None if cusp is None else float(cusp[0]))
+                             None if cusp is None else float(cusp[0]),
+                             None if slopes is None else (float(slopes[0][0]),
+                                                          float(slopes[1][0])))
             if x1 is not None:
                 return np.array([x1])
         x0, h = self.r[lo], self.r[hi] - self.r[lo]
@@ -277,6 +422,12 @@ class _TableSolver(_TableBase):
                 uq = 2.0 * c / (cusp + np.sqrt(disc))
                 good = (v1 > v0) & (disc >= 0) & np.isfinite(uq) & (uq > 0) & (uq <= 1)
                 u = np.where(good, uq, u)
+            if slopes is not None:
+                # a spline table: the cubic Hermite interpolant of v across the interval
+                # (node slopes memoised with the node values) is off by ~(h/a)^4, so the first
+                # Newton step mostly stops the iteration
+                t, ok = _hermite_start(target, v0, v1, slopes[0], slopes[1], h)
+                u = np.where(ok, np.sqrt(np.clip(t, 1e-12, 1.0)), u)
         done = np.zeros(target.size, dtype=bool)
         prev = np.full(target.size, np.inf)        # |previous Newton step| in u
         for _ in range(6):
@@ -330,7 +481,12 @@ class _TableSolver(_TableBase):
         missing = np.isnan(vals)
         if np.any(missing):
             new = np.unique(idx[missing])
-            self._node_g[new] = self._g(self.r[new])
+            if self._hermite_nodes():
+                # (with g' for the Hermite start: the same bits of g)
+                g, gp = self._g_and_slope(self.r[new])
+                self._store_node_slopes(new, g, gp)
+            else:
+                self._node_g[new] = self._g(self.r[new])
             vals = self._node_g[idx]
         return vals
 
