@@ -197,8 +197,13 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
             ref[i] = di
         was = over[0, i] or over[1, i]
         mEd = mu[i] * E[i] * di
-        wsum = 0.0
-        for c in range(2):
+        e_tan = 0.0
+        e_tor = 0.0
+        # torsion first: its loading curve (three divisions, then three polynomials: the
+        # longest chain of dependent operations in the step) starts early, and the
+        # tangential channel's independent work runs in its shadow
+        for cc in range(2):
+            c = 1 - cc
             if c == 0:
                 if not has_u:
                     Ft[i] = 0.0
@@ -222,7 +227,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
             xp = sx[c, i]
             e = 0.0
             if xi != xp:
-                s = 1 if xi > xp else -1
+                s = 2 * int(xi > xp) - 1            # (no branch: directions differ per contact)
                 if last[c, i] != 0 and s != last[c, i]:
                     if depth[c, i] >= K:            # full: forget the innermost open loop
                         over[c, i] = True
@@ -258,7 +263,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
                 xo, yo, f, h = 0.0, 0.0, 1.0, 1.0
             yl, ax, D = _load(kind, abs(xi - xo) * h, xs, ys, ai, Ds, coef, y_scale, n, y0,
                                m0, kp)
-            sg = 1.0 if xi > xo else (-1.0 if xi < xo else 0.0)
+            sg = float(int(xi > xo) - int(xi < xo))     # 1, -1 or 0, without a branch
             yv = yo + sg * f * yl
             wn = f * D
             e += max(wn - sw[c, i], 0.0)
@@ -268,10 +273,16 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
             if c == 0:
                 Ft[i] = yv
                 ct[i] = ax
+                e_tan = e
             else:
                 M[i] = yv
                 cm[i] = ax
-            wsum += e
+                e_tor = e
+        wsum = 0.0                              # tangential + torsion, in that order
+        if has_u:
+            wsum += e_tan
+        if has_phi:
+            wsum += e_tor
         dW[i] = wsum
         now = over[0, i] or over[1, i]
         exact[i] = not now                      # an overflowed stack is approximate
