@@ -97,6 +97,7 @@ class Panels:
             self.panel_of[s0:e0] = p
         x, self._bw = _chebyshev(PANEL_POINTS)
         lo, hi = r[self.start], r[self.end]
+        self.r_lo, self.r_hi = lo, hi
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
         # per-segment weights and prefix sums per panel (rows start..end), flattened with
         # offsets; built on demand up to the segments a call needs (g is known only there)
@@ -106,6 +107,7 @@ class Panels:
         self._wg = np.zeros((int(self.offset[-1]), PANEL_POINTS))
         self._w1 = np.zeros((int(self.offset[-1]), PANEL_POINTS))
         self.built = np.zeros(self.start.size, dtype=np.intp)     # segments built per panel
+        self.separated: dict = {}       # kernel kind -> _Separated (x-interpolated kernels)
 
     def build(self, which: np.ndarray, upto: np.ndarray, t: np.ndarray, w: np.ndarray,
               g: np.ndarray) -> None:
@@ -143,14 +145,19 @@ def panels_of(profile) -> Panels:
 
 
 def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
-              rule: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+              rule: tuple[np.ndarray, np.ndarray, np.ndarray],
+              x: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The panel part of ``Σ_elements ∫ kernel`` over whole segments ``first..last`` (inclusive,
     per element): returns ``(values, covered)`` with ``covered[seg]`` True for segments the panels
     take (the caller integrates the others by the composite rule).
 
     ``kernel(t, g_t, idx)`` must be linear in ``g_t`` and analytic in ``t`` for ``t > 0``
     (evaluated at ``g = 0`` and ``g = 1``, or once by its attribute ``kernel.linear(t, idx)``
-    returning ``(A, B)`` with ``kernel = A g + B``).
+    returning ``(A, B)`` with ``kernel = A g + B``). A kernel with the attribute
+    ``kernel.separated = (kind, F, alpha, beta)``, ``kernel = F(t, x) (alpha g + beta)`` with
+    ``F`` analytic in the lower limit ``x`` (given: one per element) as well, takes
+    :func:`_separated_sum` for the elements whose ``x`` lies in a panel (no kernel evaluation
+    per element; ``kind`` names ``F`` in the per-table cache).
     """
     val = np.zeros(n)
     n_p = pan.start.size
@@ -165,6 +172,20 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
         np.maximum.at(upto, p, hi[el, p] - pan.start[p])
         t, w, g = rule
         pan.build(need, upto[need], t, w, g)
+        sep = getattr(kernel, "separated", None)
+        if sep is not None and x is not None:
+            # the panel holding each element's lower limit (segment first - 1), -1: none
+            seg = np.clip(first - 1, 0, pan.panel_of.size - 1)
+            q = np.where(first >= 1, pan.panel_of[seg], -1)
+            q[np.bincount(el, minlength=n) == 0] = -1                # no panel sums at all
+            fast = np.flatnonzero(q >= 0)
+            if fast.size:
+                kind, fn, alpha, beta = sep
+                val[fast] = _separated_sum(pan, kind, fn, q[fast], first[fast], last[fast],
+                                           x[fast], alpha[fast], beta[fast])
+                keep = q[el] < 0
+                el, p = el[keep], p[keep]
+    if el.size:
         base = pan.offset[p]
         i1 = base + lo[el, p] - pan.start[p]
         i2 = base + hi[el, p] - pan.start[p]
@@ -179,6 +200,100 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
                 A = kernel(tau, np.ones(tau.shape), el) - B
         val += np.bincount(el, weights=np.sum(A * sg + B * s1, axis=1), minlength=n)
     return val, pan.panel_of >= 0
+
+
+# ---------------------------------------------------------------- kernels separated in x too
+#: Chebyshev points in the lower limit ``x`` per panel range: the kernels are analytic in
+#: ``x`` off ``x = 0`` (a logarithm there), so on a range of ratio 2 the Bernstein ellipse is
+#: ``ρ = 3 + 2√2`` again, and ``ρ^-24 ≈ 4e-19`` of the kernel's scale
+X_POINTS = 24
+
+
+def _contract(c: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """``Σ_j c[..., j] m[..., k, j]`` -> shape ``(..., k)``, summed in a fixed order (a row's
+    bits do not depend on how many rows are contracted at once: no BLAS)."""
+    out = c[..., 0, None] * m[..., 0]
+    for j in range(1, m.shape[-1]):
+        out += c[..., j, None] * m[..., j]
+    return out
+
+
+class _Separated:
+    """One kernel ``F(t, x)`` of the panels interpolated in the lower limit ``x`` as well.
+
+    For ``x`` in panel ``q``'s range ``[r_lo, r_hi]``, ``F(τ_pm, x) = Σ_k L_qk(x) F(τ_pm, ξ_qk)``
+    (``ξ_qk`` :data:`X_POINTS` Chebyshev points of that range, ``L_qk`` their Lagrange basis), so
+    a panel's sum ``Σ_m F(τ_pm, x) ΔC_pm`` is ``Σ_k L_qk(x) Σ_m M[q, p, k, m] ΔC_pm`` with the
+    per-table matrices ``M[q, p] = F(τ_p, ξ_q)`` (``q <= p``: a panel is never below the lower
+    limit of a range it takes part in). The own panel's contracted prefix sums ``D = C M[q,q]ᵀ``
+    are kept per row (built with the prefix sums); the panels above need one row per distinct
+    upper end.
+    """
+
+    def __init__(self, pan: Panels, fn) -> None:
+        n_p = pan.start.size
+        x, self.bw = _chebyshev(X_POINTS)
+        half = 0.5 * (pan.r_hi - pan.r_lo)[:, None]
+        self.xi = 0.5 * (pan.r_lo + pan.r_hi)[:, None] + half * x
+        q, p = np.triu_indices(n_p)
+        self.M = np.zeros((n_p, n_p, X_POINTS, PANEL_POINTS))
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            self.M[q, p] = fn(pan.tau[p][:, None, :], self.xi[q][:, :, None])
+        rows = pan.cum_g.shape[0]
+        self.dg = np.zeros((rows, X_POINTS))
+        self.d1 = np.zeros((rows, X_POINTS))
+        self.built = np.zeros(n_p, dtype=np.intp)
+
+    def extend(self, pan: Panels, which: np.ndarray) -> None:
+        """Contracted prefix rows of the panels ``which`` up to the segments their prefix sums
+        hold (row by row: the same bits however the panel grew)."""
+        for p in which:
+            b, u = int(self.built[p]), int(pan.built[p])
+            if u <= b:
+                continue
+            o = int(pan.offset[p])
+            rows = slice(o + b + 1, o + u + 1)
+            self.dg[rows] = _contract(pan.cum_g[rows], self.M[p, p])
+            self.d1[rows] = _contract(pan.cum_1[rows], self.M[p, p])
+            self.built[p] = u
+
+
+def _separated_sum(pan: Panels, kind: str, fn, q: np.ndarray, first: np.ndarray,
+                   last: np.ndarray, x: np.ndarray, alpha: np.ndarray,
+                   beta: np.ndarray) -> np.ndarray:
+    """Panel sums of ``F(t, x) (alpha g + beta)`` over segments ``first..last`` for elements
+    whose lower limit ``x`` lies in panel ``q`` (segment ``first - 1``): the own panel from
+    its contracted prefix rows, the panels above from one contraction per distinct
+    ``(q, upper end)``, then the x-interpolation ``Σ_k L_qk(x) W_k``."""
+    sep = pan.separated.get(kind)
+    if sep is None:
+        sep = pan.separated[kind] = _Separated(pan, fn)
+    sep.extend(pan, np.unique(q))
+    base, s0 = pan.offset[q], pan.start[q]
+    i1 = base + first - s0
+    i2 = base + np.maximum(np.minimum(last + 1, pan.end[q]), first) - s0
+    wg = sep.dg[i2] - sep.dg[i1]
+    w1 = sep.d1[i2] - sep.d1[i1]
+    # the panels above: full but the one holding the upper end, so the same for every element
+    # of one (q, last) (a curve: one or a few)
+    stride = pan.panel_of.size + 1
+    keys, inv = np.unique(q * stride + last, return_inverse=True)
+    kq, klast = keys // stride, keys % stride
+    tg = np.zeros((keys.size, X_POINTS))
+    t1 = np.zeros((keys.size, X_POINTS))
+    for p in range(int(np.min(kq)) + 1, pan.start.size):
+        up = np.minimum(klast + 1, pan.end[p]) - pan.start[p]
+        sel = np.flatnonzero((kq < p) & (up > 0))
+        if sel.size == 0:
+            continue
+        mq = sep.M[kq[sel], p]                                       # (keys, X, points)
+        rows = pan.offset[p] + up[sel]
+        tg[sel] += _contract(pan.cum_g[rows], mq)
+        t1[sel] += _contract(pan.cum_1[rows], mq)
+    wg += tg[inv]
+    w1 += t1[inv]
+    ell = _lagrange(x, sep.xi[q], sep.bw)
+    return np.sum(ell * (alpha[:, None] * wg + beta[:, None] * w1), axis=1)
 
 
 # ---------------------------------------------------------------- g of a linear table, fast
@@ -211,7 +326,7 @@ class _FastG:
         self.to_coef[:, 0] *= 0.5
         lo, hi = r[:-1], r[1:]
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
-        self.coef = np.zeros((n_seg, G_POINTS))
+        self.coef = np.zeros((G_POINTS, n_seg))      # one row per term: Clenshaw reads rows
         self.done = 0
         # ρ of the far sum's nearest singularity, r_{j-G_NEAR-1}, seen from segment j
         j = np.arange(n_seg)
@@ -230,28 +345,30 @@ class _FastG:
             if k <= 1 or not self.ok[j]:
                 continue
             far = np.arcsin(self.r[1:k][None, :] / self.tau[j][:, None]) @ self.ds[1:k]
-            self.coef[j] = far @ self.to_coef
+            self.coef[:, j] = far @ self.to_coef
         self.done = need
 
-    def serves(self, t: np.ndarray) -> np.ndarray:
-        """Points (flat, > 0) this form serves: not in segment 0 nor in a segment whose far sum
-        does not interpolate to rounding (strongly non-uniform tables)."""
-        r = self.r
-        return self.ok[np.clip(np.searchsorted(r, t, side="right") - 1, 0, r.size - 2)]
+    def segment(self, t: np.ndarray) -> np.ndarray:
+        """Segment of each point (flat)."""
+        return np.clip(np.searchsorted(self.r, t, side="right") - 1, 0, self.r.size - 2)
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
-        """g at points ``t`` (flat) that :meth:`serves`."""
+        """g at points ``t`` (flat) whose segments it serves (``ok``)."""
+        return self.at(t, self.segment(t))
+
+    def at(self, t: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """g at points ``t`` (flat) in segments ``j`` that it serves (``ok``: not segment 0
+        nor one whose far sum does not interpolate to rounding, strongly non-uniform tables)."""
         r = self.r
-        j = np.clip(np.searchsorted(r, t, side="right") - 1, 0, r.size - 2)
         self._build(int(np.max(j, initial=0)) + 1)
         lo, hi = r[j], r[j + 1]
         x2 = 2.0 * (2.0 * t - lo - hi) / (hi - lo)
-        c = self.coef[j]
+        c = self.coef[:, j]
         b1 = np.zeros(t.shape)
         b2 = np.zeros(t.shape)
         for m in range(G_POINTS - 1, 0, -1):
-            b1, b2 = c[:, m] + x2 * b1 - b2, b1
-        far = c[:, 0] + 0.5 * x2 * b1 - b2
+            b1, b2 = c[m] + x2 * b1 - b2, b1
+        far = c[0] + 0.5 * x2 * b1 - b2
         i = j[:, None] - np.arange(G_NEAR + 1)[None, :]       # nodes j, j-1, .., j-G_NEAR
         live = i >= 1
         ic = np.where(live, i, 1)
@@ -289,10 +406,12 @@ def fast_g(profile, t: np.ndarray) -> np.ndarray:
         build = G_POINTS * 0.5 * (float(need) ** 2 - float(fg.done) ** 2)
         if build > 4.0 * float(np.count_nonzero(ok)) * need:
             return profile._g(t)
-    ok[ok] = fg.serves(flat[ok])
+    j = fg.segment(flat)
+    ok &= fg.ok[j]                       # the points fg serves
+    if np.all(ok):
+        return fg.at(flat, j).reshape(t.shape)
     out = np.empty(flat.shape)
     if np.any(ok):
-        out[ok] = fg(flat[ok])
-    if not np.all(ok):
-        out[~ok] = profile._g(flat[~ok])
+        out[ok] = fg.at(flat[ok], j[ok])
+    out[~ok] = profile._g(flat[~ok])
     return out.reshape(t.shape)

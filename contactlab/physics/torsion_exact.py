@@ -266,9 +266,12 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     # last piece [r_j_hi, hi], g once per distinct piece
     last = np.flatnonzero(~same)
     if last.size:
-        b0 = r[j_hi[last]]
-        keys, inv = np.unique(np.stack([b0, hi[last]], axis=1), axis=0, return_inverse=True)
-        inv = inv.ravel()
+        b0, h0 = r[j_hi[last]], hi[last]
+        if np.all(h0 == h0[0]):            # one normal state (a curve): np.unique's answer
+            keys, inv = np.array([[b0[0], h0[0]]]), np.zeros(last.size, dtype=np.intp)
+        else:
+            keys, inv = np.unique(np.stack([b0, h0], axis=1), axis=0, return_inverse=True)
+            inv = inv.ravel()
         kw = (keys[:, 1] - keys[:, 0])[:, None]
         kt = keys[:, :1] + kw * u**2
         kg = g_of(kt.ravel()).reshape(kt.shape)
@@ -283,7 +286,7 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         from . import table_panels as _tp
         pan = _tp.panels_of(profile)
         # (g is filled up to the largest hi, beyond every segment a panel takes here)
-        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
+        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n), lo)
         val += v_p
     count = np.maximum(last - first + 1, 0)
     direct = None
@@ -314,6 +317,17 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
 
 
 # ---------------------------------------------------------------- the slip function P
+def _slip_shape(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``(K - E)/k² / t²`` with ``k² = 1 - x²/t²``: the slip kernel is this times ``g(t) - g(x)``."""
+    return kme_over_m((x / t) ** 2) / (t * t)
+
+
+def _torque_shape(t: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """``2t h(c/t) + (c³/t²) K(k_t)``: the torque kernel is this times ``g(a) - g(t)``."""
+    v = c / t
+    return 2.0 * t * h_kernel(v) + c * v * v * K_comp(v * v)
+
+
 def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.ndarray,
                   g_a: np.ndarray, rtol: float, panels: bool = False
                   ) -> tuple[np.ndarray, np.ndarray]:
@@ -346,6 +360,8 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
             return A, -gxs[idx][:, None] * A
 
         kernel.linear = linear     # type: ignore[attr-defined]  # the panels' one evaluation
+        # ... and kernel = F(t, x) (g - g(x)) with F analytic in x: interpolated in x as well
+        kernel.separated = ("slip", _slip_shape, np.ones(todo.size), -gxs)  # type: ignore[attr-defined]
         scale = np.abs(boundary[todo]) + (g_a[todo] - gxs) / as_
         v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale, panels)
         val[todo] += v
@@ -389,6 +405,7 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
                 return -D, gp[idx][:, None] * D                           # kernel = A g + B
 
             kernel.linear = linear     # type: ignore[attr-defined]
+            kernel.separated = ("torque", _torque_shape, -np.ones(pos.size), gp)  # type: ignore[attr-defined]
             scale = gp * ap * ap
             v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3, panels)
             val[todo[pos]] += v
@@ -624,6 +641,10 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
 #: batched evaluation of at most (roots x this) points buys a start closer to the root by
 #: about ``(this + 1)³`` and saves passes of the root finder over all the curve's points
 _CURVE_REFINE = 4
+#: the curve route's second point: a Newton step from the first, lengthened by this fraction
+#: (the interpolant's slope errs by ~1e-2 relative on a 667-node table, the step itself by the
+#: table's wiggles, ~1e-5 of y)
+_NEWTON_OVERSHOOT = 0.05
 
 #: ``y = ln(c/a)`` grid used to bracket many roots that share one normal state (log-spaced in
 #: ``|y|`` from 1e-9 to ``|ln C_MIN_REL|``, ~10 points per decade)
@@ -703,6 +724,19 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     # ends are close: regula falsi then stops at once instead of bisecting from the far end
     step = np.maximum(4.0 * np.abs(y0 - np.where(np.isfinite(y_lin), y_lin, y0)),
                       1e-9 * np.maximum(np.abs(y0), 1e-6))
+    if refine > 0:
+        # the curve route: y0's error is set by the table's wiggles between the grid points,
+        # not by the interpolant's order; a Newton step from y0 on the interpolant's slope,
+        # overshot by _NEWTON_OVERSHOOT, lands just across the root (the slope errs by far
+        # less than that), so the bracket is a fraction of y0's error wide and the secant that
+        # follows meets the tolerance in one pass
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dy = (((tg - fhi) + (tg - f3)) / ((flo - fhi) * (flo - f3)) * ylo
+                  + ((tg - flo) + (tg - f3)) / ((fhi - flo) * (fhi - f3)) * yhi
+                  + ((tg - flo) + (tg - fhi)) / ((f3 - flo) * (f3 - fhi)) * y3)
+            newton = np.abs((f0 - tg) * dy) * (1.0 + _NEWTON_OVERSHOOT)
+        good = np.isfinite(newton) & (newton > 0)
+        step = np.where(good, np.maximum(newton, 1e-9 * np.maximum(np.abs(y0), 1e-6)), step)
     y1 = np.where(above, np.minimum(y0 + step, yhi), np.maximum(y0 - step, ylo))
     inner = (y1 > lo_s) & (y1 < hi_s)
     if np.any(inner):
