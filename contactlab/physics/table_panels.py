@@ -98,6 +98,7 @@ class Panels:
         x, self._bw = _chebyshev(PANEL_POINTS)
         lo, hi = r[self.start], r[self.end]
         self.r_lo, self.r_hi = lo, hi
+        self.r1 = float(r[1])               # segment 0 ends here
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
         # per-segment weights and prefix sums per panel (rows start..end), flattened with
         # offsets; built on demand up to the segments a call needs (g is known only there)
@@ -174,15 +175,22 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
         pan.build(need, upto[need], t, w, g)
         sep = getattr(kernel, "separated", None)
         if sep is not None and x is not None:
-            # the panel holding each element's lower limit (segment first - 1), -1: none
-            seg = np.clip(first - 1, 0, pan.panel_of.size - 1)
-            q = np.where(first >= 1, pan.panel_of[seg], -1)
+            kind, fn, alpha, beta = sep
+            sp = pan.separated.get(kind)
+            if sp is None:
+                sp = pan.separated[kind] = _Separated(pan, fn)
+            # the x-range of each element's lower limit (in segment first - 1): its panel's,
+            # or one below the first panel; -1: none (segment 0, or between two panels)
+            seg = first - 1
+            q = np.where(seg >= 1, pan.panel_of[np.clip(seg, 0, pan.panel_of.size - 1)], -1)
+            low = (seg >= 1) & (seg < pan.start[0])
+            if np.any(low):
+                q[low] = sp.low_range(x[low])
             q[np.bincount(el, minlength=n) == 0] = -1                # no panel sums at all
             fast = np.flatnonzero(q >= 0)
             if fast.size:
-                kind, fn, alpha, beta = sep
-                val[fast] = _separated_sum(pan, kind, fn, q[fast], first[fast], last[fast],
-                                           x[fast], alpha[fast], beta[fast])
+                val[fast] = _separated_sum(pan, sp, q[fast], first[fast], last[fast], x[fast],
+                                           alpha[fast], beta[fast])
                 keep = q[el] < 0
                 el, p = el[keep], p[keep]
     if el.size:
@@ -233,16 +241,31 @@ class _Separated:
     def __init__(self, pan: Panels, fn) -> None:
         n_p = pan.start.size
         x, self.bw = _chebyshev(X_POINTS)
-        half = 0.5 * (pan.r_hi - pan.r_lo)[:, None]
-        self.xi = 0.5 * (pan.r_lo + pan.r_hi)[:, None] + half * x
-        q, p = np.triu_indices(n_p)
-        self.M = np.zeros((n_p, n_p, X_POINTS, PANEL_POINTS))
+        # x-ranges: the panels' own, then below the first panel ranges of ratio 2 down to the
+        # end of segment 0 (there every panel lies above x)
+        top = float(pan.r_lo[0])
+        self.n_low = max(0, int(np.ceil(np.log2(top / pan.r1)))) if top > pan.r1 else 0
+        scale = 2.0 ** -np.arange(self.n_low + 1)
+        lo = np.concatenate([pan.r_lo, top * scale[1:]])
+        hi = np.concatenate([pan.r_hi, top * scale[:-1]])
+        self.xi = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
+        self.top = top
+        # the last panel below each range's points (a panel range: itself; below: none)
+        self.below = np.concatenate([np.arange(n_p), np.full(self.n_low, -1)])
+        q, p = np.nonzero(np.arange(n_p)[None, :] >= np.maximum(self.below, 0)[:, None])
+        self.M = np.zeros((n_p + self.n_low, n_p, X_POINTS, PANEL_POINTS))
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             self.M[q, p] = fn(pan.tau[p][:, None, :], self.xi[q][:, :, None])
         rows = pan.cum_g.shape[0]
         self.dg = np.zeros((rows, X_POINTS))
         self.d1 = np.zeros((rows, X_POINTS))
         self.built = np.zeros(n_p, dtype=np.intp)
+
+    def low_range(self, x: np.ndarray) -> np.ndarray:
+        """x-range of points below the first panel (and above segment 0)."""
+        with np.errstate(divide="ignore"):
+            k = np.floor(np.log2(self.top / x))
+        return self.below.size - self.n_low + np.clip(k, 0, self.n_low - 1).astype(np.intp)
 
     def extend(self, pan: Panels, which: np.ndarray) -> None:
         """Contracted prefix rows of the panels ``which`` up to the segments their prefix sums
@@ -258,32 +281,37 @@ class _Separated:
             self.built[p] = u
 
 
-def _separated_sum(pan: Panels, kind: str, fn, q: np.ndarray, first: np.ndarray,
+def _separated_sum(pan: Panels, sep: _Separated, q: np.ndarray, first: np.ndarray,
                    last: np.ndarray, x: np.ndarray, alpha: np.ndarray,
                    beta: np.ndarray) -> np.ndarray:
     """Panel sums of ``F(t, x) (alpha g + beta)`` over segments ``first..last`` for elements
-    whose lower limit ``x`` lies in panel ``q`` (segment ``first - 1``): the own panel from
-    its contracted prefix rows, the panels above from one contraction per distinct
-    ``(q, upper end)``, then the x-interpolation ``Σ_k L_qk(x) W_k``."""
-    sep = pan.separated.get(kind)
-    if sep is None:
-        sep = pan.separated[kind] = _Separated(pan, fn)
-    sep.extend(pan, np.unique(q))
-    base, s0 = pan.offset[q], pan.start[q]
-    i1 = base + first - s0
-    i2 = base + np.maximum(np.minimum(last + 1, pan.end[q]), first) - s0
-    wg = sep.dg[i2] - sep.dg[i1]
-    w1 = sep.d1[i2] - sep.d1[i1]
+    whose lower limit ``x`` lies in x-range ``q`` of ``sep`` (a panel's, holding segment
+    ``first - 1``, or one below the first panel): the own panel from its contracted prefix
+    rows, the panels above from one contraction per distinct ``(q, upper end)``, then the
+    x-interpolation ``Σ_k L_qk(x) W_k``."""
+    n_p = pan.start.size
+    wg = np.zeros((q.size, X_POINTS))
+    w1 = np.zeros((q.size, X_POINTS))
+    own = np.flatnonzero(q < n_p)
+    if own.size:
+        qo, fo = q[own], first[own]
+        sep.extend(pan, np.unique(qo))
+        base, s0 = pan.offset[qo], pan.start[qo]
+        i1 = base + fo - s0
+        i2 = base + np.maximum(np.minimum(last[own] + 1, pan.end[qo]), fo) - s0
+        wg[own] = sep.dg[i2] - sep.dg[i1]
+        w1[own] = sep.d1[i2] - sep.d1[i1]
     # the panels above: full but the one holding the upper end, so the same for every element
     # of one (q, last) (a curve: one or a few)
     stride = pan.panel_of.size + 1
     keys, inv = np.unique(q * stride + last, return_inverse=True)
     kq, klast = keys // stride, keys % stride
+    kb = sep.below[kq]
     tg = np.zeros((keys.size, X_POINTS))
     t1 = np.zeros((keys.size, X_POINTS))
-    for p in range(int(np.min(kq)) + 1, pan.start.size):
+    for p in range(int(np.min(kb)) + 1, n_p):
         up = np.minimum(klast + 1, pan.end[p]) - pan.start[p]
-        sel = np.flatnonzero((kq < p) & (up > 0))
+        sel = np.flatnonzero((kb < p) & (up > 0))
         if sel.size == 0:
             continue
         mq = sep.M[kq[sel], p]                                       # (keys, X, points)
@@ -327,6 +355,11 @@ class _FastG:
         lo, hi = r[:-1], r[1:]
         self.tau = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
         self.coef = np.zeros((G_POINTS, n_seg))      # one row per term: Clenshaw reads rows
+        # the near nodes of each segment j: j - k for k = 0..G_NEAR (node 0 and below: no jump)
+        near = np.arange(n_seg)[None, :] - np.arange(G_NEAR + 1)[:, None]
+        live = near >= 1
+        self.near_r = np.where(live, r[np.maximum(near, 1)], r[1])
+        self.near_ds = np.where(live, self.ds[np.maximum(near, 1)], 0.0)
         self.done = 0
         # ρ of the far sum's nearest singularity, r_{j-G_NEAR-1}, seen from segment j
         j = np.arange(n_seg)
@@ -363,17 +396,18 @@ class _FastG:
         self._build(int(np.max(j, initial=0)) + 1)
         lo, hi = r[j], r[j + 1]
         x2 = 2.0 * (2.0 * t - lo - hi) / (hi - lo)
-        c = self.coef[:, j]
+        c = np.take(self.coef, j, axis=1)
         b1 = np.zeros(t.shape)
         b2 = np.zeros(t.shape)
         for m in range(G_POINTS - 1, 0, -1):
             b1, b2 = c[m] + x2 * b1 - b2, b1
         far = c[0] + 0.5 * x2 * b1 - b2
-        i = j[:, None] - np.arange(G_NEAR + 1)[None, :]       # nodes j, j-1, .., j-G_NEAR
-        live = i >= 1
-        ic = np.where(live, i, 1)
-        q = np.minimum(r[ic] / t[:, None], 1.0)
-        near = np.sum(np.where(live, self.ds[ic] * np.arcsin(q), 0.0), axis=1)
+        # the near nodes j, j-1, .., j-G_NEAR, one row each (a jump of 0 where none)
+        terms = np.arcsin(np.minimum(np.take(self.near_r, j, axis=1) / t, 1.0))
+        terms *= np.take(self.near_ds, j, axis=1)
+        near = terms[0]
+        for k in range(1, G_NEAR + 1):
+            near = near + terms[k]
         return t * (0.5 * np.pi * self.s[j] - near - far)
 
 
