@@ -218,12 +218,19 @@ X_POINTS = 24
 
 
 def _contract(c: np.ndarray, m: np.ndarray) -> np.ndarray:
-    """``Σ_j c[..., j] m[..., k, j]`` -> shape ``(..., k)``, summed in a fixed order (a row's
-    bits do not depend on how many rows are contracted at once: no BLAS)."""
-    out = c[..., 0, None] * m[..., 0]
-    for j in range(1, m.shape[-1]):
-        out += c[..., j, None] * m[..., j]
-    return out
+    """``Σ_j c[..., j] m[..., k, j]`` -> shape ``(..., k)``: the products, then one reduction
+    over their last, contiguous axis, so each output's rounding depends on its own terms only
+    (no BLAS; the same bits in any batch). Rows in chunks (a large panel's prefix rows)."""
+    c = np.asarray(c)
+    if c.ndim == 2 and c.shape[0] > _CONTRACT_ROWS:
+        return np.concatenate([_contract(c[i:i + _CONTRACT_ROWS],
+                                         m if m.ndim == 2 else m[i:i + _CONTRACT_ROWS])
+                               for i in range(0, c.shape[0], _CONTRACT_ROWS)])
+    return np.add.reduce(c[..., None, :] * m, axis=-1)
+
+
+#: rows per product array of :func:`_contract` (``X_POINTS x PANEL_POINTS`` products each)
+_CONTRACT_ROWS = 2048
 
 
 class _Separated:
