@@ -24,6 +24,16 @@ kernels' analytic continuation (``torsion_elliptic``). One integral then costs
 segment. Segments outside every panel (the first few, where a factor 2 holds fewer than
 ``PANEL_MIN_SEGMENTS`` of them) stay on the composite rule.
 
+The kernels are analytic in the integral's lower limit ``x`` too (off ``x = 0``, where they
+have a logarithm), and every kernel of the exact torsion module is ``F(t, x) (alpha g + beta)``
+with per-element constants ``alpha``, ``beta``. So for ``x`` inside a panel's range (or inside
+one of the ranges of ratio 2 below the first panel) ``F(τ_pm, x)`` is interpolated in ``x`` as
+well, at :data:`X_POINTS` Chebyshev points ``ξ_qk`` of that range (the same Bernstein ellipse:
+``ρ^-24 ≈ 4e-19``): a point's panel sums become ``Σ_k L_qk(x) W_k``, where ``W`` is a difference of
+two rows of the own panel's prefix sums contracted once per table with ``F(τ_q, ξ_q)``, plus one
+contraction per distinct upper end for the panels above. A curve's root-solver pass then costs
+no kernel evaluation on the panels, only the two partial segments at the ends of each range.
+
 Pure functions and a per-table cache (by the profile's value identity, like the composite
 rule's); used by the exact torque-twist curve of large tables (``panels=True``).
 """

@@ -228,7 +228,9 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     ``panels=True``: the whole segments inside the product-integration panels of
     :mod:`contactlab.physics.table_panels` are integrated there (``PANEL_POINTS`` kernel
     evaluations per panel instead of 8 per segment; ``kernel`` must be linear in ``g`` and
-    analytic in ``t > 0``, as every kernel of this module is).
+    analytic in ``t > 0``, as every kernel of this module is; a kernel that declares its
+    factors ``kernel.separated`` is interpolated in the lower limit ``lo`` as well, so points
+    in a panel's range take no kernel evaluation on the panels).
     """
     t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
     g_of = _g_route(profile, panels)
@@ -664,7 +666,9 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
 
     ``refine > 0`` (curves of many points): every grid interval that brackets a root of a
     one-state group is split into ``refine + 1`` (one more batched evaluation), so the
-    interpolated start lies much closer to the root and the root finder needs fewer passes.
+    interpolated start lies much closer to the root and the root finder needs fewer passes; the
+    second bracket point is then a Newton step on the interpolant's slope, lengthened by
+    :data:`_NEWTON_OVERSHOOT`, so that it lands just across the root.
     """
     n = target.size
     lo = np.full(n, y_min)
