@@ -411,6 +411,9 @@ class _FastG:
         nor one whose far sum does not interpolate to rounding, strongly non-uniform tables)."""
         r = self.r
         self._build(int(np.max(j, initial=0)) + 1)
+        # t may have trailing axes of points sharing one segment: j broadcasts over them (the
+        # same operations per point)
+        j = j.reshape(j.shape + (1,) * (t.ndim - j.ndim))
         lo, hi = r[j], r[j + 1]
         x2 = 2.0 * (2.0 * t - lo - hi) / (hi - lo)
         c = np.take(self.coef, j, axis=1)
@@ -431,6 +434,31 @@ class _FastG:
 _G_CACHE: dict = {}
 
 
+def _fast_g_of(profile) -> _FastG:
+    key = (hash(profile), profile.table_nodes().size)
+    hit = _G_CACHE.get(key)
+    if hit is None or hit[0] != profile:
+        if len(_G_CACHE) > 8:
+            _G_CACHE.clear()
+        hit = (profile, _FastG(profile.table_nodes(), profile.table_slopes()))
+        _G_CACHE[key] = hit
+    return hit[1]
+
+
+def fast_g_in(profile, t: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """:func:`fast_g` at points ``t`` (shape ``(n, q)``) known to lie in segments ``j`` (shape
+    ``(n,)``, ``r_j <= t < r_{j+1}``, ``j >= 1``): the same values, without locating the points
+    and with one gather per row (the first partial segment of an integral). Falls back to
+    :func:`fast_g` where the cached form is not built that far or does not serve a segment."""
+    t = np.asarray(t, float)
+    if not profile.has("linear_table") or t.size == 0:
+        return fast_g(profile, t)
+    fg = _fast_g_of(profile)
+    if int(np.max(j)) + 1 > fg.done or not np.all(fg.ok[j]):
+        return fast_g(profile, t)
+    return fg.at(t, j)
+
+
 def fast_g(profile, t: np.ndarray) -> np.ndarray:
     """``profile._g(t)`` of a linear table from per-segment cached far sums (O(1) per point
     instead of O(nodes below)); any other profile, and points it cannot serve, by ``_g``.
@@ -439,15 +467,8 @@ def fast_g(profile, t: np.ndarray) -> np.ndarray:
     t = np.asarray(t, float)
     if not profile.has("linear_table") or t.size == 0:
         return profile._g(t)
-    key = (hash(profile), profile.table_nodes().size)
-    hit = _G_CACHE.get(key)
-    if hit is None or hit[0] != profile:
-        if len(_G_CACHE) > 8:
-            _G_CACHE.clear()
-        hit = (profile, _FastG(profile.table_nodes(), profile.table_slopes()))
-        _G_CACHE[key] = hit
     flat = t.ravel()
-    fg = hit[1]
+    fg = _fast_g_of(profile)
     ok = (flat > 0) & np.isfinite(flat) & (flat < fg.r[-1])
     need = int(np.searchsorted(fg.r, np.max(flat[ok], initial=0.0), side="right"))
     if need > fg.done:

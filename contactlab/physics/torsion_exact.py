@@ -262,7 +262,11 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         width = (a_end[rest] - lo[rest])[:, None]
         tt = lo[rest][:, None] + width * u**2
         ww = 2.0 * width * u * wu
-        gg = g_of(tt.ravel()).reshape(tt.shape)
+        if panels:                  # every node in segment j_lo (j_lo >= 1 here)
+            from .table_panels import fast_g_in
+            gg = fast_g_in(profile, tt, j_lo[rest])
+        else:
+            gg = g_of(tt.ravel()).reshape(tt.shape)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[rest] += np.sum(kernel(tt, gg, rest) * ww, axis=1)
     # last piece [r_j_hi, hi], g once per distinct piece

@@ -238,3 +238,15 @@ def test_curve_root_solve_takes_three_passes_over_its_points(monkeypatch):
     big = [s for s in sizes if s > phi.size // 2]
     assert len(big) == 3, sizes
     assert sum(s for s in sizes if s <= phi.size // 2) <= 0.5 * phi.size, sizes
+
+
+@pytest.mark.parametrize("r, f", list(_tables()))
+def test_fast_g_in_known_segments_is_fast_g(r, f):
+    """g at points grouped by a known segment (the first partial segment of an integral) is
+    bit-identical to fast_g at the same points located one by one."""
+    prof = cl.profiles.Tabulated(r=r, f=f)
+    j = np.arange(1, r.size - 1)
+    u = np.polynomial.legendre.leggauss(8)[0] * 0.5 + 0.5
+    t = r[j][:, None] + (r[j + 1] - r[j])[:, None] * u**2
+    ref = tp.fast_g(prof, t.ravel()).reshape(t.shape)          # builds the cached form
+    np.testing.assert_array_equal(tp.fast_g_in(prof, t, j), ref)
