@@ -618,7 +618,8 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
     ka, kd, kg = keys.T
     P_top = slip_function(profile, E_star, ka, ka, kd, kg, rtol)[0][inv]
     y_min = np.log(C_MIN_REL)
-    P_bot = slip_function(profile, E_star, ka * C_MIN_REL, ka, kd, kg, rtol)[0][inv]
+    # (the curve route: the whole segments on the panels, as every later evaluation)
+    P_bot = slip_function(profile, E_star, ka * C_MIN_REL, ka, kd, kg, rtol, panels)[0][inv]
     phi_top = twist_of_stick(mu, G_t, P_top)
     phi_bot = twist_of_stick(mu, G_t, P_bot)
     no_slip = pl <= phi_top
@@ -647,6 +648,9 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
 #: batched evaluation of at most (roots x this) points buys a start closer to the root by
 #: about ``(this + 1)³`` and saves passes of the root finder over all the curve's points
 _CURVE_REFINE = 4
+#: the curve route's grid is evaluated above this ``y = ln(c/a)`` first (stick radii below
+#: 0.7 % of the contact radius, the costliest points, only for twists that need them)
+_LAZY_Y = -5.0
 #: the curve route's second point: a Newton step from the first, lengthened by this fraction
 #: (the interpolant's slope errs by ~1e-2 relative on a 667-node table, the step itself by the
 #: table's wiggles, ~1e-5 of y)
@@ -688,7 +692,18 @@ def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: 
     first = np.array([np.flatnonzero(inverse == k)[0] for k in big])
     grid = np.concatenate([[y_min], _Y_GRID[_Y_GRID > y_min], [0.0]])
     n_g = grid.size
-    vals = func(np.tile(grid, big.size), np.repeat(first, n_g)).reshape(big.size, n_g)
+    if refine > 0 and big.size == 1:
+        # one state (a curve): the grid from its top down to _LAZY_Y first; the points below
+        # (the smallest stick radii, the costliest to integrate) only when a target lies
+        # beyond the values reached. Unevaluated points count as above every target (φ
+        # decreases along the grid), so the brackets are those of the whole grid.
+        cut = int(np.searchsorted(grid, _LAZY_Y))
+        vals = np.full((1, n_g), np.inf)
+        vals[0, cut:] = func(grid[cut:], np.full(n_g - cut, first[0]))
+        if cut > 0 and not np.max(target[inverse == big[0]]) < vals[0, cut]:
+            vals[0, :cut] = func(grid[:cut], np.full(cut, first[0]))
+    else:
+        vals = func(np.tile(grid, big.size), np.repeat(first, n_g)).reshape(big.size, n_g)
     row = np.full(keys.shape[0], -1)
     row[big] = np.arange(big.size)
     sel = np.flatnonzero(row[inverse] >= 0)
