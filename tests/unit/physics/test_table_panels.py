@@ -250,3 +250,26 @@ def test_fast_g_in_known_segments_is_fast_g(r, f):
     t = r[j][:, None] + (r[j + 1] - r[j])[:, None] * u**2
     ref = tp.fast_g(prof, t.ravel()).reshape(t.shape)          # builds the cached form
     np.testing.assert_array_equal(tp.fast_g_in(prof, t, j), ref)
+
+
+def test_curve_near_full_sliding_takes_the_whole_grid():
+    """Twists whose stick radii lie below exp(-5) a (the curve grid's lazily evaluated part):
+    the curve still agrees with the composite route there (stick radii and torques)."""
+    r, f = next(iter(_tables())).values
+    c, a, d, g_a = _state(r, f)
+    E, G_t = c.moduli.normal, c.moduli.torsional
+    c_low = a * np.array([1e-3, 1e-5, 1e-8])
+    P, _ = te.slip_function(c.profile, E, c_low, a, d, g_a, RTOL)
+    phi = np.concatenate([np.linspace(0.0, 0.95, 100) * MU * 10.0 / (G_t * a * a),
+                          te.twist_of_stick(MU, G_t, P)])
+    got = c.torsion(force=10.0, twist=phi, method="exact")
+    A, D, G = (np.full(phi.shape, v) for v in (a, d, g_a))
+    cc = te.solve_stick_of_twist(c.profile, E, G_t, MU, phi, A, D, G, RTOL)
+    T, _ = te.torque_integral(c.profile, E, cc, A, D, G, RTOL)
+    M = np.where(cc < a, 16.0 / 3.0 * G_t * phi * cc**3 + 8.0 * MU * T, 0.0)
+    assert np.all(got.stick_radius[-3:] < np.exp(-5.0) * a)
+    # the root's tolerance is rtol in y = ln(c/a) (|y| <= 18 here) or in the twist, which is
+    # nearly flat in c as c -> 0 (measured 2e-10)
+    np.testing.assert_allclose(got.stick_radius[-3:], c_low, rtol=100 * RTOL)
+    assert np.max(np.abs(got.torque - M)) <= TOL.TABLE_PANELS * np.max(np.abs(M))
+    assert np.max(np.abs(got.stick_radius - cc)) <= 10 * RTOL * a
