@@ -157,7 +157,8 @@ def panels_of(profile) -> Panels:
 
 def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
               rule: tuple[np.ndarray, np.ndarray, np.ndarray],
-              x: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+              x: np.ndarray | None = None, piece: tuple | None = None
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The panel part of ``Σ_elements ∫ kernel`` over whole segments ``first..last`` (inclusive,
     per element): returns ``(values, covered)`` with ``covered[seg]`` True for segments the panels
     take (the caller integrates the others by the composite rule).
@@ -168,12 +169,18 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
     ``kernel.separated = (kind, F, alpha, beta)``, ``kernel = F(t, x) (alpha g + beta)`` with
     ``F`` analytic in the lower limit ``x`` (given: one per element) as well, takes
     :func:`_separated_sum` for the elements whose ``x`` lies in a panel (no kernel evaluation
-    per element; ``kind`` names ``F`` in the per-table cache).
+    per element; ``kind`` names ``F`` in the per-table cache). ``piece = (t, g, w, of)``: the
+    rule of the last partial segments (rows: distinct pieces; ``of``: the piece of each
+    element, -1 none); the separated sums take the pieces of their elements as well.
+
+    Returns ``(values, covered, taken)``: ``taken`` marks the elements whose last piece the
+    values hold.
     """
     val = np.zeros(n)
+    taken = np.zeros(n, dtype=bool)
     n_p = pan.start.size
     if n_p == 0:
-        return val, np.zeros(pan.panel_of.size, dtype=bool)
+        return val, np.zeros(pan.panel_of.size, dtype=bool), taken
     lo = np.maximum(first[:, None], pan.start[None, :])             # (elements, panels)
     hi = np.minimum(last[:, None] + 1, pan.end[None, :])
     el, p = np.nonzero(hi > lo)
@@ -199,8 +206,12 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
             q[np.bincount(el, minlength=n) == 0] = -1                # no panel sums at all
             fast = np.flatnonzero(q >= 0)
             if fast.size:
-                val[fast] = _separated_sum(pan, sp, q[fast], first[fast], last[fast], x[fast],
-                                           alpha[fast], beta[fast])
+                pc = None
+                if piece is not None:
+                    pc = (*piece[:3], piece[3][fast])
+                    taken[fast] = pc[3] >= 0
+                val[fast] = _separated_sum(pan, sp, fn, q[fast], first[fast], last[fast],
+                                           x[fast], alpha[fast], beta[fast], pc)
                 keep = q[el] < 0
                 el, p = el[keep], p[keep]
     if el.size:
@@ -217,7 +228,7 @@ def integrate(pan: Panels, kernel, first: np.ndarray, last: np.ndarray, n: int,
                 B = kernel(tau, np.zeros(tau.shape), el)
                 A = kernel(tau, np.ones(tau.shape), el) - B
         val += np.bincount(el, weights=np.sum(A * sg + B * s1, axis=1), minlength=n)
-    return val, pan.panel_of >= 0
+    return val, pan.panel_of >= 0, taken
 
 
 # ---------------------------------------------------------------- kernels separated in x too
@@ -298,14 +309,16 @@ class _Separated:
             self.built[p] = u
 
 
-def _separated_sum(pan: Panels, sep: _Separated, q: np.ndarray, first: np.ndarray,
-                   last: np.ndarray, x: np.ndarray, alpha: np.ndarray,
-                   beta: np.ndarray) -> np.ndarray:
+def _separated_sum(pan: Panels, sep: _Separated, fn, q: np.ndarray, first: np.ndarray,
+                   last: np.ndarray, x: np.ndarray, alpha: np.ndarray, beta: np.ndarray,
+                   piece: tuple | None = None) -> np.ndarray:
     """Panel sums of ``F(t, x) (alpha g + beta)`` over segments ``first..last`` for elements
     whose lower limit ``x`` lies in x-range ``q`` of ``sep`` (a panel's, holding segment
     ``first - 1``, or one below the first panel): the own panel from its contracted prefix
     rows, the panels above from one contraction per distinct ``(q, upper end)``, then the
-    x-interpolation ``Σ_k L_qk(x) W_k``."""
+    x-interpolation ``Σ_k L_qk(x) W_k``. ``piece = (t, g, w, of)``: the last partial segments'
+    rule (one row per distinct piece) and each element's piece (-1: none), contracted with
+    ``F(t, ξ_q)`` once per distinct ``(q, piece)`` (``F`` analytic in ``x`` below the piece)."""
     n_p = pan.start.size
     wg = np.zeros((q.size, X_POINTS))
     w1 = np.zeros((q.size, X_POINTS))
@@ -337,6 +350,17 @@ def _separated_sum(pan: Panels, sep: _Separated, q: np.ndarray, first: np.ndarra
         t1[sel] += _contract(pan.cum_1[rows], mq)
     wg += tg[inv]
     w1 += t1[inv]
+    if piece is not None:
+        pt, pg, pw, of = piece
+        has = np.flatnonzero(of >= 0)
+        if has.size:
+            n_k = pt.shape[0]
+            keys, inv = np.unique(q[has] * n_k + of[has], return_inverse=True)
+            cq, ck = keys // n_k, keys % n_k
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                f = fn(pt[ck][:, None, :], sep.xi[cq][:, :, None])          # (keys, X, q)
+            wg[has] += np.add.reduce(f * (pw * pg)[ck][:, None, :], axis=-1)[inv]
+            w1[has] += np.add.reduce(f * pw[ck][:, None, :], axis=-1)[inv]
     ell = _lagrange(x, sep.xi[q], sep.bw)
     return np.sum(ell * (alpha[:, None] * wg + beta[:, None] * w1), axis=1)
 

@@ -270,11 +270,12 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[rest] += np.sum(kernel(tt, gg, rest) * ww, axis=1)
     # last piece [r_j_hi, hi], g once per distinct piece
-    last = np.flatnonzero(~same)
-    if last.size:
-        b0, h0 = r[j_hi[last]], hi[last]
+    ends = np.flatnonzero(~same)
+    piece = None
+    if ends.size:
+        b0, h0 = r[j_hi[ends]], hi[ends]
         if np.all(h0 == h0[0]):            # one normal state (a curve): np.unique's answer
-            keys, inv = np.array([[b0[0], h0[0]]]), np.zeros(last.size, dtype=np.intp)
+            keys, inv = np.array([[b0[0], h0[0]]]), np.zeros(ends.size, dtype=np.intp)
         else:
             keys, inv = np.unique(np.stack([b0, h0], axis=1), axis=0, return_inverse=True)
             inv = inv.ravel()
@@ -282,17 +283,28 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         kt = keys[:, :1] + kw * u**2
         kg = g_of(kt.ravel()).reshape(kt.shape)
         kww = 2.0 * kw * u * wu
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            val[last] += np.sum(kernel(kt[inv], kg[inv], last) * kww[inv], axis=1)
+        piece_of = np.full(n, -1, dtype=np.intp)
+        piece_of[ends] = inv
+        piece = (kt, kg, kww, piece_of)
     # whole segments j_lo+1 .. j_hi-1: one row of q rule nodes per (element, segment), no
     # padding, chunked over elements so that a chunk holds at most ~2e6 nodes
     first, last = j_lo + 1, j_hi - 1
     covered = None
+    v_p = None
     if panels:
         from . import table_panels as _tp
         pan = _tp.panels_of(profile)
-        # (g is filled up to the largest hi, beyond every segment a panel takes here)
-        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n), lo)
+        # (g is filled up to the largest hi, beyond every segment a panel takes here; the
+        # panels' x-interpolated sums take the last pieces of their points too)
+        v_p, covered, taken = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n), lo,
+                                            piece)
+        if piece is not None:
+            keep = ~taken[ends]
+            ends, inv = ends[keep], inv[keep]
+    if ends.size and piece is not None:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            val[ends] += np.sum(kernel(kt[inv], kg[inv], ends) * kww[inv], axis=1)
+    if v_p is not None:
         val += v_p
     count = np.maximum(last - first + 1, 0)
     direct = None

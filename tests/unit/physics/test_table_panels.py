@@ -197,26 +197,28 @@ def test_kernels_separated_in_x_agree_with_the_kernels_at_each_point(r, f, monke
         with monkeypatch.context() as m:
             plain = tp.integrate
             m.setattr(tp, "integrate",
-                      lambda pan, k, first, last, n, rule, x=None: plain(pan, k, first, last, n,
-                                                                         rule))
+                      lambda pan, k, first, last, n, rule, x=None, piece=None:
+                      plain(pan, k, first, last, n, rule))
             ref, _ = fn(c.profile, E, x, A, D, G, RTOL, panels=True)
         assert np.max(np.abs(got - ref)) <= TOL.TABLE_PANELS_X * np.max(np.abs(ref)), fn.__name__
 
 
 def test_separated_panel_sums_evaluate_no_kernel_per_point(monkeypatch):
     """Points whose lower limit lies in a panel's x-range take no kernel evaluation on the
-    panels (only the per-table matrices at the interpolation points, once)."""
+    panels (only the per-table matrices at the interpolation points, once) nor on the last
+    partial segment (once per x-range and piece, at the interpolation points)."""
     r, f = next(iter(_tables())).values
     c, a, d, g_a = _state(r, f)
     pan = tp.panels_of(c.profile)
-    x = np.linspace(r[pan.start[0]], 0.9 * a, 500)
+    x = np.linspace(r[pan.start[0]], 0.9 * a, 5000)
     A, D, G = (np.full(x.shape, v) for v in (a, d, g_a))
     te.slip_function(c.profile, c.moduli.normal, x, A, D, G, RTOL, panels=True)   # tables built
     sizes = []
     real = te._slip_shape
     monkeypatch.setattr(te, "_slip_shape", lambda t, xx: sizes.append(np.size(t)) or real(t, xx))
     te.slip_function(c.profile, c.moduli.normal, x, A, D, G, RTOL, panels=True)
-    assert sizes == []
+    n_ranges = pan.separated["slip"].xi.shape[0]
+    assert sum(sizes) <= n_ranges * tp.X_POINTS * 8 < x.size
 
 
 def test_curve_root_solve_takes_three_passes_over_its_points(monkeypatch):
