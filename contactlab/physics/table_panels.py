@@ -31,8 +31,9 @@ one of the ranges of ratio 2 below the first panel) ``F(τ_pm, x)`` is interpola
 well, at :data:`X_POINTS` Chebyshev points ``ξ_qk`` of that range (the same Bernstein ellipse:
 ``ρ^-24 ≈ 4e-19``): a point's panel sums become ``Σ_k L_qk(x) W_k``, where ``W`` is a difference of
 two rows of the own panel's prefix sums contracted once per table with ``F(τ_q, ξ_q)``, plus one
-contraction per distinct upper end for the panels above. A curve's root-solver pass then costs
-no kernel evaluation on the panels, only the two partial segments at the ends of each range.
+contraction per distinct upper end for the panels above (and for the last partial segment,
+whose rule is contracted with ``F(t, ξ_q)`` once per distinct range and piece). A curve's
+root-solver pass then evaluates kernels only on each point's first partial segment.
 
 Pure functions and a per-table cache (by the profile's value identity, like the composite
 rule's); used by the exact torque-twist curve of large tables (``panels=True``).
