@@ -87,6 +87,15 @@ def mdr_map_errors(contact, twist: np.ndarray, a: np.ndarray, d: np.ndarray, g_a
             for q in quantities}
 
 
+def _g_of_radii(profile, a: np.ndarray) -> np.ndarray:
+    """``g(a)`` once per distinct contact radius (a torque-twist curve repeats one radius for
+    every twist; on a large table each ``g`` costs a sum over its nodes). ``g`` is evaluated
+    point by point, so the values are those of the full array."""
+    if a.size > 1 and np.all(a == a[0]):
+        return np.broadcast_to(profile._g(a[:1]), a.shape).copy()
+    return profile._g(a)
+
+
 # ====================================================================== monotonic torsion
 @reporting()
 def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any = None,
@@ -104,7 +113,7 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
     normal = contact.normal(**{load_key: load_val})
     a = np.broadcast_to(normal._radius, shape).astype(float).ravel()
     d = np.broadcast_to(normal._depth, shape).astype(float).ravel()
-    g_a = np.where(a > 0, contact.profile._g(a), 0.0) if a.size else a.copy()
+    g_a = np.where(a > 0, _g_of_radii(contact.profile, a), 0.0) if a.size else a.copy()
     if np.isfinite(contact.profile.wall_radius):
         g_a = np.where(a >= contact.profile.wall_radius, np.minimum(g_a, d), g_a)
     q = np.broadcast_to(ctrl, shape).astype(float).ravel()

@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..numeric.quadrature import tanh_sinh
-from ..numeric.roots import bracketed_root
+from .stick_brackets import _CURVE_REFINE, _bracketed, _grid_brackets
 from .torsion_elliptic import K_comp, h_kernel, kme_over_m
 from .torsion_split import Summed, per_element, split_at_cuts
 
@@ -228,7 +228,9 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
     ``panels=True``: the whole segments inside the product-integration panels of
     :mod:`contactlab.physics.table_panels` are integrated there (``PANEL_POINTS`` kernel
     evaluations per panel instead of 8 per segment; ``kernel`` must be linear in ``g`` and
-    analytic in ``t > 0``, as every kernel of this module is).
+    analytic in ``t > 0``, as every kernel of this module is; a kernel that declares its
+    factors ``kernel.separated`` is interpolated in the lower limit ``lo`` as well, so points
+    in a panel's range take no kernel evaluation on the panels).
     """
     t_n, w_n, g_n, r = _table_rule(profile, float(np.max(hi, initial=0.0)))
     g_of = _g_route(profile, panels)
@@ -260,30 +262,49 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
         width = (a_end[rest] - lo[rest])[:, None]
         tt = lo[rest][:, None] + width * u**2
         ww = 2.0 * width * u * wu
-        gg = g_of(tt.ravel()).reshape(tt.shape)
+        if panels:                  # every node in segment j_lo (j_lo >= 1 here)
+            from .table_panels import fast_g_in
+            gg = fast_g_in(profile, tt, j_lo[rest])
+        else:
+            gg = g_of(tt.ravel()).reshape(tt.shape)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             val[rest] += np.sum(kernel(tt, gg, rest) * ww, axis=1)
     # last piece [r_j_hi, hi], g once per distinct piece
-    last = np.flatnonzero(~same)
-    if last.size:
-        b0 = r[j_hi[last]]
-        keys, inv = np.unique(np.stack([b0, hi[last]], axis=1), axis=0, return_inverse=True)
-        inv = inv.ravel()
+    ends = np.flatnonzero(~same)
+    piece = None
+    if ends.size:
+        b0, h0 = r[j_hi[ends]], hi[ends]
+        if np.all(h0 == h0[0]):            # one normal state (a curve): np.unique's answer
+            keys, inv = np.array([[b0[0], h0[0]]]), np.zeros(ends.size, dtype=np.intp)
+        else:
+            keys, inv = np.unique(np.stack([b0, h0], axis=1), axis=0, return_inverse=True)
+            inv = inv.ravel()
         kw = (keys[:, 1] - keys[:, 0])[:, None]
         kt = keys[:, :1] + kw * u**2
         kg = g_of(kt.ravel()).reshape(kt.shape)
         kww = 2.0 * kw * u * wu
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            val[last] += np.sum(kernel(kt[inv], kg[inv], last) * kww[inv], axis=1)
+        piece_of = np.full(n, -1, dtype=np.intp)
+        piece_of[ends] = inv
+        piece = (kt, kg, kww, piece_of)
     # whole segments j_lo+1 .. j_hi-1: one row of q rule nodes per (element, segment), no
     # padding, chunked over elements so that a chunk holds at most ~2e6 nodes
     first, last = j_lo + 1, j_hi - 1
     covered = None
+    v_p = None
     if panels:
         from . import table_panels as _tp
         pan = _tp.panels_of(profile)
-        # (g is filled up to the largest hi, beyond every segment a panel takes here)
-        v_p, covered = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n))
+        # (g is filled up to the largest hi, beyond every segment a panel takes here; the
+        # panels' x-interpolated sums take the last pieces of their points too)
+        v_p, covered, taken = _tp.integrate(pan, kernel, first, last, n, (t_n, w_n, g_n), lo,
+                                            piece)
+        if piece is not None:
+            keep = ~taken[ends]
+            ends, inv = ends[keep], inv[keep]
+    if ends.size and piece is not None:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            val[ends] += np.sum(kernel(kt[inv], kg[inv], ends) * kww[inv], axis=1)
+    if v_p is not None:
         val += v_p
     count = np.maximum(last - first + 1, 0)
     direct = None
@@ -314,6 +335,17 @@ def _integrate_table(profile, kernel, lo: np.ndarray, hi: np.ndarray, rtol: floa
 
 
 # ---------------------------------------------------------------- the slip function P
+def _slip_shape(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``(K - E)/k² / t²`` with ``k² = 1 - x²/t²``: the slip kernel is this times ``g(t) - g(x)``."""
+    return kme_over_m((x / t) ** 2) / (t * t)
+
+
+def _torque_shape(t: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """``2t h(c/t) + (c³/t²) K(k_t)``: the torque kernel is this times ``g(a) - g(t)``."""
+    v = c / t
+    return 2.0 * t * h_kernel(v) + c * v * v * K_comp(v * v)
+
+
 def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.ndarray,
                   g_a: np.ndarray, rtol: float, panels: bool = False
                   ) -> tuple[np.ndarray, np.ndarray]:
@@ -346,6 +378,8 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
             return A, -gxs[idx][:, None] * A
 
         kernel.linear = linear     # type: ignore[attr-defined]  # the panels' one evaluation
+        # ... and kernel = F(t, x) (g - g(x)) with F analytic in x: interpolated in x as well
+        kernel.separated = ("slip", _slip_shape, np.ones(todo.size), -gxs)  # type: ignore[attr-defined]
         scale = np.abs(boundary[todo]) + (g_a[todo] - gxs) / as_
         v, e = _integrate_log(profile, kernel, xs, as_, rtol, rtol * scale, panels)
         val[todo] += v
@@ -389,6 +423,7 @@ def torque_integral(profile, E_star: float, c: np.ndarray, a: np.ndarray, d: np.
                 return -D, gp[idx][:, None] * D                           # kernel = A g + B
 
             kernel.linear = linear     # type: ignore[attr-defined]
+            kernel.separated = ("torque", _torque_shape, -np.ones(pos.size), gp)  # type: ignore[attr-defined]
             scale = gp * ap * ap
             v, e = _integrate_log(profile, kernel, cp, ap, rtol, rtol * scale * 1e-3, panels)
             val[todo[pos]] += v
@@ -595,7 +630,8 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
     ka, kd, kg = keys.T
     P_top = slip_function(profile, E_star, ka, ka, kd, kg, rtol)[0][inv]
     y_min = np.log(C_MIN_REL)
-    P_bot = slip_function(profile, E_star, ka * C_MIN_REL, ka, kd, kg, rtol)[0][inv]
+    # (the curve route: the whole segments on the panels, as every later evaluation)
+    P_bot = slip_function(profile, E_star, ka * C_MIN_REL, ka, kd, kg, rtol, panels)[0][inv]
     phi_top = twist_of_stick(mu, G_t, P_top)
     phi_bot = twist_of_stick(mu, G_t, P_bot)
     no_slip = pl <= phi_top
@@ -618,128 +654,6 @@ def solve_stick_of_twist(profile, E_star: float, G_t: float, mu: float, phi: np.
         out[solve] = s_a * np.exp(y)
     c[idx_live] = out
     return np.where(a > 0, c, 0.0)
-
-
-#: subintervals of each root-bracketing grid interval on the curve route (``panels``): one more
-#: batched evaluation of at most (roots x this) points buys a start closer to the root by
-#: about ``(this + 1)³`` and saves passes of the root finder over all the curve's points
-_CURVE_REFINE = 4
-
-#: ``y = ln(c/a)`` grid used to bracket many roots that share one normal state (log-spaced in
-#: ``|y|`` from 1e-9 to ``|ln C_MIN_REL|``, ~10 points per decade)
-_Y_GRID = -np.logspace(-9.0, np.log10(-np.log(C_MIN_REL)), 120)[::-1]
-
-
-def _grid_brackets(func, target: np.ndarray, a: np.ndarray, d: np.ndarray, g_a: np.ndarray,
-                   y_min: float, min_group: int = 16, refine: int = 0):
-    """Narrow brackets in ``y = ln(c/a)`` for roots of a function decreasing in ``y``.
-
-    Elements sharing one normal state ``(a, d, g(a))`` (a torque-twist curve) share one evaluation
-    of ``func`` on :data:`_Y_GRID`. Each root is bracketed by two neighbouring grid nodes, then
-    one inverse-interpolation step (quadratic in ``y`` through three grid nodes) splits that bracket
-    at a point very close to the root, so the root finder starts with one end nearly on the root.
-    Returns ``(lo, hi, f_lo, f_hi)`` (``f`` = NaN where unknown); groups smaller than ``min_group``
-    keep the full bracket ``[y_min, 0]``.
-
-    ``refine > 0`` (curves of many points): every grid interval that brackets a root of a
-    one-state group is split into ``refine + 1`` (one more batched evaluation), so the
-    interpolated start lies much closer to the root and the root finder needs fewer passes.
-    """
-    n = target.size
-    lo = np.full(n, y_min)
-    hi = np.zeros(n)
-    f_lo = np.full(n, np.nan)
-    f_hi = np.full(n, np.nan)
-    keys, inverse, counts = np.unique(np.stack([a, d, g_a], axis=1), axis=0, return_inverse=True,
-                                      return_counts=True)
-    inverse = inverse.ravel()
-    big = np.flatnonzero(counts >= min_group)
-    if big.size == 0:
-        return lo, hi, f_lo, f_hi
-    first = np.array([np.flatnonzero(inverse == k)[0] for k in big])
-    grid = np.concatenate([[y_min], _Y_GRID[_Y_GRID > y_min], [0.0]])
-    n_g = grid.size
-    vals = func(np.tile(grid, big.size), np.repeat(first, n_g)).reshape(big.size, n_g)
-    row = np.full(keys.shape[0], -1)
-    row[big] = np.arange(big.size)
-    sel = np.flatnonzero(row[inverse] >= 0)
-    v = vals[row[inverse[sel]]]                       # (m, n_g), decreasing along the grid
-    tg = target[sel]
-    k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
-    if refine > 0 and big.size == 1:
-        # one state (a curve): split the bracketing intervals, evaluate once, re-bracket
-        used = np.unique(k)
-        frac = np.arange(1, refine + 1) / (refine + 1)
-        new = (grid[used - 1][:, None] + frac * (grid[used] - grid[used - 1])[:, None]).ravel()
-        f_new = func(new, np.full(new.size, first[0]))
-        grid = np.concatenate([grid, new])
-        order = np.argsort(grid, kind="stable")
-        grid = grid[order]
-        n_g = grid.size
-        row0 = np.concatenate([vals[0], f_new])[order]
-        v = np.broadcast_to(row0, (sel.size, n_g))                    # one row, no copies
-        k = np.clip(np.sum(v > tg[:, None], axis=1), 1, n_g - 1)
-    ylo, yhi = grid[k - 1], grid[k]
-    flo = v[np.arange(sel.size), k - 1]
-    fhi = v[np.arange(sel.size), k]
-    # inverse quadratic interpolation y(f) through the bracket and its neighbour
-    j = np.clip(np.where(k + 1 < n_g, k + 1, k - 2), 0, n_g - 1)
-    y3, f3 = grid[j], v[np.arange(sel.size), j]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        L1 = (tg - fhi) * (tg - f3) / ((flo - fhi) * (flo - f3))
-        L2 = (tg - flo) * (tg - f3) / ((fhi - flo) * (fhi - f3))
-        L3 = (tg - flo) * (tg - fhi) / ((f3 - flo) * (f3 - fhi))
-        y0 = L1 * ylo + L2 * yhi + L3 * y3
-        y_lin = ylo + (tg - flo) * (yhi - ylo) / (fhi - flo)
-    y0 = np.where(np.isfinite(y0) & (y0 > ylo) & (y0 < yhi), y0, y_lin)
-    y0 = np.where(np.isfinite(y0) & (y0 > ylo) & (y0 < yhi), y0, 0.5 * (ylo + yhi))
-    f0 = func(y0, sel)
-    above = f0 > tg                                   # root lies above y0
-    lo_s = np.where(above, y0, ylo)
-    flo_s = np.where(above, f0, flo)
-    hi_s = np.where(above, yhi, y0)
-    fhi_s = np.where(above, fhi, f0)
-    # a second point just across the root (4x the quadratic-vs-linear discrepancy), so that both
-    # ends are close: regula falsi then stops at once instead of bisecting from the far end
-    step = np.maximum(4.0 * np.abs(y0 - np.where(np.isfinite(y_lin), y_lin, y0)),
-                      1e-9 * np.maximum(np.abs(y0), 1e-6))
-    y1 = np.where(above, np.minimum(y0 + step, yhi), np.maximum(y0 - step, ylo))
-    inner = (y1 > lo_s) & (y1 < hi_s)
-    if np.any(inner):
-        k1 = np.flatnonzero(inner)
-        f1 = func(y1[k1], sel[k1])
-        up = f1 > tg[k1]                              # root above y1
-        lo_s[k1] = np.where(up, y1[k1], lo_s[k1])
-        flo_s[k1] = np.where(up, f1, flo_s[k1])
-        hi_s[k1] = np.where(up, hi_s[k1], y1[k1])
-        fhi_s[k1] = np.where(up, fhi_s[k1], f1)
-    lo[sel], f_lo[sel], hi[sel], f_hi[sel] = lo_s, flo_s, hi_s, fhi_s
-    return lo, hi, f_lo, f_hi
-
-
-def _bracketed(func, target: np.ndarray, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
-               f_hi: np.ndarray, rtol: float, what: str, ftol: float | None = None,
-               secant_start: bool = False) -> np.ndarray:
-    """:func:`bracketed_root` with the end values known where ``f_lo``/``f_hi`` are finite.
-
-    ``ftol`` (default ``rtol``): residual test; 0 keeps refining the bracket in ``y`` to ``rtol``
-    (needed where the function is flat in ``y``: the torque near full sliding)."""
-    ftol = rtol if ftol is None else ftol
-    known = np.isfinite(f_lo) & np.isfinite(f_hi)
-    out = np.empty(target.shape)
-    for mask, use in ((known, True), (~known, False)):
-        if not np.any(mask):
-            continue
-        ids = np.flatnonzero(mask)
-
-        def sub(y: np.ndarray, idx: np.ndarray, *, ids: np.ndarray = ids) -> np.ndarray:
-            return func(y, ids[idx])   # ids bound now: the closure runs in this iteration only
-
-        out[ids] = bracketed_root(sub, target[ids], lo[ids], hi[ids], rtol=rtol, ftol=ftol,
-                                  what=what, f_lo=f_lo[ids] if use else None,
-                                  f_hi=f_hi[ids] if use else None,
-                                  secant_start=secant_start and use)
-    return out
 
 
 def solve_stick_of_torque(profile, E_star: float, G_t: float, mu: float, M: np.ndarray,

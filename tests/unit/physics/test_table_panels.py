@@ -176,3 +176,102 @@ def test_curves_without_panels_keep_their_bits(profile):
     model = METHODS["exact"](c.profile, E, G_t, MU, c.rtol)
     got = model.of_twist(phi, A, D, G)
     np.testing.assert_array_equal(got.stick_radius, cc)
+
+
+@pytest.mark.parametrize("r, f", list(_tables()))
+def test_kernels_separated_in_x_agree_with_the_kernels_at_each_point(r, f, monkeypatch):
+    """The panel sums of points in a panel's x-range (or below the first panel) come from
+    kernels interpolated in the lower limit x too; against the same panel sums with the kernels
+    evaluated at every point (``integrate`` without ``x``), over points in every x-range,
+    segment 0 and the contact edge included."""
+    c, a, d, g_a = _state(r, f)
+    nodes = r[(r > 0) & (r < a)]
+    x = np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1]), [a * (1 - 1e-9), a * 1e-3],
+                        np.random.default_rng(4).uniform(0.0, a, 300)])
+    A, D, G = (np.full(x.shape, v) for v in (a, d, g_a))
+    E = c.moduli.normal
+    pan = tp.panels_of(c.profile)
+    assert np.any(x < r[pan.start[0]]) and np.any(x > r[pan.start[-1]])
+    for fn in (te.slip_function, te.torque_integral):
+        got, _ = fn(c.profile, E, x, A, D, G, RTOL, panels=True)
+        with monkeypatch.context() as m:
+            plain = tp.integrate
+            m.setattr(tp, "integrate",
+                      lambda pan, k, first, last, n, rule, x=None, piece=None:
+                      plain(pan, k, first, last, n, rule))
+            ref, _ = fn(c.profile, E, x, A, D, G, RTOL, panels=True)
+        assert np.max(np.abs(got - ref)) <= TOL.TABLE_PANELS_X * np.max(np.abs(ref)), fn.__name__
+
+
+def test_separated_panel_sums_evaluate_no_kernel_per_point(monkeypatch):
+    """Points whose lower limit lies in a panel's x-range take no kernel evaluation on the
+    panels (only the per-table matrices at the interpolation points, once) nor on the last
+    partial segment (once per x-range and piece, at the interpolation points)."""
+    r, f = next(iter(_tables())).values
+    c, a, d, g_a = _state(r, f)
+    pan = tp.panels_of(c.profile)
+    x = np.linspace(r[pan.start[0]], 0.9 * a, 5000)
+    A, D, G = (np.full(x.shape, v) for v in (a, d, g_a))
+    te.slip_function(c.profile, c.moduli.normal, x, A, D, G, RTOL, panels=True)   # tables built
+    sizes = []
+    real = te._slip_shape
+    monkeypatch.setattr(te, "_slip_shape", lambda t, xx: sizes.append(np.size(t)) or real(t, xx))
+    te.slip_function(c.profile, c.moduli.normal, x, A, D, G, RTOL, panels=True)
+    n_ranges = pan.separated["slip"].xi.shape[0]
+    assert sum(sizes) <= n_ranges * tp.X_POINTS * 8 < x.size
+
+
+def test_curve_root_solve_takes_three_passes_over_its_points(monkeypatch):
+    """The curve's stick radii: the grid bracket's interpolated point, a Newton point just across
+    the root, then one secant pass; only a few points (table wiggles within the bracket) need
+    more. Counted as evaluations of P at more than half of the curve's points."""
+    r, f = next(iter(_tables())).values
+    c, a, _, _ = _state(r, f)
+    phi = np.linspace(0.0, 0.95, 1000) * MU * 10.0 / (c.moduli.torsional * a * a)
+    sizes = []
+    real = te.slip_function
+
+    def counted(*args, **kw):
+        sizes.append(np.size(args[2]))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(te, "slip_function", counted)
+    c.torsion(force=10.0, twist=phi, method="exact")
+    big = [s for s in sizes if s > phi.size // 2]
+    assert len(big) == 3, sizes
+    assert sum(s for s in sizes if s <= phi.size // 2) <= 0.5 * phi.size, sizes
+
+
+@pytest.mark.parametrize("r, f", list(_tables()))
+def test_fast_g_in_known_segments_is_fast_g(r, f):
+    """g at points grouped by a known segment (the first partial segment of an integral) is
+    bit-identical to fast_g at the same points located one by one."""
+    prof = cl.profiles.Tabulated(r=r, f=f)
+    j = np.arange(1, r.size - 1)
+    u = np.polynomial.legendre.leggauss(8)[0] * 0.5 + 0.5
+    t = r[j][:, None] + (r[j + 1] - r[j])[:, None] * u**2
+    ref = tp.fast_g(prof, t.ravel()).reshape(t.shape)          # builds the cached form
+    np.testing.assert_array_equal(tp.fast_g_in(prof, t, j), ref)
+
+
+def test_curve_near_full_sliding_takes_the_whole_grid():
+    """Twists whose stick radii lie below exp(-5) a (the curve grid's lazily evaluated part):
+    the curve still agrees with the composite route there (stick radii and torques)."""
+    r, f = next(iter(_tables())).values
+    c, a, d, g_a = _state(r, f)
+    E, G_t = c.moduli.normal, c.moduli.torsional
+    c_low = a * np.array([1e-3, 1e-5, 1e-8])
+    P, _ = te.slip_function(c.profile, E, c_low, a, d, g_a, RTOL)
+    phi = np.concatenate([np.linspace(0.0, 0.95, 100) * MU * 10.0 / (G_t * a * a),
+                          te.twist_of_stick(MU, G_t, P)])
+    got = c.torsion(force=10.0, twist=phi, method="exact")
+    A, D, G = (np.full(phi.shape, v) for v in (a, d, g_a))
+    cc = te.solve_stick_of_twist(c.profile, E, G_t, MU, phi, A, D, G, RTOL)
+    T, _ = te.torque_integral(c.profile, E, cc, A, D, G, RTOL)
+    M = np.where(cc < a, 16.0 / 3.0 * G_t * phi * cc**3 + 8.0 * MU * T, 0.0)
+    assert np.all(got.stick_radius[-3:] < np.exp(-5.0) * a)
+    # the root's tolerance is rtol in y = ln(c/a) (|y| <= 18 here) or in the twist, which is
+    # nearly flat in c as c -> 0 (measured 2e-10)
+    np.testing.assert_allclose(got.stick_radius[-3:], c_low, rtol=100 * RTOL)
+    assert np.max(np.abs(got.torque - M)) <= TOL.TABLE_PANELS * np.max(np.abs(M))
+    assert np.max(np.abs(got.stick_radius - cc)) <= 10 * RTOL * a
