@@ -12,9 +12,9 @@ a loop in it, gathered by index.
 With ``xp = numpy`` every function performs, element by element, the floating-point operations
 of the numpy reference (:meth:`contactlab.effects.law.ContactLaw.normal`,
 :func:`~contactlab.physics.master.tangential_master`,
-:func:`~contactlab.physics.master.evaluate`,
 :func:`~contactlab.physics.masing_stack.masing_step`) in the same order, so its results are the
-reference's to the bit. On a GPU the
+reference's to the bit; the torsion curves are :func:`~contactlab.physics.master.evaluate`
+itself, called with ``xp``. On a GPU the
 elementwise transcendental functions (``power``, ``sqrt``, ``expm1``, ``log1p``) come from the
 device's math library and may differ from numpy's in the last bits.
 
@@ -26,6 +26,8 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+
+from . import master as _master
 
 __all__ = ["normal", "tangential_curve", "torsion_curves", "masing_step"]
 
@@ -80,35 +82,11 @@ def tangential_curve(xp: Any, n: float, x: Any) -> tuple[Any, Any, Any]:
 def torsion_curves(xp: Any, coef: Any, y_scale: float, y: Any, y0: float = 0.0,
                    m0: float = 0.0, scaled: bool = True, power: int = 1
                    ) -> tuple[Any, Any, Any]:
-    """``(t, m, q)`` of a torsion master curve at dimensionless twists ``y >= 0``
-    (:func:`contactlab.physics.master.evaluate`, the same operations; ``coef`` on the
-    device). A non-finite ``y`` gives non-finite curves (the panel index is clipped, never
-    read outside the table)."""
-    if y0 > 0.0:
-        stuck = y <= y0
-        t, m, q = torsion_curves(xp, coef, y_scale, xp.maximum(y - y0, 0.0), 0.0, 0.0, scaled)
-        return (xp.where(stuck, 1.0, t), xp.where(stuck, m0 * y, m), xp.where(stuck, 0.0, q))
-    N = coef.shape[1]
-    if power == 1:
-        s = y / (y + y_scale)
-    else:
-        r = (y / y_scale) ** (1.0 / power)
-        s = r / (1.0 + r)
-    z = s * N
-    j = xp.clip(xp.minimum(z.astype(np.intp), N - 1), 0, N - 1)
-    u = 2.0 * (z - j) - 1.0
-    out = []
-    for k in range(3):
-        ck = coef[k]
-        acc = ck[j, -1]
-        for p in range(coef.shape[2] - 2, -1, -1):
-            acc = acc * u + ck[j, p]
-        out.append(acc)
-    if not scaled:
-        return xp.clip(out[0], 0.0, 1.0), out[1], out[2]
-    if power != 1:
-        s = s**power
-    return xp.clip(out[0], 0.0, 1.0), out[1] * s, out[2] * (s * s)
+    """``(t, m, q)`` of a torsion master curve at dimensionless twists ``y >= 0``, ``coef``
+    on the device: :func:`contactlab.physics.master.evaluate` with the array module ``xp``
+    (one text for numpy and CuPy). A non-finite ``y`` gives non-finite curves (the panel
+    index is clipped, never read outside the table)."""
+    return _master.evaluate(coef, y_scale, y, y0, m0, scaled, power, xp=xp)
 
 
 def _origin(xp: Any, st: dict, idx: Any) -> tuple[Any, Any, Any]:

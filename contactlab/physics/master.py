@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -111,9 +112,9 @@ class MasterCurve:
 
 
 def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
-             m0: float = 0.0, scaled: bool = True, power: int = 1
+             m0: float = 0.0, scaled: bool = True, power: int = 1, xp: Any = np
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Evaluate the three curves of ``coef`` at ``y`` (numpy reference of the kernel).
+    """Evaluate the three curves of ``coef`` at ``y`` (the reference of the compiled kernel).
 
     The table holds ``t``, ``m/s^k`` and ``q/s^(2k)`` (smooth and non-zero at ``s = 0``, so
     torque and dissipation keep their relative accuracy as ``y → 0``), as monomials in the
@@ -121,12 +122,18 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
     ``s = r/(1 + r)``, ``r = (y/y_s)^(1/k)``. Flat punch (``y0 > 0``, ``scaled`` False): ``t = 1``,
     ``m = m0 y``, ``q = 0`` up to ``y0``; the table holds ``t``, ``m``, ``q`` in
     ``s = (y - y0)/(y - y0 + y_s)`` beyond.
+
+    ``xp`` is the array module of ``coef`` and ``y`` (numpy by default, CuPy on a GPU): only
+    ufuncs, ``where``, ``clip`` and integer gathers are used, so one text serves both. The
+    panel index is clipped to the table: for ``y >= 0`` (and ``-0.0``) it already lies in it,
+    and a non-finite ``y`` (``inf / inf`` in ``s``) gives NaN curves instead of an index
+    outside the table.
     """
     if y0 > 0.0:
         stuck = y <= y0
-        t, m, q = evaluate(coef, y_scale, np.maximum(y - y0, 0.0), 0.0, 0.0, scaled)
-        return (np.where(stuck, 1.0, t), np.where(stuck, m0 * y, m),
-                np.where(stuck, 0.0, q))
+        t, m, q = evaluate(coef, y_scale, xp.maximum(y - y0, 0.0), 0.0, 0.0, scaled, xp=xp)
+        return (xp.where(stuck, 1.0, t), xp.where(stuck, m0 * y, m),
+                xp.where(stuck, 0.0, q))
     N = coef.shape[1]
     if power == 1:
         s = y / (y + y_scale)
@@ -134,7 +141,7 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
         r = (y / y_scale) ** (1.0 / power)
         s = r / (1.0 + r)
     z = s * N
-    j = np.minimum(z.astype(np.intp), N - 1)
+    j = xp.clip(z.astype(np.intp), 0, N - 1)
     u = 2.0 * (z - j) - 1.0
     out = []
     for k in range(3):
@@ -144,10 +151,10 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
             acc = acc * u + ck[j, p]
         out.append(acc)
     if not scaled:
-        return np.clip(out[0], 0.0, 1.0), out[1], out[2]
+        return xp.clip(out[0], 0.0, 1.0), out[1], out[2]
     if power != 1:
         s = s**power
-    return np.clip(out[0], 0.0, 1.0), out[1] * s, out[2] * (s * s)
+    return xp.clip(out[0], 0.0, 1.0), out[1] * s, out[2] * (s * s)
 
 
 def torsion_scales(n: float, E_star, G_t, mu, a, d):

@@ -174,6 +174,20 @@ def test_device_memory_checked_against_the_budget_before_allocating():
         cl.set_memory_budget(old)
 
 
+def test_overflowing_twist_refused_alike_by_numpy_and_xp_numpy():
+    """A twist so large that y = φ/φ_s overflows to inf (s = inf/inf, NaN): both backends
+    refuse the step with the law's overflow error naming the contact. The numpy law once cast
+    that NaN to the panel index -2^63 and failed with an IndexError; the shared master-curve
+    evaluation now clips the index into the table, as the device step did."""
+    for backend in ("numpy", "xp-numpy"):
+        law = cl.ContactLaw(cl.profiles.Paraboloid, R=[0.01, 0.02], friction=0.3,
+                            backend=backend, **KW)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)   # the numpy law's overflow in y
+            with pytest.raises(ParameterError, match=r"contact 1: .*overflows float64"):
+                law.step(force=[1.0, 2.0], twist=[1e-3, 1e307])
+
+
 class _DeviceArray(np.ndarray):
     """A numpy array standing in for a device array (its own type, host conversions through
     the module's asnumpy only)."""

@@ -122,3 +122,75 @@ def test_torsion_master_below_one_against_independent_reference(n):
         tt, m, _ = mc(np.array([2 * float(phi) / k]))
         assert tt[0] == pytest.approx(t, rel=MASTER_CURVE, abs=MASTER_CURVE)
         assert m[0] == pytest.approx(float(M) / M_full, rel=MASTER_CURVE)
+
+
+class _IndexWatch:
+    """numpy as an array module for :func:`master.evaluate`, counting the entries of the panel
+    index (the integer array it clips) that lay below the table (negative) before the clip."""
+
+    def __init__(self):
+        self.clips = 0
+        self.below = 0
+
+    def clip(self, a, lo, hi):
+        if np.asarray(a).dtype.kind == "i":
+            self.clips += 1
+            self.below += int(np.count_nonzero(np.asarray(a) < lo))
+        return np.clip(a, lo, hi)
+
+    def __getattr__(self, name):
+        return getattr(np, name)
+
+
+def _bits(v):
+    return np.ascontiguousarray(v, float).view(np.uint64)
+
+
+def _master_twists(mc, rng):
+    """Finite twists y >= -0.0: 8 random points in every panel of the map, its edges, the
+    ends (0, -0.0, the smallest subnormal, 1e-300, 1e300) and, for the flat punch, y0 and
+    its neighbours; for k = 1 also tiny negatives (s rounds into (-1/N, 0])."""
+    N, k = mc.panels, mc.power
+    s = np.concatenate([((np.arange(N)[:, None] + rng.random((N, 8))) / N).ravel(),
+                        np.arange(N) / N])
+    y = mc.y0 + mc.y_scale * (s / (1.0 - s)) ** k
+    ends = [0.0, -0.0, 5e-324, 1e-300, 1e300]
+    if mc.y0 > 0:
+        ends += [mc.y0, np.nextafter(mc.y0, 0.0), np.nextafter(mc.y0, 1.0), 0.5 * mc.y0]
+    if k == 1:
+        ends += [-5e-324, -1e-300, -0.5 * mc.y_scale / (N + 1)]
+    return np.concatenate([y, ends])
+
+
+@pytest.mark.parametrize("n", [0.5, 2.0, np.inf], ids=["k4", "k1", "flat"])
+def test_evaluate_on_any_array_module_to_the_bit(n):
+    """``evaluate`` through an array module (numpy wrapped to count the panel indices its
+    clip moves up to 0) and through the device step's entry point
+    (``law_xp.torsion_curves``) equals the numpy route bit for bit on every panel, the ends
+    and the flat punch's stick branch; for every finite ``y >= -0.0`` (and tiny negatives
+    with k = 1) no panel index is negative, so the clip changes no bit there. ``inf`` and NaN
+    (s = inf/inf) give NaN curves: the index is clipped into the table, where it was once
+    read at -2^63 (IndexError)."""
+    from contactlab.physics import law_xp
+    mc = master.torsion_master(n)
+    y = _master_twists(mc, np.random.default_rng(11))
+    args = (mc.coef, mc.y_scale, y, mc.y0, mc.m0, mc.scaled, mc.power)
+    ref = master.evaluate(*args)
+    watch = _IndexWatch()
+    for got in (master.evaluate(*args, xp=watch), law_xp.torsion_curves(np, *args), mc(y)):
+        for a, b in zip(got, ref):
+            np.testing.assert_array_equal(_bits(a), _bits(b))
+    assert watch.clips == 1 and watch.below == 0
+    assert all(np.all(np.isfinite(v)) for v in ref)
+    # inf, NaN, the largest float (y/y_s overflows for k = 4; m0 y for the flat punch) and,
+    # for k = 4, a tiny negative (a fractional power of it is NaN)
+    edge = np.array([np.inf, np.nan, np.finfo(float).max] + ([-1e-300] if mc.power != 1 else []))
+    edge_args = (mc.coef, mc.y_scale, edge, mc.y0, mc.m0, mc.scaled, mc.power)
+    with np.errstate(invalid="ignore", over="ignore"):     # inf/inf, NaN cast to an index
+        ref = master.evaluate(*edge_args)
+        watch = _IndexWatch()
+        got = master.evaluate(*edge_args, xp=watch)
+    for a, b in zip(got, ref):
+        np.testing.assert_array_equal(_bits(a), _bits(b))
+        assert np.all(np.isnan(b[:2]))
+    assert watch.below == np.count_nonzero(np.isnan(ref[0])) >= 2
