@@ -505,7 +505,8 @@ class ContactLaw:
         if self.fast:
             res = self._step_fast(depth, force, displacement, twist, out)
         else:
-            res = self._step_numpy(depth, force, displacement, twist)
+            with np.errstate(all="ignore"):   # overflowing inputs: inf/NaN lanes, refused below
+                res = self._step_numpy(depth, force, displacement, twist)
             if out is not None:
                 for f in _OUT_FIELDS:
                     getattr(out, f)[...] = getattr(res, f)

@@ -53,7 +53,9 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
             r = (y / y_scale) ** (1.0 / kp)
             s = r / (1.0 + r)
         z = s * N
-        j = min(int(z), N - 1)
+        # a NaN z (an input overflowing y to inf) takes panel 0 instead of casting NaN to an
+        # index: the curves stay NaN and the law refuses the step; finite z >= 0 is unchanged
+        j = min(int(z if z >= 0.0 else 0.0), N - 1)
         u = 2.0 * (z - j) - 1.0
         P = coef.shape[2]
         t = coef[0, j, P - 1]
