@@ -354,6 +354,10 @@ class Rings(Foundation):
         w = _ta.empty()
         slip = np.zeros(r.size)
         fallback = 0
+        # the ring solver's last Cholesky factor (torsion_rings.box_step's memo): its steps come
+        # in runs whose next step mostly starts from the last one's stuck set
+        factors: dict = {}
+        ring_E: tuple = (None, 0.0)     # (density, its energy) of the last ring step
         slide_key = None        # (radius, μp) of the last full-sliding density computed
         snap_data: dict[int, dict] = {}
         i = 0
@@ -404,7 +408,8 @@ class Rings(Foundation):
                                                                       edge_j))
                                 slide_key = (edge_j, bj)
                             out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
-                                                st.twist, st.active, slip=bool(snaps), slide=slide)
+                                                st.twist, st.active, slip=bool(snaps), slide=slide,
+                                                memo=factors)
                             w_o = w
                             w, z, lam_slip, dphi, gross, c_stick, st.active, it, book = out
                             M = _ta.torque(w, G_t)
@@ -412,7 +417,11 @@ class Rings(Foundation):
                             # (physics.torsion_energy)
                             if "ring" in book:
                                 fallback += 1
-                                en = _te.ring_step_energy(w_o, w, G_t, book["ring"])
+                                # a run of ring steps: the old density's energy is the last
+                                # one's new (the same density, the same bits)
+                                en = _te.ring_step_energy(w_o, w, G_t, book["ring"],
+                                                          ring_E[1] if ring_E[0] is w_o else None)
+                                ring_E = (w, en["stored"])
                             elif book["turn"] is None:     # gross sliding, twist held
                                 en = _te.step_energy(w_o, w, G_t, gross=None)
                             else:
@@ -444,11 +453,13 @@ class Rings(Foundation):
                             if ctrl == "twist":
                                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
                                                                 dphi=target[j] - st.twist,
-                                                                guess=st.active, C=rings.C)
+                                                                guess=st.active, C=rings.C,
+                                                                memo=factors)
                             else:
                                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
                                                                 torque=float(target[j]),
-                                                                guess=st.active, C=rings.C)
+                                                                guess=st.active, C=rings.C,
+                                                                memo=factors)
                             gross = not np.isfinite(dphi)
                             if gross:       # torque beyond full sliding: gross sliding, the
                                 # twist turned by the smallest increment at which all slides
@@ -584,7 +595,7 @@ def _longest_leaf(seg) -> int:
 
 
 def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, slip=True,
-                  slide=None):
+                  slide=None, memo=None):
     """One step on the punch density: the single-slip-annulus step of
     :mod:`contactlab.physics.torsion_annulus` when its checks hold, else the ring solver's
     box-constrained step from the point tractions of ``w`` (its result turned back into a
@@ -594,7 +605,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     annulus step and the turn of its density (``sense``, ``turn``), or where the ring solver took
     the step its dissipation (``ring``). ``slip=False``
     skips the slip increments where the checks do not need them; ``slide`` is the step's
-    full-sliding density when known."""
+    full-sliding density when known; ``memo`` the ring solver's factor memo (its ``box_step``)."""
     r, b, jumps = rings.points, rings.boundaries, rings.jumps
     if slide is None:
         slide = _ta.nonnegative_psi(_ta.density(rings.lu, b, jumps, bound, radius))
@@ -636,7 +647,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     z_old = _ta.traction(w, r, G_t, columns=rings.table)
     if ctrl == "twist":
         z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
-                                        C=rings.C)
+                                        C=rings.C, memo=memo)
     else:
         # the ring solver's torque g·z of the old tractions differs from the density's exact
         # torque by its discretisation error: aim its step at the increment of the torque, not
@@ -645,7 +656,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         M_w = _ta.torque(w, G_t)
         z, lam, dphi, it = _tr.box_step(H, g, z_old, bound,
                                         torque=target + float(g @ z_old) - M_w, guess=active,
-                                        C=rings.C)
+                                        C=rings.C, memo=memo)
     gross = not np.isfinite(dphi)
     if gross:       # all slides: the smallest turn at which it does (held while the force falls)
         z, lam, dphi = _tr.gross_step(H, g, z_old, bound, float(np.sign(target)))

@@ -24,7 +24,8 @@ increment at ``r`` is ``Δs(r) = ∫_0^r Δw(t) K(r, t) dt`` with
 displacement outside a punch), closed form on each piece.
 
 A contact without a friction limit never slips: its density is a sum of rigid punches at the
-contact radii of its steps (:func:`punch_step`), exact.
+contact radii of its steps (:func:`punch_step`, exact; from
+:mod:`contactlab.physics.torsion_punches`).
 
 All functions are pure: arrays in, arrays out.
 """
@@ -37,6 +38,7 @@ import scipy.linalg as _la
 
 from ..numeric import normal_kernels as _normal_kernels
 from ..numeric import ring_kernels as _ring_kernels
+from .torsion_punches import punch_energy, punch_step, punch_torque, punch_traction
 
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
@@ -47,6 +49,7 @@ __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "d
 ROOT_XTOL = 1e-15
 #: relative slack of the checks of a step (traction within μp inside ``c``; slip direction)
 CHECK_RTOL = 1e-9
+_WHY_INSIDE = "traction beyond the friction limit inside the stick radius"
 
 #: a piecewise-linear density: (lo, hi, wl, wr), each an array over the pieces, sorted, abutting
 Pieces = tuple
@@ -628,6 +631,12 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
         on = ((bound > 0) | (r < reach)) & (r > c)
         ds = np.zeros(r.size)
+        # without the increments the traction check first: a step with a second slip zone
+        # (the ring solver's) fails it and needs no increments (only the check named may differ)
+        inside_ok = None if slip else _inside_ok(w, r, c, bound, G_t, table)
+        if inside_ok is False:
+            return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross,
+                    "slip": ds, "ok": False, "why": _WHY_INSIDE}
         # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus must point the way
         # of s: since K >= 0, s Δw >= 0 on the annulus (and s × the gross turn >= 0) suffices;
         # else (or when the increments are wanted) they are computed at the points
@@ -642,14 +651,19 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
             ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
             if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
-        if not why and c > 0:
-            inside = r < c
-            if inside.any():
-                tau = traction(w, r[inside], G_t, table)
-                if np.any(np.abs(tau) > bound[inside] * (1 + CHECK_RTOL)):
-                    why = "traction beyond the friction limit inside the stick radius"
+        if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table):
+            why = _WHY_INSIDE
     return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
             "ok": not why, "why": why}
+
+
+def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float,
+               table: NodeTable | None) -> bool:
+    """:func:`step`'s check inside the stick radius: the traction at the points ``r < c``
+    within ``μ p`` (``bound``)."""
+    inside = r < c
+    return c <= 0 or not inside.any() or not bool(np.any(
+        np.abs(traction(w, r[inside], G_t, table)) > bound[inside] * (1 + CHECK_RTOL)))
 
 
 def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:
@@ -729,68 +743,3 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     # keep the sub-pieces where Ψ_p >= 0 (its sign at the midpoint: no root inside)
     neg = psi(p, 0.5 * (nlo + nhi)) < 0.0
     return nlo, nhi, np.where(neg, 0.0, vl), np.where(neg, 0.0, vr)
-
-
-# ---- no friction limit: the density is a sum of rigid punches (point masses) -------------------
-def punch_step(t: np.ndarray, m: np.ndarray, radius: float, G_t: float, *,
-               dphi: float | None = None, target_torque: float | None = None):
-    """One step of a contact without a friction limit (nothing slips), exact.
-
-    The density is ``Σ m_k δ(t − t_k)``: rigid punches of radii ``t_k`` turned by ``m_k``. With
-    no slip inside the new contact radius ``a`` the increment is a rigid punch of radius ``a``;
-    the punches beyond ``a`` leave (the points outside carry no traction) and the rigid turn they
-    gave the points inside is put back into the punch at ``a`` (points entering the contact start
-    traction-free: they keep the displacement they had).
-
-    Parameters
-    ----------
-    t, m : ndarray
-        Punch radii (m, sorted) and turns (rad) before the step.
-    radius : float
-        Contact radius of the step, m.
-    G_t : float
-        Torsional modulus, Pa.
-    dphi, target_torque : float
-        Twist increment (rad) or the torque to reach (N·m); exactly one.
-
-    Returns
-    -------
-    t, m : ndarray
-        Punches after the step.
-    dphi : float
-        The twist increment, rad.
-    """
-    keep = t < radius
-    gone = float(np.sum(m[~keep]))
-    t, m = t[keep], m[keep]
-    k = 16.0 / 3.0 * G_t
-    if target_torque is None:   # exactly one of dphi, target_torque is given
-        add = float(cast(float, dphi)) + gone
-    else:
-        add = (float(target_torque) - k * float(np.sum(t ** 3 * m))) / (k * radius ** 3)
-        dphi = add - gone
-    return np.append(t, radius), np.append(m, add), float(cast(float, dphi))
-
-
-def punch_torque(t: np.ndarray, m: np.ndarray, G_t: float) -> float:
-    """Torque ``(16/3) G_t Σ t_k³ m_k``, N·m."""
-    return float(16.0 / 3.0 * G_t * np.sum(t ** 3 * m))
-
-
-def punch_energy(t: np.ndarray, m: np.ndarray, G_t: float) -> float:
-    """Elastic energy ``8 G_t ∫ x² Ψ² dx`` with ``Ψ(x) = Σ_{t_k > x} m_k`` (a step function), J."""
-    if t.size == 0:
-        return 0.0
-    order = np.argsort(t, kind="stable")
-    ts, ms = t[order], m[order]
-    tail = np.cumsum(ms[::-1])[::-1]                    # Ψ on (t_{k-1}, t_k)
-    lo = np.concatenate([[0.0], ts[:-1]])
-    return float(8.0 * G_t * np.sum(tail ** 2 * (ts ** 3 - lo ** 3)) / 3.0)
-
-
-def punch_traction(t: np.ndarray, m: np.ndarray, r: np.ndarray, G_t: float) -> np.ndarray:
-    """Traction ``(4 G_t/π) Σ_{t_k > r} m_k r / sqrt(t_k² − r²)`` at ``r`` (Reissner–Sagoci), Pa."""
-    rr = np.asarray(r, float)[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        k = np.where(t[None, :] > rr, rr / np.sqrt(np.maximum(t * t - rr * rr, 1e-300)), 0.0)
-    return 4.0 * G_t / np.pi * (k @ m)

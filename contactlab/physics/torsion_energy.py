@@ -216,12 +216,15 @@ def ring_dissipation(H: np.ndarray, z_old: np.ndarray, z: np.ndarray, lam: np.nd
     return D
 
 
-def ring_step_energy(old: tuple, new: tuple, G_t: float, ring: float) -> dict:
+def ring_step_energy(old: tuple, new: tuple, G_t: float, ring: float,
+                     stored_old: float | None = None) -> dict:
     """Energy of a step taken by the ring solver (two slip zones): its dissipation in its own
     measure (:func:`ring_dissipation`), the elastic energies of the densities, and the work that
     balances them (``E_n − E_o + D``; it differs from ``∫ M dφ`` by the ring discretisation:
-    the ring step's energy measure is not the density's); keys of :func:`step_energy`."""
-    E_o, E_n = energy(old, G_t), energy(new, G_t)
+    the ring step's energy measure is not the density's); keys of :func:`step_energy`.
+    ``stored_old``: :func:`energy` of ``old`` when known (the last ring step's ``stored``)."""
+    E_o = energy(old, G_t) if stored_old is None else float(stored_old)
+    E_n = energy(new, G_t)
     D = float(ring)
     return {"work": E_n - E_o + D, "stored": E_n, "stored_old": E_o, "dissipated": D}
 

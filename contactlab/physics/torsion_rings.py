@@ -50,6 +50,7 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
+import functools
 from typing import cast
 
 import numpy as np
@@ -295,16 +296,31 @@ def _pos_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     inverse (Cholesky-factored when the ring set is built), whose eigenvalues interlace theirs,
     so they are no worse conditioned than those. Not positive definite: ``LinAlgError``, as
     scipy's."""
-    if a.shape[0] == 0:
+    return _sub_solve(lambda: a, a.shape[0], b)
+
+
+def _sub_solve(block, size: int, b: np.ndarray, memo: dict | None = None,
+               key: tuple | None = None) -> np.ndarray:
+    """:func:`_pos_solve` of the matrix ``block()`` (``size`` unknowns) with its Cholesky factor
+    kept in ``memo`` under ``key``: a later solve with the same key (the same principal block of
+    the same matrix) reuses the factor instead of building and factoring the block again, the
+    same bits (``potrf`` of the same values, then ``potrs``)."""
+    if size == 0:
         return np.empty(b.shape)
-    if a.shape[0] == 1:                   # scipy divides (no factorisation) for one unknown
+    if size == 1:                         # scipy divides (no factorisation) for one unknown
+        a = block()
         if a[0, 0] == 0.0:
             raise np.linalg.LinAlgError("A singular matrix detected.")
         return b / a[0, 0]
-    c, info = _potrf(a, lower=0, clean=0)
-    if info > 0:
-        raise np.linalg.LinAlgError("the ring solver's system is not positive definite "
-                                    f"(leading minor {info})")
+    if memo is not None and memo.get("key") == key:
+        c = memo["factor"]
+    else:
+        c, info = _potrf(block(), lower=0, clean=0)
+        if info > 0:
+            raise np.linalg.LinAlgError("the ring solver's system is not positive definite "
+                                        f"(leading minor {info})")
+        if memo is not None:
+            memo["key"], memo["factor"] = key, c
     x, info = _potrs(c, b, lower=0)
     if info != 0:
         raise np.linalg.LinAlgError(f"potrs failed (info={info})")
@@ -321,27 +337,38 @@ def _block(M: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
     return M.compress(rows, axis=0).compress(cols, axis=1)
 
 
-def _solve_free(H, rhs, F, zA, A):
+def _memo_key(memo: dict | None, M: np.ndarray, mask: np.ndarray) -> tuple | None:
+    """The key of the principal block ``mask`` of the matrix ``M`` in a factor memo (``None``:
+    no memo); the memo holds ``M`` while its key names it."""
+    if memo is None:
+        return None
+    memo.setdefault("held", {})[id(M)] = M
+    return (id(M), mask.tobytes())
+
+
+def _solve_free(H, rhs, F, zA, A, memo=None):
     HF = H.compress(F, axis=0)
     r = rhs[F] - HF.compress(A, axis=1) @ zA if zA.size else rhs[F]
-    return _pos_solve(HF.compress(F, axis=1), r)
+    return _sub_solve(lambda: HF.compress(F, axis=1), r.shape[0], r, memo,
+                      _memo_key(memo, H, F))
 
 
-def _solve_active(C, rhs_cols, A, zA):
+def _solve_active(C, rhs_cols, A, zA, memo=None):
     """Solution with the multipliers of the active set (``H = C⁻¹``): ``z = C(rhs − λ)``,
     ``C_AA λ_A = (C rhs)_A − z_A``; cheaper than the free-set solve when few points are active."""
     Cr = C @ rhs_cols
     if not A.any():
         return Cr, np.zeros((0, *rhs_cols.shape[1:]))
     rhs_A = Cr[A] - (zA if rhs_cols.ndim == 1 else np.stack([zA, np.zeros_like(zA)], axis=1))
-    lamA = _pos_solve(_block(C, A, A), rhs_A)
+    lamA = _sub_solve(lambda: _block(C, A, A), rhs_A.shape[0], rhs_A, memo,
+                      _memo_key(memo, C, A))
     return Cr - C[:, A] @ lamA, lamA
 
 
 def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray, *,
              dphi: float | None = None, torque: float | None = None,
-             guess: np.ndarray | None = None, C: np.ndarray | None = None
-             ) -> tuple[np.ndarray, np.ndarray, float, int]:
+             guess: np.ndarray | None = None, C: np.ndarray | None = None,
+             memo: dict | None = None) -> tuple[np.ndarray, np.ndarray, float, int]:
     """One load step: the box-constrained QP of the module docstring, twist or torque controlled.
 
     Parameters
@@ -361,6 +388,12 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
     C : ndarray, optional
         ``H⁻¹``; when given, each pivot solves the smaller of the free-set system (size of the
         stuck set) and the active-set system (size of the sliding and out-of-contact set).
+    memo : dict, optional
+        Keeps the Cholesky factor of the last system solved (an empty dict to start, kept by
+        the caller between the steps of one run with the same ``H`` and ``C``): a step whose
+        first pivot meets the last step's stuck (or active) set reuses it, the same bits. The
+        ring solver's steps come in runs (a second slip zone lasts many steps), most of them
+        one pivot from their guess, the last step's final set.
 
     Returns
     -------
@@ -390,10 +423,10 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         if C is not None and A.sum() < F.sum():
             if torque is None:
                 rhs = base + dphi * g
-                z, _ = _solve_active(C, rhs, A, zA)
+                z, _ = _solve_active(C, rhs, A, zA, memo)
                 d = dphi
             else:
-                cols, _ = _solve_active(C, np.stack([base, g], axis=1), A, zA)
+                cols, _ = _solve_active(C, np.stack([base, g], axis=1), A, zA, memo)
                 d = (torque - g @ cols[:, 0]) / (g @ cols[:, 1])
                 z = cols[:, 0] + d * cols[:, 1]
                 rhs = base + d * g
@@ -401,14 +434,15 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         elif torque is None:
             rhs = base + dphi * g
             if F.any():
-                z[F] = _solve_free(H, rhs, F, zA, A)
+                z[F] = _solve_free(H, rhs, F, zA, A, memo)
             d = dphi
         else:
             if F.any():
                 both = np.stack([base, g], axis=1)
-                HFF = _block(H, F, F)
                 r0 = both[F, 0] - (_block(H, F, A) @ zA if zA.size else 0.0)
-                sol = _pos_solve(HFF, np.stack([r0, both[F, 1]], axis=1))
+                sol = _sub_solve(functools.partial(_block, H, F, F), int(F.sum()),
+                                 np.stack([r0, both[F, 1]], axis=1), memo,
+                                 _memo_key(memo, H, F))
                 gz0 = g[A] @ zA + g[F] @ sol[:, 0]
                 gz1 = g[F] @ sol[:, 1]
                 d = (torque - gz0) / gz1

@@ -137,6 +137,32 @@ def test_step_reports_a_failed_check():
     assert not out["ok"] and "friction limit" in out["why"]
 
 
+
+def test_step_without_increments_checks_the_traction_first(monkeypatch):
+    # a step with a second slip zone (the ring solver's) fails the traction check; without the
+    # increments wanted it is found before the slip check's difference and integrals are formed
+    # (a failed attempt at a third of the cost), with the verdict and density of the full check
+    b, r, m, bound, slide = _hertz_rings(50)
+    old = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=hertz_twist(0.5), r=r, bound=bound)["w"]
+    weak = ta.density(m["lu"], b, np.zeros(0, int), bound / 100, 1.0)
+    full = ta.step(old, weak, 1.0, 1.0, dphi=0.0, r=r, bound=bound / 100, slip=True)
+
+    def formed(*args):
+        raise AssertionError("the slip check was formed")
+
+    monkeypatch.setattr(ta, "difference", formed)
+    quick = ta.step(old, weak, 1.0, 1.0, dphi=0.0, r=r, bound=bound / 100, slip=False)
+    assert not full["ok"] and not quick["ok"] and quick["why"] == full["why"]
+    assert quick["c"] == full["c"] and all(np.array_equal(u, v) for u, v in
+                                           zip(quick["w"], full["w"]))
+    monkeypatch.undo()
+    # a step that passes: the same verdict and density either way
+    for kw in ({"dphi": 0.1 * hertz_twist(0.5)}, {"dphi": -hertz_twist(0.3)}):
+        a = ta.step(old, slide, 1.0, 1.0, r=r, bound=bound, slip=True, **kw)
+        q = ta.step(old, slide, 1.0, 1.0, r=r, bound=bound, slip=False, **kw)
+        assert a["ok"] and q["ok"] and a["c"] == q["c"]
+        assert all(np.array_equal(u, v) for u, v in zip(a["w"], q["w"]))
+
 def test_rigid_punches_energy_and_a_shrinking_contact():
     t = np.array([0.3, 0.55, 0.8, 1.0])
     m = np.array([2.0, -1.0, 0.5, 1.5])

@@ -168,3 +168,36 @@ def test_gross_step_turns_by_the_smallest_increment_at_which_everything_slides()
     assert np.any(np.abs(zb) < 1.2 * bound * (1 - 1e-12))
     _, lam2, d2 = tr.gross_step(H, g, z, 0.8 * bound, 1.0)
     assert d2 == 0.0 and np.all(lam2 >= 0.0)
+
+
+@pytest.mark.parametrize("control", ["twist", "torque"])
+def test_box_step_memo_reuses_the_last_factor_with_the_same_bits(control, monkeypatch):
+    # a run of box steps each starting from the last one's active set (the ring solver's steps
+    # during a second slip zone): with a memo, a pivot on the same stuck/active set as the
+    # previous solve skips the Cholesky factorisation, and every result is bit-identical
+    b = np.linspace(0.0, 1.0, 61)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    H, C, g = m["H"], m["C"], m["g"]
+    p = np.sqrt(np.clip(1 - (r / 0.9) ** 2, 0, None))
+    factored = []
+    potrf = tr._potrf
+    monkeypatch.setattr(tr, "_potrf", lambda *a, **k: factored.append(1) or potrf(*a, **k))
+
+    def run(memo):
+        z, act, out = np.zeros(r.size), None, []
+        for k in range(40):
+            bound = 0.3 * p * (1 - 0.004 * k)          # the limit falls: slip from the edge
+            kw = ({"dphi": 2e-3 if k < 20 else -1e-3} if control == "twist" else
+                  {"torque": float(g @ z) + (2e-4 if k < 20 else -1e-4)})
+            z, lam, d, _ = tr.box_step(H, g, z, bound, guess=act, C=C, memo=memo, **kw)
+            act = np.where(bound == 0, 2, np.where(lam == 0, 0, np.sign(z))).astype(int)
+            out.append((z, lam, d))
+        return out
+
+    plain = run(None)
+    n_plain = len(factored)
+    memo_run = run({})
+    assert len(factored) - n_plain < 0.7 * n_plain           # factors reused
+    for (z0, l0, d0), (z1, l1, d1) in zip(plain, memo_run):
+        assert np.array_equal(z0, z1) and np.array_equal(l0, l1) and d0 == d1
