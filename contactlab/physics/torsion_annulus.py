@@ -430,7 +430,11 @@ def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
 
 
 def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
-    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends)."""
+    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends); the
+    last one kept (a step's and its energy's are the same)."""
+    last = _LAST_DIFF[0]
+    if last[0] is new and last[1] is old and last[2] == start:
+        return last[3]
     xs = np.concatenate([new[0], new[1], old[0], old[1], [start]])
     xs = _unique(xs[xs >= start])
     if xs.size < 2:
@@ -438,7 +442,9 @@ def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
     lo, hi = xs[:-1], xs[1:]
     nl, nr = _ends(new, lo, hi)
     ol, orr = _ends(old, lo, hi)
-    return lo, hi, nl - ol, nr - orr
+    out = (lo, hi, nl - ol, nr - orr)
+    _LAST_DIFF[0] = (new, old, start, out)      # one tuple, replaced whole (threads)
+    return out
 
 
 def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -518,6 +524,7 @@ def _total(p: Pieces) -> float:
 _LAST_TOTAL: list = [(None, 0.0), (None, 0.0)]
 #: the last twist step's (old, slide, radius, (piece ends, Ψ of both there)) (:func:`step`)
 _LAST_ENDS: list = [(None, None, None, None)]
+_LAST_DIFF: list = [(None, None, None, None)]     #: the last (new, old, start, difference)
 
 
 _RTOL = 4 * np.finfo(float).eps
@@ -679,7 +686,12 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus must point the way
         # of s: since K >= 0, s Δw >= 0 on the annulus (and s × the gross turn >= 0) suffices;
         # else (or when the increments are wanted) they are computed at the points
-        dw = difference(w, old, c)
+        # w − old from 0 (kept: the step's energy takes it), above c the check's (the same
+        # intervals and values where c is one of its ends)
+        full = difference(w, old, 0.0)
+        i = int(np.searchsorted(full[0], c))
+        dw = (tuple(u[i:] for u in full) if i < full[0].size and full[0][i] == c else
+              difference(w, old, c))
         slack = -CHECK_RTOL * _scale(slide)
         sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= slack))
                       and bool(np.all(s * dw[3] >= slack)))
