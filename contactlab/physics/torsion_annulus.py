@@ -432,9 +432,9 @@ def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
 def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
     """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends); the
     last one kept (a step's and its energy's are the same)."""
-    last = _LAST_DIFF[0]
-    if last[0] is new and last[1] is old and last[2] == start:
-        return last[3]
+    last, kern = _LAST_DIFF[0], _kernels()     # (kept per route: the routes stay tested)
+    if last[0] is new and last[1] is old and last[2] == start and last[3] is kern:
+        return last[4]
     xs = np.concatenate([new[0], new[1], old[0], old[1], [start]])
     xs = _unique(xs[xs >= start])
     if xs.size < 2:
@@ -443,7 +443,7 @@ def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
     nl, nr = _ends(new, lo, hi)
     ol, orr = _ends(old, lo, hi)
     out = (lo, hi, nl - ol, nr - orr)
-    _LAST_DIFF[0] = (new, old, start, out)      # one tuple, replaced whole (threads)
+    _LAST_DIFF[0] = (new, old, start, kern, out)      # one tuple, replaced whole (threads)
     return out
 
 
@@ -522,9 +522,9 @@ def _total(p: Pieces) -> float:
 
 
 _LAST_TOTAL: list = [(None, 0.0), (None, 0.0)]
-#: the last twist step's (old, slide, radius, (piece ends, Ψ of both there)) (:func:`step`)
-_LAST_ENDS: list = [(None, None, None, None)]
-_LAST_DIFF: list = [(None, None, None, None)]     #: the last (new, old, start, difference)
+#: the last twist step's (old, slide, radius, kernels, (piece ends, Ψ of both there))
+_LAST_ENDS: list = [(None,) * 5]
+_LAST_DIFF: list = [(None,) * 5]     #: the last (new, old, start, kernels, difference)
 
 
 _RTOL = 4 * np.finfo(float).eps
@@ -624,15 +624,16 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     kind = "twist" if target_torque is None else "torque"
     # the piece ends of both densities below the radius, from the edge inwards (the first is
     # the radius itself): the twist (torque) of both densities there, once
-    last = _LAST_ENDS[0]      # (a shrinking step's energy retakes it with dphi = 0: kept)
-    if target_torque is None and last[0] is old and last[1] is slide and last[2] == radius:
-        xs, f_sl, f_old = last[3]
+    last, kern = _LAST_ENDS[0], _kernels()   # (a shrinking step's energy retakes it: kept)
+    if (target_torque is None and last[0] is old and last[1] is slide and last[2] == radius
+            and last[3] is kern):
+        xs, f_sl, f_old = last[4]
         target = float(cast(float, dphi))
     elif target_torque is None:   # kind == "twist": the twist increment is given
         xs = np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]])
         xs = _unique(xs[xs <= radius])[::-1]
         f_sl, f_old = psi(slide, xs), psi(old, xs)
-        _LAST_ENDS[0] = (old, slide, radius, (xs, f_sl, f_old))
+        _LAST_ENDS[0] = (old, slide, radius, kern, (xs, f_sl, f_old))
         target = float(cast(float, dphi))
     else:
         xs = np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]])
