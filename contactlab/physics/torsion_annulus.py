@@ -778,7 +778,8 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     with np.errstate(divide="ignore", invalid="ignore"):
         xs = np.where(be != 0, -al / np.where(be != 0, be, 1.0), lo)
     xs = np.minimum(np.maximum(xs, lo), hi)
-    psi_hi, psi_lo, psi_xs = np.split(psi(p, np.concatenate([hi, lo, xs])), 3)
+    P, n = psi(p, np.concatenate([hi, lo, xs])), lo.size
+    psi_hi, psi_lo, psi_xs = P[:n], P[n:2 * n], P[2 * n:]
     low = np.minimum(np.minimum(psi_lo, psi_hi), psi_xs)
     if low.min() >= 0.0:
         return p
