@@ -89,6 +89,18 @@ def _lin(p: Pieces):
     return wl - be * lo, be
 
 
+def _unique(a: np.ndarray) -> np.ndarray:
+    """``np.unique`` of a 1-D float array, the same values (its sort and mask, without its
+    wrapper's cost on the solver's small arrays; a nan, which it merges, goes to it)."""
+    a = np.sort(a)
+    if a.size and a[-1] != a[-1]:
+        return np.unique(a)
+    keep = np.empty(a.size, bool)
+    keep[:1] = True
+    np.not_equal(a[1:], a[:-1], out=keep[1:])
+    return a[keep]
+
+
 def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
     """``Ψ(x) = ∫_x^∞ w dt`` at ``x``, m per (rad/m) (running sums: ``O((n + m) log n)``)."""
     lo, hi, _, _ = p
@@ -170,7 +182,7 @@ class NodeTable:
         if r.size == 0:
             return None
         k = np.minimum(np.searchsorted(self.r, r), self.r.size - 1)
-        return k if np.array_equal(self.r[k], r) else None
+        return k if bool((self.r[k] == r).all()) else None      # (shapes equal)
 
     def columns(self, r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:func:`_antiderivatives` at the radii ``r`` and ``nodes``, the same bits: the columns
@@ -198,12 +210,16 @@ class NodeTable:
         F0, F1 = self.arrays[kind]
         k = np.minimum(np.searchsorted(self.nodes, nodes), self.nodes.size - 1)
         hit = self.nodes[k] == nodes
+        whole = bool(hit.all())
         v0, v1 = np.zeros(self.nodes.size), np.zeros(self.nodes.size)
-        v0[k[hit]], v1[k[hit]] = c0[hit], c1[hit]
+        if whole:       # every node in the table (the usual case): no masks
+            v0[k], v1[k] = c0, c1
+        else:
+            v0[k[hit]], v1[k[hit]] = c0[hit], c1[hit]
         # the rows asked for lie in one contiguous band of the table (radii sorted)
         i0, i1 = int(rows.min()), int(rows.max()) + 1
         out = (F0[i0:i1] @ v0 + F1[i0:i1] @ v1)[rows - i0]
-        if not hit.all():
+        if not whole:
             make = _antiderivatives if kind == "traction" else _slip_antiderivatives
             A, S = make(r, nodes[~hit])
             out += A @ c0[~hit] + S @ c1[~hit]
@@ -229,7 +245,7 @@ def traction(p: Pieces, r: np.ndarray, G_t: float, table: NodeTable | None = Non
     al, be = _lin(p)
     r = np.asarray(r, float)
     rr = r[:, None]
-    if lo.size and np.array_equal(lo[1:], hi[:-1]):
+    if lo.size and bool((lo[1:] == hi[:-1]).all()):
         # abutting pieces: the antiderivatives arccosh(t/r) and sqrt(t² − r²) once per node
         # (t clipped to r: a piece below r gives 0, the piece holding r starts there)
         nodes = np.append(lo, hi[-1])
@@ -289,7 +305,7 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
     al, be = _lin(p)
     rr = np.asarray(r, float)[:, None]
     # abutting pieces share their ends: the antiderivatives once per node
-    shared = bool(lo.size) and np.array_equal(lo[1:], hi[:-1])
+    shared = bool(lo.size) and bool((lo[1:] == hi[:-1]).all())
     rows = None if table is None or not shared else table.rows(rr[:, 0])
     if table is not None and rows is not None:
         return 2.0 / np.pi * table.sums("slip", rows, rr[:, 0], np.append(lo, hi[-1]),
@@ -391,8 +407,10 @@ def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
     """The part of ``p`` below (or above) ``x``, the piece holding ``x`` split there."""
     lo, hi, wl, wr = p
     if keep_below:
-        m = lo < x
-        lo, hi, wl, wr = lo[m], hi[m], wl[m], wr[m]
+        # the pieces are sorted: ``lo < x`` is a leading run (a slice, the same values; a nan
+        # ``x`` keeps none, as the mask)
+        n = int(np.searchsorted(lo, x, "left")) if x == x else 0
+        lo, hi, wl, wr = lo[:n], hi[:n], wl[:n], wr[:n]
         if lo.size and hi[-1] > x:
             h = hi[-1] - lo[-1]
             wr = wr.copy()
@@ -400,8 +418,8 @@ def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
             wr[-1] = wl[-1] + (wr[-1] - wl[-1]) * (x - lo[-1]) / h
             hi[-1] = x
     else:
-        m = hi > x
-        lo, hi, wl, wr = lo[m], hi[m], wl[m], wr[m]
+        n = int(np.searchsorted(hi, x, "right")) if x == x else hi.size
+        lo, hi, wl, wr = lo[n:], hi[n:], wl[n:], wr[n:]
         if lo.size and lo[0] < x:
             h = hi[0] - lo[0]
             wl = wl.copy()
@@ -412,15 +430,21 @@ def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
 
 
 def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
-    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends)."""
-    xs = np.unique(np.concatenate([new[0], new[1], old[0], old[1], [start]]))
-    xs = xs[xs >= start]
+    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends); the
+    last one kept (a step's and its energy's are the same)."""
+    last, kern = _LAST_DIFF[0], _kernels()     # (kept per route: the routes stay tested)
+    if last[0] is new and last[1] is old and last[2] == start and last[3] is kern:
+        return last[4]
+    xs = np.concatenate([new[0], new[1], old[0], old[1], [start]])
+    xs = _unique(xs[xs >= start])
     if xs.size < 2:
         return tuple(np.zeros(0) for _ in range(4))
     lo, hi = xs[:-1], xs[1:]
     nl, nr = _ends(new, lo, hi)
     ol, orr = _ends(old, lo, hi)
-    return lo, hi, nl - ol, nr - orr
+    out = (lo, hi, nl - ol, nr - orr)
+    _LAST_DIFF[0] = (new, old, start, kern, out)      # one tuple, replaced whole (threads)
+    return out
 
 
 def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -473,7 +497,7 @@ def splice(old: Pieces, new: Pieces, c: float) -> Pieces:
     a, b = _cut(old, c, True), _cut(new, c, False)
     out = tuple(np.concatenate([u, v]) for u, v in zip(a, b))
     keep = out[1] > out[0]
-    return tuple(u[keep] for u in out)
+    return out if keep.all() else tuple(u[keep] for u in out)
 
 
 def _scale(p: Pieces) -> float:
@@ -481,12 +505,26 @@ def _scale(p: Pieces) -> float:
 
 
 def _total(p: Pieces) -> float:
-    """``Ψ(0) = ∫ w dt`` (rad)."""
+    """``Ψ(0) = ∫ w dt`` (rad); the last density's kept (a step's old density is the last
+    step's new one: the same tuple, never changed in place)."""
+    for last in _LAST_TOTAL:
+        if last[0] is p:
+            return last[1]
     lo, hi, _, _ = p
     if lo.size == 0:
         return 0.0
     al, be = _lin(p)
-    return float(np.sum(al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)))
+    v = float(np.sum(al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)))
+    # the last two (a shrinking step's energy takes one more step): pairs replaced whole, so
+    # threads read consistent pairs
+    _LAST_TOTAL[:] = [(p, v), _LAST_TOTAL[0]]
+    return v
+
+
+_LAST_TOTAL: list = [(None, 0.0), (None, 0.0)]
+#: the last twist step's (old, slide, radius, kernels, (piece ends, Ψ of both there))
+_LAST_ENDS: list = [(None,) * 5]
+_LAST_DIFF: list = [(None,) * 5]     #: the last (new, old, start, kernels, difference)
 
 
 _RTOL = 4 * np.finfo(float).eps
@@ -586,12 +624,20 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
     kind = "twist" if target_torque is None else "torque"
     # the piece ends of both densities below the radius, from the edge inwards (the first is
     # the radius itself): the twist (torque) of both densities there, once
-    xs = np.unique(np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]]))
-    xs = xs[xs <= radius][::-1]
-    if target_torque is None:   # kind == "twist": the twist increment is given
+    last, kern = _LAST_ENDS[0], _kernels()   # (a shrinking step's energy retakes it: kept)
+    if (target_torque is None and last[0] is old and last[1] is slide and last[2] == radius
+            and last[3] is kern):
+        xs, f_sl, f_old = last[4]
+        target = float(cast(float, dphi))
+    elif target_torque is None:   # kind == "twist": the twist increment is given
+        xs = np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]])
+        xs = _unique(xs[xs <= radius])[::-1]
         f_sl, f_old = psi(slide, xs), psi(old, xs)
+        _LAST_ENDS[0] = (old, slide, radius, kern, (xs, f_sl, f_old))
         target = float(cast(float, dphi))
     else:
+        xs = np.concatenate([old[0], old[1], slide[0], slide[1], [0.0, radius]])
+        xs = _unique(xs[xs <= radius])[::-1]
         M_sl = torque(slide, G_t)
         f_sl = M_sl - torque_below(slide, xs, G_t)
         f_old = -torque_below(old, xs, G_t)
@@ -622,7 +668,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
                           ROOT_XTOL * radius)
     signed = (slide[0], slide[1], s * slide[2], s * slide[3])
     w = splice(old, signed, c)
-    dpsi = _total(w) - _total(old)
+    t_old = _total(old)
+    dpsi = _total(w) - t_old
     why, ds = "", None
     if r is not None:
         assert bound is not None   # r and bound come together (Parameters)
@@ -640,7 +687,12 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         # slip increments Δs = ∫ Δw K dt (+ r × a gross turn) on the annulus must point the way
         # of s: since K >= 0, s Δw >= 0 on the annulus (and s × the gross turn >= 0) suffices;
         # else (or when the increments are wanted) they are computed at the points
-        dw = difference(w, old, c)
+        # w − old from 0 (kept: the step's energy takes it), above c the check's (the same
+        # intervals and values where c is one of its ends)
+        full = difference(w, old, 0.0)
+        i = int(np.searchsorted(full[0], c))
+        dw = (tuple(u[i:] for u in full) if i < full[0].size and full[0][i] == c else
+              difference(w, old, c))
         slack = -CHECK_RTOL * _scale(slide)
         sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= slack))
                       and bool(np.all(s * dw[3] >= slack)))
@@ -720,14 +772,15 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     lo, hi, wl, wr = p
     if lo.size == 0:
         return p
-    psi_hi = psi(p, hi)
-    psi_lo = psi(p, lo)
-    # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w)
+    # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w); Ψ at all
+    # three in one call (elementwise: the same values)
     al, be = _lin(p)
     with np.errstate(divide="ignore", invalid="ignore"):
         xs = np.where(be != 0, -al / np.where(be != 0, be, 1.0), lo)
     xs = np.minimum(np.maximum(xs, lo), hi)
-    low = np.minimum(np.minimum(psi_lo, psi_hi), psi(p, xs))
+    P, n = psi(p, np.concatenate([hi, lo, xs])), lo.size
+    psi_hi, psi_lo, psi_xs = P[:n], P[n:2 * n], P[2 * n:]
+    low = np.minimum(np.minimum(psi_lo, psi_hi), psi_xs)
     if low.min() >= 0.0:
         return p
     roots, h = _psi_roots(p, psi_hi)

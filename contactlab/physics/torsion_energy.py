@@ -71,8 +71,7 @@ _GAUSS = np.polynomial.legendre.leggauss(4)
 
 def _nodes(*dens: tuple) -> tuple[np.ndarray, np.ndarray]:
     """Gauss points and weights ``x² w`` on the intervals between all piece ends (and 0)."""
-    ends = np.unique(np.concatenate([np.zeros(1)] + [np.concatenate([d[0], d[1]])
-                                                     for d in dens]))
+    ends = _ta._unique(np.concatenate([np.zeros(1)] + [u for d in dens for u in d[:2]]))
     h = np.diff(ends)
     xg, wg = _GAUSS
     X = (ends[:-1, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]).ravel()
@@ -100,7 +99,8 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
     X, W = _nodes(*dens)
     k = 8.0 * G_t
     work = diss = 0.0
-    zero = np.zeros(1)
+    # Ψ at the nodes and at 0 in one call (elementwise: the same values)
+    X0 = np.append(X, 0.0)
     P0 = Pa = _ta.psi(dens[0], X)
     for (a, _), (b, family) in itertools.pairwise(chain):
         # the increment's Ψ from the difference density: exactly ΔΨ(0) where the stage leaves
@@ -108,7 +108,8 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
         # Ψ_a + ΔΨ keeps the balance exact to rounding even on pieces narrower than the
         # spacing of the floats around them
         diff = _ta.difference(b, a, 0.0)
-        dP = _ta.psi(diff, X)
+        dP = _ta.psi(diff, X0)
+        d0, dP = float(dP[-1]), dP[:-1]
         Pb = Pa + dP
         E_d = k * float(W @ (dP * dP))
         if family is None:
@@ -118,11 +119,10 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
             # the stage's stick radius): that turn's work M_b ΔΨ(0) is booked as work, the
             # dissipation from the slip relative to it (else the rounding turn times the whole
             # torque lands in the dissipation: −3.9e-20 J against a running total of 4.1e-9 J)
-            d0 = float(_ta.psi(diff, zero)[0])
             work += 2.0 * k * float(W @ Pb) * d0
             diss += 2.0 * k * float(W @ (Pb * (d0 - dP))) + E_d
         else:
-            dphi = float(_ta.psi(diff, zero)[0]) + gross
+            dphi = d0 + gross
             work += 2.0 * k * float(W @ Pb) * dphi - E_d
             diss += 2.0 * k * float(W @ (Pb * (dphi - dP)))
         Pa = Pb

@@ -127,6 +127,30 @@ def test_step_from_rest_places_the_stick_radius_inside_its_ring(c, control):
     assert np.all(np.abs(tau[r < out["c"]]) < bound[r < out["c"]])
 
 
+def test_kept_intermediates_give_the_results_of_fresh_densities():
+    # step keeps the last twist step's piece ends and Ψ there, difference its last result and
+    # the total Ψ(0) its last two, by the densities' identity: steps on the same densities with
+    # other twists (and the same differences asked again) are bitwise those of fresh copies
+    _, r, _, bound, slide = _hertz_rings(50)
+    old = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=hertz_twist(0.5), r=r, bound=bound)["w"]
+
+    def fresh(p):
+        return tuple(a.copy() for a in p)
+
+    def same(p, q):
+        return all(a.tobytes() == b.tobytes() for a, b in zip(p, q))
+
+    for dphi in (0.3 * hertz_twist(0.5), 0.0, -0.2 * hertz_twist(0.5)):
+        kept = ta.step(old, slide, 1.0, 1.0, dphi=dphi, r=r, bound=bound)
+        new = ta.step(fresh(old), fresh(slide), 1.0, 1.0, dphi=dphi, r=r, bound=bound)
+        assert [kept[k] for k in ("c", "dpsi", "gross", "ok")] == [
+            new[k] for k in ("c", "dpsi", "gross", "ok")]
+        assert same(kept["w"], new["w"]) and kept["slip"].tobytes() == new["slip"].tobytes()
+        assert same(ta.difference(kept["w"], old, 0.0),
+                    ta.difference(fresh(kept["w"]), fresh(old), 0.0))
+    assert len({ta.step(old, slide, 1.0, 1.0, dphi=d)["c"] for d in (0.1, 0.2, 0.3)}) == 3
+
+
 def test_step_reports_a_failed_check():
     # the twist held while the friction limit drops a hundredfold: no annulus reaching the edge
     # is needed by the twist, but the old traction inside is far beyond the new limit
