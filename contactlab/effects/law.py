@@ -51,6 +51,8 @@ DEFAULT_LOAD_RTOL = 1e-9
 DEFAULT_SPRINGS = 16
 #: the springs of a contact cover this multiple of its contact radius (grown when exceeded)
 DEFAULT_SPRING_COVER = 1.5
+_SWITCH_BLOCK = 8192        # contacts switched, then stepped, per block (~3.5 MB of rows)
+_NO_CONTACTS = np.zeros(0, np.int64)
 #: a step whose model error (:attr:`LawStep.model_error`) exceeds this for a quantity warns
 #: (once per law and quantity)
 MODEL_ERROR_WARN = 0.01
@@ -678,6 +680,7 @@ class ContactLaw:
             _per_step(key, v, size, "m" if key == "depth" else "N", nonneg=key == "force")
             _per_step("displacement", u if u is not None else 0.0, size, "m")
             _per_step("twist", phi if phi is not None else 0.0, size, "rad")
+        new = _NO_CONTACTS
         if dead:
             self._clear(np.flatnonzero(flag == 1))
         if off:
@@ -691,16 +694,13 @@ class ContactLaw:
                     f"{self.load_rtol!r}: this law is exact at constant normal load. Call "
                     "law.reset(mask) to restart the memory of contacts whose load changed, or "
                     "raise load_rtol.")
-            # compiled switch onto the springs: no temporaries per contact (the state it
-            # writes was allocated with the law), so no memory check here
+            # compiled switch onto the springs after the fused pass (which leaves them out):
+            # no temporaries per contact, so no memory check here
             pool = self._pool
             assert pool is not None
             new = np.flatnonzero(offm & (pool.slot < 0))
             if new.size:
-                pool.reserve(new.size)          # grown (rarely) before the kernel assigns rows
-                _kernel.switch_pass(new, a, self._flat, self.spring_cover, self.kc, self.n,
-                                    self._beta, self.friction, self.E_star, self.G_star,
-                                    self.G_torsion, self._chan, st, pool, self.parallel)
+                pool.reserve(new.size)          # grown (rarely) before the kernels assign rows
         if both and not self._warned:
             self._warned = True
             warnings.warn("ContactLaw: displacement and twist together are treated as two "
@@ -711,17 +711,29 @@ class ContactLaw:
         if self._pool is not None and self._pool.used:
             spr = np.flatnonzero((self._pool.slot >= 0) & (flag != 1))
             flag[spr] = 3                               # the fused pass leaves them out
+        if new.size:
+            flag[new] = 3
         mc = self._master
         Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
             u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
             self.G_torsion, self.n, mc, self._chan, self.parallel,
             None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                       out.torsion_stick_radius, out.dissipated_energy, out.exact))
-        if spr is not None and spr.size:        # (covers outgrown: regridded in the pass)
-            nf += _kernel.spring_pass(spr, d, a, u, phi, self.kc, self.n, self._beta,
-                                      self.friction, self.E_star, self.G_star, self.G_torsion,
-                                      self._pool, (Ft, ct, M, cm, dW), self.parallel, flag,
-                                      lambda g: _np_springs.regrid(self, g, a[g]))
+        # the switching contacts in blocks, each stepped on its springs while its fresh rows
+        # are still in cache, then those already on springs (covers outgrown: regridded)
+        B = _SWITCH_BLOCK
+        for part in [new[s:s + B] for s in range(0, new.size, B)] + [spr]:
+            if part is not None and part.size:
+                if part is not spr:
+                    _kernel.switch_pass(part, a, self._flat, self.spring_cover, self.kc, self.n,
+                                        self._beta, self.friction, self.E_star, self.G_star,
+                                        self.G_torsion, self._chan, st, self._pool,
+                                        self.parallel)
+                nf += _kernel.spring_pass(part, d, a, u, phi, self.kc, self.n, self._beta,
+                                          self.friction, self.E_star, self.G_star,
+                                          self.G_torsion, self._pool, (Ft, ct, M, cm, dW),
+                                          self.parallel, flag,
+                                          lambda g: _np_springs.regrid(self, g, a[g]))
         if nonfinite or nf:                             # overflow: refused, contacts reset
             self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
         if n_over:

@@ -343,24 +343,61 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         mu_E = mu[c] * E[c]
         du = u[c] - x_tan[r] if has_u else 0.0
         dp = phi[c] - x_tor[r] if has_phi else 0.0
-        Ft_j = 0.0
-        M_j = 0.0
-        e = 0.0
-        ct_j = aj
-        cm_j = aj
-        free_t = True
-        free_m = True
-        # cells from ``tail`` on lie beyond the contact in this step and the last (weight 0,
-        # limits 0): their elements are only clipped to zero (below); the products of a cell's
-        # left boundary are its left neighbour's right ones, carried (the same expressions,
-        # the same bits)
+        Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         tail = hi if dd != 0.0 else k + 1
+        # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
+        L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
         bl = cov * beta[0]
         bl2 = bl * bl
         bl3 = bl2 * bl
         gl = cp1 * bG[0]
         hl = cp2 * bH[0]
-        for i in range(min(tail, N)):
+        # the cells of weight 1, without a branch per cell: left of both edges when the depth
+        # moves, left of the edge cell when it holds (the left boundary is below a by at least
+        # the cell width: the clipped ratio is 1); a product with 1 is left out
+        inner = lo if dd != 0.0 else k
+        for i in range(inner):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            gr = cp1 * bG[i + 1]
+            hr = cp2 * bH[i + 1]
+            S = dj * w - (gr - gl)
+            T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+            gl, hl = gr, hr
+            S_old[r, i] = S
+            if has_u:
+                L = L2 * S
+                Kt = K2 * w
+                mo = m_tan[r, i]
+                trial = mo + Kt * du
+                mn = min(max(trial, -L), L)
+                m_tan[r, i] = mn
+                if Kt > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kt
+                Ft_j += mn
+                if free_t and abs(mn) >= L:
+                    free_t = False
+                    ct_j = min(bl, aj)
+            if has_phi:
+                L = L4 * T
+                Kr = K16 * ((br3 - bl3) / 3.0)
+                mo = m_tor[r, i]
+                trial = mo + Kr * dp
+                mn = min(max(trial, -L), L)
+                m_tor[r, i] = mn
+                if Kr > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kr
+                M_j += mn
+                if free_m and abs(mn) >= L:
+                    free_m = False
+                    cm_j = min(bl, aj)
+            bl, bl2, bl3 = br, br2, br3
+        # the edge cell and those between the old and new edges; each cell's left-boundary
+        # products are its neighbour's right ones (the same bits); cells from ``tail`` on lie
+        # beyond the contact in this step and the last: their elements are clipped to zero
+        for i in range(inner, min(tail, N)):
             br = cov * beta[i + 1]
             br2 = br * br
             br3 = br2 * br
@@ -383,18 +420,15 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 S = 0.0
                 T = 0.0
             if dd != 0.0:
-                if i < lo:
-                    wgt = 1.0
-                else:
-                    wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
+                wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
             else:
                 wgt = min(max((aj - bl) / w, 0.0), 1.0)
             S_old[r, i] = S
             # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
             # m): adding it leaves the sum's bits unchanged, so it is skipped there
             if has_u:
-                L = 2.0 * mu_E * S
-                Kt = 2.0 * G[c] * w * wgt
+                L = L2 * S
+                Kt = K2 * w * wgt
                 mo = m_tan[r, i]
                 trial = mo + Kt * du
                 mn = min(max(trial, -L), L)
@@ -406,8 +440,8 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     free_t = False
                     ct_j = min(bl, aj)
             if has_phi:
-                L = 4.0 * mu_E * T
-                Kr = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * wgt
+                L = L4 * T
+                Kr = K16 * ((br3 - bl3) / 3.0) * wgt
                 mo = m_tor[r, i]
                 trial = mo + Kr * dp
                 mn = min(max(trial, -L), L)
@@ -418,9 +452,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 if free_m and abs(mn) >= L:
                     free_m = False
                     cm_j = min(bl, aj)
-            bl = br
-            bl2 = br2
-            bl3 = br3
+            bl, bl2, bl3 = br, br2, br3
         # beyond the contact: S = T = 0, weight 0, so both stiffnesses and limits are +0
         # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
         # reference's arithmetic for those cells without the cell geometry
@@ -582,6 +614,10 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
 
 
 _PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass)
+# the spring pass divides without numba's test of each divisor for zero (Python's
+# ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
+# 3-6 % faster with the split loop over cells, results bit-identical
+_OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"}}
 
 AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}
@@ -616,7 +652,8 @@ def _kernels(parallel: bool) -> tuple:
                         _prange = numba.prange
                     _KERNELS[parallel] = tuple(
                         _jit.njit(f, name=f.__name__ + ("_parallel" if parallel else ""),
-                                  nogil=True, parallel=parallel) for f in _PASSES)
+                                  nogil=True, parallel=parallel, **_OPTIONS.get(f, {}))
+                        for f in _PASSES)
                 else:                       # pragma: no cover - without numba
                     _KERNELS[parallel] = _PASSES
             kernels = _KERNELS[parallel]
