@@ -23,10 +23,11 @@ import numpy as np
 
 from ..numeric import jit as _jit
 from . import law_kernel_springs as _springs
-from .law_kernel_springs import _spring_pass, _switch_pass, spring_pass, switch_pass
+from .law_kernel_springs import (_spring_pass, _switch_pass, _switch_step_pass, spring_pass,
+                                 switch_pass, switch_step_pass)
 
-__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "switch_pass", "TORSION",
-           "TANGENTIAL"]
+__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "switch_pass",
+           "switch_step_pass", "TORSION", "TANGENTIAL"]
 
 TORSION = 0
 TANGENTIAL = 1
@@ -298,7 +299,7 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
     return nonfinite, n_over
 
 
-_PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass)
+_PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass, _switch_step_pass)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical
@@ -318,13 +319,16 @@ def __getattr__(name: str):
 
 
 def _kernels(parallel: bool) -> tuple:
-    """The compiled ``(normal, fused, spring)`` passes, serial or threaded (built on first use,
+    """The compiled ``(normal, fused, spring, switch, switch-and-step)`` passes, serial or
+    threaded (built on first use,
     compiled on their first call, machine code cached on disk: :func:`contactlab.numeric.jit.njit`;
     the plain Python functions without numba). Contacts are independent, so the threaded build
     gives bit-identical results. The two builds are cached under two names (numba keys its cache
     by function and argument types, not by the ``parallel`` option)."""
     kernels = _KERNELS.get(parallel)
     if kernels is None:
+        if parallel:        # its switch-and-step runs the serial switch and spring per block
+            _kernels(False)
         with _build_lock:
             if parallel not in _KERNELS:
                 if _jit.available():
@@ -339,6 +343,9 @@ def _kernels(parallel: bool) -> tuple:
                         _jit.njit(f, name=f.__name__ + ("_parallel" if parallel else ""),
                                   nogil=True, parallel=parallel, **_OPTIONS.get(f, {}))
                         for f in _PASSES)
+                    if not parallel:
+                        _springs._switch_one = _KERNELS[False][3]
+                        _springs._spring_one = _KERNELS[False][2]
                 else:                       # pragma: no cover - without numba
                     _KERNELS[parallel] = _PASSES
             kernels = _KERNELS[parallel]

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-__all__ = ["spring_pass", "switch_pass"]
+__all__ = ["spring_pass", "switch_pass", "switch_step_pass"]
 
 # ``prange`` in the loops over contacts: ``range`` in plain Python and in the serial build, numba's
 # parallel range in the threaded build (set with the builds: ``law_kernel._kernels``)
@@ -337,6 +337,39 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
 
 
 
+def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu,
+                      E, G, Gt, X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi,
+                      cover, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW,
+                      flag):
+    """Switch the contacts ``idx`` onto their springs and step them there, in blocks of
+    ``block`` contacts: each block switched (:func:`_switch_pass`, rows ``base + j``) and
+    stepped (:func:`_spring_pass`) while its fresh rows are still in cache, the blocks spread
+    over the threads by one parallel loop (one launch per step, not two per block). Contacts
+    are independent and rows assigned in the same order: the bits of one switch and one step.
+    Returns (non-finite, grown) of the spring steps."""
+    nb = (idx.size + block - 1) // block
+    nonfinite = 0
+    grown = 0
+    for b in _prange(nb):
+        lo = b * block
+        part = idx[lo:min(lo + block, idx.size)]
+        _switch_one(part, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G,
+                    Gt, X, depth, x, slot, owner, base + lo, cover, S_old, k_old, d_old, m_tan,
+                    m_tor, x_tan, x_tor)
+        nf, gr = _spring_one(part, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG,
+                             bH, mu, E, G, Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor,
+                             Ft, ct, M, cm, dW, flag)
+        nonfinite += nf
+        grown += gr
+    return nonfinite, grown
+
+
+# the passes a block of :func:`_switch_step_pass` calls: the plain functions, or their serial
+# compiled builds (set with the builds: ``law_kernel._kernels``)
+_switch_one = _switch_pass
+_spring_one = _spring_pass
+
+
 def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
                 out: tuple, parallel: bool = False, flag=None, regrid=None) -> int:
     """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
@@ -400,3 +433,33 @@ def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, ch
                           P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
                           P["spr_x_tan"], P["spr_x_tor"])
     pool.used += int(idx.size)
+
+
+def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: float, beta, mu,
+                     E, G, Gt, chan: dict, st: dict, pool, out: tuple, parallel: bool = False,
+                     flag=None, regrid=None) -> int:
+    """:func:`switch_pass` then :func:`spring_pass` of the contacts ``idx`` (int64, not on
+    springs; rows ``pool.used ...`` reserved by the caller) in blocks of ``block`` contacts,
+    each block stepped right after its switch, all blocks in one (threaded) loop; the bits of
+    the two passes. Contacts whose radius exceeds their fresh cover are regridded and stepped
+    after the loop (:func:`spring_pass`). Returns the number of contacts whose outputs are not
+    finite."""
+    from .law_kernel import _EMPTY, _kernels
+    is_flat = n == np.inf
+    nn = float(n) if not is_flat else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    P = pool.rows
+    if flag is None:
+        flag = np.zeros(pool.size, np.int8)
+    nf, grown = _kernels(parallel)[4](
+        int(block), idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta, bG, bH,
+        mu, E, G, Gt, chan["X"], chan["depth"], chan["x"], pool.slot, pool.owner, pool.used, d,
+        _EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
+        phi is not None, P["spr_cover"], P["spr_S"], P["spr_k"], P["spr_depth"], P["spr_tan"],
+        P["spr_tor"], P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+    pool.used += int(idx.size)
+    if grown:                       # stepped again: found (flag 4), regridded, stepped
+        nf += spring_pass(idx[flag[idx] == 4], d, a, u, phi, kc, n, beta, mu, E, G, Gt, pool,
+                          out, parallel, flag, regrid)
+    return int(nf)

@@ -147,6 +147,50 @@ def test_threaded_switch_and_springs_are_bit_identical():
         np.testing.assert_array_equal(sp[key], v, err_msg=key)
 
 
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_threaded_switch_and_step_in_blocks_gives_the_serial_bytes(monkeypatch):
+    """The threaded switch-and-step (blocks of 7 contacts spread over the threads) and spring
+    pass give the serial build's bytes (signed zeros included): a random history in which
+    contacts switch in several steps, some separate and come back, some outgrow their cover
+    (regridded), and the state is saved mid-run, stepped on and restored."""
+    from contactlab.effects import law as law_mod
+    import numba
+    monkeypatch.setattr(law_mod, "_SWITCH_BLOCK", 7)
+    n, steps = 240, 16
+    rng = np.random.default_rng(29)
+    F = rng.uniform(1.0, 50.0, n)
+    par, ser = _law(n, True, parallel=True), _law(n, True)
+    threads = numba.get_num_threads()
+    numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+    saved: list = []
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in list(range(steps)) + [-1] + list(range(9, steps)):
+                if k == -1:                             # back to step 9's state
+                    par.state, ser.state = saved
+                    continue
+                L = F.copy()
+                L[: n * min(k, 6) // 6] *= 1.0 + 0.04 * rng.uniform(-1.0, 1.0)
+                if k in (7, 12):
+                    L[rng.random(n) < 0.1] = 0.0        # separations
+                if k == 10:
+                    L[::5] *= 8.0                       # radius beyond the cover: regrid
+                phi = 1e-4 * rng.uniform(-1.0, 1.0, n)
+                u = 3e-8 * rng.uniform(-1.0, 1.0, n)
+                a = par.step(force=L, twist=phi, displacement=u)
+                b = ser.step(force=L, twist=phi, displacement=u)
+                for f in FIELDS:
+                    assert getattr(a, f).tobytes() == getattr(b, f).tobytes(), f"step {k}: {f}"
+                if k == 9:
+                    saved = [par.state, ser.state]
+    finally:
+        numba.set_num_threads(threads)
+    assert ser.state["spr_on"].sum() > n // 2
+    for key, v in ser.state.items():
+        assert np.asarray(par.state[key]).tobytes() == np.asarray(v).tobytes(), key
+
+
 @pytest.mark.skipif(not HAS_NUMBA, reason="compiled law needs numba")
 def test_outgrown_covers_are_regridded_in_the_compiled_pass_to_the_numpy_bits(monkeypatch):
     """The compiled spring pass finds the contacts whose radius left their cover itself (no
