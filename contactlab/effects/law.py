@@ -700,7 +700,7 @@ class ContactLaw:
             assert pool is not None
             new = np.flatnonzero(offm & (pool.slot < 0))
             if new.size:
-                pool.reserve(new.size)          # grown (rarely) before the kernels assign rows
+                pool.reserve(new.size, self.parallel)   # grown (rarely) before the kernels
         if both and not self._warned:
             self._warned = True
             warnings.warn("ContactLaw: displacement and twist together are treated as two "

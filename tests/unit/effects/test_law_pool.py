@@ -3,6 +3,8 @@ onto their springs (a pool grown by doubling, rows given back on separation or r
 a contact holds never changes its results, and the state per contact is unchanged."""
 from __future__ import annotations
 
+import resource
+import sys
 import tracemalloc
 import warnings
 
@@ -279,3 +281,26 @@ def test_rows_in_memory_maps_give_the_same_bits(fast, monkeypatch):
     again.state = mapped.state
     for key, v in mapped.state.items():
         np.testing.assert_array_equal(v, again.state[key], err_msg=key)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="MADV_POPULATE_WRITE: Linux")
+@pytest.mark.parametrize("threads", [False, True])
+def test_mapped_rows_are_faulted_in_before_the_first_write(threads):
+    """The pool's mapped arrays have the rows about to be written faulted in by ``madvise``
+    (in one call, or its two halves on two threads): writing them takes (almost) no page
+    faults, the rows beyond ``fill`` fault on their first write; contents start at zero."""
+    from contactlab.effects import law_pool
+
+    def faults(v):
+        f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        v[...] = 1.0
+        return resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
+
+    rows, cols = 16384, 64                  # 8 MB (mapped: >= 4 MB), 128 pages per 1024 rows
+    probe = law_pool._mapped((rows, cols), np.dtype(np.float64), 2048)
+    if faults(probe[:2048]) > 64:
+        pytest.skip("madvise(MADV_POPULATE_WRITE) not supported by this kernel")
+    arr = law_pool._mapped((rows, cols), np.dtype(np.float64), 8192, threads)
+    assert not arr.any()
+    assert faults(arr[:8192]) <= 64                 # populated: 1024 pages, no fault each
+    assert faults(arr[8192:]) >= 1000               # not populated: a fault per page
