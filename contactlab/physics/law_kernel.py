@@ -320,11 +320,12 @@ def __getattr__(name: str):
 
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused, spring, switch, switch-and-step)`` passes, serial or
-    threaded (built on first use,
-    compiled on their first call, machine code cached on disk: :func:`contactlab.numeric.jit.njit`;
-    the plain Python functions without numba). Contacts are independent, so the threaded build
-    gives bit-identical results. The two builds are cached under two names (numba keys its cache
-    by function and argument types, not by the ``parallel`` option)."""
+    threaded (built on first use, compiled on their first call, machine code cached on disk:
+    :func:`contactlab.numeric.jit.njit`; the plain Python functions without numba). The
+    switch-and-step of both builds calls the serial switch and spring passes per block.
+    Contacts are independent, so the threaded build gives bit-identical results. The two
+    builds are cached under two names (numba keys its cache by function and argument types,
+    not by the ``parallel`` option)."""
     kernels = _KERNELS.get(parallel)
     if kernels is None:
         if parallel:        # its switch-and-step runs the serial switch and spring per block
