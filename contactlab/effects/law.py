@@ -700,7 +700,7 @@ class ContactLaw:
             assert pool is not None
             new = np.flatnonzero(offm & (pool.slot < 0))
             if new.size:
-                pool.reserve(new.size)          # grown (rarely) before the kernels assign rows
+                pool.reserve(new.size, self.parallel)   # grown (rarely) before the kernels
         if both and not self._warned:
             self._warned = True
             warnings.warn("ContactLaw: displacement and twist together are treated as two "
@@ -720,20 +720,18 @@ class ContactLaw:
             None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                       out.torsion_stick_radius, out.dissipated_energy, out.exact))
         # the switching contacts in blocks, each stepped on its springs while its fresh rows
-        # are still in cache, then those already on springs (covers outgrown: regridded)
-        B = _SWITCH_BLOCK
-        for part in [new[s:s + B] for s in range(0, new.size, B)] + [spr]:
-            if part is not None and part.size:
-                if part is not spr:
-                    _kernel.switch_pass(part, a, self._flat, self.spring_cover, self.kc, self.n,
-                                        self._beta, self.friction, self.E_star, self.G_star,
-                                        self.G_torsion, self._chan, st, self._pool,
-                                        self.parallel)
-                nf += _kernel.spring_pass(part, d, a, u, phi, self.kc, self.n, self._beta,
-                                          self.friction, self.E_star, self.G_star,
-                                          self.G_torsion, self._pool, (Ft, ct, M, cm, dW),
-                                          self.parallel, flag,
-                                          lambda g: _np_springs.regrid(self, g, a[g]))
+        # are still in cache (one loop over the blocks, on the threads), then those already on
+        # springs (covers outgrown: regridded)
+        regrid = lambda g: _np_springs.regrid(self, g, a[g])    # noqa: E731
+        args = (self.kc, self.n, self._beta, self.friction, self.E_star, self.G_star,
+                self.G_torsion)
+        if new.size:
+            nf += _kernel.switch_step_pass(new, _SWITCH_BLOCK, d, a, u, phi, self._flat,
+                                           self.spring_cover, *args, self._chan, st, self._pool,
+                                           (Ft, ct, M, cm, dW), self.parallel, flag, regrid)
+        if spr is not None and spr.size:
+            nf += _kernel.spring_pass(spr, d, a, u, phi, *args, self._pool, (Ft, ct, M, cm, dW),
+                                      self.parallel, flag, regrid)
         if nonfinite or nf:                             # overflow: refused, contacts reset
             self._check_finite(flag != 1, d, a, F, Ft, M, ct, cm, dW)
         if n_over:

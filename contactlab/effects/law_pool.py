@@ -15,8 +15,10 @@ huge pages made that write stall; ``tracemalloc`` does not count these maps).
 """
 from __future__ import annotations
 
+import ctypes
 import mmap
 import sys
+import threading
 
 import numpy as np
 
@@ -49,7 +51,45 @@ _MADV_POPULATE_WRITE = getattr(mmap, "MADV_POPULATE_WRITE",
                                23 if sys.platform.startswith("linux") else None)
 
 
-def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1) -> np.ndarray:
+_LIBC: list = []
+
+
+def _libc_madvise():
+    """The C library's ``madvise`` through ctypes (which lets go of the GIL during the call;
+    Python's ``mmap.madvise`` holds it), or None where it is not found."""
+    if not _LIBC:
+        try:
+            f = ctypes.CDLL(None, use_errno=True).madvise
+            f.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_int]
+            f.restype = ctypes.c_int
+        except (OSError, AttributeError, TypeError):    # pragma: no cover - not POSIX
+            f = None
+        _LIBC.append(f)
+    return _LIBC[0]
+
+
+def _populate(buf: mmap.mmap, arr: np.ndarray, used: int, threads: bool, advice: int) -> None:
+    """Fault in the first ``used`` bytes of the map ``buf`` (viewed by ``arr``) by one
+    ``madvise`` (``advice``: ``MADV_POPULATE_WRITE``); ``threads``: its two halves at once,
+    the second on a thread of its own (measured on a 2-core VM, 428 MB: 79-97 ms wall against
+    149-152 ms in one call, the same CPU time). Where the advice fails the pages fault in on
+    the first write."""
+    f = _libc_madvise() if threads else None
+    if f is None:
+        try:
+            buf.madvise(advice, 0, used)
+        except OSError:                 # not supported here: faulted in on the first write
+            pass
+        return
+    half = used // 2 // mmap.PAGESIZE * mmap.PAGESIZE
+    base = arr.ctypes.data              # the map's start: page-aligned
+    t = threading.Thread(target=f, args=(base + half, used - half, advice))
+    t.start()
+    f(base, half, advice)
+    t.join()
+
+
+def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1, threads: bool = False) -> np.ndarray:
     """An array for pool rows (contents undefined, as ``np.empty``): beyond :data:`_MAP_BYTES`
     an anonymous private memory map of its own in the operating system's base pages, its first
     ``fill`` entries (along the first axis; all for -1) faulted in by one ``madvise`` call. A
@@ -70,12 +110,10 @@ def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1) -> np.ndarray:
     buf = (mmap.mmap(-1, nbytes) if flags is None
            else mmap.mmap(-1, nbytes, flags=flags | mmap.MAP_ANONYMOUS))
     used = nbytes if fill < 0 else nbytes // shape[0] * min(int(fill), shape[0])
+    arr = np.frombuffer(buf, dtype).reshape(shape)
     if used and _MADV_POPULATE_WRITE is not None and hasattr(buf, "madvise"):
-        try:
-            buf.madvise(_MADV_POPULATE_WRITE, 0, used)
-        except OSError:                 # not supported here: faulted in on the first write
-            pass
-    return np.frombuffer(buf, dtype).reshape(shape)
+        _populate(buf, arr, used, threads, _MADV_POPULATE_WRITE)
+    return arr
 
 
 class SpringPool:
@@ -107,9 +145,10 @@ class SpringPool:
         """Per contact: on its springs (a new bool array)."""
         return self.slot >= 0
 
-    def reserve(self, more: int) -> None:
+    def reserve(self, more: int, threads: bool = False) -> None:
         """Room for ``more`` further rows: grow (doubling, rows in use copied) when needed; the
-        new arrays are checked against the memory budget before they are allocated."""
+        new arrays are checked against the memory budget before they are allocated
+        (``threads``: their rows about to be written faulted in by two threads)."""
         need = self.used + int(more)
         if need <= self.capacity:
             return
@@ -117,11 +156,11 @@ class SpringPool:
         check_memory("ContactLaw.step()", float(cap) * pool_row_bytes(self.springs),
                      f"spring state of {cap} contacts on {self.springs} springs each")
         u = self.used
-        owner = _mapped((cap,), np.dtype(np.int32), need)
+        owner = _mapped((cap,), np.dtype(np.int32), need, threads)
         owner[:u] = self.owner[:u]
         self.owner = owner
         for k, v in self.rows.items():
-            new = _mapped((cap, *v.shape[1:]), v.dtype, need)
+            new = _mapped((cap, *v.shape[1:]), v.dtype, need, threads)
             new[:u] = v[:u]
             self.rows[k] = new
 

@@ -3,6 +3,8 @@ onto their springs (a pool grown by doubling, rows given back on separation or r
 a contact holds never changes its results, and the state per contact is unchanged."""
 from __future__ import annotations
 
+import resource
+import sys
 import tracemalloc
 import warnings
 
@@ -147,6 +149,50 @@ def test_threaded_switch_and_springs_are_bit_identical():
         np.testing.assert_array_equal(sp[key], v, err_msg=key)
 
 
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_threaded_switch_and_step_in_blocks_gives_the_serial_bytes(monkeypatch):
+    """The threaded switch-and-step (blocks of 7 contacts spread over the threads) and spring
+    pass give the serial build's bytes (signed zeros included): a random history in which
+    contacts switch in several steps, some separate and come back, some outgrow their cover
+    (regridded), and the state is saved mid-run, stepped on and restored."""
+    from contactlab.effects import law as law_mod
+    import numba
+    monkeypatch.setattr(law_mod, "_SWITCH_BLOCK", 7)
+    n, steps = 240, 16
+    rng = np.random.default_rng(29)
+    F = rng.uniform(1.0, 50.0, n)
+    par, ser = _law(n, True, parallel=True), _law(n, True)
+    threads = numba.get_num_threads()
+    numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+    saved: list = []
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in list(range(steps)) + [-1] + list(range(9, steps)):
+                if k == -1:                             # back to step 9's state
+                    par.state, ser.state = saved
+                    continue
+                L = F.copy()
+                L[: n * min(k, 6) // 6] *= 1.0 + 0.04 * rng.uniform(-1.0, 1.0)
+                if k in (7, 12):
+                    L[rng.random(n) < 0.1] = 0.0        # separations
+                if k == 10:
+                    L[::5] *= 8.0                       # radius beyond the cover: regrid
+                phi = 1e-4 * rng.uniform(-1.0, 1.0, n)
+                u = 3e-8 * rng.uniform(-1.0, 1.0, n)
+                a = par.step(force=L, twist=phi, displacement=u)
+                b = ser.step(force=L, twist=phi, displacement=u)
+                for f in FIELDS:
+                    assert getattr(a, f).tobytes() == getattr(b, f).tobytes(), f"step {k}: {f}"
+                if k == 9:
+                    saved = [par.state, ser.state]
+    finally:
+        numba.set_num_threads(threads)
+    assert ser.state["spr_on"].sum() > n // 2
+    for key, v in ser.state.items():
+        assert np.asarray(par.state[key]).tobytes() == np.asarray(v).tobytes(), key
+
+
 @pytest.mark.skipif(not HAS_NUMBA, reason="compiled law needs numba")
 def test_outgrown_covers_are_regridded_in_the_compiled_pass_to_the_numpy_bits(monkeypatch):
     """The compiled spring pass finds the contacts whose radius left their cover itself (no
@@ -235,3 +281,26 @@ def test_rows_in_memory_maps_give_the_same_bits(fast, monkeypatch):
     again.state = mapped.state
     for key, v in mapped.state.items():
         np.testing.assert_array_equal(v, again.state[key], err_msg=key)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="MADV_POPULATE_WRITE: Linux")
+@pytest.mark.parametrize("threads", [False, True])
+def test_mapped_rows_are_faulted_in_before_the_first_write(threads):
+    """The pool's mapped arrays have the rows about to be written faulted in by ``madvise``
+    (in one call, or its two halves on two threads): writing them takes (almost) no page
+    faults, the rows beyond ``fill`` fault on their first write; contents start at zero."""
+    from contactlab.effects import law_pool
+
+    def faults(v):
+        f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        v[...] = 1.0
+        return resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
+
+    rows, cols = 16384, 64                  # 8 MB (mapped: >= 4 MB), 128 pages per 1024 rows
+    probe = law_pool._mapped((rows, cols), np.dtype(np.float64), 2048)
+    if faults(probe[:2048]) > 64:
+        pytest.skip("madvise(MADV_POPULATE_WRITE) not supported by this kernel")
+    arr = law_pool._mapped((rows, cols), np.dtype(np.float64), 8192, threads)
+    assert not arr.any()
+    assert faults(arr[:8192]) <= 64                 # populated: 1024 pages, no fault each
+    assert faults(arr[8192:]) >= 1000               # not populated: a fault per page

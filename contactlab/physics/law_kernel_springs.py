@@ -1,0 +1,465 @@
+"""Compiled (numba, extra ``fast``) contact-law step, the contacts on their MDR springs: the
+switch of contacts from the exact constant-load law onto their springs (:func:`switch_pass`,
+once per contact, in the rows of the law's spring pool) and the spring step of contacts on
+springs (:func:`spring_pass`, every step). The arithmetic of
+:mod:`contactlab.physics.law_springs`, one contact at a time, without temporaries; built,
+compiled and cached with the other passes by :func:`contactlab.physics.law_kernel._kernels`
+(serial and threaded builds, contacts independent: the same bits).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["spring_pass", "switch_pass", "switch_step_pass"]
+
+# ``prange`` in the loops over contacts: ``range`` in plain Python and in the serial build, numba's
+# parallel range in the threaded build (set with the builds: ``law_kernel._kernels``)
+_prange = range
+
+
+def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
+                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
+    """One MDR spring step of the contacts ``idx`` (the arithmetic of
+    :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
+    weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
+    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``. A
+    contact whose radius exceeds its cover is left as it is, ``flag[c] = 4``, and counted
+    (its cells are regridded first: :func:`spring_pass`). Returns (non-finite, grown)."""
+    N = beta.size - 1
+    n1 = n + 1.0
+    n2 = n + 2.0
+    nonfinite = 0
+    grown = 0
+    for j in _prange(idx.size):
+        c = idx[j]
+        r = slot[c]
+        cov = cover[r]
+        aj = a[c]
+        if aj > cov:
+            flag[c] = 4
+            grown += 1
+            continue
+        kcc = kc[c]
+        dj = d[c]
+        if n == 2.0:
+            cp1 = kcc * cov * cov * cov
+            Ga = kcc * aj * aj * aj / n1
+            Ha = kcc * aj * aj * aj * aj / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * aj * aj / n1
+            Ha = kcc * aj * aj * aj / n2
+        else:
+            cp1 = kcc * cov ** n1
+            Ga = kcc * aj ** n1 / n1
+            Ha = kcc * aj ** n2 / n2
+        cp2 = cp1 * cov
+        k = 0
+        while k < N - 1 and cov * beta[k + 1] < aj:
+            k += 1
+        ko = k_old[r]
+        lo = min(k, ko)
+        hi = max(k, ko) + 1
+        dd = dj - d_old[r]
+        mu_E = mu[c] * E[c]
+        du = u[c] - x_tan[r] if has_u else 0.0
+        dp = phi[c] - x_tor[r] if has_phi else 0.0
+        Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
+        tail = hi if dd != 0.0 else k + 1
+        # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
+        L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        # the cells of weight 1, without a branch per cell: left of both edges when the depth
+        # moves, left of the edge cell when it holds (the left boundary is below a by at least
+        # the cell width: the clipped ratio is 1); a product with 1 is left out
+        inner = lo if dd != 0.0 else k
+        for i in range(inner):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            gr = cp1 * bG[i + 1]
+            hr = cp2 * bH[i + 1]
+            S = dj * w - (gr - gl)
+            T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+            gl, hl = gr, hr
+            S_old[r, i] = S
+            if has_u:
+                L = L2 * S
+                Kt = K2 * w
+                mo = m_tan[r, i]
+                trial = mo + Kt * du
+                mn = min(max(trial, -L), L)
+                m_tan[r, i] = mn
+                if Kt > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kt
+                Ft_j += mn
+                if free_t and abs(mn) >= L:
+                    free_t = False
+                    ct_j = min(bl, aj)
+            if has_phi:
+                L = L4 * T
+                Kr = K16 * ((br3 - bl3) / 3.0)
+                mo = m_tor[r, i]
+                trial = mo + Kr * dp
+                mn = min(max(trial, -L), L)
+                m_tor[r, i] = mn
+                if Kr > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kr
+                M_j += mn
+                if free_m and abs(mn) >= L:
+                    free_m = False
+                    cm_j = min(bl, aj)
+            bl, bl2, bl3 = br, br2, br3
+        # the edge cell and those between the old and new edges; each cell's left-boundary
+        # products are its neighbour's right ones (the same bits); cells from ``tail`` on lie
+        # beyond the contact in this step and the last: their elements are clipped to zero
+        for i in range(inner, min(tail, N)):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            if i < k:
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = dj * w - (gr - gl)
+                T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
+            elif i == k:
+                if aj > bl:
+                    S = max(dj * (aj - bl) - (Ga - gl), 0.0)
+                    T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
+                else:
+                    S = 0.0
+                    T = 0.0
+            else:
+                S = 0.0
+                T = 0.0
+            if dd != 0.0:
+                wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
+            else:
+                wgt = min(max((aj - bl) / w, 0.0), 1.0)
+            S_old[r, i] = S
+            # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
+            # m): adding it leaves the sum's bits unchanged, so it is skipped there
+            if has_u:
+                L = L2 * S
+                Kt = K2 * w * wgt
+                mo = m_tan[r, i]
+                trial = mo + Kt * du
+                mn = min(max(trial, -L), L)
+                m_tan[r, i] = mn
+                if Kt > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kt
+                Ft_j += mn
+                if free_t and abs(mn) >= L:
+                    free_t = False
+                    ct_j = min(bl, aj)
+            if has_phi:
+                L = L4 * T
+                Kr = K16 * ((br3 - bl3) / 3.0) * wgt
+                mo = m_tor[r, i]
+                trial = mo + Kr * dp
+                mn = min(max(trial, -L), L)
+                m_tor[r, i] = mn
+                if Kr > 0.0 and trial != mn:
+                    e += (trial - mn) * mn / Kr
+                M_j += mn
+                if free_m and abs(mn) >= L:
+                    free_m = False
+                    cm_j = min(bl, aj)
+            bl, bl2, bl3 = br, br2, br3
+        # beyond the contact: S = T = 0, weight 0, so both stiffnesses and limits are +0
+        # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
+        # reference's arithmetic for those cells without the cell geometry
+        for i in range(tail, N):
+            S_old[r, i] = 0.0
+            if has_u:
+                mn = min(max(m_tan[r, i] + 0.0 * du, -0.0), 0.0)
+                m_tan[r, i] = mn
+                Ft_j += mn
+                if free_t and abs(mn) >= 0.0:
+                    free_t = False
+                    ct_j = min(cov * beta[i], aj)
+            if has_phi:
+                mn = min(max(m_tor[r, i] + 0.0 * dp, -0.0), 0.0)
+                m_tor[r, i] = mn
+                M_j += mn
+                if free_m and abs(mn) >= 0.0:
+                    free_m = False
+                    cm_j = min(cov * beta[i], aj)
+        k_old[r] = k
+        d_old[r] = dj
+        if has_u:
+            x_tan[r] = u[c]
+            Ft[c] = Ft_j
+            ct[c] = ct_j
+        else:
+            Ft[c] = 0.0
+            ct[c] = aj
+        if has_phi:
+            x_tor[r] = phi[c]
+            M[c] = M_j
+            cm[c] = cm_j
+        else:
+            M[c] = 0.0
+            cm[c] = aj
+        dW[c] = e
+        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
+            nonfinite += 1
+    return nonfinite, grown
+
+
+def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
+                 X, depth, x, slot, owner, base, cover, S_old, k_old, d_old, m_tan, m_tor,
+                 x_tan, x_tor):
+    """Switch the contacts ``idx`` from the exact constant-load law to their MDR springs (the
+    arithmetic of ``ContactLaw._to_springs`` with the cell integrals of :func:`_spring_pass`,
+    one contact at a time, no temporaries): cover, normal cells at the held depth ``ref`` the
+    contact leaves, and each channel's Masing turning points ``X[ch, c, :depth]`` then its
+    current control ``x[ch, c]`` replayed through the elements at that load (channel 0
+    tangential, 1 torsion). Contact ``idx[j]`` gets row ``base + j`` of the spring pool
+    (``slot``: row per contact, ``owner``: contact per row)."""
+    N = beta.size - 1
+    n1 = n + 1.0
+    n2 = n + 2.0
+    for j in _prange(idx.size):
+        c = idx[j]
+        r = base + j
+        slot[c] = r
+        owner[r] = c
+        d0 = ref[c]
+        kcc = kc[c]
+        if is_flat:
+            a0 = flat[c] if d0 > 0.0 else 0.0
+        elif n == 2.0:
+            a0 = math.sqrt(d0 / kcc)
+        else:
+            a0 = (d0 / kcc) ** (1.0 / n)
+        cov = cover_factor[c] * max(a0, a[c])
+        cover[r] = cov
+        if n == 2.0:
+            cp1 = kcc * cov * cov * cov
+            Ga = kcc * a0 * a0 * a0 / n1
+            Ha = kcc * a0 * a0 * a0 * a0 / n2
+        elif n == 1.0:                          # cone: squares and cubes, no pow
+            cp1 = kcc * cov * cov
+            Ga = kcc * a0 * a0 / n1
+            Ha = kcc * a0 * a0 * a0 / n2
+        else:
+            cp1 = kcc * cov ** n1
+            Ga = kcc * a0 ** n1 / n1
+            Ha = kcc * a0 ** n2 / n2
+        cp2 = cp1 * cov
+        k = 0
+        while k < N - 1 and cov * beta[k + 1] < a0:
+            k += 1
+        mu_E = mu[c] * E[c]
+        # the elements at the held load: the history 0 -> X[0] -> ... -> X[depth-1] -> x,
+        # element by element (each element's path is independent of the others); the products
+        # of a cell's left boundary are its left neighbour's right ones, carried (the same
+        # expressions, the same bits)
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        for i in range(k + 1):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            if i < k:
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+                S = d0 * w - (gr - gl)
+                T = d0 * (br2 - bl2) / 2.0 - (hr - hl)
+                gl = gr
+                hl = hr
+            elif a0 > bl:
+                S = max(d0 * (a0 - bl) - (Ga - gl), 0.0)
+                T = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha - hl), 0.0)
+            else:
+                S = 0.0
+                T = 0.0
+            S_old[r, i] = S
+            frac = min(max((a0 - bl) / w, 0.0), 1.0)
+            for ch in range(2):
+                if ch == 0:
+                    Kc = 2.0 * G[c] * w * frac
+                    L = 2.0 * mu_E * S
+                else:
+                    Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
+                    L = 4.0 * mu_E * T
+                m = 0.0
+                prev = 0.0
+                for p in range(depth[ch, c]):
+                    tgt = X[ch, c, p]
+                    m = min(max(m + Kc * (tgt - prev), -L), L)
+                    prev = tgt
+                m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
+                if ch == 0:
+                    m_tan[r, i] = m
+                else:
+                    m_tor[r, i] = m
+            bl = br
+            bl2 = br2
+            bl3 = br3
+        if k + 1 < N:
+            # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
+            # at or beyond a0), so both stiffnesses and limits are +0 (finite moduli and cells)
+            # in every one of them: one replay per channel, the same for all
+            for ch in range(2):
+                m = 0.0
+                prev = 0.0
+                for p in range(depth[ch, c]):
+                    tgt = X[ch, c, p]
+                    m = min(max(m + 0.0 * (tgt - prev), -0.0), 0.0)
+                    prev = tgt
+                m = min(max(m + 0.0 * (x[ch, c] - prev), -0.0), 0.0)
+                for i in range(k + 1, N):
+                    if ch == 0:
+                        S_old[r, i] = 0.0
+                        m_tan[r, i] = m
+                    else:
+                        m_tor[r, i] = m
+        x_tan[r] = x[0, c]
+        x_tor[r] = x[1, c]
+        k_old[r] = k
+        d_old[r] = d0
+
+
+
+def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu,
+                      E, G, Gt, X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi,
+                      cover, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW,
+                      flag):
+    """Switch the contacts ``idx`` onto their springs and step them there, in blocks of
+    ``block`` contacts: each block switched (:func:`_switch_pass`, rows ``base + j``) and
+    stepped (:func:`_spring_pass`) while its fresh rows are still in cache, the blocks spread
+    over the threads by one parallel loop (one launch per step, not two per block). Contacts
+    are independent and rows assigned in the same order: the bits of one switch and one step.
+    Returns (non-finite, grown) of the spring steps."""
+    nb = (idx.size + block - 1) // block
+    nonfinite = 0
+    grown = 0
+    for b in _prange(nb):
+        lo = b * block
+        part = idx[lo:min(lo + block, idx.size)]
+        _switch_one(part, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G,
+                    Gt, X, depth, x, slot, owner, base + lo, cover, S_old, k_old, d_old, m_tan,
+                    m_tor, x_tan, x_tor)
+        nf, gr = _spring_one(part, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG,
+                             bH, mu, E, G, Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor,
+                             Ft, ct, M, cm, dW, flag)
+        nonfinite += nf
+        grown += gr
+    return nonfinite, grown
+
+
+# the passes a block of :func:`_switch_step_pass` calls: the plain functions, or their serial
+# compiled builds (set with the builds: ``law_kernel._kernels``)
+_switch_one = _switch_pass
+_spring_one = _spring_pass
+
+
+def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
+                out: tuple, parallel: bool = False, flag=None, regrid=None) -> int:
+    """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
+    radius and controls of all contacts, or None; ``kc``, moduli: per contact; ``beta``: unit
+    cell boundaries). The spring state (``pool``: the law's
+    :class:`~contactlab.effects.law_pool.SpringPool`, rows ``pool.slot[idx]``) is updated in
+    place; ``out = (Ft, ct, M, cm, dW)`` (the law's full arrays) are written at ``idx``.
+    Contacts whose radius exceeds their cover are found in the pass (``flag``: int8 per
+    contact, set to 4 there; scratch by default), given to ``regrid(contacts)`` (it grows
+    their cover, at least to the radius) and then stepped: contacts are independent, so this
+    is the step of regridding them first, without a pass over the covers before the kernel.
+    Returns the number of contacts whose outputs are not finite.
+    Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
+    nn = float(n) if n != np.inf else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    from .law_kernel import _EMPTY, _kernels
+    P = pool.rows
+    if flag is None:
+        flag = np.zeros(pool.size, np.int8)
+    kernel = _kernels(parallel)[2]
+
+    def run(ix):
+        return kernel(ix, pool.slot, d, a, _EMPTY if u is None else u,
+                      _EMPTY if phi is None else phi, u is not None, phi is not None,
+                      P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
+                      P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                      P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+
+    nf, grown = run(idx)
+    if grown:
+        g = idx[flag[idx] == 4]
+        if regrid is None:
+            raise ValueError(f"spring_pass: {g.size} contact(s) outgrew their cover and no "
+                             "regrid was given")
+        regrid(g)
+        nf2, again = run(g)
+        assert again == 0, "regrid left a contact's radius beyond its cover"
+        nf += nf2
+    return int(nf)
+
+
+def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, chan: dict,
+                st: dict, pool, parallel: bool = False) -> None:
+    """Compiled switch of the contacts ``idx`` (int64, not on springs) from their Masing
+    stacks (``chan``: the fields of :func:`~contactlab.physics.masing_stack.new_stack` over a
+    leading channel axis) to their MDR springs: rows ``pool.used ...`` of the law's
+    :class:`~contactlab.effects.law_pool.SpringPool` (room reserved by the caller), assigned and
+    written in the kernel; ``st``: the law's state (``depth_ref``); ``a``: the contacts' radii
+    in this step (the cover spans the larger of it and the held radius), ``cover_factor``:
+    ``spring_cover`` per contact. No temporaries per contact."""
+    is_flat = n == np.inf
+    nn = float(n) if not is_flat else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    from .law_kernel import _kernels
+    P = pool.rows
+    _kernels(parallel)[3](idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta,
+                          bG, bH, mu, E, G, Gt, chan["X"], chan["depth"], chan["x"],
+                          pool.slot, pool.owner, pool.used, P["spr_cover"], P["spr_S"],
+                          P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
+                          P["spr_x_tan"], P["spr_x_tor"])
+    pool.used += int(idx.size)
+
+
+def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: float, beta, mu,
+                     E, G, Gt, chan: dict, st: dict, pool, out: tuple, parallel: bool = False,
+                     flag=None, regrid=None) -> int:
+    """:func:`switch_pass` then :func:`spring_pass` of the contacts ``idx`` (int64, not on
+    springs; rows ``pool.used ...`` reserved by the caller) in blocks of ``block`` contacts,
+    each block stepped right after its switch, all blocks in one (threaded) loop; the bits of
+    the two passes. Contacts whose radius exceeds their fresh cover are regridded and stepped
+    after the loop (:func:`spring_pass`). Returns the number of contacts whose outputs are not
+    finite."""
+    from .law_kernel import _EMPTY, _kernels
+    is_flat = n == np.inf
+    nn = float(n) if not is_flat else 1.0
+    bG = beta ** (nn + 1.0) / (nn + 1.0)
+    bH = beta ** (nn + 2.0) / (nn + 2.0)
+    P = pool.rows
+    if flag is None:
+        flag = np.zeros(pool.size, np.int8)
+    nf, grown = _kernels(parallel)[4](
+        int(block), idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta, bG, bH,
+        mu, E, G, Gt, chan["X"], chan["depth"], chan["x"], pool.slot, pool.owner, pool.used, d,
+        _EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
+        phi is not None, P["spr_cover"], P["spr_S"], P["spr_k"], P["spr_depth"], P["spr_tan"],
+        P["spr_tor"], P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+    pool.used += int(idx.size)
+    if grown:                       # stepped again: found (flag 4), regridded, stepped
+        nf += spring_pass(idx[flag[idx] == 4], d, a, u, phi, kc, n, beta, mu, E, G, Gt, pool,
+                          out, parallel, flag, regrid)
+    return int(nf)
