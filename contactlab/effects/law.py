@@ -533,8 +533,10 @@ class ContactLaw:
         """A :class:`ValidityWarning` when a step's model error exceeds
         :data:`MODEL_ERROR_WARN` for a quantity at a contact on springs, once per law and
         quantity (:func:`~contactlab.effects.law_checks.warn_model_error`)."""
-        warn_model_error(res, np.flatnonzero(self._on()), self._model_warned, self.springs,
-                         MODEL_ERROR_WARN)
+        on, pool = self._on(), self._pool   # many on springs: the mask, no index array
+        assert pool is not None
+        warn_model_error(res, on if 4 * pool.used >= self.size else np.flatnonzero(on),
+                         self._model_warned, self.springs, MODEL_ERROR_WARN)
 
     def _check_out(self, out: Any) -> None:
         ok = isinstance(out, LawStep)
@@ -709,8 +711,11 @@ class ContactLaw:
                           stacklevel=3)
         spr = None
         if self._pool is not None and self._pool.used:
-            spr = np.flatnonzero((self._pool.slot >= 0) & (flag != 1))
-            flag[spr] = 3                               # the fused pass leaves them out
+            onm = self._pool.slot >= 0
+            if dead:
+                onm &= flag != 1
+            np.copyto(flag, 3, where=onm)               # the fused pass leaves them out
+            spr = np.flatnonzero(onm)
         if new.size:
             flag[new] = 3
         mc = self._master
