@@ -35,7 +35,8 @@ from .law_checks import _per_contact, _per_step, _short, checked_state_entry, wa
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
-from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
+from .law_step import (_OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources,
+                       springs_only_outputs)
 from .law_tangent import snapshot as _tangent_snapshot
 from .law_tangent import tangent as _tangent
 
@@ -719,11 +720,14 @@ class ContactLaw:
         if new.size:
             flag[new] = 3
         mc = self._master
-        Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
-            u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
-            self.G_torsion, self.n, mc, self._chan, self.parallel,
-            None if out is None else (out.tangential_force, out.stick_radius, out.torque,
-                                      out.torsion_stick_radius, out.dissipated_energy, out.exact))
+        if spr is not None and spr.size == size:        # all on springs: no fused pass
+            Ft, ct, M, cm, dW, exact, nf, n_over = springs_only_outputs(size, out)
+        else:
+            Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
+                u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
+                self.G_torsion, self.n, mc, self._chan, self.parallel,
+                None if out is None else (out.tangential_force, out.stick_radius, out.torque,
+                                          out.torsion_stick_radius, out.dissipated_energy, out.exact))
         # the switching contacts in blocks, each stepped on its springs while its fresh rows
         # are still in cache (one loop over the blocks, on the threads), then those already on
         # springs (covers outgrown: regridded)

@@ -150,3 +150,14 @@ def law_sources(springs: bool = True) -> tuple[str, ...]:
                         if springs and t not in tags)
 
 
+
+
+def springs_only_outputs(size: int, out: LawStep | None) -> tuple:
+    """The fused pass's ``(Ft, ct, M, cm, dW, exact, nonfinite, n_over)`` when every contact is
+    on springs (it would only set ``exact`` False and leave the rest to the spring pass): the
+    outputs (``out``'s arrays, or new ones), ``exact`` False, no pass over the contacts."""
+    if out is None:
+        return (*(np.empty(size) for _ in range(5)), np.zeros(size, bool), 0, 0)
+    out.exact[...] = False
+    return (out.tangential_force, out.stick_radius, out.torque, out.torsion_stick_radius,
+            out.dissipated_energy, out.exact, 0, 0)
