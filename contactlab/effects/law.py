@@ -35,7 +35,8 @@ from .law_checks import _per_contact, _per_step, _short, checked_state_entry, wa
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
-from .law_step import _OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources
+from .law_step import (_OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources,
+                       springs_only_outputs)
 from .law_tangent import snapshot as _tangent_snapshot
 from .law_tangent import tangent as _tangent
 
@@ -533,8 +534,10 @@ class ContactLaw:
         """A :class:`ValidityWarning` when a step's model error exceeds
         :data:`MODEL_ERROR_WARN` for a quantity at a contact on springs, once per law and
         quantity (:func:`~contactlab.effects.law_checks.warn_model_error`)."""
-        warn_model_error(res, np.flatnonzero(self._on()), self._model_warned, self.springs,
-                         MODEL_ERROR_WARN)
+        on, pool = self._on(), self._pool   # many on springs: the mask, no index array
+        assert pool is not None
+        warn_model_error(res, on if 4 * pool.used >= self.size else np.flatnonzero(on),
+                         self._model_warned, self.springs, MODEL_ERROR_WARN)
 
     def _check_out(self, out: Any) -> None:
         ok = isinstance(out, LawStep)
@@ -709,16 +712,22 @@ class ContactLaw:
                           stacklevel=3)
         spr = None
         if self._pool is not None and self._pool.used:
-            spr = np.flatnonzero((self._pool.slot >= 0) & (flag != 1))
-            flag[spr] = 3                               # the fused pass leaves them out
+            onm = self._pool.slot >= 0
+            if dead:
+                onm &= flag != 1
+            np.copyto(flag, 3, where=onm)               # the fused pass leaves them out
+            spr = np.flatnonzero(onm)
         if new.size:
             flag[new] = 3
         mc = self._master
-        Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
-            u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
-            self.G_torsion, self.n, mc, self._chan, self.parallel,
-            None if out is None else (out.tangential_force, out.stick_radius, out.torque,
-                                      out.torsion_stick_radius, out.dissipated_energy, out.exact))
+        if spr is not None and spr.size == size:        # all on springs: no fused pass
+            Ft, ct, M, cm, dW, exact, nf, n_over = springs_only_outputs(size, out)
+        else:
+            Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
+                u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
+                self.G_torsion, self.n, mc, self._chan, self.parallel,
+                None if out is None else (out.tangential_force, out.stick_radius, out.torque,
+                                          out.torsion_stick_radius, out.dissipated_energy, out.exact))
         # the switching contacts in blocks, each stepped on its springs while its fresh rows
         # are still in cache (one loop over the blocks, on the threads), then those already on
         # springs (covers outgrown: regridded)

@@ -91,8 +91,9 @@ def checked_state_entry(key: str, value: Any, like: np.ndarray, memory: int,
 def warn_model_error(res: "LawStep", on: np.ndarray, warned: set[str], springs: int,
                      limit: float) -> None:
     """A :class:`ValidityWarning` when the step ``res``'s model error exceeds ``limit`` for a
-    quantity at a contact on springs (indices ``on``), once per quantity: ``warned`` (the law's
-    set of quantities already said) gains it; the text also goes into ``res.meta["notes"]``.
+    quantity at a contact on springs (indices ``on``, or a bool mask over all contacts), once
+    per quantity: ``warned`` (the law's set of quantities already said) gains it; the text
+    also goes into ``res.meta["notes"]``.
 
     Reads the contacts on springs only (an overflowed memory warns on its own), and their
     largest errors first: the per-contact arrays are built only in the step that warns."""
@@ -100,6 +101,7 @@ def warn_model_error(res: "LawStep", on: np.ndarray, warned: set[str], springs: 
     todo = [q for q, e in peak.items() if q not in warned and e > limit * (1.0 + 1e-12)]
     if not todo:        # the usual step: no per-contact error array at all
         return
+    on = np.flatnonzero(on) if on.dtype == bool else on
     for q, err in res.model_errors_at(on).items():
         err = np.asarray(err, float)
         # (the table's 1.0e-2 at the default 16 springs is at 1 %, not above: its log-log

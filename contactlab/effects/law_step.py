@@ -98,7 +98,8 @@ class LawStep(Result):
                 "torque": np.where(off, spring + mdr, 0.0)}
 
     def model_error_peaks_at(self, idx: np.ndarray) -> dict[str, float]:
-        """The largest entry of each array of :meth:`model_errors_at` ``(idx)`` (``{}`` when
+        """The largest entry of each array of :meth:`model_errors_at` ``(idx)`` (``idx``:
+        contact indices, or a bool mask over all contacts; ``{}`` when
         none of the contacts is off the exact law), to the bit, without those arrays: the
         spring part is one number for every contact off the exact law, and the torque's MDR
         part falls as the stick ratio rises (a step function of it), so its largest value is
@@ -108,7 +109,11 @@ class LawStep(Result):
         from ..physics import model_error as _maps
         exact, radius = np.asarray(self.exact, bool), np.asarray(self.radius)
         torque, cm = np.asarray(self.torque), np.asarray(self.torsion_stick_radius)
-        if 4 * np.size(idx) < exact.size:       # a few contacts: gathers at idx
+        idx = np.asarray(idx)
+        if idx.dtype == bool:   # a mask over all contacts (the law's: no index array built)
+            off = idx & ~exact
+            off &= radius > 0
+        elif 4 * idx.size < exact.size:         # a few contacts: gathers at idx
             exact, radius, torque, cm = exact[idx], radius[idx], torque[idx], cm[idx]
             off = ~exact & (radius > 0)
         else:       # many: masks over all contacts, the same quotients and minimum (measured
@@ -145,3 +150,14 @@ def law_sources(springs: bool = True) -> tuple[str, ...]:
                         if springs and t not in tags)
 
 
+
+
+def springs_only_outputs(size: int, out: LawStep | None) -> tuple:
+    """The fused pass's ``(Ft, ct, M, cm, dW, exact, nonfinite, n_over)`` when every contact is
+    on springs (it would only set ``exact`` False and leave the rest to the spring pass): the
+    outputs (``out``'s arrays, or new ones), ``exact`` False, no pass over the contacts."""
+    if out is None:
+        return (*(np.empty(size) for _ in range(5)), np.zeros(size, bool), 0, 0)
+    out.exact[...] = False
+    return (out.tangential_force, out.stick_radius, out.torque, out.torsion_stick_radius,
+            out.dissipated_energy, out.exact, 0, 0)

@@ -300,3 +300,44 @@ def test_switch_in_blocks_gives_the_bits_of_one_switch(family, gname, lo_hi, ext
             assert a[k][f].tobytes() == b[k][f].tobytes(), f"step {k}: {f}"
     for key, v in whole.state.items():
         assert np.asarray(v).tobytes() == np.asarray(blocks.state[key]).tobytes(), key
+
+
+@needs_numba
+@pytest.mark.parametrize("reuse", [False, True], ids=["fresh", "out"])
+def test_every_contact_on_springs_skips_the_fused_pass_to_the_bit(reuse, monkeypatch):
+    """With every contact on springs the compiled step gives its outputs without the fused
+    pass (issue 29): the same bits as for those contacts in a law with one more contact held
+    at constant load (which runs the fused pass over all contacts), fresh outputs and ``out=``
+    (whose ``exact`` was True in the constant-load steps before)."""
+    n, steps = 40, 12
+    par = dict(E_star=1.15e11, G_star=4.4e10, G_torsion=4e10, friction=0.3, memory=4,
+               fast=True)
+    R = np.linspace(2e-3, 9e-3, n + 1)
+    rng = np.random.default_rng(11)
+    F = rng.uniform(1.0, 100.0, n + 1)
+    u, phi = _history(rng, steps, n + 1, 3e-8, 1e-4)
+    alone = cl.ContactLaw(cl.profiles.Paraboloid, R=R[:n], **par)
+    mixed = cl.ContactLaw(cl.profiles.Paraboloid, R=R, **par)
+    oa = om = None
+    skipped = []
+    law_mod = cl.effects.law
+    real = law_mod.springs_only_outputs
+    monkeypatch.setattr(law_mod, "springs_only_outputs",
+                        lambda size, out: skipped.append(size) or real(size, out))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            L = F.copy()
+            if k >= 3:
+                L[:n] *= 1.0 + 0.03 * np.sin(0.4 * k + np.arange(n))
+            ra = alone.step(force=L[:n], displacement=u[k, :n], twist=phi[k, :n], out=oa)
+            rm = mixed.step(force=L, displacement=u[k], twist=phi[k], out=om)
+            if reuse:
+                oa, om = ra, rm
+            for f in FIELDS:
+                np.testing.assert_array_equal(getattr(ra, f), getattr(rm, f)[:n],
+                                              err_msg=f"step {k}: {f}")
+    assert alone.state["spr_on"].all() and not mixed.state["spr_on"][n]
+    assert skipped == [n] * (steps - 4)     # the steps after the switch, the mixed law never
+    for key, v in alone.state.items():
+        np.testing.assert_array_equal(v, mixed.state[key][:n], err_msg=key)

@@ -127,3 +127,7 @@ def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
                 assert peak.keys() == full.keys()
                 for q in full:
                     assert peak[q] == float(np.max(full[q]))
+                # the same contacts as a bool mask (the law's warning passes its mask)
+                mask = np.zeros(n, bool)
+                mask[idx] = True
+                assert out.model_error_peaks_at(mask) == peak
