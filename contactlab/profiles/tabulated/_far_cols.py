@@ -21,7 +21,7 @@ Private: used by :mod:`._cubic` for tables of at least :data:`._far.FAR_FIELD_FR
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -40,6 +40,7 @@ class ColumnTree:
     tree: _far.FarTree          # levels, blocks, node positions (its own moments unused)
     columns: np.ndarray         # (k, n) the columns
     moments: np.ndarray         # (blocks + 1, k, TERMS), the last block zeros
+    cache: dict = field(default_factory=dict, compare=False, repr=False)   # numpy route's layout
 
 
 #: finest level at most of a cubic table's tree (14 columns: 2^14 blocks hold 37 MB of moments)
@@ -136,56 +137,117 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
     return res
 
 
+def _by_term(ct: ColumnTree) -> np.ndarray:
+    """``ct.moments`` term-major, ``(k, TERMS, blocks + 1)`` contiguous (the numpy route gathers
+    one term of one column at a time from a contiguous vector), set up on first use."""
+    cached = ct.cache.get("by_term")
+    if cached is None:
+        cached = np.ascontiguousarray(ct.moments.transpose(1, 2, 0))
+        ct.cache["by_term"] = cached
+    return cached
+
+
 def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarray,
                    one_m: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray, cols: np.ndarray,
                    kinds: np.ndarray, zero_row: int) -> np.ndarray:
-    """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`)."""
+    """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`).
+
+    Every operation is an element-wise multiplication, division, addition or subtraction in the
+    order of :func:`far_columns` (products by a constant written in place: IEEE multiplication
+    and addition are commutative, so ``x *= c`` gives the bits of ``c * x``). The terms run in
+    the outer loop: term n's coefficients (``ã_n``, ``s̃_n``, ``q̃_n``) are made from the few
+    before them and added into every column's sum at once, so only a window of coefficient
+    arrays is alive and their buffers are reused (a new (points, slots) array per operation,
+    and all TERMS of them kept, cost a page fault per 4 KiB written: most of this route's
+    time); each term's moments are gathered from a contiguous vector (:func:`_by_term`)."""
     T = _far.TERMS
     N = _far._N
+    CA, CB = _far.CA, _far.CB
     used = row != zero_row
     need_root = bool(np.any(kinds != ACOS))
     need_r3 = bool(np.any(kinds == ROOT3))
+    shape = row.shape
+    by_term = _by_term(ct)
+    col_list, kind_list = cols.tolist(), kinds.tolist()
+    vals = np.empty((cols.size,) + shape)
+    tmp = np.empty(shape)
+    mom = np.empty(shape)
+    spare: list = []
+
+    def buffer() -> np.ndarray:
+        return spare.pop() if spare else np.empty(shape)
+
     with np.errstate(all="ignore"):
-        u = t * sig / one_m
-        v = sig * sig / one_m
-        a = [asin_t, sig / np.sqrt(one_m)]
-        for n in range(T - 1):
-            nxt = _far.CA[n] * (u * a[n + 1])
-            if n:
-                nxt = nxt + _far.CB[n] * (v * a[n])
-            a.append(nxt)
-        s: list = []
+        u = np.multiply(t, sig)
+        u /= one_m                                  # (t σ)/(1 - t²)
+        v = np.multiply(sig, sig)
+        v /= one_m                                  # σ²/(1 - t²)
+        a1 = np.sqrt(one_m)
+        np.divide(sig, a1, out=a1)
+        a: dict = {0: asin_t, 1: a1}                # ã_n, a window of them
+        s: dict = {}
+        q: dict = {}
+        two_t = tts = ss = None
         if need_root:
-            s = [np.sqrt(one_m)]
-            for n in range(1, T):
-                sn = one_m * (N[n + 1] * a[n + 1] / sig) - (2.0 * t) * (N[n] * a[n])
-                if n >= 2:
-                    sn = sn - N[n - 1] * (sig * a[n - 1])
-                s.append(sn)
-        q: list = []
+            two_t = 2.0 * t
         if need_r3:
-            tts = 2.0 * t * sig
-            ss = sig * sig
-            for n in range(T):
-                qn = one_m * s[n]
+            tts = np.multiply(two_t, sig)
+            ss = np.multiply(sig, sig)
+        for n in range(T):
+            # ã_{n+1} (s̃_n needs it; ã_{m+2} = CA[m] (u ã_{m+1}) + CB[m] (v ã_m), m = n - 1)
+            m = n - 1
+            if m >= 0 and n + 1 not in a:
+                nxt = np.multiply(u, a[m + 1], out=buffer())
+                nxt *= CA[m]
+                if m:
+                    np.multiply(v, a[m], out=tmp)
+                    tmp *= CB[m]
+                    nxt += tmp
+                a[m + 2] = nxt
+            if need_root:
+                if n == 0:
+                    s[0] = np.sqrt(one_m)
+                else:
+                    sn = np.multiply(a[n + 1], N[n + 1], out=buffer())
+                    sn /= sig
+                    sn *= one_m
+                    np.multiply(a[n], N[n], out=tmp)
+                    tmp *= two_t
+                    sn -= tmp
+                    if n >= 2:
+                        np.multiply(sig, a[n - 1], out=tmp)
+                        tmp *= N[n - 1]
+                        sn -= tmp
+                    s[n] = sn
+            if need_r3:
+                qn = np.multiply(one_m, s[n], out=buffer())
                 if n >= 1:
-                    qn = qn - tts * s[n - 1]
+                    np.multiply(tts, s[n - 1], out=tmp)
+                    qn -= tmp
                 if n >= 2:
-                    qn = qn - ss * s[n - 2]
-                q.append(qn)
-        out = np.empty((cols.size, row.shape[0]))
-        for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
-            mom = ct.moments[row, col, :]                    # (rows, slots, TERMS)
-            if kind == ACOS:
-                val = acos_t * mom[..., 0]
-                for n in range(1, T):
-                    val = val - a[n] * mom[..., n]
-            else:
-                coef = s if kind == ROOT else q
-                val = coef[0] * mom[..., 0]
-                for n in range(1, T):
-                    val = val + coef[n] * mom[..., n]
-            out[i] = _far._sequential(np.where(used, val, 0.0))
+                    np.multiply(ss, s[n - 2], out=tmp)
+                    qn -= tmp
+                q[n] = qn
+            for i, (col, kind) in enumerate(zip(col_list, kind_list)):
+                np.take(by_term[col, n], row, out=mom, mode="clip")
+                if n == 0:
+                    np.multiply(acos_t if kind == ACOS else (s[0] if kind == ROOT else q[0]),
+                                mom, out=vals[i])
+                    continue
+                np.multiply(a[n] if kind == ACOS else (s[n] if kind == ROOT else q[n]), mom,
+                            out=tmp)
+                if kind == ACOS:
+                    vals[i] -= tmp
+                else:
+                    vals[i] += tmp
+            # release what no later term reads: ã_{n-1}, s̃_{n-2}, q̃_n
+            for window, old in ((a, n - 1), (s, n - 2), (q, n)):
+                arr = window.pop(old, None)
+                if arr is not None and arr is not asin_t:
+                    spare.append(arr)
+        out = np.empty((cols.size, shape[0]))
+        for i in range(cols.size):
+            out[i] = _far._sequential(np.where(used, vals[i], 0.0))
     return out
 
 
