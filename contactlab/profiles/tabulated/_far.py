@@ -293,44 +293,92 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray, 
                t: np.ndarray, asin_t: np.ndarray, want_cusp: bool, want_phi: bool
                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The blocks' sums (A, C, P / x²) per point, slot by slot: the numpy route (reference of
-    :func:`far_rows`; the same operations in the same order)."""
+    :func:`far_rows`; the same operations in the same order).
+
+    The terms run in the outer loop, each term's moments gathered into one buffer and its
+    Taylor coefficient made from the two before it: only a window of coefficient arrays is
+    alive, and every operation writes into a buffer of the (points, slots) shape (a new array
+    per operation, and all TERMS coefficients and moments kept, cost a page fault per 4 KiB
+    written: most of this route's time before). Products by a constant are written in place
+    (IEEE multiplication and addition are commutative: the bits of the expression)."""
     xc = x[:, None]
     h = tree.half[row]
-    mom = [np.take(m, row) for m in tree.moments_t]  # M_n per slot
+    shape = row.shape
+    mom = np.empty(shape)
+    tmp = np.empty(shape)
+    work = np.empty(shape)
+    spare: list = []
+    A = np.empty(shape)
+    C = np.empty(shape) if want_cusp else None
+    P = np.empty(shape) if want_phi else None
     with np.errstate(all="ignore"):     # unused slots (masked below) may overflow
         sig = h / xc
         one_m = (xc - c) * (xc + c) / (xc * xc)      # 1 - t², accurate as t -> 1
-        # scaled Taylor coefficients of asin about t: ã_n = a_n σ^n, n = 0 .. TERMS
-        u = t * sig / one_m
-        v = sig * sig / one_m
-        coef = [asin_t, sig / np.sqrt(one_m)]
-        for n in range(TERMS - 1):
-            nxt = CA[n] * (u * coef[n + 1])
-            if n:
-                nxt = nxt + CB[n] * (v * coef[n])
-            coef.append(nxt)
-        A = coef[0] * mom[0]
-        for n in range(1, TERMS):
-            A = A + coef[n] * mom[n]
-        C = P = None
-        if want_cusp:
-            # t asin'(t): t (n+1) a_{n+1} + n a_n; scaled by σ^n: (t/σ)(n+1) ã_{n+1} + n ã_n
-            ts = t / sig
-            C = (ts * coef[1]) * mom[0]
-            for n in range(1, TERMS):
-                C = C + (ts * (_N[n + 1] * coef[n + 1]) + _N[n] * coef[n]) * mom[n]
+        # scaled Taylor coefficients of asin about t: ã_n = a_n σ^n, n = 0 .. TERMS, a window
+        u = np.multiply(t, sig)
+        u /= one_m
+        v = np.multiply(sig, sig)
+        v /= one_m
+        root = np.sqrt(one_m)
+        coef: dict = {0: asin_t, 1: np.divide(sig, root)}
+        ts = t / sig if want_cusp else None
+        tsig = ss = None
         if want_phi:
-            # Φ: φ_0 = Φ(t), φ_{n+1} σ^{n+1} = (1-t²) ã_{n+1} - [2n/(n+1)] t σ ã_n
-            #                                   - [(n-1)/(n+1)] σ² ã_{n-1}
-            P = (0.5 * (t * np.sqrt(one_m) + coef[0])) * mom[0]
             tsig, ss = t * sig, sig * sig
-            for n in range(0, TERMS - 1):
-                phi = one_m * coef[n + 1]
-                if n >= 1:
-                    phi = phi - PD[n] * (tsig * coef[n])
-                if n >= 2:
-                    phi = phi - PE[n] * (ss * coef[n - 1])
-                P = P + phi * mom[n + 1]
+        for m in range(TERMS):
+            # ã_{m+1} (the cusp sum's term m needs it): CA[k] (u ã_{k+1}) + CB[k] (v ã_k)
+            k = m - 1
+            if k >= 0 and m + 1 not in coef:
+                nxt = np.multiply(u, coef[k + 1], out=spare.pop() if spare else None)
+                nxt *= CA[k]
+                if k:
+                    np.multiply(v, coef[k], out=tmp)
+                    tmp *= CB[k]
+                    nxt += tmp
+                coef[k + 2] = nxt
+            np.take(tree.moments_t[m], row, out=mom, mode="clip")     # M_m per slot
+            if m == 0:
+                np.multiply(coef[0], mom, out=A)
+            else:
+                np.multiply(coef[m], mom, out=tmp)
+                A += tmp
+            if C is not None:
+                # t asin'(t): t (n+1) a_{n+1} + n a_n; scaled by σ^n: (t/σ)(n+1) ã_{n+1} + n ã_n
+                if m == 0:
+                    np.multiply(ts, coef[1], out=C)
+                    C *= mom
+                else:
+                    np.multiply(coef[m + 1], _N[m + 1], out=work)
+                    work *= ts
+                    np.multiply(coef[m], _N[m], out=tmp)
+                    work += tmp
+                    work *= mom
+                    C += work
+            if P is not None:
+                # Φ: φ_0 = Φ(t), φ_{n+1} σ^{n+1} = (1-t²) ã_{n+1} - [2n/(n+1)] t σ ã_n
+                #                                   - [(n-1)/(n+1)] σ² ã_{n-1}   (n = m - 1)
+                if m == 0:
+                    np.multiply(t, root, out=work)
+                    work += coef[0]
+                    work *= 0.5
+                    np.multiply(work, mom, out=P)
+                else:
+                    n = m - 1
+                    np.multiply(one_m, coef[n + 1], out=work)
+                    if n >= 1:
+                        np.multiply(tsig, coef[n], out=tmp)
+                        tmp *= PD[n]
+                        work -= tmp
+                    if n >= 2:
+                        np.multiply(ss, coef[n - 1], out=tmp)
+                        tmp *= PE[n]
+                        work -= tmp
+                    work *= mom
+                    P += work
+            # release ã_{m-2} (no later term reads it; ã_0 is the caller's arcsine)
+            old = coef.pop(m - 2, None)
+            if old is not None and old is not asin_t:
+                spare.append(old)
     # the slots summed in a fixed order (unused ones add exact zeros)
     a_far = _sequential(np.where(used, A, 0.0))
     c_far = None if C is None else _sequential(np.where(used, C, 0.0))
