@@ -52,7 +52,8 @@ from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
 __all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
-           "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows"]
+           "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
+           "used_pairs", "slot_sums"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -244,10 +245,10 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
     xc = x[:, None]
     zero_row = tree.moments.shape[0] - 1
     used = row != zero_row
-    c = tree.centre[row]
-    t = c / xc
-    asin_t = np.arcsin(t)           # numpy's, for both routes (libm's may differ by an ulp)
     if _compiled(x.size):
+        c = tree.centre[row]
+        t = c / xc
+        asin_t = np.arcsin(t)       # numpy's, for both routes (libm's may differ by an ulp)
         a_far = np.empty(x.size)
         c_far = np.empty(x.size) if want_cusp else None
         p_far = np.empty(x.size) if want_phi else None
@@ -256,8 +257,7 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
                                 a_far if c_far is None else c_far,
                                 a_far if p_far is None else p_far)
     else:
-        a_far, c_far, p_far = _far_numpy(tree, x, row, used, c, t, asin_t, want_cusp,
-                                         want_phi)
+        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi)
     # near nodes: finest blocks from k_near on, nodes up to x (a node at x included)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="right")
@@ -289,20 +289,53 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
     return A_tot, C_tot, P_tot
 
 
-def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray, c: np.ndarray,
-               t: np.ndarray, asin_t: np.ndarray, want_cusp: bool, want_phi: bool
+def used_pairs(used: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The used (point, slot) pairs of a (points, slots) mask, slot-major: their flat indices
+    into the (points, slots) arrays, their points, and where each slot's run starts (slots + 1
+    bounds). The numpy routes compute on these pairs only (a third of the slots are unused)."""
+    P, S = used.shape
+    flat_t = np.flatnonzero(used.T)                  # slot-major: slot * P + point
+    slot, point = np.divmod(flat_t, P)
+    bounds = np.searchsorted(flat_t, np.arange(S + 1) * P)
+    return point * S + slot, point, bounds
+
+
+def slot_sums(vals: np.ndarray, point: np.ndarray, bounds: np.ndarray, points: int
+              ) -> np.ndarray:
+    """Per point, its used slots' values (``vals``: (..., pairs) in :func:`used_pairs`'
+    order) added in slot order, then +0.0: the bits of :func:`_sequential` over the dense
+    (points, slots) row with exact zeros in the unused slots (adding an exact zero changes
+    no sum but the sign of a zero one, which the final +0.0 makes +0.0 in both)."""
+    acc = np.zeros((*vals.shape[:-1], points))
+    for j in range(bounds.size - 1):
+        lo, hi = int(bounds[j]), int(bounds[j + 1])
+        if hi > lo:
+            pts = point[lo:hi]                       # (each point once per slot)
+            acc[..., pts] += vals[..., lo:hi]
+    acc += 0.0
+    return acc
+
+
+def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
+               want_cusp: bool, want_phi: bool
                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The blocks' sums (A, C, P / x²) per point, slot by slot: the numpy route (reference of
     :func:`far_rows`; the same operations in the same order).
 
-    The terms run in the outer loop, each term's moments gathered into one buffer and its
-    Taylor coefficient made from the two before it: only a window of coefficient arrays is
-    alive, and every operation writes into a buffer of the (points, slots) shape (a new array
-    per operation, and all TERMS coefficients and moments kept, cost a page fault per 4 KiB
-    written: most of this route's time before). Products by a constant are written in place
-    (IEEE multiplication and addition are commutative: the bits of the expression)."""
-    xc = x[:, None]
+    Computed on the used (point, slot) pairs only (:func:`used_pairs`), the terms in the outer
+    loop, each term's moments gathered into one buffer and its Taylor coefficient made from
+    the two before it: only a window of coefficient arrays is alive, and every operation
+    writes into a buffer of the pairs' size (a new array per operation, and all TERMS
+    coefficients and moments kept, cost a page fault per 4 KiB written: most of this route's
+    time before). Products by a constant are written in place (IEEE multiplication and
+    addition are commutative: the bits of the expression)."""
+    flat, point, bounds = used_pairs(used)
+    row = np.take(row, flat)
+    xc = np.take(x, point)
+    c = tree.centre[row]
     h = tree.half[row]
+    t = c / xc
+    asin_t = np.arcsin(t)           # numpy's, for both routes (libm's may differ by an ulp)
     shape = row.shape
     mom = np.empty(shape)
     tmp = np.empty(shape)
@@ -311,7 +344,7 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray, 
     A = np.empty(shape)
     C = np.empty(shape) if want_cusp else None
     P = np.empty(shape) if want_phi else None
-    with np.errstate(all="ignore"):     # unused slots (masked below) may overflow
+    with np.errstate(all="ignore"):
         sig = h / xc
         one_m = (xc - c) * (xc + c) / (xc * xc)      # 1 - t², accurate as t -> 1
         # scaled Taylor coefficients of asin about t: ã_n = a_n σ^n, n = 0 .. TERMS, a window
@@ -379,10 +412,11 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray, 
             old = coef.pop(m - 2, None)
             if old is not None and old is not asin_t:
                 spare.append(old)
-    # the slots summed in a fixed order (unused ones add exact zeros)
-    a_far = _sequential(np.where(used, A, 0.0))
-    c_far = None if C is None else _sequential(np.where(used, C, 0.0))
-    p_far = None if P is None else _sequential(np.where(used, P, 0.0))
+    # the slots summed in a fixed order (the unused ones, exact zeros, left out)
+    P_ = x.size
+    a_far = slot_sums(A, point, bounds, P_)
+    c_far = None if C is None else slot_sums(C, point, bounds, P_)
+    p_far = None if P is None else slot_sums(P, point, bounds, P_)
     return a_far, c_far, p_far
 
 

@@ -169,7 +169,7 @@ def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarr
     shape = row.shape
     by_term = _by_term(ct)
     col_list, kind_list = cols.tolist(), kinds.tolist()
-    vals = np.empty((cols.size,) + shape)
+    vals = np.empty((cols.size, *shape))
     tmp = np.empty(shape)
     mom = np.empty(shape)
     spare: list = []
