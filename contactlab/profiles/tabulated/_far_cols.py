@@ -94,22 +94,14 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
     row, k_near = _far._slots(tree, x)
     xc = x[:, None]
     zero_row = tree.moments.shape[0] - 1
-    c = tree.centre[row]
-    with np.errstate(all="ignore"):
-        t = c / xc
-        h = tree.half[row]
-        sig = h / xc
-        one_m = (xc - c) * (xc + c) / (xc * xc)
-        # acos t0 accurately (as arctan2 of the root), numpy's for both routes
-        acos_t = np.arctan2(np.sqrt(one_m), t)
-        asin_t = np.arcsin(t)
-    far = np.empty((cols.size, x.size))
     if _far._compiled(x.size):
+        far = np.empty((cols.size, x.size))
+        acos_t, asin_t = _angles(tree, row, xc)[3:]
         kernel(_far._COMPILED["on"])(x, row, acos_t, asin_t, tree.centre, tree.half,
                                      ct.moments, zero_row, _far.CA, _far.CB, _far._N, cols,
                                      kinds, far)
     else:
-        far = _columns_numpy(ct, row, t, sig, one_m, acos_t, asin_t, cols, kinds, zero_row)
+        far = _columns_numpy(ct, x, row, cols, kinds, zero_row)
     # near nodes: finest blocks from k_near on, nodes below x (the cubic route's formulas)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="left")
@@ -147,25 +139,44 @@ def _by_term(ct: ColumnTree) -> np.ndarray:
     return cached
 
 
-def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarray,
-                   one_m: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray, cols: np.ndarray,
+def _angles(tree: _far.FarTree, row: np.ndarray, xc: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(t, σ, 1 - t², acos t, asin t)`` of the slots ``row`` at the points ``xc`` (arrays
+    of one shape): the same operations for both routes (numpy's arctan2 and arcsin)."""
+    c = tree.centre[row]
+    with np.errstate(all="ignore"):
+        t = c / xc
+        h = tree.half[row]
+        sig = h / xc
+        one_m = (xc - c) * (xc + c) / (xc * xc)
+        # acos t0 accurately (as arctan2 of the root), numpy's for both routes
+        acos_t = np.arctan2(np.sqrt(one_m), t)
+        asin_t = np.arcsin(t)
+    return t, sig, one_m, acos_t, asin_t
+
+
+def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndarray,
                    kinds: np.ndarray, zero_row: int) -> np.ndarray:
     """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`).
 
     Every operation is an element-wise multiplication, division, addition or subtraction in the
     order of :func:`far_columns` (products by a constant written in place: IEEE multiplication
-    and addition are commutative, so ``x *= c`` gives the bits of ``c * x``). The terms run in
-    the outer loop: term n's coefficients (``ã_n``, ``s̃_n``, ``q̃_n``) are made from the few
-    before them and added into every column's sum at once, so only a window of coefficient
-    arrays is alive and their buffers are reused (a new (points, slots) array per operation,
-    and all TERMS of them kept, cost a page fault per 4 KiB written: most of this route's
-    time); each term's moments are gathered from a contiguous vector (:func:`_by_term`)."""
+    and addition are commutative, so ``x *= c`` gives the bits of ``c * x``), on the used
+    (point, slot) pairs only (:func:`._far.used_pairs`: a third of the slots are unused),
+    summed per point in slot order (:func:`._far.slot_sums`). The terms run in the outer loop:
+    term n's coefficients (``ã_n``, ``s̃_n``, ``q̃_n``) are made from the few before them and
+    added into every column's sum, so only a window of coefficient arrays is alive and their
+    buffers are reused (a new array per operation, and all TERMS of them kept, cost a page
+    fault per 4 KiB written: most of this route's time before); each term's moments are
+    gathered from a contiguous vector (:func:`_by_term`)."""
     T = _far.TERMS
     N = _far._N
     CA, CB = _far.CA, _far.CB
-    used = row != zero_row
     need_root = bool(np.any(kinds != ACOS))
     need_r3 = bool(np.any(kinds == ROOT3))
+    flat, point, bounds = _far.used_pairs(row != zero_row)
+    row = np.take(row, flat)
+    t, sig, one_m, acos_t, asin_t = _angles(ct.tree, row, np.take(x, point))
     shape = row.shape
     by_term = _by_term(ct)
     col_list, kind_list = cols.tolist(), kinds.tolist()
@@ -245,10 +256,8 @@ def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarr
                 arr = window.pop(old, None)
                 if arr is not None and arr is not asin_t:
                     spare.append(arr)
-        out = np.empty((cols.size, shape[0]))
-        for i in range(cols.size):
-            out[i] = _far._sequential(np.where(used, vals[i], 0.0))
-    return out
+    # the slots summed in order (the unused ones, exact zeros, left out)
+    return _far.slot_sums(vals, point, bounds, x.size)
 
 
 def far_columns(x: np.ndarray, row: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray,
