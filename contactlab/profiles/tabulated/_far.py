@@ -53,7 +53,7 @@ from ...numeric import normal_kernels as _normal_kernels
 
 __all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
            "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
-           "used_pairs", "slot_sums"]
+           "used_pairs", "slot_sums", "sequential_rows"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -266,23 +266,25 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
     c_near = np.zeros(x.size)
     p_near = np.zeros(x.size)
     if width > 0:
-        idx = lo[:, None] + np.arange(width)[None, :]
-        inside = idx < hi[:, None]
+        # (near node, point) arrays, each point's terms summed in node order by sequential_rows
+        idx = lo[None, :] + np.arange(width)[:, None]
+        inside = idx < hi[None, :]
         idx = np.where(inside, idx, 0)
         b = tree.nodes[idx]
         w = np.where(inside, tree.weights[idx], 0.0)
+        xr = x[None, :]
         # the operations of the node-by-node route (_linear._arcsine_pass)
-        q = b / np.maximum(xc, b)
+        q = b / np.maximum(xr, b)
         asin = np.arcsin(q)
-        a_near = _sequential(np.where(inside, w * asin, 0.0))
+        a_near = sequential_rows(np.where(inside, w * asin, 0.0))
         if want_cusp or want_phi:
             with np.errstate(divide="ignore", invalid="ignore"):
-                root = np.sqrt(np.where(inside, (xc - b) * (xc + b), 1.0))
+                root = np.sqrt(np.where(inside, (xr - b) * (xr + b), 1.0))
                 if want_cusp:
-                    c_near = _sequential(np.where(inside, w * b / root, 0.0))
+                    c_near = sequential_rows(np.where(inside, w * b / root, 0.0))
                 if want_phi:
-                    p_near = _sequential(np.where(inside, w * (0.5 * (b * root + xc**2 * asin)),
-                                                  0.0))
+                    p_near = sequential_rows(np.where(inside, w * (0.5 * (b * root + xr**2 * asin)),
+                                                      0.0))
     A_tot = a_far + a_near
     C_tot = None if c_far is None else c_far + c_near
     P_tot = None if p_far is None else x * x * p_far + p_near
@@ -485,6 +487,17 @@ def far_rows(x: np.ndarray, row: np.ndarray, asin_t: np.ndarray, centre: np.ndar
             c_out[i] = c_sum + 0.0
         if want_phi:
             p_out[i] = p_sum + 0.0
+
+
+def sequential_rows(terms: np.ndarray) -> np.ndarray:
+    """Column sums of ``terms`` (rows, points), the rows added in order, then +0.0: the bits
+    of :func:`_sequential` of the transposed array, by adding contiguous rows (numpy's
+    accumulate along short rows is slow)."""
+    acc = np.zeros(terms.shape[1])
+    for j in range(terms.shape[0]):
+        acc += terms[j]
+    acc += 0.0
+    return acc
 
 
 def _sequential(terms: np.ndarray) -> np.ndarray:

@@ -108,9 +108,8 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
     width = int(np.max(hi - lo)) if x.size else 0
     near = np.zeros((cols.size, x.size))
     if width > 0:
-        # (near node, point) arrays: each point's near terms summed in node order by adding
-        # rows (the bits of _far._sequential over (point, node) rows, without its slow
-        # accumulate along short rows)
+        # (near node, point) arrays: each point's near terms summed in node order
+        # (_far.sequential_rows)
         idx = lo[None, :] + np.arange(width)[:, None]
         inside = idx < hi[None, :]
         idx = np.where(inside, idx, 0)
@@ -122,12 +121,7 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
         for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
             w = np.where(inside, ct.columns[col][idx], 0.0)
             base = theta if kind == ACOS else (root if kind == ROOT else root3)
-            terms = np.where(inside, w * base, 0.0)
-            acc = near[i]
-            acc += terms[0]
-            for j in range(1, width):
-                acc += terms[j]
-            acc += 0.0
+            near[i] = _far.sequential_rows(np.where(inside, w * base, 0.0))
     res = np.empty((cols.size, x.size))
     for i, kind in enumerate(kinds.tolist()):
         if kind == ACOS:
