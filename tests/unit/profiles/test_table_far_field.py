@@ -294,3 +294,24 @@ def test_force_solve_sums_depth_and_integral_in_one_tree_pass(monkeypatch):
     # a call at other points drops the kept sums
     tab._g_closed_form(a[:7] * 0.5)
     assert "_far_primed" not in tab.__dict__
+
+
+def test_pair_sums_give_the_bits_of_the_dense_sequential_sums():
+    """The numpy routes sum each point's used slots only (_far.used_pairs, _far.slot_sums)
+    and near terms by rows (_far.sequential_rows): the bits of the dense left-to-right sums
+    with exact zeros in the unused slots, signed zeros, cancellation and empty rows included."""
+    rng = np.random.default_rng(11)
+    P, S = 300, 36
+    used = rng.random((P, S)) < 0.6
+    used[7] = False                                   # a point with no used slot
+    vals = rng.standard_normal((P, S)) * 10.0 ** rng.integers(-20, 20, (P, S))
+    vals[3, :] = -0.0
+    vals[5, :2] = (1e300, -1e300)
+    dense = np.where(used, vals, 0.0)
+    flat, point, bounds = _far.used_pairs(used)
+    got = _far.slot_sums(np.take(vals, flat), point, bounds, P)
+    assert got.tobytes() == _far._sequential(dense).tobytes()
+    assert _far.sequential_rows(dense.T).tobytes() == _far._sequential(dense).tobytes()
+    two = np.stack([vals, -vals])                    # several columns at once
+    both = _far.slot_sums(np.take(two.reshape(2, -1), flat, axis=1), point, bounds, P)
+    assert both[1].tobytes() == _far._sequential(np.where(used, -vals, 0.0)).tobytes()
