@@ -356,10 +356,8 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
         v /= one_m
         root = np.sqrt(one_m)
         coef: dict = {0: asin_t, 1: np.divide(sig, root)}
-        ts = t / sig if want_cusp else None
-        tsig = ss = None
-        if want_phi:
-            tsig, ss = t * sig, sig * sig
+        ts = t / sig if want_cusp else t                    # (t: unused placeholders)
+        tsig, ss = (t * sig, sig * sig) if want_phi else (t, t)
         for m in range(TERMS):
             # ã_{m+1} (the cusp sum's term m needs it): CA[k] (u ã_{k+1}) + CB[k] (v ã_k)
             k = m - 1

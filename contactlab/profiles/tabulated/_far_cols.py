@@ -202,12 +202,9 @@ def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndar
         a: dict = {0: asin_t, 1: a1}                # ã_n, a window of them
         s: dict = {}
         q: dict = {}
-        two_t = tts = ss = None
-        if need_root:
-            two_t = 2.0 * t
-        if need_r3:
-            tts = np.multiply(two_t, sig)
-            ss = np.multiply(sig, sig)
+        two_t = 2.0 * t if need_root else t                 # (t: unused placeholders)
+        tts = np.multiply(two_t, sig) if need_r3 else t
+        ss = np.multiply(sig, sig) if need_r3 else t
         for n in range(T):
             # ã_{n+1} (s̃_n needs it; ã_{m+2} = CA[m] (u ã_{m+1}) + CB[m] (v ã_m), m = n - 1)
             m = n - 1
