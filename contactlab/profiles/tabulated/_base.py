@@ -97,6 +97,8 @@ class _TableBase(Profile):
 
         def _cubic_prime(self, a: np.ndarray) -> np.ndarray: ...
 
+        def _far_prime(self, a: np.ndarray) -> None: ...
+
     def _guard(self, r: np.ndarray, name: str) -> None:
         if np.any(r > self.r[-1]):
             raise OutsideTheoryError(

@@ -37,8 +37,11 @@ CUBIC_SUM_RTOL = 1e-6
 #: accurate to ~5e-10 (rounding estimate < 4e-7; 1e3: 18 % local, 1.3e-9; 1e4: 6 %, 7e-9)
 CUBIC_LOCAL_RATIO = 300.0
 #: most radii of a force solve whose column sums are kept for the depth and ∫g asked next
-#: (14 floats each)
+#: (12 floats each)
 _PRIME_MAX = 65536
+#: the columns a force solve's radii are summed for (:meth:`_CubicTransform._cubic_prime`):
+#: g's value and rounding columns 0-5 and ∫g's 8-13 (its θ-columns are g's 0-3)
+_PRIMED_COLS = np.array([0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13])
 
 
 
@@ -364,19 +367,20 @@ class _CubicTransform(_TableBase):
         columns share the call: the same bits)."""
         A, R, R3k = _far_cols.ACOS, _far_cols.ROOT, _far_cols.ROOT3
         primed = self.__dict__.get("_cubic_primed")
-        if primed is not None:
+        if primed is not None and not (kind == "g" and with_slope):
             # the column sums at a force solve's radii (_cubic_prime), for the depth and the
-            # ∫g its caller asks next at the same radii; a call at other points drops them
+            # ∫g its caller asks next at the same radii (12 columns: not g's slope columns 6
+            # and 7, which neither needs); a call at other points drops them
             key = xv.tobytes()
             out = primed.get(key)
             if out is None and primed.get("fill"):
-                out = _far_cols.sums(ct, xv, np.arange(14),
-                                     np.array([A] * 4 + [R] * 8 + [R3k] * 2))
+                out = _far_cols.sums(ct, xv, _PRIMED_COLS,
+                                     np.array([A] * 4 + [R] * 6 + [R3k] * 2))
                 primed[key] = out
             if out is not None:
                 if kind == "g":
-                    return out[:4], out[4:8] if with_slope else out[4:6], None
-                return out[:4], out[8:12], out[12:14]
+                    return out[:4], out[4:6], None
+                return out[:4], out[6:10], out[10:12]
             self.__dict__.pop("_cubic_primed", None)
         memo = self.__dict__.get("_cubic_pair")
         if memo is not None:
@@ -462,7 +466,7 @@ class _CubicTransform(_TableBase):
 
     def _cubic_prime(self, a: np.ndarray) -> np.ndarray:
         """After a force solve on the column tree: the node sums of g and ∫g at its radii ``a``
-        in one pass over every column, kept for the depth and the ∫g its caller asks next (the
+        in one pass over their 12 columns, kept for the depth and the ∫g its caller asks next (the
         same bits as computed apart); returns where their rounding estimate exceeds
         :data:`CUBIC_SUM_RTOL` (there the signed-column Newton steps are redone on the full
         route). Batches above :data:`_PRIME_MAX` points are checked without keeping the sums."""

@@ -52,7 +52,8 @@ from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
 __all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
-           "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows"]
+           "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
+           "used_pairs", "slot_sums", "sequential_rows"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -244,10 +245,10 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
     xc = x[:, None]
     zero_row = tree.moments.shape[0] - 1
     used = row != zero_row
-    c = tree.centre[row]
-    t = c / xc
-    asin_t = np.arcsin(t)           # numpy's, for both routes (libm's may differ by an ulp)
     if _compiled(x.size):
+        c = tree.centre[row]
+        t = c / xc
+        asin_t = np.arcsin(t)       # numpy's, for both routes (libm's may differ by an ulp)
         a_far = np.empty(x.size)
         c_far = np.empty(x.size) if want_cusp else None
         p_far = np.empty(x.size) if want_phi else None
@@ -256,8 +257,7 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
                                 a_far if c_far is None else c_far,
                                 a_far if p_far is None else p_far)
     else:
-        a_far, c_far, p_far = _far_numpy(tree, x, row, used, c, t, asin_t, want_cusp,
-                                         want_phi)
+        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi)
     # near nodes: finest blocks from k_near on, nodes up to x (a node at x included)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="right")
@@ -266,75 +266,157 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
     c_near = np.zeros(x.size)
     p_near = np.zeros(x.size)
     if width > 0:
-        idx = lo[:, None] + np.arange(width)[None, :]
-        inside = idx < hi[:, None]
+        # (near node, point) arrays, each point's terms summed in node order by sequential_rows
+        idx = lo[None, :] + np.arange(width)[:, None]
+        inside = idx < hi[None, :]
         idx = np.where(inside, idx, 0)
         b = tree.nodes[idx]
         w = np.where(inside, tree.weights[idx], 0.0)
+        xr = x[None, :]
         # the operations of the node-by-node route (_linear._arcsine_pass)
-        q = b / np.maximum(xc, b)
+        q = b / np.maximum(xr, b)
         asin = np.arcsin(q)
-        a_near = _sequential(np.where(inside, w * asin, 0.0))
+        a_near = sequential_rows(np.where(inside, w * asin, 0.0))
         if want_cusp or want_phi:
             with np.errstate(divide="ignore", invalid="ignore"):
-                root = np.sqrt(np.where(inside, (xc - b) * (xc + b), 1.0))
+                root = np.sqrt(np.where(inside, (xr - b) * (xr + b), 1.0))
                 if want_cusp:
-                    c_near = _sequential(np.where(inside, w * b / root, 0.0))
+                    c_near = sequential_rows(np.where(inside, w * b / root, 0.0))
                 if want_phi:
-                    p_near = _sequential(np.where(inside, w * (0.5 * (b * root + xc**2 * asin)),
-                                                  0.0))
+                    p_near = sequential_rows(np.where(inside, w * (0.5 * (b * root + xr**2 * asin)),
+                                                      0.0))
     A_tot = a_far + a_near
     C_tot = None if c_far is None else c_far + c_near
     P_tot = None if p_far is None else x * x * p_far + p_near
     return A_tot, C_tot, P_tot
 
 
-def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray, c: np.ndarray,
-               t: np.ndarray, asin_t: np.ndarray, want_cusp: bool, want_phi: bool
+def used_pairs(used: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The used (point, slot) pairs of a (points, slots) mask, slot-major: their flat indices
+    into the (points, slots) arrays, their points, and where each slot's run starts (slots + 1
+    bounds). The numpy routes compute on these pairs only (a third of the slots are unused)."""
+    P, S = used.shape
+    flat_t = np.flatnonzero(used.T)                  # slot-major: slot * P + point
+    slot, point = np.divmod(flat_t, P)
+    bounds = np.searchsorted(flat_t, np.arange(S + 1) * P)
+    return point * S + slot, point, bounds
+
+
+def slot_sums(vals: np.ndarray, point: np.ndarray, bounds: np.ndarray, points: int
+              ) -> np.ndarray:
+    """Per point, its used slots' values (``vals``: (..., pairs) in :func:`used_pairs`'
+    order) added in slot order, then +0.0: the bits of :func:`_sequential` over the dense
+    (points, slots) row with exact zeros in the unused slots (adding an exact zero changes
+    no sum but the sign of a zero one, which the final +0.0 makes +0.0 in both)."""
+    acc = np.zeros((*vals.shape[:-1], points))
+    for j in range(bounds.size - 1):
+        lo, hi = int(bounds[j]), int(bounds[j + 1])
+        if hi > lo:
+            pts = point[lo:hi]                       # (each point once per slot)
+            acc[..., pts] += vals[..., lo:hi]
+    acc += 0.0
+    return acc
+
+
+def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
+               want_cusp: bool, want_phi: bool
                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The blocks' sums (A, C, P / x²) per point, slot by slot: the numpy route (reference of
-    :func:`far_rows`; the same operations in the same order)."""
-    xc = x[:, None]
+    :func:`far_rows`; the same operations in the same order).
+
+    Computed on the used (point, slot) pairs only (:func:`used_pairs`), the terms in the outer
+    loop, each term's moments gathered into one buffer and its Taylor coefficient made from
+    the two before it: only a window of coefficient arrays is alive, and every operation
+    writes into a buffer of the pairs' size (a new array per operation, and all TERMS
+    coefficients and moments kept, cost a page fault per 4 KiB written: most of this route's
+    time before). Products by a constant are written in place (IEEE multiplication and
+    addition are commutative: the bits of the expression)."""
+    flat, point, bounds = used_pairs(used)
+    row = np.take(row, flat)
+    xc = np.take(x, point)
+    c = tree.centre[row]
     h = tree.half[row]
-    mom = [np.take(m, row) for m in tree.moments_t]  # M_n per slot
-    with np.errstate(all="ignore"):     # unused slots (masked below) may overflow
+    t = c / xc
+    asin_t = np.arcsin(t)           # numpy's, for both routes (libm's may differ by an ulp)
+    shape = row.shape
+    mom = np.empty(shape)
+    tmp = np.empty(shape)
+    work = np.empty(shape)
+    spare: list = []
+    A = np.empty(shape)
+    C = np.empty(shape) if want_cusp else None
+    P = np.empty(shape) if want_phi else None
+    with np.errstate(all="ignore"):
         sig = h / xc
         one_m = (xc - c) * (xc + c) / (xc * xc)      # 1 - t², accurate as t -> 1
-        # scaled Taylor coefficients of asin about t: ã_n = a_n σ^n, n = 0 .. TERMS
-        u = t * sig / one_m
-        v = sig * sig / one_m
-        coef = [asin_t, sig / np.sqrt(one_m)]
-        for n in range(TERMS - 1):
-            nxt = CA[n] * (u * coef[n + 1])
-            if n:
-                nxt = nxt + CB[n] * (v * coef[n])
-            coef.append(nxt)
-        A = coef[0] * mom[0]
-        for n in range(1, TERMS):
-            A = A + coef[n] * mom[n]
-        C = P = None
-        if want_cusp:
-            # t asin'(t): t (n+1) a_{n+1} + n a_n; scaled by σ^n: (t/σ)(n+1) ã_{n+1} + n ã_n
-            ts = t / sig
-            C = (ts * coef[1]) * mom[0]
-            for n in range(1, TERMS):
-                C = C + (ts * (_N[n + 1] * coef[n + 1]) + _N[n] * coef[n]) * mom[n]
-        if want_phi:
-            # Φ: φ_0 = Φ(t), φ_{n+1} σ^{n+1} = (1-t²) ã_{n+1} - [2n/(n+1)] t σ ã_n
-            #                                   - [(n-1)/(n+1)] σ² ã_{n-1}
-            P = (0.5 * (t * np.sqrt(one_m) + coef[0])) * mom[0]
-            tsig, ss = t * sig, sig * sig
-            for n in range(0, TERMS - 1):
-                phi = one_m * coef[n + 1]
-                if n >= 1:
-                    phi = phi - PD[n] * (tsig * coef[n])
-                if n >= 2:
-                    phi = phi - PE[n] * (ss * coef[n - 1])
-                P = P + phi * mom[n + 1]
-    # the slots summed in a fixed order (unused ones add exact zeros)
-    a_far = _sequential(np.where(used, A, 0.0))
-    c_far = None if C is None else _sequential(np.where(used, C, 0.0))
-    p_far = None if P is None else _sequential(np.where(used, P, 0.0))
+        # scaled Taylor coefficients of asin about t: ã_n = a_n σ^n, n = 0 .. TERMS, a window
+        u = np.multiply(t, sig)
+        u /= one_m
+        v = np.multiply(sig, sig)
+        v /= one_m
+        root = np.sqrt(one_m)
+        coef: dict = {0: asin_t, 1: np.divide(sig, root)}
+        ts = t / sig if want_cusp else t                    # (t: unused placeholders)
+        tsig, ss = (t * sig, sig * sig) if want_phi else (t, t)
+        for m in range(TERMS):
+            # ã_{m+1} (the cusp sum's term m needs it): CA[k] (u ã_{k+1}) + CB[k] (v ã_k)
+            k = m - 1
+            if k >= 0 and m + 1 not in coef:
+                nxt = np.multiply(u, coef[k + 1], out=spare.pop() if spare else None)
+                nxt *= CA[k]
+                if k:
+                    np.multiply(v, coef[k], out=tmp)
+                    tmp *= CB[k]
+                    nxt += tmp
+                coef[k + 2] = nxt
+            np.take(tree.moments_t[m], row, out=mom, mode="clip")     # M_m per slot
+            if m == 0:
+                np.multiply(coef[0], mom, out=A)
+            else:
+                np.multiply(coef[m], mom, out=tmp)
+                A += tmp
+            if C is not None:
+                # t asin'(t): t (n+1) a_{n+1} + n a_n; scaled by σ^n: (t/σ)(n+1) ã_{n+1} + n ã_n
+                if m == 0:
+                    np.multiply(ts, coef[1], out=C)
+                    C *= mom
+                else:
+                    np.multiply(coef[m + 1], _N[m + 1], out=work)
+                    work *= ts
+                    np.multiply(coef[m], _N[m], out=tmp)
+                    work += tmp
+                    work *= mom
+                    C += work
+            if P is not None:
+                # Φ: φ_0 = Φ(t), φ_{n+1} σ^{n+1} = (1-t²) ã_{n+1} - [2n/(n+1)] t σ ã_n
+                #                                   - [(n-1)/(n+1)] σ² ã_{n-1}   (n = m - 1)
+                if m == 0:
+                    np.multiply(t, root, out=work)
+                    work += coef[0]
+                    work *= 0.5
+                    np.multiply(work, mom, out=P)
+                else:
+                    n = m - 1
+                    np.multiply(one_m, coef[n + 1], out=work)
+                    if n >= 1:
+                        np.multiply(tsig, coef[n], out=tmp)
+                        tmp *= PD[n]
+                        work -= tmp
+                    if n >= 2:
+                        np.multiply(ss, coef[n - 1], out=tmp)
+                        tmp *= PE[n]
+                        work -= tmp
+                    work *= mom
+                    P += work
+            # release ã_{m-2} (no later term reads it; ã_0 is the caller's arcsine)
+            old = coef.pop(m - 2, None)
+            if old is not None and old is not asin_t:
+                spare.append(old)
+    # the slots summed in a fixed order (the unused ones, exact zeros, left out)
+    P_ = x.size
+    a_far = slot_sums(A, point, bounds, P_)
+    c_far = None if C is None else slot_sums(C, point, bounds, P_)
+    p_far = None if P is None else slot_sums(P, point, bounds, P_)
     return a_far, c_far, p_far
 
 
@@ -403,6 +485,17 @@ def far_rows(x: np.ndarray, row: np.ndarray, asin_t: np.ndarray, centre: np.ndar
             c_out[i] = c_sum + 0.0
         if want_phi:
             p_out[i] = p_sum + 0.0
+
+
+def sequential_rows(terms: np.ndarray) -> np.ndarray:
+    """Column sums of ``terms`` (rows, points), the rows added in order, then +0.0: the bits
+    of :func:`_sequential` of the transposed array, by adding contiguous rows (numpy's
+    accumulate along short rows is slow)."""
+    acc = np.zeros(terms.shape[1])
+    for j in range(terms.shape[0]):
+        acc += terms[j]
+    acc += 0.0
+    return acc
 
 
 def _sequential(terms: np.ndarray) -> np.ndarray:

@@ -21,7 +21,7 @@ Private: used by :mod:`._cubic` for tables of at least :data:`._far.FAR_FIELD_FR
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -40,6 +40,7 @@ class ColumnTree:
     tree: _far.FarTree          # levels, blocks, node positions (its own moments unused)
     columns: np.ndarray         # (k, n) the columns
     moments: np.ndarray         # (blocks + 1, k, TERMS), the last block zeros
+    cache: dict = field(default_factory=dict, compare=False, repr=False)   # numpy route's layout
 
 
 #: finest level at most of a cubic table's tree (14 columns: 2^14 blocks hold 37 MB of moments)
@@ -93,38 +94,34 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
     row, k_near = _far._slots(tree, x)
     xc = x[:, None]
     zero_row = tree.moments.shape[0] - 1
-    c = tree.centre[row]
-    with np.errstate(all="ignore"):
-        t = c / xc
-        h = tree.half[row]
-        sig = h / xc
-        one_m = (xc - c) * (xc + c) / (xc * xc)
-        # acos t0 accurately (as arctan2 of the root), numpy's for both routes
-        acos_t = np.arctan2(np.sqrt(one_m), t)
-        asin_t = np.arcsin(t)
-    far = np.empty((cols.size, x.size))
     if _far._compiled(x.size):
+        far = np.empty((cols.size, x.size))
+        acos_t, asin_t = _angles(tree, row, xc)[3:]
         kernel(_far._COMPILED["on"])(x, row, acos_t, asin_t, tree.centre, tree.half,
                                      ct.moments, zero_row, _far.CA, _far.CB, _far._N, cols,
                                      kinds, far)
     else:
-        far = _columns_numpy(ct, row, t, sig, one_m, acos_t, asin_t, cols, kinds, zero_row)
+        far = _columns_numpy(ct, x, row, cols, kinds, zero_row)
     # near nodes: finest blocks from k_near on, nodes below x (the cubic route's formulas)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="left")
     width = int(np.max(hi - lo)) if x.size else 0
     near = np.zeros((cols.size, x.size))
     if width > 0:
-        idx = lo[:, None] + np.arange(width)[None, :]
-        inside = idx < hi[:, None]
+        # (near node, point) arrays: each point's near terms summed in node order
+        # (_far.sequential_rows)
+        idx = lo[None, :] + np.arange(width)[:, None]
+        inside = idx < hi[None, :]
         idx = np.where(inside, idx, 0)
         b = tree.nodes[idx]
-        root = np.sqrt(np.maximum((xc - b) * (xc + b), 0.0))
+        xr = x[None, :]
+        root = np.sqrt(np.maximum((xr - b) * (xr + b), 0.0))
         theta = np.arctan2(root, b)
+        root3 = root**3 / 3.0 if bool(np.any(kinds == ROOT3)) else root
         for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
             w = np.where(inside, ct.columns[col][idx], 0.0)
-            base = theta if kind == ACOS else (root if kind == ROOT else root**3 / 3.0)
-            near[i] = _far._sequential(np.where(inside, w * base, 0.0))
+            base = theta if kind == ACOS else (root if kind == ROOT else root3)
+            near[i] = _far.sequential_rows(np.where(inside, w * base, 0.0))
     res = np.empty((cols.size, x.size))
     for i, kind in enumerate(kinds.tolist()):
         if kind == ACOS:
@@ -136,57 +133,132 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
     return res
 
 
-def _columns_numpy(ct: ColumnTree, row: np.ndarray, t: np.ndarray, sig: np.ndarray,
-                   one_m: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray, cols: np.ndarray,
+def _by_term(ct: ColumnTree) -> np.ndarray:
+    """``ct.moments`` term-major, ``(k, TERMS, blocks + 1)`` contiguous (the numpy route gathers
+    one term of one column at a time from a contiguous vector), set up on first use."""
+    cached = ct.cache.get("by_term")
+    if cached is None:
+        cached = np.ascontiguousarray(ct.moments.transpose(1, 2, 0))
+        ct.cache["by_term"] = cached
+    return cached
+
+
+def _angles(tree: _far.FarTree, row: np.ndarray, xc: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(t, σ, 1 - t², acos t, asin t)`` of the slots ``row`` at the points ``xc`` (arrays
+    of one shape): the same operations for both routes (numpy's arctan2 and arcsin)."""
+    c = tree.centre[row]
+    with np.errstate(all="ignore"):
+        t = c / xc
+        h = tree.half[row]
+        sig = h / xc
+        one_m = (xc - c) * (xc + c) / (xc * xc)
+        # acos t0 accurately (as arctan2 of the root), numpy's for both routes
+        acos_t = np.arctan2(np.sqrt(one_m), t)
+        asin_t = np.arcsin(t)
+    return t, sig, one_m, acos_t, asin_t
+
+
+def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndarray,
                    kinds: np.ndarray, zero_row: int) -> np.ndarray:
-    """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`)."""
+    """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`).
+
+    Every operation is an element-wise multiplication, division, addition or subtraction in the
+    order of :func:`far_columns` (products by a constant written in place: IEEE multiplication
+    and addition are commutative, so ``x *= c`` gives the bits of ``c * x``), on the used
+    (point, slot) pairs only (:func:`._far.used_pairs`: a third of the slots are unused),
+    summed per point in slot order (:func:`._far.slot_sums`). The terms run in the outer loop:
+    term n's coefficients (``ã_n``, ``s̃_n``, ``q̃_n``) are made from the few before them and
+    added into every column's sum, so only a window of coefficient arrays is alive and their
+    buffers are reused (a new array per operation, and all TERMS of them kept, cost a page
+    fault per 4 KiB written: most of this route's time before); each term's moments are
+    gathered from a contiguous vector (:func:`_by_term`)."""
     T = _far.TERMS
     N = _far._N
-    used = row != zero_row
+    CA, CB = _far.CA, _far.CB
     need_root = bool(np.any(kinds != ACOS))
     need_r3 = bool(np.any(kinds == ROOT3))
+    flat, point, bounds = _far.used_pairs(row != zero_row)
+    row = np.take(row, flat)
+    t, sig, one_m, acos_t, asin_t = _angles(ct.tree, row, np.take(x, point))
+    shape = row.shape
+    by_term = _by_term(ct)
+    col_list, kind_list = cols.tolist(), kinds.tolist()
+    vals = np.empty((cols.size, *shape))
+    tmp = np.empty(shape)
+    mom = np.empty(shape)
+    spare: list = []
+
+    def buffer() -> np.ndarray:
+        return spare.pop() if spare else np.empty(shape)
+
     with np.errstate(all="ignore"):
-        u = t * sig / one_m
-        v = sig * sig / one_m
-        a = [asin_t, sig / np.sqrt(one_m)]
-        for n in range(T - 1):
-            nxt = _far.CA[n] * (u * a[n + 1])
-            if n:
-                nxt = nxt + _far.CB[n] * (v * a[n])
-            a.append(nxt)
-        s: list = []
-        if need_root:
-            s = [np.sqrt(one_m)]
-            for n in range(1, T):
-                sn = one_m * (N[n + 1] * a[n + 1] / sig) - (2.0 * t) * (N[n] * a[n])
-                if n >= 2:
-                    sn = sn - N[n - 1] * (sig * a[n - 1])
-                s.append(sn)
-        q: list = []
-        if need_r3:
-            tts = 2.0 * t * sig
-            ss = sig * sig
-            for n in range(T):
-                qn = one_m * s[n]
+        u = np.multiply(t, sig)
+        u /= one_m                                  # (t σ)/(1 - t²)
+        v = np.multiply(sig, sig)
+        v /= one_m                                  # σ²/(1 - t²)
+        a1 = np.sqrt(one_m)
+        np.divide(sig, a1, out=a1)
+        a: dict = {0: asin_t, 1: a1}                # ã_n, a window of them
+        s: dict = {}
+        q: dict = {}
+        two_t = 2.0 * t if need_root else t                 # (t: unused placeholders)
+        tts = np.multiply(two_t, sig) if need_r3 else t
+        ss = np.multiply(sig, sig) if need_r3 else t
+        for n in range(T):
+            # ã_{n+1} (s̃_n needs it; ã_{m+2} = CA[m] (u ã_{m+1}) + CB[m] (v ã_m), m = n - 1)
+            m = n - 1
+            if m >= 0 and n + 1 not in a:
+                nxt = np.multiply(u, a[m + 1], out=buffer())
+                nxt *= CA[m]
+                if m:
+                    np.multiply(v, a[m], out=tmp)
+                    tmp *= CB[m]
+                    nxt += tmp
+                a[m + 2] = nxt
+            if need_root:
+                if n == 0:
+                    s[0] = np.sqrt(one_m)
+                else:
+                    sn = np.multiply(a[n + 1], N[n + 1], out=buffer())
+                    sn /= sig
+                    sn *= one_m
+                    np.multiply(a[n], N[n], out=tmp)
+                    tmp *= two_t
+                    sn -= tmp
+                    if n >= 2:
+                        np.multiply(sig, a[n - 1], out=tmp)
+                        tmp *= N[n - 1]
+                        sn -= tmp
+                    s[n] = sn
+            if need_r3:
+                qn = np.multiply(one_m, s[n], out=buffer())
                 if n >= 1:
-                    qn = qn - tts * s[n - 1]
+                    np.multiply(tts, s[n - 1], out=tmp)
+                    qn -= tmp
                 if n >= 2:
-                    qn = qn - ss * s[n - 2]
-                q.append(qn)
-        out = np.empty((cols.size, row.shape[0]))
-        for i, (col, kind) in enumerate(zip(cols.tolist(), kinds.tolist())):
-            mom = ct.moments[row, col, :]                    # (rows, slots, TERMS)
-            if kind == ACOS:
-                val = acos_t * mom[..., 0]
-                for n in range(1, T):
-                    val = val - a[n] * mom[..., n]
-            else:
-                coef = s if kind == ROOT else q
-                val = coef[0] * mom[..., 0]
-                for n in range(1, T):
-                    val = val + coef[n] * mom[..., n]
-            out[i] = _far._sequential(np.where(used, val, 0.0))
-    return out
+                    np.multiply(ss, s[n - 2], out=tmp)
+                    qn -= tmp
+                q[n] = qn
+            for i, (col, kind) in enumerate(zip(col_list, kind_list)):
+                np.take(by_term[col, n], row, out=mom, mode="clip")
+                if n == 0:
+                    np.multiply(acos_t if kind == ACOS else (s[0] if kind == ROOT else q[0]),
+                                mom, out=vals[i])
+                    continue
+                np.multiply(a[n] if kind == ACOS else (s[n] if kind == ROOT else q[n]), mom,
+                            out=tmp)
+                if kind == ACOS:
+                    vals[i] -= tmp
+                else:
+                    vals[i] += tmp
+            # release what no later term reads: ã_{n-1}, s̃_{n-2}, q̃_n
+            for window, old in ((a, n - 1), (s, n - 2), (q, n)):
+                arr = window.pop(old, None)
+                if arr is not None and arr is not asin_t:
+                    spare.append(arr)
+    # the slots summed in order (the unused ones, exact zeros, left out)
+    return _far.slot_sums(vals, point, bounds, x.size)
 
 
 def far_columns(x: np.ndarray, row: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray,

@@ -15,6 +15,10 @@ from ...numeric.fixed_sums import row_sums
 from . import _far
 from ._base import _CHUNK, _TableBase, _clip_index, _rows_per_chunk, _sorted, _unsorted
 
+#: most radii whose tree sums a force solve keeps for the depth and ∫g asked next
+#: (:meth:`_LinearTransform._far_prime`)
+PRIME_MAX = 65536
+
 
 class _LinearTransform(_TableBase):
     """Transform kernels of the linear interpolant (private helpers only)."""
@@ -59,7 +63,17 @@ class _LinearTransform(_TableBase):
         pos = flat > 0
         if np.any(pos):
             xs = flat[pos]
-            A, C, P = _far.sums(tree, xs, with_slope, with_integral)
+            sums = None
+            primed = self.__dict__.get("_far_primed")
+            if primed is not None:
+                # a force solve's radii (_far_prime): A and P kept for the depth and the ∫g
+                # asked next at them; a call at other points (or for g') drops them
+                if not with_slope and primed[0] == xs.tobytes():
+                    sums = (primed[1], None, primed[2])
+                else:
+                    self.__dict__.pop("_far_primed", None)
+            A, C, P = sums if sums is not None else _far.sums(tree, xs, with_slope,
+                                                              with_integral)
             k = _clip_index(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
             s_k = self._slopes[k]
             base = 0.5 * np.pi * s_k - A
@@ -71,6 +85,19 @@ class _LinearTransform(_TableBase):
         shape = x.shape
         return (g.reshape(shape), None if slope is None else slope.reshape(shape),
                 None if integral is None else integral.reshape(shape))
+
+    def _far_prime(self, a: np.ndarray) -> None:
+        """After a force solve on the tree: the sums of g and ∫g at its radii ``a`` (every one
+        positive) in one pass (A and P, the same bits as from separate passes: A's operations
+        do not depend on which other sums a pass makes), kept for the depth and the ∫g its
+        caller asks next at these radii (two passes over the tree become one). Batches above
+        :data:`PRIME_MAX` points are not kept."""
+        tree = self._far_tree()
+        flat = a.ravel()
+        if tree is None or flat.size > PRIME_MAX or not bool(np.all(flat > 0)):
+            return
+        A, _, P = _far.sums(tree, flat, False, True)
+        self.__dict__["_far_primed"] = (flat.tobytes(), A, P)
 
     def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
                       ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:

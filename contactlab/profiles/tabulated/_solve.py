@@ -376,6 +376,8 @@ class _TableSolver(_TableBase):
         tol = 0.5 * root_rtol(rtol)
         a = self._newton_on_node_interval(flat, lo, hi, v0, v1, tol, value_and_slope, value,
                                           cusp=cusp, slopes=slopes)
+        if self._spline is None:
+            self._far_prime(a)          # (the depth and ∫g at these radii: one tree pass)
         if signed:
             # the rounding estimate of the node sums at the radii (one pass over every column,
             # kept for the depth and ∫g asked next); where it is too large (the Gauss rule takes

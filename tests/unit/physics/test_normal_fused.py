@@ -141,6 +141,27 @@ def test_numpy_passes_bit_identical_to_the_general_route(backend, R):
         assert (s.depth, s.radius, s.force) == (d0[i], a0[i], F0[i])
 
 
+@pytest.mark.parametrize("chunk", [64, 1000, NF.CHUNK])
+def test_numpy_passes_in_chunks_give_the_same_bits(monkeypatch, chunk):
+    """The numpy passes run chunk by chunk (range and request checks per chunk): the bits of
+    the general route whatever the chunk size, a last partial chunk included, and a force the
+    passes must decline in a later chunk (not positive, or a quotient above Q_MAX) still
+    declines the whole batch."""
+    monkeypatch.setattr(NF, "CHUNK", chunk)
+    F = _forces(3 * 1000 + 17, 11)
+    prof = Paraboloid(0.003)
+    E = cl.Contact(prof, MATERIALS).moduli.normal
+    res = NF.paraboloid_force(prof, E, F, "numpy")
+    assert res is not None
+    d0, a0, F0, _ = N.solve(prof, E, "force", F.copy(), 1e-10)
+    for x, y in zip((a0, d0, F0, np.abs(F0 - F)), res):
+        assert x.tobytes() == y.tobytes()
+    for bad in (0.0, 1e305, np.nan):
+        G = F.copy()
+        G[-5] = bad
+        assert NF.paraboloid_force(prof, E, G, "numpy") is None
+
+
 def test_backend_choice(backend, monkeypatch):
     with pytest.raises(ParameterError, match="backend='cuda'"):
         backend("cuda")

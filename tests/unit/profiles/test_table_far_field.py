@@ -264,3 +264,54 @@ def test_a_capped_tree_sums_more_near_nodes_to_the_same_values():
     assert np.all(np.abs(g - g0) <= TABLE_FAR_FIELD_SUMS * mg)
     assert np.all(np.abs(integral - integral0) <= TABLE_FAR_FIELD_SUMS * mi)
     assert np.all(np.abs(gp[finite] - gp0[finite]) <= TABLE_FAR_FIELD_SUMS * ms[finite])
+
+
+def test_force_solve_sums_depth_and_integral_in_one_tree_pass(monkeypatch):
+    """Regression: after a force solve on the tree, the depth g(a) and ∫g(a) at the solved
+    radii took two more passes over the tree; they come from one (A and P together, kept by
+    _far_prime), with the bits of the separate passes (a fresh table, never primed)."""
+    d = np.random.default_rng(5).uniform(1e-8, 2.4e-5, 300)
+    F = np.asarray(cl.Contact(_sphere_table(), MATS, rtol=1e-6).normal(depth=d).force)
+    tab = _sphere_table()
+    c = cl.Contact(tab, MATS, rtol=1e-6)
+    c.normal(force=F[:5])                              # (node memo filled)
+    calls = []
+    orig = _far.sums
+
+    def counted(tree, x, want_cusp, want_phi):
+        calls.append((x.size, want_cusp, want_phi))
+        return orig(tree, x, want_cusp, want_phi)
+
+    monkeypatch.setattr(_far, "sums", counted)
+    st = c.normal(force=F)
+    # the last Newton pass (it asks for g'), then one pass for g and ∫g (was: two)
+    assert calls[-2][1] and calls[-1] == (F.size, False, True)
+    monkeypatch.setattr(_far, "sums", orig)
+    ref = _sphere_table()
+    a = np.asarray(st.radius)
+    assert np.array_equal(np.asarray(st.depth), ref._g_closed_form(a))
+    assert np.array_equal(ref._g_integral_closed_form(a), tab._g_integral_closed_form(a))
+    # a call at other points drops the kept sums
+    tab._g_closed_form(a[:7] * 0.5)
+    assert "_far_primed" not in tab.__dict__
+
+
+def test_pair_sums_give_the_bits_of_the_dense_sequential_sums():
+    """The numpy routes sum each point's used slots only (_far.used_pairs, _far.slot_sums)
+    and near terms by rows (_far.sequential_rows): the bits of the dense left-to-right sums
+    with exact zeros in the unused slots, signed zeros, cancellation and empty rows included."""
+    rng = np.random.default_rng(11)
+    P, S = 300, 36
+    used = rng.random((P, S)) < 0.6
+    used[7] = False                                   # a point with no used slot
+    vals = rng.standard_normal((P, S)) * 10.0 ** rng.integers(-20, 20, (P, S))
+    vals[3, :] = -0.0
+    vals[5, :2] = (1e300, -1e300)
+    dense = np.where(used, vals, 0.0)
+    flat, point, bounds = _far.used_pairs(used)
+    got = _far.slot_sums(np.take(vals, flat), point, bounds, P)
+    assert got.tobytes() == _far._sequential(dense).tobytes()
+    assert _far.sequential_rows(dense.T).tobytes() == _far._sequential(dense).tobytes()
+    two = np.stack([vals, -vals])                    # several columns at once
+    both = _far.slot_sums(np.take(two.reshape(2, -1), flat, axis=1), point, bounds, P)
+    assert both[1].tobytes() == _far._sequential(np.where(used, -vals, 0.0)).tobytes()
