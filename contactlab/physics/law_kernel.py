@@ -6,9 +6,9 @@ passes; the numpy path stays the reference and the tests compare the two. A step
 three passes over the contacts: :func:`normal_pass` (inputs checked, depth/radius/force, which
 contacts separate or leave the constant-load regime; no state written) and :func:`fused_pass`
 (scale factors, torsional and tangential Masing steps and the outputs of every contact, in
-two loops, one per channel, no temporary arrays). Contacts whose load changes go onto their MDR springs through
-:func:`switch_pass` (once per contact, in the arrays the law allocated) and then
-:func:`spring_pass` every step. Under force control (and by depth for ``n != 2``) the
+two loops, one per channel, no temporary arrays). Contacts whose load changes go onto their
+MDR springs through :func:`switch_pass` (once per contact, in the arrays the law allocated) and
+then :func:`spring_pass` every step. Under force control (and by depth for ``n != 2``) the
 fractional powers of the normal contact come from numpy's vectorised ``power``, so that the
 compiled step matches the numpy law to the bit. :data:`AVAILABLE` is False when numba is not
 installed.
