@@ -43,7 +43,7 @@ from ..errors import ConvergenceError, NotSupportedError
 
 __all__ = ["MasterCurve", "torsion_master", "torsion_scales", "tangential_master",
            "MASTER_RTOL", "MASTER_PANELS", "MAX_PANELS", "MASTER_DEGREE", "MIN_EXPONENT",
-           "CERTIFY_TOL", "MAP_POWER_BELOW_ONE", "evaluate", "map_power"]
+           "CERTIFY_TOL", "MAP_POWER_BELOW_ONE", "ESTRIN_TERMS", "evaluate", "map_power"]
 
 #: tolerance of the exact solvers the master curves are built from
 MASTER_RTOL = 1e-14
@@ -53,6 +53,11 @@ MASTER_RTOL = 1e-14
 MASTER_PANELS = 128
 MAX_PANELS = 1024
 MASTER_DEGREE = 7
+#: coefficients per panel evaluated by Estrin's scheme (degree 7: pairs, then u², then u⁴; the
+#: same operations as Horner's rule in a dependency chain of 3 multiply-adds instead of 7,
+#: measured 5-6 % less CPU time of the compiled law's constant-load pass at 10^6 contacts);
+#: other degrees by Horner's rule. The compiled law evaluates in the same order (same bits)
+ESTRIN_TERMS = 8
 #: certified error of the curves (absolute; t, M/M_full and D/(M_full φ) are all O(1))
 CERTIFY_TOL = 1e-13
 #: smallest supported exponent. For n -> 0 the pressure p ∝ r^(n-1) approaches a non-integrable
@@ -118,7 +123,8 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
 
     The table holds ``t``, ``m/s^k`` and ``q/s^(2k)`` (smooth and non-zero at ``s = 0``, so
     torque and dissipation keep their relative accuracy as ``y → 0``), as monomials in the
-    panel's local variable ``u ∈ [-1, 1]``, with ``s = y/(y + y_s)`` (``k = power = 1``) or
+    panel's local variable ``u ∈ [-1, 1]`` (degree 7 by Estrin's scheme, :data:`ESTRIN_TERMS`;
+    other degrees by Horner's rule), with ``s = y/(y + y_s)`` (``k = power = 1``) or
     ``s = r/(1 + r)``, ``r = (y/y_s)^(1/k)``. Flat punch (``y0 > 0``, ``scaled`` False): ``t = 1``,
     ``m = m0 y``, ``q = 0`` up to ``y0``; the table holds ``t``, ``m``, ``q`` in
     ``s = (y - y0)/(y - y0 + y_s)`` beyond.
@@ -144,12 +150,21 @@ def evaluate(coef: np.ndarray, y_scale: float, y: np.ndarray, y0: float = 0.0,
     j = xp.clip(z.astype(np.intp), 0, N - 1)
     u = 2.0 * (z - j) - 1.0
     out = []
-    for k in range(3):
-        ck = coef[k]
-        acc = ck[j, -1]
-        for p in range(coef.shape[2] - 2, -1, -1):
-            acc = acc * u + ck[j, p]
-        out.append(acc)
+    if coef.shape[2] == 8:      # degree 7 (ESTRIN_TERMS, a literal: the law's exported source
+        # copies this function): Estrin's scheme, in this order of operations
+        u2 = u * u
+        u4 = u2 * u2
+        for k in range(3):
+            ck = coef[k]
+            out.append(((ck[j, 0] + ck[j, 1] * u) + (ck[j, 2] + ck[j, 3] * u) * u2)
+                       + ((ck[j, 4] + ck[j, 5] * u) + (ck[j, 6] + ck[j, 7] * u) * u2) * u4)
+    else:                                   # any other degree: Horner
+        for k in range(3):
+            ck = coef[k]
+            acc = ck[j, -1]
+            for p in range(coef.shape[2] - 2, -1, -1):
+                acc = acc * u + ck[j, p]
+            out.append(acc)
     if not scaled:
         return xp.clip(out[0], 0.0, 1.0), out[1], out[2]
     if power != 1:

@@ -341,3 +341,49 @@ def test_every_contact_on_springs_skips_the_fused_pass_to_the_bit(reuse, monkeyp
     assert skipped == [n] * (steps - 4)     # the steps after the switch, the mixed law never
     for key, v in alone.state.items():
         np.testing.assert_array_equal(v, mixed.state[key][:n], err_msg=key)
+
+
+@needs_numba
+def test_fused_pass_refuses_a_master_curve_of_another_degree():
+    """The compiled pass evaluates degree-7 master curves only (Estrin's scheme, no fallback
+    loop): a curve of another degree is refused with NotSupportedError naming the degree,
+    never read with the wrong number of coefficients."""
+    from contactlab.errors import NotSupportedError
+    from contactlab.physics.master import MasterCurve
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=np.full(3, 5e-3), E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4e10, friction=0.3, fast=True)
+    mc = law._master
+    law._master = MasterCurve(mc.n, mc.y_scale, mc.coef[:, :, :6].copy(), mc.certified_error)
+    with pytest.raises(NotSupportedError, match="degree 5"):
+        law.step(force=np.full(3, 10.0), twist=np.full(3, 1e-4))
+
+
+@needs_numba
+def test_fused_pass_counts_a_sum_of_finite_outputs_that_overflows():
+    """The pass tests the sum of a contact's five outputs for finiteness (one test instead of
+    five): outputs that are each finite but whose sum overflows are counted (the law then runs
+    its exact check of every array, which finds nothing and refuses nothing), a NaN output
+    is counted, ordinary outputs are not."""
+    from contactlab.physics import law_kernel
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=np.full(3, 5e-3), E_star=1.0, G_star=1.0,
+                        G_torsion=1.0, friction=1.0, fast=True)
+    one = np.ones(3)
+    d = one.copy()
+    F = np.array([1.5e308, 1.0, 1.0])
+    u = np.full(3, 0.5)
+    rounds = []
+    for a, counted in ((np.array([8e307, 1e-3, 2e-3]), 1), (np.array([8e307, 1e-3, np.nan]), 2)):
+        Ft, ct, M, cm, dW, exact, nf, n_over = law_kernel.fused_pass(
+            u, None, d, a, F, np.zeros(3, np.int8), np.zeros(3), one, one, one, one, 2.0,
+            law._master, law._chan)
+        assert nf == counted and n_over == 0
+        rounds.append((a, Ft, M, ct, cm, dW))
+        assert np.all(np.isfinite(np.stack([Ft, ct, M, cm, dW])[:, :2]))
+        with np.errstate(over="ignore"):
+            assert not np.isfinite(Ft[0] + ct[0] + M[0] + cm[0] + dW[0])
+        law._chan["x"][...] = 0.0                   # the next round starts virgin again
+        law._chan["y"][...] = 0.0
+        law._chan["w"][...] = 0.0
+        law._chan["last"][...] = 0
+    assert np.isnan(ct[2])
+    law._check_finite(np.ones(3, bool), d, *rounds[0][:1], F, *rounds[0][1:])  # finite: passes

@@ -194,3 +194,33 @@ def test_evaluate_on_any_array_module_to_the_bit(n):
         np.testing.assert_array_equal(_bits(a), _bits(b))
         assert np.all(np.isnan(b[:2]))
     assert watch.below == np.count_nonzero(np.isnan(ref[0])) >= 2
+
+
+def test_evaluate_degree_seven_by_estrin_other_degrees_by_horner():
+    """The order of operations the compiled law reproduces (issue 29): a degree-7 table is
+    evaluated by Estrin's scheme (pairs, then u², then u⁴), any other degree by Horner's rule,
+    bit for bit; on the certification points the two orders of a degree-7 table agree to
+    MASTER_CURVE (both are rounding-level evaluations of the same polynomial)."""
+    rng = np.random.default_rng(3)
+    coef = rng.standard_normal((3, 5, 8))
+    y = rng.uniform(0.0, 20.0, 400)
+    t, m, q = master.evaluate(coef, 1.0, y, scaled=False)
+    s = y / (y + 1.0)
+    z = s * 5
+    j = np.clip(z.astype(np.intp), 0, 4)
+    u = 2.0 * (z - j) - 1.0
+    u2, u4 = u * u, (u * u) * (u * u)
+    for k, got in enumerate((t, m, q)):
+        c = coef[k][j].T
+        est = ((c[0] + c[1] * u) + (c[2] + c[3] * u) * u2) + ((c[4] + c[5] * u)
+                                                              + (c[6] + c[7] * u) * u2) * u4
+        hor = c[7]
+        for p in range(6, -1, -1):
+            hor = hor * u + c[p]
+        np.testing.assert_array_equal(got, np.clip(est, 0.0, 1.0) if k == 0 else est)
+        np.testing.assert_allclose(est, hor, rtol=0, atol=MASTER_CURVE * np.max(np.abs(hor)))
+    six = master.evaluate(coef[:, :, :7], 1.0, y, scaled=False)[1]
+    hor = coef[1][j, 6]
+    for p in range(5, -1, -1):
+        hor = hor * u + coef[1][j, p]
+    np.testing.assert_array_equal(six, hor)
