@@ -19,26 +19,32 @@ import ctypes
 import mmap
 import sys
 import threading
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
 from ..params import check_memory
 
-__all__ = ["SpringPool", "SPRING_FIELDS", "pool_row_bytes"]
+__all__ = ["SpringPool", "SPRING_FIELDS", "OLD_SPRING_FIELDS", "pool_row_bytes", "upgraded_state"]
 
-#: the spring state per contact: name -> (dtype, per spring?)
+#: the spring state per contact: name -> (dtype, per spring?). The cells' normal integrals of
+#: the last step are not stored: they follow from its depth ``spr_depth``, radius ``spr_a`` and
+#: the cover (recomputed by the same expressions, the same bits), 16 springs x 8 B less per row
 SPRING_FIELDS = {"spr_cover": (np.float64, False), "spr_depth": (np.float64, False),
-                 "spr_k": (np.int64, False), "spr_S": (np.float64, True),
+                 "spr_a": (np.float64, False), "spr_k": (np.int64, False),
                  "spr_tan": (np.float64, True), "spr_tor": (np.float64, True),
                  "spr_x_tan": (np.float64, False), "spr_x_tor": (np.float64, False)}
+#: the per-spring cell integrals a state saved before ``spr_a`` replaced them holds
+OLD_SPRING_FIELDS = ("spr_S",)
 #: smallest number of rows allocated at the first switch
 _MIN_ROWS = 64
 
 
 def pool_row_bytes(springs: int) -> int:
-    """Bytes of one row of the pool: 4 floats + an int64 + the owner (int32) + 3 floats per
-    spring (44 + 24 springs)."""
-    return 44 + 24 * int(springs)
+    """Bytes of one row of the pool: 5 floats + an int64 + the owner (int32) + 2 floats per
+    spring (52 + 16 springs: 308 B at 16 springs)."""
+    return 52 + 16 * int(springs)
 
 
 #: arrays of the pool at least this large (bytes) are mapped from the operating system directly
@@ -222,3 +228,27 @@ class SpringPool:
         s = self.assign(idx)
         for k in SPRING_FIELDS:
             self.rows[k][s] = fields[k][idx]
+
+
+def upgraded_state(value: Any, law: Any) -> Any:
+    """A law's state as saved before the spring rows dropped their per-spring cell integrals
+    (``spr_S``, replaced by the radius ``spr_a`` of the row's last step) in the current form:
+    ``spr_a`` is the contact radius at the stored ``spr_depth`` (``law._radius``), ``spr_S``
+    dropped; anything else (a current state, no springs, a dict the setter refuses) as given.
+    From such a state the law continues at the same cells, edge cells and elements; the
+    radius a force-controlled step found may differ from the one recomputed from its depth by
+    rounding, so the first step's contact weights of the cells between the old and new edge
+    may move by rounding too (a depth-controlled Paraboloid run: the same bits)."""
+    if (law._pool is None or not isinstance(value, Mapping) or "spr_a" in value
+            or not all(k in value for k in (*OLD_SPRING_FIELDS, "spr_on", "spr_depth"))):
+        return value
+    try:
+        on = np.asarray(value["spr_on"]).astype(bool)
+        depth = np.asarray(value["spr_depth"], dtype=float)
+        with np.errstate(all="ignore"):
+            a = np.where(on, law._radius(np.where(on, np.abs(depth), 0.0), slice(None)), 0.0)
+    except (TypeError, ValueError, IndexError):     # shapes and the like: the setter names them
+        return value
+    new = {k: v for k, v in value.items() if k not in OLD_SPRING_FIELDS}
+    new["spr_a"] = a
+    return new

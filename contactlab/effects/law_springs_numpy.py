@@ -38,7 +38,7 @@ def to_springs(law: Any, idx: np.ndarray, d: np.ndarray, a: np.ndarray) -> None:
         P[f"spr_{ch}"][s] = _springs.replay(st[f"{ch}_X"][idx], st[f"{ch}_depth"][idx],
                                             st[f"{ch}_x"][idx], K * frac, L)
         P[f"spr_x_{ch}"][s] = st[f"{ch}_x"][idx]
-    P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d0
+    P["spr_a"][s], P["spr_k"][s], P["spr_depth"][s] = a0, k, d0
 
 
 def regrid(law: Any, idx: np.ndarray, a_new: np.ndarray) -> None:
@@ -54,8 +54,8 @@ def regrid(law: Any, idx: np.ndarray, a_new: np.ndarray) -> None:
         cum = np.concatenate([np.zeros((idx.size, 1)), np.cumsum(m, axis=1)], axis=1)
         P[f"spr_{ch}"][s] = np.diff(_springs.interp_rows(new["b"], old["b"], cum), axis=1)
     d0 = P["spr_depth"][s]
-    S, _, k = _springs.normal_cells(new, d0, law._radius(d0, idx))
-    P["spr_S"][s], P["spr_k"][s] = S, k
+    a0 = law._radius(d0, idx)
+    P["spr_a"][s], P["spr_k"][s] = a0, _springs.normal_cells(new, d0, a0)[2]
 
 
 def spring_step(law: Any, idx, d, a, u, phi):
@@ -68,8 +68,12 @@ def spring_step(law: Any, idx, d, a, u, phi):
     P, s = law._pool.rows, law._pool.slot[idx]
     geo = law._geometry(idx)
     S, T, k = _springs.normal_cells(geo, d, a)
-    dd = d - P["spr_depth"][s]
-    wgt = _springs.weights(geo, S, P["spr_S"][s], k, P["spr_k"][s], dd, a)
+    d_old = P["spr_depth"][s]
+    dd = d - d_old
+    # the last step's cell integrals, recomputed from its depth and radius (not stored): the
+    # same call on the same cells as the one that formed them, so the same bits
+    S_old = _springs.normal_cells(geo, d_old, P["spr_a"][s])[0]
+    wgt = _springs.weights(geo, S, S_old, k, P["spr_k"][s], dd, a)
     L_tan, L_tor = law._limits(idx, S, T)
     zero = np.zeros(idx.size)
     Ft, ct, M, cm, dW = zero, a.copy(), zero, a.copy(), zero.copy()
@@ -87,5 +91,5 @@ def spring_step(law: Any, idx, d, a, u, phi):
         P["spr_tor"][s], P["spr_x_tor"][s] = m, phi
         M = m.sum(axis=1)
         cm = _springs.stick_radius(m, L_tor, geo["bl"], a)
-    P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d
+    P["spr_a"][s], P["spr_k"][s], P["spr_depth"][s] = a, k, d
     return Ft, ct, M, cm, dW

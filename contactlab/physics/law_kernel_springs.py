@@ -20,13 +20,18 @@ _prange = range
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
-                 Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
+                 Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
     """One MDR spring step of the contacts ``idx`` (the arithmetic of
     :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
     weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
-    spring state of contact ``c`` is row ``slot[c]`` of ``cover, S_old, ..., x_tor``. A
-    contact whose radius exceeds its cover is left as it is, ``flag[c] = 4``, and counted
-    (its cells are regridded first: :func:`spring_pass`). Returns (non-finite, grown)."""
+    spring state of contact ``c`` is row ``slot[c]`` of ``cover, a_old, ..., x_tor``. The
+    last step's cell integrals (needed only for the weights of the cells between the old and
+    new edge cells, where the depth moved) are not stored: they are recomputed from the
+    row's depth ``d_old``, radius ``a_old`` and edge cell ``k_old`` by the expressions that
+    formed them in the last step or switch, so to the bit (a regridded row: the same
+    expressions at the regrid's radius). A contact whose radius exceeds its cover is left
+    as it is, ``flag[c] = 4``, and counted (its cells are regridded first:
+    :func:`spring_pass`). Returns (non-finite, grown)."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
@@ -89,7 +94,6 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             S = dj * w - (gr - gl)
             T = dj * (br2 - bl2) / 2.0 - (hr - hl)
             gl, hl = gr, hr
-            S_old[r, i] = S
             if has_u:
                 L = L2 * S
                 Kt = K2 * w
@@ -143,10 +147,24 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 S = 0.0
                 T = 0.0
             if dd != 0.0:
-                wgt = min(max((S - S_old[r, i]) / (dd * w), 0.0), 1.0)
+                # the last step's integral of this cell, by the expressions that formed it
+                # (inside the old edge cell, the old edge cell, beyond it)
+                if i < ko:
+                    So = d_old[r] * w - (cp1 * bG[i + 1] - cp1 * bG[i])
+                elif i == ko and a_old[r] > bl:
+                    ao = a_old[r]
+                    if n == 2.0:
+                        Gao = kcc * ao * ao * ao / n1
+                    elif n == 1.0:
+                        Gao = kcc * ao * ao / n1
+                    else:
+                        Gao = kcc * ao ** n1 / n1
+                    So = max(d_old[r] * (ao - bl) - (Gao - cp1 * bG[i]), 0.0)
+                else:
+                    So = 0.0
+                wgt = min(max((S - So) / (dd * w), 0.0), 1.0)
             else:
                 wgt = min(max((aj - bl) / w, 0.0), 1.0)
-            S_old[r, i] = S
             # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
             # m): adding it leaves the sum's bits unchanged, so it is skipped there
             if has_u:
@@ -180,7 +198,6 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
         # reference's arithmetic for those cells without the cell geometry
         for i in range(tail, N):
-            S_old[r, i] = 0.0
             if has_u:
                 mn = min(max(m_tan[r, i] + 0.0 * du, -0.0), 0.0)
                 m_tan[r, i] = mn
@@ -197,6 +214,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     cm_j = min(cov * beta[i], aj)
         k_old[r] = k
         d_old[r] = dj
+        a_old[r] = aj
         if has_u:
             x_tan[r] = u[c]
             Ft[c] = Ft_j
@@ -218,7 +236,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
 
 
 def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
-                 X, depth, x, slot, owner, base, cover, S_old, k_old, d_old, m_tan, m_tor,
+                 X, depth, x, slot, owner, base, cover, a_old, k_old, d_old, m_tan, m_tor,
                  x_tan, x_tor):
     """Switch the contacts ``idx`` from the exact constant-load law to their MDR springs (the
     arithmetic of ``ContactLaw._to_springs`` with the cell integrals of :func:`_spring_pass`,
@@ -289,7 +307,6 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             else:
                 S = 0.0
                 T = 0.0
-            S_old[r, i] = S
             frac = min(max((a0 - bl) / w, 0.0), 1.0)
             for ch in range(2):
                 if ch == 0:
@@ -326,7 +343,6 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
                 m = min(max(m + 0.0 * (x[ch, c] - prev), -0.0), 0.0)
                 for i in range(k + 1, N):
                     if ch == 0:
-                        S_old[r, i] = 0.0
                         m_tan[r, i] = m
                     else:
                         m_tor[r, i] = m
@@ -334,12 +350,13 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
         x_tor[r] = x[1, c]
         k_old[r] = k
         d_old[r] = d0
+        a_old[r] = a0
 
 
 
 def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu,
                       E, G, Gt, X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi,
-                      cover, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW,
+                      cover, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW,
                       flag):
     """Switch the contacts ``idx`` onto their springs and step them there, in blocks of
     ``block`` contacts: each block switched (:func:`_switch_pass`, rows ``base + j``) and
@@ -354,10 +371,10 @@ def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, be
         lo = b * block
         part = idx[lo:min(lo + block, idx.size)]
         _switch_one(part, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G,
-                    Gt, X, depth, x, slot, owner, base + lo, cover, S_old, k_old, d_old, m_tan,
+                    Gt, X, depth, x, slot, owner, base + lo, cover, a_old, k_old, d_old, m_tan,
                     m_tor, x_tan, x_tor)
         nf, gr = _spring_one(part, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG,
-                             bH, mu, E, G, Gt, S_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor,
+                             bH, mu, E, G, Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor,
                              Ft, ct, M, cm, dW, flag)
         nonfinite += nf
         grown += gr
@@ -395,7 +412,7 @@ def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
     def run(ix):
         return kernel(ix, pool.slot, d, a, _EMPTY if u is None else u,
                       _EMPTY if phi is None else phi, u is not None, phi is not None,
-                      P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_S"],
+                      P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_a"],
                       P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
                       P["spr_x_tan"], P["spr_x_tor"], *out, flag)
 
@@ -429,7 +446,7 @@ def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, ch
     P = pool.rows
     _kernels(parallel)[3](idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta,
                           bG, bH, mu, E, G, Gt, chan["X"], chan["depth"], chan["x"],
-                          pool.slot, pool.owner, pool.used, P["spr_cover"], P["spr_S"],
+                          pool.slot, pool.owner, pool.used, P["spr_cover"], P["spr_a"],
                           P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
                           P["spr_x_tan"], P["spr_x_tor"])
     pool.used += int(idx.size)
@@ -456,7 +473,7 @@ def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: f
         int(block), idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta, bG, bH,
         mu, E, G, Gt, chan["X"], chan["depth"], chan["x"], pool.slot, pool.owner, pool.used, d,
         _EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
-        phi is not None, P["spr_cover"], P["spr_S"], P["spr_k"], P["spr_depth"], P["spr_tan"],
+        phi is not None, P["spr_cover"], P["spr_a"], P["spr_k"], P["spr_depth"], P["spr_tan"],
         P["spr_tor"], P["spr_x_tan"], P["spr_x_tor"], *out, flag)
     pool.used += int(idx.size)
     if grown:                       # stepped again: found (flag 4), regridded, stepped

@@ -34,14 +34,14 @@ def test_pool_rows_follow_their_contacts():
     idx = np.array([7, 2, 5, 9, 0])
     s = pool.assign(idx)
     pool.rows["spr_depth"][s] = idx + 0.5
-    pool.rows["spr_S"][s] = (idx + 0.25)[:, None]
+    pool.rows["spr_tan"][s] = (idx + 0.25)[:, None]
     pool.release(np.array([2, 9, 3]))                # 3 holds no row
     assert pool.used == 3
     on = np.flatnonzero(pool.on())
     np.testing.assert_array_equal(on, [0, 5, 7])
     np.testing.assert_array_equal(pool.owner[pool.slot[on]], on)
     np.testing.assert_array_equal(pool.full("spr_depth")[on], on + 0.5)
-    np.testing.assert_array_equal(pool.full("spr_S")[on], np.repeat((on + 0.25)[:, None], 3, 1))
+    np.testing.assert_array_equal(pool.full("spr_tan")[on], np.repeat((on + 0.25)[:, None], 3, 1))
     assert not pool.full("spr_depth")[[1, 2, 3, 4, 6, 8, 9]].any()
 
 
@@ -223,9 +223,9 @@ def test_outgrown_covers_are_regridded_in_the_compiled_pass_to_the_numpy_bits(mo
                 np.testing.assert_allclose(x, y, rtol=0, err_msg=f"step {k}: {f}",
                                            atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(y)))
     sf, sr = fast.state, ref.state
-    for key in ("spr_cover", "spr_depth", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
+    for key in ("spr_cover", "spr_depth", "spr_a", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
         np.testing.assert_array_equal(sf[key], sr[key], err_msg=key)
-    for key in ("spr_S", "spr_tan", "spr_tor"):
+    for key in ("spr_tan", "spr_tor"):
         np.testing.assert_allclose(sf[key], sr[key], rtol=0, err_msg=key,
                                    atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(sr[key])))
     assert len(grown) == 2          # once per law, in step 5
@@ -266,7 +266,7 @@ def test_rows_in_memory_maps_give_the_same_bits(fast, monkeypatch):
             v = v.base
         return isinstance(v.obj if isinstance(v, memoryview) else v, mmap.mmap)
 
-    assert not mapped_(plain._pool.rows["spr_S"])
+    assert not mapped_(plain._pool.rows["spr_tan"])
     monkeypatch.setattr(law_pool, "_MAP_BYTES", 0)
     mapped = _law(n, fast)
     b = _run(mapped, n)
@@ -304,3 +304,63 @@ def test_mapped_rows_are_faulted_in_before_the_first_write(threads):
     assert not arr.any()
     assert faults(arr[:8192]) <= 64                 # populated: 1024 pages, no fault each
     assert faults(arr[8192:]) >= 1000               # not populated: a fault per page
+
+
+def test_a_row_holds_no_cell_integrals_and_its_bytes_are_counted():
+    """The spring row stores the last step's radius, not its 16 cell integrals (recomputed
+    from depth and radius): 52 + 16 springs bytes per row, counted from the pool's arrays."""
+    from contactlab.effects.law_pool import SPRING_FIELDS
+    assert "spr_S" not in SPRING_FIELDS and SPRING_FIELDS["spr_a"] == (np.float64, False)
+    pool = SpringPool(100, 16)
+    pool.reserve(1)
+    row = pool.owner[:1].nbytes + sum(v[:1].nbytes for v in pool.rows.values())
+    assert row == pool_row_bytes(16) == 308
+
+
+def _old_format(state, law):
+    """``state`` as a law saved it before ``spr_a`` replaced ``spr_S`` (the cell integrals of
+    the last step per spring; their values are not read back)."""
+    old = {k: v for k, v in state.items() if k != "spr_a"}
+    old["spr_S"] = np.full((law.size, law.springs), np.nan)
+    return old
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_a_state_saved_before_spr_a_still_loads_and_continues(fast, tmp_path):
+    """A state of the earlier format (``spr_S`` per spring, no ``spr_a``) restores: the radius
+    is recomputed from the stored depth, so a depth-controlled Paraboloid run continues to the
+    bit (its radius is the same closed form of the depth), and a state holding both keys is
+    refused naming the extra one."""
+    n, steps, at = 40, 16, 9
+    rng = np.random.default_rng(11)
+    d = cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11,
+                      G_star=4.4e10, G_torsion=4e10, friction=0.3).normal(
+                          force=rng.uniform(1.0, 100.0, n))[0]
+
+    def run(law, restore=False):
+        outs = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in range(steps):
+                if restore and k == at:
+                    np.savez(tmp_path / "old.npz", **_old_format(law.state, law))
+                    law = _law(n, fast)
+                    with np.load(tmp_path / "old.npz") as f:
+                        law.state = dict(f)
+                D = d * np.where(np.arange(n) % 2 == 0, 1.0 + 0.02 * np.sin(0.6 * k), 1.0)
+                r = law.step(depth=D, displacement=1e-8 * np.sin(0.7 * k + np.arange(n)),
+                             twist=1e-4 * np.cos(0.5 * k + np.arange(n)))
+                outs.append({f: getattr(r, f).copy() for f in FIELDS})
+        return law, outs
+
+    through, a = run(_law(n, fast))
+    restored, b = run(_law(n, fast), restore=True)
+    assert through.state["spr_on"].sum() == n // 2
+    for k, (x, y) in enumerate(zip(a, b)):
+        for f in FIELDS:
+            assert x[f].tobytes() == y[f].tobytes(), f"step {k}: {f}"
+    for key, v in through.state.items():
+        np.testing.assert_array_equal(v, restored.state[key], err_msg=key)
+    both = dict(through.state, spr_S=np.zeros((n, 16)))
+    with pytest.raises(cl.errors.ParameterError, match="unknown keys \\['spr_S'\\]"):
+        restored.state = both
