@@ -307,7 +307,9 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             else:
                 S = 0.0
                 T = 0.0
-            frac = min(max((a0 - bl) / w, 0.0), 1.0)
+            # inside the edge cell the clipped ratio is 1 (a0 > br, so a0 - bl >= w): no
+            # division, the same bits
+            frac = 1.0 if i < k else min(max((a0 - bl) / w, 0.0), 1.0)
             for ch in range(2):
                 if ch == 0:
                     Kc = 2.0 * G[c] * w * frac
