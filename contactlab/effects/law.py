@@ -34,7 +34,8 @@ from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry, warn_model_error
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
-from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes, upgraded_state
+from .law_pool import (SPRING_FIELDS, SpringPool, law_memory, law_spring_memory,
+                       upgraded_state)
 from .law_step import (_OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources,
                        springs_only_outputs)
 from .law_tangent import snapshot as _tangent_snapshot
@@ -64,37 +65,6 @@ _NO_FLAT = np.zeros(1)
 #: sources of a law step (exact normal, Cattaneo–Mindlin and Jäger torsion with Masing memory,
 #: the MDR springs under a changing load)
 _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
-
-
-#: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
-#: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
-#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
-#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
-#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (52 + 16
-#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
-#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
-_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 132, 32, 4, 90
-#: float64 values per contact on springs in a step of the numpy path (temporaries; measured
-#: 20-21 per spring): the compiled step has none
-_NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
-
-
-def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
-    """Memory of a :class:`ContactLaw`'s state and of one step's results, bytes (checked
-    against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
-    ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
-    plus ``on_springs × (52 + 16 springs)`` for the contacts on their springs (308 B each at
-    the default 16 springs; allocated when they switch, checked then)."""
-    per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
-    if springs:
-        per += _PER_SPRINGS
-    return float(size) * per + (float(on_springs) * pool_row_bytes(springs) if springs else 0.0)
-
-
-def law_spring_memory(n_contacts: int, springs: int) -> float:
-    """Estimated peak temporaries of a numpy step with ``n_contacts`` contacts on springs,
-    bytes (the compiled step allocates none)."""
-    return 8.0 * float(n_contacts) * (_NUMPY_CONTACT + _NUMPY_SPRING_STEP * springs)
 
 
 class ContactLaw:

@@ -1,5 +1,6 @@
 """Spring state of a :class:`contactlab.effects.law.ContactLaw`, allocated per contact that needs
-it: :class:`SpringPool`.
+it: :class:`SpringPool`; and the law's memory count (:func:`law_memory`), checked against the
+memory budget before its arrays are allocated.
 
 A contact runs on its MDR springs only once its normal load changes; in a granular packing most
 contacts never do. The pool holds the spring rows of those contacts only: ``slot[c]`` is the row
@@ -26,7 +27,8 @@ import numpy as np
 
 from ..params import check_memory
 
-__all__ = ["SpringPool", "SPRING_FIELDS", "OLD_SPRING_FIELDS", "pool_row_bytes", "upgraded_state"]
+__all__ = ["SpringPool", "SPRING_FIELDS", "OLD_SPRING_FIELDS", "pool_row_bytes", "upgraded_state",
+           "law_memory", "law_spring_memory"]
 
 #: the spring state per contact: name -> (dtype, per spring?). The cells' normal integrals of
 #: the last step are not stored: they follow from its depth ``spr_depth``, radius ``spr_a`` and
@@ -45,6 +47,37 @@ def pool_row_bytes(springs: int) -> int:
     """Bytes of one row of the pool: 5 floats + an int64 + the owner (int32) + 2 floats per
     spring (52 + 16 springs: 308 B at 16 springs)."""
     return 52 + 16 * int(springs)
+
+
+#: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
+#: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
+#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
+#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
+#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (52 + 16
+#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
+#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
+_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 132, 32, 4, 90
+#: float64 values per contact on springs in a step of the numpy path (temporaries; measured
+#: 20-21 per spring): the compiled step has none
+_NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
+
+
+def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
+    """Memory of a :class:`~contactlab.effects.law.ContactLaw`'s state and of one step's results, bytes (checked
+    against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
+    ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
+    plus ``on_springs × (52 + 16 springs)`` for the contacts on their springs (308 B each at
+    the default 16 springs; allocated when they switch, checked then)."""
+    per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
+    if springs:
+        per += _PER_SPRINGS
+    return float(size) * per + (float(on_springs) * pool_row_bytes(springs) if springs else 0.0)
+
+
+def law_spring_memory(n_contacts: int, springs: int) -> float:
+    """Estimated peak temporaries of a numpy step with ``n_contacts`` contacts on springs,
+    bytes (the compiled step allocates none)."""
+    return 8.0 * float(n_contacts) * (_NUMPY_CONTACT + _NUMPY_SPRING_STEP * springs)
 
 
 #: arrays of the pool at least this large (bytes) are mapped from the operating system directly
