@@ -15,6 +15,7 @@ the depth stays within ``load_rtol`` of the depth at which the contact's memory 
 """
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Mapping
 from typing import Any
@@ -105,6 +106,13 @@ class ContactLaw:
         The springs of a contact cover ``spring_cover`` times the larger of its contact radii
         before and at the change (per contact, >= 1); a contact radius beyond the cover grows it
         (the element forces are carried over by their cumulative line load, approximate).
+    spring_reserve : float
+        Fraction of the contacts (0 to 1) whose spring rows are allocated, and their memory
+        pages faulted in, when the law is built (and by ``reset()``): ``52 + 16 springs`` bytes
+        per row (308 B at 16 springs), counted against the memory budget then. A first
+        changing-load step of up to that many contacts then skips that cost (measured ~0.1 µs
+        CPU per row; docs/dem.md "Memory per contact"). Default 0: rows are allocated when
+        contacts first switch onto their springs.
     size : int, optional
         Number of contacts when every parameter is a scalar.
     fast : bool, optional
@@ -151,7 +159,7 @@ class ContactLaw:
                  load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
                  fast: bool | None = None, parallel: bool = False,
                  springs: int = DEFAULT_SPRINGS,
-                 spring_cover: Any = DEFAULT_SPRING_COVER,
+                 spring_cover: Any = DEFAULT_SPRING_COVER, spring_reserve: float = 0.0,
                  warn_model_error: bool = True, backend: str | None = None) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
@@ -227,8 +235,14 @@ class ContactLaw:
         lengths = set(sizes.values())
         if size is None:
             size = max(lengths) if lengths else 1
-        check_memory("ContactLaw()", law_memory(size, memory, springs),
-                     f"{size} contacts, memory={memory}, springs={springs}")
+        reserve = as_real("spring_reserve", spring_reserve, "it must be a fraction in [0, 1]")
+        if not 0.0 <= reserve <= 1.0:
+            raise ParameterError(f"spring_reserve={spring_reserve!r} is invalid: it must be a "
+                                 "fraction of the contacts in [0, 1].")
+        self._reserve = math.ceil(reserve * size) if springs else 0
+        check_memory("ContactLaw()", law_memory(size, memory, springs, self._reserve),
+                     f"{size} contacts, memory={memory}, springs={springs}, spring_reserve="
+                     f"{reserve:g}")
         arrs = {k: np.broadcast_to(_per_contact(k, v, size), (size,)).copy()
                 for k, v in vals.items()}
         self.size = int(size)
@@ -296,7 +310,8 @@ class ContactLaw:
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]
         # the spring state: rows only for contacts that switch onto their springs
-        self._pool = SpringPool(n, self.springs) if self.springs else None
+        self._pool = (SpringPool(n, self.springs, self._reserve, self.parallel) if self.springs
+                      else None)
         return st
 
     def _on(self) -> np.ndarray:

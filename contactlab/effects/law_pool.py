@@ -63,8 +63,9 @@ _NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
 
 
 def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
-    """Memory of a :class:`~contactlab.effects.law.ContactLaw`'s state and of one step's results, bytes (checked
-    against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
+    """Memory of a :class:`~contactlab.effects.law.ContactLaw`'s state and of one step's
+    results, bytes (checked against the memory budget, :func:`contactlab.set_memory_budget`,
+    before it is allocated):
     ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
     plus ``on_springs × (52 + 16 springs)`` for the contacts on their springs (308 B each at
     the default 16 springs; allocated when they switch, checked then)."""
@@ -164,9 +165,14 @@ class SpringPool:
         Contacts of the law.
     springs : int
         Springs per contact (> 0).
+    reserve : int
+        Rows allocated (and their pages faulted in) right away: switches of up to that many
+        contacts allocate nothing.
+    threads : bool
+        Fault the reserved rows in on two threads.
     """
 
-    def __init__(self, size: int, springs: int) -> None:
+    def __init__(self, size: int, springs: int, reserve: int = 0, threads: bool = False) -> None:
         self.size = int(size)
         self.springs = int(springs)
         self.slot = np.full(self.size, -1, np.int32)
@@ -174,6 +180,8 @@ class SpringPool:
         self.owner = np.zeros(0, np.int32)
         self.rows = {k: np.zeros((0, self.springs) if per else 0, dt)
                      for k, (dt, per) in SPRING_FIELDS.items()}
+        if reserve > 0:
+            self.reserve(reserve, threads)
 
     @property
     def capacity(self) -> int:

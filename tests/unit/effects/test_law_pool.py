@@ -364,3 +364,67 @@ def test_a_state_saved_before_spr_a_still_loads_and_continues(fast, tmp_path):
     both = dict(through.state, spr_S=np.zeros((n, 16)))
     with pytest.raises(cl.errors.ParameterError, match="unknown keys \\['spr_S'\\]"):
         restored.state = both
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_reserved_spring_rows_change_no_result(fast):
+    """``spring_reserve`` allocates the rows of that fraction of the contacts with the law (and
+    again after ``reset()``); a changing-load run with resets (rows moved, the pool grown past
+    the reservation) gives the bits and the state of a law without it."""
+    n = 400                                         # a half switches: past the reservation
+    lazy, kept = _law(n, fast), _law(n, fast, spring_reserve=0.25)
+    assert lazy._pool.capacity == 0 and kept._pool.capacity == 100 and kept._pool.used == 0
+    for x, y in zip(_run(lazy, n), _run(kept, n)):
+        for f in FIELDS:
+            assert x[f].tobytes() == y[f].tobytes(), f
+    for key, v in lazy.state.items():
+        np.testing.assert_array_equal(v, kept.state[key], err_msg=key)
+    kept.reset()
+    assert kept._pool.capacity == 100 and kept._pool.used == 0
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="MADV_POPULATE_WRITE: Linux")
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_reserved_rows_take_no_page_faults_in_the_first_changing_step():
+    """The reserved rows are faulted in when the law is built: the first changing-load step of
+    a reserved law takes at least the pool's per-spring pages (2 x 128 B per row) fewer minor
+    page faults than the same step of a lazy law, which faults them in then (the compiled
+    step: the numpy step's temporaries fault pages of their own, varying)."""
+    fast = True
+    from contactlab.effects import law_pool
+    n = 40000                        # per-spring arrays 5.1 MB: memory maps (>= 4 MB)
+    probe = law_pool._mapped((1024, 1024), np.dtype(np.float64), 512)
+    f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    probe[:512] = 1.0
+    if resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0 > 64:
+        pytest.skip("madvise(MADV_POPULATE_WRITE) not supported by this kernel")
+    F = np.random.default_rng(2).uniform(1.0, 100.0, n)
+    faults = []
+    for reserve in (0.0, 1.0):
+        law = _law(n, fast, spring_reserve=reserve)
+        law.step(force=F, displacement=1e-8)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+            law.step(force=1.01 * F, displacement=2e-8)
+            faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
+        assert law._pool.used == n
+    assert faults[0] - faults[1] >= 2 * n * 128 // 4096 * 0.9, faults
+
+
+@pytest.mark.parametrize("bad", [-0.1, 1.5, float("nan"), True, "half", [0.5]])
+def test_spring_reserve_must_be_a_fraction(bad):
+    with pytest.raises(cl.errors.ParameterError, match="spring_reserve"):
+        _law(10, False, spring_reserve=bad)
+
+
+def test_reserved_rows_are_checked_against_the_budget_with_the_law():
+    """The reservation is counted with the law (law_memory with its rows): refused at
+    construction when it does not fit, while the lazy law fits."""
+    previous = cl.set_memory_budget(10e6)
+    try:
+        _law(1000, False, springs=4096)
+        with pytest.raises(MemoryBudgetError, match="spring_reserve=1"):
+            _law(1000, False, springs=4096, spring_reserve=1.0)
+    finally:
+        cl.set_memory_budget(previous)
