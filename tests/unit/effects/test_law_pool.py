@@ -15,7 +15,7 @@ import contactlab as cl
 from contactlab.effects.law import law_memory
 from contactlab.effects.law_pool import SpringPool, pool_row_bytes
 from contactlab.errors import MemoryBudgetError, ValidityWarning
-from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS
+from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS, OLD_SPRING_STATE
 
 HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
 BACKENDS = [False, True] if HAS_NUMBA else [False]
@@ -364,6 +364,47 @@ def test_a_state_saved_before_spr_a_still_loads_and_continues(fast, tmp_path):
     both = dict(through.state, spr_S=np.zeros((n, 16)))
     with pytest.raises(cl.errors.ParameterError, match="unknown keys \\['spr_S'\\]"):
         restored.state = both
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_a_state_saved_before_spr_a_continues_a_force_driven_power_law(fast, tmp_path):
+    """By force, on a PowerLaw (n = 1.5), the radius recomputed from the stored depth may differ
+    from the force's by an ulp: the run continues within OLD_SPRING_STATE of the largest value
+    (the contacts at constant load to the bit)."""
+    n, steps, at = 40, 16, 9
+    F0 = np.random.default_rng(11).uniform(1.0, 100.0, n)
+
+    def make():
+        return cl.ContactLaw(cl.profiles.PowerLaw, n=1.5, c=np.linspace(1e2, 1e3, n),
+                             E_star=1.15e11, G_star=4.4e10, G_torsion=4e10, friction=0.3,
+                             fast=fast)
+
+    def run(restore):
+        law, outs = make(), []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in range(steps):
+                if restore and k == at:
+                    np.savez(tmp_path / "old.npz", **_old_format(law.state, law))
+                    law = make()
+                    with np.load(tmp_path / "old.npz") as f:
+                        law.state = dict(f)
+                L = F0 * np.where(np.arange(n) % 2 == 0, 1.0 + 0.02 * np.sin(0.6 * k), 1.0)
+                r = law.step(force=L, displacement=1e-8 * np.sin(0.7 * k + np.arange(n)),
+                             twist=1e-4 * np.cos(0.5 * k + np.arange(n)))
+                outs.append({f: getattr(r, f).copy() for f in FIELDS})
+        return outs
+
+    a, b = run(False), run(True)
+    held = np.arange(n) % 2 == 1
+    for k, (x, y) in enumerate(zip(a, b)):
+        for f in FIELDS:
+            assert x[f][held].tobytes() == y[f][held].tobytes(), f"step {k}: {f}"
+            if f == "exact":
+                np.testing.assert_array_equal(x[f], y[f])
+                continue
+            np.testing.assert_allclose(y[f], x[f], rtol=0, err_msg=f"step {k}: {f}",
+                                       atol=OLD_SPRING_STATE * np.max(np.abs(x[f])))
 
 
 @pytest.mark.parametrize("fast", BACKENDS)
