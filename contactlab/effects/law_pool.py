@@ -177,6 +177,11 @@ class SpringPool:
         self.springs = int(springs)
         self.slot = np.full(self.size, -1, np.int32)
         self.used = 0
+        #: per channel ("tan", "tor"): the elements of the cells beyond a row's edge cell may
+        #: not all be +0 (a spring step did not drive the channel, or the rows were loaded
+        #: from a state), so the channel's next driven step writes +0 to all of them; else
+        #: only to those up to the last step's edge cell (the others are +0 already)
+        self.stale = {"tan": False, "tor": False}
         self.owner = np.zeros(0, np.int32)
         self.rows = {k: np.zeros((0, self.springs) if per else 0, dt)
                      for k, (dt, per) in SPRING_FIELDS.items()}
@@ -263,8 +268,10 @@ class SpringPool:
                                else (self.size,))
 
     def load(self, on: np.ndarray, fields: dict) -> None:
-        """Replace the pool by the per-contact arrays ``fields`` of the contacts ``on``."""
+        """Replace the pool by the per-contact arrays ``fields`` of the contacts ``on``
+        (both channels :attr:`stale`: the rows come from outside)."""
         self.clear()
+        self.stale = {"tan": True, "tor": True}
         idx = np.flatnonzero(on)
         s = self.assign(idx)
         for k in SPRING_FIELDS:

@@ -20,7 +20,8 @@ _prange = range
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
-                 Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
+                 Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag,
+                 full_u=False, full_phi=False):
     """One MDR spring step of the contacts ``idx`` (the arithmetic of
     :mod:`contactlab.physics.law_springs`, one contact at a time): cell integrals, contact
     weights, Jenkins elements of both channels, forces, stick radii and dissipation. The
@@ -31,7 +32,13 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
     formed them in the last step or switch, so to the bit (a regridded row: the same
     expressions at the regrid's radius). A contact whose radius exceeds its cover is left
     as it is, ``flag[c] = 4``, and counted (its cells are regridded first:
-    :func:`spring_pass`). Returns (non-finite, grown)."""
+    :func:`spring_pass`). The elements of the cells beyond the edge cell are +0 after the
+    step (a cell out of contact carries nothing; the reference's clip of them to a zero limit
+    gave a zero of either sign, the same sums): written in the cells up to the last step's
+    edge cell, and in every cell of a channel with ``full_u`` / ``full_phi`` (its cells beyond
+    the last edge may not be +0: :attr:`~contactlab.effects.law_pool.SpringPool.stale`);
+    beyond that they are +0 already and neither read nor written. Returns (non-finite,
+    grown)."""
     N = beta.size - 1
     n1 = n + 1.0
     n2 = n + 2.0
@@ -72,7 +79,6 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         du = u[c] - x_tan[r] if has_u else 0.0
         dp = phi[c] - x_tor[r] if has_phi else 0.0
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
-        tail = hi if dd != 0.0 else k + 1
         # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
         bl = cov * beta[0]
@@ -121,10 +127,9 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     free_m = False
                     cm_j = min(bl, aj)
             bl, bl2, bl3 = br, br2, br3
-        # the edge cell and those between the old and new edges; each cell's left-boundary
-        # products are its neighbour's right ones (the same bits); cells from ``tail`` on lie
-        # beyond the contact in this step and the last: their elements are clipped to zero
-        for i in range(inner, min(tail, N)):
+        # the edge cell and those inside it the depth moved over; each cell's left-boundary
+        # products are its neighbour's right ones (the same bits)
+        for i in range(inner, k + 1):
             br = cov * beta[i + 1]
             br2 = br * br
             br3 = br2 * br
@@ -136,13 +141,9 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                 T = dj * (br2 - bl2) / 2.0 - (hr - hl)
                 gl = gr
                 hl = hr
-            elif i == k:
-                if aj > bl:
-                    S = max(dj * (aj - bl) - (Ga - gl), 0.0)
-                    T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
-                else:
-                    S = 0.0
-                    T = 0.0
+            elif aj > bl:
+                S = max(dj * (aj - bl) - (Ga - gl), 0.0)
+                T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
             else:
                 S = 0.0
                 T = 0.0
@@ -194,24 +195,19 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                     free_m = False
                     cm_j = min(bl, aj)
             bl, bl2, bl3 = br, br2, br3
-        # beyond the contact: S = T = 0, weight 0, so both stiffnesses and limits are +0
-        # (finite moduli and cells) and an element's update is clip(m + 0 du, -0, 0), the
-        # reference's arithmetic for those cells without the cell geometry
-        for i in range(tail, N):
-            if has_u:
-                mn = min(max(m_tan[r, i] + 0.0 * du, -0.0), 0.0)
-                m_tan[r, i] = mn
-                Ft_j += mn
-                if free_t and abs(mn) >= 0.0:
-                    free_t = False
-                    ct_j = min(cov * beta[i], aj)
-            if has_phi:
-                mn = min(max(m_tor[r, i] + 0.0 * dp, -0.0), 0.0)
-                m_tor[r, i] = mn
-                M_j += mn
-                if free_m and abs(mn) >= 0.0:
-                    free_m = False
-                    cm_j = min(cov * beta[i], aj)
+        # beyond the edge cell: S = T = 0, so both limits are +0 and the reference's clip
+        # left a zero of either sign there (the sums, dissipation and stick radius the same
+        # for either: a sum starting at +0 is never -0, the stiffness is 0 or the element
+        # sticks at 0, and the first such cell, at or beyond the radius, counts as slipping
+        # at ``min(b, a) = a``, the radius the stick radius holds anyway): written +0 up to
+        # the last step's edge cell (all cells of a stale channel); the cells beyond both
+        # edges are +0 already (written so when they left the contact) and left untouched
+        if has_u:
+            for i in range(k + 1, N if full_u else hi):
+                m_tan[r, i] = 0.0
+        if has_phi:
+            for i in range(k + 1, N if full_phi else hi):
+                m_tor[r, i] = 0.0
         k_old[r] = k
         d_old[r] = dj
         a_old[r] = aj
@@ -331,23 +327,13 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             bl = br
             bl2 = br2
             bl3 = br3
-        if k + 1 < N:
-            # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
-            # at or beyond a0), so both stiffnesses and limits are +0 (finite moduli and cells)
-            # in every one of them: one replay per channel, the same for all
-            for ch in range(2):
-                m = 0.0
-                prev = 0.0
-                for p in range(depth[ch, c]):
-                    tgt = X[ch, c, p]
-                    m = min(max(m + 0.0 * (tgt - prev), -0.0), 0.0)
-                    prev = tgt
-                m = min(max(m + 0.0 * (x[ch, c] - prev), -0.0), 0.0)
-                for i in range(k + 1, N):
-                    if ch == 0:
-                        m_tan[r, i] = m
-                    else:
-                        m_tor[r, i] = m
+        # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
+        # at or beyond a0), so both stiffnesses and limits are +0 and the reference's replay
+        # through them gives +0 (from +0, m + 0 dx is +0 and its clip to [-0, +0] keeps it;
+        # finite turning points): written, without the replay
+        for i in range(k + 1, N):
+            m_tan[r, i] = 0.0
+            m_tor[r, i] = 0.0
         x_tan[r] = x[0, c]
         x_tor[r] = x[1, c]
         k_old[r] = k
@@ -377,7 +363,7 @@ def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, be
                     m_tor, x_tan, x_tor)
         nf, gr = _spring_one(part, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG,
                              bH, mu, E, G, Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor,
-                             Ft, ct, M, cm, dW, flag)
+                             Ft, ct, M, cm, dW, flag, False, False)
         nonfinite += nf
         grown += gr
     return nonfinite, grown
@@ -390,7 +376,8 @@ _spring_one = _spring_pass
 
 
 def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
-                out: tuple, parallel: bool = False, flag=None, regrid=None) -> int:
+                out: tuple, parallel: bool = False, flag=None, regrid=None,
+                stale: tuple | None = None) -> int:
     """Compiled MDR spring step of the contacts ``idx`` (``d``, ``a``, ``u``, ``phi``: depth,
     radius and controls of all contacts, or None; ``kc``, moduli: per contact; ``beta``: unit
     cell boundaries). The spring state (``pool``: the law's
@@ -400,7 +387,10 @@ def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
     contact, set to 4 there; scratch by default), given to ``regrid(contacts)`` (it grows
     their cover, at least to the radius) and then stepped: contacts are independent, so this
     is the step of regridding them first, without a pass over the covers before the kernel.
-    Returns the number of contacts whose outputs are not finite.
+    ``stale``: per channel (tangential, torsion), zero every cell beyond the edge cell, not
+    only those up to the last edge cell; None: the pool's
+    :attr:`~contactlab.effects.law_pool.SpringPool.stale`, updated after the step (these
+    are all the rows in use). Returns the number of contacts whose outputs are not finite.
     Flat punch (``n = inf``): ``kc = 0`` with any finite exponent."""
     nn = float(n) if n != np.inf else 1.0
     bG = beta ** (nn + 1.0) / (nn + 1.0)
@@ -410,13 +400,16 @@ def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
     if flag is None:
         flag = np.zeros(pool.size, np.int8)
     kernel = _kernels(parallel)[2]
+    update = stale is None
+    if stale is None:
+        stale = (pool.stale["tan"], pool.stale["tor"])
 
     def run(ix):
         return kernel(ix, pool.slot, d, a, _EMPTY if u is None else u,
                       _EMPTY if phi is None else phi, u is not None, phi is not None,
                       P["spr_cover"], kc, nn, beta, bG, bH, mu, E, G, Gt, P["spr_a"],
                       P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
-                      P["spr_x_tan"], P["spr_x_tor"], *out, flag)
+                      P["spr_x_tan"], P["spr_x_tor"], *out, flag, stale[0], stale[1])
 
     nf, grown = run(idx)
     if grown:
@@ -428,6 +421,8 @@ def spring_pass(idx, d, a, u, phi, kc, n: float, beta, mu, E, G, Gt, pool,
         nf2, again = run(g)
         assert again == 0, "regrid left a contact's radius beyond its cover"
         nf += nf2
+    if update:                      # every row stepped: a channel driven is clean, else stale
+        pool.stale["tan"], pool.stale["tor"] = u is None, phi is None
     return int(nf)
 
 
@@ -480,5 +475,12 @@ def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: f
     pool.used += int(idx.size)
     if grown:                       # stepped again: found (flag 4), regridded, stepped
         nf += spring_pass(idx[flag[idx] == 4], d, a, u, phi, kc, n, beta, mu, E, G, Gt, pool,
-                          out, parallel, flag, regrid)
+                          out, parallel, flag, regrid, (False, False))
+    # the fresh rows are +0 beyond the switch's edge cell (no stale cells to zero); a channel
+    # not driven keeps its elements beyond the new edge, so it is stale after the step (the
+    # rows that were in use before are the spring pass's, which follows)
+    if u is None:
+        pool.stale["tan"] = True
+    if phi is None:
+        pool.stale["tor"] = True
     return int(nf)
