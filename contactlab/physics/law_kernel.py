@@ -23,8 +23,8 @@ import numpy as np
 
 from ..numeric import jit as _jit
 from . import law_kernel_springs as _springs
-from .law_kernel_springs import (_spring_pass, _switch_pass, _switch_step_pass, spring_pass,
-                                 switch_pass, switch_step_pass)
+from .law_kernel_springs import (_first_pass, _spring_pass, _switch_pass, _switch_step_pass,
+                                 spring_pass, switch_pass, switch_step_pass)
 
 __all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "switch_pass",
            "switch_step_pass", "TORSION", "TANGENTIAL"]
@@ -299,11 +299,12 @@ def _fused_pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coe
     return nonfinite, n_over
 
 
-_PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass, _switch_step_pass)
+_PASSES = (_normal_pass, _fused_pass, _spring_pass, _switch_pass, _switch_step_pass, _first_pass)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical
-_OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"}}
+_OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"},
+                                _first_pass: {"error_model": "numpy"}}
 
 AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}

@@ -369,6 +369,225 @@ def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, be
     return nonfinite, grown
 
 
+def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
+                X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi, cover, a_old, k_old,
+                d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
+    """Switch the contacts ``idx`` onto their springs and step them there, one contact at a
+    time: the arithmetic of :func:`_switch_pass` then :func:`_spring_pass` (the bits of the
+    two), with the row in registers between them. A cell's boundary products serve both; the
+    switch's cell integrals at the held depth are the step's last ones (the spring pass
+    recomputes them from the row by the same expressions); the cells beyond the step's edge
+    cell are not replayed where the step writes them +0 (a channel not driven keeps the
+    switch's elements). A contact whose radius exceeds its fresh cover gets the switch's row
+    only, ``flag[c] = 4``, counted (stepped after its regrid: :func:`switch_step_pass`).
+    Contact ``idx[j]`` gets row ``base + j``. Returns (non-finite, grown)."""
+    N = beta.size - 1
+    n1 = n + 1.0
+    n2 = n + 2.0
+    nonfinite = 0
+    grown = 0
+    for j in _prange(idx.size):
+        c = idx[j]
+        r = base + j
+        slot[c] = r
+        owner[r] = c
+        # the switch's scalars (:func:`_switch_pass`)
+        d0 = ref[c]
+        kcc = kc[c]
+        if is_flat:
+            a0 = flat[c] if d0 > 0.0 else 0.0
+        elif n == 2.0:
+            a0 = math.sqrt(d0 / kcc)
+        else:
+            a0 = (d0 / kcc) ** (1.0 / n)
+        aj = a[c]
+        cov = cover_factor[c] * max(a0, aj)
+        cover[r] = cov
+        if n == 2.0:
+            cp1 = kcc * cov * cov * cov
+            Ga0 = kcc * a0 * a0 * a0 / n1
+            Ha0 = kcc * a0 * a0 * a0 * a0 / n2
+            Ga = kcc * aj * aj * aj / n1
+            Ha = kcc * aj * aj * aj * aj / n2
+        elif n == 1.0:
+            cp1 = kcc * cov * cov
+            Ga0 = kcc * a0 * a0 / n1
+            Ha0 = kcc * a0 * a0 * a0 / n2
+            Ga = kcc * aj * aj / n1
+            Ha = kcc * aj * aj * aj / n2
+        else:
+            cp1 = kcc * cov ** n1
+            Ga0 = kcc * a0 ** n1 / n1
+            Ha0 = kcc * a0 ** n2 / n2
+            Ga = kcc * aj ** n1 / n1
+            Ha = kcc * aj ** n2 / n2
+        cp2 = cp1 * cov
+        k0 = 0
+        while k0 < N - 1 and cov * beta[k0 + 1] < a0:
+            k0 += 1
+        mu_E = mu[c] * E[c]
+        x0t = x[0, c]
+        x0r = x[1, c]
+        # the step's scalars (:func:`_spring_pass`; the row's old values are the switch's)
+        step = not aj > cov
+        if not step:
+            flag[c] = 4
+            grown += 1
+        dj = d[c]
+        k = 0
+        while k < N - 1 and cov * beta[k + 1] < aj:
+            k += 1
+        if not step:
+            k = k0
+        hi = max(k, k0) + 1
+        dd = dj - d0
+        st_u = step and has_u
+        st_p = step and has_phi
+        du = u[c] - x0t if st_u else 0.0
+        dp = phi[c] - x0r if st_p else 0.0
+        inner = min(k, k0) if dd != 0.0 else k
+        Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
+        L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
+        bl = cov * beta[0]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[0]
+        hl = cp2 * bH[0]
+        # each cell up to both edge cells: the switch's elements (to the switch's edge cell,
+        # +0 beyond it), then the step's (to its edge cell, +0 beyond it) where it drives
+        last = hi if (not st_u or not st_p) else k + 1
+        for i in range(last):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            if i < k0 or i < k:
+                gr = cp1 * bG[i + 1]
+                hr = cp2 * bH[i + 1]
+            else:
+                gr = gl
+                hr = hl
+            # the switch (held depth d0, radius a0)
+            if i < k0:
+                S0 = d0 * w - (gr - gl)
+                T0 = d0 * (br2 - bl2) / 2.0 - (hr - hl)
+            elif i == k0 and a0 > bl:
+                S0 = max(d0 * (a0 - bl) - (Ga0 - gl), 0.0)
+                T0 = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha0 - hl), 0.0)
+            else:
+                S0 = 0.0
+                T0 = 0.0
+            m0t = 0.0
+            m0r = 0.0
+            if i <= k0 and (i <= k or not st_u or not st_p):
+                frac = 1.0 if i < k0 else min(max((a0 - bl) / w, 0.0), 1.0)
+                for ch in range(2):
+                    if ch == 0:
+                        Kc = 2.0 * G[c] * w * frac
+                        L = 2.0 * mu_E * S0
+                    else:
+                        Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
+                        L = 4.0 * mu_E * T0
+                    m = 0.0
+                    prev = 0.0
+                    for p in range(depth[ch, c]):
+                        tgt = X[ch, c, p]
+                        m = min(max(m + Kc * (tgt - prev), -L), L)
+                        prev = tgt
+                    m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
+                    if ch == 0:
+                        m0t = m
+                    else:
+                        m0r = m
+            # the step (depth dj, radius aj), cells up to its edge cell
+            if i <= k and (st_u or st_p):
+                if i < inner:
+                    S = dj * w - (gr - gl)
+                    T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+                    wgt = 1.0
+                else:
+                    if i < k:
+                        S = dj * w - (gr - gl)
+                        T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+                    elif aj > bl:
+                        S = max(dj * (aj - bl) - (Ga - gl), 0.0)
+                        T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
+                    else:
+                        S = 0.0
+                        T = 0.0
+                    if dd != 0.0:
+                        wgt = min(max((S - S0) / (dd * w), 0.0), 1.0)
+                    else:
+                        wgt = min(max((aj - bl) / w, 0.0), 1.0)
+                if st_u:
+                    L = L2 * S
+                    Kt = K2 * w if i < inner else K2 * w * wgt
+                    trial = m0t + Kt * du
+                    mn = min(max(trial, -L), L)
+                    m0t = mn
+                    if Kt > 0.0 and trial != mn:
+                        e += (trial - mn) * mn / Kt
+                    Ft_j += mn
+                    if free_t and abs(mn) >= L:
+                        free_t = False
+                        ct_j = min(bl, aj)
+                if st_p:
+                    L = L4 * T
+                    Kr = (K16 * ((br3 - bl3) / 3.0) if i < inner
+                          else K16 * ((br3 - bl3) / 3.0) * wgt)
+                    trial = m0r + Kr * dp
+                    mn = min(max(trial, -L), L)
+                    m0r = mn
+                    if Kr > 0.0 and trial != mn:
+                        e += (trial - mn) * mn / Kr
+                    M_j += mn
+                    if free_m and abs(mn) >= L:
+                        free_m = False
+                        cm_j = min(bl, aj)
+            elif i > k:
+                if st_u:
+                    m0t = 0.0
+                if st_p:
+                    m0r = 0.0
+            m_tan[r, i] = m0t
+            m_tor[r, i] = m0r
+            gl, hl = gr, hr
+            bl, bl2, bl3 = br, br2, br3
+        for i in range(last, N):
+            m_tan[r, i] = 0.0
+            m_tor[r, i] = 0.0
+        if not step:
+            k_old[r] = k0
+            d_old[r] = d0
+            a_old[r] = a0
+            x_tan[r] = x0t
+            x_tor[r] = x0r
+            continue
+        k_old[r] = k
+        d_old[r] = dj
+        a_old[r] = aj
+        if has_u:
+            x_tan[r] = u[c]
+            Ft[c] = Ft_j
+            ct[c] = ct_j
+        else:
+            x_tan[r] = x0t
+            Ft[c] = 0.0
+            ct[c] = aj
+        if has_phi:
+            x_tor[r] = phi[c]
+            M[c] = M_j
+            cm[c] = cm_j
+        else:
+            x_tor[r] = x0r
+            M[c] = 0.0
+            cm[c] = aj
+        dW[c] = e
+        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
+            nonfinite += 1
+    return nonfinite, grown
+
+
 # the passes a block of :func:`_switch_step_pass` calls: the plain functions, or their serial
 # compiled builds (set with the builds: ``law_kernel._kernels``)
 _switch_one = _switch_pass
@@ -453,11 +672,12 @@ def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: f
                      E, G, Gt, chan: dict, st: dict, pool, out: tuple, parallel: bool = False,
                      flag=None, regrid=None) -> int:
     """:func:`switch_pass` then :func:`spring_pass` of the contacts ``idx`` (int64, not on
-    springs; rows ``pool.used ...`` reserved by the caller) in blocks of ``block`` contacts,
-    each block stepped right after its switch, all blocks in one (threaded) loop; the bits of
-    the two passes. Contacts whose radius exceeds their fresh cover are regridded and stepped
-    after the loop (:func:`spring_pass`). Returns the number of contacts whose outputs are not
-    finite."""
+    springs; rows ``pool.used ...`` reserved by the caller), one contact at a time in one
+    (threaded) loop, the row in registers between the two (:func:`_first_pass`; the bits of
+    the two passes, measured ~10 % faster than switching and stepping blocks of ``block``
+    contacts, :func:`_switch_step_pass`, which ``block`` sized: unused now). Contacts whose
+    radius exceeds their fresh cover are regridded and stepped after the loop
+    (:func:`spring_pass`). Returns the number of contacts whose outputs are not finite."""
     from .law_kernel import _EMPTY, _kernels
     is_flat = n == np.inf
     nn = float(n) if not is_flat else 1.0
@@ -466,8 +686,8 @@ def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: f
     P = pool.rows
     if flag is None:
         flag = np.zeros(pool.size, np.int8)
-    nf, grown = _kernels(parallel)[4](
-        int(block), idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta, bG, bH,
+    nf, grown = _kernels(parallel)[5](
+        idx, st["depth_ref"], a, flat, is_flat, cover_factor, kc, nn, beta, bG, bH,
         mu, E, G, Gt, chan["X"], chan["depth"], chan["x"], pool.slot, pool.owner, pool.used, d,
         _EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
         phi is not None, P["spr_cover"], P["spr_a"], P["spr_k"], P["spr_depth"], P["spr_tan"],
