@@ -18,6 +18,9 @@ random phases so that reversals and loop closures occur):
   adds it.
 * GPU (``backend="cupy"``, 10^7 contacts): measured when CuPy finds a device, otherwise
   printed as skipped; always the estimate of ``benchmarks/law_gpu.py`` (counted traffic).
+* the first changing-load step of a law built with ``spring_reserve=1.0`` (every contact's
+  spring rows allocated and faulted in with the law), compiled on one thread and on the most
+  threads, with the construction time of that law against a lazy one's.
 * memory: tracemalloc's peak per contact of a law through constant and changing-load steps
   (and ``law_memory``, what the budget check counts); goal <= 1.5 GB at 10^6.
 
@@ -191,6 +194,7 @@ class Row:
         self.t = self.cpu = self.floor = np.inf
         self.bw = 0.0
         self.faults = 0
+        self.built = 0.0            # wall time of the law's construction (changing rows)
 
     def floors(self) -> None:
         self.floor = min(self.floor, floor_pass())
@@ -228,10 +232,14 @@ def constant_row(n: int, mode: str, steps: int = 6) -> Row:
     return row
 
 
-def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0) -> tuple[Row, Row]:
+def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0,
+                 reserve: float = 0.0) -> tuple[Row, Row]:
     """(the first changing-load step, the best later one): the force of every contact
-    (``frac``: of that fraction of the contacts, the rest held) changes from step 2 on."""
-    law = _law(n, mode)
+    (``frac``: of that fraction of the contacts, the rest held) changes from step 2 on;
+    ``reserve``: the law's ``spring_reserve`` (its construction timed as the rows' ``t0``)."""
+    t0 = time.perf_counter()
+    law = _law(n, mode, spring_reserve=reserve)
+    built = time.perf_counter() - t0
     F = _controls(n, 0)[0]
     m = round(frac * n)
     first, later = Row(), Row()
@@ -245,6 +253,7 @@ def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0) -> tuple[
         _, t, c, f = _timed(mode, law, force=Fk, twist=tw, displacement=u)
         if k >= 2:
             row.add(t, c, f)
+    first.built = later.built = built
     return first, later
 
 
@@ -347,6 +356,21 @@ def issue_rows() -> None:
             first, later = changing_row(n, m, frac=frac)
             for name, row in (("FIRST changing step", first), ("later changing step", later)):
                 _print(f"{name}, {m}, {frac:.0%}", row, (const_b + frac * spr_b) * n, 0.100)
+    # the opt-in reservation: every contact's spring rows allocated and faulted in with the law
+    # (ContactLaw(..., spring_reserve=1.0)); its construction time, then its first step
+    for m in modes:
+        if m != "fast" and not (m == modes[-1] and m.startswith("threads")):   # most threads
+            continue
+        _threads(m)
+        lazy = time.perf_counter()
+        _law(n, m)
+        lazy = time.perf_counter() - lazy
+        first, _ = changing_row(n, m, steps=1, reserve=1.0)
+        print(f"spring_reserve=1.0, {m}: the law built in {1e3 * first.built:.0f} ms (lazy: "
+              f"{1e3 * lazy:.0f} ms), {pool_row_bytes(DEFAULT_SPRINGS) * n / 1e9:.2f} GB of "
+              "rows held from the start")
+        _print(f"FIRST step reserved, {m}, 100%", first, (const_b + spr_b) * n,
+               0.100)
     if fast:
         for frac in (1.0, 0.1):
             const, changing, counted = memory_row(n, frac)

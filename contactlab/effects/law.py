@@ -15,6 +15,7 @@ the depth stays within ``load_rtol`` of the depth at which the contact's memory 
 """
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Mapping
 from typing import Any
@@ -34,7 +35,8 @@ from ..symbolic.transform import kappa
 from .law_checks import _per_contact, _per_step, _short, checked_state_entry, warn_model_error
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
-from .law_pool import SPRING_FIELDS, SpringPool, pool_row_bytes
+from .law_pool import (SPRING_FIELDS, SpringPool, law_memory, law_spring_memory,
+                       upgraded_state)
 from .law_step import (_OUT_FIELDS, LAW_BASIS, STEP_UNITS, LawStep, law_sources,
                        springs_only_outputs)
 from .law_tangent import snapshot as _tangent_snapshot
@@ -64,37 +66,6 @@ _NO_FLAT = np.zeros(1)
 #: sources of a law step (exact normal, Cattaneo–Mindlin and Jäger torsion with Masing memory,
 #: the MDR springs under a changing load)
 _LAW_SOURCES = ("PH", "H1", "Sn65", "Cat38", "Min49", "MD53", "J95", "D54", "S")
-
-
-#: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
-#: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
-#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
-#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
-#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (44 + 24
-#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
-#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
-_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 132, 32, 4, 90
-#: float64 values per contact on springs in a step of the numpy path (temporaries; measured
-#: 20-21 per spring): the compiled step has none
-_NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
-
-
-def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
-    """Memory of a :class:`ContactLaw`'s state and of one step's results, bytes (checked
-    against the memory budget, :func:`contactlab.set_memory_budget`, before it is allocated):
-    ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
-    plus ``on_springs × (44 + 24 springs)`` for the contacts on their springs (428 B each at
-    the default 16 springs; allocated when they switch, checked then)."""
-    per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
-    if springs:
-        per += _PER_SPRINGS
-    return float(size) * per + (float(on_springs) * pool_row_bytes(springs) if springs else 0.0)
-
-
-def law_spring_memory(n_contacts: int, springs: int) -> float:
-    """Estimated peak temporaries of a numpy step with ``n_contacts`` contacts on springs,
-    bytes (the compiled step allocates none)."""
-    return 8.0 * float(n_contacts) * (_NUMPY_CONTACT + _NUMPY_SPRING_STEP * springs)
 
 
 class ContactLaw:
@@ -135,6 +106,13 @@ class ContactLaw:
         The springs of a contact cover ``spring_cover`` times the larger of its contact radii
         before and at the change (per contact, >= 1); a contact radius beyond the cover grows it
         (the element forces are carried over by their cumulative line load, approximate).
+    spring_reserve : float
+        Fraction of the contacts (0 to 1) whose spring rows are allocated, and their memory
+        pages faulted in, when the law is built (and by ``reset()``): ``52 + 16 springs`` bytes
+        per row (308 B at 16 springs), counted against the memory budget then. A first
+        changing-load step of up to that many contacts then skips that cost (measured ~0.1 µs
+        CPU per row; docs/dem.md "Memory per contact"). Default 0: rows are allocated when
+        contacts first switch onto their springs.
     size : int, optional
         Number of contacts when every parameter is a scalar.
     fast : bool, optional
@@ -181,7 +159,7 @@ class ContactLaw:
                  load_rtol: float = DEFAULT_LOAD_RTOL, size: int | None = None,
                  fast: bool | None = None, parallel: bool = False,
                  springs: int = DEFAULT_SPRINGS,
-                 spring_cover: Any = DEFAULT_SPRING_COVER,
+                 spring_cover: Any = DEFAULT_SPRING_COVER, spring_reserve: float = 0.0,
                  warn_model_error: bool = True, backend: str | None = None) -> None:
         cls = profile if isinstance(profile, type) else type(profile)
         inst = None if isinstance(profile, type) else profile
@@ -257,8 +235,14 @@ class ContactLaw:
         lengths = set(sizes.values())
         if size is None:
             size = max(lengths) if lengths else 1
-        check_memory("ContactLaw()", law_memory(size, memory, springs),
-                     f"{size} contacts, memory={memory}, springs={springs}")
+        reserve = as_real("spring_reserve", spring_reserve, "it must be a fraction in [0, 1]")
+        if not 0.0 <= reserve <= 1.0:
+            raise ParameterError(f"spring_reserve={spring_reserve!r} is invalid: it must be a "
+                                 "fraction of the contacts in [0, 1].")
+        self._reserve = math.ceil(reserve * size) if springs else 0
+        check_memory("ContactLaw()", law_memory(size, memory, springs, self._reserve),
+                     f"{size} contacts, memory={memory}, springs={springs}, spring_reserve="
+                     f"{reserve:g}")
         arrs = {k: np.broadcast_to(_per_contact(k, v, size), (size,)).copy()
                 for k, v in vals.items()}
         self.size = int(size)
@@ -326,7 +310,8 @@ class ContactLaw:
             for k in STACK_FIELDS:
                 st[f"{ch}_{k}"] = self._chan[k][c]
         # the spring state: rows only for contacts that switch onto their springs
-        self._pool = SpringPool(n, self.springs) if self.springs else None
+        self._pool = (SpringPool(n, self.springs, self._reserve, self.parallel) if self.springs
+                      else None)
         return st
 
     def _on(self) -> np.ndarray:
@@ -356,6 +341,7 @@ class ContactLaw:
         if not isinstance(value, Mapping):
             raise ParameterError(f"state={_short(value)} is invalid: give the dict of arrays "
                                  "returned by law.state (e.g. dict(np.load(file))).")
+        value = upgraded_state(value, self)     # saved before spr_a replaced spr_S
         ref = self._state_like()
         missing = sorted(set(ref) - set(value))
         extra = sorted(set(value) - set(ref))

@@ -64,7 +64,7 @@ def checked_state_entry(key: str, value: Any, like: np.ndarray, memory: int,
     kind = like.dtype.kind
     if kind == "f":
         ok, allowed = np.isfinite(arr), "finite"
-        if key in ("depth_ref", "spr_cover"):
+        if key in ("depth_ref", "spr_cover", "spr_a"):
             ok, allowed = ok & (arr >= 0), "finite and >= 0 m"
     else:
         whole = np.isfinite(arr) & (arr == np.round(arr)) if arr.dtype.kind == "f" else True

@@ -1,5 +1,6 @@
 """Spring state of a :class:`contactlab.effects.law.ContactLaw`, allocated per contact that needs
-it: :class:`SpringPool`.
+it: :class:`SpringPool`; and the law's memory count (:func:`law_memory`), checked against the
+memory budget before its arrays are allocated.
 
 A contact runs on its MDR springs only once its normal load changes; in a granular packing most
 contacts never do. The pool holds the spring rows of those contacts only: ``slot[c]`` is the row
@@ -19,26 +20,65 @@ import ctypes
 import mmap
 import sys
 import threading
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
 from ..params import check_memory
 
-__all__ = ["SpringPool", "SPRING_FIELDS", "pool_row_bytes"]
+__all__ = ["SpringPool", "SPRING_FIELDS", "OLD_SPRING_FIELDS", "pool_row_bytes", "upgraded_state",
+           "law_memory", "law_spring_memory"]
 
-#: the spring state per contact: name -> (dtype, per spring?)
+#: the spring state per contact: name -> (dtype, per spring?). The cells' normal integrals of
+#: the last step are not stored: they follow from its depth ``spr_depth``, radius ``spr_a`` and
+#: the cover (recomputed by the same expressions, the same bits), 16 springs x 8 B less per row
 SPRING_FIELDS = {"spr_cover": (np.float64, False), "spr_depth": (np.float64, False),
-                 "spr_k": (np.int64, False), "spr_S": (np.float64, True),
+                 "spr_a": (np.float64, False), "spr_k": (np.int64, False),
                  "spr_tan": (np.float64, True), "spr_tor": (np.float64, True),
                  "spr_x_tan": (np.float64, False), "spr_x_tor": (np.float64, False)}
+#: the per-spring cell integrals a state saved before ``spr_a`` replaced them holds
+OLD_SPRING_FIELDS = ("spr_S",)
 #: smallest number of rows allocated at the first switch
 _MIN_ROWS = 64
 
 
 def pool_row_bytes(springs: int) -> int:
-    """Bytes of one row of the pool: 4 floats + an int64 + the owner (int32) + 3 floats per
-    spring (44 + 24 springs)."""
-    return 44 + 24 * int(springs)
+    """Bytes of one row of the pool: 5 floats + an int64 + the owner (int32) + 2 floats per
+    spring (52 + 16 springs: 308 B at 16 springs)."""
+    return 52 + 16 * int(springs)
+
+
+#: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
+#: 7 parameters, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
+#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
+#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
+#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (52 + 16
+#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
+#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
+_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 132, 32, 4, 90
+#: float64 values per contact on springs in a step of the numpy path (temporaries; measured
+#: 20-21 per spring): the compiled step has none
+_NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
+
+
+def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> float:
+    """Memory of a :class:`~contactlab.effects.law.ContactLaw`'s state and of one step's
+    results, bytes (checked against the memory budget, :func:`contactlab.set_memory_budget`,
+    before it is allocated):
+    ``size × (132 + 32 memory + 4 [springs > 0] + 90)``, 482 B per contact at the defaults,
+    plus ``on_springs × (52 + 16 springs)`` for the contacts on their springs (308 B each at
+    the default 16 springs; allocated when they switch, checked then)."""
+    per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP
+    if springs:
+        per += _PER_SPRINGS
+    return float(size) * per + (float(on_springs) * pool_row_bytes(springs) if springs else 0.0)
+
+
+def law_spring_memory(n_contacts: int, springs: int) -> float:
+    """Estimated peak temporaries of a numpy step with ``n_contacts`` contacts on springs,
+    bytes (the compiled step allocates none)."""
+    return 8.0 * float(n_contacts) * (_NUMPY_CONTACT + _NUMPY_SPRING_STEP * springs)
 
 
 #: arrays of the pool at least this large (bytes) are mapped from the operating system directly
@@ -125,16 +165,28 @@ class SpringPool:
         Contacts of the law.
     springs : int
         Springs per contact (> 0).
+    reserve : int
+        Rows allocated (and their pages faulted in) right away: switches of up to that many
+        contacts allocate nothing.
+    threads : bool
+        Fault the reserved rows in on two threads.
     """
 
-    def __init__(self, size: int, springs: int) -> None:
+    def __init__(self, size: int, springs: int, reserve: int = 0, threads: bool = False) -> None:
         self.size = int(size)
         self.springs = int(springs)
         self.slot = np.full(self.size, -1, np.int32)
         self.used = 0
+        #: per channel ("tan", "tor"): the elements of the cells beyond a row's edge cell may
+        #: not all be +0 (a spring step did not drive the channel, or the rows were loaded
+        #: from a state), so the channel's next driven step writes +0 to all of them; else
+        #: only to those up to the last step's edge cell (the others are +0 already)
+        self.stale = {"tan": False, "tor": False}
         self.owner = np.zeros(0, np.int32)
         self.rows = {k: np.zeros((0, self.springs) if per else 0, dt)
                      for k, (dt, per) in SPRING_FIELDS.items()}
+        if reserve > 0:
+            self.reserve(reserve, threads)
 
     @property
     def capacity(self) -> int:
@@ -216,9 +268,35 @@ class SpringPool:
                                else (self.size,))
 
     def load(self, on: np.ndarray, fields: dict) -> None:
-        """Replace the pool by the per-contact arrays ``fields`` of the contacts ``on``."""
+        """Replace the pool by the per-contact arrays ``fields`` of the contacts ``on``
+        (both channels :attr:`stale`: the rows come from outside)."""
         self.clear()
+        self.stale = {"tan": True, "tor": True}
         idx = np.flatnonzero(on)
         s = self.assign(idx)
         for k in SPRING_FIELDS:
             self.rows[k][s] = fields[k][idx]
+
+
+def upgraded_state(value: Any, law: Any) -> Any:
+    """A law's state as saved before the spring rows dropped their per-spring cell integrals
+    (``spr_S``, replaced by the radius ``spr_a`` of the row's last step) in the current form:
+    ``spr_a`` is the contact radius at the stored ``spr_depth`` (``law._radius``), ``spr_S``
+    dropped; anything else (a current state, no springs, a dict the setter refuses) as given.
+    From such a state the law continues at the same cells, edge cells and elements; the
+    radius a force-controlled step found may differ from the one recomputed from its depth by
+    rounding, so the first step's contact weights of the cells between the old and new edge
+    may move by rounding too (a depth-controlled Paraboloid run: the same bits)."""
+    if (law._pool is None or not isinstance(value, Mapping) or "spr_a" in value
+            or not all(k in value for k in (*OLD_SPRING_FIELDS, "spr_on", "spr_depth"))):
+        return value
+    try:
+        on = np.asarray(value["spr_on"]).astype(bool)
+        depth = np.asarray(value["spr_depth"], dtype=float)
+        with np.errstate(all="ignore"):
+            a = np.where(on, law._radius(np.where(on, np.abs(depth), 0.0), slice(None)), 0.0)
+    except (TypeError, ValueError, IndexError):     # shapes and the like: the setter names them
+        return value
+    new = {k: v for k, v in value.items() if k not in OLD_SPRING_FIELDS}
+    new["spr_a"] = a
+    return new

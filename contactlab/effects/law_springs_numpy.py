@@ -38,7 +38,7 @@ def to_springs(law: Any, idx: np.ndarray, d: np.ndarray, a: np.ndarray) -> None:
         P[f"spr_{ch}"][s] = _springs.replay(st[f"{ch}_X"][idx], st[f"{ch}_depth"][idx],
                                             st[f"{ch}_x"][idx], K * frac, L)
         P[f"spr_x_{ch}"][s] = st[f"{ch}_x"][idx]
-    P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d0
+    P["spr_a"][s], P["spr_k"][s], P["spr_depth"][s] = a0, k, d0
 
 
 def regrid(law: Any, idx: np.ndarray, a_new: np.ndarray) -> None:
@@ -54,38 +54,52 @@ def regrid(law: Any, idx: np.ndarray, a_new: np.ndarray) -> None:
         cum = np.concatenate([np.zeros((idx.size, 1)), np.cumsum(m, axis=1)], axis=1)
         P[f"spr_{ch}"][s] = np.diff(_springs.interp_rows(new["b"], old["b"], cum), axis=1)
     d0 = P["spr_depth"][s]
-    S, _, k = _springs.normal_cells(new, d0, law._radius(d0, idx))
-    P["spr_S"][s], P["spr_k"][s] = S, k
+    a0 = law._radius(d0, idx)
+    P["spr_a"][s], P["spr_k"][s] = a0, _springs.normal_cells(new, d0, a0)[2]
 
 
 def spring_step(law: Any, idx, d, a, u, phi):
-    """One MDR spring step of the contacts ``idx`` (on springs) at depth ``d``, radius ``a``
-    and controls ``u``, ``phi`` (theirs, or None): ``(Ft, ct, M, cm, dW)`` of those contacts."""
-    assert law._pool is not None
+    """One MDR spring step of the contacts ``idx`` (on springs: all of them) at depth ``d``,
+    radius ``a`` and controls ``u``, ``phi`` (theirs, or None): ``(Ft, ct, M, cm, dW)`` of
+    those contacts. A driven channel's elements beyond the edge cell are +0 after the step:
+    written up to the last step's edge cell (every one where the channel is
+    :attr:`~contactlab.effects.law_pool.SpringPool.stale`), the others (+0 already) kept as
+    they are; the clip before gives the dissipation (a zero there)."""
+    pool = law._pool
+    assert pool is not None
     grow = a > law._spr("spr_cover", idx)
     if np.any(grow):
         regrid(law, idx[grow], a[grow])
-    P, s = law._pool.rows, law._pool.slot[idx]
+    P, s = pool.rows, pool.slot[idx]
     geo = law._geometry(idx)
     S, T, k = _springs.normal_cells(geo, d, a)
-    dd = d - P["spr_depth"][s]
-    wgt = _springs.weights(geo, S, P["spr_S"][s], k, P["spr_k"][s], dd, a)
+    d_old = P["spr_depth"][s]
+    k_old = P["spr_k"][s]
+    dd = d - d_old
+    # the last step's cell integrals, recomputed from its depth and radius (not stored): the
+    # same call on the same cells as the one that formed them, so the same bits
+    S_old = _springs.normal_cells(geo, d_old, P["spr_a"][s])[0]
+    wgt = _springs.weights(geo, S, S_old, k, k_old, dd, a)
     L_tan, L_tor = law._limits(idx, S, T)
+    j = np.arange(S.shape[1])[None, :]
+    beyond = j > k[:, None]
+    untouched = j > np.maximum(k, k_old)[:, None]       # beyond both edges
     zero = np.zeros(idx.size)
     Ft, ct, M, cm, dW = zero, a.copy(), zero, a.copy(), zero.copy()
-    if u is not None:
-        m = P["spr_tan"][s]
-        Keff = 2.0 * law.G_star[idx, None] * geo["w"] * wgt
-        dW += _springs.jenkins_rows(m, Keff, L_tan, u - P["spr_x_tan"][s])
-        P["spr_tan"][s], P["spr_x_tan"][s] = m, u
-        Ft = m.sum(axis=1)
-        ct = _springs.stick_radius(m, L_tan, geo["bl"], a)
-    if phi is not None:
-        m = P["spr_tor"][s]
-        Keff = 16.0 * law.G_torsion[idx, None] * geo["X2"] * wgt
-        dW += _springs.jenkins_rows(m, Keff, L_tor, phi - P["spr_x_tor"][s])
-        P["spr_tor"][s], P["spr_x_tor"][s] = m, phi
-        M = m.sum(axis=1)
-        cm = _springs.stick_radius(m, L_tor, geo["bl"], a)
-    P["spr_S"][s], P["spr_k"][s], P["spr_depth"][s] = S, k, d
+    for ch, x, K, L in (("tan", u, 2.0 * law.G_star[idx, None] * geo["w"], L_tan),
+                        ("tor", phi, 16.0 * law.G_torsion[idx, None] * geo["X2"], L_tor)):
+        if x is None:
+            continue
+        m0 = P[f"spr_{ch}"][s]
+        m = m0.copy()
+        dW += _springs.jenkins_rows(m, K * wgt, L, x - P[f"spr_x_{ch}"][s])
+        keep = untouched & (not pool.stale[ch])
+        m = np.where(beyond, np.where(keep, m0, 0.0), m)
+        P[f"spr_{ch}"][s], P[f"spr_x_{ch}"][s] = m, x
+        if ch == "tan":
+            Ft, ct = m.sum(axis=1), _springs.stick_radius(m, L, geo["bl"], a)
+        else:
+            M, cm = m.sum(axis=1), _springs.stick_radius(m, L, geo["bl"], a)
+    pool.stale["tan"], pool.stale["tor"] = u is None, phi is None
+    P["spr_a"][s], P["spr_k"][s], P["spr_depth"][s] = a, k, d
     return Ft, ct, M, cm, dW

@@ -24,8 +24,8 @@ import numpy as np
 from ..errors import NotSupportedError
 from ..numeric import jit as _jit
 from . import law_kernel_springs as _springs
-from .law_kernel_springs import (_spring_pass, _switch_pass, _switch_step_pass, spring_pass,
-                                 switch_pass, switch_step_pass)
+from .law_kernel_springs import (_first_pass, _spring_pass, _switch_pass, _switch_step_pass,
+                                 spring_pass, switch_pass, switch_step_pass)
 
 __all__ = ["AVAILABLE", "normal_pass", "fused_pass", "spring_pass", "switch_pass",
            "switch_step_pass", "TORSION", "TANGENTIAL"]
@@ -323,13 +323,14 @@ _fused_torsion = _channel_pass(1)
 _fused_tangential = _channel_pass(0)
 
 
-# (the second fused pass last: the springs module indexes the first five)
+# (the springs module indexes the spring passes by position: 2, 3, 4 and 6)
 _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_step_pass,
-           _fused_torsion)
+           _fused_torsion, _first_pass)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical
-_OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"}}
+_OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"},
+                                _first_pass: {"error_model": "numpy"}}
 
 AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}
@@ -345,8 +346,8 @@ def __getattr__(name: str):
 
 
 def _kernels(parallel: bool) -> tuple:
-    """The compiled ``(normal, fused tangential, spring, switch, switch-and-step, fused
-    torsion)`` passes, serial or
+    """The compiled ``(normal, fused tangential, spring, switch, switch-and-step in blocks,
+    fused torsion, switch-and-step per contact)`` passes, serial or
     threaded (built on first use, compiled on their first call, machine code cached on disk:
     :func:`contactlab.numeric.jit.njit`; the plain Python functions without numba). The
     switch-and-step of both builds calls the serial switch and spring passes per block.

@@ -172,9 +172,9 @@ def test_changing_load_compiled_switch_against_numpy(family, gname, lo_hi, extra
             np.testing.assert_allclose(a[k][f], b[k][f], rtol=0, err_msg=f"step {k}: {f}",
                                        atol=COMPILED_VS_NUMPY_SPRINGS * scale)
     sf, ss = fast.state, slow.state
-    for key in ("spr_cover", "spr_depth", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
+    for key in ("spr_cover", "spr_depth", "spr_a", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
         np.testing.assert_array_equal(sf[key], ss[key], err_msg=key)
-    for key in ("spr_S", "spr_tan", "spr_tor"):
+    for key in ("spr_tan", "spr_tor"):
         np.testing.assert_allclose(sf[key], ss[key], rtol=0,
                                    atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(ss[key])),
                                    err_msg=key)

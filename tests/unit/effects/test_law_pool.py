@@ -15,7 +15,7 @@ import contactlab as cl
 from contactlab.effects.law import law_memory
 from contactlab.effects.law_pool import SpringPool, pool_row_bytes
 from contactlab.errors import MemoryBudgetError, ValidityWarning
-from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS
+from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS, OLD_SPRING_STATE
 
 HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
 BACKENDS = [False, True] if HAS_NUMBA else [False]
@@ -34,14 +34,14 @@ def test_pool_rows_follow_their_contacts():
     idx = np.array([7, 2, 5, 9, 0])
     s = pool.assign(idx)
     pool.rows["spr_depth"][s] = idx + 0.5
-    pool.rows["spr_S"][s] = (idx + 0.25)[:, None]
+    pool.rows["spr_tan"][s] = (idx + 0.25)[:, None]
     pool.release(np.array([2, 9, 3]))                # 3 holds no row
     assert pool.used == 3
     on = np.flatnonzero(pool.on())
     np.testing.assert_array_equal(on, [0, 5, 7])
     np.testing.assert_array_equal(pool.owner[pool.slot[on]], on)
     np.testing.assert_array_equal(pool.full("spr_depth")[on], on + 0.5)
-    np.testing.assert_array_equal(pool.full("spr_S")[on], np.repeat((on + 0.25)[:, None], 3, 1))
+    np.testing.assert_array_equal(pool.full("spr_tan")[on], np.repeat((on + 0.25)[:, None], 3, 1))
     assert not pool.full("spr_depth")[[1, 2, 3, 4, 6, 8, 9]].any()
 
 
@@ -223,9 +223,9 @@ def test_outgrown_covers_are_regridded_in_the_compiled_pass_to_the_numpy_bits(mo
                 np.testing.assert_allclose(x, y, rtol=0, err_msg=f"step {k}: {f}",
                                            atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(y)))
     sf, sr = fast.state, ref.state
-    for key in ("spr_cover", "spr_depth", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
+    for key in ("spr_cover", "spr_depth", "spr_a", "spr_k", "spr_x_tan", "spr_x_tor", "spr_on"):
         np.testing.assert_array_equal(sf[key], sr[key], err_msg=key)
-    for key in ("spr_S", "spr_tan", "spr_tor"):
+    for key in ("spr_tan", "spr_tor"):
         np.testing.assert_allclose(sf[key], sr[key], rtol=0, err_msg=key,
                                    atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(sr[key])))
     assert len(grown) == 2          # once per law, in step 5
@@ -266,7 +266,7 @@ def test_rows_in_memory_maps_give_the_same_bits(fast, monkeypatch):
             v = v.base
         return isinstance(v.obj if isinstance(v, memoryview) else v, mmap.mmap)
 
-    assert not mapped_(plain._pool.rows["spr_S"])
+    assert not mapped_(plain._pool.rows["spr_tan"])
     monkeypatch.setattr(law_pool, "_MAP_BYTES", 0)
     mapped = _law(n, fast)
     b = _run(mapped, n)
@@ -304,3 +304,173 @@ def test_mapped_rows_are_faulted_in_before_the_first_write(threads):
     assert not arr.any()
     assert faults(arr[:8192]) <= 64                 # populated: 1024 pages, no fault each
     assert faults(arr[8192:]) >= 1000               # not populated: a fault per page
+
+
+def test_a_row_holds_no_cell_integrals_and_its_bytes_are_counted():
+    """The spring row stores the last step's radius, not its 16 cell integrals (recomputed
+    from depth and radius): 52 + 16 springs bytes per row, counted from the pool's arrays."""
+    from contactlab.effects.law_pool import SPRING_FIELDS
+    assert "spr_S" not in SPRING_FIELDS and SPRING_FIELDS["spr_a"] == (np.float64, False)
+    pool = SpringPool(100, 16)
+    pool.reserve(1)
+    row = pool.owner[:1].nbytes + sum(v[:1].nbytes for v in pool.rows.values())
+    assert row == pool_row_bytes(16) == 308
+
+
+def _old_format(state, law):
+    """``state`` as a law saved it before ``spr_a`` replaced ``spr_S`` (the cell integrals of
+    the last step per spring; their values are not read back)."""
+    old = {k: v for k, v in state.items() if k != "spr_a"}
+    old["spr_S"] = np.full((law.size, law.springs), np.nan)
+    return old
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_a_state_saved_before_spr_a_still_loads_and_continues(fast, tmp_path):
+    """A state of the earlier format (``spr_S`` per spring, no ``spr_a``) restores: the radius
+    is recomputed from the stored depth, so a depth-controlled Paraboloid run continues to the
+    bit (its radius is the same closed form of the depth), and a state holding both keys is
+    refused naming the extra one."""
+    n, steps, at = 40, 16, 9
+    rng = np.random.default_rng(11)
+    d = cl.ContactLaw(cl.profiles.Paraboloid, R=np.linspace(2e-3, 9e-3, n), E_star=1.15e11,
+                      G_star=4.4e10, G_torsion=4e10, friction=0.3).normal(
+                          force=rng.uniform(1.0, 100.0, n))[0]
+
+    def run(law, restore=False):
+        outs = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in range(steps):
+                if restore and k == at:
+                    np.savez(tmp_path / "old.npz", **_old_format(law.state, law))
+                    law = _law(n, fast)
+                    with np.load(tmp_path / "old.npz") as f:
+                        law.state = dict(f)
+                D = d * np.where(np.arange(n) % 2 == 0, 1.0 + 0.02 * np.sin(0.6 * k), 1.0)
+                r = law.step(depth=D, displacement=1e-8 * np.sin(0.7 * k + np.arange(n)),
+                             twist=1e-4 * np.cos(0.5 * k + np.arange(n)))
+                outs.append({f: getattr(r, f).copy() for f in FIELDS})
+        return law, outs
+
+    through, a = run(_law(n, fast))
+    restored, b = run(_law(n, fast), restore=True)
+    assert through.state["spr_on"].sum() == n // 2
+    for k, (x, y) in enumerate(zip(a, b)):
+        for f in FIELDS:
+            assert x[f].tobytes() == y[f].tobytes(), f"step {k}: {f}"
+    for key, v in through.state.items():
+        np.testing.assert_array_equal(v, restored.state[key], err_msg=key)
+    both = dict(through.state, spr_S=np.zeros((n, 16)))
+    with pytest.raises(cl.errors.ParameterError, match="unknown keys \\['spr_S'\\]"):
+        restored.state = both
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_a_state_saved_before_spr_a_continues_a_force_driven_power_law(fast, tmp_path):
+    """By force, on a PowerLaw (n = 1.5), the radius recomputed from the stored depth may differ
+    from the force's by an ulp: the run continues within OLD_SPRING_STATE of the largest value
+    (the contacts at constant load to the bit)."""
+    n, steps, at = 40, 16, 9
+    F0 = np.random.default_rng(11).uniform(1.0, 100.0, n)
+
+    def make():
+        return cl.ContactLaw(cl.profiles.PowerLaw, n=1.5, c=np.linspace(1e2, 1e3, n),
+                             E_star=1.15e11, G_star=4.4e10, G_torsion=4e10, friction=0.3,
+                             fast=fast)
+
+    def run(restore):
+        law, outs = make(), []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            for k in range(steps):
+                if restore and k == at:
+                    np.savez(tmp_path / "old.npz", **_old_format(law.state, law))
+                    law = make()
+                    with np.load(tmp_path / "old.npz") as f:
+                        law.state = dict(f)
+                L = F0 * np.where(np.arange(n) % 2 == 0, 1.0 + 0.02 * np.sin(0.6 * k), 1.0)
+                r = law.step(force=L, displacement=1e-8 * np.sin(0.7 * k + np.arange(n)),
+                             twist=1e-4 * np.cos(0.5 * k + np.arange(n)))
+                outs.append({f: getattr(r, f).copy() for f in FIELDS})
+        return outs
+
+    a, b = run(False), run(True)
+    held = np.arange(n) % 2 == 1
+    for k, (x, y) in enumerate(zip(a, b)):
+        for f in FIELDS:
+            assert x[f][held].tobytes() == y[f][held].tobytes(), f"step {k}: {f}"
+            if f == "exact":
+                np.testing.assert_array_equal(x[f], y[f])
+                continue
+            np.testing.assert_allclose(y[f], x[f], rtol=0, err_msg=f"step {k}: {f}",
+                                       atol=OLD_SPRING_STATE * np.max(np.abs(x[f])))
+
+
+@pytest.mark.parametrize("fast", BACKENDS)
+def test_reserved_spring_rows_change_no_result(fast):
+    """``spring_reserve`` allocates the rows of that fraction of the contacts with the law (and
+    again after ``reset()``); a changing-load run with resets (rows moved, the pool grown past
+    the reservation) gives the bits and the state of a law without it."""
+    n = 400                                         # a half switches: past the reservation
+    lazy, kept = _law(n, fast), _law(n, fast, spring_reserve=0.25)
+    assert lazy._pool.capacity == 0 and kept._pool.capacity == 100 and kept._pool.used == 0
+    for x, y in zip(_run(lazy, n), _run(kept, n)):
+        for f in FIELDS:
+            assert x[f].tobytes() == y[f].tobytes(), f
+    for key, v in lazy.state.items():
+        np.testing.assert_array_equal(v, kept.state[key], err_msg=key)
+    kept.reset()
+    assert kept._pool.capacity == 100 and kept._pool.used == 0
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="MADV_POPULATE_WRITE: Linux")
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+def test_reserved_rows_take_no_page_faults_in_the_first_changing_step():
+    """The reserved rows are faulted in when the law is built: the first changing-load step of
+    a reserved law allocates no rows (the pool's arrays are the ones built with the law) and
+    takes fewer minor page faults than the same step of a lazy law, which faults the pool's
+    per-spring pages (2 x 128 B per row, 2500 pages) in then: by at least half of them (the
+    step's result arrays fault a varying number of pages of their own, as malloc reuses memory;
+    the compiled step: the numpy step's temporaries vary more)."""
+    fast = True
+    from contactlab.effects import law_pool
+    n = 40000                        # per-spring arrays 5.1 MB: memory maps (>= 4 MB)
+    probe = law_pool._mapped((1024, 1024), np.dtype(np.float64), 512)
+    f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    probe[:512] = 1.0
+    if resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0 > 64:
+        pytest.skip("madvise(MADV_POPULATE_WRITE) not supported by this kernel")
+    F = np.random.default_rng(2).uniform(1.0, 100.0, n)
+    faults = []
+    for reserve in (0.0, 1.0):
+        law = _law(n, fast, spring_reserve=reserve)
+        law.step(force=F, displacement=1e-8)
+        built = [law._pool.owner, *law._pool.rows.values()]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+            law.step(force=1.01 * F, displacement=2e-8)
+            faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
+        assert law._pool.used == n
+        same = all(a is b for a, b in zip(built, [law._pool.owner, *law._pool.rows.values()]))
+        assert same == (reserve == 1.0)                 # no rows allocated in the step
+    assert faults[0] - faults[1] >= 2 * n * 128 // 4096 // 2, faults
+
+
+@pytest.mark.parametrize("bad", [-0.1, 1.5, float("nan"), True, "half", [0.5]])
+def test_spring_reserve_must_be_a_fraction(bad):
+    with pytest.raises(cl.errors.ParameterError, match="spring_reserve"):
+        _law(10, False, spring_reserve=bad)
+
+
+def test_reserved_rows_are_checked_against_the_budget_with_the_law():
+    """The reservation is counted with the law (law_memory with its rows): refused at
+    construction when it does not fit, while the lazy law fits."""
+    previous = cl.set_memory_budget(10e6)
+    try:
+        _law(1000, False, springs=4096)
+        with pytest.raises(MemoryBudgetError, match="spring_reserve=1"):
+            _law(1000, False, springs=4096, spring_reserve=1.0)
+    finally:
+        cl.set_memory_budget(previous)

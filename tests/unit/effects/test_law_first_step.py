@@ -1,0 +1,99 @@
+"""The first changing-load step of the compiled ContactLaw (issue 29): the switch onto the
+springs and the first spring step fused per contact (``law_kernel_springs._first_pass``) give
+the bits of the switch then the step (``_switch_step_pass``, blocks of contacts switched then
+stepped): every output, every row entry, the rows' owners, the flags and the counts, for every
+family, with and without each channel, contacts whose load rose or fell (edge cells moving
+both ways), Masing stacks with turning points, and fresh covers a radius outgrows."""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import ValidityWarning
+
+HAS_NUMBA = cl.effects.law._kernel.AVAILABLE
+pytestmark = pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
+
+FAMILIES = [(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}),
+            (cl.profiles.Cone, "slope", (0.05, 0.3), {}),
+            (cl.profiles.PowerLaw, "c", (1e2, 1e3), {"n": 1.5}),
+            (cl.profiles.FlatPunch, "radius", (1e-4, 1e-3), {})]
+ROWS = ("spr_cover", "spr_a", "spr_k", "spr_depth", "spr_tan", "spr_tor", "spr_x_tan",
+        "spr_x_tor")
+
+
+def _inputs(family, gname, lo_hi, extra, seed):
+    """A law after a held-load history with reversals (turning points in both stacks), and the
+    next step's depth, radius and controls with every contact's load changed."""
+    from contactlab.physics.law_kernel import normal_pass
+    rng = np.random.default_rng(seed)
+    n = 300
+    law = cl.ContactLaw(family, **{gname: rng.uniform(*lo_hi, n)}, E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4e10, friction=rng.uniform(0.1, 0.5, n),
+                        memory=5, fast=True, spring_reserve=1.0, **extra)
+    F = rng.uniform(1.0, 100.0, n)
+    u = np.cumsum(rng.standard_normal((8, n)), axis=0) * 3e-8
+    phi = np.cumsum(rng.standard_normal((8, n)), axis=0) * 1e-4
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(7):
+            law.step(force=F, displacement=u[k], twist=phi[k])
+    F2 = F * rng.choice([0.5, 0.97, 1.0, 1.03, 2.0], n)
+    d, a, *_ = normal_pass(True, F2, u[7], phi[7], law.kc, law.E_star, law.n, law._flat,
+                           law._st["depth_ref"], law.load_rtol, False, None)
+    return law, d.copy(), a.copy(), u[7], phi[7]
+
+
+def _run(kernel, law, d, a, u, phi, cover_factor, block=None):
+    n = law.size
+    pool = law._pool
+    pool.slot[:] = -1
+    P = pool.rows
+    for key in ROWS:                    # garbage: each pass must write what it owns
+        P[key][:n] = 7
+    pool.owner[:n] = -7
+    out = tuple(np.full(n, 7.0) for _ in range(5))
+    flag = np.zeros(n, np.int8)
+    beta = law._beta
+    nn = 1.0 if law.n == np.inf else float(law.n)
+    bG, bH = beta ** (nn + 1.0) / (nn + 1.0), beta ** (nn + 2.0) / (nn + 2.0)
+    chan = law._chan
+    empty = np.zeros(1)
+    args = (np.arange(n, dtype=np.int64), law._st["depth_ref"], a, law._flat,
+            law.n == np.inf, cover_factor, law.kc, nn, beta, bG, bH, law.friction,
+            law.E_star, law.G_star, law.G_torsion, chan["X"], chan["depth"], chan["x"],
+            pool.slot, pool.owner, 0, d, empty if u is None else u,
+            empty if phi is None else phi, u is not None, phi is not None,
+            *(P[key] for key in ROWS), *out, flag)
+    counts = kernel(*args) if block is None else kernel(block, *args)
+    return (counts, [o.copy() for o in out], flag.copy(), pool.slot.copy(),
+            pool.owner[:n].copy(), {key: P[key][:n].copy() for key in ROWS})
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+@pytest.mark.parametrize("channels", ["both", "displacement", "twist"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_fused_first_step_is_the_switch_then_the_step(family, gname, lo_hi, extra, channels,
+                                                      parallel):
+    from contactlab.physics.law_kernel import _kernels
+    law, d, a, u, phi = _inputs(family, gname, lo_hi, extra, 5)
+    u = u if channels != "twist" else None
+    phi = phi if channels != "displacement" else None
+    cover = law.spring_cover.copy()
+    cover[::7] = 0.93              # below 1 (the law refuses it): radii beyond a fresh cover
+    kernels = _kernels(parallel)
+    ref = _run(kernels[4], law, d, a, u, phi, cover, block=13)
+    got = _run(kernels[6], law, d, a, u, phi, cover)
+    assert ref[0] == got[0] and ref[0][1] > 0          # (non-finite, grown); some grown
+    for x, y in zip(ref[1], got[1]):
+        assert x.tobytes() == y.tobytes()
+    for i in (2, 3, 4):
+        assert np.array_equal(ref[i], got[i])
+    for key in ROWS:
+        assert ref[5][key].tobytes() == got[5][key].tobytes(), key
+    assert not np.any(ref[5]["spr_k"] == 7)           # every row written (garbage 7 before)
+    assert np.any(ref[5]["spr_k"] != ref[5]["spr_k"][0])
