@@ -36,6 +36,7 @@ from typing import cast
 import numpy as np
 import scipy.linalg as _la
 
+from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import ring_kernels as _ring_kernels
 # the piece algebra (re-exported: the module's names, its compiled-route switch ``_COMPILED`` and
 # its helpers, as before the split)
@@ -348,6 +349,13 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the
         checks held) and ``why`` (the failed check, or ``""``).
     """
+    if target_torque is None and _kernels() is not None:
+        # the compiled route: one pass (numeric.annulus_kernel), the same bits; None where it
+        # leaves the step to the passes below
+        out = _compiled_step(old, slide, radius, G_t, float(cast(float, dphi)), r, bound, slip,
+                             table)
+        if out is not None:
+            return out
     kind = "twist" if target_torque is None else "torque"
     # the piece ends of both densities below the radius, from the edge inwards (the first is
     # the radius itself): the twist (torque) of both densities there, once
@@ -433,6 +441,75 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table):
             why = _WHY_INSIDE
     return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
+            "ok": not why, "why": why}
+
+
+_NO_TABLE = (np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), np.zeros(0))
+
+
+def _annulus_kernels() -> dict | None:
+    """The compiled step and energy passes (:mod:`contactlab.numeric.annulus_kernel`), or None
+    for the numpy route (the switch of :func:`psi`'s passes, ``_COMPILED``)."""
+    return None if _kernels() is None else _annulus_kernel.kernels(_COMPILED["compiled"])
+
+
+def _arrays(p: Pieces) -> tuple:
+    c = np.ascontiguousarray
+    return c(p[0], float), c(p[1], float), c(p[2], float), c(p[3], float)
+
+
+def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: float,
+                   r: np.ndarray | None, bound: np.ndarray | None, slip: bool,
+                   table: NodeTable | None) -> dict | None:
+    """:func:`step` with a twist increment by the compiled pass
+    (:func:`contactlab.numeric.annulus_kernel.twist_step`): the density, stick radius and turn
+    in one pass, the same bits; the checks' verdicts are the numpy route's (the traction check
+    from the pass where its margin exceeds the rounding of its sums, else from
+    :func:`_inside_ok`); the slip increments, where wanted or needed by the check, from
+    :func:`slip_kernel_integral` on the pass's difference density. None for an input the pass
+    leaves to the numpy route (a nan)."""
+    ak = _annulus_kernels()
+    assert ak is not None
+    tab = _NO_TABLE if table is None else (*table.arrays["traction"], table.r, table.nodes)
+    rr = _NO_TABLE[2] if r is None else np.ascontiguousarray(r, float)
+    bb = _NO_TABLE[2] if bound is None else np.ascontiguousarray(bound, float)
+    st, w, c, s, gross, dpsi, inside, full, dw, sufficient = ak["twist_step"](
+        *_arrays(old), *_arrays(slide), float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb,
+        float(G_t), CHECK_RTOL, *tab)
+    if st != _annulus_kernel.STEP_DONE:
+        return None
+    # (the pieces come as the rows of one array each)
+    w = (w[0], w[1], w[2], w[3])
+    full = (full[0], full[1], full[2], full[3])
+    dw = (dw[0], dw[1], dw[2], dw[3])
+    if r is None:
+        return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": None,
+                "ok": True, "why": ""}
+    assert bound is not None   # r and bound come together
+    _LAST_DIFF[0] = (w, old, 0.0, _kernels(), full)   # (the step's energy takes it)
+    reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
+    on = ((bound > 0) | (r < reach)) & (r > c)
+    ds = np.zeros(r.size)
+    decided = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
+    inside_ok = None
+    if not slip:
+        inside_ok = decided.get(inside)
+        if inside_ok is None:
+            inside_ok = _inside_ok(w, r, c, bound, G_t, table)
+        if not inside_ok:
+            return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
+                    "ok": False, "why": _WHY_INSIDE}
+    why = ""
+    if on.any() and not np.isnan(gross) and (slip or not sufficient):
+        ds[on] = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
+        ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
+        if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+            why = "slip against the traction on the annulus"
+    if not why and inside_ok is None:
+        ok = decided.get(inside)
+        if not (_inside_ok(w, r, c, bound, G_t, table) if ok is None else ok):
+            why = _WHY_INSIDE
+    return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
             "ok": not why, "why": why}
 
 

@@ -1,0 +1,592 @@
+"""Optional compiled kernels of the exact torsion solver's annulus step and its energy (extra
+``fast``: numba).
+
+A twist step of the exact path solver (:func:`contactlab.physics.torsion_annulus.step`) and the
+energy of a chain of its stages (:mod:`contactlab.physics.torsion_energy`) are each some forty
+small numpy operations on piecewise-linear densities of ~100-200 pieces, a few microseconds each:
+Python's call overhead, not arithmetic, is their cost. Here each is one compiled pass over the
+densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``):
+
+* :func:`twist_step`: the piece ends of both densities below the contact radius, ``Ψ`` of both
+  there, the bracket and root of the stick radius, the splice of the new density, its total
+  turn, the traction check inside the stick radius (from a :class:`NodeTable`'s antiderivatives)
+  and the difference densities of the slip check;
+* :func:`energy_nodes` and :func:`difference_psi`: the Gauss points and weights of the energy
+  integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities.
+
+Every value the solver's state or results take is computed with the IEEE operations of the
+numpy route in its order (sums: numpy's pairwise order, :func:`pairwise_sum`; look-ups:
+``searchsorted``'s; the root: the same safeguarded Newton), so the step's density, stick radius
+and turn are bit-identical to the numpy route. Two things are not: the traction of the check
+inside the stick radius is summed in another order than the numpy route's matrix-vector product,
+so the check is decided here only where its margin exceeds a bound on the rounding of either sum
+(else the caller decides it with the numpy route: the verdict is always the numpy route's); and
+the energy's dot products are left to numpy (the kernels return the arrays they take).
+
+numba is used when it imports and :func:`contactlab.numeric.normal_kernels.backend` says
+``"numba"``; the kernels compile on their first call (machine code cached on disk:
+:func:`contactlab.numeric.jit.njit`).
+"""
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from . import jit as _jit
+from . import ring_kernels as _rk
+
+__all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "kernels",
+           "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
+
+#: :func:`twist_step`'s verdicts of the traction check inside the stick radius
+INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = 0, 1, -1
+#: :func:`twist_step`'s status: the step taken, or left to the numpy route (a nan among its inputs)
+STEP_DONE, STEP_REFERENCE = 0, 1
+
+_EPS = float(np.finfo(float).eps)
+_state: dict = {"kernels": None}
+_lock = threading.Lock()
+
+# the ring kernels the passes call (rebound to their compiled builds with the passes)
+_psi_pass = _rk.psi_pass
+_ends_pass = _rk.ends_pass
+
+
+def _block(a: np.ndarray, i0: int, n: int) -> float:
+    """numpy's sum of at most 128 elements ``a[i0:i0 + n]`` (less its identity ``0.0``)."""
+    if n < 8:
+        res = 0.0
+        for i in range(i0, i0 + n):
+            res += a[i]
+        return res
+    r0, r1, r2, r3 = a[i0], a[i0 + 1], a[i0 + 2], a[i0 + 3]
+    r4, r5, r6, r7 = a[i0 + 4], a[i0 + 5], a[i0 + 6], a[i0 + 7]
+    i = 8
+    stop = n - n % 8
+    while i < stop:
+        j = i0 + i
+        r0 += a[j]
+        r1 += a[j + 1]
+        r2 += a[j + 2]
+        r3 += a[j + 3]
+        r4 += a[j + 4]
+        r5 += a[j + 5]
+        r6 += a[j + 6]
+        r7 += a[j + 7]
+        i += 8
+    res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    while i < n:
+        res += a[i0 + i]
+        i += 1
+    return res
+
+
+def pairwise_sum(a: np.ndarray, i0: int, n: int) -> float:
+    """numpy's sum of ``a[i0:i0 + n]`` in its order, less the identity ``0.0`` it starts from:
+    blocks of at most 128 elements on eight accumulators, halves (rounded to multiples of eight)
+    added pairwise; numpy's recursion as a loop over an explicit stack (a recursive kernel is
+    not safely cached by numba)."""
+    if n <= 128:
+        return _block(a, i0, n)
+    seg = np.empty((192, 3), np.int64)      # (start, length, halves added?); depth <= 64
+    vals = np.empty(96)
+    top, nv = 1, 0
+    seg[0, 0], seg[0, 1], seg[0, 2] = i0, n, 0
+    while top:
+        top -= 1
+        s0, m, done = seg[top, 0], seg[top, 1], seg[top, 2]
+        if m <= 128:
+            vals[nv] = _block(a, s0, m)
+            nv += 1
+        elif done:
+            nv -= 1
+            vals[nv - 1] = vals[nv - 1] + vals[nv]
+        else:
+            m2 = m // 2
+            m2 -= m2 % 8
+            seg[top, 2] = 1
+            seg[top + 1, 0], seg[top + 1, 1], seg[top + 1, 2] = s0 + m2, m - m2, 0
+            seg[top + 2, 0], seg[top + 2, 1], seg[top + 2, 2] = s0, m2, 0
+            top += 3
+    return vals[0]
+
+
+def _left(a: np.ndarray, x: float) -> int:
+    """``searchsorted(a, x, "left")`` (``x`` not nan)."""
+    lo, hi = 0, a.size
+    while lo < hi:
+        m = (lo + hi) >> 1
+        if a[m] < x:
+            lo = m + 1
+        else:
+            hi = m
+    return lo
+
+
+def _right(a: np.ndarray, x: float) -> int:
+    """``searchsorted(a, x, "right")`` (``x`` not nan)."""
+    lo, hi = 0, a.size
+    while lo < hi:
+        m = (lo + hi) >> 1
+        if a[m] <= x:
+            lo = m + 1
+        else:
+            hi = m
+    return lo
+
+
+def _unique_sorted(a: np.ndarray) -> np.ndarray:
+    """``np.unique`` of ``a`` (no nan)."""
+    a = np.sort(a)
+    n = 0
+    out = np.empty(a.size)
+    for i in range(a.size):
+        if i == 0 or a[i] != a[i - 1]:
+            out[n] = a[i]
+            n += 1
+    return out[:n]
+
+
+def _is_sorted(a: np.ndarray) -> bool:
+    for i in range(1, a.size):
+        if not a[i - 1] <= a[i]:
+            return False
+    return True
+
+
+def _union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.unique`` of the sorted arrays ``a`` and ``b`` together (a merge: the piece ends of
+    densities are sorted; no nan)."""
+    out = np.empty(a.size + b.size)
+    i = j = n = 0
+    while i < a.size or j < b.size:
+        if j >= b.size or (i < a.size and a[i] <= b[j]):
+            v = a[i]
+            i += 1
+        else:
+            v = b[j]
+            j += 1
+        if n == 0 or v != out[n - 1]:
+            out[n] = v
+            n += 1
+    return out[:n]
+
+
+def _ends_union(alo, ahi, blo, bhi, extra):
+    """``np.unique`` of the piece ends of two densities and the sorted values ``extra`` (merges
+    where each array is sorted, else a sort)."""
+    if _is_sorted(alo) and _is_sorted(ahi) and _is_sorted(blo) and _is_sorted(bhi):
+        return _union(_union(_union(alo, ahi), _union(blo, bhi)), extra)
+    return _unique_sorted(np.concatenate((alo, ahi, blo, bhi, extra)))
+
+
+def _psi_walk(lo, hi, wl, wr, x, out):
+    """``ring_kernels.psi_pass`` at ascending radii ``x``: the pieces' indices found by one walk
+    instead of a binary search per radius (the same index, the same arithmetic)."""
+    n = lo.size
+    al = np.empty(n)
+    be = np.empty(n)
+    for j in range(n):
+        h = hi[j] - lo[j]
+        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
+        al[j] = wl[j] - be[j] * lo[j]
+    tail = np.empty(n + 1)
+    tail[n] = 0.0
+    acc = 0.0
+    for j in range(n - 1, -1, -1):
+        whole = al[j] * (hi[j] - lo[j]) + 0.5 * be[j] * (hi[j] * hi[j] - lo[j] * lo[j])
+        acc = whole if j == n - 1 else acc + whole
+        tail[j] = acc
+    top, bottom = hi[n - 1], lo[0]
+    p = 0
+    for i in range(x.size):
+        xi = x[i]
+        while p < n and hi[p] <= xi:          # searchsorted(hi, xi, "right")
+            p += 1
+        k = p if p < n - 1 else n - 1
+        if xi >= top:
+            out[i] = 0.0
+        elif xi < bottom:
+            out[i] = tail[0]
+        else:
+            lk, hk = lo[k], hi[k]
+            t0 = xi if xi > lk else lk
+            t0 = t0 if t0 < hk else hk
+            part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
+            out[i] = part + tail[k + 1]
+
+
+def _psi(lo, hi, wl, wr, x):
+    """``torsion_pieces.psi`` (zeros for no pieces; a walk where ``x`` ascends and ``hi`` is
+    sorted, no nan)."""
+    out = np.zeros(x.size)
+    if lo.size:
+        if _is_sorted(x) and _is_sorted(hi):
+            _psi_walk(lo, hi, wl, wr, x, out)
+        else:
+            _psi_pass(lo, hi, wl, wr, x, out)
+    return out
+
+
+def _ends_walk(plo, phi, wl, wr, lo, hi, out_l, out_r):
+    """``ring_kernels.ends_pass`` on ascending ``lo`` (``plo`` sorted): the pieces' indices by one
+    walk (the same index, the same arithmetic)."""
+    n = plo.size
+    a = 0
+    for i in range(lo.size):
+        x = lo[i]
+        while a < n and plo[a] <= x:          # searchsorted(plo, x, "right")
+            a += 1
+        k = a - 1
+        inside = k >= 0 and hi[i] <= phi[k if k > 0 else 0]
+        if k < 0:
+            k = 0
+        if not inside:
+            out_l[i] = 0.0
+            out_r[i] = 0.0
+            continue
+        l0, h0, v, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
+        h = h0 - l0
+        if h > 0:
+            out_l[i] = v + d * ((x - l0) / h)
+            out_r[i] = v + d * ((hi[i] - l0) / h)
+        else:
+            out_l[i] = v + d * 0.0
+            out_r[i] = v + d * 0.0
+
+
+def _total(lo, hi, wl, wr) -> float:
+    """``torsion_pieces._total``: ``Ψ(0)``, numpy's sum of the pieces' integrals."""
+    n = lo.size
+    if n == 0:
+        return 0.0
+    whole = np.empty(n)
+    for j in range(n):
+        h = hi[j] - lo[j]
+        be = (wr[j] - wl[j]) / h if h > 0 else 0.0
+        al = wl[j] - be * lo[j]
+        whole[j] = al * (hi[j] - lo[j]) + 0.5 * be * (hi[j] * hi[j] - lo[j] * lo[j])
+    return 0.0 + pairwise_sum(whole, 0, n)
+
+
+def _value(lo, hi, wl, wr, x: float, side: int) -> float:
+    """``torsion_pieces._value``: ``w(x⁻)`` (side −1) or ``w(x⁺)`` (side +1)."""
+    if lo.size == 0:
+        return 0.0
+    k = _left(hi, x) if side < 0 else _right(lo, x) - 1
+    if k < 0 or k >= lo.size:
+        return 0.0
+    l0, h0 = lo[k], hi[k]
+    if not ((l0 < x <= h0) if side < 0 else (l0 <= x < h0)):
+        return 0.0
+    h = h0 - l0
+    f = (x - l0) / h if h > 0 else 0.0
+    return wl[k] + (wr[k] - wl[k]) * f
+
+
+def _root_twist(d_lo, d_hi, x0, x1, f1, target, s, xtol, rtol):
+    """``torsion_annulus._root`` for the twist: the same safeguarded Newton."""
+    be = (d_hi - d_lo) / (x1 - x0)
+    al = d_lo - be * x0
+    r0 = s * (f1 + al * (x1 - x0) + 0.5 * be * (x1 * x1 - x0 * x0) - target)
+    r1 = s * (f1 + al * (x1 - x1) + 0.5 * be * (x1 * x1 - x1 * x1) - target)
+    if r0 < 0:
+        return x0
+    if r1 >= 0:
+        return x1
+    lo, hi = x0, x1
+    x = x1 - r1 * (x1 - x0) / (r1 - r0)
+    for _ in range(100):
+        fx = s * (f1 + al * (x1 - x) + 0.5 * be * (x1 * x1 - x * x) - target)
+        if fx == 0:
+            return x
+        if fx > 0:
+            lo = x
+        else:
+            hi = x
+        d = -s * (al + be * x)
+        xn = x - fx / d if d != 0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= xtol + rtol * abs(x) or hi - lo <= xtol:
+            return xn
+        x = xn
+    return 0.5 * (lo + hi)
+
+
+def _difference(nlo, nhi, nwl, nwr, olo, ohi, owl, owr, start):
+    """``torsion_pieces.difference``: ``new − old`` above ``start`` on the union of the ends."""
+    xs = _ends_union(nlo, nhi, olo, ohi, np.array([start]))
+    xs = xs[xs >= start]
+    if xs.size < 2:
+        z = np.zeros(0)
+        return z, z.copy(), z.copy(), z.copy()
+    lo, hi = xs[:-1].copy(), xs[1:].copy()
+    m = lo.size
+    nl, nr = np.zeros(m), np.zeros(m)
+    ol, orr = np.zeros(m), np.zeros(m)
+    # (lo ascends: the ends of each piece by a walk where its density's lo is sorted)
+    if nlo.size:
+        if _is_sorted(nlo):
+            _ends_walk(nlo, nhi, nwl, nwr, lo, hi, nl, nr)
+        else:
+            _ends_pass(nlo, nhi, nwl, nwr, lo, hi, nl, nr)
+    if olo.size:
+        if _is_sorted(olo):
+            _ends_walk(olo, ohi, owl, owr, lo, hi, ol, orr)
+        else:
+            _ends_pass(olo, ohi, owl, owr, lo, hi, ol, orr)
+    return lo, hi, nl - ol, nr - orr
+
+
+def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes) -> int:
+    """The traction check inside the stick radius (``torsion_annulus._inside_ok``) from the
+    table's antiderivatives: :data:`INSIDE_OK` / :data:`INSIDE_FAIL` where every point's margin
+    (one failing point's) exceeds a bound on the rounding of the sums in any order, else
+    :data:`INSIDE_OPEN` (also without a table, with pieces that do not abut, or with a radius
+    not in the table). The antiderivatives of a node not in the table are computed here (the C
+    library's ``acosh``: within a few units in the last place of numpy's, inside the bound)."""
+    m = 0
+    for i in range(r.size):
+        if r[i] < c:
+            m += 1
+    if c <= 0 or m == 0:
+        return INSIDE_OK
+    n = wlo.size
+    if n == 0 or F0.shape[0] == 0:
+        return INSIDE_OPEN
+    for j in range(n - 1):
+        if wlo[j + 1] != whi[j]:
+            return INSIDE_OPEN
+    # the jumps of offset and slope at the nodes, and the nodes' columns in the table
+    al = np.empty(n)
+    be = np.empty(n)
+    for j in range(n):
+        h = whi[j] - wlo[j]
+        be[j] = (wwr[j] - wwl[j]) / h if h > 0 else 0.0
+        al[j] = wwl[j] - be[j] * wlo[j]
+    c0 = np.empty(n + 1)
+    c1 = np.empty(n + 1)
+    cols = np.empty(n + 1, np.int64)
+    for j in range(n + 1):
+        c0[j] = (al[j - 1] if j > 0 else 0.0) - (al[j] if j < n else 0.0)
+        c1[j] = (be[j - 1] if j > 0 else 0.0) - (be[j] if j < n else 0.0)
+        t = wlo[j] if j < n else whi[n - 1]
+        k = _left(t_nodes, t)
+        # a node not in the table (the stick radius): its antiderivatives computed below
+        cols[j] = k if k < t_nodes.size and t_nodes[k] == t else -1
+    k4 = 4.0 * G_t / np.pi
+    verdict = INSIDE_OK
+    for i in range(r.size):
+        ri = r[i]
+        if not ri < c:
+            continue
+        row = _left(t_r, ri)
+        if row >= t_r.size or t_r[row] != ri:
+            return INSIDE_OPEN
+        acc = 0.0
+        mag = 0.0
+        for j in range(n + 1):
+            q = cols[j]
+            if q >= 0:
+                f0, f1 = F0[row, q], F1[row, q]
+            else:
+                t = wlo[j] if j < n else whi[n - 1]
+                u = t / ri if ri > 0 else 1.0
+                f0 = np.arccosh(u) if u > 1.0 else 0.0
+                f1 = np.sqrt((u - 1.0) * (u + 1.0)) * ri if u > 1.0 else 0.0
+            a = f0 * c0[j]
+            b = f1 * c1[j]
+            acc += a + b
+            mag += abs(a) + abs(b)
+        scale = k4 * ri
+        tau = abs(scale * acc)
+        lim = bound[i] * (1 + check_rtol)
+        err = 4.0 * (n + 4) * _EPS * abs(scale) * mag + 4.0 * _EPS * (tau + abs(lim))
+        if tau - lim > err:
+            return INSIDE_FAIL
+        if not lim - tau > err or tau != tau or lim != lim:
+            verdict = INSIDE_OPEN
+    return verdict
+
+
+def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rtol,
+               r, bound, G_t, check_rtol, F0, F1, t_r, t_nodes):
+    """The twist step of ``torsion_annulus.step`` (the old density ``o``, the full-sliding one
+    ``s``, the contact radius, the twist increment ``target``; the root's ``xtol``, ``rtol``), its
+    checks' parts at the points ``r`` with ``μ p`` = ``bound`` when ``r`` is not empty (``F0``,
+    ``F1``, ``t_r``, ``t_nodes``: a :class:`NodeTable`'s traction antiderivatives, radii and nodes,
+    or empty).
+
+    Returns ``(status, w, c, s, gross, dpsi, inside, full, dw, sufficient)``: ``w`` the new pieces
+    (as the rows of one ``4 × n`` array, as ``full`` and ``dw``),
+    ``inside`` the traction check's verdict (:func:`_inside`), ``full`` and ``dw`` the
+    differences ``w − old`` from 0 and from ``c``, ``sufficient`` the slip check by the sign of
+    ``dw`` alone (``torsion_annulus.step``'s)."""
+    empty = np.zeros((4, 0))
+    if target != target or radius != radius:
+        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, empty, False
+    for a in (olo, ohi, slo, shi):
+        for i in range(a.size):
+            if a[i] != a[i]:
+                return (STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, empty,
+                        False)
+    xs = _ends_union(olo, ohi, slo, shi, np.array([0.0, radius]) if radius >= 0.0
+                     else np.array([radius, 0.0]))
+    xs = xs[xs <= radius]
+    # Ψ of both at the ascending ends, then from the edge inwards
+    f_sl = _psi(slo, shi, swl, swr, xs)[::-1].copy()
+    f_old = _psi(olo, ohi, owl, owr, xs)[::-1].copy()
+    xs = xs[::-1].copy()
+    base = f_sl[0] - f_old[0]
+    gross = 0.0
+    s = 1.0 if target >= base else -1.0
+    if target == base:
+        c = radius
+    else:
+        k = -1
+        for i in range(xs.size):
+            if s * ((s * f_sl[i] - f_old[i]) - target) >= 0:
+                k = i
+                break
+        if k < 0:
+            c = 0.0
+            gross = target - (s * f_sl[xs.size - 1] - f_old[xs.size - 1])
+        else:
+            vk = s * ((s * f_sl[k] - f_old[k]) - target)
+            if vk == 0 or k == 0:
+                c = xs[k]
+            else:
+                x0, x1 = xs[k], xs[k - 1]
+                d_lo = (s * _value(slo, shi, swl, swr, x0, 1)
+                        - _value(olo, ohi, owl, owr, x0, 1))
+                d_hi = (s * _value(slo, shi, swl, swr, x1, -1)
+                        - _value(olo, ohi, owl, owr, x1, -1))
+                c = _root_twist(d_lo, d_hi, x0, x1, s * f_sl[k - 1] - f_old[k - 1], target, s,
+                                xtol, rtol)
+    # splice(old, s W, c): old below c, s W above it, zero-width pieces dropped
+    na = _left(olo, c)
+    nb = _right(shi, c)
+    m = na + shi.size - nb
+    lo, hi, wl, wr = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+    for j in range(na):
+        lo[j], hi[j], wl[j], wr[j] = olo[j], ohi[j], owl[j], owr[j]
+    if na and ohi[na - 1] > c:
+        j = na - 1
+        wr[j] = owl[j] + (owr[j] - owl[j]) * (c - olo[j]) / (ohi[j] - olo[j])
+        hi[j] = c
+    for j in range(nb, shi.size):
+        q = na + j - nb
+        lo[q], hi[q], wl[q], wr[q] = slo[j], shi[j], s * swl[j], s * swr[j]
+    if shi.size - nb and slo[nb] < c:
+        q = na
+        wl[q] = s * swl[nb] + (s * swr[nb] - s * swl[nb]) * (c - slo[nb]) / (shi[nb] - slo[nb])
+        lo[q] = c
+    keep = 0
+    for j in range(m):
+        if hi[j] > lo[j]:
+            keep += 1
+    if keep < m:
+        sel = hi > lo
+        lo, hi, wl, wr = lo[sel], hi[sel], wl[sel], wr[sel]
+    dpsi = _total(lo, hi, wl, wr) - _total(olo, ohi, owl, owr)
+    w = _stack(lo, hi, wl, wr)
+    if r.size == 0:
+        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK, empty, empty, True
+    inside = _inside(lo, hi, wl, wr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes)
+    full = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, 0.0)
+    i = _left(full[0], c)
+    if i < full[0].size and full[0][i] == c:
+        dw = _stack(full[0][i:], full[1][i:], full[2][i:], full[3][i:])
+    else:
+        d = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, c)
+        dw = _stack(d[0], d[1], d[2], d[3])
+    sc = 0.0
+    if swl.size:
+        sc = np.max(np.abs(swl)) + np.max(np.abs(swr))
+    if sc == 0.0:
+        sc = 1.0
+    slack = -check_rtol * sc
+    sufficient = s * gross >= 0
+    if sufficient:
+        for j in range(dw[0].size):
+            if not (s * dw[2][j] >= slack and s * dw[3][j] >= slack):
+                sufficient = False
+                break
+    return (STEP_DONE, w, c, s, gross, dpsi, inside, _stack(full[0], full[1], full[2], full[3]),
+            dw, sufficient)
+
+
+def _stack(lo, hi, wl, wr):
+    """The pieces as the rows of one ``4 × n`` array (one array to return)."""
+    out = np.empty((4, lo.size))
+    for j in range(lo.size):
+        out[0, j], out[1, j], out[2, j], out[3, j] = lo[j], hi[j], wl[j], wr[j]
+    return out
+
+
+def energy_nodes(alo, ahi, blo, bhi, clo, chi, xg, wg, dlo, dhi, dwl, dwr):
+    """``torsion_energy._nodes`` of the piece ends of up to three densities ``a``, ``b``, ``c``
+    (``c`` empty for two) and 0, with the Gauss rule ``xg``, ``wg``, and ``Ψ`` of the density
+    ``d`` there: ``(X0, W, P)``, ``X0`` the points with a 0 appended."""
+    u = _ends_union(alo, ahi, blo, bhi, np.zeros(1))
+    if _is_sorted(clo) and _is_sorted(chi):
+        u = _union(_union(u, clo), chi)
+    else:
+        u = _unique_sorted(np.concatenate((u, clo, chi)))
+    n = u.size - 1
+    g = xg.size
+    X0 = np.empty(n * g + 1)
+    W = np.empty(n * g)
+    for i in range(n):
+        h = u[i + 1] - u[i]
+        for j in range(g):
+            x = u[i] + 0.5 * (xg[j] + 1.0) * h
+            X0[i * g + j] = x
+            W[i * g + j] = 0.5 * wg[j] * h * x * x
+    X0[n * g] = 0.0
+    P = _psi(dlo, dhi, dwl, dwr, X0[:n * g])
+    return X0, W, P
+
+
+def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
+    """``Ψ`` of ``torsion_pieces.difference(b, a, 0)`` at the points ``X0``."""
+    d = _difference(blo, bhi, bwl, bwr, alo, ahi, awl, awr, 0.0)
+    m = X0.size - 1
+    out = np.empty(X0.size)
+    out[:m] = _psi(d[0], d[1], d[2], d[3], X0[:m])      # ascending points, then the 0
+    out[m:] = _psi(d[0], d[1], d[2], d[3], X0[m:])
+    return out
+
+
+#: helpers (compiled before the passes that call them)
+_HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
+                   "_is_sorted", "_union", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
+                   "_total", "_value", "_root_twist", "_difference", "_inside")
+#: the passes by name (plain Python functions)
+_PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
+                                         "difference_psi": difference_psi}
+
+
+def kernels(compiled: bool = True) -> dict:
+    """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``) compiled
+    by numba (built once per process), or the plain Python functions (``compiled=False``: their
+    logic without numba, for tests)."""
+    if not compiled:
+        return dict(_PLAIN)
+    built = _state["kernels"]
+    if built is not None:
+        return built
+    with _lock:
+        if _state["kernels"] is None:
+            g = globals()
+            rk = _rk.kernels(True)
+            g["_psi_pass"], g["_ends_pass"] = rk["psi"], rk["ends"]
+            for name in _HELPERS:
+                g[name] = _jit.njit(g[name], nogil=True, error_model="numpy")
+            _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
+                                 for name, f in _PLAIN.items()}
+    return _state["kernels"]
