@@ -12,7 +12,10 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
   turn, the traction check inside the stick radius (from a :class:`NodeTable`'s antiderivatives)
   and the difference densities of the slip check;
 * :func:`energy_nodes` and :func:`difference_psi`: the Gauss points and weights of the energy
-  integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities.
+  integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities;
+* :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
+* :func:`table_scatter`: the slip integral's jumps scattered onto a table's nodes (its matrix
+  products stay numpy's).
 
 Every value the solver's state or results take is computed with the IEEE operations of the
 numpy route in its order (sums: numpy's pairwise order, :func:`pairwise_sum`; look-ups:
@@ -38,7 +41,8 @@ import numpy as np
 from . import jit as _jit
 from . import ring_kernels as _rk
 
-__all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "kernels",
+__all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "nonnegative",
+           "table_scatter", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -528,6 +532,79 @@ def _stack(lo, hi, wl, wr):
     return out
 
 
+def nonnegative(lo, hi, wl, wr) -> bool:
+    """Whether ``Ψ >= 0`` at every piece's ends and at its interior zero of ``w`` (the smallest
+    ``Ψ`` on the piece): ``torsion_annulus.nonnegative_psi``'s test with its arithmetic (False
+    also for a nan, where that function goes on to its cuts)."""
+    n = lo.size
+    if n == 0:
+        return True
+    xs = np.empty(n)
+    for j in range(n):
+        h = hi[j] - lo[j]
+        be = (wr[j] - wl[j]) / h if h > 0 else 0.0
+        al = wl[j] - be * lo[j]
+        x = -al / be if be != 0 else lo[j]
+        if x == x:                       # np.maximum / np.minimum: a nan stays nan
+            x = x if x >= lo[j] else lo[j]
+            x = x if x <= hi[j] else hi[j]
+        xs[j] = x
+    for x in (hi, lo, xs):
+        P = _psi(lo, hi, wl, wr, x)
+        for j in range(n):
+            if not P[j] >= 0.0:
+                return False
+    return True
+
+
+def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
+    """The arguments of ``NodeTable.sums`` for the abutting pieces ``(lo, hi, wl, wr)`` at the
+    radii ``r`` (``torsion_annulus.slip_kernel_integral``'s, the same values): ``(ok, rows, i0,
+    i1, v0, v1, missed, c0m, c1m)``, the table rows of ``r`` and their band ``[i0, i1)``, the
+    jumps of offset and slope scattered onto the table's nodes, and the nodes not in the table
+    with their jumps; ``ok`` False where a radius is not a row of the table (or none given)."""
+    z = np.zeros(0)
+    zi = np.zeros(0, np.int64)
+    n, m, nt = lo.size, r.size, t_nodes.size
+    if m == 0 or n == 0 or t_r.size == 0 or nt == 0:
+        return False, zi, 0, 0, z, z, z, z, z
+    rows = np.empty(m, np.int64)
+    i0, i1 = t_r.size, 0
+    for i in range(m):
+        k = _left(t_r, r[i])
+        k = k if k < t_r.size - 1 else t_r.size - 1
+        if t_r[k] != r[i]:
+            return False, zi, 0, 0, z, z, z, z, z
+        rows[i] = k
+        i0 = k if k < i0 else i0
+        i1 = k + 1 if k + 1 > i1 else i1
+    al = np.empty(n)
+    be = np.empty(n)
+    for j in range(n):
+        h = hi[j] - lo[j]
+        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
+        al[j] = wl[j] - be[j] * lo[j]
+    v0 = np.zeros(nt)
+    v1 = np.zeros(nt)
+    missed = np.empty(n + 1)
+    c0m = np.empty(n + 1)
+    c1m = np.empty(n + 1)
+    q = 0
+    for j in range(n + 1):
+        c0 = (al[j - 1] if j > 0 else 0.0) - (al[j] if j < n else 0.0)
+        c1 = (be[j - 1] if j > 0 else 0.0) - (be[j] if j < n else 0.0)
+        t = lo[j] if j < n else hi[n - 1]
+        k = _left(t_nodes, t)
+        k = k if k < nt - 1 else nt - 1
+        if t_nodes[k] == t:
+            v0[k] = c0
+            v1[k] = c1
+        else:
+            missed[q], c0m[q], c1m[q] = t, c0, c1
+            q += 1
+    return True, rows, i0, i1, v0, v1, missed[:q], c0m[:q], c1m[:q]
+
+
 def energy_nodes(alo, ahi, blo, bhi, clo, chi, xg, wg, dlo, dhi, dwl, dwr):
     """``torsion_energy._nodes`` of the piece ends of up to three densities ``a``, ``b``, ``c``
     (``c`` empty for two) and 0, with the Gauss rule ``xg``, ``wg``, and ``Ψ`` of the density
@@ -568,11 +645,14 @@ _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_uniq
                    "_total", "_value", "_root_twist", "_difference", "_inside")
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
-                                         "difference_psi": difference_psi}
+                                         "difference_psi": difference_psi,
+                                         "nonnegative": nonnegative,
+                                         "table_scatter": table_scatter}
 
 
 def kernels(compiled: bool = True) -> dict:
-    """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``) compiled
+    """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
+    ``"nonnegative"``, ``"table_scatter"``) compiled
     by numba (built once per process), or the plain Python functions (``compiled=False``: their
     logic without numba, for tests)."""
     if not compiled:

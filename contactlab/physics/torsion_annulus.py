@@ -231,6 +231,20 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
     rr = np.asarray(r, float)[:, None]
     # abutting pieces share their ends: the antiderivatives once per node
     shared = bool(lo.size) and bool((lo[1:] == hi[:-1]).all())
+    ak = None if table is None or not shared else _annulus_kernels()
+    if ak is not None:
+        assert table is not None
+        # the look-ups and the scatter of the jumps in one pass (the same arguments as below)
+        r1 = np.ascontiguousarray(rr[:, 0])
+        ok, rows, i0, i1, v0, v1, missed, c0m, c1m = ak["table_scatter"](
+            *_arrays(p), r1, table.r, table.nodes)
+        if ok:
+            F0, F1 = table.arrays["slip"]
+            out = (F0[i0:i1] @ v0 + F1[i0:i1] @ v1)[rows - i0]
+            if missed.size:
+                A, S = _slip_antiderivatives(r1, missed)
+                out += A @ c0m + S @ c1m
+            return 2.0 / np.pi * out
     rows = None if table is None or not shared else table.rows(rr[:, 0])
     if table is not None and rows is not None:
         return 2.0 / np.pi * table.sums("slip", rows, rr[:, 0], np.append(lo, hi[-1]),
@@ -575,6 +589,9 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     its traction."""
     lo, hi, wl, wr = p
     if lo.size == 0:
+        return p
+    ak = _annulus_kernels()
+    if ak is not None and ak["nonnegative"](*_arrays(p)):     # (the test below, one pass)
         return p
     # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w); Ψ at all
     # three in one call (elementwise: the same values)
