@@ -492,6 +492,7 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
         float(G_t), CHECK_RTOL, *tab)
     if st != _annulus_kernel.STEP_DONE:
         return None
+    c, s, gross, dpsi = float(c), float(s), float(gross), float(dpsi)
     # (the pieces come as the rows of one array each)
     w = (w[0], w[1], w[2], w[3])
     full = (full[0], full[1], full[2], full[3])
