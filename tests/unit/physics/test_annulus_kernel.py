@@ -58,12 +58,12 @@ def _hertz_rings(n):
 def _cases():
     """(old, slide, radius, dphi, r, bound, table) from a run of steps on 60 rings: growing,
     shrinking and unchanged contact radii, increments of both signs, zero and beyond sliding."""
-    b, r, lu, bound, slide = _hertz_rings(60)
+    b, r, lu, bound, _slide = _hertz_rings(60)
     table = ta.NodeTable(r, b)
     rng = np.random.default_rng(7)
     w = ta.empty()
     out = []
-    for i in range(40):
+    for _i in range(40):
         k = int(rng.integers(30, 61))
         radius = float(b[k])
         bd = np.where(r < radius, bound * (0.6 + 0.4 * rng.random()), 0.0)
@@ -93,7 +93,7 @@ def test_twist_step_is_bit_identical_on_the_compiled_route(monkeypatch, compiled
 
 @pytest.mark.parametrize("compiled", ROUTES)
 def test_nonnegative_slip_integral_and_energies_are_bit_identical(monkeypatch, compiled):
-    b, r, lu, bound, slide = _hertz_rings(60)
+    b, r, lu, _bound, _slide = _hertz_rings(60)
     table = ta.NodeTable(r, b)
     cases = _cases()
     for old, sl, radius, dphi, _, bd, _ in cases:
@@ -134,7 +134,7 @@ def test_traction_check_is_left_open_within_rounding():
     """The pass decides the traction check inside the stick radius only where its margin
     exceeds a bound on the rounding of its sums: a bound at the traction itself is left to the
     numpy route, well above or below it is decided."""
-    b, r, lu, bound, slide = _hertz_rings(40)
+    b, r, _lu, _bound, slide = _hertz_rings(40)
     table = ta.NodeTable(r, b)
     w = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=0.2)["w"]
     c = 0.6
@@ -158,7 +158,7 @@ def test_traction_check_is_left_open_within_rounding():
 
 @needs_numba
 def test_nan_increment_goes_to_the_numpy_route(monkeypatch):
-    b, r, lu, bound, slide = _hertz_rings(30)
+    _b, _r, _lu, _bound, slide = _hertz_rings(30)
     _route(monkeypatch, False)
     ref = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=float("nan"))
     _route(monkeypatch, True)
