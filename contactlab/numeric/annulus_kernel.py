@@ -14,6 +14,8 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`energy_nodes` and :func:`difference_psi`: the Gauss points and weights of the energy
   integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities;
 * :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
+* :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
+  radius;
 * :func:`table_scatter`: the slip integral's jumps scattered onto a table's nodes (its matrix
   products stay numpy's).
 
@@ -42,7 +44,7 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 
 __all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "nonnegative",
-           "table_scatter", "kernels",
+           "table_scatter", "coefficient_pieces", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -179,11 +181,33 @@ def _union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out[:n]
 
 
+def _nodes(lo, hi):
+    """The sorted distinct piece ends of one density whose pieces are ordered
+    (``lo_k <= hi_k <= lo_{k+1}``: then ``lo_0, hi_0, lo_1, ...`` ascends), or an empty array and
+    False for pieces out of that order."""
+    n = lo.size
+    out = np.empty(2 * n)
+    m = 0
+    for j in range(n):
+        a, b = lo[j], hi[j]
+        if not (a <= b and (j + 1 == n or b <= lo[j + 1])):
+            return out[:0], False
+        if m == 0 or a != out[m - 1]:
+            out[m] = a
+            m += 1
+        if b != out[m - 1]:
+            out[m] = b
+            m += 1
+    return out[:m], True
+
+
 def _ends_union(alo, ahi, blo, bhi, extra):
     """``np.unique`` of the piece ends of two densities and the sorted values ``extra`` (merges
-    where each array is sorted, else a sort)."""
-    if _is_sorted(alo) and _is_sorted(ahi) and _is_sorted(blo) and _is_sorted(bhi):
-        return _union(_union(_union(alo, ahi), _union(blo, bhi)), extra)
+    where the pieces are ordered, else a sort)."""
+    na, oka = _nodes(alo, ahi)
+    nb, okb = _nodes(blo, bhi)
+    if oka and okb:
+        return _union(_union(na, nb), extra)
     return _unique_sorted(np.concatenate((alo, ahi, blo, bhi, extra)))
 
 
@@ -605,10 +629,45 @@ def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
     return True, rows, i0, i1, v0, v1, missed[:q], c0m[:q], c1m[:q]
 
 
-def energy_nodes(alo, ahi, blo, bhi, clo, chi, xg, wg, dlo, dhi, dwl, dwr):
+def coefficient_pieces(b, coef, jumps, radius, cut):
+    """``torsion_pieces.from_coefficients`` (its arithmetic; ``cut``: at ``radius``) as the rows of
+    one ``4 × n`` array; ``(ok, pieces)``, ``ok`` False (nothing computed) for too few
+    coefficients, a jump index outside the rings or a nan radius."""
+    n = b.size - 1
+    if n < 1 or coef.size < n + jumps.size or radius != radius:
+        return False, np.zeros((4, 0))
+    for j in range(jumps.size):
+        if jumps[j] < 0 or jumps[j] >= n:
+            return False, np.zeros((4, 0))
+    left = np.empty(n)
+    left[0] = 0.0
+    for j in range(1, n):
+        left[j] = coef[j - 1]
+    # numpy's ``left[jumps] += v``: every sum from the values before, then written in order
+    add = np.empty(jumps.size)
+    for j in range(jumps.size):
+        add[j] = left[jumps[j]] + coef[n + j]
+    for j in range(jumps.size):
+        left[jumps[j]] = add[j]
+    m = n
+    if cut:
+        m = _left(b[:n], radius)          # the pieces with lo < radius
+    out = np.empty((4, m))
+    for j in range(m):
+        out[0, j], out[1, j], out[2, j], out[3, j] = b[j], b[j + 1], left[j], coef[j]
+    if cut and m and out[1, m - 1] > radius:
+        k = m - 1
+        h = out[1, k] - out[0, k]
+        out[3, k] = out[2, k] + (out[3, k] - out[2, k]) * (radius - out[0, k]) / h
+        out[1, k] = radius
+    return True, out
+
+
+def energy_nodes(alo, ahi, awl, awr, blo, bhi, bwl, bwr, clo, chi, xg, wg):
     """``torsion_energy._nodes`` of the piece ends of up to three densities ``a``, ``b``, ``c``
-    (``c`` empty for two) and 0, with the Gauss rule ``xg``, ``wg``, and ``Ψ`` of the density
-    ``d`` there: ``(X0, W, P)``, ``X0`` the points with a 0 appended."""
+    (``c``'s ends only, empty for two) and 0, with the Gauss rule ``xg``, ``wg``; ``Ψ`` of ``a``
+    there and ``Ψ`` of the difference ``b − a`` there and at 0: ``(X0, W, P, dP)``, ``X0`` the
+    points with a 0 appended."""
     u = _ends_union(alo, ahi, blo, bhi, np.zeros(1))
     if _is_sorted(clo) and _is_sorted(chi):
         u = _union(_union(u, clo), chi)
@@ -625,8 +684,8 @@ def energy_nodes(alo, ahi, blo, bhi, clo, chi, xg, wg, dlo, dhi, dwl, dwr):
             X0[i * g + j] = x
             W[i * g + j] = 0.5 * wg[j] * h * x * x
     X0[n * g] = 0.0
-    P = _psi(dlo, dhi, dwl, dwr, X0[:n * g])
-    return X0, W, P
+    P = _psi(alo, ahi, awl, awr, X0[:n * g])
+    return X0, W, P, difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0)
 
 
 def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
@@ -641,18 +700,20 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 
 #: helpers (compiled before the passes that call them)
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
-                   "_is_sorted", "_union", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
-                   "_total", "_value", "_root_twist", "_difference", "_inside")
+                   "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
+                   "_total", "_value", "_root_twist", "_difference", "_inside",
+                   "difference_psi")
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
                                          "nonnegative": nonnegative,
-                                         "table_scatter": table_scatter}
+                                         "table_scatter": table_scatter,
+                                         "coefficient_pieces": coefficient_pieces}
 
 
 def kernels(compiled: bool = True) -> dict:
     """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"table_scatter"``) compiled
+    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``) compiled
     by numba (built once per process), or the plain Python functions (``compiled=False``: their
     logic without numba, for tests)."""
     if not compiled:

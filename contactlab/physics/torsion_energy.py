@@ -105,8 +105,7 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
         # density in one pass, each increment's Ψ in one more; the same values
         arr = [_ta._arrays(d) for d in dens]
         third = arr[2] if len(arr) > 2 else _NONE
-        X0, W, P0 = ak["energy_nodes"](arr[0][0], arr[0][1], arr[1][0], arr[1][1], third[0],
-                                       third[1], *_GAUSS, *arr[0])
+        X0, W, P0, dP1 = ak["energy_nodes"](*arr[0], *arr[1], third[0], third[1], *_GAUSS)
         Pa = P0
     else:
         X, W = _nodes(*dens)
@@ -119,7 +118,7 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
         # Ψ_a + ΔΨ keeps the balance exact to rounding even on pieces narrower than the
         # spacing of the floats around them
         if ak is not None:
-            dP = ak["difference_psi"](*arr[i + 1], *arr[i], X0)
+            dP = dP1 if i == 0 else ak["difference_psi"](*arr[i + 1], *arr[i], X0)
         else:
             dP = _ta.psi(_ta.difference(b, a, 0.0), X0)
         d0, dP = float(dP[-1]), dP[:-1]

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import normal_kernels as _normal_kernels
 from ..numeric import ring_kernels as _ring_kernels
 
@@ -257,6 +258,14 @@ def from_coefficients(b: np.ndarray, coef: np.ndarray, jumps: np.ndarray,
                       radius: float | None = None) -> Pieces:
     """Pieces of the ring solver's density: hat coefficients at ``b_1 .. b_N`` (``w(0) = 0``),
     then one falling half-hat per node in ``jumps``; cut at ``radius`` when given."""
+    if _kernels() is not None:
+        # one compiled pass (numeric.annulus_kernel), the same values
+        ok, out = _annulus_kernel.kernels(_COMPILED["compiled"])["coefficient_pieces"](
+            np.ascontiguousarray(b, float), np.ascontiguousarray(coef, float),
+            np.ascontiguousarray(jumps, np.int64), 0.0 if radius is None else float(radius),
+            radius is not None)
+        if ok:
+            return out[0], out[1], out[2], out[3]
     n = b.size - 1
     hat = np.asarray(coef, float)[:n]
     left = np.concatenate([[0.0], hat[:-1]])
