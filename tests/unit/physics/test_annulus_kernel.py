@@ -207,3 +207,24 @@ def test_numpy_backend_has_no_passes(monkeypatch):
     if jit.available():
         monkeypatch.setitem(NK._state, "backend", "numba")
         assert ta._annulus_kernels() is not None
+
+
+@pytest.mark.parametrize("compiled", ROUTES)
+def test_coefficient_pieces_are_bit_identical(monkeypatch, compiled):
+    """``from_coefficients`` (the ring solver's hats and half-hats, cut at a radius) on both
+    routes: no cut, a cut inside a ring, at a node, beyond the rings; repeated jump nodes
+    (numpy's ``left[jumps] +=`` writes the last); an out-of-range jump raises on both."""
+    rng = np.random.default_rng(5)
+    b = np.sort(np.r_[0.0, rng.random(30), 1.0])
+    for jumps in (np.zeros(0, int), np.array([3, 10, 17]), np.array([4, 4, 9])):
+        coef = rng.normal(size=b.size - 1 + jumps.size)
+        for radius in (None, 0.5 * (b[7] + b[8]), float(b[12]), 2.0, 0.0):
+            _route(monkeypatch, False)
+            ref = ta.from_coefficients(b, coef, jumps, radius)
+            _route(monkeypatch, True, compiled)
+            got = ta.from_coefficients(b, coef, jumps, radius)
+            assert _same(got, ref), (jumps, radius)
+    for on in (False, True):
+        _route(monkeypatch, on, compiled)
+        with pytest.raises(IndexError):
+            ta.from_coefficients(b, rng.normal(size=b.size + 1), np.array([40, 41]), 0.5)
