@@ -10,7 +10,7 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`twist_step`: the piece ends of both densities below the contact radius, ``Ψ`` of both
   there, the bracket and root of the stick radius, the splice of the new density, its total
   turn, the traction check inside the stick radius (from a :class:`NodeTable`'s antiderivatives)
-  and the difference densities of the slip check;
+  and the difference density of the slip check;
 * :func:`energy_nodes` and :func:`difference_psi`: the Gauss points and weights of the energy
   integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities;
 * :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
@@ -449,19 +449,18 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     ``F1``, ``t_r``, ``t_nodes``: a :class:`NodeTable`'s traction antiderivatives, radii and nodes,
     or empty).
 
-    Returns ``(status, w, c, s, gross, dpsi, inside, full, dw, sufficient)``: ``w`` the new pieces
-    (as the rows of one ``4 × n`` array, as ``full`` and ``dw``),
-    ``inside`` the traction check's verdict (:func:`_inside`), ``full`` and ``dw`` the
-    differences ``w − old`` from 0 and from ``c``, ``sufficient`` the slip check by the sign of
-    ``dw`` alone (``torsion_annulus.step``'s)."""
+    Returns ``(status, w, c, s, gross, dpsi, inside, dw, sufficient)``: ``w`` the new pieces
+    (as the rows of one ``4 × n`` array, as ``dw``),
+    ``inside`` the traction check's verdict (:func:`_inside`), ``dw`` the difference ``w − old``
+    above ``c``, ``sufficient`` the slip check by the sign of ``dw`` alone
+    (``torsion_annulus.step``'s)."""
     empty = np.zeros((4, 0))
     if target != target or radius != radius:
-        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, empty, False
+        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, False
     for a in (olo, ohi, slo, shi):
         for i in range(a.size):
             if a[i] != a[i]:
-                return (STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, empty,
-                        False)
+                return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, False
     xs = _ends_union(olo, ohi, slo, shi, np.array([0.0, radius]) if radius >= 0.0
                      else np.array([radius, 0.0]))
     xs = xs[xs <= radius]
@@ -523,15 +522,12 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     dpsi = _total(lo, hi, wl, wr) - _total(olo, ohi, owl, owr)
     w = _stack(lo, hi, wl, wr)
     if r.size == 0:
-        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK, empty, empty, True
+        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK, empty, True
     inside = _inside(lo, hi, wl, wr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes)
-    full = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, 0.0)
-    i = _left(full[0], c)
-    if i < full[0].size and full[0][i] == c:
-        dw = _stack(full[0][i:], full[1][i:], full[2][i:], full[3][i:])
-    else:
-        d = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, c)
-        dw = _stack(d[0], d[1], d[2], d[3])
+    # w − old above c: the numpy step's slice of w − old from 0 at c (the same intervals and
+    # values: c is a piece end of w), or its difference from c where c is no such end
+    d = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, c)
+    dw = _stack(d[0], d[1], d[2], d[3])
     sc = 0.0
     if swl.size:
         sc = np.max(np.abs(swl)) + np.max(np.abs(swr))
@@ -544,8 +540,7 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
             if not (s * dw[2][j] >= slack and s * dw[3][j] >= slack):
                 sufficient = False
                 break
-    return (STEP_DONE, w, c, s, gross, dpsi, inside, _stack(full[0], full[1], full[2], full[3]),
-            dw, sufficient)
+    return STEP_DONE, w, c, s, gross, dpsi, inside, dw, sufficient
 
 
 def _stack(lo, hi, wl, wr):

@@ -487,45 +487,46 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     tab = _NO_TABLE if table is None else (*table.arrays["traction"], table.r, table.nodes)
     rr = _NO_TABLE[2] if r is None else np.ascontiguousarray(r, float)
     bb = _NO_TABLE[2] if bound is None else np.ascontiguousarray(bound, float)
-    st, w, c, s, gross, dpsi, inside, full, dw, sufficient = ak["twist_step"](
+    st, w, c, s, gross, dpsi, inside, dw, sufficient = ak["twist_step"](
         *_arrays(old), *_arrays(slide), float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb,
         float(G_t), CHECK_RTOL, *tab)
     if st != _annulus_kernel.STEP_DONE:
         return None
     c, s, gross, dpsi = float(c), float(s), float(gross), float(dpsi)
-    # (the pieces come as the rows of one array each)
-    w = (w[0], w[1], w[2], w[3])
-    full = (full[0], full[1], full[2], full[3])
-    dw = (dw[0], dw[1], dw[2], dw[3])
+    w = (w[0], w[1], w[2], w[3])     # (the pieces come as the rows of one array)
     if r is None:
         return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": None,
                 "ok": True, "why": ""}
     assert bound is not None   # r and bound come together
-    _LAST_DIFF[0] = (w, old, 0.0, _kernels(), full)   # (the step's energy takes it)
-    reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
-    on = ((bound > 0) | (r < reach)) & (r > c)
     ds = np.zeros(r.size)
-    decided = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
     inside_ok = None
     if not slip:
-        inside_ok = decided.get(inside)
+        inside_ok = _DECIDED.get(inside)
         if inside_ok is None:
             inside_ok = _inside_ok(w, r, c, bound, G_t, table)
         if not inside_ok:
             return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
                     "ok": False, "why": _WHY_INSIDE}
     why = ""
-    if on.any() and not np.isnan(gross) and (slip or not sufficient):
-        ds[on] = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
-        ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
-        if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
-            why = "slip against the traction on the annulus"
+    if (slip or not sufficient) and gross == gross:
+        # points in contact at the start or the end of the step, outside c
+        reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
+        on = ((bound > 0) | (r < reach)) & (r > c)
+        if on.any():
+            dw = (dw[0], dw[1], dw[2], dw[3])
+            ds[on] = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
+            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
+            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+                why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
-        ok = decided.get(inside)
+        ok = _DECIDED.get(inside)
         if not (_inside_ok(w, r, c, bound, G_t, table) if ok is None else ok):
             why = _WHY_INSIDE
     return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
             "ok": not why, "why": why}
+
+
+_DECIDED = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
 
 
 def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float,
