@@ -11,8 +11,9 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
   there, the bracket and root of the stick radius, the splice of the new density, its total
   turn, the traction check inside the stick radius (from a :class:`NodeTable`'s antiderivatives)
   and the difference density of the slip check;
-* :func:`energy_nodes` and :func:`difference_psi`: the Gauss points and weights of the energy
-  integrals, ``Ψ`` of a density there, and ``Ψ`` of the difference of two densities;
+* :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
+  weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
+  densities, and a family stage's products;
 * :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
   radius;
@@ -44,7 +45,7 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 
 __all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "nonnegative",
-           "table_scatter", "coefficient_pieces", "kernels",
+           "table_scatter", "coefficient_pieces", "family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -683,6 +684,26 @@ def energy_nodes(alo, ahi, awl, awr, blo, bhi, bwl, bwr, clo, chi, xg, wg):
     return X0, W, P, difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0)
 
 
+def family_energy(alo, ahi, awl, awr, blo, bhi, bwl, bwr, xg, wg, gross):
+    """The arrays of ``torsion_energy._stages`` for the family stage ``a → b`` with the gross turn
+    ``gross`` (its elementwise products, in its order; the dot products with the weights are left
+    to numpy): ``(W, P_a², ΔΨ², Ψ_b, Ψ_b², Ψ_b (Δφ − ΔΨ), Δφ)``, ``Δφ = ΔΨ(0) + gross``."""
+    _, W, P, dP = energy_nodes(alo, ahi, awl, awr, blo, bhi, bwl, bwr, np.zeros(0),
+                               np.zeros(0), xg, wg)
+    m = W.size
+    dphi = dP[m] + gross
+    q0, qd, Pb, qbb, qdiss = (np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m))
+    for i in range(m):
+        d = dP[i]
+        b = P[i] + d
+        q0[i] = P[i] * P[i]
+        qd[i] = d * d
+        Pb[i] = b
+        qbb[i] = b * b
+        qdiss[i] = b * (dphi - d)
+    return W, q0, qd, Pb, qbb, qdiss, dphi
+
+
 def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
     """``Ψ`` of ``torsion_pieces.difference(b, a, 0)`` at the points ``X0``."""
     d = _difference(blo, bhi, bwl, bwr, alo, ahi, awl, awr, 0.0)
@@ -697,18 +718,20 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
                    "_total", "_value", "_root_twist", "_difference", "_inside",
-                   "difference_psi")
+                   "difference_psi", "energy_nodes")
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
                                          "nonnegative": nonnegative,
                                          "table_scatter": table_scatter,
-                                         "coefficient_pieces": coefficient_pieces}
+                                         "coefficient_pieces": coefficient_pieces,
+                                         "family_energy": family_energy}
 
 
 def kernels(compiled: bool = True) -> dict:
     """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``) compiled
+    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``)
+    compiled
     by numba (built once per process), or the plain Python functions (``compiled=False``: their
     logic without numba, for tests)."""
     if not compiled:

@@ -100,6 +100,17 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
     k = 8.0 * G_t
     work = diss = 0.0
     ak = _ta._annulus_kernels() if len(dens) <= 3 else None
+    if ak is not None and len(chain) == 2 and chain[1][1] is True:
+        # one family stage (a step's usual energy): its products in one compiled pass, the
+        # dot products below as in the loop (the same bits)
+        W, q0, qd, Pb, qbb, qdiss, dphi_ = ak["family_energy"](
+            *_ta._arrays(dens[0]), *_ta._arrays(dens[1]), *_GAUSS, float(gross))
+        dphi = float(dphi_)
+        E_d = k * float(W @ qd)
+        work += 2.0 * k * float(W @ Pb) * dphi - E_d
+        diss += 2.0 * k * float(W @ qdiss)
+        return {"work": work, "stored": k * float(W @ qbb), "stored_old": k * float(W @ q0),
+                "dissipated": diss}
     if ak is not None:
         # the compiled passes (numeric.annulus_kernel): the nodes, weights and Ψ of the first
         # density in one pass, each increment's Ψ in one more; the same values
