@@ -719,6 +719,9 @@ _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_uniq
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
                    "_total", "_value", "_root_twist", "_difference", "_inside",
                    "difference_psi", "energy_nodes")
+#: helpers small enough to inline
+_INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
+                     "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi"})
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
@@ -745,7 +748,10 @@ def kernels(compiled: bool = True) -> dict:
             rk = _rk.kernels(True)
             g["_psi_pass"], g["_ends_pass"] = rk["psi"], rk["ends"]
             for name in _HELPERS:
-                g[name] = _jit.njit(g[name], nogil=True, error_model="numpy")
+                # the small helpers inlined into their callers at numba's IR level (no compile
+                # and cache entry of their own)
+                extra = {"inline": "always"} if name in _INLINE else {}
+                g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", **extra)
             _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}
     return _state["kernels"]

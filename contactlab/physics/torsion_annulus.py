@@ -458,7 +458,11 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
             "ok": not why, "why": why}
 
 
+#: the table arguments of the compiled step without a table (read-only, as a table's: one
+#: compiled specialisation)
 _NO_TABLE = (np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), np.zeros(0))
+for _a in _NO_TABLE:
+    _a.flags.writeable = False
 
 
 def _annulus_kernels() -> dict | None:
@@ -485,8 +489,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     ak = _annulus_kernels()
     assert ak is not None
     tab = _NO_TABLE if table is None else (*table.arrays["traction"], table.r, table.nodes)
-    rr = _NO_TABLE[2] if r is None else np.ascontiguousarray(r, float)
-    bb = _NO_TABLE[2] if bound is None else np.ascontiguousarray(bound, float)
+    rr = np.zeros(0) if r is None else np.ascontiguousarray(r, float)
+    bb = np.zeros(0) if bound is None else np.ascontiguousarray(bound, float)
     st, w, c, s, gross, dpsi, inside, dw, sufficient = ak["twist_step"](
         *_arrays(old), *_arrays(slide), float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb,
         float(G_t), CHECK_RTOL, *tab)
