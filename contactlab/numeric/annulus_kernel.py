@@ -537,8 +537,9 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     slack = -check_rtol * sc
     sufficient = s * gross >= 0
     if sufficient:
-        for j in range(dw[0].size):
-            if not (s * dw[2][j] >= slack and s * dw[3][j] >= slack):
+        dl, dr = d[2], d[3]
+        for j in range(dl.size):
+            if not (s * dl[j] >= slack and s * dr[j] >= slack):
                 sufficient = False
                 break
     return STEP_DONE, w, c, s, gross, dpsi, inside, dw, sufficient
