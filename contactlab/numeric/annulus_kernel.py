@@ -9,8 +9,9 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 
 * :func:`twist_step`: the piece ends of both densities below the contact radius, ``Ψ`` of both
   there, the bracket and root of the stick radius, the splice of the new density, its total
-  turn, the traction check inside the stick radius (from a :class:`NodeTable`'s antiderivatives)
-  and the difference density of the slip check;
+  turn and the traction check inside the stick radius (from a :class:`NodeTable`'s
+  antiderivatives); :func:`slip_difference`: the difference density of the slip check and its
+  sign;
 * :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;
@@ -44,7 +45,8 @@ import numpy as np
 from . import jit as _jit
 from . import ring_kernels as _rk
 
-__all__ = ["pairwise_sum", "twist_step", "energy_nodes", "difference_psi", "nonnegative",
+__all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
+           "nonnegative",
            "table_scatter", "coefficient_pieces", "family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
@@ -450,18 +452,16 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     ``F1``, ``t_r``, ``t_nodes``: a :class:`NodeTable`'s traction antiderivatives, radii and nodes,
     or empty).
 
-    Returns ``(status, w, c, s, gross, dpsi, inside, dw, sufficient)``: ``w`` the new pieces
-    (as the rows of one ``4 × n`` array, as ``dw``),
-    ``inside`` the traction check's verdict (:func:`_inside`), ``dw`` the difference ``w − old``
-    above ``c``, ``sufficient`` the slip check by the sign of ``dw`` alone
-    (``torsion_annulus.step``'s)."""
+    Returns ``(status, w, c, s, gross, dpsi, inside)``: ``w`` the new pieces (as the rows of
+    one ``4 × n`` array), ``inside`` the traction check's verdict (:func:`_inside`); the slip
+    check's part is :func:`slip_difference`."""
     empty = np.zeros((4, 0))
     if target != target or radius != radius:
-        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, False
+        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN
     for a in (olo, ohi, slo, shi):
         for i in range(a.size):
             if a[i] != a[i]:
-                return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, empty, False
+                return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN
     xs = _ends_union(olo, ohi, slo, shi, np.array([0.0, radius]) if radius >= 0.0
                      else np.array([radius, 0.0]))
     xs = xs[xs <= radius]
@@ -523,11 +523,20 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     dpsi = _total(lo, hi, wl, wr) - _total(olo, ohi, owl, owr)
     w = _stack(lo, hi, wl, wr)
     if r.size == 0:
-        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK, empty, True
+        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK
     inside = _inside(lo, hi, wl, wr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes)
-    # w − old above c: the numpy step's slice of w − old from 0 at c (the same intervals and
-    # values: c is a piece end of w), or its difference from c where c is no such end
-    d = _difference(lo, hi, wl, wr, olo, ohi, owl, owr, c)
+    return STEP_DONE, w, c, s, gross, dpsi, inside
+
+
+def slip_difference(wlo, whi, wwl, wwr, olo, ohi, owl, owr, swl, swr, c, s, gross, check_rtol):
+    """The slip check's part of :func:`twist_step`, a pass of its own (inside the step's pass the
+    same code ran ~3x slower, measured: the step's one large function optimises worse): the
+    difference ``w − old`` above ``c`` (the numpy step's slice of ``w − old`` from 0 at ``c``: the
+    same intervals and values, ``c`` being a piece end of ``w``, or its difference from ``c``
+    where ``c`` is no such end), as the rows of one ``4 × n`` array, and whether its sign alone
+    shows the slip pointing the way of ``s`` (the step's ``sufficient``; ``swl``, ``swr``: the
+    full-sliding density's end values, its scale)."""
+    d = _difference(wlo, whi, wwl, wwr, olo, ohi, owl, owr, c)
     dw = _stack(d[0], d[1], d[2], d[3])
     sc = 0.0
     if swl.size:
@@ -542,7 +551,7 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
             if not (s * dl[j] >= slack and s * dr[j] >= slack):
                 sufficient = False
                 break
-    return STEP_DONE, w, c, s, gross, dpsi, inside, dw, sufficient
+    return dw, sufficient
 
 
 def _stack(lo, hi, wl, wr):
@@ -729,13 +738,14 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
                                          "nonnegative": nonnegative,
                                          "table_scatter": table_scatter,
                                          "coefficient_pieces": coefficient_pieces,
-                                         "family_energy": family_energy}
+                                         "family_energy": family_energy,
+                                         "slip_difference": slip_difference}
 
 
 def kernels(compiled: bool = True) -> dict:
     """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``)
-    compiled
+    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``,
+    ``"slip_difference"``) compiled
     by numba (built once per process), or the plain Python functions (``compiled=False``: their
     logic without numba, for tests)."""
     if not compiled:

@@ -491,9 +491,10 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     tab = _NO_TABLE if table is None else (*table.arrays["traction"], table.r, table.nodes)
     rr = np.zeros(0) if r is None else np.ascontiguousarray(r, float)
     bb = np.zeros(0) if bound is None else np.ascontiguousarray(bound, float)
-    st, w, c, s, gross, dpsi, inside, dw, sufficient = ak["twist_step"](
-        *_arrays(old), *_arrays(slide), float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb,
-        float(G_t), CHECK_RTOL, *tab)
+    o, sl = _arrays(old), _arrays(slide)
+    st, w, c, s, gross, dpsi, inside = ak["twist_step"](
+        *o, *sl, float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb, float(G_t), CHECK_RTOL,
+        *tab)
     if st != _annulus_kernel.STEP_DONE:
         return None
     c, s, gross, dpsi = float(c), float(s), float(gross), float(dpsi)
@@ -511,6 +512,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
         if not inside_ok:
             return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
                     "ok": False, "why": _WHY_INSIDE}
+    # w − old above c and the check by its sign alone
+    dw, sufficient = ak["slip_difference"](*w, *o, sl[2], sl[3], c, s, gross, CHECK_RTOL)
     why = ""
     if (slip or not sufficient) and gross == gross:
         # points in contact at the start or the end of the step, outside c
