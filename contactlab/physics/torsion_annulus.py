@@ -36,8 +36,14 @@ from typing import cast
 import numpy as np
 import scipy.linalg as _la
 
-from ..numeric import normal_kernels as _normal_kernels
+from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import ring_kernels as _ring_kernels
+# the piece algebra (re-exported: the module's names, its compiled-route switch ``_COMPILED`` and
+# its helpers, as before the split)
+from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  # noqa: F401
+                             _ends, _kernels, _lin, _scale, _total, _unique, _value, _values,
+                             add, difference, empty, from_coefficients, from_nodes, psi, splice,
+                             stored_energy, torque, torque_below)
 from .torsion_punches import punch_energy, punch_step, punch_torque, punch_traction
 
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
@@ -50,87 +56,6 @@ ROOT_XTOL = 1e-15
 #: relative slack of the checks of a step (traction within μp inside ``c``; slip direction)
 CHECK_RTOL = 1e-9
 _WHY_INSIDE = "traction beyond the friction limit inside the stick radius"
-
-#: a piecewise-linear density: (lo, hi, wl, wr), each an array over the pieces, sorted, abutting
-Pieces = tuple
-
-#: the compiled passes of :func:`psi` and :func:`_ends` (:mod:`contactlab.numeric.ring_kernels`,
-#: the same bits as the numpy route): ``"on"`` None follows the backend
-#: (:func:`contactlab.numeric.normal_kernels.backend`), True/False forces them (tests; False is
-#: the numpy reference), ``"compiled"`` False runs the kernels' plain Python logic (tests)
-_COMPILED: dict = {"on": None, "compiled": True}
-
-
-def _kernels() -> dict | None:
-    """The ring kernels to use, or None for the numpy route."""
-    on = _COMPILED["on"]
-    if on is None:
-        on = _normal_kernels.backend() == "numba"
-    return _ring_kernels.kernels(_COMPILED["compiled"]) if on else None
-
-
-def empty() -> Pieces:
-    """The zero density (no pieces)."""
-    return tuple(np.zeros(0) for _ in range(4))
-
-
-def from_nodes(b: np.ndarray, left: np.ndarray, right: np.ndarray) -> Pieces:
-    """Pieces on the rings ``[b_j, b_{j+1}]`` with end values ``left[j]``, ``right[j]``."""
-    return (b[:-1].copy(), b[1:].copy(), np.asarray(left, float), np.asarray(right, float))
-
-
-def _lin(p: Pieces):
-    lo, hi, wl, wr = p
-    h = hi - lo
-    if h.size and h.min() > 0:      # no zero-width piece (the usual case): the same values
-        be = (wr - wl) / h
-    else:
-        be = np.where(h > 0, (wr - wl) / np.where(h > 0, h, 1.0), 0.0)
-    return wl - be * lo, be
-
-
-def _unique(a: np.ndarray) -> np.ndarray:
-    """``np.unique`` of a 1-D float array, the same values (its sort and mask, without its
-    wrapper's cost on the solver's small arrays; a nan, which it merges, goes to it)."""
-    a = np.sort(a)
-    if a.size and a[-1] != a[-1]:
-        return np.unique(a)
-    keep = np.empty(a.size, bool)
-    keep[:1] = True
-    np.not_equal(a[1:], a[:-1], out=keep[1:])
-    return a[keep]
-
-
-def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
-    """``Ψ(x) = ∫_x^∞ w dt`` at ``x``, m per (rad/m) (running sums: ``O((n + m) log n)``)."""
-    lo, hi, _, _ = p
-    x = np.asarray(x, float)
-    if lo.size == 0:
-        return np.zeros(x.shape)
-    kern = _kernels()
-    if kern is not None:
-        out = np.empty(x.size)
-        c = np.ascontiguousarray
-        # (called ~10 times a solver step: the arguments spelled out, no generator)
-        kern["psi"](c(lo, float), c(hi, float), c(p[2], float), c(p[3], float),
-                    x if x.ndim == 1 and x.flags.c_contiguous else c(x).ravel(), out)
-        return out if x.ndim == 1 else out.reshape(x.shape)
-    al, be = _lin(p)
-    whole = al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)
-    tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)          # ∫ over pieces k, k+1, ...
-    k = np.minimum(np.searchsorted(hi, x, "right"), lo.size - 1)
-    lk, hk = lo[k], hi[k]
-    t0 = np.minimum(np.maximum(x, lk), hk)
-    part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
-    return np.where(x >= hi[-1], 0.0, np.where(x < lo[0], tail[0], part + tail[k + 1]))
-
-
-def torque(p: Pieces, G_t: float) -> float:
-    """Torque ``(16/3) G_t ∫ t³ w dt``, N·m."""
-    lo, hi, _, _ = p
-    al, be = _lin(p)
-    return float(16.0 / 3.0 * G_t * np.sum(al * (hi ** 4 - lo ** 4) / 4.0
-                                           + be * (hi ** 5 - lo ** 5) / 5.0))
 
 
 def _antiderivatives(r: np.ndarray, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -306,6 +231,20 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
     rr = np.asarray(r, float)[:, None]
     # abutting pieces share their ends: the antiderivatives once per node
     shared = bool(lo.size) and bool((lo[1:] == hi[:-1]).all())
+    ak = None if table is None or not shared else _annulus_kernels()
+    if ak is not None:
+        assert table is not None
+        # the look-ups and the scatter of the jumps in one pass (the same arguments as below)
+        r1 = np.ascontiguousarray(rr[:, 0])
+        ok, rows, i0, i1, v0, v1, missed, c0m, c1m = ak["table_scatter"](
+            *_arrays(p), r1, table.r, table.nodes)
+        if ok:
+            F0, F1 = table.arrays["slip"]
+            out = (F0[i0:i1] @ v0 + F1[i0:i1] @ v1)[rows - i0]
+            if missed.size:
+                A, S = _slip_antiderivatives(r1, missed)
+                out += A @ c0m + S @ c1m
+            return 2.0 / np.pi * out
     rows = None if table is None or not shared else table.rows(rr[:, 0])
     if table is not None and rows is not None:
         return 2.0 / np.pi * table.sums("slip", rows, rr[:, 0], np.append(lo, hi[-1]),
@@ -326,205 +265,8 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
     return 2.0 / np.pi * (r1 * r1 * (d0 @ al) + r1 ** 3 * (d1 @ be))
 
 
-_GAUSS = np.polynomial.legendre.leggauss(4)
-
-
-def stored_energy(p: Pieces, G_t: float) -> float:
-    """Elastic energy ``8 G_t ∫ x² Ψ(x)² dx``, J (4-point Gauss per piece, exact).
-
-    ``Ψ`` is constant wherever the density is zero: below the first piece and on every gap
-    between two pieces (a density spliced above an earlier, smaller contact: the old density
-    ends at the old contact radius ``a₀``, the new one starts at the stick radius ``c > a₀``).
-    Those intervals are integrated in closed form, ``Ψ² (x₁³ − x₀³)/3``."""
-    lo, hi, _, _ = p
-    if lo.size == 0:
-        return 0.0
-    xg, wg = _GAUSS
-    h = hi - lo
-    X = lo[:, None] + 0.5 * (xg[None, :] + 1.0) * h[:, None]
-    # Ψ inside piece k: the integral over the pieces above it plus the rest of piece k
-    al, be = _lin(p)
-    whole = al * h + 0.5 * be * (hi * hi - lo * lo)
-    tail = np.append(np.cumsum(whole[::-1])[::-1], 0.0)
-    Ps = (al[:, None] * (hi[:, None] - X) + 0.5 * be[:, None] * (hi[:, None] ** 2 - X * X)
-          + tail[1:, None])
-    # the zero-density intervals [0, lo_0] and [hi_{k-1}, lo_k] (empty where pieces abut), on
-    # each of which Ψ is the integral over the pieces above: tail[k]
-    below = np.concatenate([[0.0], hi[:-1]])
-    gaps = np.sum(tail[:-1] ** 2 * (lo ** 3 - below ** 3)) / 3.0
-    return float(8.0 * G_t * (np.sum(0.5 * wg[None, :] * h[:, None] * X * X * Ps * Ps) + gaps))
-
-
-def _values(p: Pieces, x: np.ndarray, side: int) -> np.ndarray:
-    """``w(x⁻)`` (side −1) or ``w(x⁺)`` (side +1) at the sorted radii ``x`` (0 outside)."""
-    lo, hi, wl, wr = p
-    x = np.asarray(x, float)
-    k = (np.searchsorted(hi, x, "left") if side < 0 else np.searchsorted(lo, x, "right") - 1)
-    valid = (k >= 0) & (k < lo.size)
-    k = np.minimum(np.maximum(k, 0), max(lo.size - 1, 0))
-    if lo.size == 0:
-        return np.zeros(x.shape)
-    h = hi[k] - lo[k]
-    f = np.where(h > 0, (x - lo[k]) / np.where(h > 0, h, 1.0), 0.0)
-    inside = valid & (((x > lo[k]) & (x <= hi[k])) if side < 0 else
-                      ((x >= lo[k]) & (x < hi[k])))
-    return np.where(inside, wl[k] + (wr[k] - wl[k]) * f, 0.0)
-
-
-def _value(p: Pieces, x: float, side: int) -> float:
-    """``w(x⁻)`` (side −1) or ``w(x⁺)`` (side +1) at one radius (scalar :func:`_values`)."""
-    lo, hi, wl, wr = p
-    if lo.size == 0:
-        return 0.0
-    k = int(np.searchsorted(hi, x, "left") if side < 0 else np.searchsorted(lo, x, "right") - 1)
-    if k < 0 or k >= lo.size:
-        return 0.0
-    l0, h0 = float(lo[k]), float(hi[k])
-    if not ((l0 < x <= h0) if side < 0 else (l0 <= x < h0)):
-        return 0.0
-    h = h0 - l0
-    f = (x - l0) / h if h > 0 else 0.0
-    return float(wl[k] + (wr[k] - wl[k]) * f)
-
-
-def torque_below(p: Pieces, x: np.ndarray, G_t: float) -> np.ndarray:
-    """Torque of the density below each radius ``x``, N·m (running sums)."""
-    lo, hi, _, _ = p
-    x = np.asarray(x, float)
-    if lo.size == 0:
-        return np.zeros(x.shape)
-    al, be = _lin(p)
-    whole = al * (hi ** 4 - lo ** 4) / 4.0 + be * (hi ** 5 - lo ** 5) / 5.0
-    head = np.concatenate([[0.0], np.cumsum(whole)])              # ∫ over pieces < k
-    k = np.minimum(np.searchsorted(hi, x, "right"), lo.size - 1)
-    t1 = np.minimum(np.maximum(x, lo[k]), hi[k])
-    part = al[k] * (t1 ** 4 - lo[k] ** 4) / 4.0 + be[k] * (t1 ** 5 - lo[k] ** 5) / 5.0
-    below = np.where(x < lo[0], 0.0, head[k] + part)
-    return 16.0 / 3.0 * G_t * np.where(x >= hi[-1], head[-1], below)
-
-
-def _cut(p: Pieces, x: float, keep_below: bool) -> Pieces:
-    """The part of ``p`` below (or above) ``x``, the piece holding ``x`` split there."""
-    lo, hi, wl, wr = p
-    if keep_below:
-        # the pieces are sorted: ``lo < x`` is a leading run (a slice, the same values; a nan
-        # ``x`` keeps none, as the mask)
-        n = int(np.searchsorted(lo, x, "left")) if x == x else 0
-        lo, hi, wl, wr = lo[:n], hi[:n], wl[:n], wr[:n]
-        if lo.size and hi[-1] > x:
-            h = hi[-1] - lo[-1]
-            wr = wr.copy()
-            hi = hi.copy()
-            wr[-1] = wl[-1] + (wr[-1] - wl[-1]) * (x - lo[-1]) / h
-            hi[-1] = x
-    else:
-        n = int(np.searchsorted(hi, x, "right")) if x == x else hi.size
-        lo, hi, wl, wr = lo[n:], hi[n:], wl[n:], wr[n:]
-        if lo.size and lo[0] < x:
-            h = hi[0] - lo[0]
-            wl = wl.copy()
-            lo = lo.copy()
-            wl[0] = wl[0] + (wr[0] - wl[0]) * (x - lo[0]) / h
-            lo[0] = x
-    return lo, hi, wl, wr
-
-
-def difference(new: Pieces, old: Pieces, start: float) -> Pieces:
-    """Pieces of ``new − old`` above ``start`` (on the union of both densities' piece ends); the
-    last one kept (a step's and its energy's are the same)."""
-    last, kern = _LAST_DIFF[0], _kernels()     # (kept per route: the routes stay tested)
-    if last[0] is new and last[1] is old and last[2] == start and last[3] is kern:
-        return last[4]
-    xs = np.concatenate([new[0], new[1], old[0], old[1], [start]])
-    xs = _unique(xs[xs >= start])
-    if xs.size < 2:
-        return tuple(np.zeros(0) for _ in range(4))
-    lo, hi = xs[:-1], xs[1:]
-    nl, nr = _ends(new, lo, hi)
-    ol, orr = _ends(old, lo, hi)
-    out = (lo, hi, nl - ol, nr - orr)
-    _LAST_DIFF[0] = (new, old, start, kern, out)      # one tuple, replaced whole (threads)
-    return out
-
-
-def _ends(p: Pieces, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``w(lo⁺)`` and ``w(hi⁻)`` on intervals ``[lo, hi]`` that each lie inside one piece of
-    ``p`` or in a gap (the piece ends of ``p`` among the interval ends): :func:`_values` at both
-    ends with one look-up, the same values."""
-    plo, phi, wl, wr = p
-    if plo.size == 0:
-        return np.zeros(lo.shape), np.zeros(lo.shape)
-    kern = _kernels()
-    if kern is not None:
-        out_l, out_r = np.empty(lo.size), np.empty(lo.size)
-        kern["ends"](*(np.ascontiguousarray(a, float) for a in p), np.ascontiguousarray(lo, float),
-                     np.ascontiguousarray(hi, float), out_l, out_r)
-        return out_l, out_r
-    k = np.searchsorted(plo, lo, "right") - 1
-    inside = (k >= 0) & (hi <= phi[np.maximum(k, 0)])
-    k = np.maximum(k, 0)
-    l0, h0, a, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
-    h = h0 - l0
-    pos = h > 0
-    hh = np.where(pos, h, 1.0)
-    fl = np.where(pos, (lo - l0) / hh, 0.0)
-    fr = np.where(pos, (hi - l0) / hh, 0.0)
-    return np.where(inside, a + d * fl, 0.0), np.where(inside, a + d * fr, 0.0)
-
-
-def add(p: Pieces, q: Pieces) -> Pieces:
-    """The sum of two densities (on the union of their piece ends)."""
-    return difference(p, (q[0], q[1], -q[2], -q[3]), 0.0)
-
-
-def from_coefficients(b: np.ndarray, coef: np.ndarray, jumps: np.ndarray,
-                      radius: float | None = None) -> Pieces:
-    """Pieces of the ring solver's density: hat coefficients at ``b_1 .. b_N`` (``w(0) = 0``),
-    then one falling half-hat per node in ``jumps``; cut at ``radius`` when given."""
-    n = b.size - 1
-    hat = np.asarray(coef, float)[:n]
-    left = np.concatenate([[0.0], hat[:-1]])
-    right = hat.copy()
-    jumps = np.asarray(jumps, int)
-    if jumps.size:
-        left[jumps] += np.asarray(coef, float)[n:n + jumps.size]
-    p = from_nodes(b, left, right)
-    return p if radius is None else _cut(p, float(radius), True)
-
-
-def splice(old: Pieces, new: Pieces, c: float) -> Pieces:
-    """``old`` below ``c`` and ``new`` above it (zero-width pieces dropped)."""
-    a, b = _cut(old, c, True), _cut(new, c, False)
-    out = tuple(np.concatenate([u, v]) for u, v in zip(a, b))
-    keep = out[1] > out[0]
-    return out if keep.all() else tuple(u[keep] for u in out)
-
-
-def _scale(p: Pieces) -> float:
-    return float(np.max(np.abs(p[2]), initial=0.0) + np.max(np.abs(p[3]), initial=0.0)) or 1.0
-
-
-def _total(p: Pieces) -> float:
-    """``Ψ(0) = ∫ w dt`` (rad); the last density's kept (a step's old density is the last
-    step's new one: the same tuple, never changed in place)."""
-    for last in _LAST_TOTAL:
-        if last[0] is p:
-            return last[1]
-    lo, hi, _, _ = p
-    if lo.size == 0:
-        return 0.0
-    al, be = _lin(p)
-    v = float(np.sum(al * (hi - lo) + 0.5 * be * (hi * hi - lo * lo)))
-    # the last two (a shrinking step's energy takes one more step): pairs replaced whole, so
-    # threads read consistent pairs
-    _LAST_TOTAL[:] = [(p, v), _LAST_TOTAL[0]]
-    return v
-
-
-_LAST_TOTAL: list = [(None, 0.0), (None, 0.0)]
 #: the last twist step's (old, slide, radius, kernels, (piece ends, Ψ of both there))
 _LAST_ENDS: list = [(None,) * 5]
-_LAST_DIFF: list = [(None,) * 5]     #: the last (new, old, start, kernels, difference)
 
 
 _RTOL = 4 * np.finfo(float).eps
@@ -621,6 +363,13 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the
         checks held) and ``why`` (the failed check, or ``""``).
     """
+    if target_torque is None and _kernels() is not None:
+        # the compiled route: one pass (numeric.annulus_kernel), the same bits; None where it
+        # leaves the step to the passes below
+        out = _compiled_step(old, slide, radius, G_t, float(cast(float, dphi)), r, bound, slip,
+                             table)
+        if out is not None:
+            return out
     kind = "twist" if target_torque is None else "torque"
     # the piece ends of both densities below the radius, from the edge inwards (the first is
     # the radius itself): the twist (torque) of both densities there, once
@@ -709,6 +458,84 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
             "ok": not why, "why": why}
 
 
+#: the table arguments of the compiled step without a table (read-only, as a table's: one
+#: compiled specialisation)
+_NO_TABLE = (np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), np.zeros(0))
+for _a in _NO_TABLE:
+    _a.flags.writeable = False
+
+
+def _annulus_kernels() -> dict | None:
+    """The compiled step and energy passes (:mod:`contactlab.numeric.annulus_kernel`), or None
+    for the numpy route (the switch of :func:`psi`'s passes, ``_COMPILED``)."""
+    return None if _kernels() is None else _annulus_kernel.kernels(_COMPILED["compiled"])
+
+
+def _arrays(p: Pieces) -> tuple:
+    c = np.ascontiguousarray
+    return c(p[0], float), c(p[1], float), c(p[2], float), c(p[3], float)
+
+
+def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: float,
+                   r: np.ndarray | None, bound: np.ndarray | None, slip: bool,
+                   table: NodeTable | None) -> dict | None:
+    """:func:`step` with a twist increment by the compiled pass
+    (:func:`contactlab.numeric.annulus_kernel.twist_step`): the density, stick radius and turn
+    in one pass, the same bits; the checks' verdicts are the numpy route's (the traction check
+    from the pass where its margin exceeds the rounding of its sums, else from
+    :func:`_inside_ok`); the slip increments, where wanted or needed by the check, from
+    :func:`slip_kernel_integral` on the pass's difference density. None for an input the pass
+    leaves to the numpy route (a nan)."""
+    ak = _annulus_kernels()
+    assert ak is not None
+    tab = _NO_TABLE if table is None else (*table.arrays["traction"], table.r, table.nodes)
+    rr = np.zeros(0) if r is None else np.ascontiguousarray(r, float)
+    bb = np.zeros(0) if bound is None else np.ascontiguousarray(bound, float)
+    o, sl = _arrays(old), _arrays(slide)
+    st, w, c, s, gross, dpsi, inside = ak["twist_step"](
+        *o, *sl, float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb, float(G_t), CHECK_RTOL,
+        *tab)
+    if st != _annulus_kernel.STEP_DONE:
+        return None
+    c, s, gross, dpsi = float(c), float(s), float(gross), float(dpsi)
+    w = (w[0], w[1], w[2], w[3])     # (the pieces come as the rows of one array)
+    if r is None:
+        return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": None,
+                "ok": True, "why": ""}
+    assert bound is not None   # r and bound come together
+    ds = np.zeros(r.size)
+    inside_ok = None
+    if not slip:
+        inside_ok = _DECIDED.get(inside)
+        if inside_ok is None:
+            inside_ok = _inside_ok(w, r, c, bound, G_t, table)
+        if not inside_ok:
+            return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
+                    "ok": False, "why": _WHY_INSIDE}
+    # w − old above c and the check by its sign alone
+    dw, sufficient = ak["slip_difference"](*w, *o, sl[2], sl[3], c, s, gross, CHECK_RTOL)
+    why = ""
+    if (slip or not sufficient) and gross == gross:
+        # points in contact at the start or the end of the step, outside c
+        reach = max(float(radius), float(old[1][-1]) if old[1].size else 0.0)
+        on = ((bound > 0) | (r < reach)) & (r > c)
+        if on.any():
+            dw = (dw[0], dw[1], dw[2], dw[3])
+            ds[on] = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
+            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
+            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+                why = "slip against the traction on the annulus"
+    if not why and inside_ok is None:
+        ok = _DECIDED.get(inside)
+        if not (_inside_ok(w, r, c, bound, G_t, table) if ok is None else ok):
+            why = _WHY_INSIDE
+    return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
+            "ok": not why, "why": why}
+
+
+_DECIDED = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
+
+
 def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float,
                table: NodeTable | None) -> bool:
     """:func:`step`'s check inside the stick radius: the traction at the points ``r < c``
@@ -771,6 +598,9 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     its traction."""
     lo, hi, wl, wr = p
     if lo.size == 0:
+        return p
+    ak = _annulus_kernels()
+    if ak is not None and ak["nonnegative"](*_arrays(p)):     # (the test below, one pass)
         return p
     # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w); Ψ at all
     # three in one call (elementwise: the same values)

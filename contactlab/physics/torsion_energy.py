@@ -67,6 +67,7 @@ __all__ = ["annulus_energy", "energy", "punch_step_energy", "ring_dissipation", 
            "step_energy"]
 
 _GAUSS = np.polynomial.legendre.leggauss(4)
+_NONE = (np.zeros(0), np.zeros(0))
 
 
 def _nodes(*dens: tuple) -> tuple[np.ndarray, np.ndarray]:
@@ -96,19 +97,41 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
     ends. A family stage turns by the twist its density increment carries, ``ΔΨ(0)``, plus the
     gross turn ``gross`` of a contact sliding as a whole (on the last family stage)."""
     dens = [c[0] for c in chain]
-    X, W = _nodes(*dens)
     k = 8.0 * G_t
     work = diss = 0.0
-    # Ψ at the nodes and at 0 in one call (elementwise: the same values)
-    X0 = np.append(X, 0.0)
-    P0 = Pa = _ta.psi(dens[0], X)
-    for (a, _), (b, family) in itertools.pairwise(chain):
+    ak = _ta._annulus_kernels() if len(dens) <= 3 else None
+    if ak is not None and len(chain) == 2 and chain[1][1] is True:
+        # one family stage (a step's usual energy): its products in one compiled pass, the
+        # dot products below as in the loop (the same bits)
+        W, q0, qd, Pb, qbb, qdiss, dphi_ = ak["family_energy"](
+            *_ta._arrays(dens[0]), *_ta._arrays(dens[1]), *_GAUSS, float(gross))
+        dphi = float(dphi_)
+        E_d = k * float(W @ qd)
+        work += 2.0 * k * float(W @ Pb) * dphi - E_d
+        diss += 2.0 * k * float(W @ qdiss)
+        return {"work": work, "stored": k * float(W @ qbb), "stored_old": k * float(W @ q0),
+                "dissipated": diss}
+    if ak is not None:
+        # the compiled passes (numeric.annulus_kernel): the nodes, weights and Ψ of the first
+        # density in one pass, each increment's Ψ in one more; the same values
+        arr = [_ta._arrays(d) for d in dens]
+        third = arr[2] if len(arr) > 2 else _NONE
+        X0, W, P0, dP1 = ak["energy_nodes"](*arr[0], *arr[1], third[0], third[1], *_GAUSS)
+        Pa = P0
+    else:
+        X, W = _nodes(*dens)
+        # Ψ at the nodes and at 0 in one call (elementwise: the same values)
+        X0 = np.append(X, 0.0)
+        P0 = Pa = _ta.psi(dens[0], X)
+    for i, ((a, _), (b, family)) in enumerate(itertools.pairwise(chain)):
         # the increment's Ψ from the difference density: exactly ΔΨ(0) where the stage leaves
         # the density alone (not a difference of two large Ψ), so Φ vanishes there; Ψ_b as
         # Ψ_a + ΔΨ keeps the balance exact to rounding even on pieces narrower than the
         # spacing of the floats around them
-        diff = _ta.difference(b, a, 0.0)
-        dP = _ta.psi(diff, X0)
+        if ak is not None:
+            dP = dP1 if i == 0 else ak["difference_psi"](*arr[i + 1], *arr[i], X0)
+        else:
+            dP = _ta.psi(_ta.difference(b, a, 0.0), X0)
         d0, dP = float(dP[-1]), dP[:-1]
         Pb = Pa + dP
         E_d = k * float(W @ (dP * dP))
