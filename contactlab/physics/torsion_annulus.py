@@ -613,7 +613,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         computed without it.
     allow : (ndarray, float), optional
         Torque weights of the points (m³) and a torque (N·m): a traction beyond ``μ p`` inside
-        ``c`` is accepted while its excess, weighted, stays within that torque (``None``: none).
+        ``c`` is accepted while its excess, weighted, stays within that torque (``None``: none;
+        not for a torque target beyond the step's sliding torque).
 
     Returns
     -------
@@ -645,6 +646,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         f_sl = M_sl - torque_below(slide, xs, G_t)
         f_old = -torque_below(old, xs, G_t)
         target = float(target_torque)
+        if abs(target) > abs(M_sl):     # no allowance: an excess must not carry a torque
+            allow = None                # beyond the step's sliding torque (gross sliding)
     base = float(f_sl[0] - f_old[0])
     gross = 0.0
     s = 1.0 if target >= base else -1.0

@@ -99,3 +99,23 @@ def test_allow_accepts_only_up_to_its_torque():
     short = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4, allow=(w, 0.99 * w[k] * excess),
                      **kw)
     assert not short["ok"]
+
+
+def test_allow_carries_no_torque_beyond_sliding():
+    """A torque target above the step's sliding torque is gross sliding: an excess inside the
+    stick radius (the old traction, full sliding at a higher limit) must not carry it."""
+    rings, _, high, bound = _state()
+    b, G_t = rings.boundaries, C.moduli.torsional
+    low = 0.9 * bound
+    slide = _ta.nonnegative_psi(_ta.density(rings.lu, b, rings.jumps, low, b[-1]))
+    M_sl = _ta.torque(slide, G_t)
+    w = np.abs(rings.g)
+    kw = dict(r=rings.points, bound=low, slip=False, table=rings.table)
+    for target in (1.001 * M_sl, 1.05 * M_sl):
+        huge = _ta.step(high, slide, b[-1], G_t, target_torque=target,
+                        allow=(w, 1e3 * M_sl), **kw)
+        assert not (huge["ok"] and np.isfinite(huge["gross"]))
+    # a target within the sliding torque: the allowance takes the step
+    within = _ta.step(high, slide, b[-1], G_t, target_torque=0.999 * M_sl,
+                      allow=(w, 1e3 * M_sl), **kw)
+    assert within["ok"] and 0 < within["c"] < b[-1]
