@@ -611,10 +611,11 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         Antiderivatives at the points ``r`` computed once, for the checks (:func:`traction`,
         :func:`slip_kernel_integral`; equal to rounding). The returned slip increments are
         computed without it.
-    allow : (ndarray, float), optional
-        Torque weights of the points (m³) and a torque (N·m): a traction beyond ``μ p`` inside
-        ``c`` is accepted while its excess, weighted, stays within that torque (``None``: none;
-        not for a torque target beyond the step's sliding torque).
+    allow : (ndarray, float, float), optional
+        Torque weights of the points (m³), a torque (N·m) and a distance (m): a traction beyond
+        ``μ p`` inside ``c`` is accepted where every point beyond it lies within that distance
+        of ``c`` and its excess, weighted, stays within that torque (``None``: none; not for a
+        torque target beyond the step's sliding torque).
 
     Returns
     -------
@@ -725,7 +726,8 @@ def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float
     exc = np.abs(traction(w, r[inside], G_t, table)) - bound[inside] * (1 + CHECK_RTOL)
     bad = exc > 0
     return not bad.any() or (allow is not None and bool(
-        float(allow[0][inside][bad] @ exc[bad]) <= float(allow[1])))
+        float(allow[0][inside][bad] @ exc[bad]) <= float(allow[1]))
+        and bool(np.all(r[inside][bad] >= c - allow[2])))
 
 
 def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:

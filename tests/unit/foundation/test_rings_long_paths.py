@@ -4,10 +4,10 @@ with the number of steps of the same load history.
 On a varying-load Hertz path cut into many small steps, the single-slip-annulus step failed its
 check inside the stick radius on exceedances of the friction limit of the discretisation's order
 (within a ring of the stick radius, where the force rises faster than the twist): 15 % of 10^4
-steps went to the ring solver (3 % of 10^2). The step is now taken when the exceedance, weighted
-by the points' torque, stays within a share of the ring count's error law
-(:func:`contactlab.foundation.rings.inside_allowance`). The reference of the result is the strict
-solver (no allowance) at twice the rings.
+steps went to the ring solver (3 % of 10^2). The step is now taken when the exceedance lies
+within a ring of the stick radius and, weighted by the points' torque, stays within a share of
+the ring count's error law (:func:`contactlab.foundation.rings.inside_allowance`). The
+reference of the result is the strict solver (no allowance) at twice the rings.
 """
 from __future__ import annotations
 
@@ -93,12 +93,19 @@ def test_allow_accepts_only_up_to_its_torque():
     kw = dict(r=r, bound=low, slip=False, table=rings.table)
     strict = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4, **kw)
     assert not strict["ok"] and strict["why"].startswith("traction")
-    ok = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4, allow=(w, 1.01 * w[k] * excess),
-                  **kw)
+    ok = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4,
+                  allow=(w, 1.01 * w[k] * excess, b[-1]), **kw)
     assert ok["ok"] and ok["c"] == strict["c"]
-    short = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4, allow=(w, 0.99 * w[k] * excess),
-                     **kw)
+    short = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4,
+                     allow=(w, 0.99 * w[k] * excess, b[-1]), **kw)
     assert not short["ok"]
+    # the point beyond the limit farther from c than the band: refused whatever the torque
+    far = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4,
+                   allow=(w, 1e3 * w[k] * excess, 0.99 * (strict["c"] - r[k])), **kw)
+    assert not far["ok"]
+    near = _ta.step(_ta.empty(), slide, b[-1], G_t, dphi=2e-4,
+                    allow=(w, 1e3 * w[k] * excess, 1.01 * (strict["c"] - r[k])), **kw)
+    assert near["ok"]
 
 
 def test_allow_carries_no_torque_beyond_sliding():
@@ -113,9 +120,9 @@ def test_allow_carries_no_torque_beyond_sliding():
     kw = dict(r=rings.points, bound=low, slip=False, table=rings.table)
     for target in (1.001 * M_sl, 1.05 * M_sl):
         huge = _ta.step(high, slide, b[-1], G_t, target_torque=target,
-                        allow=(w, 1e3 * M_sl), **kw)
+                        allow=(w, 1e3 * M_sl, b[-1]), **kw)
         assert not (huge["ok"] and np.isfinite(huge["gross"]))
     # a target within the sliding torque: the allowance takes the step
     within = _ta.step(high, slide, b[-1], G_t, target_torque=0.999 * M_sl,
-                      allow=(w, 1e3 * M_sl), **kw)
+                      allow=(w, 1e3 * M_sl, b[-1]), **kw)
     assert within["ok"] and 0 < within["c"] < b[-1]
