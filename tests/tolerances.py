@@ -925,7 +925,7 @@ SPHERE_FORCE_START = 3e-6
 TABLE_PANELS_X = 1e-14
 # ---- exact ring solver on long paths: the inside-traction allowance (issue 28)
 #: ring-solver steps per step on the first 600 steps of a 10^4-step varying-load Hertz path
-#: (force rising faster than the twist) at 200 rings: measured 42/600 = 0.07 with the
+#: (the twist ramped in) at 200 rings: measured 42/600 = 0.07 with the
 #: allowance, 489/600 = 0.82 without; the bound leaves ~2x
 RINGS_LONG_PATH_FALLBACK = 0.15
 #: that path's torque at 200 rings with the allowance against the strict solver (no allowance)

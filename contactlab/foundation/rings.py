@@ -157,7 +157,7 @@ def rings_for_rtol(rtol: float) -> int:
 #: uniform ring widths of the stick radius. Those exceedances are of the discretisation's
 #: order: on the benchmark's path shape (Hertz, force +-40 %, twist at 80 % of sliding) at 10^4
 #: steps they made 15 % of the steps ring-solver steps (4.3 % at 10^3, 3 % at 10^2), most of
-#: them while the force rises faster than the twist, with the exceedance within a ring of the
+#: them while the twist is ramped in, with the exceedance within a ring of the
 #: stick radius (docs/torsion_varying_load.md, "Second slip zones and the step count")
 INSIDE_ALLOWANCE = 0.2
 #: the band inside the stick radius, in uniform ring widths, where the allowance applies: an

@@ -3,7 +3,7 @@ with the number of steps of the same load history.
 
 On a varying-load Hertz path cut into many small steps, the single-slip-annulus step failed its
 check inside the stick radius on exceedances of the friction limit of the discretisation's order
-(within a ring of the stick radius, where the force rises faster than the twist): 15 % of 10^4
+(within a ring of the stick radius, while the twist is ramped in): 15 % of 10^4
 steps went to the ring solver (3 % of 10^2). The step is now taken when the exceedance lies
 within a ring of the stick radius and, weighted by the points' torque, stays within a share of
 the ring count's error law (:func:`contactlab.foundation.rings.inside_allowance`). The
