@@ -68,6 +68,9 @@ __all__ = ["hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence"
 GAUSS_NODES = 4
 #: iterations of the block-pivoting box-QP solve per step before it switches to single pivots
 MAX_PIVOTS = 60
+#: a torque-controlled step's torque ``g·z`` must meet its target within this share of the
+#: full-sliding torque ``Σ |g_i| μ p_i`` (rounding of the solve; far more is a wrong state)
+TORQUE_CHECK = 1e-9
 
 
 #: contact radii closer than this fraction of the uniform ring width share one node
@@ -450,8 +453,15 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
                 rhs = base + d * g
             else:
                 cap = float(g[A] @ zA)
-                if abs(torque) > abs(cap) * (1 + 1e-12) or np.sign(torque) != np.sign(cap):
-                    return z, np.zeros(n), float("nan"), it
+                if abs(torque - cap) > 1e-12 * abs(cap):
+                    # every point at a bound carries the torque ``cap``, not the target: a point
+                    # must leave its bound the way of the missing torque (else the target lies
+                    # beyond the sliding torque that way: gross sliding)
+                    k = _release(H, g, z, base, state, torque - cap)
+                    if k < 0:
+                        return z, np.zeros(n), float("nan"), it
+                    state[k] = 0
+                    continue
                 d, rhs = 0.0, base
         Hz = H @ z
         lam = rhs - Hz
@@ -464,6 +474,11 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         bad = bad_hi | bad_lo | bad_up | bad_dn
         if not bad.any():
             lam[F] = 0.0
+            if torque is not None and not abs(float(g @ z) - torque) <= TORQUE_CHECK * float(
+                    np.abs(g) @ np.where(np.isfinite(bound), bound, np.abs(z))):
+                raise ConvergenceError(
+                    f"the ring solver's torque-controlled step ended at torque {float(g @ z)!r} "
+                    f"N·m, not its target {torque!r} N·m")
             return z, lam, float(cast(float, d)), it   # d: the given or the solved twist
         if it > MAX_PIVOTS:
             single = True
@@ -477,6 +492,25 @@ def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
         state[bad_up | bad_dn] = 0
     raise ConvergenceError("the ring solver's active-set iteration did not converge "
                            f"({4 * n + MAX_PIVOTS + 1} pivots)")
+
+
+def _release(H: np.ndarray, g: np.ndarray, z: np.ndarray, base: np.ndarray,
+             state: np.ndarray, missing: float) -> int:
+    """The point to free when every point is at a bound (``z``, torque ``g·z``) under a torque
+    target ``missing`` N·m away: -1 when none can carry it (all at the bound of its sense).
+
+    Only a point at the bound opposite to ``σ = sign(missing)`` can move the torque the way of
+    ``σ``. With the twist increment ``Δφ`` free, such a point keeps sliding while
+    ``σ λ_i <= 0``, i.e. ``σ Δφ <= σ t_i`` with ``t_i = ((H z)_i − base_i)/g_i``; as ``σ Δφ``
+    grows towards the target the first to stop sliding is the one with the least ``σ t_i``:
+    it sticks (is freed) and the next pivot solves the step with it free."""
+    sig = 1.0 if missing > 0 else -1.0
+    cand = (state == -sig) & (g != 0)
+    if not cand.any():
+        return -1
+    idx = np.flatnonzero(cand)
+    t = ((H[idx] @ z) - base[idx]) / g[idx]
+    return int(idx[np.argmin(sig * t)])
 
 
 def gross_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray,
