@@ -933,3 +933,41 @@ TABLE_PANELS_X = 1e-14
 #: integral and so the contact weight of the first step after the restore (measured 1.2e-14 of
 #: the largest tangential force, torque and dissipation, numpy and compiled)
 OLD_SPRING_STATE = 1e-12
+# ---- exact ring solver on long paths: the inside-traction allowance (issue 28)
+#: ring-solver steps per step on the first 600 steps of a 10^4-step varying-load Hertz path
+#: (the twist ramped in) at 200 rings: measured 42/600 = 0.07 with the
+#: allowance, 489/600 = 0.82 without; the bound leaves ~2x
+RINGS_LONG_PATH_FALLBACK = 0.15
+#: that path's torque at 200 rings with the allowance against the strict solver (no allowance)
+#: at 400 rings, relative to its largest sliding torque: measured 1.0e-4 (strict at 200 rings:
+#: 1.4e-4); the bound is the ring count's error law at 200 rings, RTOL_LAW = 20/200² = 5e-4
+RINGS_LONG_PATH_TORQUE = 5e-4
+# ---- exact ring solver: torque-controlled steps from full sliding (issue 28)
+#: a torque-controlled box step's torque g·z against its target, relative to the sliding torque
+#: g·μp: rounding of the free-set solve and of g·z (measured <= 1e-15); the old all-at-bound
+#: acceptance missed it by 0.1..1.6 of the sliding torque
+RINGS_TORQUE_TARGET = 1e-12
+#: the unloading step from full sliding against the superposition of a loading step from zero
+#: (twice its traction and twist), relative to the largest limit (tractions) and to the twist:
+#: two solves of the same linear system by different pivot sequences, 40 rings (measured ~1e-14)
+RINGS_SUPERPOSITION = 1e-10
+#: twist increments of stored path 64's unloading after gross sliding (steps 99-102) at 61 rings
+#: against 240 rings, relative: measured <= 2.2e-3 (the ring count's error); before the fix
+#: both were wrong the same way (no increment), which the spring model's bound below catches
+RINGS_RELEASE_FINE = 5e-3
+#: the twist turned from step 97 to 102 of that path (gross sliding at 98, then the unloading)
+#: against the spring model (2000 springs), relative: the spring model's error for torsion
+#: under a varying normal load, measured 13 % (0.00222 against 0.00196 rad); the old solver's
+#: 0.0267 rad (a gross slide the wrong way at step 102) missed it 13x
+RINGS_RELEASE_MDR = 0.25
+# ---- a requested torque_rtol on long paths (issue 28)
+#: the torque of a torque_rtol run on the benchmark's varying-load path against 400 rings with
+#: every contact radius on a node, in units of the requested torque_rtol times the sliding
+#: torque: the request itself (measured 0.026 at 10^2 steps, 0.039 at 10^3 with the node cap at
+#: 3x the rings; 2.9 at 10^3 with the old cap of 1.5x)
+RINGS_RTOL_LONG_PATH = 1.0
+#: where a torque_rtol run warns (edges off their nodes), its torque error against that
+#: reference relative to error_estimate=True's torque estimate (both relative to the largest
+#: torque): the estimate must cover the error; the half-ring run's difference is an upper
+#: bound for an error falling at least as N^-1
+RINGS_RTOL_ESTIMATE_COVERS = 1.0

@@ -329,7 +329,7 @@ def _root(d_lo: float, d_hi: float, x0: float, x1: float, f1: float, target: flo
 def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float | None = None,
          target_torque: float | None = None, r: np.ndarray | None = None,
          bound: np.ndarray | None = None, slip: bool = True,
-         table: NodeTable | None = None) -> dict:
+         table: NodeTable | None = None, allow: tuple | None = None) -> dict:
     """One step with a single slip annulus ``c < r < radius``.
 
     Parameters
@@ -353,6 +353,11 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         Antiderivatives at the points ``r`` computed once, for the checks (:func:`traction`,
         :func:`slip_kernel_integral`; equal to rounding). The returned slip increments are
         computed without it.
+    allow : (ndarray, float, float), optional
+        Torque weights of the points (m³), a torque (N·m) and a distance (m): a traction beyond
+        ``μ p`` inside ``c`` is accepted where every point beyond it lies within that distance
+        of ``c`` and its excess, weighted, stays within that torque (``None``: none; not for a
+        torque target beyond the step's sliding torque).
 
     Returns
     -------
@@ -391,6 +396,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         f_sl = M_sl - torque_below(slide, xs, G_t)
         f_old = -torque_below(old, xs, G_t)
         target = float(target_torque)
+        if abs(target) > abs(M_sl):     # no allowance: an excess must not carry a torque
+            allow = None                # beyond the step's sliding torque (gross sliding)
     base = float(f_sl[0] - f_old[0])
     gross = 0.0
     s = 1.0 if target >= base else -1.0
@@ -429,7 +436,7 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         ds = np.zeros(r.size)
         # without the increments the traction check first: a step with a second slip zone
         # (the ring solver's) fails it and needs no increments (only the check named may differ)
-        inside_ok = None if slip else _inside_ok(w, r, c, bound, G_t, table)
+        inside_ok = None if slip else _inside_ok(w, r, c, bound, G_t, table, allow)
         if inside_ok is False:
             return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross,
                     "slip": ds, "ok": False, "why": _WHY_INSIDE}
@@ -452,7 +459,7 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
             ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
             if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
-        if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table):
+        if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table, allow):
             why = _WHY_INSIDE
     return {"w": w, "c": float(c), "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
             "ok": not why, "why": why}
@@ -537,12 +544,17 @@ _DECIDED = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
 
 
 def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float,
-               table: NodeTable | None) -> bool:
+               table: NodeTable | None, allow: tuple | None = None) -> bool:
     """:func:`step`'s check inside the stick radius: the traction at the points ``r < c``
-    within ``μ p`` (``bound``)."""
+    within ``μ p`` (``bound``), or its weighted excess within ``allow`` (:func:`step`)."""
     inside = r < c
-    return c <= 0 or not inside.any() or not bool(np.any(
-        np.abs(traction(w, r[inside], G_t, table)) > bound[inside] * (1 + CHECK_RTOL)))
+    if c <= 0 or not inside.any():
+        return True
+    exc = np.abs(traction(w, r[inside], G_t, table)) - bound[inside] * (1 + CHECK_RTOL)
+    bad = exc > 0
+    return not bad.any() or (allow is not None and bool(
+        float(allow[0][inside][bad] @ exc[bad]) <= float(allow[1]))
+        and bool(np.all(r[inside][bad] >= c - allow[2])))
 
 
 def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:

@@ -4,7 +4,8 @@ import pytest
 from scipy.integrate import dblquad, quad
 
 from contactlab.physics import torsion_rings as tr
-from tests.tolerances import QUADRATURE, QUADRATURE_EDGE_PUNCH
+from tests.tolerances import (QUADRATURE, QUADRATURE_EDGE_PUNCH, RINGS_SUPERPOSITION,
+                              RINGS_TORQUE_TARGET)
 
 G = 80e9
 B = np.array([0.0, 0.3, 0.55, 0.8, 1.0]) * 1e-4
@@ -201,3 +202,47 @@ def test_box_step_memo_reuses_the_last_factor_with_the_same_bits(control, monkey
     assert len(factored) - n_plain < 0.7 * n_plain           # factors reused
     for (z0, l0, d0), (z1, l1, d1) in zip(plain, memo_run):
         assert np.array_equal(z0, z1) and np.array_equal(l0, l1) and d0 == d1
+
+
+@pytest.mark.parametrize("share", [0.9, 0.5, 0.0, -0.6])
+@pytest.mark.parametrize("sense", [1.0, -1.0])
+def test_box_step_torque_below_sliding_from_full_sliding(share, sense):
+    """Regression (issue 28, a stored sphere path at steps 99-101): from a full-sliding state
+    (every point at ``-s μp``) a torque target of smaller magnitude was accepted with every
+    point still at its bound and no twist increment: the torque stayed ``-s M_sliding``.
+
+    Reference: the discrete problem's own superposition (Jäger/Ciavarella for torsion) at a
+    fixed limit: unloading from ``z_o = -s b`` to the torque ``T`` is ``z = -s b + 2y``, where
+    ``y`` is the loading from zero to the torque ``(T + s M_s)/2`` (``M_s = g·b``) with the same
+    limits, and the twist increment is twice the loading's (``λ = 2 λ_y``: same complementarity).
+    The loading solve starts from no point at a bound, another branch of the solver."""
+    b = np.linspace(0.0, 1.0, 41)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    H, C, g = m["H"], m["C"], m["g"]
+    bound = 0.3 * np.sqrt(np.clip(1.0 - (r / 0.9) ** 2, 0.0, None))
+    Ms = float(g @ bound)
+    z_old = -sense * bound
+    target = -sense * share * Ms
+    for kw in ({}, {"C": C}):
+        z, _, d, _ = tr.box_step(H, g, z_old, bound, torque=target,
+                                   guess=np.where(bound == 0, 2, -int(sense)), **kw)
+        assert abs(float(g @ z) - target) <= RINGS_TORQUE_TARGET * Ms
+        y, _, dy, _ = tr.box_step(H, g, np.zeros(r.size), bound,
+                                  torque=0.5 * (target + sense * Ms) * sense, **kw)
+        y = sense * y
+        assert np.max(np.abs(z - (z_old + 2.0 * y))) <= RINGS_SUPERPOSITION * bound.max()
+        assert abs(d - 2.0 * sense * dy) <= RINGS_SUPERPOSITION * abs(2.0 * dy)
+
+
+def test_box_step_torque_beyond_sliding_the_other_way_is_gross():
+    # from full sliding one way, a target beyond the sliding torque the other way: no state
+    # within the limits carries it (nan: the caller's gross step)
+    b = np.linspace(0.0, 1.0, 21)
+    r = 0.5 * (b[1:] + b[:-1])
+    m = tr.influence(b, r, 1.0)
+    bound = 0.3 * np.sqrt(1.0 - r * r)
+    Ms = float(m["g"] @ bound)
+    _, _, d, _ = tr.box_step(m["H"], m["g"], -bound, bound, torque=1.01 * Ms,
+                             guess=-np.ones(r.size, int))
+    assert np.isnan(d)
