@@ -372,7 +372,7 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         # the compiled route: one pass (numeric.annulus_kernel), the same bits; None where it
         # leaves the step to the passes below
         out = _compiled_step(old, slide, radius, G_t, float(cast(float, dphi)), r, bound, slip,
-                             table)
+                             table, allow)
         if out is not None:
             return out
     kind = "twist" if target_torque is None else "torque"
@@ -485,12 +485,12 @@ def _arrays(p: Pieces) -> tuple:
 
 def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: float,
                    r: np.ndarray | None, bound: np.ndarray | None, slip: bool,
-                   table: NodeTable | None) -> dict | None:
+                   table: NodeTable | None, allow: tuple | None = None) -> dict | None:
     """:func:`step` with a twist increment by the compiled pass
     (:func:`contactlab.numeric.annulus_kernel.twist_step`): the density, stick radius and turn
     in one pass, the same bits; the checks' verdicts are the numpy route's (the traction check
-    from the pass where its margin exceeds the rounding of its sums, else from
-    :func:`_inside_ok`); the slip increments, where wanted or needed by the check, from
+    from the pass where its margin exceeds the rounding of its sums and no allowance is to be
+    weighed, else from :func:`_inside_ok`); the slip increments, where wanted or needed by the check, from
     :func:`slip_kernel_integral` on the pass's difference density. None for an input the pass
     leaves to the numpy route (a nan)."""
     ak = _annulus_kernels()
@@ -514,8 +514,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     inside_ok = None
     if not slip:
         inside_ok = _DECIDED.get(inside)
-        if inside_ok is None:
-            inside_ok = _inside_ok(w, r, c, bound, G_t, table)
+        if inside_ok is None or (not inside_ok and allow is not None):
+            inside_ok = _inside_ok(w, r, c, bound, G_t, table, allow)
         if not inside_ok:
             return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
                     "ok": False, "why": _WHY_INSIDE}
@@ -534,7 +534,9 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
                 why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
         ok = _DECIDED.get(inside)
-        if not (_inside_ok(w, r, c, bound, G_t, table) if ok is None else ok):
+        if ok is None or (not ok and allow is not None):    # (the allowance: the numpy check)
+            ok = _inside_ok(w, r, c, bound, G_t, table, allow)
+        if not ok:
             why = _WHY_INSIDE
     return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
             "ok": not why, "why": why}

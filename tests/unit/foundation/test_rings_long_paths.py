@@ -126,3 +126,21 @@ def test_allow_carries_no_torque_beyond_sliding():
     within = _ta.step(high, slide, b[-1], G_t, target_torque=0.999 * M_sl,
                       allow=(w, 1e3 * M_sl, b[-1]), **kw)
     assert within["ok"] and 0 < within["c"] < b[-1]
+
+
+def test_allowance_gives_the_same_bits_on_the_compiled_route(monkeypatch):
+    """The compiled annulus step (numeric.annulus_kernel) decides the check inside the stick
+    radius itself only where no allowance is to be weighed; an exceedance goes to the numpy check
+    with the allowance, so both routes take the same steps (the compiled route without it sent
+    489 of the 600 steps to the ring solver, the numpy route 42)."""
+    path, _ = _path()
+    runs = []
+    for on in (False, True):
+        monkeypatch.setitem(_ta._COMPILED, "on", on)
+        if on and _ta._annulus_kernels() is None:
+            pytest.skip("no compiled route (numba absent or the numpy backend forced)")
+        runs.append(C.simulate(path, method="exact"))
+    assert runs[0].meta["fallback_steps"] == runs[1].meta["fallback_steps"]
+    for key in ("torque", "twist", "dissipated_energy", "stick_radius"):
+        assert np.asarray(getattr(runs[0], key)).tobytes() == np.asarray(
+            getattr(runs[1], key)).tobytes(), key
