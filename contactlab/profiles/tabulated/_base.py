@@ -7,12 +7,15 @@ share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabul
 from __future__ import annotations
 
 import contextlib
+import math
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ...errors import OutsideTheoryError
 from ..base import Profile
+from . import _far
 
 #: elements per dense (x, node) block of the node sums
 _CHUNK = 2_000_000
@@ -55,6 +58,60 @@ def _clip_index(k: np.ndarray, lo: int, hi: int) -> np.ndarray:
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
 
+    def _tree_terms(self) -> int:
+        """Taylor terms per block of the far-field trees in the current call (set from the
+        call's rtol by :meth:`_tree_rtol`; all :data:`._far.TERMS` outside one)."""
+        return int(self.__dict__.get("_far_terms", _far.TERMS))
+
+    def _tree_excess(self) -> float:
+        """The table's ratio of the trees' truncation bound (per unit :func:`._far.tail_factor`)
+        to ``|g|``, the largest on 64 radii spread geometrically up to the table's end (with
+        all terms; inf where g vanishes there or the table has no tree), set up once: a table
+        whose slope jumps cancel (noise) takes more terms for the same rtol."""
+        cached = self.__dict__.get("_far_excess")
+        if cached is None:
+            x = float(self.r[-1]) * np.geomspace(2.0**-12, 1.0, 64)
+            cubic = self._spline is not None
+            tree = self._cubic_tree() if cubic else self._far_tree()
+            if tree is None:
+                cached = math.inf
+            else:
+                unit = (self._cubic_truncation(x, "g", 1.0) if cubic
+                        else self._far_truncation(x, "g", 1.0))
+                g = np.abs(self._g_closed_form(x))
+                cached = float(np.max(unit / g)) if bool(np.all(g > 0)) else math.inf
+            self.__dict__["_far_excess"] = cached
+        return float(cached)
+
+    @contextlib.contextmanager
+    def _tree_rtol(self, rtol: float | None) -> Iterator[None]:
+        """Inside: the far-field trees take the Taylor terms of ``rtol``
+        (:func:`._far.terms_for`), and the results' error estimates carry their truncation
+        bound. ``rtol=None`` keeps the setting of an enclosing call (the table's :attr:`rtol`
+        outside one); on exit the enclosing setting is back."""
+        prev = self.__dict__.get("_far_terms")
+        if rtol is None and prev is not None:
+            yield
+            return
+        rtol = self.rtol if rtol is None else rtol
+        excess = 1.0
+        if rtol > _far.FULL_TERMS_RTOL:
+            if prev is not None:
+                self.__dict__.pop("_far_terms")
+            try:
+                excess = self._tree_excess()
+            finally:
+                if prev is not None:
+                    self.__dict__["_far_terms"] = prev
+        self.__dict__["_far_terms"] = _far.terms_for(rtol, excess)
+        try:
+            yield
+        finally:
+            if prev is None:
+                self.__dict__.pop("_far_terms", None)
+            else:
+                self.__dict__["_far_terms"] = prev
+
     r: np.ndarray
     f: np.ndarray
     interpolation: str
@@ -79,6 +136,18 @@ class _TableBase(Profile):
         def _g_and_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
 
         def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
+
+        def _g_closed_form(self, x: np.ndarray) -> np.ndarray: ...
+
+        def _cubic_tree(self) -> Any: ...
+
+        def _far_tree(self) -> Any: ...
+
+        def _cubic_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
+                              ) -> np.ndarray: ...
+
+        def _far_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
+                            ) -> np.ndarray: ...
 
         def _g_slope_integral(self, x: np.ndarray
                               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...

@@ -51,9 +51,10 @@ import numpy as np
 from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
-__all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
+__all__ = ["FAR_FIELD_FROM", "TERMS", "TERMS_MIN", "FULL_TERMS_RTOL", "TAIL", "SEPARATION",
+           "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
            "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
-           "used_pairs", "slot_sums", "sequential_rows"]
+           "used_pairs", "slot_sums", "sequential_rows", "terms_for", "tail_factor"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -62,6 +63,14 @@ FAR_FIELD_FROM = 4096
 TERMS = 20
 #: accepted blocks end at least this many block widths below the block holding x
 SEPARATION = 2
+#: fewest Taylor terms a loose rtol takes (:func:`terms_for`)
+TERMS_MIN = 4
+#: rtol at and below which the tree keeps all :data:`TERMS` terms (the default rtol, 1e-10:
+#: its results keep their bits)
+FULL_TERMS_RTOL = 1e-10
+#: the truncation bound (:func:`tail_factor`) is kept below this fraction of rtol (times the
+#: table's ratio of the bound's K Σ|w| to its results, :func:`terms_for`'s ``excess``)
+TAIL = 0.1
 #: most nodes in SEPARATION + 1 adjacent finest blocks (the near zone); a table with denser
 #: clusters keeps the node-by-node sums (its near zone would not be short)
 NEAR_MAX = 64
@@ -100,6 +109,38 @@ class FarTree:
     moments_t: tuple           # the columns of `moments`, each contiguous
     centre: np.ndarray         # (blocks + 1,): each block's centre c (the last row: 0)
     half: np.ndarray           # (blocks + 1,): each block's half-width h (the last row: 1)
+
+
+def terms_for(rtol: float, excess: float = 1.0) -> int:
+    """Taylor terms per block for a call at relative tolerance ``rtol``: all :data:`TERMS` at
+    and below :data:`FULL_TERMS_RTOL`, else the fewest (at least :data:`TERMS_MIN`) whose
+    truncation bound :func:`tail_factor` stays below :data:`TAIL` ``rtol / excess`` (rtol
+    1e-6: 11 terms, 1e-3: 6, 1e-2: 5 at ``excess`` 1). ``excess``: the table's ratio of the
+    bound's ``K Σ|w|`` to the size of its results (a noisy table's slope jumps, which cancel,
+    make it large: more terms)."""
+    if not rtol > FULL_TERMS_RTOL or not excess < math.inf:
+        return TERMS
+    ratio = 1.0 / (2 * SEPARATION + 1)
+    need = math.ceil(math.log(TAIL * rtol / max(excess, 1.0) / tail_factor(0))
+                     / math.log(ratio))
+    return int(min(TERMS, max(TERMS_MIN, need)))
+
+
+def tail_factor(terms: int) -> float:
+    """``Σ_{n >= terms} ρ^n = ρ^terms / (1 - ρ)``, ``ρ = 1/(2 SEPARATION + 1)``: a block's
+    truncation error after ``terms`` Taylor terms is at most this times ``K Σ_block |w_j|``,
+    ``K`` the largest modulus of the kernel on the closed unit disk.
+
+    Why: an accepted block's centre ``t0 = c/x`` lies a distance ``d = 1 - t0 = (x - c)/x``
+    below the branch point ``t = 1``, and ``x - c >= (2 SEPARATION + 1) h``; the kernels
+    (``asin``, ``acos``, ``sqrt(1 - t²)``, ``(1 - t²)^(3/2)``, ``Φ``) are analytic in the
+    open unit disk and bounded on the closed one (``K = π/2, π/2, √2, 2√2, (√2 + π/2)/2``), and
+    the disk ``|t - t0| <= d`` lies inside it, so Cauchy's estimate bounds the Taylor
+    coefficients by ``K/d^n``: the scaled ones by ``K (σ/d)^n <= K ρ^n`` (``σ = h/x``). The
+    moments obey ``|M_n| <= Σ_block |w_j|`` (``|u_j| <= 1``). Not for the cusp sum ``C``
+    (unbounded kernel; it only steers the Newton steps)."""
+    ratio = 1.0 / (2 * SEPARATION + 1)
+    return ratio**terms / (1.0 - ratio)
 
 
 def layout(nodes: np.ndarray, r_end: float, max_levels: int = LEVELS_MAX
@@ -187,17 +228,20 @@ def tree_of(nodes: np.ndarray, weights: np.ndarray, r_end: float, levels: int,
                    np.concatenate([*halves, np.ones(1)]))
 
 
-def sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
+def sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool, terms: int = TERMS
          ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """``(A, C, P)`` of the module docstring at the points ``x`` (1D, ``0 < x <= r_end``);
-    ``C`` and ``P`` only when asked (else None). Each point's value is independent of the
-    others in ``x``."""
+    ``C`` and ``P`` only when asked (else None); each block's Taylor series truncated after
+    ``terms`` terms (:func:`terms_for`; at most :data:`TERMS`). Each point's value is
+    independent of the others in ``x``."""
+    if not 1 <= terms <= TERMS:
+        raise ValueError(f"terms must lie in 1..{TERMS}, got {terms}")
     a_out = np.empty(x.size)
     c_out = np.empty(x.size) if want_cusp else None
     p_out = np.empty(x.size) if want_phi else None
     for start in range(0, x.size, _ROWS):
         sl = slice(start, start + _ROWS)
-        a, c, p = _sums(tree, x[sl], want_cusp, want_phi)
+        a, c, p = _sums(tree, x[sl], want_cusp, want_phi, terms)
         a_out[sl] = a
         if c_out is not None:
             c_out[sl] = c
@@ -239,7 +283,7 @@ def kernel(compiled: bool = True) -> Callable:
     return _COMPILED["kernel"]
 
 
-def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
+def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool, terms: int
           ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     row, k_near = _slots(tree, x)
     xc = x[:, None]
@@ -253,11 +297,11 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
         c_far = np.empty(x.size) if want_cusp else None
         p_far = np.empty(x.size) if want_phi else None
         kernel(_COMPILED["on"])(x, row, asin_t, tree.centre, tree.half, tree.moments,
-                                zero_row, CA, CB, PD, PE, want_cusp, want_phi, a_far,
+                                zero_row, terms, CA, CB, PD, PE, want_cusp, want_phi, a_far,
                                 a_far if c_far is None else c_far,
                                 a_far if p_far is None else p_far)
     else:
-        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi)
+        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi, terms)
     # near nodes: finest blocks from k_near on, nodes up to x (a node at x included)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="right")
@@ -319,7 +363,7 @@ def slot_sums(vals: np.ndarray, point: np.ndarray, bounds: np.ndarray, points: i
 
 
 def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
-               want_cusp: bool, want_phi: bool
+               want_cusp: bool, want_phi: bool, terms: int = TERMS
                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The blocks' sums (A, C, P / x²) per point, slot by slot: the numpy route (reference of
     :func:`far_rows`; the same operations in the same order).
@@ -358,7 +402,7 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
         coef: dict = {0: asin_t, 1: np.divide(sig, root)}
         ts = t / sig if want_cusp else t                    # (t: unused placeholders)
         tsig, ss = (t * sig, sig * sig) if want_phi else (t, t)
-        for m in range(TERMS):
+        for m in range(terms):
             # ã_{m+1} (the cusp sum's term m needs it): CA[k] (u ã_{k+1}) + CB[k] (v ã_k)
             k = m - 1
             if k >= 0 and m + 1 not in coef:
@@ -421,13 +465,13 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
 
 
 def far_rows(x: np.ndarray, row: np.ndarray, asin_t: np.ndarray, centre: np.ndarray,
-             half: np.ndarray, moments: np.ndarray, zero_row: int, ca: np.ndarray,
+             half: np.ndarray, moments: np.ndarray, zero_row: int, terms: int, ca: np.ndarray,
              cb: np.ndarray, pd: np.ndarray, pe: np.ndarray, want_cusp: bool, want_phi: bool,
              a_out: np.ndarray, c_out: np.ndarray, p_out: np.ndarray) -> None:
     """The blocks' sums of :func:`_far_numpy` point by point (compiled by numba): the same
     IEEE operations in the same order (the arcsines taken by numpy), unused slots skipped (they
-    add exact zeros there; the final ``+ 0.0`` makes the sign of a zero sum agree)."""
-    terms = moments.shape[1]
+    add exact zeros there; the final ``+ 0.0`` makes the sign of a zero sum agree); the first
+    ``terms`` Taylor terms of each block."""
     coef = np.empty(terms + 1)
     for i in range(x.size):
         xi = x[i]

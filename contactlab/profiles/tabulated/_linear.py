@@ -64,16 +64,18 @@ class _LinearTransform(_TableBase):
         if np.any(pos):
             xs = flat[pos]
             sums = None
+            terms = self._tree_terms()
             primed = self.__dict__.get("_far_primed")
             if primed is not None:
                 # a force solve's radii (_far_prime): A and P kept for the depth and the ∫g
-                # asked next at them; a call at other points (or for g') drops them
-                if not with_slope and primed[0] == xs.tobytes():
+                # asked next at them; a call at other points (or for g', or with another
+                # number of Taylor terms) drops them
+                if not with_slope and primed[0] == xs.tobytes() and primed[3] == terms:
                     sums = (primed[1], None, primed[2])
                 else:
                     self.__dict__.pop("_far_primed", None)
             A, C, P = sums if sums is not None else _far.sums(tree, xs, with_slope,
-                                                              with_integral)
+                                                              with_integral, terms)
             k = _clip_index(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
             s_k = self._slopes[k]
             base = 0.5 * np.pi * s_k - A
@@ -96,8 +98,34 @@ class _LinearTransform(_TableBase):
         flat = a.ravel()
         if tree is None or flat.size > PRIME_MAX or not bool(np.all(flat > 0)):
             return
-        A, _, P = _far.sums(tree, flat, False, True)
-        self.__dict__["_far_primed"] = (flat.tobytes(), A, P)
+        terms = self._tree_terms()
+        A, _, P = _far.sums(tree, flat, False, True, terms)
+        self.__dict__["_far_primed"] = (flat.tobytes(), A, P, terms)
+
+    def _far_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
+                          ) -> np.ndarray:
+        """Bound of the tree's Taylor truncation in ``g`` (``kind`` "g") or ``∫_0^x g``
+        ("int") at ``x`` with the current call's terms (:meth:`_tree_terms`): zeros with all
+        :data:`._far.TERMS` terms (their truncation is below the rounding) or without the tree
+        (``tail``: the bound per unit :func:`._far.tail_factor`, whatever the terms).
+        :func:`._far.tail_factor` times ``K Σ|w_j|`` over the nodes up to x (a superset of
+        the far blocks' nodes), times x (g) or x² (∫g); ``K`` = π/2 (asin) or
+        (√2 + π/2)/2 (Φ)."""
+        x = np.asarray(x, dtype=float)
+        terms = self._tree_terms() if tail is None else 0
+        tree = self._far_tree() if terms < _far.TERMS else None
+        if tree is None:
+            return np.zeros(x.shape)
+        cum = self.__dict__.get("_far_absum")
+        if cum is None:
+            cum = np.concatenate([np.zeros(1), np.cumsum(np.abs(tree.weights))])
+            self.__dict__["_far_absum"] = cum
+        xa = np.maximum(x, 0.0)
+        W = cum[np.searchsorted(tree.nodes, xa, side="right")]
+        factor = _far.tail_factor(terms) if tail is None else tail
+        if kind == "g":
+            return xa * (0.5 * np.pi * factor) * W
+        return xa * xa * (0.5 * (np.sqrt(2.0) + 0.5 * np.pi) * factor) * W
 
     def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
                       ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
