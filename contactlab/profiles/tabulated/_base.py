@@ -7,9 +7,8 @@ share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabul
 from __future__ import annotations
 
 import contextlib
-import math
 from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -63,30 +62,32 @@ class _TableBase(Profile):
         call's rtol by :meth:`_tree_rtol`; all :data:`._far.TERMS` outside one)."""
         return int(self.__dict__.get("_far_terms", _far.TERMS))
 
-    def _tree_excess(self) -> float:
-        """The table's ratio of the trees' truncation bound (per unit :func:`._far.tail_factor`)
-        to ``|g|``, the largest on 64 radii spread geometrically up to the table's end (with
-        all terms; inf where g vanishes there or the table has no tree), set up once: a table
-        whose slope jumps cancel (noise) takes more terms for the same rtol."""
+    def _tree_excess(self) -> np.ndarray:
+        """``ratios[T]``, T = 0 .. :data:`._far.TERMS`: the largest truncation bound of the
+        trees after T terms relative to ``|g|`` on 64 radii spread geometrically up to the
+        table's end (g with all terms; inf where g vanishes there, zeros without a tree), set up
+        once: :func:`._far.terms_from_ratios` picks the terms of an rtol from them (a table
+        whose weights cancel inside blocks less takes more terms)."""
         cached = self.__dict__.get("_far_excess")
         if cached is None:
             x = float(self.r[-1]) * np.geomspace(2.0**-12, 1.0, 64)
+            counts = np.arange(_far.TERMS + 1)
             cubic = self._spline is not None
             tree = self._cubic_tree() if cubic else self._far_tree()
-            if tree is None:
-                cached = math.inf
-            else:
-                unit = (self._cubic_truncation(x, "g", 1.0) if cubic
-                        else self._far_truncation(x, "g", 1.0))
+            cached = np.zeros(counts.size)
+            if tree is not None:
+                bound = (self._cubic_truncation(x, "g", counts) if cubic
+                         else self._far_truncation(x, "g", counts))
                 g = np.abs(self._g_closed_form(x))
-                cached = float(np.max(unit / g)) if bool(np.all(g > 0)) else math.inf
+                cached = (np.max(bound / g, axis=1) if bool(np.all(g > 0))
+                          else np.full(counts.size, np.inf))
             self.__dict__["_far_excess"] = cached
-        return float(cached)
+        return cast(np.ndarray, cached)
 
     @contextlib.contextmanager
     def _tree_rtol(self, rtol: float | None) -> Iterator[None]:
         """Inside: the far-field trees take the Taylor terms of ``rtol``
-        (:func:`._far.terms_for`), and the results' error estimates carry their truncation
+        (:func:`._far.terms_from_ratios`), and the results' error estimates carry their truncation
         bound. ``rtol=None`` keeps the setting of an enclosing call (the table's :attr:`rtol`
         outside one); on exit the enclosing setting is back."""
         prev = self.__dict__.get("_far_terms")
@@ -94,16 +95,16 @@ class _TableBase(Profile):
             yield
             return
         rtol = self.rtol if rtol is None else rtol
-        excess = 1.0
+        terms = _far.TERMS
         if rtol > _far.FULL_TERMS_RTOL:
             if prev is not None:
                 self.__dict__.pop("_far_terms")
             try:
-                excess = self._tree_excess()
+                terms = _far.terms_from_ratios(rtol, self._tree_excess())
             finally:
                 if prev is not None:
                     self.__dict__["_far_terms"] = prev
-        self.__dict__["_far_terms"] = _far.terms_for(rtol, excess)
+        self.__dict__["_far_terms"] = terms
         try:
             yield
         finally:
@@ -143,10 +144,10 @@ class _TableBase(Profile):
 
         def _far_tree(self) -> Any: ...
 
-        def _cubic_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
-                              ) -> np.ndarray: ...
+        def _cubic_truncation(self, x: np.ndarray, kind: str,
+                              terms: np.ndarray | None = None) -> np.ndarray: ...
 
-        def _far_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
+        def _far_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
                             ) -> np.ndarray: ...
 
         def _g_slope_integral(self, x: np.ndarray

@@ -410,36 +410,42 @@ class _CubicTransform(_TableBase):
             return out[:4], out[4:], None
         return out[:4], out[4:8], out[8:10]
 
-    def _cubic_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
+    def _cubic_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
                           ) -> np.ndarray:
         """Bound of the column tree's Taylor truncation in ``g`` (``kind`` "g") or
         ``∫_0^x g`` ("int") at ``x`` with the current call's terms (:meth:`_tree_terms`): zeros
         with all :data:`._far.TERMS` terms or without the tree. Each signed column's far sum
-        is off by at most :func:`._far.tail_factor` times ``K Σ|c_kj|`` over the nodes up to x
-        (``K`` = π/2 for acos, √2 for the root, 2√2 for its cube), taken with the factors of
-        :meth:`_cubic_sums`' combination (g: ``x [T0 + x² T1/2 + x S0]``; ∫g:
-        ``x² T0/2 + x⁴ T1/8 + x (S0 + 13x²/24 S1) + x³ R3/3``). ``tail``: the bound per
-        unit :func:`._far.tail_factor`, whatever the terms."""
+        is off by at most ``K`` (π/2 for acos, √2 for the root, 2√2 for its cube) times the
+        sum over x's far blocks of :func:`._far.block_tails` (from each block's own moments),
+        taken with the factors of :meth:`_cubic_sums`' combination (g:
+        ``x [T0 + x² T1/2 + x S0]``; ∫g: ``x² T0/2 + x⁴ T1/8 + x (S0 + 13x²/24 S1) + x³
+        R3/3``). ``terms`` (an array): the bounds for each of those counts."""
         x = np.asarray(x, dtype=float)
-        terms = self._tree_terms() if tail is None else 0
-        ct = self._cubic_tree() if terms < _far.TERMS else None
+        count = self._tree_terms() if terms is None else 0
+        ct = self._cubic_tree() if count < _far.TERMS else None
         if ct is None:
-            return np.zeros(x.shape)
-        cum = ct.cache.get("absum")
-        if cum is None:
-            cum = np.concatenate([np.zeros((ct.columns.shape[0], 1)),
-                                  np.cumsum(np.abs(ct.columns), axis=1)], axis=1)
-            ct.cache["absum"] = cum
-        xa = np.maximum(x, 0.0)
-        W = cum[:, np.searchsorted(ct.tree.nodes, xa, side="right")]
-        factor = _far.tail_factor(terms) if tail is None else tail
+            return np.zeros(x.shape if terms is None else (len(terms), *x.shape))
+        tails = ct.cache.get("tails")
+        if tails is None:
+            tails = _far.block_tails(ct.moments, ct.tree, ct.columns)
+            ct.cache["tails"] = tails
+        flat = x.ravel()
+        pos = flat > 0
+        nt = 1 if terms is None else len(terms)
+        W = np.zeros((tails.shape[1], nt, flat.size))
+        if np.any(pos):
+            W[:, :, pos] = _far.far_bound(ct.tree, tails, flat[pos],
+                                          np.array([count]) if terms is None else terms)
+        xa = np.maximum(flat, 0.0)
         k_acos, k_root = 0.5 * np.pi, np.sqrt(2.0)
         x2 = xa * xa
         if kind == "g":
-            return xa * factor * (k_acos * (W[0] + 0.5 * x2 * W[1]) + k_root * xa * W[4])
-        return factor * (k_acos * (0.5 * x2 * W[0] + 0.125 * x2 * x2 * W[1])
-                       + k_root * xa * (W[8] + 13.0 / 24.0 * x2 * W[9])
-                       + 2.0 * k_root * xa * x2 / 3.0 * W[12])
+            b = xa * (k_acos * (W[0] + 0.5 * x2 * W[1]) + k_root * xa * W[4])
+        else:
+            b = (k_acos * (0.5 * x2 * W[0] + 0.125 * x2 * x2 * W[1])
+                 + k_root * xa * (W[8] + 13.0 / 24.0 * x2 * W[9])
+                 + 2.0 * k_root * xa * x2 / 3.0 * W[12])
+        return b[0].reshape(x.shape) if terms is None else b.reshape(nt, *x.shape)
 
     def _cubic_g_slope_integral(self, x: np.ndarray
                                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

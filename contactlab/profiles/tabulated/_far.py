@@ -27,9 +27,15 @@ series about ``c/x``, truncated after :data:`TERMS` terms, converge like ``(2 SE
   - (n-1) a_{n-1}] / (n+1)``, ``φ_0 = Φ(t0)``.
 
 The recurrences run on the scaled coefficients ``a_n σ^n`` (no overflow), and a block
-contributes ``Σ_n a_n σ^n M_n``. A call at a loose rtol takes fewer terms (:func:`terms_for`:
-all of them at the default rtol 1e-10 and below) and its error estimate carries the rigorous
-truncation bound of :func:`tail_factor`. The truncation error of a block is below
+contributes ``Σ_n a_n σ^n M_n``. A call at a loose rtol takes fewer terms
+(:func:`terms_from_ratios`: all of them at the default rtol 1e-10 and below) and its error
+estimate carries the rigorous truncation bound of :func:`block_tails`: the kernels are analytic
+in the open unit disk and bounded on the closed one (``K`` = π/2 for asin and acos, √2 for
+``sqrt(1 - t²)``, 2√2 for its cube, (√2 + π/2)/2 for Φ); the disk ``|t - t0| <= d``,
+``d = 1 - t0 = (x - c)/x``, lies inside it, so Cauchy's estimate bounds the scaled
+coefficients by ``K (σ/d)^n <= K ρ^n``, ``ρ = 1/(2 SEPARATION + 1)`` (``x - c >= (2
+SEPARATION + 1) h``), and a block's tail after T terms by ``K Σ_{n >= T} ρ^n |M_n|``, with
+``|M_n| <= Σ_block |w_j|`` beyond the stored terms (``|u_j| <= 1``). The truncation error of a block is below
 ``(2 SEPARATION + 1)^-TERMS`` times ``Σ |w_j|`` of the block (5^-20 = 1e-14; the terms' own
 decay, ``n^-3/2``, gains about 100x more). Measured against the node-by-node sums on even,
 random and wavy 10^4-point tables: <= 3.3e-16 of the terms' magnitudes, the rounding of those
@@ -56,7 +62,8 @@ from ...numeric import normal_kernels as _normal_kernels
 __all__ = ["FAR_FIELD_FROM", "TERMS", "TERMS_MIN", "FULL_TERMS_RTOL", "TAIL", "SEPARATION",
            "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
            "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
-           "used_pairs", "slot_sums", "sequential_rows", "terms_for", "tail_factor"]
+           "used_pairs", "slot_sums", "sequential_rows", "terms_from_ratios", "block_tails",
+           "far_bound"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -65,13 +72,13 @@ FAR_FIELD_FROM = 4096
 TERMS = 20
 #: accepted blocks end at least this many block widths below the block holding x
 SEPARATION = 2
-#: fewest Taylor terms a loose rtol takes (:func:`terms_for`)
+#: fewest Taylor terms a loose rtol takes (:func:`terms_from_ratios`)
 TERMS_MIN = 4
 #: rtol at and below which the tree keeps all :data:`TERMS` terms (the default rtol, 1e-10:
 #: its results keep their bits)
 FULL_TERMS_RTOL = 1e-10
-#: the truncation bound (:func:`tail_factor`) is kept below this fraction of rtol (times the
-#: table's ratio of the bound's K Σ|w| to its results, :func:`terms_for`'s ``excess``)
+#: the truncation bound (:func:`block_tails`) is kept below this fraction of rtol times |g|
+#: (on a table's sample radii, :func:`terms_from_ratios`)
 TAIL = 0.1
 #: most nodes in SEPARATION + 1 adjacent finest blocks (the near zone); a table with denser
 #: clusters keeps the node-by-node sums (its near zone would not be short)
@@ -113,36 +120,59 @@ class FarTree:
     half: np.ndarray           # (blocks + 1,): each block's half-width h (the last row: 1)
 
 
-def terms_for(rtol: float, excess: float = 1.0) -> int:
-    """Taylor terms per block for a call at relative tolerance ``rtol``: all :data:`TERMS` at
-    and below :data:`FULL_TERMS_RTOL`, else the fewest (at least :data:`TERMS_MIN`) whose
-    truncation bound :func:`tail_factor` stays below :data:`TAIL` ``rtol / excess`` (rtol
-    1e-6: 11 terms, 1e-3: 6, 1e-2: 5 at ``excess`` 1). ``excess``: the table's ratio of the
-    bound's ``K Σ|w|`` to the size of its results (a noisy table's slope jumps, which cancel,
-    make it large: more terms)."""
-    if not rtol > FULL_TERMS_RTOL or not excess < math.inf:
+def terms_from_ratios(rtol: float, ratios: np.ndarray) -> int:
+    """The fewest terms T (at least :data:`TERMS_MIN`) with ``ratios[T] <= TAIL rtol``
+    (``ratios[T]``: a table's largest truncation bound after T terms relative to its g); all
+    :data:`TERMS` at and below :data:`FULL_TERMS_RTOL` or when none qualifies."""
+    if not rtol > FULL_TERMS_RTOL:
         return TERMS
+    ok = np.flatnonzero(ratios[TERMS_MIN:TERMS] <= TAIL * rtol)
+    return int(TERMS_MIN + ok[0]) if ok.size else TERMS
+
+
+#: relative rounding allowed in a stored moment (the children's recombination: <= 13 levels of
+#: 20-term binomial sums), added to |M_n| in :func:`block_tails`
+MOMENT_SLACK = 1e-12
+
+
+def block_tails(moments: np.ndarray, tree: FarTree, columns: np.ndarray) -> np.ndarray:
+    """``(blocks + 1, k, TERMS + 1)``: per block and column, the truncation bound after T terms
+    per unit kernel bound K (the module docstring), from the block's own moments:
+    ``Σ_{T <= n < TERMS} ρ^n (|M_n| + MOMENT_SLACK S) + ρ^TERMS/(1 - ρ) S``, ``S = Σ_block
+    |c_j|`` (``|M_n| <= S`` beyond the stored terms). ``moments``: (blocks + 1, k, TERMS);
+    ``columns``: (k, nodes). Far tighter than ``K ρ^T/(1 - ρ) S`` where the weights cancel
+    inside a block."""
     ratio = 1.0 / (2 * SEPARATION + 1)
-    need = math.ceil(math.log(TAIL * rtol / max(excess, 1.0) / tail_factor(0))
-                     / math.log(ratio))
-    return int(min(TERMS, max(TERMS_MIN, need)))
+    k = columns.shape[0]
+    S = np.zeros((moments.shape[0], k))
+    absc = np.abs(columns)
+    for L in range(1, tree.levels + 1):
+        idx = tree.finest >> (tree.levels - L)
+        lo = int(tree.offsets[L])
+        for j in range(k):
+            S[lo:lo + 2**L, j] = np.bincount(idx, weights=absc[j], minlength=2**L)
+    pw = ratio ** np.arange(TERMS)
+    terms = pw[None, None, :] * (np.abs(moments) + MOMENT_SLACK * S[:, :, None])
+    out = np.empty((moments.shape[0], k, TERMS + 1))
+    out[:, :, TERMS] = ratio**TERMS / (1.0 - ratio) * S
+    for n in range(TERMS - 1, -1, -1):
+        out[:, :, n] = out[:, :, n + 1] + terms[:, :, n]
+    return out
 
 
-def tail_factor(terms: int) -> float:
-    """``Σ_{n >= terms} ρ^n = ρ^terms / (1 - ρ)``, ``ρ = 1/(2 SEPARATION + 1)``: a block's
-    truncation error after ``terms`` Taylor terms is at most this times ``K Σ_block |w_j|``,
-    ``K`` the largest modulus of the kernel on the closed unit disk.
-
-    Why: an accepted block's centre ``t0 = c/x`` lies a distance ``d = 1 - t0 = (x - c)/x``
-    below the branch point ``t = 1``, and ``x - c >= (2 SEPARATION + 1) h``; the kernels
-    (``asin``, ``acos``, ``sqrt(1 - t²)``, ``(1 - t²)^(3/2)``, ``Φ``) are analytic in the
-    open unit disk and bounded on the closed one (``K = π/2, π/2, √2, 2√2, (√2 + π/2)/2``), and
-    the disk ``|t - t0| <= d`` lies inside it, so Cauchy's estimate bounds the Taylor
-    coefficients by ``K/d^n``: the scaled ones by ``K (σ/d)^n <= K ρ^n`` (``σ = h/x``). The
-    moments obey ``|M_n| <= Σ_block |w_j|`` (``|u_j| <= 1``). Not for the cusp sum ``C``
-    (unbounded kernel; it only steers the Newton steps)."""
-    ratio = 1.0 / (2 * SEPARATION + 1)
-    return ratio**terms / (1.0 - ratio)
+def far_bound(tree: FarTree, tails: np.ndarray, x: np.ndarray, terms: np.ndarray | int
+              ) -> np.ndarray:
+    """``(k, x.size)`` or ``(k, len(terms), x.size)``: the truncation bound (per unit K) of
+    the far blocks of every point of ``x`` (1D, ``0 < x <= r_end``) after ``terms`` terms, the
+    sum of :func:`block_tails` over the point's used slots (the near nodes are exact)."""
+    t = np.atleast_1d(np.asarray(terms, dtype=np.int64))
+    out = np.zeros((tails.shape[1], t.size, x.size))
+    for start in range(0, x.size, _ROWS):
+        sl = slice(start, start + _ROWS)
+        row, _ = _slots(tree, x[sl])
+        # (the unused slots' zero row gives zeros)
+        out[:, :, sl] = tails[row][:, :, :, t].sum(axis=1).transpose(1, 2, 0)
+    return out[:, 0, :] if np.ndim(terms) == 0 else out
 
 
 def layout(nodes: np.ndarray, r_end: float, max_levels: int = LEVELS_MAX
@@ -234,7 +264,7 @@ def sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool, terms: i
          ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """``(A, C, P)`` of the module docstring at the points ``x`` (1D, ``0 < x <= r_end``);
     ``C`` and ``P`` only when asked (else None); each block's Taylor series truncated after
-    ``terms`` terms (:func:`terms_for`; at most :data:`TERMS`). Each point's value is
+    ``terms`` terms (:func:`terms_from_ratios`; at most :data:`TERMS`). Each point's value is
     independent of the others in ``x``."""
     if not 1 <= terms <= TERMS:
         raise ValueError(f"terms must lie in 1..{TERMS}, got {terms}")

@@ -83,7 +83,7 @@ def sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray,
     (:data:`ACOS`: ``acos(b/x)``; :data:`ROOT`: ``sqrt(x² - b²)``; :data:`ROOT3`:
     ``(x² - b²)^(3/2)/3``) at the points ``x`` (1D, ``0 < x <= r_end``): shape (len(cols),
     x.size); each block's series truncated after ``terms`` Taylor terms
-    (:func:`._far.terms_for`, at most :data:`._far.TERMS`)."""
+    (:func:`._far.terms_from_ratios`, at most :data:`._far.TERMS`)."""
     if not 1 <= terms <= _far.TERMS:
         raise ValueError(f"terms must lie in 1..{_far.TERMS}, got {terms}")
     out = np.empty((cols.size, x.size))

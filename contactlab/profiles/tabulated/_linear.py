@@ -102,30 +102,32 @@ class _LinearTransform(_TableBase):
         A, _, P = _far.sums(tree, flat, False, True, terms)
         self.__dict__["_far_primed"] = (flat.tobytes(), A, P, terms)
 
-    def _far_truncation(self, x: np.ndarray, kind: str, tail: float | None = None
-                          ) -> np.ndarray:
+    def _far_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
+                        ) -> np.ndarray:
         """Bound of the tree's Taylor truncation in ``g`` (``kind`` "g") or ``∫_0^x g``
         ("int") at ``x`` with the current call's terms (:meth:`_tree_terms`): zeros with all
-        :data:`._far.TERMS` terms (their truncation is below the rounding) or without the tree
-        (``tail``: the bound per unit :func:`._far.tail_factor`, whatever the terms).
-        :func:`._far.tail_factor` times ``K Σ|w_j|`` over the nodes up to x (a superset of
-        the far blocks' nodes), times x (g) or x² (∫g); ``K`` = π/2 (asin) or
-        (√2 + π/2)/2 (Φ)."""
+        :data:`._far.TERMS` terms (their truncation is below the rounding) or without the tree.
+        The sum over x's far blocks of :func:`._far.block_tails` (from each block's own
+        moments) times ``K`` (π/2 for asin, (√2 + π/2)/2 for Φ) and x (g) or x² (∫g).
+        ``terms`` (an array): the bounds for each of those counts, shape (len(terms), x.size)."""
         x = np.asarray(x, dtype=float)
-        terms = self._tree_terms() if tail is None else 0
-        tree = self._far_tree() if terms < _far.TERMS else None
+        count = self._tree_terms() if terms is None else 0
+        tree = self._far_tree() if count < _far.TERMS else None
         if tree is None:
-            return np.zeros(x.shape)
-        cum = self.__dict__.get("_far_absum")
-        if cum is None:
-            cum = np.concatenate([np.zeros(1), np.cumsum(np.abs(tree.weights))])
-            self.__dict__["_far_absum"] = cum
-        xa = np.maximum(x, 0.0)
-        W = cum[np.searchsorted(tree.nodes, xa, side="right")]
-        factor = _far.tail_factor(terms) if tail is None else tail
-        if kind == "g":
-            return xa * (0.5 * np.pi * factor) * W
-        return xa * xa * (0.5 * (np.sqrt(2.0) + 0.5 * np.pi) * factor) * W
+            return np.zeros(x.shape if terms is None else (len(terms), *x.shape))
+        tails = self.__dict__.get("_far_tails")
+        if tails is None:
+            tails = _far.block_tails(tree.moments[:, None, :], tree, tree.weights[None, :])
+            self.__dict__["_far_tails"] = tails
+        flat = x.ravel()
+        pos = flat > 0
+        b = np.zeros((1 if terms is None else len(terms), flat.size))
+        if np.any(pos):
+            b[:, pos] = _far.far_bound(tree, tails, flat[pos],
+                                       np.array([count]) if terms is None else terms)[0]
+        k = 0.5 * np.pi if kind == "g" else 0.5 * (np.sqrt(2.0) + 0.5 * np.pi)
+        b *= k * (flat if kind == "g" else flat * flat)
+        return b[0].reshape(x.shape) if terms is None else b.reshape(len(terms), *x.shape)
 
     def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
                       ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:

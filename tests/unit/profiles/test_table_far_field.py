@@ -146,7 +146,7 @@ def test_solve_agrees_with_the_node_by_node_route(control, rtol):
     for name in ("radius", "depth", "force"):
         x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
         # the default rtol: the same Newton steps on sums equal to rounding, the same root to
-        # rounding; a loose one: the tree's Taylor series truncated for rtol (terms_for),
+        # rounding; a loose one: the tree's Taylor series truncated for rtol (terms_from_ratios),
         # within rtol
         tol = TABLE_FAR_FIELD_SUMS if rtol <= _far.FULL_TERMS_RTOL else rtol
         assert np.max(np.abs(x / y - 1)) <= tol, name

@@ -61,15 +61,19 @@ def _points(tab: Tabulated, n: int = 200) -> np.ndarray:
 
 
 def test_term_counts_fall_as_rtol_loosens_and_the_default_keeps_all():
-    counts = [_far.terms_for(rt) for rt in [1e-12, 1e-10, 1e-8, 1e-6, 1e-3, 1e-2, 0.1, 1.0]]
+    ratios = 5.0 ** -np.arange(_far.TERMS + 1.0)
+    rtols = [1e-12, 1e-10, 1e-8, 1e-6, 1e-3, 1e-2, 0.1, 1.0]
+    counts = [_far.terms_from_ratios(rt, ratios) for rt in rtols]
     assert counts[:2] == [_far.TERMS, _far.TERMS]
     assert counts == sorted(counts, reverse=True)
-    assert counts[3:6] == [11, 6, 5]
     assert min(counts) == _far.TERMS_MIN
-    for rt in [1e-9, 1e-6, 1e-3, 1e-2]:       # the bound it is chosen by
-        assert _far.tail_factor(_far.terms_for(rt)) <= _far.TAIL * rt
-        assert _far.tail_factor(_far.terms_for(rt, 1e3)) <= _far.TAIL * rt / 1e3
-    assert _far.terms_for(1e-2, np.inf) == _far.TERMS
+    for rt, n in zip(rtols[2:], counts[2:]):
+        assert ratios[n] <= _far.TAIL * rt and (n == _far.TERMS_MIN
+                                                 or ratios[n - 1] > _far.TAIL * rt)
+    assert _far.terms_from_ratios(1e-2, np.full(_far.TERMS + 1, np.inf)) == _far.TERMS
+    tab = _sphere("linear")                     # the sampled sphere: 9, 5, 4 terms
+    assert [_far.terms_from_ratios(rt, tab._tree_excess()) for rt in (1e-6, 1e-3, 1e-2)] \
+        == [9, 5, 4]
 
 
 @pytest.mark.parametrize("terms", [4, 6, 8, 12, 15])
@@ -103,7 +107,7 @@ def test_routes_give_the_same_bits_at_every_term_count(monkeypatch, terms):
 @pytest.mark.parametrize("terms", [4, 6, 8, 12])
 def test_truncation_bound_covers_the_truncation(terms):
     """The tree's sums after ``terms`` terms against its 20-term sums (whose own truncation,
-    below 2e-14 of Σ|w|, and rounding are far below the bound): within tail_factor K Σ|w|."""
+    below 2e-14 of Σ|w|, and rounding are far below the bound): within the bound."""
     for kind in ("linear", "cubic"):
         tab = _rough(kind)
         x = _points(tab)
@@ -186,7 +190,7 @@ def test_default_rtol_keeps_the_bits_of_all_terms(kind):
 @pytest.mark.parametrize("kind", ["linear", "cubic"])
 @pytest.mark.parametrize("control", ["depth", "force"])
 def test_a_loose_rtol_reaches_every_tree_pass(monkeypatch, kind, control):
-    """Regression: every tree pass of a contact at rtol 1e-6 takes terms_for(1e-6) terms (the
+    """Regression: every tree pass of a contact at rtol 1e-6 takes its fewer terms (the
     force control's depth at the solved radii included: profile._g without a tree setting of
     its own)."""
     seen = []
@@ -210,13 +214,13 @@ def test_a_loose_rtol_reaches_every_tree_pass(monkeypatch, kind, control):
     tab._tree_excess()          # (set up once per table, on 64 radii with all terms)
     seen.clear()
     c.normal(**{control: vals})
-    assert seen and set(seen) == {_far.terms_for(1e-6, tab._tree_excess())} != {_far.TERMS}
+    assert seen and set(seen) == {_far.terms_from_ratios(1e-6, tab._tree_excess())} != {_far.TERMS}
     assert "_far_terms" not in tab.__dict__      # (the setting ends with the call)
 
 
 def test_a_call_without_rtol_keeps_the_enclosing_calls_terms():
     tab = _sphere("linear")
-    loose, mid = (_far.terms_for(rt, tab._tree_excess()) for rt in (1e-3, 1e-6))
+    loose, mid = (_far.terms_from_ratios(rt, tab._tree_excess()) for rt in (1e-3, 1e-6))
     assert loose < mid < _far.TERMS
     with tab._tree_rtol(1e-3):
         assert tab._tree_terms() == loose
@@ -231,9 +235,9 @@ def test_a_call_without_rtol_keeps_the_enclosing_calls_terms():
 
 
 def test_a_table_whose_jumps_cancel_takes_more_terms():
-    """The noisy random table's slope jumps sum to 10^4 times its g: the same rtol takes more
-    terms there than on the sampled sphere, and its estimate stays within rtol."""
+    """The noisy random table's slope jumps cancel (their Σ|w| is 10^4 times its g): its bound
+    relative to g is far above the sampled sphere's, so the same rtol takes more terms."""
     smooth, noisy = _sphere("linear"), _random("linear")
-    assert noisy._tree_excess() > 1e3 * smooth._tree_excess()
+    assert noisy._tree_excess()[8] > 100 * smooth._tree_excess()[8]
     with smooth._tree_rtol(1e-3), noisy._tree_rtol(1e-3):
         assert noisy._tree_terms() > smooth._tree_terms()
