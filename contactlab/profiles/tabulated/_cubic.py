@@ -432,10 +432,11 @@ class _CubicTransform(_TableBase):
         flat = x.ravel()
         pos = flat > 0
         nt = 1 if terms is None else len(terms)
+        cols = [0, 1, 4] if kind == "g" else [0, 1, 8, 9, 12]
         W = np.zeros((tails.shape[1], nt, flat.size))
         if np.any(pos):
-            W[:, :, pos] = _far.far_bound(ct.tree, tails, flat[pos],
-                                          np.array([count]) if terms is None else terms)
+                W[np.ix_(np.array(cols), np.arange(nt), np.flatnonzero(pos))] = _far.far_bound(
+                ct.tree, tails, flat[pos], np.array([count]) if terms is None else terms, cols)
         xa = np.maximum(flat, 0.0)
         k_acos, k_root = 0.5 * np.pi, np.sqrt(2.0)
         x2 = xa * xa

@@ -136,7 +136,8 @@ MOMENT_SLACK = 1e-12
 
 
 def block_tails(moments: np.ndarray, tree: FarTree, columns: np.ndarray) -> np.ndarray:
-    """``(blocks + 1, k, TERMS + 1)``: per block and column, the truncation bound after T terms
+    """``(TERMS + 1, k, blocks + 1)``: per T and column, each block's truncation bound after T
+    terms
     per unit kernel bound K (the module docstring), from the block's own moments:
     ``Σ_{T <= n < TERMS} ρ^n (|M_n| + MOMENT_SLACK S) + ρ^TERMS/(1 - ρ) S``, ``S = Σ_block
     |c_j|`` (``|M_n| <= S`` beyond the stored terms). ``moments``: (blocks + 1, k, TERMS);
@@ -153,26 +154,27 @@ def block_tails(moments: np.ndarray, tree: FarTree, columns: np.ndarray) -> np.n
             S[lo:lo + 2**L, j] = np.bincount(idx, weights=absc[j], minlength=2**L)
     pw = ratio ** np.arange(TERMS)
     terms = pw[None, None, :] * (np.abs(moments) + MOMENT_SLACK * S[:, :, None])
-    out = np.empty((moments.shape[0], k, TERMS + 1))
-    out[:, :, TERMS] = ratio**TERMS / (1.0 - ratio) * S
+    out = np.empty((TERMS + 1, k, moments.shape[0]))
+    out[TERMS] = (ratio**TERMS / (1.0 - ratio) * S).T
     for n in range(TERMS - 1, -1, -1):
-        out[:, :, n] = out[:, :, n + 1] + terms[:, :, n]
+        out[n] = out[n + 1] + terms[:, :, n].T
     return out
 
 
-def far_bound(tree: FarTree, tails: np.ndarray, x: np.ndarray, terms: np.ndarray | int
-              ) -> np.ndarray:
-    """``(k, x.size)`` or ``(k, len(terms), x.size)``: the truncation bound (per unit K) of
-    the far blocks of every point of ``x`` (1D, ``0 < x <= r_end``) after ``terms`` terms, the
-    sum of :func:`block_tails` over the point's used slots (the near nodes are exact)."""
-    t = np.atleast_1d(np.asarray(terms, dtype=np.int64))
-    out = np.zeros((tails.shape[1], t.size, x.size))
+def far_bound(tree: FarTree, tails: np.ndarray, x: np.ndarray, terms: np.ndarray,
+              cols: list[int]) -> np.ndarray:
+    """``(len(cols), len(terms), x.size)``: the truncation bound (per unit K) of the far blocks
+    of every point of ``x`` (1D, ``0 < x <= r_end``) after each count of ``terms``, for the
+    columns ``cols``: the sum of :func:`block_tails` over the point's used slots (the near
+    nodes are exact; an unused slot's zero row adds zero), one gather per column and count."""
+    out = np.zeros((len(cols), terms.size, x.size))
     for start in range(0, x.size, _ROWS):
         sl = slice(start, start + _ROWS)
         row, _ = _slots(tree, x[sl])
-        # (the unused slots' zero row gives zeros)
-        out[:, :, sl] = tails[row][:, :, :, t].sum(axis=1).transpose(1, 2, 0)
-    return out[:, 0, :] if np.ndim(terms) == 0 else out
+        for i, col in enumerate(cols):
+            for m, n in enumerate(terms.tolist()):
+                out[i, m, sl] = np.take(tails[n, col], row).sum(axis=1)
+    return out
 
 
 def layout(nodes: np.ndarray, r_end: float, max_levels: int = LEVELS_MAX

@@ -124,7 +124,7 @@ class _LinearTransform(_TableBase):
         b = np.zeros((1 if terms is None else len(terms), flat.size))
         if np.any(pos):
             b[:, pos] = _far.far_bound(tree, tails, flat[pos],
-                                       np.array([count]) if terms is None else terms)[0]
+                                       np.array([count]) if terms is None else terms, [0])[0]
         k = 0.5 * np.pi if kind == "g" else 0.5 * (np.sqrt(2.0) + 0.5 * np.pi)
         b *= k * (flat if kind == "g" else flat * flat)
         return b[0].reshape(x.shape) if terms is None else b.reshape(len(terms), *x.shape)
