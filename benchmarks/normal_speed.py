@@ -282,15 +282,15 @@ def table_front() -> None:
                 for b in backends:
                     for ctl, vals in (("depth", d), ("force", F_ref)):
                         def call(ctl=ctl, vals=vals, b=b, cv=cv, full=bool(var)):
-                            saved = normal_kernels._state["backend"], _far.terms_for
+                            saved = normal_kernels._state["backend"], _far.terms_from_ratios
                             normal_kernels.set_backend(b)
                             if full:
-                                _far.terms_for = lambda *args: _far.TERMS
+                                _far.terms_from_ratios = lambda *args: _far.TERMS
                             try:
                                 return cv.normal(**{ctl: vals * rng.uniform(0.99, 1.01)})
                             finally:
                                 normal_kernels._state["backend"] = saved[0]
-                                _far.terms_for = saved[1]
+                                _far.terms_from_ratios = saved[1]
                         fns[(var, b, ctl)] = call
             t = interleaved(fns, rounds=3)
             for var in variants:
