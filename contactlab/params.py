@@ -86,7 +86,7 @@ CACHE_KEYS = frozenset({
     "_grid_cache", "_node_H", "_coarse_idx", "_cubic_cols", "_table_pressure_cache",
     "_fit_tip_tables", "_critical_memo", "_jkr_branches", "_xp_params", "_radius_bound_cache",
     "_far_cache", "_cubic_tree_cache", "_cubic_pair", "_scalar_table_parts", "_node_gp",
-    "_cubic_primed", "_node_batches", "_far_primed", "_far_terms",
+    "_cubic_primed", "_node_batches", "_far_primed",
     "_far_excess", "_far_tails",
 })
 

@@ -7,6 +7,7 @@ share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabul
 from __future__ import annotations
 
 import contextlib
+import threading
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, cast
 
@@ -54,13 +55,25 @@ def _clip_index(k: np.ndarray, lo: int, hi: int) -> np.ndarray:
     return np.minimum(np.maximum(k, lo), hi)
 
 
+#: per thread: ``id(table) -> Taylor terms`` of the table's call in progress
+#: (:meth:`_TableBase._tree_rtol`); a thread's setting is never seen by another thread's call
+_CALL_TERMS = threading.local()
+
+
+def _call_terms() -> dict[int, int]:
+    terms = getattr(_CALL_TERMS, "terms", None)
+    if terms is None:
+        terms = _CALL_TERMS.terms = {}
+    return cast("dict[int, int]", terms)
+
+
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
 
     def _tree_terms(self) -> int:
         """Taylor terms per block of the far-field trees in the current call (set from the
         call's rtol by :meth:`_tree_rtol`; all :data:`._far.TERMS` outside one)."""
-        return int(self.__dict__.get("_far_terms", _far.TERMS))
+        return int(_call_terms().get(id(self), _far.TERMS))
 
     def _tree_excess(self) -> np.ndarray:
         """``ratios[T]``, T = 0 .. :data:`._far.TERMS`: the largest truncation bound of the
@@ -89,8 +102,10 @@ class _TableBase(Profile):
         """Inside: the far-field trees take the Taylor terms of ``rtol``
         (:func:`._far.terms_from_ratios`), and the results' error estimates carry their truncation
         bound. ``rtol=None`` keeps the setting of an enclosing call (the table's :attr:`rtol`
-        outside one); on exit the enclosing setting is back."""
-        prev = self.__dict__.get("_far_terms")
+        outside one); on exit the enclosing setting is back. The setting belongs to the calling
+        thread: another thread's call on the same table keeps its own."""
+        calls, key = _call_terms(), id(self)
+        prev = calls.get(key)
         if rtol is None and prev is not None:
             yield
             return
@@ -98,20 +113,20 @@ class _TableBase(Profile):
         terms = _far.TERMS
         if rtol > _far.FULL_TERMS_RTOL:
             if prev is not None:
-                self.__dict__.pop("_far_terms")
+                del calls[key]
             try:
                 terms = _far.terms_from_ratios(rtol, self._tree_excess())
             finally:
                 if prev is not None:
-                    self.__dict__["_far_terms"] = prev
-        self.__dict__["_far_terms"] = terms
+                    calls[key] = prev
+        calls[key] = terms
         try:
             yield
         finally:
             if prev is None:
-                self.__dict__.pop("_far_terms", None)
+                calls.pop(key, None)
             else:
-                self.__dict__["_far_terms"] = prev
+                calls[key] = prev
 
     r: np.ndarray
     f: np.ndarray

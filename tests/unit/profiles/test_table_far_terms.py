@@ -17,7 +17,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.profiles import Tabulated
-from contactlab.profiles.tabulated import _far, _far_cols
+from contactlab.profiles.tabulated import _base, _far, _far_cols
 from tests.tolerances import TABLE_FAR_FIELD_SUMS
 
 R = 0.01
@@ -112,14 +112,14 @@ def test_truncation_bound_covers_the_truncation(terms):
         tab = _rough(kind)
         x = _points(tab)
         full = (tab._g_closed_form(x), tab._g_integral_closed_form(x))
-        tab.__dict__["_far_terms"] = terms
+        _base._call_terms()[id(tab)] = terms
         try:
             few = (tab._g_closed_form(x), tab._g_integral_closed_form(x))
             trunc = (tab._cubic_truncation(x, "g"), tab._cubic_truncation(x, "int")) \
                 if kind == "cubic" else (tab._far_truncation(x, "g"),
                                          tab._far_truncation(x, "int"))
         finally:
-            tab.__dict__.pop("_far_terms")
+            _base._call_terms().pop(id(tab))
         for f, v, b in zip(full, few, trunc):
             assert np.all(b >= 0) and np.any(b > 0)
             assert np.all(np.abs(v - f) <= b), kind
@@ -215,7 +215,7 @@ def test_a_loose_rtol_reaches_every_tree_pass(monkeypatch, kind, control):
     seen.clear()
     c.normal(**{control: vals})
     assert seen and set(seen) == {_far.terms_from_ratios(1e-6, tab._tree_excess())} != {_far.TERMS}
-    assert "_far_terms" not in tab.__dict__      # (the setting ends with the call)
+    assert id(tab) not in _base._call_terms()     # (the setting ends with the call)
 
 
 def test_a_call_without_rtol_keeps_the_enclosing_calls_terms():
@@ -241,3 +241,28 @@ def test_a_table_whose_jumps_cancel_takes_more_terms():
     assert noisy._tree_excess()[8] > 100 * smooth._tree_excess()[8]
     with smooth._tree_rtol(1e-3), noisy._tree_rtol(1e-3):
         assert noisy._tree_terms() > smooth._tree_terms()
+
+
+def test_a_calls_terms_belong_to_its_thread():
+    """The terms of a call in progress are the calling thread's: a call on the same table from
+    another thread meanwhile (at the default rtol) takes all the terms and gives the bits it
+    gives alone."""
+    import threading
+    tab = _sphere("cubic")
+    x = _points(tab)
+    alone = tab._g_closed_form(x)
+    seen: dict = {}
+
+    def other():
+        seen["terms"] = tab._tree_terms()
+        with tab._tree_rtol(None):
+            seen["g"] = tab._g_closed_form(x)
+
+    with tab._tree_rtol(1e-2):
+        assert tab._tree_terms() < _far.TERMS
+        t = threading.Thread(target=other)
+        t.start()
+        t.join()
+        assert tab._tree_terms() < _far.TERMS
+    assert seen["terms"] == _far.TERMS
+    assert seen["g"].tobytes() == alone.tobytes()
