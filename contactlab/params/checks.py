@@ -83,6 +83,7 @@ CACHE_KEYS = frozenset({
     "_fit_tip_tables", "_critical_memo", "_jkr_branches", "_xp_params", "_radius_bound_cache",
     "_far_cache", "_cubic_tree_cache", "_cubic_pair", "_scalar_table_parts", "_node_gp",
     "_cubic_primed", "_node_batches", "_far_primed",
+    "_far_excess", "_far_tails",
 })
 
 

@@ -7,12 +7,15 @@ share. Private: the public class is :class:`~contactlab.profiles.tabulated.Tabul
 from __future__ import annotations
 
 import contextlib
-from typing import TYPE_CHECKING, Any
+import threading
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ...errors import OutsideTheoryError
 from ..base import Profile
+from . import _far
 
 #: elements per dense (x, node) block of the node sums
 _CHUNK = 2_000_000
@@ -52,8 +55,78 @@ def _clip_index(k: np.ndarray, lo: int, hi: int) -> np.ndarray:
     return np.minimum(np.maximum(k, lo), hi)
 
 
+#: per thread: ``id(table) -> Taylor terms`` of the table's call in progress
+#: (:meth:`_TableBase._tree_rtol`); a thread's setting is never seen by another thread's call
+_CALL_TERMS = threading.local()
+
+
+def _call_terms() -> dict[int, int]:
+    terms = getattr(_CALL_TERMS, "terms", None)
+    if terms is None:
+        terms = _CALL_TERMS.terms = {}
+    return cast("dict[int, int]", terms)
+
+
 class _TableBase(Profile):
     """The table's attributes and shared helpers; no hook of :class:`Profile` is overridden."""
+
+    def _tree_terms(self) -> int:
+        """Taylor terms per block of the far-field trees in the current call (set from the
+        call's rtol by :meth:`_tree_rtol`; all :data:`._far.TERMS` outside one)."""
+        return int(_call_terms().get(id(self), _far.TERMS))
+
+    def _tree_excess(self) -> np.ndarray:
+        """``ratios[T]``, T = 0 .. :data:`._far.TERMS`: the largest truncation bound of the
+        trees after T terms relative to ``|g|`` on 64 radii spread geometrically up to the
+        table's end (g with all terms; inf where g vanishes there, zeros without a tree), set up
+        once: :func:`._far.terms_from_ratios` picks the terms of an rtol from them (a table
+        whose weights cancel inside blocks less takes more terms)."""
+        cached = self.__dict__.get("_far_excess")
+        if cached is None:
+            x = float(self.r[-1]) * np.geomspace(2.0**-12, 1.0, 64)
+            counts = np.arange(_far.TERMS + 1)
+            cubic = self._spline is not None
+            tree = self._cubic_tree() if cubic else self._far_tree()
+            cached = np.zeros(counts.size)
+            if tree is not None:
+                bound = (self._cubic_truncation(x, "g", counts) if cubic
+                         else self._far_truncation(x, "g", counts))
+                g = np.abs(self._g_closed_form(x))
+                cached = (np.max(bound / g, axis=1) if bool(np.all(g > 0))
+                          else np.full(counts.size, np.inf))
+            self.__dict__["_far_excess"] = cached
+        return cast(np.ndarray, cached)
+
+    @contextlib.contextmanager
+    def _tree_rtol(self, rtol: float | None) -> Iterator[None]:
+        """Inside: the far-field trees take the Taylor terms of ``rtol``
+        (:func:`._far.terms_from_ratios`), and the results' error estimates carry their truncation
+        bound. ``rtol=None`` keeps the setting of an enclosing call (the table's :attr:`rtol`
+        outside one); on exit the enclosing setting is back. The setting belongs to the calling
+        thread: another thread's call on the same table keeps its own."""
+        calls, key = _call_terms(), id(self)
+        prev = calls.get(key)
+        if rtol is None and prev is not None:
+            yield
+            return
+        rtol = self.rtol if rtol is None else rtol
+        terms = _far.TERMS
+        if rtol > _far.FULL_TERMS_RTOL:
+            if prev is not None:
+                del calls[key]
+            try:
+                terms = _far.terms_from_ratios(rtol, self._tree_excess())
+            finally:
+                if prev is not None:
+                    calls[key] = prev
+        calls[key] = terms
+        try:
+            yield
+        finally:
+            if prev is None:
+                calls.pop(key, None)
+            else:
+                calls[key] = prev
 
     r: np.ndarray
     f: np.ndarray
@@ -79,6 +152,18 @@ class _TableBase(Profile):
         def _g_and_slope(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
 
         def _g_integral_closed_form(self, a: np.ndarray) -> np.ndarray: ...
+
+        def _g_closed_form(self, x: np.ndarray) -> np.ndarray: ...
+
+        def _cubic_tree(self) -> Any: ...
+
+        def _far_tree(self) -> Any: ...
+
+        def _cubic_truncation(self, x: np.ndarray, kind: str,
+                              terms: np.ndarray | None = None) -> np.ndarray: ...
+
+        def _far_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
+                            ) -> np.ndarray: ...
 
         def _g_slope_integral(self, x: np.ndarray
                               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...

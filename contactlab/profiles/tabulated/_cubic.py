@@ -15,7 +15,7 @@ from typing import cast
 import numpy as np
 
 from ...numeric.fixed_sums import row_sums, weighted_row_sums
-from . import _far_cols
+from . import _far, _far_cols
 from ._base import _CHUNK, _TableBase, _clip_index, _rows_per_chunk, _sorted, _unsorted
 
 _GL_HI = np.polynomial.legendre.leggauss(12)
@@ -366,16 +366,17 @@ class _CubicTransform(_TableBase):
         kept for the second at the same points (a column's sums do not depend on which other
         columns share the call: the same bits)."""
         A, R, R3k = _far_cols.ACOS, _far_cols.ROOT, _far_cols.ROOT3
+        terms = self._tree_terms()
         primed = self.__dict__.get("_cubic_primed")
         if primed is not None and not (kind == "g" and with_slope):
             # the column sums at a force solve's radii (_cubic_prime), for the depth and the
             # ∫g its caller asks next at the same radii (12 columns: not g's slope columns 6
             # and 7, which neither needs); a call at other points drops them
-            key = xv.tobytes()
+            key = (xv.tobytes(), terms)
             out = primed.get(key)
             if out is None and primed.get("fill"):
                 out = _far_cols.sums(ct, xv, _PRIMED_COLS,
-                                     np.array([A] * 4 + [R] * 6 + [R3k] * 2))
+                                     np.array([A] * 4 + [R] * 6 + [R3k] * 2), terms)
                 primed[key] = out
             if out is not None:
                 if kind == "g":
@@ -384,11 +385,11 @@ class _CubicTransform(_TableBase):
             self.__dict__.pop("_cubic_primed", None)
         memo = self.__dict__.get("_cubic_pair")
         if memo is not None:
-            key = xv.tobytes()
+            key = (xv.tobytes(), terms)
             out = memo.get(key)
             if out is None:
                 out = _far_cols.sums(
-                    ct, xv, np.arange(14), np.array([A] * 4 + [R] * 8 + [R3k] * 2))
+                    ct, xv, np.arange(14), np.array([A] * 4 + [R] * 8 + [R3k] * 2), terms)
                 # every chunk of the pass is kept (up to _PRIME_MAX points; beyond, the last)
                 if sum(v.shape[1] for v in memo.values()) + xv.size > _PRIME_MAX:
                     memo.clear()
@@ -404,10 +405,48 @@ class _CubicTransform(_TableBase):
             cols = np.arange(14)
             cols = np.concatenate([cols[:4], cols[8:14]])
             kinds = np.array([A] * 4 + [R] * 4 + [R3k] * 2)
-        out = _far_cols.sums(ct, xv, cols, kinds)
+        out = _far_cols.sums(ct, xv, cols, kinds, terms)
         if kind == "g":
             return out[:4], out[4:], None
         return out[:4], out[4:8], out[8:10]
+
+    def _cubic_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
+                          ) -> np.ndarray:
+        """Bound of the column tree's Taylor truncation in ``g`` (``kind`` "g") or
+        ``∫_0^x g`` ("int") at ``x`` with the current call's terms (:meth:`_tree_terms`): zeros
+        with all :data:`._far.TERMS` terms or without the tree. Each signed column's far sum
+        is off by at most ``K`` (π/2 for acos, √2 for the root, 2√2 for its cube) times the
+        sum over x's far blocks of :func:`._far.block_tails` (from each block's own moments),
+        taken with the factors of :meth:`_cubic_sums`' combination (g:
+        ``x [T0 + x² T1/2 + x S0]``; ∫g: ``x² T0/2 + x⁴ T1/8 + x (S0 + 13x²/24 S1) + x³
+        R3/3``). ``terms`` (an array): the bounds for each of those counts."""
+        x = np.asarray(x, dtype=float)
+        count = self._tree_terms() if terms is None else 0
+        ct = self._cubic_tree() if count < _far.TERMS else None
+        if ct is None:
+            return np.zeros(x.shape if terms is None else (len(terms), *x.shape))
+        tails = ct.cache.get("tails")
+        if tails is None:
+            tails = _far.block_tails(ct.moments, ct.tree, ct.columns)
+            ct.cache["tails"] = tails
+        flat = x.ravel()
+        pos = flat > 0
+        nt = 1 if terms is None else len(terms)
+        cols = [0, 1, 4] if kind == "g" else [0, 1, 8, 9, 12]
+        W = np.zeros((tails.shape[1], nt, flat.size))
+        if np.any(pos):
+                W[np.ix_(np.array(cols), np.arange(nt), np.flatnonzero(pos))] = _far.far_bound(
+                ct.tree, tails, flat[pos], np.array([count]) if terms is None else terms, cols)
+        xa = np.maximum(flat, 0.0)
+        k_acos, k_root = 0.5 * np.pi, np.sqrt(2.0)
+        x2 = xa * xa
+        if kind == "g":
+            b = xa * (k_acos * (W[0] + 0.5 * x2 * W[1]) + k_root * xa * W[4])
+        else:
+            b = (k_acos * (0.5 * x2 * W[0] + 0.125 * x2 * x2 * W[1])
+                 + k_root * xa * (W[8] + 13.0 / 24.0 * x2 * W[9])
+                 + 2.0 * k_root * xa * x2 / 3.0 * W[12])
+        return b[0].reshape(x.shape) if terms is None else b.reshape(nt, *x.shape)
 
     def _cubic_g_slope_integral(self, x: np.ndarray
                                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -442,7 +481,8 @@ class _CubicTransform(_TableBase):
             if not np.any(pos):
                 continue
             xv = xs[pos]
-            t0, t1, sg0, sg2, sg3, si0, si1, r30 = _far_cols.sums(ct, xv, cols, kinds)
+            t0, t1, sg0, sg2, sg3, si0, si1, r30 = _far_cols.sums(ct, xv, cols, kinds,
+                                                                   self._tree_terms())
             xv2 = xv * xv
             # g and g' (the expressions of _cubic_sums, kind "g")
             loc_val, _, loc_slope = self._cubic_local(xv, "g", True)

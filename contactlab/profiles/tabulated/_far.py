@@ -27,7 +27,15 @@ series about ``c/x``, truncated after :data:`TERMS` terms, converge like ``(2 SE
   - (n-1) a_{n-1}] / (n+1)``, ``φ_0 = Φ(t0)``.
 
 The recurrences run on the scaled coefficients ``a_n σ^n`` (no overflow), and a block
-contributes ``Σ_n a_n σ^n M_n``. The truncation error of a block is below
+contributes ``Σ_n a_n σ^n M_n``. A call at a loose rtol takes fewer terms
+(:func:`terms_from_ratios`: all of them at the default rtol 1e-10 and below) and its error
+estimate carries the rigorous truncation bound of :func:`block_tails`: the kernels are analytic
+in the open unit disk and bounded on the closed one (``K`` = π/2 for asin and acos, √2 for
+``sqrt(1 - t²)``, 2√2 for its cube, (√2 + π/2)/2 for Φ); the disk ``|t - t0| <= d``,
+``d = 1 - t0 = (x - c)/x``, lies inside it, so Cauchy's estimate bounds the scaled
+coefficients by ``K (σ/d)^n <= K ρ^n``, ``ρ = 1/(2 SEPARATION + 1)`` (``x - c >= (2
+SEPARATION + 1) h``), and a block's tail after T terms by ``K Σ_{n >= T} ρ^n |M_n|``, with
+``|M_n| <= Σ_block |w_j|`` beyond the stored terms (``|u_j| <= 1``). The truncation error of a block is below
 ``(2 SEPARATION + 1)^-TERMS`` times ``Σ |w_j|`` of the block (5^-20 = 1e-14; the terms' own
 decay, ``n^-3/2``, gains about 100x more). Measured against the node-by-node sums on even,
 random and wavy 10^4-point tables: <= 3.3e-16 of the terms' magnitudes, the rounding of those
@@ -51,9 +59,11 @@ import numpy as np
 from ...numeric import jit as _jit
 from ...numeric import normal_kernels as _normal_kernels
 
-__all__ = ["FAR_FIELD_FROM", "TERMS", "SEPARATION", "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
+__all__ = ["FAR_FIELD_FROM", "TERMS", "TERMS_MIN", "FULL_TERMS_RTOL", "TAIL", "SEPARATION",
+           "NEAR_MAX", "LEVELS_MAX", "COMPILED_FROM",
            "FarTree", "layout", "level_moments", "build", "tree_of", "sums", "far_rows",
-           "used_pairs", "slot_sums", "sequential_rows"]
+           "used_pairs", "slot_sums", "sequential_rows", "terms_from_ratios", "block_tails",
+           "far_bound"]
 
 #: slope-jump nodes from which a linear table takes the tree (below it, the node-by-node sums
 #: are as fast, and the tables of the stored path hashes keep their bits)
@@ -62,6 +72,14 @@ FAR_FIELD_FROM = 4096
 TERMS = 20
 #: accepted blocks end at least this many block widths below the block holding x
 SEPARATION = 2
+#: fewest Taylor terms a loose rtol takes (:func:`terms_from_ratios`)
+TERMS_MIN = 4
+#: rtol at and below which the tree keeps all :data:`TERMS` terms (the default rtol, 1e-10:
+#: its results keep their bits)
+FULL_TERMS_RTOL = 1e-10
+#: the truncation bound (:func:`block_tails`) is kept below this fraction of rtol times |g|
+#: (on a table's sample radii, :func:`terms_from_ratios`)
+TAIL = 0.1
 #: most nodes in SEPARATION + 1 adjacent finest blocks (the near zone); a table with denser
 #: clusters keeps the node-by-node sums (its near zone would not be short)
 NEAR_MAX = 64
@@ -100,6 +118,63 @@ class FarTree:
     moments_t: tuple           # the columns of `moments`, each contiguous
     centre: np.ndarray         # (blocks + 1,): each block's centre c (the last row: 0)
     half: np.ndarray           # (blocks + 1,): each block's half-width h (the last row: 1)
+
+
+def terms_from_ratios(rtol: float, ratios: np.ndarray) -> int:
+    """The fewest terms T (at least :data:`TERMS_MIN`) with ``ratios[T] <= TAIL rtol``
+    (``ratios[T]``: a table's largest truncation bound after T terms relative to its g); all
+    :data:`TERMS` at and below :data:`FULL_TERMS_RTOL` or when none qualifies."""
+    if not rtol > FULL_TERMS_RTOL:
+        return TERMS
+    ok = np.flatnonzero(ratios[TERMS_MIN:TERMS] <= TAIL * rtol)
+    return int(TERMS_MIN + ok[0]) if ok.size else TERMS
+
+
+#: relative rounding allowed in a stored moment (the children's recombination: <= 13 levels of
+#: 20-term binomial sums), added to |M_n| in :func:`block_tails`
+MOMENT_SLACK = 1e-12
+
+
+def block_tails(moments: np.ndarray, tree: FarTree, columns: np.ndarray) -> np.ndarray:
+    """``(TERMS + 1, k, blocks + 1)``: per T and column, each block's truncation bound after T
+    terms
+    per unit kernel bound K (the module docstring), from the block's own moments:
+    ``Σ_{T <= n < TERMS} ρ^n (|M_n| + MOMENT_SLACK S) + ρ^TERMS/(1 - ρ) S``, ``S = Σ_block
+    |c_j|`` (``|M_n| <= S`` beyond the stored terms). ``moments``: (blocks + 1, k, TERMS);
+    ``columns``: (k, nodes). Far tighter than ``K ρ^T/(1 - ρ) S`` where the weights cancel
+    inside a block."""
+    ratio = 1.0 / (2 * SEPARATION + 1)
+    k = columns.shape[0]
+    S = np.zeros((moments.shape[0], k))
+    absc = np.abs(columns)
+    for L in range(1, tree.levels + 1):
+        idx = tree.finest >> (tree.levels - L)
+        lo = int(tree.offsets[L])
+        for j in range(k):
+            S[lo:lo + 2**L, j] = np.bincount(idx, weights=absc[j], minlength=2**L)
+    pw = ratio ** np.arange(TERMS)
+    terms = pw[None, None, :] * (np.abs(moments) + MOMENT_SLACK * S[:, :, None])
+    out = np.empty((TERMS + 1, k, moments.shape[0]))
+    out[TERMS] = (ratio**TERMS / (1.0 - ratio) * S).T
+    for n in range(TERMS - 1, -1, -1):
+        out[n] = out[n + 1] + terms[:, :, n].T
+    return out
+
+
+def far_bound(tree: FarTree, tails: np.ndarray, x: np.ndarray, terms: np.ndarray,
+              cols: list[int]) -> np.ndarray:
+    """``(len(cols), len(terms), x.size)``: the truncation bound (per unit K) of the far blocks
+    of every point of ``x`` (1D, ``0 < x <= r_end``) after each count of ``terms``, for the
+    columns ``cols``: the sum of :func:`block_tails` over the point's used slots (the near
+    nodes are exact; an unused slot's zero row adds zero), one gather per column and count."""
+    out = np.zeros((len(cols), terms.size, x.size))
+    for start in range(0, x.size, _ROWS):
+        sl = slice(start, start + _ROWS)
+        row, _ = _slots(tree, x[sl])
+        for i, col in enumerate(cols):
+            for m, n in enumerate(terms.tolist()):
+                out[i, m, sl] = np.take(tails[n, col], row).sum(axis=1)
+    return out
 
 
 def layout(nodes: np.ndarray, r_end: float, max_levels: int = LEVELS_MAX
@@ -187,17 +262,20 @@ def tree_of(nodes: np.ndarray, weights: np.ndarray, r_end: float, levels: int,
                    np.concatenate([*halves, np.ones(1)]))
 
 
-def sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
+def sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool, terms: int = TERMS
          ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """``(A, C, P)`` of the module docstring at the points ``x`` (1D, ``0 < x <= r_end``);
-    ``C`` and ``P`` only when asked (else None). Each point's value is independent of the
-    others in ``x``."""
+    ``C`` and ``P`` only when asked (else None); each block's Taylor series truncated after
+    ``terms`` terms (:func:`terms_from_ratios`; at most :data:`TERMS`). Each point's value is
+    independent of the others in ``x``."""
+    if not 1 <= terms <= TERMS:
+        raise ValueError(f"terms must lie in 1..{TERMS}, got {terms}")
     a_out = np.empty(x.size)
     c_out = np.empty(x.size) if want_cusp else None
     p_out = np.empty(x.size) if want_phi else None
     for start in range(0, x.size, _ROWS):
         sl = slice(start, start + _ROWS)
-        a, c, p = _sums(tree, x[sl], want_cusp, want_phi)
+        a, c, p = _sums(tree, x[sl], want_cusp, want_phi, terms)
         a_out[sl] = a
         if c_out is not None:
             c_out[sl] = c
@@ -239,7 +317,7 @@ def kernel(compiled: bool = True) -> Callable:
     return _COMPILED["kernel"]
 
 
-def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
+def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool, terms: int
           ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     row, k_near = _slots(tree, x)
     xc = x[:, None]
@@ -253,11 +331,11 @@ def _sums(tree: FarTree, x: np.ndarray, want_cusp: bool, want_phi: bool
         c_far = np.empty(x.size) if want_cusp else None
         p_far = np.empty(x.size) if want_phi else None
         kernel(_COMPILED["on"])(x, row, asin_t, tree.centre, tree.half, tree.moments,
-                                zero_row, CA, CB, PD, PE, want_cusp, want_phi, a_far,
+                                zero_row, terms, CA, CB, PD, PE, want_cusp, want_phi, a_far,
                                 a_far if c_far is None else c_far,
                                 a_far if p_far is None else p_far)
     else:
-        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi)
+        a_far, c_far, p_far = _far_numpy(tree, x, row, used, want_cusp, want_phi, terms)
     # near nodes: finest blocks from k_near on, nodes up to x (a node at x included)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="right")
@@ -319,7 +397,7 @@ def slot_sums(vals: np.ndarray, point: np.ndarray, bounds: np.ndarray, points: i
 
 
 def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
-               want_cusp: bool, want_phi: bool
+               want_cusp: bool, want_phi: bool, terms: int = TERMS
                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The blocks' sums (A, C, P / x²) per point, slot by slot: the numpy route (reference of
     :func:`far_rows`; the same operations in the same order).
@@ -358,7 +436,7 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
         coef: dict = {0: asin_t, 1: np.divide(sig, root)}
         ts = t / sig if want_cusp else t                    # (t: unused placeholders)
         tsig, ss = (t * sig, sig * sig) if want_phi else (t, t)
-        for m in range(TERMS):
+        for m in range(terms):
             # ã_{m+1} (the cusp sum's term m needs it): CA[k] (u ã_{k+1}) + CB[k] (v ã_k)
             k = m - 1
             if k >= 0 and m + 1 not in coef:
@@ -421,13 +499,13 @@ def _far_numpy(tree: FarTree, x: np.ndarray, row: np.ndarray, used: np.ndarray,
 
 
 def far_rows(x: np.ndarray, row: np.ndarray, asin_t: np.ndarray, centre: np.ndarray,
-             half: np.ndarray, moments: np.ndarray, zero_row: int, ca: np.ndarray,
+             half: np.ndarray, moments: np.ndarray, zero_row: int, terms: int, ca: np.ndarray,
              cb: np.ndarray, pd: np.ndarray, pe: np.ndarray, want_cusp: bool, want_phi: bool,
              a_out: np.ndarray, c_out: np.ndarray, p_out: np.ndarray) -> None:
     """The blocks' sums of :func:`_far_numpy` point by point (compiled by numba): the same
     IEEE operations in the same order (the arcsines taken by numpy), unused slots skipped (they
-    add exact zeros there; the final ``+ 0.0`` makes the sign of a zero sum agree)."""
-    terms = moments.shape[1]
+    add exact zeros there; the final ``+ 0.0`` makes the sign of a zero sum agree); the first
+    ``terms`` Taylor terms of each block."""
     coef = np.empty(terms + 1)
     for i in range(x.size):
         xi = x[i]

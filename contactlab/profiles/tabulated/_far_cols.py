@@ -77,19 +77,24 @@ def kernel(compiled: bool = True) -> Callable:
     return _COMPILED["kernel"]
 
 
-def sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) -> np.ndarray:
+def sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray,
+         terms: int = _far.TERMS) -> np.ndarray:
     """``Σ_j c_kj K_k(b_j, x)`` for the selected columns ``cols`` with kernels ``kinds``
     (:data:`ACOS`: ``acos(b/x)``; :data:`ROOT`: ``sqrt(x² - b²)``; :data:`ROOT3`:
     ``(x² - b²)^(3/2)/3``) at the points ``x`` (1D, ``0 < x <= r_end``): shape (len(cols),
-    x.size)."""
+    x.size); each block's series truncated after ``terms`` Taylor terms
+    (:func:`._far.terms_from_ratios`, at most :data:`._far.TERMS`)."""
+    if not 1 <= terms <= _far.TERMS:
+        raise ValueError(f"terms must lie in 1..{_far.TERMS}, got {terms}")
     out = np.empty((cols.size, x.size))
     for start in range(0, x.size, _far._ROWS):
         sl = slice(start, start + _far._ROWS)
-        out[:, sl] = _sums(ct, x[sl], cols, kinds)
+        out[:, sl] = _sums(ct, x[sl], cols, kinds, terms)
     return out
 
 
-def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) -> np.ndarray:
+def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray, terms: int
+          ) -> np.ndarray:
     tree = ct.tree
     row, k_near = _far._slots(tree, x)
     xc = x[:, None]
@@ -99,9 +104,9 @@ def _sums(ct: ColumnTree, x: np.ndarray, cols: np.ndarray, kinds: np.ndarray) ->
         acos_t, asin_t = _angles(tree, row, xc)[3:]
         kernel(_far._COMPILED["on"])(x, row, acos_t, asin_t, tree.centre, tree.half,
                                      ct.moments, zero_row, _far.CA, _far.CB, _far._N, cols,
-                                     kinds, far)
+                                     kinds, terms, far)
     else:
-        far = _columns_numpy(ct, x, row, cols, kinds, zero_row)
+        far = _columns_numpy(ct, x, row, cols, kinds, zero_row, terms)
     # near nodes: finest blocks from k_near on, nodes below x (the cubic route's formulas)
     lo = np.searchsorted(tree.finest, k_near, side="left")
     hi = np.searchsorted(tree.nodes, x, side="left")
@@ -160,7 +165,7 @@ def _angles(tree: _far.FarTree, row: np.ndarray, xc: np.ndarray
 
 
 def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndarray,
-                   kinds: np.ndarray, zero_row: int) -> np.ndarray:
+                   kinds: np.ndarray, zero_row: int, terms: int = _far.TERMS) -> np.ndarray:
     """The blocks' sums per selected column (numpy route, reference of :func:`far_columns`).
 
     Every operation is an element-wise multiplication, division, addition or subtraction in the
@@ -173,7 +178,7 @@ def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndar
     buffers are reused (a new array per operation, and all TERMS of them kept, cost a page
     fault per 4 KiB written: most of this route's time before); each term's moments are
     gathered from a contiguous vector (:func:`_by_term`)."""
-    T = _far.TERMS
+    T = terms
     N = _far._N
     CA, CB = _far.CA, _far.CB
     need_root = bool(np.any(kinds != ACOS))
@@ -264,15 +269,15 @@ def _columns_numpy(ct: ColumnTree, x: np.ndarray, row: np.ndarray, cols: np.ndar
 def far_columns(x: np.ndarray, row: np.ndarray, acos_t: np.ndarray, asin_t: np.ndarray,
                 centre: np.ndarray, half: np.ndarray, moments: np.ndarray, zero_row: int,
                 ca: np.ndarray, cb: np.ndarray, nf: np.ndarray, cols: np.ndarray,
-                kinds: np.ndarray, out: np.ndarray) -> None:
+                kinds: np.ndarray, terms: int, out: np.ndarray) -> None:
     """:func:`_columns_numpy` point by point (compiled by numba): the same operations in the
     same order, unused slots skipped (exact zeros there).
 
     A point's used blocks advance side by side in the recurrences (n outer, blocks inner), so
     their independent chains of dependent multiplications overlap in the processor; every
     block's own chain, and the order in which the blocks are added, are those of the numpy
-    route."""
-    T = moments.shape[2]
+    route. The first ``terms`` Taylor terms of each block."""
+    T = terms
     S = row.shape[1]
     k = cols.size
     need_root = False

@@ -64,16 +64,18 @@ class _LinearTransform(_TableBase):
         if np.any(pos):
             xs = flat[pos]
             sums = None
+            terms = self._tree_terms()
             primed = self.__dict__.get("_far_primed")
             if primed is not None:
                 # a force solve's radii (_far_prime): A and P kept for the depth and the ∫g
-                # asked next at them; a call at other points (or for g') drops them
-                if not with_slope and primed[0] == xs.tobytes():
+                # asked next at them; a call at other points (or for g', or with another
+                # number of Taylor terms) drops them
+                if not with_slope and primed[0] == xs.tobytes() and primed[3] == terms:
                     sums = (primed[1], None, primed[2])
                 else:
                     self.__dict__.pop("_far_primed", None)
             A, C, P = sums if sums is not None else _far.sums(tree, xs, with_slope,
-                                                              with_integral)
+                                                              with_integral, terms)
             k = _clip_index(np.searchsorted(self.r, xs, side="right") - 1, 0, self._slopes.size - 1)
             s_k = self._slopes[k]
             base = 0.5 * np.pi * s_k - A
@@ -96,8 +98,36 @@ class _LinearTransform(_TableBase):
         flat = a.ravel()
         if tree is None or flat.size > PRIME_MAX or not bool(np.all(flat > 0)):
             return
-        A, _, P = _far.sums(tree, flat, False, True)
-        self.__dict__["_far_primed"] = (flat.tobytes(), A, P)
+        terms = self._tree_terms()
+        A, _, P = _far.sums(tree, flat, False, True, terms)
+        self.__dict__["_far_primed"] = (flat.tobytes(), A, P, terms)
+
+    def _far_truncation(self, x: np.ndarray, kind: str, terms: np.ndarray | None = None
+                        ) -> np.ndarray:
+        """Bound of the tree's Taylor truncation in ``g`` (``kind`` "g") or ``∫_0^x g``
+        ("int") at ``x`` with the current call's terms (:meth:`_tree_terms`): zeros with all
+        :data:`._far.TERMS` terms (their truncation is below the rounding) or without the tree.
+        The sum over x's far blocks of :func:`._far.block_tails` (from each block's own
+        moments) times ``K`` (π/2 for asin, (√2 + π/2)/2 for Φ) and x (g) or x² (∫g).
+        ``terms`` (an array): the bounds for each of those counts, shape (len(terms), x.size)."""
+        x = np.asarray(x, dtype=float)
+        count = self._tree_terms() if terms is None else 0
+        tree = self._far_tree() if count < _far.TERMS else None
+        if tree is None:
+            return np.zeros(x.shape if terms is None else (len(terms), *x.shape))
+        tails = self.__dict__.get("_far_tails")
+        if tails is None:
+            tails = _far.block_tails(tree.moments[:, None, :], tree, tree.weights[None, :])
+            self.__dict__["_far_tails"] = tails
+        flat = x.ravel()
+        pos = flat > 0
+        b = np.zeros((1 if terms is None else len(terms), flat.size))
+        if np.any(pos):
+            b[:, pos] = _far.far_bound(tree, tails, flat[pos],
+                                       np.array([count]) if terms is None else terms, [0])[0]
+        k = 0.5 * np.pi if kind == "g" else 0.5 * (np.sqrt(2.0) + 0.5 * np.pi)
+        b *= k * (flat if kind == "g" else flat * flat)
+        return b[0].reshape(x.shape) if terms is None else b.reshape(len(terms), *x.shape)
 
     def _arcsine_pass(self, x: np.ndarray, with_slope: bool, with_integral: bool
                       ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:

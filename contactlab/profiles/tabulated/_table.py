@@ -258,12 +258,23 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
         self._band = (grid, eg, ei)
         return self._band
 
+    def _g(self, xa: np.ndarray, rtol: float | None = None) -> np.ndarray:
+        # the far-field trees take the Taylor terms of rtol
+        with self._tree_rtol(rtol):
+            return super()._g(xa, rtol)
+
     def _g_with_error(self, xa: np.ndarray, rtol: float | None = None
                       ) -> tuple[np.ndarray, np.ndarray]:
-        if self._spline is not None and self.g_route == "closed_form":
-            val, err, _ = self._cubic_value(xa, "g")
-        else:
-            val, err = super()._g_with_error(xa, rtol)
+        # the far-field trees take the Taylor terms of rtol; their truncation bound enters
+        # the estimate (zero with all terms: the default rtol keeps its bits)
+        with self._tree_rtol(rtol):
+            if self._spline is not None and self.g_route == "closed_form":
+                val, err, _ = self._cubic_value(xa, "g")
+                err = err + self._cubic_truncation(xa, "g")
+            else:
+                val, err = super()._g_with_error(xa, rtol)
+                if self._spline is None:
+                    err = err + self._far_truncation(xa, "g")
         band = self._smoothing_band()
         if band is not None:
             err = err + np.interp(xa, band[0], band[1])
@@ -534,23 +545,30 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
 
     def _g_integral_with_error(self, a: np.ndarray, rtol: float | None = None
                                ) -> tuple[np.ndarray, np.ndarray]:
-        if self._spline is not None:
-            val, err, _ = self._cubic_value(a, "int")
-        else:
-            val, err = super()._g_integral_with_error(a, rtol)
+        with self._tree_rtol(rtol):
+            if self._spline is not None:
+                val, err, _ = self._cubic_value(a, "int")
+                err = err + self._cubic_truncation(a, "int")
+            else:
+                val, err = super()._g_integral_with_error(a, rtol)
+                err = err + self._far_truncation(a, "int")
         band = self._smoothing_band()
         if band is not None:
             err = err + np.interp(a, band[0], band[2])
         return val, err
 
     def _solve_radius(self, d: np.ndarray, limit: float, rtol: float | None = None) -> np.ndarray:
-        """g(a) = d: node search, then a smooth solve (:meth:`_solve_table_radius`)."""
-        return self._solve_table_radius(d, limit, rtol)
+        """g(a) = d: node search, then a smooth solve (:meth:`_solve_table_radius`), the
+        far-field trees with the Taylor terms of ``rtol``."""
+        with self._tree_rtol(rtol):
+            return self._solve_table_radius(d, limit, rtol)
 
     def _radius_of_reduced_force(self, target: np.ndarray, rtol: float) -> np.ndarray | None:
         """Contact radius with ``a g(a) - ∫_0^a g = target`` (= F/(2E*)), or None (generic route):
-        :meth:`_table_radius_of_reduced_force`."""
-        return self._table_radius_of_reduced_force(target, rtol)
+        :meth:`_table_radius_of_reduced_force` (the far-field trees with the Taylor terms of
+        ``rtol``)."""
+        with self._tree_rtol(rtol):
+            return self._table_radius_of_reduced_force(target, rtol)
 
     def _check_monotone_upto(self, a_max: float, d_for_message: float) -> None:
         self._check_table_monotone(a_max, d_for_message)

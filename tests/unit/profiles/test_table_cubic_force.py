@@ -149,9 +149,9 @@ def test_cubic_solve_makes_one_newton_pass_at_rtol_1e_6(control, monkeypatch):
     calls: list[tuple[int, int]] = []
     real = _far_cols.sums
 
-    def counted(ct, x, cols, kinds):
+    def counted(ct, x, cols, kinds, terms=_far_cols._far.TERMS):
         calls.append((int(x.size), int(cols.size)))
-        return real(ct, x, cols, kinds)
+        return real(ct, x, cols, kinds, terms)
 
     monkeypatch.setattr(_far_cols, "sums", counted)
     c.normal(**{control: vals})
