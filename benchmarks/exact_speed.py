@@ -318,8 +318,10 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
             if not fixed:
                 own, own_info = best, info
         n0 = steps[0]
-        more = (f" and it runs on {info[n0][0]} rings, not {own_info[n0][0]} (the cap of the "
-                "nodes at the contact radii is 3x the rings at torque_rtol: its accuracy)"
+        cap = _tr.ALIGN_MAX_FACTOR_RTOL if "torque_rtol" in kw else _tr.ALIGN_MAX_FACTOR
+        more = (f" and it runs on {info[n0][0]} rings, not {own_info[n0][0]} (nodes at the "
+                f"contact radii met, up to {cap:g}x the rings"
+                + (", the cap at torque_rtol: its accuracy)" if "torque_rtol" in kw else ")")
                 if info[n0][0] != own_info[n0][0] else "")
         print(f"the {n0}-step path on its own rings vs the {steps[-1]}-step path's: "
               f"{own[n0] / n0 * 1e3:.3f} vs {best[n0] / n0 * 1e3:.3f} ms/step: on the longer "
