@@ -501,15 +501,17 @@ class Rings(Foundation):
                     if mu is not None:
                         assert p is not None   # a pressure is computed whenever mu is given
                         bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
+                    if use_annulus:
+                        # the density ends at the node of the contact radius (a radius within
+                        # ALIGN_GAP ring widths of another shares its node): the chunk's at once
+                        bnd = rings.boundaries
+                        edges = bnd[np.minimum(np.searchsorted(bnd, ac * (1 - 1e-12)),
+                                               bnd.size - 1)].tolist()
                     for j in range(c0, c1):
                         k = i + j
                         bj, aj = bound[j - c0], float(a_arr[j])
                         if use_annulus:
-                            # the density ends at the node of the contact radius (a radius within
-                            # ALIGN_GAP ring widths of another shares its node)
-                            bnd = rings.boundaries
-                            edge_j = float(bnd[min(int(np.searchsorted(bnd, aj * (1 - 1e-12))),
-                                                   bnd.size - 1)])
+                            edge_j = edges[j - c0]
                             # (the same shape every step: an elementwise test is array_equal)
                             if slide_key is None or not (slide_key[0] == edge_j and
                                                          bool((slide_key[1] == bj).all())):
