@@ -501,17 +501,20 @@ class Rings(Foundation):
                     if mu is not None:
                         assert p is not None   # a pressure is computed whenever mu is given
                         bound = mu * np.where(r[None, :] < ac[:, None], np.maximum(p, 0.0), 0.0)
+                    if use_annulus:
+                        # the density ends at the node of the contact radius (a radius within
+                        # ALIGN_GAP ring widths of another shares its node): the chunk's at once
+                        bnd = rings.boundaries
+                        edges = bnd[np.minimum(np.searchsorted(bnd, ac * (1 - 1e-12)),
+                                               bnd.size - 1)].tolist()
                     for j in range(c0, c1):
                         k = i + j
                         bj, aj = bound[j - c0], float(a_arr[j])
                         if use_annulus:
-                            # the density ends at the node of the contact radius (a radius within
-                            # ALIGN_GAP ring widths of another shares its node)
-                            bnd = rings.boundaries
-                            edge_j = float(bnd[min(int(np.searchsorted(bnd, aj * (1 - 1e-12))),
-                                                   bnd.size - 1)])
+                            edge_j = edges[j - c0]
+                            # (the same shape every step: an elementwise test is array_equal)
                             if slide_key is None or not (slide_key[0] == edge_j and
-                                                         np.array_equal(slide_key[1], bj)):
+                                                         bool((slide_key[1] == bj).all())):
                                 slide = _ta.nonnegative_psi(_ta.density(rings.lu, bnd, rings.jumps, bj,
                                                                       edge_j))
                                 slide_key = (edge_j, bj)
@@ -729,7 +732,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
                        table=rings.table, allow=allow)
     if out["ok"]:
         s, c, extra = out["sense"], out["c"], out["gross"]
-        gross = bool(np.isnan(extra))
+        gross = bool(extra != extra)    # (nan: a torque beyond the sliding torque)
         w_new = out["w"]
         ds = out["slip"]
         # the energy of the step from the twist its density carries (plus a gross turn), not
@@ -743,15 +746,15 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
             # that points the way of the slip (the force rose), else none (the force fell: the
             # twist is held, the step releases energy at no work; a held stage)
             turn = float(out["dpsi"])
+            act = np.where(bound == 0, 2, int(s))       # (int arrays already: no astype)
             if s * turn >= 0:
-                return (w_new, None, ds, turn, True, 0.0,
-                        np.where(bound == 0, 2, int(s)).astype(int), 1,
+                return (w_new, None, ds, turn, True, 0.0, act, 1,
                         {"sense": s, "turn": turn, "gross": 0.0})
-            return (w_new, None, ds, 0.0, True, 0.0,
-                    np.where(bound == 0, 2, int(s)).astype(int), 1,
+            return (w_new, None, ds, 0.0, True, 0.0, act, 1,
                     {"sense": s, "turn": None, "gross": 0.0})
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
-        act = np.where(bound == 0, 2, np.where(r >= c, int(s), 0)).astype(int)
+        act = np.where(r >= c, int(s), 0)
+        act[bound == 0] = 2
         return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, book)
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)

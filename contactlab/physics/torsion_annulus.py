@@ -227,7 +227,6 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
 
     ``table`` (optional): :class:`NodeTable` for radii that include ``r`` (equal to rounding)."""
     lo, hi, _, _ = p
-    al, be = _lin(p)
     rr = np.asarray(r, float)[:, None]
     # abutting pieces share their ends: the antiderivatives once per node
     shared = bool(lo.size) and bool((lo[1:] == hi[:-1]).all())
@@ -245,6 +244,7 @@ def slip_kernel_integral(p: Pieces, r: np.ndarray, table: NodeTable | None = Non
                 A, S = _slip_antiderivatives(r1, missed)
                 out += A @ c0m + S @ c1m
             return 2.0 / np.pi * out
+    al, be = _lin(p)        # (after the compiled pass, which does not need them)
     rows = None if table is None or not shared else table.rows(rr[:, 0])
     if table is not None and rows is not None:
         return 2.0 / np.pi * table.sums("slip", rows, rr[:, 0], np.append(lo, hi[-1]),
@@ -528,9 +528,11 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
         on = ((bound > 0) | (r < reach)) & (r > c)
         if on.any():
             dw = (dw[0], dw[1], dw[2], dw[3])
-            ds[on] = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
-            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
-            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+            r_on = r[on]        # (the points once; ds_on the values written to ds)
+            ds_on = slip_kernel_integral(dw, r_on, None if slip else table) + gross * r_on
+            ds[on] = ds_on
+            ref = float(np.max(np.abs(ds_on))) + float(np.max(r_on)) * abs(gross)
+            if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
         ok = _DECIDED.get(inside)
