@@ -16,6 +16,7 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;
 * :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
+  :func:`nonnegative_band`: that test and the removal of the band where ``Ψ < 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
   radius;
 * :func:`table_scatter`: the slip integral's jumps scattered onto a table's nodes (its matrix
@@ -46,7 +47,7 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
-           "nonnegative",
+           "nonnegative", "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE",
            "table_scatter", "coefficient_pieces", "family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
@@ -54,6 +55,9 @@ __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "dif
 INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = 0, 1, -1
 #: :func:`twist_step`'s status: the step taken, or left to the numpy route (a nan among its inputs)
 STEP_DONE, STEP_REFERENCE = 0, 1
+#: :func:`nonnegative_band`'s status: ``Ψ >= 0`` (nothing removed), a band removed, or left to the
+#: numpy route (a value not finite)
+BAND_NONE, BAND_CUT, BAND_REFERENCE = 0, 1, 2
 
 _EPS = float(np.finfo(float).eps)
 _state: dict = {"kernels": None}
@@ -587,6 +591,72 @@ def nonnegative(lo, hi, wl, wr) -> bool:
     return True
 
 
+def _sort4(v):
+    """``np.sort`` of four values in place (ascending, a nan last)."""
+    for i in range(1, 4):
+        x = v[i]
+        j = i - 1
+        while j >= 0 and (v[j] > x or (v[j] != v[j] and x == x)):
+            v[j + 1] = v[j]
+            j -= 1
+        v[j + 1] = x
+
+
+def nonnegative_band(lo, hi, wl, wr):
+    """``torsion_annulus.nonnegative_psi`` (its test, roots, cuts and arithmetic):
+    ``(status, pieces)``, :data:`BAND_NONE` where ``Ψ >= 0`` (the density itself), :data:`BAND_CUT`
+    with the pieces as the rows of one ``4 × n`` array, :data:`BAND_REFERENCE` (nothing computed)
+    for a value not finite (left to the numpy route)."""
+    n = lo.size
+    for j in range(n):
+        if not (lo[j] - lo[j] == 0 and hi[j] - hi[j] == 0 and wl[j] - wl[j] == 0
+                and wr[j] - wr[j] == 0):
+            return BAND_REFERENCE, np.zeros((4, 0))
+    if nonnegative(lo, hi, wl, wr):
+        return BAND_NONE, np.zeros((4, 0))
+    psi_hi = _psi(lo, hi, wl, wr, hi)
+    nan = np.nan
+    v = np.empty(4)
+    out = np.empty((4, 3 * n))
+    m = 0
+    for j in range(n):
+        # the roots of Ψ strictly inside the piece (``_psi_roots``)
+        h = hi[j] - lo[j]
+        a = -0.5 * ((wr[j] - wl[j]) / h if h > 0 else 0.0)
+        b, c = wr[j], psi_hi[j]
+        disc = b * b - 4.0 * a * c
+        sq = np.sqrt(disc if disc >= 0.0 or disc != disc else 0.0)     # np.maximum: nan stays
+        q = -0.5 * (b + (sq if b >= 0 else -sq))
+        u1 = q / a if a != 0 else nan
+        u2 = c / q if q != 0 else nan
+        if not disc >= 0:
+            u1 = u2 = nan
+        r1, r2 = hi[j] - u1, hi[j] - u2
+        v[0], v[1], v[2], v[3] = lo[j], r1 if lo[j] < r1 < hi[j] else nan, \
+            r2 if lo[j] < r2 < hi[j] else nan, hi[j]
+        _sort4(v)
+        hp = h if h > 0 else 1.0
+        for k in range(3):
+            x0 = v[k] if v[k] == v[k] else hi[j]
+            x1 = v[k + 1] if v[k + 1] == v[k + 1] else hi[j]
+            if x1 > x0:
+                out[0, m], out[1, m] = x0, x1
+                out[2, m] = wl[j] + (wr[j] - wl[j]) * (x0 - lo[j]) / hp
+                out[3, m] = wl[j] + (wr[j] - wl[j]) * (x1 - lo[j]) / hp
+                m += 1
+    out = out[:, :m].copy()
+    # the sub-pieces where Ψ < 0 (its sign at the midpoint: no root inside) set to zero
+    mid = np.empty(m)
+    for k in range(m):
+        mid[k] = 0.5 * (out[0, k] + out[1, k])
+    P = _psi(lo, hi, wl, wr, mid)
+    for k in range(m):
+        if P[k] < 0.0:
+            out[2, k] = 0.0
+            out[3, k] = 0.0
+    return BAND_CUT, out
+
+
 def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
     """The arguments of ``NodeTable.sums`` for the abutting pieces ``(lo, hi, wl, wr)`` at the
     radii ``r`` (``torsion_annulus.slip_kernel_integral``'s, the same values): ``(ok, rows, i0,
@@ -728,14 +798,16 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
                    "_total", "_value", "_root_twist", "_difference", "_inside",
-                   "difference_psi", "energy_nodes")
+                   "difference_psi", "energy_nodes", "_sort4", "nonnegative")
 #: helpers small enough to inline
 _INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
-                     "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi"})
+                     "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi",
+                     "_sort4"})
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
                                          "nonnegative": nonnegative,
+                                         "nonnegative_band": nonnegative_band,
                                          "table_scatter": table_scatter,
                                          "coefficient_pieces": coefficient_pieces,
                                          "family_energy": family_energy,
@@ -744,7 +816,7 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
 
 def kernels(compiled: bool = True) -> dict:
     """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``,
+    ``"nonnegative"``, ``"nonnegative_band"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``,
     ``"slip_difference"``) compiled
     by numba (built once per process), or the plain Python functions (``compiled=False``: their
     logic without numba, for tests)."""
