@@ -15,8 +15,8 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;
-* :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
-  :func:`nonnegative_band`: that test and the removal of the band where ``Ψ < 0``;
+* :func:`nonnegative_band`: the test of the full-sliding density's ``Ψ >= 0``
+  (:func:`nonnegative`) and the removal of the band where ``Ψ < 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
   radius;
 * :func:`table_scatter`: the slip integral's jumps scattered onto a table's nodes (its matrix
@@ -47,8 +47,8 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
-           "nonnegative", "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE",
-           "table_scatter", "coefficient_pieces", "family_energy", "kernels",
+           "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE", "table_scatter",
+           "coefficient_pieces", "family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -66,6 +66,8 @@ _lock = threading.Lock()
 # the ring kernels the passes call (rebound to their compiled builds with the passes)
 _psi_pass = _rk.psi_pass
 _ends_pass = _rk.ends_pass
+_piece_ends = _rk.piece_ends
+_lines = _rk.lines
 
 
 def _block(a: np.ndarray, i0: int, n: int) -> float:
@@ -222,19 +224,7 @@ def _psi_walk(lo, hi, wl, wr, x, out):
     """``ring_kernels.psi_pass`` at ascending radii ``x``: the pieces' indices found by one walk
     instead of a binary search per radius (the same index, the same arithmetic)."""
     n = lo.size
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
-    tail = np.empty(n + 1)
-    tail[n] = 0.0
-    acc = 0.0
-    for j in range(n - 1, -1, -1):
-        whole = al[j] * (hi[j] - lo[j]) + 0.5 * be[j] * (hi[j] * hi[j] - lo[j] * lo[j])
-        acc = whole if j == n - 1 else acc + whole
-        tail[j] = acc
+    al, be, tail = _lines(lo, hi, wl, wr, True)
     top, bottom = hi[n - 1], lo[0]
     p = 0
     for i in range(x.size):
@@ -275,22 +265,7 @@ def _ends_walk(plo, phi, wl, wr, lo, hi, out_l, out_r):
         x = lo[i]
         while a < n and plo[a] <= x:          # searchsorted(plo, x, "right")
             a += 1
-        k = a - 1
-        inside = k >= 0 and hi[i] <= phi[k if k > 0 else 0]
-        if k < 0:
-            k = 0
-        if not inside:
-            out_l[i] = 0.0
-            out_r[i] = 0.0
-            continue
-        l0, h0, v, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
-        h = h0 - l0
-        if h > 0:
-            out_l[i] = v + d * ((x - l0) / h)
-            out_r[i] = v + d * ((hi[i] - l0) / h)
-        else:
-            out_l[i] = v + d * 0.0
-            out_r[i] = v + d * 0.0
+        out_l[i], out_r[i] = _piece_ends(plo, phi, wl, wr, a - 1, x, hi[i])
 
 
 def _total(lo, hi, wl, wr) -> float:
@@ -397,12 +372,7 @@ def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nod
         if wlo[j + 1] != whi[j]:
             return INSIDE_OPEN
     # the jumps of offset and slope at the nodes, and the nodes' columns in the table
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = whi[j] - wlo[j]
-        be[j] = (wwr[j] - wwl[j]) / h if h > 0 else 0.0
-        al[j] = wwl[j] - be[j] * wlo[j]
+    al, be, _ = _lines(wlo, whi, wwl, wwr, False)
     c0 = np.empty(n + 1)
     c1 = np.empty(n + 1)
     cols = np.empty(n + 1, np.int64)
@@ -609,14 +579,11 @@ def nonnegative_band(lo, hi, wl, wr):
     for a value not finite (left to the numpy route)."""
     n = lo.size
     for j in range(n):
-        if not (lo[j] - lo[j] == 0 and hi[j] - hi[j] == 0 and wl[j] - wl[j] == 0
-                and wr[j] - wr[j] == 0):
+        if not lo[j] - lo[j] == hi[j] - hi[j] == wl[j] - wl[j] == wr[j] - wr[j] == 0:
             return BAND_REFERENCE, np.zeros((4, 0))
     if nonnegative(lo, hi, wl, wr):
         return BAND_NONE, np.zeros((4, 0))
-    psi_hi = _psi(lo, hi, wl, wr, hi)
-    nan = np.nan
-    v = np.empty(4)
+    psi_hi, nan, v = _psi(lo, hi, wl, wr, hi), np.nan, np.empty(4)
     out = np.empty((4, 3 * n))
     m = 0
     for j in range(n):
@@ -646,10 +613,7 @@ def nonnegative_band(lo, hi, wl, wr):
                 m += 1
     out = out[:, :m].copy()
     # the sub-pieces where Ψ < 0 (its sign at the midpoint: no root inside) set to zero
-    mid = np.empty(m)
-    for k in range(m):
-        mid[k] = 0.5 * (out[0, k] + out[1, k])
-    P = _psi(lo, hi, wl, wr, mid)
+    P = _psi(lo, hi, wl, wr, 0.5 * (out[0] + out[1]))
     for k in range(m):
         if P[k] < 0.0:
             out[2, k] = 0.0
@@ -678,12 +642,7 @@ def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
         rows[i] = k
         i0 = k if k < i0 else i0
         i1 = k + 1 if k + 1 > i1 else i1
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
+    al, be, _ = _lines(lo, hi, wl, wr, False)
     v0 = np.zeros(nt)
     v1 = np.zeros(nt)
     missed = np.empty(n + 1)
@@ -802,11 +761,10 @@ _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_uniq
 #: helpers small enough to inline
 _INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
                      "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi",
-                     "_sort4"})
+                     "_sort4", "nonnegative"})
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
-                                         "nonnegative": nonnegative,
                                          "nonnegative_band": nonnegative_band,
                                          "table_scatter": table_scatter,
                                          "coefficient_pieces": coefficient_pieces,
@@ -815,11 +773,9 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
 
 
 def kernels(compiled: bool = True) -> dict:
-    """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"nonnegative_band"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``,
-    ``"slip_difference"``) compiled
-    by numba (built once per process), or the plain Python functions (``compiled=False``: their
-    logic without numba, for tests)."""
+    """The passes by name (the keys of ``_PLAIN``: ``"twist_step"``, ``"nonnegative_band"``, ...)
+    compiled by numba (built once per process), or the plain Python functions (``compiled=False``:
+    their logic without numba, for tests)."""
     if not compiled:
         return dict(_PLAIN)
     built = _state["kernels"]
@@ -830,6 +786,8 @@ def kernels(compiled: bool = True) -> dict:
             g = globals()
             rk = _rk.kernels(True)
             g["_psi_pass"], g["_ends_pass"] = rk["psi"], rk["ends"]
+            # (compiled by the ring kernels' build)
+            g["_piece_ends"], g["_lines"] = _rk.piece_ends, _rk.lines
             for name in _HELPERS:
                 # the small helpers inlined into their callers at numba's IR level (no compile
                 # and cache entry of their own)
