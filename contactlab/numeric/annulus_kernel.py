@@ -68,6 +68,7 @@ _psi_pass = _rk.psi_pass
 _ends_pass = _rk.ends_pass
 _piece_ends = _rk.piece_ends
 _lines = _rk.lines
+_psi_at = _rk.psi_at
 
 
 def _block(a: np.ndarray, i0: int, n: int) -> float:
@@ -225,23 +226,13 @@ def _psi_walk(lo, hi, wl, wr, x, out):
     instead of a binary search per radius (the same index, the same arithmetic)."""
     n = lo.size
     al, be, tail = _lines(lo, hi, wl, wr, True)
-    top, bottom = hi[n - 1], lo[0]
     p = 0
     for i in range(x.size):
         xi = x[i]
         while p < n and hi[p] <= xi:          # searchsorted(hi, xi, "right")
             p += 1
         k = p if p < n - 1 else n - 1
-        if xi >= top:
-            out[i] = 0.0
-        elif xi < bottom:
-            out[i] = tail[0]
-        else:
-            lk, hk = lo[k], hi[k]
-            t0 = xi if xi > lk else lk
-            t0 = t0 if t0 < hk else hk
-            part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
-            out[i] = part + tail[k + 1]
+        out[i] = _psi_at(lo, hi, al, be, tail, k, xi)
 
 
 def _psi(lo, hi, wl, wr, x):
@@ -787,7 +778,7 @@ def kernels(compiled: bool = True) -> dict:
             rk = _rk.kernels(True)
             g["_psi_pass"], g["_ends_pass"] = rk["psi"], rk["ends"]
             # (compiled by the ring kernels' build)
-            g["_piece_ends"], g["_lines"] = _rk.piece_ends, _rk.lines
+            g["_piece_ends"], g["_lines"], g["_psi_at"] = _rk.piece_ends, _rk.lines, _rk.psi_at
             for name in _HELPERS:
                 # the small helpers inlined into their callers at numba's IR level (no compile
                 # and cache entry of their own)

@@ -47,7 +47,6 @@ def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: 
     ``torsion_annulus.psi`` in its order."""
     n = lo.size
     al, be, tail = lines(lo, hi, wl, wr, True)
-    top, bottom = hi[n - 1], lo[0]
     for i in range(x.size):
         xi = x[i]
         if xi != xi:                      # nan propagates as in numpy's maximum/minimum
@@ -61,16 +60,7 @@ def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: 
             else:
                 b = m
         k = a if a < n - 1 else n - 1
-        if xi >= top:
-            out[i] = 0.0
-        elif xi < bottom:
-            out[i] = tail[0]
-        else:
-            lk, hk = lo[k], hi[k]
-            t0 = xi if xi > lk else lk
-            t0 = t0 if t0 < hk else hk
-            part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
-            out[i] = part + tail[k + 1]
+        out[i] = psi_at(lo, hi, al, be, tail, k, xi)
 
 
 def lines(lo, hi, wl, wr, tails):
@@ -94,6 +84,20 @@ def lines(lo, hi, wl, wr, tails):
             acc = whole if j == n - 1 else acc + whole
             tail[j] = acc
     return al, be, tail
+
+
+def psi_at(lo, hi, al, be, tail, k, x):
+    """``Ψ(x)`` from piece ``k`` (``min(searchsorted(hi, x, "right"), n - 1)``) and the pieces'
+    :func:`lines` and tails: ``torsion_annulus.psi``'s arithmetic (a helper of :func:`psi_pass`
+    and of the annulus passes' walk, inlined where compiled)."""
+    if x >= hi[hi.size - 1]:
+        return 0.0
+    if x < lo[0]:
+        return tail[0]
+    lk, hk = lo[k], hi[k]
+    t0 = x if x > lk else lk
+    t0 = t0 if t0 < hk else hk
+    return al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0) + tail[k + 1]
 
 
 def ends_pass(plo: np.ndarray, phi: np.ndarray, wl: np.ndarray, wr: np.ndarray, lo: np.ndarray,
@@ -277,7 +281,7 @@ def kernels(compiled: bool = True) -> dict:
             # the helpers inlined into their callers at numba's IR level (here and in
             # contactlab.numeric.annulus_kernel), compiled before them
             g = globals()
-            for name in ("lines", "piece_ends"):
+            for name in ("lines", "psi_at", "piece_ends"):
                 g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", inline="always")
             _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}
