@@ -15,7 +15,8 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;
-* :func:`nonnegative`: the test of the full-sliding density's ``Ψ >= 0``;
+* :func:`nonnegative_band`: the test of the full-sliding density's ``Ψ >= 0``
+  (:func:`nonnegative`) and the removal of the band where ``Ψ < 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
   radius;
 * :func:`table_scatter`: the slip integral's jumps scattered onto a table's nodes (its matrix
@@ -46,14 +47,17 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
-           "nonnegative",
-           "table_scatter", "coefficient_pieces", "family_energy", "kernels",
+           "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE", "table_scatter",
+           "coefficient_pieces", "family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
 INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = 0, 1, -1
 #: :func:`twist_step`'s status: the step taken, or left to the numpy route (a nan among its inputs)
 STEP_DONE, STEP_REFERENCE = 0, 1
+#: :func:`nonnegative_band`'s status: ``Ψ >= 0`` (nothing removed), a band removed, or left to the
+#: numpy route (a value not finite)
+BAND_NONE, BAND_CUT, BAND_REFERENCE = 0, 1, 2
 
 _EPS = float(np.finfo(float).eps)
 _state: dict = {"kernels": None}
@@ -62,6 +66,9 @@ _lock = threading.Lock()
 # the ring kernels the passes call (rebound to their compiled builds with the passes)
 _psi_pass = _rk.psi_pass
 _ends_pass = _rk.ends_pass
+_piece_ends = _rk.piece_ends
+_lines = _rk.lines
+_psi_at = _rk.psi_at
 
 
 def _block(a: np.ndarray, i0: int, n: int) -> float:
@@ -218,36 +225,14 @@ def _psi_walk(lo, hi, wl, wr, x, out):
     """``ring_kernels.psi_pass`` at ascending radii ``x``: the pieces' indices found by one walk
     instead of a binary search per radius (the same index, the same arithmetic)."""
     n = lo.size
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
-    tail = np.empty(n + 1)
-    tail[n] = 0.0
-    acc = 0.0
-    for j in range(n - 1, -1, -1):
-        whole = al[j] * (hi[j] - lo[j]) + 0.5 * be[j] * (hi[j] * hi[j] - lo[j] * lo[j])
-        acc = whole if j == n - 1 else acc + whole
-        tail[j] = acc
-    top, bottom = hi[n - 1], lo[0]
+    al, be, tail = _lines(lo, hi, wl, wr, True)
     p = 0
     for i in range(x.size):
         xi = x[i]
         while p < n and hi[p] <= xi:          # searchsorted(hi, xi, "right")
             p += 1
         k = p if p < n - 1 else n - 1
-        if xi >= top:
-            out[i] = 0.0
-        elif xi < bottom:
-            out[i] = tail[0]
-        else:
-            lk, hk = lo[k], hi[k]
-            t0 = xi if xi > lk else lk
-            t0 = t0 if t0 < hk else hk
-            part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
-            out[i] = part + tail[k + 1]
+        out[i] = _psi_at(lo, hi, al, be, tail, k, xi)
 
 
 def _psi(lo, hi, wl, wr, x):
@@ -271,22 +256,7 @@ def _ends_walk(plo, phi, wl, wr, lo, hi, out_l, out_r):
         x = lo[i]
         while a < n and plo[a] <= x:          # searchsorted(plo, x, "right")
             a += 1
-        k = a - 1
-        inside = k >= 0 and hi[i] <= phi[k if k > 0 else 0]
-        if k < 0:
-            k = 0
-        if not inside:
-            out_l[i] = 0.0
-            out_r[i] = 0.0
-            continue
-        l0, h0, v, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
-        h = h0 - l0
-        if h > 0:
-            out_l[i] = v + d * ((x - l0) / h)
-            out_r[i] = v + d * ((hi[i] - l0) / h)
-        else:
-            out_l[i] = v + d * 0.0
-            out_r[i] = v + d * 0.0
+        out_l[i], out_r[i] = _piece_ends(plo, phi, wl, wr, a - 1, x, hi[i])
 
 
 def _total(lo, hi, wl, wr) -> float:
@@ -393,12 +363,7 @@ def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nod
         if wlo[j + 1] != whi[j]:
             return INSIDE_OPEN
     # the jumps of offset and slope at the nodes, and the nodes' columns in the table
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = whi[j] - wlo[j]
-        be[j] = (wwr[j] - wwl[j]) / h if h > 0 else 0.0
-        al[j] = wwl[j] - be[j] * wlo[j]
+    al, be, _ = _lines(wlo, whi, wwl, wwr, False)
     c0 = np.empty(n + 1)
     c1 = np.empty(n + 1)
     cols = np.empty(n + 1, np.int64)
@@ -587,6 +552,66 @@ def nonnegative(lo, hi, wl, wr) -> bool:
     return True
 
 
+def _sort4(v):
+    """``np.sort`` of four values in place (ascending, a nan last)."""
+    for i in range(1, 4):
+        x = v[i]
+        j = i - 1
+        while j >= 0 and (v[j] > x or (v[j] != v[j] and x == x)):
+            v[j + 1] = v[j]
+            j -= 1
+        v[j + 1] = x
+
+
+def nonnegative_band(lo, hi, wl, wr):
+    """``torsion_annulus.nonnegative_psi`` (its test, roots, cuts and arithmetic):
+    ``(status, pieces)``, :data:`BAND_NONE` where ``Ψ >= 0`` (the density itself), :data:`BAND_CUT`
+    with the pieces as the rows of one ``4 × n`` array, :data:`BAND_REFERENCE` (nothing computed)
+    for a value not finite (left to the numpy route)."""
+    n = lo.size
+    for j in range(n):
+        if not lo[j] - lo[j] == hi[j] - hi[j] == wl[j] - wl[j] == wr[j] - wr[j] == 0:
+            return BAND_REFERENCE, np.zeros((4, 0))
+    if nonnegative(lo, hi, wl, wr):
+        return BAND_NONE, np.zeros((4, 0))
+    psi_hi, nan, v = _psi(lo, hi, wl, wr, hi), np.nan, np.empty(4)
+    out = np.empty((4, 3 * n))
+    m = 0
+    for j in range(n):
+        # the roots of Ψ strictly inside the piece (``_psi_roots``)
+        h = hi[j] - lo[j]
+        a = -0.5 * ((wr[j] - wl[j]) / h if h > 0 else 0.0)
+        b, c = wr[j], psi_hi[j]
+        disc = b * b - 4.0 * a * c
+        sq = np.sqrt(disc if disc >= 0.0 or disc != disc else 0.0)     # np.maximum: nan stays
+        q = -0.5 * (b + (sq if b >= 0 else -sq))
+        u1 = q / a if a != 0 else nan
+        u2 = c / q if q != 0 else nan
+        if not disc >= 0:
+            u1 = u2 = nan
+        r1, r2 = hi[j] - u1, hi[j] - u2
+        v[0], v[1], v[2], v[3] = lo[j], r1 if lo[j] < r1 < hi[j] else nan, \
+            r2 if lo[j] < r2 < hi[j] else nan, hi[j]
+        _sort4(v)
+        hp = h if h > 0 else 1.0
+        for k in range(3):
+            x0 = v[k] if v[k] == v[k] else hi[j]
+            x1 = v[k + 1] if v[k + 1] == v[k + 1] else hi[j]
+            if x1 > x0:
+                out[0, m], out[1, m] = x0, x1
+                out[2, m] = wl[j] + (wr[j] - wl[j]) * (x0 - lo[j]) / hp
+                out[3, m] = wl[j] + (wr[j] - wl[j]) * (x1 - lo[j]) / hp
+                m += 1
+    out = out[:, :m].copy()
+    # the sub-pieces where Ψ < 0 (its sign at the midpoint: no root inside) set to zero
+    P = _psi(lo, hi, wl, wr, 0.5 * (out[0] + out[1]))
+    for k in range(m):
+        if P[k] < 0.0:
+            out[2, k] = 0.0
+            out[3, k] = 0.0
+    return BAND_CUT, out
+
+
 def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
     """The arguments of ``NodeTable.sums`` for the abutting pieces ``(lo, hi, wl, wr)`` at the
     radii ``r`` (``torsion_annulus.slip_kernel_integral``'s, the same values): ``(ok, rows, i0,
@@ -608,12 +633,7 @@ def table_scatter(lo, hi, wl, wr, r, t_r, t_nodes):
         rows[i] = k
         i0 = k if k < i0 else i0
         i1 = k + 1 if k + 1 > i1 else i1
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
+    al, be, _ = _lines(lo, hi, wl, wr, False)
     v0 = np.zeros(nt)
     v1 = np.zeros(nt)
     missed = np.empty(n + 1)
@@ -728,14 +748,15 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
                    "_total", "_value", "_root_twist", "_difference", "_inside",
-                   "difference_psi", "energy_nodes")
+                   "difference_psi", "energy_nodes", "_sort4", "nonnegative")
 #: helpers small enough to inline
 _INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
-                     "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi"})
+                     "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi",
+                     "_sort4", "nonnegative"})
 #: the passes by name (plain Python functions)
 _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes": energy_nodes,
                                          "difference_psi": difference_psi,
-                                         "nonnegative": nonnegative,
+                                         "nonnegative_band": nonnegative_band,
                                          "table_scatter": table_scatter,
                                          "coefficient_pieces": coefficient_pieces,
                                          "family_energy": family_energy,
@@ -743,11 +764,9 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
 
 
 def kernels(compiled: bool = True) -> dict:
-    """The passes by name (``"twist_step"``, ``"energy_nodes"``, ``"difference_psi"``,
-    ``"nonnegative"``, ``"table_scatter"``, ``"coefficient_pieces"``, ``"family_energy"``,
-    ``"slip_difference"``) compiled
-    by numba (built once per process), or the plain Python functions (``compiled=False``: their
-    logic without numba, for tests)."""
+    """The passes by name (the keys of ``_PLAIN``: ``"twist_step"``, ``"nonnegative_band"``, ...)
+    compiled by numba (built once per process), or the plain Python functions (``compiled=False``:
+    their logic without numba, for tests)."""
     if not compiled:
         return dict(_PLAIN)
     built = _state["kernels"]
@@ -758,6 +777,8 @@ def kernels(compiled: bool = True) -> dict:
             g = globals()
             rk = _rk.kernels(True)
             g["_psi_pass"], g["_ends_pass"] = rk["psi"], rk["ends"]
+            # (compiled by the ring kernels' build)
+            g["_piece_ends"], g["_lines"], g["_psi_at"] = _rk.piece_ends, _rk.lines, _rk.psi_at
             for name in _HELPERS:
                 # the small helpers inlined into their callers at numba's IR level (no compile
                 # and cache entry of their own)

@@ -46,21 +46,7 @@ def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: 
     or with gaps) at the radii ``x`` (1-D) into ``out``: the arithmetic of
     ``torsion_annulus.psi`` in its order."""
     n = lo.size
-    # w = al + be t on each piece (torsion_annulus._lin)
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
-    tail = np.empty(n + 1)
-    tail[n] = 0.0
-    acc = 0.0
-    for j in range(n - 1, -1, -1):        # cumsum of the reversed per-piece integrals
-        whole = al[j] * (hi[j] - lo[j]) + 0.5 * be[j] * (hi[j] * hi[j] - lo[j] * lo[j])
-        acc = whole if j == n - 1 else acc + whole
-        tail[j] = acc
-    top, bottom = hi[n - 1], lo[0]
+    al, be, tail = lines(lo, hi, wl, wr, True)
     for i in range(x.size):
         xi = x[i]
         if xi != xi:                      # nan propagates as in numpy's maximum/minimum
@@ -74,16 +60,44 @@ def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: 
             else:
                 b = m
         k = a if a < n - 1 else n - 1
-        if xi >= top:
-            out[i] = 0.0
-        elif xi < bottom:
-            out[i] = tail[0]
-        else:
-            lk, hk = lo[k], hi[k]
-            t0 = xi if xi > lk else lk
-            t0 = t0 if t0 < hk else hk
-            part = al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0)
-            out[i] = part + tail[k + 1]
+        out[i] = psi_at(lo, hi, al, be, tail, k, xi)
+
+
+def lines(lo, hi, wl, wr, tails):
+    """``w = al + be t`` on each piece (``torsion_annulus._lin``: slope 0 on a piece of no
+    width) and, with ``tails``, ``∫`` over the pieces ``k, k+1, ...`` (numpy's cumsum of the
+    reversed per-piece integrals; ``n + 1`` values, 0 last; else empty): ``(al, be, tail)``
+    (a helper of :func:`psi_pass` and of the annulus passes, inlined where compiled)."""
+    n = lo.size
+    al = np.empty(n)
+    be = np.empty(n)
+    for j in range(n):
+        h = hi[j] - lo[j]
+        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
+        al[j] = wl[j] - be[j] * lo[j]
+    tail = np.empty(n + 1 if tails else 0)
+    if tails:
+        tail[n] = 0.0
+        acc = 0.0
+        for j in range(n - 1, -1, -1):
+            whole = al[j] * (hi[j] - lo[j]) + 0.5 * be[j] * (hi[j] * hi[j] - lo[j] * lo[j])
+            acc = whole if j == n - 1 else acc + whole
+            tail[j] = acc
+    return al, be, tail
+
+
+def psi_at(lo, hi, al, be, tail, k, x):
+    """``Ψ(x)`` from piece ``k`` (``min(searchsorted(hi, x, "right"), n - 1)``) and the pieces'
+    :func:`lines` and tails: ``torsion_annulus.psi``'s arithmetic (a helper of :func:`psi_pass`
+    and of the annulus passes' walk, inlined where compiled)."""
+    if x >= hi[hi.size - 1]:
+        return 0.0
+    if x < lo[0]:
+        return tail[0]
+    lk, hk = lo[k], hi[k]
+    t0 = x if x > lk else lk
+    t0 = t0 if t0 < hk else hk
+    return al[k] * (hk - t0) + 0.5 * be[k] * (hk * hk - t0 * t0) + tail[k + 1]
 
 
 def ends_pass(plo: np.ndarray, phi: np.ndarray, wl: np.ndarray, wr: np.ndarray, lo: np.ndarray,
@@ -101,22 +115,21 @@ def ends_pass(plo: np.ndarray, phi: np.ndarray, wl: np.ndarray, wr: np.ndarray, 
                 a = m + 1
             else:
                 b = m
-        k = a - 1
-        inside = k >= 0 and hi[i] <= phi[k if k > 0 else 0]
-        if k < 0:
-            k = 0
-        if not inside:
-            out_l[i] = 0.0
-            out_r[i] = 0.0
-            continue
-        l0, h0, v, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
-        h = h0 - l0
-        if h > 0:
-            out_l[i] = v + d * ((x - l0) / h)
-            out_r[i] = v + d * ((hi[i] - l0) / h)
-        else:
-            out_l[i] = v + d * 0.0
-            out_r[i] = v + d * 0.0
+        out_l[i], out_r[i] = piece_ends(plo, phi, wl, wr, a - 1, x, hi[i])
+
+
+def piece_ends(plo, phi, wl, wr, k, x, y):
+    """``w(x⁺)`` and ``w(y⁻)`` on piece ``k`` (``searchsorted(plo, x, "right") - 1``) of the
+    pieces ``(plo, phi, wl, wr)``: ``torsion_annulus._ends``' arithmetic; zeros where ``[x, y]``
+    is not inside the piece (a helper of :func:`ends_pass` and of the annulus passes, inlined
+    where compiled)."""
+    if not (k >= 0 and y <= phi[k if k > 0 else 0]):
+        return 0.0, 0.0
+    l0, h0, v, d = plo[k], phi[k], wl[k], wr[k] - wl[k]
+    h = h0 - l0
+    if h > 0:
+        return v + d * ((x - l0) / h), v + d * ((y - l0) / h)
+    return v + d * 0.0, v + d * 0.0
 
 
 def arccosh_args(r: np.ndarray, t: np.ndarray, um: np.ndarray, idx: np.ndarray) -> int:
@@ -265,6 +278,11 @@ def kernels(compiled: bool = True) -> dict:
         return built
     with _lock:
         if _state["kernels"] is None:
+            # the helpers inlined into their callers at numba's IR level (here and in
+            # contactlab.numeric.annulus_kernel), compiled before them
+            g = globals()
+            for name in ("lines", "psi_at", "piece_ends"):
+                g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", inline="always")
             _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}
     return _state["kernels"]

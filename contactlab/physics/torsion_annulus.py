@@ -616,8 +616,12 @@ def nonnegative_psi(p: Pieces) -> Pieces:
     if lo.size == 0:
         return p
     ak = _annulus_kernels()
-    if ak is not None and ak["nonnegative"](*_arrays(p)):     # (the test below, one pass)
-        return p
+    if ak is not None:                  # the test and the cuts below, one pass
+        status, out = ak["nonnegative_band"](*_arrays(p))
+        if status == _annulus_kernel.BAND_NONE:
+            return p
+        if status == _annulus_kernel.BAND_CUT:
+            return out[0], out[1], out[2], out[3]
     # the smallest Ψ on each piece: at an end or where w = 0 inside it (Ψ' = −w); Ψ at all
     # three in one call (elementwise: the same values)
     al, be = _lin(p)

@@ -228,3 +228,45 @@ def test_coefficient_pieces_are_bit_identical(monkeypatch, compiled):
         _route(monkeypatch, on, compiled)
         with pytest.raises(IndexError):
             ta.from_coefficients(b, rng.normal(size=b.size + 1), np.array([40, 41]), 0.5)
+
+
+def _banded_densities():
+    """Densities whose Ψ dips below zero (inside and at the outer end, with a gap, a piece of
+    zero width, a double root), densities without a band, and random ones on 5-200 pieces."""
+    q = (np.array([0.1, 0.3, 0.45, 0.6, 0.85]), np.array([0.3, 0.45, 0.6, 0.85, 1.0]),
+         np.array([1.0, -2.0, -6.0, 4.0, 2.0]), np.array([-1.0, -6.0, 8.0, 3.0, -9.0]))
+    yield q
+    yield tuple(a.copy() for a in (q[0], q[1], np.abs(q[2]), np.abs(q[3])))     # no band
+    yield (np.array([0.0, 0.5, 0.5]), np.array([0.5, 0.5, 1.0]), np.array([1.0, 3.0, 1.0]),
+           np.array([1.0, 3.0, -3.0]))                                        # zero width
+    yield (np.array([0.0, 0.5]), np.array([0.5, 1.0]), np.array([0.0, 1.0]),
+           np.array([1.0, -1.0]))                                             # Ψ touches 0
+    rng = np.random.default_rng(28)
+    for n in (5, 17, 60, 200):
+        for _ in range(6):
+            b = np.sort(rng.uniform(0.0, 1.0, n + 1))
+            wl, wr = rng.normal(0.3, 1.0, n), rng.normal(0.2, 1.0, n)
+            yield b[:-1].copy(), b[1:].copy(), wl, wr
+
+
+@pytest.mark.parametrize("compiled", ROUTES)
+def test_band_removal_is_bit_identical(monkeypatch, compiled):
+    """``nonnegative_psi``'s band removal in one compiled pass gives the numpy route's bits, on
+    densities with a band and without (then the density itself, the same arrays); a nan is left
+    to the numpy route."""
+    banded = 0
+    for p in _banded_densities():
+        _route(monkeypatch, False)
+        ref = ta.nonnegative_psi(p)
+        _route(monkeypatch, True, compiled)
+        got = ta.nonnegative_psi(p)
+        assert _same(got, ref)
+        assert (got is p) == (ref is p)
+        banded += ref is not p
+        # the pass itself decided it (not handed to the numpy route)
+        status, _ = ak.kernels(compiled)["nonnegative_band"](*p)
+        assert status == (ak.BAND_NONE if ref is p else ak.BAND_CUT)
+    assert banded >= 10
+    nan = (np.array([0.0, 0.5]), np.array([0.5, 1.0]), np.array([1.0, np.nan]), np.ones(2))
+    status, _ = ak.kernels(compiled)["nonnegative_band"](*nan)
+    assert status == ak.BAND_REFERENCE
