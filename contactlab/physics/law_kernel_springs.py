@@ -19,6 +19,128 @@ __all__ = ["spring_pass", "switch_pass", "switch_step_pass"]
 _prange = range
 
 
+# the per-cell and per-contact pieces the passes share, plain functions; numba inlines them into
+# each pass at its IR level (``inline="always"``, set with the builds: ``law_kernel._kernels``),
+# so a pass compiles to the code it had with them written out, the same bits
+_INLINE = ("_held_radius", "_span", "_edge_terms", "_edge_cell", "_integrals", "_weight",
+           "_slip", "_replay", "_zero", "_outputs")
+
+
+def _held_radius(is_flat, flat, c, d0, n, kcc):
+    """The radius of contact ``c`` at its held depth ``d0``."""
+    if is_flat:
+        return flat[c] if d0 > 0.0 else 0.0
+    if n == 2.0:
+        return math.sqrt(d0 / kcc)
+    return (d0 / kcc) ** (1.0 / n)
+
+
+def _span(n, kcc, cov):
+    """``kc cov^(n+1)``, the factor of a cover's boundary products (paraboloid and cone by
+    products, no pow)."""
+    if n == 2.0:
+        return kcc * cov * cov * cov
+    if n == 1.0:
+        return kcc * cov * cov
+    return kcc * cov ** (n + 1.0)
+
+
+def _edge_terms(n, kcc, x):
+    """``(kc x^(n+1) / (n+1), kc x^(n+2) / (n+2))``: the integrals of the gap up to radius
+    ``x``, the edge cell's closed forms."""
+    n1 = n + 1.0
+    n2 = n + 2.0
+    if n == 2.0:
+        return kcc * x * x * x / n1, kcc * x * x * x * x / n2
+    if n == 1.0:
+        return kcc * x * x / n1, kcc * x * x * x / n2
+    return kcc * x ** n1 / n1, kcc * x ** n2 / n2
+
+
+def _edge_cell(beta, cov, x):
+    """The cell of the cover ``cov`` that holds the radius ``x`` (the last one beyond it)."""
+    N = beta.size - 1
+    k = 0
+    while k < N - 1 and cov * beta[k + 1] < x:
+        k += 1
+    return k
+
+
+def _integrals(i, k, d, x, w, bl, bl2, br2, gl, gr, hl, hr, Gx, Hx):
+    """``(S, T)``, the cell integrals of cell ``i`` at depth ``d`` and radius ``x`` in edge
+    cell ``k``: a cell inside the edge cell, the edge cell by its closed forms ``Gx, Hx``
+    (:func:`_edge_terms`), nothing beyond (boundary ``bl .. br``, products ``g, h``)."""
+    if i < k:
+        return d * w - (gr - gl), d * (br2 - bl2) / 2.0 - (hr - hl)
+    if i == k and x > bl:
+        return (max(d * (x - bl) - (Gx - gl), 0.0),
+                max(d * (x * x - bl2) / 2.0 - (Hx - hl), 0.0))
+    return 0.0, 0.0
+
+
+def _weight(dd, S, So, w, x, bl):
+    """The share of a cell in contact: the change of its integral over the depth's change
+    ``dd`` (the last integral ``So``), or the covered fraction at radius ``x`` where the depth
+    holds; clipped to [0, 1]."""
+    if dd != 0.0:
+        return min(max((S - So) / (dd * w), 0.0), 1.0)
+    return min(max((x - bl) / w, 0.0), 1.0)
+
+
+def _slip(mo, K, L, inc, e, F, free, cs, bl, a):
+    """One Jenkins element (stiffness ``K``, limit ``L``) from ``mo`` by the control's
+    increment ``inc``: ``(m, e, F, free, cs)``, the element, the dissipation ``e`` and force
+    ``F`` summed on, and the stick radius ``cs`` (the first slipping cell's left boundary,
+    ``free`` until then). The dissipation ``(trial - m) m / K`` is a zero where the element
+    sticks (trial == m): adding it leaves the sum's bits unchanged, so it is skipped there."""
+    trial = mo + K * inc
+    mn = min(max(trial, -L), L)
+    if K > 0.0 and trial != mn:
+        e += (trial - mn) * mn / K
+    F += mn
+    if free and abs(mn) >= L:
+        free = False
+        cs = min(bl, a)
+    return mn, e, F, free, cs
+
+
+def _replay(K, L, X, depth, x, ch, c):
+    """An element of stiffness ``K`` and limit ``L`` from 0 through channel ``ch``'s turning
+    points ``X[ch, c, :depth]`` to its control ``x[ch, c]``."""
+    m = 0.0
+    prev = 0.0
+    for p in range(depth[ch, c]):
+        tgt = X[ch, c, p]
+        m = min(max(m + K * (tgt - prev), -L), L)
+        prev = tgt
+    return min(max(m + K * (x[ch, c] - prev), -L), L)
+
+
+def _zero(m, r, lo, hi):
+    """Row ``r``'s elements ``lo .. hi - 1`` to +0."""
+    for i in range(lo, hi):
+        m[r, i] = 0.0
+
+
+def _outputs(c, aj, e, has_u, has_phi, Ft_j, ct_j, M_j, cm_j, Ft, ct, M, cm, dW):
+    """Write contact ``c``'s forces, stick radii (radius ``aj`` where a channel is not driven)
+    and dissipation; 1 where one is not finite, else 0."""
+    if has_u:
+        Ft[c] = Ft_j
+        ct[c] = ct_j
+    else:
+        Ft[c] = 0.0
+        ct[c] = aj
+    if has_phi:
+        M[c] = M_j
+        cm[c] = cm_j
+    else:
+        M[c] = 0.0
+        cm[c] = aj
+    dW[c] = e
+    return 0 if (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])) else 1
+
+
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
                  Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag,
                  full_u=False, full_phi=False):
@@ -40,8 +162,6 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
     beyond that they are +0 already and neither read nor written. Returns (non-finite,
     grown)."""
     N = beta.size - 1
-    n1 = n + 1.0
-    n2 = n + 2.0
     nonfinite = 0
     grown = 0
     for j in _prange(idx.size):
@@ -55,22 +175,10 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             continue
         kcc = kc[c]
         dj = d[c]
-        if n == 2.0:
-            cp1 = kcc * cov * cov * cov
-            Ga = kcc * aj * aj * aj / n1
-            Ha = kcc * aj * aj * aj * aj / n2
-        elif n == 1.0:                          # cone: squares and cubes, no pow
-            cp1 = kcc * cov * cov
-            Ga = kcc * aj * aj / n1
-            Ha = kcc * aj * aj * aj / n2
-        else:
-            cp1 = kcc * cov ** n1
-            Ga = kcc * aj ** n1 / n1
-            Ha = kcc * aj ** n2 / n2
+        cp1 = _span(n, kcc, cov)
+        Ga, Ha = _edge_terms(n, kcc, aj)
         cp2 = cp1 * cov
-        k = 0
-        while k < N - 1 and cov * beta[k + 1] < aj:
-            k += 1
+        k = _edge_cell(beta, cov, aj)
         ko = k_old[r]
         lo = min(k, ko)
         hi = max(k, ko) + 1
@@ -97,36 +205,18 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             w = br - bl
             gr = cp1 * bG[i + 1]
             hr = cp2 * bH[i + 1]
-            S = dj * w - (gr - gl)
-            T = dj * (br2 - bl2) / 2.0 - (hr - hl)
+            S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
             gl, hl = gr, hr
             if has_u:
-                L = L2 * S
-                Kt = K2 * w
-                mo = m_tan[r, i]
-                trial = mo + Kt * du
-                mn = min(max(trial, -L), L)
-                m_tan[r, i] = mn
-                if Kt > 0.0 and trial != mn:
-                    e += (trial - mn) * mn / Kt
-                Ft_j += mn
-                if free_t and abs(mn) >= L:
-                    free_t = False
-                    ct_j = min(bl, aj)
+                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w, L2 * S, du, e,
+                                                           Ft_j, free_t, ct_j, bl, aj)
             if has_phi:
-                L = L4 * T
-                Kr = K16 * ((br3 - bl3) / 3.0)
-                mo = m_tor[r, i]
-                trial = mo + Kr * dp
-                mn = min(max(trial, -L), L)
-                m_tor[r, i] = mn
-                if Kr > 0.0 and trial != mn:
-                    e += (trial - mn) * mn / Kr
-                M_j += mn
-                if free_m and abs(mn) >= L:
-                    free_m = False
-                    cm_j = min(bl, aj)
+                m_tor[r, i], e, M_j, free_m, cm_j = _slip(m_tor[r, i], K16 * ((br3 - bl3) / 3.0),
+                                                          L4 * T, dp, e, M_j, free_m, cm_j, bl,
+                                                          aj)
             bl, bl2, bl3 = br, br2, br3
+        # the last step's edge-cell closed form (the old radius; its cell's integral below)
+        Gao = _edge_terms(n, kcc, a_old[r])[0] if dd != 0.0 and ko <= k else 0.0
         # the edge cell and those inside it the depth moved over; each cell's left-boundary
         # products are its neighbour's right ones (the same bits)
         for i in range(inner, k + 1):
@@ -134,66 +224,22 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             br2 = br * br
             br3 = br2 * br
             w = br - bl
-            if i < k:
-                gr = cp1 * bG[i + 1]
-                hr = cp2 * bH[i + 1]
-                S = dj * w - (gr - gl)
-                T = dj * (br2 - bl2) / 2.0 - (hr - hl)
-                gl = gr
-                hl = hr
-            elif aj > bl:
-                S = max(dj * (aj - bl) - (Ga - gl), 0.0)
-                T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
-            else:
-                S = 0.0
-                T = 0.0
-            if dd != 0.0:
-                # the last step's integral of this cell, by the expressions that formed it
-                # (inside the old edge cell, the old edge cell, beyond it)
-                if i < ko:
-                    So = d_old[r] * w - (cp1 * bG[i + 1] - cp1 * bG[i])
-                elif i == ko and a_old[r] > bl:
-                    ao = a_old[r]
-                    if n == 2.0:
-                        Gao = kcc * ao * ao * ao / n1
-                    elif n == 1.0:
-                        Gao = kcc * ao * ao / n1
-                    else:
-                        Gao = kcc * ao ** n1 / n1
-                    So = max(d_old[r] * (ao - bl) - (Gao - cp1 * bG[i]), 0.0)
-                else:
-                    So = 0.0
-                wgt = min(max((S - So) / (dd * w), 0.0), 1.0)
-            else:
-                wgt = min(max((aj - bl) / w, 0.0), 1.0)
-            # the dissipation (trial - m) m / K is a zero where the element sticks (trial ==
-            # m): adding it leaves the sum's bits unchanged, so it is skipped there
+            gr = cp1 * bG[i + 1] if i < k else gl
+            hr = cp2 * bH[i + 1] if i < k else hl
+            S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
+            # the last step's integral of this cell, by the expressions that formed it
+            # (inside the old edge cell, the old edge cell, beyond it; its T is not used)
+            So = (_integrals(i, ko, d_old[r], a_old[r], w, bl, bl2, br2, cp1 * bG[i],
+                             cp1 * bG[i + 1], hl, hr, Gao, 0.0)[0] if dd != 0.0 else 0.0)
+            wgt = _weight(dd, S, So, w, aj, bl)
+            gl, hl = gr, hr
             if has_u:
-                L = L2 * S
-                Kt = K2 * w * wgt
-                mo = m_tan[r, i]
-                trial = mo + Kt * du
-                mn = min(max(trial, -L), L)
-                m_tan[r, i] = mn
-                if Kt > 0.0 and trial != mn:
-                    e += (trial - mn) * mn / Kt
-                Ft_j += mn
-                if free_t and abs(mn) >= L:
-                    free_t = False
-                    ct_j = min(bl, aj)
+                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w * wgt, L2 * S,
+                                                           du, e, Ft_j, free_t, ct_j, bl, aj)
             if has_phi:
-                L = L4 * T
-                Kr = K16 * ((br3 - bl3) / 3.0) * wgt
-                mo = m_tor[r, i]
-                trial = mo + Kr * dp
-                mn = min(max(trial, -L), L)
-                m_tor[r, i] = mn
-                if Kr > 0.0 and trial != mn:
-                    e += (trial - mn) * mn / Kr
-                M_j += mn
-                if free_m and abs(mn) >= L:
-                    free_m = False
-                    cm_j = min(bl, aj)
+                m_tor[r, i], e, M_j, free_m, cm_j = _slip(
+                    m_tor[r, i], K16 * ((br3 - bl3) / 3.0) * wgt, L4 * T, dp, e, M_j, free_m,
+                    cm_j, bl, aj)
             bl, bl2, bl3 = br, br2, br3
         # beyond the edge cell: S = T = 0, so both limits are +0 and the reference's clip
         # left a zero of either sign there (the sums, dissipation and stick radius the same
@@ -203,31 +249,18 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         # the last step's edge cell (all cells of a stale channel); the cells beyond both
         # edges are +0 already (written so when they left the contact) and left untouched
         if has_u:
-            for i in range(k + 1, N if full_u else hi):
-                m_tan[r, i] = 0.0
+            _zero(m_tan, r, k + 1, N if full_u else hi)
         if has_phi:
-            for i in range(k + 1, N if full_phi else hi):
-                m_tor[r, i] = 0.0
+            _zero(m_tor, r, k + 1, N if full_phi else hi)
         k_old[r] = k
         d_old[r] = dj
         a_old[r] = aj
         if has_u:
             x_tan[r] = u[c]
-            Ft[c] = Ft_j
-            ct[c] = ct_j
-        else:
-            Ft[c] = 0.0
-            ct[c] = aj
         if has_phi:
             x_tor[r] = phi[c]
-            M[c] = M_j
-            cm[c] = cm_j
-        else:
-            M[c] = 0.0
-            cm[c] = aj
-        dW[c] = e
-        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
-            nonfinite += 1
+        nonfinite += _outputs(c, aj, e, has_u, has_phi, Ft_j, ct_j, M_j, cm_j, Ft, ct, M, cm,
+                              dW)
     return nonfinite, grown
 
 
@@ -242,8 +275,6 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
     tangential, 1 torsion). Contact ``idx[j]`` gets row ``base + j`` of the spring pool
     (``slot``: row per contact, ``owner``: contact per row)."""
     N = beta.size - 1
-    n1 = n + 1.0
-    n2 = n + 2.0
     for j in _prange(idx.size):
         c = idx[j]
         r = base + j
@@ -251,30 +282,13 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
         owner[r] = c
         d0 = ref[c]
         kcc = kc[c]
-        if is_flat:
-            a0 = flat[c] if d0 > 0.0 else 0.0
-        elif n == 2.0:
-            a0 = math.sqrt(d0 / kcc)
-        else:
-            a0 = (d0 / kcc) ** (1.0 / n)
+        a0 = _held_radius(is_flat, flat, c, d0, n, kcc)
         cov = cover_factor[c] * max(a0, a[c])
         cover[r] = cov
-        if n == 2.0:
-            cp1 = kcc * cov * cov * cov
-            Ga = kcc * a0 * a0 * a0 / n1
-            Ha = kcc * a0 * a0 * a0 * a0 / n2
-        elif n == 1.0:                          # cone: squares and cubes, no pow
-            cp1 = kcc * cov * cov
-            Ga = kcc * a0 * a0 / n1
-            Ha = kcc * a0 * a0 * a0 / n2
-        else:
-            cp1 = kcc * cov ** n1
-            Ga = kcc * a0 ** n1 / n1
-            Ha = kcc * a0 ** n2 / n2
+        cp1 = _span(n, kcc, cov)
+        Ga, Ha = _edge_terms(n, kcc, a0)
         cp2 = cp1 * cov
-        k = 0
-        while k < N - 1 and cov * beta[k + 1] < a0:
-            k += 1
+        k = _edge_cell(beta, cov, a0)
         mu_E = mu[c] * E[c]
         # the elements at the held load: the history 0 -> X[0] -> ... -> X[depth-1] -> x,
         # element by element (each element's path is independent of the others); the products
@@ -290,50 +304,23 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
             br2 = br * br
             br3 = br2 * br
             w = br - bl
-            if i < k:
-                gr = cp1 * bG[i + 1]
-                hr = cp2 * bH[i + 1]
-                S = d0 * w - (gr - gl)
-                T = d0 * (br2 - bl2) / 2.0 - (hr - hl)
-                gl = gr
-                hl = hr
-            elif a0 > bl:
-                S = max(d0 * (a0 - bl) - (Ga - gl), 0.0)
-                T = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha - hl), 0.0)
-            else:
-                S = 0.0
-                T = 0.0
+            gr = cp1 * bG[i + 1] if i < k else gl
+            hr = cp2 * bH[i + 1] if i < k else hl
+            S, T = _integrals(i, k, d0, a0, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
+            gl, hl = gr, hr
             # inside the edge cell the clipped ratio is 1 (a0 > br, so a0 - bl >= w): no
             # division, the same bits
-            frac = 1.0 if i < k else min(max((a0 - bl) / w, 0.0), 1.0)
-            for ch in range(2):
-                if ch == 0:
-                    Kc = 2.0 * G[c] * w * frac
-                    L = 2.0 * mu_E * S
-                else:
-                    Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
-                    L = 4.0 * mu_E * T
-                m = 0.0
-                prev = 0.0
-                for p in range(depth[ch, c]):
-                    tgt = X[ch, c, p]
-                    m = min(max(m + Kc * (tgt - prev), -L), L)
-                    prev = tgt
-                m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
-                if ch == 0:
-                    m_tan[r, i] = m
-                else:
-                    m_tor[r, i] = m
-            bl = br
-            bl2 = br2
-            bl3 = br3
+            frac = 1.0 if i < k else _weight(0.0, 0.0, 0.0, w, a0, bl)
+            m_tan[r, i] = _replay(2.0 * G[c] * w * frac, 2.0 * mu_E * S, X, depth, x, 0, c)
+            m_tor[r, i] = _replay(16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac, 4.0 * mu_E * T, X,
+                                  depth, x, 1, c)
+            bl, bl2, bl3 = br, br2, br3
         # the cells beyond the contact: S = T = 0 and contact fraction 0 (their left edge is
         # at or beyond a0), so both stiffnesses and limits are +0 and the reference's replay
         # through them gives +0 (from +0, m + 0 dx is +0 and its clip to [-0, +0] keeps it;
         # finite turning points): written, without the replay
-        for i in range(k + 1, N):
-            m_tan[r, i] = 0.0
-            m_tor[r, i] = 0.0
+        _zero(m_tan, r, k + 1, N)
+        _zero(m_tor, r, k + 1, N)
         x_tan[r] = x[0, c]
         x_tor[r] = x[1, c]
         k_old[r] = k
