@@ -369,8 +369,6 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
     only, ``flag[c] = 4``, counted (stepped after its regrid: :func:`switch_step_pass`).
     Contact ``idx[j]`` gets row ``base + j``. Returns (non-finite, grown)."""
     N = beta.size - 1
-    n1 = n + 1.0
-    n2 = n + 2.0
     nonfinite = 0
     grown = 0
     for j in _prange(idx.size):
@@ -381,37 +379,15 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         # the switch's scalars (:func:`_switch_pass`)
         d0 = ref[c]
         kcc = kc[c]
-        if is_flat:
-            a0 = flat[c] if d0 > 0.0 else 0.0
-        elif n == 2.0:
-            a0 = math.sqrt(d0 / kcc)
-        else:
-            a0 = (d0 / kcc) ** (1.0 / n)
+        a0 = _held_radius(is_flat, flat, c, d0, n, kcc)
         aj = a[c]
         cov = cover_factor[c] * max(a0, aj)
         cover[r] = cov
-        if n == 2.0:
-            cp1 = kcc * cov * cov * cov
-            Ga0 = kcc * a0 * a0 * a0 / n1
-            Ha0 = kcc * a0 * a0 * a0 * a0 / n2
-            Ga = kcc * aj * aj * aj / n1
-            Ha = kcc * aj * aj * aj * aj / n2
-        elif n == 1.0:
-            cp1 = kcc * cov * cov
-            Ga0 = kcc * a0 * a0 / n1
-            Ha0 = kcc * a0 * a0 * a0 / n2
-            Ga = kcc * aj * aj / n1
-            Ha = kcc * aj * aj * aj / n2
-        else:
-            cp1 = kcc * cov ** n1
-            Ga0 = kcc * a0 ** n1 / n1
-            Ha0 = kcc * a0 ** n2 / n2
-            Ga = kcc * aj ** n1 / n1
-            Ha = kcc * aj ** n2 / n2
+        cp1 = _span(n, kcc, cov)
+        Ga0, Ha0 = _edge_terms(n, kcc, a0)
+        Ga, Ha = _edge_terms(n, kcc, aj)
         cp2 = cp1 * cov
-        k0 = 0
-        while k0 < N - 1 and cov * beta[k0 + 1] < a0:
-            k0 += 1
+        k0 = _edge_cell(beta, cov, a0)
         mu_E = mu[c] * E[c]
         x0t = x[0, c]
         x0r = x[1, c]
@@ -421,11 +397,7 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             flag[c] = 4
             grown += 1
         dj = d[c]
-        k = 0
-        while k < N - 1 and cov * beta[k + 1] < aj:
-            k += 1
-        if not step:
-            k = k0
+        k = _edge_cell(beta, cov, aj) if step else k0
         hi = max(k, k0) + 1
         dd = dj - d0
         st_u = step and has_u
@@ -455,82 +427,27 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
                 gr = gl
                 hr = hl
             # the switch (held depth d0, radius a0)
-            if i < k0:
-                S0 = d0 * w - (gr - gl)
-                T0 = d0 * (br2 - bl2) / 2.0 - (hr - hl)
-            elif i == k0 and a0 > bl:
-                S0 = max(d0 * (a0 - bl) - (Ga0 - gl), 0.0)
-                T0 = max(d0 * (a0 * a0 - bl2) / 2.0 - (Ha0 - hl), 0.0)
-            else:
-                S0 = 0.0
-                T0 = 0.0
+            S0, T0 = _integrals(i, k0, d0, a0, w, bl, bl2, br2, gl, gr, hl, hr, Ga0, Ha0)
             m0t = 0.0
             m0r = 0.0
             if i <= k0 and (i <= k or not st_u or not st_p):
-                frac = 1.0 if i < k0 else min(max((a0 - bl) / w, 0.0), 1.0)
-                for ch in range(2):
-                    if ch == 0:
-                        Kc = 2.0 * G[c] * w * frac
-                        L = 2.0 * mu_E * S0
-                    else:
-                        Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
-                        L = 4.0 * mu_E * T0
-                    m = 0.0
-                    prev = 0.0
-                    for p in range(depth[ch, c]):
-                        tgt = X[ch, c, p]
-                        m = min(max(m + Kc * (tgt - prev), -L), L)
-                        prev = tgt
-                    m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
-                    if ch == 0:
-                        m0t = m
-                    else:
-                        m0r = m
+                frac = 1.0 if i < k0 else _weight(0.0, 0.0, 0.0, w, a0, bl)
+                m0t = _replay(2.0 * G[c] * w * frac, 2.0 * mu_E * S0, X, depth, x, 0, c)
+                m0r = _replay(16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac, 4.0 * mu_E * T0, X,
+                              depth, x, 1, c)
             # the step (depth dj, radius aj), cells up to its edge cell
             if i <= k and (st_u or st_p):
-                if i < inner:
-                    S = dj * w - (gr - gl)
-                    T = dj * (br2 - bl2) / 2.0 - (hr - hl)
-                    wgt = 1.0
-                else:
-                    if i < k:
-                        S = dj * w - (gr - gl)
-                        T = dj * (br2 - bl2) / 2.0 - (hr - hl)
-                    elif aj > bl:
-                        S = max(dj * (aj - bl) - (Ga - gl), 0.0)
-                        T = max(dj * (aj * aj - bl2) / 2.0 - (Ha - hl), 0.0)
-                    else:
-                        S = 0.0
-                        T = 0.0
-                    if dd != 0.0:
-                        wgt = min(max((S - S0) / (dd * w), 0.0), 1.0)
-                    else:
-                        wgt = min(max((aj - bl) / w, 0.0), 1.0)
+                S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
+                wgt = 1.0 if i < inner else _weight(dd, S, S0, w, aj, bl)
                 if st_u:
-                    L = L2 * S
-                    Kt = K2 * w if i < inner else K2 * w * wgt
-                    trial = m0t + Kt * du
-                    mn = min(max(trial, -L), L)
-                    m0t = mn
-                    if Kt > 0.0 and trial != mn:
-                        e += (trial - mn) * mn / Kt
-                    Ft_j += mn
-                    if free_t and abs(mn) >= L:
-                        free_t = False
-                        ct_j = min(bl, aj)
+                    m0t, e, Ft_j, free_t, ct_j = _slip(
+                        m0t, K2 * w if i < inner else K2 * w * wgt, L2 * S, du, e, Ft_j,
+                        free_t, ct_j, bl, aj)
                 if st_p:
-                    L = L4 * T
-                    Kr = (K16 * ((br3 - bl3) / 3.0) if i < inner
-                          else K16 * ((br3 - bl3) / 3.0) * wgt)
-                    trial = m0r + Kr * dp
-                    mn = min(max(trial, -L), L)
-                    m0r = mn
-                    if Kr > 0.0 and trial != mn:
-                        e += (trial - mn) * mn / Kr
-                    M_j += mn
-                    if free_m and abs(mn) >= L:
-                        free_m = False
-                        cm_j = min(bl, aj)
+                    m0r, e, M_j, free_m, cm_j = _slip(
+                        m0r, (K16 * ((br3 - bl3) / 3.0) if i < inner
+                              else K16 * ((br3 - bl3) / 3.0) * wgt),
+                        L4 * T, dp, e, M_j, free_m, cm_j, bl, aj)
             elif i > k:
                 if st_u:
                     m0t = 0.0
@@ -540,9 +457,8 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             m_tor[r, i] = m0r
             gl, hl = gr, hr
             bl, bl2, bl3 = br, br2, br3
-        for i in range(last, N):
-            m_tan[r, i] = 0.0
-            m_tor[r, i] = 0.0
+        _zero(m_tan, r, last, N)
+        _zero(m_tor, r, last, N)
         if not step:
             k_old[r] = k0
             d_old[r] = d0
@@ -553,25 +469,10 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         k_old[r] = k
         d_old[r] = dj
         a_old[r] = aj
-        if has_u:
-            x_tan[r] = u[c]
-            Ft[c] = Ft_j
-            ct[c] = ct_j
-        else:
-            x_tan[r] = x0t
-            Ft[c] = 0.0
-            ct[c] = aj
-        if has_phi:
-            x_tor[r] = phi[c]
-            M[c] = M_j
-            cm[c] = cm_j
-        else:
-            x_tor[r] = x0r
-            M[c] = 0.0
-            cm[c] = aj
-        dW[c] = e
-        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
-            nonfinite += 1
+        x_tan[r] = u[c] if has_u else x0t
+        x_tor[r] = phi[c] if has_phi else x0r
+        nonfinite += _outputs(c, aj, e, has_u, has_phi, Ft_j, ct_j, M_j, cm_j, Ft, ct, M, cm,
+                              dW)
     return nonfinite, grown
 
 
