@@ -368,6 +368,9 @@ def _kernels(parallel: bool) -> tuple:
                         # fused pass than a call, results bit-identical)
                         _KERNELS["load"] = _load = _jit.njit(_load, nogil=True, inline="always")
                         _prange = _springs._prange = numba.prange
+                        for h in _springs._INLINE:      # the spring passes' shared pieces
+                            setattr(_springs, h, _jit.njit(getattr(_springs, h), nogil=True,
+                                                           inline="always"))
                     _KERNELS[parallel] = tuple(
                         _jit.njit(f, name=f.__name__ + ("_parallel" if parallel else ""),
                                   nogil=True, parallel=parallel, **_OPTIONS.get(f, {}))
