@@ -54,7 +54,6 @@ DEFAULT_LOAD_RTOL = 1e-9
 DEFAULT_SPRINGS = 16
 #: the springs of a contact cover this multiple of its contact radius (grown when exceeded)
 DEFAULT_SPRING_COVER = 1.5
-_SWITCH_BLOCK = 8192        # contacts switched, then stepped, per block (~3.5 MB of rows)
 _NO_CONTACTS = np.zeros(0, np.int64)
 #: a step whose model error (:attr:`LawStep.model_error`) exceeds this for a quantity warns
 #: (once per law and quantity)
@@ -714,15 +713,15 @@ class ContactLaw:
                 self.G_torsion, self.n, mc, self._chan, self.parallel,
                 None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                           out.torsion_stick_radius, out.dissipated_energy, out.exact))
-        # the switching contacts in blocks, each stepped on its springs while its fresh rows
-        # are still in cache (one loop over the blocks, on the threads), then those already on
+        # the switching contacts switched and stepped on their springs one at a time, the row
+        # in registers between the two (one loop, on the threads), then those already on
         # springs (covers outgrown: regridded)
         regrid = lambda g: _np_springs.regrid(self, g, a[g])    # noqa: E731
         args = (self.kc, self.n, self._beta, self.friction, self.E_star, self.G_star,
                 self.G_torsion)
         if new.size:
-            nf += _kernel.switch_step_pass(new, _SWITCH_BLOCK, d, a, u, phi, self._flat,
-                                           self.spring_cover, *args, self._chan, st, self._pool,
+            nf += _kernel.switch_step_pass(new, d, a, u, phi, self._flat, self.spring_cover,
+                                           *args, self._chan, st, self._pool,
                                            (Ft, ct, M, cm, dW), self.parallel, flag, regrid)
         if spr is not None and spr.size:
             nf += _kernel.spring_pass(spr, d, a, u, phi, *args, self._pool, (Ft, ct, M, cm, dW),

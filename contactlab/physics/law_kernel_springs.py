@@ -587,14 +587,14 @@ def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, ch
     pool.used += int(idx.size)
 
 
-def switch_step_pass(idx, block: int, d, a, u, phi, flat, cover_factor, kc, n: float, beta, mu,
+def switch_step_pass(idx, d, a, u, phi, flat, cover_factor, kc, n: float, beta, mu,
                      E, G, Gt, chan: dict, st: dict, pool, out: tuple, parallel: bool = False,
                      flag=None, regrid=None) -> int:
     """:func:`switch_pass` then :func:`spring_pass` of the contacts ``idx`` (int64, not on
     springs; rows ``pool.used ...`` reserved by the caller), one contact at a time in one
     (threaded) loop, the row in registers between the two (:func:`_first_pass`; the bits of
-    the two passes, measured ~10 % faster than switching and stepping blocks of ``block``
-    contacts, :func:`_switch_step_pass`, which ``block`` sized: unused now). Contacts whose
+    the two passes, measured ~10 % faster than switching and stepping blocks of contacts,
+    :func:`_switch_step_pass`, kept as the reference its tests compare with). Contacts whose
     radius exceeds their fresh cover are regridded and stepped after the loop
     (:func:`spring_pass`). Returns the number of contacts whose outputs are not finite."""
     from .law_kernel import _EMPTY, _kernels

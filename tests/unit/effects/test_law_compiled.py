@@ -280,29 +280,6 @@ def test_uncompiled_kernels_give_the_compiled_bits(family, gname, lo_hi, extra, 
 
 
 @needs_numba
-@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
-                         ids=[f[0].__name__ for f in FAMILIES])
-def test_switch_in_blocks_gives_the_bits_of_one_switch(family, gname, lo_hi, extra, monkeypatch):
-    """The first changing-load step switches its contacts and steps them on their springs
-    block by block (rows still in cache): with blocks of 7 contacts (30 switching, five
-    blocks, the last one short) the outputs and the state are those of one block, bit for bit
-    (contacts are independent; rows are assigned in the same order)."""
-    from contactlab.effects import law as law_mod
-    n, steps = 60, 14
-    par = dict({gname: np.linspace(*lo_hi, n)}, E_star=1.15e11, G_star=4.4e10, G_torsion=4e10,
-               friction=0.3, memory=4, **extra)
-    whole, a = _changing_run(cl.ContactLaw(family, fast=True, **par), 6, steps, n)
-    monkeypatch.setattr(law_mod, "_SWITCH_BLOCK", 7)
-    blocks, b = _changing_run(cl.ContactLaw(family, fast=True, **par), 6, steps, n)
-    assert whole.state["spr_on"].sum() == n // 2
-    for k in range(steps):                     # bytes: signed zeros included
-        for f in FIELDS:
-            assert a[k][f].tobytes() == b[k][f].tobytes(), f"step {k}: {f}"
-    for key, v in whole.state.items():
-        assert np.asarray(v).tobytes() == np.asarray(blocks.state[key]).tobytes(), key
-
-
-@needs_numba
 @pytest.mark.parametrize("reuse", [False, True], ids=["fresh", "out"])
 def test_every_contact_on_springs_skips_the_fused_pass_to_the_bit(reuse, monkeypatch):
     """With every contact on springs the compiled step gives its outputs without the fused

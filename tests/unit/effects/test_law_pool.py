@@ -150,14 +150,12 @@ def test_threaded_switch_and_springs_are_bit_identical():
 
 
 @pytest.mark.skipif(not HAS_NUMBA, reason="numba (extra 'fast') not installed")
-def test_threaded_switch_and_step_in_blocks_gives_the_serial_bytes(monkeypatch):
-    """The threaded switch-and-step (blocks of 7 contacts spread over the threads) and spring
-    pass give the serial build's bytes (signed zeros included): a random history in which
+def test_threaded_switch_and_step_gives_the_serial_bytes():
+    """The threaded switch-and-step (contacts spread over the threads) and spring pass give
+    the serial build's bytes (signed zeros included): a random history in which
     contacts switch in several steps, some separate and come back, some outgrow their cover
     (regridded), and the state is saved mid-run, stepped on and restored."""
-    from contactlab.effects import law as law_mod
     import numba
-    monkeypatch.setattr(law_mod, "_SWITCH_BLOCK", 7)
     n, steps = 240, 16
     rng = np.random.default_rng(29)
     F = rng.uniform(1.0, 50.0, n)
