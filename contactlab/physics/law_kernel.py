@@ -9,9 +9,11 @@ contacts separate or leave the constant-load regime; no state written) and :func
 two loops, one per channel, no temporary arrays). Contacts whose load changes go onto their
 MDR springs through :func:`switch_pass` (once per contact, in the arrays the law allocated) and
 then :func:`spring_pass` every step. Under force control (and by depth for ``n != 2``) the
-fractional powers of the normal contact come from numpy's vectorised ``power``, so that the
-compiled step matches the numpy law to the bit. :data:`AVAILABLE` is False when numba is not
-installed.
+fractional powers of the normal contact come from numpy's vectorised ``cbrt`` (the paraboloid
+by force) or ``power``, so that the compiled step matches the numpy law to the bit. The torsion
+master curve's three polynomials are evaluated side by side in the lanes of one vector
+(:func:`_poly3_lanes`, a numba intrinsic; the table from :func:`lane_table`).
+:data:`AVAILABLE` is False when numba is not installed.
 """
 from __future__ import annotations
 
@@ -60,7 +62,7 @@ def _poly3_lanes():
     three scalar polynomials itself). Measured at 10^6 Hertz contacts: the master curve alone
     12.0 -> 8.1 ms (and the torsion pass, see the CHANGELOG), results bit-identical (no fused
     multiply-adds: each lane rounds as the scalar code)."""
-    from llvmlite import ir
+    from llvmlite import ir  # type: ignore[import-untyped]  # (numba's dependency)
     from numba import types
     from numba.extending import intrinsic
 
@@ -118,7 +120,8 @@ def lane_table(master) -> np.ndarray:
 
 
 def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
-    """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds);
+    """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds;
+    ``coef``: the torsion curve's :func:`lane_table`);
     ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond); ``kp``: power of the
     panel map (:func:`contactlab.physics.master.evaluate`), None for 1 (numba compiles a
     separate specialisation for None and prunes the branches: the n >= 1 loop is unchanged)."""
