@@ -757,29 +757,30 @@ class ContactLaw:
     def _tangential(self, u, a, d, FN):
         n = self.n
         mu, E, G = self.friction, self.E_star, self.G_star
-        u_star = mu * E * d / G
+        inv = G / (mu * E * d)          # 1/u*: the curve's argument by a multiply
         muF = mu * FN
         Dscale = 2.0 * a * (mu * E * d) ** 2 / G
 
         def load(arg, idx):
             if idx is None:
-                t, f, w = _master.tangential_master(n, arg / u_star)
+                t, f, w = _master.tangential_master(n, arg * inv)
                 return muF * f, a * t, Dscale * w
-            t, f, w = _master.tangential_master(n, arg / u_star[idx])
+            t, f, w = _master.tangential_master(n, arg * inv[idx])
             return muF[idx] * f, a[idx] * t, Dscale[idx] * w
 
         return masing_step(self._channel("tan"), u, load)
 
     def _torsion(self, phi, a, d):
         mc = self._master
-        phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
-                                               self.friction, a, d)
+        _, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion, self.friction,
+                                           a, d)
+        inv = _master.inverse_twist_scale(self.E_star, self.G_torsion, self.friction, a, d)
 
         def load(arg, idx):
             if idx is None:
-                t, m, q = mc(arg / phi_s)
+                t, m, q = mc(arg * inv)
                 return M_full * m, a * t, M_full * arg * q
-            t, m, q = mc(arg / phi_s[idx])
+            t, m, q = mc(arg * inv[idx])
             return M_full[idx] * m, a[idx] * t, M_full[idx] * arg * q
 
         return masing_step(self._channel("tor"), phi, load)

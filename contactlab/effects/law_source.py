@@ -158,29 +158,30 @@ class Law:
         mu = self.friction
         if displacement is not None:
             u = np.array(np.broadcast_to(np.asarray(displacement, float), (size,)))
-            u_star = mu * self.E_star * sd / self.G_star
+            inv = self.G_star / (mu * self.E_star * sd)
             muF = mu * np.where(live, F, 0.0)
             Dscale = 2.0 * sa * (mu * self.E_star * sd) ** 2 / self.G_star
 
             def tload(arg, idx):
                 if idx is None:
-                    t, f, w = tangential_master(N, arg / u_star)
+                    t, f, w = tangential_master(N, arg * inv)
                     return muF * f, sa * t, Dscale * w
-                t, f, w = tangential_master(N, arg / u_star[idx])
+                t, f, w = tangential_master(N, arg * inv[idx])
                 return muF[idx] * f, sa[idx] * t, Dscale[idx] * w
 
             Ft, ct, w = masing_step(self._channel("tan"), u, tload)
             dW += w
         if twist is not None:
             phi = np.array(np.broadcast_to(np.asarray(twist, float), (size,)))
-            phi_s, M_full = torsion_scales(N, self.E_star, self.G_torsion, mu, sa, sd)
+            _, M_full = torsion_scales(N, self.E_star, self.G_torsion, mu, sa, sd)
+            rinv = inverse_twist_scale(self.E_star, self.G_torsion, mu, sa, sd)
 
             def rload(arg, idx):
                 if idx is None:
-                    t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s, Y0, M0, SCALED,
+                    t, m, q = evaluate(COEF, Y_SCALE, arg * rinv, Y0, M0, SCALED,
                                               K_POWER)
                     return M_full * m, sa * t, M_full * arg * q
-                t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s[idx], Y0, M0, SCALED,
+                t, m, q = evaluate(COEF, Y_SCALE, arg * rinv[idx], Y0, M0, SCALED,
                                           K_POWER)
                 return M_full[idx] * m, sa[idx] * t, M_full[idx] * arg * q
 
@@ -197,7 +198,8 @@ class Law:
 
 
 def _kernel_sources() -> str:
-    funcs = (_master.evaluate, _master.torsion_scales, _master.tangential_master,
+    funcs = (_master.evaluate, _master.torsion_scales, _master.inverse_twist_scale,
+             _master.tangential_master,
              _ms.new_stack, _ms._origin, _ms.masing_step)
     parts = []
     for f in funcs:

@@ -120,13 +120,14 @@ def lane_table(master) -> np.ndarray:
 
 
 def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
-    """(y_load, aux, D_load) of one contact at argument arg >= 0 (scales xs, ys, aux, Ds;
+    """(y_load, aux, D_load) of one contact at argument arg >= 0 (``xs``: the inverse of the
+    argument's scale, ``arg * xs`` is the curve's argument; scales ys, aux, Ds;
     ``coef``: the torsion curve's :func:`lane_table`);
     ``y0 > 0``: flat punch (no slip up to y0, unscaled table beyond); ``kp``: power of the
     panel map (:func:`contactlab.physics.master.evaluate`), None for 1 (numba compiles a
     separate specialisation for None and prunes the branches: the n >= 1 loop is unchanged)."""
     if kind == TORSION:
-        y = arg / xs
+        y = arg * xs
         if y0 > 0.0:
             if y <= y0:
                 return ys * (m0 * y), aux, 0.0
@@ -156,7 +157,7 @@ def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
             m = m * s
             q = q * (s * s)
         return ys * m, aux * t, ys * arg * q
-    x = arg / xs
+    x = arg * xs
     xc = min(x, 1.0)
     r = 1.0 - xc
     if n == 2.0:
@@ -309,12 +310,12 @@ def _channel_pass(c: int):
             if on:
                 if first:
                     xi = u[i]
-                    xs = mEd / G[i]
+                    xs = G[i] / mEd                 # inverse scales: arguments by multiplies
                     ys = mu[i] * F[i]
                     Ds = 2.0 * ai * (mEd * mEd) / G[i]
                 else:
                     xi = phi[i]
-                    xs = mEd / (2.0 * Gt[i] * ai)
+                    xs = (2.0 * Gt[i] * ai) / mEd
                     ys = cM * mu[i] * E[i] * di * ai * ai
                     Ds = ys
                 xp = sx[c, i]
