@@ -281,8 +281,8 @@ class ContactLaw:
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
-        # 2 n E* kc per contact, once (the compiled step's radius from a force; same bits)
-        self._denom = _kernel.force_denominator(self.E_star, self.kc, expo)
+        # (n + 1)/(2 n E* kc) per contact, once (the compiled step's radius from a force)
+        self._factor = _kernel.force_factor(self.E_star, self.kc, expo)
         self._flag: np.ndarray | None = None
         self._warned = False
         #: emit the model-error ValidityWarning (once per law and quantity); settable
@@ -447,7 +447,7 @@ class ContactLaw:
             F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        x = F * (n + 1.0) / (2.0 * n * self.E_star * self.kc)
+        x = F * ((n + 1.0) / (2.0 * n * self.E_star * self.kc))
         a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))     # (cbrt: exact 1/3)
         d = self.kc * a**n if n != 2.0 else self.kc * a * a
         return d, a, F.copy()
@@ -666,7 +666,7 @@ class ContactLaw:
         d, a, F, flag, (bad, dead, off, both, nonfinite) = _kernel.normal_pass(
             key == "force", v, u, phi, self.kc, self.E_star, self.n, self._flat, st["depth_ref"],
             self.load_rtol, self.parallel,
-            None if out is None else (out.depth, out.radius, out.force, self._flag), self._denom)
+            None if out is None else (out.depth, out.radius, out.force, self._flag), self._factor)
         if bad:                                         # the numpy checks name the entry
             _per_step(key, v, size, "m" if key == "depth" else "N", nonneg=key == "force")
             _per_step("displacement", u if u is not None else 0.0, size, "m")

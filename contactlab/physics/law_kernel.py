@@ -29,7 +29,7 @@ from . import law_kernel_springs as _springs
 from .law_kernel_springs import (_first_pass, _spring_pass, _switch_pass, _switch_step_pass,
                                  spring_pass, switch_pass, switch_step_pass)
 
-__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "force_denominator", "spring_pass", "switch_pass",
+__all__ = ["AVAILABLE", "normal_pass", "fused_pass", "force_factor", "spring_pass", "switch_pass",
            "switch_step_pass", "TORSION", "TANGENTIAL"]
 
 TORSION = 0
@@ -220,7 +220,7 @@ def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rto
                 ai = a_out[i]
                 di = kc[i] * ai * ai if n == 2.0 else d_out[i]
             else:
-                ai = (v * (n + 1.0) / (2.0 * n * E[i] * kc[i])) ** (1.0 / (n + 1.0))
+                ai = (v * ((n + 1.0) / (2.0 * n * E[i] * kc[i]))) ** (1.0 / (n + 1.0))
                 di = kc[i] * ai * ai if n == 2.0 else kc[i] * ai ** n
             Fi = v
         else:
@@ -464,17 +464,18 @@ _EMPTY = np.zeros(1)
 
 
 def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: float,
-                parallel: bool = False, out=None, denom=None):
+                parallel: bool = False, out=None, factor=None):
     """Normal contact of every contact from a force (``by_force``) or a depth ``val``; ``u``,
     ``phi`` (or None) are only checked. ``flat``: punch radii (flat punch family, ``n = inf``).
     Returns ``(d, a, F, flag, counts)`` with ``flag`` 0 (constant load), 1 (separated), 2 (depth
     beyond ``rtol`` of ``ref``) and ``counts = (bad inputs, separated, off, both channels)``.
-    ``out``: the four arrays to write into (default: new arrays). ``denom``: ``2 n E kc`` per
-    contact (:func:`force_denominator`, the law's, computed once) or None (computed here)."""
+    ``out``: the four arrays to write into (default: new arrays). ``factor``:
+    ``(n + 1)/(2 n E kc)`` per contact (:func:`force_factor`, the law's, computed once) or None
+    (computed here)."""
     m = val.size
     d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
                      if out is None else out)
-    pre = _powers(by_force, val, kc, E, float(n), d, a, denom)
+    pre = _powers(by_force, val, kc, E, float(n), d, a, factor)
     counts = _kernels(parallel)[0](bool(by_force), val, _EMPTY if u is None else u,
                                    _EMPTY if phi is None else phi, u is not None,
                                    phi is not None, kc, E, float(n), flat, ref, float(rtol), pre,
@@ -482,32 +483,33 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     return d, a, F, flag, counts
 
 
-def force_denominator(E, kc, n: float):
-    """``2 n E kc`` per contact, the denominator of the radius from a force (its product in
-    the numpy reference's order, ``((2 n) E) kc``: the same bits), None for the flat punch:
-    a law computes it once (these are per-contact constants), saving the step two passes."""
-    return None if n == np.inf else 2.0 * n * E * kc
+def force_factor(E, kc, n: float):
+    """``(n + 1)/(2 n E kc)`` per contact, the factor of the force in the radius
+    ``a = (F (n + 1)/(2 n E kc))^(1/(n+1))`` (in the numpy reference's order,
+    ``(n + 1)/(((2 n) E) kc)``: the same bits), None for the flat punch: a law computes it once
+    (these are per-contact constants), saving the step three passes."""
+    return None if n == np.inf else (n + 1.0) / (2.0 * n * E * kc)
 
 
-def _powers(by_force: bool, val, kc, E, n: float, d, a, denom=None) -> bool:
+def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
     """The fractional powers of the normal contact (the radius from a force, or from a depth
     when ``n`` is not 2; the depth ``kc a^n`` from a force when ``n`` is not 2) by numpy's
     vectorised ``cbrt`` (``n = 2`` by force) or ``power`` into ``a`` and ``d``, in the numpy
     reference's order of operations (:meth:`ContactLaw.normal`), so the compiled step matches
     it to the bit (a scalar ``pow`` or ``cbrt`` in the kernel may differ from numpy's SIMD one
-    by an ulp, and is slower); ``d`` is the only scratch; ``denom``: :func:`force_denominator`
+    by an ulp, and is slower); ``d`` is the only scratch; ``factor``: :func:`force_factor`
     (None: computed here). Returns whether they were computed (not for ``n = 2`` from a depth:
     a square root, correctly rounded everywhere; not for the flat punch). Entries of bad inputs
     are garbage here; the kernel counts them and the step is refused."""
     if n == np.inf or (n == 2.0 and not by_force):
         return False
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        if by_force:        # a = (F (n+1) / (2 n E kc))^(1/(n+1)), d = kc a^n
-            if denom is None:
-                denom = np.multiply(E, 2.0 * n, out=d)
-                denom *= kc
-            np.multiply(val, n + 1.0, out=a)
-            a /= denom
+        if by_force:        # a = (F ((n+1) / (2 n E kc)))^(1/(n+1)), d = kc a^n
+            if factor is None:
+                factor = np.multiply(E, 2.0 * n, out=d)
+                factor *= kc
+                np.divide(n + 1.0, factor, out=factor)
+            np.multiply(val, factor, out=a)
             if n == 2.0:    # the cube root: measured ~1.6 ms less than power at 10^6
                 np.cbrt(a, out=a)
             else:
