@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 
 import threading
+import weakref
 
 import numpy as np
 
@@ -102,7 +103,7 @@ def _poly3_lanes():
     return poly3
 
 
-_LANES: dict = {}
+_LANES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # curve -> its table
 
 
 def lane_table(master) -> np.ndarray:
@@ -110,13 +111,12 @@ def lane_table(master) -> np.ndarray:
     ``(panels, 8, 4)``: panel, power of ``u``, curve (t, m, q, then a zero lane), so that one
     panel's coefficient of one power for the three curves are adjacent (a vector load); built
     once per curve (the curves are cached per exponent)."""
-    key = id(master)
-    hit = _LANES.get(key)
-    if hit is None or hit[0] is not master:
+    tab = _LANES.get(master)
+    if tab is None:
         tab = np.zeros((master.coef.shape[1], 8, 4))
         tab[:, :, :3] = master.coef.transpose(1, 2, 0)
-        hit = _LANES[key] = (master, tab)
-    return hit[1]
+        _LANES[master] = tab
+    return tab
 
 
 def _load(kind, arg, xs, ys, aux, Ds, coef, y_scale, n, y0, m0, kp):
