@@ -5,6 +5,7 @@ against its floor measured interleaved in the same run, with a verdict against t
     python benchmarks/law_speed.py --scaling    # also the per-n table (10^3 .. 10^6) of issue 14
     python benchmarks/law_speed.py --scaling --big   # adds n = 10^7 (compiled only, ~9 GB)
     python benchmarks/law_speed.py --n 1e5      # the rows at another n (the goals stay 10^6's)
+    python benchmarks/law_speed.py --passes     # only the constant-load step by parts (~15 s)
 
 Rows (10^6 Hertz contacts, normal + torsion + tangential with memory, sinusoidal histories with
 random phases so that reversals and loop closures occur):
@@ -403,8 +404,58 @@ def scaling() -> None:
     springs_table()
 
 
+def passes(n: int = 10**6, steps: int = 8) -> None:
+    """``--passes``: where one compiled constant-load step goes, on one thread with ``out=``:
+    CPU time of this thread per part (best of ``steps`` after two warm-up steps), the kernels
+    wrapped by timers: the normal pass (numpy's powers and the compiled loop), the kernel loop
+    alone, the tangential and the torsion pass, the whole step and what is left of it (the
+    step's Python and numpy around the passes)."""
+    law = _law(n, "fast")
+    times: dict[str, list[float]] = {}
+
+    def timed(name: str, f):
+        def g(*a, **k):
+            t0 = time.thread_time()
+            r = f(*a, **k)
+            times.setdefault(name, []).append(time.thread_time() - t0)
+            return r
+        return g
+
+    kernels = list(law_kernel._kernels(False))
+    kernels[0] = timed("normal pass, compiled loop", kernels[0])
+    kernels[1] = timed("tangential pass", kernels[1])
+    kernels[5] = timed("torsion pass (and dW, exact)", kernels[5])
+    saved = law_kernel._KERNELS[False], law_kernel.normal_pass
+    law_kernel._KERNELS[False] = tuple(kernels)
+    law_kernel.normal_pass = timed("normal pass (numpy powers + loop)", law_kernel.normal_pass)
+    try:
+        out = None
+        for k in range(steps + 2):
+            F, tw, u = _controls(n, k)
+            t0 = time.thread_time()
+            out = law.step(force=F, twist=tw, displacement=u, out=out)
+            times.setdefault("the step", []).append(time.thread_time() - t0)
+    finally:
+        law_kernel._KERNELS[False], law_kernel.normal_pass = saved
+    best = {name: 1e3 * min(v[2:]) for name, v in times.items()}
+    print(f"\nthe compiled constant-load step by parts, {n} Hertz contacts, one thread, out=, "
+          f"CPU ms, best of {steps} (load {os.getloadavg()[0]:.1f})")
+    for name in ("normal pass (numpy powers + loop)", "normal pass, compiled loop",
+                 "tangential pass", "torsion pass (and dW, exact)", "the step"):
+        print(f"  {name:<36} {best[name]:7.2f}")
+    rest = best["the step"] - sum(best[k] for k in ("normal pass (numpy powers + loop)",
+                                                     "tangential pass",
+                                                     "torsion pass (and dW, exact)"))
+    print(f"  {'the rest (Python, checks, numpy)':<36} {rest:7.2f}", flush=True)
+
+
 def main() -> None:
     warnings.simplefilter("ignore", ValidityWarning)    # combined shift + twist, documented
+    if "--passes" in sys.argv:
+        cl.set_memory_budget("inf")
+        print(machine(), f"load average {os.getloadavg()[0]:.1f}")
+        passes(int(float(sys.argv[sys.argv.index("--n") + 1])) if "--n" in sys.argv else 10**6)
+        return
     # 10^6 contacts on numpy springs and 10^7 contacts exceed the default budget on purpose
     cl.set_memory_budget("inf")
     print(machine(), f"load average {os.getloadavg()[0]:.1f}")

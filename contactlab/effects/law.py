@@ -281,6 +281,8 @@ class ContactLaw:
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
+        # (n + 1)/(2 n E* kc) per contact, once (the compiled step's radius from a force)
+        self._factor = _kernel.force_factor(self.E_star, self.kc, expo)
         self._flag: np.ndarray | None = None
         self._warned = False
         #: emit the model-error ValidityWarning (once per law and quantity); settable
@@ -445,7 +447,8 @@ class ContactLaw:
             F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        a = (F * (n + 1.0) / (2.0 * n * self.E_star * self.kc)) ** (1.0 / (n + 1.0))
+        x = F * ((n + 1.0) / (2.0 * n * self.E_star * self.kc))
+        a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))     # (cbrt: exact 1/3)
         d = self.kc * a**n if n != 2.0 else self.kc * a * a
         return d, a, F.copy()
 
@@ -663,7 +666,7 @@ class ContactLaw:
         d, a, F, flag, (bad, dead, off, both, nonfinite) = _kernel.normal_pass(
             key == "force", v, u, phi, self.kc, self.E_star, self.n, self._flat, st["depth_ref"],
             self.load_rtol, self.parallel,
-            None if out is None else (out.depth, out.radius, out.force, self._flag))
+            None if out is None else (out.depth, out.radius, out.force, self._flag), self._factor)
         if bad:                                         # the numpy checks name the entry
             _per_step(key, v, size, "m" if key == "depth" else "N", nonneg=key == "force")
             _per_step("displacement", u if u is not None else 0.0, size, "m")
@@ -754,29 +757,30 @@ class ContactLaw:
     def _tangential(self, u, a, d, FN):
         n = self.n
         mu, E, G = self.friction, self.E_star, self.G_star
-        u_star = mu * E * d / G
+        inv = G / (mu * E * d)          # 1/u*: the curve's argument by a multiply
         muF = mu * FN
         Dscale = 2.0 * a * (mu * E * d) ** 2 / G
 
         def load(arg, idx):
             if idx is None:
-                t, f, w = _master.tangential_master(n, arg / u_star)
+                t, f, w = _master.tangential_master(n, arg * inv)
                 return muF * f, a * t, Dscale * w
-            t, f, w = _master.tangential_master(n, arg / u_star[idx])
+            t, f, w = _master.tangential_master(n, arg * inv[idx])
             return muF[idx] * f, a[idx] * t, Dscale[idx] * w
 
         return masing_step(self._channel("tan"), u, load)
 
     def _torsion(self, phi, a, d):
         mc = self._master
-        phi_s, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion,
-                                               self.friction, a, d)
+        _, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion, self.friction,
+                                           a, d)
+        inv = _master.inverse_twist_scale(self.E_star, self.G_torsion, self.friction, a, d)
 
         def load(arg, idx):
             if idx is None:
-                t, m, q = mc(arg / phi_s)
+                t, m, q = mc(arg * inv)
                 return M_full * m, a * t, M_full * arg * q
-            t, m, q = mc(arg / phi_s[idx])
+            t, m, q = mc(arg * inv[idx])
             return M_full[idx] * m, a[idx] * t, M_full[idx] * arg * q
 
         return masing_step(self._channel("tor"), phi, load)

@@ -351,15 +351,15 @@ def _tangential(law: Any, xp: Any, P: dict, u: Any, a: Any, d: Any, FN: Any) -> 
     """Cattaneo–Mindlin with Masing's rule (``ContactLaw._tangential``, elementwise)."""
     n = law.n
     mu, E, G = P["mu"], P["E"], P["G"]
-    u_star = mu * E * d / G
+    inv = G / (mu * E * d)
     muF = mu * FN
     Dscale = 2.0 * a * (mu * E * d) ** 2 / G
 
     def load(arg: Any, idx: Any) -> tuple:
         if idx is None:
-            t, f, w = _xp.tangential_curve(xp, n, arg / u_star)
+            t, f, w = _xp.tangential_curve(xp, n, arg * inv)
             return muF * f, a * t, Dscale * w
-        t, f, w = _xp.tangential_curve(xp, n, arg / u_star[idx])
+        t, f, w = _xp.tangential_curve(xp, n, arg * inv[idx])
         return muF[idx] * f, a[idx] * t, Dscale[idx] * w
 
     return _xp.masing_step(xp, _channel(law._st, "tan"), u, load)
@@ -368,14 +368,15 @@ def _tangential(law: Any, xp: Any, P: dict, u: Any, a: Any, d: Any, FN: Any) -> 
 def _torsion(law: Any, xp: Any, P: dict, phi: Any, a: Any, d: Any) -> tuple:
     """Exact (Jäger) torsion with Masing's rule (``ContactLaw._torsion``, elementwise)."""
     mc = law._master
-    phi_s, M_full = _master.torsion_scales(law.n, P["E"], P["Gt"], P["mu"], a, d)
+    _, M_full = _master.torsion_scales(law.n, P["E"], P["Gt"], P["mu"], a, d)
+    inv_s = _master.inverse_twist_scale(P["E"], P["Gt"], P["mu"], a, d)
 
     def load(arg: Any, idx: Any) -> tuple:
         if idx is None:
-            t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg / phi_s, mc.y0, mc.m0,
+            t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg * inv_s, mc.y0, mc.m0,
                                          mc.scaled, mc.power)
             return M_full * m, a * t, M_full * arg * q
-        t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg / phi_s[idx], mc.y0,
+        t, m, q = _xp.torsion_curves(xp, P["coef"], mc.y_scale, arg * inv_s[idx], mc.y0,
                                      mc.m0, mc.scaled, mc.power)
         return M_full[idx] * m, a[idx] * t, M_full[idx] * arg * q
 

@@ -67,7 +67,8 @@ _NORMAL_POWER = '''\
     F = np.array(np.broadcast_to(np.asarray(force, float), kc.shape))
     if np.any(~np.isfinite(F) | (F < 0)):
         raise ValueError("force must be finite and >= 0")
-    a = (F * (n + 1.0) / (2.0 * n * E_star * kc)) ** (1.0 / (n + 1.0))
+    x = F * ((n + 1.0) / (2.0 * n * E_star * kc))
+    a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))
     d = kc * a**n if n != 2.0 else kc * a * a
     return d, a, F
 '''
@@ -157,29 +158,30 @@ class Law:
         mu = self.friction
         if displacement is not None:
             u = np.array(np.broadcast_to(np.asarray(displacement, float), (size,)))
-            u_star = mu * self.E_star * sd / self.G_star
+            inv = self.G_star / (mu * self.E_star * sd)
             muF = mu * np.where(live, F, 0.0)
             Dscale = 2.0 * sa * (mu * self.E_star * sd) ** 2 / self.G_star
 
             def tload(arg, idx):
                 if idx is None:
-                    t, f, w = tangential_master(N, arg / u_star)
+                    t, f, w = tangential_master(N, arg * inv)
                     return muF * f, sa * t, Dscale * w
-                t, f, w = tangential_master(N, arg / u_star[idx])
+                t, f, w = tangential_master(N, arg * inv[idx])
                 return muF[idx] * f, sa[idx] * t, Dscale[idx] * w
 
             Ft, ct, w = masing_step(self._channel("tan"), u, tload)
             dW += w
         if twist is not None:
             phi = np.array(np.broadcast_to(np.asarray(twist, float), (size,)))
-            phi_s, M_full = torsion_scales(N, self.E_star, self.G_torsion, mu, sa, sd)
+            _, M_full = torsion_scales(N, self.E_star, self.G_torsion, mu, sa, sd)
+            rinv = inverse_twist_scale(self.E_star, self.G_torsion, mu, sa, sd)
 
             def rload(arg, idx):
                 if idx is None:
-                    t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s, Y0, M0, SCALED,
+                    t, m, q = evaluate(COEF, Y_SCALE, arg * rinv, Y0, M0, SCALED,
                                               K_POWER)
                     return M_full * m, sa * t, M_full * arg * q
-                t, m, q = evaluate(COEF, Y_SCALE, arg / phi_s[idx], Y0, M0, SCALED,
+                t, m, q = evaluate(COEF, Y_SCALE, arg * rinv[idx], Y0, M0, SCALED,
                                           K_POWER)
                 return M_full[idx] * m, sa[idx] * t, M_full[idx] * arg * q
 
@@ -196,7 +198,8 @@ class Law:
 
 
 def _kernel_sources() -> str:
-    funcs = (_master.evaluate, _master.torsion_scales, _master.tangential_master,
+    funcs = (_master.evaluate, _master.torsion_scales, _master.inverse_twist_scale,
+             _master.tangential_master,
              _ms.new_stack, _ms._origin, _ms.masing_step)
     parts = []
     for f in funcs:

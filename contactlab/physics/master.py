@@ -41,7 +41,8 @@ import numpy as np
 
 from ..errors import ConvergenceError, NotSupportedError
 
-__all__ = ["MasterCurve", "torsion_master", "torsion_scales", "tangential_master",
+__all__ = ["MasterCurve", "torsion_master", "torsion_scales", "inverse_twist_scale",
+           "tangential_master",
            "MASTER_RTOL", "MASTER_PANELS", "MAX_PANELS", "MASTER_DEGREE", "MIN_EXPONENT",
            "CERTIFY_TOL", "MAP_POWER_BELOW_ONE", "ESTRIN_TERMS", "evaluate", "map_power"]
 
@@ -180,6 +181,13 @@ def torsion_scales(n: float, E_star, G_t, mu, a, d):
     cM = np.pi * n / (2.0 * (n + 2.0)) if n != np.inf else 0.5 * np.pi
     M_full = cM * mu * E_star * d * a * a
     return phi_s, M_full
+
+
+def inverse_twist_scale(E_star, G_t, mu, a, d):
+    """``1/φ_s = 2 G_t a / (μ E* d)`` (1/rad), so that ``y = φ (1/φ_s)``: the contact law's
+    argument of the master curve by a multiply (one division per contact and step instead of
+    one per curve evaluation; the compiled law forms it in this order, the same bits)."""
+    return (2.0 * G_t * a) / (mu * E_star * d)
 
 
 def _exact_curves(n: float, y: np.ndarray, rtol: float = MASTER_RTOL):

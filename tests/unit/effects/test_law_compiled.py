@@ -267,6 +267,7 @@ def test_uncompiled_kernels_give_the_compiled_bits(family, gname, lo_hi, extra, 
     built = K._kernels(False)
     monkeypatch.setitem(K._KERNELS, False, tuple(f.py_func for f in built))
     monkeypatch.setattr(K, "_load", K._KERNELS["load"].py_func)
+    monkeypatch.setattr(K, "_poly3", K._POLY3_PY)   # the three curves' scalar source
     for name in ("_switch_one", "_spring_one"):     # the passes of a switch-and-step block
         monkeypatch.setattr(K._springs, name, getattr(K._springs, name).py_func)
     assert not any(hasattr(f, "py_func") for f in K._kernels(False))     # plain Python now
@@ -364,3 +365,46 @@ def test_fused_pass_counts_a_sum_of_finite_outputs_that_overflows():
         law._chan["last"][...] = 0
     assert np.isnan(ct[2])
     law._check_finite(np.ones(3, bool), d, *rounds[0][:1], F, *rounds[0][1:])  # finite: passes
+
+
+@needs_numba
+@pytest.mark.parametrize("n", [2.0, 1.0, 0.5, np.inf])
+def test_master_curve_lanes_give_the_scalar_bits(n):
+    """The compiled three-curve evaluation of the torsion pass (the panel's coefficients of each
+    power of ``u`` for t, m, q in one 4-lane vector, LLVM IR written by the kernel module) gives
+    the scalar Estrin scheme's bits (the plain source, which the law's numpy reference
+    evaluates in the same order) on every panel, at ``u`` = ±1, 0 and random points of [-1, 1]."""
+    import numba
+    from contactlab.physics import law_kernel as K
+    from contactlab.physics import master
+    K._kernels(False)
+    poly = K._poly3
+    assert poly is not K._POLY3_PY                  # the intrinsic
+
+    @numba.njit
+    def run(tab, js, us, out):
+        for i in range(js.size):
+            u = us[i]
+            u2 = u * u
+            u4 = u2 * u2
+            out[i, 0], out[i, 1], out[i, 2] = poly(tab, js[i], u, u2, u4)
+
+    tab = K.lane_table(master.torsion_master(n))
+    N = tab.shape[0]
+    rng = np.random.default_rng(3)
+    js = np.concatenate([np.repeat(np.arange(N), 3), rng.integers(0, N, 400)])
+    us = np.concatenate([np.tile([-1.0, 0.0, 1.0], N), rng.uniform(-1.0, 1.0, 400)])
+    got = np.empty((js.size, 3))
+    run(tab, js, us, got)
+    want = np.array([K._POLY3_PY(tab, int(j), u, u * u, (u * u) ** 2) for j, u in zip(js, us)])
+    np.testing.assert_array_equal(got, want)
+    # the table holds the curve's coefficients: master.evaluate's scheme on its (3, N, 8)
+    # table, vectorised over the same panels and points, gives the same bits
+    coef = master.torsion_master(n).coef
+    u2 = us * us
+    u4 = u2 * u2
+    for k in range(3):
+        c = coef[k][js]
+        ref = (((c[:, 0] + c[:, 1] * us) + (c[:, 2] + c[:, 3] * us) * u2)
+               + ((c[:, 4] + c[:, 5] * us) + (c[:, 6] + c[:, 7] * us) * u2) * u4)
+        np.testing.assert_array_equal(want[:, k], ref)
