@@ -524,7 +524,7 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     # w − old above c and the check by its sign alone
     dw, sufficient = ak["slip_difference"](*w, *o, sl[2], sl[3], c, s, gross, CHECK_RTOL)
     # (or by the running integral of the difference: the steps with the edge off a node)
-    sufficient = sufficient or _slip_sign.running_turn_ok(dw[0], dw[1], dw[2], dw[3], s, gross)
+    sufficient = sufficient or _slip_sign.running_turn_ok_compiled(dw[0], dw[1], dw[2], dw[3], s, gross)
     why = ""
     if (slip or not sufficient) and gross == gross:
         # points in contact at the start or the end of the step, outside c

@@ -85,6 +85,23 @@ def test_gross_turn_against_the_sense_or_a_nan_is_not_settled():
     assert ss.running_turn_ok(*empty, 1.0, 0.0)
 
 
+def test_the_compiled_pass_gives_the_same_verdicts():
+    rng = np.random.default_rng(7)
+    seen = set()
+    for _ in range(300):
+        p = _pieces(rng, int(rng.integers(1, 10)))
+        p = (p[0], p[1], p[2] + rng.uniform(0.0, 1.5), p[3] + rng.uniform(0.0, 1.5))
+        for s in (1.0, -1.0):
+            for gross in (0.0, s * 0.1, -s * 0.1):
+                want = ss.running_turn_ok(*p, s, gross)
+                assert ss.running_turn_ok_compiled(*p, s, gross) is want
+                assert bool(ss._running_turn_pass(*p, s, gross, ss.MARGIN)) is want
+                seen.add(want)
+    assert seen == {True, False}
+    nan = (np.array([0.0]), np.array([1.0]), np.array([np.nan]), np.array([1.0]))
+    assert not ss.running_turn_ok_compiled(*nan, 1.0, 0.0)
+
+
 def _path(n: int):
     """benchmarks/exact_speed.py ``varying_path``: force 10 N +- 40 % at two cycles, twist at 80 %
     of sliding at three cycles (ramped in), Hertz."""
@@ -116,6 +133,7 @@ def test_annulus_steps_give_the_same_bits_with_fewer_slip_integrals(compiled, mo
         for used in (False, True):
             if not used:        # the step before the running-integral test
                 monkeypatch.setattr(ss, "running_turn_ok", lambda *a: False)
+                monkeypatch.setattr(ss, "running_turn_ok_compiled", lambda *a: False)
             else:
                 monkeypatch.undo()
                 monkeypatch.setattr(ta, "slip_kernel_integral", counted)
