@@ -19,10 +19,10 @@ traction at every radius when the running integral of ``s Δw`` from ``c`` outwa
 below zero and ``s g >= 0`` (the second mean value theorem, Abel's form). The plain test
 ``s Δw >= 0`` everywhere is the special case of a running integral that only grows. Where the
 full-sliding density ends inside a ring (a contact radius off a ring node) it has a band near the
-edge where its collocated form dips and was cut (:func:`~contactlab.physics.torsion_annulus
-.nonnegative_psi`), and ``s Δw`` changes sign there while its running integral stays positive:
-this test settles those steps without the slip integrals at the points (a product of the
-points by the ring ends per step).
+edge where its collocated form dips and was cut
+(:func:`~contactlab.physics.torsion_annulus.nonnegative_psi`), and ``s Δw`` changes sign there
+while its running integral stays positive: this test settles those steps without the slip
+integrals at the points (a product of the points by the ring ends per step).
 
 Pure functions: arrays in, a verdict out. With numba (extra ``fast``) the compiled route of
 the annulus step takes the same test as one compiled pass (:func:`running_turn_ok_compiled`:
