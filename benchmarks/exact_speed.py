@@ -22,7 +22,9 @@ machine's load mostly cancels; the machine and its load average are printed. Row
    can take, so more of its steps have their edge off a node, which cost more; at
    ``torque_rtol`` the cap is 3x the rings, so the longer path also runs on more rings, by
    design of its accuracy), then all paths on the longest path's ring set (the cost per step
-   at equal rings: whether anything grows with the history);
+   at equal rings: whether anything grows with the history), then the shortest path on each
+   path's ring set with and without its jump points (the cost per step against the collocation
+   points and the nodes: the ring set's size alone);
 3. ``Contact.torsion(method="mdr")`` on 10^5 forces, against ``method="no-slip"`` on the same
    forces; goal <= 0.1 s;
 4. the exact torque-twist curve (200 twists, Hertz) against its floor, the closed form of the same
@@ -287,6 +289,7 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
     label = ", ".join(f"{k}={v:g}" for k, v in kw.items()) or "default rings"
     own: dict = {}
     own_info: dict = {}
+    own_sets: dict = {}
     with warnings.catch_warnings(), _RingSets() as sets:
         warnings.simplefilter("ignore")
         for fixed in (False, True):
@@ -303,6 +306,8 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
                     best[n] = min(best[n], time.process_time() - t0)
                     info[n] = (r.meta["rings"], r.meta["jump_nodes"], r.meta["fallback_steps"],
                                _off_node(sets.last, radii[n]))
+                    if not fixed:
+                        own_sets[n] = sets.last
             head = (f"{label}, fixed ring set (the {steps[-1]}-step path's)" if fixed
                     else f"{label}, each path's own ring set")
             print(f"\n{head}:")
@@ -336,6 +341,44 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
               "(its full-sliding density has a negative band to remove, and more steps take "
               "the ring solver). What grows with the path at its own rings is the ring set "
               "(from the distinct contact radii it meets), not the history")
+        ring_set_sweep(c, paths, own_sets, sets, rounds, **kw)
+
+
+def ring_set_sweep(c: cl.Contact, paths: dict, own_sets: dict, sets: "_RingSets", rounds: int,
+                   **kw) -> None:
+    """The shortest path on the ring set of each path (``own_sets``), and on the same nodes
+    without the jump points (one collocation point per contact-radius node fewer): its cost per
+    step against the collocation points and nodes, the ring set's size alone (CPU time, best of
+    ``rounds`` + 1, interleaved). Most of a step's work is products and solves of the points by
+    the nodes (the full-sliding density's LU solve, the traction check inside the stick radius,
+    the table sums), so the cost grows faster than the nodes where the jump points grow faster
+    than the nodes."""
+    n0 = min(paths)
+    n_rings = _rings.rings_for_rtol(kw["torque_rtol"]) if "torque_rtol" in kw else None
+    factor = _tr.ALIGN_MAX_FACTOR_RTOL if "torque_rtol" in kw else _tr.ALIGN_MAX_FACTOR
+    cases = {}
+    for n, fnd in own_sets.items():
+        cases[n, True] = fnd
+        bare = _rings.Rings(c.profile, c.moduli, MU, fnd.radius, n_springs=fnd.n_uniform,
+                            contact_radii=c.normal(force=path_force(n))._radius, jumps=False,
+                            align_factor=factor)
+        bare.switches = dict(getattr(fnd, "switches", {}), jumps=False)
+        cases[n, False] = bare
+    best = dict.fromkeys(cases, np.inf)
+    for _ in range(rounds + 1):
+        for key, fnd in cases.items():
+            sets.fixed = fnd
+            t0 = time.process_time()
+            c.simulate(paths[n0], method="exact", n_rings=n_rings)
+            best[key] = min(best[key], time.process_time() - t0)
+    sets.fixed = None
+    print(f"the {n0}-step path on each path's ring set, with and without the jump points:")
+    print(f"{'ring set of':>12s} {'nodes':>6s} {'points':>7s} {'ms/step':>8s} "
+          f"{'points (no jumps)':>18s} {'ms/step':>8s}")
+    for n in own_sets:
+        a, b = cases[n, True], cases[n, False]
+        print(f"{n:7d} steps {a.n_springs:6d} {a.points.size:7d} {best[n, True] / n0 * 1e3:8.3f} "
+              f"{b.points.size:18d} {best[n, False] / n0 * 1e3:8.3f}")
 
 
 def path_summary(best: dict, keep: dict) -> None:

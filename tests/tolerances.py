@@ -971,3 +971,8 @@ RINGS_RTOL_LONG_PATH = 1.0
 #: torque): the estimate must cover the error; the half-ring run's difference is an upper
 #: bound for an error falling at least as N^-1
 RINGS_RTOL_ESTIMATE_COVERS = 1.0
+#: the slip increments of a density change that the running-integral test of
+#: physics.torsion_slip_sign accepts may point against the traction by no more than the rounding
+#: of their closed-form sums (relative to their largest magnitude): in exact arithmetic they never
+#: do (the kernel is non-negative and falls with the punch radius)
+SLIP_SIGN_ROUNDING = 1e-12

@@ -37,6 +37,7 @@ from ..physics import normal as _normal
 from ..physics import ring_pressure as _rp
 from ..physics import torsion_annulus as _ta
 from ..physics import torsion_energy as _te
+from ..physics import torsion_point_traction as _tpt
 from ..physics import torsion_rings as _tr
 from .base import SERIES, Foundation, PathArrays, PathNormal
 
@@ -62,8 +63,9 @@ _WRITES = ("twist", "torque", "stick_radius", "dissipated_energy")
 
 #: float64 values held at the peak of an exact run (tracemalloc, rounded up; measured 7.7 per
 #: ring and step of the longest leaf, 12-14 per ring squared, 390 per step on short paths; the
-#: NodeTable of the annulus checks adds 4 per point and ring end, up to 8 per ring squared)
-_PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 24, 64
+#: NodeTable of the annulus checks adds 4 per point and ring end, up to 8 per ring squared, and
+#: its differences between neighbouring ring ends 2, up to 4)
+_PER_LEAF_STEP_RING, _PER_RING2, _PER_STEP = 10, 28, 64
 
 
 def memory(n_steps: int, longest_leaf: int, n_rings: int) -> float:
@@ -274,7 +276,7 @@ class Rings(Foundation):
         self.B, self.lu = mats["B"], mats["lu"]
         #: the traction's and slip's antiderivatives at the points and ring ends (the checks of
         #: the annulus steps)
-        self.table = mats["table"]
+        self.table, self.table_diffs = mats["table"], mats["diffs"]
 
     def new_state(self) -> RingState:
         n = self.points.size
@@ -608,7 +610,7 @@ class Rings(Foundation):
                             z = _ta.punch_traction(pt, pm, r, G_t)
                         if c_stick is None:
                             if z is None:
-                                z = _ta.traction(w, r, G_t, columns=rings.table)
+                                z = _tpt.traction_at_points(w, r, G_t, rings.table, rings.table_diffs)
                             c_stick = _tr.stick_radius(r, z, bj, aj)
                         res["stick_radius"][k] = c_stick
                         work[k], step_diss[k] = W_in, dW
@@ -616,7 +618,7 @@ class Rings(Foundation):
                         done = k + 1
                         if k in snaps:
                             if z is None:
-                                z = _ta.traction(w, r, G_t, columns=rings.table)
+                                z = _tpt.traction_at_points(w, r, G_t, rings.table, rings.table_diffs)
                             snap_data[k] = {"r": r.copy(), "depth": float(d_arr[j]),
                                             "radius": aj, "shear_torsion": z.copy(),
                                             "pressure": (np.zeros(r.size) if p is None else
@@ -675,8 +677,8 @@ def _influence(b: np.ndarray, points: np.ndarray, G_t: float, edge_punch: bool,
         mats: dict[str, Any] = dict(_tr.influence(b, points, G_t, edge_punch=edge_punch,
                                                   jumps=jumps))
     table = _ta.NodeTable(points, b)
-    mats["table"] = table
-    arrays = [mats["H"], mats["C"], mats["g"], mats["B"], *mats["lu"],
+    mats["table"], mats["diffs"] = table, _tpt.differences(table)
+    arrays = [mats["H"], mats["C"], mats["g"], mats["B"], *mats["lu"], *mats["diffs"],
               *(a for pair in table.arrays.values() for a in pair)]
     for a in arrays:
         a.flags.writeable = False
@@ -759,7 +761,7 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
-    z_old = _ta.traction(w, r, G_t, columns=rings.table)
+    z_old = _tpt.traction_at_points(w, r, G_t, rings.table, rings.table_diffs)
     if ctrl == "twist":
         z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
                                         C=rings.C, memo=memo)

@@ -44,6 +44,7 @@ from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  
                              _ends, _kernels, _lin, _scale, _total, _unique, _value, _values,
                              add, difference, empty, from_coefficients, from_nodes, psi, splice,
                              stored_energy, torque, torque_below)
+from . import torsion_slip_sign as _slip_sign
 from .torsion_punches import punch_energy, punch_step, punch_torque, punch_traction
 
 __all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
@@ -451,7 +452,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
               difference(w, old, c))
         slack = -CHECK_RTOL * _scale(slide)
         sufficient = (s * gross >= 0 and bool(np.all(s * dw[2] >= slack))
-                      and bool(np.all(s * dw[3] >= slack)))
+                      and bool(np.all(s * dw[3] >= slack))) or _slip_sign.running_turn_ok(
+            dw[0], dw[1], dw[2], dw[3], s, gross)
         if on.any() and not np.isnan(gross) and (slip or not sufficient):
             # (the table's sums where the increments only feed the check)
             ds[on] = (slip_kernel_integral(dw, r[on], None if slip else table)
@@ -521,6 +523,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
                     "ok": False, "why": _WHY_INSIDE}
     # w − old above c and the check by its sign alone
     dw, sufficient = ak["slip_difference"](*w, *o, sl[2], sl[3], c, s, gross, CHECK_RTOL)
+    # (or by the running integral of the difference: the steps with the edge off a node)
+    sufficient = sufficient or _slip_sign.running_turn_ok_compiled(dw[0], dw[1], dw[2], dw[3], s, gross)
     why = ""
     if (slip or not sufficient) and gross == gross:
         # points in contact at the start or the end of the step, outside c
