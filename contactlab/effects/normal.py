@@ -200,7 +200,9 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
         warn_outside_validity(prof, a, stacklevel=5)
     if a > 0:
         g_int = forms.g_integral(a)
-        F = (a * d - g_int) * (2.0 * E)
+        hertz = getattr(prof, "_hertz_force_constants", None) if key == "force" else None
+        # (a paraboloid under force control: F = (a·d)·c, as the array route computes it)
+        F = (a * d - g_int) * (2.0 * E) if hertz is None else (a * d) * hertz(E)[1]
     else:
         g_int = F = 0.0
     meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,
@@ -373,7 +375,16 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
     if branch != "stable":
         raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
                              "contact has a single equilibrium (use branch='stable').")
-    arr = as_float_array(key, value)
+    extremes = None
+    if key == "force" and isinstance(value, np.ndarray) and value.size:
+        # the finiteness check's two reductions, kept for the force solve (a paraboloid's
+        # passes decide their range from them: normal_fused.paraboloid_force)
+        arr = as_float_array(key, value, allow_nan=True)
+        extremes = (float(arr.min()), float(arr.max()))
+        if not (math.isfinite(extremes[0]) and math.isfinite(extremes[1])):
+            as_float_array(key, arr)            # raises, naming the first bad value
+    else:
+        arr = as_float_array(key, value)
     prof = contact.profile
     if key == "radius":
         if np.any(arr < 0):
@@ -387,7 +398,7 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
             raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay "
                                      f"below max_radius={prof.max_radius!r} m of {prof!r}.")
     d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol,
-                                 error_estimate="lazy")
+                                 error_estimate="lazy", extremes=extremes)
     warn_outside_validity(prof, a, stacklevel=4)
     base = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
             "citations": _SOURCES}

@@ -336,7 +336,12 @@ def force_of_radius(profile, E_star: float, a: np.ndarray, rtol: float) -> np.nd
 def _power_radius(profile, E_star: float, F: np.ndarray, term: tuple) -> np.ndarray:
     """Contact radius of forces ``F > 0`` on one power term ``(c, n)``: ``F/(2E*) = κ c n
     a^(n+1)/(n+1)`` inverted, in the operations of the scalar route
-    (:mod:`contactlab.physics.normal_scalar`), so that both give the same radius."""
+    (:mod:`contactlab.physics.normal_scalar`), so that both give the same radius; a
+    paraboloid's ``a = cbrt(F/K)`` (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`)."""
+    hertz = getattr(profile, "_hertz_force_constants", None)
+    if hertz is not None:
+        # a paraboloid: F = K a³ with one constant K (Paraboloid._hertz_force_constants)
+        return root_of_ratio(F, hertz(E_star)[0], 3.0)
     c, n = term
     n1 = n + 1.0
     x = F / (2.0 * E_star)
@@ -475,7 +480,7 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
 
 
 def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, *,
-          error_estimate: bool | str = True
+          error_estimate: bool | str = True, extremes: tuple[float, float] | None = None
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
     """Non-adhesive normal contact for one control, with the force's relative error estimate.
 
@@ -498,6 +503,9 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         values, bit for bit, as ``True`` gives: a batched state pays for it only when it is read);
         the array itself on the quadrature routes. Depth, radius and force are bit-identical
         whichever is asked.
+    extremes : (float, float), optional
+        ``(min(value), max(value))`` where the caller has reduced them (the passes of a
+        paraboloid under force control then reduce nothing); they do not change the results.
 
     Returns
     -------
@@ -523,7 +531,7 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         if (error_estimate == "lazy" and value.size >= _fused.FUSED_FROM
                 and type(profile) is Paraboloid):
             fused = _solve_force_fused(profile, E, value, rtol,
-                                       _fused.backend() == "numba" or "numpy")
+                                       _fused.backend() == "numba" or "numpy", extremes)
             if fused is not None:
                 return fused
         a, d = radius_depth_of_force(profile, E, value, rtol)
@@ -533,19 +541,29 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         g_int, g_int_err = profile._g_integral_with_error(a, rtol)
     else:
         g_int = profile._g_integral(a, rtol)
+    # a paraboloid under force control: F = (a·d)·c (Paraboloid._hertz_force_constants, the
+    # operations of the scalar route and of the passes of normal_fused)
+    hertz = (getattr(profile, "_hertz_force_constants", None) if control == "force" else None)
+    c_f = hertz(E)[1] if hertz is not None else 0.0
     if lazy:
         # F in one new array; a·d is recomputed (the same product) when the estimate is read
         F = np.multiply(a, d)
         if isinstance(F, np.ndarray):
-            F -= g_int
-            F *= 2.0 * E
+            if hertz is not None:
+                F *= c_f
+            else:
+                F -= g_int
+                F *= 2.0 * E
         else:
-            F = (F - g_int) * (2.0 * E)
+            F = F * c_f if hertz is not None else (F - g_int) * (2.0 * E)
         ad = F       # (unused below: recomputed by pending)
     else:
         ad = a * d
-        F = ad - g_int
-        F *= 2.0 * E
+        if hertz is not None:
+            F = ad * c_f
+        else:
+            F = ad - g_int
+            F *= 2.0 * E
     if not all_pos:
         F = np.where(a > 0, F, 0.0)
     if not error_estimate:
@@ -584,7 +602,8 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
 
 
 def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
-                       compiled: bool | str = True
+                       compiled: bool | str = True,
+                       extremes: tuple[float, float] | None = None
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any] | None:
     """:func:`solve`'s lazy force route on a paraboloid by the passes of
     :func:`contactlab.physics.normal_fused.paraboloid_force` (compiled, or ``"numpy"``: the
@@ -594,7 +613,7 @@ def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
     checks, made in the passes)."""
     if profile.g_route != "closed_form" or np.isfinite(profile.wall_radius):
         return None
-    res = _fused.paraboloid_force(profile, E, value, compiled)
+    res = _fused.paraboloid_force(profile, E, value, compiled, extremes)
     if res is None:
         return None
     a, d, F, resid = res

@@ -279,7 +279,10 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
         if a >= forms.limit:
             raise _too_deep("force", F, forms.limit, profile)
         return a, d
-    if forms.radius_of_reduced_force is not None:
+    hertz = getattr(profile, "_hertz_force_constants", None)
+    if hertz is not None:               # a paraboloid: F = K a³ (the array route's operations)
+        a = root_of_ratio_float(F, hertz(E_star)[0], 3.0)
+    elif forms.radius_of_reduced_force is not None:
         a = forms.radius_of_reduced_force(fr)
     else:
         g, G, gp = forms.g, forms.g_integral, forms.g_prime

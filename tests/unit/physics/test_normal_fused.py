@@ -162,6 +162,101 @@ def test_numpy_passes_in_chunks_give_the_same_bits(monkeypatch, chunk):
         assert NF.paraboloid_force(prof, E, G, "numpy") is None
 
 
+# ------------------------------------------------- the paraboloid's one constant per contact
+def _hertz_30_digits(F: np.ndarray, R: float, E: float) -> tuple[np.ndarray, ...]:
+    """Radius, depth and force of the Hertz closed form, a = (3RF/(4E*))^(1/3), d = a²/R,
+    F = 4E* a³/(3R), in 30 digits (mpmath), rounded to floats."""
+    import mpmath
+    with mpmath.workdps(30):
+        a = [mpmath.cbrt(3 * mpmath.mpf(R) * mpmath.mpf(f) / (4 * mpmath.mpf(E))) for f in F]
+        d = [x * x / mpmath.mpf(R) for x in a]
+        Fo = [4 * mpmath.mpf(E) * x ** 3 / (3 * mpmath.mpf(R)) for x in a]
+        return tuple(np.array([float(v) for v in arr]) for arr in (a, d, Fo))
+
+
+@pytest.mark.parametrize("R", [1e-2, 3e-7, 2.5])
+def test_force_route_is_the_one_constant_closed_form(backend, R):
+    """Every force-controlled route of a paraboloid (scalar, the general array route, the numpy
+    passes, the compiled passes where numba imports) gives a = cbrt(F/K), d = (a·a)/R and
+    F = (a·d)·c with (K, c) = (4E*/(3R), 4E*/3) bit for bit (before: a chain of four divisions
+    and ∫g), within HERTZ_FORCE_ROUNDING of the 30-digit Hertz closed form."""
+    from tests.tolerances import HERTZ_FORCE_ROUNDING
+    F = _forces(NF.FUSED_FROM + 77, int(R * 1e5) % 991)
+    prof = Paraboloid(R)
+    c = cl.Contact(prof, MATERIALS)
+    E = c.moduli.normal
+    K, cf = (4.0 * E) / (3.0 * R), (4.0 * E) / 3.0
+    a = np.cbrt(F / K)
+    d = (a * a) / R
+    Fo = (a * d) * cf
+    want = tuple(v.tobytes() for v in (d, a, Fo))
+    routes = ["numpy"] + (["numba"] if jit.available() else [])
+    for name in routes:
+        backend(name)
+        s = c.normal(force=F)
+        assert tuple(np.asarray(v).tobytes() for v in (s.depth, s.radius, s.force)) == want
+    small = c.normal(force=F[:500])                 # below FUSED_FROM: the general route
+    assert small.force.tobytes() == Fo[:500].tobytes()
+    assert small.radius.tobytes() == a[:500].tobytes()
+    for i in np.random.default_rng(5).integers(0, F.size, 20):
+        s = c.normal(force=float(F[i]))
+        assert (s.depth, s.radius, s.force) == (d[i], a[i], Fo[i])
+    idx = np.random.default_rng(6).integers(0, F.size, 200)
+    for got, ref in zip((a, d, Fo), _hertz_30_digits(F[idx], R, E)):
+        assert np.max(np.abs(got[idx] / ref - 1.0)) <= HERTZ_FORCE_ROUNDING
+    # the bound the numpy passes' request check rests on (normal_fused._in_range)
+    assert np.max(np.abs(Fo / F - 1.0)) <= HERTZ_FORCE_ROUNDING
+
+
+def test_numpy_passes_take_the_callers_extremes(monkeypatch):
+    """Given the extremes (the driver's finiteness check reduced them), the numpy passes reduce
+    nothing and give the same bits; the driver hands them on (a batch whose extremes are
+    swapped for out-of-range ones is declined)."""
+    F = _forces(3000, 12)
+    prof = Paraboloid(0.01)
+    E = cl.Contact(prof, MATERIALS).moduli.normal
+    ref = NF.paraboloid_force(prof, E, F, "numpy")
+    assert ref is not None
+    got = NF.paraboloid_force(prof, E, F, "numpy", (float(F.min()), float(F.max())))
+    assert got is not None
+    assert all(x.tobytes() == y.tobytes() for x, y in zip(ref, got))
+    assert NF.paraboloid_force(prof, E, F, "numpy", (0.0, float(F.max()))) is None
+    seen = []
+    real = NF.paraboloid_force
+
+    def spy(*args):
+        seen.append(args[4])
+        return real(*args)
+    monkeypatch.setattr(NF, "paraboloid_force", spy)
+    NF.set_backend("numpy")
+    try:
+        cl.Contact(prof, MATERIALS).normal(force=np.resize(F, NF.FUSED_FROM + 1))
+    finally:
+        NF.set_backend(None)
+    assert seen and seen[0] is not None
+
+
+def test_numpy_passes_decline_where_a_value_leaves_their_range(backend):
+    """Requests whose quotient F/K leaves the normal floats (a radius of curvature of 1e-300 m)
+    are declined by both passes; requests whose force itself passes 1e290 N (the range in
+    which the numpy passes prove their request check) by the numpy passes, where the general
+    route then gives what the compiled passes give, bit for bit."""
+    F = np.geomspace(1e-20, 1e20, 300)
+    prof = Paraboloid(1e-300)
+    for compiled in ("numpy", False):
+        assert NF.paraboloid_force(prof, 1e11, F, compiled) is None
+    F = np.geomspace(1.0, 1e295, 300)
+    prof = Paraboloid(1.0)
+    E = 1e100
+    assert not NF._in_range(1.0, 1e295, 1.0, *prof._hertz_force_constants(E))
+    assert NF.paraboloid_force(prof, E, F, "numpy") is None
+    logic = NF.paraboloid_force(prof, E, F, False)
+    assert logic is not None
+    d0, a0, F0, _ = N.solve(prof, E, "force", F, 1e-10)
+    for x, y in zip((a0, d0, F0), logic):
+        assert x.tobytes() == y.tobytes()
+
+
 def test_backend_choice(backend, monkeypatch):
     with pytest.raises(ParameterError, match="backend='cuda'"):
         backend("cuda")
