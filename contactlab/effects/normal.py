@@ -22,6 +22,7 @@ from ..errors import (
     ParameterError,
     ValidityWarning,
 )
+from ..numeric.powers import root_of_ratio_float
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
@@ -193,6 +194,23 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
         else:
             a, d = 0.0, v
     elif v > 0:
+        hertz = forms.force_constants
+        if hertz is not None:
+            # a paraboloid: a = cbrt(F/K), d = g(a), F = (a·d)·c (the array route's operations,
+            # _scalar.solve_force's), ∫g only when the estimate is read
+            K, c_f = hertz(E)
+            a = root_of_ratio_float(v, K, 3.0)
+            d = forms.g(a)
+            F = (a * d) * c_f
+            if a > forms.validity:
+                warn_outside_validity(prof, a, stacklevel=5)
+            meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,
+                             "citations": _SOURCES},
+                            _scalar.hertz_force_rel_error, forms, E, a, d, F, v)
+            state = _new_state(NormalState)
+            state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a),
+                                  _force=_f64(F), meta=meta)
+            return state
         a, d = _scalar.solve_force(prof, forms, E, v, rtol)
     else:
         a, d = 0.0, 0.0
@@ -200,9 +218,7 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
         warn_outside_validity(prof, a, stacklevel=5)
     if a > 0:
         g_int = forms.g_integral(a)
-        hertz = getattr(prof, "_hertz_force_constants", None) if key == "force" else None
-        # (a paraboloid under force control: F = (a·d)·c, as the array route computes it)
-        F = (a * d - g_int) * (2.0 * E) if hertz is None else (a * d) * hertz(E)[1]
+        F = (a * d - g_int) * (2.0 * E)
     else:
         g_int = F = 0.0
     meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,

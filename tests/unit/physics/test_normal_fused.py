@@ -208,6 +208,21 @@ def test_force_route_is_the_one_constant_closed_form(backend, R):
     assert np.max(np.abs(Fo / F - 1.0)) <= HERTZ_FORCE_ROUNDING
 
 
+def test_scalar_state_reads_its_integral_only_for_the_estimate():
+    """The scalar force route of a paraboloid skips ∫g (its force is (a·d)·c): the estimate,
+    read later, is the scalar route's formula with ∫g at the state's radius, and covers the
+    residual against the request."""
+    from contactlab.physics import normal_scalar as S
+    c = cl.Contact(Paraboloid(0.004), MATERIALS)
+    E = c.moduli.normal
+    for F in (1e-9, 3.7, 2.5e4):
+        s = c.normal(force=F)
+        forms = S.forms_of(c.profile)
+        want = S.force_rel_error(E, s.radius, s.depth, forms.g_integral(s.radius), s.force, F)
+        assert s.meta["error_estimate"] == want
+        assert want >= abs(s.force - F) / s.force
+
+
 def test_numpy_passes_take_the_callers_extremes(monkeypatch):
     """Given the extremes (the driver's finiteness check reduced them), the numpy passes reduce
     nothing and give the same bits; the driver hands them on (a batch whose extremes are
