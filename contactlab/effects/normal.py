@@ -196,17 +196,20 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
     elif v > 0:
         hertz = forms.force_constants
         if hertz is not None:
-            # a paraboloid: a = cbrt(F/K), d = g(a), F = (a·d)·c (the array route's operations,
-            # _scalar.solve_force's), ∫g only when the estimate is read
+            # a paraboloid: a = cbrt(F/K), d = g(a) (the array route's operations,
+            # _scalar.solve_force's), the force the request itself; the residual of (a, d),
+            # |(a·d)·c - F|, checked here and carried by the estimate (read lazily, with ∫g)
             K, c_f = hertz(E)
             a = root_of_ratio_float(v, K, 3.0)
             d = forms.g(a)
-            F = (a * d) * c_f
+            F = v
+            if not abs(a * d * c_f - v) <= _FORCE_SANITY * v:
+                raise FloatingPointError("inconsistent state")
             if a > forms.validity:
                 warn_outside_validity(prof, a, stacklevel=5)
             meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,
                              "citations": _SOURCES},
-                            _scalar.hertz_force_rel_error, forms, E, a, d, F, v)
+                            _scalar.hertz_force_rel_error, forms, E, a, d, F, c_f)
             state = _new_state(NormalState)
             state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a),
                                   _force=_f64(F), meta=meta)

@@ -535,35 +535,27 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
             if fused is not None:
                 return fused
         a, d = radius_depth_of_force(profile, E, value, rtol)
+        if getattr(profile, "_hertz_force_constants", None) is not None:
+            return _hertz_state(profile, E, value, a, d, rtol, error_estimate)
     all_pos = a.size == 0 or bool(a.min() > 0)     # (one reduction, no mask)
     lazy = error_estimate == "lazy" and profile._g_integral_is_exact()
     if error_estimate and not lazy:
         g_int, g_int_err = profile._g_integral_with_error(a, rtol)
     else:
         g_int = profile._g_integral(a, rtol)
-    # a paraboloid under force control: F = (a·d)·c (Paraboloid._hertz_force_constants, the
-    # operations of the scalar route and of the passes of normal_fused)
-    hertz = (getattr(profile, "_hertz_force_constants", None) if control == "force" else None)
-    c_f = hertz(E)[1] if hertz is not None else 0.0
     if lazy:
         # F in one new array; a·d is recomputed (the same product) when the estimate is read
         F = np.multiply(a, d)
         if isinstance(F, np.ndarray):
-            if hertz is not None:
-                F *= c_f
-            else:
-                F -= g_int
-                F *= 2.0 * E
+            F -= g_int
+            F *= 2.0 * E
         else:
-            F = F * c_f if hertz is not None else (F - g_int) * (2.0 * E)
+            F = (F - g_int) * (2.0 * E)
         ad = F       # (unused below: recomputed by pending)
     else:
         ad = a * d
-        if hertz is not None:
-            F = ad * c_f
-        else:
-            F = ad - g_int
-            F *= 2.0 * E
+        F = ad - g_int
+        F *= 2.0 * E
     if not all_pos:
         F = np.where(a > 0, F, 0.0)
     if not error_estimate:
@@ -601,6 +593,46 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
                              g_a_err))
 
 
+def _hertz_state(profile, E: float, value: np.ndarray, a: np.ndarray, d: np.ndarray,
+                 rtol: float, error_estimate: bool | str
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
+    """:func:`solve`'s force route on a paraboloid from its radii and depths: the force of the
+    state is the request itself (zero where it is not positive: no contact); the estimate
+    (:func:`_hertz_rel_error`) carries the residual ``|F(a, d) - F|`` by which ``(a, d)`` miss
+    it, which the lazy estimate also hands to the caller's request check
+    (``pending.residual``)."""
+    F = np.where(a > 0, value, 0.0)
+    d, a = np.asarray(d, float), np.asarray(a, float)
+    if not error_estimate:
+        return d, a, F, None
+    all_pos = a.size == 0 or bool(a.min() > 0)
+    ad = a * d
+    resid = np.abs(ad * profile._hertz_force_constants(E)[1] - F)
+    if error_estimate == "lazy":
+        def pending() -> np.ndarray:
+            return _hertz_rel_error(profile, E, a, d, F, all_pos, rtol, resid)
+        pending.residual = resid            # type: ignore[attr-defined]
+        return d, a, F, pending
+    return d, a, F, _hertz_rel_error(profile, E, a, d, F, all_pos, rtol, resid)
+
+
+def _hertz_rel_error(profile, E: float, a: np.ndarray, d: np.ndarray, F: np.ndarray,
+                     all_pos: bool, rtol: float, resid: np.ndarray | None = None
+                     ) -> np.ndarray:
+    """The relative force error of a paraboloid's force-controlled state, whose force ``F`` is
+    the request: the rounding of ``a d - ∫g`` and of ``∫g`` (:func:`_force_rel_error`) and the
+    residual ``|F(a, d) - F|`` of the state's radius and depth (``resid`` where the caller
+    has it), ``F(a, d) = (a·d)·c``
+    (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`; 0 where there is no
+    contact: ``a = d = F = 0``)."""
+    ad = a * d
+    gi = profile._g_integral(a, rtol)
+    if resid is None:
+        resid = np.abs(ad * profile._hertz_force_constants(E)[1] - F)
+    return _force_rel_error(E, "force", a, ad, gi, ROUNDING * np.abs(gi), F, all_pos, None,
+                            None, resid)
+
+
 def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
                        compiled: bool | str = True,
                        extremes: tuple[float, float] | None = None
@@ -616,15 +648,10 @@ def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
     res = _fused.paraboloid_force(profile, E, value, compiled, extremes)
     if res is None:
         return None
-    a, d, F, resid = res
+    a, d, F = res
 
     def pending() -> np.ndarray:
-        # ∫g, a pure function of the radius, recomputed when the estimate is read (as the
-        # numpy route does where it lent ∫g's buffer to the residual)
-        gi = profile._g_integral(a, rtol)
-        return _force_rel_error(E, "force", a, a * d, gi, ROUNDING * np.abs(gi), F, True, None,
-                                None, resid)
-    pending.residual = resid            # type: ignore[attr-defined]
+        return _hertz_rel_error(profile, E, a, d, F, True, rtol)
     pending.checked = True              # type: ignore[attr-defined]
     return d, a, F, pending
 

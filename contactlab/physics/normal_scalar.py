@@ -303,10 +303,18 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
 
 
 def hertz_force_rel_error(forms: ScalarForms, E_star: float, a: float, d: float, F: float,
-                          requested: float) -> float:
-    """:func:`force_rel_error` of a paraboloid's force-controlled state, ``∫g`` computed here
-    (the force ``(a·d)·c`` does not need it: only the estimate reads it)."""
-    return force_rel_error(E_star, a, d, forms.g_integral(a), F, requested)
+                          c: float) -> float:
+    """:func:`force_rel_error` of a paraboloid's force-controlled state, whose force ``F`` is
+    the request: the rounding of ``a d - ∫g`` and of ``∫g`` (``∫g`` computed here: only the
+    estimate reads it) and the residual ``|(a·d)·c - F|`` of the state's radius and depth
+    (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`)."""
+    if not F > 0:
+        return 0.0
+    ad = a * d
+    g_int = forms.g_integral(a)
+    err = 2.0 * E_star * (ROUNDING * (abs(ad) + abs(g_int)) + ROUNDING * abs(g_int))
+    err += abs(ad * c - F)
+    return float(err / F)
 
 
 def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,
