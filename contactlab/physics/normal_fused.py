@@ -40,14 +40,15 @@ def paraboloid_force(profile, E_star: float, F: np.ndarray, compiled: bool | str
 
     ``compiled``: True the numba pass, ``"numpy"`` the numpy passes, False the numba pass's
     logic as plain Python (tests). ``extremes``: ``(min(F), max(F))`` where the caller has
-    them (the driver's check that every force is finite takes them): the numpy passes then
-    reduce nothing.
+    them (the driver's check that every force is finite takes them): the range check then
+    reduces nothing.
 
     Returns ``(a, d, F_out)`` (arrays of ``F``'s shape) with every radius and depth a finite
-    float that meets the request to :data:`FORCE_SANITY` (the driver's checks: made on the
-    way, or proved from the extremes), or None where some force is not positive, a quotient
-    lies outside ``[Q_MIN, Q_MAX]`` or a depth is not finite: the general route then handles
-    (and reports) them.
+    float whose force ``(a·d)·c`` meets the request to :data:`FORCE_SANITY` (the driver's
+    checks, proved from the extremes: :func:`_in_range`), or None where some force is not
+    positive or an intermediate value leaves the range of that proof (the compiled passes also
+    count quotients outside ``[Q_MIN, Q_MAX]`` and depths that are not finite): the general
+    route then handles (and reports) them.
     """
     flat = np.ascontiguousarray(F, dtype=float).reshape(-1)
     K = profile._hertz_force_constants(E_star)[0]

@@ -65,7 +65,7 @@ class ScalarForms:
     wall radius (``inf`` without); ``validity``: the profile's ``validity_radius``; ``route``: its
     ``g_route`` (reported in the result's meta); ``force_constants``: ``E* -> (K, c)`` of a
     paraboloid (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`: ``F = K a³``,
-    the force of a state ``(a·d)·c``) or ``None``.
+    the force of a radius and depth ``(a·d)·c``) or ``None``.
     """
 
     g: Callable[[float], float]
