@@ -976,3 +976,9 @@ RINGS_RTOL_ESTIMATE_COVERS = 1.0
 #: of their closed-form sums (relative to their largest magnitude): in exact arithmetic they never
 #: do (the kernel is non-negative and falls with the punch radius)
 SLIP_SIGN_ROUNDING = 1e-12
+# ---- a paraboloid under force control in one constant per contact (issue 29)
+#: radius, depth and force of a paraboloid's force-controlled solve (a = cbrt(F/K), d = a²/R,
+#: F = (a·d)·4E*/3) against the 30-digit Hertz closed form, relative: the sum of their
+#: roundings (K's two, the quotient, cbrt's 0.53 ulp tripled by the cube, a·a, /R, a·d, ·c and
+#: c's own) stays below 12 ulp; the numpy passes rest their request check on this bound
+HERTZ_FORCE_ROUNDING = 12 * 2.220446049250313e-16

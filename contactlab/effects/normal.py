@@ -22,6 +22,7 @@ from ..errors import (
     ParameterError,
     ValidityWarning,
 )
+from ..numeric.powers import root_of_ratio_float
 from ..params import as_float_array, exactly_one, scalar_or_array
 from ..physics import normal as _normal
 from ..physics import normal_scalar as _scalar
@@ -193,6 +194,26 @@ def _fast_normal(contact, key: str, value: Any) -> NormalState | None:
         else:
             a, d = 0.0, v
     elif v > 0:
+        hertz = forms.force_constants
+        if hertz is not None:
+            # a paraboloid: a = cbrt(F/K), d = g(a) (the array route's operations,
+            # _scalar.solve_force's), the force the request itself; the residual of (a, d),
+            # |(a·d)·c - F|, checked here and carried by the estimate (read lazily, with ∫g)
+            K, c_f = hertz(E)
+            a = root_of_ratio_float(v, K, 3.0)
+            d = forms.g(a)
+            F = v
+            if not abs(a * d * c_f - v) <= _FORCE_SANITY * v:
+                raise FloatingPointError("inconsistent state")
+            if a > forms.validity:
+                warn_outside_validity(prof, a, stacklevel=5)
+            meta = LazyMeta({"routes": {"g": forms.route}, "rtol": rtol, "control": key,
+                             "citations": _SOURCES},
+                            _scalar.hertz_force_rel_error, forms, E, a, d, F, c_f)
+            state = _new_state(NormalState)
+            state.__dict__.update(contact=contact, _depth=_f64(d), _radius=_f64(a),
+                                  _force=_f64(F), meta=meta)
+            return state
         a, d = _scalar.solve_force(prof, forms, E, v, rtol)
     else:
         a, d = 0.0, 0.0
@@ -373,7 +394,16 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
     if branch != "stable":
         raise ParameterError(f"branch={branch!r} is invalid without adhesion: a non-adhesive "
                              "contact has a single equilibrium (use branch='stable').")
-    arr = as_float_array(key, value)
+    extremes = None
+    if key == "force" and isinstance(value, np.ndarray) and value.size:
+        # the finiteness check's two reductions, kept for the force solve (a paraboloid's
+        # passes decide their range from them: normal_fused.paraboloid_force)
+        arr = as_float_array(key, value, allow_nan=True)
+        extremes = (float(arr.min()), float(arr.max()))
+        if not (math.isfinite(extremes[0]) and math.isfinite(extremes[1])):
+            as_float_array(key, arr)            # raises, naming the first bad value
+    else:
+        arr = as_float_array(key, value)
     prof = contact.profile
     if key == "radius":
         if np.any(arr < 0):
@@ -387,7 +417,7 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
             raise OutsideTheoryError(f"radius={float(np.max(arr))!r} m is invalid: it must stay "
                                      f"below max_radius={prof.max_radius!r} m of {prof!r}.")
     d, a, F, rel = _normal.solve(prof, contact.moduli.normal, key, arr, contact.rtol,
-                                 error_estimate="lazy")
+                                 error_estimate="lazy", extremes=extremes)
     warn_outside_validity(prof, a, stacklevel=4)
     base = {"routes": {"g": prof.g_route}, "rtol": contact.rtol, "control": key,
             "citations": _SOURCES}

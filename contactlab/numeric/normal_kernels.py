@@ -65,49 +65,35 @@ def set_backend(name: str | None) -> None:
 #: the request is not a solution but a numerical breakdown (overflow); the driver
 #: (:mod:`contactlab.effects.normal`) raises for it
 FORCE_SANITY = 1e-6
-#: the quotients ``F/(2E*)·(n+1)/(κcn)`` the compiled passes take: within these bounds the
+#: the quotients ``F/K`` (``F = K a³``) the compiled passes take: within these bounds the
 #: quotient and the cube of its cube root (``∫g``) are normal floats by a wide margin, as the
 #: numpy route's fast paths require (outside them the numpy route runs, with its logarithms)
 Q_MIN, Q_MAX = 1e-290, 1e290
 
 
-def quotient_pass(F: np.ndarray, two_e: float, n1: float, den: float, q: np.ndarray) -> int:
-    """``q = ((F/two_e)·n1)/den`` (the operations of ``_power_radius`` and ``root_of_ratio``
-    before the root); returns how many quotients lie outside ``[Q_MIN, Q_MAX]`` (a force that
-    is not positive or NaN among them). Branch-free: the loop vectorises."""
+def quotient_pass(F: np.ndarray, K: float, q: np.ndarray) -> int:
+    """``q = F/K`` (a paraboloid's ``F = K a³`` before the root:
+    :meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`); returns how many quotients
+    lie outside ``[Q_MIN, Q_MAX]`` (a force that is not positive or NaN among them).
+    Branch-free: the loop vectorises."""
     bad = 0
     for i in range(F.size):
-        x = F[i] / two_e
-        x = x * n1
-        x = x / den
+        x = F[i] / K
         q[i] = x
         bad += (not x >= Q_MIN) | (not x <= Q_MAX)
     return bad
 
 
-def paraboloid_pass(a: np.ndarray, F: np.ndarray, R: float, k: float, two_e: float,
-                     d: np.ndarray, F_out: np.ndarray, resid: np.ndarray) -> int:
-    """From radii ``a``: ``d = (a·a)/R`` (``Paraboloid._g_closed_form``), ``∫g = ((a·a)·a·k)/3``
-    (``power_integral``), ``F_out = ((a·d) - ∫g)·two_e`` and ``resid = |F_out - F|`` (``solve``);
-    returns how many forces are not finite or miss their request by more than
-    :data:`FORCE_SANITY` (relative; NaNs count). Branch-free: the loop vectorises."""
+def paraboloid_pass(a: np.ndarray, R: float, d: np.ndarray) -> int:
+    """From radii ``a``: ``d = (a·a)/R`` (``Paraboloid._g_closed_form``); returns how many
+    depths are not finite. Branch-free: the loop vectorises."""
     bad = 0
     for i in range(a.size):
         ai = a[i]
-        sq = ai * ai
-        di = sq / R
-        g_int = sq * ai
-        g_int = g_int * k
-        g_int = g_int / 3.0
-        fo = ai * di
-        fo = fo - g_int
-        fo = fo * two_e
-        fi = F[i]
-        r = abs(fo - fi)
+        di = ai * ai
+        di = di / R
         d[i] = di
-        F_out[i] = fo
-        resid[i] = r
-        bad += (not fo - fo == 0.0) | (not r <= FORCE_SANITY * fi)
+        bad += not di - di == 0.0
     return bad
 
 

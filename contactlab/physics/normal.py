@@ -336,7 +336,12 @@ def force_of_radius(profile, E_star: float, a: np.ndarray, rtol: float) -> np.nd
 def _power_radius(profile, E_star: float, F: np.ndarray, term: tuple) -> np.ndarray:
     """Contact radius of forces ``F > 0`` on one power term ``(c, n)``: ``F/(2E*) = κ c n
     a^(n+1)/(n+1)`` inverted, in the operations of the scalar route
-    (:mod:`contactlab.physics.normal_scalar`), so that both give the same radius."""
+    (:mod:`contactlab.physics.normal_scalar`), so that both give the same radius; a
+    paraboloid's ``a = cbrt(F/K)`` (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`)."""
+    hertz = getattr(profile, "_hertz_force_constants", None)
+    if hertz is not None:
+        # a paraboloid: F = K a³ with one constant K (Paraboloid._hertz_force_constants)
+        return root_of_ratio(F, hertz(E_star)[0], 3.0)
     c, n = term
     n1 = n + 1.0
     x = F / (2.0 * E_star)
@@ -475,7 +480,7 @@ def radius_depth_of_force(profile, E_star: float, F: np.ndarray, rtol: float
 
 
 def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, *,
-          error_estimate: bool | str = True
+          error_estimate: bool | str = True, extremes: tuple[float, float] | None = None
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
     """Non-adhesive normal contact for one control, with the force's relative error estimate.
 
@@ -498,6 +503,9 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         values, bit for bit, as ``True`` gives: a batched state pays for it only when it is read);
         the array itself on the quadrature routes. Depth, radius and force are bit-identical
         whichever is asked.
+    extremes : (float, float), optional
+        ``(min(value), max(value))`` where the caller has reduced them (the passes of a
+        paraboloid under force control then reduce nothing); they do not change the results.
 
     Returns
     -------
@@ -523,10 +531,12 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
         if (error_estimate == "lazy" and value.size >= _fused.FUSED_FROM
                 and type(profile) is Paraboloid):
             fused = _solve_force_fused(profile, E, value, rtol,
-                                       _fused.backend() == "numba" or "numpy")
+                                       _fused.backend() == "numba" or "numpy", extremes)
             if fused is not None:
                 return fused
         a, d = radius_depth_of_force(profile, E, value, rtol)
+        if getattr(profile, "_hertz_force_constants", None) is not None:
+            return _hertz_state(profile, E, value, a, d, rtol, error_estimate)
     all_pos = a.size == 0 or bool(a.min() > 0)     # (one reduction, no mask)
     lazy = error_estimate == "lazy" and profile._g_integral_is_exact()
     if error_estimate and not lazy:
@@ -583,8 +593,54 @@ def solve(profile, E_star: float, control: str, value: np.ndarray, rtol: float, 
                              g_a_err))
 
 
+def _hertz_state(profile, E: float, value: np.ndarray, a: np.ndarray, d: np.ndarray,
+                 rtol: float, error_estimate: bool | str
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
+    """:func:`solve`'s force route on a paraboloid from its radii and depths: the force of the
+    state is the request itself (zero where it is not positive: no contact); the estimate
+    (:func:`_hertz_rel_error`) carries the residual ``|F(a, d) - F|`` by which ``(a, d)`` miss
+    it, which the lazy estimate also hands to the caller's request check
+    (``pending.residual``)."""
+    F = np.where(a > 0, value, 0.0)
+    d, a = np.asarray(d, float), np.asarray(a, float)
+    if not error_estimate:
+        return d, a, F, None
+    all_pos = a.size == 0 or bool(a.min() > 0)
+    ad = a * d
+    c_f = profile._hertz_force_constants(E)[1]
+    resid = np.abs(ad * c_f - F)
+    if not bool(np.all(resid <= _fused.FORCE_SANITY * F)):
+        # (a, d) miss the request (a depth beyond the floats): the force of (a, d) is
+        # reported where they do, so that the caller's request check sees it
+        F = np.where(resid <= _fused.FORCE_SANITY * F, F, ad * c_f)
+    if error_estimate == "lazy":
+        def pending() -> np.ndarray:
+            return _hertz_rel_error(profile, E, a, d, F, all_pos, rtol, resid)
+        pending.residual = resid            # type: ignore[attr-defined]
+        return d, a, F, pending
+    return d, a, F, _hertz_rel_error(profile, E, a, d, F, all_pos, rtol, resid)
+
+
+def _hertz_rel_error(profile, E: float, a: np.ndarray, d: np.ndarray, F: np.ndarray,
+                     all_pos: bool, rtol: float, resid: np.ndarray | None = None
+                     ) -> np.ndarray:
+    """The relative force error of a paraboloid's force-controlled state, whose force ``F`` is
+    the request: the rounding of ``a d - ∫g`` and of ``∫g`` (:func:`_force_rel_error`) and the
+    residual ``|F(a, d) - F|`` of the state's radius and depth (``resid`` where the caller
+    has it), ``F(a, d) = (a·d)·c``
+    (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`; 0 where there is no
+    contact: ``a = d = F = 0``)."""
+    ad = a * d
+    gi = profile._g_integral(a, rtol)
+    if resid is None:
+        resid = np.abs(ad * profile._hertz_force_constants(E)[1] - F)
+    return _force_rel_error(E, "force", a, ad, gi, ROUNDING * np.abs(gi), F, all_pos, None,
+                            None, resid)
+
+
 def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
-                       compiled: bool | str = True
+                       compiled: bool | str = True,
+                       extremes: tuple[float, float] | None = None
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any] | None:
     """:func:`solve`'s lazy force route on a paraboloid by the passes of
     :func:`contactlab.physics.normal_fused.paraboloid_force` (compiled, or ``"numpy"``: the
@@ -594,18 +650,13 @@ def _solve_force_fused(profile, E: float, value: np.ndarray, rtol: float,
     checks, made in the passes)."""
     if profile.g_route != "closed_form" or np.isfinite(profile.wall_radius):
         return None
-    res = _fused.paraboloid_force(profile, E, value, compiled)
+    res = _fused.paraboloid_force(profile, E, value, compiled, extremes)
     if res is None:
         return None
-    a, d, F, resid = res
+    a, d, F = res
 
     def pending() -> np.ndarray:
-        # ∫g, a pure function of the radius, recomputed when the estimate is read (as the
-        # numpy route does where it lent ∫g's buffer to the residual)
-        gi = profile._g_integral(a, rtol)
-        return _force_rel_error(E, "force", a, a * d, gi, ROUNDING * np.abs(gi), F, True, None,
-                                None, resid)
-    pending.residual = resid            # type: ignore[attr-defined]
+        return _hertz_rel_error(profile, E, a, d, F, True, rtol)
     pending.checked = True              # type: ignore[attr-defined]
     return d, a, F, pending
 

@@ -1,122 +1,116 @@
 """The batched force-controlled normal solve of a paraboloid in few passes (numba or numpy).
 
-:func:`contactlab.physics.normal.solve` under force control runs the general power-term route:
-~15 element-wise numpy operations and ~10 reductions around the one cube root (radius, depth,
-``∫g``, force, the residual against the request and the extremes the caller checks), each
-result in an array of its own. At 10^6 forces that is three times the closed form
-``a = cbrt(3RF/(4E*))``, ``d = a²/R`` alone. :func:`paraboloid_force` performs the same
-operations in the same order, so the results are bit-identical to that route and to the scalar
-route (tests), with the driver's checks made on the way and the four results in one block:
+A paraboloid under force control is solved in closed form on every route with one constant
+per contact (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`): ``a = cbrt(F/K)``,
+``d = (a·a)/R``, and the state's force is the request itself; the estimate of its error carries
+the residual ``|F(a, d) - F|``, ``F(a, d) = (a·d)·c``, computed when it is read.
+:func:`contactlab.physics.normal.solve` does it with the masks and reductions of its general
+route; :func:`paraboloid_force` performs the same operations, so the results are bit-identical
+to that route and to the scalar route (tests), the three results in one block:
 
+* the range and request checks are proved from the extremes of the requests
+  (:func:`_in_range`: every operation is monotone in the request), which the driver's
+  finiteness check has already reduced;
 * compiled (extra ``fast``: numba): two passes (:mod:`contactlab.numeric.normal_kernels`)
-  around numpy's own ``cbrt``, taken in place on the whole array;
-* numpy: the operations as ufuncs written into the block (no temporaries), chunk by chunk so
-  that a chunk stays in cache between them (:data:`CHUNK`), the range checks decided by the
-  extremes of the chunk's requests (two reductions: the quotient is a monotone function of
-  the force) and the request check by one reduction of the chunk's residual.
+  around numpy's own ``cbrt``, taken in place on the whole array, counting the values that
+  leave the range (belt and braces);
+* numpy: the four operations as ufuncs written into the block (no temporaries).
 
 Where a value leaves the range the general route treats with its careful branches (a quotient
-or a cube outside the normal floats, a force that is not positive), :func:`paraboloid_force`
+or a depth outside the normal floats, a force that is not positive), :func:`paraboloid_force`
 declines and the general route runs.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..numeric.normal_kernels import (FORCE_SANITY, FUSED_FROM, Q_MAX, Q_MIN, backend, kernels,
-                                      set_backend)
+from ..numeric.normal_kernels import FORCE_SANITY, FUSED_FROM, backend, kernels, set_backend
 
 __all__ = ["FUSED_FROM", "FORCE_SANITY", "backend", "set_backend", "paraboloid_force"]
 
 
-def paraboloid_force(profile, E_star: float, F: np.ndarray, compiled: bool | str = True
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
-    """Radius, depth, force and residual ``|F_out - F|`` of requested forces ``F`` on a
-    :class:`~contactlab.profiles.Paraboloid` (the caller checks the type), bit-identical to the
-    general route of :func:`contactlab.physics.normal.solve`.
+def paraboloid_force(profile, E_star: float, F: np.ndarray, compiled: bool | str = True,
+                     extremes: tuple[float, float] | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Radius, depth and force (a copy of the request: the state's force) of requested forces
+    ``F`` on a :class:`~contactlab.profiles.Paraboloid` (the caller checks the type),
+    bit-identical to the general route of :func:`contactlab.physics.normal.solve`.
 
-    ``compiled``: True the numba passes, ``"numpy"`` the numpy passes, False the numba passes'
-    logic as plain Python (tests).
+    ``compiled``: True the numba pass, ``"numpy"`` the numpy passes, False the numba pass's
+    logic as plain Python (tests). ``extremes``: ``(min(F), max(F))`` where the caller has
+    them (the driver's check that every force is finite takes them): the range check then
+    reduces nothing.
 
-    Returns ``(a, d, F_out, residual)`` (arrays of ``F``'s shape) with every force finite and
-    within :data:`FORCE_SANITY` of its request (the driver's checks, made on the way), or None
-    where some force is not positive, a quotient lies outside ``[Q_MIN, Q_MAX]`` or a force
-    fails those checks: the general route then handles (and reports) them.
+    Returns ``(a, d, F_out)`` (arrays of ``F``'s shape) with every radius and depth a finite
+    float whose force ``(a·d)·c`` meets the request to :data:`FORCE_SANITY` (the driver's
+    checks, proved from the extremes: :func:`_in_range`), or None where some force is not
+    positive or an intermediate value leaves the range of that proof (the compiled passes also
+    count quotients outside ``[Q_MIN, Q_MAX]`` and depths that are not finite): the general
+    route then handles (and reports) them.
     """
     flat = np.ascontiguousarray(F, dtype=float).reshape(-1)
-    (c, n), = profile.power_terms()
-    kap = profile._power_kappa(n)
-    two_e = 2.0 * E_star
-    # the four results in one allocation: the operating system backs a large fresh block with
-    # huge pages where it can (one fault per 2 MiB instead of one per 4 KiB: four separate
-    # arrays of 10^6 floats measured 2200 page faults and ~7 ms per call on a virtual machine,
-    # one block ~130 and ~1.7 ms); a state keeps the block while it keeps any of the arrays
-    block = np.empty((4, flat.size))
-    a, d, F_out, resid = block
+    K = profile._hertz_force_constants(E_star)[0]
+    if flat.size == 0:
+        return None
+    lo, hi = extremes if extremes is not None else (float(flat.min()), float(flat.max()))
+    if not _in_range(lo, hi, profile.R, K):
+        return None
+    # the three results in one allocation (a state keeps the block while it keeps any of them)
+    block = np.empty((3, flat.size))
+    a, d, F_out = block
     if compiled == "numpy":
-        if not _numpy_passes(flat, profile.R, n + 1.0, kap * c * n, kap * c, two_e, block):
-            return None
+        _numpy_passes(flat, profile.R, K, block)
     else:
         quotient, parab = kernels(bool(compiled))[:2]
-        if quotient(flat, two_e, n + 1.0, kap * c * n, a):
+        if quotient(flat, K, a):
             return None
         np.cbrt(a, out=a)
-        if parab(a, flat, profile.R, kap * c, two_e, d, F_out, resid):
+        if parab(a, profile.R, d):
             return None
+        F_out[...] = flat
     shape = np.shape(F)
-    return a.reshape(shape), d.reshape(shape), F_out.reshape(shape), resid.reshape(shape)
+    return a.reshape(shape), d.reshape(shape), F_out.reshape(shape)
 
 
-#: elements per chunk of the numpy passes: the dozen ufuncs run chunk by chunk, so that a
-#: chunk's request and its four result rows (5 x 1 MiB) stay in the processor's cache between
-#: the operations instead of streaming five arrays of the batch's size through memory a dozen
-#: times (measured at 10^6 forces on the shared 2-core VM, interleaved best of 25: 5.13 ms
-#: whole arrays, 4.75-4.82 ms in chunks of 2^17-2^18; 2^15 loses to the per-call cost)
-CHUNK = 1 << 17
+#: the bounds every intermediate value of the numpy passes keeps at the extremes of the
+#: requests (a factor 1e18 inside the normal floats): then, the operations being monotone, it
+#: keeps them for every request (see :func:`_in_range`)
+_LOW, _HIGH = 1e-290, 1e290
 
 
-def _numpy_passes(F: np.ndarray, R: float, n1: float, den: float, k: float, two_e: float,
-                  block: np.ndarray) -> bool:
-    """The operations of the compiled passes (``quotient_pass``, numpy's ``cbrt``,
-    ``paraboloid_pass``) as numpy ufuncs written into the rows ``a, d, F_out, resid`` of
-    ``block``, chunk by chunk (:data:`CHUNK`: every element sees the same operations, so the
-    bits do not depend on the chunking); False where those passes would decline (nothing is
-    then to be read).
+def _in_range(lo: float, hi: float, R: float, K: float) -> bool:
+    """Whether the numpy passes' values for requests in ``[lo, hi]`` are normal floats that
+    meet the driver's checks (radius and depth finite, ``F(a, d)`` within
+    :data:`FORCE_SANITY` of the request), decided from the extremes alone.
 
-    The quotient ``((F/two_e)·n1)/den`` is a monotone function of ``F`` (each operation is a
-    correctly rounded product or quotient by a positive constant), so its extremes over a chunk
-    are those of the extremes of the chunk's forces, evaluated as floats in the same order: two
-    reductions (of a chunk in cache) decide the range check. The request check (every force
-    finite and within ``FORCE_SANITY`` of its request, the compiled pass's count) by the largest
-    residual of each chunk against its smallest request (one more reduction; a NaN fails the
-    comparison), element by element only where that fails."""
-    if F.size == 0:
+    Every operation of the passes is a correctly rounded quotient or product of positive
+    operands, each non-decreasing in the request (``F/K``, ``a·a``, ``(a·a)/R``), and numpy's
+    ``cbrt`` is within an ulp of the monotone cube root: so every intermediate value of a
+    request in ``[lo, hi]`` lies between those of ``lo`` and ``hi`` (to an ulp; the bounds
+    :data:`_LOW`, :data:`_HIGH` leave a factor 1e18). With all of them normal,
+    ``F(a, d) = (a·d)·c = F·(1 + δ)``, ``δ`` the sum of the roundings (``K``'s two, the
+    quotient, the root's 0.53 ulp tripled by the cube, ``a·a``, ``/R``, ``a·d``, ``·c`` and
+    ``c``'s own): ``|δ| < 12 ulp``, far within :data:`FORCE_SANITY` (1e-6)."""
+    if not (lo > 0 and math.isfinite(hi)):
         return False
-    fits = True
-    for start in range(0, F.size, CHUNK):
-        sl = slice(start, start + CHUNK)
-        Fc = F[sl]
-        lo, hi = float(Fc.min()), float(Fc.max())
-        if not (lo > 0 and ((lo / two_e) * n1) / den >= Q_MIN
-                and ((hi / two_e) * n1) / den <= Q_MAX):
+    for x, ok in ((lo, lambda v: v >= _LOW), (hi, lambda v: v <= _HIGH)):
+        q = x / K
+        a = float(np.cbrt(q))
+        sq = a * a
+        if not all(ok(v) for v in (q, a, sq, sq / R)):
             return False
-        a, d, F_out, resid = block[0, sl], block[1, sl], block[2, sl], block[3, sl]
-        np.divide(Fc, two_e, out=a)
-        a *= n1
-        a /= den
-        np.cbrt(a, out=a)
-        sq = np.multiply(a, a, out=resid)       # a·a: the depth's and ∫g's first product
-        np.divide(sq, R, out=d)                 # d = (a·a)/R
-        g_int = np.multiply(sq, a, out=resid)   # ∫g = (((a·a)·a)·k)/3
-        g_int *= k
-        g_int /= 3.0
-        np.multiply(a, d, out=F_out)            # F_out = ((a·d) - ∫g)·two_e
-        F_out -= g_int
-        F_out *= two_e
-        np.subtract(F_out, Fc, out=resid)       # resid = |F_out - F|
-        np.abs(resid, out=resid)
-        fits = fits and bool(resid.max() <= FORCE_SANITY * lo)
-    if fits:
-        return True
-    # (requests over many decades: each residual against its own request; a NaN fails)
-    return bool(np.all(block[3] <= FORCE_SANITY * F))
+    return True
+
+
+def _numpy_passes(F: np.ndarray, R: float, K: float, block: np.ndarray) -> None:
+    """The operations of the compiled pass (``quotient_pass``, numpy's ``cbrt``,
+    ``paraboloid_pass``) as numpy ufuncs written into the rows ``a, d, F_out`` of ``block``
+    (``F_out`` a copy of the request), for requests :func:`_in_range` accepted."""
+    a, d, F_out = block
+    np.divide(F, K, out=a)                      # a = cbrt(F/K)
+    np.cbrt(a, out=a)
+    np.multiply(a, a, out=d)                    # d = (a·a)/R
+    d /= R
+    F_out[...] = F

@@ -63,7 +63,9 @@ class ScalarForms:
     ``g_prime``: ``g'(a)`` or ``None``; ``lo``: the flat radius (g = 0 below it); ``limit``: the
     largest admissible contact radius; ``start``: the first upper bracket; ``wall``: the punch
     wall radius (``inf`` without); ``validity``: the profile's ``validity_radius``; ``route``: its
-    ``g_route`` (reported in the result's meta).
+    ``g_route`` (reported in the result's meta); ``force_constants``: ``E* -> (K, c)`` of a
+    paraboloid (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`: ``F = K a³``,
+    the force of a radius and depth ``(a·d)·c``) or ``None``.
     """
 
     g: Callable[[float], float]
@@ -78,6 +80,7 @@ class ScalarForms:
     validity: float = math.inf
     route: str = ""
     radius_depth_of_reduced_force: Callable[[float], tuple[float, float]] | None = None
+    force_constants: Callable[[float], tuple[float, float]] | None = None
 
 
 def _on_scalar(fn: Callable[[np.ndarray], np.ndarray]) -> Callable[[float], float]:
@@ -179,7 +182,8 @@ def _build(profile: Profile) -> ScalarForms | None:
             # F/(2E*) = a g(a) - ∫g = κ c n a**(n+1)/(n+1); the array route's operations
             radius_of_reduced_force=lambda fr: root_of_ratio_float(fr * n1, kc * n, n1),
             g_prime=lambda a: times_power_float(n * kc, a, n - 1.0),
-            lo=lo, limit=limit, start=start)
+            lo=lo, limit=limit, start=start,
+            force_constants=getattr(profile, "_hertz_force_constants", None))
     own = profile._scalar_closed_forms() if profile._has("_scalar_closed_forms") else {}
     g = _on_scalar(profile._g) if not profile._has("_g_closed_form") else _on_scalar(
         profile._g_closed_form)
@@ -279,7 +283,9 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
         if a >= forms.limit:
             raise _too_deep("force", F, forms.limit, profile)
         return a, d
-    if forms.radius_of_reduced_force is not None:
+    if forms.force_constants is not None:   # a paraboloid: F = K a³ (the array route's)
+        a = root_of_ratio_float(F, forms.force_constants(E_star)[0], 3.0)
+    elif forms.radius_of_reduced_force is not None:
         a = forms.radius_of_reduced_force(fr)
     else:
         g, G, gp = forms.g, forms.g_integral, forms.g_prime
@@ -294,6 +300,21 @@ def solve_force(profile: Profile, forms: ScalarForms, E_star: float, F: float, r
     if a >= forms.limit:
         raise _too_deep("force", F, forms.limit, profile)
     return a, forms.g(a)
+
+
+def hertz_force_rel_error(forms: ScalarForms, E_star: float, a: float, d: float, F: float,
+                          c: float) -> float:
+    """:func:`force_rel_error` of a paraboloid's force-controlled state, whose force ``F`` is
+    the request: the rounding of ``a d - ∫g`` and of ``∫g`` (``∫g`` computed here: only the
+    estimate reads it) and the residual ``|(a·d)·c - F|`` of the state's radius and depth
+    (:meth:`~contactlab.profiles.Paraboloid._hertz_force_constants`)."""
+    if not F > 0:
+        return 0.0
+    ad = a * d
+    g_int = forms.g_integral(a)
+    err = 2.0 * E_star * (ROUNDING * (abs(ad) + abs(g_int)) + ROUNDING * abs(g_int))
+    err += abs(ad * c - F)
+    return float(err / F)
 
 
 def force_rel_error(E_star: float, a: float, d: float, g_int: float, F: float,

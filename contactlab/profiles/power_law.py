@@ -301,6 +301,16 @@ class Paraboloid(PowerLaw):
 
         return {"g": g, "g_inverse": g_inverse}
 
+    def _hertz_force_constants(self, E_star: float) -> tuple[float, float]:
+        """``(K, c)`` of the force-controlled solve (Hertz): ``F = K a³`` with
+        ``K = 4E*/(3R)`` (``F/(2E*) = a g(a) - ∫g = a³/R - a³/(3R)``), so ``a = cbrt(F/K)``;
+        and the force of the state ``F = c·(a d)`` with ``c = 4E*/3`` (``∫g = a d/3`` for
+        ``d = a²/R``). Every force-controlled route of a paraboloid (scalar, array, the numpy
+        and compiled passes) takes these two floats and the operations ``a = cbrt(F/K)``,
+        ``d = (a·a)/R``, ``F = (a·d)·c``: one constant per contact instead of a chain of
+        divisions, the same values on every route."""
+        return (4.0 * E_star) / (3.0 * self.R), (4.0 * E_star) / 3.0
+
     def _length_scale(self) -> float:
         return self.R
 
