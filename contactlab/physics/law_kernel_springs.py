@@ -412,10 +412,62 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         bl3 = bl2 * bl
         gl = cp1 * bG[0]
         hl = cp2 * bH[0]
+        # the replay's increments of the control, per contact (the same subtractions as per
+        # cell): the first from 0 (a stack of turning points), the last to the control now
+        dt = depth[0, c]
+        dr = depth[1, c]
+        pt = X[0, c, dt - 1] if dt > 0 else 0.0
+        pr = X[1, c, dr - 1] if dr > 0 else 0.0
+        it0 = X[0, c, 0] - 0.0 if dt > 0 else 0.0
+        ir0 = X[1, c, 0] - 0.0 if dr > 0 else 0.0
+        itl = x0t - pt
+        irl = x0r - pr
+        # the cells inside both edge cells (their contact fraction and weight 1, boundary
+        # products of the cell's own right boundary): no branch per cell on the cell's place;
+        # the switch's stiffness is the step's (``K w 1``: the same bits)
+        n1 = min(k, k0)
+        for i in range(n1):
+            br = cov * beta[i + 1]
+            br2 = br * br
+            br3 = br2 * br
+            w = br - bl
+            gr = cp1 * bG[i + 1]
+            hr = cp2 * bH[i + 1]
+            dg = gr - gl
+            dh = hr - hl
+            x1 = br2 - bl2
+            Kt = K2 * w
+            Kr = K16 * ((br3 - bl3) / 3.0)
+            # the switch (held depth d0): the elements after 0 -> X[0] -> ... -> x
+            L = L2 * (d0 * w - dg)
+            m0t = 0.0
+            if dt > 0:
+                m0t = min(max(m0t + Kt * it0, -L), L)
+                for q in range(1, dt):
+                    m0t = min(max(m0t + Kt * (X[0, c, q] - X[0, c, q - 1]), -L), L)
+            m0t = min(max(m0t + Kt * itl, -L), L)
+            L = L4 * (d0 * x1 / 2.0 - dh)
+            m0r = 0.0
+            if dr > 0:
+                m0r = min(max(m0r + Kr * ir0, -L), L)
+                for q in range(1, dr):
+                    m0r = min(max(m0r + Kr * (X[1, c, q] - X[1, c, q - 1]), -L), L)
+            m0r = min(max(m0r + Kr * irl, -L), L)
+            # the step (depth dj)
+            if st_u:
+                m0t, e, Ft_j, free_t, ct_j = _slip(m0t, Kt, L2 * (dj * w - dg), du, e, Ft_j,
+                                                   free_t, ct_j, bl, aj)
+            if st_p:
+                m0r, e, M_j, free_m, cm_j = _slip(m0r, Kr, L4 * (dj * x1 / 2.0 - dh), dp, e,
+                                                  M_j, free_m, cm_j, bl, aj)
+            m_tan[r, i] = m0t
+            m_tor[r, i] = m0r
+            gl, hl = gr, hr
+            bl, bl2, bl3 = br, br2, br3
         # each cell up to both edge cells: the switch's elements (to the switch's edge cell,
         # +0 beyond it), then the step's (to its edge cell, +0 beyond it) where it drives
         last = hi if (not st_u or not st_p) else k + 1
-        for i in range(last):
+        for i in range(n1, last):
             br = cov * beta[i + 1]
             br2 = br * br
             br3 = br2 * br
