@@ -484,24 +484,20 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             m0r = 0.0
             if i <= k0 and (i <= k or not st_u or not st_p):
                 frac = 1.0 if i < k0 else _weight(0.0, 0.0, 0.0, w, a0, bl)
-                for ch in range(2):
-                    if ch == 0:
-                        Kc = 2.0 * G[c] * w * frac
-                        L = 2.0 * mu_E * S0
-                    else:
-                        Kc = 16.0 * Gt[c] * ((br3 - bl3) / 3.0) * frac
-                        L = 4.0 * mu_E * T0
-                    m = 0.0
-                    prev = 0.0
-                    for p in range(depth[ch, c]):
-                        tgt = X[ch, c, p]
-                        m = min(max(m + Kc * (tgt - prev), -L), L)
-                        prev = tgt
-                    m = min(max(m + Kc * (x[ch, c] - prev), -L), L)
-                    if ch == 0:
-                        m0t = m
-                    else:
-                        m0r = m
+                Kc = K2 * w * frac
+                L = L2 * S0
+                if dt > 0:
+                    m0t = min(max(m0t + Kc * it0, -L), L)
+                    for q in range(1, dt):
+                        m0t = min(max(m0t + Kc * (X[0, c, q] - X[0, c, q - 1]), -L), L)
+                m0t = min(max(m0t + Kc * itl, -L), L)
+                Kc = K16 * ((br3 - bl3) / 3.0) * frac
+                L = L4 * T0
+                if dr > 0:
+                    m0r = min(max(m0r + Kc * ir0, -L), L)
+                    for q in range(1, dr):
+                        m0r = min(max(m0r + Kc * (X[1, c, q] - X[1, c, q - 1]), -L), L)
+                m0r = min(max(m0r + Kc * irl, -L), L)
             # the step (depth dj, radius aj), cells up to its edge cell
             if i <= k and (st_u or st_p):
                 S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
