@@ -402,8 +402,12 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         dd = dj - d0
         st_u = step and has_u
         st_p = step and has_phi
-        du = u[c] - x0t if st_u else 0.0
-        dp = phi[c] - x0r if st_p else 0.0
+        # the controls read once (read again after the row's stores, for the row's controls:
+        # the pass measured 4-6 % slower)
+        uc = u[c] if has_u else 0.0
+        pc = phi[c] if has_phi else 0.0
+        du = uc - x0t if st_u else 0.0
+        dp = pc - x0r if st_p else 0.0
         inner = min(k, k0) if dd != 0.0 else k
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
@@ -534,14 +538,14 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         d_old[r] = dj
         a_old[r] = aj
         if has_u:
-            x_tan[r] = u[c]
+            x_tan[r] = uc
             ct[c] = ct_j
         else:
             x_tan[r] = x0t
             Ft_j = 0.0
             ct[c] = aj
         if has_phi:
-            x_tor[r] = phi[c]
+            x_tor[r] = pc
             cm[c] = cm_j
         else:
             x_tor[r] = x0r
