@@ -139,10 +139,17 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         ko = k_old[r]
         lo = min(k, ko)
         hi = max(k, ko) + 1
-        dd = dj - d_old[r]
+        # the row's last depth and radius and the contact's controls read once, the sums
+        # checked in registers (each read again after the row's stores: the pass measured
+        # 110-115 against 102-104 ms CPU at 10^6 contacts)
+        do = d_old[r]
+        ao = a_old[r]
+        dd = dj - do
         mu_E = mu[c] * E[c]
-        du = u[c] - x_tan[r] if has_u else 0.0
-        dp = phi[c] - x_tor[r] if has_phi else 0.0
+        uc = u[c] if has_u else 0.0
+        pc = phi[c] if has_phi else 0.0
+        du = uc - x_tan[r] if has_u else 0.0
+        dp = pc - x_tor[r] if has_phi else 0.0
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
@@ -173,7 +180,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                                                           aj)
             bl, bl2, bl3 = br, br2, br3
         # the last step's edge-cell closed form (the old radius; its cell's integral below)
-        Gao = _edge_terms(n, kcc, a_old[r])[0] if dd != 0.0 and ko <= k else 0.0
+        Gao = _edge_terms(n, kcc, ao)[0] if dd != 0.0 and ko <= k else 0.0
         # the edge cell and those inside it the depth moved over; each cell's left-boundary
         # products are its neighbour's right ones (the same bits)
         for i in range(inner, k + 1):
@@ -186,7 +193,7 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
             S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
             # the last step's integral of this cell, by the expressions that formed it
             # (inside the old edge cell, the old edge cell, beyond it; its T is not used)
-            So = (_integrals(i, ko, d_old[r], a_old[r], w, bl, bl2, br2, cp1 * bG[i],
+            So = (_integrals(i, ko, do, ao, w, bl, bl2, br2, cp1 * bG[i],
                              cp1 * bG[i + 1], hl, hr, Gao, 0.0)[0] if dd != 0.0 else 0.0)
             wgt = _weight(dd, S, So, w, aj, bl)
             gl, hl = gr, hr
@@ -215,21 +222,19 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         d_old[r] = dj
         a_old[r] = aj
         if has_u:
-            x_tan[r] = u[c]
-            Ft[c] = Ft_j
+            x_tan[r] = uc
             ct[c] = ct_j
         else:
-            Ft[c] = 0.0
             ct[c] = aj
         if has_phi:
-            x_tor[r] = phi[c]
-            M[c] = M_j
+            x_tor[r] = pc
             cm[c] = cm_j
         else:
-            M[c] = 0.0
             cm[c] = aj
+        Ft[c] = Ft_j
+        M[c] = M_j
         dW[c] = e
-        if not (math.isfinite(e) and math.isfinite(Ft[c]) and math.isfinite(M[c])):
+        if not (math.isfinite(e) and math.isfinite(Ft_j) and math.isfinite(M_j)):
             nonfinite += 1
     return nonfinite, grown
 
