@@ -6,6 +6,7 @@ against its floor measured interleaved in the same run, with a verdict against t
     python benchmarks/law_speed.py --scaling --big   # adds n = 10^7 (compiled only, ~9 GB)
     python benchmarks/law_speed.py --n 1e5      # the rows at another n (the goals stay 10^6's)
     python benchmarks/law_speed.py --passes     # only the constant-load step by parts (~15 s)
+    python benchmarks/law_speed.py --changing   # the changing-load rows only (~half the time)
 
 Rows (10^6 Hertz contacts, normal + torsion + tangential with memory, sinusoidal histories with
 random phases so that reversals and loop closures occur):
@@ -339,7 +340,8 @@ def issue_rows() -> None:
           f"({CONST_READ} read, {CONST_WRITE} written)")
     print(f"{'row':<40} {'wall':>7} {'CPU':>7} {'pass':>6} {'ratio':>7} {'bw fl':>6} "
           f"{'ratio':>6} {'faults':>7}  goal")
-    for m in modes:
+    changing_only = "--changing" in sys.argv
+    for m in modes if not changing_only else ():
         _threads(m)
         _print(f"constant-load step, {m}", constant_row(n, m), const_b * n, 0.040)
     # a contact on its springs also reads and writes its spring row (3 floats per spring and
@@ -372,7 +374,7 @@ def issue_rows() -> None:
               "rows held from the start")
         _print(f"FIRST step reserved, {m}, 100%", first, (const_b + spr_b) * n,
                0.100)
-    if fast:
+    if fast and not changing_only:
         for frac in (1.0, 0.1):
             const, changing, counted = memory_row(n, frac)
             for name, b in (("memory, law + constant-load steps", const),
@@ -460,6 +462,8 @@ def main() -> None:
     cl.set_memory_budget("inf")
     print(machine(), f"load average {os.getloadavg()[0]:.1f}")
     issue_rows()
+    if "--changing" in sys.argv:
+        return
     # the GPU row (backend="cupy", 10^7 contacts): measured where CuPy finds a device, else
     # a line saying it was skipped; and the estimate from the counted memory traffic
     from benchmarks.law_gpu import estimate, gpu_rows
