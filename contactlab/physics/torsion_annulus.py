@@ -38,6 +38,7 @@ import scipy.linalg as _la
 
 from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import ring_kernels as _ring_kernels
+from ..numeric import slip_check as _slip_check
 # the piece algebra (re-exported: the module's names, its compiled-route switch ``_COMPILED`` and
 # its helpers, as before the split)
 from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  # noqa: F401
@@ -348,7 +349,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         Check points (m) and ``μ p`` there (Pa, 0 outside the contact): the traction inside ``c``
         is checked against ``μ p``, the slip increments on the annulus against the sense.
     slip : bool
-        Compute the slip increments at ``r`` (else only where the check needs them; zeros).
+        Compute and return the slip increments at ``r`` (else zeros: the check forms them only
+        where the sign of the density's increment does not decide it, and keeps them).
     table : NodeTable, optional
         Antiderivatives at the points ``r`` computed once, for the checks (:func:`traction`,
         :func:`slip_kernel_integral`; equal to rounding). The returned slip increments are
@@ -365,8 +367,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         ``w`` (new pieces), ``c`` (stick radius, m), ``sense`` (``s``), ``dpsi`` (``Ψ_new(0) −
         Ψ_old(0)``, rad), ``gross`` (twist turned beyond full sliding, rad; ``nan`` when a torque
         target exceeds the sliding torque), ``slip`` (slip increments at the points ``r`` in
-        contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the
-        checks held) and ``why`` (the failed check, or ``""``).
+        contact at the start or the end of the step, m; zeros with ``slip=False``, ``None``
+        without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or ``""``).
     """
     if target_torque is None and _kernels() is not None:
         # the compiled route: one pass (numeric.annulus_kernel), the same bits; None where it
@@ -454,10 +456,11 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
                       and bool(np.all(s * dw[3] >= slack)))
         if on.any() and not np.isnan(gross) and (slip or not sufficient):
             # (the table's sums where the increments only feed the check)
-            ds[on] = (slip_kernel_integral(dw, r[on], None if slip else table)
-                      + gross * r[on])
-            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
-            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+            ds_on = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
+            if slip:        # (else they only feed the check: not returned)
+                ds[on] = ds_on
+            ref = float(np.max(np.abs(ds_on))) + float(np.max(r[on])) * abs(gross)
+            if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
         if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table, allow):
             why = _WHY_INSIDE
@@ -529,11 +532,22 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
         if on.any():
             dw = (dw[0], dw[1], dw[2], dw[3])
             r_on = r[on]        # (the points once; ds_on the values written to ds)
-            ds_on = slip_kernel_integral(dw, r_on, None if slip else table) + gross * r_on
-            ds[on] = ds_on
-            ref = float(np.max(np.abs(ds_on))) + float(np.max(r_on)) * abs(gross)
-            if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
+            verdict = _slip_check.CHECK_OPEN
+            if not slip and table is not None:
+                # the check alone: by the increment's own nodes where its margin exceeds the
+                # rounding (numeric.slip_check), else by the numpy route's products below
+                verdict = _slip_check.kernels(_COMPILED["compiled"])["slip_check"](
+                    dw[0], dw[1], dw[2], dw[3], r_on, s, gross, CHECK_RTOL,
+                    *table.arrays["slip"], table.r, table.nodes, *_G01_ONE)
+            if verdict == _slip_check.CHECK_FAIL:
                 why = "slip against the traction on the annulus"
+            elif verdict == _slip_check.CHECK_OPEN:
+                ds_on = slip_kernel_integral(dw, r_on, None if slip else table) + gross * r_on
+                if slip:
+                    ds[on] = ds_on
+                ref = float(np.max(np.abs(ds_on))) + float(np.max(r_on)) * abs(gross)
+                if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
+                    why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
         ok = _DECIDED.get(inside)
         if ok is None or (not ok and allow is not None):    # (the allowance: the numpy check)
