@@ -47,7 +47,8 @@ from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  
                              stored_energy, torque, torque_below)
 from .torsion_punches import punch_energy, punch_step, punch_torque, punch_traction
 
-__all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
+__all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "coefficients", "density",
+           "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
            "difference", "add", "nonnegative_psi", "step", "punch_step", "punch_torque", "punch_energy",
            "punch_traction", "ROOT_XTOL", "CHECK_RTOL"]
@@ -575,19 +576,36 @@ def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float
         and bool(np.all(r[inside][bad] >= c - allow[2])))
 
 
+def coefficients(lu, values: np.ndarray) -> np.ndarray:
+    """The ring solver's basis coefficients (hats then jumps) whose traction at its collocation
+    points is each row of ``values`` (steps × points; ``lu``: the LU factors of the
+    traction-per-basis matrix), one row per row of ``values``.
+
+    One LAPACK ``getrs`` for all rows, always with at least two right-hand sides (a single row is
+    solved beside a zero row): a triangular solve of several right-hand sides runs another
+    kernel than one of a single vector (last bits differ), but solves each column alike wherever
+    it stands and however many there are (tested), so a row's coefficients do not depend on the
+    other rows of the call; about half the time per row of one solve per row."""
+    values = np.asarray(values, float)
+    k = values.shape[0]
+    rhs = np.zeros((values.shape[1], max(k, 2)), order="F")
+    rhs[:, :k] = values.T
+    coef, info = _getrs(lu[0], lu[1], rhs, overwrite_b=True)
+    if info != 0:
+        raise ValueError(f"illegal value in argument {-info} of getrs")
+    return coef[:, :k].T
+
+
 def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:
     """Pieces of the ring solver's density whose traction at its collocation points is
     ``values`` (``lu``: the LU factors of the traction-per-basis matrix, hats then jumps), cut at
-    the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
+    the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step.
+    The coefficients are :func:`coefficients`' (the same bits as a row of a batch)."""
     values = np.asarray(values, float)
     if values.ndim != 1 or values.size != lu[0].shape[0]:
         coef = _la.lu_solve(lu, values, check_finite=False)
     else:
-        # scipy's lu_solve is this LAPACK call (getrs) behind a batching wrapper that costs as
-        # much as the solve at the ring solver's sizes: the same bits
-        coef, info = _getrs(lu[0], lu[1], values)
-        if info != 0:
-            raise ValueError(f"illegal value in argument {-info} of getrs")
+        coef = coefficients(lu, values[None, :])[0]
     return from_coefficients(b, coef, jumps, radius)
 
 
