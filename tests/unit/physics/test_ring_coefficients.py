@@ -43,3 +43,29 @@ def test_a_rows_coefficients_do_not_depend_on_the_batch():
         alone = ta.density(lu, b, np.zeros(0, int), values[j], 0.9)
         batch = ta.from_coefficients(b, whole[j], np.zeros(0, int), 0.9)
         assert all(u.tobytes() == v.tobytes() for u, v in zip(alone, batch))
+
+
+def test_concurrent_solves_on_shared_factors():
+    """Threads solving on one ring set's cached (shared, read-only) factors: the same bits as
+    alone and the pivots intact (scipy's getrs wrapper shifts the pivots in place for the call,
+    outside the GIL: shared, concurrent calls corrupted them and aborted the process)."""
+    import threading
+
+    _, lu, values = _system()
+    for a in lu:
+        a.flags.writeable = False
+    piv = lu[1].copy()
+    want = ta.coefficients(lu, values[:8])
+    bad = []
+
+    def work():
+        for _ in range(300):
+            if ta.coefficients(lu, values[:8]).tobytes() != want.tobytes():
+                bad.append(1)
+
+    threads = [threading.Thread(target=work) for _ in range(6)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not bad and np.array_equal(lu[1], piv)
