@@ -2,9 +2,10 @@
 
 Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N] [--long]``.
 
-Every row is measured interleaved in this one run (round-robin, best of ``--rounds``) and reported
-as a ratio to its floor (a route of the same work), with a verdict on the row's goal, so the
-machine's load mostly cancels; the machine and its load average are printed. Rows and goals:
+Every row is measured interleaved in this one run (round-robin, the order rotated each round,
+best of ``--rounds``) and reported as a ratio to its floor (a route of the same work), with a
+verdict on the row's goal, so the machine's load mostly cancels; the machine and its load
+average are printed. Rows and goals:
 
 1. the 180-step varying-load twisted Hertz path, ``simulate(path, method="exact")`` (default
    rings): with BLAS set to two threads vs one (goal: within 1.2x, bit-identical), cold (ring
@@ -412,10 +413,15 @@ def main() -> int:
     keep: dict = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for _ in range(args.rounds):
-            for name, fn in fns.items():
+        names = list(fns)
+        for k in range(args.rounds):
+            # the order rotated each round: no row always runs right after the same one (the
+            # row after the cold row's matrix build ran 5 % slower in every round, its caches
+            # flushed: 50.9 ms against 48.2 ms for the same run in a later row)
+            shift = k * len(names) // max(args.rounds, 1)
+            for name in names[shift:] + names[:shift]:
                 t0 = time.perf_counter()
-                keep[name] = fn()
+                keep[name] = fns[name]()
                 best[name] = min(best[name], time.perf_counter() - t0)
     print(f"\n{'row':38s} {'time':>10s} {'floor':38s} {'its time':>10s} {'ratio':>7s}  "
           "goal: verdict")

@@ -509,6 +509,8 @@ class Rings(Foundation):
                         bnd = rings.boundaries
                         edges = bnd[np.minimum(np.searchsorted(bnd, ac * (1 - 1e-12)),
                                                bnd.size - 1)].tolist()
+                        # the full-sliding densities' coefficients of the chunk: one LAPACK call
+                        coefs = _ta.coefficients(rings.lu, bound)
                     for j in range(c0, c1):
                         k = i + j
                         bj, aj = bound[j - c0], float(a_arr[j])
@@ -517,8 +519,8 @@ class Rings(Foundation):
                             # (the same shape every step: an elementwise test is array_equal)
                             if slide_key is None or not (slide_key[0] == edge_j and
                                                          bool((slide_key[1] == bj).all())):
-                                slide = _ta.nonnegative_psi(_ta.density(rings.lu, bnd, rings.jumps, bj,
-                                                                      edge_j))
+                                slide = _ta.nonnegative_psi(_ta.from_coefficients(
+                                    bnd, coefs[j - c0], rings.jumps, edge_j))
                                 slide_key = (edge_j, bj)
                             out = _annulus_step(rings, w, bj, edge_j, G_t, ctrl, float(target[j]),
                                                 st.twist, st.active, slip=bool(snaps), slide=slide,

@@ -38,6 +38,7 @@ import scipy.linalg as _la
 
 from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import ring_kernels as _ring_kernels
+from ..numeric import slip_check as _slip_check
 # the piece algebra (re-exported: the module's names, its compiled-route switch ``_COMPILED`` and
 # its helpers, as before the split)
 from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  # noqa: F401
@@ -47,7 +48,8 @@ from .torsion_pieces import (_COMPILED, _LAST_DIFF, _LAST_TOTAL, Pieces, _cut,  
 from . import torsion_slip_sign as _slip_sign
 from .torsion_punches import punch_energy, punch_step, punch_torque, punch_traction
 
-__all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "density", "psi", "torque",
+__all__ = ["Pieces", "NodeTable", "empty", "from_nodes", "from_coefficients", "coefficients", "density",
+           "psi", "torque",
            "torque_below", "traction", "slip_kernel_integral", "stored_energy", "splice",
            "difference", "add", "nonnegative_psi", "step", "punch_step", "punch_torque", "punch_energy",
            "punch_traction", "ROOT_XTOL", "CHECK_RTOL"]
@@ -349,7 +351,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         Check points (m) and ``μ p`` there (Pa, 0 outside the contact): the traction inside ``c``
         is checked against ``μ p``, the slip increments on the annulus against the sense.
     slip : bool
-        Compute the slip increments at ``r`` (else only where the check needs them; zeros).
+        Compute and return the slip increments at ``r`` (else zeros: the check forms them only
+        where the sign of the density's increment does not decide it, and keeps them).
     table : NodeTable, optional
         Antiderivatives at the points ``r`` computed once, for the checks (:func:`traction`,
         :func:`slip_kernel_integral`; equal to rounding). The returned slip increments are
@@ -366,8 +369,8 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
         ``w`` (new pieces), ``c`` (stick radius, m), ``sense`` (``s``), ``dpsi`` (``Ψ_new(0) −
         Ψ_old(0)``, rad), ``gross`` (twist turned beyond full sliding, rad; ``nan`` when a torque
         target exceeds the sliding torque), ``slip`` (slip increments at the points ``r`` in
-        contact at the start or the end of the step, m; ``None`` without ``r``), ``ok`` (the
-        checks held) and ``why`` (the failed check, or ``""``).
+        contact at the start or the end of the step, m; zeros with ``slip=False``, ``None``
+        without ``r``), ``ok`` (the checks held) and ``why`` (the failed check, or ``""``).
     """
     if target_torque is None and _kernels() is not None:
         # the compiled route: one pass (numeric.annulus_kernel), the same bits; None where it
@@ -456,10 +459,11 @@ def step(old: Pieces, slide: Pieces, radius: float, G_t: float, *, dphi: float |
             dw[0], dw[1], dw[2], dw[3], s, gross)
         if on.any() and not np.isnan(gross) and (slip or not sufficient):
             # (the table's sums where the increments only feed the check)
-            ds[on] = (slip_kernel_integral(dw, r[on], None if slip else table)
-                      + gross * r[on])
-            ref = float(np.max(np.abs(ds[on]))) + float(np.max(r[on])) * abs(gross)
-            if not sufficient and np.any(s * ds[on] < -CHECK_RTOL * ref):
+            ds_on = slip_kernel_integral(dw, r[on], None if slip else table) + gross * r[on]
+            if slip:        # (else they only feed the check: not returned)
+                ds[on] = ds_on
+            ref = float(np.max(np.abs(ds_on))) + float(np.max(r[on])) * abs(gross)
+            if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
                 why = "slip against the traction on the annulus"
         if not why and inside_ok is None and not _inside_ok(w, r, c, bound, G_t, table, allow):
             why = _WHY_INSIDE
@@ -533,11 +537,22 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
         if on.any():
             dw = (dw[0], dw[1], dw[2], dw[3])
             r_on = r[on]        # (the points once; ds_on the values written to ds)
-            ds_on = slip_kernel_integral(dw, r_on, None if slip else table) + gross * r_on
-            ds[on] = ds_on
-            ref = float(np.max(np.abs(ds_on))) + float(np.max(r_on)) * abs(gross)
-            if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
+            verdict = _slip_check.CHECK_OPEN
+            if not slip and table is not None:
+                # the check alone: by the increment's own nodes where its margin exceeds the
+                # rounding (numeric.slip_check), else by the numpy route's products below
+                verdict = _slip_check.kernels(_COMPILED["compiled"])["slip_check"](
+                    dw[0], dw[1], dw[2], dw[3], r_on, s, gross, CHECK_RTOL,
+                    *table.arrays["slip"], table.r, table.nodes, *_G01_ONE)
+            if verdict == _slip_check.CHECK_FAIL:
                 why = "slip against the traction on the annulus"
+            elif verdict == _slip_check.CHECK_OPEN:
+                ds_on = slip_kernel_integral(dw, r_on, None if slip else table) + gross * r_on
+                if slip:
+                    ds[on] = ds_on
+                ref = float(np.max(np.abs(ds_on))) + float(np.max(r_on)) * abs(gross)
+                if not sufficient and np.any(s * ds_on < -CHECK_RTOL * ref):
+                    why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
         ok = _DECIDED.get(inside)
         if ok is None or (not ok and allow is not None):    # (the allowance: the numpy check)
@@ -565,19 +580,40 @@ def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float
         and bool(np.all(r[inside][bad] >= c - allow[2])))
 
 
+def coefficients(lu, values: np.ndarray) -> np.ndarray:
+    """The ring solver's basis coefficients (hats then jumps) whose traction at its collocation
+    points is each row of ``values`` (steps × points; ``lu``: the LU factors of the
+    traction-per-basis matrix), one row per row of ``values``.
+
+    One LAPACK ``getrs`` for all rows, always with at least two right-hand sides (a single row is
+    solved beside a zero row): a triangular solve of several right-hand sides runs another
+    kernel than one of a single vector (last bits differ), but solves each column alike wherever
+    it stands and however many there are (tested), so a row's coefficients do not depend on the
+    other rows of the call; about half the time per row of one solve per row."""
+    values = np.asarray(values, float)
+    k = values.shape[0]
+    rhs = np.zeros((values.shape[1], max(k, 2)), order="F")
+    rhs[:, :k] = values.T
+    # scipy's getrs wrapper turns the pivots 1-based in place for the call and back after it,
+    # outside the GIL: on an array shared by threads (a ring set's cached factors) concurrent
+    # calls corrupted each other's pivots and the heap (measured: aborts within 3000 calls on 8
+    # threads); each call takes its own copy
+    coef, info = _getrs(lu[0], lu[1].copy(), rhs, overwrite_b=True)
+    if info != 0:
+        raise ValueError(f"illegal value in argument {-info} of getrs")
+    return coef[:, :k].T
+
+
 def density(lu, b: np.ndarray, jumps: np.ndarray, values: np.ndarray, radius: float) -> Pieces:
     """Pieces of the ring solver's density whose traction at its collocation points is
     ``values`` (``lu``: the LU factors of the traction-per-basis matrix, hats then jumps), cut at
-    the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step."""
+    the contact radius. With ``values = μ p`` it is the full-sliding density ``W`` of a step.
+    The coefficients are :func:`coefficients`' (the same bits as a row of a batch)."""
     values = np.asarray(values, float)
     if values.ndim != 1 or values.size != lu[0].shape[0]:
-        coef = _la.lu_solve(lu, values, check_finite=False)
+        coef = _la.lu_solve((lu[0], lu[1].copy()), values, check_finite=False)   # (pivots)
     else:
-        # scipy's lu_solve is this LAPACK call (getrs) behind a batching wrapper that costs as
-        # much as the solve at the ring solver's sizes: the same bits
-        coef, info = _getrs(lu[0], lu[1], values)
-        if info != 0:
-            raise ValueError(f"illegal value in argument {-info} of getrs")
+        coef = coefficients(lu, values[None, :])[0]
     return from_coefficients(b, coef, jumps, radius)
 
 

@@ -16,6 +16,7 @@ import numpy as np
 from ..numeric import annulus_kernel as _annulus_kernel
 from ..numeric import normal_kernels as _normal_kernels
 from ..numeric import ring_kernels as _ring_kernels
+from ..numeric import torque_kernel as _torque_kernel
 
 __all__ = ["Pieces", "empty", "from_nodes", "from_coefficients", "psi", "torque", "torque_below",
            "stored_energy", "splice", "difference", "add"]
@@ -96,11 +97,18 @@ def psi(p: Pieces, x: np.ndarray) -> np.ndarray:
 
 
 def torque(p: Pieces, G_t: float) -> float:
-    """Torque ``(16/3) G_t ∫ t³ w dt``, N·m."""
-    lo, hi, _, _ = p
+    """Torque ``(16/3) G_t ∫ t³ w dt``, N·m (the powers as products: the same bits on every
+    processor, and on the compiled route, :mod:`contactlab.numeric.torque_kernel`)."""
+    lo, hi, wl, wr = p
+    if _kernels() is not None:
+        c = np.ascontiguousarray
+        s = _torque_kernel.kernels(_COMPILED["compiled"])["torque_sum"](
+            c(lo, float), c(hi, float), c(wl, float), c(wr, float))
+        return float(16.0 / 3.0 * G_t * s)
     al, be = _lin(p)
-    return float(16.0 / 3.0 * G_t * np.sum(al * (hi ** 4 - lo ** 4) / 4.0
-                                           + be * (hi ** 5 - lo ** 5) / 5.0))
+    h2, l2 = hi * hi, lo * lo
+    h4, l4 = h2 * h2, l2 * l2
+    return float(16.0 / 3.0 * G_t * np.sum(al * (h4 - l4) / 4.0 + be * (h4 * hi - l4 * lo) / 5.0))
 
 
 _GAUSS = np.polynomial.legendre.leggauss(4)
