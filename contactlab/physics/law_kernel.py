@@ -253,12 +253,16 @@ def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rto
     return bad, dead, off, both, nonfinite
 
 
-def _channel_pass(c: int):
+def _channel_pass(c: int, hertz: bool = False):
     """The fused pass over the contacts for channel ``c`` (0: tangential, the first of the two
     passes; 1: torsion, the second): scales, the Masing step (the same bookkeeping as
     :func:`~contactlab.physics.masing_stack.masing_step`) and outputs of every contact, as a
     function that numba compiles with ``c`` a constant (a closure variable: the other channel's
-    code and loading curve are left out).
+    code and loading curve are left out). ``hertz``: the exponent is the paraboloid's 2 in the
+    compiled code (the argument ``n`` is ignored): the tangential loading curve's branches on
+    ``n`` and its constants ``1/(n+1)``, ``1/(2n+1)`` fold away (the same IEEE operations on
+    the same values, so the same bits; measured 0.31-0.32 -> 0.29-0.30 ms for the tangential
+    pass at 2 x 10^4 Hertz contacts, in cache, three rounds alternating).
 
     Two passes, tangential then torsion, instead of both channels in one loop: the loop body
     of one channel is small enough for the processor to overlap the long dependency chains of
@@ -279,6 +283,8 @@ def _channel_pass(c: int):
 
     def _pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coef, y_scale,
               y0, m0, kp, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
+        if hertz:
+            n = 2.0
         cM = math.pi * n / (2.0 * (n + 2.0)) if n != math.inf else 0.5 * math.pi
         K = X.shape[1]
         nonfinite = 0
@@ -390,17 +396,19 @@ def _channel_pass(c: int):
                 nonfinite += 1
         return nonfinite, n_over
 
-    _pass.__name__ = _pass.__qualname__ = "_fused_tangential" if first else "_fused_torsion"
+    _pass.__name__ = _pass.__qualname__ = (("_fused_tangential" if first else "_fused_torsion")
+                                           + ("_hertz" if hertz else ""))
     return _pass
 
 
 _fused_torsion = _channel_pass(1)
 _fused_tangential = _channel_pass(0)
+_fused_tangential_hertz = _channel_pass(0, True)
 
 
 # (the springs module indexes the spring passes by position: 2, 3, 4 and 6)
 _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_step_pass,
-           _fused_torsion, _first_pass)
+           _fused_torsion, _first_pass, _fused_tangential_hertz)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical
@@ -422,7 +430,7 @@ def __getattr__(name: str):
 
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused tangential, spring, switch, switch-and-step in blocks,
-    fused torsion, switch-and-step per contact)`` passes, serial or
+    fused torsion, switch-and-step per contact, fused tangential for n = 2)`` passes, serial or
     threaded (built on first use, compiled on their first call, machine code cached on disk:
     :func:`contactlab.numeric.jit.njit`; the plain Python functions without numba). The
     switch-and-step of both builds calls the serial switch and spring passes per block.
@@ -553,6 +561,6 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
             None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
             chan["last"], chan["depth"], chan["X_levels"], chan["Y_levels"], chan["overflow"],
             *out)
-    kernels[1](*args)                                   # tangential (and flagged contacts)
+    kernels[7 if float(n) == 2.0 else 1](*args)        # tangential (and flagged contacts)
     nf, n_over = kernels[5](*args)                      # torsion, dW, exact, counts
     return (*out, nf, n_over)
