@@ -259,10 +259,12 @@ def _channel_pass(c: int, hertz: bool = False):
     :func:`~contactlab.physics.masing_stack.masing_step`) and outputs of every contact, as a
     function that numba compiles with ``c`` a constant (a closure variable: the other channel's
     code and loading curve are left out). ``hertz``: the exponent is the paraboloid's 2 in the
-    compiled code (the argument ``n`` is ignored): the tangential loading curve's branches on
-    ``n`` and its constants ``1/(n+1)``, ``1/(2n+1)`` fold away (the same IEEE operations on
-    the same values, so the same bits; measured 0.31-0.32 -> 0.29-0.30 ms for the tangential
-    pass at 2 x 10^4 Hertz contacts, in cache, three rounds alternating).
+    compiled code (the arguments ``n`` and ``y0`` are ignored: the paraboloid's torsion curve
+    has no flat start): the tangential loading curve's branches on ``n`` and its constants
+    ``1/(n+1)``, ``1/(2n+1)`` fold away, and the torsion curve's flat-punch branches (the
+    same IEEE operations on the same values, so the same bits; measured at 2 x 10^4 Hertz
+    contacts, in cache, three rounds alternating: tangential pass 0.31-0.32 -> 0.29-0.30 ms,
+    torsion pass 0.44 -> 0.42 ms).
 
     Two passes, tangential then torsion, instead of both channels in one loop: the loop body
     of one channel is small enough for the processor to overlap the long dependency chains of
@@ -285,6 +287,7 @@ def _channel_pass(c: int, hertz: bool = False):
               y0, m0, kp, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
         if hertz:
             n = 2.0
+            y0 = 0.0
         cM = math.pi * n / (2.0 * (n + 2.0)) if n != math.inf else 0.5 * math.pi
         K = X.shape[1]
         nonfinite = 0
@@ -404,11 +407,13 @@ def _channel_pass(c: int, hertz: bool = False):
 _fused_torsion = _channel_pass(1)
 _fused_tangential = _channel_pass(0)
 _fused_tangential_hertz = _channel_pass(0, True)
+_fused_torsion_hertz = _channel_pass(1, True)
 
 
 # (the springs module indexes the spring passes by position: 2, 3, 4 and 6)
 _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_step_pass,
-           _fused_torsion, _first_pass, _fused_tangential_hertz)
+           _fused_torsion, _first_pass, _fused_tangential_hertz,
+           _fused_torsion_hertz)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical
@@ -430,8 +435,8 @@ def __getattr__(name: str):
 
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused tangential, spring, switch, switch-and-step in blocks,
-    fused torsion, switch-and-step per contact, fused tangential for n = 2)`` passes, serial or
-    threaded (built on first use, compiled on their first call, machine code cached on disk:
+    fused torsion, switch-and-step per contact, fused tangential and torsion for n = 2)``
+    passes, serial or threaded (built on first use, compiled on their first call, machine code cached on disk:
     :func:`contactlab.numeric.jit.njit`; the plain Python functions without numba). The
     switch-and-step of both builds calls the serial switch and spring passes per block.
     Contacts are independent, so the threaded build gives bit-identical results. The two
@@ -562,5 +567,5 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
             chan["last"], chan["depth"], chan["X_levels"], chan["Y_levels"], chan["overflow"],
             *out)
     kernels[7 if float(n) == 2.0 else 1](*args)        # tangential (and flagged contacts)
-    nf, n_over = kernels[5](*args)                      # torsion, dW, exact, counts
+    nf, n_over = kernels[8 if float(n) == 2.0 else 5](*args)                      # torsion, dW, exact, counts
     return (*out, nf, n_over)

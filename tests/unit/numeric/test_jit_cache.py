@@ -116,15 +116,17 @@ def test_every_kernel_is_cached_under_its_own_name():
             "_fused_torsion_parallel", "_fused_tangential_parallel", "_spring_pass_parallel",
             "_switch_pass", "_switch_pass_parallel", "_switch_step_pass",
             "_switch_step_pass_parallel", "_first_pass", "_first_pass_parallel",
-            "_fused_tangential_hertz", "_fused_tangential_hertz_parallel"} <= disp.keys()
+            "_fused_tangential_hertz", "_fused_tangential_hertz_parallel",
+            "_fused_torsion_hertz", "_fused_torsion_hertz_parallel"} <= disp.keys()
     if any(f.stats.cache_path is None for f in disp.values()):
         pytest.skip("no writable cache directory in this environment")
     index = [f._cache._cache_file._index_name for f in disp.values()]
     # 8 Winkler kernels (one step loop for one block or many since issue 13; the whole-power
-    # helper of the edge-cell pass), the viscoelastic step, 16 law passes (serial and threaded:
+    # helper of the edge-cell pass), the viscoelastic step, 18 law passes (serial and threaded:
     # normal, fused torsion, spring, switch onto the springs, switch-and-step in blocks, fused
-    # tangential, switch-and-step per contact, fused tangential for n = 2) and the law loader
-    assert len(set(index)) == len(index) == 26, index
+    # tangential, switch-and-step per contact, fused tangential and torsion for n = 2) and the law
+    # loader
+    assert len(set(index)) == len(index) == 28, index
 
 
 def test_import_contactlab_does_not_import_numba():
