@@ -425,8 +425,11 @@ def passes(n: int = 10**6, steps: int = 8) -> None:
 
     kernels = list(law_kernel._kernels(False))
     kernels[0] = timed("normal pass, compiled loop", kernels[0])
+    kernels[9] = timed("normal pass, compiled loop", kernels[9])
     kernels[1] = timed("tangential pass", kernels[1])
+    kernels[7] = timed("tangential pass", kernels[7])      # (its n = 2 build)
     kernels[5] = timed("torsion pass (and dW, exact)", kernels[5])
+    kernels[8] = timed("torsion pass (and dW, exact)", kernels[8])
     saved = law_kernel._KERNELS[False], law_kernel.normal_pass
     law_kernel._KERNELS[False] = tuple(kernels)
     law_kernel.normal_pass = timed("normal pass (numpy powers + loop)", law_kernel.normal_pass)

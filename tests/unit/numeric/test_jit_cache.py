@@ -34,7 +34,8 @@ kc = rng.uniform(1.0, 2.0, 9); E = rng.uniform(1e9, 2e9, 9); val = rng.uniform(0
 d, a, F, flag, counts = law_kernel.normal_pass(False, val, None, None, kc, E, 2.0,
                                                np.zeros(9), np.zeros(9), 1e-9)
 k = _compiled._build()
-disp = {"jenkins": k["_jenkins"], "normal_pass": law_kernel._kernels(False)[0]}
+# (n = 2: the normal pass's build for the paraboloid, the last of the passes)
+disp = {"jenkins": k["_jenkins"], "normal_pass": law_kernel._kernels(False)[9]}
 print(json.dumps({
     "results": [x.hex() for x in w] + [float(x).hex() for x in np.concatenate([m, d, a, F])],
     "hits": {n: sum(f.stats.cache_hits.values()) for n, f in disp.items()},
@@ -71,7 +72,7 @@ def test_a_second_process_loads_the_compiled_kernels_from_disk(tmp_path):
     cold = _run(env, n=2)
     index = sorted(p.name for p in (tmp_path / "cache").rglob("*.nbi"))
     assert any(name.startswith("_compiled._jenkins-") for name in index), index
-    assert any(name.startswith("law_kernel._normal_pass-") for name in index), index
+    assert any(name.startswith("law_kernel._normal_pass_hertz-") for name in index), index
     for name in ("jenkins", "normal_pass"):
         assert all(r["cached"][name] for r in cold)
         assert sum(r["misses"][name] for r in cold) == 1, cold     # compiled once in all
@@ -115,15 +116,19 @@ def test_every_kernel_is_cached_under_its_own_name():
     assert {"_normal_pass", "_normal_pass_parallel", "_fused_torsion", "_fused_tangential",
             "_fused_torsion_parallel", "_fused_tangential_parallel", "_spring_pass_parallel",
             "_switch_pass", "_switch_pass_parallel", "_switch_step_pass",
-            "_switch_step_pass_parallel", "_first_pass", "_first_pass_parallel"} <= disp.keys()
+            "_switch_step_pass_parallel", "_first_pass", "_first_pass_parallel",
+            "_fused_tangential_hertz", "_fused_tangential_hertz_parallel",
+            "_fused_torsion_hertz", "_fused_torsion_hertz_parallel", "_normal_pass_hertz",
+            "_normal_pass_hertz_parallel"} <= disp.keys()
     if any(f.stats.cache_path is None for f in disp.values()):
         pytest.skip("no writable cache directory in this environment")
     index = [f._cache._cache_file._index_name for f in disp.values()]
     # 8 Winkler kernels (one step loop for one block or many since issue 13; the whole-power
-    # helper of the edge-cell pass), the viscoelastic step, 14 law passes (serial and threaded:
+    # helper of the edge-cell pass), the viscoelastic step, 20 law passes (serial and threaded:
     # normal, fused torsion, spring, switch onto the springs, switch-and-step in blocks, fused
-    # tangential, switch-and-step per contact) and the law loader
-    assert len(set(index)) == len(index) == 24, index
+    # tangential, switch-and-step per contact, fused tangential, torsion and normal for n = 2) and the
+    # law loader
+    assert len(set(index)) == len(index) == 30, index
 
 
 def test_import_contactlab_does_not_import_numba():
