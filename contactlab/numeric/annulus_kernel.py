@@ -359,11 +359,9 @@ def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nod
     n = wlo.size
     if n == 0 or F0.shape[0] == 0:
         return INSIDE_OPEN
-    ascending = True
-    for j in range(n):
-        if j < n - 1 and wlo[j + 1] != whi[j]:
+    for j in range(n - 1):
+        if wlo[j + 1] != whi[j]:
             return INSIDE_OPEN
-        ascending = ascending and whi[j] > wlo[j]
     # the jumps of offset and slope at the nodes, and the nodes' columns in the table
     al, be, _ = _lines(wlo, whi, wwl, wwr, False)
     c0 = np.empty(n + 1)
@@ -376,8 +374,6 @@ def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nod
         k = _left(t_nodes, t)
         # a node not in the table (the stick radius): its antiderivatives computed below
         cols[j] = k if k < t_nodes.size and t_nodes[k] == t else -1
-        if not (np.isfinite(c0[j]) and np.isfinite(c1[j])):
-            return INSIDE_OPEN      # (as the sums' nan or inf would leave every point open)
     k4 = 4.0 * G_t / np.pi
     verdict = INSIDE_OK
     for i in range(r.size):
@@ -389,10 +385,7 @@ def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nod
             return INSIDE_OPEN
         acc = 0.0
         mag = 0.0
-        # nodes t <= r add exact zeros (t / r <= 1: both antiderivatives vanish), so the sums
-        # start at the first node above r (the same sums: O(nodes above r) per point)
-        j0 = (_right(wlo, ri) if ascending else 0) if ri > 0 else n + 1
-        for j in range(j0, n + 1):
+        for j in range(n + 1):
             q = cols[j]
             if q >= 0:
                 f0, f1 = F0[row, q], F1[row, q]

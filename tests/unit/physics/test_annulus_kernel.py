@@ -12,8 +12,6 @@ check decided in the pass only outside the rounding of its sums (a bound exactly
 is left to the numpy route); a whole 180-step varying-load path bit-identical with the step's
 numpy helpers never called; a nan increment handed to the numpy route.
 """
-import math
-
 import numpy as np
 import pytest
 
@@ -156,68 +154,6 @@ def test_traction_check_is_left_open_within_rounding():
     # no table: always the numpy route's
     assert ak._inside(*arrays, r, np.ones(r.size), c, 1.0, ta.CHECK_RTOL, np.zeros((0, 0)),
                       np.zeros((0, 0)), np.zeros(0), np.zeros(0)) == ak.INSIDE_OPEN
-
-
-def _inside_dense(lo, hi, wl, wr, r, bound, c, G_t, F0, F1, t_r, t_nodes):
-    """The traction check's verdict with every node summed at every point (the pass's sums
-    before it skipped the nodes at or below each point), in the pass's order and bound."""
-    n = lo.size
-    al, be = ak._lines(lo, hi, wl, wr, False)[:2]
-    c0 = np.concatenate([[0.0], al]) - np.concatenate([al, [0.0]])
-    c1 = np.concatenate([[0.0], be]) - np.concatenate([be, [0.0]])
-    nodes = np.append(lo, hi[-1])
-    verdict = ak.INSIDE_OK
-    for i in np.flatnonzero(r < c):
-        row = int(np.searchsorted(t_r, r[i]))
-        acc = mag = 0.0
-        for j in range(n + 1):
-            q = min(int(np.searchsorted(t_nodes, nodes[j])), t_nodes.size - 1)
-            if t_nodes[q] == nodes[j]:
-                f0, f1 = F0[row, q], F1[row, q]
-            else:       # (the stick radius: not a node of the table)
-                u = nodes[j] / r[i]
-                f0 = math.acosh(u) if u > 1.0 else 0.0
-                f1 = math.sqrt((u - 1.0) * (u + 1.0)) * r[i] if u > 1.0 else 0.0
-            a, b = f0 * c0[j], f1 * c1[j]
-            acc += a + b
-            mag += abs(a) + abs(b)
-        scale = 4.0 * G_t / np.pi * r[i]
-        tau, lim = abs(scale * acc), bound[i] * (1 + ta.CHECK_RTOL)
-        err = 4.0 * (n + 4) * ak._EPS * abs(scale) * mag + 4.0 * ak._EPS * (tau + abs(lim))
-        if tau - lim > err:
-            return ak.INSIDE_FAIL
-        if not lim - tau > err:
-            verdict = ak.INSIDE_OPEN
-    return verdict
-
-
-@pytest.mark.parametrize("compiled", ROUTES)
-def test_traction_check_sums_only_nodes_above_each_point(compiled):
-    """The pass's traction check sums at each point only the nodes above it (those at or below
-    add exact zeros): its verdicts are those of the sums over every node, on a ladder of bounds
-    down to the rounding of the traction, and a density with a value not finite is left open."""
-    if compiled:
-        ak.kernels()
-    inside = ak._inside if compiled else getattr(ak._inside, "py_func", ak._inside)
-    b, r, _lu, _bound, slide = _hertz_rings(40)
-    table = ta.NodeTable(r, b)
-    F0, F1 = table.arrays["traction"]
-    tab = (F0, F1, table.r, table.nodes)
-    seen = set()
-    for dphi in (0.05, 0.2, 0.6):
-        w = ta.step(ta.empty(), slide, 1.0, 1.0, dphi=dphi)["w"]
-        arrays = [np.ascontiguousarray(a, float) for a in w]
-        for c in (0.3, 0.6, float(r[25]), 1.0):
-            tau = np.abs(ta.traction(w, r, 1.0, table))
-            for f in (2.0, 1.0 + 1e-9, 1.0 + 1e-14, 1.0, 1.0 - 1e-14, 1.0 - 1e-9, 0.5):
-                bd = tau * f / (1 + ta.CHECK_RTOL)
-                got = inside(*arrays, r, bd, c, 1.0, ta.CHECK_RTOL, *tab)
-                assert got == _inside_dense(*arrays, r, bd, c, 1.0, *tab), (dphi, c, f)
-                seen.add(got)
-    assert seen == {ak.INSIDE_OK, ak.INSIDE_FAIL, ak.INSIDE_OPEN}
-    arrays[2] = arrays[2].copy()
-    arrays[2][-1] = np.inf
-    assert inside(*arrays, r, 2.0 * tau, 0.6, 1.0, ta.CHECK_RTOL, *tab) == ak.INSIDE_OPEN
 
 
 @needs_numba
