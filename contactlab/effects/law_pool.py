@@ -50,12 +50,13 @@ def pool_row_bytes(springs: int) -> int:
 
 
 #: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
-#: 7 parameters and the force factor of the normal contact, the reference depth, per channel 3 floats + an int64 depth + 2 flag bytes;
-#: per turning point of memory 2 channels x (X, Y); with springs the row index (int32) of the
-#: spring pool; plus a step's 8 float and 2 flag bytes of results (the arrays a step returns, or
-#: ``out``) and 3 scalar inputs broadcast per contact. The spring rows themselves (52 + 16
-#: springs bytes, :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for
-#: contacts that switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
+#: 7 parameters and the force factor of the normal contact, the reference depth, per channel
+#: 3 floats + an int64 depth + 2 flag bytes; per turning point of memory 2 channels x (X, Y);
+#: with springs the row index (int32) of the spring pool; plus a step's 8 float and 2 flag
+#: bytes of results (the arrays a step returns, or ``out``) and 3 scalar inputs broadcast per
+#: contact. The spring rows themselves (52 + 16 springs bytes,
+#: :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for contacts that
+#: switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
 _PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 140, 32, 4, 90
 #: float64 values per contact on springs in a step of the numpy path (temporaries; measured
 #: 20-21 per spring): the compiled step has none
