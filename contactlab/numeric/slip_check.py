@@ -27,7 +27,9 @@ import threading
 
 import numpy as np
 
+from . import annulus_kernel as _ak
 from . import jit as _jit
+from . import ring_kernels as _rk
 
 __all__ = ["CHECK_FAIL", "CHECK_OK", "CHECK_OPEN", "slip_check", "kernels"]
 
@@ -38,19 +40,10 @@ _EPS = float(np.finfo(float).eps)
 #: units in the last place allowed between two evaluations of a node's transcendental parts
 _ULPS = 64.0
 _state: dict = {"kernel": None}
+# the shared helpers (rebound to their compiled builds with the pass)
+_search = _ak._left
+_lines = _rk.lines
 _lock = threading.Lock()
-
-
-def _search(a, x):
-    """``searchsorted(a, x, "left")`` (``x`` not nan)."""
-    lo, hi = 0, a.size
-    while lo < hi:
-        m = (lo + hi) >> 1
-        if a[m] < x:
-            lo = m + 1
-        else:
-            hi = m
-    return lo
 
 
 def slip_check(lo, hi, wl, wr, r, s, gross, check_rtol, F0, F1, t_r, t_nodes, one0, one1):
@@ -71,12 +64,7 @@ def slip_check(lo, hi, wl, wr, r, s, gross, check_rtol, F0, F1, t_r, t_nodes, on
         if (j and lo[j] != hi[j - 1]) or not hi[j] > lo[j]:   # (a repeated node: OPEN)
             return CHECK_OPEN
     # the jumps of offset and slope at the nodes (torsion_annulus._jumps of its _lin)
-    al = np.empty(n)
-    be = np.empty(n)
-    for j in range(n):
-        h = hi[j] - lo[j]
-        be[j] = (wr[j] - wl[j]) / h if h > 0 else 0.0
-        al[j] = wl[j] - be[j] * lo[j]
+    al, be, _ = _lines(lo, hi, wl, wr, False)
     t = np.empty(n + 1)
     c0 = np.empty(n + 1)
     c1 = np.empty(n + 1)
@@ -156,8 +144,9 @@ def kernels(compiled: bool = True) -> dict:
         return built
     with _lock:
         if _state["kernel"] is None:
+            _ak.kernels(True)           # (compiles the ring kernels' lines and the search)
             g = globals()
-            g["_search"] = _jit.njit(_search, nogil=True, error_model="numpy", inline="always")
+            g["_search"], g["_lines"] = _ak._left, _rk.lines
             _state["kernel"] = {"slip_check": _jit.njit(slip_check, nogil=True,
                                                         error_model="numpy")}
     return _state["kernel"]
