@@ -447,8 +447,10 @@ class ContactLaw:
             F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        x = F * ((n + 1.0) / (2.0 * n * self.E_star * self.kc))
-        a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))     # (cbrt: exact 1/3)
+        c = (n + 1.0) / (2.0 * n * self.E_star * self.kc)
+        # the paraboloid: a = cbrt(F) cbrt(c) (cbrt: exact 1/3; the factor's root is a
+        # per-contact constant of the compiled step, no product F c)
+        a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
         d = self.kc * a**n if n != 2.0 else self.kc * a * a
         return d, a, F.copy()
 

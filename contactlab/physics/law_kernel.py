@@ -189,12 +189,15 @@ def _normal_of(hertz: bool = False):
     rounds alternating: the loop 0.09-0.10 -> 0.08 ms)."""
 
     def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rtol, pre,
-                     d_out, a_out, F_out, flag):
+                     fac, d_out, a_out, F_out, flag):
         """Depth, radius and force of every contact; flag: 0 constant load, 1 separated (a <= 0),
         2 depth left rtol of the reference depth. Returns counts (bad inputs, separated, off,
         contacts moved in both channels, non-finite results). ``pre``: the powers of the power-law
         family are given (numpy's vectorised ``power``, the reference's arithmetic to the bit):
-        ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``."""
+        ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``;
+        by force with ``n = 2``, ``a_out`` holds the force's cube root (numpy's ``cbrt``) and the
+        radius is its product with ``fac``, the cube root of ``(n + 1)/(2 n E kc)``
+        (:func:`force_factor`)."""
         if hertz:
             n = 2.0
         bad = 0
@@ -225,7 +228,7 @@ def _normal_of(hertz: bool = False):
                     Fi = 2.0 * E[i] * dp * flat[i]
             elif by_force:
                 if pre:
-                    ai = a_out[i]
+                    ai = a_out[i] * fac[i] if n == 2.0 else a_out[i]
                     di = kc[i] * ai * ai if n == 2.0 else d_out[i]
                 else:
                     ai = (v * ((n + 1.0) / (2.0 * n * E[i] * kc[i]))) ** (1.0 / (n + 1.0))
@@ -505,31 +508,40 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     Returns ``(d, a, F, flag, counts)`` with ``flag`` 0 (constant load), 1 (separated), 2 (depth
     beyond ``rtol`` of ``ref``) and ``counts = (bad inputs, separated, off, both channels)``.
     ``out``: the four arrays to write into (default: new arrays). ``factor``:
-    ``(n + 1)/(2 n E kc)`` per contact (:func:`force_factor`, the law's, computed once) or None
-    (computed here)."""
+    :func:`force_factor` per contact (the law's, computed once) or None (computed here)."""
     m = val.size
     d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
                      if out is None else out)
+    if by_force and float(n) == 2.0 and factor is None:
+        factor = force_factor(E, kc, 2.0)
     pre = _powers(by_force, val, kc, E, float(n), d, a, factor)
-    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](bool(by_force), val, _EMPTY if u is None else u,
-                                   _EMPTY if phi is None else phi, u is not None,
-                                   phi is not None, kc, E, float(n), flat, ref, float(rtol), pre,
-                                   d, a, F, flag)
+    fac = factor if by_force and float(n) == 2.0 else _EMPTY
+    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](
+        bool(by_force), val, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
+        u is not None, phi is not None, kc, E, float(n), flat, ref, float(rtol), pre, fac, d, a,
+        F, flag)
     return d, a, F, flag, counts
 
 
 def force_factor(E, kc, n: float):
     """``(n + 1)/(2 n E kc)`` per contact, the factor of the force in the radius
     ``a = (F (n + 1)/(2 n E kc))^(1/(n+1))`` (in the numpy reference's order,
-    ``(n + 1)/(((2 n) E) kc)``: the same bits), None for the flat punch: a law computes it once
-    (these are per-contact constants), saving the step three passes."""
-    return None if n == np.inf else (n + 1.0) / (2.0 * n * E * kc)
+    ``(n + 1)/(((2 n) E) kc)``: the same bits), for ``n = 2`` its cube root (numpy's ``cbrt``),
+    the factor of the force's cube root in the paraboloid's radius
+    ``a = cbrt(F) cbrt(3/(4 E kc))`` (:func:`contactlab.physics.law_xp.normal`), None for the
+    flat punch: a law computes it once (these are per-contact constants), saving the step
+    three passes (for ``n = 2``: four)."""
+    if n == np.inf:
+        return None
+    c = (n + 1.0) / (2.0 * n * E * kc)
+    return np.cbrt(c) if n == 2.0 else c
 
 
 def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
     """The fractional powers of the normal contact (the radius from a force, or from a depth
     when ``n`` is not 2; the depth ``kc a^n`` from a force when ``n`` is not 2) by numpy's
-    vectorised ``cbrt`` (``n = 2`` by force) or ``power`` into ``a`` and ``d``, in the numpy
+    vectorised ``cbrt`` (``n = 2`` by force: the force's cube root only, which the kernel
+    multiplies by the factor's, :func:`force_factor`) or ``power`` into ``a`` and ``d``, in the numpy
     reference's order of operations (:meth:`ContactLaw.normal`), so the compiled step matches
     it to the bit (a scalar ``pow`` or ``cbrt`` in the kernel may differ from numpy's SIMD one
     by an ulp, and is slower); ``d`` is the only scratch; ``factor``: :func:`force_factor`
@@ -540,18 +552,18 @@ def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
         return False
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         if by_force:        # a = (F ((n+1) / (2 n E kc)))^(1/(n+1)), d = kc a^n
+            if n == 2.0:    # a = cbrt(F) cbrt(3/(4 E kc)): the cube root here, the product
+                np.cbrt(val, out=a)     # with the factor's (given) in the kernel's loop
+                return True
             if factor is None:
                 factor = np.multiply(E, 2.0 * n, out=d)
                 factor *= kc
                 np.divide(n + 1.0, factor, out=factor)
             np.multiply(val, factor, out=a)
-            if n == 2.0:    # the cube root: measured ~1.6 ms less than power at 10^6
-                np.cbrt(a, out=a)
-            else:
-                a **= 1.0 / (n + 1.0)       # ``**=``: numpy's scalar fast paths, as ``**``
-                d[...] = a
-                d **= n
-                d *= kc
+            a **= 1.0 / (n + 1.0)       # ``**=``: numpy's scalar fast paths, as ``**``
+            d[...] = a
+            d **= n
+            d *= kc
         else:               # a = (max(d, 0) / kc)^(1/n)
             np.maximum(val, 0.0, out=a)
             a /= kc
