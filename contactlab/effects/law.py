@@ -281,7 +281,7 @@ class ContactLaw:
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
-        # (n + 1)/(2 n E* kc) per contact, once (the compiled step's radius from a force)
+        # (n + 1)/(2 n E* kc) per contact, once (n = 2: its cube root): the compiled radius
         self._factor = _kernel.force_factor(self.E_star, self.kc, expo)
         self._flag: np.ndarray | None = None
         self._warned = False
@@ -447,9 +447,7 @@ class ContactLaw:
             F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        c = (n + 1.0) / (2.0 * n * self.E_star * self.kc)
-        # the paraboloid: a = cbrt(F) cbrt(c) (cbrt: exact 1/3; the factor's root is a
-        # per-contact constant of the compiled step, no product F c)
+        c = (n + 1.0) / (2.0 * n * self.E_star * self.kc)   # n = 2: cbrt(c) once, compiled
         a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
         d = self.kc * a**n if n != 2.0 else self.kc * a * a
         return d, a, F.copy()
