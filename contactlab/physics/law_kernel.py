@@ -302,7 +302,7 @@ def _channel_pass(c: int, hertz: bool = False):
     first = c == 0
     kind = TANGENTIAL if first else TORSION
 
-    def _pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coef, y_scale,
+    def _pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, muE, n, coef, y_scale,
               y0, m0, kp, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
         if hertz:
             n = 2.0
@@ -333,7 +333,7 @@ def _channel_pass(c: int, hertz: bool = False):
                 if ref[i] == 0.0:
                     ref[i] = di
                 exact[i] = not (over[0, i] | over[1, i])    # before the step: for the second
-            mEd = mu[i] * E[i] * di
+            mEd = muE[i] * di                   # (mu E) d: mu[i] * E[i] * di to the bit
             e = 0.0
             if on:
                 if first:
@@ -572,7 +572,7 @@ def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
 
 
 def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan: dict,
-               parallel: bool = False, out=None):
+               parallel: bool = False, out=None, muE=None):
     """Both channels of every contact in one pass (``master``: the torsion
     :class:`~contactlab.physics.master.MasterCurve`; ``chan``: the fields of
     :func:`~contactlab.physics.masing_stack.new_stack` stacked over a leading channel axis, 0
@@ -583,7 +583,9 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     given), a count that is not 0 when some output is not finite (the sum of a contact's
     outputs is tested: a sum of finite outputs that overflows counts too) and the number of
     contacts whose turning-point stack overflowed for the first time in this step (``exact``
-    is False for every overflowed contact)."""
+    is False for every overflowed contact). ``muE``: ``mu E`` per contact (the law's, computed
+    once: the passes form ``mu E d`` from it with one multiply, the same bits) or None (computed
+    here)."""
     if master.coef.shape[2] != 8:
         raise NotSupportedError(
             f"the compiled contact law evaluates master curves of degree 7 (Estrin's scheme), "
@@ -595,7 +597,8 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
                np.empty(m, bool))
     kernels = _kernels(parallel)
     args = (_EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
-            phi is not None, d, a, F, flag, ref, mu, E, G, Gt, float(n), lane_table(master),
+            phi is not None, d, a, F, flag, ref, mu, E, G, Gt, mu * E if muE is None else muE,
+            float(n), lane_table(master),
             float(master.y_scale), float(master.y0), float(master.m0),
             None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
             chan["last"], chan["depth"], chan["X_levels"], chan["Y_levels"], chan["overflow"],
