@@ -982,3 +982,9 @@ SLIP_SIGN_ROUNDING = 1e-12
 #: roundings (K's two, the quotient, cbrt's 0.53 ulp tripled by the cube, a·a, /R, a·d, ·c and
 #: c's own) stays below 12 ulp; the numpy passes rest their request check on this bound
 HERTZ_FORCE_ROUNDING = 12 * 2.220446049250313e-16
+
+#: a ContactLaw paraboloid's radius from a force, cbrt(F)·cbrt(3/(4 E* kc)), against the
+#: 40-digit cube root of the same F·3/(4 E* kc) in the law's own kc and E*: each cube root
+#: rounds once (numpy's cbrt, within 1 ulp), the factor's quotient twice and the product once;
+#: measured <= 1.9 ulp on 3000 contacts, 3 ulp leaves margin
+LAW_HERTZ_RADIUS = 3 * 2.220446049250313e-16

@@ -281,8 +281,9 @@ class ContactLaw:
         self.parallel = bool(parallel)
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
-        # (n + 1)/(2 n E* kc) per contact, once (the compiled step's radius from a force)
+        # (n + 1)/(2 n E* kc) per contact, once (n = 2: its cube root): the compiled radius
         self._factor = _kernel.force_factor(self.E_star, self.kc, expo)
+        self._muE = self.friction * self.E_star         # the compiled passes' mu E* d: one product
         self._flag: np.ndarray | None = None
         self._warned = False
         #: emit the model-error ValidityWarning (once per law and quantity); settable
@@ -447,8 +448,8 @@ class ContactLaw:
             F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        x = F * ((n + 1.0) / (2.0 * n * self.E_star * self.kc))
-        a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))     # (cbrt: exact 1/3)
+        c = (n + 1.0) / (2.0 * n * self.E_star * self.kc)   # n = 2: cbrt(c) once, compiled
+        a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
         d = self.kc * a**n if n != 2.0 else self.kc * a * a
         return d, a, F.copy()
 
@@ -707,15 +708,15 @@ class ContactLaw:
             spr = np.flatnonzero(onm)
         if new.size:
             flag[new] = 3
-        mc = self._master
         if spr is not None and spr.size == size:        # all on springs: no fused pass
             Ft, ct, M, cm, dW, exact, nf, n_over = springs_only_outputs(size, out)
         else:
             Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
                 u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
-                self.G_torsion, self.n, mc, self._chan, self.parallel,
+                self.G_torsion, self.n, self._master, self._chan, self.parallel,
                 None if out is None else (out.tangential_force, out.stick_radius, out.torque,
-                                          out.torsion_stick_radius, out.dissipated_energy, out.exact))
+                                          out.torsion_stick_radius, out.dissipated_energy,
+                                          out.exact), self._muE)
         # the switching contacts switched and stepped on their springs one at a time, the row
         # in registers between the two (one loop, on the threads), then those already on
         # springs (covers outgrown: regridded)

@@ -50,14 +50,14 @@ def pool_row_bytes(springs: int) -> int:
 
 
 #: bytes per contact held by a law (counted from its arrays, equal to tracemalloc's count):
-#: 7 parameters and the force factor of the normal contact, the reference depth, per channel
+#: 7 parameters, the force factor of the normal contact and mu E*, the reference depth, per channel
 #: 3 floats + an int64 depth + 2 flag bytes; per turning point of memory 2 channels x (X, Y);
 #: with springs the row index (int32) of the spring pool; plus a step's 8 float and 2 flag
 #: bytes of results (the arrays a step returns, or ``out``) and 3 scalar inputs broadcast per
 #: contact. The spring rows themselves (52 + 16 springs bytes,
 #: :func:`~contactlab.effects.law_pool.pool_row_bytes`) are allocated only for contacts that
 #: switch onto their springs (:class:`~contactlab.effects.law_pool.SpringPool`)
-_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 140, 32, 4, 90
+_PER_CONTACT, _PER_LEVEL, _PER_SPRINGS, _PER_STEP = 148, 32, 4, 90
 #: float64 values per contact on springs in a step of the numpy path (temporaries; measured
 #: 20-21 per spring): the compiled step has none
 _NUMPY_CONTACT, _NUMPY_SPRING_STEP = 32, 24
@@ -67,7 +67,7 @@ def law_memory(size: int, memory: int, springs: int, on_springs: int = 0) -> flo
     """Memory of a :class:`~contactlab.effects.law.ContactLaw`'s state and of one step's
     results, bytes (checked against the memory budget, :func:`contactlab.set_memory_budget`,
     before it is allocated):
-    ``size × (140 + 32 memory + 4 [springs > 0] + 90)``, 490 B per contact at the defaults,
+    ``size × (148 + 32 memory + 4 [springs > 0] + 90)``, 498 B per contact at the defaults,
     plus ``on_springs × (52 + 16 springs)`` for the contacts on their springs (308 B each at
     the default 16 springs; allocated when they switch, checked then)."""
     per = _PER_CONTACT + _PER_LEVEL * memory + _PER_STEP

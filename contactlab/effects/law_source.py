@@ -67,8 +67,8 @@ _NORMAL_POWER = '''\
     F = np.array(np.broadcast_to(np.asarray(force, float), kc.shape))
     if np.any(~np.isfinite(F) | (F < 0)):
         raise ValueError("force must be finite and >= 0")
-    x = F * ((n + 1.0) / (2.0 * n * E_star * kc))
-    a = np.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))
+    c = (n + 1.0) / (2.0 * n * E_star * kc)
+    a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
     d = kc * a**n if n != 2.0 else kc * a * a
     return d, a, F
 '''

@@ -189,12 +189,15 @@ def _normal_of(hertz: bool = False):
     rounds alternating: the loop 0.09-0.10 -> 0.08 ms)."""
 
     def _normal_pass(by_force, val, u, phi, has_u, has_phi, kc, E, n, flat, ref, rtol, pre,
-                     d_out, a_out, F_out, flag):
+                     fac, d_out, a_out, F_out, flag):
         """Depth, radius and force of every contact; flag: 0 constant load, 1 separated (a <= 0),
         2 depth left rtol of the reference depth. Returns counts (bad inputs, separated, off,
         contacts moved in both channels, non-finite results). ``pre``: the powers of the power-law
         family are given (numpy's vectorised ``power``, the reference's arithmetic to the bit):
-        ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``."""
+        ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``;
+        by force with ``n = 2``, ``a_out`` holds the force's cube root (numpy's ``cbrt``) and the
+        radius is its product with ``fac``, the cube root of ``(n + 1)/(2 n E kc)``
+        (:func:`force_factor`)."""
         if hertz:
             n = 2.0
         bad = 0
@@ -225,7 +228,7 @@ def _normal_of(hertz: bool = False):
                     Fi = 2.0 * E[i] * dp * flat[i]
             elif by_force:
                 if pre:
-                    ai = a_out[i]
+                    ai = a_out[i] * fac[i] if n == 2.0 else a_out[i]
                     di = kc[i] * ai * ai if n == 2.0 else d_out[i]
                 else:
                     ai = (v * ((n + 1.0) / (2.0 * n * E[i] * kc[i]))) ** (1.0 / (n + 1.0))
@@ -299,7 +302,7 @@ def _channel_pass(c: int, hertz: bool = False):
     first = c == 0
     kind = TANGENTIAL if first else TORSION
 
-    def _pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, n, coef, y_scale,
+    def _pass(u, phi, has_u, has_phi, d, a, F, flag, ref, mu, E, G, Gt, muE, n, coef, y_scale,
               y0, m0, kp, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, dW, exact):
         if hertz:
             n = 2.0
@@ -330,7 +333,7 @@ def _channel_pass(c: int, hertz: bool = False):
                 if ref[i] == 0.0:
                     ref[i] = di
                 exact[i] = not (over[0, i] | over[1, i])    # before the step: for the second
-            mEd = mu[i] * E[i] * di
+            mEd = muE[i] * di                   # (mu E) d: mu[i] * E[i] * di to the bit
             e = 0.0
             if on:
                 if first:
@@ -432,9 +435,14 @@ _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_
            _fused_torsion_hertz, _normal_pass_hertz)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
-# 3-6 % faster with the split loop over cells, results bit-identical
+# 3-6 % faster with the split loop over cells, results bit-identical; the same for the n = 2
+# channel passes (no difference in cache at 2 x 10^4 contacts, but at 10^6 Hertz contacts,
+# four rounds alternating, one thread: tangential 16.1-16.7 -> 15.2-15.7 ms, torsion
+# 21.7-22.2 -> 21.1-21.4 ms; fewer instructions per contact in flight beside the divisions)
 _OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"},
-                                _first_pass: {"error_model": "numpy"}}
+                                _first_pass: {"error_model": "numpy"},
+                                _fused_tangential_hertz: {"error_model": "numpy"},
+                                _fused_torsion_hertz: {"error_model": "numpy"}}
 
 AVAILABLE: bool   # declared for checkers only: the value comes from __getattr__ on first access
 _KERNELS: dict = {}
@@ -500,31 +508,40 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     Returns ``(d, a, F, flag, counts)`` with ``flag`` 0 (constant load), 1 (separated), 2 (depth
     beyond ``rtol`` of ``ref``) and ``counts = (bad inputs, separated, off, both channels)``.
     ``out``: the four arrays to write into (default: new arrays). ``factor``:
-    ``(n + 1)/(2 n E kc)`` per contact (:func:`force_factor`, the law's, computed once) or None
-    (computed here)."""
+    :func:`force_factor` per contact (the law's, computed once) or None (computed here)."""
     m = val.size
     d, a, F, flag = ((np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int8))
                      if out is None else out)
+    if by_force and float(n) == 2.0 and factor is None:
+        factor = force_factor(E, kc, 2.0)
     pre = _powers(by_force, val, kc, E, float(n), d, a, factor)
-    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](bool(by_force), val, _EMPTY if u is None else u,
-                                   _EMPTY if phi is None else phi, u is not None,
-                                   phi is not None, kc, E, float(n), flat, ref, float(rtol), pre,
-                                   d, a, F, flag)
+    fac = factor if by_force and float(n) == 2.0 else _EMPTY
+    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](
+        bool(by_force), val, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
+        u is not None, phi is not None, kc, E, float(n), flat, ref, float(rtol), pre, fac, d, a,
+        F, flag)
     return d, a, F, flag, counts
 
 
 def force_factor(E, kc, n: float):
     """``(n + 1)/(2 n E kc)`` per contact, the factor of the force in the radius
     ``a = (F (n + 1)/(2 n E kc))^(1/(n+1))`` (in the numpy reference's order,
-    ``(n + 1)/(((2 n) E) kc)``: the same bits), None for the flat punch: a law computes it once
-    (these are per-contact constants), saving the step three passes."""
-    return None if n == np.inf else (n + 1.0) / (2.0 * n * E * kc)
+    ``(n + 1)/(((2 n) E) kc)``: the same bits), for ``n = 2`` its cube root (numpy's ``cbrt``),
+    the factor of the force's cube root in the paraboloid's radius
+    ``a = cbrt(F) cbrt(3/(4 E kc))`` (:func:`contactlab.physics.law_xp.normal`), None for the
+    flat punch: a law computes it once (these are per-contact constants), saving the step
+    three passes (for ``n = 2``: four)."""
+    if n == np.inf:
+        return None
+    c = (n + 1.0) / (2.0 * n * E * kc)
+    return np.cbrt(c) if n == 2.0 else c
 
 
 def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
     """The fractional powers of the normal contact (the radius from a force, or from a depth
     when ``n`` is not 2; the depth ``kc a^n`` from a force when ``n`` is not 2) by numpy's
-    vectorised ``cbrt`` (``n = 2`` by force) or ``power`` into ``a`` and ``d``, in the numpy
+    vectorised ``cbrt`` (``n = 2`` by force: the force's cube root only, which the kernel
+    multiplies by the factor's, :func:`force_factor`) or ``power`` into ``a`` and ``d``, in the numpy
     reference's order of operations (:meth:`ContactLaw.normal`), so the compiled step matches
     it to the bit (a scalar ``pow`` or ``cbrt`` in the kernel may differ from numpy's SIMD one
     by an ulp, and is slower); ``d`` is the only scratch; ``factor``: :func:`force_factor`
@@ -535,18 +552,18 @@ def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
         return False
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         if by_force:        # a = (F ((n+1) / (2 n E kc)))^(1/(n+1)), d = kc a^n
+            if n == 2.0:    # a = cbrt(F) cbrt(3/(4 E kc)): the cube root here, the product
+                np.cbrt(val, out=a)     # with the factor's (given) in the kernel's loop
+                return True
             if factor is None:
                 factor = np.multiply(E, 2.0 * n, out=d)
                 factor *= kc
                 np.divide(n + 1.0, factor, out=factor)
             np.multiply(val, factor, out=a)
-            if n == 2.0:    # the cube root: measured ~1.6 ms less than power at 10^6
-                np.cbrt(a, out=a)
-            else:
-                a **= 1.0 / (n + 1.0)       # ``**=``: numpy's scalar fast paths, as ``**``
-                d[...] = a
-                d **= n
-                d *= kc
+            a **= 1.0 / (n + 1.0)       # ``**=``: numpy's scalar fast paths, as ``**``
+            d[...] = a
+            d **= n
+            d *= kc
         else:               # a = (max(d, 0) / kc)^(1/n)
             np.maximum(val, 0.0, out=a)
             a /= kc
@@ -555,7 +572,7 @@ def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
 
 
 def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan: dict,
-               parallel: bool = False, out=None):
+               parallel: bool = False, out=None, muE=None):
     """Both channels of every contact in one pass (``master``: the torsion
     :class:`~contactlab.physics.master.MasterCurve`; ``chan``: the fields of
     :func:`~contactlab.physics.masing_stack.new_stack` stacked over a leading channel axis, 0
@@ -566,7 +583,9 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
     given), a count that is not 0 when some output is not finite (the sum of a contact's
     outputs is tested: a sum of finite outputs that overflows counts too) and the number of
     contacts whose turning-point stack overflowed for the first time in this step (``exact``
-    is False for every overflowed contact)."""
+    is False for every overflowed contact). ``muE``: ``mu E`` per contact (the law's, computed
+    once: the passes form ``mu E d`` from it with one multiply, the same bits) or None (computed
+    here)."""
     if master.coef.shape[2] != 8:
         raise NotSupportedError(
             f"the compiled contact law evaluates master curves of degree 7 (Estrin's scheme), "
@@ -578,7 +597,8 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
                np.empty(m, bool))
     kernels = _kernels(parallel)
     args = (_EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
-            phi is not None, d, a, F, flag, ref, mu, E, G, Gt, float(n), lane_table(master),
+            phi is not None, d, a, F, flag, ref, mu, E, G, Gt, mu * E if muE is None else muE,
+            float(n), lane_table(master),
             float(master.y_scale), float(master.y0), float(master.m0),
             None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
             chan["last"], chan["depth"], chan["X_levels"], chan["Y_levels"], chan["overflow"],

@@ -48,8 +48,8 @@ def normal(xp: Any, by_force: bool, val: Any, kc: Any, E: Any, n: float, flat: A
         F = 2.0 * n / (n + 1.0) * E * dp * a
         return val.copy(), a, F
     F = val
-    x = F * ((n + 1.0) / (2.0 * n * E * kc))
-    a = xp.cbrt(x) if n == 2.0 else x ** (1.0 / (n + 1.0))
+    c = (n + 1.0) / (2.0 * n * E * kc)
+    a = xp.cbrt(F) * xp.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
     d = kc * a**n if n != 2.0 else kc * a * a
     return d, a, F.copy()
 

@@ -408,3 +408,29 @@ def test_master_curve_lanes_give_the_scalar_bits(n):
         ref = (((c[:, 0] + c[:, 1] * us) + (c[:, 2] + c[:, 3] * us) * u2)
                + ((c[:, 4] + c[:, 5] * us) + (c[:, 6] + c[:, 7] * us) * u2) * u4)
         np.testing.assert_array_equal(want[:, k], ref)
+
+
+@pytest.mark.parametrize("fast", [False, pytest.param(True, marks=needs_numba)])
+def test_hertz_radius_from_force_two_cube_roots(fast):
+    """A paraboloid law's radius from a force is cbrt(F)·cbrt(3/(4 E* kc)) (the factor's root a
+    per-contact constant of the law: no product F·factor per step), the same bits in the step,
+    the law's normal() and the array-module step (the exported source: test_law_source), and within
+    LAW_HERTZ_RADIUS of the 40-digit cube root of F·3/(4 E* kc)."""
+    import mpmath as mp
+    from contactlab.physics import law_xp
+    from tests.tolerances import LAW_HERTZ_RADIUS
+    rng = np.random.default_rng(29)
+    n = 300
+    R, E = rng.uniform(1e-4, 1e-1, n), rng.uniform(1e8, 1e12, n)
+    F = rng.uniform(1e-6, 1e3, n) * 10.0 ** rng.integers(-6, 3, n)
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=R, E_star=E, G_star=4.4e10,
+                        G_torsion=4.0e10, friction=0.3, fast=fast)
+    a = law.step(force=F).radius
+    c = 3.0 / (4.0 * E * law.kc)
+    assert a.tobytes() == (np.cbrt(F) * np.cbrt(c)).tobytes()
+    assert law.normal(force=F)[1].tobytes() == a.tobytes()
+    assert law_xp.normal(np, True, F, law.kc, law.E_star, 2.0, None)[1].tobytes() == a.tobytes()
+    with mp.workdps(40):
+        ref = np.array([float(mp.cbrt(mp.mpf(f) * 3 / (4 * mp.mpf(e) * mp.mpf(k))))
+                        for f, e, k in zip(F, law.E_star, law.kc)])
+    assert np.all(np.abs(a - ref) <= LAW_HERTZ_RADIUS * ref)
