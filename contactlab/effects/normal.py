@@ -40,8 +40,14 @@ STATE_UNITS = {"depth": "m", "radius": "m", "force": "N", "stiffness": "N/m"}
 def outside_validity_note(profile, a: Any) -> str | None:
     """The text of :func:`warn_outside_validity` for contact radii ``a`` (None within range)."""
     limit = profile.validity_radius
-    if np.isfinite(limit) and np.any(np.asarray(a) > limit):
-        return (f"contact radius {float(np.max(a))!r} m of {profile!r} exceeds "
+    if not np.isfinite(limit):
+        return None
+    arr = np.asarray(a)
+    if arr.size == 0:
+        return None
+    top = float(np.max(arr))            # one reduction (a NaN among them: the mask decides)
+    if top > limit or (top != top and bool(np.any(arr > limit))):
+        return (f"contact radius {float(np.nanmax(arr))!r} m of {profile!r} exceeds "
                 f"{limit!r} m, the range of the half-space theory for this profile; the "
                 "result is the half-space solution, not that of the real body.")
     return None

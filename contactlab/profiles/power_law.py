@@ -20,6 +20,11 @@ from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational
 from ..symbolic.transform import kappa
 from .base import Profile
 
+#: surface slope at the contact edge above which a smooth profile's contact leaves the half-space
+#: theory (ValidityWarning): tan 30°, the exact sphere's limit at a = R/2
+#: (:data:`contactlab.profiles.sphere.VALIDITY_RATIO`)
+VALIDITY_SLOPE = 1.0 / math.sqrt(3.0)
+
 __all__ = ["PowerLaw", "Paraboloid", "Cone", "Polynomial"]
 
 
@@ -313,6 +318,14 @@ class Paraboloid(PowerLaw):
 
     def _length_scale(self) -> float:
         return self.R
+
+    @property
+    def validity_radius(self) -> float:
+        """``R/√3``: the contact radius where the surface slope ``a/R`` reaches tan 30°, the
+        limit :class:`~contactlab.profiles.Sphere` takes (``a = R/2`` there); beyond it the
+        half-space theory's linearised boundary conditions are outside their range and states
+        carry a :class:`~contactlab.errors.ValidityWarning`."""
+        return self.R * VALIDITY_SLOPE
 
 
 class Cone(PowerLaw):

@@ -231,3 +231,27 @@ def test_sphere_warns_beyond_half_the_radius():
         c.normal(radius=0.005)          # at the threshold: silent
     with pytest.warns(ValidityWarning):
         c.torsion(radius=[1e-3, 0.006], twist=1e-4)
+
+
+def test_paraboloid_warns_beyond_a_thirty_degree_edge_slope():
+    """A paraboloid's edge slope a/R reaches tan 30° (the sphere's limit) at a = R/√3: beyond it
+    every route (scalar force and depth, batched forces) warns; an absurd force (1e300 N gave a
+    4e95 m radius silently) warns too."""
+    from contactlab.profiles.power_law import VALIDITY_SLOPE
+    assert VALIDITY_SLOPE == pytest.approx(math.tan(math.radians(30.0)), rel=1e-15)
+    R = 0.01
+    c = contact(P.Paraboloid(R=R))
+    E = c.moduli.normal
+    F_limit = 4.0 * E * (R * VALIDITY_SLOPE) ** 3 / (3.0 * R)    # Hertz: F = 4E* a³/(3R)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c.normal(force=0.99 * F_limit)
+        c.normal(force=np.array([1.0, 0.99 * F_limit]))
+        c.normal(depth=0.99 * R * VALIDITY_SLOPE ** 2)             # d = a²/R
+    for call in (lambda: c.normal(force=1.01 * F_limit),
+                 lambda: c.normal(force=np.array([1.0, 1.01 * F_limit])),
+                 lambda: c.normal(depth=1.01 * R * VALIDITY_SLOPE ** 2),
+                 lambda: c.normal(force=1e300)):
+        with pytest.warns(ValidityWarning, match="half-space"):
+            s = call()
+        assert np.all(np.isfinite(s.radius))
