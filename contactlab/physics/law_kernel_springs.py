@@ -26,7 +26,8 @@ _prange = range
 # written out in each pass: with them as inlined helpers too (arrays handed over) the spring and
 # switch-and-step passes measured 10-15 % slower at 10^6 contacts, with these scalar ones alone
 # as fast as written out
-_INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip")
+_INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip", "_sum",
+           "_cells")
 
 
 def _radius(n, d0, kcc):
@@ -96,6 +97,84 @@ def _slip(mo, K, L, inc, e, F, free, cs, bl, a):
     return mn, e, F, free, cs
 
 
+def _sum(m, de, L, e, F, free, cs, bl, a):
+    """An element ``m`` after its step (limit ``L``, dissipation ``de``) summed on: ``(e, F,
+    free, cs)`` as :func:`_slip` leaves them."""
+    e += de
+    F += m
+    if free and abs(m) >= L:
+        free = False
+        cs = min(bl, a)
+    return e, F, free, cs
+
+
+def _cells(beta, bG, bH, m_tan, m_tor, r, i0, cnt, cov, cp1, cp2, d, K2, K16, L2, L4, it, ir,
+           has_u, has_phi, a, e, Ft, M, free_t, free_m, ct, cm):
+    """The cells ``i0 .. i0 + cnt - 1`` of row ``r`` inside the edge cell (weight 1) at depth
+    ``d``, cover ``cov`` (the boundary factors ``cp1 = kc cov^(n+1)``, ``cp2 = cp1 cov``),
+    both channels' elements stepped (:func:`_slip2`), stored and summed on (a channel only
+    where driven): ``(e, Ft, M, free_t, free_m, ct, cm)`` (:func:`_sum`). Compiled,
+    :func:`contactlab.physics.law_kernel_lanes.cells4` replaces it for four cells that lie in
+    the row (``i0 + 4 <= N``): the same operations, IEEE lane by lane, so the same bits."""
+    bl = cov * beta[i0]
+    bl2 = bl * bl
+    bl3 = bl2 * bl
+    gl = cp1 * bG[i0]
+    hl = cp2 * bH[i0]
+    for i in range(i0, i0 + cnt):
+        br = cov * beta[i + 1]
+        br2 = br * br
+        br3 = br2 * br
+        w = br - bl
+        gr = cp1 * bG[i + 1]
+        hr = cp2 * bH[i + 1]
+        # :func:`_integrals`'s first form (a cell inside the edge cell)
+        Lt = L2 * (d * w - (gr - gl))
+        Lr = L4 * (d * (br2 - bl2) / 2.0 - (hr - hl))
+        mt, mr, et, er = _slip2(m_tan[r, i], m_tor[r, i], K2 * w, K16 * ((br3 - bl3) / 3.0), Lt,
+                                Lr, it, ir)
+        if has_u:
+            m_tan[r, i] = mt
+            e, Ft, free_t, ct = _sum(mt, et, Lt, e, Ft, free_t, ct, bl, a)
+        if has_phi:
+            m_tor[r, i] = mr
+            e, M, free_m, cm = _sum(mr, er, Lr, e, M, free_m, cm, bl, a)
+        bl, bl2, bl3, gl, hl = br, br2, br3, gr, hr
+    return e, Ft, M, free_t, free_m, ct, cm
+
+
+#: cells per vector of the compiled :func:`_cells` (``_cells4``)
+_W = 4
+_CELLS_PY = _cells      # the plain source (the tests run the kernels uncompiled against it)
+_cells4 = _cells        # four cells at a time (compiled: law_kernel_lanes.cells4)
+
+
+def _slip2(mt, mr, Kt, Kr, Lt, Lr, it, ir):
+    """The Jenkins elements of both channels of one cell (tangential ``mt``, torsion ``mr``;
+    stiffnesses, limits, increments of the controls): ``(mt, mr, et, er)``, the elements
+    after the step and the dissipation of each, ``(trial - m) m / K`` where the element
+    slips (``K > 0``, ``trial != m``), else +0 (the sum it is added to is never -0: adding +0
+    leaves its bits). Compiled, :func:`contactlab.physics.law_kernel_lanes.slip2` replaces
+    it: the same operations on 2-lane vectors, IEEE lane by lane, so the same bits."""
+    tt = mt + Kt * it
+    tr = mr + Kr * ir
+    nt = min(max(tt, -Lt), Lt)
+    nr = min(max(tr, -Lr), Lr)
+    et = (tt - nt) * nt / Kt if Kt > 0.0 and tt != nt else 0.0
+    er = (tr - nr) * nr / Kr if Kr > 0.0 and tr != nr else 0.0
+    return nt, nr, et, er
+
+
+_SLIP2_PY = _slip2      # the plain source (the tests run the kernels uncompiled against it)
+
+
+def _intrinsics() -> dict:
+    """The pieces replaced by numba intrinsics in the compiled builds (name -> the intrinsic;
+    :mod:`contactlab.physics.law_kernel_lanes`, which imports numba)."""
+    from . import law_kernel_lanes as _lanes
+    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W)}
+
+
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
                  Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag,
                  full_u=False, full_phi=False):
@@ -133,10 +212,14 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         cp1 = _span(n, kcc, cov)
         Ga, Ha = _edge_terms(n, kcc, aj)
         cp2 = cp1 * cov
-        k = 0
+        # the edge cell, searched from the last step's (the boundaries do not decrease: the
+        # cell of a search from 0, in a step or two where the radius moved within a cell)
+        ko = k_old[r]
+        k = min(max(ko, 0), N - 1)
+        while k > 0 and not cov * beta[k] < aj:
+            k -= 1
         while k < N - 1 and cov * beta[k + 1] < aj:
             k += 1
-        ko = k_old[r]
         lo = min(k, ko)
         hi = max(k, ko) + 1
         # the row's last depth and radius and the contact's controls read once, the sums
@@ -153,32 +236,27 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
-        bl = cov * beta[0]
-        bl2 = bl * bl
-        bl3 = bl2 * bl
-        gl = cp1 * bG[0]
-        hl = cp2 * bH[0]
         # the cells of weight 1, without a branch per cell: left of both edges when the depth
         # moves, left of the edge cell when it holds (the left boundary is below a by at least
         # the cell width: the clipped ratio is 1); a product with 1 is left out
         inner = lo if dd != 0.0 else k
-        for i in range(inner):
-            br = cov * beta[i + 1]
-            br2 = br * br
-            br3 = br2 * br
-            w = br - bl
-            gr = cp1 * bG[i + 1]
-            hr = cp2 * bH[i + 1]
-            S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
-            gl, hl = gr, hr
-            if has_u:
-                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w, L2 * S, du, e,
-                                                           Ft_j, free_t, ct_j, bl, aj)
-            if has_phi:
-                m_tor[r, i], e, M_j, free_m, cm_j = _slip(m_tor[r, i], K16 * ((br3 - bl3) / 3.0),
-                                                          L4 * T, dp, e, M_j, free_m, cm_j, bl,
-                                                          aj)
-            bl, bl2, bl3 = br, br2, br3
+        # four cells at a time (:func:`_cells4`; the scalar loop where a row ends within the
+        # four), then the left boundary's products of the next cell, as the loop leaves them
+        for i0 in range(0, inner, _W):
+            if i0 + _W <= N:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _cells4(
+                    beta, bG, bH, m_tan, m_tor, r, i0, min(inner - i0, _W), cov, cp1, cp2, dj,
+                    K2, K16, L2, L4, du, dp, has_u, has_phi, aj, e, Ft_j, M_j, free_t, free_m,
+                    ct_j, cm_j)
+            else:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _cells(
+                    beta, bG, bH, m_tan, m_tor, r, i0, inner - i0, cov, cp1, cp2, dj, K2, K16,
+                    L2, L4, du, dp, has_u, has_phi, aj, e, Ft_j, M_j, free_t, free_m, ct_j, cm_j)
+        bl = cov * beta[inner]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[inner]
+        hl = cp2 * bH[inner]
         # the last step's edge-cell closed form (the old radius; its cell's integral below)
         Gao = _edge_terms(n, kcc, ao)[0] if dd != 0.0 and ko <= k else 0.0
         # the edge cell and those inside it the depth moved over; each cell's left-boundary
@@ -197,13 +275,16 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                              cp1 * bG[i + 1], hl, hr, Gao, 0.0)[0] if dd != 0.0 else 0.0)
             wgt = _weight(dd, S, So, w, aj, bl)
             gl, hl = gr, hr
+            Lt = L2 * S
+            Lr = L4 * T
+            mt, mr, et, er = _slip2(m_tan[r, i], m_tor[r, i], K2 * w * wgt,
+                                    K16 * ((br3 - bl3) / 3.0) * wgt, Lt, Lr, du, dp)
             if has_u:
-                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w * wgt, L2 * S,
-                                                           du, e, Ft_j, free_t, ct_j, bl, aj)
+                m_tan[r, i] = mt
+                e, Ft_j, free_t, ct_j = _sum(mt, et, Lt, e, Ft_j, free_t, ct_j, bl, aj)
             if has_phi:
-                m_tor[r, i], e, M_j, free_m, cm_j = _slip(
-                    m_tor[r, i], K16 * ((br3 - bl3) / 3.0) * wgt, L4 * T, dp, e, M_j, free_m,
-                    cm_j, bl, aj)
+                m_tor[r, i] = mr
+                e, M_j, free_m, cm_j = _sum(mr, er, Lr, e, M_j, free_m, cm_j, bl, aj)
             bl, bl2, bl3 = br, br2, br3
         # beyond the edge cell: S = T = 0, so both limits are +0 and the reference's clip
         # left a zero of either sign there (the sums, dissipation and stick radius the same
@@ -398,7 +479,10 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             flag[c] = 4
             grown += 1
         dj = d[c]
-        k = 0
+        # the step's edge cell, searched from the switch's (:func:`_spring_pass`)
+        k = k0
+        while k > 0 and not cov * beta[k] < aj:
+            k -= 1
         while k < N - 1 and cov * beta[k + 1] < aj:
             k += 1
         if not step:
