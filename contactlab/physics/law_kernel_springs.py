@@ -27,7 +27,7 @@ _prange = range
 # switch-and-step passes measured 10-15 % slower at 10^6 contacts, with these scalar ones alone
 # as fast as written out
 _INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip", "_sum",
-           "_cells")
+           "_cells", "_first_cells")
 
 
 def _radius(n, d0, kcc):
@@ -149,6 +149,71 @@ _CELLS_PY = _cells      # the plain source (the tests run the kernels uncompiled
 _cells4 = _cells        # four cells at a time (compiled: law_kernel_lanes.cells4)
 
 
+def _first_cells(beta, bG, bH, X, m_tan, m_tor, r, c, i0, cnt, dt, dr, cov, cp1, cp2, d0, d,
+                 K2, K16, L2, L4, incs, it, ir, st_u, st_p, a, acc):
+    """The cells ``i0 .. i0 + cnt - 1`` of a fresh row ``r`` inside both edge cells (the
+    switch's and the step's: contact fraction and weight 1) of contact ``c``: the switch's
+    elements at the held depth ``d0`` (the turning points ``X[ch, c, :dt or dr]`` then the
+    controls replayed; ``incs``: the increments from 0 and to the control, ``(it0, ir0, itl,
+    irl)``), then the step's at depth ``d`` where a channel is driven (``st_u``, ``st_p``),
+    stored and summed on: ``acc = (e, Ft, M, free_t, free_m, ct, cm)`` as it leaves them
+    (a call of at most 30 arguments: numba inlines no call with more). Compiled,
+    :func:`contactlab.physics.law_kernel_lanes.first4` replaces it for four cells that lie
+    in the row: the same operations, IEEE lane by lane, so the same bits."""
+    it0, ir0, itl, irl = incs
+    e, Ft, M, free_t, free_m, ct, cm = acc
+    bl = cov * beta[i0]
+    bl2 = bl * bl
+    bl3 = bl2 * bl
+    gl = cp1 * bG[i0]
+    hl = cp2 * bH[i0]
+    for i in range(i0, i0 + cnt):
+        br = cov * beta[i + 1]
+        br2 = br * br
+        br3 = br2 * br
+        w = br - bl
+        gr = cp1 * bG[i + 1]
+        hr = cp2 * bH[i + 1]
+        dg = gr - gl
+        dh = hr - hl
+        x1 = br2 - bl2
+        Kt = K2 * w
+        Kr = K16 * ((br3 - bl3) / 3.0)
+        # the switch (held depth d0): the elements after 0 -> X[0] -> ... -> x
+        L = L2 * (d0 * w - dg)
+        m0t = 0.0
+        if dt > 0:
+            m0t = min(max(m0t + Kt * it0, -L), L)
+            for q in range(1, dt):
+                m0t = min(max(m0t + Kt * (X[0, c, q] - X[0, c, q - 1]), -L), L)
+        m0t = min(max(m0t + Kt * itl, -L), L)
+        L = L4 * (d0 * x1 / 2.0 - dh)
+        m0r = 0.0
+        if dr > 0:
+            m0r = min(max(m0r + Kr * ir0, -L), L)
+            for q in range(1, dr):
+                m0r = min(max(m0r + Kr * (X[1, c, q] - X[1, c, q - 1]), -L), L)
+        m0r = min(max(m0r + Kr * irl, -L), L)
+        # the step (depth d)
+        Lt = L2 * (d * w - dg)
+        Lr = L4 * (d * x1 / 2.0 - dh)
+        mt, mr, et, er = _slip2(m0t, m0r, Kt, Kr, Lt, Lr, it, ir)
+        if st_u:
+            m0t = mt
+            e, Ft, free_t, ct = _sum(mt, et, Lt, e, Ft, free_t, ct, bl, a)
+        if st_p:
+            m0r = mr
+            e, M, free_m, cm = _sum(mr, er, Lr, e, M, free_m, cm, bl, a)
+        m_tan[r, i] = m0t
+        m_tor[r, i] = m0r
+        bl, bl2, bl3, gl, hl = br, br2, br3, gr, hr
+    return e, Ft, M, free_t, free_m, ct, cm
+
+
+_FIRST_CELLS_PY = _first_cells  # the plain source
+_first4 = _first_cells  # four cells at a time (compiled: law_kernel_lanes.first4)
+
+
 def _slip2(mt, mr, Kt, Kr, Lt, Lr, it, ir):
     """The Jenkins elements of both channels of one cell (tangential ``mt``, torsion ``mr``;
     stiffnesses, limits, increments of the controls): ``(mt, mr, et, er)``, the elements
@@ -172,7 +237,8 @@ def _intrinsics() -> dict:
     """The pieces replaced by numba intrinsics in the compiled builds (name -> the intrinsic;
     :mod:`contactlab.physics.law_kernel_lanes`, which imports numba)."""
     from . import law_kernel_lanes as _lanes
-    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W)}
+    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W),
+            "_first4": _lanes.first4(_W)}
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
@@ -500,11 +566,6 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         inner = min(k, k0) if dd != 0.0 else k
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
-        bl = cov * beta[0]
-        bl2 = bl * bl
-        bl3 = bl2 * bl
-        gl = cp1 * bG[0]
-        hl = cp2 * bH[0]
         # the replay's increments of the control, per contact (the same subtractions as per
         # cell): the first from 0 (a stack of turning points), the last to the control now
         dt = depth[0, c]
@@ -519,44 +580,22 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         # products of the cell's own right boundary): no branch per cell on the cell's place;
         # the switch's stiffness is the step's (``K w 1``: the same bits)
         n1 = min(k, k0)
-        for i in range(n1):
-            br = cov * beta[i + 1]
-            br2 = br * br
-            br3 = br2 * br
-            w = br - bl
-            gr = cp1 * bG[i + 1]
-            hr = cp2 * bH[i + 1]
-            dg = gr - gl
-            dh = hr - hl
-            x1 = br2 - bl2
-            Kt = K2 * w
-            Kr = K16 * ((br3 - bl3) / 3.0)
-            # the switch (held depth d0): the elements after 0 -> X[0] -> ... -> x
-            L = L2 * (d0 * w - dg)
-            m0t = 0.0
-            if dt > 0:
-                m0t = min(max(m0t + Kt * it0, -L), L)
-                for q in range(1, dt):
-                    m0t = min(max(m0t + Kt * (X[0, c, q] - X[0, c, q - 1]), -L), L)
-            m0t = min(max(m0t + Kt * itl, -L), L)
-            L = L4 * (d0 * x1 / 2.0 - dh)
-            m0r = 0.0
-            if dr > 0:
-                m0r = min(max(m0r + Kr * ir0, -L), L)
-                for q in range(1, dr):
-                    m0r = min(max(m0r + Kr * (X[1, c, q] - X[1, c, q - 1]), -L), L)
-            m0r = min(max(m0r + Kr * irl, -L), L)
-            # the step (depth dj)
-            if st_u:
-                m0t, e, Ft_j, free_t, ct_j = _slip(m0t, Kt, L2 * (dj * w - dg), du, e, Ft_j,
-                                                   free_t, ct_j, bl, aj)
-            if st_p:
-                m0r, e, M_j, free_m, cm_j = _slip(m0r, Kr, L4 * (dj * x1 / 2.0 - dh), dp, e,
-                                                  M_j, free_m, cm_j, bl, aj)
-            m_tan[r, i] = m0t
-            m_tor[r, i] = m0r
-            gl, hl = gr, hr
-            bl, bl2, bl3 = br, br2, br3
+        incs = (it0, ir0, itl, irl)
+        for i0 in range(0, n1, _W):
+            acc = (e, Ft_j, M_j, free_t, free_m, ct_j, cm_j)
+            if i0 + _W <= N:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _first4(
+                    beta, bG, bH, X, m_tan, m_tor, r, c, i0, min(n1 - i0, _W), dt, dr, cov, cp1,
+                    cp2, d0, dj, K2, K16, L2, L4, incs, du, dp, st_u, st_p, aj, acc)
+            else:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _first_cells(
+                    beta, bG, bH, X, m_tan, m_tor, r, c, i0, n1 - i0, dt, dr, cov, cp1, cp2, d0,
+                    dj, K2, K16, L2, L4, incs, du, dp, st_u, st_p, aj, acc)
+        bl = cov * beta[n1]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[n1]
+        hl = cp2 * bH[n1]
         # each cell up to both edge cells: the switch's elements (to the switch's edge cell,
         # +0 beyond it), then the step's (to its edge cell, +0 beyond it) where it drives
         last = hi if (not st_u or not st_p) else k + 1

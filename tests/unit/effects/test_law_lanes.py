@@ -113,3 +113,62 @@ def test_four_cell_lanes_give_the_scalar_bits(has_u, has_phi, monkeypatch):
         assert got[3:5] == want[3:5]
         assert _same([got[k] for k in (0, 1, 2, 5, 6)], [want[k] for k in (0, 1, 2, 5, 6)])
         assert _same(mt, mt2) and _same(mr, mr2)
+
+
+@pytest.mark.parametrize("st_u, st_p", [(True, True), (True, False), (False, True)])
+def test_four_cell_switch_lanes_give_the_scalar_bits(st_u, st_p, monkeypatch):
+    """The switch-and-step of four cells (``_first4``: the turning points replayed through
+    the cells' elements at the held depth, then the step) against its scalar source, on
+    random stacks of 0 to 4 turning points per channel and special controls."""
+    import numba
+    S = _built()
+    first4 = S._first4
+    assert first4 is not S._FIRST_CELLS_PY
+    W = S._W
+
+    @numba.njit
+    def run(beta, bG, bH, X, mt, mr, r, c, i0, cnt, dt, dr, s, incs, su, sp, a, acc):
+        return first4(beta, bG, bH, X, mt, mr, r, c, i0, cnt, dt, dr, s[0], s[1], s[2], s[3],
+                      s[4], s[5], s[6], s[7], s[8], incs, s[9], s[10], su, sp, a, acc)
+
+    N = 16
+    beta = law_springs.unit_boundaries(N)
+    rng = np.random.default_rng(13)
+    bG = beta ** 3.0 / 3.0
+    bH = beta ** 4.0 / 4.0
+    for trial in range(300):
+        cov = rng.uniform(1e-4, 1e-3)
+        kc = rng.uniform(10.0, 100.0)
+        cp1 = kc * cov * cov * cov
+        d0 = kc * (rng.uniform(0.3, 0.9) * cov) ** 2
+        d = d0 * rng.uniform(0.9, 1.1)
+        s = np.array([cov, cp1, cp1 * cov, d0, d, 2.0 * 4.4e10, 16.0 * 4e10, 2 * 0.3 * 1e11,
+                      4 * 0.3 * 1e11, rng.normal() * 1e-7, rng.normal() * 1e-4])
+        X = np.empty((2, 3, 4))
+        X[0] = rng.normal(size=(3, 4)) * 1e-6
+        X[1] = rng.normal(size=(3, 4)) * 1e-3
+        dt, dr = int(rng.integers(0, 5)), int(rng.integers(0, 5))
+        x = (rng.normal() * 1e-6, rng.normal() * 1e-3)
+        incs = (X[0, 1, 0] - 0.0 if dt else 0.0, X[1, 1, 0] - 0.0 if dr else 0.0,
+                x[0] - (X[0, 1, dt - 1] if dt else 0.0), x[1] - (X[1, 1, dr - 1] if dr else 0.0))
+        if trial % 5 == 0:                          # special values in the controls
+            s[rng.integers(9, 11)] = rng.choice(SPECIAL)
+            X[rng.integers(0, 2), 1, rng.integers(0, 4)] = rng.choice(SPECIAL)
+        mt = rng.normal(size=(3, N))
+        mr = rng.normal(size=(3, N))
+        i0 = int(rng.integers(0, N - W + 1))
+        cnt = int(rng.integers(1, W + 1))
+        a = rng.uniform(0.5, 1.0) * cov
+        acc = (float(rng.uniform(0, 1)), float(rng.normal()), float(rng.normal()),
+               bool(rng.integers(0, 2)), bool(rng.integers(0, 2)), a, a)
+        mt2, mr2 = mt.copy(), mr.copy()
+        with np.errstate(all="ignore"), monkeypatch.context() as mp:
+            got = run(beta, bG, bH, X, mt, mr, 2, 1, i0, cnt, dt, dr, s, incs, st_u, st_p, a,
+                      acc)
+            mp.setattr(S, "_slip2", S._SLIP2_PY)    # the plain source throughout
+            mp.setattr(S, "_sum", S._sum.py_func)
+            want = S._FIRST_CELLS_PY(beta, bG, bH, X, mt2, mr2, 2, 1, i0, cnt, dt, dr,
+                                     *s[:9], incs, s[9], s[10], st_u, st_p, a, acc)
+        assert got[3:5] == want[3:5]
+        assert _same([got[k] for k in (0, 1, 2, 5, 6)], [want[k] for k in (0, 1, 2, 5, 6)])
+        assert _same(mt, mt2) and _same(mr, mr2)
