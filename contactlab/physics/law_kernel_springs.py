@@ -19,13 +19,9 @@ __all__ = ["spring_pass", "switch_pass", "switch_step_pass"]
 _prange = range
 
 
-# the per-cell and per-contact pieces the passes share, plain functions of scalars; numba inlines
-# them into each pass at its IR level (``inline="always"``, set with the builds:
-# ``law_kernel._kernels``), the same bits as written out. The pieces that read or write arrays
-# (the edge cell's search, the Masing replay, the zeroing beyond the edge, the outputs) stay
-# written out in each pass: with them as inlined helpers too (arrays handed over) the spring and
-# switch-and-step passes measured 10-15 % slower at 10^6 contacts, with these scalar ones alone
-# as fast as written out
+# the pieces the passes share; numba inlines them into each pass at its IR level
+# (``inline="always"``, set with the builds: ``law_kernel._kernels``), the same bits as written
+# out (the edge cell's search, zeroing and outputs as inlined helpers measured 10-15 % slower)
 _INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip", "_sum",
            "_cells", "_first_cells")
 
@@ -143,10 +139,8 @@ def _cells(beta, bG, bH, m_tan, m_tor, r, i0, cnt, cov, cp1, cp2, d, K2, K16, L2
     return e, Ft, M, free_t, free_m, ct, cm
 
 
-#: cells per vector of the compiled :func:`_cells` (``_cells4``)
-_W = 4
-_CELLS_PY = _cells      # the plain source (the tests run the kernels uncompiled against it)
-_cells4 = _cells        # four cells at a time (compiled: law_kernel_lanes.cells4)
+_W = 4                  # cells per vector of the compiled ``_cells4`` and ``_first4``
+_CELLS_PY = _cells4 = _cells    # the plain source (compiled: law_kernel_lanes.cells4)
 
 
 def _first_cells(beta, bG, bH, X, m_tan, m_tor, r, c, i0, cnt, dt, dr, cov, cp1, cp2, d0, d,
@@ -210,8 +204,7 @@ def _first_cells(beta, bG, bH, X, m_tan, m_tor, r, c, i0, cnt, dt, dr, cov, cp1,
     return e, Ft, M, free_t, free_m, ct, cm
 
 
-_FIRST_CELLS_PY = _first_cells  # the plain source
-_first4 = _first_cells  # four cells at a time (compiled: law_kernel_lanes.first4)
+_FIRST_CELLS_PY = _first4 = _first_cells      # (compiled: law_kernel_lanes.first4)
 
 
 def _slip2(mt, mr, Kt, Kr, Lt, Lr, it, ir):
@@ -234,11 +227,9 @@ _SLIP2_PY = _slip2      # the plain source (the tests run the kernels uncompiled
 
 
 def _intrinsics() -> dict:
-    """The pieces replaced by numba intrinsics in the compiled builds (name -> the intrinsic;
-    :mod:`contactlab.physics.law_kernel_lanes`, which imports numba)."""
+    """The compiled builds' intrinsics, by name (:mod:`~contactlab.physics.law_kernel_lanes`)."""
     from . import law_kernel_lanes as _lanes
-    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W),
-            "_first4": _lanes.first4(_W)}
+    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W), "_first4": _lanes.first4(_W)}
 
 
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
