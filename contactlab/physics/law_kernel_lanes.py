@@ -5,7 +5,9 @@ inside the edge cell four at a time (:func:`cells4`), for
 comparisons and selects numba emits for the scalar source's ``min``, ``max``, ``abs`` and
 ``!=``: the bits of the scalar source (which the plain-Python run of the kernels and the
 tests use). Built by :func:`contactlab.physics.law_kernel._kernels`; importing this module
-imports numba.
+imports numba. numba's disk cache keys a compiled pass by its own source file only: a change
+here reaches a cached pass once :mod:`~contactlab.physics.law_kernel_springs` changes too (or
+the cache is cleared).
 """
 from __future__ import annotations
 
