@@ -485,6 +485,8 @@ def _kernels(parallel: bool) -> tuple:
                         for h in _springs._INLINE:      # the spring passes' shared pieces
                             setattr(_springs, h, _jit.njit(getattr(_springs, h), nogil=True,
                                                            inline="always"))
+                        for h, lanes in _springs._intrinsics().items():
+                            setattr(_springs, h, lanes)
                     _KERNELS[parallel] = tuple(
                         _jit.njit(f, name=f.__name__ + ("_parallel" if parallel else ""),
                                   nogil=True, parallel=parallel, **_OPTIONS.get(f, {}))

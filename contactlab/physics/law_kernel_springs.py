@@ -19,14 +19,11 @@ __all__ = ["spring_pass", "switch_pass", "switch_step_pass"]
 _prange = range
 
 
-# the per-cell and per-contact pieces the passes share, plain functions of scalars; numba inlines
-# them into each pass at its IR level (``inline="always"``, set with the builds:
-# ``law_kernel._kernels``), the same bits as written out. The pieces that read or write arrays
-# (the edge cell's search, the Masing replay, the zeroing beyond the edge, the outputs) stay
-# written out in each pass: with them as inlined helpers too (arrays handed over) the spring and
-# switch-and-step passes measured 10-15 % slower at 10^6 contacts, with these scalar ones alone
-# as fast as written out
-_INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip")
+# the pieces the passes share; numba inlines them into each pass at its IR level
+# (``inline="always"``, set with the builds: ``law_kernel._kernels``), the same bits as written
+# out (the edge cell's search, zeroing and outputs as inlined helpers measured 10-15 % slower)
+_INLINE = ("_radius", "_span", "_edge_terms", "_integrals", "_weight", "_slip", "_sum",
+           "_cells", "_first_cells")
 
 
 def _radius(n, d0, kcc):
@@ -96,6 +93,145 @@ def _slip(mo, K, L, inc, e, F, free, cs, bl, a):
     return mn, e, F, free, cs
 
 
+def _sum(m, de, L, e, F, free, cs, bl, a):
+    """An element ``m`` after its step (limit ``L``, dissipation ``de``) summed on: ``(e, F,
+    free, cs)`` as :func:`_slip` leaves them."""
+    e += de
+    F += m
+    if free and abs(m) >= L:
+        free = False
+        cs = min(bl, a)
+    return e, F, free, cs
+
+
+def _cells(beta, bG, bH, m_tan, m_tor, r, i0, cnt, cov, cp1, cp2, d, K2, K16, L2, L4, it, ir,
+           has_u, has_phi, a, e, Ft, M, free_t, free_m, ct, cm):
+    """The cells ``i0 .. i0 + cnt - 1`` of row ``r`` inside the edge cell (weight 1) at depth
+    ``d``, cover ``cov`` (the boundary factors ``cp1 = kc cov^(n+1)``, ``cp2 = cp1 cov``),
+    both channels' elements stepped (:func:`_slip2`), stored and summed on (a channel only
+    where driven): ``(e, Ft, M, free_t, free_m, ct, cm)`` (:func:`_sum`). Compiled,
+    :func:`contactlab.physics.law_kernel_lanes.cells4` replaces it for four cells that lie in
+    the row (``i0 + 4 <= N``): the same operations, IEEE lane by lane, so the same bits."""
+    bl = cov * beta[i0]
+    bl2 = bl * bl
+    bl3 = bl2 * bl
+    gl = cp1 * bG[i0]
+    hl = cp2 * bH[i0]
+    for i in range(i0, i0 + cnt):
+        br = cov * beta[i + 1]
+        br2 = br * br
+        br3 = br2 * br
+        w = br - bl
+        gr = cp1 * bG[i + 1]
+        hr = cp2 * bH[i + 1]
+        # :func:`_integrals`'s first form (a cell inside the edge cell)
+        Lt = L2 * (d * w - (gr - gl))
+        Lr = L4 * (d * (br2 - bl2) / 2.0 - (hr - hl))
+        mt, mr, et, er = _slip2(m_tan[r, i], m_tor[r, i], K2 * w, K16 * ((br3 - bl3) / 3.0), Lt,
+                                Lr, it, ir)
+        if has_u:
+            m_tan[r, i] = mt
+            e, Ft, free_t, ct = _sum(mt, et, Lt, e, Ft, free_t, ct, bl, a)
+        if has_phi:
+            m_tor[r, i] = mr
+            e, M, free_m, cm = _sum(mr, er, Lr, e, M, free_m, cm, bl, a)
+        bl, bl2, bl3, gl, hl = br, br2, br3, gr, hr
+    return e, Ft, M, free_t, free_m, ct, cm
+
+
+_W = 4                  # cells per vector of the compiled ``_cells4`` and ``_first4``
+_CELLS_PY = _cells4 = _cells    # the plain source (compiled: law_kernel_lanes.cells4)
+
+
+def _first_cells(beta, bG, bH, X, m_tan, m_tor, r, c, i0, cnt, dt, dr, cov, cp1, cp2, d0, d,
+                 K2, K16, L2, L4, incs, it, ir, st_u, st_p, a, acc):
+    """The cells ``i0 .. i0 + cnt - 1`` of a fresh row ``r`` inside both edge cells (the
+    switch's and the step's: contact fraction and weight 1) of contact ``c``: the switch's
+    elements at the held depth ``d0`` (the turning points ``X[ch, c, :dt or dr]`` then the
+    controls replayed; ``incs``: the increments from 0 and to the control, ``(it0, ir0, itl,
+    irl)``), then the step's at depth ``d`` where a channel is driven (``st_u``, ``st_p``),
+    stored and summed on: ``acc = (e, Ft, M, free_t, free_m, ct, cm)`` as it leaves them
+    (a call of at most 30 arguments: numba inlines no call with more). Compiled,
+    :func:`contactlab.physics.law_kernel_lanes.first4` replaces it for four cells that lie
+    in the row: the same operations, IEEE lane by lane, so the same bits."""
+    it0, ir0, itl, irl = incs
+    e, Ft, M, free_t, free_m, ct, cm = acc
+    bl = cov * beta[i0]
+    bl2 = bl * bl
+    bl3 = bl2 * bl
+    gl = cp1 * bG[i0]
+    hl = cp2 * bH[i0]
+    for i in range(i0, i0 + cnt):
+        br = cov * beta[i + 1]
+        br2 = br * br
+        br3 = br2 * br
+        w = br - bl
+        gr = cp1 * bG[i + 1]
+        hr = cp2 * bH[i + 1]
+        dg = gr - gl
+        dh = hr - hl
+        x1 = br2 - bl2
+        Kt = K2 * w
+        Kr = K16 * ((br3 - bl3) / 3.0)
+        # the switch (held depth d0): the elements after 0 -> X[0] -> ... -> x
+        L = L2 * (d0 * w - dg)
+        m0t = 0.0
+        if dt > 0:
+            m0t = min(max(m0t + Kt * it0, -L), L)
+            for q in range(1, dt):
+                m0t = min(max(m0t + Kt * (X[0, c, q] - X[0, c, q - 1]), -L), L)
+        m0t = min(max(m0t + Kt * itl, -L), L)
+        L = L4 * (d0 * x1 / 2.0 - dh)
+        m0r = 0.0
+        if dr > 0:
+            m0r = min(max(m0r + Kr * ir0, -L), L)
+            for q in range(1, dr):
+                m0r = min(max(m0r + Kr * (X[1, c, q] - X[1, c, q - 1]), -L), L)
+        m0r = min(max(m0r + Kr * irl, -L), L)
+        # the step (depth d)
+        Lt = L2 * (d * w - dg)
+        Lr = L4 * (d * x1 / 2.0 - dh)
+        mt, mr, et, er = _slip2(m0t, m0r, Kt, Kr, Lt, Lr, it, ir)
+        if st_u:
+            m0t = mt
+            e, Ft, free_t, ct = _sum(mt, et, Lt, e, Ft, free_t, ct, bl, a)
+        if st_p:
+            m0r = mr
+            e, M, free_m, cm = _sum(mr, er, Lr, e, M, free_m, cm, bl, a)
+        m_tan[r, i] = m0t
+        m_tor[r, i] = m0r
+        bl, bl2, bl3, gl, hl = br, br2, br3, gr, hr
+    return e, Ft, M, free_t, free_m, ct, cm
+
+
+_FIRST_CELLS_PY = _first4 = _first_cells      # (compiled: law_kernel_lanes.first4)
+
+
+def _slip2(mt, mr, Kt, Kr, Lt, Lr, it, ir):
+    """The Jenkins elements of both channels of one cell (tangential ``mt``, torsion ``mr``;
+    stiffnesses, limits, increments of the controls): ``(mt, mr, et, er)``, the elements
+    after the step and the dissipation of each, ``(trial - m) m / K`` where the element
+    slips (``K > 0``, ``trial != m``), else +0 (the sum it is added to is never -0: adding +0
+    leaves its bits). Compiled, :func:`contactlab.physics.law_kernel_lanes.slip2` replaces
+    it: the same operations on 2-lane vectors, IEEE lane by lane, so the same bits."""
+    tt = mt + Kt * it
+    tr = mr + Kr * ir
+    nt = min(max(tt, -Lt), Lt)
+    nr = min(max(tr, -Lr), Lr)
+    et = (tt - nt) * nt / Kt if Kt > 0.0 and tt != nt else 0.0
+    er = (tr - nr) * nr / Kr if Kr > 0.0 and tr != nr else 0.0
+    return nt, nr, et, er
+
+
+_SLIP2_PY = _slip2      # the plain source (the tests run the kernels uncompiled against it)
+
+
+def _intrinsics() -> dict:
+    """The compiled builds' intrinsics, by name (:mod:`~contactlab.physics.law_kernel_lanes`)."""
+    from . import law_kernel_lanes as _lanes
+    return {"_slip2": _lanes.slip2(), "_cells4": _lanes.cells4(_W), "_first4": _lanes.first4(_W)}
+
+
 def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG, bH, mu, E, G,
                  Gt, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag,
                  full_u=False, full_phi=False):
@@ -133,10 +269,14 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         cp1 = _span(n, kcc, cov)
         Ga, Ha = _edge_terms(n, kcc, aj)
         cp2 = cp1 * cov
-        k = 0
+        # the edge cell, searched from the last step's (the boundaries do not decrease: the
+        # cell of a search from 0, in a step or two where the radius moved within a cell)
+        ko = k_old[r]
+        k = min(max(ko, 0), N - 1)
+        while k > 0 and not cov * beta[k] < aj:
+            k -= 1
         while k < N - 1 and cov * beta[k + 1] < aj:
             k += 1
-        ko = k_old[r]
         lo = min(k, ko)
         hi = max(k, ko) + 1
         # the row's last depth and radius and the contact's controls read once, the sums
@@ -153,32 +293,27 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         # per-contact factors (``2 mu E S`` is ``(2 mu E) S``: the same products, once)
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
-        bl = cov * beta[0]
-        bl2 = bl * bl
-        bl3 = bl2 * bl
-        gl = cp1 * bG[0]
-        hl = cp2 * bH[0]
         # the cells of weight 1, without a branch per cell: left of both edges when the depth
         # moves, left of the edge cell when it holds (the left boundary is below a by at least
         # the cell width: the clipped ratio is 1); a product with 1 is left out
         inner = lo if dd != 0.0 else k
-        for i in range(inner):
-            br = cov * beta[i + 1]
-            br2 = br * br
-            br3 = br2 * br
-            w = br - bl
-            gr = cp1 * bG[i + 1]
-            hr = cp2 * bH[i + 1]
-            S, T = _integrals(i, k, dj, aj, w, bl, bl2, br2, gl, gr, hl, hr, Ga, Ha)
-            gl, hl = gr, hr
-            if has_u:
-                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w, L2 * S, du, e,
-                                                           Ft_j, free_t, ct_j, bl, aj)
-            if has_phi:
-                m_tor[r, i], e, M_j, free_m, cm_j = _slip(m_tor[r, i], K16 * ((br3 - bl3) / 3.0),
-                                                          L4 * T, dp, e, M_j, free_m, cm_j, bl,
-                                                          aj)
-            bl, bl2, bl3 = br, br2, br3
+        # four cells at a time (:func:`_cells4`; the scalar loop where a row ends within the
+        # four), then the left boundary's products of the next cell, as the loop leaves them
+        for i0 in range(0, inner, _W):
+            if i0 + _W <= N:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _cells4(
+                    beta, bG, bH, m_tan, m_tor, r, i0, min(inner - i0, _W), cov, cp1, cp2, dj,
+                    K2, K16, L2, L4, du, dp, has_u, has_phi, aj, e, Ft_j, M_j, free_t, free_m,
+                    ct_j, cm_j)
+            else:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _cells(
+                    beta, bG, bH, m_tan, m_tor, r, i0, inner - i0, cov, cp1, cp2, dj, K2, K16,
+                    L2, L4, du, dp, has_u, has_phi, aj, e, Ft_j, M_j, free_t, free_m, ct_j, cm_j)
+        bl = cov * beta[inner]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[inner]
+        hl = cp2 * bH[inner]
         # the last step's edge-cell closed form (the old radius; its cell's integral below)
         Gao = _edge_terms(n, kcc, ao)[0] if dd != 0.0 and ko <= k else 0.0
         # the edge cell and those inside it the depth moved over; each cell's left-boundary
@@ -197,13 +332,16 @@ def _spring_pass(idx, slot, d, a, u, phi, has_u, has_phi, cover, kc, n, beta, bG
                              cp1 * bG[i + 1], hl, hr, Gao, 0.0)[0] if dd != 0.0 else 0.0)
             wgt = _weight(dd, S, So, w, aj, bl)
             gl, hl = gr, hr
+            Lt = L2 * S
+            Lr = L4 * T
+            mt, mr, et, er = _slip2(m_tan[r, i], m_tor[r, i], K2 * w * wgt,
+                                    K16 * ((br3 - bl3) / 3.0) * wgt, Lt, Lr, du, dp)
             if has_u:
-                m_tan[r, i], e, Ft_j, free_t, ct_j = _slip(m_tan[r, i], K2 * w * wgt, L2 * S,
-                                                           du, e, Ft_j, free_t, ct_j, bl, aj)
+                m_tan[r, i] = mt
+                e, Ft_j, free_t, ct_j = _sum(mt, et, Lt, e, Ft_j, free_t, ct_j, bl, aj)
             if has_phi:
-                m_tor[r, i], e, M_j, free_m, cm_j = _slip(
-                    m_tor[r, i], K16 * ((br3 - bl3) / 3.0) * wgt, L4 * T, dp, e, M_j, free_m,
-                    cm_j, bl, aj)
+                m_tor[r, i] = mr
+                e, M_j, free_m, cm_j = _sum(mr, er, Lr, e, M_j, free_m, cm_j, bl, aj)
             bl, bl2, bl3 = br, br2, br3
         # beyond the edge cell: S = T = 0, so both limits are +0 and the reference's clip
         # left a zero of either sign there (the sums, dissipation and stick radius the same
@@ -398,7 +536,10 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             flag[c] = 4
             grown += 1
         dj = d[c]
-        k = 0
+        # the step's edge cell, searched from the switch's (:func:`_spring_pass`)
+        k = k0
+        while k > 0 and not cov * beta[k] < aj:
+            k -= 1
         while k < N - 1 and cov * beta[k + 1] < aj:
             k += 1
         if not step:
@@ -416,11 +557,6 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         inner = min(k, k0) if dd != 0.0 else k
         Ft_j, M_j, e, ct_j, cm_j, free_t, free_m = 0.0, 0.0, 0.0, aj, aj, True, True
         L2, L4, K2, K16 = 2.0 * mu_E, 4.0 * mu_E, 2.0 * G[c], 16.0 * Gt[c]
-        bl = cov * beta[0]
-        bl2 = bl * bl
-        bl3 = bl2 * bl
-        gl = cp1 * bG[0]
-        hl = cp2 * bH[0]
         # the replay's increments of the control, per contact (the same subtractions as per
         # cell): the first from 0 (a stack of turning points), the last to the control now
         dt = depth[0, c]
@@ -435,44 +571,22 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
         # products of the cell's own right boundary): no branch per cell on the cell's place;
         # the switch's stiffness is the step's (``K w 1``: the same bits)
         n1 = min(k, k0)
-        for i in range(n1):
-            br = cov * beta[i + 1]
-            br2 = br * br
-            br3 = br2 * br
-            w = br - bl
-            gr = cp1 * bG[i + 1]
-            hr = cp2 * bH[i + 1]
-            dg = gr - gl
-            dh = hr - hl
-            x1 = br2 - bl2
-            Kt = K2 * w
-            Kr = K16 * ((br3 - bl3) / 3.0)
-            # the switch (held depth d0): the elements after 0 -> X[0] -> ... -> x
-            L = L2 * (d0 * w - dg)
-            m0t = 0.0
-            if dt > 0:
-                m0t = min(max(m0t + Kt * it0, -L), L)
-                for q in range(1, dt):
-                    m0t = min(max(m0t + Kt * (X[0, c, q] - X[0, c, q - 1]), -L), L)
-            m0t = min(max(m0t + Kt * itl, -L), L)
-            L = L4 * (d0 * x1 / 2.0 - dh)
-            m0r = 0.0
-            if dr > 0:
-                m0r = min(max(m0r + Kr * ir0, -L), L)
-                for q in range(1, dr):
-                    m0r = min(max(m0r + Kr * (X[1, c, q] - X[1, c, q - 1]), -L), L)
-            m0r = min(max(m0r + Kr * irl, -L), L)
-            # the step (depth dj)
-            if st_u:
-                m0t, e, Ft_j, free_t, ct_j = _slip(m0t, Kt, L2 * (dj * w - dg), du, e, Ft_j,
-                                                   free_t, ct_j, bl, aj)
-            if st_p:
-                m0r, e, M_j, free_m, cm_j = _slip(m0r, Kr, L4 * (dj * x1 / 2.0 - dh), dp, e,
-                                                  M_j, free_m, cm_j, bl, aj)
-            m_tan[r, i] = m0t
-            m_tor[r, i] = m0r
-            gl, hl = gr, hr
-            bl, bl2, bl3 = br, br2, br3
+        incs = (it0, ir0, itl, irl)
+        for i0 in range(0, n1, _W):
+            acc = (e, Ft_j, M_j, free_t, free_m, ct_j, cm_j)
+            if i0 + _W <= N:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _first4(
+                    beta, bG, bH, X, m_tan, m_tor, r, c, i0, min(n1 - i0, _W), dt, dr, cov, cp1,
+                    cp2, d0, dj, K2, K16, L2, L4, incs, du, dp, st_u, st_p, aj, acc)
+            else:
+                e, Ft_j, M_j, free_t, free_m, ct_j, cm_j = _first_cells(
+                    beta, bG, bH, X, m_tan, m_tor, r, c, i0, n1 - i0, dt, dr, cov, cp1, cp2, d0,
+                    dj, K2, K16, L2, L4, incs, du, dp, st_u, st_p, aj, acc)
+        bl = cov * beta[n1]
+        bl2 = bl * bl
+        bl3 = bl2 * bl
+        gl = cp1 * bG[n1]
+        hl = cp2 * bH[n1]
         # each cell up to both edge cells: the switch's elements (to the switch's edge cell,
         # +0 beyond it), then the step's (to its edge cell, +0 beyond it) where it drives
         last = hi if (not st_u or not st_p) else k + 1

@@ -270,6 +270,12 @@ def test_uncompiled_kernels_give_the_compiled_bits(family, gname, lo_hi, extra, 
     monkeypatch.setattr(K, "_poly3", K._POLY3_PY)   # the three curves' scalar source
     for name in ("_switch_one", "_spring_one"):     # the passes of a switch-and-step block
         monkeypatch.setattr(K._springs, name, getattr(K._springs, name).py_func)
+    # the spring passes' lane pieces: their scalar source
+    monkeypatch.setattr(K._springs, "_slip2", K._springs._SLIP2_PY)
+    monkeypatch.setattr(K._springs, "_cells4", K._springs._CELLS_PY)
+    monkeypatch.setattr(K._springs, "_cells", K._springs._CELLS_PY)
+    monkeypatch.setattr(K._springs, "_first4", K._springs._FIRST_CELLS_PY)
+    monkeypatch.setattr(K._springs, "_first_cells", K._springs._FIRST_CELLS_PY)
     assert not any(hasattr(f, "py_func") for f in K._kernels(False))     # plain Python now
     plain, b = _changing_run(cl.ContactLaw(family, fast=True, **par), 5, steps, n)
     assert compiled.state["spr_on"].any()
