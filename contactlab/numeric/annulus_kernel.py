@@ -11,8 +11,8 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
   there, the bracket and root of the stick radius, the splice of the new density, its total
   turn and the traction check inside the stick radius (from a :class:`NodeTable`'s
   antiderivatives and the memo of the last density checked:
-  :mod:`contactlab.numeric.inside_check`); :func:`slip_difference`: the difference density of the slip check and its
-  sign;
+  :mod:`contactlab.numeric.inside_check`); :func:`slip_difference`: the difference density of
+  the slip check and its sign;
 * :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;

@@ -116,34 +116,40 @@ def _point(ri, row, lo, hi, c0, c1, cols, F0, F1):
 def _drift(lo, hi, wl, wr, al, be, c0, c1, olo, ohi, owl, owr):
     """The bound's parts for the step ``old → w`` (module docstring): ``(c', I0, E, S_near,
     S_far, Σ|c0|, Σ|c1|, T)`` over the nodes from ``c'`` on, ``c'`` the end of the pieces both
-    share from the start, ``I0 = ∫ ΔL/t dt`` and ``E`` a bound on its rounding; ``c' = −1``
-    where they share none (or a node is not a number)."""
+    share from the start (or, sharing none, the first node of either), ``I0 = ∫ ΔL/t dt`` and
+    ``E`` a bound on its rounding; ``c' = −1`` where ``c'`` is not positive (or a node is not a
+    number)."""
     n, no = lo.size, olo.size
     k = 0
     while (k < n and k < no and lo[k] == olo[k] and hi[k] == ohi[k] and wl[k] == owl[k]
            and wr[k] == owr[k]):
         k += 1
-    if k == 0 or not hi[k - 1] > 0.0:
+    # (none shared: both densities are zero below their first nodes)
+    cp = hi[k - 1] if k else min(lo[0], olo[0])
+    if not cp > 0.0:
         return -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    cp = hi[k - 1]
     oal, obe, _ = _lines(olo, ohi, owl, owr, False)
     s0 = s1 = 0.0
     for j in range(k, n + 1):
         s0 += abs(c0[j])
         s1 += abs(c1[j])
     for j in range(k, no + 1):
-        s0 += abs(oal[j - 1] - (oal[j] if j < no else 0.0))
-        s1 += abs(obe[j - 1] - (obe[j] if j < no else 0.0))
+        s0 += abs((oal[j - 1] if j > 0 else 0.0) - (oal[j] if j < no else 0.0))
+        s1 += abs((obe[j - 1] if j > 0 else 0.0) - (obe[j] if j < no else 0.0))
     top = max(hi[n - 1], ohi[no - 1])
     p, q, u = k, k, cp
     i0 = e0 = near = far = 0.0
     count = 0
     while p < n or q < no:
-        vw = hi[p] if p < n else np.inf
-        vo = ohi[q] if q < no else np.inf
+        # each density's next node and its line on [u, that node] (zero before its first piece
+        # and after its last)
+        inw = p < n and u >= lo[p]
+        ino = q < no and u >= olo[q]
+        vw = (hi[p] if inw else lo[p]) if p < n else np.inf
+        vo = (ohi[q] if ino else olo[q]) if q < no else np.inf
         v = min(vw, vo)
-        aw, bw = (al[p], be[p]) if p < n else (0.0, 0.0)
-        ao, bo = (oal[q], obe[q]) if q < no else (0.0, 0.0)
+        aw, bw = (al[p], be[p]) if inw else (0.0, 0.0)
+        ao, bo = (oal[q], obe[q]) if ino else (0.0, 0.0)
         if not (aw == ao and bw == bo):
             lg = np.log1p((v - u) / u)             # ∫ dt/t over the interval
             i0 += (aw - ao) * lg + (bw - bo) * (v - u)
@@ -156,11 +162,11 @@ def _drift(lo, hi, wl, wr, al, be, c0, c1, olo, ohi, owl, owr):
                 near += mk * lg
             else:
                 far += mk * lg
-        moved = False
-        if vw == v:
+        moved = v > u
+        if inw and vw == v:
             p += 1
             moved = True
-        if vo == v:
+        if ino and vo == v:
             q += 1
             moved = True
         if not moved:           # a node not a number
