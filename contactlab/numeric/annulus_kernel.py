@@ -10,8 +10,9 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`twist_step`: the piece ends of both densities below the contact radius, ``Ψ`` of both
   there, the bracket and root of the stick radius, the splice of the new density, its total
   turn and the traction check inside the stick radius (from a :class:`NodeTable`'s
-  antiderivatives); :func:`slip_difference`: the difference density of the slip check and its
-  sign;
+  antiderivatives and the memo of the last density checked:
+  :mod:`contactlab.numeric.inside_check`); :func:`slip_difference`: the difference density of
+  the slip check and its sign;
 * :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
   weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
   densities, and a family stage's products;
@@ -27,8 +28,9 @@ numpy route in its order (sums: numpy's pairwise order, :func:`pairwise_sum`; lo
 ``searchsorted``'s; the root: the same safeguarded Newton), so the step's density, stick radius
 and turn are bit-identical to the numpy route. Two things are not: the traction of the check
 inside the stick radius is summed in another order than the numpy route's matrix-vector product,
-so the check is decided here only where its margin exceeds a bound on the rounding of either sum
-(else the caller decides it with the numpy route: the verdict is always the numpy route's); and
+or bounded from the last step's sums, so the check is decided here only where its margin exceeds
+a bound on the difference to the numpy route's sums (else the caller decides it with the numpy
+route: the verdict is always the numpy route's); and
 the energy's dot products are left to numpy (the kernels return the arrays they take).
 
 numba is used when it imports and :func:`contactlab.numeric.normal_kernels.backend` says
@@ -43,8 +45,10 @@ from typing import Any
 
 import numpy as np
 
+from . import inside_check as _ic
 from . import jit as _jit
 from . import ring_kernels as _rk
+from . import sorted_search as _ss
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
            "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE", "table_scatter",
@@ -52,7 +56,7 @@ __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "dif
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
-INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = 0, 1, -1
+INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = _ic.INSIDE_FAIL, _ic.INSIDE_OK, _ic.INSIDE_OPEN
 #: :func:`twist_step`'s status: the step taken, or left to the numpy route (a nan among its inputs)
 STEP_DONE, STEP_REFERENCE = 0, 1
 #: :func:`nonnegative_band`'s status: ``Ψ >= 0`` (nothing removed), a band removed, or left to the
@@ -69,6 +73,11 @@ _ends_pass = _rk.ends_pass
 _piece_ends = _rk.piece_ends
 _lines = _rk.lines
 _psi_at = _rk.psi_at
+# the sorted searches and the traction check inside the stick radius (rebound likewise)
+_left = _ss.left
+_right = _ss.right
+_inside = _ic.inside
+_inside_memo = _ic.inside_memo
 
 
 def _block(a: np.ndarray, i0: int, n: int) -> float:
@@ -128,30 +137,6 @@ def pairwise_sum(a: np.ndarray, i0: int, n: int) -> float:
             seg[top + 2, 0], seg[top + 2, 1], seg[top + 2, 2] = s0, m2, 0
             top += 3
     return vals[0]
-
-
-def _left(a: np.ndarray, x: float) -> int:
-    """``searchsorted(a, x, "left")`` (``x`` not nan)."""
-    lo, hi = 0, a.size
-    while lo < hi:
-        m = (lo + hi) >> 1
-        if a[m] < x:
-            lo = m + 1
-        else:
-            hi = m
-    return lo
-
-
-def _right(a: np.ndarray, x: float) -> int:
-    """``searchsorted(a, x, "right")`` (``x`` not nan)."""
-    lo, hi = 0, a.size
-    while lo < hi:
-        m = (lo + hi) >> 1
-        if a[m] <= x:
-            lo = m + 1
-        else:
-            hi = m
-    return lo
 
 
 def _unique_sorted(a: np.ndarray) -> np.ndarray:
@@ -343,90 +328,28 @@ def _difference(nlo, nhi, nwl, nwr, olo, ohi, owl, owr, start):
     return lo, hi, nl - ol, nr - orr
 
 
-def _inside(wlo, whi, wwl, wwr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes) -> int:
-    """The traction check inside the stick radius (``torsion_annulus._inside_ok``) from the
-    table's antiderivatives: :data:`INSIDE_OK` / :data:`INSIDE_FAIL` where every point's margin
-    (one failing point's) exceeds a bound on the rounding of the sums in any order, else
-    :data:`INSIDE_OPEN` (also without a table, with pieces that do not abut, or with a radius
-    not in the table). The antiderivatives of a node not in the table are computed here (the C
-    library's ``acosh``: within a few units in the last place of numpy's, inside the bound)."""
-    m = 0
-    for i in range(r.size):
-        if r[i] < c:
-            m += 1
-    if c <= 0 or m == 0:
-        return INSIDE_OK
-    n = wlo.size
-    if n == 0 or F0.shape[0] == 0:
-        return INSIDE_OPEN
-    for j in range(n - 1):
-        if wlo[j + 1] != whi[j]:
-            return INSIDE_OPEN
-    # the jumps of offset and slope at the nodes, and the nodes' columns in the table
-    al, be, _ = _lines(wlo, whi, wwl, wwr, False)
-    c0 = np.empty(n + 1)
-    c1 = np.empty(n + 1)
-    cols = np.empty(n + 1, np.int64)
-    for j in range(n + 1):
-        c0[j] = (al[j - 1] if j > 0 else 0.0) - (al[j] if j < n else 0.0)
-        c1[j] = (be[j - 1] if j > 0 else 0.0) - (be[j] if j < n else 0.0)
-        t = wlo[j] if j < n else whi[n - 1]
-        k = _left(t_nodes, t)
-        # a node not in the table (the stick radius): its antiderivatives computed below
-        cols[j] = k if k < t_nodes.size and t_nodes[k] == t else -1
-    k4 = 4.0 * G_t / np.pi
-    verdict = INSIDE_OK
-    for i in range(r.size):
-        ri = r[i]
-        if not ri < c:
-            continue
-        row = _left(t_r, ri)
-        if row >= t_r.size or t_r[row] != ri:
-            return INSIDE_OPEN
-        acc = 0.0
-        mag = 0.0
-        for j in range(n + 1):
-            q = cols[j]
-            if q >= 0:
-                f0, f1 = F0[row, q], F1[row, q]
-            else:
-                t = wlo[j] if j < n else whi[n - 1]
-                u = t / ri if ri > 0 else 1.0
-                f0 = np.arccosh(u) if u > 1.0 else 0.0
-                f1 = np.sqrt((u - 1.0) * (u + 1.0)) * ri if u > 1.0 else 0.0
-            a = f0 * c0[j]
-            b = f1 * c1[j]
-            acc += a + b
-            mag += abs(a) + abs(b)
-        scale = k4 * ri
-        tau = abs(scale * acc)
-        lim = bound[i] * (1 + check_rtol)
-        err = 4.0 * (n + 4) * _EPS * abs(scale) * mag + 4.0 * _EPS * (tau + abs(lim))
-        if tau - lim > err:
-            return INSIDE_FAIL
-        if not lim - tau > err or tau != tau or lim != lim:
-            verdict = INSIDE_OPEN
-    return verdict
-
-
 def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rtol,
-               r, bound, G_t, check_rtol, F0, F1, t_r, t_nodes):
+               r, bound, G_t, check_rtol, F0, F1, t_r, t_nodes, memo_w, memo_x):
     """The twist step of ``torsion_annulus.step`` (the old density ``o``, the full-sliding one
     ``s``, the contact radius, the twist increment ``target``; the root's ``xtol``, ``rtol``), its
     checks' parts at the points ``r`` with ``μ p`` = ``bound`` when ``r`` is not empty (``F0``,
     ``F1``, ``t_r``, ``t_nodes``: a :class:`NodeTable`'s traction antiderivatives, radii and nodes,
     or empty).
 
-    Returns ``(status, w, c, s, gross, dpsi, inside)``: ``w`` the new pieces (as the rows of
-    one ``4 × n`` array), ``inside`` the traction check's verdict (:func:`_inside`); the slip
-    check's part is :func:`slip_difference`."""
+    ``memo_w``, ``memo_x``: the density the traction check last checked and its memo
+    (:func:`contactlab.numeric.inside_check.inside_memo`; empty for none).
+
+    Returns ``(status, w, c, s, gross, dpsi, inside, memo)``: ``w`` the new pieces (as the rows
+    of one ``4 × n`` array), ``inside`` the traction check's verdict, ``memo`` the check's memo
+    of ``w``; the slip check's part is :func:`slip_difference`."""
     empty = np.zeros((4, 0))
+    none = np.zeros((3, 0))
     if target != target or radius != radius:
-        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN
+        return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, none
     for a in (olo, ohi, slo, shi):
         for i in range(a.size):
             if a[i] != a[i]:
-                return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN
+                return STEP_REFERENCE, empty, 0.0, 0.0, 0.0, 0.0, INSIDE_OPEN, none
     xs = _ends_union(olo, ohi, slo, shi, np.array([0.0, radius]) if radius >= 0.0
                      else np.array([radius, 0.0]))
     xs = xs[xs <= radius]
@@ -488,9 +411,10 @@ def twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, target, xtol, rto
     dpsi = _total(lo, hi, wl, wr) - _total(olo, ohi, owl, owr)
     w = _stack(lo, hi, wl, wr)
     if r.size == 0:
-        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK
-    inside = _inside(lo, hi, wl, wr, r, bound, c, G_t, check_rtol, F0, F1, t_r, t_nodes)
-    return STEP_DONE, w, c, s, gross, dpsi, inside
+        return STEP_DONE, w, c, s, gross, dpsi, INSIDE_OK, none
+    inside, memo = _inside_memo(lo, hi, wl, wr, olo, ohi, owl, owr, r, bound, c, G_t,
+                                check_rtol, F0, F1, t_r, t_nodes, memo_w, memo_x)
+    return STEP_DONE, w, c, s, gross, dpsi, inside, memo
 
 
 def slip_difference(wlo, whi, wwl, wwr, olo, ohi, owl, owr, swl, swr, c, s, gross, check_rtol):
@@ -747,7 +671,7 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 #: helpers (compiled before the passes that call them)
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
-                   "_total", "_value", "_root_twist", "_difference", "_inside",
+                   "_total", "_value", "_root_twist", "_difference",
                    "difference_psi", "energy_nodes", "_sort4", "nonnegative")
 #: helpers small enough to inline
 _INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
@@ -784,6 +708,8 @@ def kernels(compiled: bool = True) -> dict:
                 # and cache entry of their own)
                 extra = {"inline": "always"} if name in _INLINE else {}
                 g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", **extra)
+            _ic.build(g["_left"])
+            g["_inside"], g["_inside_memo"] = _ic.inside, _ic.inside_memo
             _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}
     return _state["kernels"]

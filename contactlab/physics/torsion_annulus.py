@@ -31,6 +31,7 @@ All functions are pure: arrays in, arrays out.
 """
 from __future__ import annotations
 
+import threading
 from typing import cast
 
 import numpy as np
@@ -478,6 +479,13 @@ for _a in _NO_TABLE:
     _a.flags.writeable = False
 
 
+#: the traction check's memo, per thread: ``last`` = (points, table, density as a ``4 × n``
+#: array, its memo) of the last compiled step with a table (numeric.inside_check.inside_memo)
+_MEMO = threading.local()
+#: (writable, as the memos the pass returns: one compiled specialisation; empty, never written)
+_NO_MEMO = (np.zeros((4, 0)), np.zeros((3, 0)))
+
+
 def _annulus_kernels() -> dict | None:
     """The compiled step and energy passes (:mod:`contactlab.numeric.annulus_kernel`), or None
     for the numpy route (the switch of :func:`psi`'s passes, ``_COMPILED``)."""
@@ -505,13 +513,20 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     rr = np.zeros(0) if r is None else np.ascontiguousarray(r, float)
     bb = np.zeros(0) if bound is None else np.ascontiguousarray(bound, float)
     o, sl = _arrays(old), _arrays(slide)
-    st, w, c, s, gross, dpsi, inside = ak["twist_step"](
+    # the traction check's memo of the density it last checked at these points on this table
+    # (numeric.inside_check: used only where that density is this step's old one, bit for bit)
+    last = getattr(_MEMO, "last", None)
+    memo = (last[2:] if last is not None and last[0] is rr and last[1] is table
+            else _NO_MEMO)
+    st, ws, c, s, gross, dpsi, inside, memo_x = ak["twist_step"](
         *o, *sl, float(radius), dphi, ROOT_XTOL * radius, _RTOL, rr, bb, float(G_t), CHECK_RTOL,
-        *tab)
+        *tab, *memo)
     if st != _annulus_kernel.STEP_DONE:
         return None
+    if table is not None and memo_x.shape[1]:
+        _MEMO.last = (rr, table, ws, memo_x)
+    w = (ws[0], ws[1], ws[2], ws[3])     # (the pieces come as the rows of one array)
     c, s, gross, dpsi = float(c), float(s), float(gross), float(dpsi)
-    w = (w[0], w[1], w[2], w[3])     # (the pieces come as the rows of one array)
     if r is None:
         return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": None,
                 "ok": True, "why": ""}
