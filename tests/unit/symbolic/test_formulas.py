@@ -270,7 +270,7 @@ def test_sphere_g_closed_form():
 
 
 # ---------------------------------------------------------------------- property check
-from hypothesis import given, settings, strategies as st  # noqa: E402
+from hypothesis import example, given, settings, strategies as st  # noqa: E402
 
 
 def _in_typical(param):
@@ -278,9 +278,13 @@ def _in_typical(param):
     return st.floats(np.log10(lo), np.log10(hi)).map(lambda e: 10.0**e)
 
 
+# the typical ranges reach a 10 um depth on a 10 um paraboloid (a = R, beyond its validity
+# radius R/sqrt(3)): the formulas and the solver still agree there, the warning is tested elsewhere
+@pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 @settings(max_examples=12, deadline=None)
 @given(R=_in_typical(Paraboloid.params[0]), slope=_in_typical(Cone.params[0]),
        n=st.sampled_from([1.0, 1.5, 2.0, 3.0, 4.0, 6.0]), depth=st.floats(-9, -5))
+@example(R=1e-5, slope=1.0, n=1.0, depth=-5.0)          # a = R: the paraboloid warns there
 def test_formulas_match_solver_over_typical_parameters(R, slope, n, depth):
     """Formulas vs solver at parameters drawn from each Param.typical range."""
     d = 10.0**depth
