@@ -32,12 +32,15 @@ from typing import Any
 import numpy as np
 
 from . import jit as _jit
+from . import sorted_search as _ss
 
 __all__ = ["psi_pass", "ends_pass", "arccosh_args", "traction_fill", "arccos_args", "slip_fill",
            "traction_antiderivatives", "slip_antiderivatives", "kernels"]
 
 _state: dict = {"kernels": None}
 _lock = threading.Lock()
+#: the sorted search (rebound to its compiled build, inlined, by :func:`kernels`)
+_right = _ss.right
 
 
 def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: np.ndarray,
@@ -52,13 +55,7 @@ def psi_pass(lo: np.ndarray, hi: np.ndarray, wl: np.ndarray, wr: np.ndarray, x: 
         if xi != xi:                      # nan propagates as in numpy's maximum/minimum
             out[i] = xi
             continue
-        a, b = 0, n                       # searchsorted(hi, xi, "right")
-        while a < b:
-            m = (a + b) >> 1
-            if hi[m] <= xi:
-                a = m + 1
-            else:
-                b = m
+        a = _right(hi, xi)                # searchsorted(hi, xi, "right")
         k = a if a < n - 1 else n - 1
         out[i] = psi_at(lo, hi, al, be, tail, k, xi)
 
@@ -281,7 +278,7 @@ def kernels(compiled: bool = True) -> dict:
             # the helpers inlined into their callers at numba's IR level (here and in
             # contactlab.numeric.annulus_kernel), compiled before them
             g = globals()
-            for name in ("lines", "psi_at", "piece_ends"):
+            for name in ("lines", "psi_at", "piece_ends", "_right"):
                 g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", inline="always")
             _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}

@@ -1,7 +1,7 @@
 """``numpy.searchsorted`` on a sorted array as plain loops (helpers of the compiled passes of
-:mod:`contactlab.numeric.annulus_kernel`, :mod:`contactlab.numeric.inside_check` and
-:mod:`contactlab.numeric.slip_check`, compiled and inlined with them: the same index as numpy's
-for any ``x`` not nan)."""
+:mod:`contactlab.numeric.annulus_kernel`, :mod:`contactlab.numeric.inside_check`,
+:mod:`contactlab.numeric.slip_check` and :mod:`contactlab.numeric.ring_kernels`, compiled and
+inlined with them: the same index as numpy's for any ``x`` not nan)."""
 from __future__ import annotations
 
 import numpy as np
