@@ -605,6 +605,7 @@ def fused_pass(u, phi, d, a, F, flag, ref, mu, E, G, Gt, n: float, master, chan:
             None if master.power == 1 else int(master.power), chan["x"], chan["y"], chan["w"],
             chan["last"], chan["depth"], chan["X_levels"], chan["Y_levels"], chan["overflow"],
             *out)
-    kernels[7 if float(n) == 2.0 else 1](*args)        # tangential (and flagged contacts)
-    nf, n_over = kernels[8 if float(n) == 2.0 else 5](*args)                      # torsion, dW, exact, counts
+    hertz = float(n) == 2.0             # (the n = 2 builds: indices 7, 8)
+    kernels[7 if hertz else 1](*args)                   # tangential (and flagged contacts)
+    nf, n_over = kernels[8 if hertz else 5](*args)      # torsion, dW, exact, counts
     return (*out, nf, n_over)
