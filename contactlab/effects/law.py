@@ -32,7 +32,7 @@ from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
-from .law_checks import _per_contact, _per_step, _short, checked_state_entry, warn_model_error
+from .law_checks import FixedParameter, _per_contact, _per_step, _short, checked_state_entry, warn_model_error
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import (SPRING_FIELDS, SpringPool, law_memory, law_spring_memory,
@@ -151,6 +151,9 @@ class ContactLaw:
     (2,)
     """
 
+    #: per-contact parameters, fixed when the law is built: read-only views (held as ``_<name>``)
+    kc, E_star, G_star, G_torsion, friction, spring_cover = (FixedParameter() for _ in range(6))
+
     def __init__(self, profile: Any, *, R: Any = None, slope: Any = None, c: Any = None,
                  radius: Any = None, n: float | None = None, E_star: Any = None, G_star: Any = None,
                  G_torsion: Any = None, friction: Any = None, materials: Any = None,
@@ -250,12 +253,13 @@ class ContactLaw:
         g = arrs[gname]
         # g(x) = kc x^n (flat punch: g = 0 inside the punch radius, kept in _flat)
         if expo == np.inf:
-            self.kc = np.zeros(self.size)
+            self._kc = np.zeros(self.size)
         else:
-            self.kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
-        self.geometry = {gname: g}
-        self.E_star, self.G_star = arrs["E_star"], arrs["G_star"]
-        self.G_torsion, self.friction = arrs["G_torsion"], arrs["friction"]
+            self._kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
+        self.geometry = {gname: g.view()}          # read-only below, as the parameters
+        self.geometry[gname].flags.writeable = False
+        self._E_star, self._G_star = arrs["E_star"], arrs["G_star"]
+        self._G_torsion, self._friction = arrs["G_torsion"], arrs["friction"]
         self.memory = int(memory)
         self.load_rtol = float(load_rtol)
         self.springs = int(springs)
@@ -265,7 +269,7 @@ class ContactLaw:
             raise ParameterError(f"spring_cover[{i}]={float(np.broadcast_to(cover, (self.size,))[i])!r} "
                                  "is invalid: the springs must cover at least the contact radius "
                                  "(>= 1).")
-        self.spring_cover = np.broadcast_to(cover, (self.size,)).copy()
+        self._spring_cover = np.broadcast_to(cover, (self.size,)).copy()
         self._beta = _springs.unit_boundaries(max(self.springs, 2))
         self.torsion = torsion
         fast, self._xp = _device.resolve(backend, fast, self.size,
@@ -282,8 +286,8 @@ class ContactLaw:
         self._master = _master.torsion_master(expo)
         self._flat = g if expo == np.inf else _NO_FLAT
         # (n + 1)/(2 n E* kc) per contact, once (n = 2: its cube root): the compiled radius
-        self._factor = _kernel.force_factor(self.E_star, self.kc, expo)
-        self._muE = self.friction * self.E_star         # the compiled passes' mu E* d: one product
+        self._factor = _kernel.force_factor(self._E_star, self._kc, expo)
+        self._muE = self._friction * self._E_star         # the compiled passes' mu E* d: one product
         self._flag: np.ndarray | None = None
         self._warned = False
         #: emit the model-error ValidityWarning (once per law and quantity); settable
@@ -438,19 +442,19 @@ class ContactLaw:
             if key == "depth":
                 d = _per_step("depth", val, self.size, "m")
                 dp = np.maximum(d, 0.0)
-                return d.copy(), np.where(dp > 0, b, 0.0), 2.0 * self.E_star * dp * b
+                return d.copy(), np.where(dp > 0, b, 0.0), 2.0 * self._E_star * dp * b
             F = _per_step("force", val, self.size, "N", nonneg=True)
-            return F / (2.0 * self.E_star * b), np.where(F > 0, b, 0.0), F.copy()
+            return F / (2.0 * self._E_star * b), np.where(F > 0, b, 0.0), F.copy()
         if key == "depth":
             d = _per_step("depth", val, self.size, "m")
             dp = np.maximum(d, 0.0)
-            a = (dp / self.kc) ** (1.0 / n) if n != 2.0 else np.sqrt(dp / self.kc)
-            F = 2.0 * n / (n + 1.0) * self.E_star * dp * a
+            a = (dp / self._kc) ** (1.0 / n) if n != 2.0 else np.sqrt(dp / self._kc)
+            F = 2.0 * n / (n + 1.0) * self._E_star * dp * a
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
-        c = (n + 1.0) / (2.0 * n * self.E_star * self.kc)   # n = 2: cbrt(c) once, compiled
+        c = (n + 1.0) / (2.0 * n * self._E_star * self._kc)   # n = 2: cbrt(c) once, compiled
         a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
-        d = self.kc * a**n if n != 2.0 else self.kc * a * a
+        d = self._kc * a**n if n != 2.0 else self._kc * a * a
         return d, a, F.copy()
 
     # ------------------------------------------------------------------ the step
@@ -665,7 +669,7 @@ class ContactLaw:
         if self._flag is None:
             self._flag = np.empty(size, np.int8)        # scratch: reused every step
         d, a, F, flag, (bad, dead, off, both, nonfinite) = _kernel.normal_pass(
-            key == "force", v, u, phi, self.kc, self.E_star, self.n, self._flat, st["depth_ref"],
+            key == "force", v, u, phi, self._kc, self._E_star, self.n, self._flat, st["depth_ref"],
             self.load_rtol, self.parallel,
             None if out is None else (out.depth, out.radius, out.force, self._flag), self._factor)
         if bad:                                         # the numpy checks name the entry
@@ -712,8 +716,8 @@ class ContactLaw:
             Ft, ct, M, cm, dW, exact, nf, n_over = springs_only_outputs(size, out)
         else:
             Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(
-                u, phi, d, a, F, flag, st["depth_ref"], self.friction, self.E_star, self.G_star,
-                self.G_torsion, self.n, self._master, self._chan, self.parallel,
+                u, phi, d, a, F, flag, st["depth_ref"], self._friction, self._E_star, self._G_star,
+                self._G_torsion, self.n, self._master, self._chan, self.parallel,
                 None if out is None else (out.tangential_force, out.stick_radius, out.torque,
                                           out.torsion_stick_radius, out.dissipated_energy,
                                           out.exact), self._muE)
@@ -721,10 +725,10 @@ class ContactLaw:
         # in registers between the two (one loop, on the threads), then those already on
         # springs (covers outgrown: regridded)
         regrid = lambda g: _np_springs.regrid(self, g, a[g])    # noqa: E731
-        args = (self.kc, self.n, self._beta, self.friction, self.E_star, self.G_star,
-                self.G_torsion)
+        args = (self._kc, self.n, self._beta, self._friction, self._E_star, self._G_star,
+                self._G_torsion)
         if new.size:
-            nf += _kernel.switch_step_pass(new, d, a, u, phi, self._flat, self.spring_cover,
+            nf += _kernel.switch_step_pass(new, d, a, u, phi, self._flat, self._spring_cover,
                                            *args, self._chan, st, self._pool,
                                            (Ft, ct, M, cm, dW), self.parallel, flag, regrid)
         if spr is not None and spr.size:
@@ -739,25 +743,25 @@ class ContactLaw:
     # ------------------------------------------------------------------ changing load: springs
     def _geometry(self, idx: np.ndarray) -> dict:
         # flat punch: kc = 0 (g = 0 inside the punch radius) with any finite exponent
-        return _springs.cells(self._spr("spr_cover", idx), self.kc[idx],
+        return _springs.cells(self._spr("spr_cover", idx), self._kc[idx],
                               self.n if self.n != np.inf else 1.0, self._beta)
 
     def _limits(self, idx, S, T):
-        mu, E = self.friction[idx, None], self.E_star[idx, None]
+        mu, E = self._friction[idx, None], self._E_star[idx, None]
         return 2.0 * mu * E * S, 4.0 * mu * E * T
 
     def _radius(self, d: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Contact radius (m) of contacts ``idx`` at depths ``d >= 0``."""
         if self.n == np.inf:
             return np.where(d > 0, self._flat[idx], 0.0)
-        return (d / self.kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self.kc[idx])
+        return (d / self._kc[idx]) ** (1.0 / self.n) if self.n != 2.0 else np.sqrt(d / self._kc[idx])
 
     def _channel(self, prefix: str) -> dict[str, np.ndarray]:
         return {k: self._st[f"{prefix}_{k}"] for k in STACK_FIELDS}
 
     def _tangential(self, u, a, d, FN):
         n = self.n
-        mu, E, G = self.friction, self.E_star, self.G_star
+        mu, E, G = self._friction, self._E_star, self._G_star
         inv = G / (mu * E * d)          # 1/u*: the curve's argument by a multiply
         muF = mu * FN
         Dscale = 2.0 * a * (mu * E * d) ** 2 / G
@@ -773,9 +777,9 @@ class ContactLaw:
 
     def _torsion(self, phi, a, d):
         mc = self._master
-        _, M_full = _master.torsion_scales(self.n, self.E_star, self.G_torsion, self.friction,
+        _, M_full = _master.torsion_scales(self.n, self._E_star, self._G_torsion, self._friction,
                                            a, d)
-        inv = _master.inverse_twist_scale(self.E_star, self.G_torsion, self.friction, a, d)
+        inv = _master.inverse_twist_scale(self._E_star, self._G_torsion, self._friction, a, d)
 
         def load(arg, idx):
             if idx is None:

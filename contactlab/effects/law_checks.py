@@ -10,13 +10,40 @@ import numpy as np
 from ..errors import ParameterError, ValidityWarning
 from ..params import as_checked_array
 
-__all__ = ["checked_state_entry", "warn_model_error"]
+__all__ = ["FixedParameter", "checked_state_entry", "warn_model_error"]
 
 if TYPE_CHECKING:
     from .law_step import LawStep
 
 _UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
           "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
+
+
+class FixedParameter:
+    """A law's per-contact parameter, fixed when the law is built: read as a read-only view.
+
+    The law derives products from its parameters once (``mu E*``, the force factor), and a
+    device law copies them once, so a parameter written in place would leave those behind and
+    the compiled and numpy paths would disagree without a word. Reading gives a view that
+    refuses writes; assigning raises :class:`~contactlab.errors.ParameterError`. The law itself
+    keeps the array under ``_<name>``.
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+        self.slot = "_" + name
+
+    def __get__(self, obj: Any, owner: type | None = None) -> Any:
+        if obj is None:
+            return self
+        view = obj.__dict__[self.slot].view()
+        view.flags.writeable = False
+        return view
+
+    def __set__(self, obj: Any, value: Any) -> None:
+        raise ParameterError(f"ContactLaw.{self.name} is fixed when the law is built (it was "
+                             f"given {_short(value)}): build a new ContactLaw for other "
+                             "parameters, or one law per parameter set.")
 
 
 def _short(value: Any) -> str:

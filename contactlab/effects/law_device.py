@@ -191,8 +191,8 @@ def params(law: Any) -> dict[str, Any]:
     got = law.__dict__.get("_xp_params")
     if got is None:
         xp = law._xp
-        got = {"kc": law.kc, "E": law.E_star, "G": law.G_star, "Gt": law.G_torsion,
-               "mu": law.friction, "flat": law._flat, "coef": law._master.coef}
+        got = {"kc": law._kc, "E": law._E_star, "G": law._G_star, "Gt": law._G_torsion,
+               "mu": law._friction, "flat": law._flat, "coef": law._master.coef}
         if xp is not np:
             got = {k: xp.asarray(v) for k, v in got.items()}
         law.__dict__["_xp_params"] = got

@@ -13,13 +13,17 @@ threadpoolctl comes with the extra ``fast``; without it the block runs with the 
 setting (correct, but the last bits then follow the thread count and a threaded BLAS is slower
 on these small systems).
 
-Limitation: OpenBLAS (0.3.30) ignores a thread count set from a Python thread other than the main
-one once the main thread has set one; a block entered first in such a worker thread then runs
-with the process's setting (still correct, but its last bits follow that setting).
+A block works the same in any Python thread. threadpoolctl (3.8 and later) lets only one thread,
+the first that set an OpenBLAS limit, set another, and silently ignores the others, since
+OpenBLAS's pthreads pool is process-wide; its ``limit()`` without a ``with`` never hands that
+role back. The blocks here hold the process-wide limit under a lock of their own, so the thread
+that takes or gives back the limit first releases that role (:func:`_release_control`): a block
+first entered in a worker thread runs on one BLAS thread too, with the main thread's bits.
 """
 from __future__ import annotations
 
 import contextlib
+import sys
 import threading
 from collections.abc import Iterator
 from typing import Any
@@ -46,6 +50,15 @@ def _controller() -> Any:
     return _CONTROLLER[0]
 
 
+def _release_control() -> None:
+    """Let any thread set the OpenBLAS limit next (threadpoolctl >= 3.8 keeps the first thread
+    that set one as the only one whose settings take effect; older versions have no such role)."""
+    owner = getattr(sys.modules.get("threadpoolctl"), "OpenBLASController", None)
+    clear = getattr(owner, "clear_controlling_thread", None)
+    if clear is not None:
+        clear(force=True)
+
+
 @contextlib.contextmanager
 def serial_blas() -> Iterator[None]:
     """Run the block with one BLAS thread (every BLAS library loaded in the process).
@@ -61,7 +74,10 @@ def serial_blas() -> Iterator[None]:
     with _LOCK:
         if _HELD["count"] == 0:
             ctl = _controller()
-            _HELD["limiter"] = None if ctl is None else ctl.limit(limits=1, user_api="blas")
+            if ctl is not None:
+                _release_control()
+                _HELD["limiter"] = ctl.limit(limits=1, user_api="blas")
+                _release_control()
         _HELD["count"] += 1
     try:
         yield
@@ -69,5 +85,7 @@ def serial_blas() -> Iterator[None]:
         with _LOCK:
             _HELD["count"] -= 1
             if _HELD["count"] == 0 and _HELD["limiter"] is not None:
+                _release_control()
                 _HELD["limiter"].restore_original_limits()
+                _release_control()
                 _HELD["limiter"] = None

@@ -185,3 +185,32 @@ def test_overflow_warns_once_per_step_for_many_contacts(fast):
     assert [len(c) for c in counts] == [0, 0, 0, 1, 0]
     assert "of 30 contact(s)" in counts[3][0]
     np.testing.assert_array_equal(out.exact, np.arange(n) >= 30)
+
+
+# ---------------------------------------------------------------- fixed parameters
+@pytest.mark.parametrize("name", ["friction", "E_star", "G_star", "G_torsion", "kc",
+                                  "spring_cover"])
+def test_parameters_are_fixed_when_the_law_is_built(name):
+    """The law holds products of its parameters (mu E*, the force factor) for the compiled
+    passes: a parameter written in place would leave them behind, and the compiled and numpy
+    paths would then disagree silently. Writing in place and assigning are both refused."""
+    law = _law(size=3)
+    value = getattr(law, name)
+    assert value.shape == (3,)
+    with pytest.raises(ValueError, match="read-only"):
+        value[0] = 0.5
+    with pytest.raises(ParameterError, match=rf"ContactLaw\.{name} is fixed.*0\.5"):
+        setattr(law, name, 0.5)
+    assert law.geometry["R"].flags.writeable is False
+
+
+@pytest.mark.parametrize("fast", FAST)
+def test_fixed_parameters_leave_the_results_unchanged(fast):
+    """Reading the parameters (views) does not change a step: the same bits as a law never read,
+    and the compiled path equals the numpy path."""
+    ref = _law(size=3, fast=False).step(force=[50.0, 100.0, 150.0], twist=1e-4)
+    law = _law(size=3, fast=fast)
+    _ = (law.friction, law.E_star, law.kc, law.geometry)
+    out = law.step(force=[50.0, 100.0, 150.0], twist=1e-4)
+    assert out.torque.tobytes() == ref.torque.tobytes()
+    assert out.radius.tobytes() == ref.radius.tobytes()
