@@ -17,11 +17,21 @@ Each run records, per key ``case|backend|method|output``: the hash of each serie
 entry and each array or number in ``meta`` (a failed run: its error type and the hashes of its
 partial result), and the ValidityWarning categories it emitted.
 
+The last bits of some outputs depend on the machine: numpy picks its vectorised cube roots,
+powers and exponentials by the CPU's instruction set (AVX-512 or AVX2 builds round differently
+in the last place), and OpenBLAS its kernels. ``path_hashes.json`` holds the hashes of one kind
+of machine (its ``machine`` entry, :func:`machine`); ``path_hashes_<kind>.json`` holds, for each
+other kind measured, the keys whose hash differs there. The test compares against the store of
+the machine it runs on and is skipped, saying so, on a kind that has none (the command below run
+there writes one).
+
 Regenerate (after a change that is meant to alter results; review the diff of the JSON)::
 
     python tests/integration/path_hashes.py --overwrite              # every case
     python tests/integration/path_hashes.py --overwrite --match 'exact\\|.*dissipated_energy'
 
+On a machine of the reference kind this rewrites ``path_hashes.json``; on another kind it
+writes that kind's ``path_hashes_<kind>.json`` (the keys that differ from the reference).
 ``--match REGEX`` recomputes every case but rewrites only the stored keys the regular expression
 finds (``re.search``) and adds none; the other stored hashes are kept. ``--paths N`` limits the
 generated set to its first ``N`` paths (the default test run uses :data:`DEFAULT_PATHS`).
@@ -48,6 +58,39 @@ N_PATHS = 200
 #: generated paths checked by the default test run (the first ones of the set)
 DEFAULT_PATHS = 40
 SEED = 20261128
+
+
+# ---------------------------------------------------------------------------------- machines
+def machine() -> str:
+    """The kind of machine whose last bits the hashes are: ``"avx512"``, ``"avx2"`` or
+    ``"baseline"``, from the instruction sets numpy dispatches its vectorised loops on."""
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__ as feats
+    except ImportError:             # numpy's private table moved: one kind for every machine
+        return "baseline"
+    if feats.get("AVX512F") and feats.get("AVX512_SKX"):
+        return "avx512"
+    return "avx2" if feats.get("AVX2") and feats.get("FMA3") else "baseline"
+
+
+def machine_store(kind: str) -> Path:
+    """The file of the keys whose hash differs on machines of ``kind`` from the reference."""
+    return HERE / f"path_hashes_{kind}.json"
+
+
+def stored_hashes(kind: str | None = None) -> dict[str, str] | None:
+    """The stored hashes for machines of ``kind`` (default: this machine), or None where that
+    kind has no store."""
+    kind = machine() if kind is None else kind
+    doc = json.loads(STORE.read_text())
+    hashes = dict(doc["hashes"])
+    if kind == doc.get("machine", kind):
+        return hashes
+    other = machine_store(kind)
+    if not other.exists():
+        return None
+    hashes.update(json.loads(other.read_text())["hashes"])
+    return hashes
 
 
 # ---------------------------------------------------------------------------------- hashing
@@ -320,6 +363,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{STORE} exists: pass --overwrite to rewrite it", file=sys.stderr)
         return 2
     new = compute(args.paths)
+    kind = machine()
+    if STORE.exists() and json.loads(STORE.read_text()).get("machine", kind) != kind:
+        return _write_machine_store(kind, new, args.match)
     n_paths = args.paths
     if args.match is not None and STORE.exists():
         pat = re.compile(args.match)
@@ -334,9 +380,35 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{changed} stored hashes rewritten")
     doc = {"about": "sha256 (first 32 hex) of every output of the load-path routes; "
                     "regenerate with: python tests/integration/path_hashes.py --overwrite",
-           "n_paths": n_paths, "seed": SEED, "hashes": dict(sorted(new.items()))}
+           "machine": kind, "n_paths": n_paths, "seed": SEED,
+           "hashes": dict(sorted(new.items()))}
     STORE.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
-    print(f"{len(new)} hashes written to {STORE}")
+    print(f"{len(new)} hashes written to {STORE} (machine kind {kind!r}; the stores of other "
+          "kinds are not rewritten: regenerate them on such a machine)")
+    return 0
+
+
+def _write_machine_store(kind: str, new: dict[str, str], match: str | None) -> int:
+    """Write ``path_hashes_<kind>.json``: the keys whose hash on this machine differs from the
+    reference store's (with ``match``, only the keys it finds are rewritten)."""
+    ref = json.loads(STORE.read_text())["hashes"]
+    path = machine_store(kind)
+    old = json.loads(path.read_text())["hashes"] if path.exists() else {}
+    pat = None if match is None else re.compile(match)
+    diff = dict(old)
+    for k, v in new.items():
+        if k in ref and (pat is None or pat.search(k)):
+            if v != ref[k]:
+                diff[k] = v
+            else:
+                diff.pop(k, None)
+    doc = {"about": f"the hashes that differ on machines of kind {kind!r} from path_hashes.json "
+                    "(numpy's vectorised loops and OpenBLAS's kernels by instruction set); "
+                    "regenerate on such a machine with: python tests/integration/path_hashes.py "
+                    "--overwrite",
+           "machine": kind, "hashes": dict(sorted(diff.items()))}
+    path.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
+    print(f"{len(diff)} of {len(ref)} hashes differ on this {kind!r} machine: written to {path}")
     return 0
 
 
