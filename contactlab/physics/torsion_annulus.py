@@ -595,19 +595,26 @@ def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float
         and bool(np.all(r[inside][bad] >= c - allow[2])))
 
 
+#: right-hand sides of one :func:`coefficients` solve come in multiples of this (a multiple of the
+#: widths of OpenBLAS's triangular-solve kernels measured: 2 on AVX-512, 4 on AVX2 hosts)
+RHS_GROUP = 4
+
+
 def coefficients(lu, values: np.ndarray) -> np.ndarray:
     """The ring solver's basis coefficients (hats then jumps) whose traction at its collocation
     points is each row of ``values`` (steps × points; ``lu``: the LU factors of the
     traction-per-basis matrix), one row per row of ``values``.
 
-    One LAPACK ``getrs`` for all rows, always with at least two right-hand sides (a single row is
-    solved beside a zero row): a triangular solve of several right-hand sides runs another
-    kernel than one of a single vector (last bits differ), but solves each column alike wherever
-    it stands and however many there are (tested), so a row's coefficients do not depend on the
-    other rows of the call; about half the time per row of one solve per row."""
+    One LAPACK ``getrs`` for all rows, the right-hand sides padded with zero rows to a multiple
+    of :data:`RHS_GROUP`: OpenBLAS's triangular solves take the right-hand sides in groups of
+    its kernel's width (2 with AVX-512, 4 with AVX2) and the columns left over by another kernel
+    (a single vector by yet another), whose last bits differ; in whole groups every column is
+    solved alike wherever it stands and however many there are (tested), so a row's coefficients
+    do not depend on the other rows of the call; about half the time per row of one solve per
+    row."""
     values = np.asarray(values, float)
     k = values.shape[0]
-    rhs = np.zeros((values.shape[1], max(k, 2)), order="F")
+    rhs = np.zeros((values.shape[1], -(-k // RHS_GROUP) * RHS_GROUP), order="F")
     rhs[:, :k] = values.T
     # scipy's getrs wrapper turns the pivots 1-based in place for the call and back after it,
     # outside the GIL: on an array shared by threads (a ring set's cached factors) concurrent
