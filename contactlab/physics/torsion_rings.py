@@ -92,7 +92,7 @@ ALIGN_MAX_FACTOR_RTOL = 3.0
 #: radius within ``cover`` ring widths of one. The covering's size follows the span of the
 #: contact radii, not how many distinct radii the path meets: on the benchmark's varying-load
 #: Hertz path at ``torque_rtol=1e-3`` (142 rings) the 10^3- and 10^4-step paths took 399 and
-#: 262 rings under the doubled gap, ~177 covered (the 10^2-step path: 167, every radius a node)
+#: 262 rings before, 176 and 180 covered (the 10^2-step path: 167, every radius a node)
 ALIGN_EXACT_FACTOR = ALIGN_MAX_FACTOR
 
 
