@@ -1,6 +1,8 @@
 """Speed of the exact torsion routes against their floors or the other route (issue 28).
 
-Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N] [--long]``.
+Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N] [--long]
+[--scaling-only {all,default,rtol}]`` (the last: row 2 alone, at both ring choices or one, best
+of ``--rounds`` with ``--long``).
 
 Every row is measured interleaved in this one run (round-robin, the order rotated each round,
 best of ``--rounds``) and reported as a ratio to its floor (a route of the same work), with a
@@ -23,11 +25,12 @@ average are printed. Rows and goals:
    ring-solver steps and steps whose contact radius lies off a ring node; first each path on the
    rings it chooses (a longer path meets more distinct contact radii than the capped nodes can
    take, so more of its steps have their edge off a node, which cost more; at ``torque_rtol``
-   the cap is 3x the rings, so the longer path also runs on more rings, by design of its
-   accuracy), then all paths on the longest path's ring set (the cost per step at equal rings:
-   whether anything grows with the history), then the shortest path on each path's ring set with
-   and without its jump points (the cost per step against the collocation points and the nodes:
-   the ring set's size alone);
+   a path whose contact radii would take more than 1.5x the rings as nodes is covered by the
+   fewest nodes that keep each radius within 0.24 ring widths of one, a count set by the span
+   of its radii, not by how many it meets), then all paths on the longest path's ring set (the
+   cost per step at equal rings: whether anything grows with the history), then the shortest
+   path on each path's ring set with and without its jump points (the cost per step against the
+   collocation points and the nodes: the ring set's size alone);
 3. ``Contact.torsion(method="mdr")`` on 10^5 forces, against ``method="no-slip"`` on the same
    forces; goal <= 0.1 s;
 4. the exact torque-twist curve (200 twists, Hertz) against its floor, the closed form of the same
@@ -283,7 +286,8 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
     """Ring-solver time per step against the path length (same path shape, CPU time, best of
     ``rounds``, a path of ``n`` steps run ``steps[-1] // (5 n)`` times a round), the fitted
     exponent of time against steps (goal <= 1.05), and what grows with the length: rings (nodes
-    added at the contact radii met, at most 1.5x the rings by default, 3x at ``torque_rtol``),
+    added at the contact radii met, at most 1.5x the rings by default; at ``torque_rtol`` beyond
+    1.5x the fewest that keep every contact radius within 0.24 ring widths of one, up to 3x),
     jump nodes, ring-solver steps and the steps whose contact radius is off a node (more
     distinct contact radii than the cap allows nodes for). Then the same paths on one fixed
     ring set (the longest path's): the per-step cost at equal rings."""
@@ -339,7 +343,9 @@ def scaling(steps: list[int], rounds: int, **kw) -> None:
         cap = _tr.ALIGN_MAX_FACTOR_RTOL if "torque_rtol" in kw else _tr.ALIGN_MAX_FACTOR
         more = (f" and it runs on {info[n0][0]} rings, not {own_info[n0][0]} (nodes at the "
                 f"contact radii met, up to {cap:g}x the rings"
-                + (", the cap at torque_rtol: its accuracy)" if "torque_rtol" in kw else ")")
+                + (f"; beyond {_tr.ALIGN_EXACT_FACTOR:g}x the fewest that keep every contact "
+                   f"radius within {_rings.COVER_OFF_NODE:g} ring widths of one)"
+                   if "torque_rtol" in kw else ")")
                 if info[n0][0] != own_info[n0][0] else "")
         print(f"the {n0}-step path on its own rings vs the {steps[-1]}-step path's: "
               f"{own[n0] / n0 * 1e3:.3f} vs {best[n0] / n0 * 1e3:.3f} ms/step: on the longer "
@@ -363,12 +369,13 @@ def ring_set_sweep(c: cl.Contact, paths: dict, own_sets: dict, sets: "_RingSets"
     n0 = min(paths)
     n_rings = _rings.rings_for_rtol(kw["torque_rtol"]) if "torque_rtol" in kw else None
     factor = _tr.ALIGN_MAX_FACTOR_RTOL if "torque_rtol" in kw else _tr.ALIGN_MAX_FACTOR
+    cover = _rings.COVER_OFF_NODE if "torque_rtol" in kw else None
     cases = {}
     for n, fnd in own_sets.items():
         cases[n, True] = fnd
         bare = _rings.Rings(c.profile, c.moduli, MU, fnd.radius, n_springs=fnd.n_uniform,
                             contact_radii=c.normal(force=path_force(n))._radius, jumps=False,
-                            align_factor=factor)
+                            align_factor=factor, align_cover=cover)
         bare.switches = dict(getattr(fnd, "switches", {}), jumps=False)
         cases[n, False] = bare
     best = dict.fromkeys(cases, np.inf)
@@ -407,11 +414,19 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--long", action="store_true", help="scaling up to 10^4 steps (~2 min)")
+    ap.add_argument("--scaling-only", choices=("all", "default", "rtol"),
+                    help="only row 2 (the cost per step against the path length): at both ring "
+                    "choices, the default rings or torque_rtol's")
     ap.add_argument("--curves-only", action="store_true",
                     help="only the torque-twist curve rows (4-6), no path rows or scaling")
     args = ap.parse_args()
     print("Machine:", machine())
     print("load average (1, 5, 15 min):", os.getloadavg())
+    if args.scaling_only:
+        _scaling_rows(args, {"all": ({}, {"torque_rtol": RTOL}), "default": ({},),
+                             "rtol": ({"torque_rtol": RTOL},)}[args.scaling_only])
+        print("load average after:", os.getloadavg())
+        return 0
     fns = cases()
     if args.curves_only:
         fns = {k: v for k, v in fns.items() if k.startswith("curve")}
@@ -457,10 +472,16 @@ def main() -> int:
     ratio = best["path exact rtol 1e-3, numpy route"] / best["path exact rtol 1e-3, compiled route"]
     print(f"compiled passes (numba available: {_ta._ring_kernels._jit.available()}): "
           f"{ratio:.2f}x faster than the numpy route, bit-identical: {same}")
-    for kw in ({}, {"torque_rtol": RTOL}):
-        scaling([100, 1000, 10000] if args.long else [100, 1000], 1 if args.long else 2, **kw)
+    _scaling_rows(args, ({}, {"torque_rtol": RTOL}))
     print("load average after:", os.getloadavg())
     return 0
+
+
+def _scaling_rows(args, choices) -> None:
+    """Row 2 at each ring choice of ``choices`` (keywords of ``simulate``)."""
+    for kw in choices:
+        scaling([100, 1000, 10000] if args.long else [100, 1000], args.rounds if args.long
+                and args.scaling_only else (1 if args.long else 2), **kw)
 
 
 if __name__ == "__main__":

@@ -43,7 +43,7 @@ from .base import SERIES, Foundation, PathArrays, PathNormal
 
 __all__ = ["Rings", "RingState", "DEFAULT_N_RINGS", "memory", "step_seconds", "rings_for_rtol",
            "RTOL_LAW", "RTOL_RANGE", "INSIDE_ALLOWANCE", "NEAR_RINGS", "inside_allowance",
-           "EDGE_OFF_NODE", "edge_off_node"]
+           "EDGE_OFF_NODE", "COVER_OFF_NODE", "edge_off_node"]
 
 #: default number of rings over the path's largest contact radius (before the nodes added at the
 #: path's contact radii). Measured by benchmarks/torsion_rings.py (2-core shared VM): at constant
@@ -187,6 +187,10 @@ NEAR_RINGS = 1.0
 #: beyond this distance from its node (:func:`edge_off_node`); a conservative line: at 3x10^3
 #: steps (edges up to 0.38 widths off) the error was 1.6e-4 of the sliding torque
 EDGE_OFF_NODE = 0.25
+#: a run whose rings ``torque_rtol`` chose keeps every contact radius within this many ring widths
+#: of a node (``cover`` of :func:`~contactlab.physics.torsion_rings.aligned_grid`), below
+#: :data:`EDGE_OFF_NODE`: never a warning (docs/torsion_varying_load.md, issue 28 row 2)
+COVER_OFF_NODE = 0.24
 
 
 def edge_off_node(nodes: np.ndarray, radii: np.ndarray, n_uniform: int) -> tuple[float, int]:
@@ -247,8 +251,9 @@ class Rings(Foundation):
 
     def __init__(self, profile, moduli, friction, radius, *, n_springs=None, spacing="uniform",
                  needs=("torsion",), rtol=1e-10, contact_radii=None, edge_punch=False,
-                 jumps=True, align_factor=_tr.ALIGN_MAX_FACTOR) -> None:
+                 jumps=True, align_factor=_tr.ALIGN_MAX_FACTOR, align_cover=None) -> None:
         self.align_factor = float(align_factor)
+        self.align_cover = None if align_cover is None else float(align_cover)
         self._contact_radii = None if contact_radii is None else np.asarray(contact_radii, float)
         self.edge_punch = bool(edge_punch)
         self._with_jumps = bool(jumps)
@@ -260,7 +265,7 @@ class Rings(Foundation):
         self.n_uniform = self.n_springs
         if self._contact_radii is not None:
             self.boundaries = _tr.aligned_grid(self.boundaries, self._contact_radii,
-                                               self.align_factor)
+                                               self.align_factor, self.align_cover)
             self.n_springs = self.boundaries.size - 1
         b = self.boundaries
         self.jumps = (_tr.radius_nodes(b, self._contact_radii)
@@ -358,8 +363,10 @@ class Rings(Foundation):
         """The rings of a twist/torque path: over its largest contact radius, with nodes at its
         contact radii (``align``) and the edge punch where the contact reaches a wall
         (``edge``); ``n_rings`` (or ``n_springs``) rings before those nodes. ``torque_rtol``
-        (set where the requested accuracy chose ``n_rings``, :meth:`check_path`): those nodes up
-        to :data:`~contactlab.physics.torsion_rings.ALIGN_MAX_FACTOR_RTOL` times the rings, and a
+        (set where the requested accuracy chose ``n_rings``, :meth:`check_path`): beyond
+        :data:`~contactlab.physics.torsion_rings.ALIGN_EXACT_FACTOR` times the rings the fewest
+        nodes within :data:`COVER_OFF_NODE` widths of every contact radius, up to
+        :data:`~contactlab.physics.torsion_rings.ALIGN_MAX_FACTOR_RTOL` times the rings, and a
         :class:`~contactlab.errors.ValidityWarning` where a contact radius still lies more than
         :data:`EDGE_OFF_NODE` ring widths from its node (:func:`edge_off_node`).
 
@@ -392,7 +399,8 @@ class Rings(Foundation):
                   n_springs=n_rings if n_rings is not None else n_springs, spacing=spacing,
                   rtol=rtol, contact_radii=radii, edge_punch=edge_punch, jumps=sw["jumps"],
                   align_factor=(_tr.ALIGN_MAX_FACTOR if torque_rtol is None
-                                else _tr.ALIGN_MAX_FACTOR_RTOL))
+                                else _tr.ALIGN_MAX_FACTOR_RTOL),
+                  align_cover=None if torque_rtol is None else COVER_OFF_NODE)
         fnd.switches = sw
         rtol_asked = torque_rtol
         if rtol_asked is not None and radii is not None:

@@ -87,6 +87,48 @@ def test_aligned_grid_puts_every_contact_radius_on_a_node():
     assert many.size - 1 <= tr.ALIGN_MAX_FACTOR * 100 and np.all(np.diff(many) > 0)
 
 
+def _greedy_cover(ra, delta):
+    """The covering of ``torsion_rings._cover_nodes`` written out as a loop: the largest radius
+    a node, then from the smallest radius the largest within ``delta`` above the first one left
+    uncovered."""
+    rest, out, i = ra[ra < ra[-1] - delta], [], 0
+    while i < rest.size:
+        j = np.searchsorted(rest, rest[i] + delta, side="right") - 1
+        out.append(rest[j])
+        i = np.searchsorted(rest, rest[j] + delta, side="right")
+    return np.array([*out, ra[-1]])
+
+
+@pytest.mark.parametrize("n", [1, 2, 7, 1000, 4097])
+def test_cover_nodes_are_the_greedy_covering(n):
+    ra = np.unique(np.random.default_rng(n).uniform(0.3, 1.0, n))
+    nodes = tr._cover_nodes(ra, 0.01)
+    assert np.array_equal(nodes, _greedy_cover(ra, 0.01))
+    assert nodes[-1] == ra[-1] and np.all(np.isin(nodes, ra))
+    assert np.max(np.min(np.abs(ra[:, None] - nodes[None, :]), axis=1)) <= 0.01
+    assert np.all(np.diff(nodes) > 0.01)
+
+
+def test_aligned_grid_cover_follows_the_span_of_the_radii_not_their_number():
+    b = np.linspace(0.0, 1e-4, 101)
+    h = 1e-6
+    few = np.random.default_rng(5).uniform(0.7e-4, 1e-4, 40)
+    # a node at every radius fits ALIGN_EXACT_FACTOR: the cover changes nothing
+    assert np.array_equal(tr.aligned_grid(b, few, 3.0, cover=0.24), tr.aligned_grid(b, few, 3.0))
+    sizes = []
+    for n in (1000, 10000, 100000):
+        radii = 0.7e-4 + 0.3e-4 * (0.5 + 0.5 * np.sin(np.linspace(0.0, 20.0, n)))
+        out = tr.aligned_grid(b, radii, 3.0, cover=0.24)
+        inside = radii[radii > tr.ALIGN_MERGE * h]
+        k = np.clip(np.searchsorted(out, inside), 1, out.size - 1)
+        off = np.minimum(inside - out[k - 1], out[k] - inside)
+        assert off.max() <= 0.24 * h and out[-1] == b[-1] and np.all(np.diff(out) > 0)
+        sizes.append(out.size - 1)
+    # 30 widths of radii at <= 0.48 widths a node, the 70 uniform rings below: ~133 rings
+    # whatever the number of radii (a node at each would take up to 3x the 100 rings)
+    assert max(sizes) - min(sizes) <= 2 and max(sizes) <= 100 + 30 / 0.48 + 2
+
+
 def test_edge_punch_carries_the_singular_sliding_traction():
     """Full sliding of a flat punch, p ∝ 1/sqrt(a² − r²): the torque weights with the edge punch
     reproduce 2π∫ r² p dr = π²a²/2 at order > 2 (without it the square-root singularity is missed)."""
