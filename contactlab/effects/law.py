@@ -694,7 +694,8 @@ class ContactLaw:
             # no temporaries per contact, so no memory check here
             pool = self._pool
             assert pool is not None
-            new = np.flatnonzero(offm & (pool.slot < 0))
+            offm &= pool.slot < 0                       # the contacts that switch now
+            new = np.flatnonzero(offm)
             if new.size:
                 pool.reserve(new.size, self.parallel)   # grown (rarely) before the kernels
         if both and not self._warned:
@@ -711,8 +712,9 @@ class ContactLaw:
             np.copyto(flag, 3, where=onm)               # the fused pass leaves them out
             spr = np.flatnonzero(onm)
         if new.size:
-            flag[new] = 3
-        if spr is not None and spr.size == size:        # all on springs: no fused pass
+            np.copyto(flag, 3, where=offm)              # (a mask: no gather of 10^6 indices)
+        if new.size + (0 if spr is None else spr.size) == size:     # all on springs (or
+            # switching now): no fused pass, it would only set ``exact`` False
             Ft, ct, M, cm, dW, exact, nf, n_over = springs_only_outputs(size, out)
         else:
             Ft, ct, M, cm, dW, exact, nf, n_over = _kernel.fused_pass(

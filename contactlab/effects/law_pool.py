@@ -131,7 +131,7 @@ def _populate(buf: mmap.mmap, arr: np.ndarray, used: int, threads: bool, advice:
 
 
 def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1, threads: bool = False) -> np.ndarray:
-    """An array for pool rows (contents undefined, as ``np.empty``): beyond :data:`_MAP_BYTES`
+    """An array for pool rows, zeros (+0; a fresh map is zero-filled): beyond :data:`_MAP_BYTES`
     an anonymous private memory map of its own in the operating system's base pages, its first
     ``fill`` entries (along the first axis; all for -1) faulted in by one ``madvise`` call. A
     switch of many contacts writes fresh rows; measured on a 2-core VM, 428 MB of fresh rows
@@ -146,7 +146,7 @@ def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1, threads: bool = False
     dtype = np.dtype(dtype)
     nbytes = int(np.prod(shape)) * dtype.itemsize
     if nbytes < _MAP_BYTES:
-        return np.empty(shape, dtype)
+        return np.zeros(shape, dtype)
     flags = getattr(mmap, "MAP_PRIVATE", None)
     buf = (mmap.mmap(-1, nbytes) if flags is None
            else mmap.mmap(-1, nbytes, flags=flags | mmap.MAP_ANONYMOUS))
@@ -183,6 +183,10 @@ class SpringPool:
         #: from a state), so the channel's next driven step writes +0 to all of them; else
         #: only to those up to the last step's edge cell (the others are +0 already)
         self.stale = {"tan": False, "tor": False}
+        #: rows from ``clean`` on hold +0 in every element (zeros since their arrays were
+        #: allocated: never written): a switch onto such a row need not write +0 beyond its
+        #: edge cell (the compiled first step then leaves the cache lines of those cells alone)
+        self.clean = 0
         self.owner = np.zeros(0, np.int32)
         self.rows = {k: np.zeros((0, self.springs) if per else 0, dt)
                      for k, (dt, per) in SPRING_FIELDS.items()}
@@ -216,6 +220,7 @@ class SpringPool:
             new = _mapped((cap, *v.shape[1:]), v.dtype, need, threads)
             new[:u] = v[:u]
             self.rows[k] = new
+        self.clean = u                  # the rows beyond those copied are zeros
 
     def assign(self, idx: np.ndarray) -> np.ndarray:
         """Rows for the contacts ``idx`` (not on springs), in their order after the rows in use;
@@ -224,8 +229,14 @@ class SpringPool:
         s = np.arange(self.used, self.used + idx.size, dtype=np.int32)
         self.slot[idx] = s
         self.owner[s] = idx
-        self.used += int(idx.size)
+        self.take(idx.size)
         return s
+
+    def take(self, count: int) -> None:
+        """The ``count`` rows after those in use are in use now, written (or about to be) by
+        the caller: :attr:`used` and :attr:`clean` past them."""
+        self.used += int(count)
+        self.clean = max(self.clean, self.used)
 
     def release(self, idx: np.ndarray) -> None:
         """The contacts ``idx`` leave their springs (those on them give their rows back)."""

@@ -152,8 +152,8 @@ def _first_cells(beta, bG, bH, X, m_tan, m_tor, r, c, i0, cnt, dt, dr, cov, cp1,
     irl)``), then the step's at depth ``d`` where a channel is driven (``st_u``, ``st_p``),
     stored and summed on: ``acc = (e, Ft, M, free_t, free_m, ct, cm)`` as it leaves them
     (a call of at most 30 arguments: numba inlines no call with more). Compiled,
-    :func:`contactlab.physics.law_kernel_lanes.first4` replaces it for four cells that lie
-    in the row: the same operations, IEEE lane by lane, so the same bits."""
+    :func:`~contactlab.physics.law_kernel_lanes.first4` replaces it for four cells in the
+    row: the same operations lane by lane, the same bits (the four past ``cnt``: +0)."""
     it0, ir0, itl, irl = incs
     e, Ft, M, free_t, free_m, ct, cm = acc
     bl = cov * beta[i0]
@@ -462,7 +462,6 @@ def _switch_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, 
         a_old[r] = a0
 
 
-
 def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu,
                       E, G, Gt, X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi,
                       cover, a_old, k_old, d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW,
@@ -492,16 +491,18 @@ def _switch_step_pass(block, idx, ref, a, flat, is_flat, cover_factor, kc, n, be
 
 def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, mu, E, G, Gt,
                 X, depth, x, slot, owner, base, d, u, phi, has_u, has_phi, cover, a_old, k_old,
-                d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag):
+                d_old, m_tan, m_tor, x_tan, x_tor, Ft, ct, M, cm, dW, flag, clean=1 << 62):
     """Switch the contacts ``idx`` onto their springs and step them there, one contact at a
     time: the arithmetic of :func:`_switch_pass` then :func:`_spring_pass` (the bits of the
     two), with the row in registers between them. A cell's boundary products serve both; the
     switch's cell integrals at the held depth are the step's last ones (the spring pass
-    recomputes them from the row by the same expressions); the cells beyond the step's edge
-    cell are not replayed where the step writes them +0 (a channel not driven keeps the
-    switch's elements). A contact whose radius exceeds its fresh cover gets the switch's row
-    only, ``flag[c] = 4``, counted (stepped after its regrid: :func:`switch_step_pass`).
-    Contact ``idx[j]`` gets row ``base + j``. Returns (non-finite, grown)."""
+    recomputes them from the row); the cells beyond the step's edge cell are not replayed
+    where the step writes them +0 (a channel not driven keeps the switch's elements), nor
+    written beyond both edge cells in rows from ``clean`` on (+0 already: the pool's
+    :attr:`~contactlab.effects.law_pool.SpringPool.clean`). A contact whose radius exceeds
+    its fresh cover gets the switch's row only, ``flag[c] = 4``, counted (stepped after its
+    regrid: :func:`switch_step_pass`). Contact ``idx[j]`` gets row ``base + j``. Returns
+    (non-finite, grown)."""
     N = beta.size - 1
     nonfinite = 0
     grown = 0
@@ -643,7 +644,7 @@ def _first_pass(idx, ref, a, flat, is_flat, cover_factor, kc, n, beta, bG, bH, m
             m_tor[r, i] = m0r
             gl, hl = gr, hr
             bl, bl2, bl3 = br, br2, br3
-        for i in range(last, N):
+        for i in range(last, N if r < clean else last):
             m_tan[r, i] = 0.0
             m_tor[r, i] = 0.0
         if not step:
@@ -757,7 +758,7 @@ def switch_pass(idx, a, flat, cover_factor, kc, n: float, beta, mu, E, G, Gt, ch
                           pool.slot, pool.owner, pool.used, P["spr_cover"], P["spr_a"],
                           P["spr_k"], P["spr_depth"], P["spr_tan"], P["spr_tor"],
                           P["spr_x_tan"], P["spr_x_tor"])
-    pool.used += int(idx.size)
+    pool.take(idx.size)
 
 
 def switch_step_pass(idx, d, a, u, phi, flat, cover_factor, kc, n: float, beta, mu,
@@ -783,8 +784,8 @@ def switch_step_pass(idx, d, a, u, phi, flat, cover_factor, kc, n: float, beta, 
         mu, E, G, Gt, chan["X"], chan["depth"], chan["x"], pool.slot, pool.owner, pool.used, d,
         _EMPTY if u is None else u, _EMPTY if phi is None else phi, u is not None,
         phi is not None, P["spr_cover"], P["spr_a"], P["spr_k"], P["spr_depth"], P["spr_tan"],
-        P["spr_tor"], P["spr_x_tan"], P["spr_x_tor"], *out, flag)
-    pool.used += int(idx.size)
+        P["spr_tor"], P["spr_x_tan"], P["spr_x_tor"], *out, flag, pool.clean)
+    pool.take(idx.size)
     if grown:                       # stepped again: found (flag 4), regridded, stepped
         nf += spring_pass(idx[flag[idx] == 4], d, a, u, phi, kc, n, beta, mu, E, G, Gt, pool,
                           out, parallel, flag, regrid, (False, False))

@@ -47,13 +47,15 @@ def _inputs(family, gname, lo_hi, extra, seed):
     return law, d.copy(), a.copy(), u[7], phi[7]
 
 
-def _run(kernel, law, d, a, u, phi, cover_factor, block=None):
+def _run(kernel, law, d, a, u, phi, cover_factor, block=None, clean=None):
     n = law.size
     pool = law._pool
     pool.slot[:] = -1
     P = pool.rows
     for key in ROWS:                    # garbage: each pass must write what it owns
         P[key][:n] = 7
+        if clean is not None:           # rows from ``clean`` on: +0 (as never written)
+            P[key][clean:n] = 0
     pool.owner[:n] = -7
     out = tuple(np.full(n, 7.0) for _ in range(5))
     flag = np.zeros(n, np.int8)
@@ -68,7 +70,8 @@ def _run(kernel, law, d, a, u, phi, cover_factor, block=None):
             pool.slot, pool.owner, 0, d, empty if u is None else u,
             empty if phi is None else phi, u is not None, phi is not None,
             *(P[key] for key in ROWS), *out, flag)
-    counts = kernel(*args) if block is None else kernel(block, *args)
+    counts = (kernel(*args) if block is None else kernel(block, *args) if clean is None
+              else kernel(*args, clean))
     return (counts, [o.copy() for o in out], flag.copy(), pool.slot.copy(),
             pool.owner[:n].copy(), {key: P[key][:n].copy() for key in ROWS})
 
@@ -97,3 +100,31 @@ def test_fused_first_step_is_the_switch_then_the_step(family, gname, lo_hi, extr
         assert ref[5][key].tobytes() == got[5][key].tobytes(), key
     assert not np.any(ref[5]["spr_k"] == 7)           # every row written (garbage 7 before)
     assert np.any(ref[5]["spr_k"] != ref[5]["spr_k"][0])
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+@pytest.mark.parametrize("channels", ["both", "displacement", "twist"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_clean_rows_are_not_written_beyond_the_edge(family, gname, lo_hi, extra, channels,
+                                                     parallel):
+    """Rows from the pool's ``clean`` mark on hold +0 (never written): the fused pass leaves
+    their cells beyond both edge cells alone, and every output and row entry is the bits of
+    the switch then the step on rows of garbage (rows below the mark are zeroed as before)."""
+    from contactlab.physics.law_kernel import _kernels
+    law, d, a, u, phi = _inputs(family, gname, lo_hi, extra, 6)
+    u = u if channels != "twist" else None
+    phi = phi if channels != "displacement" else None
+    cover = law.spring_cover.copy()
+    cover[::7] = 0.93
+    kernels = _kernels(parallel)
+    ref = _run(kernels[4], law, d, a, u, phi, cover, block=13)
+    for clean in (0, 117):
+        got = _run(kernels[6], law, d, a, u, phi, cover, clean=clean)
+        assert ref[0] == got[0]
+        for x, y in zip(ref[1], got[1]):
+            assert x.tobytes() == y.tobytes()
+        for i in (2, 3, 4):
+            assert np.array_equal(ref[i], got[i])
+        for key in ROWS:
+            assert ref[5][key].tobytes() == got[5][key].tobytes(), key

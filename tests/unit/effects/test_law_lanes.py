@@ -171,4 +171,9 @@ def test_four_cell_switch_lanes_give_the_scalar_bits(st_u, st_p, monkeypatch):
                                      *s[:9], incs, s[9], s[10], st_u, st_p, a, acc)
         assert got[3:5] == want[3:5]
         assert _same([got[k] for k in (0, 1, 2, 5, 6)], [want[k] for k in (0, 1, 2, 5, 6)])
+        # the cells of the four past ``cnt``: +0 (not loaded; the pass writes them after)
+        past = slice(i0 + cnt, i0 + W)
+        assert not np.any(np.signbit(mt[2, past])) and not np.any(mt[2, past])
+        assert not np.any(np.signbit(mr[2, past])) and not np.any(mr[2, past])
+        mt2[2, past] = mr2[2, past] = 0.0
         assert _same(mt, mt2) and _same(mr, mr2)

@@ -45,6 +45,27 @@ def test_pool_rows_follow_their_contacts():
     assert not pool.full("spr_depth")[[1, 2, 3, 4, 6, 8, 9]].any()
 
 
+def test_rows_from_the_clean_mark_on_are_zeros():
+    """``clean``: the rows from it on were never written (+0 in every element, so a switch
+    need not write +0 beyond its edge cell there); rows given back stay below it, and a grown
+    pool's rows past those it copied are zeros again."""
+    pool = SpringPool(300, 4)
+    assert pool.clean == 0
+    s = pool.assign(np.arange(10))
+    assert pool.clean == 10
+    for k in ("spr_tan", "spr_tor"):
+        pool.rows[k][s] = -1.5
+        assert pool.rows[k][pool.clean:].tobytes() == bytes(pool.rows[k][pool.clean:].nbytes)
+    pool.release(np.arange(4))                      # rows 6..9 given back: written, not clean
+    assert pool.used == 6 and pool.clean == 10
+    pool.take(2)                                    # a compiled switch wrote rows 6, 7
+    assert pool.used == 8 and pool.clean == 10
+    pool.reserve(pool.capacity)                     # grown: rows 0..7 copied, the rest zeros
+    assert pool.clean == 8
+    for k in ("spr_tan", "spr_tor"):
+        assert pool.rows[k][8:].tobytes() == bytes(pool.rows[k][8:].nbytes)
+
+
 @pytest.mark.parametrize("fast", BACKENDS)
 def test_results_do_not_depend_on_the_rows(fast):
     """A law of 40 contacts whose rows are reshuffled by separations and resets gives, for the
