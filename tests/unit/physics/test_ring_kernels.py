@@ -220,7 +220,7 @@ def test_ring_solver_lapack_calls_are_scipys_bits():
     LU solve (``torsion_annulus.density``) call LAPACK directly: the same bits as
     ``scipy.linalg.solve(assume_a="pos")`` and ``lu_solve`` (one unknown, one and two
     right-hand sides, a matrix symmetric only to rounding; the density's solve is ``lu_solve``'s
-    of its values beside a zero column, ``torsion_annulus.coefficients``), and ``LinAlgError``
+    of its values beside zero columns, ``torsion_annulus.coefficients``), and ``LinAlgError``
     where scipy raises it (not positive definite, a zero 1x1)."""
     import scipy.linalg as la
     from contactlab.physics import torsion_rings as tr
@@ -236,8 +236,10 @@ def test_ring_solver_lapack_calls_are_scipys_bits():
             assert got.strides == ref.strides     # products of its columns sum in this order
         lu = la.lu_factor(M + n * np.eye(n))
         v = rng.random(n)
-        # (the density's solve: beside a zero column, the multi-vector kernel of its batches)
-        coef = la.lu_solve(lu, np.column_stack([v, np.zeros(n)]), check_finite=False)[:, 0]
+        # (the density's solve: beside zero columns up to a whole group of right-hand sides,
+        # the multi-vector kernel of its batches)
+        coef = la.lu_solve(lu, np.column_stack([v, np.zeros((n, ta.RHS_GROUP - 1))]),
+                           check_finite=False)[:, 0]
         b_nodes = np.linspace(0.0, 1e-4, n + 1)
         got = ta.density(lu, b_nodes, np.zeros(0, np.int64), v, 1e-4)
         want = ta.from_coefficients(b_nodes, coef, np.zeros(0, np.int64), 1e-4)
