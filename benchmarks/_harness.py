@@ -246,11 +246,7 @@ def _simd() -> str:
     """numpy's SIMD level on this CPU (its highest dispatch target found, e.g. ``X86_V3``, or
     ``X86_V4``: AVX-512), as `` (SIMD ...)``: some of numpy's vectorised functions (``cbrt``
     among them) are 10-15x faster with AVX-512 than the scalar libm loop numpy falls back to
-    without it; empty where numpy does not say (a private attribute)."""
-    try:
-        from numpy._core._multiarray_umath import (__cpu_dispatch__,  # type: ignore
-                                                   __cpu_features__)
-    except ImportError:         # pragma: no cover - other numpy versions
-        return ""
-    found = [f for f in __cpu_dispatch__ if __cpu_features__.get(f)]
-    return f" (SIMD {found[-1] if found else 'baseline only'})"
+    without it; empty where numpy does not say (:func:`contactlab.numeric.simd.simd_level`)."""
+    from contactlab.numeric.simd import simd_level
+    level = simd_level()
+    return "" if level is None else f" (SIMD {level})"

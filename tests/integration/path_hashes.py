@@ -63,14 +63,10 @@ SEED = 20261128
 # ---------------------------------------------------------------------------------- machines
 def machine() -> str:
     """The kind of machine whose last bits the hashes are: ``"avx512"``, ``"avx2"`` or
-    ``"baseline"``, from the instruction sets numpy dispatches its vectorised loops on."""
-    try:
-        from numpy._core._multiarray_umath import __cpu_features__ as feats
-    except ImportError:             # numpy's private table moved: one kind for every machine
-        return "baseline"
-    if feats.get("AVX512F") and feats.get("AVX512_SKX"):
-        return "avx512"
-    return "avx2" if feats.get("AVX2") and feats.get("FMA3") else "baseline"
+    ``"baseline"``, from the instruction sets numpy dispatches its vectorised loops on
+    (:func:`contactlab.numeric.simd.machine_kind`)."""
+    from contactlab.numeric.simd import machine_kind
+    return machine_kind()
 
 
 def machine_store(kind: str) -> Path:
