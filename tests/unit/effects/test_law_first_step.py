@@ -76,55 +76,55 @@ def _run(kernel, law, d, a, u, phi, cover_factor, block=None, clean=None):
             pool.owner[:n].copy(), {key: P[key][:n].copy() for key in ROWS})
 
 
-@pytest.mark.parametrize("parallel", [False, True])
-@pytest.mark.parametrize("channels", ["both", "displacement", "twist"])
-@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
-                         ids=[f[0].__name__ for f in FAMILIES])
-def test_fused_first_step_is_the_switch_then_the_step(family, gname, lo_hi, extra, channels,
-                                                      parallel):
+CASES = [(fam, channels, parallel) for fam in FAMILIES
+         for channels in ("both", "displacement", "twist") for parallel in (False, True)]
+
+
+@pytest.fixture(params=CASES, ids=[f"{c[0][0].__name__}-{c[1]}-{'threads' if c[2] else 'serial'}"
+                                   for c in CASES])
+def first_step(request):
+    """``make(seed)``: the compiled kernels (serial or threaded), a law after its held-load
+    history, the next step's inputs with the case's channels, and covers of which every 7th is
+    below 1 (the law refuses that: radii beyond a fresh cover)."""
+    (family, gname, lo_hi, extra), channels, parallel = request.param
     from contactlab.physics.law_kernel import _kernels
-    law, d, a, u, phi = _inputs(family, gname, lo_hi, extra, 5)
-    u = u if channels != "twist" else None
-    phi = phi if channels != "displacement" else None
-    cover = law.spring_cover.copy()
-    cover[::7] = 0.93              # below 1 (the law refuses it): radii beyond a fresh cover
-    kernels = _kernels(parallel)
-    ref = _run(kernels[4], law, d, a, u, phi, cover, block=13)
-    got = _run(kernels[6], law, d, a, u, phi, cover)
-    assert ref[0] == got[0] and ref[0][1] > 0          # (non-finite, grown); some grown
+
+    def make(seed):
+        law, d, a, u, phi = _inputs(family, gname, lo_hi, extra, seed)
+        u = u if channels != "twist" else None
+        phi = phi if channels != "displacement" else None
+        cover = law.spring_cover.copy()
+        cover[::7] = 0.93
+        return _kernels(parallel), law, d, a, u, phi, cover
+    return make
+
+
+def _assert_same_bits(ref, got):
+    """Counts, outputs, flags, slots, owners and every row entry bit for bit."""
+    assert ref[0] == got[0]
     for x, y in zip(ref[1], got[1]):
         assert x.tobytes() == y.tobytes()
     for i in (2, 3, 4):
         assert np.array_equal(ref[i], got[i])
     for key in ROWS:
         assert ref[5][key].tobytes() == got[5][key].tobytes(), key
+
+
+def test_fused_first_step_is_the_switch_then_the_step(first_step):
+    kernels, law, d, a, u, phi, cover = first_step(5)
+    ref = _run(kernels[4], law, d, a, u, phi, cover, block=13)
+    got = _run(kernels[6], law, d, a, u, phi, cover)
+    _assert_same_bits(ref, got)
+    assert ref[0][1] > 0                               # (non-finite, grown); some grown
     assert not np.any(ref[5]["spr_k"] == 7)           # every row written (garbage 7 before)
     assert np.any(ref[5]["spr_k"] != ref[5]["spr_k"][0])
 
 
-@pytest.mark.parametrize("parallel", [False, True])
-@pytest.mark.parametrize("channels", ["both", "displacement", "twist"])
-@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
-                         ids=[f[0].__name__ for f in FAMILIES])
-def test_clean_rows_are_not_written_beyond_the_edge(family, gname, lo_hi, extra, channels,
-                                                     parallel):
+def test_clean_rows_are_not_written_beyond_the_edge(first_step):
     """Rows from the pool's ``clean`` mark on hold +0 (never written): the fused pass leaves
     their cells beyond both edge cells alone, and every output and row entry is the bits of
     the switch then the step on rows of garbage (rows below the mark are zeroed as before)."""
-    from contactlab.physics.law_kernel import _kernels
-    law, d, a, u, phi = _inputs(family, gname, lo_hi, extra, 6)
-    u = u if channels != "twist" else None
-    phi = phi if channels != "displacement" else None
-    cover = law.spring_cover.copy()
-    cover[::7] = 0.93
-    kernels = _kernels(parallel)
+    kernels, law, d, a, u, phi, cover = first_step(6)
     ref = _run(kernels[4], law, d, a, u, phi, cover, block=13)
     for clean in (0, 117):
-        got = _run(kernels[6], law, d, a, u, phi, cover, clean=clean)
-        assert ref[0] == got[0]
-        for x, y in zip(ref[1], got[1]):
-            assert x.tobytes() == y.tobytes()
-        for i in (2, 3, 4):
-            assert np.array_equal(ref[i], got[i])
-        for key in ROWS:
-            assert ref[5][key].tobytes() == got[5][key].tobytes(), key
+        _assert_same_bits(ref, _run(kernels[6], law, d, a, u, phi, cover, clean=clean))
