@@ -32,7 +32,8 @@ from ..physics import master as _master
 from ..physics.masing_stack import STACK_FIELDS, masing_step, new_stack
 from ..profiles import Cone, FlatPunch, Paraboloid, PowerLaw
 from ..symbolic.transform import kappa
-from .law_checks import FixedParameter, _per_contact, _per_step, _short, checked_state_entry, warn_model_error
+from .law_checks import FixedParameter, _per_contact, _per_step, _short, checked_state_entry
+from .law_checks import FixedGeometry, SlopeCheck, warn_model_error
 from . import law_device as _device
 from . import law_springs_numpy as _np_springs
 from .law_pool import (SPRING_FIELDS, SpringPool, law_memory, law_spring_memory,
@@ -256,8 +257,8 @@ class ContactLaw:
             self._kc = np.zeros(self.size)
         else:
             self._kc = (1.0 / g if cls is Paraboloid else float(kappa(expo)) * g)
-        self.geometry = {gname: g.view()}          # read-only below, as the parameters
-        self.geometry[gname].flags.writeable = False
+        self.geometry: Mapping[str, np.ndarray] = FixedGeometry(gname, g)
+        self._slope = SlopeCheck(g) if cls is Paraboloid else None   # a <= R/√3, until it warns
         self._E_star, self._G_star = arrs["E_star"], arrs["G_star"]
         self._G_torsion, self._friction = arrs["G_torsion"], arrs["friction"]
         self.memory = int(memory)
@@ -517,6 +518,9 @@ class ContactLaw:
         res.__dict__.pop("_model_errors_cache", None)
         res.meta.update(springs=self.springs, citations=_LAW_SOURCES)
         res.meta.pop("notes", None)
+        if self._slope is not None and self._slope(
+                res, None if self._xp is None else _device.params(self)["kc"]):
+            self._slope = None
         if (self.warn_model_error and self.springs
                 and len(self._model_warned) < len(_MODEL_ERROR_CAUSES)
                 and self._pool is not None and self._pool.used):

@@ -3,14 +3,21 @@ and the entries of a restored state, each refused with a ParameterError naming w
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ParameterError, ValidityWarning
 from ..params import as_checked_array
+from ..profiles.power_law import VALIDITY_SLOPE
 
-__all__ = ["FixedParameter", "checked_state_entry", "warn_model_error"]
+__all__ = ["FixedGeometry", "FixedParameter", "checked_state_entry", "read_only", "SlopeCheck",
+           "warn_model_error",
+           "warn_outside_slope"]
+
+#: contacts per block of :func:`warn_outside_slope` (its temporaries stay in cache)
+_SLOPE_BLOCK = 1 << 15
 
 if TYPE_CHECKING:
     from .law_step import LawStep
@@ -36,14 +43,45 @@ class FixedParameter:
     def __get__(self, obj: Any, owner: type | None = None) -> Any:
         if obj is None:
             return self
-        view = obj.__dict__[self.slot].view()
-        view.flags.writeable = False
-        return view
+        return read_only(obj.__dict__[self.slot])
 
     def __set__(self, obj: Any, value: Any) -> None:
         raise ParameterError(f"ContactLaw.{self.name} is fixed when the law is built (it was "
                              f"given {_short(value)}): build a new ContactLaw for other "
                              "parameters, or one law per parameter set.")
+
+
+class FixedGeometry(Mapping):
+    """A law's geometry, ``{name: read-only per-contact array}``: fixed when the law is built,
+    as its parameters (:class:`FixedParameter`); an entry assigned raises
+    :class:`~contactlab.errors.ParameterError`."""
+
+    def __init__(self, name: str, values: np.ndarray) -> None:
+        self._items = {name: read_only(values)}
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __setitem__(self, key: str, value: Any) -> None:
+        raise ParameterError(f"ContactLaw.geometry[{key!r}] is fixed when the law is built (it "
+                             f"was given {_short(value)}): build a new ContactLaw for another "
+                             "geometry.")
+
+    def __repr__(self) -> str:
+        return f"FixedGeometry({self._items!r})"
+
+
+def read_only(arr: np.ndarray) -> np.ndarray:
+    """A view of ``arr`` that refuses writes (``arr`` itself stays writeable)."""
+    view = arr.view()
+    view.flags.writeable = False
+    return view
 
 
 def _short(value: Any) -> str:
@@ -146,3 +184,55 @@ def warn_model_error(res: "LawStep", on: np.ndarray, warned: set[str], springs: 
                 "ContactLaw(..., warn_model_error=False) or law.warn_model_error = False.")
         res.meta["notes"] = (*res.meta.get("notes", ()), text)
         warnings.warn(text, ValidityWarning, stacklevel=5)
+
+
+class SlopeCheck:
+    """The paraboloid law's check of ``a <= R/√3`` per contact (``R`` m, per contact), until it
+    warns: a step whose largest radius is within the smallest ``R``'s limit passes after one
+    reduction; otherwise :func:`warn_outside_slope` looks contact by contact."""
+
+    def __init__(self, R: np.ndarray) -> None:
+        self.R = R
+        self.floor = float(R.min()) * VALIDITY_SLOPE
+
+    def __call__(self, res: "LawStep", kc: Any = None) -> bool:
+        """Whether the step ``res`` warned (``kc``: the device copy of ``1/R``, or None)."""
+        if kc is None and float(res.radius.max()) <= self.floor:
+            return False
+        return warn_outside_slope(res, self.R, kc)
+
+
+def warn_outside_slope(res: "LawStep", R: np.ndarray, kc: Any = None) -> bool:
+    """A :class:`ValidityWarning` when a paraboloid contact's radius in the step ``res``
+    exceeds ``R/√3`` (``R`` per contact, m), where the surface slope ``a/R`` reaches tan 30°
+    and the half-space theory leaves its range (the limit
+    :attr:`~contactlab.profiles.Paraboloid.validity_radius` gives a single contact). The text
+    names the first such contact and also goes into ``res.meta["notes"]``.
+
+    The host check runs in blocks of :data:`_SLOPE_BLOCK` contacts (no temporary of the law's
+    size); a device step (``kc``: the device copy of ``1/R``) compares ``a·kc`` on the device.
+    Returns whether it warned (the law says it once)."""
+    a = res.radius
+    if kc is not None:                                  # device arrays: one reduction there
+        over = a * kc > VALIDITY_SLOPE
+        if not bool(over.any()):
+            return False
+        i = int(over.argmax())
+    else:
+        lim = np.empty(min(_SLOPE_BLOCK, a.size))
+        for s in range(0, a.size, _SLOPE_BLOCK):         # blocks, not contacts
+            e = min(s + _SLOPE_BLOCK, a.size)
+            np.multiply(R[s:e], VALIDITY_SLOPE, out=lim[:e - s])
+            if np.any(a[s:e] > lim[:e - s]):
+                i = s + int(np.argmax(a[s:e] > lim[:e - s]))
+                break
+        else:
+            return False
+    text = (f"ContactLaw: contact {i}'s radius {float(a[i])!r} m exceeds R/√3 = "
+            f"{float(R[i]) * VALIDITY_SLOPE!r} m (R = {float(R[i])!r} m), where the "
+            "paraboloid's surface slope reaches tan 30°: outside the range of the half-space "
+            "theory, the result is the half-space solution, not that of the real body. Said "
+            "once per law.")
+    res.meta["notes"] = (*res.meta.get("notes", ()), text)
+    warnings.warn(text, ValidityWarning, stacklevel=4)
+    return True

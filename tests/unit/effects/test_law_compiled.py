@@ -417,6 +417,8 @@ def test_master_curve_lanes_give_the_scalar_bits(n):
         np.testing.assert_array_equal(want[:, k], ref)
 
 
+# forces over twelve decades: some radii pass R/√3 (a ValidityWarning; the numbers are the point)
+@pytest.mark.filterwarnings("ignore::contactlab.errors.ValidityWarning")
 @pytest.mark.parametrize("fast", [False, pytest.param(True, marks=needs_numba)])
 def test_hertz_radius_from_force_two_cube_roots(fast):
     """A paraboloid law's radius from a force is cbrt(F)·cbrt(3/(4 E* kc)) (the factor's root a

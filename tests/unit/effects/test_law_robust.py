@@ -214,3 +214,69 @@ def test_fixed_parameters_leave_the_results_unchanged(fast):
     out = law.step(force=[50.0, 100.0, 150.0], twist=1e-4)
     assert out.torque.tobytes() == ref.torque.tobytes()
     assert out.radius.tobytes() == ref.radius.tobytes()
+
+
+def test_geometry_is_fixed_when_the_law_is_built():
+    """The geometry mapping refuses an entry replaced, as the parameters refuse assignment."""
+    law = _law(size=2)
+    with pytest.raises(ParameterError, match=r"ContactLaw\.geometry\['R'\] is fixed.*0\.5"):
+        law.geometry["R"] = 0.5
+    assert list(law.geometry) == ["R"] and len(law.geometry) == 1
+    np.testing.assert_array_equal(law.geometry["R"], [R, R])
+
+
+# ---------------------------------------------------------------- the paraboloid's validity
+def _force_at(a_over_R, radii):
+    """Hertz force at contact radius ``a`` (closed form F = 4 E* a^3 / (3 R))."""
+    a = a_over_R * np.asarray(radii)
+    return 4.0 * E * a**3 / (3.0 * np.asarray(radii))
+
+
+BACKENDS = [dict(fast=f) for f in FAST] + [dict(backend="xp-numpy")]
+
+
+@pytest.mark.parametrize("kw", BACKENDS, ids=lambda k: str(k))
+def test_radius_beyond_r_over_root3_warns_once_naming_the_contact(kw):
+    """A paraboloid contact whose radius exceeds R/√3 (surface slope tan 30°, where a single
+    Paraboloid's state warns) leaves the half-space theory: the law says so once, naming the
+    first such contact, in the warning and in the step's notes; within the range it is silent."""
+    radii = np.array([0.01, 0.02, 0.005])
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=radii, E_star=E, G_star=G, G_torsion=GT,
+                        friction=MU, **kw)
+    inside = _force_at(np.array([0.3, 0.57, 0.1]), radii)     # 1/√3 = 0.5774
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = law.step(force=inside, twist=1e-6)
+    assert "notes" not in out.meta
+    beyond = _force_at(np.array([0.3, 0.6, 0.7]), radii)
+    with pytest.warns(ValidityWarning, match=r"contact 1's radius 0\.012\d* m exceeds R/√3 = "
+                                             r"0\.011547\d* m \(R = 0\.02 m\)") as rec:
+        out = law.step(force=beyond, twist=1e-6)
+    assert len(rec) == 1 and "tan 30°" in out.meta["notes"][0]
+    np.testing.assert_allclose(out.radius, [0.003, 0.012, 0.0035], rtol=1e-14)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                 # said once per law
+        law.step(force=beyond, twist=1e-6)
+
+
+def test_validity_check_runs_in_blocks_and_finds_a_contact_past_the_first():
+    """The host check runs over blocks of contacts: a contact past the first block is found
+    and named; depth-driven steps are checked as force-driven ones (a = √(R d))."""
+    from contactlab.effects.law_checks import _SLOPE_BLOCK
+    n = _SLOPE_BLOCK + 10
+    i = _SLOPE_BLOCK + 5
+    law = _law(size=n, fast=False)
+    d = np.full(n, (0.5 * R) ** 2 / R)
+    d[i] = (0.58 * R) ** 2 / R
+    with pytest.warns(ValidityWarning, match=rf"contact {i}'s radius 0\.0058\d* m"):
+        law.step(depth=d)
+
+
+def test_other_families_have_no_validity_radius():
+    """Cones and power laws carry no R/√3 limit (their profiles' validity radius is inf)."""
+    law = cl.ContactLaw(cl.profiles.Cone, slope=0.2, E_star=E, G_star=G, G_torsion=GT,
+                        friction=MU, size=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        law.step(force=[1.0, 1e9])
+    assert cl.profiles.Cone(slope=0.2).validity_radius == np.inf
