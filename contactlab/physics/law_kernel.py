@@ -9,8 +9,8 @@ contacts separate or leave the constant-load regime; no state written) and :func
 two loops, one per channel, no temporary arrays). Contacts whose load changes go onto their
 MDR springs through :func:`switch_pass` (once per contact, in the arrays the law allocated) and
 then :func:`spring_pass` every step. The paraboloid's cube root by force is
-:func:`contactlab.numeric.cube_root.cbrt_one` in a loop of its own (arithmetic and bit
-operations: vectorised, no call; the numpy law takes its numpy twin), the other fractional
+:func:`contactlab.numeric.cube_root.cbrt_one` in a loop of its own (:func:`_cbrt_pass`: arithmetic
+and bit operations, vectorised, no call; the numpy law takes its numpy twin), the other fractional
 powers of the normal contact (``n != 2``) come from numpy's vectorised ``power``, so that the
 compiled step matches the numpy law to the bit. The torsion
 master curve's three polynomials are evaluated side by side in the lanes of one vector
@@ -199,11 +199,9 @@ def _normal_of(hertz: bool = False):
         contacts moved in both channels, non-finite results). ``pre``: the powers of the power-law
         family (``n != 2``) are given (numpy's vectorised ``power``, the reference's arithmetic
         to the bit): ``a_out`` holds the radius and, by force, ``d_out`` the depth ``kc a^n``.
-        By force with ``n = 2`` a first loop puts the force's cube root into ``a_out``
-        (:func:`~contactlab.numeric.cube_root.cbrt_one`: no call, no branch, so numba
-        vectorises it, which it cannot do with the cube root inside the main loop's branches:
-        measured 9.5 ms against 20 ms for 10^6 contacts), and the radius is its product with
-        ``fac``, the cube root of ``(n + 1)/(2 n E kc)`` (:func:`force_factor`)."""
+        By force with ``n = 2``, ``a_out`` holds the force's cube root (:func:`_cbrt_pass`)
+        and the radius is its product with ``fac``, the cube root of ``(n + 1)/(2 n E kc)``
+        (:func:`force_factor`)."""
         if hertz:
             n = 2.0
         bad = 0
@@ -212,9 +210,6 @@ def _normal_of(hertz: bool = False):
         both = 0
         nonfinite = 0
         c2 = 2.0 * n / (n + 1.0) if n != math.inf else 2.0
-        if by_force and n == 2.0:       # the force's cube root first: a loop of its own
-            for i in _prange(val.size):
-                a_out[i] = _cbrt_one(val[i])
         for i in _prange(val.size):
             v = val[i]
             ok = math.isfinite(v) and (v >= 0.0 or not by_force)
@@ -282,6 +277,18 @@ def _normal_of(hertz: bool = False):
 
 _normal_pass = _normal_of()
 _normal_pass_hertz = _normal_of(True)
+
+
+def _cbrt_pass(x, out):
+    """``out = cbrt(x)`` (:func:`~contactlab.numeric.cube_root.cbrt_one`, glibc's algorithm in
+    arithmetic and bit operations): the paraboloid's cube root of the force, ahead of the normal
+    pass. A loop of its own with no call and no branch, compiled with numpy's error model (no
+    zero-divisor test: its divisor ``2 t^3 + x`` is positive), which numba vectorises: measured
+    at 10^6 contacts, AVX2, the normal pass 22 ms with numpy's (libm's) ``cbrt``, 9.4-9.8 ms
+    with this loop (3.3-3.4 of it) and 20-21 ms with the cube root inside the normal pass's
+    loop (whose branches keep it scalar)."""
+    for i in _prange(x.size):
+        out[i] = _cbrt_one(x[i])
 
 
 def _channel_pass(c: int, hertz: bool = False):
@@ -444,17 +451,16 @@ _fused_torsion_hertz = _channel_pass(1, True)
 # (the springs module indexes the spring passes by position: 2, 3, 4 and 6)
 _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_step_pass,
            _fused_torsion, _first_pass, _fused_tangential_hertz,
-           _fused_torsion_hertz, _normal_pass_hertz)
+           _fused_torsion_hertz, _normal_pass_hertz, _cbrt_pass)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical; the same for the n = 2
 # channel passes (no difference in cache at 2 x 10^4 contacts, but at 10^6 Hertz contacts,
 # four rounds alternating, one thread: tangential 16.1-16.7 -> 15.2-15.7 ms, torsion
 # 21.7-22.2 -> 21.1-21.4 ms; fewer instructions per contact in flight beside the divisions);
-# and the n = 2 normal pass, whose cube-root loop numba vectorises only without that test
-# (its divisors: the cube root's 2 t^3 + x > 0, kc > 0)
+# and the cube-root loop, which numba vectorises only without that test
 _OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"},
-                                _normal_pass_hertz: {"error_model": "numpy"},
+                                _cbrt_pass: {"error_model": "numpy"},
                                 _first_pass: {"error_model": "numpy"},
                                 _fused_tangential_hertz: {"error_model": "numpy"},
                                 _fused_torsion_hertz: {"error_model": "numpy"}}
@@ -475,7 +481,7 @@ def __getattr__(name: str):
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused tangential, spring, switch, switch-and-step in blocks,
     fused torsion, switch-and-step per contact, fused tangential, fused torsion and normal for
-    n = 2)`` passes, serial or threaded (built on first use, compiled on their first call,
+    n = 2, cube root)`` passes, serial or threaded (built on first use, compiled on their first call,
     machine code cached on disk: :func:`contactlab.numeric.jit.njit`; the plain Python
     functions without numba). The
     switch-and-step of both builds calls the serial switch and spring passes per block.
@@ -533,8 +539,11 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     if by_force and float(n) == 2.0 and factor is None:
         factor = force_factor(E, kc, 2.0)
     pre = _powers(by_force, val, kc, E, float(n), d, a, factor)
+    kernels = _kernels(parallel)
+    if by_force and float(n) == 2.0:    # a = cbrt(F) cbrt(3/(4 E kc)): cbrt(F) here
+        kernels[10](val, a)
     fac = factor if by_force and float(n) == 2.0 else _EMPTY
-    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](
+    counts = kernels[9 if float(n) == 2.0 else 0](
         bool(by_force), val, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
         u is not None, phi is not None, kc, E, float(n), flat, ref, float(rtol), pre, fac, d, a,
         F, flag)
