@@ -409,9 +409,10 @@ def scaling() -> None:
 def passes(n: int = 10**6, steps: int = 8) -> None:
     """``--passes``: where one compiled constant-load step goes, on one thread with ``out=``:
     CPU time of this thread per part (best of ``steps`` after two warm-up steps), the kernels
-    wrapped by timers: the normal pass (numpy's powers and the compiled loop), the kernel loop
-    alone, the tangential and the torsion pass, the whole step and what is left of it (the
-    step's Python and numpy around the passes)."""
+    wrapped by timers: the normal pass (numpy's powers, the compiled cube-root loop and the
+    compiled loop), the kernel loop and the cube-root loop alone, the tangential and the
+    torsion pass, the whole step and what is left of it (the step's Python and numpy around
+    the passes)."""
     law = _law(n, "fast")
     times: dict[str, list[float]] = {}
 
@@ -426,6 +427,7 @@ def passes(n: int = 10**6, steps: int = 8) -> None:
     kernels = list(law_kernel._kernels(False))
     kernels[0] = timed("normal pass, compiled loop", kernels[0])
     kernels[9] = timed("normal pass, compiled loop", kernels[9])
+    kernels[10] = timed("normal pass, its cube-root loop", kernels[10])
     kernels[1] = timed("tangential pass", kernels[1])
     kernels[7] = timed("tangential pass", kernels[7])      # (its n = 2 build)
     kernels[5] = timed("torsion pass (and dW, exact)", kernels[5])
@@ -446,7 +448,8 @@ def passes(n: int = 10**6, steps: int = 8) -> None:
     print(f"\nthe compiled constant-load step by parts, {n} Hertz contacts, one thread, out=, "
           f"CPU ms, best of {steps} (load {os.getloadavg()[0]:.1f})")
     for name in ("normal pass (numpy powers + loop)", "normal pass, compiled loop",
-                 "tangential pass", "torsion pass (and dW, exact)", "the step"):
+                 "normal pass, its cube-root loop", "tangential pass",
+                 "torsion pass (and dW, exact)", "the step"):
         print(f"  {name:<36} {best[name]:7.2f}")
     rest = best["the step"] - sum(best[k] for k in ("normal pass (numpy powers + loop)",
                                                      "tangential pass",

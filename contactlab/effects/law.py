@@ -25,6 +25,7 @@ import numpy as np
 from ..citations import Citations
 from ..errors import NotSupportedError, OutsideTheoryError, ParameterError, UnknownNameError
 from ..errors import ValidityWarning
+from ..numeric.cube_root import cbrt as _cbrt     # the compiled normal pass's, to the bit
 from ..params import as_float_array, as_real, check_memory, exactly_one
 from ..physics import law_kernel as _kernel
 from ..physics import law_springs as _springs
@@ -454,7 +455,7 @@ class ContactLaw:
             return d.copy(), a, F
         F = _per_step("force", val, self.size, "N", nonneg=True)
         c = (n + 1.0) / (2.0 * n * self._E_star * self._kc)   # n = 2: cbrt(c) once, compiled
-        a = np.cbrt(F) * np.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
+        a = _cbrt(F) * _cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
         d = self._kc * a**n if n != 2.0 else self._kc * a * a
         return d, a, F.copy()
 

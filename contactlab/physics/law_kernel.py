@@ -8,9 +8,11 @@ contacts separate or leave the constant-load regime; no state written) and :func
 (scale factors, tangential and torsional Masing steps and the outputs of every contact, in
 two loops, one per channel, no temporary arrays). Contacts whose load changes go onto their
 MDR springs through :func:`switch_pass` (once per contact, in the arrays the law allocated) and
-then :func:`spring_pass` every step. Under force control (and by depth for ``n != 2``) the
-fractional powers of the normal contact come from numpy's vectorised ``cbrt`` (the paraboloid
-by force) or ``power``, so that the compiled step matches the numpy law to the bit. The torsion
+then :func:`spring_pass` every step. The paraboloid's cube root by force is
+:func:`contactlab.numeric.cube_root.cbrt_one` in a loop of its own (:func:`_cbrt_pass`: arithmetic
+and bit operations, vectorised, no call; the numpy law takes its numpy twin), the other fractional
+powers of the normal contact (``n != 2``) come from numpy's vectorised ``power``, so that the
+compiled step matches the numpy law to the bit. The torsion
 master curve's three polynomials are evaluated side by side in the lanes of one vector
 (:func:`_poly3_lanes`, a numba intrinsic; the table from :func:`lane_table`).
 :data:`AVAILABLE` is False when numba is not installed.
@@ -26,6 +28,8 @@ import numpy as np
 
 from ..errors import NotSupportedError
 from ..numeric import jit as _jit
+from ..numeric.cube_root import cbrt as _cbrt
+from ..numeric.cube_root import cbrt_one as _cbrt_one
 from . import law_kernel_springs as _springs
 from .law_kernel_springs import (_first_pass, _spring_pass, _switch_pass, _switch_step_pass,
                                  spring_pass, switch_pass, switch_step_pass)
@@ -193,10 +197,10 @@ def _normal_of(hertz: bool = False):
         """Depth, radius and force of every contact; flag: 0 constant load, 1 separated (a <= 0),
         2 depth left rtol of the reference depth. Returns counts (bad inputs, separated, off,
         contacts moved in both channels, non-finite results). ``pre``: the powers of the power-law
-        family are given (numpy's vectorised ``power``, the reference's arithmetic to the bit):
-        ``a_out`` holds the radius and, by force with ``n != 2``, ``d_out`` the depth ``kc a^n``;
-        by force with ``n = 2``, ``a_out`` holds the force's cube root (numpy's ``cbrt``) and the
-        radius is its product with ``fac``, the cube root of ``(n + 1)/(2 n E kc)``
+        family (``n != 2``) are given (numpy's vectorised ``power``, the reference's arithmetic
+        to the bit): ``a_out`` holds the radius and, by force, ``d_out`` the depth ``kc a^n``.
+        By force with ``n = 2``, ``a_out`` holds the force's cube root (:func:`_cbrt_pass`)
+        and the radius is its product with ``fac``, the cube root of ``(n + 1)/(2 n E kc)``
         (:func:`force_factor`)."""
         if hertz:
             n = 2.0
@@ -227,12 +231,15 @@ def _normal_of(hertz: bool = False):
                     di = v
                     Fi = 2.0 * E[i] * dp * flat[i]
             elif by_force:
-                if pre:
-                    ai = a_out[i] * fac[i] if n == 2.0 else a_out[i]
-                    di = kc[i] * ai * ai if n == 2.0 else d_out[i]
+                if n == 2.0:        # a = cbrt(F) cbrt(3/(4 E kc)), cbrt(F) given
+                    ai = a_out[i] * fac[i]
+                    di = kc[i] * ai * ai
+                elif pre:
+                    ai = a_out[i]
+                    di = d_out[i]
                 else:
                     ai = (v * ((n + 1.0) / (2.0 * n * E[i] * kc[i]))) ** (1.0 / (n + 1.0))
-                    di = kc[i] * ai * ai if n == 2.0 else kc[i] * ai ** n
+                    di = kc[i] * ai ** n
                 Fi = v
             else:
                 dp = max(v, 0.0)
@@ -270,6 +277,18 @@ def _normal_of(hertz: bool = False):
 
 _normal_pass = _normal_of()
 _normal_pass_hertz = _normal_of(True)
+
+
+def _cbrt_pass(x, out):
+    """``out = cbrt(x)`` (:func:`~contactlab.numeric.cube_root.cbrt_one`, glibc's algorithm in
+    arithmetic and bit operations): the paraboloid's cube root of the force, ahead of the normal
+    pass. A loop of its own with no call and no branch, compiled with numpy's error model (no
+    zero-divisor test: its divisor ``2 t^3 + x`` is positive), which numba vectorises: measured
+    at 10^6 contacts, AVX2, the normal pass 22 ms with numpy's (libm's) ``cbrt``, 9.4-9.8 ms
+    with this loop (3.3-3.4 of it) and 20-21 ms with the cube root inside the normal pass's
+    loop (whose branches keep it scalar)."""
+    for i in _prange(x.size):
+        out[i] = _cbrt_one(x[i])
 
 
 def _channel_pass(c: int, hertz: bool = False):
@@ -432,14 +451,16 @@ _fused_torsion_hertz = _channel_pass(1, True)
 # (the springs module indexes the spring passes by position: 2, 3, 4 and 6)
 _PASSES = (_normal_pass, _fused_tangential, _spring_pass, _switch_pass, _switch_step_pass,
            _fused_torsion, _first_pass, _fused_tangential_hertz,
-           _fused_torsion_hertz, _normal_pass_hertz)
+           _fused_torsion_hertz, _normal_pass_hertz, _cbrt_pass)
 # the spring pass divides without numba's test of each divisor for zero (Python's
 # ZeroDivisionError; a zero divisor gives the IEEE result, as in the numpy reference): measured
 # 3-6 % faster with the split loop over cells, results bit-identical; the same for the n = 2
 # channel passes (no difference in cache at 2 x 10^4 contacts, but at 10^6 Hertz contacts,
 # four rounds alternating, one thread: tangential 16.1-16.7 -> 15.2-15.7 ms, torsion
-# 21.7-22.2 -> 21.1-21.4 ms; fewer instructions per contact in flight beside the divisions)
+# 21.7-22.2 -> 21.1-21.4 ms; fewer instructions per contact in flight beside the divisions);
+# and the cube-root loop, which numba vectorises only without that test
 _OPTIONS: dict[object, dict] = {_spring_pass: {"error_model": "numpy"},
+                                _cbrt_pass: {"error_model": "numpy"},
                                 _first_pass: {"error_model": "numpy"},
                                 _fused_tangential_hertz: {"error_model": "numpy"},
                                 _fused_torsion_hertz: {"error_model": "numpy"}}
@@ -460,7 +481,7 @@ def __getattr__(name: str):
 def _kernels(parallel: bool) -> tuple:
     """The compiled ``(normal, fused tangential, spring, switch, switch-and-step in blocks,
     fused torsion, switch-and-step per contact, fused tangential, fused torsion and normal for
-    n = 2)`` passes, serial or threaded (built on first use, compiled on their first call,
+    n = 2, cube root)`` passes, serial or threaded (built on first use, compiled on their first call,
     machine code cached on disk: :func:`contactlab.numeric.jit.njit`; the plain Python
     functions without numba). The
     switch-and-step of both builds calls the serial switch and spring passes per block.
@@ -474,13 +495,14 @@ def _kernels(parallel: bool) -> tuple:
         with _build_lock:
             if parallel not in _KERNELS:
                 if _jit.available():
-                    global _load, _poly3, _prange
+                    global _load, _poly3, _prange, _cbrt_one
                     import numba
                     if "load" not in _KERNELS:      # the callee, shared by both builds
                         _poly3 = _poly3_lanes()
                         # inlined into each pass at numba's IR level (measured 8-12 % faster
                         # fused pass than a call, results bit-identical)
                         _KERNELS["load"] = _load = _jit.njit(_load, nogil=True, inline="always")
+                        _cbrt_one = _jit.njit(_cbrt_one, nogil=True, inline="always")
                         _prange = _springs._prange = numba.prange
                         for h in _springs._INLINE:      # the spring passes' shared pieces
                             setattr(_springs, h, _jit.njit(getattr(_springs, h), nogil=True,
@@ -517,8 +539,11 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
     if by_force and float(n) == 2.0 and factor is None:
         factor = force_factor(E, kc, 2.0)
     pre = _powers(by_force, val, kc, E, float(n), d, a, factor)
+    kernels = _kernels(parallel)
+    if by_force and float(n) == 2.0:    # a = cbrt(F) cbrt(3/(4 E kc)): cbrt(F) here
+        kernels[10](val, a)
     fac = factor if by_force and float(n) == 2.0 else _EMPTY
-    counts = _kernels(parallel)[9 if float(n) == 2.0 else 0](
+    counts = kernels[9 if float(n) == 2.0 else 0](
         bool(by_force), val, _EMPTY if u is None else u, _EMPTY if phi is None else phi,
         u is not None, phi is not None, kc, E, float(n), flat, ref, float(rtol), pre, fac, d, a,
         F, flag)
@@ -528,7 +553,8 @@ def normal_pass(by_force: bool, val, u, phi, kc, E, n: float, flat, ref, rtol: f
 def force_factor(E, kc, n: float):
     """``(n + 1)/(2 n E kc)`` per contact, the factor of the force in the radius
     ``a = (F (n + 1)/(2 n E kc))^(1/(n+1))`` (in the numpy reference's order,
-    ``(n + 1)/(((2 n) E) kc)``: the same bits), for ``n = 2`` its cube root (numpy's ``cbrt``),
+    ``(n + 1)/(((2 n) E) kc)``: the same bits), for ``n = 2`` its cube root
+    (:func:`contactlab.numeric.cube_root.cbrt`),
     the factor of the force's cube root in the paraboloid's radius
     ``a = cbrt(F) cbrt(3/(4 E kc))`` (:func:`contactlab.physics.law_xp.normal`), None for the
     flat punch: a law computes it once (these are per-contact constants), saving the step
@@ -536,27 +562,23 @@ def force_factor(E, kc, n: float):
     if n == np.inf:
         return None
     c = (n + 1.0) / (2.0 * n * E * kc)
-    return np.cbrt(c) if n == 2.0 else c
+    return _cbrt(c) if n == 2.0 else c
 
 
 def _powers(by_force: bool, val, kc, E, n: float, d, a, factor=None) -> bool:
-    """The fractional powers of the normal contact (the radius from a force, or from a depth
-    when ``n`` is not 2; the depth ``kc a^n`` from a force when ``n`` is not 2) by numpy's
-    vectorised ``cbrt`` (``n = 2`` by force: the force's cube root only, which the kernel
-    multiplies by the factor's, :func:`force_factor`) or ``power`` into ``a`` and ``d``, in the numpy
-    reference's order of operations (:meth:`ContactLaw.normal`), so the compiled step matches
-    it to the bit (a scalar ``pow`` or ``cbrt`` in the kernel may differ from numpy's SIMD one
-    by an ulp, and is slower); ``d`` is the only scratch; ``factor``: :func:`force_factor`
-    (None: computed here). Returns whether they were computed (not for ``n = 2`` from a depth:
-    a square root, correctly rounded everywhere; not for the flat punch). Entries of bad inputs
-    are garbage here; the kernel counts them and the step is refused."""
-    if n == np.inf or (n == 2.0 and not by_force):
+    """The fractional powers of the normal contact for ``n != 2`` (the radius from a force or
+    a depth; the depth ``kc a^n`` from a force) by numpy's vectorised ``power`` into ``a`` and
+    ``d``, in the numpy reference's order of operations (:meth:`ContactLaw.normal`), so the
+    compiled step matches it to the bit (a scalar ``pow`` in the kernel may differ from numpy's
+    SIMD one by an ulp, and is slower); ``d`` is the only scratch; ``factor``:
+    :func:`force_factor` (None: computed here). Returns whether they were computed (not for
+    ``n = 2``: a square root from a depth, correctly rounded everywhere, and from a force
+    the kernel's own cube root; not for the flat punch). Entries of bad inputs are garbage
+    here; the kernel counts them and the step is refused."""
+    if n == np.inf or n == 2.0:
         return False
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         if by_force:        # a = (F ((n+1) / (2 n E kc)))^(1/(n+1)), d = kc a^n
-            if n == 2.0:    # a = cbrt(F) cbrt(3/(4 E kc)): the cube root here, the product
-                np.cbrt(val, out=a)     # with the factor's (given) in the kernel's loop
-                return True
             if factor is None:
                 factor = np.multiply(E, 2.0 * n, out=d)
                 factor *= kc

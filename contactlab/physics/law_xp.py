@@ -14,9 +14,10 @@ of the numpy reference (:meth:`contactlab.effects.law.ContactLaw.normal`,
 :func:`~contactlab.physics.master.tangential_master`,
 :func:`~contactlab.physics.masing_stack.masing_step`) in the same order, so its results are the
 reference's to the bit; the torsion curves are :func:`~contactlab.physics.master.evaluate`
-itself, called with ``xp``. On a GPU the
-elementwise transcendental functions (``power``, ``sqrt``, ``expm1``, ``log1p``) come from the
-device's math library and may differ from numpy's in the last bits.
+itself, called with ``xp``, and the paraboloid's cube root with numpy is the reference's
+:func:`contactlab.numeric.cube_root.cbrt`. On a GPU the elementwise transcendental functions
+(``power``, ``sqrt``, ``cbrt``, ``expm1``, ``log1p``) come from the device's math library and
+may differ from numpy's in the last bits.
 
 Pure kernels: arrays in, arrays out; the stack state (``st``) is updated in place.
 """
@@ -27,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from ..numeric import cube_root as _cube_root
 from . import master as _master
 
 __all__ = ["normal", "tangential_curve", "torsion_curves", "masing_step"]
@@ -49,7 +51,8 @@ def normal(xp: Any, by_force: bool, val: Any, kc: Any, E: Any, n: float, flat: A
         return val.copy(), a, F
     F = val
     c = (n + 1.0) / (2.0 * n * E * kc)
-    a = xp.cbrt(F) * xp.cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
+    cbrt = _cube_root.cbrt if xp is np else xp.cbrt     # numpy: the law's own cube root
+    a = cbrt(F) * cbrt(c) if n == 2.0 else (F * c) ** (1.0 / (n + 1.0))
     d = kc * a**n if n != 2.0 else kc * a * a
     return d, a, F.copy()
 

@@ -119,16 +119,16 @@ def test_every_kernel_is_cached_under_its_own_name():
             "_switch_step_pass_parallel", "_first_pass", "_first_pass_parallel",
             "_fused_tangential_hertz", "_fused_tangential_hertz_parallel",
             "_fused_torsion_hertz", "_fused_torsion_hertz_parallel", "_normal_pass_hertz",
-            "_normal_pass_hertz_parallel"} <= disp.keys()
+            "_normal_pass_hertz_parallel", "_cbrt_pass", "_cbrt_pass_parallel"} <= disp.keys()
     if any(f.stats.cache_path is None for f in disp.values()):
         pytest.skip("no writable cache directory in this environment")
     index = [f._cache._cache_file._index_name for f in disp.values()]
     # 8 Winkler kernels (one step loop for one block or many since issue 13; the whole-power
-    # helper of the edge-cell pass), the viscoelastic step, 20 law passes (serial and threaded:
+    # helper of the edge-cell pass), the viscoelastic step, 22 law passes (serial and threaded:
     # normal, fused torsion, spring, switch onto the springs, switch-and-step in blocks, fused
-    # tangential, switch-and-step per contact, fused tangential, torsion and normal for n = 2) and the
-    # law loader
-    assert len(set(index)) == len(index) == 30, index
+    # tangential, switch-and-step per contact, fused tangential, torsion and normal for n = 2,
+    # the force's cube root) and the law loader
+    assert len(set(index)) == len(index) == 32, index
 
 
 def test_import_contactlab_does_not_import_numba():
