@@ -234,5 +234,5 @@ def warn_outside_slope(res: "LawStep", R: np.ndarray, kc: Any = None) -> bool:
             "theory, the result is the half-space solution, not that of the real body. Said "
             "once per law.")
     res.meta["notes"] = (*res.meta.get("notes", ()), text)
-    warnings.warn(text, ValidityWarning, stacklevel=4)
+    warnings.warn(text, ValidityWarning, stacklevel=5)   # the caller of law.step
     return True

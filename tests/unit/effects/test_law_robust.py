@@ -253,6 +253,7 @@ def test_radius_beyond_r_over_root3_warns_once_naming_the_contact(kw):
                                              r"0\.011547\d* m \(R = 0\.02 m\)") as rec:
         out = law.step(force=beyond, twist=1e-6)
     assert len(rec) == 1 and "tan 30°" in out.meta["notes"][0]
+    assert rec[0].filename == __file__                # attributed to the caller's step
     np.testing.assert_allclose(out.radius, [0.003, 0.012, 0.0035], rtol=1e-14)
     with warnings.catch_warnings():
         warnings.simplefilter("error")                 # said once per law
