@@ -43,7 +43,19 @@ _FAR = 25.0
 def _slip(p: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``K − E`` and ``E`` at ``m = 1 − t²`` given both ``p = t²`` and ``m`` (each exact where it
     is small: ``K`` from ``p`` near the logarithm at ``m → 1``, both from ``m`` near 0)."""
-    K = np.where(p < 0.5, _sp.ellipkm1(np.minimum(p, 0.5)), _sp.ellipk(np.minimum(m, 0.5)))
+    # each point's K by the one branch it takes (elementwise: the bits of evaluating both and
+    # choosing, at half the elliptic integrals)
+    p, m = np.asarray(p, float), np.asarray(m, float)
+    near = p < 0.5
+    if near.all():
+        K = _sp.ellipkm1(p)
+    elif not near.any():
+        K = _sp.ellipk(np.minimum(m, 0.5))
+    else:
+        K = np.empty(p.shape)     # (p and m come with one shape)
+        K[near] = _sp.ellipkm1(p[near])
+        far = ~near
+        K[far] = _sp.ellipk(np.minimum(m[far], 0.5))
     E = _sp.ellipe(m)
     return K - E, E
 
