@@ -26,7 +26,9 @@ random phases so that reversals and loop closures occur):
 * memory: tracemalloc's peak per contact of a law through constant and changing-load steps
   (and ``law_memory``, what the budget check counts); goal <= 1.5 GB at 10^6.
 
-Each row prints the step's best wall time and its CPU time (this thread's; the process's on
+The constant-load rows' laws step in turn, one step each per round (the order rotated each
+round), so that a change in the shared machine's speed falls on every mode alike. Each row
+prints the step's best wall time and its CPU time (this thread's; the process's on
 numba's threads: a shared machine's other processes lengthen the wall time, far less the CPU
 time), and two floors timed right before each of its steps (best over the row), so both see the
 same machine load: one numpy pass over 10^6 floats (``np.multiply(x, 2.0, out=y)``), and the
@@ -218,20 +220,28 @@ def _timed(mode: str, law: cl.ContactLaw, **kw) -> tuple[object, float, float, i
     return res, t, _cpu(mode) - c0, _faults() - f0
 
 
-def constant_row(n: int, mode: str, steps: int = 6) -> Row:
-    """Best constant-load step (wall, CPU) after two warm-up steps, floors interleaved."""
-    law = _law(n, mode)
+def constant_rows(n: int, modes: list[str], steps: int = 6) -> dict[str, Row]:
+    """Best constant-load step (wall, CPU) of each mode after two warm-up steps, floors
+    interleaved. The modes' laws step in turn (round-robin, the order rotated each step): this
+    shared machine's speed changes within minutes (the same compiled step measured at ~60 and
+    ~88 ms in consecutive processes, the serial and the threaded build alike when alternated in
+    one), and such a change then falls on every mode alike instead of on the rows that ran
+    during it."""
+    laws = {m: _law(n, m) for m in modes}
     F = _controls(n, 0)[0]
-    row, out = Row(), None
+    rows = {m: Row() for m in modes}
+    outs: dict[str, object] = dict.fromkeys(modes)
     for k in range(steps + 2):
         _, tw, u = _controls(n, k)
-        row.floors()
-        res, t, c, f = _timed(mode, law, force=F, twist=tw, displacement=u, out=out)
-        if mode == "fast+out":
-            out = res
-        if k >= 2:
-            row.add(t, c, f)
-    return row
+        for m in modes[k % len(modes):] + modes[:k % len(modes)]:
+            _threads(m)
+            rows[m].floors()
+            res, t, c, f = _timed(m, laws[m], force=F, twist=tw, displacement=u, out=outs[m])
+            if m == "fast+out":
+                outs[m] = res
+            if k >= 2:
+                rows[m].add(t, c, f)
+    return rows
 
 
 def changing_row(n: int, mode: str, steps: int = 4, frac: float = 1.0,
@@ -341,9 +351,9 @@ def issue_rows() -> None:
     print(f"{'row':<40} {'wall':>7} {'CPU':>7} {'pass':>6} {'ratio':>7} {'bw fl':>6} "
           f"{'ratio':>6} {'faults':>7}  goal")
     changing_only = "--changing" in sys.argv
-    for m in modes if not changing_only else ():
-        _threads(m)
-        _print(f"constant-load step, {m}", constant_row(n, m), const_b * n, 0.040)
+    if not changing_only:
+        for m, row in constant_rows(n, modes).items():
+            _print(f"constant-load step, {m}", row, const_b * n, 0.040)
     # a contact on its springs also reads and writes its spring row (3 floats per spring and
     # the row's scalars)
     spr_b = 2 * pool_row_bytes(DEFAULT_SPRINGS)
