@@ -27,7 +27,9 @@ random phases so that reversals and loop closures occur):
   (and ``law_memory``, what the budget check counts); goal <= 1.5 GB at 10^6.
 
 The constant-load rows' laws step in turn, one step each per round (the order rotated each
-round), so that a change in the shared machine's speed falls on every mode alike. Each row
+round), so that a change in the shared machine's speed falls on every mode alike; their five
+laws are held at once (~0.5 GB each at 10^6 contacts, ~2.5 GB together, above the default memory
+budget, which this benchmark lifts). Each row
 prints the step's best wall time and its CPU time (this thread's; the process's on
 numba's threads: a shared machine's other processes lengthen the wall time, far less the CPU
 time), and two floors timed right before each of its steps (best over the row), so both see the
