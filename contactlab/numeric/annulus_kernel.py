@@ -13,9 +13,10 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
   antiderivatives and the memo of the last density checked:
   :mod:`contactlab.numeric.inside_check`); :func:`slip_difference`: the difference density of
   the slip check and its sign;
-* :func:`energy_nodes`, :func:`difference_psi` and :func:`family_energy`: the Gauss points and
-  weights of the energy integrals, ``Ψ`` of a density there, ``Ψ`` of the difference of two
-  densities, and a family stage's products;
+* :func:`energy_nodes`, :func:`difference_psi`, :func:`family_energy` and
+  :func:`release_family_energy`: the Gauss points and weights of the energy integrals, ``Ψ`` of a
+  density there, ``Ψ`` of the difference of two densities, a family stage's products and those
+  of a shrinking contact's release and family stages;
 * :func:`nonnegative_band`: the test of the full-sliding density's ``Ψ >= 0``
   (:func:`nonnegative`) and the removal of the band where ``Ψ < 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
@@ -52,7 +53,7 @@ from . import sorted_search as _ss
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
            "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE", "table_scatter",
-           "coefficient_pieces", "family_energy", "kernels",
+           "coefficient_pieces", "family_energy", "release_family_energy", "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -658,6 +659,37 @@ def family_energy(alo, ahi, awl, awr, blo, bhi, bwl, bwr, xg, wg, gross):
     return W, q0, qd, Pb, qbb, qdiss, dphi
 
 
+def release_family_energy(alo, ahi, awl, awr, blo, bhi, bwl, bwr, clo, chi, cwl, cwr, xg, wg,
+                          gross):
+    """The arrays of ``torsion_energy._stages`` for a shrinking contact's chain ``a → b → c``: a
+    release ``a → b`` at the held twist, then the family stage ``b → c`` with the gross turn
+    ``gross`` (its elementwise products, in its order; the dot products are left to numpy):
+    ``(W, ΔΨ₁², Ψ_b, Ψ_b (ΔΨ₁(0) − ΔΨ₁), ΔΨ₁(0), ΔΨ₂², Ψ_c, Ψ_c (Δφ − ΔΨ₂), Ψ_c², Ψ_a², Δφ)``,
+    ``Δφ = ΔΨ₂(0) + gross``."""
+    X0, W, P, dP1 = energy_nodes(alo, ahi, awl, awr, blo, bhi, bwl, bwr, clo, chi, xg, wg)
+    dP2 = difference_psi(clo, chi, cwl, cwr, blo, bhi, bwl, bwr, X0)
+    m = W.size
+    d01 = dP1[m]
+    dphi = dP2[m] + gross
+    qd1, Pb, qdiss1, qd2, Pc, qdiss2, qcc, q0 = (np.empty(m), np.empty(m), np.empty(m),
+                                                 np.empty(m), np.empty(m), np.empty(m),
+                                                 np.empty(m), np.empty(m))
+    for i in range(m):
+        d = dP1[i]
+        b = P[i] + d
+        e = dP2[i]
+        c = b + e
+        qd1[i] = d * d
+        Pb[i] = b
+        qdiss1[i] = b * (d01 - d)
+        qd2[i] = e * e
+        Pc[i] = c
+        qdiss2[i] = c * (dphi - e)
+        qcc[i] = c * c
+        q0[i] = P[i] * P[i]
+    return W, qd1, Pb, qdiss1, d01, qd2, Pc, qdiss2, qcc, q0, dphi
+
+
 def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
     """``Ψ`` of ``torsion_pieces.difference(b, a, 0)`` at the points ``X0``."""
     d = _difference(blo, bhi, bwl, bwr, alo, ahi, awl, awr, 0.0)
@@ -684,6 +716,7 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
                                          "table_scatter": table_scatter,
                                          "coefficient_pieces": coefficient_pieces,
                                          "family_energy": family_energy,
+                                         "release_family_energy": release_family_energy,
                                          "slip_difference": slip_difference}
 
 

@@ -111,6 +111,21 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
         diss += 2.0 * k * float(W @ qdiss)
         return {"work": work, "stored": k * float(W @ qbb), "stored_old": k * float(W @ q0),
                 "dissipated": diss}
+    if ak is not None and len(chain) == 3 and chain[1][1] is False and chain[2][1] is True:
+        # a shrinking contact's release, then its family stage (annulus_energy): the products
+        # of both in one compiled pass, the dot products below as in the loop (the same bits)
+        W, qd1, Pb, qdiss1, d01_, qd2, Pc, qdiss2, qcc, q0, dphi_ = ak["release_family_energy"](
+            *_ta._arrays(dens[0]), *_ta._arrays(dens[1]), *_ta._arrays(dens[2]), *_GAUSS,
+            float(gross))
+        d0, dphi = float(d01_), float(dphi_)
+        E_d = k * float(W @ qd1)
+        work += 2.0 * k * float(W @ Pb) * d0
+        diss += 2.0 * k * float(W @ qdiss1) + E_d
+        E_d = k * float(W @ qd2)
+        work += 2.0 * k * float(W @ Pc) * dphi - E_d
+        diss += 2.0 * k * float(W @ qdiss2)
+        return {"work": work, "stored": k * float(W @ qcc), "stored_old": k * float(W @ q0),
+                "dissipated": diss}
     if ak is not None:
         # the compiled passes (numeric.annulus_kernel): the nodes, weights and Ψ of the first
         # density in one pass, each increment's Ψ in one more; the same values

@@ -118,6 +118,46 @@ def test_nonnegative_slip_integral_and_energies_are_bit_identical(monkeypatch, c
         assert all(_same(u, v) for u, v in zip(got[3:], ref[3:]))
 
 
+def _counting(monkeypatch, passes: dict, name: str) -> list:
+    """Replace the pass ``name`` of ``passes`` by one that records its calls in the list
+    returned."""
+    seen: list = []
+    inner = passes[name]
+
+    def counted(*args):
+        seen.append(1)
+        return inner(*args)
+    monkeypatch.setitem(passes, name, counted)
+    return seen
+
+
+@pytest.mark.parametrize("compiled", ROUTES)
+def test_shrinking_contact_energy_pass_is_the_loops_bits(monkeypatch, compiled):
+    """A shrinking contact's release then family stage (``annulus_energy``'s three-stage
+    chain) by one compiled pass: the work, energies and dissipation of the numpy loop, bit for
+    bit, with and without a gross turn."""
+    taken = 0
+    for old, sl, radius, dphi, *_ in _cases():
+        top = float(old[1][-1]) if old[1].size else 0.0
+        if top <= radius:
+            continue
+        new = ta.step(old, sl, radius, 1.0, dphi=dphi)["w"]
+        mid = ta.step(old, sl, radius, 1.0, dphi=0.0)["w"]
+        chain = [(old, None), (mid, False), (new, True)]
+        for gross in (0.0, 0.1, -2.5e-3):
+            _route(monkeypatch, False)
+            ref = te._stages(chain, 3.0e9, gross)
+            _route(monkeypatch, True, compiled)
+            # (the uncompiled logic's passes are copies of ak._PLAIN, made per call)
+            passes = ta._annulus_kernels() if compiled else ak._PLAIN
+            assert passes is not None
+            seen = _counting(monkeypatch, passes, "release_family_energy")
+            got = te._stages(chain, 3.0e9, gross)
+            monkeypatch.undo()
+            assert seen and _same(got, ref), (radius, dphi, gross)
+            taken += 1
+    assert taken >= 15
+
 @pytest.mark.parametrize("compiled", ROUTES)
 def test_pairwise_sum_is_numpys_order(compiled):
     if compiled:
