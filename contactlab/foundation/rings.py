@@ -88,14 +88,17 @@ class RingState:
         Circumferential traction at the collocation points, Pa.
     S : ndarray
         Area-weighted slip accumulated while in contact, m³.
-    active : ndarray of int
-        Active set of the last step (-1/+1 sliding backwards/forwards, 0 stuck, 2 out of contact).
+    active : ndarray of int, or tuple
+        Active set of the last step (-1/+1 sliding backwards/forwards, 0 stuck, 2 out of contact),
+        or after an annulus step its stick radius, sense and ``μ p`` at the points, from which
+        :func:`contactlab.physics.torsion_rings.active_set` forms it where the ring solver
+        needs it.
     twist : float
     """
 
     z: np.ndarray
     S: np.ndarray
-    active: np.ndarray
+    active: np.ndarray | tuple
     twist: float = 0.0
 
 
@@ -578,13 +581,13 @@ class Rings(Foundation):
                             if ctrl == "twist":
                                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
                                                                 dphi=target[j] - st.twist,
-                                                                guess=st.active, C=rings.C,
-                                                                memo=factors)
+                                                                guess=_tr.active_set(st.active, r),
+                                                                C=rings.C, memo=factors)
                             else:
                                 z, lam, dphi, it = _tr.box_step(H, g, z_old, bj,
                                                                 torque=float(target[j]),
-                                                                guess=st.active, C=rings.C,
-                                                                memo=factors)
+                                                                guess=_tr.active_set(st.active, r),
+                                                                C=rings.C, memo=factors)
                             gross = not np.isfinite(dphi)
                             if gross:       # torque beyond full sliding: gross sliding, the
                                 # twist turned by the smallest increment at which all slides
@@ -765,16 +768,15 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
             return (w_new, None, ds, 0.0, True, 0.0, act, 1,
                     {"sense": s, "turn": None, "gross": 0.0})
         dphi = target - twist if ctrl == "twist" else out["dpsi"]
-        act = np.where(r >= c, int(s), 0)
-        act[bound == 0] = 2
-        return (w_new, None, ds, dphi, False, c if c < radius else None, act, 1, book)
+        # the active set as the stick radius, sense and μp (formed if a ring step follows)
+        return (w_new, None, ds, dphi, False, c if c < radius else None, (c, s, bound), 1, book)
     # the ring solver's step is incremental: the increment of the point tractions is a hat
     # density added to the exact old density (its jumps at earlier stick radii kept)
     H, g = rings.H, rings.g
     z_old = _tpt.traction_at_points(w, r, G_t, rings.table, rings.table_diffs)
     if ctrl == "twist":
-        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist, guess=active,
-                                        C=rings.C, memo=memo)
+        z, lam, dphi, it = _tr.box_step(H, g, z_old, bound, dphi=target - twist,
+                                        guess=_tr.active_set(active, r), C=rings.C, memo=memo)
     else:
         # the ring solver's torque g·z of the old tractions differs from the density's exact
         # torque by its discretisation error: aim its step at the increment of the torque, not
@@ -782,8 +784,8 @@ def _annulus_step(rings, w, bound, radius, G_t, ctrl, target, twist, active, sli
         # large twist error)
         M_w = _ta.torque(w, G_t)
         z, lam, dphi, it = _tr.box_step(H, g, z_old, bound,
-                                        torque=target + float(g @ z_old) - M_w, guess=active,
-                                        C=rings.C, memo=memo)
+                                        torque=target + float(g @ z_old) - M_w,
+                                        guess=_tr.active_set(active, r), C=rings.C, memo=memo)
     gross = not np.isfinite(dphi)
     if gross:       # all slides: the smallest turn at which it does (held while the force falls)
         z, lam, dphi = _tr.gross_step(H, g, z_old, bound, float(np.sign(target)))

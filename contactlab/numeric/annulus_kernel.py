@@ -16,7 +16,8 @@ densities' plain arrays (piece ends ``lo``, ``hi`` and end values ``wl``, ``wr``
 * :func:`energy_nodes`, :func:`difference_psi`, :func:`family_energy` and
   :func:`release_family_energy`: the Gauss points and weights of the energy integrals, ``Ψ`` of a
   density there, ``Ψ`` of the difference of two densities, a family stage's products and those
-  of a shrinking contact's release and family stages;
+  of a shrinking contact's release and family stages (:func:`shrink_energy`: with the release
+  density's own step);
 * :func:`nonnegative_band`: the test of the full-sliding density's ``Ψ >= 0``
   (:func:`nonnegative`) and the removal of the band where ``Ψ < 0``;
 * :func:`coefficient_pieces`: the ring solver's hat coefficients as pieces cut at the contact
@@ -53,7 +54,8 @@ from . import sorted_search as _ss
 
 __all__ = ["pairwise_sum", "twist_step", "slip_difference", "energy_nodes", "difference_psi",
            "nonnegative_band", "BAND_NONE", "BAND_CUT", "BAND_REFERENCE", "table_scatter",
-           "coefficient_pieces", "family_energy", "release_family_energy", "kernels",
+           "coefficient_pieces", "family_energy", "release_family_energy", "shrink_energy",
+           "kernels",
            "INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "STEP_DONE", "STEP_REFERENCE"]
 
 #: :func:`twist_step`'s verdicts of the traction check inside the stick radius
@@ -690,6 +692,27 @@ def release_family_energy(alo, ahi, awl, awr, blo, bhi, bwl, bwr, clo, chi, cwl,
     return W, qd1, Pb, qdiss1, d01, qd2, Pc, qdiss2, qcc, q0, dphi
 
 
+def shrink_energy(olo, ohi, owl, owr, slo, shi, swl, swr, radius, xtol, rtol, G_t, check_rtol,
+                  r, bound, F0, F1, t_r, t_nodes, memo_w, memo_x, nlo, nhi, nwl, nwr, xg, wg,
+                  gross):
+    """A shrinking contact's step energy whose twist goes on (``torsion_energy.annulus_energy``)
+    in one pass: the release density (:func:`twist_step` of the old density ``o`` onto the
+    full-sliding one ``s`` at twist increment 0, without checks: ``r``, ``bound`` empty, the
+    table and memo arguments those of such a call), then :func:`release_family_energy` of
+    ``o`` → it → the new density ``n``. Returns ``(status, *arrays)``: :func:`twist_step`'s
+    status and :func:`release_family_energy`'s arrays (empty where the status leaves the step
+    to the numpy route)."""
+    step = twist_step(olo, ohi, owl, owr, slo, shi, swl, swr, radius, 0.0, xtol, rtol, r, bound,
+                      G_t, check_rtol, F0, F1, t_r, t_nodes, memo_w, memo_x)
+    st, ws = step[0], step[1]
+    if st != STEP_DONE:
+        e = np.zeros(0)
+        return st, e, e, e, e, 0.0, e, e, e, e, e, 0.0
+    W, qd1, Pb, qdiss1, d01, qd2, Pc, qdiss2, qcc, q0, dphi = release_family_energy(
+        olo, ohi, owl, owr, ws[0], ws[1], ws[2], ws[3], nlo, nhi, nwl, nwr, xg, wg, gross)
+    return st, W, qd1, Pb, qdiss1, d01, qd2, Pc, qdiss2, qcc, q0, dphi
+
+
 def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
     """``Ψ`` of ``torsion_pieces.difference(b, a, 0)`` at the points ``X0``."""
     d = _difference(blo, bhi, bwl, bwr, alo, ahi, awl, awr, 0.0)
@@ -704,7 +727,8 @@ def difference_psi(blo, bhi, bwl, bwr, alo, ahi, awl, awr, X0):
 _HELPERS: tuple = ("_stack", "_block", "pairwise_sum", "_left", "_right", "_unique_sorted",
                    "_is_sorted", "_union", "_nodes", "_ends_union", "_psi_walk", "_psi", "_ends_walk",
                    "_total", "_value", "_root_twist", "_difference",
-                   "difference_psi", "energy_nodes", "_sort4", "nonnegative")
+                   "difference_psi", "energy_nodes", "_sort4", "nonnegative", "twist_step",
+                   "release_family_energy")
 #: helpers small enough to inline
 _INLINE = frozenset({"_stack", "_block", "_left", "_right", "_is_sorted", "_value", "_total",
                      "_root_twist", "_nodes", "_ends_union", "_union", "_unique_sorted", "_psi",
@@ -717,6 +741,7 @@ _PLAIN: dict[str, Callable[..., Any]] = {"twist_step": twist_step, "energy_nodes
                                          "coefficient_pieces": coefficient_pieces,
                                          "family_energy": family_energy,
                                          "release_family_energy": release_family_energy,
+                                         "shrink_energy": shrink_energy,
                                          "slip_difference": slip_difference}
 
 
@@ -743,6 +768,8 @@ def kernels(compiled: bool = True) -> dict:
                 g[name] = _jit.njit(g[name], nogil=True, error_model="numpy", **extra)
             _ic.build(g["_left"])
             g["_inside"], g["_inside_memo"] = _ic.inside, _ic.inside_memo
-            _state["kernels"] = {name: _jit.njit(f, nogil=True, error_model="numpy")
+            # (a pass that is also a helper of another pass: its helper build, one compile)
+            _state["kernels"] = {name: g[name] if name in _HELPERS else
+                                 _jit.njit(f, nogil=True, error_model="numpy")
                                  for name, f in _PLAIN.items()}
     return _state["kernels"]

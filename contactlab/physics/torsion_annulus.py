@@ -581,6 +581,24 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
 _DECIDED = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
 
 
+def shrink_energy_arrays(old: Pieces, slide: Pieces, radius: float, G_t: float, new: Pieces,
+                         gauss: tuple, gross: float) -> tuple | None:
+    """The compiled pass of a shrinking contact's step energy
+    (:func:`contactlab.numeric.annulus_kernel.shrink_energy`): the release density ``step(old,
+    slide, radius, G_t, dphi=0.0)["w"]`` taken by the arguments of :func:`_compiled_step` (the
+    same bits), then the products of the release and family stages ``old → it → new`` with the
+    Gauss rule ``gauss`` and the gross turn ``gross``. None for the numpy route (no compiled
+    passes, or an input the pass leaves to it)."""
+    ak = _annulus_kernels()
+    if ak is None:
+        return None
+    out = ak["shrink_energy"](*_arrays(old), *_arrays(slide), float(radius),
+                              ROOT_XTOL * radius, _RTOL, float(G_t), CHECK_RTOL, np.zeros(0),
+                              np.zeros(0), *_NO_TABLE, *_NO_MEMO, *_arrays(new), *gauss,
+                              float(gross))
+    return None if out[0] != _annulus_kernel.STEP_DONE else out[1:]
+
+
 def _inside_ok(w: Pieces, r: np.ndarray, c: float, bound: np.ndarray, G_t: float,
                table: NodeTable | None, allow: tuple | None = None) -> bool:
     """:func:`step`'s check inside the stick radius: the traction at the points ``r < c``

@@ -114,18 +114,9 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
     if ak is not None and len(chain) == 3 and chain[1][1] is False and chain[2][1] is True:
         # a shrinking contact's release, then its family stage (annulus_energy): the products
         # of both in one compiled pass, the dot products below as in the loop (the same bits)
-        W, qd1, Pb, qdiss1, d01_, qd2, Pc, qdiss2, qcc, q0, dphi_ = ak["release_family_energy"](
+        return _release_family_sums(k, ak["release_family_energy"](
             *_ta._arrays(dens[0]), *_ta._arrays(dens[1]), *_ta._arrays(dens[2]), *_GAUSS,
-            float(gross))
-        d0, dphi = float(d01_), float(dphi_)
-        E_d = k * float(W @ qd1)
-        work += 2.0 * k * float(W @ Pb) * d0
-        diss += 2.0 * k * float(W @ qdiss1) + E_d
-        E_d = k * float(W @ qd2)
-        work += 2.0 * k * float(W @ Pc) * dphi - E_d
-        diss += 2.0 * k * float(W @ qdiss2)
-        return {"work": work, "stored": k * float(W @ qcc), "stored_old": k * float(W @ q0),
-                "dissipated": diss}
+            float(gross)))
     if ak is not None:
         # the compiled passes (numeric.annulus_kernel): the nodes, weights and Ψ of the first
         # density in one pass, each increment's Ψ in one more; the same values
@@ -168,6 +159,23 @@ def _stages(chain: list, G_t: float, gross: float = 0.0) -> dict:
             "stored_old": k * float(W @ (P0 * P0)), "dissipated": diss}
 
 
+def _release_family_sums(k: float, arrays: tuple) -> dict:
+    """:func:`_stages` of a release then a family stage from the products of
+    :func:`contactlab.numeric.annulus_kernel.release_family_energy` (``k = 8 G_t``): the dot
+    products and sums of the loop, in its order (the same bits)."""
+    W, qd1, Pb, qdiss1, d01_, qd2, Pc, qdiss2, qcc, q0, dphi_ = arrays
+    d0, dphi = float(d01_), float(dphi_)
+    work = diss = 0.0
+    E_d = k * float(W @ qd1)
+    work += 2.0 * k * float(W @ Pb) * d0
+    diss += 2.0 * k * float(W @ qdiss1) + E_d
+    E_d = k * float(W @ qd2)
+    work += 2.0 * k * float(W @ Pc) * dphi - E_d
+    diss += 2.0 * k * float(W @ qdiss2)
+    return {"work": work, "stored": k * float(W @ qcc), "stored_old": k * float(W @ q0),
+            "dissipated": diss}
+
+
 def step_energy(old: tuple, new: tuple, G_t: float, gross: float | None = 0.0) -> dict:
     """Work, elastic energy and dissipation of the family stage ``old → new``.
 
@@ -206,6 +214,10 @@ def annulus_energy(old: tuple, new: tuple, slide: tuple, radius: float, sense: f
         G = float(_ta.psi(old, np.array([radius]))[0])
         if sense * G > 0:
             if sense * dphi >= 0:
+                # the release density and both stages in one compiled pass where there is one
+                arrays = _ta.shrink_energy_arrays(old, slide, radius, G_t, new, _GAUSS, gross)
+                if arrays is not None:
+                    return _release_family_sums(8.0 * G_t, arrays)
                 mid = _ta.step(old, slide, radius, G_t, dphi=0.0)["w"]
                 return _stages([(old, None), (mid, False), (new, True)], G_t, gross)
             return _stages([(old, None), (_release(old, radius, top, G_t, float(dphi)), True),

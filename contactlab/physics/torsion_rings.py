@@ -58,7 +58,7 @@ import scipy.linalg as _la
 
 from ..errors import ConvergenceError
 
-__all__ = ["hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence",
+__all__ = ["active_set", "hat_traction", "hat_psi", "hat_torque", "energy_matrix", "influence",
            "box_step", "gross_step", "stick_radius", "slip_density", "aligned_grid", "edge_punch_traction",
            "jump_traction", "jump_torque", "jump_psi", "radius_nodes", "GAUSS_NODES",
            "MAX_PIVOTS", "ALIGN_GAP", "ALIGN_MERGE", "ALIGN_MAX_FACTOR",
@@ -429,6 +429,19 @@ def _solve_active(C, rhs_cols, A, zA, memo=None):
     lamA = _sub_solve(lambda: _block(C, A, A), rhs_A.shape[0], rhs_A, memo,
                       _memo_key(memo, C, A))
     return Cr - C[:, A] @ lamA, lamA
+
+
+def active_set(active: np.ndarray | tuple, r: np.ndarray) -> np.ndarray:
+    """An active set for :func:`box_step`'s ``guess``: ``active`` itself, or for a tuple
+    ``(c, s, bound)`` (a single-slip-annulus step's stick radius, m, sense ±1 and ``μ p`` at the
+    points ``r``, Pa) its active set: ``s`` at the points ``r >= c``, 0 inside, 2 out of
+    contact (``bound == 0``)."""
+    if isinstance(active, tuple):
+        c, s, bound = active
+        act = np.where(r >= c, int(s), 0)
+        act[bound == 0] = 2
+        return act
+    return active
 
 
 def box_step(H: np.ndarray, g: np.ndarray, z_old: np.ndarray, bound: np.ndarray, *,

@@ -134,29 +134,35 @@ def _counting(monkeypatch, passes: dict, name: str) -> list:
 @pytest.mark.parametrize("compiled", ROUTES)
 def test_shrinking_contact_energy_pass_is_the_loops_bits(monkeypatch, compiled):
     """A shrinking contact's release then family stage (``annulus_energy``'s three-stage
-    chain) by one compiled pass: the work, energies and dissipation of the numpy loop, bit for
-    bit, with and without a gross turn."""
-    taken = 0
+    chain) by one compiled pass, with the release density's step in it or given: the work,
+    energies and dissipation of the numpy loop, bit for bit, with and without a gross turn."""
+    taken = fused = 0
     for old, sl, radius, dphi, *_ in _cases():
         top = float(old[1][-1]) if old[1].size else 0.0
         if top <= radius:
             continue
-        new = ta.step(old, sl, radius, 1.0, dphi=dphi)["w"]
+        out = ta.step(old, sl, radius, 1.0, dphi=dphi)
+        new, sense = out["w"], out["sense"]
         mid = ta.step(old, sl, radius, 1.0, dphi=0.0)["w"]
         chain = [(old, None), (mid, False), (new, True)]
         for gross in (0.0, 0.1, -2.5e-3):
             _route(monkeypatch, False)
             ref = te._stages(chain, 3.0e9, gross)
+            ref_step = te.annulus_energy(old, new, sl, radius, sense, 3.0e9, dphi, gross)
             _route(monkeypatch, True, compiled)
             # (the uncompiled logic's passes are copies of ak._PLAIN, made per call)
             passes = ta._annulus_kernels() if compiled else ak._PLAIN
             assert passes is not None
             seen = _counting(monkeypatch, passes, "release_family_energy")
             got = te._stages(chain, 3.0e9, gross)
-            monkeypatch.undo()
             assert seen and _same(got, ref), (radius, dphi, gross)
+            whole = _counting(monkeypatch, passes, "shrink_energy")
+            got_step = te.annulus_energy(old, new, sl, radius, sense, 3.0e9, dphi, gross)
+            monkeypatch.undo()
+            assert _same(got_step, ref_step), (radius, dphi, gross)
             taken += 1
-    assert taken >= 15
+            fused += bool(whole)
+    assert taken >= 15 and fused >= 6
 
 @pytest.mark.parametrize("compiled", ROUTES)
 def test_pairwise_sum_is_numpys_order(compiled):

@@ -288,3 +288,24 @@ def test_box_step_torque_beyond_sliding_the_other_way_is_gross():
     _, _, d, _ = tr.box_step(m["H"], m["g"], -bound, bound, torque=1.01 * Ms,
                              guess=-np.ones(r.size, int))
     assert np.isnan(d)
+
+
+def test_active_set_of_an_annulus_step():
+    """An annulus step's active set, kept as its stick radius, sense and μp: the sense beyond
+    the stick radius (the radius itself included), stuck inside, 2 where μp is 0; an array is
+    its own active set."""
+    r = np.array([0.1, 0.3, 0.5, 0.7, 0.9, 1.1])
+    bound = np.array([2.0, 1.5, 1.0, 0.5, 0.0, 0.0])
+    for s, beyond in ((1.0, 1), (-1.0, -1)):
+        act = tr.active_set((0.5, s, bound), r)
+        assert act.tolist() == [0, 0, beyond, beyond, 2, 2]
+        assert act.dtype.kind == "i"
+    given = np.array([0, 1, -1, 2, 2, 0])
+    assert tr.active_set(given, r) is given
+    # with it as the guess the box step takes the step the array guess takes, the same bits
+    H = np.diag([1.0, 2.0, 3.0]) + 0.1
+    g = np.array([0.5, 1.0, 1.5])
+    rr, bb = np.array([0.2, 0.6, 1.0]), np.array([5.0, 2.0, 0.0])
+    ref = tr.box_step(H, g, np.zeros(3), bb, dphi=3.0, guess=np.array([0, 1, 2]))
+    got = tr.box_step(H, g, np.zeros(3), bb, dphi=3.0, guess=tr.active_set((0.5, 1.0, bb), rr))
+    assert all(np.asarray(a).tobytes() == np.asarray(b).tobytes() for a, b in zip(got, ref))
