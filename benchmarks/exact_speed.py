@@ -1,8 +1,9 @@
 """Speed of the exact torsion routes against their floors or the other route (issue 28).
 
 Run from the repository root: ``python benchmarks/exact_speed.py [--rounds N] [--long]
-[--scaling-only {all,default,rtol}]`` (the last: row 2 alone, at both ring choices or one, best
-of ``--rounds`` with ``--long``).
+[--scaling-only {all,default,rtol}] [--paths-only] [--curves-only]`` (``--scaling-only``: row 2
+alone, at both ring choices or one, best of ``--rounds`` with ``--long``; ``--paths-only``: the
+rows of row 1 alone, quick enough for many ``--rounds``).
 
 Every row is measured interleaved in this one run (round-robin, the order rotated each round,
 best of ``--rounds``) and reported as a ratio to its floor (a route of the same work), with a
@@ -417,6 +418,9 @@ def main() -> int:
     ap.add_argument("--scaling-only", choices=("all", "default", "rtol"),
                     help="only row 2 (the cost per step against the path length): at both ring "
                     "choices, the default rings or torque_rtol's")
+    ap.add_argument("--paths-only", action="store_true",
+                    help="only the row-1 path rows (quick: compare two checkouts with many "
+                    "--rounds), no curves or scaling")
     ap.add_argument("--curves-only", action="store_true",
                     help="only the torque-twist curve rows (4-6), no path rows or scaling")
     args = ap.parse_args()
@@ -430,6 +434,8 @@ def main() -> int:
     fns = cases()
     if args.curves_only:
         fns = {k: v for k, v in fns.items() if k.startswith("curve")}
+    if args.paths_only:
+        fns = {k: v for k, v in fns.items() if k.startswith("path")}
     best = dict.fromkeys(fns, np.inf)
     keep: dict = {}
     with warnings.catch_warnings():
@@ -455,7 +461,7 @@ def main() -> int:
               + verdict(best[row], ratio, goal_t, goal_r))
     if not args.curves_only:
         path_summary(best, keep)
-    for n in (200, 1000):
+    for n in (() if args.paths_only else (200, 1000)):
         tab, ref = keep[f"curve exact, 667 in contact, {n}"], keep[f"curve exact, Hertz closed form, {n}"]
         nodes = int(np.sum(tab.contact.profile.table_nodes() < float(tab.normal.radius)))
         err = float(np.max(np.abs(tab.torque - ref.torque)) / np.max(np.abs(ref.torque)))
@@ -472,7 +478,8 @@ def main() -> int:
     ratio = best["path exact rtol 1e-3, numpy route"] / best["path exact rtol 1e-3, compiled route"]
     print(f"compiled passes (numba available: {_ta._ring_kernels._jit.available()}): "
           f"{ratio:.2f}x faster than the numpy route, bit-identical: {same}")
-    _scaling_rows(args, ({}, {"torque_rtol": RTOL}))
+    if not args.paths_only:
+        _scaling_rows(args, ({}, {"torque_rtol": RTOL}))
     print("load average after:", os.getloadavg())
     return 0
 

@@ -51,14 +51,17 @@ from . import jit as _jit
 from . import ring_kernels as _rk
 from . import sorted_search as _ss
 
-__all__ = ["INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "LOWER", "UPPER", "VALID", "inside",
-           "inside_memo", "build"]
+__all__ = ["INSIDE_FAIL", "INSIDE_OK", "INSIDE_OPEN", "LOWER", "UPPER", "VALID", "FAILED",
+           "inside", "inside_memo", "build"]
 
 #: the check's verdicts (:func:`inside`)
 INSIDE_FAIL, INSIDE_OK, INSIDE_OPEN = 0, 1, -1
 #: the rows of a memo (:func:`inside_memo`): the interval on ``X`` at each point, and 1 where
-#: it holds (0 where the point was not checked)
+#: it holds (0 where the point was not checked; :data:`FAILED` at the point that decided
+#: :data:`INSIDE_FAIL`)
 LOWER, UPPER, VALID = 0, 1, 2
+#: the memo's mark (row :data:`VALID`) of the point whose traction failed the check
+FAILED = -1.0
 #: points within this fraction of ``c'`` below it are summed, not bounded (``g(r/c')`` <= 16)
 _NEAR = 1.0 / 512.0
 #: units in the last place allowed for the antiderivatives' rounding
@@ -192,7 +195,8 @@ def inside_memo(lo, hi, wl, wr, olo, ohi, owl, owr, r, bound, c, G_t, check_rtol
     Returns ``(verdict, memo)``: :data:`INSIDE_OK` / :data:`INSIDE_FAIL` where every point's
     margin (one failing point's) exceeds a bound on the difference to the numpy route's sums,
     else :data:`INSIDE_OPEN` (also without a table, with pieces that do not abut, or a radius not
-    in the table); the memo of this density (the points checked)."""
+    in the table); the memo of this density (the points checked; with :data:`INSIDE_FAIL` the
+    failing point, the innermost whose margin decides, marked :data:`FAILED`)."""
     m_all = r.size
     out = np.zeros((3, m_all))
     m = 0
@@ -266,6 +270,7 @@ def inside_memo(lo, hi, wl, wr, olo, ohi, owl, owr, r, bound, c, G_t, check_rtol
         tau = abs(scale * acc)
         err = 4.0 * (n + 4) * _EPS * abs(scale) * mag + 4.0 * _EPS * (tau + abs(lim))
         if tau - lim > err:
+            out[VALID, i] = FAILED
             return INSIDE_FAIL, out
         if not lim - tau > err or tau != tau or lim != lim:
             verdict = INSIDE_OPEN

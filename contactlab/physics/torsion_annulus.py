@@ -38,6 +38,7 @@ import numpy as np
 import scipy.linalg as _la
 
 from ..numeric import annulus_kernel as _annulus_kernel
+from ..numeric import inside_check as _inside_check
 from ..numeric import ring_kernels as _ring_kernels
 from ..numeric import slip_check as _slip_check
 # the piece algebra (re-exported: the module's names, its compiled-route switch ``_COMPILED`` and
@@ -535,7 +536,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
     inside_ok = None
     if not slip:
         inside_ok = _DECIDED.get(inside)
-        if inside_ok is None or (not inside_ok and allow is not None):
+        if inside_ok is None or (not inside_ok and allow is not None
+                                 and not _beyond_allowance(memo_x, r, c, allow)):
             inside_ok = _inside_ok(w, r, c, bound, G_t, table, allow)
         if not inside_ok:
             return {"w": w, "c": c, "sense": s, "dpsi": dpsi, "gross": gross, "slip": ds,
@@ -570,7 +572,8 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
                     why = "slip against the traction on the annulus"
     if not why and inside_ok is None:
         ok = _DECIDED.get(inside)
-        if ok is None or (not ok and allow is not None):    # (the allowance: the numpy check)
+        if ok is None or (not ok and allow is not None      # (the allowance: the numpy check)
+                          and not _beyond_allowance(memo_x, r, c, allow)):
             ok = _inside_ok(w, r, c, bound, G_t, table, allow)
         if not ok:
             why = _WHY_INSIDE
@@ -579,6 +582,15 @@ def _compiled_step(old: Pieces, slide: Pieces, radius: float, G_t: float, dphi: 
 
 
 _DECIDED = {_annulus_kernel.INSIDE_OK: True, _annulus_kernel.INSIDE_FAIL: False}
+
+
+def _beyond_allowance(memo_x: np.ndarray, r: np.ndarray, c: float, allow: tuple) -> bool:
+    """Whether the pass's failed traction check fails beyond what ``allow`` can accept: its
+    failing point (marked in the check's memo ``memo_x``) lies deeper than ``allow[2]`` inside
+    the stick radius ``c``, and :func:`_inside_ok` rejects any excess there (its verdict, without
+    its sums: the pass decides a failure only where the numpy route's traction fails too)."""
+    hit = np.flatnonzero(memo_x[_inside_check.VALID] == _inside_check.FAILED)
+    return bool(hit.size) and bool(r[hit[0]] < c - allow[2])
 
 
 def shrink_energy_arrays(old: Pieces, slide: Pieces, radius: float, G_t: float, new: Pieces,

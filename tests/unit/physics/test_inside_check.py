@@ -6,7 +6,9 @@ radius), the memo's interval at every point it holds contains the traction sum o
 route (the invariant the memo's verdicts rest on: it fails if the step's widening bound is
 dropped or too small), and the memo carries most points from step to step; every verdict the
 memo route gives where it decides is the numpy route's, with friction limits a hair above or
-below the traction; a memo of another density is not used; the compiled pass gives the plain
+below the traction, and a failed check marks one point whose numpy traction fails (where it
+lies deeper inside than an allowance reaches, the numpy check with that allowance fails too); a
+memo of another density is not used; the compiled pass gives the plain
 function's verdicts and memos; a varying-load path gives the same bits with the memo as without.
 """
 import numpy as np
@@ -106,6 +108,7 @@ def test_memo_verdicts_are_the_numpy_routes():
     rng = np.random.default_rng(5)
     memo = (np.zeros((4, 0)), np.zeros((3, 0)))
     decided = {ic.INSIDE_OK: 0, ic.INSIDE_FAIL: 0}
+    beyond = {True: 0, False: 0}
     for old, new, c, r, table in _chain(steps=80, seed=8):
         tau = np.abs(ta.traction(new, r, 1.0, table))
         for scale in (10.0 ** rng.uniform(-7, -1), -(10.0 ** rng.uniform(-7, -1)), 1e-12):
@@ -115,10 +118,32 @@ def test_memo_verdicts_are_the_numpy_routes():
             if verdict != ic.INSIDE_OPEN:
                 assert (verdict == ic.INSIDE_OK) == ref
                 decided[verdict] += 1
+            marked = np.flatnonzero(mx[ic.VALID] == ic.FAILED)
+            if verdict == ic.INSIDE_FAIL:
+                # one point marked, inside c, whose numpy traction fails too
+                assert marked.size == 1 and r[marked[0]] < c
+                assert tau[marked[0]] > bound[marked[0]] * (1 + ta.CHECK_RTOL)
+                _check_allowance(new, r, c, bound, table, mx, beyond)
+            else:
+                assert marked.size == 0
         # the chain's memo from a check every point passes
         _, mx = _memo_call(f, new, old, r, 2.0 * tau + 1.0, c, table, memo)
         memo = (np.vstack(_arrays(new)), mx)
     assert decided[ic.INSIDE_OK] and decided[ic.INSIDE_FAIL]
+    # the allowance's short cut both taken and not
+    assert beyond[True] and beyond[False]
+
+
+def _check_allowance(new, r, c, bound, table, mx, beyond):
+    """Where the short cut of an allowance (torsion_annulus._beyond_allowance) rejects a failed
+    check, the numpy check with that allowance rejects it too (allowances of every reach)."""
+    weights = r ** 3
+    for reach in (0.0, 0.5 * (r[1] - r[0]), 3.0 * (r[1] - r[0]), 0.3 * c, 2.0 * c):
+        allow = (weights, 1e30, reach)
+        cut = ta._beyond_allowance(mx, r, c, allow)
+        beyond[cut] += 1
+        if cut:
+            assert not ta._inside_ok(new, r, c, bound, 1.0, table, allow)
 
 
 def test_memo_of_another_density_is_not_used():
