@@ -164,6 +164,7 @@ def test_shrinking_contact_energy_pass_is_the_loops_bits(monkeypatch, compiled):
             fused += bool(whole)
     assert taken >= 15 and fused >= 6
 
+
 @pytest.mark.parametrize("compiled", ROUTES)
 def test_pairwise_sum_is_numpys_order(compiled):
     if compiled:

@@ -64,3 +64,22 @@ def test_the_differences_are_read_only_neighbouring_differences():
     assert np.array_equal(D0, F0[:, 1:] - F0[:, :-1]) and np.array_equal(D1, F1[:, 1:] - F1[:, :-1])
     with pytest.raises(ValueError):
         D0[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("runs", [0, 1, 2, 3, tpt._RUNS - 1, tpt._RUNS, 40])
+def test_columns_by_runs_are_takes_columns(runs):
+    """``_take_columns`` (slices of runs of consecutive columns, or ``take`` past ``_RUNS`` runs)
+    gives ``np.take(D, j, axis=1)``: the same values in the same C order, with repeated and
+    skipped columns between the runs."""
+    rng = np.random.default_rng(runs)
+    D = rng.normal(size=(7, 300))
+    parts, col = [], 0
+    for _ in range(runs):
+        n = int(rng.integers(1, 6))
+        parts.append(np.arange(col, col + n))
+        col += n - int(rng.integers(0, 2)) + int(rng.integers(0, 3))    # repeat / skip
+    j = np.concatenate(parts) if parts else np.zeros(0, np.int64)
+    want = np.take(D, j, axis=1)
+    got = tpt._take_columns(D, j)
+    assert got.shape == want.shape and got.flags.c_contiguous
+    assert np.array_equal(got, want)
