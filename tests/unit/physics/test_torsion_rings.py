@@ -302,10 +302,3 @@ def test_active_set_of_an_annulus_step():
         assert act.dtype.kind == "i"
     given = np.array([0, 1, -1, 2, 2, 0])
     assert tr.active_set(given, r) is given
-    # with it as the guess the box step takes the step the array guess takes, the same bits
-    H = np.diag([1.0, 2.0, 3.0]) + 0.1
-    g = np.array([0.5, 1.0, 1.5])
-    rr, bb = np.array([0.2, 0.6, 1.0]), np.array([5.0, 2.0, 0.0])
-    ref = tr.box_step(H, g, np.zeros(3), bb, dphi=3.0, guess=np.array([0, 1, 2]))
-    got = tr.box_step(H, g, np.zeros(3), bb, dphi=3.0, guess=tr.active_set((0.5, 1.0, bb), rr))
-    assert all(np.asarray(a).tobytes() == np.asarray(b).tobytes() for a, b in zip(got, ref))
