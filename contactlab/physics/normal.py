@@ -228,11 +228,17 @@ def pressure_from_shape(E_star: float, shape: np.ndarray, shape_err: np.ndarray,
     """
     inside = r < a
     edge = d - g_a
+    off = edge != 0
+    if not off.any():
+        # d = g(a) throughout (a smooth profile's contact): the edge term is 0.0 everywhere and
+        # no point lies on a singular edge; the same values as below, without their arithmetic
+        return (np.where(inside, E_star / np.pi * (shape + 0.0), 0.0),
+                E_star / np.pi * np.asarray(shape_err, float))
     with np.errstate(divide="ignore", invalid="ignore"):
-        edge_term = np.where(inside & (edge != 0),
+        edge_term = np.where(inside & off,
                              edge / np.sqrt(np.maximum((a - r) * (a + r), 0.0)), 0.0)
     out = np.where(inside, E_star / np.pi * (shape + edge_term), 0.0)
-    at_edge = (r == a) & (a > 0) & (edge != 0)
+    at_edge = (r == a) & (a > 0) & off
     out = np.where(at_edge, np.copysign(np.inf, edge), out)
     return out, E_star / np.pi * np.asarray(shape_err, float)
 

@@ -100,17 +100,27 @@ class NodeTable:
         self.nodes = np.array(nodes, float)
         self.arrays = {"traction": _antiderivatives(self.r, self.nodes),
                        "slip": _slip_antiderivatives(self.r, self.nodes)}
-        for a in (self.r, self.nodes, *self.arrays["traction"], *self.arrays["slip"]):
+        # the rows of the table's own radii: where equal radii repeat, the first of them, as
+        # a search of the radii finds it (their rows hold the same values)
+        self._all_rows = np.searchsorted(self.r, self.r)
+        for a in (self.r, self.nodes, self._all_rows, *self.arrays["traction"],
+                  *self.arrays["slip"]):
             a.flags.writeable = False
 
     @property
     def nbytes(self) -> int:
         return int(sum(a.nbytes for pair in self.arrays.values() for a in pair))
 
+    def same_radii(self, r: np.ndarray) -> bool:
+        """Whether ``r`` are the table's radii, all its rows in its order (one comparison)."""
+        return r is self.r or (r.shape == self.r.shape and bool((r == self.r).all()))
+
     def rows(self, r: np.ndarray) -> np.ndarray | None:
         """Row indices of the radii ``r`` (``None`` unless every one is a row of the table)."""
         if r.size == 0:
             return None
+        if self.same_radii(r):      # (the usual case: the table's own collocation points)
+            return self._all_rows
         k = np.minimum(np.searchsorted(self.r, r), self.r.size - 1)
         return k if bool((self.r[k] == r).all()) else None      # (shapes equal)
 

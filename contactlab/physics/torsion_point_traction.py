@@ -62,7 +62,7 @@ def traction_at_points(p: "_ta.Pieces", r: np.ndarray, G_t: float, table: "_ta.N
     """
     lo, hi = p[0], p[1]
     r = np.asarray(r, float)
-    if (lo.size == 0 or not _table_radii(r, table) or not bool((lo[1:] == hi[:-1]).all())
+    if (lo.size == 0 or not table.same_radii(r) or not bool((lo[1:] == hi[:-1]).all())
             or table.nodes.size < 2):
         return _ta.traction(p, r, G_t, columns=table)
     al, be = _ta._lin(p)
@@ -87,11 +87,6 @@ def traction_at_points(p: "_ta.Pieces", r: np.ndarray, G_t: float, table: "_ta.N
         dA[:, miss] = A[:, pos + 1] - A[:, pos]
         dS[:, miss] = S[:, pos + 1] - S[:, pos]
     return 4.0 * G_t / np.pi * r * (dA @ al + dS @ be)
-
-
-def _table_radii(r: np.ndarray, table: "_ta.NodeTable") -> bool:
-    """Whether ``r`` are the table's radii, all its rows in its order."""
-    return r is table.r or (r.shape == table.r.shape and bool((r == table.r).all()))
 
 
 #: the most runs of consecutive columns :func:`_take_columns` copies one by one

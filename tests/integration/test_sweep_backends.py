@@ -99,9 +99,9 @@ def test_a_sweep_smaller_than_a_round_trip_stays_here(dask_client, monkeypatch):
     """Less work left after the timing points than one round trip to the cluster: the cheapest
     plan is to finish here (the table is the same wherever points run). The cluster's round trip
     is measured (positive); the plan is then made against a round trip of a minute, so that a
-    pause of this process while it times the points (a garbage collection late in a long test
-    run once made the microseconds of work look longer than the measured round trip) cannot
-    decide it."""
+    pause of this process while it times the points cannot decide it (late in a long test run a
+    pause, likely a garbage collection, once made the microseconds of work look longer than
+    the measured round trip)."""
     from contactlab.sweeps import backends
     assert backends.DaskClient(tiny, dask_client).roundtrip() > 0
     monkeypatch.setattr(backends.DaskClient, "roundtrip", lambda self: 60.0)

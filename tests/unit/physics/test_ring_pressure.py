@@ -152,6 +152,34 @@ def test_pressure_at_adds_the_edge_term():
     assert np.all(np.abs(p[fin] - ref[fin]) <= RING_PRESSURE_SECOND * sc[fin])
 
 
+def test_pressure_without_edge_term_is_the_rows_of_a_call_with_one():
+    """``pressure_from_shape`` where ``d = g(a)`` on every row (no edge term: its short route)
+    gives the same bits as those rows of a call in which one row has an edge term (the whole
+    formula, elementwise): Hertz's closed form ``(2E*/πR) sqrt(a² − r²)`` within rounding."""
+    R, E_star = 0.01, 2e9
+    prof = Paraboloid(R=R)
+    rings, a = radii(5, 1e-3)
+    rows = np.r_[a, 0.5e-3]
+    d = prof.g(rows)
+    d[-1] *= 1.01                                  # the last row: an edge term
+    shape = normal.pressure_shape(prof, rings[None, :], rows[:, None], RTOL)
+    args = (rings[None, :], rows[:, None], d[:, None], prof.g(rows)[:, None])
+    whole = normal.pressure_from_shape(E_star, *shape, *args)
+    short = normal.pressure_from_shape(E_star, shape[0][:-1], shape[1][:-1],
+                                       *(x[:-1] if x.shape[0] > 1 else x for x in args))
+    assert whole[0][:-1].tobytes() == short[0].tobytes()
+    assert whole[1][:-1].tobytes() == short[1].tobytes()
+    hertz = 2 * E_star / (np.pi * R) * np.sqrt(np.maximum(a[:, None]**2 - rings**2, 0.0))
+    assert np.all(np.abs(short[0] - hertz) <= RING_PRESSURE_CLOSED * np.max(hertz))
+    assert np.all(short[0][rings[None, :] >= a[:, None]] == 0.0)
+    # the edge row took its term: above the same row without one, inside the contact
+    g_last = prof.g(rows[-1:])[:, None]
+    plain = normal.pressure_from_shape(E_star, shape[0][-1:], shape[1][-1:], rings[None, :],
+                                       rows[-1:, None], g_last, g_last)[0]
+    inside = rings < rows[-1]
+    assert np.all(whole[0][-1][inside] > plain[0][inside])
+
+
 def test_contact_inside_the_first_segment():
     """No table node below the largest contact radius (a coarse table): every ring takes its own
     piece from r to a, a cone's closed form on a linear table's first segment."""

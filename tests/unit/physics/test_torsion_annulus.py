@@ -240,6 +240,27 @@ def test_node_table_traction_and_slip_equal_the_piece_by_piece_sums():
                           ta.slip_kernel_integral(dens[1], rr))
 
 
+def test_node_table_rows_of_its_own_radii_are_the_searched_rows():
+    """The table's own radii (the same array, a copy, with equal radii repeated) get the rows a
+    search of its radii finds; other radii are still searched (a subset, one off the table:
+    None); the columns of its own radii are C-ordered, the same values as computed."""
+    b = np.linspace(0.0, 1.0, 12)
+    for r in (0.5 * (b[1:] + b[:-1]), np.array([0.1, 0.2, 0.2, 0.2, 0.7])):
+        table = ta.NodeTable(r, b)
+        search = np.searchsorted(table.r, table.r)
+        for x in (table.r, r.copy()):
+            assert table.same_radii(x)
+            assert np.array_equal(table.rows(x), search)
+        assert not table.same_radii(r[:-1]) and not table.same_radii(r + 1e-3)
+        assert np.array_equal(table.rows(r[1:]), search[1:])
+        assert table.rows(np.r_[r[:2], 0.123456]) is None
+        nodes = np.r_[b[2:7], 0.61, b[9]]       # one node off the table
+        A, S = table.columns(r.copy(), nodes)
+        A0, S0 = ta._antiderivatives(table.r, nodes)
+        assert A.flags.c_contiguous and S.flags.c_contiguous
+        assert A.tobytes() == A0.tobytes() and S.tobytes() == S0.tobytes()
+
+
 def test_node_table_slip_is_exact_zero_beyond_the_nodes_and_small_near_the_axis():
     # a density far outside the point: its lag there is 0 (K vanishes for t > r), and at a
     # point near the axis with every node beyond it no constant residue is left by the sums
