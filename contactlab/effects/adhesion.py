@@ -171,7 +171,7 @@ def _state(contact, d: np.ndarray, a: np.ndarray, pinned: np.ndarray, control: s
         prof._check_monotone_upto(float(np.max(a)), float(np.max(np.where(a > 0, d, -np.inf))))
     # stiffness dF/dd along the equilibrium curve; 2E*b when pinned at a wall, 0 when detached
     with np.errstate(invalid="ignore", divide="ignore"):
-        ph = np.where(a > 0, phi(prof, E, w, np.where(a > 0, a, 1.0)), 0.0)
+        ph = np.where(a > 0, phi(prof, E, w, np.maximum(a, 1e-300)), 0.0)
         k = 2 * E * a * (ph - 1.5) / (ph - 0.5)
     k = np.where(pinned, 2 * E * a, np.where(a > 0, k, 0.0))
     k = np.where(np.isnan(k), 2 * E * a, k)     # φ = ∞ (slope jump at a flat rim)

@@ -87,7 +87,7 @@ def resolve_criterion(criterion: str, threshold: float | None) -> tuple[str, flo
 
 
 def _fresh_g(contact, a: np.ndarray, d: np.ndarray) -> np.ndarray:
-    g_a = np.where(a > 0, contact.profile._g(np.where(a > 0, a, 1.0)), 0.0)
+    g_a = np.where(a > 0, contact.profile._g(np.maximum(a, 1e-300)), 0.0)
     if np.isfinite(contact.profile.wall_radius):
         g_a = np.where(a >= contact.profile.wall_radius, np.minimum(g_a, d), g_a)
     return g_a
@@ -137,6 +137,9 @@ def _loops(contact, mode: str, method: str, a: np.ndarray, d: np.ndarray, F_N: n
         A = _fr.energy_ratio(W, amp, peak)
         value = _fr.criterion_value(criterion, A, c, a, peak, sliding)
         gross = _fr.torsional_gross_slip(criterion, threshold, value) & (amp > 0)
+        # out of contact (a = 0) nothing holds a twist: gross slip, as the tangential mode's
+        # zero slip displacement gives (the criterion's 0/0 would otherwise read as stick)
+        gross = gross | ((a <= 0) & (amp > 0))
         if method == "no-slip":
             gross = np.zeros(amp.shape, bool)
     regime = _fr.classify(c, a, amp, gross)

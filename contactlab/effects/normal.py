@@ -546,7 +546,7 @@ class NormalState(Result, Cited):
             return d
         from ..profiles.base import ROUNDING
         g = np.asarray(self._g_at_radius, dtype=float)
-        _, g_err = prof._g_with_error(np.where(a > 0, a, 1.0), self.contact.rtol)
+        _, g_err = prof._g_with_error(np.maximum(a, 1e-300), self.contact.rtol)
         tol = 8 * ROUNDING * (np.abs(d) + np.abs(g)) + np.abs(g_err)
         return np.where((a > 0) & (np.abs(d - g) > tol), g, d)
 
