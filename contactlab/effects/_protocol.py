@@ -258,6 +258,26 @@ class Result:
                         error_estimate=meta["error_estimate"])
         return df
 
+    def _summary_repr(self, **lead: Any) -> str:
+        """``Name(key=value unit, ...)`` of :meth:`to_dict` after the items ``lead`` (their
+        ``repr``): a scalar by its value (6 significant digits), an array by its shape and range
+        (for the repr of a state whose dataclass fields hide the numbers)."""
+        units = type(self).units
+        parts = [f"{k}={v!r}" for k, v in lead.items()]
+        for key, value in self.to_dict().items():
+            unit = units.get(key, "")
+            unit = "" if unit in ("", "1") else f" {unit}"
+            arr = np.asarray(value)
+            if arr.ndim == 0:
+                v = arr.item()
+                parts.append(f"{key}={v!r}" if isinstance(v, bool) else f"{key}={v:.6g}{unit}")
+            elif arr.size and arr.dtype.kind == "f":
+                parts.append(f"{key}=<{'x'.join(map(str, arr.shape))}: {np.min(arr):.4g} .. "
+                             f"{np.max(arr):.4g}{unit}>")
+            else:
+                parts.append(f"{key}=<{'x'.join(map(str, arr.shape))}>")
+        return f"{type(self).__name__}({', '.join(parts)})"
+
     def cite(self, *, format: str = "both", file: IO[str] | None = sys.stdout) -> str:
         """:func:`contactlab.cite` of this result: print (and return) its sources."""
         from ..citations import cite

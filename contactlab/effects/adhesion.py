@@ -60,6 +60,9 @@ class AdhesiveNormalState(NormalState):
 
     _stiff: Any = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        return self._summary_repr()
+
     @property
     def stiffness(self) -> Any:
         return _scalar_or_array(self._stiff)

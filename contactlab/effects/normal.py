@@ -477,6 +477,9 @@ class NormalState(Result, Cited):
 
     units = STATE_UNITS
 
+    def __repr__(self) -> str:
+        return self._summary_repr()
+
     def to_dict(self) -> dict[str, Any]:
         """``depth``, ``radius``, ``force`` and ``stiffness`` (scalars or arrays of the state's
         shape)."""

@@ -69,6 +69,9 @@ class TangentialState(Result, Cited):
         k: STATE_UNITS[k] for k in ("displacement", "tangential_force", "stick_radius",
                                     "gross_sliding")}
 
+    def __repr__(self) -> str:
+        return self._summary_repr()
+
     def to_dict(self) -> dict[str, Any]:
         """``displacement``, ``tangential_force``, ``stick_radius``, ``gross_sliding`` (scalars or
         arrays of the state's shape). The model error is 0.0: Cattaneo–Mindlin through the MDR

@@ -266,6 +266,9 @@ class TorsionState(Result, Cited):
         k: STATE_UNITS[k] for k in ("twist", "torque", "stick_radius", "radius", "slip")}
     _basis = MDR_MAP_BASIS
 
+    def __repr__(self) -> str:
+        return self._summary_repr(method=self.method)
+
     def to_dict(self) -> dict[str, Any]:
         """The state's quantities by name (``twist``, ``torque``, ``stick_radius``, ``radius``,
         ``slip``; scalars or arrays of the state's shape)."""
