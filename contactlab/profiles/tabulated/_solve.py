@@ -206,8 +206,8 @@ class _TableSolver(_TableBase):
         + h u²``): the left node's slope jump gives ``x Δs acos(r_lo/x) ≈ Δs sqrt(2 h r_lo) u``
         (0 on the axis, which carries no jump). The cubic spline's g has no cusp: 0."""
         x0, h = self.r[lo], self.r[hi] - self.r[lo]
-        if self._spline is not None:
-            return np.zeros(x0.shape)
+        if self._spline is not None or self._dslope.size == 0:
+            return np.zeros(x0.shape)       # (two nodes: no interior node, no slope jump)
         ds = np.where(lo >= 1, self._dslope[np.maximum(lo - 1, 0)], 0.0)
         return ds * np.sqrt(2.0 * h * x0)
 
