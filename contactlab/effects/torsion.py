@@ -122,6 +122,13 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
            "stick_radius": model.of_stick_radius}[ctrl_key](q, a, d, g_a)
     phi, M, c = sol.twist, sol.torque, sol.stick_radius
     slip = (c <= 0) & (phi != 0) & (method != "no-slip")
+    if ctrl_key == "torque" and np.any(np.isinf(phi)):
+        i = int(np.argmax(np.isinf(phi)))
+        warnings.warn(
+            f"torque={float(q[i])!r} N·m is the full-sliding torque of the {method!r} model at "
+            f"this normal load: the whole contact slides and the twist that reaches it is "
+            f"unbounded (twist=inf at {int(np.count_nonzero(np.isinf(phi)))} state(s)). Give "
+            "twist= to prescribe the sliding.", ValidityWarning, stacklevel=4)
     if method == "mdr":
         _warn_mdr(contact, phi, a, d, g_a)
     # relative errors (issue 7): the kernel's absolute estimates, plus the normal solution's own

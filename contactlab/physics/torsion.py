@@ -306,7 +306,8 @@ class Exact(TorsionModel):
         tolerance, and is exact to rounding (error estimate: rounding of the two torque terms,
         measured <= 4e-15 of the torque against the mpmath reference)."""
         live = p0 > 0
-        with np.errstate(divide="ignore", invalid="ignore"):
+        # (a twist near the float's range overflows y to inf: full sliding, t = 0 below)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             y = np.where(live, 2.0 * self.G * phi / (self.mu * np.where(live, p0, 1.0)), 0.0)
         t = _hertz.stick_ratio(y)
         # stick radii below C_MIN_REL a count as full sliding, as on the quadrature route

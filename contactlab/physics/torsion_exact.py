@@ -359,9 +359,11 @@ def slip_function(profile, E_star: float, x: np.ndarray, a: np.ndarray, d: np.nd
     shape = x.shape
     x, a, d, g_a = (v.ravel() for v in (x, a, d, g_a))
     g_x = _g_route(profile, panels)(x)
-    p_a = (x / a) ** 2
-    Ka = K_comp(p_a)
-    boundary = (g_a - g_x) * Ka / a + (d - g_a) * Ka / a
+    # (a = 0, out of contact: nan here, never read by the callers, which mask those states)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p_a = (x / a) ** 2
+        Ka = K_comp(p_a)
+        boundary = (g_a - g_x) * Ka / a + (d - g_a) * Ka / a
     val = boundary.copy()
     err = np.zeros(x.shape)
     todo = np.flatnonzero((x < a) & (g_a > 0))
