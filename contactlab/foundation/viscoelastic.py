@@ -239,8 +239,12 @@ class ViscoelasticElements:
         return t.total
 
     def touching_depth(self) -> float:
-        """Smallest depth at which the indenter touches the (free) surface, m."""
-        m = max(self.touched, 1)
+        """Smallest depth at which the indenter touches the (free) surface, m: 0 on a surface
+        never touched (the tip, ``g(0) = 0``; the first element's centre would give
+        ``g(Δx/2) > 0``, a depth into a surface nothing has pressed)."""
+        if self.touched == 0:
+            return 0.0
+        m = self.touched
         return float(np.min(self.g[:m] + self.u[:m]))
 
 

@@ -29,9 +29,14 @@ Regenerate (after a change that is meant to alter results; review the diff of th
 
     python tests/integration/path_hashes.py --overwrite              # every case
     python tests/integration/path_hashes.py --overwrite --match 'exact\\|.*dissipated_energy'
+    python tests/integration/path_hashes.py --overwrite --match 'viscoelastic_creep' \\
+        --cases 'viscoelastic_creep'                                 # compute those cases only
 
 On a machine of the reference kind this rewrites ``path_hashes.json``; on another kind it
-writes that kind's ``path_hashes_<kind>.json`` (the keys that differ from the reference).
+writes that kind's ``path_hashes_<kind>.json`` (the keys that differ from the reference), and
+the keys a change moved there are listed as ``stale`` in ``path_hashes.json``: their reference
+hash predates the change, so the reference kind skips them (saying so) until the command is run
+on such a machine, which measures them and clears the list.
 ``--match REGEX`` recomputes every case but rewrites only the stored keys the regular expression
 finds (``re.search``) and adds none; the other stored hashes are kept. ``--paths N`` limits the
 generated set to its first ``N`` paths (the default test run uses :data:`DEFAULT_PATHS`).
@@ -81,6 +86,8 @@ def stored_hashes(kind: str | None = None) -> dict[str, str] | None:
     doc = json.loads(STORE.read_text())
     hashes = dict(doc["hashes"])
     if kind == doc.get("machine", kind):
+        for k in doc.get("stale", ()):     # moved by a change measured on another kind only
+            hashes.pop(k, None)
         return hashes
     other = machine_store(kind)
     if not other.exists():
@@ -337,14 +344,25 @@ def path_index(key: str) -> int | None:
     return int(m.group(1)) if m else None
 
 
-def compute(n_paths: int = N_PATHS) -> dict[str, str]:
-    """Every hash: the example scenes and the first ``n_paths`` generated paths."""
+def compute(n_paths: int = N_PATHS, cases: str | None = None) -> dict[str, str]:
+    """Every hash: the example scenes and the first ``n_paths`` generated paths (``cases``: only
+    the cases whose name this regular expression finds, ``re.search``)."""
+    pat = None if cases is None else re.compile(cases)
     out: dict[str, str] = {}
     for f in example_scenes():
-        out.update(scene_case(f))
+        if pat is None or pat.search(scene_name(f)):
+            out.update(scene_case(f))
     for i in range(n_paths):
-        out.update(path_case(i))
+        if pat is None or pat.search(f"path{i:03d}:{make_path(i)[0]}"):
+            out.update(path_case(i))
     return out
+
+
+def stale_keys() -> list[str]:
+    """The reference store's keys whose reference hash predates a change that moved them on
+    another kind of machine (:func:`_write_machine_store`): not compared on the reference kind
+    until that kind's store is rewritten there."""
+    return list(json.loads(STORE.read_text()).get("stale", ()))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -354,15 +372,22 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--match", default=None,
                     help="rewrite only the stored keys this regular expression finds")
     ap.add_argument("--paths", type=int, default=N_PATHS, help="generated paths (default all)")
+    ap.add_argument("--cases", default=None,
+                    help="compute only the cases whose name this regular expression finds "
+                         "(with --match: the cases that hold its keys)")
     args = ap.parse_args(argv)
     if STORE.exists() and not args.overwrite:
         print(f"{STORE} exists: pass --overwrite to rewrite it", file=sys.stderr)
         return 2
-    new = compute(args.paths)
+    if args.cases is not None and args.match is None:
+        print("--cases needs --match (the other stored hashes are kept)", file=sys.stderr)
+        return 2
+    new = compute(args.paths, args.cases)
     kind = machine()
     if STORE.exists() and json.loads(STORE.read_text()).get("machine", kind) != kind:
         return _write_machine_store(kind, new, args.match)
     n_paths = args.paths
+    stale: list[str] = []
     if args.match is not None and STORE.exists():
         pat = re.compile(args.match)
         old = json.loads(STORE.read_text())
@@ -373,11 +398,15 @@ def main(argv: list[str] | None = None) -> int:
                 stored[k] = new[k]
                 changed += 1
         new = stored
+        # measured here now: no longer stale
+        stale = [k for k in old.get("stale", ()) if not (pat.search(k) and k in new)]
         print(f"{changed} stored hashes rewritten")
     doc = {"about": "sha256 (first 32 hex) of every output of the load-path routes; "
                     "regenerate with: python tests/integration/path_hashes.py --overwrite",
            "machine": kind, "n_paths": n_paths, "seed": SEED,
            "hashes": dict(sorted(new.items()))}
+    if stale:
+        doc["stale"] = sorted(stale)
     STORE.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
     print(f"{len(new)} hashes written to {STORE} (machine kind {kind!r}; the stores of other "
           "kinds are not rewritten: regenerate them on such a machine)")
@@ -386,18 +415,32 @@ def main(argv: list[str] | None = None) -> int:
 
 def _write_machine_store(kind: str, new: dict[str, str], match: str | None) -> int:
     """Write ``path_hashes_<kind>.json``: the keys whose hash on this machine differs from the
-    reference store's (with ``match``, only the keys it finds are rewritten)."""
-    ref = json.loads(STORE.read_text())["hashes"]
+    reference store's (with ``match``, only the keys it finds are rewritten).
+
+    A key whose hash here moved from the one this kind had (a change meant to alter results,
+    measured on this kind only) has a reference hash that predates the change: it is listed in
+    the reference store's ``stale`` keys, which the reference kind does not compare until its
+    own store is rewritten there (:func:`stale_keys`)."""
+    ref_doc = json.loads(STORE.read_text())
+    ref = ref_doc["hashes"]
     path = machine_store(kind)
     old = json.loads(path.read_text())["hashes"] if path.exists() else {}
     pat = None if match is None else re.compile(match)
     diff = dict(old)
+    moved = set(ref_doc.get("stale", ()))
     for k, v in new.items():
         if k in ref and (pat is None or pat.search(k)):
+            if path.exists() and v != old.get(k, ref[k]):
+                moved.add(k)
             if v != ref[k]:
                 diff[k] = v
             else:
                 diff.pop(k, None)
+    if moved != set(ref_doc.get("stale", ())):
+        ref_doc["stale"] = sorted(moved)
+        STORE.write_text(json.dumps(ref_doc, indent=0, sort_keys=False) + "\n")
+        print(f"{len(moved)} reference hashes marked stale in {STORE.name} (moved here; "
+              "rewrite them on a machine of the reference kind)")
     doc = {"about": f"the hashes that differ on machines of kind {kind!r} from path_hashes.json "
                     "(numpy's vectorised loops and OpenBLAS's kernels by instruction set); "
                     "regenerate on such a machine with: python tests/integration/path_hashes.py "
