@@ -144,6 +144,9 @@ class Sinusoid(Segment):
 def _check_cycles(value: Any) -> float:
     """Whole cycles stay ints; fractional ones must be finite and > 0."""
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        if value <= 0:          # (not "an integer >= 1": fractions are allowed)
+            raise ParameterError(f"cycles={value!r} is invalid: it must be > 0 (fractions "
+                                 "allowed).")
         return check_steps("cycles", value)
     if isinstance(value, bool):
         raise ParameterError(f"cycles={value!r} is invalid: it must be a number > 0.")

@@ -83,6 +83,13 @@ def test_rule_cycles_positive_finite(bad):
         Sinusoid((("twist", 1.0),), bad)
 
 
+@pytest.mark.parametrize("bad", [0, -1, np.int64(0)])
+def test_rule_whole_cycles_say_fractions_are_allowed(bad):
+    # an int below 1 got the step count's message ("an integer >= 1") though 0.3 is accepted
+    with pytest.raises(ParameterError, match=r"cycles=.* must be > 0 \(fractions allowed\)"):
+        Sinusoid((("twist", 1.0),), bad)
+
+
 def test_rule_sample_needs_one_control_per_group():
     p = cl.LoadPath().ramp(depth=1e-6, steps=2).ramp(force=1.0, steps=2)
     with pytest.raises(ParameterError, match=r"normal group.*'depth'.*'force'.*simulate"):
