@@ -88,6 +88,10 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                                      "elastic: times are used by viscoelastic samples only "
                                      "(e.g. standard_linear_solid:G_inf=...,G_1=...,eta_1=...).")
             time = curve.time
+    if args.work_of_adhesion is not None and args.adhesion is None:
+        raise ParameterError(f"--work-of-adhesion {args.work_of_adhesion!r} is given without "
+                             "--adhesion: it is used by an adhesive fit only; add --adhesion "
+                             "jkr (or dmt), or drop it.")
     free = (None if args.free is None
             else tuple(n.strip() for n in args.free.split(",") if n.strip()))
     res = fit.indentation(depth, force, profile, sample=sample, tip=tip, free=free,

@@ -40,6 +40,7 @@ from ..errors import ConvergenceError, ParameterError, UnknownNameError
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
+from ._args import free_names, start_values
 from .indentation import _array
 from .result import FitResult
 
@@ -76,7 +77,7 @@ def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, fr
     if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
         raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
                              "Elastic material.")
-    names = (free,) if isinstance(free, str) else tuple(free)
+    names = free_names(free)
     for n in names:
         if n not in _LOOP_NAMES:
             raise UnknownNameError(f"free={n!r} is unknown: choose from {_LOOP_NAMES}.")
@@ -234,7 +235,7 @@ def _starts(y: np.ndarray, x: np.ndarray, centre: float, amp: float, FN: float, 
     ``plateau`` loop that reaches full slip, a flat punch's, so that the start slides where the
     data do), the modulus from the slope of the branches
     leaving the turning points (the loop starts each branch with the no-slip stiffness)."""
-    out = dict(start or {})
+    out = start_values(start, names, names, {"shear_modulus": "Pa"})
     if "friction" not in out:
         out["friction"] = max(float(np.max(np.abs(y))) / scale, 1e-6) * (1.0 if plateau
                                                                          else 1.05)
@@ -289,7 +290,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     friction : float, optional
         Fixed friction coefficient when ``"friction"`` is not free.
     start : dict, optional
-        Starting values by name.
+        Starting values by name: fitted names only, positive finite numbers.
     rtol : float
         Tolerance of the profile's routes.
 

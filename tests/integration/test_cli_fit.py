@@ -98,6 +98,7 @@ def test_fit_columns_not_named_depth_and_force_exit_2(tmp_path, capsys, header):
 @pytest.mark.parametrize("extra, text", [
     (["--free", "E,radius"], "free='radius' is unknown"),
     (["--adhesion", "jkr"], "work of adhesion"),
+    (["--work-of-adhesion", "0.05"], "--work-of-adhesion 0.05 is given without --adhesion"),
 ])
 def test_fit_bad_input_exits_2(curve, capsys, extra, text):
     assert main(["fit", str(curve), *ARGS, *extra]) == 2

@@ -186,3 +186,21 @@ def test_torsion_loop_far_start_no_zero_division(start):
     else:
         assert abs(res.params["friction"] / MU - 1) < FIT_RECOVERY
         assert abs(res.params["shear_modulus"] / STEEL.G - 1) < FIT_RECOVERY
+
+
+@pytest.mark.parametrize("kw, err, text", [
+    ({"start": {"friction": 0}}, errors.ParameterError, r"start\['friction'\]=0 is invalid"),
+    ({"start": {"shear_modulus": -8e10}}, errors.ParameterError,
+     r"start\['shear_modulus'\]=-80000000000.0 is invalid"),
+    ({"start": {"shear_modulus": np.nan}}, errors.ParameterError, "nan is invalid"),
+    ({"start": {"friction": "a"}}, errors.ParameterError, r"start\['friction'\]='a'"),
+    ({"start": [0.3]}, errors.ParameterError, r"start=\[0.3\] is invalid: give a dict"),
+    ({"start": {"zzz": 0.3}}, errors.UnknownNameError, r"'zzz'.*\('friction', 'shear_modulus'\)"),
+    ({"free": 5}, errors.ParameterError, "free=5 is invalid"),
+])
+@pytest.mark.parametrize("fit", [tangential_loop, torsion_loop])
+def test_loop_bad_arguments_named(fit, kw, err, text):
+    """Each was a bare ZeroDivisionError/TypeError, or (an unknown name) silently ignored."""
+    x, y = _md_loop()
+    with pytest.raises(err, match=text):
+        fit(x, y, FN, Paraboloid(R=R), sample=STEEL, **kw)
