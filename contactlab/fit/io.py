@@ -95,6 +95,9 @@ def _read_csv(path: str, time: str = "time") -> Curve:
     lists the header's names. (Shared with ``contactlab fit``, whose ``--time`` names the
     time column.)"""
     from ..numeric.tables import read_columns
+    if time in ("depth", "force"):
+        raise ParameterError(f"time={time!r} is invalid: the column of sample times must be "
+                             "another column than 'depth' and 'force'.")
     dims = {"depth": "length", "force": "force", time: "time"}
 
     def dimension(col: str) -> str | None:

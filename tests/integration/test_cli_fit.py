@@ -161,6 +161,8 @@ def test_fit_viscoelastic_time_column_named(tmp_path, visco_curve, capsys):
 @pytest.mark.parametrize("extra, sample, text", [
     ([], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "needs the sample times"),
     (["--time", "stamp"], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "'stamp'"),
+    (["--time", "depth"], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4",
+     "another column than 'depth' and 'force'"),
     (["--segment", "both"], "elastic:E=1e6,nu=0.5", "--segment and --index"),
 ])
 def test_fit_time_problems_exit_2(curve, capsys, extra, sample, text):
