@@ -36,9 +36,14 @@ def _cmd_fit(args: argparse.Namespace) -> int:
 
     from .. import fit
     from ..errors import ParameterError
-    from ..fit.io import AFM_EXTENSIONS
-    from ..numeric.tables import read_columns
+    from ..fit.io import AFM_EXTENSIONS, _read_csv
+    from . import _check_targets
     from ..registry import registry
+    # every output is checked before any work: none is written when another would be refused
+    for option, target in (("-o", args.output), ("--plot", args.plot)):
+        if target:
+            _check_targets(f"{option} {target!r}", [Path(target)], [Path(args.curve)],
+                           args.overwrite)
     profile = registry.create("profile", args.profile, **_parse_assignments(args.param, "--param"))
 
     def material(spec: str) -> Any:
@@ -67,14 +72,14 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         if args.segment is not None or args.index != 0:
             raise ParameterError("--segment and --index apply to AFM instrument files "
                                  f"({', '.join(AFM_EXTENSIONS)}); a CSV file is read whole.")
-        names, cols = read_columns(args.curve, names=("depth", "force"),
-                                   dimension=("length", "force"), min_columns=2)
-        depth, force = (cols[k] for k in list(cols)[:2])
+        # the columns by name, as read_curve reads them (any order, other columns ignored)
+        col = args.time or "time"
+        curve = _read_csv(str(args.curve), time=col)
+        depth, force = curve.depth, curve.force
         if visco or args.time is not None:
-            col = args.time or "time"
-            if col not in names[2:]:
+            if curve.time is None:
                 raise ParameterError(
-                    f"{args.curve!r} has no column {col!r} (columns {names}): "
+                    f"{args.curve!r} has no column {col!r} (columns {curve.meta['columns']}): "
                     + ("a viscoelastic sample needs the sample times, e.g. a column "
                        "'time [ms]' (or name it with --time)." if visco else
                        "--time names the column of sample times."))
@@ -82,9 +87,11 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                 raise ParameterError(f"--time {col!r} is given but sample={args.sample!r} is "
                                      "elastic: times are used by viscoelastic samples only "
                                      "(e.g. standard_linear_solid:G_inf=...,G_1=...,eta_1=...).")
-            _, tcols = read_columns(args.curve, dimension=lambda c: "time" if c == col
-                                    else "ignore", min_columns=2)
-            time = tcols[col]
+            time = curve.time
+    if args.work_of_adhesion is not None and args.adhesion is None:
+        raise ParameterError(f"--work-of-adhesion {args.work_of_adhesion!r} is given without "
+                             "--adhesion: it is used by an adhesive fit only; add --adhesion "
+                             "jkr (or dmt), or drop it.")
     free = (None if args.free is None
             else tuple(n.strip() for n in args.free.split(",") if n.strip()))
     res = fit.indentation(depth, force, profile, sample=sample, tip=tip, free=free,
@@ -95,11 +102,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
-        target = Path(args.plot)
-        if target.exists() and not args.overwrite:
-            raise ParameterError(f"--plot {args.plot!r} exists: pass --overwrite or choose "
-                                 "another name.")
-        res.plot().savefig(target)
+        res.plot().savefig(Path(args.plot))
     ci = res.confidence(0.95)
     if args.json:
         print(json.dumps({"ok": True, "params": res.params, "stderr": res.stderr,

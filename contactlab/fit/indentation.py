@@ -26,9 +26,13 @@ from ..errors import (
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
+from ._args import free_names, needs_adhesion, optional_positive, start_values
 from .result import FitResult
 
 __all__ = ["FREE_NAMES", "indentation"]
+
+#: SI units of the starting values (a start given with a unit is converted)
+START_UNITS = {"E": "Pa", "contact_point": "m", "force_offset": "N", "work_of_adhesion": "J/m^2"}
 
 #: parameters ``fit.indentation`` can fit besides the sample's constructor arguments
 FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
@@ -75,7 +79,7 @@ def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, f
     if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
         raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
                              "Elastic material.")
-    names = (free,) if isinstance(free, str) else tuple(free)
+    names = free_names(free)
     allowed = tuple(p.name for p in type(sample).params) + FREE_NAMES
     for n in names:
         if n not in allowed:
@@ -231,7 +235,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         retract); with ``adhesion="dmt"`` the adhesive force follows Ting's contact radius
         (``adhesion="jkr"`` is refused: the crack at the edge is rate dependent).
     start : dict, optional
-        Starting values by name (override the automatic ones).
+        Starting values by name (override the automatic ones): fitted names only, finite
+        numbers, positive for ``"E"`` and ``"work_of_adhesion"``.
     rtol : float
         Tolerance of the profile's routes when a tip table is built.
 
@@ -243,9 +248,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     ------
     ParameterError
         Non-finite values, unequal lengths, too few points, a curve that never reaches contact,
-        a non-elastic sample.
+        a non-elastic sample; ``free`` not a name or names; ``start`` not a mapping or a start
+        value not a finite number (positive for ``E`` and the work of adhesion);
+        ``work_of_adhesion`` or ``equilibrium_distance`` not a positive number, or given
+        without ``adhesion``.
     UnknownNameError
-        An unknown name in ``free``.
+        An unknown name in ``free``, a name in ``start`` that is not fitted.
     NotSupportedError
         ``adhesion`` with ``time``, a profile rising up to a wall with ``time`` (a flat punch
         is covered), DMT on a tip flat at the contact's
@@ -267,6 +275,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     """
     if adhesion not in (None, "jkr", "dmt"):
         raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
+    needs_adhesion(adhesion, work_of_adhesion=work_of_adhesion,
+                   equilibrium_distance=equilibrium_distance)
+    work_of_adhesion = optional_positive("work_of_adhesion", work_of_adhesion,
+                                         "the work of adhesion", "J/m^2")
+    equilibrium_distance = optional_positive("equilibrium_distance", equilibrium_distance,
+                                             "the equilibrium distance", "m")
     if time is not None:
         if adhesion == "jkr":
             raise NotSupportedError(
@@ -292,11 +306,12 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     if free is None:
         free = ("E", "contact_point")
     z, F, names, tip_m = _check_inputs(depth, force, profile, sample, tip, free, adhesion)
+    start = start_values(start, names, ("E", "work_of_adhesion"), START_UNITS)
     if adhesion == "jkr":
         if profile.is_flat_punch:
             _check_work(names, work_of_adhesion, adhesion)
             return _kendall_result(z, F, profile, sample, tip_m, names, work_of_adhesion,
-                                   dict(start or {}))
+                                   dict(start))
     jkr = None
     dmt = None
     if adhesion == "dmt":

@@ -89,20 +89,29 @@ def read_curve(path: Any, *, segment: str = "approach", index: int = 0) -> Curve
     return _read_csv(name)
 
 
-def _read_csv(path: str) -> Curve:
+def _read_csv(path: str, time: str = "time") -> Curve:
+    """The curve of a CSV file, its columns picked by name (``depth``, ``force`` and the sample
+    times from the column ``time``), in any order, other columns ignored; ``meta["columns"]``
+    lists the header's names. (Shared with ``contactlab fit``, whose ``--time`` names the
+    time column.)"""
     from ..numeric.tables import read_columns
+    if time in ("depth", "force"):
+        raise ParameterError(f"time={time!r} is invalid: the column of sample times must be "
+                             "another column than 'depth' and 'force'.")
+    dims = {"depth": "length", "force": "force", time: "time"}
 
     def dimension(col: str) -> str | None:
-        return _CSV.get(col, "ignore")
+        return dims.get(col, "ignore")
     names, cols = read_columns(path, dimension=dimension, min_columns=2,
-                               known_names=tuple(_CSV))
+                               known_names=tuple(dict.fromkeys((*_CSV, time))))
     missing = [c for c in ("depth", "force") if c not in cols]
     if missing:
         raise ParameterError(f"file={path!r} has the columns {names}: a curve needs 'depth' and "
                              f"'force' (missing {missing}; units in the header, e.g. "
                              "'depth [nm]').")
-    return Curve(depth=cols["depth"], force=cols["force"], time=cols.get("time"),
-                 meta={"source": path, "reader": "csv", "segment": "whole file"})
+    return Curve(depth=cols["depth"], force=cols["force"], time=cols.get(time),
+                 meta={"source": path, "reader": "csv", "segment": "whole file",
+                       "columns": list(names)})
 
 
 def _read_afm(path: str, segment: str, index: int) -> Curve:

@@ -40,6 +40,7 @@ from ..errors import ConvergenceError, ParameterError, UnknownNameError
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
+from ._args import free_names, start_values
 from .indentation import _array
 from .result import FitResult
 
@@ -52,6 +53,9 @@ _LOOP_NAMES = ("friction", "shear_modulus")
 #: order of the slipped force times the step
 _SLIDE_STEP = 1e-4
 _SLIDE_FLOOR = 1e-10
+#: residual norm, relative to the data's, above which a fit that ends on the elastic line (no
+#: slip) has run away from a slipping loop (a bad start) rather than met a loop without slip
+_NO_SLIP_MISFIT = 0.05
 
 
 def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
@@ -73,7 +77,7 @@ def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, fr
     if not isinstance(tip_m, Material) or tip_m.is_viscoelastic:
         raise ParameterError(f"tip={tip!r} is invalid: give None (rigid), Rigid() or an "
                              "Elastic material.")
-    names = (free,) if isinstance(free, str) else tuple(free)
+    names = free_names(free)
     for n in names:
         if n not in _LOOP_NAMES:
             raise UnknownNameError(f"free={n!r} is unknown: choose from {_LOOP_NAMES}.")
@@ -102,6 +106,11 @@ def _branches(x: np.ndarray) -> np.ndarray:
     return s[first]
 
 
+class _OutOfRange(ArithmeticError):
+    """A trial step of the loop fit left the range where the model is defined (a value that
+    overflows or vanishes in floating point); its message names the values."""
+
+
 def _loop_model(x: np.ndarray, names: tuple[str, ...], centre: float, amp: float,
                 load: Callable, G_of: Callable, start: dict, fixed: dict) -> Callable:
     """``parts(p) -> (values, model, {name: ∂model/∂ln(name)})`` of the Masing loop of
@@ -113,12 +122,20 @@ def _loop_model(x: np.ndarray, names: tuple[str, ...], centre: float, amp: float
 
     def parts(p: np.ndarray) -> tuple:
         q = dict(fixed)
-        for n, i in idx.items():
-            q[n] = float(np.exp(p[i])) * start[n]
+        with np.errstate(over="ignore", under="ignore"):
+            for n, i in idx.items():
+                q[n] = float(np.exp(p[i])) * start[n]
         mu, G = q["friction"], q["shear_modulus"]
-        Ge, dGe = G_of(G)
-        L0, dL0 = load(np.array([amp]), mu, Ge)
-        Lv, dLv = load(v, mu, Ge)
+        bad = [n for n in idx if not (np.isfinite(q[n]) and q[n] > 0.0 and np.isfinite(1.0 / q[n]))]
+        if bad:
+            raise _OutOfRange(", ".join(f"{n}={q[n]!r}" for n in bad))
+        with np.errstate(all="ignore"):
+            Ge, dGe = G_of(G)
+            L0, dL0 = load(np.array([amp]), mu, Ge)
+            Lv, dLv = load(v, mu, Ge)
+        if not (np.isfinite(Ge) and Ge > 0 and np.all(np.isfinite(Lv)) and np.all(np.isfinite(dLv))
+                and np.all(np.isfinite(L0)) and np.all(np.isfinite(dL0))):
+            raise _OutOfRange(", ".join(f"{n}={q[n]!r}" for n in idx))
         model = s * (L0[0] - 2.0 * Lv)
         # L = mu l(x Ge/mu): dL/dGe = L' x/Ge, dL/dmu = L/mu - L' x/mu
         d_mu = s * ((L0[0] - dL0[0] * amp) / mu - 2.0 * (Lv - dLv * v) / mu)
@@ -134,18 +151,46 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
     parts = _loop_model(x, names, centre, amp, load, G_of, start, fixed)
     idx = {n: i for i, n in enumerate(names)}
 
+    # a trial step that leaves the model's range gets a residual far above any other, so that
+    # the solver rejects it and shortens its step (finite: its sum of squares must not overflow)
+    rejected = np.full(y.size, 1e100 / np.sqrt(y.size))
+    last_bad = [""]
+
     def residual(p: np.ndarray) -> np.ndarray:
-        return parts(p)[1] - y
+        try:
+            r = parts(p)[1] - y
+        except _OutOfRange as err:
+            last_bad[0] = str(err)
+            return rejected
+        if not float(np.max(np.abs(r))) < rejected[0]:     # (NaN too)
+            last_bad[0] = ", ".join(f"{n}={float(np.exp(p[i])) * start[n]!r}"
+                                    for i, n in enumerate(names))
+            return rejected
+        return r
 
     def jacobian(p: np.ndarray) -> np.ndarray:
         _, _, d = parts(p)
         return np.stack([d[n] for n in names], axis=1)
 
+    starts = ", ".join(f"{n}={start[n]!r}" for n in names)
+
+    def failed(what: str) -> ConvergenceError:
+        return ConvergenceError(
+            f"the loop fit of {names} did not converge from start ({starts}): {what}; give "
+            "start={...} closer to the loop's values (friction of the order of the largest "
+            "force over the normal force, the shear modulus of the material).")
+
     from ._tip import covariance, levenberg_marquardt
-    x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, np.zeros(len(names)))
+    try:
+        x_sol, nfev, ok, msg = levenberg_marquardt(residual, jacobian, np.zeros(len(names)))
+        q, model, d = parts(x_sol)
+    except _OutOfRange as err:
+        raise failed(f"it reached values where the model is undefined ({err})") from None
     if not ok:
-        raise ConvergenceError(f"the loop fit did not converge: {msg}")
-    q, model, d = parts(x_sol)
+        raise failed(str(msg))
+    if not np.all(np.isfinite(model - y)) or float((model - y) @ (model - y)) >= float(
+            rejected @ rejected):
+        raise failed(f"every step left the model's range (last: {last_bad[0]})")
     r = model - y
     if "friction" in idx:
         # identifiable only if a larger friction changes the loop: a flat punch's loop that
@@ -155,6 +200,13 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
         up[idx["friction"]] += _SLIDE_STEP
         change = float(np.linalg.norm(parts(up)[1] - model))
         if not change > _SLIDE_FLOOR * _SLIDE_STEP * float(np.linalg.norm(model)):
+            misfit = float(np.linalg.norm(r)) / max(float(np.linalg.norm(y)), 1e-300)
+            if misfit > _NO_SLIP_MISFIT:
+                # the data are not the elastic line the fit stopped at: a start from which the
+                # solver ran to a loop without slip, not a loop that never slips
+                raise failed(f"it stopped at {', '.join(f'{n}={q[n]!r}' for n in names)}, "
+                             "where the model loop never slips (the elastic line), "
+                             f"{misfit:.2g} of the data's norm away from the data")
             raise ParameterError(
                 f"free='friction' is not identifiable from this loop: at the fitted values "
                 f"(friction={q['friction']!r}) it never slides, and every larger friction gives "
@@ -165,6 +217,13 @@ def _fit_loop(x: np.ndarray, y: np.ndarray, names: tuple[str, ...], centre: floa
     s2 = float(r @ r) / dof
     cov = covariance(J, s2)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    undefined = [n for n in names if not np.isfinite(stderr[n])]
+    if undefined:
+        # a singular Jacobian: the loop does not change with these parameters at the values
+        # reached (a loop fully sliding at a tiny or huge modulus), so they are not determined
+        raise failed(f"it stopped at {', '.join(f'{n}={q[n]!r}' for n in names)}, where the "
+                     f"loop does not determine {undefined} (singular Jacobian: their standard "
+                     "errors are undefined)")
     return q, model, r, cov, stderr, dof, nfev
 
 
@@ -176,7 +235,7 @@ def _starts(y: np.ndarray, x: np.ndarray, centre: float, amp: float, FN: float, 
     ``plateau`` loop that reaches full slip, a flat punch's, so that the start slides where the
     data do), the modulus from the slope of the branches
     leaving the turning points (the loop starts each branch with the no-slip stiffness)."""
-    out = dict(start or {})
+    out = start_values(start, names, names, {"shear_modulus": "Pa"})
     if "friction" not in out:
         out["friction"] = max(float(np.max(np.abs(y))) / scale, 1e-6) * (1.0 if plateau
                                                                          else 1.05)
@@ -231,7 +290,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     friction : float, optional
         Fixed friction coefficient when ``"friction"`` is not free.
     start : dict, optional
-        Starting values by name.
+        Starting values by name: fitted names only, positive finite numbers.
     rtol : float
         Tolerance of the profile's routes.
 
@@ -245,7 +304,12 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
     ParameterError
         Bad input; or ``"friction"`` free on a loop that never slips at the fitted values (a
         flat punch below ``|Q| = μF``): every larger friction gives the same loop.
-    UnknownNameError, ConvergenceError
+    UnknownNameError
+        An unknown name in ``free``.
+    ConvergenceError
+        The solver did not converge, or stopped where the loop does not determine the
+        parameters (a singular Jacobian; a start far from the loop): the message names the
+        start and the values reached.
     """
     x, y, FN, tip_m, names, centre, amp = _prepare(
         displacement, tangential_force, force, profile, sample, tip, free, "displacement",
@@ -331,6 +395,7 @@ def torsion_loop(twist: Any, torque: Any, force: float, profile: Profile, *, sam
         Bad input; or ``"friction"`` free on a loop that never slips at the fitted values (a
         flat punch below the twist above): every larger friction gives the same loop.
     UnknownNameError, ConvergenceError
+        As for :func:`tangential_loop`.
 
     Notes
     -----

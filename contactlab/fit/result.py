@@ -7,7 +7,6 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..effects._protocol import Result
-from ..errors import ParameterError
 
 __all__ = ["FitResult"]
 
@@ -89,10 +88,9 @@ class FitResult(Result):
         ParameterError
             ``level`` outside (0, 1).
         """
-        lv = float(level)
-        if not 0.0 < lv < 1.0:
-            raise ParameterError(f"level={level!r} is invalid: give a confidence level between "
-                                 "0 and 1 (exclusive), e.g. 0.95.")
+        from ..params.checks import check_in_range
+        lv = check_in_range("level", level, 0.0, 1.0, low_open=True, high_open=True,
+                            what="the confidence level (e.g. 0.95)", unit="1")
         from scipy.stats import t
         q = float(t.ppf(0.5 + lv / 2.0, max(self.dof, 1)))
         return {k: (self.params[k] - q * self.stderr[k], self.params[k] + q * self.stderr[k])

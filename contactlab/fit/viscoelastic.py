@@ -19,6 +19,7 @@ from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..materials.viscoelastic import GeneralizedMaxwell, Maxwell, StandardLinearSolid
 from ..profiles.base import Profile
+from ._args import free_names, start_values
 from .result import FitResult
 
 __all__ = ["VISCOELASTIC_MATERIALS", "fit_viscoelastic"]
@@ -92,7 +93,7 @@ def _material(cls: type, v: dict[str, float]) -> Material:
 def _free(free: Any, sample: Material, adhesive: bool = False) -> tuple[str, ...]:
     if free is None:                            # every parameter of the material and z0
         free = (*tuple(p.name for p in type(sample).params), "contact_point")
-    names = (free,) if isinstance(free, str) else tuple(free)
+    names = free_names(free)
     scalars = _names(sample)
     extra = _EXTRA + (("work_of_adhesion",) if adhesive else ())
     allowed = tuple(p.name for p in type(sample).params) + extra
@@ -172,7 +173,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     ``equilibrium_distance`` at 0.3 nm, warning only when it is above 0.1 over 0.2-0.5 nm) and,
     with ``equilibrium_distance``, at the relaxed one ``4G_∞``
     (``meta["tabor_parameter_relaxed"]``)."""
-    from .indentation import _array, _check_work, indentation
+    from .indentation import START_UNITS, _array, _check_work, indentation
     if not isinstance(sample, VISCOELASTIC_MATERIALS):
         raise NotSupportedError(
             f"sample={sample!r} with time=...: viscoelastic fits cover "
@@ -187,6 +188,9 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
                              "of equal length.")
     cls = type(sample)
     names = _free(free, sample, adhesion == "dmt")
+    # moduli, viscosities, times and Δγ are fitted through their logarithms: positive
+    start = start_values(start, names, tuple(n for n in names if n not in _EXTRA),
+                         START_UNITS)
     if adhesion == "dmt":
         _check_work(names, work_of_adhesion, adhesion)
         from ._dmt import check_wall

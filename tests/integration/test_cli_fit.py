@@ -43,13 +43,62 @@ def test_fit_text_and_output_never_overwritten(curve, tmp_path, capsys):
     header = next(ln for ln in out.read_text().splitlines() if not ln.startswith("#"))
     assert header == "depth [m],force [N],force_fit [N],force_residual [N]"
     assert main(["fit", str(curve), *ARGS, "-o", str(out)]) == 2
-    assert "overwrite=True" in capsys.readouterr().err
+    assert "--overwrite" in capsys.readouterr().err
     assert main(["fit", str(curve), *ARGS, "-o", str(out), "--overwrite"]) == 0
+
+
+def test_fit_no_output_written_when_another_is_refused(curve, tmp_path, capsys):
+    """Every output path is checked before any is written: an existing --plot leaves -o's new
+    file unwritten (and the existing one untouched)."""
+    new, old = tmp_path / "new.csv", tmp_path / "old.png"
+    old.write_text("keep")
+    assert main(["fit", str(curve), *ARGS, "-o", str(new), "--plot", str(old)]) == 2
+    err = capsys.readouterr().err
+    assert "--plot" in err and "--overwrite" in err and "Traceback" not in err
+    assert not new.exists() and old.read_text() == "keep"
+
+
+def hertz_rows(header, order, z_scale=1e-9, f_scale=1e-9):
+    """The Hertz curve (paraboloid R, E, nu = 0.5, contact at Z0) as CSV text: ``order`` maps
+    each column of ``header`` to ``"z"``, ``"F"`` or a constant."""
+    z = np.linspace(-50e-9, 200e-9, 300)
+    F = 4 / 3 * E / 0.75 * np.sqrt(R) * np.maximum(z - Z0, 0.0) ** 1.5
+    cols = {"z": z / z_scale, "F": F / f_scale}
+    return header + "\n" + "".join(
+        ",".join(repr(float(cols[c][i])) if c in cols else c for c in order) + "\n"
+        for i in range(z.size))
+
+
+@pytest.mark.parametrize("header, order, zs, fs", [
+    ("force,depth", ("F", "z"), 1.0, 1.0),
+    ("force [nN],depth [nm]", ("F", "z"), 1e-9, 1e-9),
+    ("index,depth [nm],force [nN]", ("7", "z", "F"), 1e-9, 1e-9),
+    ("time [ms],force [uN],comment,depth [um]", ("3", "F", "0", "z"), 1e-6, 1e-6),
+])
+def test_fit_reads_columns_by_name(tmp_path, capsys, header, order, zs, fs):
+    """The CLI picks depth and force by their header names, in any order, other columns
+    ignored (as read_curve does): Hertz's E and contact point come back."""
+    p = tmp_path / "curve.csv"
+    p.write_text(hertz_rows(header, order, zs, fs))
+    assert main(["fit", str(p), *ARGS, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert abs(out["params"]["E"] / E - 1) < FIT_RECOVERY
+    assert abs(out["params"]["contact_point"] / Z0 - 1) < FIT_RECOVERY
+
+
+@pytest.mark.parametrize("header", ["x,y", "depth,y", "z [nm],force [nN]"])
+def test_fit_columns_not_named_depth_and_force_exit_2(tmp_path, capsys, header):
+    p = tmp_path / "curve.csv"
+    p.write_text(hertz_rows(header, ("z", "F"), 1.0, 1.0))
+    assert main(["fit", str(p), *ARGS]) == 2
+    err = capsys.readouterr().err
+    assert "'depth' and 'force'" in err and "missing" in err and "Traceback" not in err
 
 
 @pytest.mark.parametrize("extra, text", [
     (["--free", "E,radius"], "free='radius' is unknown"),
     (["--adhesion", "jkr"], "work of adhesion"),
+    (["--work-of-adhesion", "0.05"], "--work-of-adhesion 0.05 is given without --adhesion"),
 ])
 def test_fit_bad_input_exits_2(curve, capsys, extra, text):
     assert main(["fit", str(curve), *ARGS, *extra]) == 2
@@ -112,6 +161,8 @@ def test_fit_viscoelastic_time_column_named(tmp_path, visco_curve, capsys):
 @pytest.mark.parametrize("extra, sample, text", [
     ([], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "needs the sample times"),
     (["--time", "stamp"], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4", "'stamp'"),
+    (["--time", "depth"], "standard_linear_solid:G_inf=3e4,G_1=1e4,eta_1=1e4",
+     "another column than 'depth' and 'force'"),
     (["--segment", "both"], "elastic:E=1e6,nu=0.5", "--segment and --index"),
 ])
 def test_fit_time_problems_exit_2(curve, capsys, extra, sample, text):

@@ -172,6 +172,50 @@ def test_bad_input_names_the_problem(depth, force, kw, err, text):
         indentation(depth, force, Paraboloid(R=R), sample=SAMPLE, **kw)
 
 
+@pytest.mark.parametrize("kw, err, text", [
+    ({"start": {"E": 0.0}}, errors.ParameterError, r"start\['E'\]=0.0 is invalid.*> 0"),
+    ({"start": {"E": -1.0}}, errors.ParameterError, r"start\['E'\]=-1.0 is invalid"),
+    ({"start": {"E": np.inf}}, errors.ParameterError, r"start\['E'\]=inf is invalid"),
+    ({"start": {"contact_point": np.nan}}, errors.ParameterError,
+     r"start\['contact_point'\]=nan is invalid: .* finite"),
+    ({"start": {"E": "x"}}, errors.ParameterError, r"start\['E'\]='x' is invalid"),
+    ({"start": [1, 2]}, errors.ParameterError, r"start=\[1, 2\] is invalid: give a dict"),
+    ({"start": {"Q": 1.0}}, errors.UnknownNameError, r"'Q'.*\('E', 'contact_point'\)"),
+    ({"start": {"force_offset": 0.0}}, errors.UnknownNameError, "'force_offset', which is not "
+     "fitted"),
+    ({"free": 3}, errors.ParameterError, "free=3 is invalid: give a parameter name"),
+    ({"free": ("E", None)}, errors.ParameterError, "holds None"),
+    ({"adhesion": "jkr", "work_of_adhesion": "a"}, errors.ParameterError,
+     "work_of_adhesion='a' is invalid"),
+    ({"adhesion": "dmt", "work_of_adhesion": 0.05, "equilibrium_distance": "x"},
+     errors.ParameterError, "equilibrium_distance='x' is invalid"),
+    ({"adhesion": "dmt", "work_of_adhesion": 0.05, "equilibrium_distance": -3.0},
+     errors.ParameterError, "equilibrium_distance=-3.0 is invalid"),
+    ({"work_of_adhesion": 5.0}, errors.ParameterError,
+     "work_of_adhesion=5.0 is given but adhesion=None"),
+    ({"equilibrium_distance": -3.0}, errors.ParameterError,
+     "equilibrium_distance=-3.0 is given but adhesion=None"),
+])
+def test_bad_arguments_raise_named_errors(kw, err, text):
+    """Each was a bare TypeError/ValueError/ZeroDivisionError, or silently ignored."""
+    with pytest.raises(err, match=text):
+        indentation(Z, hertz(Z), Paraboloid(R=R), sample=SAMPLE, **kw)
+
+
+def test_start_with_a_unit_and_a_valid_start_still_fit():
+    res = indentation(Z, hertz(Z), Paraboloid(R=R), sample=SAMPLE,
+                      start={"E": "1 MPa", "contact_point": 0.0})
+    assert rel(res.params["E"], E) < FIT_RECOVERY
+    assert rel(res.params["contact_point"], Z0) < FIT_RECOVERY
+
+
+@pytest.mark.parametrize("level", ["high", None, 1.0, 0.0, np.nan, True])
+def test_confidence_level_checked(level):
+    res = indentation(Z, hertz(Z), Paraboloid(R=R), sample=SAMPLE)
+    with pytest.raises(errors.ParameterError, match="level=.* is invalid: the confidence level"):
+        res.confidence(level)
+
+
 def test_bad_parts():
     with pytest.raises(errors.ParameterError, match="profile"):
         indentation(Z, hertz(Z), "sphere", sample=SAMPLE)

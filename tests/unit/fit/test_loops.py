@@ -130,3 +130,77 @@ def test_loop_bad_input(kw, err, text):
         tangential_loop(x, x[:-1], FN, Paraboloid(R=R), sample=STEEL)
     with pytest.raises(errors.ParameterError, match=r"twist\[3\]=nan"):
         torsion_loop(np.r_[x[:3], np.nan, x[4:]], x, FN, Paraboloid(R=R), sample=STEEL)
+
+
+def _md_loop():
+    """The Mindlin-Deresiewicz loop (Hertz, friction MU, the steel's shear modulus)."""
+    a, _ = _normal(Paraboloid(R=R))
+    u_star = 3 * MU * FN / (4 * a * G_STAR)
+
+    def load(u):
+        return MU * FN * (1 - (1 - np.minimum(u / u_star, 1)) ** 1.5)
+
+    return _loop(load, 0.7 * u_star)
+
+
+@pytest.mark.parametrize("start", [{"shear_modulus": 1e3},
+                                   {"friction": 10.0, "shear_modulus": 1e3},
+                                   {"friction": 1e-8}])
+def test_loop_far_start_recovers(start):
+    """A start far below the truth overflowed the solver's trial steps (ZeroDivisionError):
+    a step out of the model's range is now rejected, and the fit reaches Mindlin-Deresiewicz's
+    values."""
+    x, y = _md_loop()
+    res = tangential_loop(x, y, FN, Paraboloid(R=R), sample=STEEL, start=start)
+    assert abs(res.params["friction"] / MU - 1) < FIT_RECOVERY
+    assert abs(res.params["shear_modulus"] / STEEL.G - 1) < FIT_RECOVERY
+    assert all(np.isfinite(v) for v in res.stderr.values())
+
+
+def test_loop_stuck_start_raises_convergence_error():
+    """From a shear modulus 10^4 times too high the loop is the no-slip line wherever the
+    solver goes: it stops where the loop does not determine the parameters, which was returned
+    with infinite standard errors; now a ConvergenceError names the parameters."""
+    x, y = _md_loop()
+    with pytest.raises(errors.ConvergenceError, match="shear_modulus.*start=") as info:
+        tangential_loop(x, y, FN, Paraboloid(R=R), sample=STEEL,
+                        start={"shear_modulus": 1e15})
+    assert "shear_modulus=1000000000000000.0" in str(info.value)
+
+
+@pytest.mark.parametrize("start", [{"shear_modulus": 1e3}, {"shear_modulus": 1e8},
+                                   {"shear_modulus": 1e15}])
+def test_torsion_loop_far_start_no_zero_division(start):
+    """Lubkin's Hertz torsion loop from far starts: Jäger's values, or a ConvergenceError
+    naming the parameters (was ZeroDivisionError, or a ParameterError calling the slipping
+    loop one that never slips)."""
+    a, _ = _normal(Paraboloid(R=R))
+    phi0, M0 = _lubkin(np.array([0.3]), a, STEEL.G)
+    phi_v, M_v = _lubkin(np.linspace(1.0, 0.3, 120), a, STEEL.G)
+    x = np.concatenate([phi0 - 2 * phi_v, (-phi0 + 2 * phi_v)[1:]])
+    y = np.concatenate([M0 - 2 * M_v, (-M0 + 2 * M_v)[1:]])
+    try:
+        res = torsion_loop(x, y, FN, Paraboloid(R=R), sample=STEEL, start=start)
+    except errors.ConvergenceError as err:      # a named failure, never ZeroDivisionError
+        assert "shear_modulus=" in str(err) and "start=" in str(err)
+    else:
+        assert abs(res.params["friction"] / MU - 1) < FIT_RECOVERY
+        assert abs(res.params["shear_modulus"] / STEEL.G - 1) < FIT_RECOVERY
+
+
+@pytest.mark.parametrize("kw, err, text", [
+    ({"start": {"friction": 0}}, errors.ParameterError, r"start\['friction'\]=0 is invalid"),
+    ({"start": {"shear_modulus": -8e10}}, errors.ParameterError,
+     r"start\['shear_modulus'\]=-80000000000.0 is invalid"),
+    ({"start": {"shear_modulus": np.nan}}, errors.ParameterError, "nan is invalid"),
+    ({"start": {"friction": "a"}}, errors.ParameterError, r"start\['friction'\]='a'"),
+    ({"start": [0.3]}, errors.ParameterError, r"start=\[0.3\] is invalid: give a dict"),
+    ({"start": {"zzz": 0.3}}, errors.UnknownNameError, r"'zzz'.*\('friction', 'shear_modulus'\)"),
+    ({"free": 5}, errors.ParameterError, "free=5 is invalid"),
+])
+@pytest.mark.parametrize("fit", [tangential_loop, torsion_loop])
+def test_loop_bad_arguments_named(fit, kw, err, text):
+    """Each was a bare ZeroDivisionError/TypeError, or (an unknown name) silently ignored."""
+    x, y = _md_loop()
+    with pytest.raises(err, match=text):
+        fit(x, y, FN, Paraboloid(R=R), sample=STEEL, **kw)

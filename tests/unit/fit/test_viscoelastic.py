@@ -176,6 +176,24 @@ def test_bad_input_named(sls_curve):
         indentation(z, F, prof, time=tt, sample=tmpl)
 
 
+@pytest.mark.parametrize("kw, err, text", [
+    ({"start": {"G_inf": 0.0}}, errors.ParameterError, r"start\['G_inf'\]=0.0 is invalid"),
+    ({"start": {"eta_1": -1.0}}, errors.ParameterError, r"start\['eta_1'\]=-1.0 is invalid"),
+    ({"start": {"G_1": "x"}}, errors.ParameterError, r"start\['G_1'\]='x' is invalid"),
+    ({"start": {"contact_point": np.inf}}, errors.ParameterError,
+     r"start\['contact_point'\]=inf is invalid"),
+    ({"start": (1, 2)}, errors.ParameterError, r"start=\(1, 2\) is invalid"),
+    ({"start": {"tau": 1.0}}, errors.UnknownNameError, "'tau', which is not fitted"),
+    ({"free": 3}, errors.ParameterError, "free=3 is invalid"),
+    ({"work_of_adhesion": 0.05}, errors.ParameterError, "given but adhesion=None"),
+])
+def test_bad_arguments_named(sls_curve, kw, err, text):
+    """Each was a bare Python or numpy error, or silently ignored."""
+    t, z, F = sls_curve
+    with pytest.raises(err, match=text):
+        indentation(z, F, Paraboloid(R=R), time=t, sample=StandardLinearSolid(**SLS), **kw)
+
+
 @pytest.mark.slow
 def test_coverage_of_the_95_percent_interval(sls_curve):
     """With noise, the 95 % intervals of the standard linear solid's parameters and the contact
