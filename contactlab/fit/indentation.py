@@ -38,6 +38,9 @@ START_UNITS = {"E": "Pa", "contact_point": "m", "force_offset": "N", "work_of_ad
 FREE_NAMES = ("contact_point", "force_offset", "work_of_adhesion")
 #: fraction of the curve (in depth order) taken as the baseline for the starting values
 _BASELINE = 0.1
+#: a JKR curve's snap into contact: a drop of at least this share of the descent from the
+#: first sample to the force's minimum (5/9 for a paraboloid: -5/6 πwR of -3/2 πwR)
+_SNAP_SHARE = 0.3
 #: candidate contact points of the start search
 _START_CANDIDATES = 8
 #: successive parabolic steps of the JKR start search in ln E*
@@ -357,6 +360,17 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     user_start = dict(start or {})
     start = dict(user_start)
     n_base = max(2, int(_BASELINE * zs.size))
+    if jkr is not None:
+        # JKR: the detached samples end at the snap into contact, the largest drop before the
+        # force's minimum (a paraboloid's drop is 5/9 of the descent to it); a first tenth
+        # that runs past them into the attached branch set the offset start far below the
+        # baseline, and the fit converged there
+        i_min = int(np.argmin(Fs))
+        drops = np.diff(Fs[:i_min + 1])
+        if drops.size:
+            i_snap = int(np.argmin(drops)) + 1
+            if i_snap >= 2 and -float(drops[i_snap - 1]) > _SNAP_SHARE * float(Fs[0] - Fs[i_min]):
+                n_base = min(n_base, i_snap)
     base = Fs[:n_base]
     off0 = float(np.median(base)) if fit_off else 0.0
     rise = Fs - off0
