@@ -13,7 +13,7 @@ from typing import Any
 from ..errors import ParameterError, UnknownNameError
 from ..params.checks import _short, as_real, check_positive
 
-__all__ = ["free_names", "start_values", "optional_positive", "needs_adhesion"]
+__all__ = ["free_names", "start_values", "optional_positive", "needs_adhesion", "fit_rtol"]
 
 
 def free_names(free: Any) -> tuple[str, ...]:
@@ -100,3 +100,19 @@ def needs_adhesion(adhesion: str | None, **values: Any) -> None:
             raise ParameterError(
                 f"{name}={_short(value)} is given but adhesion=None: it is used by an adhesive "
                 "fit only; give adhesion='jkr' or 'dmt', or drop it.")
+
+
+def fit_rtol(rtol: Any) -> float:
+    """The forward model's relative tolerance ``rtol`` of a fit: a finite number, 0 < rtol < 1.
+
+    Raises
+    ------
+    ParameterError
+        Not a real number, or outside ``0 < rtol < 1``.
+    """
+    v = as_real("rtol", rtol, "the model's relative tolerance must be a number with "
+                              "0 < rtol < 1")
+    if not 0.0 < v < 1.0:
+        raise ParameterError(f"rtol={_short(rtol)} is invalid: the model's relative tolerance "
+                             "must satisfy 0 < rtol < 1.")
+    return v

@@ -26,7 +26,7 @@ from ..errors import (
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
-from ._args import free_names, needs_adhesion, optional_positive, start_values
+from ._args import fit_rtol, free_names, needs_adhesion, optional_positive, start_values
 from .result import FitResult
 
 __all__ = ["FREE_NAMES", "indentation"]
@@ -280,6 +280,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
     needs_adhesion(adhesion, work_of_adhesion=work_of_adhesion,
                    equilibrium_distance=equilibrium_distance)
+    rtol = fit_rtol(rtol)
     work_of_adhesion = optional_positive("work_of_adhesion", work_of_adhesion,
                                          "the work of adhesion", "J/m^2")
     equilibrium_distance = optional_positive("equilibrium_distance", equilibrium_distance,

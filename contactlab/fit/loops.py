@@ -40,7 +40,7 @@ from ..errors import ConvergenceError, ParameterError, UnknownNameError
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
-from ._args import free_names, start_values
+from ._args import fit_rtol, free_names, start_values
 from .indentation import _array
 from .result import FitResult
 
@@ -311,6 +311,7 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
         parameters (a singular Jacobian; a start far from the loop): the message names the
         start and the values reached.
     """
+    rtol = fit_rtol(rtol)
     x, y, FN, tip_m, names, centre, amp = _prepare(
         displacement, tangential_force, force, profile, sample, tip, free, "displacement",
         "tangential_force")

@@ -47,3 +47,16 @@ def test_noisy_jkr_fit_with_few_detached_samples_is_within_its_errors():
     for name, true in (("E", E), ("work_of_adhesion", W), ("contact_point", Z0),
                        ("force_offset", 2e-9)):
         assert abs(r.params[name] - true) < 5 * r.stderr[name], name
+
+
+@pytest.mark.parametrize("bad", [-1.0, 0.0, 1.0, np.nan, np.inf, "x", True])
+def test_fit_rtol_is_checked(bad):
+    from contactlab.errors import ParameterError
+    z, F = _curve(-0.25e-6, n=100)
+    with pytest.raises(ParameterError, match=r"rtol=.* is invalid: the model's relative tol"):
+        cl.fit.indentation(z, F, Paraboloid(R=R), sample=cl.Elastic(E=1e6, nu=0.5),
+                           adhesion="jkr", free=FREE, rtol=bad)
+    u = np.sin(np.linspace(0.0, 2 * np.pi, 50)) * 1e-7
+    with pytest.raises(ParameterError, match=r"rtol=.* is invalid"):
+        cl.fit.tangential_loop(u, 1e-3 * u, 1.0, Paraboloid(R=R),
+                               sample=cl.Elastic(E=E, nu=0.5), rtol=bad)
