@@ -7,13 +7,15 @@ allowed, never a bare ``TypeError`` or ``ValueError`` from Python or numpy.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-from ..errors import ParameterError, UnknownNameError
+from ..errors import ParameterError, UnknownNameError, ValidityWarning
 from ..params.checks import _short, as_real, check_positive
 
-__all__ = ["free_names", "start_values", "optional_positive", "needs_adhesion", "fit_rtol"]
+__all__ = ["free_names", "start_values", "optional_positive", "needs_adhesion", "fit_rtol",
+           "warn_undetermined"]
 
 
 def free_names(free: Any) -> tuple[str, ...]:
@@ -116,3 +118,16 @@ def fit_rtol(rtol: Any) -> float:
         raise ParameterError(f"rtol={_short(rtol)} is invalid: the model's relative tolerance "
                              "must satisfy 0 < rtol < 1.")
     return v
+
+
+def warn_undetermined(stderr: Mapping[str, float], stacklevel: int = 3) -> None:
+    """Warn (:class:`~contactlab.errors.ValidityWarning`) where a fit's standard errors are not
+    finite: the data do not tell its parameters apart (a singular Jacobian at the fitted
+    values), so the values reached are one of many that fit as well."""
+    bad = [n for n, v in stderr.items() if not math.isfinite(v)]
+    if bad:
+        warnings.warn(
+            f"the data do not determine {bad} (a singular Jacobian at the fitted values): their "
+            "standard errors and confidence intervals are infinite, and the values reached are "
+            "one of many that fit as well; fix some of them (free=...) or add data that "
+            "separate them.", ValidityWarning, stacklevel=stacklevel)

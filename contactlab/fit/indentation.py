@@ -26,7 +26,8 @@ from ..errors import (
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..profiles.base import Profile
-from ._args import fit_rtol, free_names, needs_adhesion, optional_positive, start_values
+from ._args import (fit_rtol, free_names, needs_adhesion, optional_positive, start_values,
+                    warn_undetermined)
 from .result import FitResult
 
 __all__ = ["FREE_NAMES", "indentation"]
@@ -363,9 +364,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     n_base = max(2, int(_BASELINE * zs.size))
     if jkr is not None:
         # JKR: the detached samples end at the snap into contact, the largest drop before the
-        # force's minimum (a paraboloid's drop is 5/9 of the descent to it); a first tenth
-        # that runs past them into the attached branch set the offset start far below the
-        # baseline, and the fit converged there
+        # force's minimum; a first tenth that runs past them into the attached branch set the
+        # offset start far below the baseline (and the fit converged there)
         i_min = int(np.argmin(Fs))
         drops = np.diff(Fs[:i_min + 1])
         if drops.size:
@@ -554,6 +554,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
     s2 = float(r @ r) / dof
     cov = covariance(J, s2)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    warn_undetermined(stderr)
     from ..contact import Contact
     fitted = Elastic(E=vals["E"], nu=sample.nu)
     w_fit = vals["work_of_adhesion"] if adhesion is not None else None

@@ -19,7 +19,7 @@ from ..materials import Elastic, Rigid
 from ..materials.base import Material
 from ..materials.viscoelastic import GeneralizedMaxwell, Maxwell, StandardLinearSolid
 from ..profiles.base import Profile
-from ._args import free_names, start_values
+from ._args import free_names, start_values, warn_undetermined
 from .result import FitResult
 
 __all__ = ["VISCOELASTIC_MATERIALS", "fit_viscoelastic"]
@@ -367,6 +367,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     dof = z.size - len(names)
     cov = covariance(J, float(r @ r) / dof)
     stderr = {n: float(np.sqrt(cov[i, i])) for n, i in idx.items()}
+    warn_undetermined(stderr)
     from ..contact import Contact
     contact = Contact(profile, (Rigid(), _material(cls, vals)))
     params = {n: vals[n] for n in _names(sample) + extra}

@@ -60,3 +60,20 @@ def test_fit_rtol_is_checked(bad):
     with pytest.raises(ParameterError, match=r"rtol=.* is invalid"):
         cl.fit.tangential_loop(u, 1e-3 * u, 1.0, Paraboloid(R=R),
                                sample=cl.Elastic(E=E, nu=0.5), rtol=bad)
+
+
+def test_undetermined_parameters_warn_instead_of_infinite_errors_silently():
+    # a flat punch entirely in contact: F = 2 E* b (z - cp) + offset is linear in z, so the
+    # contact point and the offset cannot be told apart (the covariance is singular)
+    from contactlab.errors import ValidityWarning
+    from contactlab.profiles import FlatPunch
+    b, E_s = 1e-6, 2e6 / 0.75
+    z = np.linspace(10e-9, 200e-9, 100)
+    F = 2 * E_s * b * (z - 5e-9) + 1e-9
+    with pytest.warns(ValidityWarning, match=r"do not determine .*'contact_point'"):
+        r = cl.fit.indentation(z, F, FlatPunch(radius=b), sample=cl.Elastic(E=1e6, nu=0.5),
+                               free=("E", "contact_point", "force_offset"))
+    assert not np.isfinite(r.stderr["contact_point"])
+    # the slope still fixes E (Sneddon's flat punch: dF/dz = 2 E* b)
+    assert r.params["E"] == pytest.approx(2e6, rel=1e-9)
+    np.testing.assert_allclose(r.model, F, rtol=1e-9)
