@@ -239,11 +239,13 @@ class StressMaximum(Result, Cited):
 
 
 def body_poisson_ratio(contact, body: Any) -> float:
-    """Poisson ratio of body ``1`` or ``2`` of ``contact``; errors for other values or a rigid
-    body (no strain, so the elastic field inside it is not defined by this theory)."""
-    if isinstance(body, bool) or body not in (1, 2):
+    """Poisson ratio of body ``1`` or ``2`` of ``contact``; errors for other values (an integer
+    is required: ``1.0`` is refused like ``True``) or a rigid body (no strain, so the elastic
+    field inside it is not defined by this theory)."""
+    if (isinstance(body, bool) or not isinstance(body, (int, np.integer))
+            or body not in (1, 2)):
         raise ParameterError(f"body={body!r} is invalid: a contact has body 1 and body 2 "
-                             "(the order of Contact(materials=...)).")
+                             "(the integer 1 or 2, the order of Contact(materials=...)).")
     mat = contact.materials[body - 1]
     nu = getattr(mat, "nu", None)
     if nu is None:

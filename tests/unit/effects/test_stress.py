@@ -220,6 +220,9 @@ def test_stress_field_grid():
     ({"r": 0.0, "z": np.nan}, ParameterError, "z"),
     ({"r": 0.0, "z": 0.0, "body": 3}, ParameterError, "body=3"),
     ({"r": 0.0, "z": 0.0, "body": True}, ParameterError, "body=True"),
+    ({"r": 0.0, "z": 0.0, "body": 1.0}, ParameterError, r"body=1\.0 .*integer 1 or 2"),
+    ({"r": 0.0, "z": 0.0, "body": 2.0}, ParameterError, r"body=2\.0 .*integer 1 or 2"),
+    ({"r": 0.0, "z": 0.0, "body": "1"}, ParameterError, "body='1'"),
     ({"r": [0.0, 1.0], "z": [0.0, 1.0, 2.0]}, ParameterError, "broadcast"),
 ])
 def test_bad_input(kw, exc, match):
@@ -227,6 +230,15 @@ def test_bad_input(kw, exc, match):
     with pytest.raises(exc, match=match):
         st.stress(**kw)
     assert issubclass(exc, ContactlabError)
+
+
+def test_float_body_refused_by_every_stress_entry_point():
+    st, _a, _p0 = hertz_state()
+    for call in (lambda: st.max_stress(body=2.0), lambda: st.stress_field(body=1.0)):
+        with pytest.raises(ParameterError, match=r"body=\d\.0 is invalid"):
+            call()
+    # numpy integers are integers
+    assert np.isfinite(st.stress(0.0, 1e-6, body=np.int64(1)).szz)
 
 
 def test_rigid_body_and_bad_kind():
