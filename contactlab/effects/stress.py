@@ -414,6 +414,12 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
                         "edge_depth": edge, "citations": NORMAL_SOURCES})
 
 
+#: distance from the contact centre, in contact radii, beyond which a non-finite value met by the
+#: polish of :func:`_maximise` is an overflow of the kernels (the field there has decayed to 0),
+#: not a singular point
+FAR_FIELD = 1e3
+
+
 def _maximise(evaluate, kind: str, a: float, meta: dict) -> StressMaximum:
     """Grid search over ``0 <= r, z <= 2a`` then a Nelder-Mead polish (``|r|, |z|`` mirrored)."""
     from scipy.optimize import minimize
@@ -427,16 +433,33 @@ def _maximise(evaluate, kind: str, a: float, meta: dict) -> StressMaximum:
     i = np.unravel_index(np.argmax(vals), vals.shape)
 
     def neg(p: np.ndarray) -> float:
-        v = evaluate(np.abs(p[0:1]) * a, np.abs(p[1:2]) * a).get(kind)
-        return -float(v[0])
+        v = float(evaluate(np.abs(p[0:1]) * a, np.abs(p[1:2]) * a).get(kind)[0])
+        if not np.isfinite(v):
+            if np.hypot(p[0], p[1]) > FAR_FIELD:
+                return 0.0      # the kernels overflow far out, where the field has decayed to 0
+            # the polish reached a singular point (a cone's apex): the maximum is inf there
+            raise _Singular(float(abs(p[0]) * a), float(abs(p[1]) * a))
+        return -v
 
-    res = minimize(neg, np.array([RG[i] / a, ZG[i] / a]), method="Nelder-Mead",
-                   options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 4000,
-                            "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
-                                                         [RG[i] / a + 0.02, ZG[i] / a],
-                                                         [RG[i] / a, ZG[i] / a + 0.02]])})
+    try:
+        res = minimize(neg, np.array([RG[i] / a, ZG[i] / a]), method="Nelder-Mead",
+                       options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 4000,
+                                "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
+                                                             [RG[i] / a + 0.02, ZG[i] / a],
+                                                             [RG[i] / a, ZG[i] / a + 0.02]])})
+    except _Singular as hit:
+        return StressMaximum(float("inf"), hit.r, hit.z, kind, meta)
     return StressMaximum(-float(res.fun), float(abs(res.x[0]) * a), float(abs(res.x[1]) * a), kind,
                          meta)
+
+
+class _Singular(Exception):
+    """Raised inside the polish of :func:`_maximise` at a point where the measure is not finite
+    (it stops there: the optimiser is not fed inf or NaN)."""
+
+    def __init__(self, r: float, z: float) -> None:
+        super().__init__(r, z)
+        self.r, self.z = r, z
 
 
 def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
