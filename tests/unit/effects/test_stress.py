@@ -374,3 +374,62 @@ def test_max_stress_of_smooth_contacts_is_finite_and_quiet():
             force=1.0)
         m = st.max_stress("von_mises")
         assert m.value == np.inf and m.r < 1e-6 * st.radius and m.z < 1e-6 * st.radius
+
+
+# ---------------------------------------------------------------- memory budget
+def _peak(call):
+    import tracemalloc
+    tracemalloc.start()
+    try:
+        out = call()
+        _ = out.von_mises
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_stress_memory_estimate_covers_the_measured_peak():
+    from contactlab.effects.stress import CHUNK_POINT_BYTES, STRESS_POINT_BYTES
+    st, a, _p0 = hertz_state()
+    sphere = cl.Contact(cl.profiles.Sphere(R=R), materials=(STEEL, STEEL)).normal(force=F)
+    for n in (2_000, 50_000, 200_000):
+        r = np.linspace(0, 2 * a, n)
+        assert _peak(lambda: st.stress(r, 0.3 * a)) <= STRESS_POINT_BYTES * n
+        assert (_peak(lambda: sphere.stress(r, 0.3 * a))
+                <= STRESS_POINT_BYTES * n + CHUNK_POINT_BYTES * min(n, kern.CHUNK))
+    m = 300
+    grid = (np.linspace(0, a, m), np.linspace(0, a, m))
+    assert _peak(lambda: st.stress_field(grid=grid)) <= STRESS_POINT_BYTES * m * m
+
+
+def test_stress_entry_points_check_the_memory_budget_first():
+    import tracemalloc
+
+    from contactlab.errors import MemoryBudgetError
+    st, a, _p0 = hertz_state()
+    sphere = cl.Contact(cl.profiles.Sphere(R=R), materials=(STEEL, STEEL)).normal(force=F)
+    shift = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL),
+                       friction=0.3).tangential(force=F, tangential_force=10.0)
+    twist = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL),
+                       friction=0.3).torsion(force=F, twist=1e-5)
+    r = np.zeros(1_000_000)                       # 8 MB of points, ~256 MB of field
+    previous = cl.set_memory_budget("100M")
+    try:
+        calls = {"stress()": (lambda: st.stress(r, 0.3 * a),
+                              lambda: sphere.stress(r[:100_000], 0.3 * a),
+                              lambda: twist.stress(r, 0.3 * a),
+                              lambda: shift.stress(r, 0.0, 0.3 * a)),
+                 "stress_field()": (lambda: st.stress_field(grid=(np.zeros(20_000),) * 2),
+                                    lambda: shift.stress_field(grid=(np.zeros(20_000),) * 2))}
+        for what, fns in calls.items():
+            for fn in fns:
+                tracemalloc.start()
+                try:
+                    with pytest.raises(MemoryBudgetError, match=rf"{what}.*points x 256 bytes"):
+                        fn()
+                    assert tracemalloc.get_traced_memory()[1] < 50e6    # refused up front
+                finally:
+                    tracemalloc.stop()
+        assert st.stress(r[:100_000], 0.3 * a).szz.shape == (100_000,)   # 26 MB: within
+    finally:
+        cl.set_memory_budget(previous)
