@@ -176,8 +176,8 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
             g_vals = lambda x: gv0(np.maximum(x, c))        # noqa: E731
         cuts = tuple(sorted({*cuts, c}))
 
-    def kernel(rr, zz, xx):
-        return _sh.shear_kernel(rr, zz, xx, nu)
+    def kernel(rr, zz, xx, offset=None):
+        return _sh.shear_kernel(rr, zz, xx, nu, offset)
 
     P, err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, gp, 0.0, nu, cuts, gp_err,
                                   g_vals, kernel, k)

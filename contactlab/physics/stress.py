@@ -28,6 +28,7 @@ and return arrays; they never see a contact or a state.
 """
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 
 import numpy as np
@@ -141,8 +142,8 @@ def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float,
     return srr, stt, szz, srz
 
 
-def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
-                 ) -> tuple[np.ndarray, np.ndarray]:
+def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float,
+                 offset: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Field ``(σ_θz, σ_rθ)`` of a rigid flat punch of radius ``x`` twisted by a unit angle on a
     half-space of unit shear modulus, divided by ``4/π`` [RS44] (in the twisted body: on the
     surface under the punch ``σ_θz = r/sqrt(x² - r²)``, the traction the punch receives).
@@ -150,9 +151,10 @@ def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
     With ``u_θ = (2/π)[r arcsin(x/l2) - r x n/l2²]`` the punch's displacement (it reduces to
     ``r`` under the punch and to the surface formula of theory §6.1 outside), ``σ_θz = -∂u/∂z``
     and ``σ_rθ = -(∂u/∂r - u/r)`` give ``σ_θz = r x² m/(l2² Q)``, ``σ_rθ = r² x³ n/(l2⁴ Q)``
-    (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim.
+    (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim; ``offset`` as in
+    :func:`spheroidal`.
     """
-    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x)
+    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x, offset)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         m = np.sqrt(m2)
         n = np.sqrt(n2)
@@ -326,10 +328,11 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
     bk = np.concatenate([[0.0], np.cumsum(wk)])            # Kronrod cells tiling [0, 1]
     bg = np.concatenate([[0.0], np.cumsum(wg[1::2])])      # Gauss cells
     bk[-1] = bg[-1] = 1.0
-    pressed = kernel is None
     if kernel is None:
         def kernel(rr, zz, xx, offset=None):
             return punch_kernel(rr, zz, xx, nu, offset)
+    # a kernel that takes x - r (offset=) gets it: cancellation-free near x = r
+    pressed = "offset" in inspect.signature(kernel).parameters
     ncomp = len(kernel(np.zeros(1), np.ones(1), np.ones(1)))
     out = [np.zeros(r.shape) for _ in range(ncomp)]
     err = np.zeros(r.shape)
@@ -340,9 +343,14 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         ends = _segments(rr, zz, aa, cuts)                 # (P, S + 1)
         lo, hi = ends[:, :-1, None], ends[:, 1:, None]     # (P, S, 1)
         z3 = zz[:, None, None]
-        # (P, S, 15); the pressed punch's kernel takes x - r as well (cancellation-free A)
+        # (P, S, 15); with x - r for a kernel that takes it (cancellation-free A)
         nodes = _nodes(rr[:, None, None], lo, hi, t, z3, offsets=pressed)
         x, jac = nodes[0], nodes[1]
+        hair = (hi - lo) < 1e-11 * hi                      # (P, S, 1)
+        if np.any(hair):
+            # a segment a few ulps wide: nodes that round onto its far end step back inside
+            # (a density cut off at the contact radius, e.g. the twist's, is 0 on the end)
+            x = np.where(hair & (x >= hi), np.nextafter(hi, lo), x)
         if g_values is not None:
             xk, _ = _nodes(rr[:, None, None], lo, hi, bk, z3)
             xg, _ = _nodes(rr[:, None, None], lo, hi, bg, z3)
