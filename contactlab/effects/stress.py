@@ -22,7 +22,7 @@ import numpy as np
 
 from ..citations import Cited
 from ..errors import NotSupportedError, ParameterError, ValidityWarning
-from ..params import as_float_array
+from ..params import as_float_array, check_memory
 from ..physics import stress as _st
 from ._protocol import Result
 
@@ -32,6 +32,7 @@ __all__ = [
     "StressField",
     "StressMaximum",
     "body_poisson_ratio",
+    "check_stress_memory",
     "g_prime_of",
     "normal_max_stress",
     "normal_stress",
@@ -239,11 +240,13 @@ class StressMaximum(Result, Cited):
 
 
 def body_poisson_ratio(contact, body: Any) -> float:
-    """Poisson ratio of body ``1`` or ``2`` of ``contact``; errors for other values or a rigid
-    body (no strain, so the elastic field inside it is not defined by this theory)."""
-    if isinstance(body, bool) or body not in (1, 2):
+    """Poisson ratio of body ``1`` or ``2`` of ``contact``; errors for other values (an integer
+    is required: ``1.0`` is refused like ``True``) or a rigid body (no strain, so the elastic
+    field inside it is not defined by this theory)."""
+    if (isinstance(body, bool) or not isinstance(body, (int, np.integer))
+            or body not in (1, 2)):
         raise ParameterError(f"body={body!r} is invalid: a contact has body 1 and body 2 "
-                             "(the order of Contact(materials=...)).")
+                             "(the integer 1 or 2, the order of Contact(materials=...)).")
     mat = contact.materials[body - 1]
     nu = getattr(mat, "nu", None)
     if nu is None:
@@ -252,7 +255,30 @@ def body_poisson_ratio(contact, body: Any) -> float:
     return float(nu)
 
 
-def _points(r: Any, z: Any) -> tuple[np.ndarray, np.ndarray]:
+#: peak bytes per point of a stress call, the result included (tracemalloc, 10^4 to 10^6
+#: points: 168-222 B for the Hertz and flat-punch routes, 137-150 B a point beyond the
+#: superposition's chunk for the other routes; the derived fields, on first access, 88-167 B
+#: with the result held)
+STRESS_POINT_BYTES = 256
+#: peak bytes per point of one chunk of the superposition (at most ``CHUNK`` points at a time;
+#: measured 11 kB normal, 10 kB torsion, 21 kB tangential)
+CHUNK_POINT_BYTES = 24 * 1024
+
+
+def check_stress_memory(what: str, n_points: float, superposed: bool = True) -> None:
+    """Raise :class:`~contactlab.errors.MemoryBudgetError` before a stress evaluation of
+    ``n_points`` points whose estimated peak (:data:`STRESS_POINT_BYTES` a point, plus one
+    chunk of the superposition at :data:`CHUNK_POINT_BYTES` a point where ``superposed``)
+    exceeds the memory budget (:func:`contactlab.params.check_memory`)."""
+    n = float(n_points)
+    chunk = min(n, float(_st.CHUNK)) if superposed else 0.0
+    check_memory(what, STRESS_POINT_BYTES * n + CHUNK_POINT_BYTES * chunk,
+                 f"{n:.0f} points x {STRESS_POINT_BYTES} bytes"
+                 + (f" + a chunk of {chunk:.0f} points x {CHUNK_POINT_BYTES} bytes"
+                    if superposed else ""))
+
+
+def _points(r: Any, z: Any, what: str = "stress()") -> tuple[np.ndarray, np.ndarray]:
     r = as_float_array("r", r)
     z = as_float_array("z", z)
     for name, v in (("r", r), ("z", z)):
@@ -265,6 +291,7 @@ def _points(r: Any, z: Any) -> tuple[np.ndarray, np.ndarray]:
     except ValueError as err:
         raise ParameterError(f"r with shape {r.shape} and z with shape {z.shape} do not "
                              "broadcast.") from err
+    check_stress_memory(what, r.size, superposed=False)
     return r, z
 
 
@@ -378,6 +405,8 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
     R, Z = r.ravel(), z.ravel()
     zero = np.zeros(R.shape)
     route = _route(prof, a) if a > 0 else "flat_punch"
+    if route == "superposition":
+        check_stress_memory("stress()", R.size)
     comps: tuple[np.ndarray, ...]
     if a <= 0:
         comps, err = (zero, zero, zero, zero), zero
@@ -412,6 +441,12 @@ def normal_stress(state, r: Any, z: Any, body: Any = 1) -> StressField:
                         "edge_depth": edge, "citations": NORMAL_SOURCES})
 
 
+#: distance from the contact centre, in contact radii, beyond which a non-finite value met by the
+#: polish of :func:`_maximise` is an overflow of the kernels (the field there has decayed to 0),
+#: not a singular point
+FAR_FIELD = 1e3
+
+
 def _maximise(evaluate, kind: str, a: float, meta: dict) -> StressMaximum:
     """Grid search over ``0 <= r, z <= 2a`` then a Nelder-Mead polish (``|r|, |z|`` mirrored)."""
     from scipy.optimize import minimize
@@ -425,16 +460,33 @@ def _maximise(evaluate, kind: str, a: float, meta: dict) -> StressMaximum:
     i = np.unravel_index(np.argmax(vals), vals.shape)
 
     def neg(p: np.ndarray) -> float:
-        v = evaluate(np.abs(p[0:1]) * a, np.abs(p[1:2]) * a).get(kind)
-        return -float(v[0])
+        v = float(evaluate(np.abs(p[0:1]) * a, np.abs(p[1:2]) * a).get(kind)[0])
+        if not np.isfinite(v):
+            if np.hypot(p[0], p[1]) > FAR_FIELD:
+                return 0.0      # the kernels overflow far out, where the field has decayed to 0
+            # the polish reached a singular point (a cone's apex): the maximum is inf there
+            raise _Singular(float(abs(p[0]) * a), float(abs(p[1]) * a))
+        return -v
 
-    res = minimize(neg, np.array([RG[i] / a, ZG[i] / a]), method="Nelder-Mead",
-                   options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 4000,
-                            "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
-                                                         [RG[i] / a + 0.02, ZG[i] / a],
-                                                         [RG[i] / a, ZG[i] / a + 0.02]])})
+    try:
+        res = minimize(neg, np.array([RG[i] / a, ZG[i] / a]), method="Nelder-Mead",
+                       options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 4000,
+                                "initial_simplex": np.array([[RG[i] / a, ZG[i] / a],
+                                                             [RG[i] / a + 0.02, ZG[i] / a],
+                                                             [RG[i] / a, ZG[i] / a + 0.02]])})
+    except _Singular as hit:
+        return StressMaximum(float("inf"), hit.r, hit.z, kind, meta)
     return StressMaximum(-float(res.fun), float(abs(res.x[0]) * a), float(abs(res.x[1]) * a), kind,
                          meta)
+
+
+class _Singular(Exception):
+    """Raised inside the polish of :func:`_maximise` at a point where the measure is not finite
+    (it stops there: the optimiser is not fed inf or NaN)."""
+
+    def __init__(self, r: float, z: float) -> None:
+        super().__init__(r, z)
+        self.r, self.z = r, z
 
 
 def normal_max_stress(state, kind: str = "von_mises", body: Any = 1) -> StressMaximum:
@@ -465,6 +517,7 @@ def _field_grid(grid: Any, a: float) -> tuple[np.ndarray, np.ndarray]:
         except (TypeError, ValueError) as err:
             raise ParameterError(f"grid={grid!r} is invalid: give (r_values, z_values).") from err
         rv, zv = as_float_array("grid r", rv).ravel(), as_float_array("grid z", zv).ravel()
+    check_stress_memory("stress_field()", float(rv.size) * float(zv.size), superposed=False)
     R, Z = np.meshgrid(rv, zv, indexing="xy")
     return R, Z
 
@@ -544,6 +597,7 @@ def torsion_stress(state, r: Any, z: Any, body: Any = 1, part: str = "total",
                              "included) or 'friction' (the torsional part alone).")
     nu = body_poisson_ratio(state.contact, body)
     r, z = _points(r, z)
+    check_stress_memory("stress()", r.size)
     if state.shape != ():
         raise NotSupportedError(f"stress() needs a single state, this one has shape "
                                 f"{state.shape}: index the twists or call torsion() per load.")

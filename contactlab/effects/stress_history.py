@@ -22,7 +22,10 @@ from ..errors import NotSupportedError, ParameterError, ValidityWarning
 from ..physics import fatigue as _fat
 from ..physics.masing import masing_program
 from ._protocol import Result
-from .stress import StressField, body_poisson_ratio, normal_stress, torsion_stress
+from ..params import check_memory
+from ..physics import stress as _st
+from .stress import (CHUNK_POINT_BYTES, StressField, body_poisson_ratio, normal_stress,
+                     torsion_stress)
 from .stress_tangential import (TANGENTIAL_SOURCES, CartesianStressField, _angles, _wrap, _xyz,
                                 tangential_stress, to_cartesian)
 
@@ -251,6 +254,12 @@ FATIGUE_PHASES = 24
 FATIGUE_POINTS = 49
 
 
+#: peak bytes per point and phase of :func:`fretting_fatigue` (the normal and shear stresses on
+#: every plane normal of :func:`contactlab.physics.fatigue.plane_normals`; tracemalloc with
+#: Findley's parameter: 167-171 kB)
+FATIGUE_POINT_PHASE_BYTES = 192 * 1024
+
+
 def fretting_fatigue(loop, body: Any = 1, n_phases: int = FATIGUE_PHASES,
                      points: Any = None, findley_k: Any = None) -> FrettingFatigue:
     """Implementation of ``FrettingLoop.fatigue``: edge tensile stress, its range, the SWT
@@ -286,6 +295,11 @@ def fretting_fatigue(loop, body: Any = 1, n_phases: int = FATIGUE_PHASES,
         except (TypeError, ValueError) as err:
             raise ParameterError("points= must be (x, y, z) arrays.") from err
     gx, gy, gz = (np.ravel(v) for v in _xyz(px, py, pz))
+    n_pts = float(gx.size + 2)
+    check_memory("fatigue()", FATIGUE_POINT_PHASE_BYTES * n_pts * float(n_phases)
+                 + CHUNK_POINT_BYTES * min(n_pts, float(_st.CHUNK)),
+                 f"n_phases={n_phases} x {n_pts:.0f} points x {FATIGUE_POINT_PHASE_BYTES} bytes"
+                 " (stresses on every plane normal)")
     X = np.concatenate([edges, gx])
     Y = np.concatenate([[0.0, 0.0], gy])
     Z = np.concatenate([[0.0, 0.0], gz])

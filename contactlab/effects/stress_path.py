@@ -174,8 +174,8 @@ def _shift_part(snap: dict, q: np.ndarray, a: float, c: float, R: np.ndarray, Z:
     pts = np.asarray(snap["r"] if "r" in snap else snap["x"], float)
     cuts = (c,) if 0 < c < a else ()
 
-    def kernel(rr, zz, xx):
-        return _sh.shear_kernel(rr, zz, xx, nu)
+    def kernel(rr, zz, xx, offset=None):
+        return _sh.shear_kernel(rr, zz, xx, nu, offset)
 
     def field(n: int) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
         xs = _grid(a, c, n)

@@ -188,8 +188,8 @@ def noslip_shift_part(contact: Any, result: Any, k: int, R: np.ndarray, Z: np.nd
     ``σ_xz = q`` on the surface) of the no-slip shift traction at step ``k`` and their error."""
     Gs = float(contact.moduli.tangential)
 
-    def kernel(rr, zz, xx):
-        return _sh.shear_kernel(rr, zz, xx, nu)
+    def kernel(rr, zz, xx, offset=None):
+        return _sh.shear_kernel(rr, zz, xx, nu, offset)
 
     # q = -(2/π)∫Ψ'/sqrt(x² - ρ²) + (2/π)Ψ(a⁻)/sqrt(a² - ρ²), Ψ = G* Δu/2; the kernel's σ_xz
     # is -1/sqrt, so the field is (2/π)[∫Ψ' K - Ψ(a⁻) K(a)]

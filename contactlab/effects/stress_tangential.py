@@ -29,8 +29,8 @@ from ..params import as_float_array
 from ..physics import stress as _st
 from ..physics import stress_tangential as _sh
 from ._protocol import Result
-from .stress import (KINDS, StressDerived, StressMaximum, body_poisson_ratio, normal_stress,
-                     slope_route)
+from .stress import (KINDS, StressDerived, StressMaximum, body_poisson_ratio, check_stress_memory,
+                     normal_stress, slope_route)
 
 __all__ = ["CartesianStressField", "TANGENTIAL_SOURCES", "combined_stress", "to_cartesian",
            "tangential_max_stress", "tangential_stress", "tangential_stress_field"]
@@ -95,10 +95,12 @@ def _xyz(x: Any, y: Any, z: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         raise ParameterError(f"z contains {float(z[z < 0].ravel()[0])!r}: depths below the "
                              "surface must be >= 0 m.")
     try:
-        return tuple(np.broadcast_arrays(x, y, z))  # type: ignore[return-value]
+        out = tuple(np.broadcast_arrays(x, y, z))
     except ValueError as err:
         raise ParameterError(f"x, y and z with shapes {x.shape}, {y.shape}, {z.shape} do not "
                              "broadcast.") from err
+    check_stress_memory("stress()", out[0].size)
+    return out  # type: ignore[return-value]
 
 
 def _angles(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -174,8 +176,8 @@ def _friction_part(state, rho: np.ndarray, z: np.ndarray, nu: float, body: int
             g_vals = lambda x: gv0(np.maximum(x, c))        # noqa: E731
         cuts = tuple(sorted({*cuts, c}))
 
-    def kernel(rr, zz, xx):
-        return _sh.shear_kernel(rr, zz, xx, nu)
+    def kernel(rr, zz, xx, offset=None):
+        return _sh.shear_kernel(rr, zz, xx, nu, offset)
 
     P, err = _st.superposed_field(R, Z, np.full(R.shape, a), zero, gp, 0.0, nu, cuts, gp_err,
                                   g_vals, kernel, k)
@@ -273,6 +275,7 @@ def _plane_grid(grid: Any, a: float) -> tuple[np.ndarray, np.ndarray]:
         except (TypeError, ValueError) as err:
             raise ParameterError(f"grid={grid!r} is invalid: give (x_values, z_values).") from err
         xv, zv = as_float_array("grid x", xv).ravel(), as_float_array("grid z", zv).ravel()
+    check_stress_memory("stress_field()", float(xv.size) * float(zv.size), superposed=False)
     X, Z = np.meshgrid(xv, zv, indexing="xy")
     return X, Z
 

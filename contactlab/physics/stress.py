@@ -28,6 +28,7 @@ and return arrays; they never see a contact or a state.
 """
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 
 import numpy as np
@@ -74,22 +75,30 @@ def kronrod_rule() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * wk, 0.5 * wg
 
 
-def spheroidal(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
-               ) -> tuple[np.ndarray, ...]:
+def spheroidal(r: np.ndarray, z: np.ndarray, x: np.ndarray | float,
+               offset: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
     """Oblate spheroidal set-up of the point ``(r, z)`` against a disc of radius ``x``.
 
     Returns ``(r, z, x, x², A, Q, m², n²)`` broadcast to one shape, with ``A = r² + z² - x²``,
     ``Q = sqrt(A² + 4x²z²)``, ``m² = (Q - A)/2 = x² - l1²`` and ``n² = (Q + A)/2 = l2² - x²``,
     each written without cancellation (the smaller of the two is ``2x²z²/(|A| + Q)``). Every
     field kernel of this module and :mod:`contactlab.physics.stress_tangential` starts here.
+
+    ``offset``, when given, is ``x - r`` computed by the caller to full relative precision
+    (a quadrature node a hair from ``r``); then ``A = z² - offset (2r + offset)``, which keeps
+    its digits where ``r² - x²`` would cancel, and stays nonzero where ``x`` itself rounds to
+    ``r`` (the kernel's rim).
     """
     r, z, x = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float),
                                   np.asarray(x, float))
     x2 = x * x
-    A = r * r + z * z - x2
+    if offset is None:
+        A = r * r + z * z - x2
+    else:
+        A = z * z - offset * (2.0 * r + offset)
     Q = np.hypot(A, 2.0 * x * z)
     pos = A >= 0
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         big = np.abs(A) + Q                      # no cancellation
         small = np.where(Q > 0, 2.0 * x2 * z * z / big, 0.0)
         m2 = np.where(pos, small, 0.5 * big)     # x² - l1²
@@ -97,17 +106,19 @@ def spheroidal(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
     return r, z, x, x2, A, Q, m2, n2
 
 
-def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
+def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float,
+                 offset: np.ndarray | None = None
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Field ``(σ_rr, σ_θθ, σ_zz, σ_rz)`` of a flat punch of radius ``x`` whose surface pressure
     is ``1/sqrt(x² - r²)`` (tension positive, ``z >= 0`` the depth), Pa per unit amplitude.
 
     Multiply by ``E* d/π`` for a rigid punch pressed to depth ``d``. Finite everywhere except at
     the punch rim ``(r, z) = (x, 0)`` (inverse-square-root singular there); on the surface under
-    the punch ``σ_zz = -1/sqrt(x² - r²)``. Arguments broadcast.
+    the punch ``σ_zz = -1/sqrt(x² - r²)``. Arguments broadcast; ``offset`` is ``x - r`` to full
+    precision where the caller has it (see :func:`spheroidal`).
     """
-    r, z, x, x2, A, Q, m2, n2 = spheroidal(r, z, x)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    r, z, x, x2, A, Q, m2, n2 = spheroidal(r, z, x, offset)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         m = np.sqrt(m2)
         n = np.sqrt(n2)
         l22 = x2 + n2
@@ -131,8 +142,8 @@ def punch_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
     return srr, stt, szz, srz
 
 
-def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
-                 ) -> tuple[np.ndarray, np.ndarray]:
+def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float,
+                 offset: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Field ``(σ_θz, σ_rθ)`` of a rigid flat punch of radius ``x`` twisted by a unit angle on a
     half-space of unit shear modulus, divided by ``4/π`` [RS44] (in the twisted body: on the
     surface under the punch ``σ_θz = r/sqrt(x² - r²)``, the traction the punch receives).
@@ -140,10 +151,11 @@ def twist_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float
     With ``u_θ = (2/π)[r arcsin(x/l2) - r x n/l2²]`` the punch's displacement (it reduces to
     ``r`` under the punch and to the surface formula of theory §6.1 outside), ``σ_θz = -∂u/∂z``
     and ``σ_rθ = -(∂u/∂r - u/r)`` give ``σ_θz = r x² m/(l2² Q)``, ``σ_rθ = r² x³ n/(l2⁴ Q)``
-    (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim.
+    (notation of :func:`punch_kernel`). Arguments broadcast; ``inf`` at the rim; ``offset`` as in
+    :func:`spheroidal`.
     """
-    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x, offset)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         m = np.sqrt(m2)
         n = np.sqrt(n2)
         l22 = x2 + n2
@@ -221,8 +233,11 @@ _LOG_RATIO = 0.05
 
 
 def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray,
-           z: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Quadrature abscissae and Jacobians ``(x, dx/dt)`` on segments ``[lo, hi]``, ``t`` in [0, 1].
+           z: np.ndarray | None = None, offsets: bool = False) -> tuple[np.ndarray, ...]:
+    """Quadrature abscissae and Jacobians ``(x, dx/dt)`` on segments ``[lo, hi]``, ``t`` in [0, 1]
+    (with ``offsets``, also ``x - r`` to full relative precision: ``(lo - r) + (hi - lo) s``, no
+    rounding of ``x`` in it, so a node of a segment a hair wide next to ``r`` keeps its distance
+    to ``r`` and never lands on it).
 
     Default map: ``x = lo + (hi - lo)(3t² - 2t³)`` (smooth at inverse-square-root ends). A segment
     lying on one side of ``r`` whose gap to ``r`` is a small fraction of its length, and not
@@ -232,8 +247,10 @@ def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray,
     geometric map would spend its nodes on decades where nothing happens (a cut a hair from
     ``r``, e.g. a stick radius of 1e-12 m under a point on the axis)."""
     L = hi - lo
-    x = lo + L * (t * t * (3.0 - 2.0 * t))
+    step = L * (t * t * (3.0 - 2.0 * t))
+    x = lo + step
     jac = L * (6.0 * t * (1.0 - t))
+    d = (lo - r) + step if offsets else None
     gap_r = lo - r                                   # segment right of r
     gap_l = r - hi                                   # segment left of r
     floor = 0.0 if z is None else z
@@ -245,12 +262,17 @@ def _nodes(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, t: np.ndarray,
             dx = np.where(right, gap_r, 1.0) * np.exp(lr * t)
             x = np.where(right, r + dx, x)
             jac = np.where(right, dx * lr, jac)
+            if d is not None:
+                d = np.where(right, dx, d)
         if np.any(left):
             ll = np.log((r - lo) / np.where(left, gap_l, 1.0))
             dx = np.where(left, gap_l, 1.0) * np.exp(ll * t)
             x = np.where(left, r - dx, x)
             jac = np.where(left, dx * ll, jac)
-    return x, np.where(L > 0, jac, 0.0)
+            if d is not None:
+                d = np.where(left, -dx, d)
+    jac = np.where(L > 0, jac, 0.0)
+    return (x, jac) if d is None else (x, jac, d)
 
 
 def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarray,
@@ -307,8 +329,10 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
     bg = np.concatenate([[0.0], np.cumsum(wg[1::2])])      # Gauss cells
     bk[-1] = bg[-1] = 1.0
     if kernel is None:
-        def kernel(rr, zz, xx):
-            return punch_kernel(rr, zz, xx, nu)
+        def kernel(rr, zz, xx, offset=None):
+            return punch_kernel(rr, zz, xx, nu, offset)
+    # a kernel that takes x - r (offset=) gets it: cancellation-free near x = r
+    pressed = "offset" in inspect.signature(kernel).parameters
     ncomp = len(kernel(np.zeros(1), np.ones(1), np.ones(1)))
     out = [np.zeros(r.shape) for _ in range(ncomp)]
     err = np.zeros(r.shape)
@@ -319,7 +343,14 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
         ends = _segments(rr, zz, aa, cuts)                 # (P, S + 1)
         lo, hi = ends[:, :-1, None], ends[:, 1:, None]     # (P, S, 1)
         z3 = zz[:, None, None]
-        x, jac = _nodes(rr[:, None, None], lo, hi, t, z3)  # (P, S, 15)
+        # (P, S, 15); with x - r for a kernel that takes it (cancellation-free A)
+        nodes = _nodes(rr[:, None, None], lo, hi, t, z3, offsets=pressed)
+        x, jac = nodes[0], nodes[1]
+        hair = (hi - lo) < 1e-11 * hi                      # (P, S, 1)
+        if np.any(hair):
+            # a segment a few ulps wide: nodes that round onto its far end step back inside
+            # (a density cut off at the contact radius, e.g. the twist's, is 0 on the end)
+            x = np.where(hair & (x >= hi), np.nextafter(hi, lo), x)
         if g_values is not None:
             xk, _ = _nodes(rr[:, None, None], lo, hi, bk, z3)
             xg, _ = _nodes(rr[:, None, None], lo, hi, bg, z3)
@@ -342,37 +373,38 @@ def superposed_field(r: np.ndarray, z: np.ndarray, a: np.ndarray, edge: np.ndarr
             dgp = (None if g_prime_error is None else
                    _scatter(live, g_prime_error(xl)) * jac)
         shape3 = xs.shape
-        comps = tuple(_scatter(live, c) for c in kernel(
-            np.broadcast_to(rr[:, None, None], shape3)[live],
-            np.broadcast_to(zz[:, None, None], shape3)[live], xl))
+        args = (np.broadcast_to(rr[:, None, None], shape3)[live],
+                np.broadcast_to(zz[:, None, None], shape3)[live], xl)
+        comps = tuple(_scatter(live, c) for c in (
+            kernel(*args, offset=nodes[2][live]) if pressed else kernel(*args)))
         has_edge = bool(np.any(ee != 0))
         if has_edge:
             edge_c = kernel(rr, zz, aa)
         e = np.zeros(rr.shape)
-        for i, c in enumerate(comps):
-            with np.errstate(invalid="ignore"):
+        # a point where the kernel over- or underflows (a cone's apex a hair below the surface:
+        # Q³ underflows) gets inf or NaN on purpose: flagged singular by the caller, no warning
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            for i, c in enumerate(comps):
                 f = c * gp                   # both 0 at the dead nodes
-            if g_values is None:
-                kr = f @ wk                                    # (P, S)
-                ga = f @ wg
-                mag = np.abs(f) @ wk
-            else:
-                cl = np.where(live, c, 0.0)
-                kr = np.sum(cl * dgk, axis=-1)
-                ga = np.sum(cl[..., 1::2] * dgg, axis=-1)
-                mag = np.sum(np.abs(cl * dgk), axis=-1)
-            diff = np.abs(kr - ga)
-            with np.errstate(divide="ignore", invalid="ignore"):
+                if g_values is None:
+                    kr = f @ wk                                    # (P, S)
+                    ga = f @ wg
+                    mag = np.abs(f) @ wk
+                else:
+                    cl = np.where(live, c, 0.0)
+                    kr = np.sum(cl * dgk, axis=-1)
+                    ga = np.sum(cl[..., 1::2] * dgg, axis=-1)
+                    mag = np.sum(np.abs(cl * dgk), axis=-1)
+                diff = np.abs(kr - ga)
                 qp = np.where(mag > 0, mag * np.minimum(1.0, (200.0 * diff / mag) ** 1.5), 0.0)
-            val = np.sum(kr, axis=-1)
-            if dgp is not None:
-                with np.errstate(invalid="ignore"):
+                val = np.sum(kr, axis=-1)
+                if dgp is not None:
                     diff = diff + np.where(live, np.abs(c * dgp), 0.0) @ wk
                     qp = qp + np.where(live, np.abs(c * dgp), 0.0) @ wk
-            if has_edge:
-                val = val + ee * edge_c[i]
-            out[i][sl] = k * val
-            e = np.maximum(e, k * np.sum(np.minimum(diff, qp), axis=-1))
+                if has_edge:
+                    val = val + ee * edge_c[i]
+                out[i][sl] = k * val
+                e = np.maximum(e, k * np.sum(np.minimum(diff, qp), axis=-1))
         err[sl] = e
     scale = np.maximum.reduce([np.abs(o) for o in out])
     return tuple(out), err + 1e-14 * scale
@@ -387,9 +419,11 @@ def _scatter(mask: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 def principal_axisymmetric(srr: np.ndarray, stt: np.ndarray, szz: np.ndarray, srz: np.ndarray
                            ) -> np.ndarray:
-    """Principal stresses (descending, last axis of length 3) when ``σ_rθ = σ_θz = 0``."""
-    mean = 0.5 * (srr + szz)
-    rad = np.hypot(0.5 * (srr - szz), srz)
+    """Principal stresses (descending, last axis of length 3) when ``σ_rθ = σ_θz = 0`` (NaN at a
+    singular point whose components are infinite)."""
+    with np.errstate(invalid="ignore"):
+        mean = 0.5 * (srr + szz)
+        rad = np.hypot(0.5 * (srr - szz), srz)
     p = np.stack([mean + rad, mean - rad, stt], axis=-1)
     return -np.sort(-p, axis=-1)
 

@@ -39,8 +39,8 @@ __all__ = ["shear_kernel", "shear_components", "N_SHEAR_RADIAL"]
 N_SHEAR_RADIAL = 7
 
 
-def shear_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
-                 ) -> tuple[np.ndarray, ...]:
+def shear_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float,
+                 offset: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
     """Radial functions ``(P1, ..., P7)`` of the field of a shear traction ``1/sqrt(x² - r²)``
     along ``+x`` on ``r < x`` (applied to the half-space; per unit amplitude, Pa).
 
@@ -50,9 +50,11 @@ def shear_kernel(r: np.ndarray, z: np.ndarray, x: np.ndarray | float, nu: float
         σ_xx = P4 c + P5 c³    σ_yy = P6 c + P5 c s²      σ_xy = P7 s + P5 c² s
 
     (:func:`shear_components` assembles them). On the surface under the load
-    ``σ_xz = -1/sqrt(x² - r²)``. Arguments broadcast; ``inf`` at the rim ``(x, 0)``.
+    ``σ_xz = -1/sqrt(x² - r²)``. Arguments broadcast; ``inf`` at the rim ``(x, 0)``;
+    ``offset``: ``x - r`` to full precision where the caller has it
+    (:func:`~contactlab.physics.stress.spheroidal`).
     """
-    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x)
+    r, z, x, x2, _A, Q, m2, n2 = spheroidal(r, z, x, offset)
     with np.errstate(divide="ignore", invalid="ignore"):
         m = np.sqrt(m2)
         n = np.sqrt(n2)

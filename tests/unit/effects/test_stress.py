@@ -220,6 +220,9 @@ def test_stress_field_grid():
     ({"r": 0.0, "z": np.nan}, ParameterError, "z"),
     ({"r": 0.0, "z": 0.0, "body": 3}, ParameterError, "body=3"),
     ({"r": 0.0, "z": 0.0, "body": True}, ParameterError, "body=True"),
+    ({"r": 0.0, "z": 0.0, "body": 1.0}, ParameterError, r"body=1\.0 .*integer 1 or 2"),
+    ({"r": 0.0, "z": 0.0, "body": 2.0}, ParameterError, r"body=2\.0 .*integer 1 or 2"),
+    ({"r": 0.0, "z": 0.0, "body": "1"}, ParameterError, "body='1'"),
     ({"r": [0.0, 1.0], "z": [0.0, 1.0, 2.0]}, ParameterError, "broadcast"),
 ])
 def test_bad_input(kw, exc, match):
@@ -227,6 +230,15 @@ def test_bad_input(kw, exc, match):
     with pytest.raises(exc, match=match):
         st.stress(**kw)
     assert issubclass(exc, ContactlabError)
+
+
+def test_float_body_refused_by_every_stress_entry_point():
+    st, _a, _p0 = hertz_state()
+    for call in (lambda: st.max_stress(body=2.0), lambda: st.stress_field(body=1.0)):
+        with pytest.raises(ParameterError, match=r"body=\d\.0 is invalid"):
+            call()
+    # numpy integers are integers
+    assert np.isfinite(st.stress(0.0, 1e-6, body=np.int64(1)).szz)
 
 
 def test_rigid_body_and_bad_kind():
@@ -278,3 +290,146 @@ def test_spheroidal_setup_satisfies_its_defining_identities():
     assert np.all(np.abs(m2 * n2 - x2 * z * z) <= 8e-16 * scale * scale)
     assert np.all(np.abs(n2 - m2 - A) <= 8e-16 * scale)
     assert np.all(np.abs(m2 + n2 - Q) <= 8e-16 * scale)
+
+
+# ---------------------------------------------------------------- points a hair inside the edge
+#: distances below the contact edge, in contact radii (1e-16: one ulp; the quadrature segment
+#: [r, a] of the points below 1e-11 used to round onto x = r and give -inf)
+EDGE_GAPS = np.array([1e-16, 1e-14, 1e-12, 1e-11, 1e-10, 1e-8, 1e-5, 1e-2, 0.5])
+SOFT = cl.Elastic(E=1e9, nu=0.3)
+
+
+def _acosh_one_plus(e):
+    """acosh(1 + e) without the cancellation of acosh((a/r)) for e -> 0."""
+    return np.log1p(e + np.sqrt(e * (2.0 + e)))
+
+
+def _edge_points(st):
+    a = float(st.radius)
+    r = a * (1.0 - EDGE_GAPS)
+    return a, r, (a - r) / r
+
+
+def _surface_checked_against(st, p_exact):
+    """The surface field a hair inside the edge: finite, and σ_zz = -p within the estimate."""
+    _a, r, _e = _edge_points(st)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        f = st.stress(r, 0.0)
+        vm = f.von_mises
+    comps = np.stack([f.srr, f.stt, f.szz, f.srz])
+    assert np.all(np.isfinite(comps)) and np.all(np.isfinite(f.error))
+    assert np.all(np.isfinite(vm))
+    np.testing.assert_array_less(np.abs(f.szz + p_exact), f.error)
+
+
+def test_cone_surface_stress_a_hair_inside_the_edge_is_its_closed_form_pressure():
+    s = np.tan(np.radians(20.0))                            # half angle 70 deg
+    st = cl.Contact(cl.profiles.Cone(half_angle=np.radians(70)), (SOFT, cl.Rigid())).normal(
+        force=1.0)
+    _a, _r, e = _edge_points(st)
+    E = SOFT.E / (1 - SOFT.nu**2)
+    _surface_checked_against(st, 0.5 * E * s * _acosh_one_plus(e))    # (E* s/2) acosh(a/r)
+
+
+@pytest.mark.parametrize("n", [3.0, 4.0])
+def test_power_law_surface_stress_a_hair_inside_the_edge_is_its_closed_form_pressure(n):
+    from math import gamma, pi, sqrt
+    c = 1e3 if n == 3.0 else 1e6
+    st = cl.Contact(cl.profiles.PowerLaw(c=c, n=n), (SOFT, cl.Rigid())).normal(force=1.0)
+    _a, r, e = _edge_points(st)
+    E = SOFT.E / (1 - SOFT.nu**2)
+    kappa = sqrt(pi) * gamma(n / 2 + 1) / gamma(n / 2 + 0.5)       # g = kappa c x^n (MDR)
+    U = _acosh_one_plus(e)
+    # p = (E*/pi) kappa c n r^(n-1) int_0^U cosh^(n-1) u du   (x = r cosh u)
+    cosh_int = (0.5 * U + 0.25 * np.sinh(2 * U) if n == 3.0
+                else np.sinh(U) + np.sinh(U)**3 / 3.0)
+    _surface_checked_against(st, E / np.pi * kappa * c * n * r**(n - 1) * cosh_int)
+
+
+def test_sphere_surface_stress_a_hair_inside_the_edge_is_the_pressure():
+    st = cl.Contact(cl.profiles.Sphere(R=1e-3), (SOFT, cl.Rigid())).normal(force=1.0)
+    a = float(st.radius)
+    r = a * (1.0 - np.array([1e-12, 1e-10, 1e-4]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        f = st.stress(r, 0.0)
+    # the second method: the profile's own pressure route
+    np.testing.assert_array_less(np.abs(f.szz + st.pressure(r)), f.error)
+    assert np.all(np.isfinite(f.von_mises))
+
+
+def test_max_stress_of_smooth_contacts_is_finite_and_quiet():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        for prof in (cl.profiles.PowerLaw(c=1e6, n=4), cl.profiles.Sphere(R=1e-3)):
+            st = cl.Contact(prof, (SOFT, cl.Rigid())).normal(force=1.0)
+            a = float(st.radius)
+            m = st.max_stress("von_mises")
+            assert np.isfinite(m.value)
+            grid = st.stress_field(grid=(np.linspace(0, 2 * a, 41), np.linspace(0, 2 * a, 41)))
+            assert m.value >= np.max(grid.von_mises) * (1 - 1e-12)
+        # the cone's apex: logarithmically singular, reported as inf, without numpy warnings
+        st = cl.Contact(cl.profiles.Cone(half_angle=np.radians(70)), (SOFT, cl.Rigid())).normal(
+            force=1.0)
+        m = st.max_stress("von_mises")
+        assert m.value == np.inf and m.r < 1e-6 * st.radius and m.z < 1e-6 * st.radius
+
+
+# ---------------------------------------------------------------- memory budget
+def _peak(call):
+    import tracemalloc
+    tracemalloc.start()
+    try:
+        out = call()
+        _ = out.von_mises
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_stress_memory_estimate_covers_the_measured_peak():
+    from contactlab.effects.stress import CHUNK_POINT_BYTES, STRESS_POINT_BYTES
+    st, a, _p0 = hertz_state()
+    sphere = cl.Contact(cl.profiles.Sphere(R=R), materials=(STEEL, STEEL)).normal(force=F)
+    for n in (2_000, 50_000, 200_000):
+        r = np.linspace(0, 2 * a, n)
+        assert _peak(lambda: st.stress(r, 0.3 * a)) <= STRESS_POINT_BYTES * n
+        assert (_peak(lambda: sphere.stress(r, 0.3 * a))
+                <= STRESS_POINT_BYTES * n + CHUNK_POINT_BYTES * min(n, kern.CHUNK))
+    m = 300
+    grid = (np.linspace(0, a, m), np.linspace(0, a, m))
+    assert _peak(lambda: st.stress_field(grid=grid)) <= STRESS_POINT_BYTES * m * m
+
+
+def test_stress_entry_points_check_the_memory_budget_first():
+    import tracemalloc
+
+    from contactlab.errors import MemoryBudgetError
+    st, a, _p0 = hertz_state()
+    sphere = cl.Contact(cl.profiles.Sphere(R=R), materials=(STEEL, STEEL)).normal(force=F)
+    shift = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL),
+                       friction=0.3).tangential(force=F, tangential_force=10.0)
+    twist = cl.Contact(cl.profiles.Paraboloid(R=R), materials=(STEEL, STEEL),
+                       friction=0.3).torsion(force=F, twist=1e-5)
+    r = np.zeros(1_000_000)                       # 8 MB of points, ~256 MB of field
+    previous = cl.set_memory_budget("100M")
+    try:
+        calls = {"stress()": (lambda: st.stress(r, 0.3 * a),
+                              lambda: sphere.stress(r[:100_000], 0.3 * a),
+                              lambda: twist.stress(r, 0.3 * a),
+                              lambda: shift.stress(r, 0.0, 0.3 * a)),
+                 "stress_field()": (lambda: st.stress_field(grid=(np.zeros(20_000),) * 2),
+                                    lambda: shift.stress_field(grid=(np.zeros(20_000),) * 2))}
+        for what, fns in calls.items():
+            for fn in fns:
+                tracemalloc.start()
+                try:
+                    with pytest.raises(MemoryBudgetError, match=rf"{what}.*points x 256 bytes"):
+                        fn()
+                    assert tracemalloc.get_traced_memory()[1] < 50e6    # refused up front
+                finally:
+                    tracemalloc.stop()
+        assert st.stress(r[:100_000], 0.3 * a).szz.shape == (100_000,)   # 26 MB: within
+    finally:
+        cl.set_memory_budget(previous)

@@ -186,3 +186,31 @@ def test_bad_steps_and_phases_raise():
         loop.stress(0.0, 0.0, -1e-5, phase=0.2)
     with pytest.raises(ParameterError):
         loop.fatigue(body=3)
+
+
+def test_fatigue_checks_its_memory_first_and_the_estimate_covers_the_peak():
+    import tracemalloc
+
+    from contactlab.effects.stress_history import FATIGUE_POINT_PHASE_BYTES
+    from contactlab.effects.stress import CHUNK_POINT_BYTES
+    from contactlab.errors import MemoryBudgetError
+    loop = C.fretting_loop(force=F, displacement_amplitude=1e-7)
+    x = np.linspace(-1.2 * A, 1.2 * A, 300)
+    tracemalloc.start()
+    try:
+        loop.fatigue(n_phases=4, points=(x, 0.0, 0.0), findley_k=0.3)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= FATIGUE_POINT_PHASE_BYTES * 302 * 4 + CHUNK_POINT_BYTES * 302
+    previous = cl.set_memory_budget("100M")
+    try:
+        tracemalloc.start()
+        try:
+            with pytest.raises(MemoryBudgetError, match=r"fatigue\(\).*n_phases=24 x 10002 points"):
+                loop.fatigue(points=(np.zeros(10_000), 0.0, 0.0))
+            assert tracemalloc.get_traced_memory()[1] < 20e6            # refused up front
+        finally:
+            tracemalloc.stop()
+    finally:
+        cl.set_memory_budget(previous)

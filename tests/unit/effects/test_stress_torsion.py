@@ -147,3 +147,23 @@ def test_full_sliding(method, flat):
     g = s.stress(rr, z, part="friction")
     M = np.sum(2 * np.pi * rr * rr * g.stz * dr)
     assert M == pytest.approx(s.torque, rel=tol.STRESS_EQUILIBRIUM * 10)
+
+
+def test_twist_and_shift_surface_stress_a_hair_inside_the_edge_is_finite_and_the_traction():
+    # the twisted and sheared punch kernels take x - r like the pressed one: a segment [r, a]
+    # ~1e-12 a wide used to put a node on x = r (inf); sigma_tz (sigma_xz) on the surface is the
+    # state's shear traction, from its own route
+    soft = cl.Elastic(E=1e9, nu=0.3)
+    C = cl.Contact(cl.profiles.Sphere(R=1e-3), (soft, soft), friction=0.3)
+    tor = C.torsion(force=1.0, twist=1e-4)
+    shift = C.tangential(force=1.0, tangential_force=0.1)
+    for st, field in ((tor, lambda r: tor.stress(r, 0.0).stz),
+                      (shift, lambda r: shift.stress(r, 0.0, 0.0).sxz)):
+        a = float(C.normal(force=1.0).radius)
+        r = a * (1.0 - np.array([1e-13, 1e-12, 1e-10, 1e-4]))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", RuntimeWarning)
+            val = field(r)
+            err = (tor.stress(r, 0.0) if st is tor else shift.stress(r, 0.0, 0.0)).error
+        assert np.all(np.isfinite(val)) and np.all(np.isfinite(err))
+        np.testing.assert_array_less(np.abs(val - st.shear(r)), err)
