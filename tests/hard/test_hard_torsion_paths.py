@@ -81,7 +81,13 @@ def test_exact_torque_control_near_full_sliding_is_consistent():
     F = 10.0
     a = float(hz.radius_of_force(F, 0.01, E_STAR_DEFAULT))     # Hertz [J85]
     s = c.torsion(force=F, stick_radius=1e-9 * a, method="exact")
-    back = c.torsion(force=F, torque=s.torque, method="exact")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        back = c.torsion(force=F, torque=s.torque, method="exact")
+    # a torque that rounds onto the full-sliding torque: unbounded twist, said by a warning
+    said = [w for w in caught if issubclass(w.category, ValidityWarning)
+            and "full-sliding torque" in str(w.message)]
+    assert bool(said) == (back.twist == np.inf)
     assert back.torque == s.torque
     resolution = (3 * math.pi / 4 * 4 * EPS * 3 * math.pi / 16) ** (1 / 3)
     assert back.stick_radius <= resolution * a
