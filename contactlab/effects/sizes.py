@@ -14,10 +14,12 @@ import math
 from typing import Any
 
 from ..params import check_memory
+from ..profiles import PowerLaw
 
 __all__ = ["NORMAL_BYTES_PER_LOAD", "FIELD_BYTES_PER_POINT", "PEAK_BYTES_PER_RADIUS",
            "PEAK_RADII", "TANGENTIAL_BYTES_PER_LOAD", "TORSION_BYTES_PER_LOAD",
-           "TORSION_FIELD_BYTES_PER_POINT", "route_kind", "check_elements", "check_field",
+           "TORSION_FIELD_BYTES_PER_POINT", "TORSION_LIGHT_BYTES_PER_LOAD",
+           "torsion_bytes_per_load", "route_kind", "check_elements", "check_field",
            "check_peak"]
 
 #: normal solve on arrays (depth, force or radius), bytes per load: measured 24-52 B on the
@@ -41,10 +43,14 @@ PEAK_BYTES_PER_RADIUS = {"closed": 128, "numeric": 4096}
 #: broadcast shapes, 10^3-10^4 elements)
 TANGENTIAL_BYTES_PER_LOAD = 2048
 #: torsion solve on arrays, bytes per element of the broadcast of the normal load and the
-#: twist input, by method: measured exact 2.0-3.2 KB (paraboloid), 11 KB (cone, sphere),
-#: 14.2 KB (linear table); mdr 0.21 KB (paraboloid, cone), 1.7 KB (sphere), 7.9 KB (linear
-#: table); no-slip 147-307 B (10^3-3·10^3 states)
+#: twist input, by method: measured exact 2.0-3.2 KB (paraboloid), 11 KB (cone, sphere, power
+#: law n = 3), 14.2 KB (linear table); mdr 0.21 KB (paraboloid, cone), 0.83 KB (power law
+#: n = 3), 1.7 KB (sphere), 7.9 KB (linear table); no-slip 147-307 B (10^3-10^5 states)
 TORSION_BYTES_PER_LOAD = {"exact": 32 * 1024, "mdr": 16 * 1024, "no-slip": 512}
+#: ... the same where the route is lighter: the exact model of a paraboloid (its closed forms,
+#: ``"hertz"``: 2.0-2.3 KB a state at 10^4-10^5 states) and the MDR model of a profile with a
+#: closed-form pressure shape (``"closed"``: 0.2-0.83 KB)
+TORSION_LIGHT_BYTES_PER_LOAD = {"exact": 4 * 1024, "mdr": 1024}
 #: ``TorsionState.shear`` / ``displacement``, bytes per point of ``state.shape + r.shape``, by
 #: method: measured exact 82 KB / 41 KB (paraboloid, sphere; the stick zone's nested
 #: quadratures), 30 KB / 93 KB (cone); mdr 0.6-1.7 KB / 0.6-1.3 KB; no-slip 83-101 B / 78-106 B
@@ -55,6 +61,17 @@ TORSION_FIELD_BYTES_PER_POINT = {"exact": 128 * 1024, "mdr": 16 * 1024, "no-slip
 def route_kind(profile: Any) -> str:
     """``"closed"`` for a profile with a closed-form pressure shape, else ``"numeric"``."""
     return "closed" if profile._has("_pressure_shape_closed_form") else "numeric"
+
+
+def torsion_bytes_per_load(method: str, profile: Any) -> int:
+    """Bytes per state of a torsion solve with ``method`` on ``profile``: the light routes'
+    (:data:`TORSION_LIGHT_BYTES_PER_LOAD`: the exact paraboloid, the MDR model of a closed-form
+    profile) or the method's bound (:data:`TORSION_BYTES_PER_LOAD`)."""
+    if method == "exact" and isinstance(profile, PowerLaw) and float(profile.n) == 2.0:
+        return TORSION_LIGHT_BYTES_PER_LOAD["exact"]
+    if method == "mdr" and route_kind(profile) == "closed":
+        return TORSION_LIGHT_BYTES_PER_LOAD["mdr"]
+    return TORSION_BYTES_PER_LOAD[method]
 
 
 def check_elements(what: str, n: float, per: float, detail: str) -> None:

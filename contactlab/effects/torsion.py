@@ -31,8 +31,8 @@ from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHO
 from ..physics import model_error as _maps
 from ..profiles.base import ROUNDING
 from ._protocol import Result, reporting
-from .sizes import (TORSION_BYTES_PER_LOAD, TORSION_FIELD_BYTES_PER_POINT, check_elements,
-                    check_field)
+from .sizes import (TORSION_FIELD_BYTES_PER_POINT, check_elements, check_field,
+                    torsion_bytes_per_load)
 
 __all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
            "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
@@ -113,7 +113,7 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
     ctrl = as_float_array(ctrl_key, ctrl_val)
     shape = broadcast_inputs("torsion()", **{load_key: as_float_array(load_key, load_val),
                                               ctrl_key: ctrl})
-    check_elements("torsion()", math.prod(shape), TORSION_BYTES_PER_LOAD[method],
+    check_elements("torsion()", math.prod(shape), torsion_bytes_per_load(method, contact.profile),
                    f"{load_key} x {ctrl_key} broadcast to {shape}, method={method!r}")
     normal = contact.normal(**{load_key: load_val})
     a = np.broadcast_to(normal._radius, shape).astype(float).ravel()

@@ -69,8 +69,8 @@ def _refused_calls():
                              r"shear\(\) would need about 23.8 GiB \(state \(1000,\) x r "),
         "torsion": (lambda: None,
                     lambda _: c.torsion(force=np.broadcast_to(1.0, (10**6,)), twist=1e-4),
-                    r"torsion\(\) would need about 30.5 GiB \(force x twist broadcast to "
-                    r"\(1000000,\), method='exact': 1000000 values x 32768 B"),
+                    r"torsion\(\) would need about 3.81 GiB \(force x twist broadcast to "
+                    r"\(1000000,\), method='exact': 1000000 values x 4096 B"),
         "peak_pressure": (lambda: c.normal(force=np.linspace(1.0, 100.0, 10**4)),
                           lambda s: s.peak_pressure,
                           r"peak_pressure would need .* GiB \(10000 states x 1024 radii"),
@@ -131,7 +131,7 @@ def _within_calls():
                 (name, f"torsion {method}",
                  lambda c, m=method, n=n: c.torsion(force=F[:, None], twist=np.geomspace(
                      1e-6, 1e-4, n // 100)[None, :], method=m).torque,
-                 n * sizes.TORSION_BYTES_PER_LOAD[method]),
+                 n * sizes.torsion_bytes_per_load(method, PROFILES[name])),
                 (name, f"torsion {method} shear",
                  lambda c, m=method, r=r: c.torsion(force=F[:5], twist=1e-4,
                                                     method=m).shear(r[:200]),
