@@ -22,6 +22,7 @@ from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_
                                 force_of_radius, phi, solve_depth, solve_force)
 from ._protocol import Result, reporting
 from .normal import NormalState, _scalar_or_array, warn_outside_validity
+from .sizes import PEAK_RADII, check_peak
 
 __all__ = ["AdhesiveNormalState", "AdhesionCycle", "adhesive_normal", "pull_off", "adhesion_cycle",
            "contact_branches", "CYCLE_UNITS"]
@@ -83,7 +84,8 @@ class AdhesiveNormalState(NormalState):
 
         ``inf`` only where the edge term is compressive (an adhesive flat punch pushed in).
         """
-        rho = np.linspace(0.0, 1.0, 1025)[:-1]
+        check_peak(self)
+        rho = np.linspace(0.0, 1.0, PEAK_RADII + 1)[:-1]
         a = self._radius[..., None]
         val, _ = _normal.pressure(self.contact.profile, self.contact.moduli.normal, rho * a, a,
                                   self._depth[..., None], self._g_at_radius[..., None],

@@ -29,6 +29,8 @@ from ..physics import normal_scalar as _scalar
 from ..physics import normal_table_scalar as _table
 from ..physics.normal_fused import FORCE_SANITY
 from ._protocol import Result
+from .sizes import (FIELD_BYTES_PER_POINT, NORMAL_BYTES_PER_LOAD, PEAK_RADII, check_elements,
+                    check_field, check_peak, route_kind)
 
 __all__ = ["NormalState", "normal", "warn_outside_validity", "warn_cone_tip",
            "outside_validity_note", "STATE_UNITS"]
@@ -411,6 +413,8 @@ def _normal_state(contact, depth: Any, force: Any, radius: Any, branch: str) -> 
     else:
         arr = as_float_array(key, value)
     prof = contact.profile
+    check_elements("normal()", arr.size, NORMAL_BYTES_PER_LOAD[route_kind(prof)],
+                   f"{key} {arr.shape}")
     if key == "radius":
         if np.any(arr < 0):
             raise ParameterError(f"radius contains {float(arr[arr < 0].ravel()[0])!r}: contact "
@@ -559,8 +563,10 @@ class NormalState(Result, Cited):
         a = np.asarray(self._radius, dtype=float)
         return (a > 0) & (a >= self.contact.profile.wall_radius)
 
-    def _field_args(self, r: Any) -> tuple[np.ndarray, ...]:
+    def _field_args(self, r: Any, what: str) -> tuple[np.ndarray, ...]:
         r = as_float_array("r", r)
+        check_field(what, self.shape, r.shape,
+                    FIELD_BYTES_PER_POINT[route_kind(self.contact.profile)])
         if np.any(r < 0):
             raise ParameterError(f"r contains {r[r < 0].ravel()[0]!r}: radii must be >= 0 m.")
         sh = self.shape
@@ -594,7 +600,7 @@ class NormalState(Result, Cited):
         error : float or ndarray
             Only with ``return_error=True``.
         """
-        r, a, d, ga = self._field_args(r)
+        r, a, d, ga = self._field_args(r, "pressure()")
         prof = self.contact.profile
         E = self.contact.moduli.normal
         rtol = self.contact.rtol
@@ -671,7 +677,7 @@ class NormalState(Result, Cited):
 
     def displacement(self, r: Any) -> Any:
         """Normal surface displacement ``u_z(r)``, m, inside (``d - f(r)``) and outside the contact."""
-        r, a, d, _ = self._field_args(r)
+        r, a, d, _ = self._field_args(r, "displacement()")
         val, _err = _normal.displacement(self.contact.profile, r, a, d, self.contact.rtol)
         return _scalar_or_array(val)
 
@@ -688,7 +694,8 @@ class NormalState(Result, Cited):
         pressure is searched on every 8th radius and then around the three largest samples
         (173 radii instead of 1024; the same maximum to rounding).
         """
-        rho = np.linspace(0.0, 1.0, 1025)[:-1]
+        check_peak(self)
+        rho = np.linspace(0.0, 1.0, PEAK_RADII + 1)[:-1]
         a = self._radius[..., None]
         g_edge = np.asarray(self._edge_g)
         prof, E, rtol = self.contact.profile, self.contact.moduli.normal, self.contact.rtol

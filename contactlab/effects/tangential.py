@@ -9,6 +9,7 @@ elements and for the 3D theory). The kernels are in :mod:`contactlab.physics.tan
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -22,6 +23,8 @@ from ..params import (as_float_array, broadcast_inputs, check_memory, check_time
 from ..physics import tangential as _tan
 from ..physics.masing import masing_dissipation, masing_program, masing_response
 from ._protocol import Result, reporting
+from .sizes import (FIELD_BYTES_PER_POINT, TANGENTIAL_BYTES_PER_LOAD, check_elements, check_field,
+                    route_kind)
 
 __all__ = ["TangentialState", "ShiftHistory", "tangential", "shift_history", "STATE_UNITS"]
 
@@ -107,9 +110,10 @@ class TangentialState(Result, Cited):
         Without a friction coefficient nothing slips: the traction of the rigidly shifted punch
         of the contact radius, ``Q/(2π a sqrt(a² - r²))`` (singular at the edge)."""
         r = as_float_array("r", r)
+        sh = np.shape(self._c)
+        check_field("shear()", sh, r.shape, FIELD_BYTES_PER_POINT[route_kind(self.contact.profile)])
         if np.any(r < 0):
             raise ParameterError(f"r contains {r[r < 0].ravel()[0]!r}: radii must be >= 0 m.")
-        sh = np.shape(self._c)
         ex = (1,) * r.ndim
         a = np.asarray(self.normal._radius, float).reshape(sh + ex)
         d = np.asarray(self.normal._depth, float).reshape(sh + ex)
@@ -165,7 +169,9 @@ def tangential(contact, *, depth: Any = None, force: Any = None, radius: Any = N
     tkey, tval = _one({"displacement": displacement, "tangential_force": tangential_force,
                        "stick_radius": stick_radius}, "tangential()")
     tv = as_float_array(tkey, tval)
-    broadcast_inputs("tangential()", **{nkey: as_float_array(nkey, nval), tkey: tv})
+    shape = broadcast_inputs("tangential()", **{nkey: as_float_array(nkey, nval), tkey: tv})
+    check_elements("tangential()", math.prod(shape), TANGENTIAL_BYTES_PER_LOAD,
+                   f"{nkey} x {tkey} broadcast to {shape}")
     ns = contact.normal(**{nkey: nval})
     a0, d0, F0 = (np.asarray(v, float) for v in (ns._radius, ns._depth, ns._force))
     a, d, FN, t = np.broadcast_arrays(a0, d0, F0, tv)

@@ -10,6 +10,7 @@ exact for both the exact solution and the MDR springs.
 from __future__ import annotations
 
 import difflib
+import math
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -30,6 +31,8 @@ from ..physics.torsion import (MDR_ERROR_THRESHOLD, MDR_VALID_STICK_RATIO, METHO
 from ..physics import model_error as _maps
 from ..profiles.base import ROUNDING
 from ._protocol import Result, reporting
+from .sizes import (TORSION_FIELD_BYTES_PER_POINT, check_elements, check_field,
+                    torsion_bytes_per_load)
 
 __all__ = ["TorsionState", "TwistHistory", "METHODS", "MDR_ERROR_THRESHOLD",
            "MDR_VALID_STICK_RATIO", "solve_torsion", "twist_history", "mdr_torque_error",
@@ -110,6 +113,8 @@ def solve_torsion(contact, *, depth: Any = None, force: Any = None, radius: Any 
     ctrl = as_float_array(ctrl_key, ctrl_val)
     shape = broadcast_inputs("torsion()", **{load_key: as_float_array(load_key, load_val),
                                               ctrl_key: ctrl})
+    check_elements("torsion()", math.prod(shape), torsion_bytes_per_load(method, contact.profile),
+                   f"{load_key} x {ctrl_key} broadcast to {shape}, method={method!r}")
     normal = contact.normal(**{load_key: load_val})
     a = np.broadcast_to(normal._radius, shape).astype(float).ravel()
     d = np.broadcast_to(normal._depth, shape).astype(float).ravel()
@@ -395,8 +400,9 @@ class TorsionState(Result, Cited):
         """Full-sliding torque of the model at this normal load, N·m (``inf`` for no slip)."""
         return _scalar_or_array(self._sliding)
 
-    def _field_setup(self, r: Any):
+    def _field_setup(self, r: Any, what: str):
         r = as_float_array("r", r)
+        check_field(what, self.shape, r.shape, TORSION_FIELD_BYTES_PER_POINT[self.method])
         if np.any(r < 0):
             raise ParameterError(f"r contains {r[r < 0].ravel()[0]!r}: radii must be >= 0 m.")
         full = self.shape + r.shape
@@ -417,7 +423,7 @@ class TorsionState(Result, Cited):
         MDR: the traction of the MDR twist distribution (§8 item 1). No slip: Reissner-Sagoci.
         Singular points return ``inf`` (no-slip edge).
         """
-        full, R, A, D, GA, PHI, C = self._field_setup(r)
+        full, R, A, D, GA, PHI, C = self._field_setup(r, "shear()")
         G = self.contact.moduli.torsional
         sgn = np.sign(PHI)
         phi = np.abs(PHI)
@@ -451,7 +457,7 @@ class TorsionState(Result, Cited):
         distribution for ``method="mdr"``); Reissner-Sagoci for no slip. Decays as
         ``M/(4π G_t r²)`` far away.
         """
-        full, R, A, D, GA, PHI, C = self._field_setup(r)
+        full, R, A, D, GA, PHI, C = self._field_setup(r, "displacement()")
         if self.method == "no-slip":
             return _scalar_or_array(_noslip.displacement(R, A, PHI).reshape(full))
         sgn = np.sign(PHI)
