@@ -19,7 +19,8 @@ partial result), and the ValidityWarning categories it emitted.
 
 The last bits of some outputs depend on the machine: numpy picks its vectorised cube roots,
 powers and exponentials by the CPU's instruction set (AVX-512 or AVX2 builds round differently
-in the last place), and OpenBLAS its kernels. ``path_hashes.json`` holds the hashes of one kind
+in the last place), and OpenBLAS its kernels (by CPU model: on AMD Zen 5 its AVX2 kernels beside
+numpy's AVX-512 loops, a kind of its own). ``path_hashes.json`` holds the hashes of one kind
 of machine (its ``machine`` entry, :func:`machine`); ``path_hashes_<kind>.json`` holds, for each
 other kind measured, the keys whose hash differs there. The test compares against the store of
 the machine it runs on and is skipped, saying so, on a kind that has none (the command below run
@@ -36,7 +37,10 @@ On a machine of the reference kind this rewrites ``path_hashes.json``; on anothe
 writes that kind's ``path_hashes_<kind>.json`` (the keys that differ from the reference), and
 the keys a change moved there are listed as ``stale`` in ``path_hashes.json``: their reference
 hash predates the change, so the reference kind skips them (saying so) until the command is run
-on such a machine, which measures them and clears the list.
+on such a machine, which measures them and clears the list. The other way round, a change
+measured on the reference kind lists the keys it moved as ``stale`` in every other kind's store
+(their hash there predates the change, so that kind skips them) until the command is run on a
+machine of that kind.
 ``--match REGEX`` recomputes every case but rewrites only the stored keys the regular expression
 finds (``re.search``) and adds none; the other stored hashes are kept. ``--paths N`` limits the
 generated set to its first ``N`` paths (the default test run uses :data:`DEFAULT_PATHS`).
@@ -92,7 +96,10 @@ def stored_hashes(kind: str | None = None) -> dict[str, str] | None:
     other = machine_store(kind)
     if not other.exists():
         return None
-    hashes.update(json.loads(other.read_text())["hashes"])
+    doc = json.loads(other.read_text())
+    hashes.update(doc["hashes"])
+    for k in doc.get("stale", ()):         # moved by a change measured on the reference kind only
+        hashes.pop(k, None)
     return hashes
 
 
@@ -358,11 +365,16 @@ def compute(n_paths: int = N_PATHS, cases: str | None = None) -> dict[str, str]:
     return out
 
 
-def stale_keys() -> list[str]:
-    """The reference store's keys whose reference hash predates a change that moved them on
-    another kind of machine (:func:`_write_machine_store`): not compared on the reference kind
-    until that kind's store is rewritten there."""
-    return list(json.loads(STORE.read_text()).get("stale", ()))
+def stale_keys(kind: str | None = None) -> list[str]:
+    """The keys whose stored hash for machines of ``kind`` (default: the reference kind)
+    predates a change measured on another kind: in the reference store, keys moved on another
+    kind (:func:`_write_machine_store`); in another kind's store, keys moved on the reference kind
+    (:func:`_mark_other_kinds`). Not compared on that kind until its store is rewritten there."""
+    doc = json.loads(STORE.read_text())
+    if kind is None or kind == doc.get("machine", kind):
+        return list(doc.get("stale", ()))
+    other = machine_store(kind)
+    return list(json.loads(other.read_text()).get("stale", ())) if other.exists() else []
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -388,10 +400,11 @@ def main(argv: list[str] | None = None) -> int:
         return _write_machine_store(kind, new, args.match)
     n_paths = args.paths
     stale: list[str] = []
+    previous = json.loads(STORE.read_text()) if STORE.exists() else {"hashes": {}}
     if args.match is not None and STORE.exists():
         pat = re.compile(args.match)
-        old = json.loads(STORE.read_text())
-        stored, n_paths = old["hashes"], old["n_paths"]
+        old = previous
+        stored, n_paths = dict(old["hashes"]), old["n_paths"]
         changed = 0
         for k in stored:
             if pat.search(k) and k in new and stored[k] != new[k]:
@@ -401,6 +414,7 @@ def main(argv: list[str] | None = None) -> int:
         # measured here now: no longer stale
         stale = [k for k in old.get("stale", ()) if not (pat.search(k) and k in new)]
         print(f"{changed} stored hashes rewritten")
+    _mark_other_kinds(previous, new)
     doc = {"about": "sha256 (first 32 hex) of every output of the load-path routes; "
                     "regenerate with: python tests/integration/path_hashes.py --overwrite",
            "machine": kind, "n_paths": n_paths, "seed": SEED,
@@ -411,6 +425,31 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{len(new)} hashes written to {STORE} (machine kind {kind!r}; the stores of other "
           "kinds are not rewritten: regenerate them on such a machine)")
     return 0
+
+
+def _mark_other_kinds(previous: dict[str, Any], new: dict[str, str]) -> None:
+    """After the reference store is rewritten: in each other kind's store, list as ``stale`` the
+    keys whose reference hash this change moved (their hash on that kind predates the change, so
+    that kind skips them until its store is rewritten there), and drop the differing hashes the
+    new reference now equals. A key that was stale in the reference (moved on another kind
+    first) is measured now and marks nothing: that kind's hash already follows the change."""
+    was_stale = set(previous.get("stale", ()))
+    old = previous["hashes"]
+    moved = {k for k, v in new.items() if k in old and old[k] != v and k not in was_stale}
+    for path in sorted(HERE.glob("path_hashes_*.json")):
+        doc = json.loads(path.read_text())
+        diff = {k: v for k, v in doc["hashes"].items() if k not in moved and new.get(k) != v}
+        kind_stale = sorted((set(doc.get("stale", ())) | moved) & set(new))
+        if diff == doc["hashes"] and kind_stale == sorted(doc.get("stale", ())):
+            continue
+        doc["hashes"] = dict(sorted(diff.items()))
+        if kind_stale:
+            doc["stale"] = kind_stale
+        else:
+            doc.pop("stale", None)
+        path.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
+        print(f"{len(kind_stale)} hashes marked stale in {path.name} (moved here; rewrite them on "
+              f"a machine of kind {doc['machine']!r})")
 
 
 def _write_machine_store(kind: str, new: dict[str, str], match: str | None) -> int:
@@ -424,14 +463,17 @@ def _write_machine_store(kind: str, new: dict[str, str], match: str | None) -> i
     ref_doc = json.loads(STORE.read_text())
     ref = ref_doc["hashes"]
     path = machine_store(kind)
-    old = json.loads(path.read_text())["hashes"] if path.exists() else {}
+    old_doc = json.loads(path.read_text()) if path.exists() else {"hashes": {}}
+    old = old_doc["hashes"]
+    kind_stale = set(old_doc.get("stale", ()))   # moved on the reference kind: measured now
     pat = None if match is None else re.compile(match)
     diff = dict(old)
     moved = set(ref_doc.get("stale", ()))
     for k, v in new.items():
         if k in ref and (pat is None or pat.search(k)):
-            if path.exists() and v != old.get(k, ref[k]):
+            if path.exists() and k not in kind_stale and v != old.get(k, ref[k]):
                 moved.add(k)
+            kind_stale.discard(k)
             if v != ref[k]:
                 diff[k] = v
             else:
@@ -446,6 +488,8 @@ def _write_machine_store(kind: str, new: dict[str, str], match: str | None) -> i
                     "regenerate on such a machine with: python tests/integration/path_hashes.py "
                     "--overwrite",
            "machine": kind, "hashes": dict(sorted(diff.items()))}
+    if kind_stale:
+        doc["stale"] = sorted(kind_stale)
     path.write_text(json.dumps(doc, indent=0, sort_keys=False) + "\n")
     print(f"{len(diff)} of {len(ref)} hashes differ on this {kind!r} machine: written to {path}")
     return 0
