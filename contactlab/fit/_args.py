@@ -11,11 +11,36 @@ import warnings
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+import numpy as np
+
 from ..errors import ParameterError, UnknownNameError, ValidityWarning
 from ..params.checks import _short, as_real, check_positive
 
-__all__ = ["free_names", "start_values", "optional_positive", "needs_adhesion", "fit_rtol",
+__all__ = ["data_array", "free_names", "start_values", "optional_positive", "needs_adhesion",
            "warn_undetermined"]
+
+
+def data_array(name: str, value: Any) -> np.ndarray:
+    """The measured series ``name`` (depth, force, time, ...) as a 1D float array.
+
+    Raises
+    ------
+    ParameterError
+        Not numbers, not 1D, or holding NaN or inf (the first such index is named).
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(f"{name}={_short(value)} is invalid: give a 1D array of "
+                             "numbers.") from err
+    if arr.ndim != 1:
+        raise ParameterError(f"{name} has shape {arr.shape}: give a 1D array.")
+    bad = ~np.isfinite(arr)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be finite "
+                             "(remove NaN and inf points before fitting).")
+    return arr
 
 
 def free_names(free: Any) -> tuple[str, ...]:
@@ -102,22 +127,6 @@ def needs_adhesion(adhesion: str | None, **values: Any) -> None:
             raise ParameterError(
                 f"{name}={_short(value)} is given but adhesion=None: it is used by an adhesive "
                 "fit only; give adhesion='jkr' or 'dmt', or drop it.")
-
-
-def fit_rtol(rtol: Any) -> float:
-    """The forward model's relative tolerance ``rtol`` of a fit: a finite number, 0 < rtol < 1.
-
-    Raises
-    ------
-    ParameterError
-        Not a real number, or outside ``0 < rtol < 1``.
-    """
-    v = as_real("rtol", rtol, "the model's relative tolerance must be a number with "
-                              "0 < rtol < 1")
-    if not 0.0 < v < 1.0:
-        raise ParameterError(f"rtol={_short(rtol)} is invalid: the model's relative tolerance "
-                             "must satisfy 0 < rtol < 1.")
-    return v
 
 
 def warn_undetermined(stderr: Mapping[str, float], stacklevel: int = 3) -> None:

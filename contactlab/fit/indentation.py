@@ -25,8 +25,9 @@ from ..errors import (
 )
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
+from ..params.checks import check_in_range
 from ..profiles.base import Profile
-from ._args import (fit_rtol, free_names, needs_adhesion, optional_positive, start_values,
+from ._args import (data_array, free_names, needs_adhesion, optional_positive, start_values,
                     warn_undetermined)
 from .result import FitResult
 
@@ -50,26 +51,11 @@ _JKR_PARABOLIC = 4
 _JKR_SUBSAMPLE = 256
 
 
-def _array(name: str, value: Any) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{name}={value!r} is invalid: give a 1D array of numbers.") from err
-    if arr.ndim != 1:
-        raise ParameterError(f"{name} has shape {arr.shape}: give a 1D array.")
-    bad = ~np.isfinite(arr)
-    if np.any(bad):
-        i = int(np.argmax(bad))
-        raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every value must be finite "
-                             "(remove NaN and inf points before fitting).")
-    return arr
-
-
 def _check_inputs(depth: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
                   adhesion: str | None = None
                   ) -> tuple[np.ndarray, np.ndarray, tuple[str, ...], Material]:
-    z = _array("depth", depth)
-    F = _array("force", force)
+    z = data_array("depth", depth)
+    F = data_array("force", force)
     if z.size != F.size:
         raise ParameterError(f"depth has {z.size} points and force has {F.size}: give curves "
                              "of equal length.")
@@ -281,7 +267,8 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         raise ParameterError(f"adhesion={adhesion!r} is invalid: choose None, 'jkr' or 'dmt'.")
     needs_adhesion(adhesion, work_of_adhesion=work_of_adhesion,
                    equilibrium_distance=equilibrium_distance)
-    rtol = fit_rtol(rtol)
+    rtol = check_in_range("rtol", rtol, 0.0, 1.0, low_open=True, high_open=True,
+                          what="the model's relative tolerance")
     work_of_adhesion = optional_positive("work_of_adhesion", work_of_adhesion,
                                          "the work of adhesion", "J/m^2")
     equilibrium_distance = optional_positive("equilibrium_distance", equilibrium_distance,
@@ -298,7 +285,7 @@ def indentation(depth: Any, force: Any, profile: Profile, *, sample: Elastic,
         if not isinstance(profile, Profile):
             raise ParameterError(f"profile={profile!r} is invalid: expected a contactlab "
                                  "Profile (e.g. contactlab.profiles.Sphere(R=1e-5)).")
-        z, F = _array("depth", depth), _array("force", force)
+        z, F = data_array("depth", depth), data_array("force", force)
         if z.size != F.size:
             raise ParameterError(f"depth has {z.size} points and force has {F.size}: give "
                                  "curves of equal length.")

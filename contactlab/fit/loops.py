@@ -39,9 +39,9 @@ from ..effects._protocol import reporting
 from ..errors import ConvergenceError, ParameterError, UnknownNameError
 from ..materials import Elastic, Rigid
 from ..materials.base import Material
+from ..params.checks import check_in_range
 from ..profiles.base import Profile
-from ._args import fit_rtol, free_names, start_values
-from .indentation import _array
+from ._args import data_array, free_names, start_values
 from .result import FitResult
 
 __all__ = ["tangential_loop", "torsion_loop"]
@@ -60,8 +60,8 @@ _NO_SLIP_MISFIT = 0.05
 
 def _prepare(x: Any, y: Any, force: Any, profile: Any, sample: Any, tip: Any, free: Any,
              x_name: str, y_name: str) -> tuple:
-    xs = _array(x_name, x)
-    ys = _array(y_name, y)
+    xs = data_array(x_name, x)
+    ys = data_array(y_name, y)
     if xs.size != ys.size:
         raise ParameterError(f"{x_name} has {xs.size} points and {y_name} has {ys.size}: give "
                              "curves of equal length.")
@@ -311,7 +311,8 @@ def tangential_loop(displacement: Any, tangential_force: Any, force: float, prof
         parameters (a singular Jacobian; a start far from the loop): the message names the
         start and the values reached.
     """
-    rtol = fit_rtol(rtol)
+    rtol = check_in_range("rtol", rtol, 0.0, 1.0, low_open=True, high_open=True,
+                          what="the model's relative tolerance")
     x, y, FN, tip_m, names, centre, amp = _prepare(
         displacement, tangential_force, force, profile, sample, tip, free, "displacement",
         "tangential_force")

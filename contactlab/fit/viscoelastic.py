@@ -173,7 +173,8 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     ``equilibrium_distance`` at 0.3 nm, warning only when it is above 0.1 over 0.2-0.5 nm) and,
     with ``equilibrium_distance``, at the relaxed one ``4G_∞``
     (``meta["tabor_parameter_relaxed"]``)."""
-    from .indentation import START_UNITS, _array, _check_work, indentation
+    from ._args import data_array
+    from .indentation import START_UNITS, _check_work, indentation
     if not isinstance(sample, VISCOELASTIC_MATERIALS):
         raise NotSupportedError(
             f"sample={sample!r} with time=...: viscoelastic fits cover "
@@ -182,7 +183,7 @@ def fit_viscoelastic(z: np.ndarray, F: np.ndarray, time: Any, profile: Profile,
     if tip is not None and not isinstance(tip, Rigid):
         raise NotSupportedError(f"tip={tip!r} with a viscoelastic sample: the theory covers a "
                                 "rigid tip on an incompressible half-space; give tip=None.")
-    t = _array("time", time)
+    t = data_array("time", time)
     if t.size != z.size:
         raise ParameterError(f"time has {t.size} points and depth has {z.size}: give curves "
                              "of equal length.")
