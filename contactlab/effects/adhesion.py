@@ -22,7 +22,7 @@ from ..physics.adhesion import (Branches, _limit, branches, check_branch, depth_
                                 force_of_radius, phi, solve_depth, solve_force)
 from ._protocol import Result, reporting
 from .normal import NormalState, _scalar_or_array, warn_outside_validity
-from .sizes import PEAK_RADII, check_peak
+from .sizes import ADHESIVE_NORMAL_BYTES_PER_LOAD, PEAK_RADII, check_elements, check_peak
 
 __all__ = ["AdhesiveNormalState", "AdhesionCycle", "adhesive_normal", "pull_off", "adhesion_cycle",
            "contact_branches", "CYCLE_UNITS"]
@@ -228,6 +228,8 @@ def adhesive_normal(contact, *, depth: Any = None, force: Any = None, radius: An
     check_branch(branch)
     key, value = exactly_one("normal()", {"depth": depth, "force": force, "radius": radius})
     arr = as_float_array(key, value)
+    check_elements("normal()", arr.size, ADHESIVE_NORMAL_BYTES_PER_LOAD,
+                   f"{key} {arr.shape}, adhesive")
     prof, E, w = contact.profile, contact.moduli.normal, contact.work_of_adhesion
     if key == "radius":
         if np.any(arr < 0):

@@ -16,8 +16,8 @@ from typing import Any
 from ..params import check_memory
 from ..profiles import PowerLaw
 
-__all__ = ["NORMAL_BYTES_PER_LOAD", "FIELD_BYTES_PER_POINT", "PEAK_BYTES_PER_RADIUS",
-           "PEAK_RADII", "TANGENTIAL_BYTES_PER_LOAD", "TORSION_BYTES_PER_LOAD",
+__all__ = ["NORMAL_BYTES_PER_LOAD", "ADHESIVE_NORMAL_BYTES_PER_LOAD", "FIELD_BYTES_PER_POINT",
+           "PEAK_BYTES_PER_RADIUS", "PEAK_RADII", "TANGENTIAL_BYTES_PER_LOAD", "TORSION_BYTES_PER_LOAD",
            "TORSION_FIELD_BYTES_PER_POINT", "TORSION_LIGHT_BYTES_PER_LOAD",
            "torsion_bytes_per_load", "route_kind", "check_elements", "check_field",
            "check_peak"]
@@ -26,6 +26,10 @@ __all__ = ["NORMAL_BYTES_PER_LOAD", "FIELD_BYTES_PER_POINT", "PEAK_BYTES_PER_RAD
 #: closed-form routes (paraboloid, cone; steady state from 10^5 loads on), 65-104 B on the
 #: sphere, 90-391 B on linear and cubic tables (10^3-10^5 loads)
 NORMAL_BYTES_PER_LOAD = {"closed": 64, "numeric": 512}
+#: adhesive (JKR) normal solve on arrays, bytes per load: measured by depth and force 323-355 B
+#: on the paraboloid, cone, sphere and linear and cubic tables at 10^4-10^5 loads (up to 655 B
+#: at 10^3, the tables' fixed part), by radius 65-150 B (570 B on a cubic table at 10^3)
+ADHESIVE_NORMAL_BYTES_PER_LOAD = 1024
 #: ``NormalState.pressure`` / ``displacement`` and ``TangentialState.shear``, bytes per point of
 #: ``state.shape + r.shape``: measured closed 42 B (pressure), 71-91 B (displacement), 133 B
 #: (shear); numeric: sphere 1503 / 762 / 1594 B, tables 672 / 80-1480 / 763 B, and up to 3.8 KB

@@ -31,6 +31,10 @@ def contact(name: str = "paraboloid") -> cl.Contact:
     return cl.Contact(PROFILES[name], materials=(STEEL, STEEL), friction=0.2)
 
 
+def adhesive(name: str = "paraboloid") -> cl.Contact:
+    return cl.Contact(PROFILES[name], materials=(STEEL, STEEL), work_of_adhesion=0.5)
+
+
 @pytest.fixture
 def budget():
     """Set a budget for one test; the previous setting is restored after it."""
@@ -87,6 +91,10 @@ def _refused_calls():
                        r"broadcast to \(10000, 10000\)"),
         "normal": (lambda: None, lambda _: c.normal(force=np.linspace(1.0, 100.0, 10**6)),
                    r"normal\(\) would need .* \(force \(1000000,\): 1000000 values x 64 B"),
+        "adhesive normal": (lambda: None,
+                            lambda _: adhesive().normal(depth=np.linspace(-1e-7, 1e-6, 10**6)),
+                            r"normal\(\) would need about 0.954 GiB \(depth \(1000000,\), "
+                            r"adhesive: 1000000 values x 1024 B"),
     }
 
 
@@ -137,7 +145,22 @@ def _within_calls():
                                                     method=m).shear(r[:200]),
                  5 * r[:200].size * sizes.TORSION_FIELD_BYTES_PER_POINT[method]),
             ]
+    for name in PROFILES:
+        for key, lo, hi in (("depth", -1e-9, 1e-6), ("force", 0.0, 100.0),
+                            ("radius", 0.0, 2e-4)):
+            out.append((name, f"adhesive normal by {key}",
+                        lambda c, k=key, lo=lo, hi=hi: adhesive_of(c).normal(
+                            **{k: np.linspace(lo, hi, 10**4)}).radius,
+                        10**4 * sizes.ADHESIVE_NORMAL_BYTES_PER_LOAD))
     return out
+
+
+def adhesive_of(c: cl.Contact) -> cl.Contact:
+    """The same contact with adhesion (built once per contact)."""
+    if "_adhesive" not in c.__dict__:
+        c.__dict__["_adhesive"] = cl.Contact(c.profile, materials=(STEEL, STEEL),
+                                             work_of_adhesion=0.5)
+    return c.__dict__["_adhesive"]
 
 
 @pytest.mark.parametrize("name, what, call, estimate", _within_calls(),
