@@ -25,7 +25,7 @@ from .normal import NormalState, _scalar_or_array, warn_outside_validity
 from .sizes import ADHESIVE_NORMAL_BYTES_PER_LOAD, PEAK_RADII, check_elements, check_peak
 
 __all__ = ["AdhesiveNormalState", "AdhesionCycle", "adhesive_normal", "pull_off", "adhesion_cycle",
-           "contact_branches", "CYCLE_UNITS"]
+           "contact_flags", "contact_branches", "CYCLE_UNITS"]
 
 #: units of the columns of an adhesion cycle (CSV headers)
 CYCLE_UNITS = {"depth": "m", "force": "N", "radius": "m", "in_contact": "1"}
@@ -258,6 +258,30 @@ def adhesive_normal(contact, *, depth: Any = None, force: Any = None, radius: An
     return _state(contact, d, a, pinned, "force", branch, np.where(a > 0, arr, 0.0))
 
 
+def contact_flags(history: np.ndarray, pull_off_value: float) -> np.ndarray:
+    """In contact at each step of a 1D load history: a relay with memory. The bodies touch at
+    ``v >= 0`` and come apart at ``v < pull_off_value`` (< 0: JKR's pull-off depth or force is
+    negative); in between each step keeps the state of the last step that decided it (apart
+    before any). One pass: the index of the last deciding step by a running maximum.
+
+    Parameters
+    ----------
+    history : numpy.ndarray
+        Depths (m) or forces (N), 1D.
+    pull_off_value : float
+        The pull-off depth (m) or force (N) of the history's control, below 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        bool per step.
+    """
+    touch = history >= 0.0
+    decided = touch | (history < pull_off_value)
+    last = np.maximum.accumulate(np.where(decided, np.arange(history.size), -1))
+    return np.where(last >= 0, touch[np.maximum(last, 0)], False)
+
+
 @reporting()
 def pull_off(contact, control: str = "force"):
     """State at detachment: minimum of ``F(a)`` (force control) or of ``d(a)`` (fixed grips).
@@ -350,12 +374,7 @@ def adhesion_cycle(contact, *, depth: Any = None, force: Any = None):
     else:
         a_c = br.a_force
         lim = float(force_of_radius(prof, E, w, np.array(a_c)))
-    # contact flag: a scan with memory (jump-in at >= 0, jump-off below the pull-off value)
-    in_contact = np.zeros(arr.shape, bool)
-    state = False
-    for i, v in enumerate(arr):          # scalar bookkeeping only; the solves are vectorised
-        state = (v >= lim) if state else (v >= 0.0)
-        in_contact[i] = state
+    in_contact = contact_flags(arr, lim)
     radius = np.zeros(arr.shape)
     depth_out = arr.copy() if key == "depth" else np.zeros(arr.shape)
     force_out = np.zeros(arr.shape) if key == "depth" else np.where(in_contact, arr, 0.0)

@@ -329,6 +329,30 @@ def test_adhesion_cycle_force_control():
     assert cyc.radius[1] == pytest.approx(a_zero, rel=JKR_ROOT)
 
 
+def _relay(history, lim):
+    """The cycle's contact rule stepped one value at a time (the definition)."""
+    state, out = False, []
+    for v in history:
+        state = (v >= lim) if state else (v >= 0.0)
+        out.append(state)
+    return np.array(out, bool)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_contact_flags_follow_the_relay_step_by_step(seed):
+    """The one-pass contact flags equal the rule stepped value by value on random histories
+    (values at 0 and at the pull-off value exactly included), and on the edge cases."""
+    from contactlab.effects.adhesion import contact_flags
+    rng = np.random.default_rng(seed)
+    lim = -rng.uniform(0.1, 1.0)
+    h = rng.choice([rng.uniform(-2.0, 1.0), 0.0, lim, lim / 2], size=500)
+    h = np.where(rng.random(500) < 0.7, rng.uniform(-2.0, 1.0, 500), h)
+    np.testing.assert_array_equal(contact_flags(h, lim), _relay(h, lim))
+    for edge in ([], [lim / 2], [0.0], [lim], [lim / 2, 0.0, lim / 2, lim, lim / 2]):
+        e = np.array(edge, float)
+        np.testing.assert_array_equal(contact_flags(e, lim), _relay(e, lim))
+
+
 # ---- validation ----------------------------------------------------------------------------
 def test_branch_validation():
     with pytest.raises(ParameterError, match="branch"):
