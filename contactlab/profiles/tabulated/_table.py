@@ -27,6 +27,8 @@ __all__ = ["Tabulated", "BREAKPOINT_LIMIT"]
 
 #: tables up to this many points declare their nodes as breakpoints (quadratures split there)
 BREAKPOINT_LIMIT = 2000
+#: the largest radius of a table, m (and the largest height's magnitude: the upper bound)
+_SCALE_RANGE = (1e-30, 1e10)
 
 
 class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
@@ -68,7 +70,8 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
     Raises
     ------
     TabulatedDataError
-        Unsorted, duplicate, negative or non-finite radii; non-finite heights; length mismatch.
+        Unsorted, duplicate, negative or non-finite radii; non-finite heights; length mismatch;
+        a largest radius outside ``[1e-30, 1e10]`` m or a height beyond ``1e10`` m of 0.
     ParameterError
         An invalid ``smoothing``, ``noise`` or ``admissible``.
 
@@ -138,6 +141,7 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
             raise TabulatedDataError(
                 f"r[{i + 1}]={float(r_arr[i + 1])!r} < r[{i}]={float(r_arr[i])!r}: radii must be "
                 "strictly increasing (sort the table).")
+        self._check_scale(r_arr, f_arr)
         self.smoothing_report: SmoothingReport | None = None
         self._band: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         if smoothing is not None or admissible is not None:
@@ -187,6 +191,27 @@ class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):
             # transform once: the spline's slope as node jumps (see _setup_cubic_jumps)
             self._setup_cubic_jumps(r_arr)
         self._node_g: np.ndarray | None = None
+
+    @staticmethod
+    def _check_scale(r: np.ndarray, f: np.ndarray) -> None:
+        """The table's largest radius within ``[1e-30, 1e10]`` m and its heights within
+        ``1e10`` m of 0, the range in which both interpolations are checked against Hertz's
+        closed form. Beyond it results left float64 or went wrong: a linear table of 1e-200 m
+        radii gave a zero contact radius for a positive depth, a cubic one of 1e20 m radii
+        called its ``g`` decreasing, one of 1e30 m gave a contact radius 4e10 times too small,
+        one of 1e300 m failed inside scipy's spline. Every physical table lies far inside (an
+        atom is 1e-10 m across, the Earth's radius 6.4e6 m)."""
+        lo, hi = _SCALE_RANGE
+        if not lo <= float(r[-1]) <= hi:
+            raise TabulatedDataError(
+                f"r[-1]={float(r[-1])!r} m is invalid: the largest radius of a table must lie "
+                f"between {lo:g} and {hi:g} m (check the units of r).")
+        big = float(np.max(np.abs(f)))
+        if big > hi:
+            i = int(np.argmax(np.abs(f)))
+            raise TabulatedDataError(
+                f"f[{i}]={float(f[i])!r} m is invalid: the heights of a table must lie within "
+                f"{hi:g} m of 0 (check the units of f).")
 
     def _slope_rounding(self, r: np.ndarray, f: np.ndarray, f_scale: float) -> np.ndarray:
         """Rounding bound of each segment's slope, 1: ``4 eps (|f_i| + |f_{i+1}| + max|f| +
