@@ -138,15 +138,27 @@ class DeviceLawStep(LawStep):
 
     xp: Any = field(default=None, repr=False)      # the arrays' module (None: numpy)
 
-    def model_errors_at(self, idx: np.ndarray | None) -> dict[str, Any]:
+    def _host_step(self, idx: np.ndarray | None = None) -> LawStep:
+        """The fields the model errors read (of the contacts ``idx``; all for None), on the
+        host, as a :class:`LawStep`."""
         pick = {}
         for f in ("exact", "radius", "torsion_stick_radius", "torque"):
             v = getattr(self, f)
             pick[f] = _host(v if idx is None else v[_to(self.xp or np, idx)], self.xp)
         zero = np.zeros(pick["radius"].shape)
-        host = LawStep(zero, pick["radius"], zero, zero, pick["torque"], zero,
+        return LawStep(zero, pick["radius"], zero, zero, pick["torque"], zero,
                        pick["torsion_stick_radius"], zero, pick["exact"], meta=self.meta)
-        return host.model_errors_at(None)
+
+    def model_errors_at(self, idx: np.ndarray | None) -> dict[str, Any]:
+        return self._host_step(idx).model_errors_at(None)
+
+    def model_error_peaks_at(self, idx: np.ndarray) -> dict[str, float]:
+        # (the law's warning, in its changing-load steps: the four fields copied to the host)
+        return self._host_step().model_error_peaks_at(idx)
+
+    def model_error_worst_at(self, on: np.ndarray, quantity: str,
+                             peak: float) -> tuple[int, float]:
+        return self._host_step().model_error_worst_at(on, quantity, peak)
 
     @property
     def citations(self) -> Citations:

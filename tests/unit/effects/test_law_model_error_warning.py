@@ -131,3 +131,42 @@ def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
                 mask = np.zeros(n, bool)
                 mask[idx] = True
                 assert out.model_error_peaks_at(mask) == peak
+
+
+@pytest.mark.parametrize("block", [7, 64, 1 << 14])
+@pytest.mark.parametrize("springs", [8, 16])
+def test_worst_contact_is_the_argmax_of_the_whole_array(monkeypatch, block, springs):
+    """The warning's contact and value (issue 29: no whole per-contact error array in the step
+    that warns) are those np.argmax names in the full model-error array over the contacts
+    asked for, to the bit: the first of the largest entries, ties included (contacts in one
+    step of the torque's stick-ratio ladder, untwisted contacts at the spring error), for
+    index arrays and masks, in blocks smaller and larger than the contacts."""
+    from contactlab.effects import law_step
+    monkeypatch.setattr(law_step, "_WORST_BLOCK", block)
+    rng = np.random.default_rng(11)
+    n = 300
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
+                        fast=False, warn_model_error=False)
+    F = rng.uniform(1.0, 100.0, n)
+    tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
+    checked = 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        law.step(force=F, twist=0.3 * tw, displacement=1e-8)
+        for k in range(4):
+            Fk = F * np.where(rng.uniform(size=n) < 0.5, 1.0 + 0.05 * rng.uniform(size=n), 1.0)
+            twk = tw * (1.0 - 0.4 * k) if k < 3 else 0.0 * tw      # last: no twist at all
+            out = law.step(force=Fk, twist=twk, displacement=2e-8)
+            for idx in (np.arange(n), np.flatnonzero(law._on()), np.arange(0, n, 7)):
+                full = out.model_errors_at(idx)
+                peak = out.model_error_peaks_at(idx)
+                mask = np.zeros(n, bool)
+                mask[idx] = True
+                for q in full:
+                    j = int(np.argmax(full[q]))
+                    want = (int(idx[j]), float(full[q][j]))
+                    assert out.model_error_worst_at(idx, q, peak[q]) == want
+                    assert out.model_error_worst_at(mask, q, peak[q]) == want
+                    checked += 1
+    assert checked >= 20
