@@ -15,11 +15,17 @@ import numpy as np
 
 from ..errors import ParameterError, UnitError
 
-__all__ = ["Param", "ParamIdentity", "check_positive", "check_finite", "check_in_range",
+__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "check_positive", "check_finite", "check_in_range",
            "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
            "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
            "name_list", "values_equal", "FieldsEqual", "QUANTITY_UNITS", "to_si", "to_si_values",
            "PLAIN_TYPES", "CACHE_KEYS", "without_caches"]
+
+#: the range of a profile's lengths (radii of curvature, punch radii), m: where every route is
+#: checked against the closed forms; far wider than any contact (an atom is 1e-10 m across,
+#: the Earth's radius 6.4e6 m), and beyond it float64 gave wrong numbers or raw errors (a sphere
+#: of 1e-200 m: ZeroDivisionError; of 1e60 m: overflow)
+LENGTH_BOUNDS = (1e-30, 1e10)
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),
@@ -46,6 +52,9 @@ class Param:
         One line for docs and error messages.
     typical : tuple of float
         A typical (low, high) range, used by property tests and docs.
+    bounds : tuple of float, optional
+        The range ``[low, high]`` (in :attr:`unit`) a value must lie in, beyond the domain:
+        where the routes that use it are checked (a profile's lengths, :data:`LENGTH_BOUNDS`).
     """
 
     name: str
@@ -54,6 +63,7 @@ class Param:
     domain: str = "positive"
     description: str = ""
     typical: tuple[float, float] = (1e-3, 1.0)
+    bounds: tuple[float, float] | None = None
 
     def check(self, value: object) -> float:
         """Return ``value`` as a float after checking it lies in the domain.
@@ -70,6 +80,11 @@ class Param:
                 f"{self.name}={value!r} is invalid: {self.description or self.name} must be finite "
                 f"and {allowed} (unit {self.unit})."
             )
+        if self.bounds is not None and not self.bounds[0] <= v <= self.bounds[1]:
+            lo, hi = self.bounds
+            raise ParameterError(
+                f"{self.name}={value!r} is invalid: {self.description or self.name} must lie "
+                f"between {lo:g} and {hi:g} {self.unit} (check the units).")
         return v
 
 

@@ -19,7 +19,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..params import Param
+from ..params import LENGTH_BOUNDS, Param
 from ..symbolic.form import SympyForm, symbol
 from .base import Profile
 
@@ -41,7 +41,7 @@ class FlatPunch(Profile):
 
     name: ClassVar[str] = "flat_punch"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("radius", "b", "m", "positive", "punch radius", (1e-6, 1e-1)),
+        Param("radius", "b", "m", "positive", "punch radius", (1e-6, 1e-1), LENGTH_BOUNDS),
     )
 
     def __init__(self, radius: float) -> None:
@@ -123,8 +123,8 @@ class TruncatedParaboloid(_FlatCentred):
 
     name: ClassVar[str] = "truncated_paraboloid"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1)),
-        Param("R", "R", "m", "positive", "edge rounding radius R", (1e-6, 1.0)),
+        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1), LENGTH_BOUNDS),
+        Param("R", "R", "m", "positive", "edge rounding radius R", (1e-6, 1.0), LENGTH_BOUNDS),
     )
 
     def __init__(self, radius: float, R: float) -> None:
@@ -303,7 +303,7 @@ class TruncatedCone(_FlatCentred):
 
     name: ClassVar[str] = "truncated_cone"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1)),
+        Param("radius", "b", "m", "positive", "flat radius b", (1e-6, 1e-1), LENGTH_BOUNDS),
         Param("slope", "s", "1", "positive", "edge slope", (1e-4, 1e2)),
     )
 

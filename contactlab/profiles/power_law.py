@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..numeric.powers import _TINY, _all_normal, power_integral, times_power
-from ..params import Param, check_in_range, exactly_one
+from ..params import LENGTH_BOUNDS, Param, check_in_range, exactly_one
 from ..symbolic.form import SympyForm, coefficient_symbols, power_form, rational, symbol
 from ..symbolic.transform import kappa
 from .base import Profile
@@ -269,7 +269,7 @@ class Paraboloid(PowerLaw):
 
     name: ClassVar[str] = "paraboloid"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("R", "R", "m", "positive", "radius of curvature R", (1e-6, 1.0)),
+        Param("R", "R", "m", "positive", "radius of curvature R", (1e-6, 1.0), LENGTH_BOUNDS),
     )
 
     def __init__(self, R: float) -> None:

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import ConvergenceError, OutsideTheoryError
 from ..numeric import normal_kernels as _kernels
 from ..numeric.roots import convex_newton_fused
-from ..params import Param
+from ..params import LENGTH_BOUNDS, Param
 from ..symbolic.form import SympyForm, symbol
 from .base import Profile, root_rtol
 
@@ -109,7 +109,7 @@ class Sphere(Profile):
 
     name: ClassVar[str] = "sphere"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("R", "R", "m", "positive", "sphere radius R", (1e-6, 1.0)),
+        Param("R", "R", "m", "positive", "sphere radius R", (1e-6, 1.0), LENGTH_BOUNDS),
     )
 
     def __init__(self, R: float) -> None:

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, cast
 import numpy as np
 
 from ...errors import ParameterError, TabulatedDataError
-from ...params import Param, as_real
+from ...params import LENGTH_BOUNDS, Param, as_real
 from ...symbolic.form import SympyForm
 from ._base import _clip_index
 from ._cubic import _CubicTransform
@@ -28,7 +28,7 @@ __all__ = ["Tabulated", "BREAKPOINT_LIMIT"]
 #: tables up to this many points declare their nodes as breakpoints (quadratures split there)
 BREAKPOINT_LIMIT = 2000
 #: the largest radius of a table, m (and the largest height's magnitude: the upper bound)
-_SCALE_RANGE = (1e-30, 1e10)
+_SCALE_RANGE = LENGTH_BOUNDS
 
 
 class Tabulated(_TableSolver, _CubicTransform, _LinearTransform):

@@ -255,13 +255,21 @@ def test_numpy_passes_take_the_callers_extremes(monkeypatch):
     assert seen and seen[0] is not None
 
 
+def _unchecked_paraboloid(R: float) -> Paraboloid:
+    """A paraboloid of radius ``R`` outside the lengths its constructor accepts
+    (``contactlab.params.LENGTH_BOUNDS``): the passes' own range check is what is tested."""
+    prof = Paraboloid(1.0)
+    prof.R, prof.c = R, 1.0 / (2.0 * R)
+    return prof
+
+
 def test_passes_decline_where_a_value_leaves_their_range():
     """Requests whose quotient F/K (a radius of curvature of 1e-300 m) or whose depth (the same
     with a soft modulus and large forces: d up to 1e293 m) leaves [1e-290, 1e290], the range
     in which the passes prove their request check, are declined by both passes; the general
     route answers, with the operations of the passes where they are finite."""
     F = np.geomspace(1e-20, 1e20, 300)
-    prof = Paraboloid(1e-300)
+    prof = _unchecked_paraboloid(1e-300)
     for compiled in ("numpy", False):
         assert NF.paraboloid_force(prof, 1e11, F, compiled) is None
     F = np.geomspace(1.0, 1e280, 300)
