@@ -101,19 +101,26 @@ def test_warning_reads_the_contacts_on_springs_only(fast):
         assert len(said) == 1 and f"{masked[i]:.3g} at contact {i} " in said[0]
 
 
+def _random_law(springs, seed, n=300):
+    """A numpy law of ``n`` Hertz contacts with random radii, forces and twists (a fifth of
+    them zero): (its generator, the law, the forces, the twists)."""
+    rng = np.random.default_rng(seed)
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
+                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
+                        fast=False, warn_model_error=False)
+    F = rng.uniform(1.0, 100.0, n)
+    tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
+    return rng, law, F, tw
+
+
 @pytest.mark.parametrize("springs", [8, 16])
 def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
     """The warning's first check (issue 29: no per-contact error arrays in a changing-load step
     that does not warn) gives exactly the largest entry of each full model-error array over
     the contacts asked for, on random loads, twists (some zero) and displacements; ``{}`` when
     none of them is off the exact law."""
-    rng = np.random.default_rng(7)
-    n = 300
-    law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
-                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
-                        fast=False, warn_model_error=False)
-    F = rng.uniform(1.0, 100.0, n)
-    tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
+    rng, law, F, tw = _random_law(springs, 7)
+    n = law.size
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         out0 = law.step(force=F, twist=0.3 * tw, displacement=1e-8)
@@ -143,13 +150,8 @@ def test_worst_contact_is_the_argmax_of_the_whole_array(monkeypatch, block, spri
     index arrays and masks, in blocks smaller and larger than the contacts."""
     from contactlab.effects import law_step
     monkeypatch.setattr(law_step, "_WORST_BLOCK", block)
-    rng = np.random.default_rng(11)
-    n = 300
-    law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
-                        G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
-                        fast=False, warn_model_error=False)
-    F = rng.uniform(1.0, 100.0, n)
-    tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
+    rng, law, F, tw = _random_law(springs, 11)
+    n = law.size
     checked = 0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
