@@ -5,7 +5,8 @@ tests the GPU path on any machine).
 The law's state (reference depths, both channels' turning-point stacks) and its per-contact
 parameters live in the backend's array module; a step runs the constant-load law of every
 contact there (:mod:`contactlab.physics.law_xp`: normal contact, Cattaneo–Mindlin and exact
-torsion with Masing's rule, elementwise and masked, no loop over contacts) and returns a
+torsion with Masing's rule, elementwise and masked, no loop over contacts; on a GPU each
+channel's Masing step is one fused kernel, :mod:`contactlab.physics.law_cuda`) and returns a
 :class:`DeviceLawStep` whose arrays are of that module (CuPy arrays stay on the device;
 ``cupy.asnumpy`` brings them to the host). Contacts whose normal load changes go onto their
 MDR springs on the host (numpy spring path,
@@ -29,6 +30,7 @@ from ..errors import MemoryBudgetError, NotSupportedError, OutsideTheoryError, P
 from ..errors import UnknownNameError
 from ..errors import ValidityWarning
 from ..params import check_memory
+from ..physics import law_cuda as _cuda
 from ..physics import law_xp as _xp
 from ..physics import master as _master
 from . import law_springs_numpy as _np_springs
@@ -205,8 +207,8 @@ def params(law: Any) -> dict[str, Any]:
         xp = law._xp
         got = {"kc": law._kc, "E": law._E_star, "G": law._G_star, "Gt": law._G_torsion,
                "mu": law._friction, "flat": law._flat, "coef": law._master.coef}
-        if xp is not np:
-            got = {k: xp.asarray(v) for k, v in got.items()}
+        if xp is not np:        # contiguous (a scalar parameter is a broadcast view)
+            got = {k: xp.ascontiguousarray(xp.asarray(v)) for k, v in got.items()}
         law.__dict__["_xp_params"] = got
     return got
 
@@ -310,11 +312,15 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         M, cm = zero.copy(), a.copy()
         safe_a = xp.where(live, a, 1.0)
         safe_d = xp.where(live, d, 1.0)
+        kernel = law._channel_kernel
         if u is not None:
-            Ft, ct, w = _tangential(law, xp, P, u, safe_a, safe_d, xp.where(live, F, 0.0))
+            FN = xp.where(live, F, 0.0)
+            Ft, ct, w = (_tangential(law, xp, P, u, safe_a, safe_d, FN) if kernel is None else
+                         _fused(law, xp, kernel, _cuda.TANGENTIAL, P, u, safe_a, safe_d, FN))
             dW = dW + w
         if phi is not None:
-            M, cm, w = _torsion(law, xp, P, phi, safe_a, safe_d)
+            M, cm, w = (_torsion(law, xp, P, phi, safe_a, safe_d) if kernel is None else
+                        _fused(law, xp, kernel, _cuda.TORSION, P, phi, safe_a, safe_d, zero))
             dW = dW + w
         over = st["tan_overflow"] | st["tor_overflow"]
         exact = live & ~over
@@ -339,10 +345,13 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
             Ft, M, dW, ct, cm = (xp.where(dead, 0.0, arr) for arr in (Ft, M, dW, ct, cm))
             law._clear(_host(xp.flatnonzero(dead), xp))
         outs = (d, a, F, Ft, M, ct, cm, dW)
-        bad = xp.zeros(size, bool)
-        for arr in outs:
-            bad |= ~xp.isfinite(arr)
-        if bool(bad.any()):
+        # one test of their sum (as the compiled step; 9 operations instead of 25): not finite
+        # when an output is not; a sum of finite outputs that overflows only sends the step to
+        # the exact check below, which finds nothing
+        tot = d + a
+        for arr in outs[2:]:
+            tot += arr
+        if not bool(xp.isfinite(tot).all()):
             law._check_finite(_host(live, xp), *(_host(arr, xp) for arr in outs))
     if n_over:
         law._warn_overflow(n_over)
@@ -351,6 +360,34 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         return res
     for f in _OUT_FIELDS:
         getattr(out, f)[...] = getattr(res, f)
+    return out
+
+
+def channel_kernel(xp: Any) -> Callable[[tuple], None] | None:
+    """The fused channel kernel of the array module ``xp`` (:mod:`contactlab.physics.law_cuda`):
+    CuPy's build of it on a GPU, None on numpy (the array path, the reference)."""
+    if xp is None or xp is np:
+        return None
+    launch = _LAUNCHERS.get(xp)
+    if launch is None:
+        launch = _LAUNCHERS[xp] = _cuda.cupy_launcher(xp)
+    return launch
+
+
+_LAUNCHERS: dict[Any, Callable[[tuple], None]] = {}     # per array module
+
+
+def _fused(law: Any, xp: Any, kernel: Callable[[tuple], None], kind: int, P: dict, x: Any,
+           a: Any, d: Any, FN: Any) -> tuple:
+    """One channel's Masing step of every contact in one kernel launch (``_tangential`` or
+    ``_torsion`` fused): ``(y, aux, dW)``."""
+    size = law.size
+    out = (xp.empty(size), xp.empty(size), xp.empty(size))
+    G = P["G"] if kind == _cuda.TANGENTIAL else P["Gt"]
+    c = xp.ascontiguousarray
+    kernel(_cuda.channel_args(kind, c(x), a, d, FN, c(P["mu"]), c(P["E"]), c(G), law.n,
+                              law._master, c(P["coef"]), law._chan,
+                              0 if kind == _cuda.TANGENTIAL else 1, out))
     return out
 
 

@@ -19,7 +19,7 @@ from contactlab.numeric import cube_root
 from contactlab.physics import law_kernel
 from contactlab.errors import MemoryBudgetError, NotSupportedError, ParameterError
 from contactlab.errors import UnknownNameError, ValidityWarning
-from tests.tolerances import GPU_VS_NUMPY
+from tests.tolerances import FUSED_HOST_VS_NUMPY, GPU_VS_NUMPY
 from tests.unit.effects.test_law_compiled import FAMILIES, FIELDS, _changing_run, _history
 
 KW = dict(E_star=1.15e11, G_star=4.4e10, G_torsion=4.0e10)
@@ -226,6 +226,20 @@ class _FakeCupy:
     def asnumpy(v):
         return np.array(np.asarray(v).view(np.ndarray), order="C")
 
+    class RawKernel:
+        """CuPy's runtime-compiled kernel, run by the host build of its text (``host``: set
+        by a test that has one; the grid must cover every contact)."""
+        host = None
+        launches: list = []
+
+        def __init__(self, source, name, options=()):
+            self.name, self.options = name, options
+
+        def __call__(self, grid, block, args):
+            _FakeCupy.RawKernel.launches.append((grid, block, int(args[1])))
+            assert grid[0] * block[0] >= int(args[1]) > (grid[0] - 1) * block[0]
+            _FakeCupy.RawKernel.host(args)
+
     @staticmethod
     def cbrt(v):
         # a device's cube root comes from its own math library; the stand-in's is the law's
@@ -250,6 +264,7 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
     n, steps = 60, 50
     dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
                           memory=3)
+    dev._channel_kernel = None          # the array path (the fused kernel: the next test)
     assert isinstance(dev._st["tan_X"], _DeviceArray)
     for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
         assert isinstance(raw.torque, _DeviceArray)
@@ -265,6 +280,7 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
     np.savez(tmp_path / "s.npz", **sd)
     twin = cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", memory=3, R=dev.geometry["R"],
                          friction=dev.friction, **KW)
+    twin._channel_kernel = None
     with np.load(tmp_path / "s.npz") as f:
         twin.state = dict(f)
     F = ref.normal(depth=ref.state["depth_ref"])[2]
@@ -286,6 +302,24 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
         dev.step(force=F, out=want)                 # a numpy LawStep is no device result
 
 
+@pytest.mark.parametrize("by", ["force", "depth"])
+def test_fused_kernel_launch_on_a_stand_in_module(monkeypatch, host_kernel, by):
+    """backend="cupy" with numpy dressed as CuPy and its RawKernel run by the host build of
+    the kernel's text: the law launches the fused kernel by default, once per channel and
+    step, on a grid that covers every contact, with the arguments it declares; the results
+    agree with the numpy law to FUSED_HOST_VS_NUMPY."""
+    monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    monkeypatch.setattr(_FakeCupy.RawKernel, "host", staticmethod(host_kernel))
+    monkeypatch.setattr(_FakeCupy.RawKernel, "launches", [])
+    n, steps = 300, 30                  # two blocks of 256 threads
+    dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
+                          memory=3)
+    for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
+        assert isinstance(raw.torque, _DeviceArray)
+        _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
+    assert _FakeCupy.RawKernel.launches == [((2,), (256,), n)] * (2 * steps)
+
+
 def _cupy():
     cupy = pytest.importorskip("cupy")
     try:
@@ -296,33 +330,104 @@ def _cupy():
     return cupy
 
 
+def _energy_scale(step, friction):
+    """Each contact's slip-energy scale, J: ``μF u* + M_full φ_s`` with ``u* = μE*d/G*``,
+    ``φ_s = μE*d/(2 G_t a)`` (``M_full <= π/2 μE*d a²``). The per-step dissipation is a
+    difference of loading-curve energies of this order (with cancellation at small slip), so
+    two roundings of it differ by ulps of this scale, not of the dissipation itself."""
+    E, G, Gt = KW["E_star"], KW["G_star"], KW["G_torsion"]
+    mEd = friction * E * step.depth
+    return (friction * step.force * mEd / G
+            + 0.5 * np.pi * mEd * step.radius**2 * mEd / (2.0 * Gt * np.maximum(step.radius,
+                                                                               1e-300)))
+
+
+def _assert_close(a, b, friction, tol, where=""):
+    """Every field of the step ``a`` (numpy arrays) within ``tol`` of the largest value of the
+    field in ``b``; the dissipation within ``tol`` of each contact's energy scale; ``exact``
+    equal."""
+    np.testing.assert_array_equal(a["exact"], b.exact)
+    for f in FIELDS[:-2]:
+        y = getattr(b, f)
+        np.testing.assert_allclose(a[f], y, rtol=0, err_msg=where + f,
+                                   atol=tol * np.max(np.abs(y)))
+    err = np.abs(a["dissipated_energy"] - b.dissipated_energy)
+    lim = tol * _energy_scale(b, friction)
+    assert np.all(err <= lim), (where, float(np.max(err - lim)))
+
+
+@pytest.fixture(scope="module")
+def host_kernel():
+    """The fused channel kernel's text built for the host (skipped without a C compiler)."""
+    import shutil
+    from contactlab.physics import law_cuda
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        pytest.skip("no C compiler: the fused kernel's text is tested on the GPU only")
+    return law_cuda.host_launcher(cc)
+
+
+@pytest.mark.parametrize("by", ["force", "depth"])
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_fused_kernel_text_on_the_host_against_the_numpy_law(host_kernel, family, gname,
+                                                             lo_hi, extra, by):
+    """The GPU's fused channel kernel (one thread per contact: Masing's rule, loop closures,
+    loading curves), its very text compiled for the host and run contact by contact inside
+    the array-module step, against the numpy law on the random histories of the GPU test
+    (reversals, overflowing stacks, separation, half the contacts onto their springs): every
+    output within FUSED_HOST_VS_NUMPY, the integer state equal."""
+    n, steps = 80, 60
+    dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "xp-numpy", memory=3)
+    dev._channel_kernel = host_kernel
+    for a, b, _ in _run(dev, ref, rng, by, steps, n, np.asarray):
+        _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
+    sd, sr = dev.state, ref.state
+    assert sr["tan_overflow"].any() and sr["tor_overflow"].any()
+    for key, v in sd.items():
+        if v.dtype.kind == "f":
+            np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
+                                       atol=FUSED_HOST_VS_NUMPY * np.max(np.abs(sr[key])))
+        else:
+            np.testing.assert_array_equal(v, sr[key], err_msg=key)
+
+
+def test_fused_kernel_refuses_a_master_curve_of_another_degree():
+    """The kernel evaluates degree-7 panels only: another table is refused by name."""
+    from dataclasses import replace
+    from contactlab.physics import law_cuda
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=0.01, friction=0.3, backend="xp-numpy", **KW)
+    master = replace(law._master, coef=law._master.coef[:, :, :6])
+    with pytest.raises(ValueError, match="degree 7"):
+        law_cuda.channel_args(law_cuda.TORSION, np.zeros(1), np.ones(1), np.ones(1),
+                              np.ones(1), np.ones(1), np.ones(1), np.ones(1), 2.0, master,
+                              master.coef, law._chan, 1, (np.empty(1),) * 3)
+
+
 @pytest.mark.parametrize("by", ["force", "depth"])
 @pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
                          ids=[f[0].__name__ for f in FAMILIES])
 def test_cupy_against_the_numpy_law(family, gname, lo_hi, extra, by):
-    """On a GPU: every output to GPU_VS_NUMPY of its largest value (the per-step dissipation
-    of the cumulative one), ``exact`` and the integer state equal; results are CuPy arrays."""
+    """On a GPU, with the fused channel kernel (the default) and with the array path: every
+    output to GPU_VS_NUMPY of its largest value (the per-step dissipation of each contact's
+    energy scale), ``exact`` and the integer state equal; results are CuPy arrays."""
     cupy = _cupy()
     n, steps = 80, 60
-    dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "cupy", memory=3)
-    W = np.zeros(n)
-    for a, b, raw in _run(dev, ref, rng, by, steps, n, cupy.asnumpy):
-        assert isinstance(raw.torque, cupy.ndarray)
-        W += b.dissipated_energy
-        np.testing.assert_array_equal(a["exact"], b.exact)
-        for f in FIELDS[:-2]:
-            y = getattr(b, f)
-            np.testing.assert_allclose(a[f], y, rtol=0, err_msg=f,
-                                       atol=GPU_VS_NUMPY * np.max(np.abs(y)))
-        np.testing.assert_allclose(a["dissipated_energy"], b.dissipated_energy, rtol=0,
-                                   atol=GPU_VS_NUMPY * max(W.max(), 1e-300))
-    sd, sr = dev.state, ref.state
-    for key, v in sd.items():
-        if v.dtype.kind == "f":
-            np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
-                                       atol=GPU_VS_NUMPY * np.max(np.abs(sr[key])))
-        else:
-            np.testing.assert_array_equal(v, sr[key], err_msg=key)
+    for fused in (True, False):
+        dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "cupy", memory=3)
+        assert dev._channel_kernel is not None
+        if not fused:
+            dev._channel_kernel = None
+        for a, b, raw in _run(dev, ref, rng, by, steps, n, cupy.asnumpy):
+            assert isinstance(raw.torque, cupy.ndarray)
+            _assert_close(a, b, dev.friction, GPU_VS_NUMPY, f"fused={fused}: ")
+        sd, sr = dev.state, ref.state
+        for key, v in sd.items():
+            if v.dtype.kind == "f":
+                np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
+                                           atol=GPU_VS_NUMPY * np.max(np.abs(sr[key])))
+            else:
+                np.testing.assert_array_equal(v, sr[key], err_msg=key)
 
 
 def test_cupy_state_round_trip_and_device_inputs(tmp_path):
