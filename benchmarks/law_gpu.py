@@ -2,7 +2,7 @@
 measured time of one constant-load step of ``backend="cupy"``.
 
     python benchmarks/law_gpu.py            # estimate; plus the GPU rows when CuPy finds a device
-    python benchmarks/law_gpu.py --n 1e7    # the GPU rows at another n (default 10^7)
+    python benchmarks/law_gpu.py --n 1e6,1e7,1e8    # the GPU rows at these n (default 10^7)
 
 **Estimate (no GPU needed).** The step of the array-module backend
 (:mod:`contactlab.physics.law_xp`) runs as one device kernel per array operation (CuPy does
@@ -14,9 +14,11 @@ step time is ``traffic / bandwidth + launches x launch_cost`` with a stated band
 cost (an estimate, not a measurement: real kernels reach 70-90 % of the peak bandwidth, and
 CuPy's memory pool, caching and the host work of contacts on springs are not modelled).
 
-**Measured (with CuPy and a device).** The best of several steps of ``backend="cupy"`` at
-``n`` contacts, synchronised, after two warm-up steps, beside the numpy law at 10^6 contacts
-on the host for scale.
+**Measured (with CuPy and a device).** The best of six steps of ``backend="cupy"`` at
+``n`` contacts, synchronised, after two warm-up steps: with the fused channel kernel (the
+default, :mod:`contactlab.physics.law_cuda`) and with the array path, one after the other in
+the same run; at the first ``n >= 10^7`` also a step in which 1 % of the contacts change load
+(they run on their MDR springs on the host).
 """
 from __future__ import annotations
 
@@ -93,7 +95,8 @@ class _Counted(np.ndarray):
 
     def __getitem__(self, key):
         res = self.view(np.ndarray)[_plain(key)]
-        if isinstance(res, np.ndarray) and not np.shares_memory(res, self):
+        # (the test on plain arrays: on self it would count as an operation of its own)
+        if isinstance(res, np.ndarray) and not np.shares_memory(res, self.view(np.ndarray)):
             _Tally.bytes += 2 * _nbytes(res) + _nbytes(_plain(key))     # a gather
             _Tally.ops += 1
         return _wrap(res)
@@ -127,7 +130,7 @@ class _CountingXP:
 
     def __getattr__(self, name: str) -> Any:
         f = getattr(np, name)
-        if name in ("zeros", "asarray", "arange", "full", "empty"):
+        if name in ("zeros", "asarray", "ascontiguousarray", "arange", "full", "empty"):
             return lambda *a, **k: _wrap(np.asarray(f(*_plain(a), **k)))
         return f
 
@@ -178,8 +181,8 @@ def estimate() -> tuple[float, int]:
     return per, ops
 
 
-def gpu_rows(n: int) -> None:
-    """The measured rows, or a line saying why they were skipped."""
+def _device() -> Any:
+    """CuPy when it finds a CUDA device, else None (and a line saying why)."""
     try:
         import cupy  # type: ignore[import-not-found, unused-ignore]
         if cupy.cuda.runtime.getDeviceCount() < 1:
@@ -187,31 +190,69 @@ def gpu_rows(n: int) -> None:
     except Exception as err:
         print(f"GPU rows SKIPPED: CuPy with a CUDA device is not available here "
               f"({type(err).__name__}: {err}); install the extra 'gpu' on a machine with a GPU.")
-        return
-    cl.set_memory_budget("inf")
-    name = cupy.cuda.runtime.getDeviceProperties(0)["name"].decode()
-    law = _law(n, "cupy")
-    F, tw, u = (cupy.asarray(v) for v in _controls(n, 0))
+        return None
+    return cupy
+
+
+def _best_step(cupy: Any, law: cl.ContactLaw, n: int, F: Any, steps: int = 8,
+               changing: float = 0.0) -> float:
+    """The best of ``steps - 2`` synchronised steps (two warm-ups), inputs on the device;
+    ``changing``: the fraction of contacts whose force changes in every step (onto their
+    springs on the host)."""
     best = np.inf
-    for k in range(8):
+    m = int(changing * n)
+    for k in range(steps):
         _, tw_h, u_h = _controls(n, k)
         tw, u = cupy.asarray(tw_h), cupy.asarray(u_h)
+        if m:
+            F[:m] *= 1.0 + 0.02 * (-1) ** k
         cupy.cuda.Device().synchronize()
         t0 = time.perf_counter()
         law.step(force=F, twist=tw, displacement=u)
         cupy.cuda.Device().synchronize()
         if k >= 2:
             best = min(best, time.perf_counter() - t0)
-    print(f"MEASURED on {name}: n = {n:.0e}, constant-load step {1e3 * best:.2f} ms "
-          f"({n / best / 1e9:.2f} x 10^9 contact-steps per second; inputs on the device)")
+    return best
+
+
+def gpu_rows(sizes: list[int] | int) -> None:
+    """The measured rows at each of ``sizes`` contacts, or a line saying why they were
+    skipped: the constant-load step, and at the first size of 10^7 or more (else the last)
+    a step in which 1 % of the contacts change their load (onto their springs on the host)."""
+    cupy = _device()
+    if cupy is None:
+        return
+    sizes = [sizes] if isinstance(sizes, int) else sizes
+    cl.set_memory_budget("inf")
+    name = cupy.cuda.runtime.getDeviceProperties(0)["name"].decode()
+    for n in sizes:
+        times = {}
+        for fused in (True, False):         # one law at a time (10^8 contacts: ~90 GB each)
+            law = _law(n, "cupy")
+            if not fused:
+                law._channel_kernel = None  # the array path: one kernel per array operation
+            F = cupy.asarray(_controls(n, 0)[0])
+            times[fused] = best = _best_step(cupy, law, n, F)
+            what = "fused channel kernel" if fused else "array path"
+            print(f"MEASURED on {name}: n = {n:.0e}, constant-load step, {what}: "
+                  f"{1e3 * best:.2f} ms ({n / best / 1e9:.2f} x 10^9 contact-steps per second; "
+                  "inputs on the device)", flush=True)
+            if fused and n == next((s for s in sizes if s >= 10**7), sizes[-1]):
+                best = _best_step(cupy, law, n, F, changing=0.01)
+                print(f"MEASURED on {name}: n = {n:.0e}, a step with 1 % of the contacts "
+                      f"changing load (on their springs, on the host), fused: "
+                      f"{1e3 * best:.2f} ms", flush=True)
+            del law, F
+            cupy.get_default_memory_pool().free_all_blocks()
+        print(f"  fused against the array path: {times[False] / times[True]:.2f} x faster")
 
 
 def main() -> None:
     warnings.simplefilter("ignore", ValidityWarning)    # combined shift + twist, documented
-    n = int(float(sys.argv[sys.argv.index("--n") + 1])) if "--n" in sys.argv else 10**7
+    arg = sys.argv[sys.argv.index("--n") + 1] if "--n" in sys.argv else "1e7"
     print(f"load average {os.getloadavg()[0]:.1f}")
     estimate()
-    gpu_rows(n)
+    gpu_rows([int(float(v)) for v in arg.split(",")])
 
 
 if __name__ == "__main__":
