@@ -15,13 +15,15 @@ cost (an estimate, not a measurement: real kernels reach 70-90 % of the peak ban
 CuPy's memory pool, caching and the host work of contacts on springs are not modelled).
 
 **Measured (with CuPy and a device).** The best of six steps of ``backend="cupy"`` at
-``n`` contacts, synchronised, after two warm-up steps: with the fused channel kernel (the
-default, :mod:`contactlab.physics.law_cuda`) and with the array path, one after the other in
-the same run; at the first ``n >= 10^7`` also a step in which 1 % of the contacts change load
-(they run on their MDR springs on the host).
+``n`` contacts, synchronised, after two warm-up steps: with the fused step (the default,
+:mod:`contactlab.physics.law_cuda`: a normal kernel and a step kernel), with the fused
+channel kernels only and with the array path, one after the other in the same run; at the
+first ``n >= 10^7`` also a step in which 1 % of the contacts change load (they run on their
+MDR springs on the host).
 """
 from __future__ import annotations
 
+import functools
 import os
 import sys
 import time
@@ -141,7 +143,9 @@ def _law(n: int, backend: str) -> cl.ContactLaw:
                          G_star=4.4e10, G_torsion=4.0e10, friction=0.3, backend=backend)
 
 
+@functools.lru_cache(maxsize=32)
 def _controls(n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Force, twist and displacement of step ``k`` (cached: the same for every mode)."""
     rng = np.random.default_rng(0)
     F = rng.uniform(1.0, 100.0, n)
     ph = rng.uniform(0.0, 2 * np.pi, n)
@@ -225,26 +229,29 @@ def gpu_rows(sizes: list[int] | int) -> None:
     sizes = [sizes] if isinstance(sizes, int) else sizes
     cl.set_memory_budget("inf")
     name = cupy.cuda.runtime.getDeviceProperties(0)["name"].decode()
+    from contactlab.physics.law_cuda import Kernels
+    what = {"step": "fused step (normal + step kernels)", "channels": "fused channel kernels",
+            "array": "array path"}
     for n in sizes:
         times = {}
-        for fused in (True, False):         # one law at a time (10^8 contacts: ~90 GB each)
+        for mode in what:                   # one law at a time (10^8 contacts: ~90 GB each)
             law = _law(n, "cupy")
-            if not fused:
-                law._channel_kernel = None  # the array path: one kernel per array operation
+            if mode != "step":
+                law._kernels = Kernels(law._kernels.channel) if mode == "channels" else None
             F = cupy.asarray(_controls(n, 0)[0])
-            times[fused] = best = _best_step(cupy, law, n, F)
-            what = "fused channel kernel" if fused else "array path"
-            print(f"MEASURED on {name}: n = {n:.0e}, constant-load step, {what}: "
+            times[mode] = best = _best_step(cupy, law, n, F)
+            print(f"MEASURED on {name}: n = {n:.0e}, constant-load step, {what[mode]}: "
                   f"{1e3 * best:.2f} ms ({n / best / 1e9:.2f} x 10^9 contact-steps per second; "
                   "inputs on the device)", flush=True)
-            if fused and n == next((s for s in sizes if s >= 10**7), sizes[-1]):
+            if mode == "step" and n == next((s for s in sizes if s >= 10**7), sizes[-1]):
                 best = _best_step(cupy, law, n, F, changing=0.01)
                 print(f"MEASURED on {name}: n = {n:.0e}, a step with 1 % of the contacts "
-                      f"changing load (on their springs, on the host), fused: "
-                      f"{1e3 * best:.2f} ms", flush=True)
+                      f"changing load (on their springs, on the host): {1e3 * best:.2f} ms",
+                      flush=True)
             del law, F
             cupy.get_default_memory_pool().free_all_blocks()
-        print(f"  fused against the array path: {times[False] / times[True]:.2f} x faster")
+        print(f"  array path / fused step {times['array'] / times['step']:.2f}, channel "
+              f"kernels / fused step {times['channels'] / times['step']:.2f}", flush=True)
 
 
 def main() -> None:

@@ -879,11 +879,12 @@ EDGE_ANNULUS_ANY = 1e-14
 #: loading-curve energies of that size, computed with cancellation at small slip, so two
 #: roundings of it differ by ulps of the scale, up to 4e-8 of the dissipation itself). The
 #: device's math library (pow, sqrt, cbrt, expm1, log1p) may differ from numpy's by an ulp,
-#: amplified in the turning points and torques. Measured on an NVIDIA H200 (CuPy 14.2), fused
-#: kernel and array path alike, every family by force and by depth over 60 steps: responses
-#: <= 1.4e-13, dissipation <= 5.6e-16 of the energy scale, turning points <= 4.1e-12
+#: amplified in the turning points and torques. Measured on an NVIDIA H200 (CuPy 14.2), channel
+#: kernels and array path alike, every family by force and by depth over 60 steps: responses
+#: <= 1.4e-13, dissipation <= 5.6e-16 of the energy scale, turning points <= 4.1e-12 (the
+#: fused step kernel passed this bound there too)
 GPU_VS_NUMPY = 1e-11
-#: the fused channel kernel's text (contactlab.physics.law_cuda) built for the host against the
+#: the fused kernels' text (contactlab.physics.law_cuda) built for the host against the
 #: numpy law, responses against each field's largest value, the per-step dissipation against
 #: each contact's slip-energy scale: measured 0 for the paraboloid, cone and flat punch (the
 #: same operations, sqrt correctly rounded) and <= 1.8e-16 / 6e-17 for the power law (the

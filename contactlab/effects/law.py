@@ -276,8 +276,8 @@ class ContactLaw:
         self.torsion = torsion
         fast, self._xp = _device.resolve(backend, fast, self.size,
                                          law_memory(size, memory, springs))
-        # the fused channel kernel on a GPU (None: the array path, on numpy the reference)
-        self._channel_kernel = _device.channel_kernel(self._xp)
+        # the fused kernels on a GPU (None: the array path, on numpy the reference)
+        self._kernels = _device.kernels(self._xp)
         if fast and not _kernel.AVAILABLE:
             raise NotSupportedError("fast=True needs numba: pip install 'contactlab[fast]'.")
         if fast is None:        # numba when it imports, unless CONTACTLAB_BACKEND=numpy (or

@@ -5,8 +5,10 @@ tests the GPU path on any machine).
 The law's state (reference depths, both channels' turning-point stacks) and its per-contact
 parameters live in the backend's array module; a step runs the constant-load law of every
 contact there (:mod:`contactlab.physics.law_xp`: normal contact, Cattaneo–Mindlin and exact
-torsion with Masing's rule, elementwise and masked, no loop over contacts; on a GPU each
-channel's Masing step is one fused kernel, :mod:`contactlab.physics.law_cuda`) and returns a
+torsion with Masing's rule, elementwise and masked, no loop over contacts; on a GPU the plain
+constant-load step is two fused kernels, a normal kernel and a step kernel, and in the other
+steps each channel's Masing step is one kernel: :mod:`contactlab.physics.law_cuda`) and
+returns a
 :class:`DeviceLawStep` whose arrays are of that module (CuPy arrays stay on the device;
 ``cupy.asnumpy`` brings them to the host). Contacts whose normal load changes go onto their
 MDR springs on the host (numpy spring path,
@@ -264,6 +266,18 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
     P = params(law)
     size = law.size
     n = law.n
+    kern = law._kernels
+    if (kern is not None and kern.normal is not None
+            and not (law._pool is not None and law._pool.used)):
+        first = _plain_normal(law, xp, kern, key == "force", val, displacement, twist)
+        if first is not None:           # the plain constant-load case: two kernels
+            if first[-1] and not law._warned:
+                law._warned = True
+                warnings.warn(_BOTH, ValidityWarning, stacklevel=3)
+            outs, n_over = _plain_rest(law, xp, kern, *first[:-1])
+            if n_over:
+                law._warn_overflow(n_over)
+            return _result(xp, out, outs)
     with np.errstate(all="ignore"):     # masked lanes may overflow; results are checked below
         v = _input(law, xp, key, val, "m" if key == "depth" else "N", nonneg=key == "force")
         d, a, F = _xp.normal(xp, key == "force", v, P["kc"], P["E"], n, P["flat"])
@@ -301,10 +315,7 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         if (u is not None and phi is not None and not law._warned
                 and bool(xp.any(live & (u != 0) & (phi != 0)))):
             law._warned = True
-            warnings.warn("ContactLaw: displacement and twist together are treated as two "
-                          "independent slip problems, each with the full friction limit "
-                          "(outside the theory: the slip conditions couple).", ValidityWarning,
-                          stacklevel=3)
+            warnings.warn(_BOTH, ValidityWarning, stacklevel=3)
         zero = xp.zeros(size)
         was = st["tan_overflow"] | st["tor_overflow"]
         dW = zero.copy()
@@ -312,7 +323,7 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         M, cm = zero.copy(), a.copy()
         safe_a = xp.where(live, a, 1.0)
         safe_d = xp.where(live, d, 1.0)
-        kernel = law._channel_kernel
+        kernel = None if kern is None else kern.channel
         if u is not None:
             FN = xp.where(live, F, 0.0)
             Ft, ct, w = (_tangential(law, xp, P, u, safe_a, safe_d, FN) if kernel is None else
@@ -355,6 +366,18 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
             law._check_finite(_host(live, xp), *(_host(arr, xp) for arr in outs))
     if n_over:
         law._warn_overflow(n_over)
+    return _result(xp, out, (d, a, F, Ft, M, ct, cm, dW, exact))
+
+
+_BOTH = ("ContactLaw: displacement and twist together are treated as two independent slip "
+         "problems, each with the full friction limit (outside the theory: the slip "
+         "conditions couple).")
+
+
+def _result(xp: Any, out: Any, outs: tuple) -> Any:
+    """The step's :class:`DeviceLawStep` of the arrays ``outs`` (``out``'s arrays written
+    and ``out`` returned when given)."""
+    d, a, F, Ft, M, ct, cm, dW, exact = outs
     res = DeviceLawStep(d, a, F, Ft, M, ct, cm, dW, exact, xp=xp)
     if out is None:
         return res
@@ -363,18 +386,81 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
     return out
 
 
-def channel_kernel(xp: Any) -> Callable[[tuple], None] | None:
-    """The fused channel kernel of the array module ``xp`` (:mod:`contactlab.physics.law_cuda`):
-    CuPy's build of it on a GPU, None on numpy (the array path, the reference)."""
+def _direct(xp: Any, value: Any, size: int) -> Any:
+    """``value`` itself when it is a device array the kernels can read as it is (float64,
+    one C-contiguous value per contact; checked by the normal kernel), else None."""
+    if (xp is not np and isinstance(value, xp.ndarray) and value.dtype == np.float64
+            and value.shape == (size,) and value.flags.c_contiguous):
+        return value
+    return None
+
+
+def _plain_normal(law: Any, xp: Any, kern: _cuda.Kernels, by_force: bool, val: Any,
+                  displacement: Any, twist: Any) -> tuple | None:
+    """The normal kernel: ``(u, phi, d, a, F, flags, both)`` when the step is the plain
+    constant-load case (every input finite, every contact in contact, no depth beyond
+    ``load_rtol`` of its reference), else None (the array path takes the step, from the
+    start: nothing was written)."""
+    size = law.size
+    P = params(law)
+    c = xp.ascontiguousarray
+    got: list[Any] = []
+    for name, value, unit, nonneg in ((("force" if by_force else "depth"), val,
+                                       "N" if by_force else "m", by_force),
+                                      ("displacement", displacement, "m", False),
+                                      ("twist", twist, "rad", False)):
+        if value is None:
+            got.append(None)
+            continue
+        arr = _direct(xp, value, size)
+        got.append(c(_input(law, xp, name, value, unit, nonneg=nonneg)) if arr is None
+                   else arr)
+    v, u, phi = got
+    flags = xp.zeros(6, np.uint64)
+    d, a, F = xp.empty(size), xp.empty(size), xp.empty(size)
+    assert kern.normal is not None
+    kern.normal(_cuda.normal_args(by_force, v, u, phi, c(P["kc"]), c(P["E"]), c(P["flat"]),
+                                  law.n, law.load_rtol, law._st["depth_ref"], (d, a, F),
+                                  flags))
+    f = _host(flags[:4], xp)
+    if f[_cuda.FLAG_BAD] or f[_cuda.FLAG_SEPARATED] or f[_cuda.FLAG_OFF]:
+        return None
+    return u, phi, d, a, F, flags, bool(f[_cuda.FLAG_BOTH] and u is not None and
+                                        phi is not None)
+
+
+def _plain_rest(law: Any, xp: Any, kern: _cuda.Kernels, u: Any, phi: Any, d: Any, a: Any,
+                F: Any, flags: Any) -> tuple[tuple, int]:
+    """The step kernel after :func:`_plain_normal`: ``(outputs, first overflows)``; a step
+    whose outputs are not finite is refused as on the array path."""
+    size = law.size
+    P = params(law)
+    c = xp.ascontiguousarray
+    outs = (*(xp.empty(size) for _ in range(5)), xp.empty(size, bool))
+    assert kern.step is not None
+    kern.step(_cuda.step_args(u, phi, d, a, F, c(P["mu"]), c(P["E"]), c(P["G"]), c(P["Gt"]),
+                              law.n, law._master, c(P["coef"]), law._st["depth_ref"],
+                              law._chan, outs, flags))
+    g = _host(flags, xp)
+    Ft, ct, M, cm, dW, exact = outs
+    if g[_cuda.FLAG_NONFINITE]:
+        law._check_finite(np.ones(size, bool),
+                          *(_host(arr, xp) for arr in (d, a, F, Ft, M, ct, cm, dW)))
+    return (d, a, F, Ft, M, ct, cm, dW, exact), int(g[_cuda.COUNT_OVERFLOW])
+
+
+def kernels(xp: Any) -> _cuda.Kernels | None:
+    """The fused kernels of the array module ``xp`` (:mod:`contactlab.physics.law_cuda`):
+    CuPy's build of them on a GPU, None on numpy (the array path, the reference)."""
     if xp is None or xp is np:
         return None
-    launch = _LAUNCHERS.get(xp)
-    if launch is None:
-        launch = _LAUNCHERS[xp] = _cuda.cupy_launcher(xp)
-    return launch
+    got = _KERNELS.get(xp)
+    if got is None:
+        got = _KERNELS[xp] = _cuda.cupy_kernels(xp)
+    return got
 
 
-_LAUNCHERS: dict[Any, Callable[[tuple], None]] = {}     # per array module
+_KERNELS: dict[Any, _cuda.Kernels] = {}         # per array module
 
 
 def _fused(law: Any, xp: Any, kernel: Callable[[tuple], None], kind: int, P: dict, x: Any,

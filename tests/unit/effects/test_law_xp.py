@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 import warnings
+from typing import ClassVar
 
 import numpy as np
 import pytest
@@ -226,19 +227,28 @@ class _FakeCupy:
     def asnumpy(v):
         return np.array(np.asarray(v).view(np.ndarray), order="C")
 
-    class RawKernel:
-        """CuPy's runtime-compiled kernel, run by the host build of its text (``host``: set
-        by a test that has one; the grid must cover every contact)."""
+    class RawModule:
+        """CuPy's runtime-compiled module, its kernels run by the host build of its text
+        (``host``: a :class:`~contactlab.physics.law_cuda.Kernels`, set by a test that has
+        one); each launch is recorded, and its grid must cover every contact."""
         host = None
-        launches: list = []
+        launches: ClassVar[list] = []
+        _names: ClassVar[dict] = {"law_channel": "channel", "law_normal": "normal",
+                                  "law_step": "step"}
 
-        def __init__(self, source, name, options=()):
-            self.name, self.options = name, options
+        def __init__(self, code, options=()):
+            self.options = options
 
-        def __call__(self, grid, block, args):
-            _FakeCupy.RawKernel.launches.append((grid, block, int(args[1])))
-            assert grid[0] * block[0] >= int(args[1]) > (grid[0] - 1) * block[0]
-            _FakeCupy.RawKernel.host(args)
+        def get_function(self, name):
+            from contactlab.physics import law_cuda
+            at = law_cuda.ORDER[name].index("n_contacts")
+
+            def run(grid, block, args):
+                size = int(args[at])
+                _FakeCupy.RawModule.launches.append(name)
+                assert grid[0] * block[0] >= size > (grid[0] - 1) * block[0]
+                getattr(_FakeCupy.RawModule.host, _FakeCupy.RawModule._names[name])(args)
+            return run
 
     @staticmethod
     def cbrt(v):
@@ -264,7 +274,7 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
     n, steps = 60, 50
     dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
                           memory=3)
-    dev._channel_kernel = None          # the array path (the fused kernel: the next test)
+    dev._kernels = None                 # the array path (the fused kernels: the next test)
     assert isinstance(dev._st["tan_X"], _DeviceArray)
     for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
         assert isinstance(raw.torque, _DeviceArray)
@@ -280,7 +290,7 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
     np.savez(tmp_path / "s.npz", **sd)
     twin = cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", memory=3, R=dev.geometry["R"],
                          friction=dev.friction, **KW)
-    twin._channel_kernel = None
+    twin._kernels = None
     with np.load(tmp_path / "s.npz") as f:
         twin.state = dict(f)
     F = ref.normal(depth=ref.state["depth_ref"])[2]
@@ -303,21 +313,27 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
 
 
 @pytest.mark.parametrize("by", ["force", "depth"])
-def test_fused_kernel_launch_on_a_stand_in_module(monkeypatch, host_kernel, by):
-    """backend="cupy" with numpy dressed as CuPy and its RawKernel run by the host build of
-    the kernel's text: the law launches the fused kernel by default, once per channel and
-    step, on a grid that covers every contact, with the arguments it declares; the results
-    agree with the numpy law to FUSED_HOST_VS_NUMPY."""
+def test_fused_kernels_launched_on_a_stand_in_module(monkeypatch, host_kernels, by):
+    """backend="cupy" with numpy dressed as CuPy and its kernels run by the host build of
+    their text: a plain constant-load step is the normal kernel and the step kernel; a step
+    with a separated contact or a load change falls back (after the normal kernel, which
+    writes nothing) to the array path with one channel kernel per channel; a law with
+    contacts on springs takes the array path directly. Every grid covers the contacts, and
+    the results agree with the numpy law to FUSED_HOST_VS_NUMPY."""
     monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
-    monkeypatch.setattr(_FakeCupy.RawKernel, "host", staticmethod(host_kernel))
-    monkeypatch.setattr(_FakeCupy.RawKernel, "launches", [])
-    n, steps = 300, 30                  # two blocks of 256 threads
+    monkeypatch.setattr(_FakeCupy.RawModule, "host", host_kernels)
+    monkeypatch.setattr(_FakeCupy.RawModule, "launches", [])
+    n, steps = 300, 50                  # two blocks of 256 threads
     dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
                           memory=3)
     for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
         assert isinstance(raw.torque, _DeviceArray)
         _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
-    assert _FakeCupy.RawKernel.launches == [((2,), (256,), n)] * (2 * steps)
+    plain = ["law_normal", "law_step"]
+    back = ["law_normal", "law_channel", "law_channel"]
+    want = (plain * 20 + back * 5 + plain * 15 + back      # 20-24 separated, 40 changing
+            + ["law_channel", "law_channel"] * (steps - 41))   # then on springs
+    assert _FakeCupy.RawModule.launches == want
 
 
 def _cupy():
@@ -357,29 +373,33 @@ def _assert_close(a, b, friction, tol, where=""):
 
 
 @pytest.fixture(scope="module")
-def host_kernel():
-    """The fused channel kernel's text built for the host (skipped without a C compiler)."""
+def host_kernels():
+    """The fused kernels' text built for the host (skipped without a C compiler)."""
     import shutil
     from contactlab.physics import law_cuda
     cc = shutil.which("cc") or shutil.which("gcc")
     if cc is None:
-        pytest.skip("no C compiler: the fused kernel's text is tested on the GPU only")
-    return law_cuda.host_launcher(cc)
+        pytest.skip("no C compiler: the fused kernels' text is tested on the GPU only")
+    return law_cuda.host_kernels(cc)
 
 
+@pytest.mark.parametrize("mode", ["step", "channels"])
 @pytest.mark.parametrize("by", ["force", "depth"])
 @pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
                          ids=[f[0].__name__ for f in FAMILIES])
-def test_fused_kernel_text_on_the_host_against_the_numpy_law(host_kernel, family, gname,
-                                                             lo_hi, extra, by):
-    """The GPU's fused channel kernel (one thread per contact: Masing's rule, loop closures,
-    loading curves), its very text compiled for the host and run contact by contact inside
-    the array-module step, against the numpy law on the random histories of the GPU test
-    (reversals, overflowing stacks, separation, half the contacts onto their springs): every
-    output within FUSED_HOST_VS_NUMPY, the integer state equal."""
+def test_fused_kernel_text_on_the_host_against_the_numpy_law(host_kernels, family, gname,
+                                                             lo_hi, extra, by, mode):
+    """The GPU's fused kernels (one thread per contact: normal contact, Masing's rule, loop
+    closures, loading curves, the step's bookkeeping), their very text compiled for the host
+    and run contact by contact inside the array-module step, against the numpy law on the
+    random histories of the GPU test (reversals, overflowing stacks, separation, half the
+    contacts onto their springs): every output within FUSED_HOST_VS_NUMPY, the integer state
+    equal; ``mode`` "step": the whole plain step fused, "channels": the channels only."""
+    from contactlab.physics import law_cuda
     n, steps = 80, 60
     dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "xp-numpy", memory=3)
-    dev._channel_kernel = host_kernel
+    dev._kernels = (host_kernels if mode == "step" else
+                    law_cuda.Kernels(host_kernels.channel))
     for a, b, _ in _run(dev, ref, rng, by, steps, n, np.asarray):
         _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
     sd, sr = dev.state, ref.state
@@ -408,19 +428,21 @@ def test_fused_kernel_refuses_a_master_curve_of_another_degree():
 @pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
                          ids=[f[0].__name__ for f in FAMILIES])
 def test_cupy_against_the_numpy_law(family, gname, lo_hi, extra, by):
-    """On a GPU, with the fused channel kernel (the default) and with the array path: every
-    output to GPU_VS_NUMPY of its largest value (the per-step dissipation of each contact's
-    energy scale), ``exact`` and the integer state equal; results are CuPy arrays."""
+    """On a GPU, with the fused kernels (the default), with the channel kernel only and with
+    the array path: every output to GPU_VS_NUMPY of its largest value (the per-step
+    dissipation of each contact's energy scale), ``exact`` and the integer state equal;
+    results are CuPy arrays."""
+    from contactlab.physics import law_cuda
     cupy = _cupy()
     n, steps = 80, 60
-    for fused in (True, False):
+    for mode in ("step", "channels", "array"):
         dev, ref, rng = _laws(family, gname, lo_hi, extra, 29, n, "cupy", memory=3)
-        assert dev._channel_kernel is not None
-        if not fused:
-            dev._channel_kernel = None
+        assert dev._kernels is not None and dev._kernels.step is not None
+        if mode != "step":
+            dev._kernels = law_cuda.Kernels(dev._kernels.channel) if mode == "channels" else None
         for a, b, raw in _run(dev, ref, rng, by, steps, n, cupy.asnumpy):
             assert isinstance(raw.torque, cupy.ndarray)
-            _assert_close(a, b, dev.friction, GPU_VS_NUMPY, f"fused={fused}: ")
+            _assert_close(a, b, dev.friction, GPU_VS_NUMPY, f"{mode}: ")
         sd, sr = dev.state, ref.state
         for key, v in sd.items():
             if v.dtype.kind == "f":
