@@ -40,6 +40,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import NotSupportedError
+
 __all__ = ["SOURCE", "TANGENTIAL", "TORSION", "ORDER", "Kernels", "channel_args",
            "normal_args", "step_args", "cupy_kernels", "host_kernels", "curve_kind",
            "FLAG_BAD", "FLAG_SEPARATED", "FLAG_OFF", "FLAG_BOTH", "FLAG_NONFINITE",
@@ -510,7 +512,10 @@ def _pack(name: str, vals: dict) -> tuple:
 def _curve(n: float, master: Any, coef: Any) -> dict:
     """The loading curves' arguments: exponent, cases, the torsion master curve's table."""
     if master.coef.shape[2] != 8:
-        raise ValueError("the fused kernel evaluates master curves of degree 7")
+        raise NotSupportedError(
+            f"the fused GPU kernels evaluate master curves of degree 7 (Estrin's scheme), got "
+            f"degree {master.coef.shape[2] - 1}: build the curve with the default degree "
+            "(contactlab.physics.master.MASTER_DEGREE).")
     inf = float(n) == float("inf")
     cM = 0.5 * np.pi if inf else np.pi * float(n) / (2.0 * (float(n) + 2.0))
     return {"n": float(n), "ncase": curve_kind(n), "cM": cM, "coef": coef,
