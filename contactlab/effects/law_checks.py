@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ParameterError, ValidityWarning
-from ..params import as_checked_array
+from ..params import LENGTH_BOUNDS, MODULUS_BOUNDS, as_checked_array
 from ..profiles.power_law import VALIDITY_SLOPE
 
 __all__ = ["FixedGeometry", "FixedParameter", "checked_state_entry", "read_only", "SlopeCheck",
@@ -24,6 +24,7 @@ if TYPE_CHECKING:
 
 _UNITS = {"spring_cover": "1", "radius": "m", "R": "m", "c": "m^(1-n)", "slope": "1", "E_star": "Pa",
           "G_star": "Pa", "G_torsion": "Pa", "friction": "1"}
+_BOUNDS = {"m": LENGTH_BOUNDS, "Pa": MODULUS_BOUNDS}
 
 
 class FixedParameter:
@@ -99,6 +100,17 @@ def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
     if arr.ndim == 1 and size is not None and arr.size != size:
         raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
                              "give a scalar or one value per contact.")
+    unit = _UNITS.get(name)
+    bounds = _BOUNDS.get(unit or "")     # lengths and moduli: the profiles' and materials'
+    if bounds is not None:
+        lo, hi = bounds
+        out = (arr < lo) | (arr > hi)
+        if np.any(out):
+            i = int(np.argmax(out)) if arr.ndim else None
+            at = "" if i is None else f"[{i}]"
+            v = float(arr if i is None else arr[i])
+            raise ParameterError(f"{name}{at}={v!r} {unit} is invalid: it must lie between "
+                                 f"{lo:g} and {hi:g} {unit} (check the units).")
     return arr
 
 

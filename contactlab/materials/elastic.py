@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from ..params import Param, check_in_range
+from ..params import MODULUS_BOUNDS, Param, check_in_range
 from .base import Material
 
 __all__ = ["Elastic", "Rigid"]
@@ -15,7 +15,7 @@ class Elastic(Material):
     Parameters
     ----------
     E : float
-        Young's modulus, Pa (> 0).
+        Young's modulus, Pa, in ``[1e-10, 1e20]`` (:data:`contactlab.params.MODULUS_BOUNDS`).
     nu : float
         Poisson's ratio, ``-1 < nu <= 0.5``.
 
@@ -28,7 +28,7 @@ class Elastic(Material):
 
     name: ClassVar[str] = "elastic"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("E", "E", "Pa", "positive", "Young's modulus E", (1e3, 1e12)),
+        Param("E", "E", "Pa", "positive", "Young's modulus E", (1e3, 1e12), MODULUS_BOUNDS),
         Param("nu", "nu", "1", "real", "Poisson's ratio", (0.0, 0.5)),
     )
     #: a scene's [materials] table may give the shear modulus G instead of E
@@ -44,7 +44,8 @@ class Elastic(Material):
     @classmethod
     def from_shear_modulus(cls, G: float, nu: float) -> "Elastic":
         """Material from shear modulus ``G`` (Pa, > 0) and Poisson's ratio: ``E = 2G(1+ν)``."""
-        G = Param("G", "G", "Pa", "positive", "shear modulus G").check(G)
+        G = Param("G", "G", "Pa", "positive", "shear modulus G",
+                  bounds=MODULUS_BOUNDS).check(G)
         nu_v = check_in_range("nu", nu, -1.0, 0.5, low_open=True, high_open=False,
                               what="Poisson's ratio")
         return cls(E=2.0 * G * (1.0 + nu_v), nu=nu_v)

@@ -30,7 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import ParameterError, PluginError
-from ..params import Param, as_float_array
+from ..params import MODULUS_BOUNDS, Param, as_float_array
 from .base import Material
 
 __all__ = ["Viscoelastic", "KelvinVoigt", "Maxwell", "StandardLinearSolid",
@@ -116,7 +116,7 @@ class KelvinVoigt(Viscoelastic):
 
     name: ClassVar[str] = "kelvin_voigt"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("G", "G", "Pa", "positive", "shear modulus G", (1e3, 1e9)),
+        Param("G", "G", "Pa", "positive", "shear modulus G", (1e3, 1e9), MODULUS_BOUNDS),
         Param("eta", "eta", "Pa*s", "positive", "shear viscosity eta", (1e-3, 1e9)),
     )
 
@@ -185,8 +185,8 @@ class StandardLinearSolid(Viscoelastic):
 
     name: ClassVar[str] = "standard_linear_solid"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("G_inf", "G_inf", "Pa", "positive", "relaxed shear modulus G_inf", (1e3, 1e9)),
-        Param("G_1", "G_1", "Pa", "positive", "arm shear modulus G_1", (1e3, 1e9)),
+        Param("G_inf", "G_inf", "Pa", "positive", "relaxed shear modulus G_inf", (1e3, 1e9), MODULUS_BOUNDS),
+        Param("G_1", "G_1", "Pa", "positive", "arm shear modulus G_1", (1e3, 1e9), MODULUS_BOUNDS),
         Param("eta_1", "eta_1", "Pa*s", "positive", "arm viscosity eta_1", (1e-3, 1e9)),
     )
 

@@ -15,7 +15,8 @@ import numpy as np
 
 from ..errors import ParameterError, UnitError
 
-__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "check_positive", "check_finite", "check_in_range",
+__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "MODULUS_BOUNDS", "check_positive",
+           "check_finite", "check_in_range",
            "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
            "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
            "name_list", "values_equal", "FieldsEqual", "QUANTITY_UNITS", "to_si", "to_si_values",
@@ -26,6 +27,11 @@ __all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "check_positive", "check_f
 #: the Earth's radius 6.4e6 m), and beyond it float64 gave wrong numbers or raw errors (a sphere
 #: of 1e-200 m: ZeroDivisionError; of 1e60 m: overflow)
 LENGTH_BOUNDS = (1e-30, 1e10)
+#: the range of a material's elastic moduli (Young's and shear moduli, a contact law's E*, G*,
+#: G_t), Pa: far wider than any material (soft gels 1e1 Pa, diamond 1.2e12 Pa); with the
+#: lengths inside LENGTH_BOUNDS forces, torques and energies stay normal float64 numbers
+#: (beyond it a modulus of 1e-300 Pa gave a subnormal force with five of its digits lost)
+MODULUS_BOUNDS = (1e-10, 1e20)
 
 _DOMAINS = {
     "positive": ("> 0", lambda v: v > 0),

@@ -4,6 +4,7 @@ ValidityWarning per step) instead of passing an approximate response off as exac
 
 The exact response of a nested history comes from an independent Masing implementation with
 unbounded memory over the Cattaneo–Mindlin closed form (tests/reference/masing.py)."""
+import re
 import warnings
 
 import numpy as np
@@ -281,3 +282,39 @@ def test_other_families_have_no_validity_radius():
         warnings.simplefilter("error")
         law.step(force=[1.0, 1e9])
     assert cl.profiles.Cone(slope=0.2).validity_radius == np.inf
+
+
+@pytest.mark.parametrize("family, name, value, where", [
+    (cl.profiles.Paraboloid, "R", [0.01, 1e-40], "R[1]=1e-40"),
+    (cl.profiles.Paraboloid, "R", 1e20, "R=1e+20"),
+    (cl.profiles.FlatPunch, "radius", [2e-3, 3e-3, 1e12], "radius[2]=1000000000000.0"),
+    (cl.profiles.Paraboloid, "E_star", [1e11, 1e25], "E_star[1]=1e+25"),
+    (cl.profiles.Paraboloid, "G_star", 1e-20, "G_star=1e-20"),
+    (cl.profiles.Paraboloid, "G_torsion", [1e10, 1e10, 1e30], "G_torsion[2]=1e+30"),
+])
+def test_lengths_and_moduli_outside_the_bounds_are_refused(family, name, value, where):
+    """A radius outside [1e-30, 1e10] m (the profiles' LENGTH_BOUNDS) or a modulus outside
+    [1e-10, 1e20] Pa (the materials' MODULUS_BOUNDS) is refused with their message, naming the
+    contact: a paraboloid of R = 1e200 m answered a contact radius of 9e62 m, one of 1e-200 m
+    only a slope warning."""
+    kw = dict(E_star=E, G_star=G, G_torsion=GT, friction=MU)
+    if family is cl.profiles.Paraboloid:
+        kw["R"] = 0.01
+    kw[name] = value
+    unit = "Pa" if name.endswith(("star", "torsion")) else "m"
+    lo, hi = ("1e-10", r"1e\+20") if unit == "Pa" else ("1e-30", r"1e\+10")
+    with pytest.raises(ParameterError, match=re.escape(where) + rf" {unit} is invalid: it must "
+                       rf"lie between {lo} and {hi} {unit} \(check the units\)"):
+        cl.ContactLaw(family, **kw)
+
+
+def test_lengths_at_the_bounds_follow_hertz():
+    """At both ends of the bounds the law is still Hertz's contact (radius (3FR/4E*)^(1/3))."""
+    R = np.array([1e-30, 1e10])
+    law = cl.ContactLaw(cl.profiles.Paraboloid, R=R, E_star=E, G_star=G, G_torsion=GT,
+                        friction=MU)
+    F = np.array([1e-60, 1.0])          # a stays below R/√3 at the small end
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = law.step(force=F)
+    np.testing.assert_allclose(out.radius, radius_of_force(F, R, E), rtol=4e-16)

@@ -1,10 +1,13 @@
 """Effective moduli (theory §1) against the formulas written out independently."""
 from __future__ import annotations
 
+import re
+
 import pytest
 
 import contactlab as cl
 from contactlab.materials import effective_moduli
+from contactlab.materials.viscoelastic import KelvinVoigt, StandardLinearSolid
 
 from tests.tolerances import CLOSED_FORM
 
@@ -54,3 +57,30 @@ def test_viscoelastic_materials_arrive_through_the_registry():
     assert reg.get("material", "kelvin_voigt") is KelvinVoigt
     sls = reg.create("material", "standard_linear_solid", G_inf=1e6, G_1=2e6, eta_1=1e3)
     assert isinstance(sls, StandardLinearSolid) and sls.is_viscoelastic
+
+
+@pytest.mark.parametrize("make, name, value", [
+    (lambda v: cl.Elastic(E=v, nu=0.3), "E", 1e-300),
+    (lambda v: cl.Elastic(E=v, nu=0.3), "E", 1e300),
+    (lambda v: cl.Elastic.from_shear_modulus(G=v, nu=0.3), "G", 1e25),
+    (lambda v: KelvinVoigt(G=v, eta=1.0), "G", 1e-20),
+    (lambda v: StandardLinearSolid(G_inf=1e6, G_1=v, eta_1=1.0), "G_1", 1e21),
+])
+def test_moduli_outside_the_bounds_are_refused(make, name, value):
+    """A modulus outside [1e-10, 1e20] Pa (contactlab.params.MODULUS_BOUNDS) is refused,
+    naming it and asking to check the units: E = 1e-300 Pa on a rigid flat gave a subnormal
+    Hertz force with five of its digits lost, E = 1e300 Pa a depth of 4e-200 m for 1 N."""
+    with pytest.raises(cl.errors.ParameterError,
+                       match=re.escape(f"{name}={value!r} is invalid: ") + r".* must lie "
+                             r"between 1e-10 and 1e\+20 Pa \(check the units\)"):
+        make(value)
+
+
+@pytest.mark.parametrize("E", [1e-10, 1e20])
+def test_moduli_at_the_bounds_follow_hertz(E):
+    """At both ends of the bounds a sphere on a rigid flat is Hertz's contact,
+    F = 4/3 E* R^(1/2) d^(3/2), E* = E/(1 - ν²), to rounding."""
+    nu, R, d = 0.3, 0.01, 1e-6
+    c = cl.Contact(cl.profiles.Paraboloid(R=R), (cl.Elastic(E=E, nu=nu), cl.materials.Rigid()))
+    F = 4.0 / 3.0 * E / (1.0 - nu**2) * R**0.5 * d**1.5
+    assert c.normal(depth=d).force == pytest.approx(F, rel=CLOSED_FORM)
