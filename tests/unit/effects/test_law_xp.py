@@ -372,6 +372,18 @@ def _assert_close(a, b, friction, tol, where=""):
     assert np.all(err <= lim), (where, float(np.max(err - lim)))
 
 
+def _assert_state_close(sd, sr, tol):
+    """Every float state entry within ``tol`` of the entry's largest value, the integer
+    entries (depths, directions, flags) equal."""
+    assert sd.keys() == sr.keys()
+    for key, v in sd.items():
+        if v.dtype.kind == "f":
+            np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
+                                       atol=tol * np.max(np.abs(sr[key])))
+        else:
+            np.testing.assert_array_equal(v, sr[key], err_msg=key)
+
+
 @pytest.fixture(scope="module")
 def host_kernels():
     """The fused kernels' text built for the host (skipped without a C compiler)."""
@@ -402,14 +414,8 @@ def test_fused_kernel_text_on_the_host_against_the_numpy_law(host_kernels, famil
                     law_cuda.Kernels(host_kernels.channel))
     for a, b, _ in _run(dev, ref, rng, by, steps, n, np.asarray):
         _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
-    sd, sr = dev.state, ref.state
-    assert sr["tan_overflow"].any() and sr["tor_overflow"].any()
-    for key, v in sd.items():
-        if v.dtype.kind == "f":
-            np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
-                                       atol=FUSED_HOST_VS_NUMPY * np.max(np.abs(sr[key])))
-        else:
-            np.testing.assert_array_equal(v, sr[key], err_msg=key)
+    assert ref.state["tan_overflow"].any() and ref.state["tor_overflow"].any()
+    _assert_state_close(dev.state, ref.state, FUSED_HOST_VS_NUMPY)
 
 
 def test_fused_kernel_refuses_a_master_curve_of_another_degree():
@@ -444,13 +450,7 @@ def test_cupy_against_the_numpy_law(family, gname, lo_hi, extra, by):
         for a, b, raw in _run(dev, ref, rng, by, steps, n, cupy.asnumpy):
             assert isinstance(raw.torque, cupy.ndarray)
             _assert_close(a, b, dev.friction, GPU_VS_NUMPY, f"{mode}: ")
-        sd, sr = dev.state, ref.state
-        for key, v in sd.items():
-            if v.dtype.kind == "f":
-                np.testing.assert_allclose(v, sr[key], rtol=0, err_msg=key,
-                                           atol=GPU_VS_NUMPY * np.max(np.abs(sr[key])))
-            else:
-                np.testing.assert_array_equal(v, sr[key], err_msg=key)
+        _assert_state_close(dev.state, ref.state, GPU_VS_NUMPY)
 
 
 def test_cupy_state_round_trip_and_device_inputs(tmp_path):
