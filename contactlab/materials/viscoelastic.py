@@ -236,7 +236,8 @@ class GeneralizedMaxwell(Viscoelastic):
 
     name: ClassVar[str] = "generalized_maxwell"
     params: ClassVar[tuple[Param, ...]] = (
-        Param("G_inf", "G_inf", "Pa", "nonnegative", "long-time shear modulus G_inf", (0.0, 1e9)),
+        Param("G_inf", "G_inf", "Pa", "nonnegative", "long-time shear modulus G_inf", (0.0, 1e9),
+              (0.0, MODULUS_BOUNDS[1])),
         Param("moduli", "G_k", "Pa", "positive", "arm shear moduli G_k", (1e3, 1e9)),
         Param("relaxation_times", "tau_k", "s", "positive", "arm relaxation times tau_k",
               (1e-6, 1e6)),
@@ -245,7 +246,7 @@ class GeneralizedMaxwell(Viscoelastic):
     def __init__(self, G_inf: float, moduli: Sequence[float],
                  relaxation_times: Sequence[float]) -> None:
         self.G_inf = self.params[0].check(G_inf)
-        Gk = self._sequence("moduli", moduli, "arm shear modulus", "Pa")
+        Gk = self._sequence("moduli", moduli, "arm shear modulus", "Pa", MODULUS_BOUNDS)
         tk = self._sequence("relaxation_times", relaxation_times, "relaxation time", "s")
         if len(Gk) != len(tk):
             raise ParameterError(
@@ -255,7 +256,8 @@ class GeneralizedMaxwell(Viscoelastic):
         self.relaxation_times = tk
 
     @staticmethod
-    def _sequence(name: str, value: Any, what: str, unit: str) -> tuple[float, ...]:
+    def _sequence(name: str, value: Any, what: str, unit: str,
+                  bounds: tuple[float, float] | None = None) -> tuple[float, ...]:
         try:
             arr = np.atleast_1d(np.asarray(value, dtype=float))
         except (TypeError, ValueError) as err:
@@ -268,6 +270,14 @@ class GeneralizedMaxwell(Viscoelastic):
         if np.any(bad):
             raise ParameterError(f"{name}[{int(np.argmax(bad))}]={arr[bad][0]!r} is invalid: "
                                  f"every {what} must be finite and > 0 ({unit}).")
+        if bounds is not None:
+            lo, hi = bounds
+            out = (arr < lo) | (arr > hi)
+            if np.any(out):
+                i = int(np.argmax(out))
+                raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every {what} "
+                                     f"must lie between {lo:g} and {hi:g} {unit} (check the "
+                                     "units).")
         return tuple(float(v) for v in arr)
 
     def prony(self) -> tuple[float, np.ndarray, np.ndarray, float]:

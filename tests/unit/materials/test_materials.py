@@ -7,7 +7,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.materials import effective_moduli
-from contactlab.materials.viscoelastic import KelvinVoigt, StandardLinearSolid
+from contactlab.materials.viscoelastic import GeneralizedMaxwell, KelvinVoigt, StandardLinearSolid
 
 from tests.tolerances import CLOSED_FORM
 
@@ -50,7 +50,7 @@ def test_identity():
 
 
 def test_viscoelastic_materials_arrive_through_the_registry():
-    from contactlab.materials.viscoelastic import KelvinVoigt, StandardLinearSolid
+    from contactlab.materials.viscoelastic import GeneralizedMaxwell, KelvinVoigt, StandardLinearSolid
     reg = cl.registry.registry
     for name in ("kelvin_voigt", "maxwell", "standard_linear_solid", "generalized_maxwell"):
         assert name in reg.available("material")
@@ -65,14 +65,19 @@ def test_viscoelastic_materials_arrive_through_the_registry():
     (lambda v: cl.Elastic.from_shear_modulus(G=v, nu=0.3), "G", 1e25),
     (lambda v: KelvinVoigt(G=v, eta=1.0), "G", 1e-20),
     (lambda v: StandardLinearSolid(G_inf=1e6, G_1=v, eta_1=1.0), "G_1", 1e21),
+    (lambda v: GeneralizedMaxwell(G_inf=1e6, moduli=[1e6, v], relaxation_times=[1.0, 2.0]),
+     "moduli[1]", 1e-12),
+    (lambda v: GeneralizedMaxwell(G_inf=v, moduli=[1e6], relaxation_times=[1.0]), "G_inf",
+     1e30),
 ])
 def test_moduli_outside_the_bounds_are_refused(make, name, value):
-    """A modulus outside [1e-10, 1e20] Pa (contactlab.params.MODULUS_BOUNDS) is refused,
+    """A modulus outside [1e-10, 1e20] Pa (contactlab.params.MODULUS_BOUNDS; a generalized
+    Maxwell material's long-time modulus, which may be 0: [0, 1e20] Pa) is refused,
     naming it and asking to check the units: E = 1e-300 Pa on a rigid flat gave a subnormal
     Hertz force with five of its digits lost, E = 1e300 Pa a depth of 4e-200 m for 1 N."""
     with pytest.raises(cl.errors.ParameterError,
                        match=re.escape(f"{name}={value!r} is invalid: ") + r".* must lie "
-                             r"between 1e-10 and 1e\+20 Pa \(check the units\)"):
+                             r"between (1e-10|0) and 1e\+20 Pa \(check the units\)"):
         make(value)
 
 
