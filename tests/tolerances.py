@@ -886,9 +886,11 @@ EDGE_ANNULUS_ANY = 1e-14
 GPU_VS_NUMPY = 1e-11
 #: the fused kernels' text (contactlab.physics.law_cuda) built for the host against the
 #: numpy law, responses against each field's largest value, the per-step dissipation against
-#: each contact's slip-energy scale: measured 0 for the paraboloid, cone and flat punch (the
-#: same operations, sqrt correctly rounded) and <= 1.8e-16 / 6e-17 for the power law (the
-#: host's expm1 and log1p against numpy's vectorised ones)
+#: each contact's slip-energy scale, the float state against each entry's largest value:
+#: measured 0 for the paraboloid, cone and flat punch (the same operations, sqrt correctly
+#: rounded); for the power law <= 1.8e-16 with the channel kernel alone and <= 7.9e-16 with the
+#: whole step fused (the host's pow, expm1 and log1p against numpy's vectorised ones), the
+#: dissipation <= 6e-17, the turning points <= 3.6e-15
 FUSED_HOST_VS_NUMPY = 1e-14
 #: a large linear table's node sums (g, g', ∫g) over the dyadic tree (20-term Taylor series of
 #: the far blocks, near nodes exact) against the node-by-node sums and against 30-digit sums of

@@ -92,25 +92,16 @@ def _short(value: Any) -> str:
 
 
 def _per_contact(name: str, value: Any, size: int | None) -> np.ndarray:
-    """A positive finite per-contact array (scalar or 1D), errors naming the index."""
-    arr = as_checked_array(name, value, domain="positive", unit=_UNITS.get(name, "-"))
+    """A positive finite per-contact array (scalar or 1D), errors naming the index; lengths
+    and moduli within the profiles' and materials' bounds."""
+    unit = _UNITS.get(name, "-")
+    arr = as_checked_array(name, value, domain="positive", unit=unit, bounds=_BOUNDS.get(unit))
     if arr.ndim > 1:
         raise ParameterError(f"{name} has shape {arr.shape}: give a scalar or one value per "
                              "contact (1D).")
     if arr.ndim == 1 and size is not None and arr.size != size:
         raise ParameterError(f"{name} has {arr.size} values but the law has {size} contacts: "
                              "give a scalar or one value per contact.")
-    unit = _UNITS.get(name)
-    bounds = _BOUNDS.get(unit or "")     # lengths and moduli: the profiles' and materials'
-    if bounds is not None:
-        lo, hi = bounds
-        out = (arr < lo) | (arr > hi)
-        if np.any(out):
-            i = int(np.argmax(out)) if arr.ndim else None
-            at = "" if i is None else f"[{i}]"
-            v = float(arr if i is None else arr[i])
-            raise ParameterError(f"{name}{at}={v!r} {unit} is invalid: it must lie between "
-                                 f"{lo:g} and {hi:g} {unit} (check the units).")
     return arr
 
 

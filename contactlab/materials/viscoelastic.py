@@ -30,7 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import ParameterError, PluginError
-from ..params import MODULUS_BOUNDS, Param, as_float_array
+from ..params import MODULUS_BOUNDS, Param, as_float_array, check_bounds
 from .base import Material
 
 __all__ = ["Viscoelastic", "KelvinVoigt", "Maxwell", "StandardLinearSolid",
@@ -271,13 +271,7 @@ class GeneralizedMaxwell(Viscoelastic):
             raise ParameterError(f"{name}[{int(np.argmax(bad))}]={arr[bad][0]!r} is invalid: "
                                  f"every {what} must be finite and > 0 ({unit}).")
         if bounds is not None:
-            lo, hi = bounds
-            out = (arr < lo) | (arr > hi)
-            if np.any(out):
-                i = int(np.argmax(out))
-                raise ParameterError(f"{name}[{i}]={float(arr[i])!r} is invalid: every {what} "
-                                     f"must lie between {lo:g} and {hi:g} {unit} (check the "
-                                     "units).")
+            check_bounds(name, arr, bounds, unit)
         return tuple(float(v) for v in arr)
 
     def prony(self) -> tuple[float, np.ndarray, np.ndarray, float]:

@@ -13,14 +13,14 @@ from .budgets import (DEFAULT_MEMORY_BUDGET, DEFAULT_TIME_BUDGET, MEMORY_BUDGET_
                       TIME_BUDGET_ENV, check_memory, check_time, memory_budget,
                       set_memory_budget, set_time_budget, time_budget)
 from .checks import (CACHE_KEYS, LENGTH_BOUNDS, MODULUS_BOUNDS, PLAIN_TYPES, QUANTITY_UNITS,
-                     FieldsEqual, Param,
-                     ParamIdentity, as_checked_array, as_float_array, as_real, broadcast_inputs, check_count,
+                     FieldsEqual, Param, ParamIdentity, as_checked_array, check_bounds,
+                     as_float_array, as_real, broadcast_inputs, check_count,
                      check_finite, check_flag, check_in_range, check_positive,
                      check_result_finite, exactly_one, name_list, scalar_or_array, step_indices,
                      to_si, to_si_values, values_equal, without_caches)
 
-__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "MODULUS_BOUNDS", "check_positive",
-           "check_finite", "check_in_range",
+__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "MODULUS_BOUNDS", "check_bounds",
+           "check_positive", "check_finite", "check_in_range",
            "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
            "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
            "name_list", "memory_budget", "set_memory_budget", "check_memory",

@@ -15,8 +15,8 @@ import numpy as np
 
 from ..errors import ParameterError, UnitError
 
-__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "MODULUS_BOUNDS", "check_positive",
-           "check_finite", "check_in_range",
+__all__ = ["Param", "ParamIdentity", "LENGTH_BOUNDS", "MODULUS_BOUNDS", "check_bounds",
+           "check_positive", "check_finite", "check_in_range",
            "as_float_array", "as_real", "as_checked_array", "broadcast_inputs", "check_count",
            "check_result_finite", "exactly_one", "scalar_or_array", "step_indices", "check_flag",
            "name_list", "values_equal", "FieldsEqual", "QUANTITY_UNITS", "to_si", "to_si_values",
@@ -377,8 +377,22 @@ _ARRAY_DOMAINS = {
 }
 
 
+def check_bounds(name: str, arr: np.ndarray, bounds: tuple[float, float], unit: str) -> None:
+    """Every element of the (finite) array ``arr`` within ``bounds`` (inclusive), else a
+    :class:`ParameterError` naming the first one outside, the range and ``unit`` (the ranges
+    of :data:`LENGTH_BOUNDS`, :data:`MODULUS_BOUNDS`: check the units)."""
+    lo, hi = bounds
+    out = (arr < lo) | (arr > hi)
+    if np.any(out):
+        i = np.unravel_index(int(np.argmax(out)), arr.shape)
+        at = "[" + ", ".join(str(int(k)) for k in i) + "]" if arr.ndim else ""
+        raise ParameterError(f"{name}{at}={float(arr[i])!r} is invalid: it must lie between "
+                             f"{lo:g} and {hi:g} {unit} (check the units).")
+
+
 def as_checked_array(name: str, value: object, *, domain: str = "real", unit: str = "-",
-                     size: int | None = None, allow_empty: bool = False) -> np.ndarray:
+                     size: int | None = None, allow_empty: bool = False,
+                     bounds: tuple[float, float] | None = None) -> np.ndarray:
     """:func:`as_float_array` plus a domain check that names the first offending element.
 
     Parameters
@@ -395,6 +409,8 @@ def as_checked_array(name: str, value: object, *, domain: str = "real", unit: st
         A scalar or a 1D array of exactly this many values (one per item, e.g. per contact).
     allow_empty : bool
         Accept an empty array.
+    bounds : tuple of float, optional
+        Every element must also lie in ``[low, high]`` (:func:`check_bounds`).
 
     Raises
     ------
@@ -422,6 +438,8 @@ def as_checked_array(name: str, value: object, *, domain: str = "real", unit: st
         where = ", ".join(str(int(k)) for k in i)
         raise ParameterError(f"{name}[{where}]={float(arr[i])!r} is invalid: every value must be "
                              f"{allowed} (unit {unit}).")
+    if bounds is not None:
+        check_bounds(name, arr, bounds, unit)
     return arr
 
 
