@@ -3,6 +3,7 @@ measured time of one constant-load step of ``backend="cupy"``.
 
     python benchmarks/law_gpu.py            # estimate; plus the GPU rows when CuPy finds a device
     python benchmarks/law_gpu.py --n 1e6,1e7,1e8    # the GPU rows at these n (default 10^7)
+    python benchmarks/law_gpu.py --changing --n 1e6,1e7    # the changing-load rows only
 
 **Estimate (no GPU needed).** The step of the array-module backend
 (:mod:`contactlab.physics.law_xp`) runs as one device kernel per array operation (CuPy does
@@ -19,7 +20,7 @@ CuPy's memory pool, caching and the host work of contacts on springs are not mod
 :mod:`contactlab.physics.law_cuda`: a normal kernel and a step kernel), with the fused
 channel kernels only and with the array path, one after the other in the same run; at the
 first ``n >= 10^7`` also a step in which 1 % of the contacts change load (they run on their
-MDR springs on the host).
+MDR springs on the host), with the compiled host spring passes and with the numpy ones.
 """
 from __future__ import annotations
 
@@ -219,6 +220,32 @@ def _best_step(cupy: Any, law: cl.ContactLaw, n: int, F: Any, steps: int = 8,
     return best
 
 
+def changing_rows(cupy: Any, name: str, n: int) -> None:
+    """Steps in which 1 % of ``n`` contacts change their load (onto their springs, which run
+    on the host): the compiled host spring passes (where numba imports) and the numpy
+    reference, one law each, side by side."""
+    from contactlab.effects import law_device_springs
+    from contactlab.foundation import _compiled
+    routes = ["compiled", "numpy"] if law_device_springs.compiled(cupy) else ["numpy"]
+    times = {}
+    for route in routes:
+        _compiled.set_backend("numpy" if route == "numpy" else None)
+        try:
+            law = _law(n, "cupy")
+            F = cupy.asarray(_controls(n, 0)[0])
+            times[route] = best = _best_step(cupy, law, n, F, changing=0.01)
+        finally:
+            _compiled.set_backend(None)
+        print(f"MEASURED on {name}: n = {n:.0e}, a step with 1 % of the contacts changing load "
+              f"(on their springs, on the host, {route} spring passes): {1e3 * best:.2f} ms",
+              flush=True)
+        del law, F
+        cupy.get_default_memory_pool().free_all_blocks()
+    if len(times) == 2:
+        print(f"  numpy / compiled host springs {times['numpy'] / times['compiled']:.2f}",
+              flush=True)
+
+
 def gpu_rows(sizes: list[int] | int) -> None:
     """The measured rows at each of ``sizes`` contacts, or a line saying why they were
     skipped: the constant-load step, and at the first size of 10^7 or more (else the last)
@@ -244,10 +271,7 @@ def gpu_rows(sizes: list[int] | int) -> None:
                   f"{1e3 * best:.2f} ms ({n / best / 1e9:.2f} x 10^9 contact-steps per second; "
                   "inputs on the device)", flush=True)
             if mode == "step" and n == next((s for s in sizes if s >= 10**7), sizes[-1]):
-                best = _best_step(cupy, law, n, F, changing=0.01)
-                print(f"MEASURED on {name}: n = {n:.0e}, a step with 1 % of the contacts "
-                      f"changing load (on their springs, on the host): {1e3 * best:.2f} ms",
-                      flush=True)
+                changing_rows(cupy, name, n)
             del law, F
             cupy.get_default_memory_pool().free_all_blocks()
         print(f"  array path / fused step {times['array'] / times['step']:.2f}, channel "
@@ -258,8 +282,17 @@ def main() -> None:
     warnings.simplefilter("ignore", ValidityWarning)    # combined shift + twist, documented
     arg = sys.argv[sys.argv.index("--n") + 1] if "--n" in sys.argv else "1e7"
     print(f"load average {os.getloadavg()[0]:.1f}")
+    sizes = [int(float(v)) for v in arg.split(",")]
+    if "--changing" in sys.argv:        # the changing-load rows only
+        cupy = _device()
+        if cupy is not None:
+            cl.set_memory_budget("inf")
+            name = cupy.cuda.runtime.getDeviceProperties(0)["name"].decode()
+            for n in sizes:
+                changing_rows(cupy, name, n)
+        return
     estimate()
-    gpu_rows([int(float(v)) for v in arg.split(",")])
+    gpu_rows(sizes)
 
 
 if __name__ == "__main__":

@@ -57,8 +57,7 @@ DEFAULT_SPRINGS = 16
 #: the springs of a contact cover this multiple of its contact radius (grown when exceeded)
 DEFAULT_SPRING_COVER = 1.5
 _NO_CONTACTS = np.zeros(0, np.int64)
-#: a step whose model error (:attr:`LawStep.model_error`) exceeds this for a quantity warns
-#: (once per law and quantity)
+#: a step's model error (:attr:`LawStep.model_error`) above this warns, once per law and quantity
 MODEL_ERROR_WARN = 0.01
 #: the quantities a law step carries a model error for (the causes warned about separately)
 _MODEL_ERROR_CAUSES = ("tangential_force", "torque")
@@ -534,10 +533,10 @@ class ContactLaw:
         """A :class:`ValidityWarning` when a step's model error exceeds
         :data:`MODEL_ERROR_WARN` for a quantity at a contact on springs, once per law and
         quantity (:func:`~contactlab.effects.law_checks.warn_model_error`)."""
-        on, pool = self._on(), self._pool   # many on springs: the mask, no index array
-        assert pool is not None
-        warn_model_error(res, on if 4 * pool.used >= self.size else np.flatnonzero(on),
-                         self._model_warned, self.springs, MODEL_ERROR_WARN)
+        pool = self._pool       # many on springs: the mask; few: their indices, ascending,
+        assert pool is not None  # from the rows in use (no pass over every contact)
+        on = self._on() if 4 * pool.used >= self.size else np.sort(pool.owner[:pool.used])
+        warn_model_error(res, on, self._model_warned, self.springs, MODEL_ERROR_WARN)
 
     def _check_out(self, out: Any) -> None:
         ok = isinstance(out, LawStep)

@@ -69,17 +69,18 @@ def test_a_fresh_law_warns_again():
     assert len(_run(_law(springs=8))[1]) == 2
 
 
-@pytest.mark.parametrize("fast", [False, True])
-def test_warning_reads_the_contacts_on_springs_only(fast):
+@pytest.mark.parametrize("backend", ["numpy", "numba", "xp-numpy"])
+def test_warning_reads_the_contacts_on_springs_only(backend):
     """The warning computes the model errors of the contacts on springs only (issue 29: not a
-    pass over every contact per step); it names the same contact and value as the full
-    model_errors masked to those contacts, and the step's model_errors stay lazy and whole."""
-    if fast:
+    pass over every contact per step; on a device, their fields gathered there before the
+    copy to the host); it names the same contact and value as the full model_errors masked to
+    those contacts, and the step's model_errors stay lazy and whole."""
+    if backend == "numba":
         pytest.importorskip("numba")
     n = 40
     R = np.linspace(0.005, 0.02, n)
     law = cl.ContactLaw(cl.profiles.Paraboloid, R=R, E_star=1.15e11, G_star=4.4e10,
-                        G_torsion=4.0e10, friction=0.3, springs=8, fast=fast)
+                        G_torsion=4.0e10, friction=0.3, springs=8, backend=backend)
     F = np.linspace(5.0, 50.0, n)
     tw = np.linspace(2e-5, 4e-4, n)
     moved = np.arange(n) % 3 == 1               # these contacts' loads change: springs
@@ -101,25 +102,28 @@ def test_warning_reads_the_contacts_on_springs_only(fast):
         assert len(said) == 1 and f"{masked[i]:.3g} at contact {i} " in said[0]
 
 
-def _random_law(springs, seed, n=300):
-    """A numpy law of ``n`` Hertz contacts with random radii, forces and twists (a fifth of
-    them zero): (its generator, the law, the forces, the twists)."""
+def _random_law(springs, seed, n=300, backend="numpy"):
+    """A law of ``n`` Hertz contacts (numpy, or the array-module step on numpy, whose steps'
+    model errors gather the contacts asked for before they leave the device) with random
+    radii, forces and twists (a fifth of them zero): (its generator, the law, the forces, the
+    twists)."""
     rng = np.random.default_rng(seed)
     law = cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
                         G_star=4.4e10, G_torsion=4.0e10, friction=0.3, springs=springs,
-                        fast=False, warn_model_error=False)
+                        backend=backend, warn_model_error=False)
     F = rng.uniform(1.0, 100.0, n)
     tw = np.where(rng.uniform(size=n) < 0.2, 0.0, rng.uniform(-4e-4, 4e-4, n))
     return rng, law, F, tw
 
 
+@pytest.mark.parametrize("backend", ["numpy", "xp-numpy"])
 @pytest.mark.parametrize("springs", [8, 16])
-def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
+def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs, backend):
     """The warning's first check (issue 29: no per-contact error arrays in a changing-load step
     that does not warn) gives exactly the largest entry of each full model-error array over
     the contacts asked for, on random loads, twists (some zero) and displacements; ``{}`` when
     none of them is off the exact law."""
-    rng, law, F, tw = _random_law(springs, 7)
+    rng, law, F, tw = _random_law(springs, 7, backend=backend)
     n = law.size
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
@@ -140,9 +144,10 @@ def test_model_error_peaks_are_the_largest_entries_to_the_bit(springs):
                 assert out.model_error_peaks_at(mask) == peak
 
 
+@pytest.mark.parametrize("backend", ["numpy", "xp-numpy"])
 @pytest.mark.parametrize("block", [7, 64, 1 << 14])
 @pytest.mark.parametrize("springs", [8, 16])
-def test_worst_contact_is_the_argmax_of_the_whole_array(monkeypatch, block, springs):
+def test_worst_contact_is_the_argmax_of_the_whole_array(monkeypatch, block, springs, backend):
     """The warning's contact and value (issue 29: no whole per-contact error array in the step
     that warns) are those np.argmax names in the full model-error array over the contacts
     asked for, to the bit: the first of the largest entries, ties included (contacts in one
@@ -150,7 +155,7 @@ def test_worst_contact_is_the_argmax_of_the_whole_array(monkeypatch, block, spri
     index arrays and masks, in blocks smaller and larger than the contacts."""
     from contactlab.effects import law_step
     monkeypatch.setattr(law_step, "_WORST_BLOCK", block)
-    rng, law, F, tw = _random_law(springs, 11)
+    rng, law, F, tw = _random_law(springs, 11, backend=backend)
     n = law.size
     checked = 0
     with warnings.catch_warnings():

@@ -15,23 +15,37 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.effects import law_device
+from contactlab.effects import law_device, law_device_springs
 from contactlab.numeric import cube_root
 from contactlab.physics import law_kernel
 from contactlab.errors import MemoryBudgetError, NotSupportedError, ParameterError
 from contactlab.errors import UnknownNameError, ValidityWarning
-from tests.tolerances import FUSED_HOST_VS_NUMPY, GPU_VS_NUMPY
+from tests.tolerances import COMPILED_VS_NUMPY_SPRINGS, FUSED_HOST_VS_NUMPY, GPU_VS_NUMPY
 from tests.unit.effects.test_law_compiled import FAMILIES, FIELDS, _changing_run, _history
 
 KW = dict(E_star=1.15e11, G_star=4.4e10, G_torsion=4.0e10)
 
 
-def _laws(family, gname, lo_hi, extra, seed, n, backend, **kw):
+def _laws(family, gname, lo_hi, extra, seed, n, backend, reference="numpy", **kw):
     rng = np.random.default_rng(seed)
     par = dict({gname: rng.uniform(*lo_hi, n)}, friction=rng.uniform(0.1, 0.5, n), **KW,
                **extra, **kw)
     return (cl.ContactLaw(family, backend=backend, **par),
-            cl.ContactLaw(family, backend="numpy", **par), rng)
+            cl.ContactLaw(family, backend=reference, **par), rng)
+
+
+def _host_springs(monkeypatch, springs):
+    """The host spring passes of a device law: "numpy" (the reference, forced) or "compiled"
+    (skipped without numba); returns the backend of the CPU law with the same springs, whose
+    results the device law's equal to the bit (constant load: the numba law's bits are the
+    numpy law's for the paraboloid; springs: the same compiled passes)."""
+    if springs == "numpy":
+        monkeypatch.setattr(law_device_springs, "compiled", lambda xp: False)
+        return "numpy"
+    if not law_kernel.AVAILABLE:
+        pytest.skip("numba is not installed")
+    assert law_device_springs.compiled(_FakeCupy())
+    return "numba"
 
 
 def _run(dev, ref, rng, by, steps, n, host):
@@ -264,16 +278,19 @@ class _FakeCupy:
         return lambda *a, **k: _dev(f(*a, **k))
 
 
+@pytest.mark.parametrize("springs", ["numpy", "compiled"])
 @pytest.mark.parametrize("by", ["force", "depth"])
-def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
+def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, springs, tmp_path):
     """backend="cupy" with numpy dressed as CuPy: every output, model error and state entry
-    equal to the numpy law to the bit (springs switched through host gathers, results
+    equal to the bit to the CPU law with the same spring passes (the numpy law; the numba law
+    where the host springs are compiled) (springs switched through host gathers, results
     scattered back), device arrays accepted as inputs and their bad entries named, and a state
     restored through an .npz continues to the bit."""
     monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    reference = _host_springs(monkeypatch, springs)
     n, steps = 60, 50
     dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
-                          memory=3)
+                          reference, memory=3)
     dev._kernels = None                 # the array path (the fused kernels: the next test)
     assert isinstance(dev._st["tan_X"], _DeviceArray)
     for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
@@ -284,9 +301,14 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
             np.testing.assert_array_equal(raw.model_errors[q], err, err_msg=q)
     sd, sr = dev.state, ref.state
     assert sr["spr_on"][n // 2:].all()
+    # the numba law leaves the Masing stacks of contacts on springs as they were (unused);
+    # the device law steps them with the others, as the numpy law does
+    used = ~sr["spr_on"] if reference == "numba" else slice(None)
     for key, v in sd.items():
         assert type(v) is np.ndarray and v.flags.c_contiguous
-        np.testing.assert_array_equal(v, sr[key], err_msg=key)
+        stack = key.startswith(("tan_", "tor_"))
+        np.testing.assert_array_equal(v[used] if stack else v, sr[key][used] if stack
+                                      else sr[key], err_msg=key)
     np.savez(tmp_path / "s.npz", **sd)
     twin = cl.ContactLaw(cl.profiles.Paraboloid, backend="cupy", memory=3, R=dev.geometry["R"],
                          friction=dev.friction, **KW)
@@ -312,20 +334,22 @@ def test_cupy_code_paths_on_a_stand_in_module(monkeypatch, by, tmp_path):
         dev.step(force=F, out=want)                 # a numpy LawStep is no device result
 
 
+@pytest.mark.parametrize("springs", ["numpy", "compiled"])
 @pytest.mark.parametrize("by", ["force", "depth"])
-def test_fused_kernels_launched_on_a_stand_in_module(monkeypatch, host_kernels, by):
+def test_fused_kernels_launched_on_a_stand_in_module(monkeypatch, host_kernels, by, springs):
     """backend="cupy" with numpy dressed as CuPy and its kernels run by the host build of
     their text: a plain constant-load step is the normal kernel and the step kernel; a step
     with a separated contact or a load change falls back (after the normal kernel, which
     writes nothing) to the array path with one channel kernel per channel; a law with
     contacts on springs takes the array path directly. Every grid covers the contacts, and
-    the results agree with the numpy law to FUSED_HOST_VS_NUMPY."""
+    the results agree with the CPU law of the same spring passes to FUSED_HOST_VS_NUMPY."""
     monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
     monkeypatch.setattr(_FakeCupy.RawModule, "host", host_kernels)
     monkeypatch.setattr(_FakeCupy.RawModule, "launches", [])
+    reference = _host_springs(monkeypatch, springs)
     n, steps = 300, 50                  # two blocks of 256 threads
     dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy",
-                          memory=3)
+                          reference, memory=3)
     for a, b, raw in _run(dev, ref, rng, by, steps, n, _FakeCupy.asnumpy):
         assert isinstance(raw.torque, _DeviceArray)
         _assert_close(a, b, dev.friction, FUSED_HOST_VS_NUMPY)
@@ -334,6 +358,63 @@ def test_fused_kernels_launched_on_a_stand_in_module(monkeypatch, host_kernels, 
     want = (plain * 20 + back * 5 + plain * 15 + back      # 20-24 separated, 40 changing
             + ["law_channel", "law_channel"] * (steps - 41))   # then on springs
     assert _FakeCupy.RawModule.launches == want
+
+
+@pytest.mark.parametrize("family, gname, lo_hi, extra", FAMILIES,
+                         ids=[f[0].__name__ for f in FAMILIES])
+def test_compiled_host_springs_of_a_device_law_regrid_and_release(monkeypatch, family, gname,
+                                                                 lo_hi, extra):
+    """backend="cupy" (numpy dressed as CuPy) with the compiled host spring passes, which run
+    on the gathered values of the contacts on springs: loads that grow ninefold (the contacts
+    outgrow their spring cover, except a flat punch's: regridded inside the pass, through the
+    gathered indices), contacts on springs that separate (their rows given back, then taken
+    by the next group's switch) and contacts switching in three groups; every output and the
+    spring state equal to the numba law's to the bit (the power law's to
+    COMPILED_VS_NUMPY_SPRINGS: its constant-load steps on numba differ from numpy's by ulps,
+    and the device law's are numpy's), the Masing state of the contacts at constant load too."""
+    monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    _host_springs(monkeypatch, "compiled")
+    n, steps = 48, 40
+    dev, ref, rng = _laws(family, gname, lo_hi, extra, 5, n, "cupy", "numba", memory=4)
+    dev._kernels = None
+    same = family is not cl.profiles.PowerLaw
+
+    def check(x, y, what):
+        if same:
+            np.testing.assert_array_equal(x, y, err_msg=what)
+        else:
+            np.testing.assert_allclose(x, y, rtol=0, err_msg=what,
+                                       atol=COMPILED_VS_NUMPY_SPRINGS * np.max(np.abs(y)))
+
+    F = rng.uniform(1.0, 10.0, n)
+    u, phi = _history(rng, steps, n, 3e-8, 1e-4)
+    grown = 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        for k in range(steps):
+            L = F.copy()
+            for g in range(3):                  # contacts 16g.. change load from step 6 + 6g
+                if k >= 6 + 6 * g:
+                    L[16 * g:16 * g + 8] *= 1.0 + 8.0 * min(1.0, (k - 6 - 6 * g) / 8.0)
+            if 10 <= k < 12:
+                L[2:5] = 0.0                    # contacts on springs separate, come back
+                # at a load that still changes and switch again
+            cover = ref.state["spr_cover"].copy()
+            a = dev.step(force=L, displacement=u[k], twist=phi[k])
+            b = ref.step(force=L, displacement=u[k], twist=phi[k])
+            for f in FIELDS:
+                check(_FakeCupy.asnumpy(getattr(a, f)), getattr(b, f), f"step {k}: {f}")
+            on = ref.state["spr_on"]
+            grown += int(np.count_nonzero(on & (cover > 0) & (ref.state["spr_cover"] > cover)))
+            if k == 10:
+                assert not dev.state["spr_on"][2:5].any()      # rows given back
+    sd, sr = dev.state, ref.state
+    assert (grown > 0) == (family is not cl.profiles.FlatPunch)
+    assert sr["spr_on"].sum() == 24
+    for key, v in sd.items():
+        stack = key.startswith(("tan_", "tor_"))
+        used = ~sr["spr_on"] if stack else slice(None)
+        check(v[used], sr[key][used], key)
 
 
 def _cupy():
