@@ -892,6 +892,14 @@ GPU_VS_NUMPY = 1e-11
 #: whole step fused (the host's pow, expm1 and log1p against numpy's vectorised ones), the
 #: dissipation <= 6e-17, the turning points <= 3.6e-15
 FUSED_HOST_VS_NUMPY = 1e-14
+#: the same for the contacts on their MDR springs while the fused kernels step the others, and
+#: for the spring state: their springs take the depth and radius of the normal kernel (the
+#: host's pow for the power law, an ulp from numpy's), which the edge cell's weights amplify
+#: (as the compiled law's other order of the cell integrals, COMPILED_VS_NUMPY_SPRINGS);
+#: measured 0 for the paraboloid, cone and flat punch, for the power law <= 7.8e-14 of each
+#: field's largest value (the dissipation <= 6.4e-18 of the energy scale), the spring elements
+#: <= 5.9e-13 of their largest value, 60 steps by force and by depth
+FUSED_HOST_SPRINGS_VS_NUMPY = 1e-11
 #: a large linear table's node sums (g, g', ∫g) over the dyadic tree (20-term Taylor series of
 #: the far blocks, near nodes exact) against the node-by-node sums and against 30-digit sums of
 #: the same nodes, relative to the sum of the terms' magnitudes: measured <= 3.3e-16 on even,

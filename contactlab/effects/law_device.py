@@ -6,9 +6,9 @@ The law's state (reference depths, both channels' turning-point stacks) and its 
 parameters live in the backend's array module; a step runs the constant-load law of every
 contact there (:mod:`contactlab.physics.law_xp`: normal contact, Cattaneo–Mindlin and exact
 torsion with Masing's rule, elementwise and masked, no loop over contacts; on a GPU the plain
-constant-load step is two fused kernels, a normal kernel and a step kernel, and in the other
-steps each channel's Masing step is one kernel: :mod:`contactlab.physics.law_cuda`) and
-returns a
+step — every contact in contact and at constant load, or on its springs — is two fused
+kernels, a normal kernel and a step kernel, and in the other steps each channel's Masing step
+is one kernel: :mod:`contactlab.physics.law_cuda`) and returns a
 :class:`DeviceLawStep` whose arrays are of that module (CuPy arrays stay on the device;
 ``cupy.asnumpy`` brings them to the host). Contacts whose normal load changes go onto their
 MDR springs on the host (:mod:`contactlab.effects.law_device_springs`: the compiled spring
@@ -279,14 +279,15 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
     size = law.size
     n = law.n
     kern = law._kernels
-    if (kern is not None and kern.normal is not None
-            and not (law._pool is not None and law._pool.used)):
-        first = _plain_normal(law, xp, kern, key == "force", val, displacement, twist)
-        if first is not None:           # the plain constant-load case: two kernels
+    if kern is not None and kern.normal is not None:
+        springs = _on_springs(law, xp)
+        first = _plain_normal(law, xp, kern, key == "force", val, displacement, twist,
+                              None if springs is None else springs[1])
+        if first is not None:           # the plain case: two kernels (+ the host's springs)
             if first[-1] and not law._warned:
                 law._warned = True
                 warnings.warn(_BOTH, ValidityWarning, stacklevel=3)
-            outs, n_over = _plain_rest(law, xp, kern, *first[:-1])
+            outs, n_over = _plain_rest(law, xp, kern, first[:-1], springs)
             if n_over:
                 law._warn_overflow(n_over)
             return _result(xp, out, outs)
@@ -355,13 +356,8 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
         n_over = int(xp.count_nonzero(over & ~was & live))
         if on_dev is not None:
             idx = _host(xp.flatnonzero(on_dev & live), xp)
-            di = _to(xp, idx)
-            r = _springs.spring_step(law, xp, idx, _host(d[di], xp), _host(a[di], xp),
-                                     None if u is None else _host(u[di], xp),
-                                     None if phi is None else _host(phi[di], xp))
-            for arr, val_ in zip((Ft, ct, M, cm, dW), r):
-                arr[di] = xp.asarray(val_)
-            exact[di] = False
+            _spring_outputs(law, xp, idx, d, a, u, phi, (Ft, ct, M, cm, dW))
+            exact[_to(xp, idx)] = False
         if not all_live:
             dead = ~live
             Ft, M, dW, ct, cm = (xp.where(dead, 0.0, arr) for arr in (Ft, M, dW, ct, cm))
@@ -406,12 +402,39 @@ def _direct(xp: Any, value: Any, size: int) -> Any:
     return None
 
 
+def _spring_outputs(law: Any, xp: Any, idx: np.ndarray, d: Any, a: Any, u: Any, phi: Any,
+                    outs: tuple) -> bool:
+    """The spring step of the contacts ``idx`` (every contact on springs) on the host
+    (:mod:`contactlab.effects.law_device_springs`), their values gathered from the step's
+    device arrays ``d``, ``a``, ``u``, ``phi`` and their results scattered into ``outs``
+    (``Ft, ct, M, cm, dW``); returns whether those results are all finite."""
+    di = _to(xp, idx)
+    r = _springs.spring_step(law, xp, idx, _host(d[di], xp), _host(a[di], xp),
+                             None if u is None else _host(u[di], xp),
+                             None if phi is None else _host(phi[di], xp))
+    for arr, v in zip(outs, r):
+        arr[di] = xp.asarray(v)
+    return all(bool(np.isfinite(v).all()) for v in r)
+
+
+def _on_springs(law: Any, xp: Any) -> tuple[np.ndarray, Any] | None:
+    """``(contacts on springs, ascending; their mask on the device, uint8)``, or None when
+    no contact is on springs."""
+    pool = law._pool
+    if pool is None or not pool.used:
+        return None
+    idx = np.sort(pool.owner[:pool.used])
+    mask = xp.zeros(law.size, np.uint8)
+    mask[_to(xp, idx)] = 1
+    return idx, mask
+
+
 def _plain_normal(law: Any, xp: Any, kern: _cuda.Kernels, by_force: bool, val: Any,
-                  displacement: Any, twist: Any) -> tuple | None:
+                  displacement: Any, twist: Any, spring: Any = None) -> tuple | None:
     """The normal kernel: ``(u, phi, d, a, F, flags, both)`` when the step is the plain
-    constant-load case (every input finite, every contact in contact, no depth beyond
-    ``load_rtol`` of its reference), else None (the array path takes the step, from the
-    start: nothing was written)."""
+    case (every input finite, every contact in contact, no depth beyond ``load_rtol`` of its
+    reference but those of contacts on springs, ``spring``: their mask, or None), else None
+    (the array path takes the step, from the start: nothing was written)."""
     size = law.size
     P = params(law)
     c = xp.ascontiguousarray
@@ -432,7 +455,7 @@ def _plain_normal(law: Any, xp: Any, kern: _cuda.Kernels, by_force: bool, val: A
     assert kern.normal is not None
     kern.normal(_cuda.normal_args(by_force, v, u, phi, c(P["kc"]), c(P["E"]), c(P["flat"]),
                                   law.n, law.load_rtol, law._st["depth_ref"], (d, a, F),
-                                  flags))
+                                  flags, spring))
     f = _host(flags[:4], xp)
     if f[_cuda.FLAG_BAD] or f[_cuda.FLAG_SEPARATED] or f[_cuda.FLAG_OFF]:
         return None
@@ -440,10 +463,14 @@ def _plain_normal(law: Any, xp: Any, kern: _cuda.Kernels, by_force: bool, val: A
                                         phi is not None)
 
 
-def _plain_rest(law: Any, xp: Any, kern: _cuda.Kernels, u: Any, phi: Any, d: Any, a: Any,
-                F: Any, flags: Any) -> tuple[tuple, int]:
-    """The step kernel after :func:`_plain_normal`: ``(outputs, first overflows)``; a step
-    whose outputs are not finite is refused as on the array path."""
+def _plain_rest(law: Any, xp: Any, kern: _cuda.Kernels, normal: tuple,
+                springs: tuple | None) -> tuple[tuple, int]:
+    """The step kernel after :func:`_plain_normal` (``normal``: its ``(u, phi, d, a, F,
+    flags)``): ``(outputs, first overflows)``; ``springs``: :func:`_on_springs` (those
+    contacts left out by the kernel, stepped on the host as in the array path); a step whose
+    outputs are not finite is refused as on the array path (after the springs' step, as
+    there)."""
+    u, phi, d, a, F, flags = normal
     size = law.size
     P = params(law)
     c = xp.ascontiguousarray
@@ -451,10 +478,12 @@ def _plain_rest(law: Any, xp: Any, kern: _cuda.Kernels, u: Any, phi: Any, d: Any
     assert kern.step is not None
     kern.step(_cuda.step_args(u, phi, d, a, F, c(P["mu"]), c(P["E"]), c(P["G"]), c(P["Gt"]),
                               law.n, law._master, c(P["coef"]), law._st["depth_ref"],
-                              law._chan, outs, flags))
+                              law._chan, outs, flags, None if springs is None else springs[1]))
     g = _host(flags, xp)
     Ft, ct, M, cm, dW, exact = outs
-    if g[_cuda.FLAG_NONFINITE]:
+    finite = (True if springs is None
+              else _spring_outputs(law, xp, springs[0], d, a, u, phi, (Ft, ct, M, cm, dW)))
+    if g[_cuda.FLAG_NONFINITE] or not finite:
         law._check_finite(np.ones(size, bool),
                           *(_host(arr, xp) for arr in (d, a, F, Ft, M, ct, cm, dW)))
     return (d, a, F, Ft, M, ct, cm, dW, exact), int(g[_cuda.COUNT_OVERFLOW])

@@ -13,7 +13,12 @@ holds that work as CUDA kernels with one thread per contact:
   steps, the outputs, the overflow and finiteness tests, each contact's state read and
   written once;
 * ``law_channel``: one channel's Masing step, for the steps that are not the plain case
-  (separations, changing loads onto the springs), whose bookkeeping stays array operations.
+  (separations, contacts switching onto their springs), whose bookkeeping stays array
+  operations.
+
+Contacts already on their MDR springs (stepped on the host) do not leave the plain case:
+both kernels take a mask of them (``spring``), the normal kernel lets their loads change, and
+the step kernel gives them placeholder outputs and leaves their stacks alone.
 
 The kernels are :data:`SOURCE`, plain C with a few macros, so that the same text builds
     * on a GPU through CuPy's runtime compiler (:func:`cupy_kernels`, ``--fmad=false``: no
@@ -335,15 +340,16 @@ DEV void channel_one(long long i, CHANNEL_ARGS)
 #define NORMAL_ARGS \
     int by_force, long long n_contacts, const double* val, int has_u, const double* u, \
     int has_phi, const double* phi, const double* kc, const double* E, const double* flat, \
-    double n, int flat_punch, double c2, double rtol, const double* ref, \
-    double* d, double* a, double* F, unsigned long long* flags
+    double n, int flat_punch, double c2, double rtol, const double* ref, int has_spring, \
+    const unsigned char* spring, double* d, double* a, double* F, unsigned long long* flags
 
 #define NORMAL_PASS \
     by_force, n_contacts, val, has_u, u, has_phi, phi, kc, E, flat, n, flat_punch, c2, rtol, \
-    ref, d, a, F, flags
+    ref, has_spring, spring, d, a, F, flags
 
 /* normal contact of contact i (law_xp.normal) and the flags that send a step to the
-   array path; no state written */
+   array path (a contact on its springs, spring[i] != 0, may change its load); no state
+   written */
 DEV void normal_one(long long i, NORMAL_ARGS)
 {
     double v = val[i];
@@ -387,7 +393,7 @@ DEV void normal_one(long long i, NORMAL_ARGS)
         flags[1] = 1ULL;
     } else {
         double r = ref[i];
-        if (r != 0.0 && fabs(di - r) > rtol * r)
+        if (r != 0.0 && fabs(di - r) > rtol * r && !(has_spring && spring[i]))
             flags[2] = 1ULL;
         if (has_u && has_phi && u[i] != 0.0 && phi[i] != 0.0)
             flags[3] = 1ULL;
@@ -398,26 +404,41 @@ DEV void normal_one(long long i, NORMAL_ARGS)
     long long n_contacts, int K, int has_u, const double* u, int has_phi, const double* phi, \
     const double* d, const double* a, const double* F, \
     const double* mu, const double* E, const double* G, const double* Gt, CURVE_ARGS, \
-    double* ref, STATE_ARGS, \
+    double* ref, int has_spring, const unsigned char* spring, STATE_ARGS, \
     double* Ft, double* ct, double* M, double* cm, double* dW, unsigned char* exact, \
     unsigned long long* flags
 
 #define STEP_PASS \
     n_contacts, K, has_u, u, has_phi, phi, d, a, F, mu, E, G, Gt, n, ncase, cM, coef, N, \
-    y_scale, y0, m0, scaled, power, ref, sx, sy, sw, last, depth, X, Y, over, Ft, ct, M, cm, \
-    dW, exact, flags
+    y_scale, y0, m0, scaled, power, ref, has_spring, spring, sx, sy, sw, last, depth, X, Y, \
+    over, Ft, ct, M, cm, dW, exact, flags
 
 /* the constant-load step of contact i, every contact in contact (the array step's
    bookkeeping for that case): reference depth, both channels, outputs, overflow and
-   finiteness */
+   finiteness. A contact on its springs (spring[i] != 0; the host steps them and writes their
+   outputs): the array step's initial outputs, not exact, its stacks left as they are (unused
+   while it is on springs, reset when it leaves them), its normal results tested */
 DEV void step_one(long long i, STEP_ARGS)
 {
+    double di = d[i], ai = a[i], Fi = F[i];
+    if (has_spring && spring[i]) {
+        Ft[i] = 0.0;
+        ct[i] = ai;
+        M[i] = 0.0;
+        cm[i] = ai;
+        dW[i] = 0.0;
+        exact[i] = 0;
+        double sum = di + ai;
+        sum += Fi;
+        if (!FINITE(sum))
+            flags[4] = 1ULL;
+        return;
+    }
     struct Scales C;
     struct Stack T0, T1;
     curve_of(&C, n, ncase, cM, coef, N, y_scale, y0, m0, scaled, power);
     stack_of(&T0, 0, n_contacts, K, sx, sy, sw, last, depth, X, Y, over);
     stack_of(&T1, 1, n_contacts, K, sx, sy, sw, last, depth, X, Y, over);
-    double di = d[i], ai = a[i], Fi = F[i];
     if (ref[i] == 0.0)
         ref[i] = di;
     int was = T0.over[i] | T1.over[i];
@@ -484,7 +505,8 @@ _SCALARS = {"kind": np.int32, "n_contacts": np.int64, "K": np.int32, "n": np.flo
             "ncase": np.int32, "cM": np.float64, "N": np.int32, "y_scale": np.float64,
             "y0": np.float64, "m0": np.float64, "scaled": np.int32, "power": np.int32,
             "by_force": np.int32, "has_u": np.int32, "has_phi": np.int32,
-            "flat_punch": np.int32, "c2": np.float64, "rtol": np.float64}
+            "flat_punch": np.int32, "c2": np.float64, "rtol": np.float64,
+            "has_spring": np.int32}
 _CURVE = ("n", "ncase", "cM", "coef", "N", "y_scale", "y0", "m0", "scaled", "power")
 _STATE = ("sx", "sy", "sw", "last", "depth", "X", "Y", "over")
 #: each kernel's arguments, in order
@@ -492,10 +514,11 @@ ORDER = {
     "law_channel": ("kind", "n_contacts", "K", "x", "a", "d", "FN", "mu", "E", "G", *_CURVE,
                     *_STATE, "y_out", "aux_out", "w_out"),
     "law_normal": ("by_force", "n_contacts", "val", "has_u", "u", "has_phi", "phi", "kc", "E",
-                   "flat", "n", "flat_punch", "c2", "rtol", "ref", "d", "a", "F", "flags"),
+                   "flat", "n", "flat_punch", "c2", "rtol", "ref", "has_spring", "spring", "d",
+                   "a", "F", "flags"),
     "law_step": ("n_contacts", "K", "has_u", "u", "has_phi", "phi", "d", "a", "F", "mu", "E",
-                 "G", "Gt", *_CURVE, "ref", *_STATE, "Ft", "ct", "M", "cm", "dW", "exact",
-                 "flags"),
+                 "G", "Gt", *_CURVE, "ref", "has_spring", "spring", *_STATE, "Ft", "ct", "M",
+                 "cm", "dW", "exact", "flags"),
 }
 
 
@@ -550,35 +573,42 @@ def channel_args(kind: int, x: Any, a: Any, d: Any, FN: Any, mu: Any, E: Any, G:
 
 
 def normal_args(by_force: bool, val: Any, u: Any, phi: Any, kc: Any, E: Any, flat: Any,
-                n: float, rtol: float, ref: Any, out: tuple, flags: Any) -> tuple:
+                n: float, rtol: float, ref: Any, out: tuple, flags: Any,
+                spring: Any = None) -> tuple:
     """The arguments of ``law_normal``: the normal contact of every contact from a force
     (``by_force``) or a depth ``val``, the controls ``u`` and ``phi`` (None: absent; only
     checked), per-contact ``kc``, ``E*`` and punch radii ``flat``, exponent ``n``, the law's
     ``load_rtol`` and reference depths ``ref``; outputs ``(d, a, F)`` and the step's
-    ``flags`` (uint64, :data:`FLAG_BAD` ...)."""
+    ``flags`` (uint64, :data:`FLAG_BAD` ...); ``spring``: uint8 per contact, nonzero for a
+    contact on its springs (its load may change), or None (none is)."""
     n = float(n)
     vals = {"by_force": bool(by_force), "n_contacts": val.size, "val": val,
             "has_u": u is not None, "u": val if u is None else u, "has_phi": phi is not None,
             "phi": val if phi is None else phi, "kc": kc, "E": E, "flat": flat, "n": n,
             "flat_punch": n == float("inf"),
             "c2": 2.0 * n / (n + 1.0) if n != float("inf") else 2.0, "rtol": float(rtol),
-            "ref": ref, "d": out[0], "a": out[1], "F": out[2], "flags": flags}
+            "ref": ref, "has_spring": spring is not None,
+            "spring": flags if spring is None else spring, "d": out[0], "a": out[1],
+            "F": out[2], "flags": flags}
     return _pack("law_normal", vals)
 
 
 def step_args(u: Any, phi: Any, d: Any, a: Any, F: Any, mu: Any, E: Any, G: Any, Gt: Any,
               n: float, master: Any, coef: Any, ref: Any, chan: dict, out: tuple,
-              flags: Any) -> tuple:
+              flags: Any, spring: Any = None) -> tuple:
     """The arguments of ``law_step``: the constant-load step of every contact (all in
-    contact, none on springs) from the controls ``u`` and ``phi`` (None: absent), the normal
+    contact) from the controls ``u`` and ``phi`` (None: absent), the normal
     results ``d``, ``a``, ``F``, the per-contact parameters, the curves, the reference depths
     ``ref`` and both channels' state ``chan``; outputs ``(Ft, ct, M, cm, dW, exact)`` and
-    ``flags``."""
+    ``flags``; ``spring``: uint8 per contact, nonzero for a contact on its springs (left to
+    the host: placeholder outputs, not exact, its stacks untouched), or None."""
     vals = {"n_contacts": d.size, "has_u": u is not None, "u": d if u is None else u,
             "has_phi": phi is not None, "phi": d if phi is None else phi, "d": d, "a": a,
             "F": F, "mu": mu, "E": E, "G": G, "Gt": Gt, **_curve(n, master, coef),
-            "ref": ref, **_state(chan, None), "Ft": out[0], "ct": out[1], "M": out[2],
-            "cm": out[3], "dW": out[4], "exact": out[5], "flags": flags}
+            "ref": ref, "has_spring": spring is not None,
+            "spring": flags if spring is None else spring, **_state(chan, None),
+            "Ft": out[0], "ct": out[1], "M": out[2], "cm": out[3], "dW": out[4],
+            "exact": out[5], "flags": flags}
     return _pack("law_step", vals)
 
 
