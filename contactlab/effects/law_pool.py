@@ -139,10 +139,12 @@ def _mapped(shape: tuple, dtype: np.dtype, fill: int = -1, threads: bool = False
     page 246-257 ms, a private one 178-183 ms, a private one populated by
     ``MADV_POPULATE_WRITE`` (no fault per page) 138-163 ms plus 17-23 ms for the write;
     transparent huge pages (numpy's request for large arrays, or ``MADV_HUGEPAGE``) 44-68 ms
-    when the kernel has free huge pages but 0.7-1.4 s when it first compacts memory for them
-    (this machine's ``defrag`` setting), so they are not asked for. Where the advice is not
-    known (older kernels, other systems) the pages fault in on the first write. The map is
-    released with the last array that views it."""
+    when the kernel's free huge pages are memory the VM's host has backed already, but
+    0.7-1.4 s when they are not (no compaction counted: the host backs a VM's memory on its
+    first touch, and the kernel hands out huge pages from memory never touched more often
+    than base pages, which it recycles), unpredictably from one process to the next, so they
+    are not asked for. Where the advice is not known (older kernels, other systems) the pages
+    fault in on the first write. The map is released with the last array that views it."""
     dtype = np.dtype(dtype)
     nbytes = int(np.prod(shape)) * dtype.itemsize
     if nbytes < _MAP_BYTES:
