@@ -4,6 +4,7 @@ measured time of one constant-load step of ``backend="cupy"``.
     python benchmarks/law_gpu.py            # estimate; plus the GPU rows when CuPy finds a device
     python benchmarks/law_gpu.py --n 1e6,1e7,1e8    # the GPU rows at these n (default 10^7)
     python benchmarks/law_gpu.py --changing --n 1e6,1e7    # the changing-load rows only
+    python benchmarks/law_gpu.py --changing --parallel      # ... and the host springs threaded
 
 **Estimate (no GPU needed).** The step of the array-module backend
 (:mod:`contactlab.physics.law_xp`) runs as one device kernel per array operation (CuPy does
@@ -138,10 +139,11 @@ class _CountingXP:
         return f
 
 
-def _law(n: int, backend: str) -> cl.ContactLaw:
+def _law(n: int, backend: str, parallel: bool = False) -> cl.ContactLaw:
     rng = np.random.default_rng(0)
     return cl.ContactLaw(cl.profiles.Paraboloid, R=rng.uniform(1e-3, 1e-2, n), E_star=1.15e11,
-                         G_star=4.4e10, G_torsion=4.0e10, friction=0.3, backend=backend)
+                         G_star=4.4e10, G_torsion=4.0e10, friction=0.3, backend=backend,
+                         parallel=parallel)
 
 
 @functools.lru_cache(maxsize=32)
@@ -222,16 +224,19 @@ def _best_step(cupy: Any, law: cl.ContactLaw, n: int, F: Any, steps: int = 8,
 
 def changing_rows(cupy: Any, name: str, n: int) -> None:
     """Steps in which 1 % of ``n`` contacts change their load (onto their springs, which run
-    on the host): the compiled host spring passes (where numba imports) and the numpy
-    reference, one law each, side by side."""
+    on the host): the compiled host spring passes (where numba imports; with ``--parallel``
+    also on numba's threads) and the numpy reference, one law each, side by side."""
     from contactlab.effects import law_device_springs
     from contactlab.foundation import _compiled
     routes = ["compiled", "numpy"] if law_device_springs.compiled(cupy) else ["numpy"]
+    if "--parallel" in sys.argv and routes[0] == "compiled":
+        import numba
+        routes.insert(1, f"compiled, {numba.get_num_threads()} threads")
     times = {}
     for route in routes:
         _compiled.set_backend("numpy" if route == "numpy" else None)
         try:
-            law = _law(n, "cupy")
+            law = _law(n, "cupy", parallel="threads" in route)
             F = cupy.asarray(_controls(n, 0)[0])
             times[route] = best = _best_step(cupy, law, n, F, changing=0.01)
         finally:
@@ -263,8 +268,10 @@ def gpu_rows(sizes: list[int] | int) -> None:
         times = {}
         for mode in what:                   # one law at a time (10^8 contacts: ~90 GB each)
             law = _law(n, "cupy")
+            kernels = law._kernels
+            assert kernels is not None             # CuPy's build of the fused kernels
             if mode != "step":
-                law._kernels = Kernels(law._kernels.channel) if mode == "channels" else None
+                law._kernels = Kernels(kernels.channel) if mode == "channels" else None
             F = cupy.asarray(_controls(n, 0)[0])
             times[mode] = best = _best_step(cupy, law, n, F)
             print(f"MEASURED on {name}: n = {n:.0e}, constant-load step, {what[mode]}: "

@@ -121,8 +121,9 @@ class ContactLaw:
         numpy reference path: bit-identical at constant load; contacts on springs agree to
         ~1e-12 of the largest value (the cell integrals are summed in another order).
     parallel : bool
-        Run the compiled kernel on numba's threads (over contacts; bit-identical to the serial
-        kernel). Off by default: a threading layer inside forked worker processes can hang.
+        Run the compiled kernel (on ``backend="cupy"``: the host's compiled spring passes) on
+        numba's threads (over contacts; bit-identical to the serial kernel). Off by default: a
+        threading layer inside forked worker processes can hang.
     backend : {"numpy", "numba", "cupy", "xp-numpy"}, optional
         numpy reference, compiled (``fast=True``), CUDA GPU through CuPy (extra ``gpu``, CuPy
         results: :mod:`contactlab.effects.law_device`) or the GPU code on numpy (tests).

@@ -435,6 +435,28 @@ def test_compiled_host_springs_of_a_device_law_regrid_and_release(monkeypatch, r
         check(v[used], sr[key][used], key)
 
 
+def test_compiled_host_springs_on_threads_give_the_serial_bits(monkeypatch):
+    """``parallel=True`` on backend="cupy" (numpy dressed as CuPy) runs the host's compiled
+    spring passes on numba's threads: every output and the state equal to the bit to the
+    serial numba law's on a history where half the contacts go onto their springs."""
+    monkeypatch.setitem(sys.modules, "cupy", _FakeCupy())
+    _host_springs(monkeypatch, "compiled")
+    n, steps = 60, 50
+    dev, ref, rng = _laws(cl.profiles.Paraboloid, "R", (1e-3, 1e-2), {}, 7, n, "cupy", "numba",
+                          memory=3, parallel=True)
+    dev._kernels = None
+    assert dev.parallel
+    ref.parallel = False
+    for a, b, _ in _run(dev, ref, rng, "force", steps, n, _FakeCupy.asnumpy):
+        for f in FIELDS:
+            np.testing.assert_array_equal(a[f], getattr(b, f), err_msg=f)
+    sd, sr = dev.state, ref.state
+    assert sr["spr_on"][n // 2:].all()
+    for key in sr:
+        if key.startswith("spr_"):
+            np.testing.assert_array_equal(sd[key], sr[key], err_msg=key)
+
+
 def _cupy():
     cupy = pytest.importorskip("cupy")
     try:
