@@ -190,29 +190,6 @@ def _to(xp: Any, idx: np.ndarray) -> Any:
     return idx if xp is np else xp.asarray(idx)
 
 
-class _Gather:
-    """``v[idx]`` of a device array, as numpy, for host indices ``idx``."""
-
-    def __init__(self, v: Any, xp: Any) -> None:
-        self.v = v
-        self.xp = xp
-
-    def __getitem__(self, idx: np.ndarray) -> np.ndarray:
-        return _host(self.v[_to(self.xp, idx)], self.xp)
-
-
-class _HostView:
-    """The law as the numpy spring path sees it: its state read through gathers from the
-    device, everything else the law's own (parameters and spring pool live on the host)."""
-
-    def __init__(self, law: Any) -> None:
-        self._law = law
-        self._st = {k: _Gather(v, law._xp) for k, v in law._st.items()}
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._law, name)
-
-
 def params(law: Any) -> dict[str, Any]:
     """The law's per-contact parameters and torsion master-curve table in its array module
     (copied to the device once, on the first step)."""
@@ -312,11 +289,7 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
                 n_spr = law._pool.used + int(switch.size)
                 check_memory("ContactLaw.step()", spring_memory(n_spr, law.springs),
                              f"{n_spr} contacts on {law.springs} springs each")
-                if xp is np:
-                    _springs.to_springs(law, xp, switch, d, a)
-                else:       # the numpy reference reads the state at the switching ones
-                    host: Any = (_Gather(d, xp), _Gather(a, xp))
-                    _springs.to_springs(law, xp, switch, d, a, (_HostView(law), *host))
+                _springs.to_springs(law, xp, switch, d, a)
         elif bool(off.any()):
             i = int(xp.argmax(off))
             raise OutsideTheoryError(
@@ -347,17 +320,13 @@ def step(law: Any, depth: Any, force: Any, displacement: Any, twist: Any, out: A
             dW = dW + w
         over = st["tan_overflow"] | st["tor_overflow"]
         exact = live & ~over
-        pool = law._pool
-        on_dev = None
-        if pool is not None and pool.used:
-            on_dev = xp.zeros(size, bool)
-            on_dev[_to(xp, np.sort(pool.owner[:pool.used]))] = True     # no pass over all
-            over &= ~on_dev                     # their (unused) stacks are not counted
+        springs = _on_springs(law, xp)          # (all live: the others were cleared)
+        if springs is not None:
+            over &= ~springs[1]                 # their (unused) stacks are not counted
         n_over = int(xp.count_nonzero(over & ~was & live))
-        if on_dev is not None:
-            idx = _host(xp.flatnonzero(on_dev & live), xp)
-            _spring_outputs(law, xp, idx, d, a, u, phi, (Ft, ct, M, cm, dW))
-            exact[_to(xp, idx)] = False
+        if springs is not None:
+            _spring_outputs(law, xp, springs[0], d, a, u, phi, (Ft, ct, M, cm, dW))
+            exact[_to(xp, springs[0])] = False
         if not all_live:
             dead = ~live
             Ft, M, dW, ct, cm = (xp.where(dead, 0.0, arr) for arr in (Ft, M, dW, ct, cm))
@@ -418,14 +387,15 @@ def _spring_outputs(law: Any, xp: Any, idx: np.ndarray, d: Any, a: Any, u: Any, 
 
 
 def _on_springs(law: Any, xp: Any) -> tuple[np.ndarray, Any] | None:
-    """``(contacts on springs, ascending; their mask on the device, uint8)``, or None when
-    no contact is on springs."""
+    """``(contacts on springs, ascending, from the pool's rows in use (no pass over every
+    contact); their mask on the device, bool: one byte each, as the kernels read it)``, or
+    None when no contact is on springs."""
     pool = law._pool
     if pool is None or not pool.used:
         return None
     idx = np.sort(pool.owner[:pool.used])
-    mask = xp.zeros(law.size, np.uint8)
-    mask[_to(xp, idx)] = 1
+    mask = xp.zeros(law.size, bool)
+    mask[_to(xp, idx)] = True
     return idx, mask
 
 

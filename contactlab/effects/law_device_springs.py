@@ -52,18 +52,42 @@ def _gather(xp: Any, v: Any, idx: np.ndarray, axis: int = 0) -> np.ndarray:
     return np.ascontiguousarray(_host(xp.take(v, ix, axis=axis), xp))
 
 
-def to_springs(law: Any, xp: Any, idx: np.ndarray, d: Any, a: Any,
-               reference: tuple | None = None) -> None:
+class _Gather:
+    """``v[idx]`` of an array of the module ``xp``, on the host, for host indices ``idx``."""
+
+    def __init__(self, v: Any, xp: Any) -> None:
+        self.v = v
+        self.xp = xp
+
+    def __getitem__(self, idx: np.ndarray) -> np.ndarray:
+        return _gather(self.xp, self.v, idx)
+
+
+class _HostView:
+    """The law as the numpy spring path sees it on a device: its state read through gathers
+    at the contacts it reads, everything else the law's own (parameters and spring pool live
+    on the host)."""
+
+    def __init__(self, law: Any) -> None:
+        self._law = law
+        self._st = {k: _Gather(v, law._xp) for k, v in law._st.items()}
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._law, name)
+
+
+def to_springs(law: Any, xp: Any, idx: np.ndarray, d: Any, a: Any) -> None:
     """Switch the contacts ``idx`` (host indices, not on springs) onto their springs: their
     Masing turning points replayed through the elements at the held load (``d``, ``a``: the
-    step's depths and radii of all contacts, arrays of ``xp``). ``reference``: ``(law, d, a)``
-    as the numpy reference reads them on a device (its state, depths and radii gathered at the
-    contacts it reads), used where the passes are not compiled."""
+    step's depths and radii of all contacts, arrays of ``xp``)."""
     if idx.size == 0:
         return
     if not compiled(xp):
-        ref_law, ref_d, ref_a = reference if reference is not None else (law, d, a)
-        _np_springs.to_springs(ref_law, idx, ref_d, ref_a)
+        if xp is np:
+            _np_springs.to_springs(law, idx, d, a)
+        else:       # the state, depths and radii gathered at the contacts the path reads
+            at: Any = (_Gather(d, xp), _Gather(a, xp))
+            _np_springs.to_springs(_HostView(law), idx, *at)
         return
     pool = law._pool
     m = idx.size

@@ -579,8 +579,8 @@ def normal_args(by_force: bool, val: Any, u: Any, phi: Any, kc: Any, E: Any, fla
     (``by_force``) or a depth ``val``, the controls ``u`` and ``phi`` (None: absent; only
     checked), per-contact ``kc``, ``E*`` and punch radii ``flat``, exponent ``n``, the law's
     ``load_rtol`` and reference depths ``ref``; outputs ``(d, a, F)`` and the step's
-    ``flags`` (uint64, :data:`FLAG_BAD` ...); ``spring``: uint8 per contact, nonzero for a
-    contact on its springs (its load may change), or None (none is)."""
+    ``flags`` (uint64, :data:`FLAG_BAD` ...); ``spring``: one byte per contact (bool or
+    uint8), nonzero for a contact on its springs (its load may change), or None (none is)."""
     n = float(n)
     vals = {"by_force": bool(by_force), "n_contacts": val.size, "val": val,
             "has_u": u is not None, "u": val if u is None else u, "has_phi": phi is not None,
@@ -600,8 +600,9 @@ def step_args(u: Any, phi: Any, d: Any, a: Any, F: Any, mu: Any, E: Any, G: Any,
     contact) from the controls ``u`` and ``phi`` (None: absent), the normal
     results ``d``, ``a``, ``F``, the per-contact parameters, the curves, the reference depths
     ``ref`` and both channels' state ``chan``; outputs ``(Ft, ct, M, cm, dW, exact)`` and
-    ``flags``; ``spring``: uint8 per contact, nonzero for a contact on its springs (left to
-    the host: placeholder outputs, not exact, its stacks untouched), or None."""
+    ``flags``; ``spring``: one byte per contact (bool or uint8), nonzero for a contact on its
+    springs (left to the host: placeholder outputs, not exact, its stacks untouched), or
+    None."""
     vals = {"n_contacts": d.size, "has_u": u is not None, "u": d if u is None else u,
             "has_phi": phi is not None, "phi": d if phi is None else phi, "d": d, "a": a,
             "F": F, "mu": mu, "E": E, "G": G, "Gt": Gt, **_curve(n, master, coef),

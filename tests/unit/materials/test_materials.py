@@ -50,7 +50,6 @@ def test_identity():
 
 
 def test_viscoelastic_materials_arrive_through_the_registry():
-    from contactlab.materials.viscoelastic import GeneralizedMaxwell, KelvinVoigt, StandardLinearSolid
     reg = cl.registry.registry
     for name in ("kelvin_voigt", "maxwell", "standard_linear_solid", "generalized_maxwell"):
         assert name in reg.available("material")
